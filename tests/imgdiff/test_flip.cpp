@@ -411,6 +411,63 @@ void test_hdr_is_max_over_exposures(void**) {
     for (std::size_t i = 0; i < hdr.size(); ++i) EXPECT_NEAR(hdr[i], expected[i], 1e-4);
 }
 
+// Mean errors of NVIDIA's published implementation (PyPI flip-evaluator 1.7, linear inputs,
+// float64 mean of its error map), computed once for the deterministic images below; an independent
+// check of the readings flip.h documents. Its HDR median convention differs slightly from ours,
+// hence the wider tolerance on the stop exposure.
+std::vector<float> gradient_scene(int w, int h, float gain, bool modulate) {
+    std::vector<float> img(static_cast<std::size_t>(w) * h * 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const bool square = x >= 40 && x < 90 && y >= 30 && y < 70;
+            Rgb c = square ? Rgb{0.9f, 0.8f, 0.2f} : Rgb{0.2f + 0.6f * x / w, 0.3f + 0.4f * y / h, 0.5f};
+            const float m = gain * (modulate ? std::exp2(4.0f * std::sin(x / 7.0f) * std::cos(y / 5.0f)) : 1.0f);
+            set_pixel(img, w, x, y, {c.r * m, c.g * m, c.b * m});
+        }
+    return img;
+}
+
+void test_matches_published_implementation(void**) {
+    const int w = 128, h = 96;
+    std::vector<float> step = uniform(w, h, {0, 0, 0});
+    for (int y = 0; y < h; ++y)
+        for (int x = 64; x < w; ++x) set_pixel(step, w, x, y, {1, 1, 1});
+    const std::vector<float> grey = uniform(w, h, {0.5f, 0.5f, 0.5f});
+    const std::vector<float> scene = gradient_scene(w, h, 1.0f, false);
+    std::vector<float> shifted(scene.size()), scaled(scene.size());
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const std::size_t i = (static_cast<std::size_t>(y) * w + x) * 3 + c;
+                shifted[i] = scene[(static_cast<std::size_t>(y) * w + (x + w - 1) % w) * 3 + c];
+                scaled[i] = std::min(1.0f, scene[i] * (c == 0 ? 1.1f : c == 1 ? 0.9f : 1.0f));
+            }
+    const struct {
+        const std::vector<float>* ref;
+        const std::vector<float>* test;
+        float ppd;
+        double expected;
+    } cases[] = {
+        {&step, &grey, 67.0f, 0.7581453649}, {&scene, &shifted, 67.0f, 0.0509257275},
+        {&scene, &scaled, 67.0f, 0.2555267348}, {&step, &grey, 30.0f, 0.7515062117},
+        {&scene, &shifted, 30.0f, 0.0434673458}, {&scene, &scaled, 30.0f, 0.2508349261},
+    };
+    std::vector<float> map;
+    for (const auto& c : cases) {
+        assert_int_equal(flip_ldr(c.ref->data(), c.test->data(), w, h, c.ppd, map), FlipResult::ok);
+        EXPECT_NEAR(mean_of(map), c.expected, 5e-5);
+    }
+    const std::vector<float> hdr_ref = gradient_scene(w, h, 16.0f, true);
+    std::vector<float> hdr_test(hdr_ref);
+    for (float& v : hdr_test) v *= 1.2f;
+    FlipExposures ex;
+    assert_int_equal(flip_hdr(hdr_ref.data(), hdr_test.data(), w, h, 67.0f, map, &ex), FlipResult::ok);
+    EXPECT_NEAR(ex.start, -6.553166389, 1e-4);
+    EXPECT_NEAR(ex.stop, -1.989931226, 1e-3);
+    assert_int_equal(ex.count, 5);
+    EXPECT_NEAR(mean_of(map), 0.2385057445, 2e-4);
+}
+
 void test_bad_input(void**) {
     const int w = 8, h = 8;
     std::vector<float> a = uniform(w, h, {0.5f, 0.5f, 0.5f}), b = a, map;
@@ -475,6 +532,7 @@ int main(void) {
         cmocka_unit_test(test_hdr_exposures),
         cmocka_unit_test(test_hdr_uniform_by_hand),
         cmocka_unit_test(test_hdr_is_max_over_exposures),
+        cmocka_unit_test(test_matches_published_implementation),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_stats),
         cmocka_unit_test(test_srgb_transfer),
