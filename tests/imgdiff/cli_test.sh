@@ -50,6 +50,10 @@ errors)
     grep -q "missing.png" err.txt || fail "missing file not named: $(cat err.txt)"
     expect 2 ref.png missing.png
     expect 2 not_an_image.png ref.png
+    head -c 2000 strong.png >truncated.png
+    expect 2 truncated.png strong.png
+    head -c 300 ref.exr >truncated.exr
+    expect 2 ref.exr truncated.exr
     expect 2 ref.png small.png
     grep -q "size mismatch" err.txt || fail "size mismatch message: $(cat err.txt)"
     expect 2 ref.png

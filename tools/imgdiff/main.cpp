@@ -5,6 +5,9 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -58,7 +61,36 @@ struct Image {
     std::vector<float> rgb;  // linear
 };
 
-void fail_message(const std::string& message) { std::fprintf(stderr, "rtpbr-diff: %s\n", message.c_str()); }
+// Errors are reported as exactly one line: library messages may hold newlines.
+void fail_message(std::string message) {
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    while (!message.empty() && message.back() == ' ') message.pop_back();
+    std::fprintf(stderr, "rtpbr-diff: %s\n", message.c_str());
+}
+
+// Some codecs (libpng) print their own diagnostics to stderr; OpenImageIO also returns them
+// through geterror(), which we report. Silences fd 2 while alive.
+class SilenceStderr {
+public:
+    SilenceStderr() {
+        std::fflush(stderr);
+        saved_ = dup(STDERR_FILENO);
+        const int null_fd = open("/dev/null", O_WRONLY);
+        if (saved_ >= 0 && null_fd >= 0) dup2(null_fd, STDERR_FILENO);
+        if (null_fd >= 0) close(null_fd);
+    }
+    ~SilenceStderr() {
+        if (saved_ < 0) return;
+        std::fflush(stderr);
+        dup2(saved_, STDERR_FILENO);
+        close(saved_);
+    }
+    SilenceStderr(const SilenceStderr&) = delete;
+    SilenceStderr& operator=(const SilenceStderr&) = delete;
+
+private:
+    int saved_ = -1;
+};
 
 bool parse_number(const char* text, double& value) {
     char* end = nullptr;
@@ -128,6 +160,7 @@ bool parse_args(int argc, char** argv, Options& opt, bool& show_help, std::strin
 }
 
 bool read_image(const std::string& path, Image& image, std::string& error) {
+    SilenceStderr quiet;
     auto in = OIIO::ImageInput::open(path);
     if (!in) {
         std::string why = OIIO::geterror();
