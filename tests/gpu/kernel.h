@@ -30,6 +30,9 @@
 
 RTPBR_NAMESPACE_BEGIN
 
+// The largest float below 1.
+RTPBR_CONST float RTPBR_TEST_BELOW_ONE = 0.99999994f;
+
 // The arguments every case draws from. Domains are those of the library's documentation.
 struct RtpbrTestArgs {
     float c0, c1, c2, c3; // cosines in [0, 1] (a.x, a.y, b.x, b.y), exact 0 and 1 included
@@ -50,7 +53,7 @@ struct RtpbrTestArgs {
     float beckA;          // Beckmann a = cot(theta) / alpha in [0, 10]
     float mu;             // cot(theta) of a direction, [0, 1e6]
     float3 wo, wi, wm;    // local directions (n = +z), z = c0, c1, a.w; azimuths from b.z, b.w, b.x
-    float2 u;             // a sample pair (b.x, b.y)
+    float2 u;             // a sample pair (b.x, b.y) in [0, 1) (the samplers' domain)
 };
 
 // A direction with cosine c to +z and an azimuth picked by t in [0, 1] through the rational
@@ -104,7 +107,7 @@ RTPBR_FN RtpbrTestArgs rtpbr_test_args(float4 a, float4 b) {
     t.wo = rtpbr_test_dir(a.x, b.z);
     t.wi = rtpbr_test_dir(a.y, b.w);
     t.wm = rtpbr_test_dir(a.w, b.x);
-    t.u = float2(b.x, b.y);
+    t.u = float2(min(b.x, RTPBR_TEST_BELOW_ONE), min(b.y, RTPBR_TEST_BELOW_ONE));
     return t;
 }
 

@@ -234,6 +234,15 @@ static void check_variant(test_state *st, size_t v, int lang) {
     snprintf(what, sizeof(what), "cpu_%s", variants[v].name);
     dump(what, cpu, n);
     dump("inputs", st->inputs, (size_t)RTPBR_TEST_INPUTS * 8);
+    if (getenv("RTPBR_TEST_GPU_DUMP")) {
+        char path[1024];
+        snprintf(path, sizeof(path), "%s/names.txt", getenv("RTPBR_TEST_GPU_DUMP"));
+        FILE *f = fopen(path, "w");
+        for (uint32_t j = 0; f && j < k->outputs; j++)
+            fprintf(f, "%s\n", k->names[j]);
+        if (f)
+            fclose(f);
+    }
     char title[128];
     snprintf(title, sizeof(title), "%s vs C++, variant %s", lang_names[lang], variants[v].name);
     uint32_t mismatches = compare(title, k, st->inputs, cpu, gpu, RTPBR_TEST_INPUTS, NULL);
