@@ -127,7 +127,9 @@ RTPBR_FN float Beckmann_SampleSlopeX(float mu, float u) {
             lo = x;
         float dg = 2.0f * (mu - x) * exp(-x * x) / RTPBR_SQRT_PI;
         float xn = x - g / dg;
-        if (!(xn > lo && xn < hi)) // Newton left the bracket (or dg = 0): bisect
+        // Newton left the bracket (or dg = 0): bisect. The bounds are inclusive: at an exact
+        // root (g = 0) the bracket closes on x itself, and x must be kept.
+        if (!(xn >= lo && xn <= hi))
             xn = 0.5f * (lo + hi);
         if (abs(xn - x) < 1e-6f) {
             x = xn;
