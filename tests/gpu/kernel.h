@@ -111,6 +111,10 @@ RTPBR_FN RtpbrTestArgs rtpbr_test_args(float4 a, float4 b) {
     return t;
 }
 
+// Each case assigns instead of returning early: lavapipe (Mesa 22.3, gallivm) miscompiled the
+// early-return form of this chain (outputs past ~75 came out wrong, the same SPIR-V with fewer
+// cases was right); returns are lowered to nested ifs and gallivm's control-flow nesting is
+// limited (LP_MAX_TGSI_NESTING = 80), the likely cause. Keep the chain flat.
 RTPBR_FN float rtpbr_test_eval(float4 a, float4 b, uint j) {
     RtpbrTestArgs t = rtpbr_test_args(a, b);
     uint n = 0u;
