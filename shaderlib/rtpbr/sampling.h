@@ -67,10 +67,11 @@ RTPBR_FN float3 Sample_GGX_VNDF(float3 wo, float alphaX, float alphaY, float2 u)
     float3 wStd = normalize(float3(wo.x * ax, wo.y * ay, wo.z));
     float phi = RTPBR_TWO_PI * u.x;
     // c is uniform on the cap z >= -wStd.z: z = (1 - u.y) (1 + wStd.z) - wStd.z, written so
-    // that nothing cancels near the cap's poles: with s = 1 - z = u.y (1 + wStd.z),
-    // 1 - z^2 = s (2 - s).
-    float s = u.y * (1.0f + wStd.z);
-    float sinTheta = safe_sqrt(s * (2.0f - s));
+    // that nothing cancels near the cap's poles: 1 - z = u.y (1 + wStd.z) and
+    // 1 + z = (1 - wStd.z) + (1 - u.y) (1 + wStd.z), with 1 - wStd.z = (x^2 + y^2) / (1 + wStd.z).
+    float onePlusW = 1.0f + wStd.z;
+    float oneMinusW = (wStd.x * wStd.x + wStd.y * wStd.y) / onePlusW;
+    float sinTheta = safe_sqrt(u.y * onePlusW * (oneMinusW + (1.0f - u.y) * onePlusW));
     // hStd = c + wStd, c = (sinTheta cos phi, sinTheta sin phi, z); hStd.z = z + wStd.z.
     float3 hStd = float3(sinTheta * cos(phi) + wStd.x, sinTheta * sin(phi) + wStd.y,
                          (1.0f - u.y) * (1.0f + wStd.z));

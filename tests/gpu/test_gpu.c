@@ -123,13 +123,18 @@ static float input_number(uint64_t *s) {
  * 2e-6 (twice the clamp margin, so that u = 1, clamped to 1 - 1e-6, is probed at a distinct
  * u'), which underestimates |ds/du| at the clamp by up to ~2x (the inverse CDF has a
  * square-root singularity where the slope reaches mu). The table's "max du" column prints the
- * largest equivalent |g - c| / |ds/du| that was needed. The closed-form samplers (GGX, cosine)
- * meet the forward test and get no such allowance. */
+ * largest equivalent |g - c| / |ds/du| that was needed. The GGX spherical-cap sampler is
+ * ill-conditioned the same way where u.y -> 1: the cap point c tends to -wo_std, so
+ * h = c + wo_std is a difference of nearly equal unit vectors that normalisation amplifies
+ * (measured: 7 of 16384 x 3 components off by 1e-4..2e-4 relative, each within a u' a few ulps
+ * away, or components below 2e-3 of a unit vector off by < 1e-8 absolute); it gets the same
+ * backward test. The cosine sampler meets the forward test and gets no allowance. */
 #define RTPBR_TEST_SAMPLE_DU 0x1p-20
 #define RTPBR_TEST_SAMPLE_PROBE 2e-6f
 
 static int is_cdf_inverting_sampler(const char *name) {
-    return strncmp(name, "Sample_Beckmann_VNDF", 20) == 0 || strcmp(name, "Beckmann_SampleSlopeX") == 0;
+    return strncmp(name, "Sample_Beckmann_VNDF", 20) == 0 || strcmp(name, "Beckmann_SampleSlopeX") == 0 ||
+           strncmp(name, "Sample_GGX_VNDF", 15) == 0;
 }
 
 typedef struct output_stats {
@@ -350,7 +355,8 @@ static uint32_t output_index(const rtpbr_test_cpu_kernel *k, const char *name) {
     return 0;
 }
 
-/* Negative control: the C++ build with Beckmann / separable Smith / conductor Fresnel against
+/* Negative control (forward test only, so the ill-conditioned samplers are not in the
+ * flag-independent list): the C++ build with Beckmann / separable Smith / conductor Fresnel against
  * the GPU's GGX / height-correlated / Schlick build. The comparison must find mismatches in
  * the outputs that depend on the flags and none in those that do not. */
 static void test_negative_control(void **state) {
@@ -372,7 +378,7 @@ static void test_negative_control(void **state) {
     for (size_t i = 0; i < sizeof(flag_dependent) / sizeof(flag_dependent[0]); i++)
         assert_true(stats[output_index(beckmann, flag_dependent[i])].mismatches > 0);
     static const char *const flag_independent[] = {
-        "D_GGX", "D_Beckmann", "V_SmithGGXCorrelated", "F_Conductor_x", "Sample_GGX_VNDF_x",
+        "D_GGX", "D_Beckmann", "V_SmithGGXCorrelated", "F_Conductor_x", "Sample_CosineHemisphere_x",
     };
     for (size_t i = 0; i < sizeof(flag_independent) / sizeof(flag_independent[0]); i++)
         assert_int_equal(stats[output_index(beckmann, flag_independent[i])].mismatches, 0);
