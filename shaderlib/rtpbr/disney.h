@@ -36,6 +36,7 @@
 #include "ndf.h"
 #include "smith.h"
 #include "sampling.h"
+#include "kulla_conty.h"
 
 #ifndef RTPBR_DISNEY_ENERGY_CONSERVING
 #define RTPBR_DISNEY_ENERGY_CONSERVING 0
@@ -309,11 +310,11 @@ RTPBR_FN float3 BRDF_Disney(DisneyMaterial material, float3 wo, float3 wi) {
 //   f_ec(o, i) = f_cc(o, i) + Tcc(o) Tcc(i) [ f_spec(o, i) + f_ms(o, i) + tb(o) tb(i) f_base(o, i) ]
 //
 //   f_cc, f_spec   Burley's clearcoat and specular lobes, unchanged.
-//   f_ms           Kulla & Conty 2017 ("Revisiting Physically Based Shading at Imageworks"):
-//                  Fms (1 - E(o)) (1 - E(i)) / (pi (1 - E_avg)), the energy the single-scattering
-//                  specular loses, with the Fresnel of multiple bounces
-//                  Fms = Favg^2 E_avg / (1 - Favg (1 - E_avg)), Favg = F0 + (1 - F0) / 21 (the
-//                  hemispherical average of Schlick's Fresnel).
+//   f_ms           Kulla & Conty 2017 ("Revisiting Physically Based Shading at Imageworks"),
+//                  the terms of kulla_conty.h: KC_FmsColor(F_Avg_Schlick(F0, 1), E_avg)
+//                  KC_Lobe(E(o), E(i), E_avg), i.e. Fms (1 - E(o)) (1 - E(i)) / (pi (1 - E_avg)),
+//                  Fms = Favg^2 E_avg / (1 - Favg (1 - E_avg)), Favg = F0 + (1 - F0) / 21: the
+//                  energy the single-scattering specular loses, coloured by multiple bounces.
 //   f_base         Burley's diffuse + subsurface + sheen, (1 - metallic) included.
 //   Tcc(mu)        = 1 - clearcoat Ucc(mu): Ucc bounds the clearcoat lobe's albedo (at
 //                  clearcoat = 1) from above, over all clearcoatGloss.
@@ -328,30 +329,62 @@ RTPBR_FN float3 BRDF_Disney(DisneyMaterial material, float3 wo, float3 wi) {
 // roughness 1, grazing) is normalised away.
 
 // The table values the energy-conserving variant needs, fetched by the caller (the library
-// takes already-fetched values). For the specular lobe at alpha = Disney_SpecularTableAlpha:
-//   dfgO, dfgI  split-sum terms (A, B) at mu = wo.z and mu = wi.z: the lobe's directional
-//               albedo with Schlick Fresnel is F0 A + B, with F = 1 it is E = A + B
-//               (Karis 2013, "Real Shading in Unreal Engine 4"; B is the (1 - VoH)^5-weighted
-//               part). Kulla-Conty's E(mu) is A + B.
+// takes already-fetched values). For the specular lobe at perceptual roughness
+// Disney_SpecularTableRoughness (the Kulla-Conty tables' axis; alpha = its square):
+//   dfgO, dfgI  (A, B) at mu = wo.z and mu = wi.z: the lobe's directional albedo with Schlick's
+//               Fresnel is F0 A + B, with F = 1 it is Kulla-Conty's E = A + B; B is the
+//               (1 - VoH)^5-weighted part (the split-sum terms of Karis 2013, "Real Shading in
+//               Unreal Engine 4"). Exact (A, B) from a DFG table, or, from the Kulla-Conty
+//               E(mu) alone, the conservative Disney_EnergyTermsFromKullaConty.
 //   Eavg        Kulla-Conty E_avg = 2 integral E(mu) mu dmu.
-// They must be computed with the same Smith G as this header (RTPBR_SMITH). With anisotropy the
-// isotropic tables are an approximation (exact per-direction albedos keep the bound exact).
+// The tables must belong to the Smith G of this header (RTPBR_SMITH: the kulla_conty tables'
+// ggx_hc variant by default, ggx_sep for RTPBR_SMITH_SEPARABLE). With anisotropy the isotropic
+// tables are an approximation (exact per-direction albedos keep the bound exact).
 struct DisneyEnergyTerms {
     float2 dfgO;
     float2 dfgI;
     float Eavg;
 };
 
-// Kulla & Conty 2017: the hemispherical average of Schlick's Fresnel, F0 + (1 - F0) / 21.
-RTPBR_FN float3 Disney_FresnelAverage(float3 F0) {
-    return F0 + (RTPBR_F3(1.0f) - F0) * (1.0f / 21.0f);
+// Perceptual roughness at which to fetch the isotropic Kulla-Conty / DFG tables:
+// sqrt(sqrt(alphaX alphaY)), = roughness unless clamped (the Kulla-Conty tables' r axis).
+RTPBR_FN float Disney_SpecularTableRoughness(DisneyMaterial material) {
+    return sqrt(Disney_SpecularTableAlpha(material));
 }
 
-// Kulla & Conty 2017: the Fresnel colour of the multiple-scattering lobe,
-// Favg^2 E_avg / (1 - Favg (1 - E_avg)); 1 when F = 1.
+// Texture coordinates of E(mu, r) for the direction with cosine NoV, and of E_avg(r)
+// (kulla_conty.h conventions).
+RTPBR_FN float2 Disney_KullaContyCoord(DisneyMaterial material, float NoV) {
+    return KC_TableCoord(NoV, Disney_SpecularTableRoughness(material));
+}
+RTPBR_FN float Disney_KullaContyCoordAvg(DisneyMaterial material) {
+    return KC_TableCoordAvg(Disney_SpecularTableRoughness(material));
+}
+
+// (A, B) from the Kulla-Conty E(mu) alone, with B replaced by an upper bound: every reflected
+// direction above the horizon has VoH >= mu / 2 (wi.z = 2 VoH h.z - mu >= 0), so
+// B <= E (1 - mu / 2)^5. Overestimating B only overestimates the specular albedo, which darkens
+// the base: the bound of the variant still holds (at mu = 0.5 a smooth dielectric's base loses
+// ~20 % more than with exact split-sum terms; nothing at normal or grazing incidence).
+RTPBR_FN float2 Disney_DfgFromKullaConty(float E, float mu) {
+    float e = Disney_Clamp(E, 1.0f);
+    float B = e * Disney_SchlickWeight(0.5f * Disney_Clamp(mu, 1.0f));
+    return float2(e - B, B);
+}
+
+// DisneyEnergyTerms from fetched Kulla-Conty values E(NoV), E(NoL), E_avg.
+RTPBR_FN DisneyEnergyTerms Disney_EnergyTermsFromKullaConty(float Eo, float Ei, float Eavg, float NoV,
+                                                            float NoL) {
+    DisneyEnergyTerms t;
+    t.dfgO = Disney_DfgFromKullaConty(Eo, NoV);
+    t.dfgI = Disney_DfgFromKullaConty(Ei, NoL);
+    t.Eavg = Eavg;
+    return t;
+}
+
+// The Fresnel colour of f_ms (Kulla & Conty 2017) for Disney's Schlick Fresnel with f90 = 1.
 RTPBR_FN float3 Disney_MultiscatterFresnel(float3 F0, float Eavg) {
-    float3 Favg = Disney_FresnelAverage(F0);
-    return Favg * Favg * Eavg / (RTPBR_F3(1.0f) - Favg * (1.0f - Eavg));
+    return KC_FmsColor(F_Avg_Schlick(F0, 1.0f), Eavg);
 }
 
 // Albedo of Burley's diffuse shape Fd / pi (baseColor = 1, subsurface = 0, no sheen) for a
@@ -428,9 +461,7 @@ RTPBR_FN float3 Disney_BaseScale(DisneyMaterial m, float mu, float3 F0, float2 d
 
 // Kulla-Conty multiple-scattering lobe f_ms (with its Fresnel), for sanitized terms.
 RTPBR_FN float3 Disney_MultiscatterLobe(float3 Fms, DisneyEnergyTerms t) {
-    float Eo = t.dfgO.x + t.dfgO.y;
-    float Ei = t.dfgI.x + t.dfgI.y;
-    return Fms * ((1.0f - Eo) * (1.0f - Ei) / (RTPBR_PI * max(1.0f - t.Eavg, 1e-6f)));
+    return Fms * KC_Lobe(t.dfgO.x + t.dfgO.y, t.dfgI.x + t.dfgI.y, t.Eavg);
 }
 
 // Tcc(o) Tcc(i): the transmission through the clearcoat, for a sanitized material.
@@ -550,7 +581,7 @@ RTPBR_FN float Disney_MultiscatterWeight(DisneyMaterial m, bool energyConserving
     if (!energyConserving)
         return 0.0f;
     float2 a = Disney_SpecularAlphas(m);
-    return sqrt(a.x * a.y) * Disney_Luminance(Disney_FresnelAverage(Disney_SpecularF0(m)));
+    return sqrt(a.x * a.y) * Disney_Luminance(F_Avg_Schlick(Disney_SpecularF0(m), 1.0f));
 }
 
 RTPBR_FN float Disney_PDFEx(DisneyMaterial material, float3 wo, float3 wi, bool energyConserving) {

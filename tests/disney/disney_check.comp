@@ -17,13 +17,15 @@ void main() {
     t.dfgO = vec2(0.8f, 0.05f);
     t.dfgI = vec2(0.7f, 0.06f);
     t.Eavg = 0.8f;
-    vec3 f = BRDF_Disney(m, wo, wi) + BRDF_DisneyModel(m, wo, wi, t) +
+    DisneyEnergyTerms k = Disney_EnergyTermsFromKullaConty(0.9f, 0.8f, 0.85f, wo.z, wi.z);
+    vec2 kcUv = Disney_KullaContyCoord(m, wo.z) + vec2(Disney_KullaContyCoordAvg(m), Disney_SpecularTableRoughness(m));
+    vec3 f = BRDF_Disney(m, wo, wi) + BRDF_DisneyModel(m, wo, wi, k) +
              BRDF_DisneyEnergyConserving(m, wo, wi, t) + BRDF_DisneyDiffuse(m, wo, wi) +
              BRDF_DisneySheen(m, wo, wi) + BRDF_DisneySpecular(m, wo, wi) +
              BRDF_DisneyEnergyConservingDiffuse(m, wo, wi, t) + BRDF_DisneyEnergyConservingSpecular(m, wo, wi);
     DisneySample s = Disney_Sample(m, wo, vec3(0.1f, 0.2f, 0.3f));
     DisneySample s2 = Disney_SampleEx(m, wo, vec3(0.9f, 0.2f, 0.3f), true);
     float p = Disney_PDF(m, wo, wi) + Disney_PDFEx(m, wo, wi, true) + s.pdf + s2.pdf +
-              BRDF_DisneyClearcoat(m, wo, wi) + Disney_SpecularTableAlpha(m) + float(s.lobe);
+              BRDF_DisneyClearcoat(m, wo, wi) + Disney_SpecularTableAlpha(m) + float(s.lobe) + kcUv.x + kcUv.y;
     result[0] = vec4(f, p) + vec4(s.wi + s2.wi, 0.0f);
 }
