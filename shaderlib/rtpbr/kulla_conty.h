@@ -162,13 +162,16 @@ RTPBR_FN float3 BRDF_SpecularMS(float NoV, float NoL, float NoH, float VoH, floa
                                 FresnelParams fresnel, float Eo, float Ei, float Eavg,
                                 float3 Favg) {
     float3 fss = BRDF_Specular(NoV, NoL, NoH, VoH, alpha, fresnel);
-#if RTPBR_MULTISCATTER
     if (!(NoV > 0.0f) || !(NoL > 0.0f))
         return fss;
-    return fss + KC_FmsColor(Favg, Eavg) * KC_Lobe(Eo, Ei, Eavg);
+    // A 0 / 1 factor rather than an #if around the term keeps every parameter used (no
+    // unused-parameter warnings in C++) and is folded by every compiler.
+#if RTPBR_MULTISCATTER
+    float msOn = 1.0f;
 #else
-    return fss;
+    float msOn = 0.0f;
 #endif
+    return fss + (msOn * KC_Lobe(Eo, Ei, Eavg)) * KC_FmsColor(Favg, Eavg);
 }
 
 // ---- dielectric specular over a diffuse base -----------------------------------------------

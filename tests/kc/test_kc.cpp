@@ -24,6 +24,8 @@ extern "C" {
 
 using rtpbr::float3;
 
+bool kc_noms_reduces_to_single_scattering(); // kc_noms.cpp, RTPBR_MULTISCATTER=0
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -281,7 +283,7 @@ void test_tables_regenerate(void **) {
             }
             assert_true(std::fabs(s - rtpbr_kc_Eavg[v][ir]) < 5e-3);
         }
-    print_message("committed vs fresh 256-sample regeneration: worst deviation %.2f sigma\n", worstSigma);
+    print_message("committed vs fresh 1024-sample regeneration: worst deviation %.2f sigma\n", worstSigma);
 }
 
 // ---- colour term against the microsurface random walk ---------------------------------------------
@@ -507,6 +509,8 @@ void test_polygon_form(void **) {
     assert_true(worstRelRough < 0.1);
 }
 
+void test_multiscatter_off(void **) { assert_true(kc_noms_reduces_to_single_scattering()); }
+
 // ---- table coordinates ---------------------------------------------------------------------------
 
 void test_coordinates(void **) {
@@ -529,6 +533,7 @@ void test_coordinates(void **) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_coordinates),
+        cmocka_unit_test(test_multiscatter_off),
         cmocka_unit_test(test_favg_schlick),
         cmocka_unit_test(test_favg_conductor),
         cmocka_unit_test(test_lobe_reciprocity_positivity),
