@@ -211,6 +211,12 @@ void test_lobe_reciprocity_positivity(void **) {
     assert_true(rtpbr::KC_Lobe(NAN, 0.5f, 0.5f) >= 0.0f);
     assert_true(rtpbr::KC_Lobe(0.5f, 0.5f, NAN) == 0.0f);
     assert_true(rtpbr::KC_Lobe(0.5f, 0.5f, 1.0f) == 0.0f);
+    float3 msBad = rtpbr::KC_FmsColor(float3(NAN, -1.0f, 7.0f), NAN);
+    assert_true(msBad.x == 0.0f && msBad.y == 0.0f && msBad.z == 0.0f);
+    float3 msOne = rtpbr::KC_FmsColor(float3(1.0f), 0.3f); // F_avg = 1: the lobe is not coloured
+    assert_true(std::fabs(msOne.x - 1.0f) < 1e-6f);
+    assert_true(rtpbr::KC_PolygonLobe(NAN, 0.5f, 0.5f, 0.3f) == 0.0f &&
+                rtpbr::KC_PolygonLobe(0.5f, 0.5f, 0.5f, NAN) == 0.0f);
     // The complete compensated BRDF with table values fetched at both cosines is reciprocal.
     std::uniform_real_distribution<float> V(0.0f, 1.0f);
     rtpbr::FresnelParams fp = rtpbr::Fresnel_FromF0(float3(0.9f, 0.6f, 0.3f));

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <random>
 #include <string>
 
@@ -115,6 +116,11 @@ int main(int argc, char **argv) {
     if (spec.strata < 1 || spec.replicas < 2 || threads < 1 || threads > 64) {
         std::fprintf(stderr, "lutgen-kc: need --strata >= 1, --replicas >= 2, 1 <= --threads <= 64\n");
         return 2;
+    }
+    std::error_code ec;
+    if (!std::filesystem::is_directory(outDir, ec)) {
+        std::fprintf(stderr, "lutgen-kc: output directory %s does not exist\n", outDir.c_str());
+        return 1;
     }
     if (g.nMu != static_cast<int>(rtpbr::KC_LUT_SIZE) || g.nEta != static_cast<int>(rtpbr::KC_LUT_SIZE_ETA) ||
         g.etaAxisMax != rtpbr::KC_ETA_AXIS_MAX) {
