@@ -527,7 +527,9 @@ rtpbr_scene_result load_model(Context& ctx, const unsigned char* data, size_t si
                                         static_cast<unsigned int>(size), base);
     forward_lines(ctx, RTPBR_SCENE_LOG_WARNING, warn);
     if (ctx.failed()) return ctx.result;  // our callbacks know best what went wrong
-    if (!ok) {
+    // tinygltf reports some schema errors (e.g. a 3-element baseColorFactor)
+    // in err while still returning true: those are errors here too.
+    if (!ok || !err.empty()) {
         rtpbr_scene_result r = RTPBR_SCENE_ERROR_INVALID_JSON;
         if (err.find("File not found") != std::string::npos) r = RTPBR_SCENE_ERROR_FILE_NOT_FOUND;
         else if (err.find("glTF binary") != std::string::npos || err.find("Chunk") != std::string::npos)

@@ -304,7 +304,8 @@ typedef struct rtpbr_scene {
     rtpbr_scene_camera* cameras;       uint32_t camera_count; /* 0 = none   */
     uint32_t total_vertex_count;
     uint32_t total_index_count;
-    /* World AABB of all primitives and area lights; all zero when empty. */
+    /* World AABB of all primitives and area lights (disk lights: the disk
+     * and its octagon); all zero when empty. */
     float bounds_min[3];
     float bounds_max[3];
     /* Set by the loader (how to free); ignored in hand-built scenes. */
