@@ -233,23 +233,22 @@ static void test_uris(void** state) {
 
     /* Shell expansion: must be refused and never executed. */
     char* pwned = ts_path(dir, "pwned");
-    char* uri = ts_format("$(touch %s).bin", pwned);
-    s.buffer_uri = uri;
+    char uri_text[4200];
+    snprintf(uri_text, sizeof uri_text, "$(touch %s).bin", pwned);
+    s.buffer_uri = uri_text;
     expect_scene(dir, "shell.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, "not allowed");
-    assert_int_not_equal(access(pwned, F_OK), 0);
-    free(uri);
-    uri = ts_format("`touch %s`.bin", pwned);
-    s.buffer_uri = uri;
+    assert_false(ts_exists(pwned));
+    snprintf(uri_text, sizeof uri_text, "`touch %s`.bin", pwned);
+    s.buffer_uri = uri_text;
     expect_scene(dir, "backtick.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, "not allowed");
-    assert_int_not_equal(access(pwned, F_OK), 0);
-    free(uri);
+    assert_false(ts_exists(pwned));
     s.buffer_uri = "~/tri.bin";
     expect_scene(dir, "tilde.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, "not allowed");
     s.buffer_uri = "$HOME/tri.bin";
     expect_scene(dir, "var.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, "not allowed");
 
     /* Absolute paths and other schemes. */
-    uri = ts_path(dir, "tri.bin"); /* exists, but absolute */
+    char* uri = ts_path(dir, "tri.bin"); /* exists, but absolute */
     s.buffer_uri = uri;
     expect_scene(dir, "absolute.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, "absolute");
     free(uri);

@@ -12,9 +12,11 @@ char* ts_format(const char* fmt, ...) {
     va_list a, b;
     va_start(a, fmt);
     va_copy(b, a);
-    int n = vsnprintf(NULL, 0, fmt, a);
+    char probe[1];
+    int n = vsnprintf(probe, sizeof probe, fmt, a);
     va_end(a);
-    char* s = malloc((size_t)n + 1);
+    char* s = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (!s) abort(); /* test helper: no way to go on */
     vsnprintf(s, (size_t)n + 1, fmt, b);
     va_end(b);
     return s;
@@ -188,6 +190,8 @@ const char* ts_dir(const char* name) {
 }
 
 char* ts_path(const char* dir, const char* file) { return ts_format("%s/%s", dir, file); }
+
+int ts_exists(const char* path) { return access(path, F_OK) == 0; }
 
 void ts_write(const char* dir, const char* file, const void* data, size_t size) {
     char* p = ts_path(dir, file);

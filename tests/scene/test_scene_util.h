@@ -12,7 +12,7 @@
 /* printf into a malloc'd string. */
 char* ts_format(const char* fmt, ...)
 #if defined(__GNUC__)
-    __attribute__((format(printf, 1, 2)))
+    __attribute__((format(printf, 1, 2), nonnull(1), returns_nonnull))
 #endif
     ;
 
@@ -53,7 +53,12 @@ unsigned char* ts_png(const unsigned char* rgba, uint32_t width, uint32_t height
 
 /* Folder for this test under RTPBR_SCENE_TEST_DIR (or /tmp), created fresh. */
 const char* ts_dir(const char* name);
-char* ts_path(const char* dir, const char* file);
+char* ts_path(const char* dir, const char* file)
+#if defined(__GNUC__)
+    __attribute__((returns_nonnull))
+#endif
+    ;
+int ts_exists(const char* path);
 void ts_write(const char* dir, const char* file, const void* data, size_t size);
 
 /* Loads text as a file `name` in dir with default options plus an error buffer. */
