@@ -283,6 +283,13 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     }
     std::vector<uint32_t> tris;
     const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
+    const uint64_t tri_indices = mode == TINYGLTF_MODE_TRIANGLES ? raw.size() / 3 * 3
+                                 : raw.size() >= 3             ? 3 * uint64_t(raw.size() - 2)
+                                                               : 0;
+    if (scene.total_indices + tri_indices > RTPBR_SCENE_MAX_INDICES)
+        return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES, "%s: index count exceeds RTPBR_SCENE_MAX_INDICES",
+                        usage);
+    tris.reserve(size_t(tri_indices));
     if (mode == TINYGLTF_MODE_TRIANGLES) {
         if (raw.size() % 3 != 0) ctx.warn("%s: %zu indices is not a multiple of 3; tail dropped", usage, raw.size());
         tris.assign(raw.begin(), raw.begin() + long(raw.size() / 3 * 3));
@@ -296,9 +303,6 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
             }
         }
     }
-    if (scene.total_indices + tris.size() > RTPBR_SCENE_MAX_INDICES)
-        return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES, "%s: index count exceeds RTPBR_SCENE_MAX_INDICES",
-                        usage);
 
     Primitive p;
     p.material = material;
@@ -460,8 +464,7 @@ bool Builder::camera(int node_index, const Mat4& world) {
         return true;
     }
     const tinygltf::PerspectiveCamera& pc = cam.perspective;
-    if (!std::isfinite(pc.yfov) || !std::isfinite(pc.znear) || !std::isfinite(pc.zfar) ||
-        !std::isfinite(pc.aspectRatio))
+    if (!fits_float(pc.yfov) || !fits_float(pc.znear) || !fits_float(pc.zfar) || !fits_float(pc.aspectRatio))
         return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "camera %d: non-finite parameter", index);
     if (!(pc.yfov > 0.0 && pc.yfov < 3.14159265358979323846) || pc.znear <= 0.0 || pc.aspectRatio < 0.0 ||
         (pc.zfar != 0.0 && pc.zfar <= pc.znear))

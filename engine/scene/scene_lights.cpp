@@ -110,6 +110,10 @@ struct LightBuilder {
             l.radiance[k] = m.emission[k];
         }
         l.area = float(area(loop, n));
+        if (!std::isfinite(l.area) || !std::isfinite(l.center[0]) || !std::isfinite(l.center[1]) ||
+            !std::isfinite(l.center[2]))
+            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "primitive %u (mesh %d): light polygon area overflows",
+                            primitive_index, p.gltf_mesh);
         l.two_sided = m.double_sided;
         l.primitive = int32_t(primitive_index);
         l.material = int32_t(p.material);
@@ -358,7 +362,7 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
                             index);
         const double values[] = {color[0], color[1], color[2], intensity, width, height, radius};
         for (double v : values)
-            if (!std::isfinite(v))
+            if (!fits_float(v))
                 return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "EXT_lights_area light %d: non-finite property", index);
         if (color[0] < 0 || color[1] < 0 || color[2] < 0 || intensity < 0.0 || width <= 0.0 ||
             height <= 0.0 || radius <= 0.0)
@@ -414,10 +418,13 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
             l.center[k] = float(center[size_t(k)]);
             l.radiance[k] = float(color[k] * intensity * ctx.area_light_radiance_scale);
         }
+        bool finite = std::isfinite(l.area) && std::isfinite(l.radius);
+        for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(l.radiance[k]);
         for (const auto& v : l.vertices)
-            for (float f : v)
-                if (!std::isfinite(f))
-                    return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: area light vertices overflow", node);
+            for (float f : v) finite = finite && std::isfinite(f);
+        if (!finite)
+            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: area light %d overflows (size or radiance)",
+                            node, index);
         l.two_sided = false;
         l.primitive = -1;
         l.material = -1;

@@ -171,6 +171,9 @@ static void test_indices_and_values(void** state) {
     expect_scene(dir, "color.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "baseColorFactor");
     s.materials = "{\"extensions\":{\"KHR_materials_ior\":{\"ior\":0.5}}}";
     expect_scene(dir, "ior.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "material 0");
+    s.materials = "{\"emissiveFactor\":[1,1,1],\"extensions\":{\"KHR_materials_emissive_strength\":"
+                  "{\"emissiveStrength\":1e300}}}"; /* finite double, not a float */
+    expect_scene(dir, "strength.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "emissiveStrength");
     s.materials = "{\"extras\":{\"rtpbr_disney\":{\"sheen\":\"much\"}}}";
     expect_scene(dir, "disney.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "sheen");
     s.materials = NULL;
