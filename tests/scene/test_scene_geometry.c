@@ -193,6 +193,21 @@ static void test_hexagon_fan_is_one_light(void** state) {
     rtpbr_scene_destroy(scene);
 }
 
+static void test_unindexed_quad_is_one_light(void** state) {
+    (void)state;
+    /* Two triangles with their own copies of the shared corners (6 vertices,
+     * indices 0..5): vertices are welded by position, giving one quad. */
+    const float pos[] = {0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 0, 0, 2, 1, 0, 0, 1, 0};
+    const uint32_t idx[] = {0, 1, 2, 3, 4, 5};
+    rtpbr_scene_result r;
+    rtpbr_scene* scene = load_emissive("unindexed", pos, 6, idx, 6, NULL, &r);
+    assert_int_equal(scene->light_count, 1);
+    assert_int_equal(scene->lights[0].vertex_count, 4);
+    assert_convex_ccw(&scene->lights[0]);
+    assert_near(scene->lights[0].area, 2.0, EPS, "2×1 quad area");
+    rtpbr_scene_destroy(scene);
+}
+
 static void test_non_coplanar_triangles_are_separate(void** state) {
     (void)state;
     /* Triangles folded at 90° along the shared edge (0,0,0)-(0,1,0):
@@ -441,6 +456,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_quad_light_over_plane),
         cmocka_unit_test(test_hexagon_fan_is_one_light),
+        cmocka_unit_test(test_unindexed_quad_is_one_light),
         cmocka_unit_test(test_non_coplanar_triangles_are_separate),
         cmocka_unit_test(test_concave_region_splits_into_convex_lights),
         cmocka_unit_test(test_non_emissive_and_degenerate),
