@@ -269,6 +269,9 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     AccessorView pos, nrm, uv, tan, idx;
     if (!validate_accessor(ctx, model, pos_it->second, "POSITION", TINYGLTF_TYPE_VEC3, kFloat, 1, &pos))
         return false;
+    if (!pos.data)  // all-zero positions: nothing to draw, and a cheap way to ask for huge allocations
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "%s: POSITION accessor %d has no bufferView",
+                        usage, pos_it->second);
     const size_t n = pos.count;
     if (scene.total_vertices + n > ctx.max_vertices)
         return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES,
