@@ -1,0 +1,29 @@
+// Image reading of rtpbr-diff (OpenImageIO), a function of its own so the fuzzer
+// (fuzz/fuzz_image.cpp) exercises exactly what the command-line tool runs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rtpbr {
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<float> rgb;  // linear
+};
+
+struct ImageReadOptions {
+    // Silences the codecs' own stderr chatter (libpng) while reading; OpenImageIO also
+    // returns it through geterror(), which is reported. The fuzzer turns it off so that
+    // sanitizer reports stay visible.
+    bool quiet = true;
+};
+
+// Reads any format OpenImageIO reads into linear RGB: integer formats are taken as sRGB and
+// decoded, float formats as linear, grey is replicated, alpha and extra channels ignored.
+// On failure returns false with a one-sentence reason in error.
+bool read_image(const std::string& path, Image& image, std::string& error,
+                const ImageReadOptions& options = ImageReadOptions());
+
+}  // namespace rtpbr
