@@ -8,7 +8,9 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstddef>
 #include <cstdio>
 
@@ -41,10 +43,70 @@ private:
     int saved_ = -1;
 };
 
+// OpenEXR 3.1 trusts sizes in the header while opening a file, before OpenImageIO sees the
+// spec: an attribute claiming 2 GB of value, or a huge data window (chunk offset table), makes
+// a corrupt 100-byte file take gigabytes. So EXR headers are checked here first (OpenEXR file
+// layout: magic, version/flags, then per part attributes "name\0type\0size value" ending in
+// an empty name): every attribute must fit in the file, every data window in max_pixels.
+// Returns false with a message otherwise; what this scan cannot follow is left to OpenEXR.
+bool exr_header_fits(const std::string& path, long long max_pixels, std::string& error) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return true;  // OpenImageIO reports why
+    std::vector<unsigned char> head(1 << 16);
+    head.resize(std::fread(head.data(), 1, head.size(), f));
+    long long file_size = -1;
+    if (std::fseek(f, 0, SEEK_END) == 0) file_size = std::ftell(f);
+    std::fclose(f);
+    auto u32 = [&](std::size_t at) {
+        return static_cast<uint32_t>(head[at]) | static_cast<uint32_t>(head[at + 1]) << 8 |
+               static_cast<uint32_t>(head[at + 2]) << 16 | static_cast<uint32_t>(head[at + 3]) << 24;
+    };
+    if (head.size() < 8 || u32(0) != 20000630u || file_size < 0) return true;  // not EXR
+    const bool multipart = (u32(4) & 0x1000u) != 0;
+    std::size_t at = 8;
+    while (at < head.size()) {
+        if (head[at] == 0) {  // end of a header; a multi-part file ends with an empty one
+            ++at;
+            if (!multipart || (at < head.size() && head[at] == 0)) break;
+            continue;
+        }
+        const auto zero_after = [&](std::size_t from) {
+            return static_cast<std::size_t>(std::find(head.begin() + static_cast<std::ptrdiff_t>(from), head.end(), 0) -
+                                            head.begin());
+        };
+        const std::size_t name_end = zero_after(at);
+        if (name_end >= head.size()) break;
+        const std::size_t type_end = zero_after(name_end + 1);
+        if (type_end + 4 >= head.size()) break;
+        const std::string name(reinterpret_cast<const char*>(&head[at]), name_end - at);
+        const long long size = u32(type_end + 1);
+        const std::size_t value = type_end + 5;
+        if (size > file_size - static_cast<long long>(value)) {
+            error = "'" + path + "': EXR attribute '" + name.substr(0, 64) + "' claims " + std::to_string(size) +
+                    " bytes, more than the file holds";
+            return false;
+        }
+        if (static_cast<std::size_t>(size) > head.size() - value) break;  // beyond what was read
+        if (name == "dataWindow" && size == 16) {
+            const auto s32 = [&](std::size_t i) { return static_cast<long long>(static_cast<int32_t>(u32(value + 4 * i))); };
+            const long long w = s32(2) - s32(0) + 1, h = s32(3) - s32(1) + 1;
+            if (w <= 0 || h <= 0 || w > max_pixels / h) {
+                error = "'" + path + "': EXR data window " + std::to_string(w) + "x" + std::to_string(h) +
+                        (w <= 0 || h <= 0 ? " is empty" : " exceeds the limit of " + std::to_string(max_pixels) + " pixels");
+                return false;
+            }
+        }
+        at = value + static_cast<std::size_t>(size);
+    }
+    return true;
+}
+
 }  // namespace
 
 bool read_image(const std::string& path, Image& image, std::string& error, const ImageReadOptions& options) {
     SilenceStderr quiet(options.quiet);
+    const long long max_pixels = options.max_pixels > 0 ? options.max_pixels : kMaxImagePixels;
+    if (!exr_header_fits(path, max_pixels, error)) return false;
     auto in = OIIO::ImageInput::open(path);
     if (!in) {
         std::string why = OIIO::geterror();
@@ -57,7 +119,13 @@ bool read_image(const std::string& path, Image& image, std::string& error, const
         error = "'" + path + "' is not a flat 2D image with pixels";
         return false;
     }
-    const int nch = spec.nchannels;
+    if (spec.width > max_pixels / spec.height) {
+        error = "'" + path + "' is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                ", more than the limit of " + std::to_string(max_pixels) + " pixels";
+        return false;
+    }
+    // Only the channels used: RGB, or grey (channel 0) when there are fewer than 3.
+    const int nch = spec.nchannels >= 3 ? 3 : 1;
     std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * nch);
     if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, pixels.data())) {
         error = "cannot decode '" + path + "': " + in->geterror();
