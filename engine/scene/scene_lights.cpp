@@ -110,6 +110,14 @@ struct LightBuilder {
             l.radiance[k] = m.emission[k];
         }
         l.area = float(area(loop, n));
+        // Huge coordinates can make a finite polygon's area overflow a float.
+        if (!std::isfinite(l.area))
+            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "primitive %u (mesh %d): light area overflows a float",
+                            primitive_index, p.gltf_mesh);
+        if (!(l.area > 0.0f)) {  // underflows to 0: emits nothing
+            ctx.warn("primitive %u (mesh %d): light of zero area (as a float) dropped", primitive_index, p.gltf_mesh);
+            return true;
+        }
         l.two_sided = m.double_sided;
         l.primitive = int32_t(primitive_index);
         l.material = int32_t(p.material);
@@ -418,6 +426,12 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
             for (float f : v)
                 if (!std::isfinite(f))
                     return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: area light vertices overflow", node);
+        // Finite doubles can still overflow (color 1e39, size 1e30) or underflow the floats.
+        bool finite = std::isfinite(l.area) && l.area > 0.0f && std::isfinite(l.radius);
+        for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(l.radiance[k]) && std::isfinite(l.center[k]);
+        if (!finite)
+            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE,
+                            "node %d: area light %d: radiance or area not representable as a float", node, index);
         l.two_sided = false;
         l.primitive = -1;
         l.material = -1;

@@ -5,6 +5,7 @@
 #include <stb_image.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -13,6 +14,10 @@
 namespace rtpbr_scene_detail {
 
 namespace {
+
+// Finite AND representable as the float it is stored in: 1e39 is a finite double but +Inf
+// as a float, and would reach the renderer as an infinite colour.
+bool finite_float(double d) { return std::isfinite(d) && std::fabs(d) <= double(FLT_MAX); }
 
 struct MaterialReader {
     Context& ctx;
@@ -27,7 +32,7 @@ struct MaterialReader {
             return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: %s.%s must be a number",
                             material_index, block, key);
         *out = v.GetNumberAsDouble();
-        if (!std::isfinite(*out))
+        if (!finite_float(*out))
             return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: %s.%s is not finite",
                             material_index, block, key);
         return true;
@@ -50,7 +55,7 @@ struct MaterialReader {
                                 "material %d: %s.%s[%zu] must be a number", material_index, block,
                                 key, i);
             double d = e.GetNumberAsDouble();
-            if (!std::isfinite(d))
+            if (!finite_float(d))
                 return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: %s.%s[%zu] is not finite",
                                 material_index, block, key, i);
             out[i] = static_cast<float>(d);
@@ -66,7 +71,7 @@ bool finite_vector(Context& ctx, const std::vector<double>& v, size_t n, int mat
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: %s has %zu components, expected %zu",
                         material, name, v.size(), n);
     for (size_t i = 0; i < n; ++i) {
-        if (!std::isfinite(v[i]))
+        if (!finite_float(v[i]))
             return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: %s[%zu] is not finite",
                             material, name, i);
         out[i] = static_cast<float>(v[i]);
@@ -260,7 +265,7 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
     if (!finite_vector(ctx, pbr.baseColorFactor, 4, index, "baseColorFactor", m.base_color))
         return false;
     for (int k = 0; k < 4; ++k) m.base_color[k] = clamp01(ctx, m.base_color[k], index, "baseColorFactor");
-    if (!std::isfinite(pbr.metallicFactor) || !std::isfinite(pbr.roughnessFactor))
+    if (!finite_float(pbr.metallicFactor) || !finite_float(pbr.roughnessFactor))
         return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: metallic/roughnessFactor not finite", index);
     m.metallic = clamp01(ctx, float(pbr.metallicFactor), index, "metallicFactor");
     m.roughness = clamp01(ctx, float(pbr.roughnessFactor), index, "roughnessFactor");
@@ -272,7 +277,7 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
     else if (src.alphaMode == "BLEND") m.alpha_mode = RTPBR_SCENE_ALPHA_BLEND;
     else if (src.alphaMode != "OPAQUE" && !src.alphaMode.empty())
         ctx.warn("material %d: unknown alphaMode '%s' treated as OPAQUE", index, src.alphaMode.c_str());
-    if (!std::isfinite(src.alphaCutoff) || !std::isfinite(src.normalTexture.scale))
+    if (!finite_float(src.alphaCutoff) || !finite_float(src.normalTexture.scale))
         return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: alphaCutoff/normalTexture.scale not finite", index);
     m.alpha_cutoff = float(src.alphaCutoff);
     m.normal_scale = float(src.normalTexture.scale);
