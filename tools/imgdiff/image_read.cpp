@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstddef>
 #include <cstdio>
+#include <cstring>
 
 namespace rtpbr {
 
@@ -43,20 +44,43 @@ private:
     int saved_ = -1;
 };
 
-// OpenEXR 3.1 trusts sizes in the header while opening a file, before OpenImageIO sees the
-// spec: an attribute claiming 2 GB of value, or a huge data window (chunk offset table), makes
-// a corrupt 100-byte file take gigabytes. So EXR headers are checked here first (OpenEXR file
-// layout: magic, version/flags, then per part attributes "name\0type\0size value" ending in
-// an empty name): every attribute must fit in the file, every data window in max_pixels.
-// Returns false with a message otherwise; what this scan cannot follow is left to OpenEXR.
-bool exr_header_fits(const std::string& path, long long max_pixels, std::string& error) {
+// OpenEXR 3.1 and libpng 1.6 trust sizes in a file while reading it, before OpenImageIO sees
+// the spec: an EXR attribute or a PNG text chunk claiming 2 GB makes a corrupt 400-byte file
+// take gigabytes (found by fuzz/fuzz_image). So these containers are walked here first and
+// every size must fit in the file: EXR (magic, version/flags, then per part attributes
+// "name\0type\0size value" ending in an empty name; data windows must also fit max_pixels),
+// PNG (signature, then chunks "length type data crc" up to IEND). Returns false with a
+// message otherwise; what the scan cannot follow is left to the codec to reject.
+bool png_chunks_fit(std::FILE* f, long long file_size, const std::string& path, std::string& error) {
+    long long at = 8;
+    unsigned char head[8];
+    while (at + 12 <= file_size) {
+        if (std::fseek(f, static_cast<long>(at), SEEK_SET) != 0 || std::fread(head, 1, 8, f) != 8) return true;
+        const long long length = static_cast<long long>(head[0]) << 24 | head[1] << 16 | head[2] << 8 | head[3];
+        if (length > file_size - at - 12) {
+            error = "'" + path + "': PNG chunk '" + std::string(reinterpret_cast<const char*>(head + 4), 4) +
+                    "' at byte " + std::to_string(at) + " claims " + std::to_string(length) +
+                    " bytes, more than the file holds";
+            return false;
+        }
+        if (std::memcmp(head + 4, "IEND", 4) == 0) break;
+        at += 12 + length;
+    }
+    return true;
+}
+
+bool container_sizes_fit(const std::string& path, long long max_pixels, std::string& error) {
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) return true;  // OpenImageIO reports why
     std::vector<unsigned char> head(1 << 16);
     head.resize(std::fread(head.data(), 1, head.size(), f));
     long long file_size = -1;
     if (std::fseek(f, 0, SEEK_END) == 0) file_size = std::ftell(f);
+    static const unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    const bool png = head.size() >= 8 && std::memcmp(head.data(), kPngSignature, 8) == 0;
+    const bool png_fits = !png || file_size < 0 || png_chunks_fit(f, file_size, path, error);
     std::fclose(f);
+    if (png) return png_fits;
     auto u32 = [&](std::size_t at) {
         return static_cast<uint32_t>(head[at]) | static_cast<uint32_t>(head[at + 1]) << 8 |
                static_cast<uint32_t>(head[at + 2]) << 16 | static_cast<uint32_t>(head[at + 3]) << 24;
@@ -106,7 +130,7 @@ bool exr_header_fits(const std::string& path, long long max_pixels, std::string&
 bool read_image(const std::string& path, Image& image, std::string& error, const ImageReadOptions& options) {
     SilenceStderr quiet(options.quiet);
     const long long max_pixels = options.max_pixels > 0 ? options.max_pixels : kMaxImagePixels;
-    if (!exr_header_fits(path, max_pixels, error)) return false;
+    if (!container_sizes_fit(path, max_pixels, error)) return false;
     auto in = OIIO::ImageInput::open(path);
     if (!in) {
         std::string why = OIIO::geterror();
