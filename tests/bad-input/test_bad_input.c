@@ -723,6 +723,19 @@ static void test_uri_confinement(void** state) {
     s.buffer_uri = "tri\\n.bin";
     expect_scene(dir, "newline.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, "not allowed");
 
+    /* Image URIs go through the same confinement as buffers. */
+    size_t png_size = 0;
+    const unsigned char px[4] = {1, 2, 3, 255};
+    unsigned char* png = ts_png(px, 1, 1, &png_size);
+    ts_write(root, "outside.png", png, png_size);
+    free(png);
+    json = textured_json("../outside.png");
+    expect_text(dir, "image-escape.gltf", json, NULL, RTPBR_SCENE_ERROR_URI_REJECTED, "..");
+    free(json);
+    json = textured_json("$(touch pwned).png");
+    expect_text(dir, "image-shell.gltf", json, NULL, RTPBR_SCENE_ERROR_URI_REJECTED, "not allowed");
+    free(json);
+
     /* From memory: no base_dir, no external files at all. */
     s.buffer_uri = "tri.bin";
     json = ts_scene_json(&s);
