@@ -1,0 +1,749 @@
+// rtpbr oracle: scene validation, Embree setup and the path tracer.
+#include "oracle.h"
+
+#include "bsdf.h"
+#include "microsurface.h"
+#include "rng.h"
+#include "texture.h"
+
+#include <rtpbr/fresnel.h>
+#include <rtpbr/ndf.h>
+
+#include <embree3/rtcore.h>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdarg>
+#include <cstring>
+#include <limits>
+#include <mutex>
+#include <thread>
+
+namespace rtpbr_oracle {
+
+const char *resultString(Result r) {
+    switch (r) {
+    case Result::Success: return "success";
+    case Result::InvalidArgument: return "invalid argument";
+    case Result::InvalidScene: return "invalid scene";
+    case Result::NoCamera: return "no camera";
+    case Result::NoLights: return "no lights";
+    case Result::Embree: return "Embree error";
+    case Result::Io: return "I/O error";
+    case Result::Incompatible: return "incompatible accumulators";
+    }
+    return "unknown result";
+}
+
+namespace {
+
+using glm::vec3;
+
+constexpr uint32_t kTileSize = 16;
+constexpr uint32_t kRussianRouletteDepth = 3;
+
+bool finite(float x) { return std::isfinite(x); }
+bool finite3(const float *v) { return finite(v[0]) && finite(v[1]) && finite(v[2]); }
+std::string fmt(const char *f, ...) __attribute__((format(printf, 1, 2)));
+std::string fmt(const char *f, ...) {
+    char buf[512];
+    va_list ap;
+    va_start(ap, f);
+    vsnprintf(buf, sizeof buf, f, ap);
+    va_end(ap);
+    return buf;
+}
+
+uint32_t imageHeight(const rtpbr_scene &scene, const RenderSettings &s, uint32_t width) {
+    if (s.height)
+        return s.height;
+    float aspect = s.camera < scene.camera_count ? scene.cameras[s.camera].aspect : 0.0f;
+    if (aspect > 0.0f && std::isfinite(aspect))
+        return std::max(1u, uint32_t(std::lround(double(width) / aspect)));
+    return std::max(1u, width * 3 / 4);
+}
+
+// Everything that changes the image except the sample range, the region and the thread count.
+uint64_t settingsHash(const RenderSettings &s, uint32_t w, uint32_t h) {
+    uint64_t x = mix64(0x6f7261636c65ull);
+    auto add = [&x](uint64_t v) { x = mix64(x ^ v); };
+    add(w);
+    add(h);
+    add(s.camera);
+    add(s.spp);
+    add(s.seed);
+    add(s.directOnly ? 1 : s.maxDepth);
+    add(s.noShadows);
+    add(s.singleScatter);
+    add(uint64_t(s.lightSampling));
+    return x;
+}
+
+// ---- Embree -----------------------------------------------------------------------------------
+
+struct DeviceErrors {
+    std::mutex mutex;
+    std::string first;
+};
+
+void embreeErrorCallback(void *user, RTCError code, const char *message) {
+    auto *errors = static_cast<DeviceErrors *>(user);
+    std::lock_guard<std::mutex> lock(errors->mutex);
+    if (errors->first.empty())
+        errors->first = fmt("Embree error %d: %s", int(code), message ? message : "(no message)");
+}
+
+struct GeometryRecord {
+    bool isLight;
+    uint32_t index; // primitive or light
+};
+
+struct EmbreeScene {
+    RTCDevice device = nullptr;
+    RTCScene full = nullptr;
+    RTCScene lightsOnly = nullptr;
+    std::vector<GeometryRecord> fullGeoms;  // by geomID in `full`
+    std::vector<uint32_t> lightOnlyGeoms;   // light index by geomID in `lightsOnly`
+    DeviceErrors errors;
+
+    ~EmbreeScene() {
+        if (full)
+            rtcReleaseScene(full);
+        if (lightsOnly)
+            rtcReleaseScene(lightsOnly);
+        if (device)
+            rtcReleaseDevice(device);
+    }
+};
+
+unsigned attachTriangles(RTCDevice device, RTCScene scene, const float *positions, uint32_t vertexCount,
+                         const uint32_t *indices, uint32_t triangleCount) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (!g)
+        return RTC_INVALID_GEOMETRY_ID;
+    auto *v = static_cast<float *>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertexCount));
+    auto *ix = static_cast<uint32_t *>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triangleCount));
+    if (!v || !ix) {
+        rtcReleaseGeometry(g);
+        return RTC_INVALID_GEOMETRY_ID;
+    }
+    std::memcpy(v, positions, sizeof(float) * 3 * vertexCount);
+    std::memcpy(ix, indices, sizeof(uint32_t) * 3 * triangleCount);
+    rtcCommitGeometry(g);
+    unsigned id = rtcAttachGeometry(scene, g);
+    rtcReleaseGeometry(g);
+    return id;
+}
+
+unsigned attachLight(RTCDevice device, RTCScene scene, const rtpbr_scene_light &L) {
+    float pos[3 * RTPBR_SCENE_MAX_POLYGON_VERTICES];
+    uint32_t idx[3 * RTPBR_SCENE_MAX_POLYGON_VERTICES];
+    for (uint32_t k = 0; k < L.vertex_count; k++)
+        for (int c = 0; c < 3; c++)
+            pos[3 * k + c] = L.vertices[k][c];
+    uint32_t tris = 0;
+    for (uint32_t k = 1; k + 1 < L.vertex_count; k++, tris++) {
+        idx[3 * tris] = 0;
+        idx[3 * tris + 1] = k;
+        idx[3 * tris + 2] = k + 1;
+    }
+    return attachTriangles(device, scene, pos, L.vertex_count, idx, tris);
+}
+
+Result buildEmbree(const rtpbr_scene &scene, EmbreeScene *es, std::string *error) {
+    es->device = rtcNewDevice("threads=1,user_threads=0");
+    if (!es->device) {
+        *error = fmt("cannot create the Embree device (error %d)", int(rtcGetDeviceError(nullptr)));
+        return Result::Embree;
+    }
+    rtcSetDeviceErrorFunction(es->device, embreeErrorCallback, &es->errors);
+    es->full = rtcNewScene(es->device);
+    es->lightsOnly = rtcNewScene(es->device);
+    if (!es->full || !es->lightsOnly) {
+        *error = es->errors.first.empty() ? "cannot create Embree scenes" : es->errors.first;
+        return Result::Embree;
+    }
+    rtcSetSceneBuildQuality(es->full, RTC_BUILD_QUALITY_HIGH);
+    // Emissive primitives are represented by their light polygons (which the loader made
+    // from exactly their triangles), so that every light hit knows its light.
+    std::vector<bool> isLightPrimitive(scene.primitive_count, false);
+    for (uint32_t l = 0; l < scene.light_count; l++)
+        if (scene.lights[l].primitive >= 0 && uint32_t(scene.lights[l].primitive) < scene.primitive_count)
+            isLightPrimitive[uint32_t(scene.lights[l].primitive)] = true;
+    for (uint32_t p = 0; p < scene.primitive_count; p++) {
+        const rtpbr_scene_primitive &prim = scene.primitives[p];
+        if (isLightPrimitive[p] || prim.index_count < 3)
+            continue;
+        unsigned id = attachTriangles(es->device, es->full, prim.positions, prim.vertex_count, prim.indices,
+                                      prim.index_count / 3);
+        if (id == RTC_INVALID_GEOMETRY_ID)
+            break;
+        es->fullGeoms.resize(std::max<size_t>(es->fullGeoms.size(), id + 1));
+        es->fullGeoms[id] = {false, p};
+    }
+    for (uint32_t l = 0; l < scene.light_count; l++) {
+        unsigned id = attachLight(es->device, es->full, scene.lights[l]);
+        unsigned id2 = attachLight(es->device, es->lightsOnly, scene.lights[l]);
+        if (id == RTC_INVALID_GEOMETRY_ID || id2 == RTC_INVALID_GEOMETRY_ID)
+            break;
+        es->fullGeoms.resize(std::max<size_t>(es->fullGeoms.size(), id + 1));
+        es->fullGeoms[id] = {true, l};
+        es->lightOnlyGeoms.resize(std::max<size_t>(es->lightOnlyGeoms.size(), id2 + 1));
+        es->lightOnlyGeoms[id2] = l;
+    }
+    rtcCommitScene(es->full);
+    rtcCommitScene(es->lightsOnly);
+    if (!es->errors.first.empty()) {
+        *error = es->errors.first;
+        return Result::Embree;
+    }
+    return Result::Success;
+}
+
+// ---- the path tracer -----------------------------------------------------------------------
+
+struct Hit {
+    bool found = false;
+    float t = 0.0f;
+    unsigned geomID = 0, primID = 0;
+    float u = 0.0f, v = 0.0f;
+};
+
+struct SurfacePoint {
+    vec3 p;
+    vec3 ng;     // geometric normal, facing the incoming ray
+    vec3 ns;     // shading normal, same side as ng
+    vec3 tangent;// shading tangent (anisotropy direction), orthogonal to ns
+    int32_t light = -1;
+    int32_t material = -1;
+    float uv[2] = {0.0f, 0.0f};
+};
+
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited".
+void orthonormalBasis(vec3 n, vec3 *t, vec3 *b) {
+    float sign = std::copysign(1.0f, n.z);
+    float a = -1.0f / (sign + n.z);
+    float bb = n.x * n.y * a;
+    *t = vec3(1.0f + sign * n.x * n.x * a, sign * bb, -sign * n.x);
+    *b = vec3(bb, sign + n.y * n.y * a, -n.y);
+}
+
+class Integrator {
+public:
+    Integrator(const rtpbr_scene &scene, const EmbreeScene &es, const LightSet &lights, const RenderSettings &s,
+               const std::vector<Texture> &textures)
+        : scene_(scene), es_(es), lights_(lights), s_(s), textures_(textures) {
+        maxDepth_ = s.directOnly ? 1u : std::max(1u, s.maxDepth);
+    }
+
+    uint64_t rays = 0;
+
+    vec3 radiance(vec3 org, vec3 dir, Rng &rng) {
+        vec3 L(0.0f), beta(1.0f);
+        vec3 prevP(0.0f);
+        float prevPdf = 0.0f;
+        for (uint32_t depth = 0;; depth++) {
+            Hit h = intersect(es_.full, org, dir, std::numeric_limits<float>::infinity());
+            if (!h.found)
+                break;
+            SurfacePoint sp = surfacePoint(h, dir);
+            // Emission: seen directly, or found by BSDF sampling (MIS against light sampling;
+            // with noShadows the unoccluded light-only ray below did that already).
+            if (sp.light >= 0 && (depth == 0 || !s_.noShadows)) {
+                vec3 Le = lights_.emitted(uint32_t(sp.light), dir);
+                if (Le.x > 0.0f || Le.y > 0.0f || Le.z > 0.0f) {
+                    float w = 1.0f;
+                    if (depth > 0)
+                        w = misWeight(prevPdf, lights_.pdf(prevP, uint32_t(sp.light), dir, h.t));
+                    L += beta * Le * w;
+                }
+            }
+            if (depth >= maxDepth_ || sp.material < 0)
+                break;
+
+            SurfaceMaterial mat = material(sp);
+            vec3 bt = glm::cross(sp.ns, sp.tangent);
+            auto toLocal = [&](vec3 w) { return vec3(glm::dot(w, sp.tangent), glm::dot(w, bt), glm::dot(w, sp.ns)); };
+            auto toWorld = [&](vec3 w) { return w.x * sp.tangent + w.y * bt + w.z * sp.ns; };
+            vec3 wo = toLocal(-dir);
+            Bsdf bsdf(mat, s_.singleScatter, wo);
+            if (bsdf.isBlack())
+                break;
+            vec3 origin = offset(sp, sp.ng);
+
+            // Light sampling.
+            LightSample ls;
+            float ul = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            if (lights_.sample(sp.p, ul, u1, u2, &ls) && glm::dot(ls.wi, sp.ng) > 0.0f &&
+                (ls.radiance.x > 0.0f || ls.radiance.y > 0.0f || ls.radiance.z > 0.0f)) {
+                vec3 wiL = toLocal(ls.wi);
+                vec3 f = bsdf.eval(wiL, rng);
+                if (f.x > 0.0f || f.y > 0.0f || f.z > 0.0f) {
+                    bool visible = s_.noShadows || !occluded(origin, ls.wi, ls.distance * (1.0f - 1e-4f));
+                    if (visible)
+                        L += beta * f * ls.radiance * (misWeight(ls.pdf, bsdf.pdfMis(wiL)) / ls.pdf);
+                }
+            }
+
+            // BSDF sampling.
+            BsdfSample bs;
+            if (!bsdf.sample(rng, &bs))
+                break;
+            vec3 wi = glm::normalize(toWorld(bs.wi));
+            if (!(glm::dot(wi, sp.ng) > 0.0f))
+                break;
+            beta *= bs.weight;
+            if (!(beta.x > 0.0f || beta.y > 0.0f || beta.z > 0.0f))
+                break;
+            if (s_.noShadows) {
+                Hit lh = intersect(es_.lightsOnly, origin, wi, std::numeric_limits<float>::infinity());
+                if (lh.found) {
+                    uint32_t l = es_.lightOnlyGeoms[lh.geomID];
+                    vec3 Le = lights_.emitted(l, wi);
+                    L += beta * Le * misWeight(bs.pdfMis, lights_.pdf(sp.p, l, wi, lh.t));
+                }
+                if (depth + 1 >= maxDepth_)
+                    break; // the next vertex would only add emission, already counted
+            }
+            if (depth + 1 >= kRussianRouletteDepth) {
+                float q = std::min(0.95f, std::max(beta.x, std::max(beta.y, beta.z)));
+                if (rng.uniform() >= q)
+                    break;
+                beta /= q;
+            }
+            prevP = sp.p;
+            prevPdf = bs.pdfMis;
+            org = origin;
+            dir = wi;
+        }
+        return L;
+    }
+
+private:
+    static float misWeight(float a, float b) {
+        // Balance heuristic (Veach 1997, sec. 9.2).
+        return a > 0.0f ? a / (a + b) : 0.0f;
+    }
+
+    Hit intersect(RTCScene scene, vec3 org, vec3 dir, float tfar) {
+        rays++;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRayHit rh;
+        rh.ray.org_x = org.x;
+        rh.ray.org_y = org.y;
+        rh.ray.org_z = org.z;
+        rh.ray.dir_x = dir.x;
+        rh.ray.dir_y = dir.y;
+        rh.ray.dir_z = dir.z;
+        rh.ray.tnear = 0.0f;
+        rh.ray.tfar = tfar;
+        rh.ray.time = 0.0f;
+        rh.ray.mask = 0xffffffffu;
+        rh.ray.id = 0;
+        rh.ray.flags = 0;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene, &ctx, &rh);
+        Hit h;
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+            return h;
+        h.found = true;
+        h.t = rh.ray.tfar;
+        h.geomID = rh.hit.geomID;
+        h.primID = rh.hit.primID;
+        h.u = rh.hit.u;
+        h.v = rh.hit.v;
+        return h;
+    }
+
+    bool occluded(vec3 org, vec3 dir, float tfar) {
+        rays++;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRay r;
+        r.org_x = org.x;
+        r.org_y = org.y;
+        r.org_z = org.z;
+        r.dir_x = dir.x;
+        r.dir_y = dir.y;
+        r.dir_z = dir.z;
+        r.tnear = 0.0f;
+        r.tfar = tfar;
+        r.time = 0.0f;
+        r.mask = 0xffffffffu;
+        r.id = 0;
+        r.flags = 0;
+        rtcOccluded1(es_.full, &ctx, &r);
+        return r.tfar < 0.0f;
+    }
+
+    // Moves p off the surface along n by an amount relative to its magnitude.
+    static vec3 offset(const SurfacePoint &sp, vec3 n) {
+        float m = std::max(std::fabs(sp.p.x), std::max(std::fabs(sp.p.y), std::fabs(sp.p.z)));
+        return sp.p + n * (1e-4f * (1.0f + m));
+    }
+
+    SurfacePoint surfacePoint(const Hit &h, vec3 dir) const {
+        SurfacePoint sp;
+        const GeometryRecord &g = es_.fullGeoms[h.geomID];
+        vec3 p0, p1, p2;
+        if (g.isLight) {
+            const rtpbr_scene_light &L = scene_.lights[g.index];
+            p0 = glm::make_vec3(L.vertices[0]);
+            p1 = glm::make_vec3(L.vertices[h.primID + 1]);
+            p2 = glm::make_vec3(L.vertices[h.primID + 2]);
+            sp.light = int32_t(g.index);
+            sp.material = L.material;
+            sp.ng = glm::make_vec3(L.normal);
+            sp.ns = sp.ng;
+            sp.p = (1.0f - h.u - h.v) * p0 + h.u * p1 + h.v * p2;
+        } else {
+            const rtpbr_scene_primitive &prim = scene_.primitives[g.index];
+            const uint32_t *ix = prim.indices + 3 * h.primID;
+            p0 = glm::make_vec3(prim.positions + 3 * ix[0]);
+            p1 = glm::make_vec3(prim.positions + 3 * ix[1]);
+            p2 = glm::make_vec3(prim.positions + 3 * ix[2]);
+            float b0 = 1.0f - h.u - h.v;
+            sp.p = b0 * p0 + h.u * p1 + h.v * p2;
+            sp.ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+            sp.ns = b0 * glm::make_vec3(prim.normals + 3 * ix[0]) + h.u * glm::make_vec3(prim.normals + 3 * ix[1]) +
+                    h.v * glm::make_vec3(prim.normals + 3 * ix[2]);
+            sp.material = int32_t(prim.material);
+            if (prim.has_texcoords)
+                for (int c = 0; c < 2; c++)
+                    sp.uv[c] = b0 * prim.texcoords[2 * ix[0] + c] + h.u * prim.texcoords[2 * ix[1] + c] +
+                               h.v * prim.texcoords[2 * ix[2] + c];
+            if (prim.has_tangents) {
+                vec3 t = b0 * glm::make_vec3(prim.tangents + 4 * ix[0]) + h.u * glm::make_vec3(prim.tangents + 4 * ix[1]) +
+                         h.v * glm::make_vec3(prim.tangents + 4 * ix[2]);
+                sp.tangent = t;
+            }
+        }
+        if (glm::dot(sp.ng, dir) > 0.0f)
+            sp.ng = -sp.ng;
+        float nl = glm::length(sp.ns);
+        sp.ns = nl > 0.0f && std::isfinite(nl) ? sp.ns / nl : sp.ng;
+        if (glm::dot(sp.ns, sp.ng) < 0.0f)
+            sp.ns = -sp.ns;
+        // A shading normal facing away from the viewer would make wo.z <= 0: use the geometry.
+        if (!(glm::dot(sp.ns, -dir) > 1e-4f))
+            sp.ns = sp.ng;
+        vec3 t = sp.tangent - glm::dot(sp.tangent, sp.ns) * sp.ns;
+        float tl = glm::length(t);
+        if (tl > 1e-6f && std::isfinite(tl)) {
+            sp.tangent = t / tl;
+        } else {
+            vec3 b;
+            orthonormalBasis(sp.ns, &sp.tangent, &b);
+        }
+        return sp;
+    }
+
+    SurfaceMaterial material(SurfacePoint &sp) const {
+        const rtpbr_scene_material &m = scene_.materials[sp.material];
+        SurfaceMaterial out;
+        vec3 base = glm::make_vec3(m.base_color);
+        float metallic = m.metallic;
+        float rough = m.roughness;
+        if (m.base_color_texture >= 0 && uint32_t(m.base_color_texture) < textures_.size())
+            base *= vec3(textures_[uint32_t(m.base_color_texture)].sample(sp.uv[0], sp.uv[1]));
+        if (m.metallic_roughness_texture >= 0 && uint32_t(m.metallic_roughness_texture) < textures_.size()) {
+            glm::vec4 mr = textures_[uint32_t(m.metallic_roughness_texture)].sample(sp.uv[0], sp.uv[1]);
+            rough *= mr.y;
+            metallic *= mr.z;
+        }
+        out.baseColor = glm::clamp(base, vec3(0.0f), vec3(1.0f));
+        out.metallic = glm::clamp(metallic, 0.0f, 1.0f);
+        float alpha = rtpbr::Alpha_FromPerceptual(rough);
+        float aniso = glm::clamp(m.anisotropic, 0.0f, 1.0f);
+        if (aniso > 0.0f) {
+            if (m.model == RTPBR_SCENE_MATERIAL_DISNEY) {
+                glm::vec2 a = rtpbr::Alpha_Anisotropic(alpha, aniso);
+                out.alphaX = a.x;
+                out.alphaY = a.y;
+            } else {
+                // KHR_materials_anisotropy: alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha.
+                out.alphaX = rtpbr::Alpha_Clamp(alpha + (1.0f - alpha) * aniso * aniso);
+                out.alphaY = alpha;
+            }
+            if (m.anisotropy_rotation != 0.0f) {
+                vec3 b = glm::cross(sp.ns, sp.tangent);
+                float c = std::cos(m.anisotropy_rotation), s = std::sin(m.anisotropy_rotation);
+                sp.tangent = c * sp.tangent + s * b;
+            }
+        } else {
+            out.alphaX = out.alphaY = alpha;
+        }
+        if (m.model == RTPBR_SCENE_MATERIAL_DISNEY) {
+            // Until the Disney BRDF is in the shaderlib: its dielectric F0 = 0.08 specular.
+            out.dielectricF0 = vec3(0.08f * glm::clamp(m.specular, 0.0f, 1.0f));
+            out.specularWeight = 1.0f;
+        } else {
+            out.dielectricF0 = glm::min(rtpbr::F0_FromIor(m.ior) * glm::make_vec3(m.specular_color), vec3(1.0f));
+            out.specularWeight = glm::clamp(m.specular_factor, 0.0f, 1.0f);
+        }
+        return out;
+    }
+
+    const rtpbr_scene &scene_;
+    const EmbreeScene &es_;
+    const LightSet &lights_;
+    const RenderSettings &s_;
+    const std::vector<Texture> &textures_;
+    uint32_t maxDepth_;
+};
+
+__int128 toFixed(double v) { return __int128(std::ldexp(v, 64)); }
+
+} // namespace
+
+// ---- validation ------------------------------------------------------------------------------
+
+Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::string *error) {
+    if (scene.camera_count == 0) {
+        *error = "the scene has no camera (the oracle renders from a glTF perspective camera)";
+        return Result::NoCamera;
+    }
+    if (s.camera >= scene.camera_count) {
+        *error = fmt("camera %u requested, the scene has %u", s.camera, scene.camera_count);
+        return Result::NoCamera;
+    }
+    const rtpbr_scene_camera &cam = scene.cameras[s.camera];
+    if (!finite3(cam.position) || !finite3(cam.forward) || !finite3(cam.up) || !finite3(cam.right) ||
+        !(cam.yfov > 0.0f && cam.yfov < 3.14159f)) {
+        *error = fmt("camera %u: non-finite position/orientation or yfov outside (0, pi)", s.camera);
+        return Result::InvalidScene;
+    }
+    for (uint32_t m = 0; m < scene.material_count; m++) {
+        const rtpbr_scene_material &mat = scene.materials[m];
+        const float vals[] = {mat.base_color[0], mat.base_color[1], mat.base_color[2], mat.metallic, mat.roughness,
+                              mat.ior, mat.specular_factor, mat.specular_color[0], mat.specular_color[1],
+                              mat.specular_color[2], mat.anisotropic, mat.anisotropy_rotation, mat.specular};
+        for (float v : vals)
+            if (!finite(v)) {
+                *error = fmt("material %u: non-finite parameter", m);
+                return Result::InvalidScene;
+            }
+        const int32_t tex[] = {mat.base_color_texture, mat.metallic_roughness_texture};
+        for (int32_t t : tex)
+            if (t >= 0 && uint32_t(t) >= scene.texture_count) {
+                *error = fmt("material %u: texture %d out of range (%u textures)", m, t, scene.texture_count);
+                return Result::InvalidScene;
+            }
+    }
+    for (uint32_t p = 0; p < scene.primitive_count; p++) {
+        const rtpbr_scene_primitive &prim = scene.primitives[p];
+        if (prim.index_count % 3 != 0) {
+            *error = fmt("primitive %u: index count %u is not a multiple of 3", p, prim.index_count);
+            return Result::InvalidScene;
+        }
+        if ((prim.vertex_count > 0 && (!prim.positions || !prim.normals)) || (prim.index_count > 0 && !prim.indices) ||
+            (prim.has_texcoords && !prim.texcoords) || (prim.has_tangents && !prim.tangents)) {
+            *error = fmt("primitive %u: missing vertex or index arrays", p);
+            return Result::InvalidScene;
+        }
+        if (prim.material >= scene.material_count) {
+            *error = fmt("primitive %u: material %u out of range (%u materials)", p, prim.material,
+                         scene.material_count);
+            return Result::InvalidScene;
+        }
+        for (uint32_t v = 0; v < prim.vertex_count; v++)
+            if (!finite3(prim.positions + 3 * v)) {
+                *error = fmt("primitive %u: vertex %u has a non-finite position", p, v);
+                return Result::InvalidScene;
+            }
+        for (uint32_t i = 0; i < prim.index_count; i++)
+            if (prim.indices[i] >= prim.vertex_count) {
+                *error = fmt("primitive %u: index %u = %u out of range (%u vertices)", p, i, prim.indices[i],
+                             prim.vertex_count);
+                return Result::InvalidScene;
+            }
+    }
+    bool emits = false;
+    for (uint32_t l = 0; l < scene.light_count; l++) {
+        const rtpbr_scene_light &L = scene.lights[l];
+        if (L.vertex_count < 3 || L.vertex_count > RTPBR_SCENE_MAX_POLYGON_VERTICES) {
+            *error = fmt("light %u: %u vertices (3..%u allowed)", l, L.vertex_count, RTPBR_SCENE_MAX_POLYGON_VERTICES);
+            return Result::InvalidScene;
+        }
+        for (uint32_t k = 0; k < L.vertex_count; k++)
+            if (!finite3(L.vertices[k])) {
+                *error = fmt("light %u: vertex %u is not finite", l, k);
+                return Result::InvalidScene;
+            }
+        if (!finite3(L.normal) || !finite3(L.radiance) || L.radiance[0] < 0.0f || L.radiance[1] < 0.0f ||
+            L.radiance[2] < 0.0f) {
+            *error = fmt("light %u: non-finite normal or negative/non-finite radiance", l);
+            return Result::InvalidScene;
+        }
+        if (L.material >= 0 && uint32_t(L.material) >= scene.material_count) {
+            *error = fmt("light %u: material %d out of range", l, L.material);
+            return Result::InvalidScene;
+        }
+        if (L.radiance[0] > 0.0f || L.radiance[1] > 0.0f || L.radiance[2] > 0.0f)
+            emits = true;
+    }
+    if (!emits) {
+        *error = "the scene has no lights (no emissive primitive or EXT_lights_area light with radiance > 0)";
+        return Result::NoLights;
+    }
+    return Result::Success;
+}
+
+// ---- render ----------------------------------------------------------------------------------
+
+Result render(const rtpbr_scene &scene, const RenderSettings &settings, Accumulator *out, std::string *error,
+              const ProgressCallback &progress, RenderStats *stats) {
+    std::string localError;
+    if (!error)
+        error = &localError;
+    Result r = validateScene(scene, settings, error);
+    if (r != Result::Success)
+        return r;
+    RenderSettings s = settings;
+    s.width = s.width ? s.width : 512;
+    s.height = imageHeight(scene, s, s.width);
+    if (s.width > 65536 || s.height > 65536 || uint64_t(s.width) * s.height > (1ull << 28)) {
+        *error = fmt("image %ux%u too large", s.width, s.height);
+        return Result::InvalidArgument;
+    }
+    if (s.spp == 0) {
+        *error = "spp must be at least 1";
+        return Result::InvalidArgument;
+    }
+    uint32_t sEnd = s.sampleEnd ? s.sampleEnd : s.spp;
+    if (s.sampleBegin >= sEnd || sEnd > s.spp) {
+        *error = fmt("sample range %u:%u is empty or outside 0:%u", s.sampleBegin, sEnd, s.spp);
+        return Result::InvalidArgument;
+    }
+    Region reg = s.region;
+    if (reg.x0 == 0 && reg.y0 == 0 && reg.x1 == 0 && reg.y1 == 0)
+        reg = {0, 0, s.width, s.height};
+    if (reg.x0 >= reg.x1 || reg.y0 >= reg.y1 || reg.x1 > s.width || reg.y1 > s.height) {
+        *error = fmt("region %u:%u:%u:%u is empty or outside the %ux%u image", reg.x0, reg.y0, reg.x1, reg.y1, s.width,
+                     s.height);
+        return Result::InvalidArgument;
+    }
+
+    std::vector<Texture> textures;
+    for (uint32_t t = 0; t < scene.texture_count; t++)
+        textures.emplace_back(scene.textures[t]);
+    LightSet lights(scene, s.lightSampling);
+    EmbreeScene es;
+    r = buildEmbree(scene, &es, error);
+    if (r != Result::Success)
+        return r;
+
+    out->width = s.width;
+    out->height = s.height;
+    out->seed = s.seed;
+    out->settingsHash = settingsHash(s, s.width, s.height);
+    size_t npix = size_t(s.width) * s.height;
+    out->samples.assign(npix, 0);
+    out->sum.assign(3 * npix, 0);
+    out->sumSquares.assign(3 * npix, 0.0);
+    out->nonFinite = 0;
+    out->clamped = 0;
+
+    const rtpbr_scene_camera &cam = scene.cameras[s.camera];
+    const vec3 camPos = glm::make_vec3(cam.position);
+    const vec3 camF = glm::normalize(glm::make_vec3(cam.forward));
+    const vec3 camU = glm::normalize(glm::make_vec3(cam.up));
+    const vec3 camR = glm::normalize(glm::make_vec3(cam.right));
+    const float tanHalf = std::tan(0.5f * cam.yfov);
+    const float aspect = float(s.width) / float(s.height);
+
+    uint32_t tilesX = (reg.x1 - reg.x0 + kTileSize - 1) / kTileSize;
+    uint32_t tilesY = (reg.y1 - reg.y0 + kTileSize - 1) / kTileSize;
+    uint32_t tileCount = tilesX * tilesY;
+    std::atomic<uint32_t> nextTile{0};
+    std::atomic<uint64_t> nonFinite{0}, clamped{0}, totalRays{0};
+    std::mutex progressMutex;
+    uint64_t pixelsDone = 0;
+    const uint64_t pixelsTotal = uint64_t(reg.x1 - reg.x0) * (reg.y1 - reg.y0);
+
+    auto worker = [&]() {
+        Integrator integ(scene, es, lights, s, textures);
+        uint64_t localNonFinite = 0, localClamped = 0;
+        for (;;) {
+            uint32_t tile = nextTile.fetch_add(1);
+            if (tile >= tileCount)
+                break;
+            uint32_t tx0 = reg.x0 + (tile % tilesX) * kTileSize;
+            uint32_t ty0 = reg.y0 + (tile / tilesX) * kTileSize;
+            uint32_t tx1 = std::min(tx0 + kTileSize, reg.x1);
+            uint32_t ty1 = std::min(ty0 + kTileSize, reg.y1);
+            for (uint32_t y = ty0; y < ty1; y++)
+                for (uint32_t x = tx0; x < tx1; x++) {
+                    size_t pix = size_t(y) * s.width + x;
+                    __int128 sum[3] = {0, 0, 0};
+                    double sq[3] = {0.0, 0.0, 0.0};
+                    for (uint32_t k = s.sampleBegin; k < sEnd; k++) {
+                        Rng rng = Rng::forSample(x, y, k, s.seed);
+                        float jx = rng.uniform(), jy = rng.uniform();
+                        float ndcX = (2.0f * (float(x) + jx) / float(s.width) - 1.0f) * tanHalf * aspect;
+                        float ndcY = (1.0f - 2.0f * (float(y) + jy) / float(s.height)) * tanHalf;
+                        vec3 dir = glm::normalize(camF + ndcX * camR + ndcY * camU);
+                        vec3 L = integ.radiance(camPos, dir, rng);
+                        if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z)) {
+                            localNonFinite++;
+                            L = vec3(0.0f);
+                        }
+                        for (int c = 0; c < 3; c++) {
+                            double v = std::max(double(L[c]), 0.0);
+                            if (v > kMaxSampleValue) {
+                                v = kMaxSampleValue;
+                                localClamped++;
+                            }
+                            sum[c] += toFixed(v);
+                            sq[c] += v * v;
+                        }
+                    }
+                    out->samples[pix] = sEnd - s.sampleBegin;
+                    for (int c = 0; c < 3; c++) {
+                        out->sum[3 * pix + c] = sum[c];
+                        out->sumSquares[3 * pix + c] = sq[c];
+                    }
+                }
+            if (progress) {
+                std::lock_guard<std::mutex> lock(progressMutex);
+                pixelsDone += uint64_t(tx1 - tx0) * (ty1 - ty0);
+                progress(pixelsDone, pixelsTotal);
+            }
+        }
+        nonFinite += localNonFinite;
+        clamped += localClamped;
+        totalRays += integ.rays;
+    };
+
+    auto t0 = std::chrono::steady_clock::now();
+    uint32_t threads = s.threads ? s.threads : std::max(1u, std::thread::hardware_concurrency());
+    threads = std::min(threads, std::max(1u, tileCount));
+    std::vector<std::thread> pool;
+    for (uint32_t t = 1; t < threads; t++)
+        pool.emplace_back(worker);
+    worker();
+    for (std::thread &t : pool)
+        t.join();
+    out->nonFinite = nonFinite;
+    out->clamped = clamped;
+    if (stats) {
+        stats->samples = pixelsTotal * (sEnd - s.sampleBegin);
+        stats->rays = totalRays;
+        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    if (!es.errors.first.empty()) {
+        *error = es.errors.first;
+        return Result::Embree;
+    }
+    return Result::Success;
+}
+
+} // namespace rtpbr_oracle
