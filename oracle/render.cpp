@@ -285,7 +285,7 @@ public:
                 vec3 wiL = toLocal(ls.wi);
                 vec3 f = bsdf.eval(wiL, rng);
                 if (f.x > 0.0f || f.y > 0.0f || f.z > 0.0f) {
-                    bool visible = s_.noShadows || !occluded(origin, ls.wi, ls.distance * (1.0f - 1e-4f));
+                    bool visible = s_.noShadows || unoccluded(origin, sp.p + ls.wi * ls.distance);
                     if (visible)
                         L += beta * f * ls.radiance * (misWeight(ls.pdf, bsdf.pdfMis(wiL)) / ls.pdf);
                 }
@@ -384,10 +384,21 @@ private:
         return r.tfar < 0.0f;
     }
 
-    // Moves p off the surface along n by an amount relative to its magnitude.
-    static vec3 offset(const SurfacePoint &sp, vec3 n) {
-        float m = std::max(std::fabs(sp.p.x), std::max(std::fabs(sp.p.y), std::fabs(sp.p.z)));
-        return sp.p + n * (1e-4f * (1.0f + m));
+    // The offset that moves a point at p off its surface: relative to its magnitude.
+    static float offsetScale(vec3 p) {
+        return 1e-4f * (1.0f + std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z))));
+    }
+    static vec3 offset(const SurfacePoint &sp, vec3 n) { return sp.p + n * offsetScale(sp.p); }
+
+    // Shadow ray from origin (already off its surface) to a point on a light, stopping short
+    // of the light's surface by the same relative offset.
+    bool unoccluded(vec3 origin, vec3 target) {
+        vec3 d = target - origin;
+        float len = glm::length(d);
+        float tfar = len - offsetScale(target);
+        if (!(tfar > 0.0f))
+            return true;
+        return !occluded(origin, d / len, tfar);
     }
 
     SurfacePoint surfacePoint(const Hit &h, vec3 dir) const {

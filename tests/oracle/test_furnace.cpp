@@ -1,0 +1,113 @@
+// White furnace through the whole renderer: a rough conductor with F = 1 (metallic, base
+// colour 1: Schlick F0 = 1) inside an enclosure emitting radiance 1 everywhere reflects
+// radiance 1 with the multiple-scattering walk, and E(mu) (its single-scattering albedo,
+// computed here by quadrature) with --single-scatter.
+#include "test_common.h"
+
+#include "oracle.h"
+#include "scene_builder.h"
+
+#include <rtpbr/microfacet.h>
+
+using namespace rtpbr_oracle;
+
+namespace {
+
+constexpr uint32_t kW = 12, kH = 12;
+
+// Single-scattering albedo with F = 1, E(wo) = integral of D G2 / (4 wo.z wi.z) wi.z dwi, by a
+// midpoint grid over the GGX NDF's own parametrisation (h from (u, phi) with density
+// D(h) cos(theta_h)), independent of the oracle's VNDF sampling:
+// E = mean over the grid of G2(wo, wi) (wo.h) / (wo.z cos(theta_h)), wi = reflect(wo, h).
+double singleScatterAlbedo(glm::vec3 wo, float alpha) {
+    const int n = 160;
+    double sum = 0.0;
+    for (int i = 0; i < n; i++) {
+        double u = (i + 0.5) / n;
+        double tanT = alpha * std::sqrt(u / (1.0 - u)); // GGX: tan^2 = a^2 u / (1 - u)
+        double cosT = 1.0 / std::sqrt(1.0 + tanT * tanT), sinT = tanT * cosT;
+        for (int j = 0; j < n; j++) {
+            double phi = (j + 0.5) / n * 2.0 * 3.14159265358979323846;
+            glm::vec3 h(float(sinT * std::cos(phi)), float(sinT * std::sin(phi)), float(cosT));
+            float oh = glm::dot(wo, h);
+            if (oh <= 0.0f)
+                continue;
+            glm::vec3 wi = 2.0f * oh * h - wo;
+            if (wi.z <= 0.0f)
+                continue;
+            double G2 = rtpbr::G2_Microfacet(wo, wi, alpha, alpha);
+            sum += G2 * oh / (wo.z * cosT);
+        }
+    }
+    return sum / (double(n) * n);
+}
+
+struct Furnace {
+    SceneBuilder b;
+    explicit Furnace(float alpha) {
+        uint32_t metal = b.material(glm::vec3(1.0f), 1.0f, std::sqrt(alpha));
+        b.polygon({{-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1}}, metal);
+        const float s = 10.0f;
+        glm::vec3 c[8] = {{-s, -s, -s}, {s, -s, -s}, {s, s, -s}, {-s, s, -s},
+                          {-s, -s, s},  {s, -s, s},  {s, s, s},  {-s, s, s}};
+        int faces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 2, 6, 7}, {0, 3, 7, 4}, {1, 2, 6, 5}};
+        for (auto &f : faces)
+            b.light({c[f[0]], c[f[1]], c[f[2]], c[f[3]]}, glm::vec3(1.0f), true);
+        // Looking down at 60 degrees from the normal, a narrow field of view on the plate.
+        b.camera(glm::vec3(0.0f, 1.5f * std::cos(1.047f), 1.5f * std::sin(1.047f)), glm::vec3(0.0f), 0.3f);
+        b.build();
+    }
+};
+
+void run(float alpha, bool single) {
+    Furnace f(alpha);
+    RenderSettings s;
+    s.width = kW;
+    s.height = kH;
+    s.spp = 1024;
+    s.threads = 2;
+    s.singleScatter = single;
+    Accumulator acc;
+    std::string err;
+    Result r = render(f.b.scene, s, &acc, &err, nullptr);
+    if (r != Result::Success)
+        fail_msg("render: %s", err.c_str());
+    std::vector<float> rgb, se;
+    resolve(acc, &rgb, &se);
+    MeanEstimator image;
+    double ref = 0.0;
+    for (uint32_t y = 0; y < kH; y++)
+        for (uint32_t x = 0; x < kW; x++) {
+            image.add(rgb[3 * (y * kW + x) + 1]);
+            if (single) {
+                glm::vec3 d = cameraRay(f.b.cameras[0], x + 0.5f, y + 0.5f, kW, kH);
+                glm::vec3 wo(-d.x, -d.z, -d.y); // local frame of the plate: n = +y
+                ref += singleScatterAlbedo(wo, alpha);
+            }
+        }
+    ref = single ? ref / (kW * kH) : 1.0;
+    std::printf("alpha %.1f %s: mean radiance %.5f (se %.5f), expected %.5f\n", alpha,
+                single ? "single-scatter" : "multi-bounce", image.mean(), image.stderror(), ref);
+    if (!(std::fabs(image.mean() - ref) <= 0.01 * ref))
+        fail_msg("alpha %.2f: radiance %.5f, expected %.5f within 1%%", alpha, image.mean(), ref);
+    if (single && alpha >= 0.5f && !(ref < 0.97))
+        fail_msg("alpha %.2f: E(mu) = %.4f shows no single-scattering energy loss", alpha, ref);
+}
+
+void test_furnace_multi_01(void **) { run(0.1f, false); }
+void test_furnace_multi_05(void **) { run(0.5f, false); }
+void test_furnace_multi_10(void **) { run(1.0f, false); }
+void test_furnace_single_01(void **) { run(0.1f, true); }
+void test_furnace_single_05(void **) { run(0.5f, true); }
+void test_furnace_single_10(void **) { run(1.0f, true); }
+
+} // namespace
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_furnace_multi_01),  cmocka_unit_test(test_furnace_multi_05),
+        cmocka_unit_test(test_furnace_multi_10),  cmocka_unit_test(test_furnace_single_01),
+        cmocka_unit_test(test_furnace_single_05), cmocka_unit_test(test_furnace_single_10),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
