@@ -216,10 +216,10 @@ struct Hit {
 };
 
 struct SurfacePoint {
-    vec3 p;
-    vec3 ng;     // geometric normal, facing the incoming ray
-    vec3 ns;     // shading normal, same side as ng
-    vec3 tangent;// shading tangent (anisotropy direction), orthogonal to ns
+    vec3 p = vec3(0.0f);
+    vec3 ng = vec3(0.0f); // geometric normal, facing the incoming ray
+    vec3 ns = vec3(0.0f); // shading normal, same side as ng
+    vec3 tangent = vec3(0.0f); // shading tangent (anisotropy direction), orthogonal to ns
     int32_t light = -1;
     int32_t material = -1;
     float uv[2] = {0.0f, 0.0f};

@@ -2,6 +2,12 @@
 #ifndef RTPBR_TESTS_ORACLE_TEST_COMMON_H
 #define RTPBR_TESTS_ORACLE_TEST_COMMON_H
 
+// C++ headers first: cmocka defines a fail() macro that clashes with std::basic_ios::fail.
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
