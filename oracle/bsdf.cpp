@@ -48,16 +48,19 @@ float Bsdf::diffuseWeight(vec3 wi) const {
 }
 
 vec3 Bsdf::specularEval(const ConductorFresnel &F, vec3 wi, Rng &rng) const {
-    if (single_) {
-        rtpbr::FresnelParams p;
-        p.f0 = F.f0;
-        p.f90 = F.f90;
-        p.eta = vec3(1.5f);
-        p.k = vec3(0.0f);
-        return rtpbr::BRDF_SpecularLocal(wo_, wi, ms_.alphaX(), ms_.alphaY(), p) * wi.z;
-    }
+    // Single scattering in closed form: the walk's first order is exactly this BRDF (Heitz
+    // 2016, sec. 4.3; tests/oracle/test_microsurface.cpp checks it), so only the orders >= 2
+    // are estimated by the walk, which removes the first order's estimation noise.
+    rtpbr::FresnelParams p;
+    p.f0 = F.f0;
+    p.f90 = F.f90;
+    p.eta = vec3(1.5f);
+    p.k = vec3(0.0f);
+    vec3 f = rtpbr::BRDF_SpecularLocal(wo_, wi, ms_.alphaX(), ms_.alphaY(), p) * wi.z;
+    if (single_)
+        return f;
     // The walk starts from the viewer side: Heitz's eval(wi = wo_, wo = wi) is f |wi.z|.
-    return conductorEval(ms_, F, wo_, wi, rng);
+    return f + conductorEval(ms_, F, wo_, wi, rng, -2);
 }
 
 bool Bsdf::specularSample(const ConductorFresnel &F, Rng &rng, vec3 *wi, vec3 *weight) const {

@@ -179,7 +179,14 @@ bool LightSet::sample(glm::vec3 pf, float uLight, float u1, float u2, LightSampl
     s->distance = float(dist);
     s->light = l;
     s->radiance = emitted(l, s->wi);
-    s->pdf = pdf(pf, l, s->wi, s->distance);
+    // The same density pdf() computes, from the quantities at hand.
+    double sel = selectionPdf(l);
+    if (bySolidAngle) {
+        s->pdf = float(sel / total);
+    } else {
+        double cosL = std::fabs(glm::dot(dir, L.n));
+        s->pdf = cosL > 0.0 && L.area > 0.0 ? float(sel * dist * dist / (cosL * L.area)) : 0.0f;
+    }
     return s->pdf > 0.0f && std::isfinite(s->pdf);
 }
 

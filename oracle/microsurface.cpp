@@ -135,7 +135,7 @@ vec3 conductorEval(const MicrosurfaceGGX &ms, const ConductorFresnel &F, vec3 wi
         if (hr == kInf)
             break;
         // Next-event estimation towards wo: phase function x Fresnel x masking of wo.
-        if (order == 0 || order == k) {
+        if (order == 0 || order == k || (order < 0 && k >= -order)) {
             vec3 hs = -wr + wo;
             float l2 = glm::dot(hs, hs);
             if (l2 > 1e-20f) {

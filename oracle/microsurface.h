@@ -71,7 +71,9 @@ private:
 // The longest walk followed; longer walks (vanishingly rare) are cut, losing their energy.
 constexpr int kMaxScatteringOrder = 256;
 
-// Conductor (reflection only). order: 0 = all orders, n > 0 = only the n-th order.
+// Conductor (reflection only). order: 0 = all orders, n > 0 = only the n-th order,
+// n < 0 = orders >= -n (e.g. -2: the multiple-scattering part alone, which added to the
+// closed-form single-scattering BRDF gives a lower-variance estimate of the whole).
 vec3 conductorEval(const MicrosurfaceGGX &ms, const ConductorFresnel &F, vec3 wi, vec3 wo, Rng &rng,
                    int order = 0);
 // Returns false when the walk was cut (no direction). *weight is the product of the

@@ -1,0 +1,104 @@
+// Oracle benchmark: samples/s and rays/s on a small scene, single-scatter vs multi-bounce
+// microfacets, 1 and 2 threads, and solid-angle vs area light sampling (efficiency =
+// 1 / (relative variance x time)). Prints a Markdown table; all ratios come from one run.
+//   oracle_bench SCENE.gltf [--width W] [--spp N]
+#include "oracle.h"
+
+#include <rtpbr/rtpbr_scene.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace rtpbr_oracle;
+
+namespace {
+
+struct Run {
+    const char *name;
+    bool single;
+    uint32_t threads;
+    LightSampling lights;
+    uint32_t maxDepth;
+};
+
+// Mean over pixels of the relative standard error of the luminance-like channel mean.
+double meanRelativeStderr(const Accumulator &acc) {
+    std::vector<float> rgb, se;
+    resolve(acc, &rgb, &se);
+    double sum = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < rgb.size(); i += 3) {
+        double v = (rgb[i] + rgb[i + 1] + rgb[i + 2]) / 3.0;
+        double e = (se[i] + se[i + 1] + se[i + 2]) / 3.0;
+        if (v > 1e-3) {
+            sum += e / v;
+            n++;
+        }
+    }
+    return n ? sum / double(n) : 0.0;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: %s SCENE.gltf [--width W] [--spp N]\n", argv[0]);
+        return 2;
+    }
+    uint32_t width = 128, spp = 16;
+    for (int i = 2; i + 1 < argc; i += 2) {
+        if (std::strcmp(argv[i], "--width") == 0)
+            width = uint32_t(std::atoi(argv[i + 1]));
+        else if (std::strcmp(argv[i], "--spp") == 0)
+            spp = uint32_t(std::atoi(argv[i + 1]));
+    }
+    char err[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
+    rtpbr_scene_load_desc desc = {};
+    desc.error_message = err;
+    desc.error_message_size = sizeof err;
+    rtpbr_scene *scene = nullptr;
+    if (rtpbr_scene_load(argv[1], &desc, &scene) != RTPBR_SCENE_SUCCESS) {
+        std::fprintf(stderr, "oracle_bench: %s: %s\n", argv[1], err);
+        return 1;
+    }
+    const Run runs[] = {
+        {"multi-bounce walk, 1 thread", false, 1, LightSampling::SolidAngle, 16},
+        {"multi-bounce walk, 2 threads", false, 2, LightSampling::SolidAngle, 16},
+        {"single-scatter, 1 thread", true, 1, LightSampling::SolidAngle, 16},
+        {"single-scatter, 2 threads", true, 2, LightSampling::SolidAngle, 16},
+        {"direct only, solid-angle lights, 2 threads", false, 2, LightSampling::SolidAngle, 1},
+        {"direct only, area lights, 2 threads", false, 2, LightSampling::Area, 1},
+    };
+    std::printf("Scene %s, %u px wide, %u spp.\n\n", argv[1], width, spp);
+    std::printf("| configuration | samples/s | Mrays/s | rays/sample | mean rel. std. error | efficiency 1/(se^2 t) |\n");
+    std::printf("|---|---|---|---|---|---|\n");
+    int status = 0;
+    for (const Run &r : runs) {
+        RenderSettings s;
+        s.width = width;
+        s.spp = spp;
+        s.threads = r.threads;
+        s.singleScatter = r.single;
+        s.lightSampling = r.lights;
+        s.maxDepth = r.maxDepth;
+        Accumulator acc;
+        RenderStats stats;
+        std::string error;
+        if (render(*scene, s, &acc, &error, nullptr, &stats) != Result::Success) {
+            std::fprintf(stderr, "oracle_bench: %s\n", error.c_str());
+            status = 1;
+            break;
+        }
+        double se = meanRelativeStderr(acc);
+        std::printf("| %s | %.0f | %.2f | %.2f | %.4f | %.0f |\n", r.name, double(stats.samples) / stats.seconds,
+                    double(stats.rays) / stats.seconds * 1e-6, double(stats.rays) / double(stats.samples), se,
+                    1.0 / (se * se * stats.seconds));
+        std::fflush(stdout);
+    }
+    rtpbr_scene_destroy(scene);
+    return status;
+}
