@@ -1,12 +1,14 @@
 // White furnace through the whole renderer: a rough conductor with F = 1 (metallic, base
 // colour 1: Schlick F0 = 1) inside an enclosure emitting radiance 1 everywhere reflects
-// radiance 1 with the multiple-scattering walk, and E(mu) (its single-scattering albedo,
-// computed here by quadrature) with --single-scatter.
+// radiance 1 with the multiple-scattering walk, and E(mu) (its single-scattering albedo:
+// 1 - the energy loss Kulla-Conty compensate) with --single-scatter, E(mu) taken both from
+// the Kulla-Conty table (shaderlib/luts, GGX height-correlated) and from a quadrature here.
 #include "test_common.h"
 
 #include "oracle.h"
 #include "scene_builder.h"
 
+#include <luts/rtpbr_kc_tables.h>
 #include <rtpbr/microfacet.h>
 
 using namespace rtpbr_oracle;
@@ -42,6 +44,17 @@ double singleScatterAlbedo(glm::vec3 wo, float alpha) {
     return sum / (double(n) * n);
 }
 
+// E(mu, r) from the Kulla-Conty table by bilinear interpolation on its node grid
+// (sqrt(mu) and perceptual roughness r at i / (N - 1); see rtpbr_kc_tables.h).
+double tableAlbedo(double mu, double r) {
+    const int n = RTPBR_KC_SIZE;
+    const auto &E = rtpbr_kc_E[RTPBR_KC_VARIANT_ggx_hc];
+    double fx = std::sqrt(std::max(mu, 0.0)) * (n - 1), fr = r * (n - 1);
+    int x0 = std::min(n - 2, int(fx)), r0 = std::min(n - 2, int(fr));
+    double ax = fx - x0, ar = fr - r0;
+    return (1 - ar) * ((1 - ax) * E[r0][x0] + ax * E[r0][x0 + 1]) + ar * ((1 - ax) * E[r0 + 1][x0] + ax * E[r0 + 1][x0 + 1]);
+}
+
 struct Furnace {
     SceneBuilder b;
     explicit Furnace(float alpha) {
@@ -75,7 +88,7 @@ void run(float alpha, bool single) {
     std::vector<float> rgb, se;
     resolve(acc, &rgb, &se);
     MeanEstimator image;
-    double ref = 0.0;
+    double ref = 0.0, refTable = 0.0;
     for (uint32_t y = 0; y < kH; y++)
         for (uint32_t x = 0; x < kW; x++) {
             image.add(rgb[3 * (y * kW + x) + 1]);
@@ -83,9 +96,17 @@ void run(float alpha, bool single) {
                 glm::vec3 d = cameraRay(f.b.cameras[0], x + 0.5f, y + 0.5f, kW, kH);
                 glm::vec3 wo(-d.x, -d.z, -d.y); // local frame of the plate: n = +y
                 ref += singleScatterAlbedo(wo, alpha);
+                refTable += tableAlbedo(wo.z, std::sqrt(alpha));
             }
         }
     ref = single ? ref / (kW * kH) : 1.0;
+    refTable = single ? refTable / (kW * kH) : 1.0;
+    if (single) {
+        std::printf("alpha %.1f: E(mu) by quadrature %.5f, from the Kulla-Conty table %.5f\n", alpha, ref, refTable);
+        if (!(std::fabs(image.mean() - refTable) <= 0.01 * refTable))
+            fail_msg("alpha %.2f: radiance %.5f, Kulla-Conty E(mu) %.5f, not within 1%%", alpha, image.mean(),
+                     refTable);
+    }
     std::printf("alpha %.1f %s: mean radiance %.5f (se %.5f), expected %.5f\n", alpha,
                 single ? "single-scatter" : "multi-bounce", image.mean(), image.stderror(), ref);
     if (!(std::fabs(image.mean() - ref) <= 0.01 * ref))
