@@ -10,6 +10,9 @@
 //                  + (1 - w * max3(Schlick(f0d, 1, |wo.h|))) * baseColor / pi
 //   f0d = min(((ior - 1) / (ior + 1))^2 * specularColor, 1), w = specularFactor,
 //   h = normalize(wo + wi), alpha = roughness^2 (clamped by the shaderlib's Alpha_Clamp).
+// KHR_materials_clearcoat (weight c, coat alpha ac) on top, as its fresnel_coat:
+//   f_coated = (1 - c Fc(wo.z)) f + c * walk(GGX ac, Fresnel = Schlick(0.04, 1)),
+//   Fc = Schlick(0.04, 1, .); the coat shares the shading normal.
 // The Fresnel term is applied at every microfacet of the walk. Directions are in the local
 // shading frame (n = +z, tangent = +x); wo points to the viewer, wi to the light.
 #ifndef RTPBR_ORACLE_BSDF_H
@@ -27,6 +30,8 @@ struct SurfaceMaterial {
     float alphaX = 0.25f, alphaY = 0.25f;
     vec3 dielectricF0 = vec3(0.04f); // f0d
     float specularWeight = 1.0f;     // w
+    float clearcoat = 0.0f;          // c
+    float clearcoatAlpha = 0.001f;   // ac
 };
 
 struct BsdfSample {
@@ -50,16 +55,19 @@ public:
     bool isBlack() const { return probSum_ <= 0.0f; }
 
 private:
-    vec3 specularEval(const ConductorFresnel &F, vec3 wi, Rng &rng) const;
-    bool specularSample(const ConductorFresnel &F, Rng &rng, vec3 *wi, vec3 *weight) const;
     float diffuseWeight(vec3 wi) const;
 
     SurfaceMaterial m_;
     bool single_;
     vec3 wo_;
-    MicrosurfaceGGX ms_;
-    ConductorFresnel metalF_, coatF_;
-    float probMetal_ = 0.0f, probCoat_ = 0.0f, probDiffuse_ = 0.0f, probSum_ = 0.0f;
+    vec3 specularEvalOn(const MicrosurfaceGGX &ms, const ConductorFresnel &F, vec3 wi, Rng &rng) const;
+    bool specularSampleOn(const MicrosurfaceGGX &ms, const ConductorFresnel &F, Rng &rng, vec3 *wi,
+                          vec3 *weight) const;
+
+    MicrosurfaceGGX ms_, msClear_;
+    ConductorFresnel metalF_, coatF_, clearF_;
+    float baseScale_ = 1.0f; // 1 - c Fc(wo.z)
+    float probMetal_ = 0.0f, probCoat_ = 0.0f, probDiffuse_ = 0.0f, probClear_ = 0.0f, probSum_ = 0.0f;
 };
 
 } // namespace rtpbr_oracle

@@ -435,6 +435,7 @@ private:
                 vec3 t = b0 * glm::make_vec3(prim.tangents + 4 * ix[0]) + h.u * glm::make_vec3(prim.tangents + 4 * ix[1]) +
                          h.v * glm::make_vec3(prim.tangents + 4 * ix[2]);
                 sp.tangent = t;
+                applyNormalMap(prim, ix, &sp);
             }
         }
         if (glm::dot(sp.ng, dir) > 0.0f)
@@ -455,6 +456,35 @@ private:
             orthonormalBasis(sp.ns, &sp.tangent, &b);
         }
         return sp;
+    }
+
+    // glTF normalTexture: tangent-space normal (2 rgb - 1) scaled in xy by normal_scale, with
+    // the bitangent B = w cross(N, T) (glTF 2.0, meshes: TANGENT). Done in the primitive's
+    // own orientation, before the normal is turned towards the viewer.
+    void applyNormalMap(const rtpbr_scene_primitive &prim, const uint32_t *ix, SurfacePoint *sp) const {
+        const rtpbr_scene_material &m = scene_.materials[prim.material];
+        if (m.normal_texture < 0 || uint32_t(m.normal_texture) >= textures_.size() || !prim.has_texcoords)
+            return;
+        vec3 n = sp->ns;
+        float nl = glm::length(n);
+        if (!(nl > 0.0f) || !std::isfinite(nl))
+            return;
+        n /= nl;
+        vec3 t = sp->tangent - glm::dot(sp->tangent, n) * n;
+        float tl = glm::length(t);
+        if (!(tl > 1e-6f) || !std::isfinite(tl))
+            return;
+        t /= tl;
+        float w = prim.tangents[4 * ix[0] + 3] < 0.0f ? -1.0f : 1.0f;
+        vec3 b = w * glm::cross(n, t);
+        glm::vec4 c = textures_[uint32_t(m.normal_texture)].sample(sp->uv[0], sp->uv[1]);
+        vec3 ts(2.0f * c.x - 1.0f, 2.0f * c.y - 1.0f, 2.0f * c.z - 1.0f);
+        ts.x *= m.normal_scale;
+        ts.y *= m.normal_scale;
+        vec3 mapped = ts.x * t + ts.y * b + ts.z * n;
+        float ml = glm::length(mapped);
+        if (ml > 1e-6f && std::isfinite(ml))
+            sp->ns = mapped / ml;
     }
 
     SurfaceMaterial material(SurfacePoint &sp) const {
@@ -491,6 +521,10 @@ private:
             }
         } else {
             out.alphaX = out.alphaY = alpha;
+        }
+        if (m.model == RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS && m.clearcoat > 0.0f) {
+            out.clearcoat = glm::clamp(m.clearcoat, 0.0f, 1.0f);
+            out.clearcoatAlpha = rtpbr::Alpha_FromPerceptual(1.0f - m.clearcoat_gloss);
         }
         if (m.model == RTPBR_SCENE_MATERIAL_DISNEY) {
             // Until the Disney BRDF is in the shaderlib: its dielectric F0 = 0.08 specular.
@@ -536,13 +570,14 @@ Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::str
         const rtpbr_scene_material &mat = scene.materials[m];
         const float vals[] = {mat.base_color[0], mat.base_color[1], mat.base_color[2], mat.metallic, mat.roughness,
                               mat.ior, mat.specular_factor, mat.specular_color[0], mat.specular_color[1],
-                              mat.specular_color[2], mat.anisotropic, mat.anisotropy_rotation, mat.specular};
+                              mat.specular_color[2], mat.anisotropic, mat.anisotropy_rotation, mat.specular,
+                              mat.clearcoat, mat.clearcoat_gloss, mat.normal_scale};
         for (float v : vals)
             if (!finite(v)) {
                 *error = fmt("material %u: non-finite parameter", m);
                 return Result::InvalidScene;
             }
-        const int32_t tex[] = {mat.base_color_texture, mat.metallic_roughness_texture};
+        const int32_t tex[] = {mat.base_color_texture, mat.metallic_roughness_texture, mat.normal_texture};
         for (int32_t t : tex)
             if (t >= 0 && uint32_t(t) >= scene.texture_count) {
                 *error = fmt("material %u: texture %d out of range (%u textures)", m, t, scene.texture_count);
