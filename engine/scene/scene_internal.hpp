@@ -6,6 +6,8 @@
 #include <tiny_gltf.h>
 
 #include <array>
+#include <cfloat>
+#include <cmath>
 #include <cstdarg>
 #include <cstdint>
 #include <map>
@@ -46,6 +48,9 @@ struct Context {
     bool failed() const { return result != RTPBR_SCENE_SUCCESS; }
     void log(rtpbr_scene_log_level level, const std::string& text) const;
 };
+
+// Finite and representable as a float (outputs are float).
+inline bool fits_float(double d) { return std::isfinite(d) && std::fabs(d) <= double(FLT_MAX); }
 
 using Mat4 = std::array<double, 16>;  // column-major, like glTF
 using Vec3 = std::array<double, 3>;

@@ -27,7 +27,7 @@ struct MaterialReader {
             return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: %s.%s must be a number",
                             material_index, block, key);
         *out = v.GetNumberAsDouble();
-        if (!std::isfinite(*out))
+        if (!fits_float(*out))
             return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: %s.%s is not finite",
                             material_index, block, key);
         return true;
@@ -50,7 +50,7 @@ struct MaterialReader {
                                 "material %d: %s.%s[%zu] must be a number", material_index, block,
                                 key, i);
             double d = e.GetNumberAsDouble();
-            if (!std::isfinite(d))
+            if (!fits_float(d))
                 return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: %s.%s[%zu] is not finite",
                                 material_index, block, key, i);
             out[i] = static_cast<float>(d);
@@ -66,7 +66,7 @@ bool finite_vector(Context& ctx, const std::vector<double>& v, size_t n, int mat
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: %s has %zu components, expected %zu",
                         material, name, v.size(), n);
     for (size_t i = 0; i < n; ++i) {
-        if (!std::isfinite(v[i]))
+        if (!fits_float(v[i]))
             return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: %s[%zu] is not finite",
                             material, name, i);
         out[i] = static_cast<float>(v[i]);
@@ -196,10 +196,12 @@ struct TextureTable {
     }
 
     // Returns false on failure; *out = -1 when the texture is unusable.
-    bool get(int material, const char* slot_name, int texture_index, int tex_coord, bool srgb,
-             int32_t* out) {
+    bool get(int material, const char* slot_name, const tinygltf::ExtensionMap& info_extensions,
+             int texture_index, int tex_coord, bool srgb, int32_t* out) {
         *out = -1;
         if (texture_index < 0) return true;
+        if (info_extensions.count("KHR_texture_transform"))
+            ctx.warn("material %d: %s: KHR_texture_transform ignored", material, slot_name);
         if (size_t(texture_index) >= model.textures.size())
             return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
                             "material %d: %s.index %d does not exist (%zu textures)", material,
@@ -260,7 +262,7 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
     if (!finite_vector(ctx, pbr.baseColorFactor, 4, index, "baseColorFactor", m.base_color))
         return false;
     for (int k = 0; k < 4; ++k) m.base_color[k] = clamp01(ctx, m.base_color[k], index, "baseColorFactor");
-    if (!std::isfinite(pbr.metallicFactor) || !std::isfinite(pbr.roughnessFactor))
+    if (!fits_float(pbr.metallicFactor) || !fits_float(pbr.roughnessFactor))
         return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: metallic/roughnessFactor not finite", index);
     m.metallic = clamp01(ctx, float(pbr.metallicFactor), index, "metallicFactor");
     m.roughness = clamp01(ctx, float(pbr.roughnessFactor), index, "roughnessFactor");
@@ -272,18 +274,19 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
     else if (src.alphaMode == "BLEND") m.alpha_mode = RTPBR_SCENE_ALPHA_BLEND;
     else if (src.alphaMode != "OPAQUE" && !src.alphaMode.empty())
         ctx.warn("material %d: unknown alphaMode '%s' treated as OPAQUE", index, src.alphaMode.c_str());
-    if (!std::isfinite(src.alphaCutoff) || !std::isfinite(src.normalTexture.scale))
+    if (!fits_float(src.alphaCutoff) || !fits_float(src.normalTexture.scale))
         return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: alphaCutoff/normalTexture.scale not finite", index);
     m.alpha_cutoff = float(src.alphaCutoff);
     m.normal_scale = float(src.normalTexture.scale);
 
-    if (!textures.get(index, "baseColorTexture", pbr.baseColorTexture.index,
+    if (!textures.get(index, "baseColorTexture", pbr.baseColorTexture.extensions, pbr.baseColorTexture.index,
                       pbr.baseColorTexture.texCoord, true, &m.base_color_texture) ||
-        !textures.get(index, "metallicRoughnessTexture", pbr.metallicRoughnessTexture.index,
-                      pbr.metallicRoughnessTexture.texCoord, false, &m.metallic_roughness_texture) ||
-        !textures.get(index, "normalTexture", src.normalTexture.index, src.normalTexture.texCoord,
-                      false, &m.normal_texture) ||
-        !textures.get(index, "emissiveTexture", src.emissiveTexture.index,
+        !textures.get(index, "metallicRoughnessTexture", pbr.metallicRoughnessTexture.extensions,
+                      pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false,
+                      &m.metallic_roughness_texture) ||
+        !textures.get(index, "normalTexture", src.normalTexture.extensions, src.normalTexture.index,
+                      src.normalTexture.texCoord, false, &m.normal_texture) ||
+        !textures.get(index, "emissiveTexture", src.emissiveTexture.extensions, src.emissiveTexture.index,
                       src.emissiveTexture.texCoord, true, &m.emission_texture))
         return false;
     if (src.occlusionTexture.index >= 0)
