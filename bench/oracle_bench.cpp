@@ -11,11 +11,20 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <sys/resource.h>
 #include <vector>
 
 using namespace rtpbr_oracle;
 
 namespace {
+
+// Process CPU time (user + system) in seconds: samples per CPU-second do not depend on how
+// busy the machine is, wall-clock rates do.
+double cpuSeconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 struct Run {
     const char *name;
@@ -74,8 +83,9 @@ int main(int argc, char **argv) {
         {"direct only, area lights, 2 threads", false, 2, LightSampling::Area, 1},
     };
     std::printf("Scene %s, %u px wide, %u spp.\n\n", argv[1], width, spp);
-    std::printf("| configuration | samples/s | Mrays/s | rays/sample | mean rel. std. error | efficiency 1/(se^2 t) |\n");
-    std::printf("|---|---|---|---|---|---|\n");
+    std::printf("| configuration | samples/s | Mrays/s | samples/CPU-s | rays/sample | mean rel. std. error | "
+                "efficiency 1/(se^2 t) |\n");
+    std::printf("|---|---|---|---|---|---|---|\n");
     int status = 0;
     for (const Run &r : runs) {
         RenderSettings s;
@@ -88,15 +98,18 @@ int main(int argc, char **argv) {
         Accumulator acc;
         RenderStats stats;
         std::string error;
-        if (render(*scene, s, &acc, &error, nullptr, &stats) != Result::Success) {
+        double cpu0 = cpuSeconds();
+        Result res = render(*scene, s, &acc, &error, nullptr, &stats);
+        double cpu = cpuSeconds() - cpu0;
+        if (res != Result::Success) {
             std::fprintf(stderr, "oracle_bench: %s\n", error.c_str());
             status = 1;
             break;
         }
         double se = meanRelativeStderr(acc);
-        std::printf("| %s | %.0f | %.2f | %.2f | %.4f | %.0f |\n", r.name, double(stats.samples) / stats.seconds,
-                    double(stats.rays) / stats.seconds * 1e-6, double(stats.rays) / double(stats.samples), se,
-                    1.0 / (se * se * stats.seconds));
+        std::printf("| %s | %.0f | %.2f | %.0f | %.2f | %.4f | %.0f |\n", r.name, double(stats.samples) / stats.seconds,
+                    double(stats.rays) / stats.seconds * 1e-6, double(stats.samples) / cpu,
+                    double(stats.rays) / double(stats.samples), se, 1.0 / (se * se * stats.seconds));
         std::fflush(stdout);
     }
     rtpbr_scene_destroy(scene);
