@@ -1,5 +1,7 @@
-// Bad scenes get a clear error, never a crash: through the loader + the oracle's validation
-// (API) and through the rtpbr-oracle command line (exit status 1, one message on stderr).
+// The rtpbr-oracle command line and bad scenes. Bad scenes get a clear error, never a crash:
+// through the loader + the oracle's validation (API) and through the command line (exit
+// status 1, one message on stderr). Sample-range and region renders written as accumulator
+// files and merged by --merge give exactly the full render.
 #include "test_common.h"
 
 #include "oracle.h"
@@ -99,10 +101,9 @@ std::string loadAndValidate(const std::string &path, std::string *message) {
     return r == Result::Success ? "ok" : std::string("oracle:") + resultString(r);
 }
 
-// Runs rtpbr-oracle on a scene; returns its exit status and stderr.
-int runOracle(const std::string &scene, std::string *err) {
-    std::string cmd = std::string("'") + gOracleExe + "' '" + scene +
-                      "' -o oracle_test_bad.exr --width 8 --height 8 --spp 1 --quiet 2> oracle_test_bad.err";
+// Runs rtpbr-oracle with the given arguments; returns its exit status and stderr.
+int runOracleArgs(const std::string &args, std::string *err) {
+    std::string cmd = std::string("'") + gOracleExe + "' " + args + " 2> oracle_test_bad.err";
     int status = std::system(cmd.c_str());
     std::ifstream f("oracle_test_bad.err");
     std::stringstream ss;
@@ -110,6 +111,17 @@ int runOracle(const std::string &scene, std::string *err) {
     *err = ss.str();
     std::remove("oracle_test_bad.err");
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int runOracle(const std::string &scene, std::string *err) {
+    return runOracleArgs("'" + scene + "' -o oracle_test_bad.exr --width 8 --height 8 --spp 1 --quiet", err);
+}
+
+std::string readAll(const std::string &path) {
+    std::ifstream f(path, std::ios::binary);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
 }
 
 void expectFailure(const std::string &file, const char *expectedTag, const char *expectedWords) {
@@ -134,6 +146,46 @@ void test_good_scene_renders(void **) {
     if (status != 0)
         fail_msg("good scene: exit %d: %s", status, err.c_str());
     std::remove("oracle_test_bad.exr");
+}
+
+void test_cli_split_and_merge(void **) {
+    std::string f = writeFile("oracle_test_split.gltf", makeGltf({}));
+    std::string err;
+    const std::string common = "'" + f + "' --width 12 --height 10 --spp 6 --seed 3 --quiet --max-depth 3";
+    assert_int_equal(runOracleArgs(common + " -o oracle_test_whole.acc", &err), 0);
+    assert_int_equal(runOracleArgs(common + " --threads 1 --sample-range 0:4 -o oracle_test_s0.acc", &err), 0);
+    assert_int_equal(runOracleArgs(common + " --sample-range 4:6 --region 0:0:5:10 -o oracle_test_s1.acc", &err), 0);
+    assert_int_equal(runOracleArgs(common + " --sample-range 4:6 --region 5:0:12:10 -o oracle_test_s2.acc", &err), 0);
+    assert_int_equal(runOracleArgs("--merge oracle_test_s0.acc oracle_test_s1.acc oracle_test_s2.acc -o "
+                                   "oracle_test_merged.acc --stderr-image oracle_test_se.exr",
+                                   &err),
+                     0);
+    std::string whole = readAll("oracle_test_whole.acc"), merged = readAll("oracle_test_merged.acc");
+    assert_true(whole.size() > 1000);
+    // The sums of squares are doubles added in another order: compare everything before them.
+    size_t exact = whole.size() - 3 * 12 * 10 * sizeof(double);
+    assert_true(merged.size() == whole.size());
+    assert_memory_equal(whole.data(), merged.data(), exact);
+    assert_true(readAll("oracle_test_se.exr").size() > 0);
+    // EXR + preview from the merged accumulator; a merge with a different seed is refused.
+    assert_int_equal(runOracleArgs("--merge oracle_test_merged.acc -o oracle_test_merged.exr --preview "
+                                   "oracle_test_merged.png",
+                                   &err),
+                     0);
+    assert_true(readAll("oracle_test_merged.png").size() > 0);
+    assert_int_equal(runOracleArgs(common + " --seed 4 -o oracle_test_other.acc", &err), 0);
+    assert_int_equal(runOracleArgs("--merge oracle_test_whole.acc oracle_test_other.acc -o oracle_test_x.exr", &err),
+                     1);
+    assert_true(err.find("differ") != std::string::npos);
+    // Usage errors.
+    assert_int_equal(runOracleArgs("'" + f + "' -o x.exr --spp abc", &err), 2);
+    assert_int_equal(runOracleArgs("'" + f + "' -o x.exr --region 3:3:2:2", &err), 1);
+    assert_int_equal(runOracleArgs("'" + f + "' -o x.exr --sample-range 0:99 --spp 4", &err), 1);
+    assert_true(err.find("sample range") != std::string::npos);
+    for (const char *p : {"oracle_test_whole.acc", "oracle_test_s0.acc", "oracle_test_s1.acc", "oracle_test_s2.acc",
+                          "oracle_test_merged.acc", "oracle_test_se.exr", "oracle_test_merged.exr",
+                          "oracle_test_merged.png", "oracle_test_other.acc"})
+        std::remove(p);
 }
 
 void test_missing_buffer(void **) {
@@ -230,7 +282,8 @@ int main(int argc, char **argv) {
     }
     gOracleExe = argv[1];
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_good_scene_renders), cmocka_unit_test(test_missing_buffer),
+        cmocka_unit_test(test_good_scene_renders), cmocka_unit_test(test_cli_split_and_merge),
+        cmocka_unit_test(test_missing_buffer),
         cmocka_unit_test(test_short_buffer),       cmocka_unit_test(test_nan_vertex),
         cmocka_unit_test(test_no_camera),          cmocka_unit_test(test_no_lights),
         cmocka_unit_test(test_not_gltf),           cmocka_unit_test(test_hand_built_bad_scenes),
