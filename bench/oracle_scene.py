@@ -45,7 +45,10 @@ def sphere(c, r, nu=48, nv=24):
     for j in range(nv):
         for i in range(nu):
             a, b = j * (nu + 1) + i, (j + 1) * (nu + 1) + i
-            idx += [a, b, a + 1, a + 1, b, b + 1]
+            if j > 0:  # at the poles one of the two triangles is degenerate
+                idx += [a, b, a + 1]
+            if j < nv - 1:
+                idx += [a + 1, b, b + 1]
     return pos, nrm, idx
 
 materials = [
