@@ -10,40 +10,114 @@ namespace rtpbr_oracle {
 
 namespace {
 
-float max3(vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 float luminance(vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+constexpr float kClearcoatF0 = 0.04f; // KHR_materials_clearcoat: ior 1.5
+constexpr float kInvPi = 0.31830988618379067f;
+
+float muOfNode(int i, int n) {
+    float x = float(i) / float(n - 1);
+    return i == 0 ? 1e-4f : x * x;
+}
 
 } // namespace
 
-namespace {
-constexpr float kClearcoatF0 = 0.04f; // KHR_materials_clearcoat: ior 1.5
+// ---- LayerAlbedo ------------------------------------------------------------------------------
+
+LayerAlbedo::LayerAlbedo(float eta, int walksPerNode) : eta_(eta) {
+    const int n = kNodes;
+    ConductorFresnel F;
+    F.kind = ConductorFresnel::Kind::Dielectric;
+    F.eta = vec3(eta);
+    for (int s = 0; s < 2; s++) {
+        e_[s].assign(size_t(n) * n, 0.0f);
+        eavg_[s].assign(size_t(n), 0.0f);
+    }
+    for (int ir = 0; ir < n; ir++) {
+        float r = float(ir) / float(n - 1);
+        float alpha = r * r;
+        MicrosurfaceGGX ms(alpha, alpha);
+        for (int ix = 0; ix < n; ix++) {
+            float mu = muOfNode(ix, n);
+            vec3 wi(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
+            Rng rng(uint64_t(ir * n + ix), 0x6c61796572ull);
+            double sum = 0.0, sumSingle = 0.0;
+            for (int k = 0; k < walksPerNode; k++) {
+                vec3 wo, weight;
+                int order = 0;
+                if (conductorSample(ms, F, wi, rng, &wo, &weight, &order)) {
+                    sum += weight.x;
+                    if (order == 1)
+                        sumSingle += weight.x;
+                }
+            }
+            e_[0][size_t(ir * n + ix)] = float(sum / walksPerNode);
+            e_[1][size_t(ir * n + ix)] = float(sumSingle / walksPerNode);
+        }
+        // Es_avg = 2 int E mu dmu = 4 int E(x^2) x^3 dx (trapezoid on the x nodes).
+        for (int s = 0; s < 2; s++) {
+            double acc = 0.0;
+            for (int ix = 0; ix + 1 < n; ix++) {
+                double x0 = double(ix) / (n - 1), x1 = double(ix + 1) / (n - 1);
+                double f0 = e_[s][size_t(ir * n + ix)] * x0 * x0 * x0;
+                double f1 = e_[s][size_t(ir * n + ix + 1)] * x1 * x1 * x1;
+                acc += 0.5 * (f0 + f1) * (x1 - x0);
+            }
+            eavg_[s][size_t(ir)] = float(4.0 * acc);
+        }
+    }
 }
+
+float LayerAlbedo::E(float mu, float r, bool single) const {
+    const int n = kNodes;
+    float fx = std::sqrt(glm::clamp(mu, 0.0f, 1.0f)) * float(n - 1);
+    float fr = glm::clamp(r, 0.0f, 1.0f) * float(n - 1);
+    int x0 = std::min(n - 2, int(fx)), r0 = std::min(n - 2, int(fr));
+    float ax = fx - float(x0), ar = fr - float(r0);
+    const std::vector<float> &e = e_[single ? 1 : 0];
+    auto at = [&](int ri, int xi) { return e[size_t(ri * n + xi)]; };
+    return (1.0f - ar) * ((1.0f - ax) * at(r0, x0) + ax * at(r0, x0 + 1)) +
+           ar * ((1.0f - ax) * at(r0 + 1, x0) + ax * at(r0 + 1, x0 + 1));
+}
+
+float LayerAlbedo::Eavg(float r, bool single) const {
+    const int n = kNodes;
+    float fr = glm::clamp(r, 0.0f, 1.0f) * float(n - 1);
+    int r0 = std::min(n - 2, int(fr));
+    float ar = fr - float(r0);
+    const std::vector<float> &e = eavg_[single ? 1 : 0];
+    return (1.0f - ar) * e[size_t(r0)] + ar * e[size_t(r0 + 1)];
+}
+
+// ---- Bsdf -------------------------------------------------------------------------------------
 
 Bsdf::Bsdf(const SurfaceMaterial &m, bool singleScatter, vec3 wo)
     : m_(m), single_(singleScatter), wo_(wo), ms_(m.alphaX, m.alphaY), msClear_(m.clearcoatAlpha, m.clearcoatAlpha) {
+    if (!m_.layer)
+        m_.specularWeight = 0.0f;
     metalF_.f0 = m.baseColor;
     metalF_.f90 = 1.0f;
-    coatF_.f0 = m.dielectricF0;
-    coatF_.f90 = 1.0f;
+    coatF_.kind = ConductorFresnel::Kind::Dielectric;
+    coatF_.eta = vec3(m_.layer ? m_.layer->eta() : 1.5f);
     clearF_.f0 = vec3(kClearcoatF0);
     clearF_.f90 = 1.0f;
     if (!(wo.z > 0.0f))
         return;
     float fc = rtpbr::F_Schlick1(kClearcoatF0, 1.0f, wo.z);
-    baseScale_ = 1.0f - m.clearcoat * fc;
-    // Lobe selection by a rough estimate of each lobe's albedo at wo.
-    float fo = max3(rtpbr::F_Schlick(m.dielectricF0, 1.0f, wo.z));
-    probMetal_ = baseScale_ * m.metallic * std::max(luminance(m.baseColor), 0.02f);
-    probCoat_ = baseScale_ * (1.0f - m.metallic) * m.specularWeight * std::max(fo, 0.02f);
-    probDiffuse_ = baseScale_ * (1.0f - m.metallic) * luminance(m.baseColor) * (1.0f - m.specularWeight * fo);
-    probClear_ = m.clearcoat * std::max(fc, 0.02f);
-    if (m.metallic <= 0.0f)
+    baseScale_ = 1.0f - m_.clearcoat * fc;
+    float eo = layerE(wo.z);
+    float eavg = m_.layer ? m_.specularWeight * m_.layer->Eavg(m_.perceptualRoughness, single_) : 0.0f;
+    baseFactorO_ = eavg < 0.999f ? std::max(0.0f, 1.0f - eo) / (1.0f - eavg) : 0.0f;
+    // Lobe selection by each lobe's albedo at wo (rough for the metal).
+    probMetal_ = baseScale_ * m_.metallic * std::max(luminance(m_.baseColor), 0.02f);
+    probCoat_ = baseScale_ * (1.0f - m_.metallic) * std::max(eo, 0.02f);
+    probDiffuse_ = baseScale_ * (1.0f - m_.metallic) * luminance(m_.baseColor) * std::max(0.0f, 1.0f - eo);
+    probClear_ = m_.clearcoat * std::max(fc, 0.02f);
+    if (m_.metallic <= 0.0f)
         probMetal_ = 0.0f;
-    if (m.specularWeight <= 0.0f)
+    if (m_.specularWeight <= 0.0f)
         probCoat_ = 0.0f;
-    if (m.clearcoat <= 0.0f)
+    if (m_.clearcoat <= 0.0f)
         probClear_ = 0.0f;
-    probDiffuse_ = std::max(probDiffuse_, 0.0f);
     probSum_ = probMetal_ + probCoat_ + probDiffuse_ + probClear_;
     if (probSum_ > 0.0f) {
         probMetal_ /= probSum_;
@@ -53,22 +127,25 @@ Bsdf::Bsdf(const SurfaceMaterial &m, bool singleScatter, vec3 wo)
     }
 }
 
-float Bsdf::diffuseWeight(vec3 wi) const {
-    vec3 h = glm::normalize(wo_ + wi);
-    float c = std::fabs(glm::dot(wo_, h));
-    return 1.0f - m_.specularWeight * max3(rtpbr::F_Schlick(m_.dielectricF0, 1.0f, c));
+float Bsdf::layerE(float mu) const {
+    if (!m_.layer || m_.specularWeight <= 0.0f)
+        return 0.0f;
+    return m_.specularWeight * m_.layer->E(mu, m_.perceptualRoughness, single_);
 }
+
+float Bsdf::baseWeight(vec3 wi) const { return baseFactorO_ * std::max(0.0f, 1.0f - layerE(wi.z)); }
 
 vec3 Bsdf::specularEvalOn(const MicrosurfaceGGX &ms, const ConductorFresnel &F, vec3 wi, Rng &rng) const {
     // Single scattering in closed form: the walk's first order is exactly this BRDF (Heitz
     // 2016, sec. 4.3; tests/oracle/test_microsurface.cpp checks it), so only the orders >= 2
     // are estimated by the walk, which removes the first order's estimation noise.
-    rtpbr::FresnelParams p;
-    p.f0 = F.f0;
-    p.f90 = F.f90;
-    p.eta = vec3(1.5f);
-    p.k = vec3(0.0f);
-    vec3 f = rtpbr::BRDF_SpecularLocal(wo_, wi, ms.alphaX(), ms.alphaY(), p) * wi.z;
+    // BRDF_SpecularLocal with F = 1 (Schlick F0 = 1) is D G2 / (4 NoV NoL); F applied here.
+    rtpbr::FresnelParams p = rtpbr::Fresnel_FromF0(vec3(1.0f));
+    vec3 hs = wo_ + wi;
+    float hl = glm::length(hs);
+    if (!(hl > 0.0f))
+        return vec3(0.0f);
+    vec3 f = rtpbr::BRDF_SpecularLocal(wo_, wi, ms.alphaX(), ms.alphaY(), p) * F.eval(glm::dot(wo_, hs / hl)) * wi.z;
     if (single_)
         return f;
     // The walk starts from the viewer side: Heitz's eval(wi = wo_, wo = wi) is f |wi.z|.
@@ -102,7 +179,7 @@ vec3 Bsdf::eval(vec3 wi, Rng &rng) const {
     if (m_.metallic < 1.0f) {
         if (m_.specularWeight > 0.0f)
             f += (1.0f - m_.metallic) * m_.specularWeight * specularEvalOn(ms_, coatF_, wi, rng);
-        f += (1.0f - m_.metallic) * diffuseWeight(wi) * m_.baseColor * (wi.z * 0.31830988618379067f);
+        f += (1.0f - m_.metallic) * baseWeight(wi) * m_.baseColor * (wi.z * kInvPi);
     }
     f *= baseScale_;
     if (m_.clearcoat > 0.0f)
@@ -113,7 +190,7 @@ vec3 Bsdf::eval(vec3 wi, Rng &rng) const {
 float Bsdf::pdfMis(vec3 wi) const {
     if (!(wi.z > 0.0f) || probSum_ <= 0.0f)
         return 0.0f;
-    float p = probDiffuse_ * wi.z * 0.31830988618379067f;
+    float p = probDiffuse_ * wi.z * kInvPi;
     if (probMetal_ + probCoat_ > 0.0f)
         p += (probMetal_ + probCoat_) * rtpbr::PDF_GGX_Reflection(wo_, wi, ms_.alphaX(), ms_.alphaY());
     if (probClear_ > 0.0f)
@@ -146,7 +223,7 @@ bool Bsdf::sample(Rng &rng, BsdfSample *s) const {
         s->wi = rtpbr::Sample_CosineHemisphere(rtpbr::float2(u1, u2));
         if (!(s->wi.z > 0.0f))
             return false;
-        s->weight = m_.baseColor * (baseScale_ * (1.0f - m_.metallic) * diffuseWeight(s->wi) / probDiffuse_);
+        s->weight = m_.baseColor * (baseScale_ * (1.0f - m_.metallic) * baseWeight(s->wi) / probDiffuse_);
     }
     s->pdfMis = pdfMis(s->wi);
     return true;

@@ -1,17 +1,17 @@
 // rtpbr oracle: the material model as a BSDF (see README.md, "Material model").
 //
-// glTF metallic-roughness, as the glTF 2.0 specification (appendix B) and
-// KHR_materials_specular / KHR_materials_ior define it, with every specular term replaced by
-// the multiple-scattering random walk of Heitz et al. 2016 (or, with singleScatter, by the
-// shaderlib's single-scattering microfacet BRDF):
+// glTF metallic-roughness with the dielectric-over-diffuse layering of the shaderlib's
+// BRDF_DielectricOverDiffuse (kulla_conty.h; Kulla & Conty 2017), every specular term being
+// the multiple-scattering random walk of Heitz et al. 2016 (or, with singleScatter, the
+// single-scattering microfacet BRDF) instead of a compensated approximation:
 //   f = metallic * f_metal + (1 - metallic) * f_dielectric
-//   f_metal      = walk(GGX alpha, Fresnel = Schlick(F0 = baseColor, F90 = 1))
-//   f_dielectric = w * walk(GGX alpha, Fresnel = Schlick(F0 = f0d, F90 = 1))
-//                  + (1 - w * max3(Schlick(f0d, 1, |wo.h|))) * baseColor / pi
-//   f0d = min(((ior - 1) / (ior + 1))^2 * specularColor, 1), w = specularFactor,
-//   h = normalize(wo + wi), alpha = roughness^2 (clamped by the shaderlib's Alpha_Clamp).
+//   f_metal      = S(Fresnel = Schlick(F0 = baseColor, F90 = 1))
+//   f_dielectric = w * S(Fresnel = F_Dielectric(., ior))
+//                  + baseColor (1 - Es(mu_o)) (1 - Es(mu_i)) / (pi (1 - Es_avg))
+//   Es(mu) = albedo of w * S at mu (its own walk albedo, tabulated by LayerAlbedo),
+//   Es_avg = 2 int Es mu dmu, w = specularFactor, alpha = roughness^2 (GGX).
 // KHR_materials_clearcoat (weight c, coat alpha ac) on top, as its fresnel_coat:
-//   f_coated = (1 - c Fc(wo.z)) f + c * walk(GGX ac, Fresnel = Schlick(0.04, 1)),
+//   f_coated = (1 - c Fc(wo.z)) f + c * S(GGX ac, Fresnel = Schlick(0.04, 1)),
 //   Fc = Schlick(0.04, 1, .); the coat shares the shading normal.
 // The Fresnel term is applied at every microfacet of the walk. Directions are in the local
 // shading frame (n = +z, tangent = +x); wo points to the viewer, wi to the light.
@@ -21,17 +21,38 @@
 #include "microsurface.h"
 #include "rng.h"
 
+#include <vector>
+
 namespace rtpbr_oracle {
+
+// Directional albedo Es(mu, r) of the dielectric specular layer (F = F_Dielectric(., eta),
+// GGX, alpha = r^2) and its cosine-weighted average, for the walk (multi) and for its first
+// order (single), by Monte Carlo over the walk itself (deterministic seed). Nodes: x = sqrt(mu)
+// and r at i / (n - 1), mu node 0 at 1e-4 (as shaderlib/luts); bilinear lookups.
+class LayerAlbedo {
+public:
+    static constexpr int kNodes = 24;
+    LayerAlbedo(float eta, int walksPerNode);
+    float eta() const { return eta_; }
+    float E(float mu, float r, bool single) const;
+    float Eavg(float r, bool single) const;
+
+private:
+    float eta_;
+    std::vector<float> e_[2];    // [single][r * kNodes + x]
+    std::vector<float> eavg_[2]; // [single][r]
+};
 
 // A material with its parameters resolved at a surface point.
 struct SurfaceMaterial {
     vec3 baseColor = vec3(1.0f);
     float metallic = 0.0f;
     float alphaX = 0.25f, alphaY = 0.25f;
-    vec3 dielectricF0 = vec3(0.04f); // f0d
-    float specularWeight = 1.0f;     // w
-    float clearcoat = 0.0f;          // c
-    float clearcoatAlpha = 0.001f;   // ac
+    float perceptualRoughness = 0.5f; // sqrt(sqrt(alphaX alphaY)): the LayerAlbedo axis
+    float specularWeight = 1.0f;      // w
+    const LayerAlbedo *layer = nullptr; // dielectric layer albedo (its eta is the IOR); null = w 0
+    float clearcoat = 0.0f;           // c
+    float clearcoatAlpha = 0.001f;    // ac
 };
 
 struct BsdfSample {
@@ -55,18 +76,20 @@ public:
     bool isBlack() const { return probSum_ <= 0.0f; }
 
 private:
-    float diffuseWeight(vec3 wi) const;
+    vec3 specularEvalOn(const MicrosurfaceGGX &ms, const ConductorFresnel &F, vec3 wi, Rng &rng) const;
+    bool specularSampleOn(const MicrosurfaceGGX &ms, const ConductorFresnel &F, Rng &rng, vec3 *wi,
+                          vec3 *weight) const;
+    // Base lobe per unit base colour, without the 1/pi cos: (1 - Es(mu_i)) (1 - Es(mu_o)) / (1 - Es_avg).
+    float baseWeight(vec3 wi) const;
+    float layerE(float mu) const;
 
     SurfaceMaterial m_;
     bool single_;
     vec3 wo_;
-    vec3 specularEvalOn(const MicrosurfaceGGX &ms, const ConductorFresnel &F, vec3 wi, Rng &rng) const;
-    bool specularSampleOn(const MicrosurfaceGGX &ms, const ConductorFresnel &F, Rng &rng, vec3 *wi,
-                          vec3 *weight) const;
-
     MicrosurfaceGGX ms_, msClear_;
     ConductorFresnel metalF_, coatF_, clearF_;
-    float baseScale_ = 1.0f; // 1 - c Fc(wo.z)
+    float baseScale_ = 1.0f;  // 1 - c Fc(wo.z)
+    float baseFactorO_ = 1.0f; // (1 - Es(mu_o)) / (1 - Es_avg)
     float probMetal_ = 0.0f, probCoat_ = 0.0f, probDiffuse_ = 0.0f, probClear_ = 0.0f, probSum_ = 0.0f;
 };
 

@@ -41,8 +41,11 @@ bool refractAbout(vec3 w, vec3 wm, float eta, vec3 *out) {
 } // namespace
 
 vec3 ConductorFresnel::eval(float cosTheta) const {
-    if (exact)
-        return rtpbr::F_Conductor(cosTheta, eta, k);
+    switch (kind) {
+    case Kind::Conductor: return rtpbr::F_Conductor(cosTheta, eta, k);
+    case Kind::Dielectric: return vec3(rtpbr::F_Dielectric(cosTheta, eta.x));
+    case Kind::Schlick: break;
+    }
     return rtpbr::F_Schlick(f0, f90, cosTheta);
 }
 

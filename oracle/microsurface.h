@@ -32,9 +32,12 @@ namespace rtpbr_oracle {
 
 using vec3 = glm::vec3;
 
-// Fresnel of the conductor walk: Schlick (F0, F90 per channel) or the exact complex IOR.
+// Fresnel of a reflection-only walk: Schlick (F0, F90 per channel), the exact conductor
+// (complex IOR eta + i k) or the exact dielectric (eta.x; the refracted part is lost to the
+// walk: it enters the material below).
 struct ConductorFresnel {
-    bool exact = false;
+    enum class Kind { Schlick, Conductor, Dielectric };
+    Kind kind = Kind::Schlick;
     vec3 f0 = vec3(1.0f);
     float f90 = 1.0f;
     vec3 eta = vec3(1.0f);
