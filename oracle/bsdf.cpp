@@ -102,6 +102,10 @@ Bsdf::Bsdf(const SurfaceMaterial &m, bool singleScatter, vec3 wo)
     clearF_.f90 = 1.0f;
     if (!(wo.z > 0.0f))
         return;
+    if (m_.disney) {
+        initDisney();
+        return;
+    }
     float fc = rtpbr::F_Schlick1(kClearcoatF0, 1.0f, wo.z);
     baseScale_ = 1.0f - m_.clearcoat * fc;
     float eo = layerE(wo.z);
@@ -170,9 +174,80 @@ bool Bsdf::specularSampleOn(const MicrosurfaceGGX &ms, const ConductorFresnel &F
     return conductorSample(ms, F, wo_, rng, wi, weight);
 }
 
+// ---- Disney -----------------------------------------------------------------------------------
+
+void Bsdf::initDisney() {
+    const rtpbr::DisneyMaterial &d = m_.disneyParams;
+    metalF_.f0 = rtpbr::Disney_SpecularF0(rtpbr::Disney_SanitizeMaterial(d));
+    metalF_.f90 = 1.0f;
+    disneyClearAlpha_ = std::max(rtpbr::Disney_ClearcoatAlpha(rtpbr::Disney_SanitizeMaterial(d)), 0.02f);
+    // Lobes: specular walk (probMetal_), diffuse + sheen (probDiffuse_), clearcoat (probClear_).
+    float fo = luminance(rtpbr::F_Schlick(metalF_.f0, 1.0f, wo_.z));
+    probMetal_ = std::max(fo, 0.02f);
+    probDiffuse_ = (1.0f - glm::clamp(d.metallic, 0.0f, 1.0f)) *
+                   (luminance(d.baseColor) + glm::clamp(d.sheen, 0.0f, 1.0f) * 0.1f);
+    probClear_ = 0.25f * glm::clamp(d.clearcoat, 0.0f, 1.0f) * rtpbr::F_Schlick1(0.04f, 1.0f, wo_.z);
+    probSum_ = probMetal_ + probDiffuse_ + probClear_;
+    probMetal_ /= probSum_;
+    probDiffuse_ /= probSum_;
+    probClear_ /= probSum_;
+}
+
+vec3 Bsdf::evalDisney(vec3 wi, Rng &rng) const {
+    const rtpbr::DisneyMaterial &d = m_.disneyParams;
+    vec3 f = (rtpbr::BRDF_DisneyDiffuse(d, wo_, wi) + rtpbr::BRDF_DisneySheen(d, wo_, wi) +
+              vec3(rtpbr::BRDF_DisneyClearcoat(d, wo_, wi))) * wi.z;
+    if (single_)
+        return f + rtpbr::BRDF_DisneySpecular(d, wo_, wi) * wi.z;
+    // The walk's first order is Disney's specular lobe (GGX, Smith per RTPBR_SMITH, Schlick).
+    return f + rtpbr::BRDF_DisneySpecular(d, wo_, wi) * wi.z + conductorEval(ms_, metalF_, wo_, wi, rng, -2);
+}
+
+float Bsdf::pdfMisDisney(vec3 wi) const {
+    return probDiffuse_ * wi.z * kInvPi + probMetal_ * rtpbr::PDF_GGX_Reflection(wo_, wi, ms_.alphaX(), ms_.alphaY()) +
+           probClear_ * rtpbr::PDF_GGX_Reflection(wo_, wi, disneyClearAlpha_, disneyClearAlpha_);
+}
+
+bool Bsdf::sampleDisney(Rng &rng, BsdfSample *s) const {
+    const rtpbr::DisneyMaterial &d = m_.disneyParams;
+    float u = rng.uniform();
+    if (u < probMetal_) {
+        vec3 weight;
+        if (!specularSampleOn(ms_, metalF_, rng, &s->wi, &weight))
+            return false;
+        s->weight = weight / probMetal_;
+    } else {
+        float u1 = rng.uniform(), u2 = rng.uniform();
+        float pdf;
+        vec3 f;
+        if (u < probMetal_ + probDiffuse_) {
+            s->wi = rtpbr::Sample_CosineHemisphere(rtpbr::float2(u1, u2));
+            pdf = s->wi.z * kInvPi;
+            f = rtpbr::BRDF_DisneyDiffuse(d, wo_, s->wi) + rtpbr::BRDF_DisneySheen(d, wo_, s->wi);
+            pdf *= probDiffuse_;
+        } else {
+            // GTR1 sampled by GGX visible normals of a comparable alpha (any density with the
+            // right support works: the weight is f cos / pdf).
+            vec3 wm = rtpbr::Sample_GGX_VNDF(wo_, disneyClearAlpha_, disneyClearAlpha_, rtpbr::float2(u1, u2));
+            s->wi = rtpbr::Reflect_About(wo_, wm);
+            pdf = probClear_ * rtpbr::PDF_GGX_Reflection(wo_, s->wi, disneyClearAlpha_, disneyClearAlpha_);
+            f = vec3(rtpbr::BRDF_DisneyClearcoat(d, wo_, s->wi));
+        }
+        if (!(s->wi.z > 0.0f) || !(pdf > 0.0f))
+            return false;
+        s->weight = f * (s->wi.z / pdf);
+    }
+    s->pdfMis = pdfMisDisney(s->wi);
+    return true;
+}
+
+// ---- evaluation and sampling ------------------------------------------------------------------
+
 vec3 Bsdf::eval(vec3 wi, Rng &rng) const {
     if (!(wi.z > 0.0f) || !(wo_.z > 0.0f))
         return vec3(0.0f);
+    if (m_.disney)
+        return evalDisney(wi, rng);
     vec3 f(0.0f);
     if (m_.metallic > 0.0f)
         f += m_.metallic * specularEvalOn(ms_, metalF_, wi, rng);
@@ -190,6 +265,8 @@ vec3 Bsdf::eval(vec3 wi, Rng &rng) const {
 float Bsdf::pdfMis(vec3 wi) const {
     if (!(wi.z > 0.0f) || probSum_ <= 0.0f)
         return 0.0f;
+    if (m_.disney)
+        return pdfMisDisney(wi);
     float p = probDiffuse_ * wi.z * kInvPi;
     if (probMetal_ + probCoat_ > 0.0f)
         p += (probMetal_ + probCoat_) * rtpbr::PDF_GGX_Reflection(wo_, wi, ms_.alphaX(), ms_.alphaY());
@@ -201,6 +278,8 @@ float Bsdf::pdfMis(vec3 wi) const {
 bool Bsdf::sample(Rng &rng, BsdfSample *s) const {
     if (probSum_ <= 0.0f)
         return false;
+    if (m_.disney)
+        return sampleDisney(rng, s);
     float u = rng.uniform();
     vec3 weight;
     if (u < probClear_) {

@@ -13,6 +13,9 @@
 // KHR_materials_clearcoat (weight c, coat alpha ac) on top, as its fresnel_coat:
 //   f_coated = (1 - c Fc(wo.z)) f + c * S(GGX ac, Fresnel = Schlick(0.04, 1)),
 //   Fc = Schlick(0.04, 1, .); the coat shares the shading normal.
+// Disney materials (disney != null): Burley 2012's principled BRDF (shaderlib disney.h:
+// diffuse + subsurface, sheen, GTR1 clearcoat in closed form) with its specular lobe
+// (anisotropic GGX, Schlick F0 = Disney_SpecularF0) simulated by the walk.
 // The Fresnel term is applied at every microfacet of the walk. Directions are in the local
 // shading frame (n = +z, tangent = +x); wo points to the viewer, wi to the light.
 #ifndef RTPBR_ORACLE_BSDF_H
@@ -20,6 +23,8 @@
 
 #include "microsurface.h"
 #include "rng.h"
+
+#include <rtpbr/disney.h>
 
 #include <vector>
 
@@ -53,6 +58,8 @@ struct SurfaceMaterial {
     const LayerAlbedo *layer = nullptr; // dielectric layer albedo (its eta is the IOR); null = w 0
     float clearcoat = 0.0f;           // c
     float clearcoatAlpha = 0.001f;    // ac
+    bool disney = false;              // Burley's model with disneyParams (alphas from it)
+    rtpbr::DisneyMaterial disneyParams{};
 };
 
 struct BsdfSample {
@@ -82,6 +89,10 @@ private:
     // Base lobe per unit base colour, without the 1/pi cos: (1 - Es(mu_i)) (1 - Es(mu_o)) / (1 - Es_avg).
     float baseWeight(vec3 wi) const;
     float layerE(float mu) const;
+    void initDisney();
+    vec3 evalDisney(vec3 wi, Rng &rng) const;
+    bool sampleDisney(Rng &rng, BsdfSample *s) const;
+    float pdfMisDisney(vec3 wi) const;
 
     SurfaceMaterial m_;
     bool single_;
@@ -91,6 +102,7 @@ private:
     float baseScale_ = 1.0f;  // 1 - c Fc(wo.z)
     float baseFactorO_ = 1.0f; // (1 - Es(mu_o)) / (1 - Es_avg)
     float probMetal_ = 0.0f, probCoat_ = 0.0f, probDiffuse_ = 0.0f, probClear_ = 0.0f, probSum_ = 0.0f;
+    float disneyClearAlpha_ = 0.1f; // GGX alpha used to sample the GTR1 clearcoat
 };
 
 } // namespace rtpbr_oracle

@@ -535,9 +535,26 @@ private:
             out.clearcoat = glm::clamp(m.clearcoat, 0.0f, 1.0f);
             out.clearcoatAlpha = rtpbr::Alpha_FromPerceptual(1.0f - m.clearcoat_gloss);
         }
-        // Disney materials (until the Disney BRDF is in the shaderlib): the loader's ior is
-        // the one of F0 = 0.08 specular; specular_factor is 1 for them.
         out.specularWeight = glm::clamp(m.specular_factor, 0.0f, 1.0f);
+        if (m.model == RTPBR_SCENE_MATERIAL_DISNEY) {
+            rtpbr::DisneyMaterial &d = out.disneyParams;
+            d.baseColor = out.baseColor;
+            d.metallic = out.metallic;
+            d.subsurface = m.subsurface;
+            d.specular = m.specular;
+            d.specularTint = m.specular_tint;
+            d.roughness = glm::clamp(rough, 0.0f, 1.0f);
+            d.anisotropic = m.anisotropic;
+            d.sheen = m.sheen;
+            d.sheenTint = m.sheen_tint;
+            d.clearcoat = m.clearcoat;
+            d.clearcoatGloss = m.clearcoat_gloss;
+            glm::vec2 a = rtpbr::Disney_SpecularAlphas(rtpbr::Disney_SanitizeMaterial(d));
+            out.alphaX = a.x;
+            out.alphaY = a.y;
+            out.disney = true;
+            out.clearcoat = 0.0f;
+        }
         return out;
     }
 
@@ -576,7 +593,8 @@ Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::str
         const float vals[] = {mat.base_color[0], mat.base_color[1], mat.base_color[2], mat.metallic, mat.roughness,
                               mat.ior, mat.specular_factor, mat.specular_color[0], mat.specular_color[1],
                               mat.specular_color[2], mat.anisotropic, mat.anisotropy_rotation, mat.specular,
-                              mat.clearcoat, mat.clearcoat_gloss, mat.normal_scale};
+                              mat.clearcoat, mat.clearcoat_gloss, mat.normal_scale, mat.subsurface,
+                              mat.specular_tint, mat.sheen, mat.sheen_tint};
         for (float v : vals)
             if (!finite(v)) {
                 *error = fmt("material %u: non-finite parameter", m);
