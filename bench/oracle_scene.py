@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes bench/oracle_room.gltf: a small closed room (diffuse walls), a ceiling quad light,
-a rough gold sphere, a rough dielectric sphere and a smooth-ish copper block. Reproducible:
+a rough gold sphere, a clear-coated Disney sphere and a smooth-ish copper plate. Reproducible:
 the file is a pure function of this script. Usage: oracle_scene.py OUT.gltf"""
 import base64, json, math, struct, sys
 
@@ -58,7 +58,8 @@ materials = [
     {"name": "light", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0, "roughnessFactor": 1},
      "emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 12}}},
     {"name": "gold", "pbrMetallicRoughness": {"baseColorFactor": [1.0, 0.78, 0.34, 1], "metallicFactor": 1, "roughnessFactor": 0.6}},
-    {"name": "plastic", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.2, 0.6, 1], "metallicFactor": 0, "roughnessFactor": 0.35}},
+    {"name": "plastic", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.2, 0.6, 1], "metallicFactor": 0, "roughnessFactor": 0.35},
+     "extras": {"rtpbr_disney": {"clearcoat": 1.0, "clearcoatGloss": 0.9, "sheen": 0.5, "subsurface": 0.2}}},
     {"name": "copper", "pbrMetallicRoughness": {"baseColorFactor": [0.95, 0.64, 0.54, 1], "metallicFactor": 1, "roughnessFactor": 0.25}},
 ]
 S = 1.0  # room half size: [-1, 1]^3
