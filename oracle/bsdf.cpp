@@ -1,6 +1,7 @@
 // rtpbr oracle: the material BSDF (see bsdf.h).
 #include "bsdf.h"
 
+#include <luts/rtpbr_kc_tables.h>
 #include <rtpbr/microfacet.h>
 #include <rtpbr/sampling.h>
 
@@ -17,6 +18,18 @@ constexpr float kInvPi = 0.31830988618379067f;
 float muOfNode(int i, int n) {
     float x = float(i) / float(n - 1);
     return i == 0 ? 1e-4f : x * x;
+}
+
+// Single-scattering albedo E(mu, r) of GGX with F = 1 (the Kulla-Conty table, height-correlated
+// Smith), bilinear on the table's nodes. Used only to shape MIS weights.
+float singleScatterAlbedo(float mu, float r) {
+    const int n = RTPBR_KC_SIZE;
+    const auto &E = rtpbr_kc_E[RTPBR_KC_VARIANT_ggx_hc];
+    float fx = std::sqrt(glm::clamp(mu, 0.0f, 1.0f)) * float(n - 1), fr = glm::clamp(r, 0.0f, 1.0f) * float(n - 1);
+    int x0 = std::min(n - 2, int(fx)), r0 = std::min(n - 2, int(fr));
+    float ax = fx - float(x0), ar = fr - float(r0);
+    return (1.0f - ar) * ((1.0f - ax) * E[r0][x0] + ax * E[r0][x0 + 1]) +
+           ar * ((1.0f - ax) * E[r0 + 1][x0] + ax * E[r0 + 1][x0 + 1]);
 }
 
 } // namespace
@@ -102,6 +115,8 @@ Bsdf::Bsdf(const SurfaceMaterial &m, bool singleScatter, vec3 wo)
     clearF_.f90 = 1.0f;
     if (!(wo.z > 0.0f))
         return;
+    essMain_ = singleScatterAlbedo(wo.z, std::sqrt(std::sqrt(ms_.alphaX() * ms_.alphaY())));
+    essClear_ = singleScatterAlbedo(wo.z, std::sqrt(msClear_.alphaX()));
     if (m_.disney) {
         initDisney();
         return;
@@ -204,7 +219,7 @@ vec3 Bsdf::evalDisney(vec3 wi, Rng &rng) const {
 }
 
 float Bsdf::pdfMisDisney(vec3 wi) const {
-    return probDiffuse_ * wi.z * kInvPi + probMetal_ * rtpbr::PDF_GGX_Reflection(wo_, wi, ms_.alphaX(), ms_.alphaY()) +
+    return probDiffuse_ * wi.z * kInvPi + probMetal_ * specularPdfMis(ms_, essMain_, wi) +
            probClear_ * rtpbr::PDF_GGX_Reflection(wo_, wi, disneyClearAlpha_, disneyClearAlpha_);
 }
 
@@ -262,6 +277,15 @@ vec3 Bsdf::eval(vec3 wi, Rng &rng) const {
     return f;
 }
 
+float Bsdf::specularPdfMis(const MicrosurfaceGGX &ms, float E, vec3 wi) const {
+    float p = rtpbr::PDF_GGX_Reflection(wo_, wi, ms.alphaX(), ms.alphaY());
+    if (single_)
+        return p;
+    // The walk leaves after one bounce with probability ~ E(mu_o) (F = 1), after more bounces
+    // in a broad, roughly cosine-shaped lobe.
+    return E * p + (1.0f - E) * wi.z * kInvPi;
+}
+
 float Bsdf::pdfMis(vec3 wi) const {
     if (!(wi.z > 0.0f) || probSum_ <= 0.0f)
         return 0.0f;
@@ -269,9 +293,9 @@ float Bsdf::pdfMis(vec3 wi) const {
         return pdfMisDisney(wi);
     float p = probDiffuse_ * wi.z * kInvPi;
     if (probMetal_ + probCoat_ > 0.0f)
-        p += (probMetal_ + probCoat_) * rtpbr::PDF_GGX_Reflection(wo_, wi, ms_.alphaX(), ms_.alphaY());
+        p += (probMetal_ + probCoat_) * specularPdfMis(ms_, essMain_, wi);
     if (probClear_ > 0.0f)
-        p += probClear_ * rtpbr::PDF_GGX_Reflection(wo_, wi, msClear_.alphaX(), msClear_.alphaY());
+        p += probClear_ * specularPdfMis(msClear_, essClear_, wi);
     return p;
 }
 

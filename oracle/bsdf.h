@@ -87,6 +87,7 @@ private:
     bool specularSampleOn(const MicrosurfaceGGX &ms, const ConductorFresnel &F, Rng &rng, vec3 *wi,
                           vec3 *weight) const;
     // Base lobe per unit base colour, without the 1/pi cos: (1 - Es(mu_i)) (1 - Es(mu_o)) / (1 - Es_avg).
+    float specularPdfMis(const MicrosurfaceGGX &ms, float E, vec3 wi) const;
     float baseWeight(vec3 wi) const;
     float layerE(float mu) const;
     void initDisney();
@@ -103,6 +104,7 @@ private:
     float baseFactorO_ = 1.0f; // (1 - Es(mu_o)) / (1 - Es_avg)
     float probMetal_ = 0.0f, probCoat_ = 0.0f, probDiffuse_ = 0.0f, probClear_ = 0.0f, probSum_ = 0.0f;
     float disneyClearAlpha_ = 0.1f; // GGX alpha used to sample the GTR1 clearcoat
+    float essMain_ = 1.0f, essClear_ = 1.0f; // single-scattering albedo at wo (MIS shaping)
 };
 
 } // namespace rtpbr_oracle
