@@ -57,9 +57,21 @@ double tableAlbedo(double mu, double r) {
 
 struct Furnace {
     SceneBuilder b;
-    explicit Furnace(float alpha) {
+    // anisotropy > 0: KHR_materials_anisotropy strength, with tangents along +x rotated by
+    // 30 degrees (anisotropy_rotation).
+    explicit Furnace(float alpha, float anisotropy = 0.0f) {
         uint32_t metal = b.material(glm::vec3(1.0f), 1.0f, std::sqrt(alpha));
+        b.materials[metal].anisotropic = anisotropy;
+        b.materials[metal].anisotropy_rotation = 0.5236f;
         b.polygon({{-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1}}, metal);
+        if (anisotropy > 0.0f) {
+            std::vector<float> &t = b.floatArrays[b.floatArrays.size() - 1];
+            for (size_t v = 0; v < 4; v++) {
+                t[4 * v] = 1.0f;
+                t[4 * v + 3] = 1.0f;
+            }
+            b.primitives.back().has_tangents = true;
+        }
         const float s = 10.0f;
         glm::vec3 c[8] = {{-s, -s, -s}, {s, -s, -s}, {s, s, -s}, {-s, s, -s},
                           {-s, -s, s},  {s, -s, s},  {s, s, s},  {-s, s, s}};
@@ -72,8 +84,8 @@ struct Furnace {
     }
 };
 
-void run(float alpha, bool single) {
-    Furnace f(alpha);
+void run(float alpha, bool single, float anisotropy = 0.0f) {
+    Furnace f(alpha, anisotropy);
     RenderSettings s;
     s.width = kW;
     s.height = kH;
@@ -118,6 +130,8 @@ void run(float alpha, bool single) {
 void test_furnace_multi_01(void **) { run(0.1f, false); }
 void test_furnace_multi_05(void **) { run(0.5f, false); }
 void test_furnace_multi_10(void **) { run(1.0f, false); }
+// Anisotropic (alpha_t = mix(0.3, 1, 0.8^2) = 0.75, alpha_b = 0.3), rotated tangent frame.
+void test_furnace_multi_anisotropic(void **) { run(0.3f, false, 0.8f); }
 void test_furnace_single_01(void **) { run(0.1f, true); }
 void test_furnace_single_05(void **) { run(0.5f, true); }
 void test_furnace_single_10(void **) { run(1.0f, true); }
@@ -127,7 +141,8 @@ void test_furnace_single_10(void **) { run(1.0f, true); }
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_furnace_multi_01),  cmocka_unit_test(test_furnace_multi_05),
-        cmocka_unit_test(test_furnace_multi_10),  cmocka_unit_test(test_furnace_single_01),
+        cmocka_unit_test(test_furnace_multi_10),  cmocka_unit_test(test_furnace_multi_anisotropic),
+        cmocka_unit_test(test_furnace_single_01),
         cmocka_unit_test(test_furnace_single_05), cmocka_unit_test(test_furnace_single_10),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
