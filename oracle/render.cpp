@@ -1,7 +1,9 @@
-// rtpbr oracle: scene validation, Embree setup and the path tracer.
+// rtpbr oracle: the path tracer (integrator, tiles, threads, accumulation).
 #include "oracle.h"
 
 #include "bsdf.h"
+#include "embree_scene.h"
+#include "internal.h"
 #include "microsurface.h"
 #include "rng.h"
 #include "texture.h"
@@ -17,8 +19,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdarg>
-#include <cstring>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -26,19 +26,6 @@
 
 namespace rtpbr_oracle {
 
-const char *resultString(Result r) {
-    switch (r) {
-    case Result::Success: return "success";
-    case Result::InvalidArgument: return "invalid argument";
-    case Result::InvalidScene: return "invalid scene";
-    case Result::NoCamera: return "no camera";
-    case Result::NoLights: return "no lights";
-    case Result::Embree: return "Embree error";
-    case Result::Io: return "I/O error";
-    case Result::Incompatible: return "incompatible accumulators";
-    }
-    return "unknown result";
-}
 
 namespace {
 
@@ -53,17 +40,6 @@ constexpr int kLayerAlbedoWalks = 512;
 float layerEta(float ior) { return ior > 1.0f ? std::min(ior, 4.0f) : (ior == 0.0f ? 4.0f : 1.0f); }
 constexpr uint32_t kRussianRouletteDepth = 3;
 
-bool finite(float x) { return std::isfinite(x); }
-bool finite3(const float *v) { return finite(v[0]) && finite(v[1]) && finite(v[2]); }
-std::string fmt(const char *f, ...) __attribute__((format(printf, 1, 2)));
-std::string fmt(const char *f, ...) {
-    char buf[512];
-    va_list ap;
-    va_start(ap, f);
-    vsnprintf(buf, sizeof buf, f, ap);
-    va_end(ap);
-    return buf;
-}
 
 uint32_t imageHeight(const rtpbr_scene &scene, const RenderSettings &s, uint32_t width) {
     if (s.height)
@@ -88,129 +64,6 @@ uint64_t settingsHash(const RenderSettings &s, uint32_t w, uint32_t h) {
     add(s.singleScatter);
     add(uint64_t(s.lightSampling));
     return x;
-}
-
-// ---- Embree -----------------------------------------------------------------------------------
-
-struct DeviceErrors {
-    std::mutex mutex;
-    std::string first;
-};
-
-void embreeErrorCallback(void *user, RTCError code, const char *message) {
-    auto *errors = static_cast<DeviceErrors *>(user);
-    std::lock_guard<std::mutex> lock(errors->mutex);
-    if (errors->first.empty())
-        errors->first = fmt("Embree error %d: %s", int(code), message ? message : "(no message)");
-}
-
-struct GeometryRecord {
-    bool isLight;
-    uint32_t index; // primitive or light
-};
-
-struct EmbreeScene {
-    RTCDevice device = nullptr;
-    RTCScene full = nullptr;
-    RTCScene lightsOnly = nullptr;
-    std::vector<GeometryRecord> fullGeoms;  // by geomID in `full`
-    std::vector<uint32_t> lightOnlyGeoms;   // light index by geomID in `lightsOnly`
-    DeviceErrors errors;
-
-    ~EmbreeScene() {
-        if (full)
-            rtcReleaseScene(full);
-        if (lightsOnly)
-            rtcReleaseScene(lightsOnly);
-        if (device)
-            rtcReleaseDevice(device);
-    }
-};
-
-unsigned attachTriangles(RTCDevice device, RTCScene scene, const float *positions, uint32_t vertexCount,
-                         const uint32_t *indices, uint32_t triangleCount) {
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    if (!g)
-        return RTC_INVALID_GEOMETRY_ID;
-    auto *v = static_cast<float *>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertexCount));
-    auto *ix = static_cast<uint32_t *>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triangleCount));
-    if (!v || !ix) {
-        rtcReleaseGeometry(g);
-        return RTC_INVALID_GEOMETRY_ID;
-    }
-    std::memcpy(v, positions, sizeof(float) * 3 * vertexCount);
-    std::memcpy(ix, indices, sizeof(uint32_t) * 3 * triangleCount);
-    rtcCommitGeometry(g);
-    unsigned id = rtcAttachGeometry(scene, g);
-    rtcReleaseGeometry(g);
-    return id;
-}
-
-unsigned attachLight(RTCDevice device, RTCScene scene, const rtpbr_scene_light &L) {
-    float pos[3 * RTPBR_SCENE_MAX_POLYGON_VERTICES];
-    uint32_t idx[3 * RTPBR_SCENE_MAX_POLYGON_VERTICES];
-    for (uint32_t k = 0; k < L.vertex_count; k++)
-        for (int c = 0; c < 3; c++)
-            pos[3 * k + c] = L.vertices[k][c];
-    uint32_t tris = 0;
-    for (uint32_t k = 1; k + 1 < L.vertex_count; k++, tris++) {
-        idx[3 * tris] = 0;
-        idx[3 * tris + 1] = k;
-        idx[3 * tris + 2] = k + 1;
-    }
-    return attachTriangles(device, scene, pos, L.vertex_count, idx, tris);
-}
-
-Result buildEmbree(const rtpbr_scene &scene, EmbreeScene *es, std::string *error) {
-    es->device = rtcNewDevice("threads=1,user_threads=0");
-    if (!es->device) {
-        *error = fmt("cannot create the Embree device (error %d)", int(rtcGetDeviceError(nullptr)));
-        return Result::Embree;
-    }
-    rtcSetDeviceErrorFunction(es->device, embreeErrorCallback, &es->errors);
-    es->full = rtcNewScene(es->device);
-    es->lightsOnly = rtcNewScene(es->device);
-    if (!es->full || !es->lightsOnly) {
-        *error = es->errors.first.empty() ? "cannot create Embree scenes" : es->errors.first;
-        return Result::Embree;
-    }
-    rtcSetSceneBuildQuality(es->full, RTC_BUILD_QUALITY_HIGH);
-    // Emissive primitives are represented by their light polygons (which the loader made
-    // from exactly their triangles), so that every light hit knows its light.
-    std::vector<bool> isLightPrimitive(scene.primitive_count, false);
-    for (uint32_t l = 0; l < scene.light_count; l++)
-        if (scene.lights[l].primitive >= 0 && uint32_t(scene.lights[l].primitive) < scene.primitive_count)
-            isLightPrimitive[uint32_t(scene.lights[l].primitive)] = true;
-    for (uint32_t p = 0; p < scene.primitive_count; p++) {
-        const rtpbr_scene_primitive &prim = scene.primitives[p];
-        if (isLightPrimitive[p] || prim.index_count < 3)
-            continue;
-        unsigned id = attachTriangles(es->device, es->full, prim.positions, prim.vertex_count, prim.indices,
-                                      prim.index_count / 3);
-        if (id == RTC_INVALID_GEOMETRY_ID)
-            break;
-        es->fullGeoms.resize(std::max<size_t>(es->fullGeoms.size(), id + 1));
-        es->fullGeoms[id] = {false, p};
-    }
-    for (uint32_t l = 0; l < scene.light_count; l++) {
-        unsigned id = attachLight(es->device, es->full, scene.lights[l]);
-        unsigned id2 = attachLight(es->device, es->lightsOnly, scene.lights[l]);
-        if (id == RTC_INVALID_GEOMETRY_ID || id2 == RTC_INVALID_GEOMETRY_ID)
-            break;
-        es->fullGeoms.resize(std::max<size_t>(es->fullGeoms.size(), id + 1));
-        es->fullGeoms[id] = {true, l};
-        es->lightOnlyGeoms.resize(std::max<size_t>(es->lightOnlyGeoms.size(), id2 + 1));
-        es->lightOnlyGeoms[id2] = l;
-    }
-    rtcCommitScene(es->full);
-    rtcCommitScene(es->lightsOnly);
-    if (!es->errors.first.empty()) {
-        *error = es->errors.first;
-        return Result::Embree;
-    }
-    return Result::Success;
 }
 
 // ---- the path tracer -----------------------------------------------------------------------
@@ -571,100 +424,6 @@ __int128 toFixed(double v) { return __int128(std::ldexp(v, 64)); }
 
 } // namespace
 
-// ---- validation ------------------------------------------------------------------------------
-
-Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::string *error) {
-    if (scene.camera_count == 0) {
-        *error = "the scene has no camera (the oracle renders from a glTF perspective camera)";
-        return Result::NoCamera;
-    }
-    if (s.camera >= scene.camera_count) {
-        *error = fmt("camera %u requested, the scene has %u", s.camera, scene.camera_count);
-        return Result::NoCamera;
-    }
-    const rtpbr_scene_camera &cam = scene.cameras[s.camera];
-    if (!finite3(cam.position) || !finite3(cam.forward) || !finite3(cam.up) || !finite3(cam.right) ||
-        !(cam.yfov > 0.0f && cam.yfov < 3.14159f)) {
-        *error = fmt("camera %u: non-finite position/orientation or yfov outside (0, pi)", s.camera);
-        return Result::InvalidScene;
-    }
-    for (uint32_t m = 0; m < scene.material_count; m++) {
-        const rtpbr_scene_material &mat = scene.materials[m];
-        const float vals[] = {mat.base_color[0], mat.base_color[1], mat.base_color[2], mat.metallic, mat.roughness,
-                              mat.ior, mat.specular_factor, mat.specular_color[0], mat.specular_color[1],
-                              mat.specular_color[2], mat.anisotropic, mat.anisotropy_rotation, mat.specular,
-                              mat.clearcoat, mat.clearcoat_gloss, mat.normal_scale, mat.subsurface,
-                              mat.specular_tint, mat.sheen, mat.sheen_tint};
-        for (float v : vals)
-            if (!finite(v)) {
-                *error = fmt("material %u: non-finite parameter", m);
-                return Result::InvalidScene;
-            }
-        const int32_t tex[] = {mat.base_color_texture, mat.metallic_roughness_texture, mat.normal_texture};
-        for (int32_t t : tex)
-            if (t >= 0 && uint32_t(t) >= scene.texture_count) {
-                *error = fmt("material %u: texture %d out of range (%u textures)", m, t, scene.texture_count);
-                return Result::InvalidScene;
-            }
-    }
-    for (uint32_t p = 0; p < scene.primitive_count; p++) {
-        const rtpbr_scene_primitive &prim = scene.primitives[p];
-        if (prim.index_count % 3 != 0) {
-            *error = fmt("primitive %u: index count %u is not a multiple of 3", p, prim.index_count);
-            return Result::InvalidScene;
-        }
-        if ((prim.vertex_count > 0 && (!prim.positions || !prim.normals)) || (prim.index_count > 0 && !prim.indices) ||
-            (prim.has_texcoords && !prim.texcoords) || (prim.has_tangents && !prim.tangents)) {
-            *error = fmt("primitive %u: missing vertex or index arrays", p);
-            return Result::InvalidScene;
-        }
-        if (prim.material >= scene.material_count) {
-            *error = fmt("primitive %u: material %u out of range (%u materials)", p, prim.material,
-                         scene.material_count);
-            return Result::InvalidScene;
-        }
-        for (uint32_t v = 0; v < prim.vertex_count; v++)
-            if (!finite3(prim.positions + 3 * v)) {
-                *error = fmt("primitive %u: vertex %u has a non-finite position", p, v);
-                return Result::InvalidScene;
-            }
-        for (uint32_t i = 0; i < prim.index_count; i++)
-            if (prim.indices[i] >= prim.vertex_count) {
-                *error = fmt("primitive %u: index %u = %u out of range (%u vertices)", p, i, prim.indices[i],
-                             prim.vertex_count);
-                return Result::InvalidScene;
-            }
-    }
-    bool emits = false;
-    for (uint32_t l = 0; l < scene.light_count; l++) {
-        const rtpbr_scene_light &L = scene.lights[l];
-        if (L.vertex_count < 3 || L.vertex_count > RTPBR_SCENE_MAX_POLYGON_VERTICES) {
-            *error = fmt("light %u: %u vertices (3..%u allowed)", l, L.vertex_count, RTPBR_SCENE_MAX_POLYGON_VERTICES);
-            return Result::InvalidScene;
-        }
-        for (uint32_t k = 0; k < L.vertex_count; k++)
-            if (!finite3(L.vertices[k])) {
-                *error = fmt("light %u: vertex %u is not finite", l, k);
-                return Result::InvalidScene;
-            }
-        if (!finite3(L.normal) || !finite3(L.radiance) || L.radiance[0] < 0.0f || L.radiance[1] < 0.0f ||
-            L.radiance[2] < 0.0f) {
-            *error = fmt("light %u: non-finite normal or negative/non-finite radiance", l);
-            return Result::InvalidScene;
-        }
-        if (L.material >= 0 && uint32_t(L.material) >= scene.material_count) {
-            *error = fmt("light %u: material %d out of range", l, L.material);
-            return Result::InvalidScene;
-        }
-        if (L.radiance[0] > 0.0f || L.radiance[1] > 0.0f || L.radiance[2] > 0.0f)
-            emits = true;
-    }
-    if (!emits) {
-        *error = "the scene has no lights (no emissive primitive or EXT_lights_area light with radiance > 0)";
-        return Result::NoLights;
-    }
-    return Result::Success;
-}
 
 // ---- render ----------------------------------------------------------------------------------
 
