@@ -1,7 +1,7 @@
 // Oracle benchmark: samples/s and rays/s on a small scene, single-scatter vs multi-bounce
 // microfacets, 1 and 2 threads, and solid-angle vs area light sampling (efficiency =
 // 1 / (relative variance x time)). Prints a Markdown table; all ratios come from one run.
-//   oracle_bench SCENE.gltf [--width W] [--spp N]
+//   oracle_bench SCENE.gltf... [--width W] [--spp N]
 #include "oracle.h"
 
 #include <rtpbr/rtpbr_scene.h>
@@ -51,27 +51,14 @@ double meanRelativeStderr(const Accumulator &acc) {
     return n ? sum / double(n) : 0.0;
 }
 
-} // namespace
-
-int main(int argc, char **argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: %s SCENE.gltf [--width W] [--spp N]\n", argv[0]);
-        return 2;
-    }
-    uint32_t width = 128, spp = 16;
-    for (int i = 2; i + 1 < argc; i += 2) {
-        if (std::strcmp(argv[i], "--width") == 0)
-            width = uint32_t(std::atoi(argv[i + 1]));
-        else if (std::strcmp(argv[i], "--spp") == 0)
-            spp = uint32_t(std::atoi(argv[i + 1]));
-    }
+int benchScene(const char *path, uint32_t width, uint32_t spp) {
     char err[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
     rtpbr_scene_load_desc desc = {};
     desc.error_message = err;
     desc.error_message_size = sizeof err;
     rtpbr_scene *scene = nullptr;
-    if (rtpbr_scene_load(argv[1], &desc, &scene) != RTPBR_SCENE_SUCCESS) {
-        std::fprintf(stderr, "oracle_bench: %s: %s\n", argv[1], err);
+    if (rtpbr_scene_load(path, &desc, &scene) != RTPBR_SCENE_SUCCESS) {
+        std::fprintf(stderr, "oracle_bench: %s: %s\n", path, err);
         return 1;
     }
     const Run runs[] = {
@@ -82,7 +69,7 @@ int main(int argc, char **argv) {
         {"direct only, solid-angle lights, 2 threads", false, 2, LightSampling::SolidAngle, 1},
         {"direct only, area lights, 2 threads", false, 2, LightSampling::Area, 1},
     };
-    std::printf("Scene %s, %u px wide, %u spp.\n\n", argv[1], width, spp);
+    std::printf("Scene %s, %u px wide, %u spp.\n\n", path, width, spp);
     std::printf("| configuration | samples/s | Mrays/s | samples/CPU-s | rays/sample | mean rel. std. error | "
                 "efficiency 1/(se^2 t) |\n");
     std::printf("|---|---|---|---|---|---|---|\n");
@@ -102,7 +89,7 @@ int main(int argc, char **argv) {
         Result res = render(*scene, s, &acc, &error, nullptr, &stats);
         double cpu = cpuSeconds() - cpu0;
         if (res != Result::Success) {
-            std::fprintf(stderr, "oracle_bench: %s\n", error.c_str());
+            std::fprintf(stderr, "oracle_bench: %s: %s\n", path, error.c_str());
             status = 1;
             break;
         }
@@ -112,6 +99,30 @@ int main(int argc, char **argv) {
                     double(stats.rays) / double(stats.samples), se, 1.0 / (se * se * stats.seconds));
         std::fflush(stdout);
     }
+    std::printf("\n");
     rtpbr_scene_destroy(scene);
+    return status;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    uint32_t width = 128, spp = 16;
+    std::vector<const char *> scenes;
+    for (int i = 1; i < argc; i++) {
+        if (std::strcmp(argv[i], "--width") == 0 && i + 1 < argc)
+            width = uint32_t(std::atoi(argv[++i]));
+        else if (std::strcmp(argv[i], "--spp") == 0 && i + 1 < argc)
+            spp = uint32_t(std::atoi(argv[++i]));
+        else
+            scenes.push_back(argv[i]);
+    }
+    if (scenes.empty() || width == 0 || spp == 0) {
+        std::fprintf(stderr, "usage: %s SCENE.gltf... [--width W] [--spp N]\n", argv[0]);
+        return 2;
+    }
+    int status = 0;
+    for (const char *path : scenes)
+        status |= benchScene(path, width, spp);
     return status;
 }
