@@ -18,7 +18,7 @@ winding faces) unless the material is double-sided. Shapes:
            one row per Disney parameter swept from 0 to 1, the others from `base`
 
 Objects take translation [x, y, z], rotation [x, y, z, w] (a quaternion) and a material
-name. Materials: baseColor, metallic, roughness, ior, emissive, strength, doubleSided,
+name. Materials: baseColor, metallic, roughness, ior, specularFactor, emissive, strength, doubleSided,
 disney (a dict of Burley 2012 parameters, written to extras.rtpbr_disney).
 Only the Python standard library is used; output is deterministic.
 """
@@ -195,6 +195,8 @@ class GltfBuilder:
                 ext["KHR_materials_emissive_strength"] = {"emissiveStrength": strength}
         if "ior" in spec:
             ext["KHR_materials_ior"] = {"ior": float(spec["ior"])}
+        if "specularFactor" in spec:
+            ext["KHR_materials_specular"] = {"specularFactor": float(spec["specularFactor"])}
         if ext:
             m["extensions"] = ext
             self.extensions.update(ext.keys())
