@@ -144,6 +144,12 @@ int main(int argc, char **argv) {
         total += tables.back().seconds;
         fprintf(stderr, "\nltcfit: %s done in %.1f s; relative L1 error mean %.4f median %.4f p95 %.4f max %.4f\n",
                 lobe_name(lobe), tables.back().seconds, st.mean, st.median, st.p95, st.max);
+        size_t worst = 0;
+        for (size_t i = 0; i < tables.back().cells.size(); i++)
+            if (tables.back().cells[i].error > tables.back().cells[worst].error)
+                worst = i;
+        fprintf(stderr, "ltcfit: %s worst cell: roughness %.3f, NoV %.4f\n", lobe_name(lobe),
+                cell_roughness(int(worst % size_t(s.size)), s.size), cell_nov(int(worst / size_t(s.size)), s.size));
     }
     fprintf(stderr, "ltcfit: total fitting time %.1f s\n", total);
 
