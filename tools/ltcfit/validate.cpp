@@ -26,34 +26,51 @@ void colormap(double t, unsigned char rgb[3]) { // matplotlib "magma" control po
         rgb[k] = (unsigned char)std::lround(255.0 * (pts[i][k] + f * (pts[i + 1][k] - pts[i][k])));
 }
 
-// Error plot: one panel per (lobe, method); in a panel, columns = roughness (major) x view
-// angle (minor), rows = position (major) x light size (minor); 6x6-pixel cells; colour =
-// log10 relative error from 0.1% (dark) to 100% (bright); grey = light not visible.
+// Error plot: one panel per (lobe, method): GGX top, Beckmann bottom; exact clipping,
+// clipless with the analytic sphere, clipless with the sphere table from left to right. In a
+// panel, column groups = roughness (smooth to rough), columns in a group = view angle (0 to
+// 80 degrees); row groups = position (mirror, normal, side, low), rows in a group = light
+// size (small to large). 8x8-pixel cells, 2-pixel white gaps between groups; colour = log10
+// relative error from 0.1% (dark) to 100% (bright); grey = far-tail light (< 1% of the
+// lobe's energy) or the mirror direction at normal view (same as "normal").
 bool write_plot(const std::string &path, const std::vector<Outcome> &out, const std::vector<float> &rough,
                 const std::vector<float> &views, const std::vector<float> &halves, std::string &err) {
-    const int cell = 6, gap = 10;
-    const int pw = int(rough.size() * views.size()) * cell, ph = int(4 * halves.size()) * cell;
+    const int cell = 8, group = 2, gap = 12;
+    const int nr = int(rough.size()), nv = int(views.size()), nh = int(halves.size());
+    const int pw = nr * nv * cell + (nr - 1) * group, ph = 4 * nh * cell + 3 * group;
     const int w = 3 * pw + 2 * gap, h = 2 * ph + gap + gap + 12;
     std::vector<unsigned char> img(size_t(w) * h * 3, 255);
     auto index = [](const std::vector<float> &v, float x) {
         return int(std::find(v.begin(), v.end(), x) - v.begin());
     };
+    // grey background for every cell, so missing configurations show as grey
+    for (int lobe = 0; lobe < 2; lobe++)
+        for (int m = 0; m < 3; m++)
+            for (int ri = 0; ri < nr; ri++)
+                for (int vi = 0; vi < nv; vi++)
+                    for (int pi = 0; pi < 4; pi++)
+                        for (int hi = 0; hi < nh; hi++) {
+                            int x0 = m * (pw + gap) + ri * (nv * cell + group) + vi * cell;
+                            int y0 = lobe * (ph + gap) + pi * (nh * cell + group) + hi * cell;
+                            for (int y = 0; y < cell; y++)
+                                for (int x = 0; x < cell; x++)
+                                    for (int k = 0; k < 3; k++)
+                                        img[(size_t(y0 + y) * w + size_t(x0 + x)) * 3 + k] = 160;
+                        }
     for (const Outcome &o : out) {
-        int col = index(rough, o.cfg.roughness) * int(views.size()) + index(views, o.cfg.viewDeg);
-        int row = o.cfg.position * int(halves.size()) + index(halves, o.cfg.half);
-        int py = o.cfg.lobe == Lobe::GGX ? 0 : ph + gap;
+        int ri = index(rough, o.cfg.roughness), vi = index(views, o.cfg.viewDeg), hi = index(halves, o.cfg.half);
+        int lobe = o.cfg.lobe == Lobe::GGX ? 0 : 1;
         double errs[3] = {o.relExact, o.relClipless, o.relClipTable};
         for (int m = 0; m < 3; m++) {
             unsigned char rgb[3] = {160, 160, 160};
             if (o.significant)
                 colormap((std::log10(std::max(errs[m], 1e-3)) + 3.0) / 3.0, rgb);
+            int x0 = m * (pw + gap) + ri * (nv * cell + group) + vi * cell;
+            int y0 = lobe * (ph + gap) + o.cfg.position * (nh * cell + group) + hi * cell;
             for (int y = 0; y < cell; y++)
-                for (int x = 0; x < cell; x++) {
-                    size_t p = (size_t(py + row * cell + y) * w + size_t(m * (pw + gap) + col * cell + x)) * 3;
-                    img[p] = rgb[0];
-                    img[p + 1] = rgb[1];
-                    img[p + 2] = rgb[2];
-                }
+                for (int x = 0; x < cell; x++)
+                    for (int k = 0; k < 3; k++)
+                        img[(size_t(y0 + y) * w + size_t(x0 + x)) * 3 + k] = rgb[k];
         }
     }
     for (int y = 2 * ph + 2 * gap; y < h; y++)
