@@ -77,6 +77,13 @@ struct Ltc {
         invM = glm::inverse(M);
         detInvM = std::fabs(glm::determinant(invM));
     }
+    // The fraction of the LTC above the horizon: the clamped cosine over the hemisphere
+    // with normal normalize(M^T z), which is (1 + cos of its angle to z) / 2 (the sky view
+    // factor of a tilted plane).
+    double mass_above_horizon() const {
+        glm::dvec3 m(M[0][2], M[1][2], M[2][2]); // row 2 of M = M^T z
+        return 0.5 * (1.0 + m.z / glm::length(m));
+    }
     // The normalised LTC density at direction L (unit).
     double eval(glm::dvec3 L) const {
         glm::dvec3 lo = invM * L;
@@ -151,21 +158,25 @@ ErrorSamples error_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
 // Multiple-importance estimate of  integral |f NoL - norm D_ltc|^p  (p = 3 for the fit,
 // p = 1 for the reported error): each strategy's samples weighted by 1 / (pdf_ltc + pdf_brdf)
 // (the balance heuristic with one sample of each per grid point).
-double ltc_error(const Ltc &ltc, const ErrorSamples &es, Lobe lobe, glm::vec3 V, float alpha, double norm, int p) {
+// horizon: compare only above the horizon, with the LTC scaled by norm / (its mass above the
+// horizon) (the evaluation clips there, so mass below it is neither light nor error).
+double ltc_error(const Ltc &ltc, const ErrorSamples &es, Lobe lobe, glm::vec3 V, float alpha, double norm, int p,
+                 bool horizon) {
     double sum = 0.0;
     const size_t n = es.cosine.size();
-    auto accumulate = [&](double value, double pdfBrdf, double d) {
+    const double scale = horizon ? norm / ltc.mass_above_horizon() : norm;
+    auto accumulate = [&](double value, double pdfBrdf, double d, double z) {
         double pdfSum = d + pdfBrdf;
-        if (!(pdfSum > 0.0))
+        if (!(pdfSum > 0.0) || (horizon && !(z > 0.0)))
             return;
-        double diff = std::fabs(value - norm * d);
+        double diff = std::fabs(value - scale * d);
         sum += (p == 3 ? diff * diff * diff : p == 2 ? diff * diff : diff) / pdfSum;
     };
     for (size_t i = 0; i < n; i++) {
         glm::dvec3 L = glm::normalize(ltc.M * es.cosine[i]);
         BrdfSample b = brdf_eval(lobe, V, glm::vec3(L), alpha);
-        accumulate(b.value, b.pdf, ltc.eval(L));
-        accumulate(es.brdf[i].value, es.brdf[i].pdf, ltc.eval(glm::dvec3(es.brdfL[i])));
+        accumulate(b.value, b.pdf, ltc.eval(L), L.z);
+        accumulate(es.brdf[i].value, es.brdf[i].pdf, ltc.eval(glm::dvec3(es.brdfL[i])), double(es.brdfL[i].z));
     }
     return sum / double(n);
 }
@@ -276,7 +287,7 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     auto cost = [&](const Params &p) {
         Ltc l = ltc;
         apply(p, l);
-        return ltc_error(l, fitSamples, lobe, V, alpha, mom.norm, s.errorPower);
+        return ltc_error(l, fitSamples, lobe, V, alpha, mom.norm, s.errorPower, s.horizonNormalised);
     };
     Params step{0.1, 0.1, 0.05 * std::max(ltc.m11, 1e-3), 0.05};
     // Heitz et al.'s 3 parameters (Z at the average direction) ...
@@ -301,11 +312,15 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     c.rotation = isotropic ? 0.0 : best[3];
     c.avgDir = ltc.Z;
     c.invM = ltc.invM / ltc.invM[1][1];
-    c.norm = mom.norm;
-    c.fresnel = mom.fresnel;
-    c.f82 = mom.f82;
+    // With horizonNormalised the stored integrals are divided by the LTC's mass above the
+    // horizon: the clipped LTC integral times them gives the BRDF's integral.
+    const double massScale = s.horizonNormalised ? 1.0 / ltc.mass_above_horizon() : 1.0;
+    c.norm = mom.norm * massScale;
+    c.fresnel = mom.fresnel * massScale;
+    c.f82 = mom.f82 * massScale;
     const ErrorSamples reportSamples = error_samples(lobe, V, alpha, s.errorSamples);
-    c.error = mom.norm > 0.0 ? ltc_error(ltc, reportSamples, lobe, V, alpha, mom.norm, 1) / mom.norm : 0.0;
+    c.error = mom.norm > 0.0 ? ltc_error(ltc, reportSamples, lobe, V, alpha, mom.norm, 1, s.horizonNormalised) / mom.norm
+                             : 0.0;
     return c;
 }
 

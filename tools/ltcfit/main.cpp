@@ -114,6 +114,8 @@ int main(int argc, char **argv) {
             outDir = argv[++i];
         else if (!strcmp(argv[i], "--quick"))
             quick = true;
+        else if (!strcmp(argv[i], "--horizon"))
+            s.horizonNormalised = true;
         else if (!strcmp(argv[i], "--size")) {
             if (!value(8, 256, s.size))
                 return usage();
