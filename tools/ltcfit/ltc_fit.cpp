@@ -293,14 +293,34 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     // Heitz et al.'s 3 parameters (Z at the average direction) ...
     Params best = nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, 0.0}, step,
                               isotropic ? 1 : 3, s.maxIterations, 1e-5);
-    if (s.freeRotation && !isotropic) {
-        // ... and the general isotropic LTC (4 parameters) from the neighbour's rotation; the
-        // lower error wins, so a bad local minimum of the larger search never makes a cell
-        // worse than the 3-parameter fit.
-        Params free = nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation}, step, 4,
-                                  s.maxIterations, 1e-5);
-        if (cost(free) < cost(best))
-            best = free;
+    // Candidates: Heitz et al.'s fit, the 4-parameter fit from the neighbour's rotation, and
+    // the neighbour's shape itself. The lowest L3 cost wins among those that overlap the lobe
+    // (relative L1 error < 1); if none does, the lowest L1 error. The L3 cost, dominated by
+    // the peak values of sharp lobes, can prefer a wide LTC disjoint from the lobe to a
+    // slightly misaligned narrow one (it happens for alpha ~ 1e-3 at grazing views, where
+    // float directions barely resolve the lobe).
+    auto l1 = [&](const Params &p) {
+        Ltc l = ltc;
+        apply(p, l);
+        return ltc_error(l, fitSamples, lobe, V, alpha, mom.norm, 1, s.horizonNormalised) / mom.norm;
+    };
+    std::vector<Params> candidates{best};
+    if (s.freeRotation && !isotropic)
+        candidates.push_back(nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation}, step,
+                                         4, s.maxIterations, 1e-5));
+    if (start)
+        candidates.push_back(Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation});
+    double bestCost = HUGE_VAL, bestL1 = HUGE_VAL;
+    bool overlapping = false;
+    for (const Params &c : candidates) {
+        double e1 = l1(c), e3 = cost(c);
+        bool ok = e1 < 1.0;
+        if ((ok && (!overlapping || e3 < bestCost)) || (!ok && !overlapping && e1 < bestL1)) {
+            best = c;
+            bestCost = e3;
+            bestL1 = e1;
+            overlapping = ok;
+        }
     }
     apply(best, ltc);
 

@@ -32,7 +32,7 @@ struct FitSettings {
     int maxIterations = 200; // Nelder-Mead iterations per cell
     int threads = 2;
     int errorPower = 3;      // fit the L^p norm of the difference (Heitz et al.: 3)
-    bool horizonNormalised = false; // fit above the horizon only, norm / LTC mass above it
+    bool horizonNormalised = true; // fit above the horizon only, norm / LTC mass above it
     bool freeRotation = true; // fit the frame's angle too (4 parameters) instead of fixing
                               // Z at the lobe's average direction (Heitz et al.: fixed)
 };

@@ -1,6 +1,6 @@
 // rtpbr-ltcfit: fits the LTC tables of shaderlib/luts/ (see ltc_fit.hpp and shaderlib/luts/ltc.md).
 //
-//   rtpbr-ltcfit --out DIR [--quick] [--size N] [--threads T]
+//   rtpbr-ltcfit --out DIR [--quick] [--size N] [--threads T] [--no-horizon]
 //
 // Writes DIR/rtpbr_ltc_tables.h, DIR/ltc_{ggx,beckmann}_{1,2}.exr, DIR/ltc_fit_error.png and
 // replaces the generated section of DIR/ltc.md (between the ltcfit markers; appended if
@@ -47,8 +47,11 @@ std::string generated_section(const Table &ggx, const Table &beckmann, const Fit
     o << "Settings: " << s.size << "x" << s.size << " cells, fit error from 2 x " << s.fitSamples << "^2 samples, "
       << "moments from " << s.momentSamples << "^2 samples, reported error from 2 x " << s.errorSamples
       << "^2 samples, at most " << s.maxIterations << " Nelder-Mead iterations per cell, " << s.threads
-      << " threads" << (quick ? " (QUICK, low-quality settings)" : "") << ".\n\n";
-    o << "Per-cell fit error = integral |f NoL - norm D_ltc| / norm (relative L1; 0 = perfect, 2 = disjoint):\n\n";
+      << " threads" << (quick ? " (QUICK, low-quality settings)" : "") << "; L" << s.errorPower << " error"
+      << (s.horizonNormalised ? " above the horizon, integrals divided by the LTC's mass above it" : "")
+      << (s.freeRotation ? "; best of the 3- and 4-parameter fits" : "; 3-parameter fit") << ".\n\n";
+    o << "Per-cell fit error = integral |f NoL - norm D_ltc| / albedo over the upper hemisphere (relative L1; 0 = "
+         "perfect, 2 = disjoint):\n\n";
     o << "| lobe | fit time (s) | mean | median | 95th pct | max |\n|---|---|---|---|---|---|\n";
     for (const Table *t : {&ggx, &beckmann}) {
         Stats st = error_stats(*t);
@@ -89,7 +92,7 @@ bool update_markdown(const std::string &path, const std::string &section, std::s
 }
 
 int usage() {
-    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)]\n");
+    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon]\n");
     return 2;
 }
 
@@ -114,8 +117,8 @@ int main(int argc, char **argv) {
             outDir = argv[++i];
         else if (!strcmp(argv[i], "--quick"))
             quick = true;
-        else if (!strcmp(argv[i], "--horizon"))
-            s.horizonNormalised = true;
+        else if (!strcmp(argv[i], "--no-horizon")) // Heitz et al.'s whole-sphere error, norm = albedo
+            s.horizonNormalised = false;
         else if (!strcmp(argv[i], "--size")) {
             if (!value(8, 256, s.size))
                 return usage();
