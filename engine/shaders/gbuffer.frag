@@ -1,0 +1,43 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// G-buffer pass: writes the material parameters the lighting pass needs.
+#include "rtpbr_shared.h"
+#define RTPBR_FRAME_BINDING RTPBR_BINDING_GBUFFER_FRAME
+#include "frame.glsl"
+
+layout(push_constant, std430) uniform Draw {
+    mat4 world_from_object;
+    vec4 normal_matrix[3];
+    uint material;
+} draw;
+
+// C mirror: rtpbr_gpu_material.
+struct Material {
+    vec4 base_color_metallic;
+    vec4 emission_roughness;
+    vec4 specular_color_ior;
+    vec4 specular;
+};
+layout(set = 0, binding = RTPBR_BINDING_GBUFFER_MATERIALS, std430) readonly buffer Materials {
+    Material materials[];
+};
+
+layout(location = 0) in vec3 in_normal;
+layout(location = 1) in vec3 in_world;
+
+layout(location = 0) out vec4 out_gbuffer0; // base colour rgb, metallic
+layout(location = 1) out vec4 out_gbuffer1; // world normal xyz, perceptual roughness
+layout(location = 2) out vec4 out_gbuffer2; // emitted radiance rgb, ior
+layout(location = 3) out vec4 out_gbuffer3; // specular colour rgb, specular factor
+
+void main()
+{
+    Material m = materials[draw.material];
+    vec3 n = normalize(in_normal);
+    // Every surface is shaded on the side the camera sees (glTF doubleSided behaviour).
+    if (dot(n, frame.camera_position.xyz - in_world) < 0.0) n = -n;
+    out_gbuffer0 = m.base_color_metallic;
+    out_gbuffer1 = vec4(n, m.emission_roughness.w);
+    out_gbuffer2 = vec4(m.emission_roughness.xyz, m.specular_color_ior.w);
+    out_gbuffer3 = vec4(m.specular_color_ior.xyz, m.specular.x);
+}
