@@ -40,8 +40,14 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 
-#define RTPBR_NAMESPACE_BEGIN namespace rtpbr {
-#define RTPBR_NAMESPACE_END }
+// Several model variants can live in one C++ program: compile each translation unit with its
+// own RTPBR_CPP_VARIANT (an identifier) so that the inline functions of different flag
+// settings get different mangled names (otherwise the linker would keep one of them).
+#ifndef RTPBR_CPP_VARIANT
+#define RTPBR_CPP_VARIANT variant_default
+#endif
+#define RTPBR_NAMESPACE_BEGIN namespace rtpbr { inline namespace RTPBR_CPP_VARIANT {
+#define RTPBR_NAMESPACE_END } }
 #define RTPBR_FN inline
 #define RTPBR_CONST static constexpr
 #define RTPBR_INOUT(T) T &

@@ -1,0 +1,329 @@
+/* rtpbr_scene.h — glTF 2.0 scene loader shared by the engine (C11) and the
+ * oracle (C++). One loader, one material mapping (docs/materials.md).
+ *
+ * The loader flattens a glTF scene into plain data in WORLD space:
+ * triangle primitives (node transforms applied), materials mapped onto the
+ * rtpbr material model, decoded RGBA8 textures, polygonal area lights
+ * (emissive primitives + EXT_lights_area), perspective cameras, a bounding box.
+ *
+ *   rtpbr_scene_load_desc desc = {0};               // zero = defaults
+ *   char err[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
+ *   desc.error_message = err; desc.error_message_size = sizeof err;
+ *   rtpbr_scene* scene = NULL;
+ *   rtpbr_scene_result r = rtpbr_scene_load("room.gltf", &desc, &scene);
+ *   if (r != RTPBR_SCENE_SUCCESS) fprintf(stderr, "%s: %s\n",
+ *                                         rtpbr_scene_result_string(r), err);
+ *   ...
+ *   rtpbr_scene_destroy(scene);                     // NULL is a no-op
+ *
+ * Conventions:
+ * - glTF units: metres, right-handed, +Y up; cameras look down their local -Z.
+ * - Colours are linear RGB (glTF factors are linear). Radiance in W/(sr·m²)
+ *   in the glTF "relative" sense: emission = emissiveFactor × emissive_strength.
+ * - Triangles are counter-clockwise seen from the side their geometric normal
+ *   points to (glTF front face). Nodes with a negative-determinant transform
+ *   get their index winding flipped so this stays true in world space.
+ * - Only TEXCOORD_0 is read. Skins, morph targets, KHR_texture_transform and
+ *   non-triangle primitive modes (points, lines) are ignored with a warning;
+ *   TRIANGLE_STRIP and TRIANGLE_FAN are converted to triangle lists.
+ * - Degenerate triangles (repeated index, or zero area in world space) are
+ *   dropped from the index list with one warning per primitive.
+ * - Input is untrusted: every accessor, buffer view, index and reference is
+ *   validated; external files resolve only inside the folder of the .gltf/.glb
+ *   (or desc.base_dir); failures return a specific result code and a message
+ *   naming the offending object. No global state; thread-safe per call.
+ */
+#ifndef RTPBR_SCENE_H
+#define RTPBR_SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- limits --------------------------------------------------------------
+ * Hard limits; a desc may lower (never raise) the first three.              */
+#define RTPBR_SCENE_MAX_VERTICES (1u << 24)          /* total, all primitives  */
+#define RTPBR_SCENE_MAX_LIGHTS 65536u                /* all area lights        */
+#define RTPBR_SCENE_MAX_TEXTURE_DIMENSION 16384u     /* width and height       */
+#define RTPBR_SCENE_MAX_INDICES (3u * (1u << 25))    /* total, after triangulation */
+#define RTPBR_SCENE_MAX_FILE_SIZE ((uint64_t)1 << 30)/* any one file or data: URI */
+#define RTPBR_SCENE_MAX_NODE_DEPTH 256u              /* node hierarchy depth   */
+#define RTPBR_SCENE_MAX_POLYGON_VERTICES 8u          /* vertices of one light  */
+#define RTPBR_SCENE_ERROR_MESSAGE_SIZE 512u          /* suggested buffer size  */
+
+/* ---- results ------------------------------------------------------------ */
+typedef enum rtpbr_scene_result {
+    RTPBR_SCENE_SUCCESS = 0,
+    RTPBR_SCENE_ERROR_INVALID_ARGUMENT,   /* NULL path/out, bad desc values   */
+    RTPBR_SCENE_ERROR_FILE_NOT_FOUND,     /* scene or referenced file missing */
+    RTPBR_SCENE_ERROR_IO,                 /* unreadable, a directory, too big */
+    RTPBR_SCENE_ERROR_INVALID_GLB,        /* bad GLB magic/version/chunks     */
+    RTPBR_SCENE_ERROR_INVALID_JSON,       /* JSON syntax or glTF schema error */
+    RTPBR_SCENE_ERROR_URI_REJECTED,       /* absolute path, '..' escape, shell
+                                             characters, unsupported scheme   */
+    RTPBR_SCENE_ERROR_INVALID_REFERENCE,  /* index to a missing node, mesh,
+                                             material, texture, camera, image */
+    RTPBR_SCENE_ERROR_INVALID_ACCESSOR,   /* accessor/bufferView/buffer bounds,
+                                             type, stride, count mismatch     */
+    RTPBR_SCENE_ERROR_INDEX_OUT_OF_RANGE, /* vertex index >= vertex count     */
+    RTPBR_SCENE_ERROR_NONFINITE,          /* NaN/Inf position, transform,
+                                             camera or light parameter        */
+    RTPBR_SCENE_ERROR_UNSUPPORTED,        /* extensionsRequired we cannot do,
+                                             a node cycle, too deep hierarchy */
+    RTPBR_SCENE_ERROR_IMAGE_DECODE,       /* image data could not be decoded  */
+    RTPBR_SCENE_ERROR_TOO_MANY_VERTICES,  /* > max_vertices or max indices    */
+    RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS,    /* > max_lights                     */
+    RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE,  /* > max_texture_dimension          */
+    RTPBR_SCENE_ERROR_OUT_OF_MEMORY,
+    RTPBR_SCENE_RESULT_COUNT
+} rtpbr_scene_result;
+
+/* Static English name of a result ("RTPBR_SCENE_ERROR_URI_REJECTED");
+ * "RTPBR_SCENE_RESULT_UNKNOWN" for values out of range. */
+const char* rtpbr_scene_result_string(rtpbr_scene_result result);
+
+/* ---- host callbacks ----------------------------------------------------- */
+typedef struct rtpbr_scene_allocator {
+    /* Both set or both NULL (NULL = malloc/free). Used for everything the
+     * returned scene owns; tinygltf's own temporaries use C++ new/delete. */
+    void* (*alloc)(size_t size, void* user_data);
+    void (*free)(void* ptr, void* user_data);
+    void* user_data;
+} rtpbr_scene_allocator;
+
+typedef enum rtpbr_scene_log_level {
+    RTPBR_SCENE_LOG_ERROR = 0,   /* the message also written to error_message */
+    RTPBR_SCENE_LOG_WARNING = 1, /* something ignored or repaired             */
+    RTPBR_SCENE_LOG_INFO = 2,    /* summary of what was loaded                */
+} rtpbr_scene_log_level;
+
+typedef struct rtpbr_scene_logger {
+    /* NULL = silent. message is NUL-terminated, valid during the call only. */
+    void (*func)(rtpbr_scene_log_level level, const char* message, void* user_data);
+    void* user_data;
+} rtpbr_scene_logger;
+
+/* ---- load description (zero-initialise; zero = default) ------------------ */
+typedef struct rtpbr_scene_load_desc {
+    rtpbr_scene_allocator allocator; /* default: malloc/free                 */
+    rtpbr_scene_logger logger;       /* default: no logging                  */
+    /* Optional caller buffer receiving the detailed message of a failure
+     * ("accessor 3: byteOffset+count*stride exceeds bufferView 2 (1024
+     * bytes)"); always NUL-terminated when size > 0, "" on success. */
+    char* error_message;
+    size_t error_message_size;
+    /* Limits; 0 = the RTPBR_SCENE_MAX_* default, larger values are clamped. */
+    uint32_t max_vertices;
+    uint32_t max_lights;
+    uint32_t max_texture_dimension;
+    /* Folder against which external URIs resolve, for
+     * rtpbr_scene_load_memory (NULL there = external URIs are rejected) and
+     * as an override for rtpbr_scene_load (NULL = the scene file's folder). */
+    const char* base_dir;
+    /* true = do not decode images: textures get width/height 0, pixels NULL
+     * (texture indices in materials stay valid). Default false = decode. */
+    bool skip_images;
+    /* true = no lights from emissive primitives (EXT_lights_area only).
+     * Default false: every primitive whose material emits becomes lights. */
+    bool no_emissive_lights;
+} rtpbr_scene_load_desc;
+
+/* ---- scene data ---------------------------------------------------------
+ * Everything is plain data; a host may fill these structs by hand (a scene
+ * built by hand belongs to its builder: never pass it to rtpbr_scene_destroy).
+ */
+
+/* One triangle list in world space. Arrays are structure-of-arrays with
+ * vertex_count entries each (positions/normals xyz, texcoords uv, tangents
+ * xyzw); never NULL when vertex_count > 0. */
+typedef struct rtpbr_scene_primitive {
+    uint32_t vertex_count;
+    uint32_t index_count;  /* multiple of 3; degenerate triangles removed   */
+    float* positions;      /* 3 × vertex_count, world space                 */
+    float* normals;        /* 3 × vertex_count, world space, unit length
+                              (normal matrix = inverse transpose of the node
+                              matrix). Generated when missing: area-weighted
+                              smooth normals over shared indices, i.e. flat
+                              for unindexed geometry.                      */
+    float* texcoords;      /* 2 × vertex_count; zeros if has_texcoords false */
+    float* tangents;       /* 4 × vertex_count, world space xyz unit, w = ±1
+                              bitangent sign (B = w · cross(N, T)). From the
+                              file, else generated per vertex from UVs when
+                              the material has a normal texture and UVs
+                              exist (MikkTSpace-like accumulation, not
+                              bit-exact MikkTSpace), else all zero.        */
+    uint32_t* indices;     /* index_count entries, each < vertex_count      */
+    uint32_t material;     /* index into scene->materials (always valid:
+                              a default material is appended if needed)    */
+    int32_t gltf_mesh;     /* source glTF mesh index                        */
+    int32_t gltf_primitive;/* index of the primitive inside that mesh       */
+    int32_t gltf_node;     /* source node (meshes instanced by several nodes
+                              yield one primitive per node)                */
+    bool has_texcoords;
+    bool normals_generated;
+    bool tangents_generated;
+    bool has_tangents;     /* tangents are meaningful (file or generated)   */
+    float bounds_min[3];   /* world-space AABB of the referenced vertices   */
+    float bounds_max[3];
+} rtpbr_scene_primitive;
+
+typedef enum rtpbr_scene_material_model {
+    /* glTF metallic-roughness + KHR extensions (Filament-like evaluation). */
+    RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS = 0,
+    /* Burley 2012 Disney principled BRDF: material.extras.rtpbr_disney set. */
+    RTPBR_SCENE_MATERIAL_DISNEY = 1,
+} rtpbr_scene_material_model;
+
+typedef enum rtpbr_scene_alpha_mode {
+    RTPBR_SCENE_ALPHA_OPAQUE = 0, /* recorded; rtpbr renders all materials */
+    RTPBR_SCENE_ALPHA_MASK = 1,   /* as opaque (base_color[3] is ignored)  */
+    RTPBR_SCENE_ALPHA_BLEND = 2,
+} rtpbr_scene_alpha_mode;
+
+/* The rtpbr material model. The mapping from glTF is one table:
+ * docs/materials.md. Fields are named after Burley 2012's parameters;
+ * all scalars in [0,1] unless stated. */
+typedef struct rtpbr_scene_material {
+    rtpbr_scene_material_model model;
+    float base_color[4];      /* linear RGBA, baseColorFactor               */
+    float metallic;           /* metallicFactor                             */
+    float roughness;          /* PERCEPTUAL roughness (α = roughness²)      */
+    float subsurface;         /* Disney only (extras)                       */
+    float specular;           /* Disney "specular": F0 = 0.08 × specular;
+                                 from glTF: F0(ior) × specularFactor / 0.08,
+                                 clamped to [0,1] (0.5 for ior 1.5)        */
+    float specular_tint;      /* Disney only (extras)                       */
+    float specular_color[3];  /* KHR_materials_specular specularColorFactor
+                                 (linear RGB, may exceed 1)                */
+    float specular_factor;    /* KHR_materials_specular specularFactor (F90
+                                 weight of the dielectric lobe), default 1 */
+    float ior;                /* KHR_materials_ior, default 1.5; 0 allowed
+                                 by the spec = F0 of 1                     */
+    float anisotropic;        /* KHR_materials_anisotropy anisotropyStrength
+                                 or Disney anisotropic; how it maps to
+                                 (αt, αb) depends on model (materials.md)  */
+    float anisotropy_rotation;/* radians, counter-clockwise from the tangent
+                                 in the tangent plane (KHR rotation)       */
+    float sheen;              /* Disney sheen weight; from KHR_materials_sheen:
+                                 max component of sheenColorFactor         */
+    float sheen_tint;         /* Disney only (extras)                       */
+    float sheen_color[3];     /* KHR sheenColorFactor (linear RGB)          */
+    float sheen_roughness;    /* KHR sheenRoughnessFactor (perceptual)      */
+    float clearcoat;          /* KHR clearcoatFactor / Disney clearcoat     */
+    float clearcoat_gloss;    /* Disney clearcoatGloss; from KHR:
+                                 1 - clearcoatRoughnessFactor              */
+    float emission[3];        /* radiance = emissiveFactor × emissive_strength */
+    float emissive_strength;  /* KHR_materials_emissive_strength, default 1 */
+    float normal_scale;       /* normalTexture.scale, default 1             */
+    float alpha_cutoff;       /* default 0.5                                */
+    rtpbr_scene_alpha_mode alpha_mode;
+    bool double_sided;
+    /* Indices into scene->textures, -1 = none. Colour textures (base colour,
+     * emission) are flagged sRGB; the others linear. */
+    int32_t base_color_texture;
+    int32_t metallic_roughness_texture; /* G = roughness, B = metallic     */
+    int32_t normal_texture;             /* tangent space, needs tangents   */
+    int32_t emission_texture;           /* multiplies emission; NOT used for
+                                           light radiance                  */
+    int32_t gltf_material;    /* source glTF material, -1 = default material */
+} rtpbr_scene_material;
+
+typedef enum rtpbr_scene_wrap {
+    RTPBR_SCENE_WRAP_REPEAT = 0,
+    RTPBR_SCENE_WRAP_CLAMP_TO_EDGE = 1,
+    RTPBR_SCENE_WRAP_MIRRORED_REPEAT = 2,
+} rtpbr_scene_wrap;
+
+/* A decoded texture: always RGBA8, rows top to bottom, width × height × 4
+ * bytes. A glTF texture used both as colour and as data appears twice. */
+typedef struct rtpbr_scene_texture {
+    uint32_t width, height;    /* 0 × 0 when desc.skip_images              */
+    uint8_t* pixels;           /* NULL when desc.skip_images                */
+    bool srgb;                 /* true: texels are sRGB-encoded colour      */
+    rtpbr_scene_wrap wrap_s, wrap_t;
+    bool nearest;              /* magFilter NEAREST (else linear)           */
+    int32_t gltf_texture;      /* source glTF texture index                 */
+} rtpbr_scene_texture;
+
+typedef enum rtpbr_scene_light_shape {
+    RTPBR_SCENE_LIGHT_POLYGON = 0, /* convex planar polygon, vertices[]      */
+    RTPBR_SCENE_LIGHT_DISK = 1,    /* disk: center, radius, normal; vertices[]
+                                      holds an equal-area regular octagon
+                                      for polygon-only consumers            */
+} rtpbr_scene_light_shape;
+
+/* One planar area light in world space, emitting radiance uniformly
+ * (Lambertian emitter) from its front side (and back if two_sided). */
+typedef struct rtpbr_scene_light {
+    rtpbr_scene_light_shape shape;
+    uint32_t vertex_count;  /* 3..8 */
+    float vertices[RTPBR_SCENE_MAX_POLYGON_VERTICES][3];
+                            /* convex, counter-clockwise seen from the side
+                               normal points to: normal ∝ (v1-v0)×(v2-v0)   */
+    float normal[3];        /* unit, emitting side                          */
+    float center[3];        /* polygon: vertex mean; disk: centre           */
+    float radius;           /* disk radius, 0 for polygons                  */
+    float area;             /* polygon area (disk: π r²)                    */
+    float radiance[3];      /* W/(sr·m²), linear RGB                        */
+    bool two_sided;         /* emits from both faces (material doubleSided) */
+    int32_t primitive;      /* index into scene->primitives, -1 for
+                               EXT_lights_area lights                      */
+    int32_t material;       /* emitting material, -1 for EXT_lights_area    */
+    int32_t gltf_node;      /* node carrying an EXT_lights_area light, or the
+                               primitive's node                            */
+} rtpbr_scene_light;
+
+/* A perspective camera, world space. */
+typedef struct rtpbr_scene_camera {
+    float position[3];
+    float forward[3];      /* unit, node's -Z                               */
+    float up[3];           /* unit, node's +Y, orthogonalised              */
+    float right[3];        /* unit, forward × up (node's +X)                */
+    float yfov;            /* radians                                       */
+    float aspect;          /* width / height; 0 = not given in the file     */
+    float znear;
+    float zfar;            /* 0 = infinite                                  */
+    int32_t gltf_node;
+    int32_t gltf_camera;
+} rtpbr_scene_camera;
+
+typedef struct rtpbr_scene {
+    rtpbr_scene_primitive* primitives; uint32_t primitive_count;
+    rtpbr_scene_material* materials;   uint32_t material_count;
+    rtpbr_scene_texture* textures;     uint32_t texture_count;
+    rtpbr_scene_light* lights;         uint32_t light_count;
+    rtpbr_scene_camera* cameras;       uint32_t camera_count; /* 0 = none   */
+    uint32_t total_vertex_count;
+    uint32_t total_index_count;
+    /* World AABB of all primitives and area lights; all zero when empty. */
+    float bounds_min[3];
+    float bounds_max[3];
+    /* Set by the loader (how to free); ignored in hand-built scenes. */
+    rtpbr_scene_allocator allocator;
+} rtpbr_scene;
+
+/* Loads a .gltf (JSON, external or data: URIs) or .glb file. On success
+ * *out receives the scene; on failure *out is NULL, the result says why and
+ * desc->error_message (if given) names the offending object. desc may be
+ * NULL (all defaults). */
+rtpbr_scene_result rtpbr_scene_load(const char* path, const rtpbr_scene_load_desc* desc,
+                                    rtpbr_scene** out);
+
+/* Same from memory: GLB if data starts with "glTF", else JSON. External
+ * URIs resolve under desc->base_dir, or are rejected when it is NULL. */
+rtpbr_scene_result rtpbr_scene_load_memory(const void* data, size_t size,
+                                           const rtpbr_scene_load_desc* desc,
+                                           rtpbr_scene** out);
+
+/* Frees a scene returned by a load function. NULL is a no-op. */
+void rtpbr_scene_destroy(rtpbr_scene* scene);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
+
+#endif /* RTPBR_SCENE_H */

@@ -1,0 +1,127 @@
+// rtpbr shader library: Fresnel reflectance.
+//
+// Conventions: cosines are measured against the microfacet normal (VoH = LoH for reflection).
+// eta is the relative index of refraction n_transmitted / n_incident; k the extinction
+// coefficient of a conductor (complex IOR eta + i k), both per RGB channel for conductors.
+#ifndef RTPBR_FRESNEL_H
+#define RTPBR_FRESNEL_H
+
+#include "lang.h"
+#include "config.h"
+
+RTPBR_NAMESPACE_BEGIN
+
+// Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering".
+// F = f0 + (f90 - f0) (1 - cos)^5; cos is clamped to [0, 1].
+RTPBR_FN float F_Schlick1(float f0, float f90, float VoH) {
+    float m = 1.0f - saturate(VoH);
+    float m2 = m * m;
+    return f0 + (f90 - f0) * (m2 * m2 * m);
+}
+
+RTPBR_FN float3 F_Schlick(float3 f0, float f90, float VoH) {
+    float m = 1.0f - saturate(VoH);
+    float m2 = m * m;
+    return f0 + (RTPBR_F3(f90) - f0) * (m2 * m2 * m);
+}
+
+// Normal-incidence reflectance of a dielectric interface: ((eta - 1) / (eta + 1))^2.
+RTPBR_FN float F0_FromIor(float eta) {
+    return sq((eta - 1.0f) / (eta + 1.0f));
+}
+
+// Exact unpolarised Fresnel reflectance of a dielectric interface (Born & Wolf, Principles of
+// Optics, sec. 1.5.2; arrangement as in Walter et al. 2007 / pbrt-v4 FrDielectric).
+// cosThetaI < 0 means the ray arrives from the transmitted side: the interface is flipped.
+// Past the critical angle (total internal reflection) the result is 1.
+// eta is clamped to [1e-3, 1e3]; NaN eta behaves as eta = 1e-3.
+RTPBR_FN float F_Dielectric(float cosThetaI, float eta) {
+    float c = clamp(cosThetaI, -1.0f, 1.0f);
+    float e = eta > 1e-3f ? min(eta, 1e3f) : 1e-3f;
+    if (c < 0.0f) {
+        e = 1.0f / e;
+        c = -c;
+    }
+    float sin2T = (1.0f - c * c) / (e * e);
+    if (sin2T >= 1.0f)
+        return 1.0f;
+    float cosT = safe_sqrt(1.0f - sin2T);
+    float rPar = (e * c - cosT) / (e * c + cosT);
+    float rPerp = (c - e * cosT) / (c + e * cosT);
+    return 0.5f * (rPar * rPar + rPerp * rPerp);
+}
+
+// Exact unpolarised Fresnel reflectance of a conductor with complex IOR eta + i k, seen from a
+// dielectric of index 1, per channel. Real-arithmetic form of the complex Fresnel equations
+// (Lagarde 2013, "Memo on Fresnel equations"; after Born & Wolf sec. 14.2).
+// At normal incidence: ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2); at grazing: 1.
+RTPBR_FN float3 F_Conductor(float cosThetaI, float3 eta, float3 k) {
+    float c = saturate(cosThetaI);
+    float cos2 = c * c;
+    float sin2 = 1.0f - cos2;
+    float3 eta2 = eta * eta;
+    float3 k2 = k * k;
+    float3 t0 = eta2 - k2 - RTPBR_F3(sin2);
+    float3 a2plusb2 = sqrt(max(t0 * t0 + 4.0f * eta2 * k2, RTPBR_F3(0.0f)));
+    float3 t1 = a2plusb2 + RTPBR_F3(cos2);
+    float3 a = sqrt(max(0.5f * (a2plusb2 + t0), RTPBR_F3(0.0f)));
+    float3 t2 = 2.0f * c * a;
+    float3 rs = (t1 - t2) / max(t1 + t2, RTPBR_F3(1e-30f));
+    float3 t3 = cos2 * a2plusb2 + RTPBR_F3(sin2 * sin2);
+    float3 t4 = t2 * sin2;
+    float3 rp = rs * (t3 - t4) / max(t3 + t4, RTPBR_F3(1e-30f));
+    return saturate(0.5f * (rp + rs));
+}
+
+// The parameters of whichever Fresnel model RTPBR_FRESNEL selects, so that generic code
+// (BRDF_Specular, ...) can take one argument. Build it with one of the Fresnel_* functions.
+struct FresnelParams {
+    float3 f0;  // normal-incidence reflectance (Schlick); filled by every constructor
+    float f90;  // grazing reflectance (Schlick), usually 1
+    float3 eta; // relative IOR (dielectric: eta.x; conductor: per channel)
+    float3 k;   // conductor extinction per channel (0 for dielectrics)
+};
+
+RTPBR_FN FresnelParams Fresnel_FromF0(float3 f0) {
+    FresnelParams p;
+    p.f0 = f0;
+    p.f90 = 1.0f;
+    // The dielectric with this normal reflectance (from the mean of f0): eta = (1 + sqrt f0) / (1 - sqrt f0).
+    float s = sqrt(saturate((f0.x + f0.y + f0.z) / 3.0f));
+    p.eta = RTPBR_F3((1.0f + s) / max(1.0f - s, 1e-3f));
+    p.k = RTPBR_F3(0.0f);
+    return p;
+}
+
+RTPBR_FN FresnelParams Fresnel_FromDielectric(float eta) {
+    FresnelParams p;
+    p.f0 = RTPBR_F3(F0_FromIor(eta));
+    p.f90 = 1.0f;
+    p.eta = RTPBR_F3(eta);
+    p.k = RTPBR_F3(0.0f);
+    return p;
+}
+
+RTPBR_FN FresnelParams Fresnel_FromConductor(float3 eta, float3 k) {
+    FresnelParams p;
+    p.f0 = F_Conductor(1.0f, eta, k);
+    p.f90 = 1.0f;
+    p.eta = eta;
+    p.k = k;
+    return p;
+}
+
+// The Fresnel model selected by RTPBR_FRESNEL, at cosine VoH to the microfacet normal.
+RTPBR_FN float3 F_Microfacet(FresnelParams p, float VoH) {
+#if RTPBR_FRESNEL == RTPBR_FRESNEL_DIELECTRIC
+    return RTPBR_F3(F_Dielectric(VoH, p.eta.x));
+#elif RTPBR_FRESNEL == RTPBR_FRESNEL_CONDUCTOR
+    return F_Conductor(VoH, p.eta, p.k);
+#else
+    return F_Schlick(p.f0, p.f90, VoH);
+#endif
+}
+
+RTPBR_NAMESPACE_END
+
+#endif // RTPBR_FRESNEL_H
