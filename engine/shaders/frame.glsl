@@ -1,4 +1,4 @@
-// The per-frame uniform block (C mirror: rtpbr_gpu_frame in engine/src/internal.h).
+// The per-frame uniform block (C mirror: rtpbr_shader_frame in engine/src/internal.h).
 layout(set = 0, binding = RTPBR_FRAME_BINDING, std140) uniform Frame {
     mat4 view_proj;       // clip from world
     mat4 inv_view_proj;   // world from clip

@@ -11,7 +11,7 @@ layout(push_constant, std430) uniform Draw {
     uint material;
 } draw;
 
-// C mirror: rtpbr_gpu_material.
+// C mirror: rtpbr_shader_material.
 struct Material {
     vec4 base_color_metallic;
     vec4 emission_roughness;

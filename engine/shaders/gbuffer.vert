@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// G-buffer pass: transforms one mesh (per-draw constants: rtpbr_gpu_draw).
+// G-buffer pass: transforms one mesh (per-draw constants: rtpbr_shader_draw).
 #include "rtpbr_shared.h"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_GBUFFER_FRAME
 #include "frame.glsl"

@@ -12,7 +12,7 @@
 
 layout(local_size_x = RTPBR_TILE_SIZE, local_size_y = RTPBR_TILE_SIZE) in;
 
-// C mirror: rtpbr_gpu_light.
+// C mirror: rtpbr_shader_light.
 struct Light {
     vec4 vertices[RTPBR_SHADER_MAX_POLYGON_VERTICES];
     vec4 emission; // rgb radiance, w: two-sided

@@ -11,12 +11,12 @@
 #define RTPBR_SHADER_MAX_POLYGON_VERTICES 8
 
 // G-buffer pass, descriptor set 0.
-#define RTPBR_BINDING_GBUFFER_FRAME 0     // uniform: rtpbr_gpu_frame
-#define RTPBR_BINDING_GBUFFER_MATERIALS 1 // storage: rtpbr_gpu_material[]
+#define RTPBR_BINDING_GBUFFER_FRAME 0     // uniform: rtpbr_shader_frame
+#define RTPBR_BINDING_GBUFFER_MATERIALS 1 // storage: rtpbr_shader_material[]
 
 // Lighting pass, descriptor set 0.
-#define RTPBR_BINDING_LIGHT_FRAME 0       // uniform: rtpbr_gpu_frame
-#define RTPBR_BINDING_LIGHT_LIGHTS 1      // storage: rtpbr_gpu_light[]
+#define RTPBR_BINDING_LIGHT_FRAME 0       // uniform: rtpbr_shader_frame
+#define RTPBR_BINDING_LIGHT_LIGHTS 1      // storage: rtpbr_shader_light[]
 #define RTPBR_BINDING_LIGHT_GBUFFER0 2    // base colour rgb, metallic
 #define RTPBR_BINDING_LIGHT_GBUFFER1 3    // world normal xyz, perceptual roughness
 #define RTPBR_BINDING_LIGHT_GBUFFER2 4    // emitted radiance rgb, ior

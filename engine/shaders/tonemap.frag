@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Tone mapping: exposure, a display operator, optional sRGB encoding (constants: rtpbr_gpu_tonemap).
+// Tone mapping: exposure, a display operator, optional sRGB encoding (constants: rtpbr_shader_tonemap).
 #include "rtpbr_shared.h"
 
 layout(push_constant, std430) uniform Params {

@@ -2,7 +2,7 @@
 // specular and depth.
 #include "internal.h"
 
-void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_scene *scene, VkCommandBuffer cmd)
+void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCommandBuffer cmd)
 {
     const rtpbr_context *ctx = r->context;
     // The previous frame's lighting pass read these images: wait for it, discard contents.

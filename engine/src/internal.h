@@ -18,7 +18,7 @@
 // GPU-side structs (std140 / std430; layouts must match the shaders)
 
 // Uniform block "Frame" in gbuffer.vert, lighting.comp.
-typedef struct rtpbr_gpu_frame {
+typedef struct rtpbr_shader_frame {
     float view_proj[16];       // clip-from-world, column-major
     float inv_view_proj[16];   // world-from-clip
     float camera_position[4];  // xyz, w unused
@@ -26,40 +26,40 @@ typedef struct rtpbr_gpu_frame {
     uint32_t size[2];          // render width, height
     uint32_t light_count;
     uint32_t pad;
-} rtpbr_gpu_frame;
+} rtpbr_shader_frame;
 
 // std430 element of the materials buffer (gbuffer.frag).
-typedef struct rtpbr_gpu_material {
+typedef struct rtpbr_shader_material {
     float base_color_metallic[4];
     float emission_roughness[4];
     float specular_color_ior[4];
     float specular[4];         // x: specular factor, yzw unused
-} rtpbr_gpu_material;
+} rtpbr_shader_material;
 
 // std430 element of the lights buffer (lighting.comp).
-typedef struct rtpbr_gpu_light {
+typedef struct rtpbr_shader_light {
     float vertices[RTPBR_SHADER_MAX_POLYGON_VERTICES][4]; // xyz, w unused
     float emission[4];         // rgb radiance, w: 1 if two-sided
     float plane[4];            // unit normal xyz, w = -dot(normal, vertex0)
     uint32_t vertex_count;
     uint32_t pad[3];
-} rtpbr_gpu_light;
+} rtpbr_shader_light;
 
 // Push constants of the G-buffer pass (per draw).
-typedef struct rtpbr_gpu_draw {
+typedef struct rtpbr_shader_draw {
     float world_from_object[16];
     float normal_matrix[12];   // inverse-transpose 3x3 as three vec4 columns (std430)
     uint32_t material;
     uint32_t pad[3];
-} rtpbr_gpu_draw;
+} rtpbr_shader_draw;
 
 // Push constants of the tone-mapping pass.
-typedef struct rtpbr_gpu_tonemap {
+typedef struct rtpbr_shader_tonemap {
     float scale;               // 2^exposure
     uint32_t op;               // RTPBR_TONEMAP_OP_*
     uint32_t encode;           // RTPBR_ENCODE_*
     uint32_t pad;
-} rtpbr_gpu_tonemap;
+} rtpbr_shader_tonemap;
 
 // ---------------------------------------------------------------------------------------------
 // Resources (resources.c)
@@ -134,15 +134,15 @@ struct rtpbr_context {
 
 typedef struct rtpbr_draw {
     uint32_t first_index, index_count;
-    rtpbr_gpu_draw push;
+    rtpbr_shader_draw push;
 } rtpbr_draw;
 
-struct rtpbr_scene {
+struct rtpbr_gpu_scene {
     rtpbr_context *context;
     rtpbr_buffer vertices;     // float3 position, float3 normal per vertex
     rtpbr_buffer indices;      // uint32, vertex indices already offset per mesh
-    rtpbr_buffer materials;    // rtpbr_gpu_material[max(material_count, 1)]
-    rtpbr_buffer lights;       // rtpbr_gpu_light[RTPBR_MAX_LIGHTS], host visible
+    rtpbr_buffer materials;    // rtpbr_shader_material[max(material_count, 1)]
+    rtpbr_buffer lights;       // rtpbr_shader_light[RTPBR_MAX_LIGHTS], host visible
     rtpbr_draw *draws;
     uint32_t draw_count;
     uint32_t light_count;
@@ -162,7 +162,7 @@ struct rtpbr_renderer {
     rtpbr_image depth;
     rtpbr_image radiance;      // rgba32f, GENERAL layout between passes
     rtpbr_image display;       // R8G8B8A8_SRGB, the target of rtpbr_render
-    rtpbr_buffer frame;        // rtpbr_gpu_frame, host visible
+    rtpbr_buffer frame;        // rtpbr_shader_frame, host visible
     rtpbr_buffer radiance_readback, display_readback;
     VkDescriptorPool descriptor_pool;
     VkDescriptorSet gbuffer_set, lighting_set, tonemap_set;
@@ -255,9 +255,9 @@ rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkP
 // ---------------------------------------------------------------------------------------------
 // Passes (gbuffer.c, lighting.c, tonemap.c)
 
-void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_scene *scene, VkCommandBuffer cmd);
+void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCommandBuffer cmd);
 void rtpbr_lighting_record(rtpbr_renderer *r, VkPipeline pipeline, VkCommandBuffer cmd);
-void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_gpu_tonemap *params,
+void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_shader_tonemap *params,
                           VkImageView target, VkCommandBuffer cmd);
 
 // ---------------------------------------------------------------------------------------------

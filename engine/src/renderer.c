@@ -35,7 +35,7 @@ static rtpbr_result create_descriptors(rtpbr_renderer *r)
     r->tonemap_set = sets[2];
 
     // Everything but the scene's buffers is fixed for the renderer's lifetime.
-    VkDescriptorBufferInfo frame = {r->frame.buffer, 0, sizeof(rtpbr_gpu_frame)};
+    VkDescriptorBufferInfo frame = {r->frame.buffer, 0, sizeof(rtpbr_shader_frame)};
     VkDescriptorImageInfo images[RTPBR_LIGHTING_BINDING_COUNT] = {{0}};
     for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i)
         images[RTPBR_BINDING_LIGHT_GBUFFER0 + i] = (VkDescriptorImageInfo){
@@ -103,7 +103,7 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
                                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &r->radiance));
     RTPBR_TRY(rtpbr_image_create(ctx, w, h, RTPBR_DISPLAY_FORMAT,
                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &r->display));
-    RTPBR_TRY(rtpbr_buffer_create_host(ctx, sizeof(rtpbr_gpu_frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &r->frame));
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, sizeof(rtpbr_shader_frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &r->frame));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                        &r->radiance_readback));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -150,7 +150,7 @@ void rtpbr_renderer_destroy(rtpbr_renderer *r)
 
 // Checks the arguments shared by rtpbr_render and rtpbr_record, then writes the frame
 // constants and the scene's descriptors.
-static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_scene *scene, const rtpbr_render_desc *desc)
+static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc)
 {
     rtpbr_context *ctx = r->context;
     if (!scene || !desc) {
@@ -181,7 +181,7 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_scene *scene, c
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
 
-    rtpbr_gpu_frame frame = {0};
+    rtpbr_shader_frame frame = {0};
     rtpbr_camera_matrices(camera, (float)r->width / (float)r->height, frame.view_proj);
     if (!rtpbr_mat4_invert(frame.inv_view_proj, frame.view_proj)) {
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: degenerate camera");
@@ -208,10 +208,10 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_scene *scene, c
     return RTPBR_SUCCESS;
 }
 
-static rtpbr_gpu_tonemap tonemap_params(const rtpbr_render_desc *desc, uint32_t encode)
+static rtpbr_shader_tonemap tonemap_params(const rtpbr_render_desc *desc, uint32_t encode)
 {
     uint32_t op = desc->tonemap == RTPBR_TONEMAP_DEFAULT ? RTPBR_TONEMAP_OP_ACES : (uint32_t)desc->tonemap;
-    return (rtpbr_gpu_tonemap){.scale = exp2f(desc->exposure), .op = op, .encode = encode};
+    return (rtpbr_shader_tonemap){.scale = exp2f(desc->exposure), .op = op, .encode = encode};
 }
 
 // Copies the radiance image into its readback buffer (and the display image, if given).
@@ -221,7 +221,13 @@ static void record_readback(rtpbr_renderer *r, VkCommandBuffer cmd, bool display
         .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
         .imageExtent = {r->width, r->height, 1},
     };
-    vkCmdCopyImageToBuffer(cmd, r->radiance.image, VK_IMAGE_LAYOUT_GENERAL, r->radiance_readback.buffer, 1, &region);
+    // After the lighting pass's writes and the tone-mapping pass's reads.
+    rtpbr_image_barrier(cmd, r->radiance.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                        VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    vkCmdCopyImageToBuffer(cmd, r->radiance.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->radiance_readback.buffer,
+                           1, &region);
     if (display)
         vkCmdCopyImageToBuffer(cmd, r->display.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->display_readback.buffer,
                                1, &region);
@@ -234,7 +240,7 @@ static void record_readback(rtpbr_renderer *r, VkCommandBuffer cmd, bool display
                          0, NULL);
 }
 
-rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_scene *scene, const rtpbr_render_desc *desc)
+rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc)
 {
     if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
     rtpbr_context *ctx = r->context;
@@ -256,7 +262,7 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_scene *scene, const rtp
     rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    rtpbr_gpu_tonemap params = tonemap_params(desc, RTPBR_ENCODE_NONE);
+    rtpbr_shader_tonemap params = tonemap_params(desc, RTPBR_ENCODE_NONE);
     rtpbr_tonemap_record(r, tonemap, &params, r->display.view, cmd);
     rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -279,7 +285,7 @@ cleanup:
     return result;
 }
 
-rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_scene *scene, const rtpbr_render_desc *desc,
+rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc,
                           const rtpbr_record_desc *target)
 {
     if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
@@ -306,7 +312,7 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_scene *scene, const rtp
     rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, target->old_layout,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    rtpbr_gpu_tonemap params = tonemap_params(desc, unorm ? RTPBR_ENCODE_SRGB : RTPBR_ENCODE_NONE);
+    rtpbr_shader_tonemap params = tonemap_params(desc, unorm ? RTPBR_ENCODE_SRGB : RTPBR_ENCODE_NONE);
     rtpbr_tonemap_record(r, tonemap, &params, target->view, cmd);
     if (new_layout != VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL)
         rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,

@@ -78,12 +78,12 @@ static rtpbr_result validate_lights(const rtpbr_context *ctx, const rtpbr_light_
     return RTPBR_SUCCESS;
 }
 
-static void write_lights(rtpbr_scene *scene, const rtpbr_light_desc *lights, uint32_t count)
+static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights, uint32_t count)
 {
-    rtpbr_gpu_light *gpu = scene->lights.mapped;
+    rtpbr_shader_light *gpu = scene->lights.mapped;
     for (uint32_t i = 0; i < count; ++i) {
         const rtpbr_light_desc *l = &lights[i];
-        rtpbr_gpu_light g = {0};
+        rtpbr_shader_light g = {0};
         for (uint32_t v = 0; v < l->vertex_count; ++v) memcpy(g.vertices[v], l->vertices[v], 3 * sizeof(float));
         memcpy(g.emission, l->emission, 3 * sizeof(float));
         g.emission[3] = l->two_sided ? 1.0f : 0.0f;
@@ -98,7 +98,7 @@ static void write_lights(rtpbr_scene *scene, const rtpbr_light_desc *lights, uin
     scene->light_count = count;
 }
 
-rtpbr_result rtpbr_scene_set_lights(rtpbr_scene *scene, const rtpbr_light_desc *lights, uint32_t light_count)
+rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights, uint32_t light_count)
 {
     if (!scene) return RTPBR_ERROR_INVALID_ARGUMENT;
     rtpbr_result result = validate_lights(scene->context, lights, light_count);
@@ -137,9 +137,9 @@ static rtpbr_result validate_mesh(const rtpbr_context *ctx, const rtpbr_mesh_des
 #undef FAIL
 }
 
-static rtpbr_gpu_material convert_material(const rtpbr_material_desc *m)
+static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
 {
-    rtpbr_gpu_material g = {0};
+    rtpbr_shader_material g = {0};
     memcpy(g.base_color_metallic, m->base_color, 3 * sizeof(float));
     g.base_color_metallic[3] = fminf(fmaxf(m->metallic, 0.0f), 1.0f);
     memcpy(g.emission_roughness, m->emission, 3 * sizeof(float));
@@ -195,19 +195,19 @@ static void normal_matrix(const float m[16], float out[12])
 
 // ---------------------------------------------------------------------------------------------
 
-rtpbr_result rtpbr_scene_create(rtpbr_context *ctx, const rtpbr_scene_desc *desc, rtpbr_scene **out_scene)
+rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_desc *desc, rtpbr_gpu_scene **out_scene)
 {
     if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
     if (!desc || !out_scene) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_scene_create: desc or out_scene is NULL");
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_create: desc or out_scene is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     *out_scene = NULL;
     rtpbr_result result = RTPBR_SUCCESS;
-    rtpbr_scene *scene = NULL;
+    rtpbr_gpu_scene *scene = NULL;
     if ((desc->mesh_count && !desc->meshes) || (desc->material_count && !desc->materials) ||
         (desc->camera_count && !desc->cameras)) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_scene_create: a non-zero count with a NULL array");
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_create: a non-zero count with a NULL array");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (desc->material_count > RTPBR_MAX_MATERIALS) {
@@ -276,16 +276,16 @@ rtpbr_result rtpbr_scene_create(rtpbr_context *ctx, const rtpbr_scene_desc *desc
     }
 
     uint32_t material_slots = desc->material_count ? desc->material_count : 1;
-    RTPBR_TRY(rtpbr_buffer_create_host(ctx, material_slots * sizeof(rtpbr_gpu_material),
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, material_slots * sizeof(rtpbr_shader_material),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->materials));
-    rtpbr_gpu_material *materials = scene->materials.mapped;
+    rtpbr_shader_material *materials = scene->materials.mapped;
     if (desc->material_count == 0) {
         rtpbr_material_desc grey = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 0.5f};
         materials[0] = convert_material(&grey);
     }
     for (uint32_t i = 0; i < desc->material_count; ++i) materials[i] = convert_material(&desc->materials[i]);
 
-    RTPBR_TRY(rtpbr_buffer_create_host(ctx, RTPBR_MAX_LIGHTS * sizeof(rtpbr_gpu_light),
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, RTPBR_MAX_LIGHTS * sizeof(rtpbr_shader_light),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->lights));
     write_lights(scene, desc->lights, desc->light_count);
 
@@ -302,11 +302,11 @@ rtpbr_result rtpbr_scene_create(rtpbr_context *ctx, const rtpbr_scene_desc *desc
     return RTPBR_SUCCESS;
 cleanup:
     if (result == RTPBR_SUCCESS) result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-    rtpbr_scene_destroy(scene);
+    rtpbr_gpu_scene_destroy(scene);
     return result;
 }
 
-void rtpbr_scene_destroy(rtpbr_scene *scene)
+void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
 {
     if (!scene) return;
     rtpbr_context *ctx = scene->context;
@@ -319,12 +319,12 @@ void rtpbr_scene_destroy(rtpbr_scene *scene)
     rtpbr_free(ctx, scene);
 }
 
-uint32_t rtpbr_scene_camera_count(const rtpbr_scene *scene)
+uint32_t rtpbr_gpu_scene_camera_count(const rtpbr_gpu_scene *scene)
 {
     return scene ? scene->camera_count : 0;
 }
 
-uint32_t rtpbr_scene_light_count(const rtpbr_scene *scene)
+uint32_t rtpbr_gpu_scene_light_count(const rtpbr_gpu_scene *scene)
 {
     return scene ? scene->light_count : 0;
 }

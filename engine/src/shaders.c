@@ -178,7 +178,7 @@ static rtpbr_result create_gbuffer(rtpbr_context *ctx)
     RTPBR_TRY(create_set_layout(ctx, bindings, 2, &ctx->gbuffer_set_layout));
     RTPBR_TRY(create_pipeline_layout(ctx, ctx->gbuffer_set_layout,
                                      VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                                     sizeof(rtpbr_gpu_draw), &ctx->gbuffer_layout));
+                                     sizeof(rtpbr_shader_draw), &ctx->gbuffer_layout));
     RTPBR_TRY(rtpbr_shader_module(ctx, SPIRV(rtpbr_spirv_gbuffer_vert), &vert));
     RTPBR_TRY(rtpbr_shader_module(ctx, SPIRV(rtpbr_spirv_gbuffer_frag), &frag));
     graphics_desc d = {
@@ -240,7 +240,7 @@ static rtpbr_result create_tonemap(rtpbr_context *ctx)
                                             VK_SHADER_STAGE_FRAGMENT_BIT, NULL};
     RTPBR_TRY(create_set_layout(ctx, &binding, 1, &ctx->tonemap_set_layout));
     RTPBR_TRY(create_pipeline_layout(ctx, ctx->tonemap_set_layout, VK_SHADER_STAGE_FRAGMENT_BIT,
-                                     sizeof(rtpbr_gpu_tonemap), &ctx->tonemap_layout));
+                                     sizeof(rtpbr_shader_tonemap), &ctx->tonemap_layout));
     RTPBR_TRY(rtpbr_shader_module(ctx, SPIRV(rtpbr_spirv_tonemap_vert), &ctx->tonemap_vert));
     RTPBR_TRY(rtpbr_shader_module(ctx, SPIRV(rtpbr_spirv_tonemap_frag), &ctx->tonemap_frag));
 cleanup:

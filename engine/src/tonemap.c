@@ -2,7 +2,7 @@
 // (the renderer's own sRGB image or the host's image in rtpbr_record).
 #include "internal.h"
 
-void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_gpu_tonemap *params,
+void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_shader_tonemap *params,
                           VkImageView target, VkCommandBuffer cmd)
 {
     const rtpbr_context *ctx = r->context;

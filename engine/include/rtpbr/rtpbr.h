@@ -11,20 +11,20 @@
 // Objects:
 //   rtpbr_context   a Vulkan device (standalone: created here; embedded: the host's),
 //                   the compiled pipelines and the lookup tables.
-//   rtpbr_scene     meshes, materials, polygonal lights and cameras uploaded to the GPU.
+//   rtpbr_gpu_scene     meshes, materials, polygonal lights and cameras uploaded to the GPU.
 //   rtpbr_renderer  the per-resolution targets: G-buffer, linear radiance, display image.
 //
 // Typical headless use:
 //   rtpbr_context *ctx; rtpbr_context_create(&(rtpbr_context_desc){0}, &ctx);
-//   rtpbr_scene *scene; rtpbr_scene_create_from_gltf(ctx, "scene.gltf", &scene);
+//   rtpbr_gpu_scene *scene; rtpbr_gpu_scene_load_gltf(ctx, "scene.gltf", &scene);
 //   rtpbr_renderer *r;  rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 640, .height = 480}, &r);
 //   rtpbr_render(r, scene, &(rtpbr_render_desc){0});
 //   rtpbr_read_radiance(r, pixels, 640 * 480 * 4 * sizeof(float));
-//   rtpbr_renderer_destroy(r); rtpbr_scene_destroy(scene); rtpbr_context_destroy(ctx);
+//   rtpbr_renderer_destroy(r); rtpbr_gpu_scene_destroy(scene); rtpbr_context_destroy(ctx);
 //
 // Threading: an rtpbr_context and everything created from it must be used from one thread
 // at a time (the host serialises calls). In embedded mode the host must also not use the
-// queue it handed over while an rtpbr call that submits work (rtpbr_scene_create*,
+// queue it handed over while an rtpbr call that submits work (rtpbr_gpu_scene_create*,
 // rtpbr_render, rtpbr_read_*) is running.
 #ifndef RTPBR_H
 #define RTPBR_H
@@ -63,7 +63,7 @@ typedef enum rtpbr_result {
 } rtpbr_result;
 
 // A static English name of the result ("invalid argument"); never NULL.
-const char *rtpbr_result_string(rtpbr_result result);
+RTPBR_API const char *rtpbr_result_string(rtpbr_result result);
 
 // Host allocator for every host allocation the library makes. Both functions NULL: malloc/free.
 // alloc must return memory aligned for any C type (like malloc), or NULL on failure.
@@ -172,7 +172,7 @@ typedef struct rtpbr_mesh_desc {
     const uint32_t *indices;  // 3 per triangle; NULL: vertices taken three at a time
     uint32_t vertex_count;    // required, non-zero
     uint32_t index_count;     // a multiple of 3 when indices is set
-    uint32_t material;        // index into rtpbr_scene_desc.materials; 0 with no materials: grey
+    uint32_t material;        // index into rtpbr_gpu_scene_desc.materials; 0 with no materials: grey
     float transform[16];      // world-from-object, column-major; all zero: identity
 } rtpbr_mesh_desc;
 
@@ -194,7 +194,7 @@ typedef struct rtpbr_camera_desc {
     float zfar;              // zero: 1000
 } rtpbr_camera_desc;
 
-typedef struct rtpbr_scene_desc {
+typedef struct rtpbr_gpu_scene_desc {
     const rtpbr_mesh_desc *meshes;
     uint32_t mesh_count;
     const rtpbr_material_desc *materials;
@@ -203,26 +203,33 @@ typedef struct rtpbr_scene_desc {
     uint32_t light_count;    // <= RTPBR_MAX_LIGHTS
     const rtpbr_camera_desc *cameras;
     uint32_t camera_count;   // zero: one default camera at (0, 0, 5) looking at the origin
-} rtpbr_scene_desc;
+} rtpbr_gpu_scene_desc;
 
-typedef struct rtpbr_scene rtpbr_scene;
+typedef struct rtpbr_gpu_scene rtpbr_gpu_scene;
+struct rtpbr_scene; // a scene loaded by the glTF loader (engine/scene/rtpbr/rtpbr_scene.h)
 
 // Validates everything (finite numbers, index ranges, planar non-degenerate lights) before
 // touching the GPU; a scene with no meshes and no lights is valid (renders the background).
-RTPBR_API rtpbr_result rtpbr_scene_create(rtpbr_context *context, const rtpbr_scene_desc *desc,
-                                rtpbr_scene **out_scene);
+// Lights are not drawn: a light is seen only through an emissive mesh (glTF scenes have one).
+RTPBR_API rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *context, const rtpbr_gpu_scene_desc *desc,
+                                              rtpbr_gpu_scene **out_scene);
 // Loads a glTF 2.0 file through the rtpbr scene loader (engine/scene). Emissive primitives
-// and EXT_lights_area lights become polygonal lights; cameras come from the file. Missing
-// or malformed file: RTPBR_ERROR_SCENE_LOAD (or RTPBR_ERROR_IO), with the loader's message.
-RTPBR_API rtpbr_result rtpbr_scene_create_from_gltf(rtpbr_context *context, const char *path,
-                                          rtpbr_scene **out_scene);
-RTPBR_API void rtpbr_scene_destroy(rtpbr_scene *scene);
-RTPBR_API uint32_t rtpbr_scene_camera_count(const rtpbr_scene *scene);
-RTPBR_API uint32_t rtpbr_scene_light_count(const rtpbr_scene *scene);
-// Replaces every light (same validation and limits as rtpbr_scene_create). Waits for the
-// library's previous work on the scene to finish.
-RTPBR_API rtpbr_result rtpbr_scene_set_lights(rtpbr_scene *scene, const rtpbr_light_desc *lights,
-                                    uint32_t light_count);
+// and EXT_lights_area lights become polygonal lights; cameras come from the file (none in
+// the file: the default camera of rtpbr_gpu_scene_desc). Missing or malformed file:
+// RTPBR_ERROR_SCENE_LOAD or RTPBR_ERROR_IO, with the loader's message in the log.
+RTPBR_API rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *context, const char *path,
+                                                 rtpbr_gpu_scene **out_scene);
+// Uploads a scene the host loaded (or built) with the loader's C API; the material mapping is
+// the table in rtpbr_gpu_scene_load_gltf's documentation below. The loaded scene is not kept.
+RTPBR_API rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *context, const struct rtpbr_scene *loaded,
+                                                   rtpbr_gpu_scene **out_scene);
+RTPBR_API void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene);
+RTPBR_API uint32_t rtpbr_gpu_scene_camera_count(const rtpbr_gpu_scene *scene);
+RTPBR_API uint32_t rtpbr_gpu_scene_light_count(const rtpbr_gpu_scene *scene);
+// Replaces every light (same validation and limits as rtpbr_gpu_scene_create). Must not be
+// called while a command buffer recorded with rtpbr_record for this scene is pending.
+RTPBR_API rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
+                                                  uint32_t light_count);
 
 // ---------------------------------------------------------------------------------------------
 // Renderers and rendering
@@ -274,7 +281,7 @@ typedef struct rtpbr_render_desc {
 
 // Records and submits one frame and waits for it: G-buffer, lighting, tone mapping into the
 // renderer's own targets, which rtpbr_read_* then read back.
-RTPBR_API rtpbr_result rtpbr_render(rtpbr_renderer *renderer, const rtpbr_scene *scene,
+RTPBR_API rtpbr_result rtpbr_render(rtpbr_renderer *renderer, const rtpbr_gpu_scene *scene,
                           const rtpbr_render_desc *desc);
 
 // Linear scene radiance of the last rtpbr_render (no exposure, no tone mapping): RGBA32F,
@@ -303,7 +310,7 @@ typedef struct rtpbr_record_desc {
 // not destroy them, nor record or render again with this renderer, before the submitted
 // command buffer has completed. The linear radiance target is filled too (rtpbr_read_radiance
 // needs that execution to complete first).
-RTPBR_API rtpbr_result rtpbr_record(rtpbr_renderer *renderer, const rtpbr_scene *scene,
+RTPBR_API rtpbr_result rtpbr_record(rtpbr_renderer *renderer, const rtpbr_gpu_scene *scene,
                           const rtpbr_render_desc *desc, const rtpbr_record_desc *target);
 
 #ifdef __cplusplus
