@@ -157,9 +157,12 @@ rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtp
 
 rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtpbr_gpu_scene **out_scene)
 {
-    (void)path;
     if (out_scene) *out_scene = NULL;
     if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!path || !out_scene) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_load_gltf: path or out_scene is NULL");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
     rtpbr_log(ctx, RTPBR_LOG_ERROR, "librtpbr was built without the glTF loader (engine/scene)");
     return RTPBR_ERROR_MISSING_FEATURE;
 }

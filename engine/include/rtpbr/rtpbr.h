@@ -140,7 +140,7 @@ RTPBR_API uint32_t rtpbr_context_validation_message_count(const rtpbr_context *c
 // The Vulkan objects the context uses (its own in standalone mode, the host's when embedded).
 RTPBR_API rtpbr_vulkan_device rtpbr_context_vulkan_device(const rtpbr_context *context);
 // Name of the physical device in use ("llvmpipe (LLVM 15.0.6, 256 bits)"); never NULL.
-const char *rtpbr_context_device_name(const rtpbr_context *context);
+RTPBR_API const char *rtpbr_context_device_name(const rtpbr_context *context);
 
 // ---------------------------------------------------------------------------------------------
 // Scenes
