@@ -14,6 +14,8 @@ packages=(
   python3 python3-numpy python3-matplotlib
   xvfb xauth
 )
+# node and npm only when the machine has no node of its own (the CI image brings one)
+command -v node >/dev/null 2>&1 || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -28,4 +30,11 @@ if ((${#missing[@]})); then
   export DEBIAN_FRONTEND=noninteractive
   "${sudo_cmd[@]}" apt-get update -qq
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# The Khronos glTF Validator (npm) for the bundled-scene test, into .deps/ (git-ignored).
+repo=$(cd "$(dirname "$0")/.." && pwd)
+if [[ ! -f "$repo/.deps/node_modules/gltf-validator/package.json" ]]; then
+  echo "setup: installing gltf-validator (npm) into .deps/" >&2
+  npm install --silent --no-audit --no-fund --prefix "$repo/.deps" gltf-validator@2.0.0-dev.3.10 >/dev/null
 fi

@@ -14,13 +14,13 @@ RTPBR_NAMESPACE_BEGIN
 // Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering".
 // F = f0 + (f90 - f0) (1 - cos)^5; cos is clamped to [0, 1].
 RTPBR_FN float F_Schlick1(float f0, float f90, float VoH) {
-    float m = 1.0f - saturate(VoH);
+    float m = 1.0f - (VoH > 0.0f ? min(VoH, 1.0f) : 0.0f); // NaN-safe clamp
     float m2 = m * m;
     return f0 + (f90 - f0) * (m2 * m2 * m);
 }
 
 RTPBR_FN float3 F_Schlick(float3 f0, float f90, float VoH) {
-    float m = 1.0f - saturate(VoH);
+    float m = 1.0f - (VoH > 0.0f ? min(VoH, 1.0f) : 0.0f); // NaN-safe clamp
     float m2 = m * m;
     return f0 + (RTPBR_F3(f90) - f0) * (m2 * m2 * m);
 }
@@ -36,16 +36,18 @@ RTPBR_FN float F0_FromIor(float eta) {
 // Past the critical angle (total internal reflection) the result is 1.
 // eta is clamped to [1e-3, 1e3]; NaN eta behaves as eta = 1e-3.
 RTPBR_FN float F_Dielectric(float cosThetaI, float eta) {
-    float c = clamp(cosThetaI, -1.0f, 1.0f);
+    float c = cosThetaI > -1.0f ? min(cosThetaI, 1.0f) : -1.0f; // NaN-safe clamp
     float e = eta > 1e-3f ? min(eta, 1e3f) : 1e-3f;
     if (c < 0.0f) {
         e = 1.0f / e;
         c = -c;
     }
-    float sin2T = (1.0f - c * c) / (e * e);
-    if (sin2T >= 1.0f)
+    // cos^2(theta_t) = 1 - (1 - c^2) / e^2 = (c^2 + (e - 1)(e + 1)) / e^2: this form keeps its
+    // precision for e near 1 at grazing angles, where 1 - sin^2 cancels.
+    float cos2T = (c * c + (e - 1.0f) * (e + 1.0f)) / (e * e);
+    if (cos2T <= 0.0f)
         return 1.0f;
-    float cosT = safe_sqrt(1.0f - sin2T);
+    float cosT = sqrt(cos2T);
     float rPar = (e * c - cosT) / (e * c + cosT);
     float rPerp = (c - e * cosT) / (c + e * cosT);
     return 0.5f * (rPar * rPar + rPerp * rPerp);
@@ -56,7 +58,7 @@ RTPBR_FN float F_Dielectric(float cosThetaI, float eta) {
 // (Lagarde 2013, "Memo on Fresnel equations"; after Born & Wolf sec. 14.2).
 // At normal incidence: ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2); at grazing: 1.
 RTPBR_FN float3 F_Conductor(float cosThetaI, float3 eta, float3 k) {
-    float c = saturate(cosThetaI);
+    float c = cosThetaI > 0.0f ? min(cosThetaI, 1.0f) : 0.0f; // NaN-safe clamp
     float cos2 = c * c;
     float sin2 = 1.0f - cos2;
     float3 eta2 = eta * eta;

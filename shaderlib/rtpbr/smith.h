@@ -121,6 +121,8 @@ RTPBR_FN float G1_Beckmann_Fast(float cosTheta, float alpha) {
 }
 
 RTPBR_FN float G1_Beckmann(float cosTheta, float alpha) {
+    if (!(cosTheta > 0.0f))
+        return 0.0f;
     return 1.0f / (1.0f + Lambda_Beckmann(cosTheta, alpha));
 }
 

@@ -130,6 +130,11 @@ typedef struct rtpbr_scene_load_desc {
     /* true = no lights from emissive primitives (EXT_lights_area only).
      * Default false: every primitive whose material emits becomes lights. */
     bool no_emissive_lights;
+    /* EXT_lights_area gives luminance in nits (cd/m²). Radiance written to
+     * rtpbr_scene_light = color × intensity × area_light_radiance_scale;
+     * 0 = 1 (nits used as the renderer's radiance unit, like emissive
+     * materials). 1/683 gives W/(sr·m²) at 555 nm. */
+    float area_light_radiance_scale;
 } rtpbr_scene_load_desc;
 
 /* ---- scene data ---------------------------------------------------------
@@ -299,7 +304,8 @@ typedef struct rtpbr_scene {
     rtpbr_scene_camera* cameras;       uint32_t camera_count; /* 0 = none   */
     uint32_t total_vertex_count;
     uint32_t total_index_count;
-    /* World AABB of all primitives and area lights; all zero when empty. */
+    /* World AABB of all primitives and area lights (disk lights: the disk
+     * and its octagon); all zero when empty. */
     float bounds_min[3];
     float bounds_max[3];
     /* Set by the loader (how to free); ignored in hand-built scenes. */

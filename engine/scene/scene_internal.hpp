@@ -1,0 +1,103 @@
+// Internal declarations of the scene loader (C++17). Not installed.
+#pragma once
+
+#include <rtpbr/rtpbr_scene.h>
+
+#include <tiny_gltf.h>
+
+#include <array>
+#include <cfloat>
+#include <cmath>
+#include <cstdarg>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace rtpbr_scene_detail {
+
+#if defined(__GNUC__)
+#define RTPBR_SCENE_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define RTPBR_SCENE_PRINTF(a, b)
+#endif
+
+// Per-call state: options with defaults applied, the first failure, the
+// logger. Passed to tinygltf callbacks as user_data; nothing is global.
+struct Context {
+    rtpbr_scene_load_desc desc{};
+    uint32_t max_vertices = RTPBR_SCENE_MAX_VERTICES;
+    uint32_t max_lights = RTPBR_SCENE_MAX_LIGHTS;
+    uint32_t max_texture_dimension = RTPBR_SCENE_MAX_TEXTURE_DIMENSION;
+    float area_light_radiance_scale = 1.0f;
+
+    // Canonical absolute folder external URIs must stay in; empty = reject all.
+    std::string base_dir;
+
+    rtpbr_scene_result result = RTPBR_SCENE_SUCCESS;
+    std::string message;
+
+    // Encoded bytes of images given by URI (captured by the image callback,
+    // decoded after validation). Images in bufferViews are sliced later.
+    std::map<int, std::vector<unsigned char>> encoded_images;
+
+    // Records the first failure; later ones are ignored. Always returns false.
+    bool fail(rtpbr_scene_result r, const char* fmt, ...) RTPBR_SCENE_PRINTF(3, 4);
+    void warn(const char* fmt, ...) RTPBR_SCENE_PRINTF(2, 3);
+    void info(const char* fmt, ...) RTPBR_SCENE_PRINTF(2, 3);
+    bool failed() const { return result != RTPBR_SCENE_SUCCESS; }
+    void log(rtpbr_scene_log_level level, const std::string& text) const;
+};
+
+// Finite and representable as a float (outputs are float).
+inline bool fits_float(double d) { return std::isfinite(d) && std::fabs(d) <= double(FLT_MAX); }
+
+using Mat4 = std::array<double, 16>;  // column-major, like glTF
+using Vec3 = std::array<double, 3>;
+
+// A primitive being built (world space).
+struct Primitive {
+    std::vector<float> positions, normals, texcoords, tangents;
+    std::vector<uint32_t> indices;
+    uint32_t material = 0;
+    int32_t gltf_mesh = -1, gltf_primitive = -1, gltf_node = -1;
+    bool has_texcoords = false, normals_generated = false;
+    bool tangents_generated = false, has_tangents = false;
+};
+
+struct Texture {
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> pixels;
+    rtpbr_scene_texture info{};
+};
+
+struct Scene {
+    std::vector<Primitive> primitives;
+    std::vector<rtpbr_scene_material> materials;
+    std::vector<Texture> textures;
+    std::vector<rtpbr_scene_light> lights;
+    std::vector<rtpbr_scene_camera> cameras;
+    uint64_t total_vertices = 0;
+    uint64_t total_indices = 0;
+};
+
+// scene_materials.cpp: fills scene.materials (one per glTF material, plus a
+// default one appended on demand by default_material()) and scene.textures.
+bool convert_materials(Context& ctx, const tinygltf::Model& model, Scene& scene);
+uint32_t default_material(Scene& scene);
+rtpbr_scene_material make_default_material();
+
+// scene_geometry.cpp: walks the node tree, fills primitives and cameras.
+bool convert_nodes(Context& ctx, const tinygltf::Model& model, Scene& scene,
+                   std::vector<std::pair<int, Mat4>>* light_nodes);
+bool node_local_matrix(Context& ctx, const tinygltf::Node& node, int index, Mat4* out);
+Mat4 mat_mul(const Mat4& a, const Mat4& b);
+Vec3 transform_point(const Mat4& m, const Vec3& p);
+Vec3 transform_dir(const Mat4& m, const Vec3& d);
+
+// scene_lights.cpp
+bool lights_from_primitive(Context& ctx, Scene& scene, uint32_t primitive_index);
+bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& scene,
+                          const std::vector<std::pair<int, Mat4>>& light_nodes);
+
+}  // namespace rtpbr_scene_detail

@@ -1,0 +1,437 @@
+// Polygonal area lights: emissive primitives merged into convex polygons of
+// at most 8 vertices, and EXT_lights_area rect/disk lights.
+#include "scene_internal.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace rtpbr_scene_detail {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr size_t kMaxVerts = RTPBR_SCENE_MAX_POLYGON_VERTICES;
+// sin of the angle below which three vertices count as collinear, and
+// 1 - cos of the angle below which two triangle normals count as parallel.
+constexpr double kCollinearSin = 1e-6;
+constexpr double kParallelCos = 1e-6;
+
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
+Vec3 scaled(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+
+struct Triangle {
+    uint32_t v[3];  // welded vertex ids, counter-clockwise about n
+    Vec3 n;         // unit normal
+    double area;
+};
+
+struct LightBuilder {
+    Context& ctx;
+    Scene& scene;
+    uint32_t primitive_index;
+    std::vector<Vec3> verts;  // welded positions
+    std::vector<Triangle> tris;
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> edges;  // directed edge → triangles
+    double eps_dist = 0.0;
+
+    // Removes collinear vertices; false if the loop folds back on itself.
+    bool simplify(const std::vector<uint32_t>& loop, std::vector<uint32_t>* out) const {
+        *out = loop;
+        bool removed = true;
+        while (removed && out->size() >= 3) {
+            removed = false;
+            for (size_t i = 0; i < out->size(); ++i) {
+                const size_t m = out->size();
+                const Vec3& p = verts[(*out)[(i + m - 1) % m]];
+                const Vec3& c = verts[(*out)[i]];
+                const Vec3& q = verts[(*out)[(i + 1) % m]];
+                const Vec3 e1 = sub(c, p), e2 = sub(q, c);
+                const double l = length(e1) * length(e2);
+                if (length(cross(e1, e2)) <= kCollinearSin * l) {
+                    if (dot(e1, e2) < 0.0) return false;  // spike
+                    out->erase(out->begin() + long(i));
+                    removed = true;
+                    break;
+                }
+            }
+        }
+        return out->size() >= 3;
+    }
+
+    // Strictly convex and turning about n at every vertex.
+    bool convex(const std::vector<uint32_t>& loop, const Vec3& n) const {
+        const size_t m = loop.size();
+        for (size_t i = 0; i < m; ++i) {
+            const Vec3 e1 = sub(verts[loop[i]], verts[loop[(i + m - 1) % m]]);
+            const Vec3 e2 = sub(verts[loop[(i + 1) % m]], verts[loop[i]]);
+            if (!(dot(cross(e1, e2), n) > kCollinearSin * length(e1) * length(e2))) return false;
+        }
+        return true;
+    }
+
+    // Newell's method: twice the signed area along n.
+    double area(const std::vector<uint32_t>& loop, const Vec3& n) const {
+        Vec3 s{0, 0, 0};
+        for (size_t i = 0; i < loop.size(); ++i) {
+            const Vec3 c = cross(verts[loop[i]], verts[loop[(i + 1) % loop.size()]]);
+            for (int k = 0; k < 3; ++k) s[size_t(k)] += c[size_t(k)];
+        }
+        return 0.5 * dot(s, n);
+    }
+
+    bool emit(const std::vector<uint32_t>& loop, const Vec3& n) {
+        if (scene.lights.size() >= ctx.max_lights)
+            return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS,
+                            "primitive %u (mesh %d): more than %u area lights", primitive_index,
+                            scene.primitives[primitive_index].gltf_mesh, ctx.max_lights);
+        const Primitive& p = scene.primitives[primitive_index];
+        const rtpbr_scene_material& m = scene.materials[p.material];
+        rtpbr_scene_light l;
+        std::memset(&l, 0, sizeof l);
+        l.shape = RTPBR_SCENE_LIGHT_POLYGON;
+        l.vertex_count = uint32_t(loop.size());
+        Vec3 center{0, 0, 0};
+        for (size_t i = 0; i < loop.size(); ++i) {
+            for (int k = 0; k < 3; ++k) {
+                l.vertices[i][k] = float(verts[loop[i]][size_t(k)]);
+                center[size_t(k)] += verts[loop[i]][size_t(k)] / double(loop.size());
+            }
+        }
+        for (int k = 0; k < 3; ++k) {
+            l.normal[k] = float(n[size_t(k)]);
+            l.center[k] = float(center[size_t(k)]);
+            l.radiance[k] = m.emission[k];
+        }
+        l.area = float(area(loop, n));
+        if (!std::isfinite(l.area) || !std::isfinite(l.center[0]) || !std::isfinite(l.center[1]) ||
+            !std::isfinite(l.center[2]))
+            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "primitive %u (mesh %d): light polygon area overflows",
+                            primitive_index, p.gltf_mesh);
+        l.two_sided = m.double_sided;
+        l.primitive = int32_t(primitive_index);
+        l.material = int32_t(p.material);
+        l.gltf_node = p.gltf_node;
+        scene.lights.push_back(l);
+        return true;
+    }
+
+    bool coplanar(const Triangle& seed, const Triangle& t) const {
+        if (dot(seed.n, t.n) < 1.0 - kParallelCos) return false;
+        const double d = dot(seed.n, verts[seed.v[0]]);
+        for (uint32_t v : t.v)
+            if (std::fabs(dot(seed.n, verts[v]) - d) > eps_dist) return false;
+        return true;
+    }
+
+    // The whole component as one polygon: exactly one boundary loop, convex
+    // after removing collinear vertices, ≤ 8 vertices, same area.
+    bool single_loop(const std::vector<uint32_t>& comp, const Vec3& n, std::vector<uint32_t>* out) const {
+        std::map<std::pair<uint32_t, uint32_t>, int> count;
+        double tri_area = 0.0;
+        for (uint32_t t : comp) {
+            tri_area += tris[t].area;
+            for (int e = 0; e < 3; ++e) ++count[{tris[t].v[e], tris[t].v[(e + 1) % 3]}];
+        }
+        std::map<uint32_t, uint32_t> next;
+        size_t boundary = 0;
+        for (const auto& e : count) {
+            if (e.second != 1) return false;  // non-manifold
+            if (count.count({e.first.second, e.first.first})) continue;
+            if (next.count(e.first.first)) return false;  // pinched boundary
+            next[e.first.first] = e.first.second;
+            ++boundary;
+        }
+        if (boundary < 3) return false;
+        std::vector<uint32_t> loop;
+        uint32_t v = next.begin()->first;
+        for (size_t i = 0; i < boundary; ++i) {
+            loop.push_back(v);
+            auto it = next.find(v);
+            if (it == next.end()) return false;
+            v = it->second;
+        }
+        if (v != loop[0]) return false;  // more than one loop (holes, islands)
+        std::vector<uint32_t> simple;
+        if (!simplify(loop, &simple) || simple.size() > kMaxVerts || !convex(simple, n)) return false;
+        if (std::fabs(area(simple, n) - tri_area) > 1e-4 * tri_area) return false;
+        *out = simple;
+        return true;
+    }
+
+    // Greedy growth of convex pieces across shared edges.
+    bool greedy(const std::vector<uint32_t>& comp, const Vec3& n) {
+        std::map<uint32_t, bool> remaining;
+        for (uint32_t t : comp) remaining[t] = true;
+        for (uint32_t seed : comp) {
+            if (!remaining[seed]) continue;
+            remaining[seed] = false;
+            std::vector<uint32_t> loop(tris[seed].v, tris[seed].v + 3);
+            bool grown = true;
+            while (grown) {
+                grown = false;
+                for (size_t i = 0; i < loop.size() && !grown; ++i) {
+                    const uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
+                    auto it = edges.find({b, a});
+                    if (it == edges.end()) continue;
+                    for (uint32_t u : it->second) {
+                        auto r = remaining.find(u);
+                        if (r == remaining.end() || !r->second) continue;
+                        const Triangle& t = tris[u];
+                        uint32_t c = t.v[0] + t.v[1] + t.v[2] - a - b;
+                        const size_t m = loop.size();
+                        const uint32_t prev = loop[(i + m - 1) % m], after = loop[(i + 2) % m];
+                        std::vector<uint32_t> cand = loop;
+                        if (c == prev && m > 3) {
+                            cand.erase(cand.begin() + long(i));                 // a becomes interior
+                        } else if (c == after && m > 3) {
+                            cand.erase(cand.begin() + long((i + 1) % m));       // b becomes interior
+                        } else if (std::find(loop.begin(), loop.end(), c) == loop.end()) {
+                            cand.insert(cand.begin() + long(i + 1), c);
+                        } else {
+                            continue;
+                        }
+                        std::vector<uint32_t> simple;
+                        if (!simplify(cand, &simple) || simple.size() > kMaxVerts || !convex(simple, n))
+                            continue;
+                        loop = cand;
+                        r->second = false;
+                        grown = true;
+                        break;
+                    }
+                }
+            }
+            std::vector<uint32_t> simple;
+            if (!simplify(loop, &simple)) simple = loop;
+            if (!emit(simple, n)) return false;
+        }
+        return true;
+    }
+
+    bool run() {
+        const Primitive& p = scene.primitives[primitive_index];
+        std::map<std::array<float, 3>, uint32_t> weld;
+        std::vector<uint32_t> id(p.positions.size() / 3);
+        Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+        for (size_t i = 0; i < id.size(); ++i) {
+            std::array<float, 3> key = {p.positions[3 * i], p.positions[3 * i + 1], p.positions[3 * i + 2]};
+            auto ins = weld.insert({key, uint32_t(verts.size())});
+            if (ins.second) {
+                verts.push_back({key[0], key[1], key[2]});
+                for (int k = 0; k < 3; ++k) {
+                    lo[size_t(k)] = std::min(lo[size_t(k)], double(key[size_t(k)]));
+                    hi[size_t(k)] = std::max(hi[size_t(k)], double(key[size_t(k)]));
+                }
+            }
+            id[i] = ins.first->second;
+        }
+        eps_dist = 1e-5 * std::max(length(sub(hi, lo)), 1e-30);
+        for (size_t t = 0; t < p.indices.size(); t += 3) {
+            Triangle tri;
+            for (int k = 0; k < 3; ++k) tri.v[k] = id[p.indices[t + size_t(k)]];
+            if (tri.v[0] == tri.v[1] || tri.v[1] == tri.v[2] || tri.v[0] == tri.v[2]) continue;
+            const Vec3 c = cross(sub(verts[tri.v[1]], verts[tri.v[0]]), sub(verts[tri.v[2]], verts[tri.v[0]]));
+            const double l = length(c);
+            if (!(l > 0.0)) continue;
+            tri.n = scaled(c, 1.0 / l);
+            tri.area = 0.5 * l;
+            for (int e = 0; e < 3; ++e) edges[{tri.v[e], tri.v[(e + 1) % 3]}].push_back(uint32_t(tris.size()));
+            tris.push_back(tri);
+        }
+        // Connected components of coplanar, consistently wound triangles.
+        std::vector<int> comp_of(tris.size(), -1);
+        for (uint32_t s = 0; s < tris.size(); ++s) {
+            if (comp_of[s] >= 0) continue;
+            std::vector<uint32_t> comp{s}, stack{s};
+            comp_of[s] = int(s);
+            while (!stack.empty()) {
+                const uint32_t t = stack.back();
+                stack.pop_back();
+                for (int e = 0; e < 3; ++e) {
+                    auto it = edges.find({tris[t].v[(e + 1) % 3], tris[t].v[e]});
+                    if (it == edges.end()) continue;
+                    for (uint32_t u : it->second) {
+                        if (comp_of[u] >= 0 || !coplanar(tris[s], tris[u])) continue;
+                        comp_of[u] = int(s);
+                        comp.push_back(u);
+                        stack.push_back(u);
+                    }
+                }
+            }
+            std::sort(comp.begin(), comp.end());
+            // Plane normal: area-weighted mean of the member normals.
+            Vec3 n{0, 0, 0};
+            for (uint32_t t : comp)
+                for (int k = 0; k < 3; ++k) n[size_t(k)] += tris[t].n[size_t(k)] * tris[t].area;
+            n = scaled(n, 1.0 / length(n));
+            std::vector<uint32_t> loop;
+            if (comp.size() > 1 && single_loop(comp, n, &loop)) {
+                if (!emit(loop, n)) return false;
+            } else if (!greedy(comp, n)) {
+                return false;
+            }
+        }
+        return true;
+    }
+};
+
+double number_or(const tinygltf::Value& obj, const char* key, double def, bool* bad) {
+    if (!obj.IsObject() || !obj.Has(key)) return def;
+    const tinygltf::Value& v = obj.Get(key);
+    if (!v.IsNumber()) {
+        *bad = true;
+        return def;
+    }
+    return v.GetNumberAsDouble();
+}
+
+}  // namespace
+
+bool lights_from_primitive(Context& ctx, Scene& scene, uint32_t primitive_index) {
+    const Primitive& p = scene.primitives[primitive_index];
+    const rtpbr_scene_material& m = scene.materials[p.material];
+    if (!(std::max(m.emission[0], std::max(m.emission[1], m.emission[2])) > 0.0f)) return true;
+    LightBuilder b{ctx, scene, primitive_index, {}, {}, {}, 0.0};
+    return b.run();
+}
+
+bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& scene,
+                          const std::vector<std::pair<int, Mat4>>& light_nodes) {
+    if (light_nodes.empty()) return true;
+    const tinygltf::Value* lights = nullptr;
+    auto root = model.extensions.find("EXT_lights_area");
+    if (root != model.extensions.end() && root->second.IsObject() && root->second.Has("lights") &&
+        root->second.Get("lights").IsArray())
+        lights = &root->second.Get("lights");
+    for (const auto& ln : light_nodes) {
+        const int node = ln.first;
+        const Mat4& world = ln.second;
+        const tinygltf::Value& ref = model.nodes[size_t(node)].extensions.at("EXT_lights_area");
+        bool bad = false;
+        const double li = number_or(ref, "light", -1.0, &bad);
+        if (bad || !ref.IsObject() || !ref.Has("light") || li != std::floor(li))
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "node %d: EXT_lights_area.light must be an integer",
+                            node);
+        if (!lights || li < 0.0 || li >= double(lights->ArrayLen()))
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+                            "node %d: EXT_lights_area light %.0f does not exist (%zu lights)", node, li,
+                            lights ? lights->ArrayLen() : size_t(0));
+        const int index = int(li);
+        const tinygltf::Value& L = lights->Get(index);
+        if (!L.IsObject())
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "EXT_lights_area light %d is not an object", index);
+        // Current draft: "type" + "size" (+ "rect.aspect") + "intensity";
+        // the earlier draft of the same pull request: "shape", "width",
+        // "height", "radius", "luminance". Both are read.
+        std::string type;
+        for (const char* key : {"type", "shape"})
+            if (type.empty() && L.Has(key) && L.Get(key).IsString()) type = L.Get(key).Get<std::string>();
+        if (type != "rect" && type != "disk")
+            return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED, "EXT_lights_area light %d: type '%s' not supported",
+                            index, type.c_str());
+        float color[3] = {1, 1, 1};
+        if (L.Has("color")) {
+            const tinygltf::Value& c = L.Get("color");
+            if (!c.IsArray() || c.ArrayLen() != 3)
+                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "EXT_lights_area light %d: color must be 3 numbers",
+                                index);
+            for (int k = 0; k < 3; ++k) {
+                if (!c.Get(k).IsNumber()) bad = true;
+                color[k] = float(c.Get(k).GetNumberAsDouble());
+            }
+        }
+        const double intensity = number_or(L, "intensity", number_or(L, "luminance", 1000.0, &bad), &bad);
+        const bool has_size = L.Has("size");
+        const double size = number_or(L, "size", 1.0, &bad);
+        const double aspect = L.Has("rect") ? number_or(L.Get("rect"), "aspect", 1.0, &bad) : 1.0;
+        double width = number_or(L, "width", 1.0, &bad), height = number_or(L, "height", 1.0, &bad);
+        double radius = number_or(L, "radius", 0.5, &bad);
+        if (has_size || (!L.Has("width") && !L.Has("height") && !L.Has("radius"))) {
+            height = size;
+            width = size * aspect;
+            radius = 0.5 * size;
+        }
+        if (bad)
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "EXT_lights_area light %d: a property is not a number",
+                            index);
+        const double values[] = {color[0], color[1], color[2], intensity, width, height, radius};
+        for (double v : values)
+            if (!fits_float(v))
+                return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "EXT_lights_area light %d: non-finite property", index);
+        if (color[0] < 0 || color[1] < 0 || color[2] < 0 || intensity < 0.0 || width <= 0.0 ||
+            height <= 0.0 || radius <= 0.0)
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON,
+                            "EXT_lights_area light %d: color/intensity must be >= 0 and sizes > 0", index);
+
+        // Node frame: centre, rotation by Gram-Schmidt, largest axis scale.
+        const Vec3 center = transform_point(world, {0, 0, 0});
+        Vec3 x = {world[0], world[1], world[2]}, y = {world[4], world[5], world[6]};
+        const Vec3 zc = {world[8], world[9], world[10]};
+        const double scale = std::max(length(x), std::max(length(y), length(zc)));
+        const double lx = length(x);
+        if (!(lx > 0.0) || !(scale > 0.0))
+            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: degenerate transform for an area light", node);
+        x = scaled(x, 1.0 / lx);
+        y = sub(y, scaled(x, dot(x, y)));
+        const double ly = length(y);
+        if (!(ly > 0.0))
+            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: degenerate transform for an area light", node);
+        y = scaled(y, 1.0 / ly);
+        const Vec3 z = cross(x, y);
+        const Vec3 n = scaled(z, -1.0);  // emits towards local -Z
+
+        if (scene.lights.size() >= ctx.max_lights)
+            return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS, "node %d: more than %u area lights", node,
+                            ctx.max_lights);
+        rtpbr_scene_light l;
+        std::memset(&l, 0, sizeof l);
+        std::vector<std::array<double, 2>> local;  // (x, y) in the light plane, clockwise about +Z
+        if (type == "rect") {
+            const double hw = 0.5 * width * scale, hh = 0.5 * height * scale;
+            l.shape = RTPBR_SCENE_LIGHT_POLYGON;
+            local = {{-hw, -hh}, {-hw, hh}, {hw, hh}, {hw, -hh}};
+            l.area = float(4.0 * hw * hh);
+        } else {
+            const double r = radius * scale;
+            // Regular octagon with the disk's area: 2·sqrt(2)·R² = π r².
+            const double R = r * std::sqrt(kPi / (2.0 * std::sqrt(2.0)));
+            l.shape = RTPBR_SCENE_LIGHT_DISK;
+            for (int k = 0; k < 8; ++k) {
+                const double a = -2.0 * kPi * k / 8.0;
+                local.push_back({R * std::cos(a), R * std::sin(a)});
+            }
+            l.radius = float(r);
+            l.area = float(kPi * r * r);
+        }
+        l.vertex_count = uint32_t(local.size());
+        for (size_t i = 0; i < local.size(); ++i)
+            for (int k = 0; k < 3; ++k)
+                l.vertices[i][k] = float(center[size_t(k)] + x[size_t(k)] * local[i][0] + y[size_t(k)] * local[i][1]);
+        for (int k = 0; k < 3; ++k) {
+            l.normal[k] = float(n[size_t(k)]);
+            l.center[k] = float(center[size_t(k)]);
+            l.radiance[k] = float(color[k] * intensity * ctx.area_light_radiance_scale);
+        }
+        bool finite = std::isfinite(l.area) && std::isfinite(l.radius);
+        for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(l.radiance[k]);
+        for (const auto& v : l.vertices)
+            for (float f : v) finite = finite && std::isfinite(f);
+        if (!finite)
+            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: area light %d overflows (size or radiance)",
+                            node, index);
+        l.two_sided = false;
+        l.primitive = -1;
+        l.material = -1;
+        l.gltf_node = node;
+        scene.lights.push_back(l);
+    }
+    return true;
+}
+
+}  // namespace rtpbr_scene_detail

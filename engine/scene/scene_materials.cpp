@@ -1,0 +1,445 @@
+// glTF materials → rtpbr_scene_material (the table in docs/materials.md) and
+// texture decoding (through tinygltf's stb_image based LoadImageData).
+#include "scene_internal.hpp"
+
+#include <stb_image.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <utility>
+
+namespace rtpbr_scene_detail {
+
+namespace {
+
+struct MaterialReader {
+    Context& ctx;
+    int material_index;
+    const char* block;  // name of the JSON object being read, for messages
+
+    bool number(const tinygltf::Value& obj, const char* key, double def, double* out) {
+        *out = def;
+        if (!obj.IsObject() || !obj.Has(key)) return true;
+        const tinygltf::Value& v = obj.Get(key);
+        if (!v.IsNumber())
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: %s.%s must be a number",
+                            material_index, block, key);
+        *out = v.GetNumberAsDouble();
+        if (!fits_float(*out))
+            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: %s.%s is not finite",
+                            material_index, block, key);
+        return true;
+    }
+
+    // Reads an array of n (or, if n_alt > 0, n_alt) finite numbers.
+    bool vector(const tinygltf::Value& obj, const char* key, size_t n, size_t n_alt, float* out,
+                bool* present) {
+        *present = false;
+        if (!obj.IsObject() || !obj.Has(key)) return true;
+        const tinygltf::Value& v = obj.Get(key);
+        if (!v.IsArray() || (v.ArrayLen() != n && v.ArrayLen() != n_alt))
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON,
+                            "material %d: %s.%s must be an array of %zu numbers", material_index,
+                            block, key, n);
+        for (size_t i = 0; i < v.ArrayLen(); ++i) {
+            const tinygltf::Value& e = v.Get(static_cast<int>(i));
+            if (!e.IsNumber())
+                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON,
+                                "material %d: %s.%s[%zu] must be a number", material_index, block,
+                                key, i);
+            double d = e.GetNumberAsDouble();
+            if (!fits_float(d))
+                return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: %s.%s[%zu] is not finite",
+                                material_index, block, key, i);
+            out[i] = static_cast<float>(d);
+        }
+        *present = true;
+        return true;
+    }
+};
+
+bool finite_vector(Context& ctx, const std::vector<double>& v, size_t n, int material,
+                   const char* name, float* out) {
+    if (v.size() != n)
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: %s has %zu components, expected %zu",
+                        material, name, v.size(), n);
+    for (size_t i = 0; i < n; ++i) {
+        if (!fits_float(v[i]))
+            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: %s[%zu] is not finite",
+                            material, name, i);
+        out[i] = static_cast<float>(v[i]);
+    }
+    return true;
+}
+
+float clamp01(Context& ctx, float v, int material, const char* name) {
+    if (v < 0.0f || v > 1.0f) {
+        ctx.warn("material %d: %s = %g clamped to [0,1]", material, name, static_cast<double>(v));
+        v = std::min(1.0f, std::max(0.0f, v));
+    }
+    return v;
+}
+
+// Dielectric normal-incidence reflectance of an interface air → ior;
+// ior = 0 is KHR_materials_ior's "F0 = 1". (Fresnel equations at θ = 0)
+float f0_from_ior(float ior) {
+    if (ior == 0.0f) return 1.0f;
+    float r = (ior - 1.0f) / (ior + 1.0f);
+    return r * r;
+}
+
+// Inverse of Burley's F0 = 0.08 × specular, solved for the index of refraction.
+float ior_from_disney_specular(float specular) {
+    float s = std::sqrt(std::min(0.999f, 0.08f * specular));
+    return (1.0f + s) / (1.0f - s);
+}
+
+const tinygltf::Value* find_extension(const tinygltf::ExtensionMap& map, const char* name) {
+    auto it = map.find(name);
+    return it == map.end() ? nullptr : &it->second;
+}
+
+struct TextureTable {
+    Context& ctx;
+    const tinygltf::Model& model;
+    Scene& scene;
+    std::map<std::pair<int, bool>, int32_t> made;  // (gltf texture, srgb) → output index
+    std::map<int, std::pair<std::pair<uint32_t, uint32_t>, std::vector<uint8_t>>> decoded;
+
+    bool encoded_bytes(int image_index, const unsigned char** bytes, size_t* size) {
+        const tinygltf::Image& image = model.images[size_t(image_index)];
+        if (image.bufferView >= 0) {
+            if (size_t(image.bufferView) >= model.bufferViews.size())
+                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+                                "image %d: bufferView %d does not exist (%zu bufferViews)",
+                                image_index, image.bufferView, model.bufferViews.size());
+            const tinygltf::BufferView& view = model.bufferViews[size_t(image.bufferView)];
+            if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+                                "bufferView %d: buffer %d does not exist", image.bufferView,
+                                view.buffer);
+            const size_t buffer_size = model.buffers[size_t(view.buffer)].data.size();
+            if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset)
+                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+                                "image %d: bufferView %d (byteOffset %zu + byteLength %zu) exceeds "
+                                "buffer %d (%zu bytes)",
+                                image_index, image.bufferView, view.byteOffset, view.byteLength,
+                                view.buffer, buffer_size);
+            *bytes = model.buffers[size_t(view.buffer)].data.data() + view.byteOffset;
+            *size = view.byteLength;
+            return true;
+        }
+        auto it = ctx.encoded_images.find(image_index);
+        if (it == ctx.encoded_images.end() || it->second.empty())
+            return ctx.fail(RTPBR_SCENE_ERROR_FILE_NOT_FOUND, "image %d: '%s' could not be loaded",
+                            image_index, image.uri.size() > 200 ? "(long uri)" : image.uri.c_str());
+        *bytes = it->second.data();
+        *size = it->second.size();
+        return true;
+    }
+
+    bool decode(int image_index) {
+        if (decoded.count(image_index)) return true;
+        auto& slot = decoded[image_index];
+        if (ctx.desc.skip_images) return true;
+        const unsigned char* bytes = nullptr;
+        size_t size = 0;
+        if (!encoded_bytes(image_index, &bytes, &size)) return false;
+        if (size == 0 || size > size_t(std::numeric_limits<int>::max()))
+            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE, "image %d: %zu bytes of encoded data",
+                            image_index, size);
+        int w = 0, h = 0, comp = 0;
+        if (!stbi_info_from_memory(bytes, int(size), &w, &h, &comp))
+            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE,
+                            "image %d: not a decodable PNG/JPEG image (%s)", image_index,
+                            stbi_failure_reason() ? stbi_failure_reason() : "unknown");
+        if (w <= 0 || h <= 0 || uint32_t(w) > ctx.max_texture_dimension ||
+            uint32_t(h) > ctx.max_texture_dimension)
+            return ctx.fail(RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE,
+                            "image %d: %dx%d exceeds the maximum texture dimension %u", image_index,
+                            w, h, ctx.max_texture_dimension);
+        tinygltf::Image image;
+        image.name = model.images[size_t(image_index)].name;
+        std::string err, warn;
+        // user_data NULL = tinygltf's default option: channels expanded to RGBA.
+        if (!tinygltf::LoadImageData(&image, image_index, &err, &warn, 0, 0, bytes, int(size), nullptr))
+            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE, "image %d: %s", image_index,
+                            err.substr(0, err.find('\n')).c_str());
+        if (image.width != w || image.height != h || image.component != 4 ||
+            (image.bits != 8 && image.bits != 16))
+            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE,
+                            "image %d: decoder returned %dx%d with %d channels of %d bits",
+                            image_index, image.width, image.height, image.component, image.bits);
+        const size_t texels = size_t(w) * size_t(h) * 4;
+        if (image.image.size() != texels * size_t(image.bits / 8))
+            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE, "image %d: decoded size mismatch", image_index);
+        slot.first = {uint32_t(w), uint32_t(h)};
+        if (image.bits == 8) {
+            slot.second = std::move(image.image);
+        } else {
+            slot.second.resize(texels);
+            for (size_t i = 0; i < texels; ++i) {
+                uint16_t v;
+                std::memcpy(&v, &image.image[2 * i], 2);
+                slot.second[i] = uint8_t((uint32_t(v) * 255u + 32767u) / 65535u);
+            }
+        }
+        return true;
+    }
+
+    static rtpbr_scene_wrap wrap(int gl) {
+        if (gl == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return RTPBR_SCENE_WRAP_CLAMP_TO_EDGE;
+        if (gl == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return RTPBR_SCENE_WRAP_MIRRORED_REPEAT;
+        return RTPBR_SCENE_WRAP_REPEAT;
+    }
+
+    // Returns false on failure; *out = -1 when the texture is unusable.
+    bool get(int material, const char* slot_name, int texture_index, int tex_coord, bool srgb,
+             int32_t* out) {
+        *out = -1;
+        if (texture_index < 0) return true;
+        if (size_t(texture_index) >= model.textures.size())
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+                            "material %d: %s.index %d does not exist (%zu textures)", material,
+                            slot_name, texture_index, model.textures.size());
+        if (tex_coord != 0)
+            ctx.warn("material %d: %s uses TEXCOORD_%d; only TEXCOORD_0 is read", material,
+                     slot_name, tex_coord);
+        auto key = std::make_pair(texture_index, srgb);
+        auto it = made.find(key);
+        if (it != made.end()) {
+            *out = it->second;
+            return true;
+        }
+        const tinygltf::Texture& tex = model.textures[size_t(texture_index)];
+        if (tex.source < 0) {
+            ctx.warn("texture %d has no source image; ignored", texture_index);
+            return true;
+        }
+        if (size_t(tex.source) >= model.images.size())
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+                            "texture %d: source image %d does not exist (%zu images)", texture_index,
+                            tex.source, model.images.size());
+        if (tex.sampler >= 0 && size_t(tex.sampler) >= model.samplers.size())
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+                            "texture %d: sampler %d does not exist (%zu samplers)", texture_index,
+                            tex.sampler, model.samplers.size());
+        if (!decode(tex.source)) return false;
+        Texture t;
+        const auto& d = decoded[tex.source];
+        t.width = d.first.first;
+        t.height = d.first.second;
+        t.pixels = d.second;
+        t.info.width = t.width;
+        t.info.height = t.height;
+        t.info.srgb = srgb;
+        t.info.gltf_texture = texture_index;
+        if (tex.sampler >= 0) {
+            const tinygltf::Sampler& s = model.samplers[size_t(tex.sampler)];
+            t.info.wrap_s = wrap(s.wrapS);
+            t.info.wrap_t = wrap(s.wrapT);
+            t.info.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+        }
+        scene.textures.push_back(std::move(t));
+        *out = int32_t(scene.textures.size() - 1);
+        made[key] = *out;
+        return true;
+    }
+};
+
+bool convert_material(Context& ctx, const tinygltf::Model& model, int index, TextureTable& textures,
+                      rtpbr_scene_material* out) {
+    const tinygltf::Material& src = model.materials[size_t(index)];
+    rtpbr_scene_material m = make_default_material();
+    m.gltf_material = index;
+    const auto& pbr = src.pbrMetallicRoughness;
+
+    // Core metallic-roughness.
+    if (!finite_vector(ctx, pbr.baseColorFactor, 4, index, "baseColorFactor", m.base_color))
+        return false;
+    for (int k = 0; k < 4; ++k) m.base_color[k] = clamp01(ctx, m.base_color[k], index, "baseColorFactor");
+    if (!fits_float(pbr.metallicFactor) || !fits_float(pbr.roughnessFactor))
+        return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: metallic/roughnessFactor not finite", index);
+    m.metallic = clamp01(ctx, float(pbr.metallicFactor), index, "metallicFactor");
+    m.roughness = clamp01(ctx, float(pbr.roughnessFactor), index, "roughnessFactor");
+    float emissive[3];
+    if (!finite_vector(ctx, src.emissiveFactor, 3, index, "emissiveFactor", emissive)) return false;
+    for (int k = 0; k < 3; ++k) emissive[k] = clamp01(ctx, emissive[k], index, "emissiveFactor");
+    m.double_sided = src.doubleSided;
+    if (src.alphaMode == "MASK") m.alpha_mode = RTPBR_SCENE_ALPHA_MASK;
+    else if (src.alphaMode == "BLEND") m.alpha_mode = RTPBR_SCENE_ALPHA_BLEND;
+    else if (src.alphaMode != "OPAQUE" && !src.alphaMode.empty())
+        ctx.warn("material %d: unknown alphaMode '%s' treated as OPAQUE", index, src.alphaMode.c_str());
+    if (!fits_float(src.alphaCutoff) || !fits_float(src.normalTexture.scale))
+        return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: alphaCutoff/normalTexture.scale not finite", index);
+    m.alpha_cutoff = float(src.alphaCutoff);
+    m.normal_scale = float(src.normalTexture.scale);
+
+    if (!textures.get(index, "baseColorTexture", pbr.baseColorTexture.index,
+                      pbr.baseColorTexture.texCoord, true, &m.base_color_texture) ||
+        !textures.get(index, "metallicRoughnessTexture", pbr.metallicRoughnessTexture.index,
+                      pbr.metallicRoughnessTexture.texCoord, false, &m.metallic_roughness_texture) ||
+        !textures.get(index, "normalTexture", src.normalTexture.index, src.normalTexture.texCoord,
+                      false, &m.normal_texture) ||
+        !textures.get(index, "emissiveTexture", src.emissiveTexture.index,
+                      src.emissiveTexture.texCoord, true, &m.emission_texture))
+        return false;
+    if (src.occlusionTexture.index >= 0)
+        ctx.warn("material %d: occlusionTexture ignored", index);
+
+    double d;
+    bool present;
+    const tinygltf::Value* ext;
+    // KHR_materials_emissive_strength
+    if ((ext = find_extension(src.extensions, "KHR_materials_emissive_strength"))) {
+        MaterialReader r{ctx, index, "KHR_materials_emissive_strength"};
+        if (!r.number(*ext, "emissiveStrength", 1.0, &d)) return false;
+        if (d < 0.0)
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: emissiveStrength %g < 0", index, d);
+        m.emissive_strength = float(d);
+    }
+    for (int k = 0; k < 3; ++k) m.emission[k] = emissive[k] * m.emissive_strength;
+    // KHR_materials_ior
+    bool has_ior = false;
+    if ((ext = find_extension(src.extensions, "KHR_materials_ior"))) {
+        MaterialReader r{ctx, index, "KHR_materials_ior"};
+        if (!r.number(*ext, "ior", 1.5, &d)) return false;
+        if (!(d == 0.0 || d >= 1.0))
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: KHR_materials_ior.ior %g is neither 0 nor >= 1",
+                            index, d);
+        m.ior = float(d);
+        has_ior = true;
+    }
+    // KHR_materials_specular
+    if ((ext = find_extension(src.extensions, "KHR_materials_specular"))) {
+        MaterialReader r{ctx, index, "KHR_materials_specular"};
+        if (!r.number(*ext, "specularFactor", 1.0, &d)) return false;
+        m.specular_factor = clamp01(ctx, float(d), index, "specularFactor");
+        if (!r.vector(*ext, "specularColorFactor", 3, 0, m.specular_color, &present)) return false;
+        for (int k = 0; k < 3; ++k)
+            if (m.specular_color[k] < 0.0f)
+                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: specularColorFactor < 0", index);
+    }
+    // KHR_materials_clearcoat
+    if ((ext = find_extension(src.extensions, "KHR_materials_clearcoat"))) {
+        MaterialReader r{ctx, index, "KHR_materials_clearcoat"};
+        if (!r.number(*ext, "clearcoatFactor", 0.0, &d)) return false;
+        m.clearcoat = clamp01(ctx, float(d), index, "clearcoatFactor");
+        if (!r.number(*ext, "clearcoatRoughnessFactor", 0.0, &d)) return false;
+        m.clearcoat_gloss = 1.0f - clamp01(ctx, float(d), index, "clearcoatRoughnessFactor");
+    }
+    // KHR_materials_sheen
+    if ((ext = find_extension(src.extensions, "KHR_materials_sheen"))) {
+        MaterialReader r{ctx, index, "KHR_materials_sheen"};
+        if (!r.vector(*ext, "sheenColorFactor", 3, 0, m.sheen_color, &present)) return false;
+        for (int k = 0; k < 3; ++k) m.sheen_color[k] = clamp01(ctx, m.sheen_color[k], index, "sheenColorFactor");
+        m.sheen = std::max(m.sheen_color[0], std::max(m.sheen_color[1], m.sheen_color[2]));
+        if (!r.number(*ext, "sheenRoughnessFactor", 0.0, &d)) return false;
+        m.sheen_roughness = clamp01(ctx, float(d), index, "sheenRoughnessFactor");
+    }
+    // KHR_materials_anisotropy
+    if ((ext = find_extension(src.extensions, "KHR_materials_anisotropy"))) {
+        MaterialReader r{ctx, index, "KHR_materials_anisotropy"};
+        if (!r.number(*ext, "anisotropyStrength", 0.0, &d)) return false;
+        m.anisotropic = clamp01(ctx, float(d), index, "anisotropyStrength");
+        if (!r.number(*ext, "anisotropyRotation", 0.0, &d)) return false;
+        m.anisotropy_rotation = float(d);
+    }
+    for (const auto& e : src.extensions)
+        if (e.first.rfind("KHR_materials_", 0) == 0 && e.first != "KHR_materials_emissive_strength" &&
+            e.first != "KHR_materials_ior" && e.first != "KHR_materials_specular" &&
+            e.first != "KHR_materials_clearcoat" && e.first != "KHR_materials_sheen" &&
+            e.first != "KHR_materials_anisotropy")
+            ctx.warn("material %d: extension %s ignored", index, e.first.c_str());
+    // glTF dielectric F0 expressed as Burley's specular.
+    m.specular = std::min(1.0f, f0_from_ior(m.ior) * m.specular_factor / 0.08f);
+
+    // Disney parameters from extras.rtpbr_disney (Burley 2012 names).
+    const tinygltf::Value& extras = src.extras;
+    if (extras.IsObject() && extras.Has("rtpbr_disney")) {
+        const tinygltf::Value& dis = extras.Get("rtpbr_disney");
+        if (!dis.IsObject())
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: extras.rtpbr_disney must be an object", index);
+        m.model = RTPBR_SCENE_MATERIAL_DISNEY;
+        MaterialReader r{ctx, index, "extras.rtpbr_disney"};
+        struct Field { const char* key; float* dst; };
+        const Field fields[] = {
+            {"metallic", &m.metallic},       {"roughness", &m.roughness},
+            {"subsurface", &m.subsurface},   {"specular", &m.specular},
+            {"specularTint", &m.specular_tint}, {"anisotropic", &m.anisotropic},
+            {"sheen", &m.sheen},             {"sheenTint", &m.sheen_tint},
+            {"clearcoat", &m.clearcoat},     {"clearcoatGloss", &m.clearcoat_gloss},
+        };
+        for (const Field& f : fields) {
+            if (!dis.Has(f.key)) continue;
+            if (!r.number(dis, f.key, 0.0, &d)) return false;
+            *f.dst = clamp01(ctx, float(d), index, f.key);
+        }
+        float color[4] = {m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]};
+        if (!r.vector(dis, "baseColor", 3, 4, color, &present)) return false;
+        for (int k = 0; k < 4; ++k) m.base_color[k] = clamp01(ctx, color[k], index, "baseColor");
+        bool disney_ior = dis.Has("ior");
+        if (disney_ior) {
+            if (!r.number(dis, "ior", 1.5, &d)) return false;
+            if (d < 1.0)
+                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: extras.rtpbr_disney.ior %g < 1", index, d);
+            m.ior = float(d);
+        }
+        if (dis.Has("specular") && !disney_ior && !has_ior) m.ior = ior_from_disney_specular(m.specular);
+        if (!dis.Has("specular") && disney_ior)
+            m.specular = std::min(1.0f, f0_from_ior(m.ior) * m.specular_factor / 0.08f);
+        static const char* const known[] = {"metallic", "roughness", "subsurface", "specular",
+                                            "specularTint", "anisotropic", "sheen", "sheenTint",
+                                            "clearcoat", "clearcoatGloss", "baseColor", "ior"};
+        for (const std::string& key : dis.Keys()) {
+            bool ok = false;
+            for (const char* k : known) ok = ok || key == k;
+            if (!ok) ctx.warn("material %d: extras.rtpbr_disney.%s unknown, ignored", index, key.c_str());
+        }
+    }
+    *out = m;
+    return true;
+}
+
+}  // namespace
+
+rtpbr_scene_material make_default_material() {
+    // glTF 2.0 §3.9.6 default material: metallic = roughness = 1, white.
+    rtpbr_scene_material m;
+    std::memset(&m, 0, sizeof m);
+    m.model = RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS;
+    for (int k = 0; k < 4; ++k) m.base_color[k] = 1.0f;
+    m.metallic = 1.0f;
+    m.roughness = 1.0f;
+    m.ior = 1.5f;
+    m.specular_factor = 1.0f;
+    for (int k = 0; k < 3; ++k) m.specular_color[k] = 1.0f;
+    m.specular = f0_from_ior(1.5f) / 0.08f;
+    m.clearcoat_gloss = 1.0f;
+    m.emissive_strength = 1.0f;
+    m.normal_scale = 1.0f;
+    m.alpha_cutoff = 0.5f;
+    m.alpha_mode = RTPBR_SCENE_ALPHA_OPAQUE;
+    m.base_color_texture = m.metallic_roughness_texture = m.normal_texture = m.emission_texture = -1;
+    m.gltf_material = -1;
+    return m;
+}
+
+uint32_t default_material(Scene& scene) {
+    for (uint32_t i = 0; i < scene.materials.size(); ++i)
+        if (scene.materials[i].gltf_material == -1) return i;
+    scene.materials.push_back(make_default_material());
+    return uint32_t(scene.materials.size() - 1);
+}
+
+bool convert_materials(Context& ctx, const tinygltf::Model& model, Scene& scene) {
+    TextureTable textures{ctx, model, scene, {}, {}};
+    scene.materials.resize(model.materials.size());
+    for (size_t i = 0; i < model.materials.size(); ++i)
+        if (!convert_material(ctx, model, int(i), textures, &scene.materials[i])) return false;
+    return true;
+}
+
+}  // namespace rtpbr_scene_detail

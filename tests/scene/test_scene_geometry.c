@@ -1,0 +1,452 @@
+/* Scene loader: world transforms, cameras, bounds, emissive-primitive light
+ * merging and EXT_lights_area. Expected values are worked out by hand in
+ * the comments from the JSON written here. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "test_scene_util.h"
+
+#define EPS 1e-5
+#define TS_PI 3.14159265358979323846
+
+static void assert_near(double a, double b, double eps, const char* what) {
+    if (!(fabs(a - b) <= eps)) fail_msg("%s: got %.9g, expected %.9g", what, a, b);
+}
+
+static void sub3(const float* a, const float* b, double* o) {
+    for (int k = 0; k < 3; ++k) o[k] = (double)a[k] - (double)b[k];
+}
+static void cross3(const double* a, const double* b, double* o) {
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Every corner turns left about the light normal (convex, consistent winding). */
+static void assert_convex_ccw(const rtpbr_scene_light* l) {
+    assert_true(l->vertex_count >= 3 && l->vertex_count <= 8);
+    for (uint32_t i = 0; i < l->vertex_count; ++i) {
+        double e1[3], e2[3], c[3];
+        sub3(l->vertices[i], l->vertices[(i + l->vertex_count - 1) % l->vertex_count], e1);
+        sub3(l->vertices[(i + 1) % l->vertex_count], l->vertices[i], e2);
+        cross3(e1, e2, c);
+        double d = c[0] * l->normal[0] + c[1] * l->normal[1] + c[2] * l->normal[2];
+        if (!(d > 0.0)) fail_msg("light corner %u does not turn about the normal (%g)", i, d);
+    }
+    assert_near(sqrt(l->normal[0] * l->normal[0] + l->normal[1] * l->normal[1] + l->normal[2] * l->normal[2]),
+                1.0, EPS, "|normal|");
+}
+
+/* Is point (x,y,z) one of the light's vertices? */
+static int has_vertex(const rtpbr_scene_light* l, double x, double y, double z) {
+    for (uint32_t i = 0; i < l->vertex_count; ++i)
+        if (fabs(l->vertices[i][0] - x) < EPS && fabs(l->vertices[i][1] - y) < EPS &&
+            fabs(l->vertices[i][2] - z) < EPS)
+            return 1;
+    return 0;
+}
+
+/* Unit quad in the XZ plane, counter-clockwise seen from +Y:
+ * (v1-v0)×(v2-v0) = (1,0,0)×(1,0,-1) = (0,1,0). */
+static const float kQuad[] = {-0.5f, 0, 0.5f, 0.5f, 0, 0.5f, 0.5f, 0, -0.5f, -0.5f, 0, -0.5f};
+static const uint32_t kQuadIdx[] = {0, 1, 2, 0, 2, 3};
+
+static void test_quad_light_over_plane(void** state) {
+    (void)state;
+    const char* dir = ts_dir("quad_light");
+    /* Mesh 0 = floor (material 0), mesh 1 = light (material 1), same accessors.
+     * Floor node: scale (10,1,10) → corners (±5, 0, ±5), normal +Y.
+     * Light node: T(0,2,0)·R_x(180°): (x,0,z) → (x, 2, -z); faces -Y.
+     * Camera node: T(1,1,5)·R_y(90°), q = (0, sin45°, 0, cos45°):
+     * forward R·(0,0,-1) = (-1,0,0), up (0,1,0), right R·(1,0,0) = (0,0,-1). */
+    ts_scene s = {
+        .positions = kQuad, .vertex_count = 4, .indices = kQuadIdx, .index_count = 6,
+        .meshes = "{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"material\":0}]},"
+                  "{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"material\":1}]}",
+        .materials = "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.5,0.5,1]}},"
+                     "{\"emissiveFactor\":[1,0.5,0.25],\"extensions\":{\"KHR_materials_emissive_strength\":"
+                     "{\"emissiveStrength\":4}}}",
+        .nodes = "{\"mesh\":0,\"scale\":[10,1,10]},"
+                 "{\"mesh\":1,\"translation\":[0,2,0],\"rotation\":[1,0,0,0]},"
+                 "{\"camera\":0,\"translation\":[1,1,5],\"rotation\":[0,0.70710678118654752,0,0.70710678118654752]}",
+        .scene_nodes = "0,1,2",
+        .extra = ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,\"aspectRatio\":1.5,"
+                 "\"znear\":0.1,\"zfar\":100}}]",
+    };
+    char* json = ts_scene_json(&s);
+    char err[512];
+    rtpbr_scene* scene = NULL;
+    rtpbr_scene_result r = ts_load_text(dir, "scene.gltf", json, NULL, &scene, err, sizeof err);
+    free(json);
+    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s: %s", rtpbr_scene_result_string(r), err);
+    assert_int_equal(scene->primitive_count, 2);
+    assert_int_equal(scene->material_count, 2);
+    assert_int_equal(scene->camera_count, 1);
+    assert_int_equal(scene->light_count, 1);
+    assert_int_equal(scene->total_vertex_count, 8);
+    assert_int_equal(scene->total_index_count, 12);
+
+    const rtpbr_scene_primitive* floor = &scene->primitives[0];
+    assert_int_equal(floor->vertex_count, 4);
+    assert_int_equal(floor->index_count, 6);
+    assert_int_equal(floor->material, 0);
+    assert_true(floor->normals_generated);
+    for (uint32_t v = 0; v < 4; ++v) {
+        assert_near(floor->positions[3 * v + 0], 10.0 * kQuad[3 * v + 0], EPS, "floor x");
+        assert_near(floor->positions[3 * v + 1], 0.0, EPS, "floor y");
+        assert_near(floor->positions[3 * v + 2], 10.0 * kQuad[3 * v + 2], EPS, "floor z");
+        assert_near(floor->normals[3 * v + 1], 1.0, EPS, "floor normal y");
+    }
+    const rtpbr_scene_primitive* lp = &scene->primitives[1];
+    for (uint32_t v = 0; v < 4; ++v) {
+        assert_near(lp->positions[3 * v + 0], kQuad[3 * v + 0], EPS, "light x");
+        assert_near(lp->positions[3 * v + 1], 2.0, EPS, "light y");
+        assert_near(lp->positions[3 * v + 2], -kQuad[3 * v + 2], EPS, "light z");
+        assert_near(lp->normals[3 * v + 1], -1.0, EPS, "light normal y");
+    }
+
+    /* 2 coplanar triangles → one quad, facing down, radiance (1,.5,.25)×4. */
+    const rtpbr_scene_light* l = &scene->lights[0];
+    assert_int_equal(l->shape, RTPBR_SCENE_LIGHT_POLYGON);
+    assert_int_equal(l->vertex_count, 4);
+    assert_convex_ccw(l);
+    assert_near(l->normal[0], 0.0, EPS, "nx");
+    assert_near(l->normal[1], -1.0, EPS, "ny");
+    assert_near(l->normal[2], 0.0, EPS, "nz");
+    assert_true(has_vertex(l, -0.5, 2, -0.5) && has_vertex(l, 0.5, 2, -0.5) &&
+                has_vertex(l, 0.5, 2, 0.5) && has_vertex(l, -0.5, 2, 0.5));
+    assert_near(l->area, 1.0, EPS, "area");
+    assert_near(l->radiance[0], 4.0, EPS, "L_r");
+    assert_near(l->radiance[1], 2.0, EPS, "L_g");
+    assert_near(l->radiance[2], 1.0, EPS, "L_b");
+    assert_false(l->two_sided);
+    assert_int_equal(l->primitive, 1);
+    assert_int_equal(l->material, 1);
+    assert_near(l->center[1], 2.0, EPS, "center y");
+
+    const rtpbr_scene_camera* c = &scene->cameras[0];
+    const double cam[4][3] = {{1, 1, 5}, {-1, 0, 0}, {0, 1, 0}, {0, 0, -1}};
+    for (int k = 0; k < 3; ++k) {
+        assert_near(c->position[k], cam[0][k], EPS, "camera position");
+        assert_near(c->forward[k], cam[1][k], EPS, "camera forward");
+        assert_near(c->up[k], cam[2][k], EPS, "camera up");
+        assert_near(c->right[k], cam[3][k], EPS, "camera right");
+    }
+    assert_near(c->yfov, 0.8, EPS, "yfov");
+    assert_near(c->aspect, 1.5, EPS, "aspect");
+    assert_near(c->znear, 0.1, EPS, "znear");
+    assert_near(c->zfar, 100.0, 1e-4, "zfar");
+
+    const double lo[3] = {-5, 0, -5}, hi[3] = {5, 2, 5};
+    for (int k = 0; k < 3; ++k) {
+        assert_near(scene->bounds_min[k], lo[k], EPS, "bounds min");
+        assert_near(scene->bounds_max[k], hi[k], EPS, "bounds max");
+    }
+    rtpbr_scene_destroy(scene);
+}
+
+static rtpbr_scene* load_emissive(const char* name, const float* pos, size_t nv, const uint32_t* idx,
+                                  size_t ni, const rtpbr_scene_load_desc* desc, rtpbr_scene_result* result) {
+    const char* dir = ts_dir(name);
+    ts_scene s = {
+        .positions = pos, .vertex_count = nv, .indices = idx, .index_count = ni, .material = 0,
+        .materials = "{\"emissiveFactor\":[1,1,1],\"doubleSided\":true}",
+    };
+    char* json = ts_scene_json(&s);
+    char err[512];
+    rtpbr_scene* scene = NULL;
+    *result = ts_load_text(dir, "scene.gltf", json, desc, &scene, err, sizeof err);
+    free(json);
+    if (*result != RTPBR_SCENE_SUCCESS && !desc) fail_msg("%s: %s", rtpbr_scene_result_string(*result), err);
+    return scene;
+}
+
+static void test_hexagon_fan_is_one_light(void** state) {
+    (void)state;
+    /* Centre + 6 ring vertices at radius 1 in z = 0, fan counter-clockwise
+     * about +Z: one regular hexagon of area 3·sqrt(3)/2. */
+    float pos[7 * 3] = {0};
+    for (int k = 0; k < 6; ++k) {
+        pos[3 * (k + 1) + 0] = (float)cos(k * TS_PI / 3.0);
+        pos[3 * (k + 1) + 1] = (float)sin(k * TS_PI / 3.0);
+    }
+    uint32_t idx[18];
+    for (uint32_t k = 0; k < 6; ++k) idx[3 * k] = 0, idx[3 * k + 1] = 1 + k, idx[3 * k + 2] = 1 + (k + 1) % 6;
+    rtpbr_scene_result r;
+    rtpbr_scene* scene = load_emissive("hexagon", pos, 7, idx, 18, NULL, &r);
+    assert_int_equal(scene->light_count, 1);
+    const rtpbr_scene_light* l = &scene->lights[0];
+    assert_int_equal(l->vertex_count, 6);
+    assert_convex_ccw(l);
+    assert_near(l->normal[2], 1.0, EPS, "normal z");
+    assert_near(l->area, 3.0 * sqrt(3.0) / 2.0, 1e-5, "hexagon area");
+    for (int k = 0; k < 6; ++k) assert_true(has_vertex(l, pos[3 * (k + 1)], pos[3 * (k + 1) + 1], 0.0));
+    assert_true(l->two_sided);
+    rtpbr_scene_destroy(scene);
+}
+
+static void test_non_coplanar_triangles_are_separate(void** state) {
+    (void)state;
+    /* Triangles folded at 90° along the shared edge (0,0,0)-(0,1,0):
+     * normals +Z and +X. */
+    const float pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const uint32_t idx[] = {0, 1, 2, 0, 2, 3};
+    rtpbr_scene_result r;
+    rtpbr_scene* scene = load_emissive("fold", pos, 4, idx, 6, NULL, &r);
+    assert_int_equal(scene->light_count, 2);
+    int seen_z = 0, seen_x = 0;
+    for (uint32_t i = 0; i < 2; ++i) {
+        const rtpbr_scene_light* l = &scene->lights[i];
+        assert_int_equal(l->vertex_count, 3);
+        assert_convex_ccw(l);
+        assert_near(l->area, 0.5, EPS, "triangle area");
+        seen_z += fabs(l->normal[2] - 1.0) < EPS;
+        seen_x += fabs(l->normal[0] - 1.0) < EPS;
+    }
+    assert_int_equal(seen_z, 1);
+    assert_int_equal(seen_x, 1);
+    rtpbr_scene_destroy(scene);
+
+    /* The same with max_lights = 1: a specific error, no scene. */
+    rtpbr_scene_load_desc desc = {0};
+    desc.max_lights = 1;
+    scene = load_emissive("fold_limit", pos, 4, idx, 6, &desc, &r);
+    assert_int_equal(r, RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS);
+    assert_null(scene);
+}
+
+static void test_concave_region_splits_into_convex_lights(void** state) {
+    (void)state;
+    /* L shape of three unit squares on a 3×3 vertex grid (z = 0): concave,
+     * so the merge must yield several convex polygons covering area 3. */
+    float pos[9 * 3];
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 3; ++x) pos[3 * (y * 3 + x)] = (float)x, pos[3 * (y * 3 + x) + 1] = (float)y,
+                                    pos[3 * (y * 3 + x) + 2] = 0.0f;
+    const uint32_t idx[] = {0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4, 3, 4, 7, 3, 7, 6};
+    rtpbr_scene_result r;
+    rtpbr_scene* scene = load_emissive("lshape", pos, 9, idx, 18, NULL, &r);
+    assert_true(scene->light_count >= 2 && scene->light_count <= 6);
+    double area = 0.0;
+    for (uint32_t i = 0; i < scene->light_count; ++i) {
+        assert_convex_ccw(&scene->lights[i]);
+        area += scene->lights[i].area;
+    }
+    assert_near(area, 3.0, 1e-5, "total light area");
+    rtpbr_scene_destroy(scene);
+}
+
+static void test_non_emissive_and_degenerate(void** state) {
+    (void)state;
+    /* Triangle 1 repeats a vertex, triangle 2 is collinear: both dropped. */
+    const float pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0};
+    const uint32_t idx[] = {0, 1, 2, 0, 0, 1, 0, 1, 3};
+    const char* dir = ts_dir("degenerate");
+    ts_scene s = {.positions = pos, .vertex_count = 4, .indices = idx, .index_count = 9, .material = -1};
+    char* json = ts_scene_json(&s);
+    char err[512];
+    rtpbr_scene* scene = NULL;
+    rtpbr_scene_result r = ts_load_text(dir, "scene.gltf", json, NULL, &scene, err, sizeof err);
+    free(json);
+    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s", err);
+    assert_int_equal(scene->light_count, 0);
+    assert_int_equal(scene->primitives[0].index_count, 3);
+    /* No material: a default one (glTF defaults) is appended. */
+    assert_int_equal(scene->material_count, 1);
+    assert_int_equal(scene->materials[0].gltf_material, -1);
+    assert_near(scene->materials[0].metallic, 1.0, 0, "default metallic");
+    assert_near(scene->materials[0].roughness, 1.0, 0, "default roughness");
+    /* Generated flat normal of triangle (0,1,2): +Z. */
+    assert_near(scene->primitives[0].normals[2], 1.0, EPS, "generated normal");
+    assert_int_equal(scene->camera_count, 0);
+    rtpbr_scene_destroy(scene);
+}
+
+static void test_mirrored_node_keeps_ccw_winding(void** state) {
+    (void)state;
+    /* scale (-1,1,1) mirrors the quad: winding must be flipped so that the
+     * light (facing +Y before and after a mirror in x) stays counter-clockwise. */
+    const char* dir = ts_dir("mirror");
+    ts_scene s = {.positions = kQuad, .vertex_count = 4, .indices = kQuadIdx, .index_count = 6, .material = 0,
+                  .materials = "{\"emissiveFactor\":[1,1,1]}",
+                  .nodes = "{\"mesh\":0,\"scale\":[-1,1,1]}"};
+    char* json = ts_scene_json(&s);
+    char err[512];
+    rtpbr_scene* scene = NULL;
+    rtpbr_scene_result r = ts_load_text(dir, "scene.gltf", json, NULL, &scene, err, sizeof err);
+    free(json);
+    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s", err);
+    assert_int_equal(scene->light_count, 1);
+    assert_convex_ccw(&scene->lights[0]);
+    assert_near(scene->lights[0].normal[1], 1.0, EPS, "mirrored light normal");
+    const rtpbr_scene_primitive* p = &scene->primitives[0];
+    for (uint32_t t = 0; t < p->index_count; t += 3) {
+        double e1[3], e2[3], c[3];
+        sub3(&p->positions[3 * p->indices[t + 1]], &p->positions[3 * p->indices[t]], e1);
+        sub3(&p->positions[3 * p->indices[t + 2]], &p->positions[3 * p->indices[t]], e2);
+        cross3(e1, e2, c);
+        assert_true(c[1] > 0.0);
+    }
+    rtpbr_scene_destroy(scene);
+}
+
+static void test_ext_lights_area(void** state) {
+    (void)state;
+    /* Light 0: rect, size 2, aspect 1.5 → width 3 (local x), height 2 (local y),
+     *   node T(0,3,0)·R_x(-90°) [q = (-sin45°,0,0,cos45°)]: local y → -z,
+     *   local -Z → -Y. Vertices (±1.5, 3, ±1), normal (0,-1,0), area 6,
+     *   radiance color × intensity = (100, 50, 25).
+     * Light 1: disk, size 1 (diameter), node T(1,1,1)·S(2): radius 1,
+     *   normal (0,0,-1), area π; 8-gon of equal area, circumradius
+     *   sqrt(π / (2·sqrt 2)).
+     * Light 2: the earlier draft's form: shape rect, width 3, height 1,
+     *   luminance 10 → area 3, radiance 10. */
+    const char* dir = ts_dir("ext_lights_area");
+    const char* json =
+        "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"EXT_lights_area\"],"
+        "\"extensions\":{\"EXT_lights_area\":{\"lights\":["
+        "{\"type\":\"rect\",\"size\":2,\"rect\":{\"aspect\":1.5},\"color\":[1,0.5,0.25],\"intensity\":100},"
+        "{\"type\":\"disk\",\"size\":1,\"intensity\":50},"
+        "{\"shape\":\"rect\",\"width\":3,\"height\":1,\"luminance\":10}]}},"
+        "\"nodes\":[{\"translation\":[0,3,0],\"rotation\":[-0.70710678118654752,0,0,0.70710678118654752],"
+        "\"extensions\":{\"EXT_lights_area\":{\"light\":0}}},"
+        "{\"translation\":[1,1,1],\"scale\":[2,2,2],\"extensions\":{\"EXT_lights_area\":{\"light\":1}}},"
+        "{\"extensions\":{\"EXT_lights_area\":{\"light\":2}}}],"
+        "\"scenes\":[{\"nodes\":[0,1,2]}],\"scene\":0}";
+    char err[512];
+    rtpbr_scene* scene = NULL;
+    rtpbr_scene_result r = ts_load_text(dir, "lights.gltf", json, NULL, &scene, err, sizeof err);
+    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s: %s", rtpbr_scene_result_string(r), err);
+    assert_int_equal(scene->light_count, 3);
+
+    const rtpbr_scene_light* rect = &scene->lights[0];
+    assert_int_equal(rect->shape, RTPBR_SCENE_LIGHT_POLYGON);
+    assert_int_equal(rect->vertex_count, 4);
+    assert_convex_ccw(rect);
+    assert_near(rect->normal[1], -1.0, EPS, "rect normal");
+    assert_true(has_vertex(rect, -1.5, 3, -1) && has_vertex(rect, 1.5, 3, -1) && has_vertex(rect, 1.5, 3, 1) &&
+                has_vertex(rect, -1.5, 3, 1));
+    assert_near(rect->area, 6.0, EPS, "rect area");
+    assert_near(rect->radiance[0], 100.0, 1e-4, "rect L_r");
+    assert_near(rect->radiance[1], 50.0, 1e-4, "rect L_g");
+    assert_near(rect->radiance[2], 25.0, 1e-4, "rect L_b");
+    assert_int_equal(rect->primitive, -1);
+    assert_int_equal(rect->gltf_node, 0);
+    assert_false(rect->two_sided);
+
+    const rtpbr_scene_light* disk = &scene->lights[1];
+    assert_int_equal(disk->shape, RTPBR_SCENE_LIGHT_DISK);
+    assert_int_equal(disk->vertex_count, 8);
+    assert_convex_ccw(disk);
+    assert_near(disk->radius, 1.0, EPS, "disk radius");
+    assert_near(disk->normal[2], -1.0, EPS, "disk normal");
+    for (int k = 0; k < 3; ++k) assert_near(disk->center[k], 1.0, EPS, "disk centre");
+    assert_near(disk->area, TS_PI, 1e-5, "disk area");
+    const double R = sqrt(TS_PI / (2.0 * sqrt(2.0)));
+    double octagon = 0.0;
+    for (uint32_t i = 0; i < 8; ++i) {
+        double d[3], e[3], c[3];
+        sub3(disk->vertices[i], disk->center, d);
+        assert_near(sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), R, 1e-5, "octagon circumradius");
+        assert_near(disk->vertices[i][2], 1.0, EPS, "octagon plane");
+        sub3(disk->vertices[(i + 1) % 8], disk->center, e);
+        cross3(d, e, c);
+        octagon += 0.5 * -c[2];
+    }
+    assert_near(octagon, TS_PI, 1e-5, "octagon area = disk area");
+    assert_near(disk->radiance[0], 50.0, 1e-4, "disk radiance");
+
+    const rtpbr_scene_light* legacy = &scene->lights[2];
+    assert_near(legacy->area, 3.0, EPS, "legacy rect area");
+    assert_near(legacy->radiance[1], 10.0, EPS, "legacy luminance");
+    assert_near(legacy->normal[2], -1.0, EPS, "legacy normal");
+
+    /* Bounds include the lights (no meshes): x from the rect ±1.5; the
+     * disk's octagon has a vertex at angle 0, x = 1 + R. */
+    assert_near(scene->bounds_min[0], -1.5, EPS, "bounds min x");
+    assert_near(scene->bounds_max[0], 1.0 + R, 1e-5, "bounds max x");
+    assert_near(scene->bounds_max[1], 3.0, EPS, "bounds max y");
+    rtpbr_scene_destroy(scene);
+
+    /* area_light_radiance_scale multiplies the radiance. */
+    rtpbr_scene_load_desc desc = {0};
+    desc.area_light_radiance_scale = 0.25f;
+    r = ts_load_text(dir, "lights.gltf", json, &desc, &scene, err, sizeof err);
+    assert_int_equal(r, RTPBR_SCENE_SUCCESS);
+    assert_near(scene->lights[0].radiance[0], 25.0, 1e-4, "scaled radiance");
+    rtpbr_scene_destroy(scene);
+}
+
+static void test_glb_and_memory(void** state) {
+    (void)state;
+    /* The quad as a GLB: JSON chunk + BIN chunk (glTF 2.0 §4.4). */
+    ts_scene s = {.positions = kQuad, .vertex_count = 4, .indices = kQuadIdx, .index_count = 6, .material = -1};
+    ts_bin* bin = malloc(sizeof *bin);
+    ts_scene_bin(&s, bin);
+    char* json = ts_format(
+        "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":%zu}],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":48},{\"buffer\":0,\"byteOffset\":48,\"byteLength\":24}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\"},"
+        "{\"bufferView\":1,\"componentType\":5125,\"count\":6,\"type\":\"SCALAR\"}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+        "\"nodes\":[{\"mesh\":0,\"translation\":[0,0,-3]}],\"scenes\":[{\"nodes\":[0]}]}",
+        bin->size);
+    size_t jlen = (strlen(json) + 3) / 4 * 4, blen = (bin->size + 3) / 4 * 4;
+    size_t total = 12 + 8 + jlen + 8 + blen;
+    unsigned char* glb = calloc(1, total);
+    uint32_t h[5] = {0x46546C67u, 2, (uint32_t)total, (uint32_t)jlen, 0x4E4F534Au};
+    memcpy(glb, h, 20);
+    memset(glb + 20, ' ', jlen);
+    memcpy(glb + 20, json, strlen(json));
+    uint32_t bh[2] = {(uint32_t)blen, 0x004E4942u};
+    memcpy(glb + 20 + jlen, bh, 8);
+    memcpy(glb + 28 + jlen, bin->bytes, bin->size);
+
+    const char* dir = ts_dir("glb");
+    ts_write(dir, "quad.glb", glb, total);
+    char* path = ts_path(dir, "quad.glb");
+    rtpbr_scene* scene = NULL;
+    rtpbr_scene_result r = rtpbr_scene_load(path, NULL, &scene);
+    assert_int_equal(r, RTPBR_SCENE_SUCCESS);
+    assert_int_equal(scene->primitives[0].vertex_count, 4);
+    assert_near(scene->primitives[0].positions[2], 0.5 - 3.0, EPS, "glb translated z");
+    rtpbr_scene_destroy(scene);
+
+    r = rtpbr_scene_load_memory(glb, total, NULL, &scene);
+    assert_int_equal(r, RTPBR_SCENE_SUCCESS);
+    assert_int_equal(scene->primitives[0].index_count, 6);
+    rtpbr_scene_destroy(scene);
+
+    /* Same JSON with a data: URI, from memory without base_dir. */
+    char* text = ts_scene_json(&s);
+    r = rtpbr_scene_load_memory(text, strlen(text), NULL, &scene);
+    assert_int_equal(r, RTPBR_SCENE_SUCCESS);
+    rtpbr_scene_destroy(scene);
+    free(text);
+    free(path);
+    free(glb);
+    free(json);
+    free(bin);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_quad_light_over_plane),
+        cmocka_unit_test(test_hexagon_fan_is_one_light),
+        cmocka_unit_test(test_non_coplanar_triangles_are_separate),
+        cmocka_unit_test(test_concave_region_splits_into_convex_lights),
+        cmocka_unit_test(test_non_emissive_and_degenerate),
+        cmocka_unit_test(test_mirrored_node_keeps_ccw_winding),
+        cmocka_unit_test(test_ext_lights_area),
+        cmocka_unit_test(test_glb_and_memory),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

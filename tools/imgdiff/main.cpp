@@ -1,0 +1,373 @@
+// rtpbr-diff: compares a test image with a reference image using LDR-FLIP or HDR-FLIP
+// (flip.h), and reports RMSE, relative MSE and PSNR. See usage() for the exact definitions.
+#include "flip.h"
+#include "magma_table.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace {
+
+enum ExitCode { kExitPass = 0, kExitThreshold = 1, kExitError = 2 };
+
+const char* const kUsage =
+    "usage: rtpbr-diff REFERENCE TEST [--hdr] [--heatmap OUT.png] [--json]\n"
+    "                  [--max-mean X] [--max-p95 Y] [--ppd P]\n"
+    "\n"
+    "Compares TEST with REFERENCE (any format OpenImageIO reads: EXR, PNG, HDR, ...).\n"
+    "  Integer pixel formats (8/16-bit PNG, ...) are taken as sRGB-encoded and decoded to linear;\n"
+    "  float formats (EXR, HDR) are taken as linear. Grey images are replicated to RGB, alpha\n"
+    "  and extra channels are ignored.\n"
+    "  default  LDR-FLIP (Andersson et al. 2020) on the linear values clamped to [0, 1]; float\n"
+    "           inputs get no exposure or tone mapping, only the clamp.\n"
+    "  --hdr    HDR-FLIP (Andersson et al. 2021): exposures from the reference, ACES tone map.\n"
+    "  --ppd P  viewing condition in pixels per degree (default 67: a 0.7 m wide 3840-pixel\n"
+    "           monitor seen from 0.7 m).\n"
+    "  --heatmap OUT.png  writes the FLIP error map through the magma colour map.\n"
+    "  --json   prints one JSON object instead of text.\n"
+    "  --max-mean X, --max-p95 Y  exit 1 when the mean / 95th percentile FLIP error exceeds them.\n"
+    "Also reported: rmse = sqrt(mean (t - r)^2) and relmse = mean (t - r)^2 / (r^2 + 0.01) over all\n"
+    "RGB values as read (linear, unclamped); psnr = 10 log10(1 / mse) on the linear values clamped\n"
+    "to [0, 1] (what LDR-FLIP sees), infinite (JSON null) for identical images.\n"
+    "Exit status: 0 thresholds hold (or none given), 1 a threshold is exceeded, 2 error.\n";
+
+struct Options {
+    std::string reference;
+    std::string test;
+    std::string heatmap;
+    bool hdr = false;
+    bool json = false;
+    bool has_max_mean = false;
+    bool has_max_p95 = false;
+    double max_mean = 0.0;
+    double max_p95 = 0.0;
+    float ppd = rtpbr::kFlipDefaultPpd;
+};
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<float> rgb;  // linear
+};
+
+// Errors are reported as exactly one line: library messages may hold newlines.
+void fail_message(std::string message) {
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    while (!message.empty() && message.back() == ' ') message.pop_back();
+    std::fprintf(stderr, "rtpbr-diff: %s\n", message.c_str());
+}
+
+// Some codecs (libpng) print their own diagnostics to stderr; OpenImageIO also returns them
+// through geterror(), which we report. Silences fd 2 while alive.
+class SilenceStderr {
+public:
+    SilenceStderr() {
+        std::fflush(stderr);
+        saved_ = dup(STDERR_FILENO);
+        const int null_fd = open("/dev/null", O_WRONLY);
+        if (saved_ >= 0 && null_fd >= 0) dup2(null_fd, STDERR_FILENO);
+        if (null_fd >= 0) close(null_fd);
+    }
+    ~SilenceStderr() {
+        if (saved_ < 0) return;
+        std::fflush(stderr);
+        dup2(saved_, STDERR_FILENO);
+        close(saved_);
+    }
+    SilenceStderr(const SilenceStderr&) = delete;
+    SilenceStderr& operator=(const SilenceStderr&) = delete;
+
+private:
+    int saved_ = -1;
+};
+
+bool parse_number(const char* text, double& value) {
+    char* end = nullptr;
+    value = std::strtod(text, &end);
+    return end != text && *end == '\0' && std::isfinite(value);
+}
+
+// Returns false with a message on bad arguments; sets show_help for -h/--help.
+bool parse_args(int argc, char** argv, Options& opt, bool& show_help, std::string& error) {
+    std::vector<std::string> positional;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        auto value = [&](const char*& out) {
+            if (i + 1 >= argc) {
+                error = "option " + arg + " needs a value";
+                return false;
+            }
+            out = argv[++i];
+            return true;
+        };
+        const char* v = nullptr;
+        double number = 0.0;
+        if (arg == "-h" || arg == "--help") {
+            show_help = true;
+            return true;
+        } else if (arg == "--hdr") {
+            opt.hdr = true;
+        } else if (arg == "--json") {
+            opt.json = true;
+        } else if (arg == "--heatmap") {
+            if (!value(v)) return false;
+            opt.heatmap = v;
+        } else if (arg == "--max-mean" || arg == "--max-p95" || arg == "--ppd") {
+            if (!value(v)) return false;
+            if (!parse_number(v, number) || number < 0.0) {
+                error = "option " + arg + " needs a finite non-negative number, got '" + v + "'";
+                return false;
+            }
+            if (arg == "--max-mean") {
+                opt.has_max_mean = true;
+                opt.max_mean = number;
+            } else if (arg == "--max-p95") {
+                opt.has_max_p95 = true;
+                opt.max_p95 = number;
+            } else {
+                if (number <= 0.0 || number > rtpbr::kFlipMaxPpd) {
+                    error = "--ppd must be in (0, 1000], got '" + std::string(v) + "'";
+                    return false;
+                }
+                opt.ppd = static_cast<float>(number);
+            }
+        } else if (arg.size() > 1 && arg[0] == '-') {
+            error = "unknown option '" + arg + "' (see --help)";
+            return false;
+        } else {
+            positional.push_back(arg);
+        }
+    }
+    if (positional.size() != 2) {
+        error = "expected REFERENCE and TEST image paths, got " + std::to_string(positional.size()) +
+                " (see --help)";
+        return false;
+    }
+    opt.reference = positional[0];
+    opt.test = positional[1];
+    return true;
+}
+
+bool read_image(const std::string& path, Image& image, std::string& error) {
+    SilenceStderr quiet;
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+        std::string why = OIIO::geterror();
+        if (why.empty()) why = "cannot open";
+        error = "cannot read '" + path + "': " + why;
+        return false;
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1 || spec.deep) {
+        error = "'" + path + "' is not a flat 2D image with pixels";
+        return false;
+    }
+    const int nch = spec.nchannels;
+    std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * nch);
+    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, pixels.data())) {
+        error = "cannot decode '" + path + "': " + in->geterror();
+        return false;
+    }
+    in->close();
+    const bool encoded = spec.format.basetype != OIIO::TypeDesc::FLOAT &&
+                         spec.format.basetype != OIIO::TypeDesc::HALF &&
+                         spec.format.basetype != OIIO::TypeDesc::DOUBLE;
+    image.width = spec.width;
+    image.height = spec.height;
+    const std::size_t n = static_cast<std::size_t>(spec.width) * spec.height;
+    image.rgb.resize(n * 3);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (int c = 0; c < 3; ++c) {
+            const int src = nch >= 3 ? c : 0;  // 1 or 2 channels: grey (+ alpha)
+            float v = pixels[i * nch + src];
+            if (!std::isfinite(v)) {
+                error = "'" + path + "' holds NaN or infinite values";
+                return false;
+            }
+            image.rgb[i * 3 + c] = encoded ? rtpbr::srgb_to_linear(v) : v;
+        }
+    }
+    return true;
+}
+
+bool write_heatmap(const std::string& path, const std::vector<float>& error_map, int w, int h,
+                   std::string& error) {
+    std::vector<unsigned char> rgb(error_map.size() * 3);
+    for (std::size_t i = 0; i < error_map.size(); ++i) {
+        const int index = static_cast<int>(std::lround(std::min(1.0f, std::max(0.0f, error_map[i])) * 255.0f));
+        for (int c = 0; c < 3; ++c)
+            rgb[i * 3 + c] = static_cast<unsigned char>(std::lround(rtpbr::kMagma[index][c] * 255.0f));
+    }
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) {
+        error = "cannot write heat map '" + path + "': " + OIIO::geterror();
+        return false;
+    }
+    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
+    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close()) {
+        error = "cannot write heat map '" + path + "': " + out->geterror();
+        return false;
+    }
+    return true;
+}
+
+struct PixelMetrics {
+    double rmse = 0.0;
+    double relmse = 0.0;
+    double psnr = 0.0;  // +inf when identical
+};
+
+PixelMetrics pixel_metrics(const Image& ref, const Image& test) {
+    double se = 0.0, rel = 0.0, se_clamped = 0.0;
+    for (std::size_t i = 0; i < ref.rgb.size(); ++i) {
+        const double r = ref.rgb[i], t = test.rgb[i];
+        const double d = t - r;
+        se += d * d;
+        rel += d * d / (r * r + 0.01);
+        const double dc = std::min(1.0, std::max(0.0, t)) - std::min(1.0, std::max(0.0, r));
+        se_clamped += dc * dc;
+    }
+    const double n = static_cast<double>(ref.rgb.size());
+    PixelMetrics m;
+    m.rmse = std::sqrt(se / n);
+    m.relmse = rel / n;
+    const double mse = se_clamped / n;
+    m.psnr = mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : INFINITY;
+    return m;
+}
+
+std::string json_number(double v) {
+    if (!std::isfinite(v)) return "null";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return buf;
+}
+
+std::string json_string(const std::string& s) {
+    std::string out = "\"";
+    for (unsigned char ch : s) {
+        if (ch == '"' || ch == '\\') {
+            out += '\\';
+            out += static_cast<char>(ch);
+        } else if (ch < 0x20) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\u%04x", ch);
+            out += buf;
+        } else {
+            out += static_cast<char>(ch);
+        }
+    }
+    return out + "\"";
+}
+
+int run(int argc, char** argv) {
+    Options opt;
+    bool show_help = false;
+    std::string error;
+    if (!parse_args(argc, argv, opt, show_help, error)) {
+        fail_message(error);
+        return kExitError;
+    }
+    if (show_help) {
+        std::fputs(kUsage, stdout);
+        return kExitPass;
+    }
+    Image ref, test;
+    if (!read_image(opt.reference, ref, error) || !read_image(opt.test, test, error)) {
+        fail_message(error);
+        return kExitError;
+    }
+    if (ref.width != test.width || ref.height != test.height) {
+        fail_message("size mismatch: reference '" + opt.reference + "' is " + std::to_string(ref.width) + "x" +
+                     std::to_string(ref.height) + ", test '" + opt.test + "' is " + std::to_string(test.width) +
+                     "x" + std::to_string(test.height));
+        return kExitError;
+    }
+    std::vector<float> error_map;
+    rtpbr::FlipExposures exposures;
+    const rtpbr::FlipResult result =
+        opt.hdr ? rtpbr::flip_hdr(ref.rgb.data(), test.rgb.data(), ref.width, ref.height, opt.ppd, error_map, &exposures)
+                : rtpbr::flip_ldr(ref.rgb.data(), test.rgb.data(), ref.width, ref.height, opt.ppd, error_map);
+    if (result != rtpbr::FlipResult::ok) {
+        fail_message(std::string("FLIP failed: ") + rtpbr::flip_result_string(result));
+        return kExitError;
+    }
+    const rtpbr::FlipStats stats = rtpbr::flip_stats(error_map);
+    const PixelMetrics pm = pixel_metrics(ref, test);
+    if (!opt.heatmap.empty() && !write_heatmap(opt.heatmap, error_map, ref.width, ref.height, error)) {
+        fail_message(error);
+        return kExitError;
+    }
+
+    if (opt.json) {
+        std::string j = "{";
+        j += "\"reference\": " + json_string(opt.reference);
+        j += ", \"test\": " + json_string(opt.test);
+        j += ", \"mode\": " + json_string(opt.hdr ? "hdr-flip" : "ldr-flip");
+        j += ", \"ppd\": " + json_number(opt.ppd);
+        j += ", \"width\": " + std::to_string(ref.width);
+        j += ", \"height\": " + std::to_string(ref.height);
+        j += ", \"mean\": " + json_number(stats.mean);
+        j += ", \"median\": " + json_number(stats.median);
+        j += ", \"p95\": " + json_number(stats.p95);
+        j += ", \"p99\": " + json_number(stats.p99);
+        j += ", \"max\": " + json_number(stats.max);
+        j += ", \"rmse\": " + json_number(pm.rmse);
+        j += ", \"relmse\": " + json_number(pm.relmse);
+        j += ", \"psnr\": " + json_number(pm.psnr);
+        if (opt.hdr) {
+            j += ", \"exposure_start\": " + json_number(exposures.start);
+            j += ", \"exposure_stop\": " + json_number(exposures.stop);
+            j += ", \"exposure_count\": " + std::to_string(exposures.count);
+        }
+        j += "}\n";
+        std::fputs(j.c_str(), stdout);
+    } else {
+        std::printf("mode      %s, %.3g pixels per degree\n", opt.hdr ? "HDR-FLIP" : "LDR-FLIP", opt.ppd);
+        if (opt.hdr)
+            std::printf("exposures %d from %.4f to %.4f stops\n", exposures.count, exposures.start, exposures.stop);
+        std::printf("size      %dx%d\n", ref.width, ref.height);
+        std::printf("FLIP mean %.6f\n", stats.mean);
+        std::printf("   median %.6f\n", stats.median);
+        std::printf("      p95 %.6f\n", stats.p95);
+        std::printf("      p99 %.6f\n", stats.p99);
+        std::printf("      max %.6f\n", stats.max);
+        std::printf("rmse      %.6g\n", pm.rmse);
+        std::printf("relmse    %.6g\n", pm.relmse);
+        std::printf("psnr      %.4f dB (linear, clamped to [0, 1])\n", pm.psnr);
+    }
+
+    std::string exceeded;
+    if (opt.has_max_mean && stats.mean > opt.max_mean)
+        exceeded += "mean FLIP " + json_number(stats.mean) + " exceeds --max-mean " + json_number(opt.max_mean);
+    if (opt.has_max_p95 && stats.p95 > opt.max_p95)
+        exceeded += std::string(exceeded.empty() ? "" : "; ") + "95th percentile FLIP " + json_number(stats.p95) +
+                    " exceeds --max-p95 " + json_number(opt.max_p95);
+    if (exceeded.empty()) return kExitPass;
+    fail_message(exceeded);
+    return kExitThreshold;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) {
+        fail_message(std::string("error: ") + e.what());
+    } catch (...) {
+        fail_message("unknown error");
+    }
+    return kExitError;
+}
