@@ -34,10 +34,13 @@ void main()
 {
     Material m = materials[draw.material];
     vec3 n = normalize(in_normal);
-    // Every surface is shaded on the side the camera sees (glTF doubleSided behaviour).
-    if (dot(n, frame.camera_position.xyz - in_world) < 0.0) n = -n;
+    // Every surface reflects on the side the camera sees; it emits there only if that is its
+    // front side or the material is double-sided.
+    bool back = dot(n, frame.camera_position.xyz - in_world) < 0.0;
+    if (back) n = -n;
+    vec3 emission = back && m.specular.y == 0.0 ? vec3(0.0) : m.emission_roughness.xyz;
     out_gbuffer0 = m.base_color_metallic;
     out_gbuffer1 = vec4(n, m.emission_roughness.w);
-    out_gbuffer2 = vec4(m.emission_roughness.xyz, m.specular_color_ior.w);
+    out_gbuffer2 = vec4(emission, m.specular_color_ior.w);
     out_gbuffer3 = vec4(m.specular_color_ior.xyz, m.specular.x);
 }

@@ -33,7 +33,7 @@ typedef struct rtpbr_shader_material {
     float base_color_metallic[4];
     float emission_roughness[4];
     float specular_color_ior[4];
-    float specular[4];         // x: specular factor, yzw unused
+    float specular[4];         // x: specular factor, y: 1 if emitting on both sides, zw unused
 } rtpbr_shader_material;
 
 // std430 element of the lights buffer (lighting.comp).

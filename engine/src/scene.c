@@ -149,13 +149,15 @@ static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
     else memcpy(g.specular_color_ior, m->specular_color, 3 * sizeof(float));
     g.specular_color_ior[3] = m->ior == 0.0f ? 1.5f : m->ior;
     g.specular[0] = m->specular == 0.0f ? 1.0f : fmaxf(m->specular, 0.0f);
+    g.specular[1] = m->double_sided ? 1.0f : 0.0f;
     return g;
 }
 
 static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_material_desc *m, uint32_t index)
 {
-    const float *f = (const float *)m;
-    if (!rtpbr_finite(f, sizeof *m / sizeof(float))) {
+    if (!rtpbr_finite(m->base_color, 3) || !rtpbr_finite(&m->metallic, 1) || !rtpbr_finite(&m->roughness, 1) ||
+        !rtpbr_finite(m->emission, 3) || !rtpbr_finite(&m->ior, 1) || !rtpbr_finite(&m->specular, 1) ||
+        !rtpbr_finite(m->specular_color, 3)) {
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }

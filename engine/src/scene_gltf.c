@@ -8,6 +8,7 @@
 //   ior                       -> ior                   (0, "F0 = 1" in KHR_materials_ior, -> 1e6)
 //   specular_factor           -> specular              (0 -> "none", i.e. -1 in the desc)
 //   specular_color            -> specular_color
+//   double_sided              -> double_sided          (emission on both sides)
 //   clearcoat, sheen, anisotropy, Disney parameters, textures: not used yet (the lighting
 //   pass has no model for them until the shader library provides one).
 // Lights: every loader light (emissive primitives, EXT_lights_area rectangles and disks as
@@ -64,6 +65,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         d->ior = m->ior == 0.0f ? 1e6f : m->ior;
         d->specular = m->specular_factor == 0.0f ? -1.0f : m->specular_factor;
         memcpy(d->specular_color, m->specular_color, sizeof d->specular_color);
+        d->double_sided = m->double_sided;
         if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
             d->specular = -1.0f; // a black specular colour removes the lobe, like specular = 0
     }

@@ -132,6 +132,43 @@ static void depth_order(void **state)
     assert_int_equal(log.validation, 0);
 }
 
+// Emission is one-sided unless the material is double-sided; reflection sees both sides.
+static void emission_sides(void **state)
+{
+    (void)state;
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    float positions[12];
+    square_positions(1.0f, 0.0f, positions); // front faces +Z
+    rtpbr_renderer *r = NULL;
+    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 16, .height = 16}, &r), RTPBR_SUCCESS);
+    rtpbr_camera_desc cameras[2] = {{.position = {0, 0, 3}}, {.position = {0, 0, -3}}};
+    for (int double_sided = 0; double_sided < 2; ++double_sided) {
+        rtpbr_material_desc material = {.emission = {1.5f, 1.5f, 1.5f}, .double_sided = double_sided};
+        rtpbr_mesh_desc mesh = {.positions = positions, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+        rtpbr_gpu_scene *scene = NULL;
+        assert_int_equal(rtpbr_gpu_scene_create(ctx,
+                                                &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                        .materials = &material, .material_count = 1,
+                                                                        .cameras = cameras, .camera_count = 2},
+                                                &scene),
+                         RTPBR_SUCCESS);
+        for (uint32_t c = 0; c < 2; ++c) {
+            assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.camera_index = c}), RTPBR_SUCCESS);
+            float px[16 * 16 * 4];
+            assert_int_equal(rtpbr_read_radiance(r, px, sizeof px), RTPBR_SUCCESS);
+            const float *centre = px + 4 * (8 * 16 + 8);
+            float expect = (c == 0 || double_sided) ? 1.5f : 0.0f;
+            assert_float_equal(centre[0], expect, 0.0f);
+            assert_float_equal(centre[3], 1.0f, 0.0f); // a surface either way
+        }
+        rtpbr_gpu_scene_destroy(scene);
+    }
+    rtpbr_renderer_destroy(r);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+}
+
 // Create, render and destroy 100 times: the validation layer's object tracker reports any
 // Vulkan object still alive at vkDestroyDevice, and LeakSanitizer (ASan build) host leaks.
 static void lifecycle(void **state)
@@ -273,6 +310,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(render_emissive_square),
         cmocka_unit_test(depth_order),
+        cmocka_unit_test(emission_sides),
         cmocka_unit_test(record_into_host_image),
         cmocka_unit_test(lifecycle),
     };

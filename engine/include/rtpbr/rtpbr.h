@@ -162,6 +162,9 @@ typedef struct rtpbr_material_desc {
     float ior;               // dielectric index of refraction (KHR_materials_ior); zero: 1.5
     float specular;          // KHR_materials_specular specularFactor; zero: 1 (set <0 for none, i.e. 0)
     float specular_color[3]; // KHR_materials_specular specularColorFactor; all zero: (1, 1, 1)
+    // Non-zero: emits from both sides (glTF doubleSided). Default: emission only on the front
+    // side, the one the vertex normals point to. Reflection is two-sided either way.
+    int double_sided;
 } rtpbr_material_desc;
 
 #define RTPBR_MIN_ROUGHNESS 0.045f // Filament's lower clamp: keeps alpha^2 representable
