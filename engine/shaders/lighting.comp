@@ -7,6 +7,13 @@
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
+#include "rtpbr/fresnel.h"
+#if RTPBR_HAVE_LTC
+#include "rtpbr/ltc.h"
+#endif
+#if RTPBR_HAVE_KC
+#include "rtpbr/kulla_conty.h"
+#endif
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
 #include "frame.glsl"
 
@@ -38,6 +45,69 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_BECKMANN_2) uniform sampler2D lu
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_E) uniform sampler2D lut_kc_e;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EAVG) uniform sampler2D lut_kc_eavg;
 
+#if RTPBR_HAVE_LTC
+// The lighting tables of the NDF this variant is built for.
+#if RTPBR_NDF == RTPBR_NDF_BECKMANN
+#define LUT_LTC_1 lut_ltc_beckmann_1
+#define LUT_LTC_2 lut_ltc_beckmann_2
+#define KC_CHANNEL g
+#else
+#define LUT_LTC_1 lut_ltc_ggx_1
+#define LUT_LTC_2 lut_ltc_ggx_2
+#define KC_CHANNEL r
+#endif
+
+// Reflected radiance from every polygonal light: Lambertian diffuse and LTC specular with
+// Fresnel from the tables (Heitz et al. 2016, shaderlib ltc.h) plus, with RTPBR_MULTISCATTER,
+// the Kulla-Conty multiple-scattering lobe over each polygon (shaderlib kulla_conty.h).
+// Material mapping (glTF metallic-roughness + KHR_materials_specular / _ior):
+//   dielectric f0 = min(F0(ior) * specularColor, 1) * specular, f90 = specular;
+//   metal f0 = baseColor, f90 = 1; mixed by metallic; diffuse colour = baseColor (1 - metallic).
+vec3 shade_lights(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, vec4 g2, vec4 g3)
+{
+    vec3 baseColor = g0.rgb;
+    float metallic = g0.a;
+    vec3 f0Dielectric = min(RTPBR_F3(F0_FromIor(g2.a)) * g3.rgb, RTPBR_F3(1.0f)) * g3.a;
+    vec3 f0 = mix(f0Dielectric, baseColor, metallic);
+    float f90 = mix(g3.a, 1.0f, metallic);
+    vec3 diffuseColor = baseColor * (1.0f - metallic);
+    float NoV = saturate(dot(N, V));
+
+    vec2 uv = LTC_LutCoord(NoV, roughness);
+    vec4 ltc1 = textureLod(LUT_LTC_1, uv, 0.0f);
+    vec4 ltc2 = textureLod(LUT_LTC_2, uv, 0.0f);
+    vec3 specularScale = LTC_FresnelScale(ltc2, f0, f90);
+#if RTPBR_MULTISCATTER && RTPBR_HAVE_KC
+    float Eo = textureLod(lut_kc_e, KC_TableCoord(NoV, roughness), 0.0f).KC_CHANNEL;
+    float Eavg = textureLod(lut_kc_eavg, vec2(KC_TableCoordAvg(roughness), 0.5f), 0.0f).KC_CHANNEL;
+    vec3 Fms = KC_FmsColor(F_Avg_Schlick(f0, f90), Eavg);
+#endif
+
+    mat3 ltcFrame = LTC_Frame(N, V);
+    vec3 sum = vec3(0.0f);
+    for (uint i = 0u; i < frame.light_count; ++i) {
+        Light light = lights[i];
+        LtcPolygon poly;
+        for (int k = 0; k < RTPBR_SHADER_MAX_POLYGON_VERTICES; ++k) poly.v[k] = light.vertices[k].xyz;
+        poly.count = int(light.vertex_count);
+        bool twoSided = light.emission.w != 0.0f;
+        LtcLocalPolygon local = LTC_PolygonToLocal(ltcFrame, P, poly, twoSided);
+        if (local.count == 0) continue;
+        float diffuseFF = LTC_IntegrateLocal(local, LTC_Identity());
+        vec3 lo = diffuseColor * diffuseFF + specularScale * LTC_IntegrateLocal(local, ltc1);
+#if RTPBR_MULTISCATTER && RTPBR_HAVE_KC
+        // The representative direction of the polygon: its vector form factor's.
+        vec3 F = LTC_FormFactorVector(LTC_PolygonToLocalUnclipped(ltcFrame, P, poly, twoSided), LTC_Identity());
+        float muRep = length(F) > 0.0f ? saturate(F.z / length(F)) : 0.0f;
+        float Erep = textureLod(lut_kc_e, KC_TableCoord(muRep, roughness), 0.0f).KC_CHANNEL;
+        lo += Fms * KC_PolygonLobe(Eo, Erep, Eavg, diffuseFF);
+#endif
+        sum += light.emission.rgb * lo;
+    }
+    return sum;
+}
+#endif
+
 void main()
 {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -49,10 +119,18 @@ void main()
         return;
     }
     vec4 g2 = texelFetch(gbuffer2, pixel, 0);
-
-    // Emissive surfaces. Polygonal lights are summed here once shaderlib/rtpbr/ltc.h exists;
-    // until then lights contribute nothing but their own emissive geometry.
-    vec3 result = g2.rgb;
+    vec3 result = g2.rgb; // emitted radiance
+#if RTPBR_HAVE_LTC
+    vec4 g0 = texelFetch(gbuffer0, pixel, 0);
+    vec4 g1 = texelFetch(gbuffer1, pixel, 0);
+    vec4 g3 = texelFetch(gbuffer3, pixel, 0);
+    vec2 ndc = (vec2(pixel) + 0.5f) / vec2(frame.size) * 2.0f - 1.0f;
+    vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
+    vec3 P = world.xyz / world.w;
+    vec3 V = normalize(frame.camera_position.xyz - P);
+    result += shade_lights(P, normalize(g1.xyz), V, g0, g1.w, g2, g3);
+#endif
+    // Without ltc.h (RTPBR_HAVE_LTC 0) lights contribute nothing but their emissive geometry.
 
     imageStore(radiance, pixel, vec4(result, 1.0));
 }

@@ -87,17 +87,6 @@ rtpbr_result rtpbr_vk_fail(const rtpbr_context *ctx, VkResult vr, const char *wh
     }
 }
 
-// 1x1 stand-ins for lookup tables that have not been generated yet.
-static rtpbr_result create_placeholder_luts(rtpbr_context *ctx)
-{
-    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    for (size_t i = 0; i < sizeof ctx->luts / sizeof ctx->luts[0]; ++i) {
-        rtpbr_result result = rtpbr_lut_create(ctx, 1, 1, zero, &ctx->luts[i]);
-        if (result != RTPBR_SUCCESS) return result;
-    }
-    return RTPBR_SUCCESS;
-}
-
 rtpbr_result rtpbr_context_create(const rtpbr_context_desc *desc, rtpbr_context **out_context)
 {
     static const rtpbr_logger stderr_logger = {0};
@@ -160,7 +149,7 @@ rtpbr_result rtpbr_context_create(const rtpbr_context_desc *desc, rtpbr_context 
     RTPBR_VK(ctx, vkCreateSampler(ctx->device, &sampler_info, NULL, &ctx->lut_sampler));
     sampler_info.magFilter = sampler_info.minFilter = VK_FILTER_NEAREST;
     RTPBR_VK(ctx, vkCreateSampler(ctx->device, &sampler_info, NULL, &ctx->gbuffer_sampler));
-    RTPBR_TRY(create_placeholder_luts(ctx));
+    RTPBR_TRY(rtpbr_luts_create(ctx));
     RTPBR_TRY(rtpbr_pipelines_create(ctx));
 
     *out_context = ctx;
@@ -177,8 +166,7 @@ void rtpbr_context_destroy(rtpbr_context *ctx)
     if (ctx->device) {
         if (ctx->upload_fence) vkWaitForFences(ctx->device, 1, &ctx->upload_fence, VK_TRUE, UINT64_MAX);
         rtpbr_pipelines_destroy(ctx);
-        for (size_t i = 0; i < sizeof ctx->luts / sizeof ctx->luts[0]; ++i)
-            rtpbr_lut_destroy(ctx, &ctx->luts[i]);
+        rtpbr_luts_destroy(ctx);
         vkDestroySampler(ctx->device, ctx->lut_sampler, NULL);
         vkDestroySampler(ctx->device, ctx->gbuffer_sampler, NULL);
         vkDestroyFence(ctx->device, ctx->upload_fence, NULL);

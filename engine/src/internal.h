@@ -230,6 +230,9 @@ rtpbr_result rtpbr_submit_once(rtpbr_context *ctx, void (*record)(VkCommandBuffe
 rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t height, const float *rgba,
                               rtpbr_lut *out);
 void rtpbr_lut_destroy(rtpbr_context *ctx, rtpbr_lut *lut);
+// Every table of ctx->luts (luts.c): the shader library's tables, or placeholders.
+rtpbr_result rtpbr_luts_create(rtpbr_context *ctx);
+void rtpbr_luts_destroy(rtpbr_context *ctx);
 // An image memory barrier on a colour or depth image (one mip, one layer).
 void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
                          VkImageLayout old_layout, VkImageLayout new_layout,
