@@ -91,14 +91,50 @@ int component_size(int component_type) {
 }
 
 // Validates accessor `index` (declared type, allowed component types, every
-// byte it touches inside its bufferView and buffer) and returns a pointer to
-// its first element and its stride. Sparse accessors are not supported.
+// byte it touches inside its bufferView and buffer, sparse substitution) and
+// returns a pointer to its first element and its stride.
 struct AccessorView {
     const unsigned char* data = nullptr;  // NULL: no bufferView, all zeros
     size_t count = 0, stride = 0;
     int component_type = 0, components = 0;
     bool normalized = false;
+    std::vector<unsigned char> dense;     // sparse accessors, materialised
 };
+
+// Locates `count` elements of `element` bytes starting `offset` bytes into
+// bufferView `view` (its byteStride apart when use_stride, else packed) and
+// checks that all of them lie inside the view and the view inside its buffer.
+bool view_slice(Context& ctx, const tinygltf::Model& model, int accessor, const char* part, int view,
+                size_t offset, size_t count, size_t element, bool use_stride, const unsigned char** data,
+                size_t* stride) {
+    if (view < 0 || size_t(view) >= model.bufferViews.size())
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+                        "accessor %d%s: bufferView %d does not exist (%zu bufferViews)", accessor, part, view,
+                        model.bufferViews.size());
+    const tinygltf::BufferView& v = model.bufferViews[size_t(view)];
+    if (v.buffer < 0 || size_t(v.buffer) >= model.buffers.size())
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "bufferView %d: buffer %d does not exist", view,
+                        v.buffer);
+    const size_t buffer_size = model.buffers[size_t(v.buffer)].data.size();
+    if (v.byteOffset > buffer_size || v.byteLength > buffer_size - v.byteOffset)
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+                        "bufferView %d: byteOffset %zu + byteLength %zu exceeds buffer %d (%zu bytes)", view,
+                        v.byteOffset, v.byteLength, v.buffer, buffer_size);
+    *stride = use_stride && v.byteStride ? v.byteStride : element;
+    if (use_stride && v.byteStride && (v.byteStride < element || v.byteStride > 252))
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+                        "accessor %d: bufferView %d byteStride %zu invalid for %zu-byte elements", accessor, view,
+                        v.byteStride, element);
+    // Last byte touched: offset + (count-1)·stride + element ≤ byteLength.
+    const size_t room = offset <= v.byteLength ? v.byteLength - offset : 0;
+    if (offset > v.byteLength || element > room || (count - 1) > (room - element) / *stride)
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+                        "accessor %d%s: byteOffset %zu + count %zu * stride %zu exceeds bufferView %d "
+                        "(%zu bytes)",
+                        accessor, part, offset, count, *stride, view, v.byteLength);
+    *data = model.buffers[size_t(v.buffer)].data.data() + v.byteOffset + offset;
+    return true;
+}
 
 bool validate_accessor(Context& ctx, const tinygltf::Model& model, int index, const char* usage,
                        int expected_type, const int* allowed_components, size_t n_allowed,
@@ -117,9 +153,6 @@ bool validate_accessor(Context& ctx, const tinygltf::Model& model, int index, co
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
                         "accessor %d (%s): componentType %d not allowed here", index, usage,
                         a.componentType);
-    if (a.sparse.isSparse)
-        return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED, "accessor %d (%s): sparse accessors are not supported",
-                        index, usage);
     if (a.count == 0)
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "accessor %d (%s): count is 0", index, usage);
     if (a.count > size_t(std::numeric_limits<uint32_t>::max()))
@@ -130,38 +163,48 @@ bool validate_accessor(Context& ctx, const tinygltf::Model& model, int index, co
     out->components = component_count(a.type);
     out->normalized = a.normalized;
     const size_t element = size_t(component_size(a.componentType)) * size_t(out->components);
-    if (a.bufferView < 0) {  // glTF: no bufferView → zeros
-        out->data = nullptr;
-        out->stride = element;
-        return true;
+    out->data = nullptr;  // glTF: no bufferView → zeros
+    out->stride = element;
+    if (a.bufferView >= 0 && !view_slice(ctx, model, index, "", a.bufferView, a.byteOffset, a.count, element,
+                                         true, &out->data, &out->stride))
+        return false;
+    if (!a.sparse.isSparse) return true;
+
+    // Sparse (glTF 2.0 §3.6.2.3): dense copy of the base, then substitution.
+    if (a.count > ctx.max_vertices)
+        return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES, "accessor %d (%s): sparse count %zu exceeds the limit %u",
+                        index, usage, a.count, ctx.max_vertices);
+    const int ictype = a.sparse.indices.componentType;
+    if (a.sparse.count <= 0 || size_t(a.sparse.count) > a.count || a.sparse.indices.byteOffset < 0 ||
+        a.sparse.values.byteOffset < 0 ||
+        (ictype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ictype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+         ictype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+                        "accessor %d (%s): invalid sparse count %d, byteOffset or index componentType %d", index,
+                        usage, a.sparse.count, ictype);
+    const size_t n_sparse = size_t(a.sparse.count), isize = size_t(component_size(ictype));
+    const unsigned char *indices = nullptr, *values = nullptr;
+    size_t istride = 0, vstride = 0;
+    if (!view_slice(ctx, model, index, " sparse indices", a.sparse.indices.bufferView,
+                    size_t(a.sparse.indices.byteOffset), n_sparse, isize, false, &indices, &istride) ||
+        !view_slice(ctx, model, index, " sparse values", a.sparse.values.bufferView,
+                    size_t(a.sparse.values.byteOffset), n_sparse, element, false, &values, &vstride))
+        return false;
+    out->dense.assign(a.count * element, 0);
+    if (out->data)
+        for (size_t i = 0; i < a.count; ++i) std::memcpy(&out->dense[i * element], out->data + i * out->stride, element);
+    for (size_t i = 0; i < n_sparse; ++i) {
+        uint32_t target = 0;
+        if (isize == 1) target = indices[i];
+        else if (isize == 2) { uint16_t t; std::memcpy(&t, indices + 2 * i, 2); target = t; }
+        else std::memcpy(&target, indices + 4 * i, 4);
+        if (target >= a.count)
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "accessor %d (%s): sparse index %u >= count %zu",
+                            index, usage, target, a.count);
+        std::memcpy(&out->dense[size_t(target) * element], values + i * element, element);
     }
-    if (size_t(a.bufferView) >= model.bufferViews.size())
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
-                        "accessor %d: bufferView %d does not exist (%zu bufferViews)", index,
-                        a.bufferView, model.bufferViews.size());
-    const tinygltf::BufferView& v = model.bufferViews[size_t(a.bufferView)];
-    if (v.buffer < 0 || size_t(v.buffer) >= model.buffers.size())
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "bufferView %d: buffer %d does not exist",
-                        a.bufferView, v.buffer);
-    const size_t buffer_size = model.buffers[size_t(v.buffer)].data.size();
-    if (v.byteOffset > buffer_size || v.byteLength > buffer_size - v.byteOffset)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
-                        "bufferView %d: byteOffset %zu + byteLength %zu exceeds buffer %d (%zu bytes)",
-                        a.bufferView, v.byteOffset, v.byteLength, v.buffer, buffer_size);
-    size_t stride = v.byteStride ? v.byteStride : element;
-    if (v.byteStride && (v.byteStride < element || v.byteStride > 252))
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
-                        "accessor %d: bufferView %d byteStride %zu invalid for %zu-byte elements",
-                        index, a.bufferView, v.byteStride, element);
-    // Last byte touched: byteOffset + (count-1)·stride + element ≤ byteLength.
-    const size_t room = a.byteOffset <= v.byteLength ? v.byteLength - a.byteOffset : 0;
-    if (a.byteOffset > v.byteLength || element > room || (a.count - 1) > (room - element) / stride)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
-                        "accessor %d: byteOffset %zu + count %zu * stride %zu exceeds bufferView %d "
-                        "(%zu bytes)",
-                        index, a.byteOffset, a.count, stride, a.bufferView, v.byteLength);
-    out->data = model.buffers[size_t(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
-    out->stride = stride;
+    out->data = out->dense.data();
+    out->stride = element;
     return true;
 }
 
@@ -226,6 +269,9 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     AccessorView pos, nrm, uv, tan, idx;
     if (!validate_accessor(ctx, model, pos_it->second, "POSITION", TINYGLTF_TYPE_VEC3, kFloat, 1, &pos))
         return false;
+    if (!pos.data)  // all-zero positions: nothing to draw, and a cheap way to ask for huge allocations
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "%s: POSITION accessor %d has no bufferView",
+                        usage, pos_it->second);
     const size_t n = pos.count;
     if (scene.total_vertices + n > ctx.max_vertices)
         return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES,

@@ -38,31 +38,48 @@ struct LightBuilder {
     uint32_t primitive_index;
     std::vector<Vec3> verts;  // welded positions
     std::vector<Triangle> tris;
-    std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> edges;  // directed edge → triangles
+    // Directed edges (a << 32 | b, triangle), sorted: all triangles with edge a→b.
+    std::vector<std::pair<uint64_t, uint32_t>> edges;
     double eps_dist = 0.0;
 
-    // Removes collinear vertices; false if the loop folds back on itself.
+    static uint64_t key(uint32_t a, uint32_t b) { return uint64_t(a) << 32 | b; }
+    // Triangles having the directed edge a→b: [first, last) in `edges`.
+    std::pair<const std::pair<uint64_t, uint32_t>*, const std::pair<uint64_t, uint32_t>*> with_edge(
+        uint32_t a, uint32_t b) const {
+        const uint64_t k = key(a, b);
+        auto lo = std::lower_bound(edges.begin(), edges.end(), std::make_pair(k, uint32_t(0)));
+        auto hi = lo;
+        while (hi != edges.end() && hi->first == k) ++hi;
+        return {edges.data() + (lo - edges.begin()), edges.data() + (hi - edges.begin())};
+    }
+
+    // Removes collinear vertices (passes until none is left); false if the
+    // loop folds back on itself or collapses.
     bool simplify(const std::vector<uint32_t>& loop, std::vector<uint32_t>* out) const {
-        *out = loop;
-        bool removed = true;
-        while (removed && out->size() >= 3) {
-            removed = false;
-            for (size_t i = 0; i < out->size(); ++i) {
-                const size_t m = out->size();
-                const Vec3& p = verts[(*out)[(i + m - 1) % m]];
-                const Vec3& c = verts[(*out)[i]];
-                const Vec3& q = verts[(*out)[(i + 1) % m]];
+        std::vector<uint32_t> cur = loop, kept;
+        for (;;) {
+            const size_t m = cur.size();
+            if (m < 3) return false;
+            kept.clear();
+            bool removed = false;
+            for (size_t i = 0; i < m; ++i) {
+                const Vec3& p = verts[kept.empty() ? cur[m - 1] : kept.back()];
+                const Vec3& c = verts[cur[i]];
+                const Vec3& q = verts[cur[(i + 1) % m]];
                 const Vec3 e1 = sub(c, p), e2 = sub(q, c);
-                const double l = length(e1) * length(e2);
-                if (length(cross(e1, e2)) <= kCollinearSin * l) {
+                if (length(cross(e1, e2)) <= kCollinearSin * length(e1) * length(e2)) {
                     if (dot(e1, e2) < 0.0) return false;  // spike
-                    out->erase(out->begin() + long(i));
                     removed = true;
-                    break;
+                    continue;
                 }
+                kept.push_back(cur[i]);
             }
+            cur.swap(kept);
+            if (!removed) break;
         }
-        return out->size() >= 3;
+        if (cur.size() < 3) return false;
+        *out = std::move(cur);
+        return true;
     }
 
     // Strictly convex and turning about n at every vertex.
@@ -133,28 +150,31 @@ struct LightBuilder {
     // The whole component as one polygon: exactly one boundary loop, convex
     // after removing collinear vertices, ≤ 8 vertices, same area.
     bool single_loop(const std::vector<uint32_t>& comp, const Vec3& n, std::vector<uint32_t>* out) const {
-        std::map<std::pair<uint32_t, uint32_t>, int> count;
+        std::vector<uint64_t> own;  // directed edges of the component, sorted
+        own.reserve(3 * comp.size());
         double tri_area = 0.0;
         for (uint32_t t : comp) {
             tri_area += tris[t].area;
-            for (int e = 0; e < 3; ++e) ++count[{tris[t].v[e], tris[t].v[(e + 1) % 3]}];
+            for (int e = 0; e < 3; ++e) own.push_back(key(tris[t].v[e], tris[t].v[(e + 1) % 3]));
         }
-        std::map<uint32_t, uint32_t> next;
-        size_t boundary = 0;
-        for (const auto& e : count) {
-            if (e.second != 1) return false;  // non-manifold
-            if (count.count({e.first.second, e.first.first})) continue;
-            if (next.count(e.first.first)) return false;  // pinched boundary
-            next[e.first.first] = e.first.second;
-            ++boundary;
+        std::sort(own.begin(), own.end());
+        if (std::adjacent_find(own.begin(), own.end()) != own.end()) return false;  // non-manifold
+        std::vector<std::pair<uint32_t, uint32_t>> next;  // boundary edges a→b, sorted by a
+        for (uint64_t e : own) {
+            const uint32_t a = uint32_t(e >> 32), b = uint32_t(e);
+            if (!std::binary_search(own.begin(), own.end(), key(b, a))) next.push_back({a, b});
         }
+        const size_t boundary = next.size();
         if (boundary < 3) return false;
+        for (size_t i = 1; i < boundary; ++i)
+            if (next[i].first == next[i - 1].first) return false;  // pinched boundary
         std::vector<uint32_t> loop;
-        uint32_t v = next.begin()->first;
+        loop.reserve(boundary);
+        uint32_t v = next[0].first;
         for (size_t i = 0; i < boundary; ++i) {
             loop.push_back(v);
-            auto it = next.find(v);
-            if (it == next.end()) return false;
+            auto it = std::lower_bound(next.begin(), next.end(), std::make_pair(v, uint32_t(0)));
+            if (it == next.end() || it->first != v) return false;
             v = it->second;
         }
         if (v != loop[0]) return false;  // more than one loop (holes, islands)
@@ -167,22 +187,21 @@ struct LightBuilder {
 
     // Greedy growth of convex pieces across shared edges.
     bool greedy(const std::vector<uint32_t>& comp, const Vec3& n) {
-        std::map<uint32_t, bool> remaining;
-        for (uint32_t t : comp) remaining[t] = true;
+        std::vector<char> remaining(tris.size(), 0);
+        for (uint32_t t : comp) remaining[t] = 1;
         for (uint32_t seed : comp) {
             if (!remaining[seed]) continue;
-            remaining[seed] = false;
+            remaining[seed] = 0;
             std::vector<uint32_t> loop(tris[seed].v, tris[seed].v + 3);
             bool grown = true;
             while (grown) {
                 grown = false;
                 for (size_t i = 0; i < loop.size() && !grown; ++i) {
                     const uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
-                    auto it = edges.find({b, a});
-                    if (it == edges.end()) continue;
-                    for (uint32_t u : it->second) {
-                        auto r = remaining.find(u);
-                        if (r == remaining.end() || !r->second) continue;
+                    const auto range = with_edge(b, a);
+                    for (auto it = range.first; it != range.second; ++it) {
+                        const uint32_t u = it->second;
+                        if (!remaining[u]) continue;
                         const Triangle& t = tris[u];
                         uint32_t c = t.v[0] + t.v[1] + t.v[2] - a - b;
                         const size_t m = loop.size();
@@ -201,7 +220,7 @@ struct LightBuilder {
                         if (!simplify(cand, &simple) || simple.size() > kMaxVerts || !convex(simple, n))
                             continue;
                         loop = cand;
-                        r->second = false;
+                        remaining[u] = 0;
                         grown = true;
                         break;
                     }
@@ -216,17 +235,18 @@ struct LightBuilder {
 
     bool run() {
         const Primitive& p = scene.primitives[primitive_index];
-        std::map<std::array<float, 3>, uint32_t> weld;
+        std::map<std::array<float, 3>, uint32_t> weld;  // exact positions (+0 == -0)
         std::vector<uint32_t> id(p.positions.size() / 3);
         Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
         for (size_t i = 0; i < id.size(); ++i) {
-            std::array<float, 3> key = {p.positions[3 * i], p.positions[3 * i + 1], p.positions[3 * i + 2]};
-            auto ins = weld.insert({key, uint32_t(verts.size())});
+            std::array<float, 3> pk = {p.positions[3 * i] + 0.0f, p.positions[3 * i + 1] + 0.0f,
+                                       p.positions[3 * i + 2] + 0.0f};
+            auto ins = weld.insert({pk, uint32_t(verts.size())});
             if (ins.second) {
-                verts.push_back({key[0], key[1], key[2]});
+                verts.push_back({pk[0], pk[1], pk[2]});
                 for (int k = 0; k < 3; ++k) {
-                    lo[size_t(k)] = std::min(lo[size_t(k)], double(key[size_t(k)]));
-                    hi[size_t(k)] = std::max(hi[size_t(k)], double(key[size_t(k)]));
+                    lo[size_t(k)] = std::min(lo[size_t(k)], double(pk[size_t(k)]));
+                    hi[size_t(k)] = std::max(hi[size_t(k)], double(pk[size_t(k)]));
                 }
             }
             id[i] = ins.first->second;
@@ -241,9 +261,10 @@ struct LightBuilder {
             if (!(l > 0.0)) continue;
             tri.n = scaled(c, 1.0 / l);
             tri.area = 0.5 * l;
-            for (int e = 0; e < 3; ++e) edges[{tri.v[e], tri.v[(e + 1) % 3]}].push_back(uint32_t(tris.size()));
+            for (int e = 0; e < 3; ++e) edges.push_back({key(tri.v[e], tri.v[(e + 1) % 3]), uint32_t(tris.size())});
             tris.push_back(tri);
         }
+        std::sort(edges.begin(), edges.end());
         // Connected components of coplanar, consistently wound triangles.
         std::vector<int> comp_of(tris.size(), -1);
         for (uint32_t s = 0; s < tris.size(); ++s) {
@@ -254,9 +275,9 @@ struct LightBuilder {
                 const uint32_t t = stack.back();
                 stack.pop_back();
                 for (int e = 0; e < 3; ++e) {
-                    auto it = edges.find({tris[t].v[(e + 1) % 3], tris[t].v[e]});
-                    if (it == edges.end()) continue;
-                    for (uint32_t u : it->second) {
+                    const auto range = with_edge(tris[t].v[(e + 1) % 3], tris[t].v[e]);
+                    for (auto it = range.first; it != range.second; ++it) {
+                        const uint32_t u = it->second;
                         if (comp_of[u] >= 0 || !coplanar(tris[s], tris[u])) continue;
                         comp_of[u] = int(s);
                         comp.push_back(u);

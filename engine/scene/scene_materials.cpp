@@ -196,10 +196,12 @@ struct TextureTable {
     }
 
     // Returns false on failure; *out = -1 when the texture is unusable.
-    bool get(int material, const char* slot_name, int texture_index, int tex_coord, bool srgb,
-             int32_t* out) {
+    bool get(int material, const char* slot_name, const tinygltf::ExtensionMap& info_extensions,
+             int texture_index, int tex_coord, bool srgb, int32_t* out) {
         *out = -1;
         if (texture_index < 0) return true;
+        if (info_extensions.count("KHR_texture_transform"))
+            ctx.warn("material %d: %s: KHR_texture_transform ignored", material, slot_name);
         if (size_t(texture_index) >= model.textures.size())
             return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
                             "material %d: %s.index %d does not exist (%zu textures)", material,
@@ -277,13 +279,14 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
     m.alpha_cutoff = float(src.alphaCutoff);
     m.normal_scale = float(src.normalTexture.scale);
 
-    if (!textures.get(index, "baseColorTexture", pbr.baseColorTexture.index,
+    if (!textures.get(index, "baseColorTexture", pbr.baseColorTexture.extensions, pbr.baseColorTexture.index,
                       pbr.baseColorTexture.texCoord, true, &m.base_color_texture) ||
-        !textures.get(index, "metallicRoughnessTexture", pbr.metallicRoughnessTexture.index,
-                      pbr.metallicRoughnessTexture.texCoord, false, &m.metallic_roughness_texture) ||
-        !textures.get(index, "normalTexture", src.normalTexture.index, src.normalTexture.texCoord,
-                      false, &m.normal_texture) ||
-        !textures.get(index, "emissiveTexture", src.emissiveTexture.index,
+        !textures.get(index, "metallicRoughnessTexture", pbr.metallicRoughnessTexture.extensions,
+                      pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false,
+                      &m.metallic_roughness_texture) ||
+        !textures.get(index, "normalTexture", src.normalTexture.extensions, src.normalTexture.index,
+                      src.normalTexture.texCoord, false, &m.normal_texture) ||
+        !textures.get(index, "emissiveTexture", src.emissiveTexture.extensions, src.emissiveTexture.index,
                       src.emissiveTexture.texCoord, true, &m.emission_texture))
         return false;
     if (src.occlusionTexture.index >= 0)

@@ -62,16 +62,29 @@ RTPBR_FN float3 F_Conductor(float cosThetaI, float3 eta, float3 k) {
     float cos2 = c * c;
     float sin2 = 1.0f - cos2;
     float3 eta2 = eta * eta;
-    float3 k2 = k * k;
-    float3 t0 = eta2 - k2 - RTPBR_F3(sin2);
-    float3 a2plusb2 = sqrt(max(t0 * t0 + 4.0f * eta2 * k2, RTPBR_F3(0.0f)));
-    float3 t1 = a2plusb2 + RTPBR_F3(cos2);
-    float3 a = sqrt(max(0.5f * (a2plusb2 + t0), RTPBR_F3(0.0f)));
-    float3 t2 = 2.0f * c * a;
-    float3 rs = (t1 - t2) / max(t1 + t2, RTPBR_F3(1e-30f));
-    float3 t3 = cos2 * a2plusb2 + RTPBR_F3(sin2 * sin2);
-    float3 t4 = t2 * sin2;
-    float3 rp = rs * (t3 - t4) / max(t3 + t4, RTPBR_F3(1e-30f));
+    float3 etak2 = eta2 * (k * k);
+    // a + i b = sqrt(eta^2 - k^2 - sin^2 + 2 i eta k): a^2 + b^2 = |t0 + 2 i eta k|, a b = eta k.
+    // The larger of a^2, b^2 comes from the sum, the smaller from the product, and the
+    // differences below are written as sums of squares: no cancellation in float (the
+    // textbook form loses up to 1e-3 when t0 < 0 with small k, or when F is small).
+    float3 t0 = eta2 - (k * k) - RTPBR_F3(sin2);
+    float3 a2plusb2 = sqrt(t0 * t0 + 4.0f * etak2);
+    float3 hi = 0.5f * (a2plusb2 + abs(t0));
+    float3 lo = etak2 / max(hi, RTPBR_F3(1e-30f));
+    // a^2 >= b^2 where t0 >= 0 (a select per channel: HLSL has no vector ternary, and lerp
+    // would round the small one against the large one).
+    float3 a2 = float3(t0.x >= 0.0f ? hi.x : lo.x, t0.y >= 0.0f ? hi.y : lo.y, t0.z >= 0.0f ? hi.z : lo.z);
+    float3 b2 = float3(t0.x >= 0.0f ? lo.x : hi.x, t0.y >= 0.0f ? lo.y : hi.y, t0.z >= 0.0f ? lo.z : hi.z);
+    float3 a = sqrt(a2);
+    float3 am = a - RTPBR_F3(c);
+    float3 ap = a + RTPBR_F3(c);
+    // rs = (a^2 + b^2 + cos^2 - 2 a cos) / (a^2 + b^2 + cos^2 + 2 a cos)
+    float3 rs = (am * am + b2) / max(ap * ap + b2, RTPBR_F3(1e-30f));
+    // rp = rs (cos^2 (a^2 + b^2) + sin^4 - 2 a cos sin^2) / (... + 2 a cos sin^2)
+    float3 em = c * a - RTPBR_F3(sin2);
+    float3 ep = c * a + RTPBR_F3(sin2);
+    float3 bc2 = b2 * cos2;
+    float3 rp = rs * (em * em + bc2) / max(ep * ep + bc2, RTPBR_F3(1e-30f));
     return saturate(0.5f * (rp + rs));
 }
 

@@ -93,16 +93,19 @@ RTPBR_FN float D_GTR(float NoH, float alpha, float gamma) {
         return 0.0f;
     float c = min(NoH, 1.0f);
     float g = gamma > 0.5f ? min(gamma, 10.0f) : 0.5f;
-    float a2 = sq(Alpha_Clamp(alpha));
-    float x = a2 - 1.0f;
+    float ac = Alpha_Clamp(alpha);
+    float x = (ac - 1.0f) * (ac + 1.0f); // alpha^2 - 1 without cancellation
     if (abs(x) < 1e-5f) // alpha = 1: the uniform distribution of normals, D = 1/pi.
         return RTPBR_INV_PI;
-    float L = log(a2);
-    // (gamma - 1) / (1 - exp((1 - gamma) L)) -> 1 / L as gamma -> 1; series for small y.
+    // L = log(alpha^2) = log1p(x); near alpha = 1 by its series (GPU log is only absolutely
+    // accurate near 1, and x / L must stay accurate there).
+    float L = abs(x) < 1e-2f ? x * (1.0f - x * (0.5f - x * (1.0f / 3.0f - 0.25f * x))) : log(ac * ac);
+    // (gamma - 1) / (1 - exp((1 - gamma) L)) -> 1 / L as gamma -> 1; series for small y
+    // (1 - exp(-y) = y (1 - y/2 + y^2/6 - y^3/24 + y^4/120 ...), truncation < 2e-8 at 0.1).
     float y = (g - 1.0f) * L;
     float ratio;
-    if (abs(y) < 1e-3f)
-        ratio = 1.0f / (L * (1.0f - 0.5f * y + y * y / 6.0f));
+    if (abs(y) < 0.1f)
+        ratio = 1.0f / (L * (1.0f - y * (0.5f - y * (1.0f / 6.0f - y * (1.0f / 24.0f - y / 120.0f)))));
     else
         ratio = (g - 1.0f) / (1.0f - exp(-y));
     float norm = ratio * x / RTPBR_PI;

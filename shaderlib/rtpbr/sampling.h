@@ -66,10 +66,15 @@ RTPBR_FN float3 Sample_GGX_VNDF(float3 wo, float alphaX, float alphaY, float2 u)
     float ay = Alpha_Clamp(alphaY);
     float3 wStd = normalize(float3(wo.x * ax, wo.y * ay, wo.z));
     float phi = RTPBR_TWO_PI * u.x;
-    float z = (1.0f - u.y) * (1.0f + wStd.z) - wStd.z;
-    float sinTheta = safe_sqrt(1.0f - z * z);
-    float3 c = float3(sinTheta * cos(phi), sinTheta * sin(phi), z);
-    float3 hStd = c + wStd;
+    // c is uniform on the cap z >= -wStd.z: z = (1 - u.y) (1 + wStd.z) - wStd.z, written so
+    // that nothing cancels near the cap's poles: 1 - z = u.y (1 + wStd.z) and
+    // 1 + z = (1 - wStd.z) + (1 - u.y) (1 + wStd.z), with 1 - wStd.z = (x^2 + y^2) / (1 + wStd.z).
+    float onePlusW = 1.0f + wStd.z;
+    float oneMinusW = (wStd.x * wStd.x + wStd.y * wStd.y) / onePlusW;
+    float sinTheta = safe_sqrt(u.y * onePlusW * (oneMinusW + (1.0f - u.y) * onePlusW));
+    // hStd = c + wStd, c = (sinTheta cos phi, sinTheta sin phi, z); hStd.z = z + wStd.z.
+    float3 hStd = float3(sinTheta * cos(phi) + wStd.x, sinTheta * sin(phi) + wStd.y,
+                         (1.0f - u.y) * (1.0f + wStd.z));
     float3 h = float3(hStd.x * ax, hStd.y * ay, max(hStd.z, 0.0f));
     float l2 = dot(h, h);
     if (!(l2 > 1e-20f))
@@ -125,7 +130,9 @@ RTPBR_FN float Beckmann_SampleSlopeX(float mu, float u) {
             lo = x;
         float dg = 2.0f * (mu - x) * exp(-x * x) / RTPBR_SQRT_PI;
         float xn = x - g / dg;
-        if (!(xn > lo && xn < hi)) // Newton left the bracket (or dg = 0): bisect
+        // Newton left the bracket (or dg = 0): bisect. The bounds are inclusive: at an exact
+        // root (g = 0) the bracket closes on x itself, and x must be kept.
+        if (!(xn >= lo && xn <= hi))
             xn = 0.5f * (lo + hi);
         if (abs(xn - x) < 1e-6f) {
             x = xn;
@@ -142,13 +149,15 @@ RTPBR_FN float3 Sample_Beckmann_VNDF(float3 wo, float alphaX, float alphaY, floa
     float ax = Alpha_Clamp(alphaX);
     float ay = Alpha_Clamp(alphaY);
     float3 wStd = normalize(float3(wo.x * ax, wo.y * ay, wo.z));
-    float sinTheta = safe_sqrt(1.0f - wStd.z * wStd.z);
+    // sin(theta) from the tangential components (1 - z^2 cancels near the normal, where it
+    // would lose the azimuth of wo).
+    float sinTheta = sqrt(wStd.x * wStd.x + wStd.y * wStd.y);
     float mu = sinTheta > 1e-6f ? wStd.z / sinTheta : 1e6f;
     float sx = Beckmann_SampleSlopeX(mu, u.x);
     float sy = rtpbr_erfinv(2.0f * clamp(u.y, 1e-6f, 1.0f - 1e-6f) - 1.0f);
     float cosPhi = 1.0f;
     float sinPhi = 0.0f;
-    if (sinTheta > 1e-6f) {
+    if (sinTheta > 0.0f) {
         cosPhi = wStd.x / sinTheta;
         sinPhi = wStd.y / sinTheta;
     }
@@ -197,7 +206,8 @@ RTPBR_FN float3 Sample_CosineHemisphere(float2 u) {
     }
     float x = r * cos(phi);
     float y = r * sin(phi);
-    return float3(x, y, safe_sqrt(1.0f - x * x - y * y));
+    // z = sqrt(1 - r^2), not sqrt(1 - x^2 - y^2): no cancellation at the rim.
+    return float3(x, y, safe_sqrt((1.0f - abs(r)) * (1.0f + abs(r))));
 }
 
 RTPBR_FN float PDF_CosineHemisphere(float3 w) {

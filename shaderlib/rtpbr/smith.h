@@ -31,7 +31,17 @@ RTPBR_FN float rtpbr_erfc(float x) {
     return x >= 0.0f ? r : 2.0f - r;
 }
 
-RTPBR_FN float rtpbr_erf(float x) { return 1.0f - rtpbr_erfc(x); }
+// Near 0, 1 - erfc(x) cancels (only absolute accuracy): the Maclaurin series there
+// (Abramowitz & Stegun 7.1.5; truncation < 1e-9 relative for |x| < 0.5).
+RTPBR_FN float rtpbr_erf(float x) {
+    if (abs(x) < 0.5f) {
+        float x2 = x * x;
+        return 1.12837916709551257390f * x *
+               (1.0f + x2 * (-1.0f / 3.0f + x2 * (0.1f + x2 * (-1.0f / 42.0f + x2 * (1.0f / 216.0f +
+               x2 * (-1.0f / 1320.0f + x2 * (1.0f / 9360.0f)))))));
+    }
+    return 1.0f - rtpbr_erfc(x);
+}
 
 // ---- GGX ------------------------------------------------------------------------------------
 

@@ -193,6 +193,21 @@ static void test_hexagon_fan_is_one_light(void** state) {
     rtpbr_scene_destroy(scene);
 }
 
+static void test_unindexed_quad_is_one_light(void** state) {
+    (void)state;
+    /* Two triangles with their own copies of the shared corners (6 vertices,
+     * indices 0..5): vertices are welded by position, giving one quad. */
+    const float pos[] = {0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 0, 0, 2, 1, 0, 0, 1, 0};
+    const uint32_t idx[] = {0, 1, 2, 3, 4, 5};
+    rtpbr_scene_result r;
+    rtpbr_scene* scene = load_emissive("unindexed", pos, 6, idx, 6, NULL, &r);
+    assert_int_equal(scene->light_count, 1);
+    assert_int_equal(scene->lights[0].vertex_count, 4);
+    assert_convex_ccw(&scene->lights[0]);
+    assert_near(scene->lights[0].area, 2.0, EPS, "2×1 quad area");
+    rtpbr_scene_destroy(scene);
+}
+
 static void test_non_coplanar_triangles_are_separate(void** state) {
     (void)state;
     /* Triangles folded at 90° along the shared edge (0,0,0)-(0,1,0):
@@ -437,16 +452,73 @@ static void test_glb_and_memory(void** state) {
     free(bin);
 }
 
+static void test_sparse_positions(void** state) {
+    (void)state;
+    /* Accessor 0 = the +Z unit quad with vertex 2 replaced by (3,2,0) through
+     * a sparse substitution (uint16 index 2); accessor 2 = a triangle made
+     * only of sparse values over an implicit zero base. */
+    const float quad[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    const uint32_t idx[] = {0, 1, 2, 0, 2, 3};
+    const uint16_t sp_idx[] = {2, 0};
+    const float sp_val[] = {3, 2, 0};
+    const uint16_t tri_idx[] = {1, 2};
+    const float tri_val[] = {1, 0, 0, 0, 1, 0};
+    ts_bin bin = {.size = 0};
+    const size_t o_pos = ts_bin_append(&bin, quad, sizeof quad), o_idx = ts_bin_append(&bin, idx, sizeof idx);
+    const size_t o_si = ts_bin_append(&bin, sp_idx, sizeof sp_idx), o_sv = ts_bin_append(&bin, sp_val, sizeof sp_val);
+    const size_t o_ti = ts_bin_append(&bin, tri_idx, sizeof tri_idx), o_tv = ts_bin_append(&bin, tri_val, sizeof tri_val);
+    char* uri = ts_data_uri("application/octet-stream", bin.bytes, bin.size);
+    const char* fmt =
+        "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"uri\":\"%s\",\"byteLength\":%zu}],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":48},"
+        "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":24},{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":4},"
+        "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":12},{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":4},"
+        "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":24}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
+        "\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":2,\"componentType\":5123},\"values\":{\"bufferView\":3}}},"
+        "{\"bufferView\":1,\"componentType\":5125,\"count\":6,\"type\":\"SCALAR\"},"
+        "{\"componentType\":5126,\"count\":%d,\"type\":\"VEC3\","
+        "\"sparse\":{\"count\":2,\"indices\":{\"bufferView\":4,\"componentType\":5123},\"values\":{\"bufferView\":5}}}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]},"
+        "{\"primitives\":[{\"attributes\":{\"POSITION\":2}}]}],"
+        "\"nodes\":[{\"mesh\":0},{\"mesh\":1}],\"scenes\":[{\"nodes\":[0,1]}]}";
+    char* json = ts_format(fmt, uri, bin.size, o_pos, o_idx, o_si, o_sv, o_ti, o_tv, 3);
+    const char* dir = ts_dir("sparse");
+    char err[512];
+    rtpbr_scene* scene = NULL;
+    rtpbr_scene_result r = ts_load_text(dir, "sparse.gltf", json, NULL, &scene, err, sizeof err);
+    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s: %s", rtpbr_scene_result_string(r), err);
+    const float* p = scene->primitives[0].positions;
+    assert_near(p[6], 3.0, 0, "sparse x");
+    assert_near(p[7], 2.0, 0, "sparse y");
+    assert_near(p[3], 1.0, 0, "untouched vertex 1");
+    const float* t = scene->primitives[1].positions;
+    const float want[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    for (int k = 0; k < 9; ++k) assert_near(t[k], want[k], 0, "zero base + sparse");
+    assert_int_equal(scene->primitives[1].index_count, 3);
+    rtpbr_scene_destroy(scene);
+    free(json);
+    /* count 2 < sparse index 2: rejected, naming the accessor */
+    json = ts_format(fmt, uri, bin.size, o_pos, o_idx, o_si, o_sv, o_ti, o_tv, 2);
+    r = ts_load_text(dir, "sparse_bad.gltf", json, NULL, &scene, err, sizeof err);
+    assert_int_equal(r, RTPBR_SCENE_ERROR_INVALID_ACCESSOR);
+    assert_non_null(strstr(err, "accessor 2"));
+    free(json);
+    free(uri);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_quad_light_over_plane),
         cmocka_unit_test(test_hexagon_fan_is_one_light),
+        cmocka_unit_test(test_unindexed_quad_is_one_light),
         cmocka_unit_test(test_non_coplanar_triangles_are_separate),
         cmocka_unit_test(test_concave_region_splits_into_convex_lights),
         cmocka_unit_test(test_non_emissive_and_degenerate),
         cmocka_unit_test(test_mirrored_node_keeps_ccw_winding),
         cmocka_unit_test(test_ext_lights_area),
         cmocka_unit_test(test_glb_and_memory),
+        cmocka_unit_test(test_sparse_positions),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

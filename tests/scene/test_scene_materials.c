@@ -257,11 +257,64 @@ static void test_textures_and_tangents(void** state) {
     free(png);
 }
 
+static void test_glb_buffer_view_image(void** state) {
+    (void)state;
+    /* GLB: quad geometry + a 3×1 PNG in bufferView 3 of the BIN chunk. */
+    const unsigned char px[12] = {10, 20, 30, 255, 40, 50, 60, 255, 70, 80, 90, 0};
+    size_t png_size;
+    unsigned char* png = ts_png(px, 3, 1, &png_size);
+    ts_scene s = {.positions = kQuad, .vertex_count = 4, .indices = kQuadIdx, .index_count = 6, .texcoords = kQuadUv};
+    ts_bin bin;
+    ts_scene_bin(&s, &bin);
+    const size_t png_at = ts_bin_append(&bin, png, png_size);
+    const char* fmt =
+        "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":%zu}],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":48},{\"buffer\":0,\"byteOffset\":48,\"byteLength\":24},"
+        "{\"buffer\":0,\"byteOffset\":72,\"byteLength\":32},{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\"},"
+        "{\"bufferView\":1,\"componentType\":5125,\"count\":6,\"type\":\"SCALAR\"},"
+        "{\"bufferView\":2,\"componentType\":5126,\"count\":4,\"type\":\"VEC2\"}],"
+        "\"images\":[{\"bufferView\":3,\"mimeType\":\"image/png\"}],\"textures\":[{\"source\":0}],"
+        "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":2},\"indices\":1,"
+        "\"material\":0}]}],\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]}";
+    char* json = ts_format(fmt, bin.size, png_at, png_size);
+    size_t glb_size;
+    unsigned char* glb = ts_glb(json, bin.bytes, bin.size, &glb_size);
+    char err[512];
+    rtpbr_scene_load_desc desc = {0};
+    desc.error_message = err;
+    desc.error_message_size = sizeof err;
+    rtpbr_scene* scene = NULL;
+    rtpbr_scene_result r = rtpbr_scene_load_memory(glb, glb_size, &desc, &scene);
+    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s: %s", rtpbr_scene_result_string(r), err);
+    assert_int_equal(scene->texture_count, 1);
+    assert_int_equal(scene->textures[0].width, 3);
+    assert_int_equal(scene->textures[0].height, 1);
+    assert_memory_equal(scene->textures[0].pixels, px, 12);
+    assert_true(scene->textures[0].srgb);
+    rtpbr_scene_destroy(scene);
+    free(json);
+    free(glb);
+
+    /* The image's bufferView reaches past the buffer: caught before decoding. */
+    json = ts_format(fmt, bin.size, png_at, png_size + 4096);
+    glb = ts_glb(json, bin.bytes, bin.size, &glb_size);
+    r = rtpbr_scene_load_memory(glb, glb_size, &desc, &scene);
+    assert_int_equal(r, RTPBR_SCENE_ERROR_INVALID_ACCESSOR);
+    assert_null(scene);
+    assert_non_null(strstr(err, "image 0"));
+    free(json);
+    free(glb);
+    free(png);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_khr_extensions),
         cmocka_unit_test(test_defaults_and_disney_extras),
         cmocka_unit_test(test_textures_and_tangents),
+        cmocka_unit_test(test_glb_buffer_view_image),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -99,6 +99,24 @@ char* ts_scene_json(const ts_scene* s) {
     return json;
 }
 
+unsigned char* ts_glb(const char* json, const void* bin, size_t bin_size, size_t* size) {
+    const size_t jlen = (strlen(json) + 3) / 4 * 4, blen = (bin_size + 3) / 4 * 4;
+    const size_t total = 20 + jlen + (bin ? 8 + blen : 0);
+    unsigned char* glb = calloc(1, total);
+    if (!glb) abort();
+    const uint32_t h[5] = {0x46546C67u, 2, (uint32_t)total, (uint32_t)jlen, 0x4E4F534Au}; /* "glTF", "JSON" */
+    memcpy(glb, h, 20);
+    memset(glb + 20, ' ', jlen);
+    memcpy(glb + 20, json, strlen(json));
+    if (bin) {
+        const uint32_t bh[2] = {(uint32_t)blen, 0x004E4942u}; /* "BIN\0" */
+        memcpy(glb + 20 + jlen, bh, 8);
+        memcpy(glb + 28 + jlen, bin, bin_size);
+    }
+    *size = total;
+    return glb;
+}
+
 /* ---- PNG (ISO/IEC 15948): signature, IHDR, one IDAT with stored deflate
  * blocks (RFC 1950/1951), IEND. CRC-32 and Adler-32 computed bitwise. */
 static uint32_t crc32_update(uint32_t crc, const unsigned char* p, size_t n) {

@@ -48,6 +48,9 @@ char* ts_scene_json(const ts_scene* s);
 /* Binary buffer of a ts_scene (positions then indices). */
 void ts_scene_bin(const ts_scene* s, ts_bin* bin);
 
+/* GLB container (glTF 2.0 §4.4) of json + optional BIN chunk (malloc'd). */
+unsigned char* ts_glb(const char* json, const void* bin, size_t bin_size, size_t* size);
+
 /* RGBA8 image as an uncompressed (stored deflate) PNG (malloc'd). */
 unsigned char* ts_png(const unsigned char* rgba, uint32_t width, uint32_t height, size_t* size);
 

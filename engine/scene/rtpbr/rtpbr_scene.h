@@ -23,11 +23,13 @@
  * - Triangles are counter-clockwise seen from the side their geometric normal
  *   points to (glTF front face). Nodes with a negative-determinant transform
  *   get their index winding flipped so this stays true in world space.
- * - Only TEXCOORD_0 is read. Skins, morph targets, KHR_texture_transform and
- *   non-triangle primitive modes (points, lines) are ignored with a warning;
+ * - Sparse accessors are applied. Only TEXCOORD_0 is read. Skins, morph
+ *   targets, KHR_texture_transform, occlusion textures and non-triangle
+ *   primitive modes (points, lines) are ignored with a warning;
  *   TRIANGLE_STRIP and TRIANGLE_FAN are converted to triangle lists.
- * - Degenerate triangles (repeated index, or zero area in world space) are
- *   dropped from the index list with one warning per primitive.
+ * - Degenerate triangles (repeated index, or |e1×e2| <= 1e-7·|e1|·|e2| in
+ *   world space) are dropped from the index list, one warning per primitive.
+ * - Scene: glTF "scene" (default 0); without scenes, every root node.
  * - Input is untrusted: every accessor, buffer view, index and reference is
  *   validated; external files resolve only inside the folder of the .gltf/.glb
  *   (or desc.base_dir); failures return a specific result code and a message

@@ -1,0 +1,147 @@
+// rtpbr GPU test kernel: one source that says what the GPU (GLSL and HLSL builds) and the
+// CPU (C++ build) both evaluate.
+//
+//   float rtpbr_test_eval(float4 a, float4 b, uint j)
+//
+// maps one input tuple (a, b: eight uniforms in [0, 1], made on the host by a fixed-seed PRNG
+// with a share of exact 0 / 1 / near-0 / near-1 values, see test_gpu.c) and an output index
+// j in [0, RTPBR_TEST_OUTPUTS) to one value: output j is one public shaderlib function (or one
+// component of a vector result) evaluated at arguments derived from (a, b).
+//
+// The outputs are listed in kernel_cases.h, one section per shaderlib header
+// (cases/<header>.inc), as RTPBR_TEST_CASE(name, expression) lines. This file includes that
+// list several times with different meanings of RTPBR_TEST_CASE: the evaluation chain here,
+// and for C++ only the output count and the output names. Adding a header: see kernel_cases.h.
+//
+// Arguments are derived with + - * / and sqrt only (no transcendentals, no normalize), so
+// that both sides see the same inputs up to rounding: the test compares the library, not the
+// argument mapping. `precise` keeps GPU compilers from contracting the derivations into FMAs.
+#ifndef RTPBR_TEST_KERNEL_H
+#define RTPBR_TEST_KERNEL_H
+
+#include "rtpbr/microfacet.h"
+#include "rtpbr/sampling.h"
+
+#if defined(RTPBR_CPP)
+#define RTPBR_TEST_PRECISE
+#else
+#define RTPBR_TEST_PRECISE precise
+#endif
+
+RTPBR_NAMESPACE_BEGIN
+
+// The largest float below 1.
+RTPBR_CONST float RTPBR_TEST_BELOW_ONE = 0.99999994f;
+
+// The arguments every case draws from. Domains are those of the library's documentation.
+struct RtpbrTestArgs {
+    float c0, c1, c2, c3; // cosines in [0, 1] (a.x, a.y, b.x, b.y), exact 0 and 1 included
+    float sc;             // signed cosine in [-1, 1] (2 a.x - 1)
+    float x;              // real argument in [-4, 4] (erf, erfc)
+    float p;              // open interval (-1, 1) (erfinv)
+    float perceptual;     // perceptual roughness in [0, 1] (a.z)
+    float alpha;          // [RTPBR_MIN_ALPHA, 1], denser near the minimum (a.z^2)
+    float alphaX, alphaY; // anisotropic pair (a.z, a.w)
+    float aniso;          // anisotropy in [0, 1] (a.w)
+    float gamma;          // GTR exponent: [0.5, 4], 10% of tuples within 5e-5 of 1 (series path)
+    float eta;            // dielectric relative IOR in [1.01, 3]
+    float3 etaC;          // conductor IOR per channel in [0.1, 3]
+    float3 kC;            // conductor extinction per channel in [0, 8]
+    float f0, f90;        // Schlick parameters in [0, 1]
+    float3 f0C;           // coloured f0 in [0, 1]
+    float lambdaO, lambdaI; // Smith Lambda values in [0, 1e3]
+    float beckA;          // Beckmann a = cot(theta) / alpha in [0, 10]
+    float mu;             // cot(theta) of a direction, [0, 1e6]
+    float3 wo, wi, wm;    // local directions (n = +z), z = c0, c1, a.w; azimuths from b.z, b.w, b.x
+    float2 u;             // a sample pair (b.x, b.y) in [0, 1) (the samplers' domain)
+};
+
+// A direction with cosine c to +z and an azimuth picked by t in [0, 1] through the rational
+// parametrisation of the circle by q = tan(phi / 2) (two half circles, t < 0.5 and t >= 0.5).
+RTPBR_FN float3 rtpbr_test_dir(float c, float t) {
+    RTPBR_TEST_PRECISE float v = 4.0f * t;
+    RTPBR_TEST_PRECISE float sgn = v < 2.0f ? 1.0f : -1.0f;
+    RTPBR_TEST_PRECISE float q = v < 2.0f ? v - 1.0f : v - 3.0f;
+    RTPBR_TEST_PRECISE float d = 1.0f + q * q;
+    RTPBR_TEST_PRECISE float cosPhi = sgn * (1.0f - q * q) / d;
+    RTPBR_TEST_PRECISE float sinPhi = sgn * (2.0f * q) / d;
+    RTPBR_TEST_PRECISE float s = sqrt(max(1.0f - c * c, 0.0f));
+    return float3(s * cosPhi, s * sinPhi, c);
+}
+
+RTPBR_FN float rtpbr_test_lerp(float lo, float hi, float t) {
+    RTPBR_TEST_PRECISE float r = lo + (hi - lo) * t;
+    return r;
+}
+
+RTPBR_FN RtpbrTestArgs rtpbr_test_args(float4 a, float4 b) {
+    RtpbrTestArgs t;
+    t.c0 = a.x;
+    t.c1 = a.y;
+    t.c2 = b.x;
+    t.c3 = b.y;
+    t.sc = rtpbr_test_lerp(-1.0f, 1.0f, a.x);
+    t.x = rtpbr_test_lerp(-4.0f, 4.0f, a.x);
+    t.p = rtpbr_test_lerp(-0.999f, 0.999f, a.y);
+    t.perceptual = a.z;
+    t.alpha = rtpbr_test_lerp(RTPBR_MIN_ALPHA, 1.0f, a.z * a.z);
+    t.alphaX = t.alpha;
+    t.alphaY = rtpbr_test_lerp(RTPBR_MIN_ALPHA, 1.0f, a.w * a.w);
+    t.aniso = a.w;
+    if (b.w < 0.1f)
+        t.gamma = rtpbr_test_lerp(1.0f - 5e-5f, 1.0f + 5e-5f, b.w * 10.0f);
+    else
+        t.gamma = rtpbr_test_lerp(0.5f, 4.0f, b.w);
+    t.eta = rtpbr_test_lerp(1.01f, 3.0f, b.z);
+    t.etaC = float3(rtpbr_test_lerp(0.1f, 3.0f, b.z), rtpbr_test_lerp(0.1f, 3.0f, b.w),
+                    rtpbr_test_lerp(0.1f, 3.0f, a.w));
+    t.kC = float3(8.0f * b.x, 8.0f * b.y, 8.0f * a.z);
+    t.f0 = b.z;
+    t.f90 = b.w;
+    t.f0C = float3(b.z, b.w, a.w);
+    t.lambdaO = 1e3f * a.x * a.x;
+    t.lambdaI = 1e3f * a.y * a.y;
+    t.beckA = 10.0f * a.x;
+    RTPBR_TEST_PRECISE float s0 = sqrt(max(1.0f - a.x * a.x, 0.0f));
+    t.mu = s0 > 1e-6f ? a.x / s0 : 1e6f;
+    t.wo = rtpbr_test_dir(a.x, b.z);
+    t.wi = rtpbr_test_dir(a.y, b.w);
+    t.wm = rtpbr_test_dir(a.w, b.x);
+    t.u = float2(min(b.x, RTPBR_TEST_BELOW_ONE), min(b.y, RTPBR_TEST_BELOW_ONE));
+    return t;
+}
+
+// Each case assigns instead of returning early: lavapipe (Mesa 22.3, gallivm) miscompiled the
+// early-return form of this chain (outputs past ~75 came out wrong, the same SPIR-V with fewer
+// cases was right); returns are lowered to nested ifs and gallivm's control-flow nesting is
+// limited (LP_MAX_TGSI_NESTING = 80), the likely cause. Keep the chain flat.
+RTPBR_FN float rtpbr_test_eval(float4 a, float4 b, uint j) {
+    RtpbrTestArgs t = rtpbr_test_args(a, b);
+    uint n = 0u;
+    float r = 0.0f;
+#define RTPBR_TEST_CASE(name, expr) \
+    if (j == n)                     \
+        r = (expr);                 \
+    n++;
+#include "kernel_cases.h"
+#undef RTPBR_TEST_CASE
+    return r;
+}
+
+RTPBR_NAMESPACE_END
+
+#if defined(RTPBR_CPP)
+// The number of outputs and their names (for the host's report), from the same list.
+#define RTPBR_TEST_CASE(name, expr) +1
+RTPBR_CONST unsigned RTPBR_TEST_OUTPUTS = 0u
+#include "kernel_cases.h"
+    ;
+#undef RTPBR_TEST_CASE
+#define RTPBR_TEST_CASE(name, expr) #name,
+static const char *const rtpbr_test_output_names[RTPBR_TEST_OUTPUTS] = {
+#include "kernel_cases.h"
+};
+#undef RTPBR_TEST_CASE
+#endif
+
+#endif // RTPBR_TEST_KERNEL_H
