@@ -7,6 +7,9 @@
 // Lighting: one compute workgroup shades one screen tile.
 #define RTPBR_TILE_SIZE 16
 
+// Most lights in a scene (also RTPBR_MAX_LIGHTS in rtpbr.h): the size of a tile's light mask.
+#define RTPBR_SHADER_MAX_LIGHTS 1024
+
 // Largest polygon a light may have (also RTPBR_MAX_POLYGON_VERTICES in rtpbr.h).
 #define RTPBR_SHADER_MAX_POLYGON_VERTICES 8
 

@@ -25,7 +25,7 @@ typedef struct rtpbr_shader_frame {
     float background[4];       // rgb radiance, w unused
     uint32_t size[2];          // render width, height
     uint32_t light_count;
-    uint32_t pad;
+    float cull_form_factor;    // per-tile light culling threshold; < 0: off
 } rtpbr_shader_frame;
 
 // std430 element of the materials buffer (gbuffer.frag).
@@ -41,8 +41,10 @@ typedef struct rtpbr_shader_light {
     float vertices[RTPBR_SHADER_MAX_POLYGON_VERTICES][4]; // xyz, w unused
     float emission[4];         // rgb radiance, w: 1 if two-sided
     float plane[4];            // unit normal xyz, w = -dot(normal, vertex0)
+    float sphere[4];           // bounding sphere: centre xyz, radius w
     uint32_t vertex_count;
-    uint32_t pad[3];
+    float area;
+    uint32_t pad[2];
 } rtpbr_shader_light;
 
 // Push constants of the G-buffer pass (per draw).
@@ -60,6 +62,14 @@ typedef struct rtpbr_shader_tonemap {
     uint32_t encode;           // RTPBR_ENCODE_*
     uint32_t pad;
 } rtpbr_shader_tonemap;
+
+// The shaders' std140 / std430 sizes of the same structs.
+_Static_assert(sizeof(rtpbr_shader_frame) == 176, "Frame block layout");
+_Static_assert(sizeof(rtpbr_shader_material) == 64, "Material layout");
+_Static_assert(sizeof(rtpbr_shader_light) == 192, "Light layout");
+_Static_assert(sizeof(rtpbr_shader_draw) == 128, "Draw push constants (128 bytes: the guaranteed minimum)");
+_Static_assert(RTPBR_SHADER_MAX_LIGHTS == RTPBR_MAX_LIGHTS, "light limit shared by C and shaders");
+_Static_assert(RTPBR_TILE_SIZE == RTPBR_TILE_SIZE_PIXELS, "tile size shared by C and shaders");
 
 // ---------------------------------------------------------------------------------------------
 // Resources (resources.c)

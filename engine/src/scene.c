@@ -92,6 +92,18 @@ static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
         double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         for (int k = 0; k < 3; ++k) g.plane[k] = (float)(n[k] / len);
         g.plane[3] = -(g.plane[0] * l->vertices[0][0] + g.plane[1] * l->vertices[0][1] + g.plane[2] * l->vertices[0][2]);
+        g.area = (float)(0.5 * len);
+        // Bounding sphere: centred on the vertex mean (not minimal, but bounding).
+        double c[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
+        for (uint32_t v = 0; v < l->vertex_count; ++v)
+            for (int k = 0; k < 3; ++k) c[k] += l->vertices[v][k] / (double)l->vertex_count;
+        for (uint32_t v = 0; v < l->vertex_count; ++v) {
+            double d2 = 0.0;
+            for (int k = 0; k < 3; ++k) d2 += (l->vertices[v][k] - c[k]) * (l->vertices[v][k] - c[k]);
+            if (d2 > r2) r2 = d2;
+        }
+        for (int k = 0; k < 3; ++k) g.sphere[k] = (float)c[k];
+        g.sphere[3] = (float)(sqrt(r2) * (1.0 + 1e-6)) + 1e-6f; // rounding must not shrink it
         g.vertex_count = l->vertex_count;
         gpu[i] = g;
     }

@@ -280,7 +280,18 @@ typedef struct rtpbr_render_desc {
     rtpbr_ndf ndf;           // default GGX
     rtpbr_multiscatter multiscatter; // default on
     float background[3];     // radiance where no surface is hit; default black
+    // Per-tile light culling (RTPBR_TILE_SIZE^2-pixel tiles). A light is skipped for a tile
+    // when every point of the tile is behind it (one-sided lights; exact), or when the bound
+    // A / (pi d^2) on its form factor at every point of the tile (A its area, d the distance
+    // between the tile's bounding box and the light's bounding sphere) is below this value:
+    // its diffuse contribution is then below emission * albedo * light_cull_form_factor.
+    // Glossy reflections of a culled light are lost with it. Zero: 1e-4; negative: only
+    // the exact test.
+    float light_cull_form_factor;
 } rtpbr_render_desc;
+
+#define RTPBR_DEFAULT_CULL_FORM_FACTOR 1e-4f
+#define RTPBR_TILE_SIZE_PIXELS 16
 
 // Records and submits one frame and waits for it: G-buffer, lighting, tone mapping into the
 // renderer's own targets, which rtpbr_read_* then read back.
