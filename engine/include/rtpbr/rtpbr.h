@@ -14,6 +14,21 @@
 //   rtpbr_gpu_scene     meshes, materials, polygonal lights and cameras uploaded to the GPU.
 //   rtpbr_renderer  the per-resolution targets: G-buffer, linear radiance, display image.
 //
+// The frame (rtpbr_render / rtpbr_record):
+//   1. G-buffer pass: base colour + metallic, world normal + perceptual roughness, emission +
+//      ior, specular colour + factor, depth (every surface is shaded on the side the camera
+//      sees; emission is front-side only unless the material is double-sided).
+//   2. Lighting pass (compute, one workgroup per 16x16 tile): each tile first culls the
+//      scene's lights (rtpbr_render_desc.light_cull_form_factor), then every pixel sums, per
+//      polygonal light, Lambertian diffuse and GGX/Beckmann specular integrated with
+//      Linearly Transformed Cosines and Fresnel from the LTC tables (shaderlib/rtpbr/ltc.h),
+//      plus the Kulla-Conty multiple-scattering lobe over the polygon (kulla_conty.h), plus
+//      emitted radiance. The BRDF and integration math is the shader library's. When the
+//      library is built without ltc.h, lights contribute only through emissive surfaces.
+//   3. Tone mapping: radiance * 2^exposure through a documented operator (rtpbr_tonemap),
+//      sRGB-encoded into the display target.
+//   The linear radiance (before exposure and tone mapping) is kept for rtpbr_read_radiance.
+//
 // Typical headless use:
 //   rtpbr_context *ctx; rtpbr_context_create(&(rtpbr_context_desc){0}, &ctx);
 //   rtpbr_gpu_scene *scene; rtpbr_gpu_scene_load_gltf(ctx, "scene.gltf", &scene);
