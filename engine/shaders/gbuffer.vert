@@ -13,9 +13,11 @@ layout(push_constant, std430) uniform Draw {
 
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
 
 layout(location = 0) out vec3 out_normal;
 layout(location = 1) out vec3 out_world;
+layout(location = 2) out vec2 out_uv;
 
 void main()
 {
@@ -23,5 +25,6 @@ void main()
     mat3 n = mat3(draw.normal_matrix[0].xyz, draw.normal_matrix[1].xyz, draw.normal_matrix[2].xyz);
     out_normal = n * in_normal;
     out_world = world.xyz;
+    out_uv = in_uv;
     gl_Position = frame.view_proj * world;
 }

@@ -125,6 +125,8 @@ struct rtpbr_context {
     VkFence upload_fence;
     VkSampler lut_sampler;        // linear, clamp to edge
     VkSampler gbuffer_sampler;    // nearest (the G-buffer is read with texelFetch)
+    VkSampler texture_sampler;    // material textures: linear, repeat
+    VkDescriptorSetLayout material_set_layout; // set 1 of the G-buffer pass
     rtpbr_lut luts[6];            // in binding order RTPBR_BINDING_LUT_LTC_GGX_1 ...
 
     VkDescriptorSetLayout gbuffer_set_layout;
@@ -149,10 +151,14 @@ typedef struct rtpbr_draw {
 
 struct rtpbr_gpu_scene {
     rtpbr_context *context;
-    rtpbr_buffer vertices;     // float3 position, float3 normal per vertex
+    rtpbr_buffer vertices;     // RTPBR_VERTEX_FLOATS per vertex: position, normal, uv
     rtpbr_buffer indices;      // uint32, vertex indices already offset per mesh
     rtpbr_buffer materials;    // rtpbr_shader_material[max(material_count, 1)]
     rtpbr_buffer lights;       // rtpbr_shader_light[RTPBR_MAX_LIGHTS], host visible
+    rtpbr_image *textures;     // texture_count images, then a 1x1 white one
+    uint32_t texture_count;
+    VkDescriptorPool material_pool;
+    VkDescriptorSet *material_sets; // one per material slot: its three textures
     rtpbr_draw *draws;
     uint32_t draw_count;
     uint32_t light_count;
@@ -164,6 +170,7 @@ struct rtpbr_gpu_scene {
 // Renderer (renderer.c and the passes)
 
 enum { RTPBR_GBUFFER_COUNT = 4 };
+enum { RTPBR_VERTEX_FLOATS = 8 }; // float3 position, float3 normal, float2 uv
 
 struct rtpbr_renderer {
     rtpbr_context *context;
@@ -243,6 +250,9 @@ void rtpbr_lut_destroy(rtpbr_context *ctx, rtpbr_lut *lut);
 // Every table of ctx->luts (luts.c): the shader library's tables, or placeholders.
 rtpbr_result rtpbr_luts_create(rtpbr_context *ctx);
 void rtpbr_luts_destroy(rtpbr_context *ctx);
+// Uploads tightly packed texels into a new sampled image (SHADER_READ_ONLY_OPTIMAL).
+rtpbr_result rtpbr_image_create_with_data(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
+                                          const void *texels, size_t bytes, rtpbr_image *out);
 // An image memory barrier on a colour or depth image (one mip, one layer).
 void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
                          VkImageLayout old_layout, VkImageLayout new_layout,

@@ -177,6 +177,11 @@ typedef struct rtpbr_material_desc {
     float ior;               // dielectric index of refraction (KHR_materials_ior); zero: 1.5
     float specular;          // KHR_materials_specular specularFactor; zero: 1 (set <0 for none, i.e. 0)
     float specular_color[3]; // KHR_materials_specular specularColorFactor; all zero: (1, 1, 1)
+    // Textures: 1-based indices into rtpbr_gpu_scene_desc.textures; 0: none. Sampled with
+    // TEXCOORD_0, bilinear, repeat, no mipmaps; they multiply the factors above (glTF):
+    uint32_t base_color_texture;         // rgb: base colour (give it srgb = 1)
+    uint32_t metallic_roughness_texture; // g: roughness, b: metallic (linear)
+    uint32_t emission_texture;           // rgb: emission (give it srgb = 1)
     // Non-zero: emits from both sides (glTF doubleSided). Default: emission only on the front
     // side, the one the vertex normals point to. Reflection is two-sided either way.
     int double_sided;
@@ -184,9 +189,16 @@ typedef struct rtpbr_material_desc {
 
 #define RTPBR_MIN_ROUGHNESS 0.045f // Filament's lower clamp: keeps alpha^2 representable
 
+typedef struct rtpbr_texture_desc {
+    uint32_t width, height;  // required, 1..RTPBR_MAX_RENDER_SIZE
+    const uint8_t *rgba;     // required: width * height RGBA8 texels, rows top to bottom
+    int srgb;                // non-zero: sRGB-encoded colour; default: linear data
+} rtpbr_texture_desc;
+
 typedef struct rtpbr_mesh_desc {
     const float *positions;   // 3 floats per vertex; required
     const float *normals;     // 3 floats per vertex; NULL: computed (area-weighted smooth)
+    const float *texcoords;   // 2 floats per vertex (glTF TEXCOORD_0); NULL: all zero
     const uint32_t *indices;  // 3 per triangle; NULL: vertices taken three at a time
     uint32_t vertex_count;    // required, non-zero
     uint32_t index_count;     // a multiple of 3 when indices is set
@@ -221,6 +233,8 @@ typedef struct rtpbr_gpu_scene_desc {
     uint32_t light_count;    // <= RTPBR_MAX_LIGHTS
     const rtpbr_camera_desc *cameras;
     uint32_t camera_count;   // zero: one default camera at (0, 0, 5) looking at the origin
+    const rtpbr_texture_desc *textures;
+    uint32_t texture_count;
 } rtpbr_gpu_scene_desc;
 
 typedef struct rtpbr_gpu_scene rtpbr_gpu_scene;
