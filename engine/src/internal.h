@@ -33,7 +33,7 @@ typedef struct rtpbr_shader_material {
     float base_color_metallic[4];
     float emission_roughness[4];
     float specular_color_ior[4];
-    float specular[4];         // x: specular factor, y: 1 if emitting on both sides, zw unused
+    float specular[4];         // x: specular factor, y: 1 if emitting on both sides, z: 1 if normal-mapped, w: normal scale
 } rtpbr_shader_material;
 
 // std430 element of the lights buffer (lighting.comp).
@@ -151,7 +151,7 @@ typedef struct rtpbr_draw {
 
 struct rtpbr_gpu_scene {
     rtpbr_context *context;
-    rtpbr_buffer vertices;     // RTPBR_VERTEX_FLOATS per vertex: position, normal, uv
+    rtpbr_buffer vertices;     // RTPBR_VERTEX_FLOATS per vertex: position, normal, uv, tangent
     rtpbr_buffer indices;      // uint32, vertex indices already offset per mesh
     rtpbr_buffer materials;    // rtpbr_shader_material[max(material_count, 1)]
     rtpbr_buffer lights;       // rtpbr_shader_light[RTPBR_MAX_LIGHTS], host visible
@@ -170,7 +170,7 @@ struct rtpbr_gpu_scene {
 // Renderer (renderer.c and the passes)
 
 enum { RTPBR_GBUFFER_COUNT = 4 };
-enum { RTPBR_VERTEX_FLOATS = 8 }; // float3 position, float3 normal, float2 uv
+enum { RTPBR_VERTEX_FLOATS = 12 }; // float3 position, float3 normal, float2 uv, float4 tangent
 
 struct rtpbr_renderer {
     rtpbr_context *context;

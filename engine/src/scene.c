@@ -142,6 +142,8 @@ static rtpbr_result validate_mesh(const rtpbr_context *ctx, const rtpbr_mesh_des
         FAIL("mesh %u has a NaN or infinite normal", index);
     if (m->texcoords && !rtpbr_finite(m->texcoords, 2 * (size_t)m->vertex_count))
         FAIL("mesh %u has a NaN or infinite texture coordinate", index);
+    if (m->tangents && !rtpbr_finite(m->tangents, 4 * (size_t)m->vertex_count))
+        FAIL("mesh %u has a NaN or infinite tangent", index);
     if (!rtpbr_finite(m->transform, 16)) FAIL("mesh %u has a NaN or infinite transform", index);
     if (m->indices)
         for (uint32_t i = 0; i < m->index_count; ++i)
@@ -164,6 +166,8 @@ static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
     g.specular_color_ior[3] = m->ior == 0.0f ? 1.5f : m->ior;
     g.specular[0] = m->specular == 0.0f ? 1.0f : fmaxf(m->specular, 0.0f);
     g.specular[1] = m->double_sided ? 1.0f : 0.0f;
+    g.specular[2] = m->normal_texture ? 1.0f : 0.0f;
+    g.specular[3] = m->normal_scale == 0.0f ? 1.0f : m->normal_scale;
     return g;
 }
 
@@ -171,7 +175,7 @@ static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_mate
 {
     if (!rtpbr_finite(m->base_color, 3) || !rtpbr_finite(&m->metallic, 1) || !rtpbr_finite(&m->roughness, 1) ||
         !rtpbr_finite(m->emission, 3) || !rtpbr_finite(&m->ior, 1) || !rtpbr_finite(&m->specular, 1) ||
-        !rtpbr_finite(m->specular_color, 3)) {
+        !rtpbr_finite(m->specular_color, 3) || !rtpbr_finite(&m->normal_scale, 1)) {
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
@@ -251,11 +255,12 @@ static rtpbr_result create_textures(rtpbr_gpu_scene *scene, const rtpbr_gpu_scen
     };
     RTPBR_VK(ctx, vkAllocateDescriptorSets(ctx->device, &alloc, scene->material_sets));
     for (uint32_t m = 0; m < material_slots; ++m) {
-        uint32_t index[RTPBR_MATERIAL_TEXTURE_COUNT] = {0, 0, 0};
+        uint32_t index[RTPBR_MATERIAL_TEXTURE_COUNT] = {0};
         if (desc->material_count) {
             index[RTPBR_BINDING_TEXTURE_BASE_COLOR] = desc->materials[m].base_color_texture;
             index[RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS] = desc->materials[m].metallic_roughness_texture;
             index[RTPBR_BINDING_TEXTURE_EMISSION] = desc->materials[m].emission_texture;
+            index[RTPBR_BINDING_TEXTURE_NORMAL] = desc->materials[m].normal_texture;
         }
         VkDescriptorImageInfo images[RTPBR_MATERIAL_TEXTURE_COUNT];
         VkWriteDescriptorSet writes[RTPBR_MATERIAL_TEXTURE_COUNT];
@@ -312,7 +317,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         const rtpbr_material_desc *m = &desc->materials[i];
         RTPBR_TRY(validate_material(ctx, m, i));
         if (m->base_color_texture > desc->texture_count || m->metallic_roughness_texture > desc->texture_count ||
-            m->emission_texture > desc->texture_count) {
+            m->emission_texture > desc->texture_count || m->normal_texture > desc->texture_count) {
             rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u refers to a texture past the scene's %u", i, desc->texture_count);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
@@ -367,6 +372,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         for (uint32_t v = 0; v < m->vertex_count; ++v) {
             memcpy(dst + RTPBR_VERTEX_FLOATS * v, m->positions + 3 * v, 3 * sizeof(float));
             if (m->texcoords) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 6, m->texcoords + 2 * v, 2 * sizeof(float));
+            if (m->tangents) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 8, m->tangents + 4 * v, 4 * sizeof(float));
         }
         for (uint32_t k = 0; k < count; ++k) indices[index_base + k] = vertex_base + (m->indices ? m->indices[k] : k);
 

@@ -12,8 +12,9 @@
 //   base_color / metallic_roughness / emission textures -> the same (TEXCOORD_0, bilinear,
 //                                                         repeat; the file's sampler modes
 //                                                         and mipmaps are not used)
-//   normal textures, clearcoat, sheen, anisotropy, Disney parameters: not used yet (no
-//   tangent frames in the G-buffer; the lighting pass has no model for the others).
+//   normal texture, normal_scale -> the same (tangents from the loader)
+//   clearcoat, sheen, anisotropy, Disney parameters: not used yet (the lighting pass has no
+//   polygon-light model for them).
 // Lights: every loader light (emissive primitives, EXT_lights_area rectangles and disks as
 // their equal-area octagons) becomes a polygonal light with its radiance and sidedness.
 #include <math.h>
@@ -70,6 +71,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
             .positions = p->positions,
             .normals = p->normals,
             .texcoords = p->texcoords,
+            .tangents = p->has_tangents ? p->tangents : NULL,
             .indices = p->indices,
             .vertex_count = p->vertex_count,
             .index_count = p->index_count,
@@ -91,6 +93,8 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         d->base_color_texture = texture_ref(loaded, m->base_color_texture);
         d->metallic_roughness_texture = texture_ref(loaded, m->metallic_roughness_texture);
         d->emission_texture = texture_ref(loaded, m->emission_texture);
+        d->normal_texture = texture_ref(loaded, m->normal_texture);
+        d->normal_scale = m->normal_scale;
         if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
             d->specular = -1.0f; // a black specular colour removes the lobe, like specular = 0
     }

@@ -75,7 +75,7 @@ typedef struct graphics_desc {
     const VkFormat *color_formats;
     uint32_t color_count;
     VkFormat depth_format;      // VK_FORMAT_UNDEFINED: no depth
-    bool vertex_input;          // position, normal, uv (RTPBR_VERTEX_FLOATS)
+    bool vertex_input;          // position, normal, uv, tangent (RTPBR_VERTEX_FLOATS)
 } graphics_desc;
 
 static rtpbr_result create_graphics(rtpbr_context *ctx, const graphics_desc *d, VkPipeline *out)
@@ -87,16 +87,17 @@ static rtpbr_result create_graphics(rtpbr_context *ctx, const graphics_desc *d, 
          .module = d->frag, .pName = "main"},
     };
     VkVertexInputBindingDescription binding = {0, RTPBR_VERTEX_FLOATS * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX};
-    VkVertexInputAttributeDescription attributes[3] = {
+    VkVertexInputAttributeDescription attributes[4] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
         {2, 0, VK_FORMAT_R32G32_SFLOAT, 6 * sizeof(float)},
+        {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 8 * sizeof(float)},
     };
     VkPipelineVertexInputStateCreateInfo vertex_input = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
         .vertexBindingDescriptionCount = d->vertex_input ? 1 : 0,
         .pVertexBindingDescriptions = &binding,
-        .vertexAttributeDescriptionCount = d->vertex_input ? 3 : 0,
+        .vertexAttributeDescriptionCount = d->vertex_input ? 4 : 0,
         .pVertexAttributeDescriptions = attributes,
     };
     VkPipelineInputAssemblyStateCreateInfo assembly = {

@@ -182,6 +182,8 @@ typedef struct rtpbr_material_desc {
     uint32_t base_color_texture;         // rgb: base colour (give it srgb = 1)
     uint32_t metallic_roughness_texture; // g: roughness, b: metallic (linear)
     uint32_t emission_texture;           // rgb: emission (give it srgb = 1)
+    uint32_t normal_texture;             // rgb: tangent-space normal (linear); needs tangents
+    float normal_scale;                  // glTF normalTexture.scale (scales x, y); zero: 1
     // Non-zero: emits from both sides (glTF doubleSided). Default: emission only on the front
     // side, the one the vertex normals point to. Reflection is two-sided either way.
     int double_sided;
@@ -199,6 +201,8 @@ typedef struct rtpbr_mesh_desc {
     const float *positions;   // 3 floats per vertex; required
     const float *normals;     // 3 floats per vertex; NULL: computed (area-weighted smooth)
     const float *texcoords;   // 2 floats per vertex (glTF TEXCOORD_0); NULL: all zero
+    const float *tangents;    // 4 floats per vertex: xyz, w = bitangent sign (B = w N x T, glTF);
+                              // NULL: zero, and normal textures have no effect
     const uint32_t *indices;  // 3 per triangle; NULL: vertices taken three at a time
     uint32_t vertex_count;    // required, non-zero
     uint32_t index_count;     // a multiple of 3 when indices is set
