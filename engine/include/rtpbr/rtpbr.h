@@ -1,0 +1,367 @@
+// rtpbr — a plain-C11 Vulkan deferred renderer for physically based materials lit by
+// polygonal area lights. One public header, in the style of sokol and cgltf:
+//
+//   - every object is an opaque pointer; every rtpbr_*_destroy(NULL) is a no-op;
+//   - every *_desc struct is meant to be zero-initialised ({0}); a zero field means the
+//     default documented next to it;
+//   - everything that can fail returns an rtpbr_result; rtpbr_result_string() names it and
+//     the log callback receives a readable message saying what failed and why;
+//   - no global state: all state hangs off an rtpbr_context; no abort()/exit().
+//
+// Objects:
+//   rtpbr_context   a Vulkan device (standalone: created here; embedded: the host's),
+//                   the compiled pipelines and the lookup tables.
+//   rtpbr_gpu_scene     meshes, materials, polygonal lights and cameras uploaded to the GPU.
+//   rtpbr_renderer  the per-resolution targets: G-buffer, linear radiance, display image.
+//
+// The frame (rtpbr_render / rtpbr_record):
+//   1. G-buffer pass: base colour + metallic, world normal + perceptual roughness, emission +
+//      ior, specular colour + factor, depth (every surface is shaded on the side the camera
+//      sees; emission is front-side only unless the material is double-sided).
+//   2. Lighting pass (compute, one workgroup per 16x16 tile): each tile first culls the
+//      scene's lights (rtpbr_render_desc.light_cull_form_factor), then every pixel sums, per
+//      polygonal light, Lambertian diffuse and GGX/Beckmann specular integrated with
+//      Linearly Transformed Cosines and Fresnel from the LTC tables (shaderlib/rtpbr/ltc.h),
+//      plus the Kulla-Conty multiple-scattering lobe over the polygon (kulla_conty.h), plus
+//      emitted radiance. The BRDF and integration math is the shader library's. When the
+//      library is built without ltc.h, lights contribute only through emissive surfaces.
+//   3. Tone mapping: radiance * 2^exposure through a documented operator (rtpbr_tonemap),
+//      sRGB-encoded into the display target.
+//   The linear radiance (before exposure and tone mapping) is kept for rtpbr_read_radiance.
+//
+// Typical headless use:
+//   rtpbr_context *ctx; rtpbr_context_create(&(rtpbr_context_desc){0}, &ctx);
+//   rtpbr_gpu_scene *scene; rtpbr_gpu_scene_load_gltf(ctx, "scene.gltf", &scene);
+//   rtpbr_renderer *r;  rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 640, .height = 480}, &r);
+//   rtpbr_render(r, scene, &(rtpbr_render_desc){0});
+//   rtpbr_read_radiance(r, pixels, 640 * 480 * 4 * sizeof(float));
+//   rtpbr_renderer_destroy(r); rtpbr_gpu_scene_destroy(scene); rtpbr_context_destroy(ctx);
+//
+// Threading: an rtpbr_context and everything created from it must be used from one thread
+// at a time (the host serialises calls). In embedded mode the host must also not use the
+// queue it handed over while an rtpbr call that submits work (rtpbr_gpu_scene_create*,
+// rtpbr_render, rtpbr_read_*) is running.
+#ifndef RTPBR_H
+#define RTPBR_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <vulkan/vulkan_core.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(_WIN32) && defined(RTPBR_BUILDING_DLL)
+#define RTPBR_API __declspec(dllexport)
+#elif defined(__GNUC__)
+#define RTPBR_API __attribute__((visibility("default")))
+#else
+#define RTPBR_API
+#endif
+
+// ---------------------------------------------------------------------------------------------
+// Results, allocator, logger
+
+typedef enum rtpbr_result {
+    RTPBR_SUCCESS = 0,
+    RTPBR_ERROR_INVALID_ARGUMENT,    // NULL where an object is required, zero sizes, NaN, ...
+    RTPBR_ERROR_OUT_OF_HOST_MEMORY,
+    RTPBR_ERROR_OUT_OF_DEVICE_MEMORY,
+    RTPBR_ERROR_NO_DEVICE,           // no Vulkan implementation or no suitable device
+    RTPBR_ERROR_MISSING_FEATURE,     // the device lacks (or the host did not enable) a requirement
+    RTPBR_ERROR_LIMIT_EXCEEDED,      // more lights, vertices, ... than the documented limits
+    RTPBR_ERROR_SCENE_LOAD,          // a glTF file is missing, malformed or unsupported
+    RTPBR_ERROR_IO,                  // a file could not be read or written
+    RTPBR_ERROR_DEVICE_LOST,
+    RTPBR_ERROR_VULKAN,              // any other failing VkResult (the log says which call)
+} rtpbr_result;
+
+// A static English name of the result ("invalid argument"); never NULL.
+RTPBR_API const char *rtpbr_result_string(rtpbr_result result);
+
+// Host allocator for every host allocation the library makes. Both functions NULL: malloc/free.
+// alloc must return memory aligned for any C type (like malloc), or NULL on failure.
+typedef struct rtpbr_allocator {
+    void *(*alloc)(size_t size, void *user_data);
+    void (*free)(void *ptr, void *user_data);
+    void *user_data;
+} rtpbr_allocator;
+
+typedef enum rtpbr_log_level {
+    RTPBR_LOG_ERROR = 0,
+    RTPBR_LOG_WARNING,
+    RTPBR_LOG_INFO,
+    RTPBR_LOG_DEBUG,
+} rtpbr_log_level;
+
+// Log callback. func NULL: errors and warnings are written to stderr, the rest is dropped.
+// Validation-layer messages (standalone mode with validation on) arrive here too, with
+// level ERROR or WARNING and text starting with "validation: ".
+typedef struct rtpbr_logger {
+    void (*func)(rtpbr_log_level level, const char *message, void *user_data);
+    void *user_data;
+} rtpbr_logger;
+
+// ---------------------------------------------------------------------------------------------
+// Context
+
+// Embedded mode: the host's Vulkan objects. The library only creates (and destroys) its own
+// objects on this device and never destroys, reconfigures or waits on anything else of the
+// host's (it waits only on its own fences; vkQueueWaitIdle is never called).
+// Requirements: the physical device supports Vulkan 1.3 and the host enabled the
+// dynamicRendering feature when it created the device; the host states what it enabled by
+// passing the VkPhysicalDeviceFeatures2 chain it gave vkCreateDevice (the library looks for
+// VkPhysicalDeviceVulkan13Features or VkPhysicalDeviceDynamicRenderingFeatures in it).
+// Missing requirement (or enabled_features NULL): RTPBR_ERROR_MISSING_FEATURE.
+// queue must belong to queue_family_index, which must support graphics and compute.
+typedef struct rtpbr_vulkan_device {
+    VkInstance instance;
+    VkPhysicalDevice physical_device;
+    VkDevice device;
+    VkQueue queue;
+    uint32_t queue_family_index;
+    const VkPhysicalDeviceFeatures2 *enabled_features;
+} rtpbr_vulkan_device;
+
+// Standalone device choice (the documented rule): among physical devices that support
+// Vulkan 1.3, dynamicRendering and a queue family with graphics + compute, take
+// device_index if it is not RTPBR_DEVICE_AUTO (0 means AUTO); otherwise the first discrete
+// GPU, else the first integrated GPU, else the first virtual GPU, else the first CPU device
+// (lavapipe), in enumeration order within each kind. device_index counts only suitable
+// devices, starting at 1 (1 = the first suitable device).
+#define RTPBR_DEVICE_AUTO 0u
+
+typedef struct rtpbr_context_desc {
+    rtpbr_allocator allocator;   // zero: malloc/free
+    rtpbr_logger logger;         // zero: errors and warnings to stderr
+    // Standalone mode (embedded.device == VK_NULL_HANDLE):
+    uint32_t device_index;       // 0: automatic choice (rule above)
+    // Non-zero: enable VK_LAYER_KHRONOS_validation with synchronization validation, route
+    // its messages to the logger and count them (rtpbr_context_validation_message_count).
+    // Fails with RTPBR_ERROR_MISSING_FEATURE if the layer is not installed. Default: off.
+    int validation;
+    // Embedded mode: all of instance, physical_device, device, queue set. Default: standalone.
+    rtpbr_vulkan_device embedded;
+} rtpbr_context_desc;
+
+typedef struct rtpbr_context rtpbr_context;
+
+RTPBR_API rtpbr_result rtpbr_context_create(const rtpbr_context_desc *desc, rtpbr_context **out_context);
+// Waits for the library's own work, then destroys everything the context created.
+RTPBR_API void rtpbr_context_destroy(rtpbr_context *context);
+// Number of warning/error messages the validation layer has reported so far (0 when off).
+RTPBR_API uint32_t rtpbr_context_validation_message_count(const rtpbr_context *context);
+// The Vulkan objects the context uses (its own in standalone mode, the host's when embedded).
+RTPBR_API rtpbr_vulkan_device rtpbr_context_vulkan_device(const rtpbr_context *context);
+// Name of the physical device in use ("llvmpipe (LLVM 15.0.6, 256 bits)"); never NULL.
+RTPBR_API const char *rtpbr_context_device_name(const rtpbr_context *context);
+
+// ---------------------------------------------------------------------------------------------
+// Scenes
+//
+// Units and conventions: right-handed world, metres; camera looks down its -Z (glTF).
+// Colours are linear Rec.709. Light emission is radiance (W sr^-1 m^-2 per channel).
+
+// Documented limits; exceeding any is RTPBR_ERROR_LIMIT_EXCEEDED.
+#define RTPBR_MAX_LIGHTS 1024u           // polygonal lights per scene
+#define RTPBR_MAX_POLYGON_VERTICES 8u    // vertices per polygonal light
+#define RTPBR_MAX_MATERIALS 65536u
+#define RTPBR_MAX_RENDER_SIZE 16384u     // width and height of a renderer
+
+typedef struct rtpbr_material_desc {
+    float base_color[3];     // linear albedo (glTF baseColorFactor.rgb); zero is black
+    float metallic;          // [0, 1], taken literally (zero: dielectric)
+    float roughness;         // perceptual roughness r in [0, 1] (alpha = r^2); zero: RTPBR_MIN_ROUGHNESS
+    float emission[3];       // emitted radiance (glTF emissiveFactor * emissive_strength)
+    float ior;               // dielectric index of refraction (KHR_materials_ior); zero: 1.5
+    float specular;          // KHR_materials_specular specularFactor; zero: 1 (set <0 for none, i.e. 0)
+    float specular_color[3]; // KHR_materials_specular specularColorFactor; all zero: (1, 1, 1)
+    // Textures: 1-based indices into rtpbr_gpu_scene_desc.textures; 0: none. Sampled with
+    // TEXCOORD_0, bilinear, repeat, no mipmaps; they multiply the factors above (glTF):
+    uint32_t base_color_texture;         // rgb: base colour (give it srgb = 1)
+    uint32_t metallic_roughness_texture; // g: roughness, b: metallic (linear)
+    uint32_t emission_texture;           // rgb: emission (give it srgb = 1)
+    uint32_t normal_texture;             // rgb: tangent-space normal (linear); needs tangents
+    float normal_scale;                  // glTF normalTexture.scale (scales x, y); zero: 1
+    // Non-zero: emits from both sides (glTF doubleSided). Default: emission only on the front
+    // side, the one the vertex normals point to. Reflection is two-sided either way.
+    int double_sided;
+} rtpbr_material_desc;
+
+#define RTPBR_MIN_ROUGHNESS 0.045f // Filament's lower clamp: keeps alpha^2 representable
+
+typedef struct rtpbr_texture_desc {
+    uint32_t width, height;  // required, 1..RTPBR_MAX_RENDER_SIZE
+    const uint8_t *rgba;     // required: width * height RGBA8 texels, rows top to bottom
+    int srgb;                // non-zero: sRGB-encoded colour; default: linear data
+} rtpbr_texture_desc;
+
+typedef struct rtpbr_mesh_desc {
+    const float *positions;   // 3 floats per vertex; required
+    const float *normals;     // 3 floats per vertex; NULL: computed (area-weighted smooth)
+    const float *texcoords;   // 2 floats per vertex (glTF TEXCOORD_0); NULL: all zero
+    const float *tangents;    // 4 floats per vertex: xyz, w = bitangent sign (B = w N x T, glTF);
+                              // NULL: zero, and normal textures have no effect
+    const uint32_t *indices;  // 3 per triangle; NULL: vertices taken three at a time
+    uint32_t vertex_count;    // required, non-zero
+    uint32_t index_count;     // a multiple of 3 when indices is set
+    uint32_t material;        // index into rtpbr_gpu_scene_desc.materials; 0 with no materials: grey
+    float transform[16];      // world-from-object, column-major; all zero: identity
+} rtpbr_mesh_desc;
+
+// A convex planar polygon emitting on its front side (counter-clockwise vertices seen from
+// the front, normal = right-hand rule), or on both sides.
+typedef struct rtpbr_light_desc {
+    float vertices[RTPBR_MAX_POLYGON_VERTICES][3]; // world space
+    uint32_t vertex_count;   // 3..RTPBR_MAX_POLYGON_VERTICES
+    float emission[3];       // radiance; zero: a light that contributes nothing
+    int two_sided;           // non-zero: emits on both sides. Default: front only
+} rtpbr_light_desc;
+
+typedef struct rtpbr_camera_desc {
+    float position[3];
+    float target[3];         // the point looked at; equal to position: looks down -Z
+    float up[3];             // all zero: +Y
+    float yfov;              // vertical field of view, radians; zero: pi/4
+    float znear;             // zero: 0.01
+    float zfar;              // zero: 1000
+} rtpbr_camera_desc;
+
+typedef struct rtpbr_gpu_scene_desc {
+    const rtpbr_mesh_desc *meshes;
+    uint32_t mesh_count;
+    const rtpbr_material_desc *materials;
+    uint32_t material_count;
+    const rtpbr_light_desc *lights;
+    uint32_t light_count;    // <= RTPBR_MAX_LIGHTS
+    const rtpbr_camera_desc *cameras;
+    uint32_t camera_count;   // zero: one default camera at (0, 0, 5) looking at the origin
+    const rtpbr_texture_desc *textures;
+    uint32_t texture_count;
+} rtpbr_gpu_scene_desc;
+
+typedef struct rtpbr_gpu_scene rtpbr_gpu_scene;
+struct rtpbr_scene; // a scene loaded by the glTF loader (engine/scene/rtpbr/rtpbr_scene.h)
+
+// Validates everything (finite numbers, index ranges, planar non-degenerate lights) before
+// touching the GPU; a scene with no meshes and no lights is valid (renders the background).
+// Lights are not drawn: a light is seen only through an emissive mesh (glTF scenes have one).
+RTPBR_API rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *context, const rtpbr_gpu_scene_desc *desc,
+                                              rtpbr_gpu_scene **out_scene);
+// Loads a glTF 2.0 file through the rtpbr scene loader (engine/scene). Emissive primitives
+// and EXT_lights_area lights become polygonal lights; cameras come from the file (none in
+// the file: the default camera of rtpbr_gpu_scene_desc). Missing or malformed file:
+// RTPBR_ERROR_SCENE_LOAD or RTPBR_ERROR_IO, with the loader's message in the log.
+RTPBR_API rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *context, const char *path,
+                                                 rtpbr_gpu_scene **out_scene);
+// Uploads a scene the host loaded (or built) with the loader's C API; the material mapping is
+// the table in rtpbr_gpu_scene_load_gltf's documentation below. The loaded scene is not kept.
+RTPBR_API rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *context, const struct rtpbr_scene *loaded,
+                                                   rtpbr_gpu_scene **out_scene);
+RTPBR_API void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene);
+RTPBR_API uint32_t rtpbr_gpu_scene_camera_count(const rtpbr_gpu_scene *scene);
+RTPBR_API uint32_t rtpbr_gpu_scene_light_count(const rtpbr_gpu_scene *scene);
+// Replaces every light (same validation and limits as rtpbr_gpu_scene_create). Must not be
+// called while a command buffer recorded with rtpbr_record for this scene is pending.
+RTPBR_API rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
+                                                  uint32_t light_count);
+
+// ---------------------------------------------------------------------------------------------
+// Renderers and rendering
+
+typedef struct rtpbr_renderer_desc {
+    uint32_t width;          // required, 1..RTPBR_MAX_RENDER_SIZE
+    uint32_t height;         // required, 1..RTPBR_MAX_RENDER_SIZE
+} rtpbr_renderer_desc;
+
+typedef struct rtpbr_renderer rtpbr_renderer;
+
+RTPBR_API rtpbr_result rtpbr_renderer_create(rtpbr_context *context, const rtpbr_renderer_desc *desc,
+                                   rtpbr_renderer **out_renderer);
+RTPBR_API void rtpbr_renderer_destroy(rtpbr_renderer *renderer);
+
+// Shader variants compiled at build time from the shader library's flags.
+typedef enum rtpbr_ndf {
+    RTPBR_NDF_DEFAULT = 0,   // GGX
+    RTPBR_NDF_GGX_MODEL,     // RTPBR_NDF_GGX (Walter et al. 2007)
+    RTPBR_NDF_BECKMANN_MODEL,// RTPBR_NDF_BECKMANN
+} rtpbr_ndf;
+
+typedef enum rtpbr_multiscatter {
+    RTPBR_MULTISCATTER_DEFAULT = 0, // on
+    RTPBR_MULTISCATTER_ON,          // Kulla-Conty energy compensation (RTPBR_MULTISCATTER 1)
+    RTPBR_MULTISCATTER_OFF,         // single scattering only (RTPBR_MULTISCATTER 0)
+} rtpbr_multiscatter;
+
+typedef enum rtpbr_tonemap {
+    // ACES filmic fit of Narkowicz 2015 ("ACES Filmic Tone Mapping Curve"):
+    // f(x) = x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14), clamped to [0, 1], per channel.
+    RTPBR_TONEMAP_DEFAULT = 0,
+    RTPBR_TONEMAP_ACES,
+    RTPBR_TONEMAP_REINHARD,  // f(x) = x / (1 + x) per channel (Reinhard et al. 2002)
+    RTPBR_TONEMAP_LINEAR,    // f(x) = clamp(x, 0, 1)
+} rtpbr_tonemap;
+
+typedef struct rtpbr_render_desc {
+    // The camera: if camera is set it is used; otherwise the scene's camera number
+    // camera_index (default 0). camera_index out of range: RTPBR_ERROR_INVALID_ARGUMENT.
+    const rtpbr_camera_desc *camera;
+    uint32_t camera_index;
+    float exposure;          // EV stops; the display image shows radiance * 2^exposure. Default 0
+    rtpbr_tonemap tonemap;   // default ACES (above)
+    rtpbr_ndf ndf;           // default GGX
+    rtpbr_multiscatter multiscatter; // default on
+    float background[3];     // radiance where no surface is hit; default black
+    // Per-tile light culling (RTPBR_TILE_SIZE^2-pixel tiles). A light is skipped for a tile
+    // when every point of the tile is behind it (one-sided lights; exact), or when the bound
+    // A / (pi d^2) on its form factor at every point of the tile (A its area, d the distance
+    // between the tile's bounding box and the light's bounding sphere) is below this value:
+    // its diffuse contribution is then below emission * albedo * light_cull_form_factor.
+    // Glossy reflections of a culled light are lost with it. Zero: 1e-4; negative: only
+    // the exact test.
+    float light_cull_form_factor;
+} rtpbr_render_desc;
+
+#define RTPBR_DEFAULT_CULL_FORM_FACTOR 1e-4f
+#define RTPBR_TILE_SIZE_PIXELS 16
+
+// Records and submits one frame and waits for it: G-buffer, lighting, tone mapping into the
+// renderer's own targets, which rtpbr_read_* then read back.
+RTPBR_API rtpbr_result rtpbr_render(rtpbr_renderer *renderer, const rtpbr_gpu_scene *scene,
+                          const rtpbr_render_desc *desc);
+
+// Linear scene radiance of the last rtpbr_render (no exposure, no tone mapping): RGBA32F,
+// rows top to bottom, width * height * 4 floats (alpha 1 on surfaces, 0 on background).
+// size_bytes must be at least width * height * 16.
+RTPBR_API rtpbr_result rtpbr_read_radiance(rtpbr_renderer *renderer, float *rgba, size_t size_bytes);
+// The tone-mapped display image of the last rtpbr_render: 8-bit sRGB-encoded RGBA, rows top to
+// bottom. size_bytes must be at least width * height * 4.
+RTPBR_API rtpbr_result rtpbr_read_display(rtpbr_renderer *renderer, uint8_t *rgba, size_t size_bytes);
+
+// Recording into the host's command buffer and image (e.g. a swapchain image) instead of
+// rtpbr_render. The target must be renderer-sized, created with COLOR_ATTACHMENT usage, of a
+// format with colour-attachment support; sRGB formats get hardware encoding, UNORM formats
+// are encoded to sRGB by the shader, float formats get the tone-mapped linear value.
+typedef struct rtpbr_record_desc {
+    VkCommandBuffer command_buffer;   // required, in the recording state, on the context's
+                                      // queue family; the host submits it
+    VkImage image;                    // required
+    VkImageView view;                 // required, 2D, one mip level, one layer
+    VkFormat format;                  // required
+    VkImageLayout old_layout;         // layout the image is in; zero: UNDEFINED (contents lost)
+    VkImageLayout new_layout;         // layout to leave it in; zero: COLOR_ATTACHMENT_OPTIMAL
+} rtpbr_record_desc;
+
+// The recorded commands use the renderer's targets and the scene's buffers: the host must
+// not destroy them, nor record or render again with this renderer, before the submitted
+// command buffer has completed. The linear radiance target is filled too (rtpbr_read_radiance
+// needs that execution to complete first).
+RTPBR_API rtpbr_result rtpbr_record(rtpbr_renderer *renderer, const rtpbr_gpu_scene *scene,
+                          const rtpbr_render_desc *desc, const rtpbr_record_desc *target);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif // RTPBR_H

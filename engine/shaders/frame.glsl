@@ -1,0 +1,10 @@
+// The per-frame uniform block (C mirror: rtpbr_shader_frame in engine/src/internal.h).
+layout(set = 0, binding = RTPBR_FRAME_BINDING, std140) uniform Frame {
+    mat4 view_proj;       // clip from world
+    mat4 inv_view_proj;   // world from clip
+    vec4 camera_position; // xyz
+    vec4 background;      // rgb radiance
+    uvec2 size;           // render width, height
+    uint light_count;
+    float cull_form_factor; // per-tile light culling threshold (lighting.comp); < 0: off
+} frame;

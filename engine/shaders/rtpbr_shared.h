@@ -1,0 +1,61 @@
+// Constants shared by the engine's C code and its GLSL shaders (included by both).
+// Only #defines live here: layouts of the structs below are spelled out twice, in
+// engine/src/internal.h (C) and in the shaders, next to a comment pointing here.
+#ifndef RTPBR_SHARED_H
+#define RTPBR_SHARED_H
+
+// Lighting: one compute workgroup shades one screen tile.
+#define RTPBR_TILE_SIZE 16
+
+// Most lights in a scene (also RTPBR_MAX_LIGHTS in rtpbr.h): the size of a tile's light mask.
+#define RTPBR_SHADER_MAX_LIGHTS 1024
+
+// Lower clamp of perceptual roughness (also RTPBR_MIN_ROUGHNESS in rtpbr.h).
+#define RTPBR_SHADER_MIN_ROUGHNESS 0.045
+
+// Largest polygon a light may have (also RTPBR_MAX_POLYGON_VERTICES in rtpbr.h).
+#define RTPBR_SHADER_MAX_POLYGON_VERTICES 8
+
+// G-buffer pass, descriptor set 0.
+#define RTPBR_BINDING_GBUFFER_FRAME 0     // uniform: rtpbr_shader_frame
+#define RTPBR_BINDING_GBUFFER_MATERIALS 1 // storage: rtpbr_shader_material[]
+
+// G-buffer pass, descriptor set 1: one set per material.
+#define RTPBR_BINDING_TEXTURE_BASE_COLOR 0
+#define RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS 1
+#define RTPBR_BINDING_TEXTURE_EMISSION 2
+#define RTPBR_BINDING_TEXTURE_NORMAL 3
+#define RTPBR_MATERIAL_TEXTURE_COUNT 4
+
+// Lighting pass, descriptor set 0.
+#define RTPBR_BINDING_LIGHT_FRAME 0       // uniform: rtpbr_shader_frame
+#define RTPBR_BINDING_LIGHT_LIGHTS 1      // storage: rtpbr_shader_light[]
+#define RTPBR_BINDING_LIGHT_GBUFFER0 2    // base colour rgb, metallic
+#define RTPBR_BINDING_LIGHT_GBUFFER1 3    // world normal xyz, perceptual roughness
+#define RTPBR_BINDING_LIGHT_GBUFFER2 4    // emitted radiance rgb, ior
+#define RTPBR_BINDING_LIGHT_GBUFFER3 5    // specular colour rgb, specular factor
+#define RTPBR_BINDING_LIGHT_DEPTH 6       // depth (0 near .. 1 far)
+#define RTPBR_BINDING_LIGHT_RADIANCE 7    // output, rgba32f storage image
+// Lookup tables (combined image samplers, linear filtering, clamp to edge). Until the
+// tables exist these slots hold 1x1 placeholders.
+#define RTPBR_BINDING_LUT_LTC_GGX_1 8      // M^-1 of the GGX LTC fit
+#define RTPBR_BINDING_LUT_LTC_GGX_2 9      // norm, fresnel, 0, sphere form factor
+#define RTPBR_BINDING_LUT_LTC_BECKMANN_1 10
+#define RTPBR_BINDING_LUT_LTC_BECKMANN_2 11
+#define RTPBR_BINDING_LUT_KC_E 12          // Kulla-Conty E(mu, r)
+#define RTPBR_BINDING_LUT_KC_EAVG 13       // Kulla-Conty E_avg(r)
+#define RTPBR_LIGHTING_BINDING_COUNT 14
+
+// Tone-mapping pass, descriptor set 0.
+#define RTPBR_BINDING_TONEMAP_RADIANCE 0   // rgba32f storage image, read only
+
+// Tone-mapping operators (values of rtpbr_tonemap in rtpbr.h minus the default).
+#define RTPBR_TONEMAP_OP_ACES 1
+#define RTPBR_TONEMAP_OP_REINHARD 2
+#define RTPBR_TONEMAP_OP_LINEAR 3
+
+// Output encodings of the tone-mapping pass.
+#define RTPBR_ENCODE_NONE 0 // sRGB attachment (hardware encodes) or float target
+#define RTPBR_ENCODE_SRGB 1 // UNORM attachment: the shader applies the sRGB curve
+
+#endif // RTPBR_SHARED_H

@@ -1,0 +1,290 @@
+// Vulkan instance and device: standalone creation (with optional validation) or adoption of
+// the host's objects (embedded mode).
+#include <string.h>
+
+#include "internal.h"
+
+#define VALIDATION_LAYER "VK_LAYER_KHRONOS_validation"
+
+static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
+    VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+    const VkDebugUtilsMessengerCallbackDataEXT *data, void *user_data)
+{
+    (void)types;
+    rtpbr_context *ctx = user_data;
+    bool error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    ctx->validation_messages++;
+    rtpbr_log(ctx, error ? RTPBR_LOG_ERROR : RTPBR_LOG_WARNING, "validation: %s",
+              data && data->pMessage ? data->pMessage : "(no message)");
+    return VK_FALSE;
+}
+
+static bool has_layer(rtpbr_context *ctx, const char *name)
+{
+    uint32_t count = 0;
+    if (vkEnumerateInstanceLayerProperties(&count, NULL) != VK_SUCCESS || count == 0) return false;
+    VkLayerProperties *layers = rtpbr_alloc(ctx, count * sizeof *layers);
+    if (!layers) return false;
+    bool found = false;
+    if (vkEnumerateInstanceLayerProperties(&count, layers) == VK_SUCCESS)
+        for (uint32_t i = 0; i < count && !found; ++i) found = strcmp(layers[i].layerName, name) == 0;
+    rtpbr_free(ctx, layers);
+    return found;
+}
+
+// A queue family with graphics and compute, or UINT32_MAX.
+static uint32_t find_queue_family(rtpbr_context *ctx, VkPhysicalDevice pd)
+{
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, NULL);
+    VkQueueFamilyProperties *families = rtpbr_alloc(ctx, (count ? count : 1) * sizeof *families);
+    if (!families) return UINT32_MAX;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, families);
+    uint32_t found = UINT32_MAX;
+    const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+    for (uint32_t i = 0; i < count && found == UINT32_MAX; ++i)
+        if ((families[i].queueFlags & need) == need && families[i].queueCount > 0) found = i;
+    rtpbr_free(ctx, families);
+    return found;
+}
+
+static bool supports_dynamic_rendering(VkPhysicalDevice pd)
+{
+    VkPhysicalDeviceVulkan13Features f13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceFeatures2 f = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f13};
+    vkGetPhysicalDeviceFeatures2(pd, &f);
+    return f13.dynamicRendering;
+}
+
+// Rank of a device type in the documented choice rule (lower is preferred).
+static int type_rank(VkPhysicalDeviceType type)
+{
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
+    default: return 4;
+    }
+}
+
+static void adopt_physical_device(rtpbr_context *ctx, VkPhysicalDevice pd)
+{
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(pd, &props);
+    memcpy(ctx->device_name, props.deviceName, sizeof ctx->device_name);
+    ctx->device_name[sizeof ctx->device_name - 1] = '\0';
+    vkGetPhysicalDeviceMemoryProperties(pd, &ctx->memory_properties);
+    ctx->physical_device = pd;
+}
+
+static rtpbr_result create_instance(rtpbr_context *ctx, bool validation)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    if (validation && !has_layer(ctx, VALIDATION_LAYER)) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "validation requested but %s is not installed", VALIDATION_LAYER);
+        return RTPBR_ERROR_MISSING_FEATURE;
+    }
+    VkApplicationInfo app = {
+        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+        .pEngineName = "rtpbr",
+        .engineVersion = VK_MAKE_VERSION(0, 1, 0),
+        .apiVersion = VK_API_VERSION_1_3,
+    };
+    VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    VkDebugUtilsMessengerCreateInfoEXT messenger_info = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+        .pfnUserCallback = on_validation_message,
+        .pUserData = ctx,
+    };
+    VkValidationFeaturesEXT features = {
+        .sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
+        .pNext = &messenger_info,
+        .enabledValidationFeatureCount = 1,
+        .pEnabledValidationFeatures = enables,
+    };
+    const char *layers[] = {VALIDATION_LAYER};
+    const char *extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    VkInstanceCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+        .pNext = validation ? &features : NULL,
+        .pApplicationInfo = &app,
+        .enabledLayerCount = validation ? 1 : 0,
+        .ppEnabledLayerNames = layers,
+        .enabledExtensionCount = validation ? 1 : 0,
+        .ppEnabledExtensionNames = extensions,
+    };
+    VkResult vr = vkCreateInstance(&info, NULL, &ctx->instance);
+    if (vr == VK_ERROR_INCOMPATIBLE_DRIVER) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "no Vulkan implementation found (vkCreateInstance: %s)",
+                  rtpbr_vk_result_name(vr));
+        return RTPBR_ERROR_NO_DEVICE;
+    }
+    RTPBR_VK(ctx, vr);
+    if (validation) {
+        PFN_vkCreateDebugUtilsMessengerEXT create_messenger =
+            (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(ctx->instance, "vkCreateDebugUtilsMessengerEXT");
+        if (!create_messenger) {
+            rtpbr_log(ctx, RTPBR_LOG_ERROR, "vkCreateDebugUtilsMessengerEXT not available");
+            return RTPBR_ERROR_MISSING_FEATURE;
+        }
+        RTPBR_VK(ctx, create_messenger(ctx->instance, &messenger_info, NULL, &ctx->messenger));
+    }
+cleanup:
+    return result;
+}
+
+static rtpbr_result choose_physical_device(rtpbr_context *ctx, uint32_t device_index)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkPhysicalDevice *devices = NULL;
+    uint32_t count = 0;
+    RTPBR_VK(ctx, vkEnumeratePhysicalDevices(ctx->instance, &count, NULL));
+    if (count == 0) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "no Vulkan physical device");
+        return RTPBR_ERROR_NO_DEVICE;
+    }
+    devices = rtpbr_alloc(ctx, count * sizeof *devices);
+    if (!devices) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+    RTPBR_VK(ctx, vkEnumeratePhysicalDevices(ctx->instance, &count, devices));
+
+    VkPhysicalDevice best = VK_NULL_HANDLE;
+    int best_rank = 99;
+    uint32_t suitable = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(devices[i], &props);
+        bool ok = props.apiVersion >= VK_API_VERSION_1_3 && supports_dynamic_rendering(devices[i]) &&
+                  find_queue_family(ctx, devices[i]) != UINT32_MAX;
+        rtpbr_log(ctx, RTPBR_LOG_DEBUG, "device %u: %s (%s)", i, props.deviceName, ok ? "suitable" : "unsuitable");
+        if (!ok) continue;
+        ++suitable;
+        if (device_index != RTPBR_DEVICE_AUTO) {
+            if (suitable == device_index) best = devices[i];
+        } else if (type_rank(props.deviceType) < best_rank) {
+            best_rank = type_rank(props.deviceType);
+            best = devices[i];
+        }
+    }
+    if (best == VK_NULL_HANDLE) {
+        if (device_index != RTPBR_DEVICE_AUTO && suitable > 0)
+            rtpbr_log(ctx, RTPBR_LOG_ERROR, "device_index %u requested but only %u suitable device(s)",
+                      device_index, suitable);
+        else
+            rtpbr_log(ctx, RTPBR_LOG_ERROR,
+                      "no Vulkan device with Vulkan 1.3, dynamicRendering and a graphics+compute queue");
+        result = RTPBR_ERROR_NO_DEVICE;
+        goto cleanup;
+    }
+    adopt_physical_device(ctx, best);
+cleanup:
+    rtpbr_free(ctx, devices);
+    return result;
+}
+
+rtpbr_result rtpbr_device_init_standalone(rtpbr_context *ctx, const rtpbr_context_desc *desc)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    RTPBR_TRY(create_instance(ctx, desc->validation != 0));
+    RTPBR_TRY(choose_physical_device(ctx, desc->device_index));
+    ctx->queue_family = find_queue_family(ctx, ctx->physical_device);
+
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo queue_info = {
+        .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+        .queueFamilyIndex = ctx->queue_family,
+        .queueCount = 1,
+        .pQueuePriorities = &priority,
+    };
+    VkPhysicalDeviceVulkan13Features f13 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+        .dynamicRendering = VK_TRUE,
+    };
+    VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f13};
+    VkDeviceCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+        .pNext = &features,
+        .queueCreateInfoCount = 1,
+        .pQueueCreateInfos = &queue_info,
+    };
+    RTPBR_VK(ctx, vkCreateDevice(ctx->physical_device, &info, NULL, &ctx->device));
+    vkGetDeviceQueue(ctx->device, ctx->queue_family, 0, &ctx->queue);
+    rtpbr_log(ctx, RTPBR_LOG_INFO, "standalone device: %s", ctx->device_name);
+cleanup:
+    return result;
+}
+
+// Whether the host's VkDeviceCreateInfo feature chain enabled dynamicRendering.
+static bool host_enabled_dynamic_rendering(const VkPhysicalDeviceFeatures2 *features)
+{
+    for (const VkBaseInStructure *s = features ? (const VkBaseInStructure *)features->pNext : NULL; s; s = s->pNext) {
+        if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES &&
+            ((const VkPhysicalDeviceVulkan13Features *)s)->dynamicRendering)
+            return true;
+        if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES &&
+            ((const VkPhysicalDeviceDynamicRenderingFeatures *)s)->dynamicRendering)
+            return true;
+    }
+    return false;
+}
+
+rtpbr_result rtpbr_device_init_embedded(rtpbr_context *ctx, const rtpbr_vulkan_device *host)
+{
+    ctx->embedded = true;
+    if (!host->instance || !host->physical_device || !host->device || !host->queue) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR,
+                  "embedded mode needs instance, physical_device, device and queue (one is VK_NULL_HANDLE)");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(host->physical_device, &props);
+    if (props.apiVersion < VK_API_VERSION_1_3) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "embedded device %s supports Vulkan %u.%u; 1.3 is required",
+                  props.deviceName, VK_API_VERSION_MAJOR(props.apiVersion), VK_API_VERSION_MINOR(props.apiVersion));
+        return RTPBR_ERROR_MISSING_FEATURE;
+    }
+    if (!host_enabled_dynamic_rendering(host->enabled_features)) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR,
+                  "embedded device: dynamicRendering was not enabled (enabled_features lists what the "
+                  "host passed to vkCreateDevice; it must enable VkPhysicalDeviceVulkan13Features::dynamicRendering)");
+        return RTPBR_ERROR_MISSING_FEATURE;
+    }
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(host->physical_device, &family_count, NULL);
+    VkQueueFamilyProperties families[32];
+    if (family_count > 32) family_count = 32;
+    vkGetPhysicalDeviceQueueFamilyProperties(host->physical_device, &family_count, families);
+    const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+    if (host->queue_family_index >= family_count ||
+        (families[host->queue_family_index].queueFlags & need) != need) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "embedded queue family %u does not support graphics and compute",
+                  host->queue_family_index);
+        return RTPBR_ERROR_MISSING_FEATURE;
+    }
+    ctx->instance = host->instance;
+    ctx->device = host->device;
+    ctx->queue = host->queue;
+    ctx->queue_family = host->queue_family_index;
+    adopt_physical_device(ctx, host->physical_device);
+    rtpbr_log(ctx, RTPBR_LOG_INFO, "embedded in the host's device: %s", ctx->device_name);
+    return RTPBR_SUCCESS;
+}
+
+void rtpbr_device_finish(rtpbr_context *ctx)
+{
+    if (ctx->embedded) return; // the host's objects are the host's
+    if (ctx->device) vkDestroyDevice(ctx->device, NULL);
+    if (ctx->messenger) {
+        PFN_vkDestroyDebugUtilsMessengerEXT destroy_messenger =
+            (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(ctx->instance, "vkDestroyDebugUtilsMessengerEXT");
+        if (destroy_messenger) destroy_messenger(ctx->instance, ctx->messenger, NULL);
+    }
+    if (ctx->instance) vkDestroyInstance(ctx->instance, NULL);
+    ctx->device = VK_NULL_HANDLE;
+    ctx->instance = VK_NULL_HANDLE;
+}

@@ -1,0 +1,72 @@
+// The lookup tables of the lighting pass, uploaded from the shader library's generated C
+// arrays (shaderlib/luts/). A table that is not in the tree yet gets a 1x1 placeholder, so the
+// descriptor slots are always bound; the lighting shader only reads tables it was built with
+// (RTPBR_HAVE_LTC, RTPBR_HAVE_KC).
+#include <stdlib.h>
+
+#include "internal.h"
+
+#if RTPBR_HAVE_LTC_TABLES
+#include "luts/rtpbr_ltc_tables.h"
+#endif
+#if RTPBR_HAVE_KC_TABLES
+// The generated tables initialise multi-dimensional arrays with flat lists (valid C).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-braces"
+#include "luts/rtpbr_kc_tables.h"
+#pragma GCC diagnostic pop
+#endif
+
+enum { LUT_LTC_GGX_1, LUT_LTC_GGX_2, LUT_LTC_BECKMANN_1, LUT_LTC_BECKMANN_2, LUT_KC_E, LUT_KC_EAVG };
+
+#if RTPBR_HAVE_KC_TABLES
+// Kulla-Conty tables of the two NDFs the engine compiles, one per channel: r = GGX, g =
+// Beckmann (both with height-correlated Smith, the shader library's default).
+static rtpbr_result create_kc_luts(rtpbr_context *ctx)
+{
+    const int ggx = RTPBR_KC_VARIANT_ggx_hc, beckmann = RTPBR_KC_VARIANT_beckmann_hc;
+    float *e = rtpbr_alloc(ctx, RTPBR_KC_SIZE * RTPBR_KC_SIZE * 4 * sizeof(float));
+    float *eavg = rtpbr_alloc(ctx, RTPBR_KC_SIZE * 4 * sizeof(float));
+    rtpbr_result result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+    if (e && eavg) {
+        // rtpbr_kc_E[variant][r][mu]: texel x = mu axis, y = roughness (KC_TableCoord).
+        for (int r = 0; r < RTPBR_KC_SIZE; ++r)
+            for (int mu = 0; mu < RTPBR_KC_SIZE; ++mu) {
+                float *t = e + 4 * (r * RTPBR_KC_SIZE + mu);
+                t[0] = rtpbr_kc_E[ggx][r][mu];
+                t[1] = rtpbr_kc_E[beckmann][r][mu];
+            }
+        for (int r = 0; r < RTPBR_KC_SIZE; ++r) {
+            eavg[4 * r + 0] = rtpbr_kc_Eavg[ggx][r];
+            eavg[4 * r + 1] = rtpbr_kc_Eavg[beckmann][r];
+        }
+        result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, RTPBR_KC_SIZE, e, &ctx->luts[LUT_KC_E]);
+        if (result == RTPBR_SUCCESS) result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, 1, eavg, &ctx->luts[LUT_KC_EAVG]);
+    }
+    rtpbr_free(ctx, e);
+    rtpbr_free(ctx, eavg);
+    return result;
+}
+#endif
+
+rtpbr_result rtpbr_luts_create(rtpbr_context *ctx)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+#if RTPBR_HAVE_LTC_TABLES
+    const float *ltc[4] = {rtpbr_ltc_ggx_1, rtpbr_ltc_ggx_2, rtpbr_ltc_beckmann_1, rtpbr_ltc_beckmann_2};
+    for (int i = 0; i < 4 && result == RTPBR_SUCCESS; ++i)
+        result = rtpbr_lut_create(ctx, RTPBR_LTC_SIZE, RTPBR_LTC_SIZE, ltc[i], &ctx->luts[LUT_LTC_GGX_1 + i]);
+#endif
+#if RTPBR_HAVE_KC_TABLES
+    if (result == RTPBR_SUCCESS) result = create_kc_luts(ctx);
+#endif
+    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (size_t i = 0; i < sizeof ctx->luts / sizeof ctx->luts[0] && result == RTPBR_SUCCESS; ++i)
+        if (!ctx->luts[i].image.image) result = rtpbr_lut_create(ctx, 1, 1, zero, &ctx->luts[i]);
+    return result; // the caller destroys what was made (rtpbr_luts_destroy)
+}
+
+void rtpbr_luts_destroy(rtpbr_context *ctx)
+{
+    for (size_t i = 0; i < sizeof ctx->luts / sizeof ctx->luts[0]; ++i) rtpbr_lut_destroy(ctx, &ctx->luts[i]);
+}

@@ -1,0 +1,359 @@
+// Renderers: per-resolution targets, frame recording, submission and readback.
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+
+static rtpbr_result create_descriptors(rtpbr_renderer *r)
+{
+    rtpbr_context *ctx = r->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkDescriptorPoolSize sizes[] = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, RTPBR_LIGHTING_BINDING_COUNT},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
+    };
+    VkDescriptorPoolCreateInfo pool_info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+        .maxSets = 3,
+        .poolSizeCount = sizeof sizes / sizeof sizes[0],
+        .pPoolSizes = sizes,
+    };
+    RTPBR_VK(ctx, vkCreateDescriptorPool(ctx->device, &pool_info, NULL, &r->descriptor_pool));
+    VkDescriptorSetLayout layouts[3] = {ctx->gbuffer_set_layout, ctx->lighting_set_layout, ctx->tonemap_set_layout};
+    VkDescriptorSet sets[3];
+    VkDescriptorSetAllocateInfo alloc = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+        .descriptorPool = r->descriptor_pool,
+        .descriptorSetCount = 3,
+        .pSetLayouts = layouts,
+    };
+    RTPBR_VK(ctx, vkAllocateDescriptorSets(ctx->device, &alloc, sets));
+    r->gbuffer_set = sets[0];
+    r->lighting_set = sets[1];
+    r->tonemap_set = sets[2];
+
+    // Everything but the scene's buffers is fixed for the renderer's lifetime.
+    VkDescriptorBufferInfo frame = {r->frame.buffer, 0, sizeof(rtpbr_shader_frame)};
+    VkDescriptorImageInfo images[RTPBR_LIGHTING_BINDING_COUNT] = {{0}};
+    for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i)
+        images[RTPBR_BINDING_LIGHT_GBUFFER0 + i] = (VkDescriptorImageInfo){
+            ctx->gbuffer_sampler, r->gbuffer[i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    images[RTPBR_BINDING_LIGHT_DEPTH] =
+        (VkDescriptorImageInfo){ctx->gbuffer_sampler, r->depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    images[RTPBR_BINDING_LIGHT_RADIANCE] = (VkDescriptorImageInfo){VK_NULL_HANDLE, r->radiance.view, VK_IMAGE_LAYOUT_GENERAL};
+    for (uint32_t i = 0; i < 6; ++i)
+        images[RTPBR_BINDING_LUT_LTC_GGX_1 + i] = (VkDescriptorImageInfo){
+            ctx->lut_sampler, ctx->luts[i].image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+
+    VkWriteDescriptorSet writes[RTPBR_LIGHTING_BINDING_COUNT + 3];
+    uint32_t n = 0;
+    writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->gbuffer_set,
+                                         .dstBinding = RTPBR_BINDING_GBUFFER_FRAME, .descriptorCount = 1,
+                                         .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &frame};
+    writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
+                                         .dstBinding = RTPBR_BINDING_LIGHT_FRAME, .descriptorCount = 1,
+                                         .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &frame};
+    for (uint32_t b = RTPBR_BINDING_LIGHT_GBUFFER0; b < RTPBR_LIGHTING_BINDING_COUNT; ++b)
+        writes[n++] = (VkWriteDescriptorSet){
+            .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set, .dstBinding = b,
+            .descriptorCount = 1,
+            .descriptorType = b == RTPBR_BINDING_LIGHT_RADIANCE ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+                                                                : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+            .pImageInfo = &images[b]};
+    VkDescriptorImageInfo radiance = {VK_NULL_HANDLE, r->radiance.view, VK_IMAGE_LAYOUT_GENERAL};
+    writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->tonemap_set,
+                                         .dstBinding = RTPBR_BINDING_TONEMAP_RADIANCE, .descriptorCount = 1,
+                                         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .pImageInfo = &radiance};
+    vkUpdateDescriptorSets(ctx->device, n, writes, 0, NULL);
+cleanup:
+    return result;
+}
+
+rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc *desc, rtpbr_renderer **out)
+{
+    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!desc || !out) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_renderer_create: desc or out_renderer is NULL");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    *out = NULL;
+    if (desc->width == 0 || desc->height == 0 || desc->width > RTPBR_MAX_RENDER_SIZE ||
+        desc->height > RTPBR_MAX_RENDER_SIZE) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "renderer size %ux%u; each side must be 1..%u", desc->width, desc->height,
+                  RTPBR_MAX_RENDER_SIZE);
+        return desc->width == 0 || desc->height == 0 ? RTPBR_ERROR_INVALID_ARGUMENT : RTPBR_ERROR_LIMIT_EXCEEDED;
+    }
+    rtpbr_result result = RTPBR_SUCCESS;
+    rtpbr_renderer *r = rtpbr_alloc(ctx, sizeof *r);
+    if (!r) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+    r->context = ctx;
+    r->width = desc->width;
+    r->height = desc->height;
+    uint32_t w = desc->width, h = desc->height;
+
+    for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i)
+        RTPBR_TRY(rtpbr_image_create(ctx, w, h, rtpbr_gbuffer_formats[i],
+                                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                     &r->gbuffer[i]));
+    RTPBR_TRY(rtpbr_image_create(ctx, w, h, RTPBR_DEPTH_FORMAT,
+                                 VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, &r->depth));
+    RTPBR_TRY(rtpbr_image_create(ctx, w, h, RTPBR_RADIANCE_FORMAT,
+                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &r->radiance));
+    RTPBR_TRY(rtpbr_image_create(ctx, w, h, RTPBR_DISPLAY_FORMAT,
+                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &r->display));
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, sizeof(rtpbr_shader_frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &r->frame));
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                       &r->radiance_readback));
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                       &r->display_readback));
+    RTPBR_TRY(create_descriptors(r));
+
+    VkCommandBufferAllocateInfo cmd_info = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+        .commandPool = ctx->command_pool,
+        .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+        .commandBufferCount = 1,
+    };
+    RTPBR_VK(ctx, vkAllocateCommandBuffers(ctx->device, &cmd_info, &r->cmd));
+    VkFenceCreateInfo fence_info = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    RTPBR_VK(ctx, vkCreateFence(ctx->device, &fence_info, NULL, &r->fence));
+    *out = r;
+    return RTPBR_SUCCESS;
+cleanup:
+    rtpbr_renderer_destroy(r);
+    return result;
+}
+
+void rtpbr_renderer_destroy(rtpbr_renderer *r)
+{
+    if (!r) return;
+    rtpbr_context *ctx = r->context;
+    if (r->fence) {
+        if (r->has_frame) vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX);
+        vkDestroyFence(ctx->device, r->fence, NULL);
+    }
+    if (r->cmd) vkFreeCommandBuffers(ctx->device, ctx->command_pool, 1, &r->cmd);
+    if (r->descriptor_pool) vkDestroyDescriptorPool(ctx->device, r->descriptor_pool, NULL);
+    rtpbr_buffer_destroy(ctx, &r->frame);
+    rtpbr_buffer_destroy(ctx, &r->radiance_readback);
+    rtpbr_buffer_destroy(ctx, &r->display_readback);
+    for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i) rtpbr_image_destroy(ctx, &r->gbuffer[i]);
+    rtpbr_image_destroy(ctx, &r->depth);
+    rtpbr_image_destroy(ctx, &r->radiance);
+    rtpbr_image_destroy(ctx, &r->display);
+    rtpbr_free(ctx, r);
+}
+
+// ---------------------------------------------------------------------------------------------
+
+// Checks the arguments shared by rtpbr_render and rtpbr_record, then writes the frame
+// constants and the scene's descriptors.
+static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc)
+{
+    rtpbr_context *ctx = r->context;
+    if (!scene || !desc) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: scene or desc is NULL");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (scene->context != ctx) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: the scene belongs to another context");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    const rtpbr_camera_desc *camera = desc->camera;
+    if (!camera) {
+        if (desc->camera_index >= scene->camera_count) {
+            rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: camera %u requested, the scene has %u", desc->camera_index,
+                      scene->camera_count);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+        camera = &scene->cameras[desc->camera_index];
+    }
+    if (!rtpbr_finite((const float *)camera, sizeof *camera / sizeof(float)) || !isfinite(desc->exposure) ||
+        !isfinite(desc->light_cull_form_factor) ||
+        !rtpbr_finite(desc->background, 3)) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: NaN or infinite camera, exposure or background");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if ((unsigned)desc->tonemap > RTPBR_TONEMAP_LINEAR || (unsigned)desc->ndf > RTPBR_NDF_BECKMANN_MODEL ||
+        (unsigned)desc->multiscatter > RTPBR_MULTISCATTER_OFF) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: unknown tonemap, ndf or multiscatter value");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+
+    rtpbr_shader_frame frame = {0};
+    rtpbr_camera_matrices(camera, (float)r->width / (float)r->height, frame.view_proj);
+    if (!rtpbr_mat4_invert(frame.inv_view_proj, frame.view_proj)) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: degenerate camera");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    memcpy(frame.camera_position, camera->position, 3 * sizeof(float));
+    memcpy(frame.background, desc->background, 3 * sizeof(float));
+    frame.size[0] = r->width;
+    frame.size[1] = r->height;
+    frame.light_count = scene->light_count;
+    frame.cull_form_factor = desc->light_cull_form_factor == 0.0f ? RTPBR_DEFAULT_CULL_FORM_FACTOR
+                                                                   : desc->light_cull_form_factor;
+    memcpy(r->frame.mapped, &frame, sizeof frame);
+
+    VkDescriptorBufferInfo materials = {scene->materials.buffer, 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo lights = {scene->lights.buffer, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet writes[2] = {
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->gbuffer_set,
+         .dstBinding = RTPBR_BINDING_GBUFFER_MATERIALS, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &materials},
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
+         .dstBinding = RTPBR_BINDING_LIGHT_LIGHTS, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &lights},
+    };
+    vkUpdateDescriptorSets(ctx->device, 2, writes, 0, NULL);
+    return RTPBR_SUCCESS;
+}
+
+static rtpbr_shader_tonemap tonemap_params(const rtpbr_render_desc *desc, uint32_t encode)
+{
+    uint32_t op = desc->tonemap == RTPBR_TONEMAP_DEFAULT ? RTPBR_TONEMAP_OP_ACES : (uint32_t)desc->tonemap;
+    return (rtpbr_shader_tonemap){.scale = exp2f(desc->exposure), .op = op, .encode = encode};
+}
+
+// Copies the radiance image into its readback buffer (and the display image, if given).
+static void record_readback(rtpbr_renderer *r, VkCommandBuffer cmd, bool display)
+{
+    VkBufferImageCopy region = {
+        .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+        .imageExtent = {r->width, r->height, 1},
+    };
+    // After the lighting pass's writes and the tone-mapping pass's reads.
+    rtpbr_image_barrier(cmd, r->radiance.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                        VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    vkCmdCopyImageToBuffer(cmd, r->radiance.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->radiance_readback.buffer,
+                           1, &region);
+    if (display)
+        vkCmdCopyImageToBuffer(cmd, r->display.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->display_readback.buffer,
+                               1, &region);
+    VkMemoryBarrier to_host = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+        .dstAccessMask = VK_ACCESS_HOST_READ_BIT,
+    };
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, NULL,
+                         0, NULL);
+}
+
+rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc)
+{
+    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    rtpbr_context *ctx = r->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkPipeline tonemap;
+    if (r->has_frame) RTPBR_VK(ctx, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+    RTPBR_TRY(prepare_frame(r, scene, desc));
+    RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, RTPBR_DISPLAY_FORMAT, &tonemap));
+
+    VkCommandBuffer cmd = r->cmd;
+    VkCommandBufferBeginInfo begin = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
+    };
+    RTPBR_VK(ctx, vkResetCommandBuffer(cmd, 0));
+    RTPBR_VK(ctx, vkBeginCommandBuffer(cmd, &begin));
+    rtpbr_gbuffer_record(r, scene, cmd);
+    rtpbr_lighting_record(r, rtpbr_lighting_pipeline(ctx, desc->ndf, desc->multiscatter), cmd);
+    rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    rtpbr_shader_tonemap params = tonemap_params(desc, RTPBR_ENCODE_NONE);
+    rtpbr_tonemap_record(r, tonemap, &params, r->display.view, cmd);
+    rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                        VK_ACCESS_TRANSFER_READ_BIT);
+    record_readback(r, cmd, true);
+    RTPBR_VK(ctx, vkEndCommandBuffer(cmd));
+
+    VkSubmitInfo submit = {
+        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
+        .commandBufferCount = 1,
+        .pCommandBuffers = &cmd,
+    };
+    RTPBR_VK(ctx, vkResetFences(ctx->device, 1, &r->fence));
+    r->has_frame = false; // the fence is unsignalled until the submission below succeeds
+    RTPBR_VK(ctx, vkQueueSubmit(ctx->queue, 1, &submit, r->fence));
+    r->has_frame = true;
+    RTPBR_VK(ctx, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+cleanup:
+    return result;
+}
+
+rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc,
+                          const rtpbr_record_desc *target)
+{
+    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    rtpbr_context *ctx = r->context;
+    if (!target || !target->command_buffer || !target->image || !target->view ||
+        target->format == VK_FORMAT_UNDEFINED) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_record: command_buffer, image, view and format are required");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkPipeline tonemap;
+    if (r->has_frame) RTPBR_VK(ctx, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+    RTPBR_TRY(prepare_frame(r, scene, desc));
+    RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, target->format, &tonemap));
+
+    // UNORM targets need the sRGB curve in the shader; sRGB targets encode in hardware.
+    bool unorm = target->format == VK_FORMAT_R8G8B8A8_UNORM || target->format == VK_FORMAT_B8G8R8A8_UNORM ||
+                 target->format == VK_FORMAT_A8B8G8R8_UNORM_PACK32 || target->format == VK_FORMAT_A2B10G10R10_UNORM_PACK32 ||
+                 target->format == VK_FORMAT_A2R10G10B10_UNORM_PACK32;
+    VkImageLayout new_layout = target->new_layout ? target->new_layout : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    VkCommandBuffer cmd = target->command_buffer;
+    rtpbr_gbuffer_record(r, scene, cmd);
+    rtpbr_lighting_record(r, rtpbr_lighting_pipeline(ctx, desc->ndf, desc->multiscatter), cmd);
+    rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, target->old_layout,
+                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
+                        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    rtpbr_shader_tonemap params = tonemap_params(desc, unorm ? RTPBR_ENCODE_SRGB : RTPBR_ENCODE_NONE);
+    rtpbr_tonemap_record(r, tonemap, &params, target->view, cmd);
+    if (new_layout != VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL)
+        rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                            new_layout, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                            VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                            VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+    record_readback(r, cmd, false);
+    r->has_frame = false; // rtpbr_read_display has nothing of this frame: the host owns its target
+cleanup:
+    return result;
+}
+
+rtpbr_result rtpbr_read_radiance(rtpbr_renderer *r, float *rgba, size_t size_bytes)
+{
+    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    size_t need = (size_t)r->width * r->height * 16;
+    if (!rgba || size_bytes < need) {
+        rtpbr_log(r->context, RTPBR_LOG_ERROR, "rtpbr_read_radiance: need a buffer of %zu bytes, got %zu%s", need,
+                  size_bytes, rgba ? "" : " (NULL)");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    memcpy(rgba, r->radiance_readback.mapped, need);
+    return RTPBR_SUCCESS;
+}
+
+rtpbr_result rtpbr_read_display(rtpbr_renderer *r, uint8_t *rgba, size_t size_bytes)
+{
+    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    size_t need = (size_t)r->width * r->height * 4;
+    if (!rgba || size_bytes < need) {
+        rtpbr_log(r->context, RTPBR_LOG_ERROR, "rtpbr_read_display: need a buffer of %zu bytes, got %zu%s", need,
+                  size_bytes, rgba ? "" : " (NULL)");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (!r->has_frame) {
+        rtpbr_log(r->context, RTPBR_LOG_ERROR, "rtpbr_read_display: nothing rendered with rtpbr_render yet");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    memcpy(rgba, r->display_readback.mapped, need);
+    return RTPBR_SUCCESS;
+}

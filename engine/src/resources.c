@@ -1,0 +1,272 @@
+// Buffers, images, one-shot submissions and lookup-table textures.
+#include <string.h>
+
+#include "internal.h"
+
+static uint32_t find_memory_type(const rtpbr_context *ctx, uint32_t type_bits, VkMemoryPropertyFlags want)
+{
+    const VkPhysicalDeviceMemoryProperties *mp = &ctx->memory_properties;
+    for (uint32_t i = 0; i < mp->memoryTypeCount; ++i)
+        if ((type_bits & (1u << i)) && (mp->memoryTypes[i].propertyFlags & want) == want) return i;
+    return UINT32_MAX;
+}
+
+static rtpbr_result allocate(rtpbr_context *ctx, VkMemoryRequirements req, VkMemoryPropertyFlags want,
+                             VkMemoryPropertyFlags fallback, VkDeviceMemory *out)
+{
+    uint32_t type = find_memory_type(ctx, req.memoryTypeBits, want);
+    if (type == UINT32_MAX) type = find_memory_type(ctx, req.memoryTypeBits, fallback);
+    if (type == UINT32_MAX) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "no Vulkan memory type with properties 0x%x", (unsigned)fallback);
+        return RTPBR_ERROR_OUT_OF_DEVICE_MEMORY;
+    }
+    VkMemoryAllocateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+        .allocationSize = req.size,
+        .memoryTypeIndex = type,
+    };
+    VkResult vr = vkAllocateMemory(ctx->device, &info, NULL, out);
+    return vr == VK_SUCCESS ? RTPBR_SUCCESS : rtpbr_vk_fail(ctx, vr, "vkAllocateMemory");
+}
+
+rtpbr_result rtpbr_buffer_create_host(rtpbr_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                                      rtpbr_buffer *out)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    memset(out, 0, sizeof *out);
+    VkBufferCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+        .size = size,
+        .usage = usage,
+        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+    };
+    RTPBR_VK(ctx, vkCreateBuffer(ctx->device, &info, NULL, &out->buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(ctx->device, out->buffer, &req);
+    const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    RTPBR_TRY(allocate(ctx, req, host | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, host, &out->memory));
+    RTPBR_VK(ctx, vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0));
+    RTPBR_VK(ctx, vkMapMemory(ctx->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped));
+    out->size = size;
+    return RTPBR_SUCCESS;
+cleanup:
+    rtpbr_buffer_destroy(ctx, out);
+    return result;
+}
+
+void rtpbr_buffer_destroy(rtpbr_context *ctx, rtpbr_buffer *buffer)
+{
+    if (buffer->buffer) vkDestroyBuffer(ctx->device, buffer->buffer, NULL);
+    if (buffer->memory) vkFreeMemory(ctx->device, buffer->memory, NULL); // unmaps implicitly
+    memset(buffer, 0, sizeof *buffer);
+}
+
+static VkImageAspectFlags aspect_of(VkFormat format)
+{
+    return format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D16_UNORM ? VK_IMAGE_ASPECT_DEPTH_BIT
+                                                                          : VK_IMAGE_ASPECT_COLOR_BIT;
+}
+
+rtpbr_result rtpbr_image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
+                                VkImageUsageFlags usage, rtpbr_image *out)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    memset(out, 0, sizeof *out);
+    VkImageCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+        .imageType = VK_IMAGE_TYPE_2D,
+        .format = format,
+        .extent = {width, height, 1},
+        .mipLevels = 1,
+        .arrayLayers = 1,
+        .samples = VK_SAMPLE_COUNT_1_BIT,
+        .tiling = VK_IMAGE_TILING_OPTIMAL,
+        .usage = usage,
+        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+        .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+    };
+    RTPBR_VK(ctx, vkCreateImage(ctx->device, &info, NULL, &out->image));
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(ctx->device, out->image, &req);
+    RTPBR_TRY(allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, &out->memory));
+    RTPBR_VK(ctx, vkBindImageMemory(ctx->device, out->image, out->memory, 0));
+    VkImageViewCreateInfo view_info = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+        .image = out->image,
+        .viewType = VK_IMAGE_VIEW_TYPE_2D,
+        .format = format,
+        .subresourceRange = {aspect_of(format), 0, 1, 0, 1},
+    };
+    RTPBR_VK(ctx, vkCreateImageView(ctx->device, &view_info, NULL, &out->view));
+    out->format = format;
+    out->width = width;
+    out->height = height;
+    return RTPBR_SUCCESS;
+cleanup:
+    rtpbr_image_destroy(ctx, out);
+    return result;
+}
+
+void rtpbr_image_destroy(rtpbr_context *ctx, rtpbr_image *image)
+{
+    if (image->view) vkDestroyImageView(ctx->device, image->view, NULL);
+    if (image->image) vkDestroyImage(ctx->device, image->image, NULL);
+    if (image->memory) vkFreeMemory(ctx->device, image->memory, NULL);
+    memset(image, 0, sizeof *image);
+}
+
+void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
+                         VkImageLayout old_layout, VkImageLayout new_layout,
+                         VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                         VkPipelineStageFlags dst_stage, VkAccessFlags dst_access)
+{
+    VkImageMemoryBarrier barrier = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
+        .srcAccessMask = src_access,
+        .dstAccessMask = dst_access,
+        .oldLayout = old_layout,
+        .newLayout = new_layout,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .image = image,
+        .subresourceRange = {aspect, 0, 1, 0, 1},
+    };
+    vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, NULL, 0, NULL, 1, &barrier);
+}
+
+rtpbr_result rtpbr_submit_once(rtpbr_context *ctx, void (*record)(VkCommandBuffer cmd, void *user), void *user)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkCommandBufferBeginInfo begin = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
+    };
+    RTPBR_VK(ctx, vkResetCommandBuffer(ctx->upload_cmd, 0));
+    RTPBR_VK(ctx, vkBeginCommandBuffer(ctx->upload_cmd, &begin));
+    record(ctx->upload_cmd, user);
+    RTPBR_VK(ctx, vkEndCommandBuffer(ctx->upload_cmd));
+    VkSubmitInfo submit = {
+        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
+        .commandBufferCount = 1,
+        .pCommandBuffers = &ctx->upload_cmd,
+    };
+    RTPBR_VK(ctx, vkResetFences(ctx->device, 1, &ctx->upload_fence));
+    RTPBR_VK(ctx, vkQueueSubmit(ctx->queue, 1, &submit, ctx->upload_fence));
+    RTPBR_VK(ctx, vkWaitForFences(ctx->device, 1, &ctx->upload_fence, VK_TRUE, UINT64_MAX));
+cleanup:
+    return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lookup tables
+
+typedef struct lut_upload {
+    VkBuffer staging;
+    VkImage image;
+    uint32_t width, height;
+} lut_upload;
+
+static void record_lut_upload(VkCommandBuffer cmd, void *user)
+{
+    const lut_upload *u = user;
+    rtpbr_image_barrier(cmd, u->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                        VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    VkBufferImageCopy region = {
+        .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+        .imageExtent = {u->width, u->height, 1},
+    };
+    vkCmdCopyBufferToImage(cmd, u->staging, u->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    rtpbr_image_barrier(cmd, u->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                        VK_ACCESS_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                        VK_ACCESS_SHADER_READ_BIT);
+}
+
+rtpbr_result rtpbr_image_create_with_data(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
+                                          const void *texels, size_t bytes, rtpbr_image *out)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    rtpbr_buffer staging = {0};
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &staging));
+    memcpy(staging.mapped, texels, bytes);
+    RTPBR_TRY(rtpbr_image_create(ctx, width, height, format, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                 out));
+    lut_upload upload = {staging.buffer, out->image, width, height};
+    result = rtpbr_submit_once(ctx, record_lut_upload, &upload);
+    if (result != RTPBR_SUCCESS) rtpbr_image_destroy(ctx, out);
+cleanup:
+    rtpbr_buffer_destroy(ctx, &staging);
+    return result;
+}
+
+// IEEE binary16 from binary32, round to nearest even (values here are finite table entries).
+static uint16_t half_from_float(float f)
+{
+    uint32_t x;
+    memcpy(&x, &f, sizeof x);
+    uint32_t sign = (x >> 16) & 0x8000u;
+    int32_t exponent = (int32_t)((x >> 23) & 0xffu) - 127 + 15;
+    uint32_t mantissa = x & 0x7fffffu;
+    if (exponent >= 31) return (uint16_t)(sign | 0x7c00u);           // overflow: infinity
+    if (exponent <= 0) {                                             // subnormal or zero
+        if (exponent < -10) return (uint16_t)sign;
+        mantissa |= 0x800000u;
+        uint32_t shift = (uint32_t)(14 - exponent);
+        uint32_t half = mantissa >> shift;
+        uint32_t rest = mantissa & ((1u << shift) - 1u), midpoint = 1u << (shift - 1u);
+        if (rest > midpoint || (rest == midpoint && (half & 1u))) ++half;
+        return (uint16_t)(sign | half);
+    }
+    uint32_t half = sign | ((uint32_t)exponent << 10) | (mantissa >> 13);
+    uint32_t rest = mantissa & 0x1fffu;
+    if (rest > 0x1000u || (rest == 0x1000u && (half & 1u))) ++half; // may carry into the exponent: correct
+    return (uint16_t)half;
+}
+
+rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t height, const float *rgba,
+                              rtpbr_lut *out)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    rtpbr_buffer staging = {0};
+    memset(out, 0, sizeof *out);
+    if (!rgba || width == 0 || height == 0) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "lookup table: no data or zero size (%ux%u)", width, height);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (!rtpbr_finite(rgba, (size_t)width * height * 4)) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "lookup table %ux%u holds a NaN or infinite value", width, height);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    // Linear filtering of 32-bit floats is optional in Vulkan; fall back to half floats.
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(ctx->physical_device, VK_FORMAT_R32G32B32A32_SFLOAT, &props);
+    bool full = props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    VkFormat format = full ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
+    size_t count = (size_t)width * height * 4;
+    size_t bytes = count * (full ? sizeof(float) : sizeof(uint16_t));
+
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &staging));
+    if (full) {
+        memcpy(staging.mapped, rgba, bytes);
+    } else {
+        uint16_t *dst = staging.mapped;
+        for (size_t i = 0; i < count; ++i) dst[i] = half_from_float(rgba[i]);
+    }
+    RTPBR_TRY(rtpbr_image_create(ctx, width, height, format,
+                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &out->image));
+    lut_upload upload = {staging.buffer, out->image.image, width, height};
+    RTPBR_TRY(rtpbr_submit_once(ctx, record_lut_upload, &upload));
+    rtpbr_buffer_destroy(ctx, &staging);
+    return RTPBR_SUCCESS;
+cleanup:
+    rtpbr_buffer_destroy(ctx, &staging);
+    rtpbr_lut_destroy(ctx, out);
+    return result;
+}
+
+void rtpbr_lut_destroy(rtpbr_context *ctx, rtpbr_lut *lut)
+{
+    rtpbr_image_destroy(ctx, &lut->image);
+}

@@ -1,0 +1,448 @@
+// Scenes built through the API: validation, then upload to GPU buffers.
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+
+// ---------------------------------------------------------------------------------------------
+// Lights
+
+// Newell's method: a polygon normal whose length is twice the polygon's area.
+static void polygon_normal(const float (*v)[3], uint32_t n, double out[3])
+{
+    out[0] = out[1] = out[2] = 0.0;
+    for (uint32_t i = 0; i < n; ++i) {
+        const float *a = v[i], *b = v[(i + 1) % n];
+        out[0] += ((double)a[1] - b[1]) * ((double)a[2] + b[2]);
+        out[1] += ((double)a[2] - b[2]) * ((double)a[0] + b[0]);
+        out[2] += ((double)a[0] - b[0]) * ((double)a[1] + b[1]);
+    }
+}
+
+static rtpbr_result validate_light(const rtpbr_context *ctx, const rtpbr_light_desc *l, uint32_t index)
+{
+    if (l->vertex_count < 3 || l->vertex_count > RTPBR_MAX_POLYGON_VERTICES) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "light %u has %u vertices; 3 to %u are allowed", index, l->vertex_count,
+                  RTPBR_MAX_POLYGON_VERTICES);
+        return l->vertex_count > RTPBR_MAX_POLYGON_VERTICES ? RTPBR_ERROR_LIMIT_EXCEEDED
+                                                            : RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (!rtpbr_finite(&l->vertices[0][0], 3 * l->vertex_count) || !rtpbr_finite(l->emission, 3)) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "light %u has a NaN or infinite vertex or emission", index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (l->emission[0] < 0.0f || l->emission[1] < 0.0f || l->emission[2] < 0.0f) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "light %u has negative emission", index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    double n[3];
+    polygon_normal(l->vertices, l->vertex_count, n);
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    // Size of the polygon: its largest vertex distance from vertex 0.
+    double extent = 0.0;
+    for (uint32_t i = 1; i < l->vertex_count; ++i) {
+        double d = 0.0;
+        for (int k = 0; k < 3; ++k) d += ((double)l->vertices[i][k] - l->vertices[0][k]) * ((double)l->vertices[i][k] - l->vertices[0][k]);
+        if (d > extent) extent = d;
+    }
+    extent = sqrt(extent);
+    if (!(len > 1e-12 * extent * extent) || extent == 0.0) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "light %u is degenerate (zero area)", index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    for (uint32_t i = 1; i < l->vertex_count; ++i) {
+        double d = 0.0;
+        for (int k = 0; k < 3; ++k) d += n[k] / len * ((double)l->vertices[i][k] - l->vertices[0][k]);
+        if (fabs(d) > 1e-3 * extent) {
+            rtpbr_log(ctx, RTPBR_LOG_ERROR, "light %u is not planar (vertex %u is %g off the plane)", index, i, d);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+    }
+    return RTPBR_SUCCESS;
+}
+
+static rtpbr_result validate_lights(const rtpbr_context *ctx, const rtpbr_light_desc *lights, uint32_t count)
+{
+    if (count > RTPBR_MAX_LIGHTS) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "%u lights; at most RTPBR_MAX_LIGHTS = %u are allowed", count, RTPBR_MAX_LIGHTS);
+        return RTPBR_ERROR_LIMIT_EXCEEDED;
+    }
+    if (count > 0 && !lights) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "light_count is %u but lights is NULL", count);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    for (uint32_t i = 0; i < count; ++i) {
+        rtpbr_result result = validate_light(ctx, &lights[i], i);
+        if (result != RTPBR_SUCCESS) return result;
+    }
+    return RTPBR_SUCCESS;
+}
+
+static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights, uint32_t count)
+{
+    rtpbr_shader_light *gpu = scene->lights.mapped;
+    for (uint32_t i = 0; i < count; ++i) {
+        const rtpbr_light_desc *l = &lights[i];
+        rtpbr_shader_light g = {0};
+        for (uint32_t v = 0; v < l->vertex_count; ++v) memcpy(g.vertices[v], l->vertices[v], 3 * sizeof(float));
+        memcpy(g.emission, l->emission, 3 * sizeof(float));
+        g.emission[3] = l->two_sided ? 1.0f : 0.0f;
+        double n[3];
+        polygon_normal(l->vertices, l->vertex_count, n);
+        double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int k = 0; k < 3; ++k) g.plane[k] = (float)(n[k] / len);
+        g.plane[3] = -(g.plane[0] * l->vertices[0][0] + g.plane[1] * l->vertices[0][1] + g.plane[2] * l->vertices[0][2]);
+        g.area = (float)(0.5 * len);
+        // Bounding sphere: centred on the vertex mean (not minimal, but bounding).
+        double c[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
+        for (uint32_t v = 0; v < l->vertex_count; ++v)
+            for (int k = 0; k < 3; ++k) c[k] += l->vertices[v][k] / (double)l->vertex_count;
+        for (uint32_t v = 0; v < l->vertex_count; ++v) {
+            double d2 = 0.0;
+            for (int k = 0; k < 3; ++k) d2 += (l->vertices[v][k] - c[k]) * (l->vertices[v][k] - c[k]);
+            if (d2 > r2) r2 = d2;
+        }
+        for (int k = 0; k < 3; ++k) g.sphere[k] = (float)c[k];
+        g.sphere[3] = (float)(sqrt(r2) * (1.0 + 1e-6)) + 1e-6f; // rounding must not shrink it
+        g.vertex_count = l->vertex_count;
+        gpu[i] = g;
+    }
+    scene->light_count = count;
+}
+
+rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights, uint32_t light_count)
+{
+    if (!scene) return RTPBR_ERROR_INVALID_ARGUMENT;
+    rtpbr_result result = validate_lights(scene->context, lights, light_count);
+    if (result == RTPBR_SUCCESS) write_lights(scene, lights, light_count);
+    return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Meshes and materials
+
+static bool is_zero(const float *v, size_t n)
+{
+    for (size_t i = 0; i < n; ++i)
+        if (v[i] != 0.0f) return false;
+    return true;
+}
+
+static rtpbr_result validate_mesh(const rtpbr_context *ctx, const rtpbr_mesh_desc *m, uint32_t index,
+                                  uint32_t material_count)
+{
+#define FAIL(...) do { rtpbr_log(ctx, RTPBR_LOG_ERROR, __VA_ARGS__); return RTPBR_ERROR_INVALID_ARGUMENT; } while (0)
+    if (!m->positions || m->vertex_count == 0) FAIL("mesh %u has no positions", index);
+    if (m->indices ? (m->index_count == 0 || m->index_count % 3) : (m->vertex_count % 3))
+        FAIL("mesh %u: the index (or, without indices, vertex) count is not a positive multiple of 3", index);
+    if (material_count ? m->material >= material_count : m->material != 0)
+        FAIL("mesh %u uses material %u but the scene has %u", index, m->material, material_count);
+    if (!rtpbr_finite(m->positions, 3 * (size_t)m->vertex_count)) FAIL("mesh %u has a NaN or infinite position", index);
+    if (m->normals && !rtpbr_finite(m->normals, 3 * (size_t)m->vertex_count))
+        FAIL("mesh %u has a NaN or infinite normal", index);
+    if (m->texcoords && !rtpbr_finite(m->texcoords, 2 * (size_t)m->vertex_count))
+        FAIL("mesh %u has a NaN or infinite texture coordinate", index);
+    if (m->tangents && !rtpbr_finite(m->tangents, 4 * (size_t)m->vertex_count))
+        FAIL("mesh %u has a NaN or infinite tangent", index);
+    if (!rtpbr_finite(m->transform, 16)) FAIL("mesh %u has a NaN or infinite transform", index);
+    if (m->indices)
+        for (uint32_t i = 0; i < m->index_count; ++i)
+            if (m->indices[i] >= m->vertex_count)
+                FAIL("mesh %u: index %u is %u, past its %u vertices", index, i, m->indices[i], m->vertex_count);
+    return RTPBR_SUCCESS;
+#undef FAIL
+}
+
+static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
+{
+    rtpbr_shader_material g = {0};
+    memcpy(g.base_color_metallic, m->base_color, 3 * sizeof(float));
+    g.base_color_metallic[3] = fminf(fmaxf(m->metallic, 0.0f), 1.0f);
+    memcpy(g.emission_roughness, m->emission, 3 * sizeof(float));
+    float r = m->roughness == 0.0f ? RTPBR_MIN_ROUGHNESS : m->roughness;
+    g.emission_roughness[3] = fminf(fmaxf(r, RTPBR_MIN_ROUGHNESS), 1.0f);
+    if (is_zero(m->specular_color, 3)) g.specular_color_ior[0] = g.specular_color_ior[1] = g.specular_color_ior[2] = 1.0f;
+    else memcpy(g.specular_color_ior, m->specular_color, 3 * sizeof(float));
+    g.specular_color_ior[3] = m->ior == 0.0f ? 1.5f : m->ior;
+    g.specular[0] = m->specular == 0.0f ? 1.0f : fmaxf(m->specular, 0.0f);
+    g.specular[1] = m->double_sided ? 1.0f : 0.0f;
+    g.specular[2] = m->normal_texture ? 1.0f : 0.0f;
+    g.specular[3] = m->normal_scale == 0.0f ? 1.0f : m->normal_scale;
+    return g;
+}
+
+static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_material_desc *m, uint32_t index)
+{
+    if (!rtpbr_finite(m->base_color, 3) || !rtpbr_finite(&m->metallic, 1) || !rtpbr_finite(&m->roughness, 1) ||
+        !rtpbr_finite(m->emission, 3) || !rtpbr_finite(&m->ior, 1) || !rtpbr_finite(&m->specular, 1) ||
+        !rtpbr_finite(m->specular_color, 3) || !rtpbr_finite(&m->normal_scale, 1)) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (m->ior < 0.0f || (m->ior > 0.0f && m->ior < 1.0f)) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u has ior %g; it must be >= 1 (or 0 for the default)", index, m->ior);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    return RTPBR_SUCCESS;
+}
+
+// Area-weighted vertex normals of an indexed triangle list.
+static void smooth_normals(const float *positions, const uint32_t *indices, uint32_t index_count,
+                           uint32_t vertex_count, float *out_normals /* 3 per vertex, stride RTPBR_VERTEX_FLOATS */)
+{
+    for (uint32_t i = 0; i < vertex_count; ++i) out_normals[RTPBR_VERTEX_FLOATS * i] = out_normals[RTPBR_VERTEX_FLOATS * i + 1] = out_normals[RTPBR_VERTEX_FLOATS * i + 2] = 0.0f;
+    for (uint32_t t = 0; t + 2 < index_count; t += 3) {
+        uint32_t a = indices ? indices[t] : t, b = indices ? indices[t + 1] : t + 1, c = indices ? indices[t + 2] : t + 2;
+        const float *pa = positions + 3 * a, *pb = positions + 3 * b, *pc = positions + 3 * c;
+        float e1[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+        float e2[3] = {pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2]};
+        float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        uint32_t corners[3] = {a, b, c};
+        for (int k = 0; k < 3; ++k)
+            for (int j = 0; j < 3; ++j) out_normals[RTPBR_VERTEX_FLOATS * corners[k] + j] += n[j];
+    }
+}
+
+static void normal_matrix(const float m[16], float out[12])
+{
+    float inv[16];
+    memset(out, 0, 12 * sizeof(float));
+    if (!rtpbr_mat4_invert(inv, m)) return;
+    // Columns of the transpose of the inverse's upper 3x3.
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) out[c * 4 + r] = inv[r * 4 + c];
+}
+
+// Uploads the textures (image 0 is a 1x1 white stand-in for "no texture", image i texture i)
+// and writes one descriptor set per material slot.
+static rtpbr_result create_textures(rtpbr_gpu_scene *scene, const rtpbr_gpu_scene_desc *desc, uint32_t material_slots)
+{
+    rtpbr_context *ctx = scene->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkDescriptorSetLayout *layouts = NULL;
+    scene->textures = rtpbr_alloc(ctx, (desc->texture_count + 1) * sizeof *scene->textures);
+    scene->material_sets = rtpbr_alloc(ctx, material_slots * sizeof *scene->material_sets);
+    layouts = rtpbr_alloc(ctx, material_slots * sizeof *layouts);
+    if (!scene->textures || !scene->material_sets || !layouts) {
+        result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+        goto cleanup;
+    }
+    static const uint8_t white[4] = {255, 255, 255, 255};
+    RTPBR_TRY(rtpbr_image_create_with_data(ctx, 1, 1, VK_FORMAT_R8G8B8A8_UNORM, white, 4, &scene->textures[0]));
+    scene->texture_count = 1;
+    for (uint32_t i = 0; i < desc->texture_count; ++i) {
+        const rtpbr_texture_desc *t = &desc->textures[i];
+        RTPBR_TRY(rtpbr_image_create_with_data(ctx, t->width, t->height,
+                                               t->srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM, t->rgba,
+                                               (size_t)t->width * t->height * 4, &scene->textures[i + 1]));
+        scene->texture_count++;
+    }
+
+    VkDescriptorPoolSize size = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, RTPBR_MATERIAL_TEXTURE_COUNT * material_slots};
+    VkDescriptorPoolCreateInfo pool_info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+        .maxSets = material_slots,
+        .poolSizeCount = 1,
+        .pPoolSizes = &size,
+    };
+    RTPBR_VK(ctx, vkCreateDescriptorPool(ctx->device, &pool_info, NULL, &scene->material_pool));
+    for (uint32_t i = 0; i < material_slots; ++i) layouts[i] = ctx->material_set_layout;
+    VkDescriptorSetAllocateInfo alloc = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+        .descriptorPool = scene->material_pool,
+        .descriptorSetCount = material_slots,
+        .pSetLayouts = layouts,
+    };
+    RTPBR_VK(ctx, vkAllocateDescriptorSets(ctx->device, &alloc, scene->material_sets));
+    for (uint32_t m = 0; m < material_slots; ++m) {
+        uint32_t index[RTPBR_MATERIAL_TEXTURE_COUNT] = {0};
+        if (desc->material_count) {
+            index[RTPBR_BINDING_TEXTURE_BASE_COLOR] = desc->materials[m].base_color_texture;
+            index[RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS] = desc->materials[m].metallic_roughness_texture;
+            index[RTPBR_BINDING_TEXTURE_EMISSION] = desc->materials[m].emission_texture;
+            index[RTPBR_BINDING_TEXTURE_NORMAL] = desc->materials[m].normal_texture;
+        }
+        VkDescriptorImageInfo images[RTPBR_MATERIAL_TEXTURE_COUNT];
+        VkWriteDescriptorSet writes[RTPBR_MATERIAL_TEXTURE_COUNT];
+        for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b) {
+            images[b] = (VkDescriptorImageInfo){ctx->texture_sampler, scene->textures[index[b]].view,
+                                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            writes[b] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                               .dstSet = scene->material_sets[m], .dstBinding = b,
+                                               .descriptorCount = 1,
+                                               .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                               .pImageInfo = &images[b]};
+        }
+        vkUpdateDescriptorSets(ctx->device, RTPBR_MATERIAL_TEXTURE_COUNT, writes, 0, NULL);
+    }
+cleanup:
+    rtpbr_free(ctx, layouts);
+    return result; // rtpbr_gpu_scene_destroy frees a half-built set
+}
+
+// ---------------------------------------------------------------------------------------------
+
+rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_desc *desc, rtpbr_gpu_scene **out_scene)
+{
+    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!desc || !out_scene) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_create: desc or out_scene is NULL");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    *out_scene = NULL;
+    rtpbr_result result = RTPBR_SUCCESS;
+    rtpbr_gpu_scene *scene = NULL;
+    if ((desc->mesh_count && !desc->meshes) || (desc->material_count && !desc->materials) ||
+        (desc->camera_count && !desc->cameras)) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_create: a non-zero count with a NULL array");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (desc->material_count > RTPBR_MAX_MATERIALS) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "%u materials; at most %u are allowed", desc->material_count, RTPBR_MAX_MATERIALS);
+        return RTPBR_ERROR_LIMIT_EXCEEDED;
+    }
+    RTPBR_TRY(validate_lights(ctx, desc->lights, desc->light_count));
+    uint64_t total_vertices = 0, total_indices = 0;
+    for (uint32_t i = 0; i < desc->mesh_count; ++i) {
+        const rtpbr_mesh_desc *m = &desc->meshes[i];
+        RTPBR_TRY(validate_mesh(ctx, m, i, desc->material_count));
+        total_vertices += m->vertex_count;
+        total_indices += m->indices ? m->index_count : m->vertex_count;
+    }
+    if (total_vertices > UINT32_MAX / 2 || total_indices > UINT32_MAX / 2) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "scene too large (%llu vertices)", (unsigned long long)total_vertices);
+        return RTPBR_ERROR_LIMIT_EXCEEDED;
+    }
+    for (uint32_t i = 0; i < desc->material_count; ++i) {
+        const rtpbr_material_desc *m = &desc->materials[i];
+        RTPBR_TRY(validate_material(ctx, m, i));
+        if (m->base_color_texture > desc->texture_count || m->metallic_roughness_texture > desc->texture_count ||
+            m->emission_texture > desc->texture_count || m->normal_texture > desc->texture_count) {
+            rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u refers to a texture past the scene's %u", i, desc->texture_count);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+    }
+    if (desc->texture_count && !desc->textures) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "texture_count is %u but textures is NULL", desc->texture_count);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    for (uint32_t i = 0; i < desc->texture_count; ++i) {
+        const rtpbr_texture_desc *t = &desc->textures[i];
+        if (!t->rgba || t->width == 0 || t->height == 0 || t->width > RTPBR_MAX_RENDER_SIZE ||
+            t->height > RTPBR_MAX_RENDER_SIZE) {
+            rtpbr_log(ctx, RTPBR_LOG_ERROR, "texture %u: no texels or size %ux%u outside 1..%u", i, t->width, t->height,
+                      RTPBR_MAX_RENDER_SIZE);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+    }
+    for (uint32_t i = 0; i < desc->camera_count; ++i)
+        if (!rtpbr_finite((const float *)&desc->cameras[i], sizeof desc->cameras[i] / sizeof(float))) {
+            rtpbr_log(ctx, RTPBR_LOG_ERROR, "camera %u has a NaN or infinite parameter", i);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+
+    scene = rtpbr_alloc(ctx, sizeof *scene);
+    if (!scene) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+    scene->context = ctx;
+
+    // Geometry: one interleaved vertex buffer and one index buffer for all meshes.
+    VkDeviceSize vertex_bytes = (total_vertices ? total_vertices : 1) * RTPBR_VERTEX_FLOATS * sizeof(float);
+    VkDeviceSize index_bytes = (total_indices ? total_indices : 3) * sizeof(uint32_t);
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, vertex_bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, &scene->vertices));
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, index_bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &scene->indices));
+    if (desc->mesh_count) {
+        scene->draws = rtpbr_alloc(ctx, desc->mesh_count * sizeof *scene->draws);
+        if (!scene->draws) {
+            result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+            goto cleanup;
+        }
+    }
+    float *vertices = scene->vertices.mapped;
+    uint32_t *indices = scene->indices.mapped;
+    uint32_t vertex_base = 0, index_base = 0;
+    for (uint32_t i = 0; i < desc->mesh_count; ++i) {
+        const rtpbr_mesh_desc *m = &desc->meshes[i];
+        float *dst = vertices + RTPBR_VERTEX_FLOATS * (size_t)vertex_base;
+        uint32_t count = m->indices ? m->index_count : m->vertex_count;
+        if (m->normals) {
+            for (uint32_t v = 0; v < m->vertex_count; ++v) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 3, m->normals + 3 * v, 3 * sizeof(float));
+        } else {
+            smooth_normals(m->positions, m->indices, count, m->vertex_count, dst + 3);
+        }
+        for (uint32_t v = 0; v < m->vertex_count; ++v) {
+            memcpy(dst + RTPBR_VERTEX_FLOATS * v, m->positions + 3 * v, 3 * sizeof(float));
+            if (m->texcoords) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 6, m->texcoords + 2 * v, 2 * sizeof(float));
+            if (m->tangents) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 8, m->tangents + 4 * v, 4 * sizeof(float));
+        }
+        for (uint32_t k = 0; k < count; ++k) indices[index_base + k] = vertex_base + (m->indices ? m->indices[k] : k);
+
+        rtpbr_draw *draw = &scene->draws[scene->draw_count++];
+        draw->first_index = index_base;
+        draw->index_count = count;
+        if (is_zero(m->transform, 16)) rtpbr_mat4_identity(draw->push.world_from_object);
+        else memcpy(draw->push.world_from_object, m->transform, sizeof m->transform);
+        normal_matrix(draw->push.world_from_object, draw->push.normal_matrix);
+        draw->push.material = m->material;
+        vertex_base += m->vertex_count;
+        index_base += count;
+    }
+
+    uint32_t material_slots = desc->material_count ? desc->material_count : 1;
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, material_slots * sizeof(rtpbr_shader_material),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->materials));
+    rtpbr_shader_material *materials = scene->materials.mapped;
+    if (desc->material_count == 0) {
+        rtpbr_material_desc grey = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 0.5f};
+        materials[0] = convert_material(&grey);
+    }
+    for (uint32_t i = 0; i < desc->material_count; ++i) materials[i] = convert_material(&desc->materials[i]);
+
+    RTPBR_TRY(create_textures(scene, desc, material_slots));
+
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, RTPBR_MAX_LIGHTS * sizeof(rtpbr_shader_light),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->lights));
+    write_lights(scene, desc->lights, desc->light_count);
+
+    scene->camera_count = desc->camera_count ? desc->camera_count : 1;
+    scene->cameras = rtpbr_alloc(ctx, scene->camera_count * sizeof *scene->cameras);
+    if (!scene->cameras) {
+        result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+        goto cleanup;
+    }
+    if (desc->camera_count) memcpy(scene->cameras, desc->cameras, desc->camera_count * sizeof *scene->cameras);
+    else scene->cameras[0] = (rtpbr_camera_desc){.position = {0.0f, 0.0f, 5.0f}};
+
+    *out_scene = scene;
+    return RTPBR_SUCCESS;
+cleanup:
+    if (result == RTPBR_SUCCESS) result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+    rtpbr_gpu_scene_destroy(scene);
+    return result;
+}
+
+void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
+{
+    if (!scene) return;
+    rtpbr_context *ctx = scene->context;
+    rtpbr_buffer_destroy(ctx, &scene->vertices);
+    rtpbr_buffer_destroy(ctx, &scene->indices);
+    rtpbr_buffer_destroy(ctx, &scene->materials);
+    rtpbr_buffer_destroy(ctx, &scene->lights);
+    if (scene->material_pool) vkDestroyDescriptorPool(ctx->device, scene->material_pool, NULL);
+    for (uint32_t i = 0; i < scene->texture_count; ++i) rtpbr_image_destroy(ctx, &scene->textures[i]);
+    rtpbr_free(ctx, scene->textures);
+    rtpbr_free(ctx, scene->material_sets);
+    rtpbr_free(ctx, scene->draws);
+    rtpbr_free(ctx, scene->cameras);
+    rtpbr_free(ctx, scene);
+}
+
+uint32_t rtpbr_gpu_scene_camera_count(const rtpbr_gpu_scene *scene)
+{
+    return scene ? scene->camera_count : 0;
+}
+
+uint32_t rtpbr_gpu_scene_light_count(const rtpbr_gpu_scene *scene)
+{
+    return scene ? scene->light_count : 0;
+}

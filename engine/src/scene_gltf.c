@@ -1,0 +1,204 @@
+// Scenes from the glTF loader (engine/scene): the loader's plain data mapped onto
+// rtpbr_gpu_scene_desc.
+//
+// Material mapping (loader field -> engine), one table:
+//   base_color.rgb            -> base_color            (alpha ignored: everything is opaque)
+//   metallic, roughness       -> metallic, roughness   (perceptual; alpha = r^2)
+//   emission                  -> emission              (emissiveFactor x emissive_strength)
+//   ior                       -> ior                   (0, "F0 = 1" in KHR_materials_ior, -> 1e6)
+//   specular_factor           -> specular              (0 -> "none", i.e. -1 in the desc)
+//   specular_color            -> specular_color
+//   double_sided              -> double_sided          (emission on both sides)
+//   base_color / metallic_roughness / emission textures -> the same (TEXCOORD_0, bilinear,
+//                                                         repeat; the file's sampler modes
+//                                                         and mipmaps are not used)
+//   normal texture, normal_scale -> the same (tangents from the loader)
+//   clearcoat, sheen, anisotropy, Disney parameters: not used yet (the lighting pass has no
+//   polygon-light model for them).
+// Lights: every loader light (emissive primitives, EXT_lights_area rectangles and disks as
+// their equal-area octagons) becomes a polygonal light with its radiance and sidedness.
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+#include "rtpbr/rtpbr_scene.h"
+
+// 1-based engine texture index of a loader texture index; 0 (none) for -1, out-of-range
+// indices and textures without decoded texels.
+static uint32_t texture_ref(const rtpbr_scene *loaded, int32_t index)
+{
+    if (index < 0 || (uint32_t)index >= loaded->texture_count || !loaded->textures[index].pixels) return 0;
+    return (uint32_t)index + 1;
+}
+
+rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_scene *loaded,
+                                         rtpbr_gpu_scene **out_scene)
+{
+    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!loaded || !out_scene) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_from_loaded: loaded or out_scene is NULL");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    *out_scene = NULL;
+    if (loaded->light_count > RTPBR_MAX_LIGHTS) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "scene has %u lights; at most RTPBR_MAX_LIGHTS = %u are allowed",
+                  loaded->light_count, RTPBR_MAX_LIGHTS);
+        return RTPBR_ERROR_LIMIT_EXCEEDED;
+    }
+    rtpbr_result result = RTPBR_SUCCESS;
+    rtpbr_mesh_desc *meshes = NULL;
+    rtpbr_material_desc *materials = NULL;
+    rtpbr_light_desc *lights = NULL;
+    rtpbr_camera_desc *cameras = NULL;
+    rtpbr_texture_desc *textures = NULL;
+    if (loaded->texture_count && !(textures = rtpbr_alloc(ctx, loaded->texture_count * sizeof *textures))) goto oom;
+    for (uint32_t i = 0; i < loaded->texture_count; ++i) {
+        const rtpbr_scene_texture *t = &loaded->textures[i];
+        if (t->pixels) // textures without texels are never referenced (texture_ref)
+            textures[i] = (rtpbr_texture_desc){.width = t->width, .height = t->height, .rgba = t->pixels, .srgb = t->srgb};
+        else
+            textures[i] = (rtpbr_texture_desc){.width = 1, .height = 1, .rgba = (const uint8_t *)"\xff\xff\xff\xff"};
+    }
+    if (loaded->primitive_count && !(meshes = rtpbr_alloc(ctx, loaded->primitive_count * sizeof *meshes))) goto oom;
+    if (loaded->material_count && !(materials = rtpbr_alloc(ctx, loaded->material_count * sizeof *materials)))
+        goto oom;
+    if (loaded->light_count && !(lights = rtpbr_alloc(ctx, loaded->light_count * sizeof *lights))) goto oom;
+    if (loaded->camera_count && !(cameras = rtpbr_alloc(ctx, loaded->camera_count * sizeof *cameras))) goto oom;
+
+    for (uint32_t i = 0; i < loaded->primitive_count; ++i) {
+        const rtpbr_scene_primitive *p = &loaded->primitives[i];
+        meshes[i] = (rtpbr_mesh_desc){
+            .positions = p->positions,
+            .normals = p->normals,
+            .texcoords = p->texcoords,
+            .tangents = p->has_tangents ? p->tangents : NULL,
+            .indices = p->indices,
+            .vertex_count = p->vertex_count,
+            .index_count = p->index_count,
+            .material = p->material,
+        }; // positions are already in world space: identity transform
+    }
+    for (uint32_t i = 0; i < loaded->material_count; ++i) {
+        const rtpbr_scene_material *m = &loaded->materials[i];
+        rtpbr_material_desc *d = &materials[i];
+        memcpy(d->base_color, m->base_color, sizeof d->base_color);
+        d->metallic = m->metallic;
+        d->roughness = m->roughness;
+        memcpy(d->emission, m->emission, sizeof d->emission);
+        d->ior = m->ior == 0.0f ? 1e6f : m->ior;
+        d->specular = m->specular_factor == 0.0f ? -1.0f : m->specular_factor;
+        memcpy(d->specular_color, m->specular_color, sizeof d->specular_color);
+        d->double_sided = m->double_sided;
+        // Loader texture indices are 0-based with -1 for none; the engine's are 1-based.
+        d->base_color_texture = texture_ref(loaded, m->base_color_texture);
+        d->metallic_roughness_texture = texture_ref(loaded, m->metallic_roughness_texture);
+        d->emission_texture = texture_ref(loaded, m->emission_texture);
+        d->normal_texture = texture_ref(loaded, m->normal_texture);
+        d->normal_scale = m->normal_scale;
+        if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
+            d->specular = -1.0f; // a black specular colour removes the lobe, like specular = 0
+    }
+    for (uint32_t i = 0; i < loaded->light_count; ++i) {
+        const rtpbr_scene_light *l = &loaded->lights[i];
+        rtpbr_light_desc *d = &lights[i];
+        d->vertex_count = l->vertex_count;
+        uint32_t n = l->vertex_count <= RTPBR_MAX_POLYGON_VERTICES ? l->vertex_count : RTPBR_MAX_POLYGON_VERTICES;
+        memcpy(d->vertices, l->vertices, n * sizeof d->vertices[0]);
+        memcpy(d->emission, l->radiance, sizeof d->emission);
+        d->two_sided = l->two_sided;
+    }
+    for (uint32_t i = 0; i < loaded->camera_count; ++i) {
+        const rtpbr_scene_camera *c = &loaded->cameras[i];
+        rtpbr_camera_desc *d = &cameras[i];
+        memcpy(d->position, c->position, sizeof d->position);
+        for (int k = 0; k < 3; ++k) d->target[k] = c->position[k] + c->forward[k];
+        memcpy(d->up, c->up, sizeof d->up);
+        d->yfov = c->yfov;
+        d->znear = c->znear;
+        d->zfar = c->zfar; // 0 (infinite in glTF): the engine's default far plane
+    }
+    rtpbr_gpu_scene_desc desc = {
+        .meshes = meshes,
+        .mesh_count = loaded->primitive_count,
+        .materials = materials,
+        .material_count = loaded->material_count,
+        .lights = lights,
+        .light_count = loaded->light_count,
+        .cameras = cameras,
+        .camera_count = loaded->camera_count,
+        .textures = textures,
+        .texture_count = loaded->texture_count,
+    };
+    result = rtpbr_gpu_scene_create(ctx, &desc, out_scene);
+    goto cleanup;
+oom:
+    rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_from_loaded: out of host memory");
+    result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+cleanup:
+    rtpbr_free(ctx, meshes);
+    rtpbr_free(ctx, materials);
+    rtpbr_free(ctx, lights);
+    rtpbr_free(ctx, cameras);
+    rtpbr_free(ctx, textures);
+    return result;
+}
+
+#if RTPBR_HAVE_SCENE_LOADER
+
+static void forward_loader_log(rtpbr_scene_log_level level, const char *message, void *user_data)
+{
+    const rtpbr_context *ctx = user_data;
+    rtpbr_log(ctx, level == RTPBR_SCENE_LOG_ERROR ? RTPBR_LOG_ERROR
+                   : level == RTPBR_SCENE_LOG_WARNING ? RTPBR_LOG_WARNING : RTPBR_LOG_INFO,
+              "glTF loader: %s", message);
+}
+
+rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtpbr_gpu_scene **out_scene)
+{
+    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!path || !out_scene) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_load_gltf: path or out_scene is NULL");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    *out_scene = NULL;
+    char message[RTPBR_SCENE_ERROR_MESSAGE_SIZE] = "";
+    rtpbr_scene_load_desc desc = {
+        .allocator = {ctx->allocator.alloc, ctx->allocator.free, ctx->allocator.user_data},
+        .logger = {forward_loader_log, ctx},
+        .error_message = message,
+        .error_message_size = sizeof message,
+        .max_lights = RTPBR_MAX_LIGHTS,
+        .skip_images = false,
+    };
+    rtpbr_scene *loaded = NULL;
+    rtpbr_scene_result sr = rtpbr_scene_load(path, &desc, &loaded);
+    if (sr != RTPBR_SCENE_SUCCESS) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "cannot load %s: %s: %s", path, rtpbr_scene_result_string(sr), message);
+        switch (sr) {
+        case RTPBR_SCENE_ERROR_IO: return RTPBR_ERROR_IO;
+        case RTPBR_SCENE_ERROR_OUT_OF_MEMORY: return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+        case RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS: return RTPBR_ERROR_LIMIT_EXCEEDED;
+        case RTPBR_SCENE_ERROR_INVALID_ARGUMENT: return RTPBR_ERROR_INVALID_ARGUMENT;
+        default: return RTPBR_ERROR_SCENE_LOAD;
+        }
+    }
+    rtpbr_result result = rtpbr_gpu_scene_from_loaded(ctx, loaded, out_scene);
+    rtpbr_scene_destroy(loaded);
+    return result;
+}
+
+#else
+
+rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtpbr_gpu_scene **out_scene)
+{
+    if (out_scene) *out_scene = NULL;
+    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!path || !out_scene) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_load_gltf: path or out_scene is NULL");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    rtpbr_log(ctx, RTPBR_LOG_ERROR, "librtpbr was built without the glTF loader (engine/scene)");
+    return RTPBR_ERROR_MISSING_FEATURE;
+}
+
+#endif

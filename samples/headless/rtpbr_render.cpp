@@ -1,0 +1,146 @@
+// rtpbr-render: headless render of a glTF scene with librtpbr.
+//   rtpbr-render SCENE.gltf -o OUT.exr|OUT.png [--width W] [--height H] [--camera I]
+//                [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]
+//                [--no-multiscatter] [--validation]
+// OUT.exr holds linear scene radiance (RGB float; no exposure, no tone mapping: the quantity
+// the oracle writes); OUT.png the tone-mapped 8-bit sRGB image.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+
+#include "rtpbr/rtpbr.h"
+
+namespace {
+
+void usage()
+{
+    std::fprintf(stderr,
+                 "usage: rtpbr-render SCENE.gltf -o OUT.exr|OUT.png [--width W] [--height H] [--camera I]\n"
+                 "                    [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]\n"
+                 "                    [--no-multiscatter] [--validation]\n");
+}
+
+void on_log(rtpbr_log_level level, const char *message, void *)
+{
+    if (level <= RTPBR_LOG_WARNING)
+        std::fprintf(stderr, "rtpbr-render: %s: %s\n", level == RTPBR_LOG_ERROR ? "error" : "warning", message);
+}
+
+bool ends_with(const std::string &s, const char *suffix)
+{
+    size_t n = std::strlen(suffix);
+    if (s.size() < n) return false;
+    for (size_t i = 0; i < n; ++i)
+        if (std::tolower(static_cast<unsigned char>(s[s.size() - n + i])) != suffix[i]) return false;
+    return true;
+}
+
+bool parse_uint(const char *text, uint32_t &out)
+{
+    char *end = nullptr;
+    unsigned long v = std::strtoul(text, &end, 10);
+    if (!end || *end || end == text || v > 1u << 20) return false;
+    out = static_cast<uint32_t>(v);
+    return true;
+}
+
+bool write_image(const std::string &path, int w, int h, int channels, OIIO::TypeDesc type, const void *pixels)
+{
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) {
+        std::fprintf(stderr, "rtpbr-render: cannot write %s: %s\n", path.c_str(), OIIO::geterror().c_str());
+        return false;
+    }
+    OIIO::ImageSpec spec(w, h, channels, type);
+    if (!out->open(path, spec) || !out->write_image(type, pixels) || !out->close()) {
+        std::fprintf(stderr, "rtpbr-render: cannot write %s: %s\n", path.c_str(), out->geterror().c_str());
+        return false;
+    }
+    return true;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    std::string scene_path, out_path;
+    rtpbr_renderer_desc size{};
+    size.width = 640;
+    size.height = 480;
+    rtpbr_render_desc render{};
+    int validation = 0;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        bool has_value = i + 1 < argc;
+        if (a == "-o" && has_value) out_path = argv[++i];
+        else if (a == "--width" && has_value) {
+            if (!parse_uint(argv[++i], size.width)) return usage(), 2;
+        } else if (a == "--height" && has_value) {
+            if (!parse_uint(argv[++i], size.height)) return usage(), 2;
+        } else if (a == "--camera" && has_value) {
+            if (!parse_uint(argv[++i], render.camera_index)) return usage(), 2;
+        } else if (a == "--exposure" && has_value) {
+            render.exposure = std::strtof(argv[++i], nullptr);
+        } else if (a == "--tonemap" && has_value) {
+            std::string t = argv[++i];
+            if (t == "aces") render.tonemap = RTPBR_TONEMAP_ACES;
+            else if (t == "reinhard") render.tonemap = RTPBR_TONEMAP_REINHARD;
+            else if (t == "linear") render.tonemap = RTPBR_TONEMAP_LINEAR;
+            else return usage(), 2;
+        } else if (a == "--ndf" && has_value) {
+            std::string t = argv[++i];
+            if (t == "ggx") render.ndf = RTPBR_NDF_GGX_MODEL;
+            else if (t == "beckmann") render.ndf = RTPBR_NDF_BECKMANN_MODEL;
+            else return usage(), 2;
+        } else if (a == "--no-multiscatter") render.multiscatter = RTPBR_MULTISCATTER_OFF;
+        else if (a == "--validation") validation = 1;
+        else if (a == "-h" || a == "--help") return usage(), 0;
+        else if (a[0] != '-' && scene_path.empty()) scene_path = a;
+        else return usage(), 2;
+    }
+    bool exr = ends_with(out_path, ".exr"), png = ends_with(out_path, ".png");
+    if (scene_path.empty() || (!exr && !png)) return usage(), 2;
+
+    rtpbr_context_desc cd{};
+    cd.logger.func = on_log;
+    cd.validation = validation;
+    rtpbr_context *ctx = nullptr;
+    rtpbr_gpu_scene *scene = nullptr;
+    rtpbr_renderer *renderer = nullptr;
+    int status = 1;
+    rtpbr_result r = rtpbr_context_create(&cd, &ctx);
+    if (r == RTPBR_SUCCESS) r = rtpbr_gpu_scene_load_gltf(ctx, scene_path.c_str(), &scene);
+    if (r == RTPBR_SUCCESS) r = rtpbr_renderer_create(ctx, &size, &renderer);
+    if (r == RTPBR_SUCCESS) r = rtpbr_render(renderer, scene, &render);
+    if (r == RTPBR_SUCCESS) {
+        int w = static_cast<int>(size.width), h = static_cast<int>(size.height);
+        if (exr) {
+            std::vector<float> rgba(size_t(w) * h * 4), rgb(size_t(w) * h * 3);
+            r = rtpbr_read_radiance(renderer, rgba.data(), rgba.size() * sizeof(float));
+            for (size_t p = 0; p < size_t(w) * h; ++p)
+                for (int c = 0; c < 3; ++c) rgb[3 * p + c] = rgba[4 * p + c];
+            if (r == RTPBR_SUCCESS && write_image(out_path, w, h, 3, OIIO::TypeDesc::FLOAT, rgb.data())) status = 0;
+        } else {
+            std::vector<uint8_t> rgba(size_t(w) * h * 4), rgb(size_t(w) * h * 3);
+            r = rtpbr_read_display(renderer, rgba.data(), rgba.size());
+            for (size_t p = 0; p < size_t(w) * h; ++p)
+                for (int c = 0; c < 3; ++c) rgb[3 * p + c] = rgba[4 * p + c];
+            if (r == RTPBR_SUCCESS && write_image(out_path, w, h, 3, OIIO::TypeDesc::UINT8, rgb.data())) status = 0;
+        }
+    }
+    if (r != RTPBR_SUCCESS) std::fprintf(stderr, "rtpbr-render: failed: %s\n", rtpbr_result_string(r));
+    else if (validation && rtpbr_context_validation_message_count(ctx)) {
+        std::fprintf(stderr, "rtpbr-render: %u validation message(s)\n", rtpbr_context_validation_message_count(ctx));
+        status = 1;
+    }
+    if (status == 0) std::printf("rtpbr-render: wrote %s (%ux%u) on %s\n", out_path.c_str(), size.width, size.height,
+                                 rtpbr_context_device_name(ctx));
+    rtpbr_renderer_destroy(renderer);
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_context_destroy(ctx);
+    return status;
+}

@@ -1,0 +1,73 @@
+// Shared helpers of the engine tests: a logger that counts validation messages (any one
+// fails a test) and small scene builders.
+#ifndef RTPBR_ENGINE_TEST_H
+#define RTPBR_ENGINE_TEST_H
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "rtpbr/rtpbr.h"
+
+typedef struct test_log {
+    int validation;   // messages from the validation layer
+    int errors;       // error-level messages of the library
+    char last_error[1024];
+} test_log;
+
+static void test_log_func(rtpbr_log_level level, const char *message, void *user_data)
+{
+    test_log *log = user_data;
+    if (strncmp(message, "validation: ", 12) == 0) {
+        log->validation++;
+        fprintf(stderr, "VALIDATION MESSAGE: %s\n", message);
+    }
+    if (level == RTPBR_LOG_ERROR) {
+        log->errors++;
+        snprintf(log->last_error, sizeof log->last_error, "%s", message);
+    }
+}
+
+// A standalone context with validation (and synchronization validation) on.
+static inline rtpbr_context *test_context(test_log *log)
+{
+    rtpbr_context_desc desc = {
+        .logger = {test_log_func, log},
+        .validation = 1,
+    };
+    rtpbr_context *ctx = NULL;
+    rtpbr_result r = rtpbr_context_create(&desc, &ctx);
+    if (r != RTPBR_SUCCESS) fprintf(stderr, "context: %s: %s\n", rtpbr_result_string(r), log->last_error);
+    assert_int_equal(r, RTPBR_SUCCESS);
+    assert_non_null(ctx);
+    return ctx;
+}
+
+// The square [-h, h]^2 in the plane z = z0, facing +Z (counter-clockwise seen from +Z).
+static inline void square_positions(float h, float z0, float out[12])
+{
+    const float p[12] = {-h, -h, z0, h, -h, z0, h, h, z0, -h, h, z0};
+    memcpy(out, p, sizeof p);
+}
+static const uint32_t square_indices[6] = {0, 1, 2, 0, 2, 3};
+
+// Narkowicz 2015 ACES fit, and the sRGB encoding, written here independently of the shader.
+static inline double test_aces(double x)
+{
+    double y = x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14);
+    return y < 0.0 ? 0.0 : y > 1.0 ? 1.0 : y;
+}
+static inline int test_srgb8(double c)
+{
+    double e = c <= 0.0031308 ? 12.92 * c : 1.055 * pow(c, 1.0 / 2.4) - 0.055;
+    return (int)lround(e * 255.0);
+}
+
+#endif

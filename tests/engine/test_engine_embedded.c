@@ -1,0 +1,218 @@
+// Engine, embedded mode: the test is the host. It creates its own instance (with validation)
+// and device, hands them over, renders, destroys the module, then checks that its own objects
+// still work and that the validation layer saw no error and no leaked object.
+#include <stdlib.h>
+
+#include "engine_test.h"
+
+typedef struct host {
+    int messages;
+    VkInstance instance;
+    VkDebugUtilsMessengerEXT messenger;
+    VkPhysicalDevice physical_device;
+    uint32_t family;
+    VkDevice device;
+    VkQueue queue;
+} host;
+
+static VKAPI_ATTR VkBool32 VKAPI_CALL host_on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                     VkDebugUtilsMessageTypeFlagsEXT types,
+                                                     const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
+{
+    (void)severity, (void)types;
+    ((host *)user)->messages++;
+    fprintf(stderr, "HOST VALIDATION MESSAGE: %s\n", data->pMessage);
+    return VK_FALSE;
+}
+
+static void host_create(host *h, bool dynamic_rendering, VkPhysicalDeviceVulkan13Features *f13)
+{
+    memset(h, 0, sizeof *h);
+    VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    VkDebugUtilsMessengerCreateInfoEXT mi = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+        .pfnUserCallback = host_on_message,
+        .pUserData = h,
+    };
+    VkValidationFeaturesEXT vf = {.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT, .pNext = &mi,
+                                  .enabledValidationFeatureCount = 1, .pEnabledValidationFeatures = enables};
+    const char *layers[] = {"VK_LAYER_KHRONOS_validation"};
+    const char *extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO, .apiVersion = VK_API_VERSION_1_3};
+    VkInstanceCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pNext = &vf, .pApplicationInfo = &app,
+                               .enabledLayerCount = 1, .ppEnabledLayerNames = layers,
+                               .enabledExtensionCount = 1, .ppEnabledExtensionNames = extensions};
+    assert_int_equal(vkCreateInstance(&ii, NULL, &h->instance), VK_SUCCESS);
+    PFN_vkCreateDebugUtilsMessengerEXT create =
+        (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(h->instance, "vkCreateDebugUtilsMessengerEXT");
+    assert_non_null(create);
+    assert_int_equal(create(h->instance, &mi, NULL, &h->messenger), VK_SUCCESS);
+
+    uint32_t count = 1;
+    VkResult vr = vkEnumeratePhysicalDevices(h->instance, &count, &h->physical_device);
+    assert_true(vr == VK_SUCCESS || vr == VK_INCOMPLETE);
+    assert_int_equal(count, 1);
+    VkQueueFamilyProperties families[16];
+    count = 16;
+    vkGetPhysicalDeviceQueueFamilyProperties(h->physical_device, &count, families);
+    h->family = UINT32_MAX;
+    for (uint32_t i = 0; i < count && h->family == UINT32_MAX; ++i)
+        if ((families[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
+            (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT))
+            h->family = i;
+    assert_int_not_equal(h->family, UINT32_MAX);
+
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo qi = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, .queueFamilyIndex = h->family,
+                                  .queueCount = 1, .pQueuePriorities = &priority};
+    *f13 = (VkPhysicalDeviceVulkan13Features){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+                                              .dynamicRendering = dynamic_rendering};
+    VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = f13};
+    VkDeviceCreateInfo di = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, .pNext = &features,
+                             .queueCreateInfoCount = 1, .pQueueCreateInfos = &qi};
+    assert_int_equal(vkCreateDevice(h->physical_device, &di, NULL, &h->device), VK_SUCCESS);
+    vkGetDeviceQueue(h->device, h->family, 0, &h->queue);
+}
+
+static void host_destroy(host *h)
+{
+    vkDestroyDevice(h->device, NULL); // the object tracker reports anything rtpbr left behind
+    PFN_vkDestroyDebugUtilsMessengerEXT destroy =
+        (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(h->instance, "vkDestroyDebugUtilsMessengerEXT");
+    destroy(h->instance, h->messenger, NULL);
+    vkDestroyInstance(h->instance, NULL);
+}
+
+static rtpbr_vulkan_device handover(const host *h, const VkPhysicalDeviceVulkan13Features *f13,
+                                    VkPhysicalDeviceFeatures2 *features)
+{
+    *features = (VkPhysicalDeviceFeatures2){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+                                            .pNext = (void *)f13};
+    return (rtpbr_vulkan_device){h->instance, h->physical_device, h->device, h->queue, h->family, features};
+}
+
+static void embedded_render_leaves_host_untouched(void **state)
+{
+    (void)state;
+    host h;
+    VkPhysicalDeviceVulkan13Features f13;
+    host_create(&h, true, &f13);
+
+    // The host's own objects, made before the module exists: a buffer it fills on the GPU.
+    VkBuffer buffer;
+    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = 256,
+                             .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT};
+    assert_int_equal(vkCreateBuffer(h.device, &bi, NULL, &buffer), VK_SUCCESS);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(h.device, buffer, &req);
+    VkPhysicalDeviceMemoryProperties mp;
+    vkGetPhysicalDeviceMemoryProperties(h.physical_device, &mp);
+    const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    uint32_t type = 0;
+    while (!((req.memoryTypeBits & (1u << type)) && (mp.memoryTypes[type].propertyFlags & want) == want)) ++type;
+    VkDeviceMemory memory;
+    assert_int_equal(vkAllocateMemory(h.device, &(VkMemoryAllocateInfo){VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, NULL, req.size, type},
+                                      NULL, &memory),
+                     VK_SUCCESS);
+    assert_int_equal(vkBindBufferMemory(h.device, buffer, memory, 0), VK_SUCCESS);
+    VkCommandPool pool;
+    VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, .queueFamilyIndex = h.family};
+    assert_int_equal(vkCreateCommandPool(h.device, &pi, NULL, &pool), VK_SUCCESS);
+    VkFence fence;
+    assert_int_equal(vkCreateFence(h.device, &(VkFenceCreateInfo){.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO}, NULL, &fence),
+                     VK_SUCCESS);
+
+    // Hand over, render an emissive square, read it back.
+    test_log log = {0};
+    VkPhysicalDeviceFeatures2 features;
+    rtpbr_context_desc desc = {.logger = {test_log_func, &log}, .embedded = handover(&h, &f13, &features)};
+    rtpbr_context *ctx = NULL;
+    assert_int_equal(rtpbr_context_create(&desc, &ctx), RTPBR_SUCCESS);
+    rtpbr_vulkan_device used = rtpbr_context_vulkan_device(ctx);
+    assert_ptr_equal(used.device, h.device);
+    assert_ptr_equal(used.queue, h.queue);
+    float positions[12];
+    square_positions(1.0f, 0.0f, positions);
+    rtpbr_material_desc material = {.emission = {0.25f, 4.0f, 1.0f}};
+    rtpbr_mesh_desc mesh = {.positions = positions, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_create(ctx,
+                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                    .materials = &material, .material_count = 1},
+                                            &scene),
+                     RTPBR_SUCCESS);
+    rtpbr_renderer *r = NULL;
+    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 16, .height = 16}, &r), RTPBR_SUCCESS);
+    for (int i = 0; i < 3; ++i) assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
+    float px[16 * 16 * 4];
+    assert_int_equal(rtpbr_read_radiance(r, px, sizeof px), RTPBR_SUCCESS);
+    assert_float_equal(px[4 * (8 * 16 + 8) + 1], 4.0f, 0.0f);
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.errors, 0);
+
+    // The host's device, queue and objects still work.
+    VkCommandBuffer cmd;
+    VkCommandBufferAllocateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = pool,
+                                      .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
+    assert_int_equal(vkAllocateCommandBuffers(h.device, &ci, &cmd), VK_SUCCESS);
+    assert_int_equal(vkBeginCommandBuffer(cmd, &(VkCommandBufferBeginInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO}),
+                     VK_SUCCESS);
+    vkCmdFillBuffer(cmd, buffer, 0, 256, 0x2a2a2a2au);
+    VkMemoryBarrier to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER, .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+                               .dstAccessMask = VK_ACCESS_HOST_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, NULL, 0, NULL);
+    assert_int_equal(vkEndCommandBuffer(cmd), VK_SUCCESS);
+    VkSubmitInfo submit = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
+    assert_int_equal(vkQueueSubmit(h.queue, 1, &submit, fence), VK_SUCCESS);
+    assert_int_equal(vkWaitForFences(h.device, 1, &fence, VK_TRUE, UINT64_MAX), VK_SUCCESS);
+    void *mapped;
+    assert_int_equal(vkMapMemory(h.device, memory, 0, VK_WHOLE_SIZE, 0, &mapped), VK_SUCCESS);
+    for (int i = 0; i < 256; ++i) assert_int_equal(((const uint8_t *)mapped)[i], 0x2a);
+    vkUnmapMemory(h.device, memory);
+    assert_int_equal(vkDeviceWaitIdle(h.device), VK_SUCCESS);
+
+    vkDestroyFence(h.device, fence, NULL);
+    vkDestroyCommandPool(h.device, pool, NULL);
+    vkDestroyBuffer(h.device, buffer, NULL);
+    vkFreeMemory(h.device, memory, NULL);
+    host_destroy(&h);
+    assert_int_equal(h.messages, 0);
+}
+
+// A host device created without dynamicRendering, or a host that does not say what it
+// enabled, is refused with RTPBR_ERROR_MISSING_FEATURE and nothing is created on it.
+static void embedded_missing_feature(void **state)
+{
+    (void)state;
+    host h;
+    VkPhysicalDeviceVulkan13Features f13;
+    host_create(&h, false, &f13);
+    test_log log = {0};
+    VkPhysicalDeviceFeatures2 features;
+    rtpbr_context_desc desc = {.logger = {test_log_func, &log}, .embedded = handover(&h, &f13, &features)};
+    rtpbr_context *ctx = (rtpbr_context *)(uintptr_t)1;
+    assert_int_equal(rtpbr_context_create(&desc, &ctx), RTPBR_ERROR_MISSING_FEATURE);
+    assert_null(ctx);
+    assert_true(strstr(log.last_error, "dynamicRendering") != NULL);
+    desc.embedded.enabled_features = NULL;
+    assert_int_equal(rtpbr_context_create(&desc, &ctx), RTPBR_ERROR_MISSING_FEATURE);
+    desc.embedded.enabled_features = &features;
+    desc.embedded.queue = VK_NULL_HANDLE;
+    assert_int_equal(rtpbr_context_create(&desc, &ctx), RTPBR_ERROR_INVALID_ARGUMENT);
+    host_destroy(&h);
+    assert_int_equal(h.messages, 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(embedded_render_leaves_host_untouched),
+        cmocka_unit_test(embedded_missing_feature),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
