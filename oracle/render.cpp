@@ -140,12 +140,16 @@ public:
             // Light sampling.
             LightSample ls;
             float ul = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-            if (lights_.sample(sp.p, ul, u1, u2, &ls) && glm::dot(ls.wi, sp.ng) > 0.0f &&
+            // Lights are sampled from the offset point (on the side the ray arrived from): a
+            // point on a light's own plane (the back of a one-sided light, seen by the camera)
+            // then sees that light from behind or not at all, instead of a degenerate
+            // zero-solid-angle sample with an unbounded weight.
+            if (lights_.sample(origin, ul, u1, u2, &ls) && glm::dot(ls.wi, sp.ng) > 0.0f &&
                 (ls.radiance.x > 0.0f || ls.radiance.y > 0.0f || ls.radiance.z > 0.0f)) {
                 vec3 wiL = toLocal(ls.wi);
                 vec3 f = bsdf.eval(wiL, rng);
                 if (f.x > 0.0f || f.y > 0.0f || f.z > 0.0f) {
-                    bool visible = s_.noShadows || unoccluded(origin, sp.p + ls.wi * ls.distance);
+                    bool visible = s_.noShadows || unoccluded(origin, origin + ls.wi * ls.distance);
                     if (visible)
                         L += beta * f * ls.radiance * (misWeight(ls.pdf, bsdf.pdfMis(wiL)) / ls.pdf);
                 }
