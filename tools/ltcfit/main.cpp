@@ -1,6 +1,6 @@
 // rtpbr-ltcfit: fits the LTC tables of shaderlib/luts/ (see ltc_fit.hpp and shaderlib/luts/ltc.md).
 //
-//   rtpbr-ltcfit --out DIR [--quick] [--size N] [--threads T] [--no-horizon] [--diffuse-only]
+//   rtpbr-ltcfit --out DIR [--quick] [--size N] [--threads T] [--no-horizon] [--power P] [--diffuse-only]
 //
 // Writes DIR/rtpbr_ltc_tables.h, DIR/ltc_{ggx,beckmann,disney_diffuse}_{1,2}.exr,
 // DIR/ltc_fit_error.png (GGX, Beckmann), DIR/ltc_fit_error_disney_diffuse.png and replaces the
@@ -134,7 +134,7 @@ bool update_markdown(const std::string &path, const std::string &tag, const std:
 }
 
 int usage() {
-    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon] [--diffuse-only]\n");
+    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon] [--power P (1..3)] [--diffuse-only]\n");
     return 2;
 }
 
@@ -157,7 +157,10 @@ int main(int argc, char **argv) {
         };
         if (!strcmp(argv[i], "--out") && i + 1 < argc)
             outDir = argv[++i];
-        else if (!strcmp(argv[i], "--diffuse-only"))
+        else if (!strcmp(argv[i], "--power")) { // the L^p error the fit minimises (1, 2, 3)
+            if (!value(1, 3, s.errorPower))
+                return usage();
+        } else if (!strcmp(argv[i], "--diffuse-only"))
             diffuseOnly = true;
         else if (!strcmp(argv[i], "--quick"))
             quick = true;
