@@ -9,6 +9,7 @@
 #include <mutex>
 #include <thread>
 
+#include "rtpbr/disney.h"
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"
 
@@ -26,7 +27,24 @@ struct BrdfSample {
     double pdf;
 };
 
+// Burley's diffuse lobe as fitted: white, dielectric, no subsurface, perceptual roughness r.
+rtpbr::DisneyMaterial diffuse_material(float r) {
+    rtpbr::DisneyMaterial m = rtpbr::Disney_DefaultMaterial();
+    m.baseColor = glm::vec3(1.0f);
+    m.metallic = 0.0f;
+    m.subsurface = 0.0f;
+    m.roughness = r;
+    return m;
+}
+
+// alpha: the microfacet lobes' alpha; for Lobe::DisneyDiffuse the perceptual roughness.
 BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha) {
+    if (lobe == Lobe::DisneyDiffuse) { // sampled by the cosine: pdf = NoL / pi
+        if (!(V.z > 0.0f) || !(L.z > 0.0f))
+            return {0.0, 0.0};
+        double f = double(rtpbr::BRDF_DisneyDiffuse(diffuse_material(alpha), V, L).x);
+        return {f * double(L.z), double(L.z) / kPi};
+    }
     glm::vec3 hs = V + L;
     if (!(V.z > 0.0f) || !(glm::dot(hs, hs) > 1e-12f))
         return {0.0, 0.0};
@@ -55,6 +73,8 @@ BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha) {
 }
 
 glm::vec3 brdf_sample(Lobe lobe, glm::vec3 V, float alpha, glm::vec2 u) {
+    if (lobe == Lobe::DisneyDiffuse)
+        return rtpbr::Sample_CosineHemisphere(u);
     glm::vec3 wm = lobe == Lobe::GGX ? rtpbr::Sample_GGX_VNDF(V, alpha, alpha, u)
                                      : rtpbr::Sample_Beckmann_VNDF(V, alpha, alpha, u);
     return rtpbr::Reflect_About(V, wm);
@@ -126,8 +146,9 @@ Moments brdf_moments(Lobe lobe, glm::vec3 V, float alpha, int side) {
         dir += w * glm::dvec3(L);
     }
     m.norm /= n;
-    m.fresnel /= n;
-    m.f82 /= n;
+    // The diffuse lobe's Fresnel is part of its shape (Fd): no Schlick split, columns 0.
+    m.fresnel = lobe == Lobe::DisneyDiffuse ? 0.0 : m.fresnel / n;
+    m.f82 = lobe == Lobe::DisneyDiffuse ? 0.0 : m.f82 / n;
     dir.y = 0.0; // isotropic lobes are symmetric about the plane of incidence
     m.avgDir = glm::length(dir) > 0.0 ? glm::normalize(dir) : glm::dvec3(0, 0, 1);
     return m;
@@ -255,7 +276,8 @@ Params nelder_mead(F &&f, Params start, Params step, int dim,
 
 // Fits one cell, starting from the shape of `start` (m11, m22, m13, rotation).
 Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *start) {
-    const float alpha = rtpbr::Alpha_FromPerceptual(r);
+    // The diffuse lobe's parameter is the perceptual roughness itself (see brdf_eval).
+    const float alpha = lobe == Lobe::DisneyDiffuse ? r : rtpbr::Alpha_FromPerceptual(r);
     const glm::vec3 V(float(std::sqrt(1.0 - nov * nov)), 0.0f, float(nov));
 
     Moments mom = brdf_moments(lobe, V, alpha, s.momentSamples);
@@ -268,7 +290,10 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     if (start) {
         // Sharp lobes scale with alpha: start from the neighbour's shape scaled by the ratio
         // of the alphas (about 1 for rough lobes).
-        double ratio = double(alpha) / double(rtpbr::Alpha_FromPerceptual(float(start->roughness)));
+        // The diffuse lobe does not sharpen with roughness: no scaling.
+        double ratio = lobe == Lobe::DisneyDiffuse
+                           ? 1.0
+                           : double(alpha) / double(rtpbr::Alpha_FromPerceptual(float(start->roughness)));
         ltc.m11 = start->m11 * ratio;
         ltc.m22 = start->m22 * ratio;
         ltc.m13 = isotropic ? 0.0 : start->m13 * ratio;
@@ -335,6 +360,7 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     // With horizonNormalised the stored integrals are divided by the LTC's mass above the
     // horizon: the clipped LTC integral times them gives the BRDF's integral.
     const double massScale = s.horizonNormalised ? 1.0 / ltc.mass_above_horizon() : 1.0;
+    c.albedo = mom.norm;
     c.norm = mom.norm * massScale;
     c.fresnel = mom.fresnel * massScale;
     c.f82 = mom.f82 * massScale;
@@ -453,6 +479,12 @@ std::vector<float> pack_ltc2(const Table &t, const std::vector<float> &sphere) {
         out[4 * i + 3] = sphere[i];
     }
     return out;
+}
+
+PackedTables pack_tables(const Table &ggx, const Table &beckmann, const Table &diffuse,
+                         const std::vector<float> &sphere) {
+    return {pack_ltc1(ggx), pack_ltc2(ggx, sphere), pack_ltc1(beckmann), pack_ltc2(beckmann, sphere),
+            pack_ltc1(diffuse), pack_ltc2(diffuse, sphere)};
 }
 
 } // namespace ltcfit

@@ -22,7 +22,10 @@
 
 namespace ltcfit {
 
-enum class Lobe { GGX, Beckmann };
+// DisneyDiffuse: Burley's diffuse lobe (BRDF_DisneyDiffuse: white base colour, metallic 0,
+// subsurface 0, isotropic), the table's roughness axis being the material's perceptual
+// roughness. Its fresnel and f82 columns are 0: the lobe has no separate Fresnel factor.
+enum class Lobe { GGX, Beckmann, DisneyDiffuse };
 
 struct FitSettings {
     int size = 64;           // table cells per side
@@ -44,7 +47,8 @@ struct Cell {
     double rotation = 0;       // angle of the frame's Z from the lobe's average direction
     glm::dvec3 avgDir{0, 0, 1};
     glm::dmat3 invM{1.0};      // M^-1 normalised by its middle element
-    double norm = 0;           // integral of f NoL (F = 1)
+    double albedo = 0;         // integral of f NoL (F = 1), the directional albedo
+    double norm = 0;           // albedo / (the LTC's mass above the horizon)
     double fresnel = 0;        // integral of f NoL (1 - VoH)^5
     double f82 = 0;            // integral of f NoL VoH (1 - VoH)^6
     double error = 0;          // integral of |f NoL - norm D_ltc| / norm  (relative L1)
@@ -75,10 +79,21 @@ std::vector<float> sphere_table(int size);
 double clipped_cap_form_factor(double omega, double sigma);
 
 // Writers (return false and fill err on failure).
-bool write_header(const std::string &path, const Table &ggx, const Table &beckmann,
-                  const std::vector<float> &sphere, const std::string &quality, std::string &err);
+// The packed arrays (pack_ltc1 / pack_ltc2) of the three lobes, as written to the header.
+struct PackedTables {
+    std::vector<float> ggx1, ggx2, beckmann1, beckmann2, diffuse1, diffuse2;
+};
+PackedTables pack_tables(const Table &ggx, const Table &beckmann, const Table &diffuse,
+                         const std::vector<float> &sphere);
+bool write_header(const std::string &path, int size, const PackedTables &t, const std::string &quality,
+                  std::string &err);
+// Reads the arrays (and the quality line) of an existing rtpbr_ltc_tables.h written by
+// write_header: floats printed with 9 significant digits read back to the same floats, so
+// rewriting them gives the same bytes.
+bool read_header(const std::string &path, int size, PackedTables &t, std::string &quality, std::string &err);
 bool write_exr(const std::string &path, int size, const std::vector<float> &rgba, std::string &err);
-bool write_error_png(const std::string &path, const Table &ggx, const Table &beckmann, std::string &err);
+// One panel per table, side by side.
+bool write_error_png(const std::string &path, const std::vector<const Table *> &tables, std::string &err);
 
 // Packs a table as the two RGBA float images of the contract (ltc1, ltc2).
 std::vector<float> pack_ltc1(const Table &t);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "rtpbr/disney.h"
 #include "rtpbr/ltc.h"
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"
@@ -23,8 +24,12 @@ using rtpbr::float2;
 using rtpbr::float3;
 using rtpbr::float4;
 
-enum class Lobe { GGX, Beckmann };
-inline const char *lobe_name(Lobe l) { return l == Lobe::GGX ? "GGX" : "Beckmann"; }
+// DisneyDiffuse: BRDF_DisneyDiffuse (white, metallic 0, subsurface 0), the table fitted by
+// tools/ltcfit into rtpbr_ltc_disney_diffuse_*.
+enum class Lobe { GGX, Beckmann, DisneyDiffuse };
+inline const char *lobe_name(Lobe l) {
+    return l == Lobe::GGX ? "GGX" : l == Lobe::Beckmann ? "Beckmann" : "Disney diffuse";
+}
 
 // Bilinear fetch with clamp-to-edge at texture coordinate uv, as a GPU sampler does.
 inline float4 fetch(const float *tab, float2 uv) {
@@ -80,11 +85,24 @@ inline Square make_square(float3 dir, float half) {
     return s;
 }
 
-// The BRDF under test: f (F = 1) and its visible-normal sampling density.
+// The BRDF under test: f (F = 1) and its sampling density (visible normals; the cosine for
+// the diffuse lobe).
 struct Brdf {
     Lobe lobe;
-    float alpha;
+    float alpha; // microfacet alpha; for Lobe::DisneyDiffuse the perceptual roughness
+    static Brdf make(Lobe lobe, float roughness) {
+        return {lobe, lobe == Lobe::DisneyDiffuse ? roughness : rtpbr::Alpha_FromPerceptual(roughness)};
+    }
     float value_cos(float3 V, float3 L, float &pdf) const {
+        if (lobe == Lobe::DisneyDiffuse) {
+            pdf = L.z > 0.0f ? L.z * rtpbr::RTPBR_INV_PI : 0.0f;
+            rtpbr::DisneyMaterial m = rtpbr::Disney_DefaultMaterial();
+            m.baseColor = float3(1.0f);
+            m.metallic = 0.0f;
+            m.subsurface = 0.0f;
+            m.roughness = alpha;
+            return L.z > 0.0f ? rtpbr::BRDF_DisneyDiffuse(m, V, L).x * L.z : 0.0f;
+        }
         float3 hs = V + L;
         pdf = 0.0f;
         if (!(glm::dot(hs, hs) > 1e-12f))
@@ -102,6 +120,8 @@ struct Brdf {
         return D * Vis * L.z;
     }
     float3 sample(float3 V, float2 u) const {
+        if (lobe == Lobe::DisneyDiffuse)
+            return rtpbr::Sample_CosineHemisphere(u);
         float3 wm = lobe == Lobe::GGX ? rtpbr::Sample_GGX_VNDF(V, alpha, alpha, u)
                                       : rtpbr::Sample_Beckmann_VNDF(V, alpha, alpha, u);
         return rtpbr::Reflect_About(V, wm);
@@ -215,8 +235,12 @@ struct LtcEval {
 
 // The LTC answer with F = 1 (norm x form factor), as a renderer computes it.
 inline LtcEval ltc_eval(Lobe lobe, float roughness, float3 V, const Square &sq, FresnelChoice fr) {
-    const float *t1 = lobe == Lobe::GGX ? rtpbr_ltc_ggx_1 : rtpbr_ltc_beckmann_1;
-    const float *t2 = lobe == Lobe::GGX ? rtpbr_ltc_ggx_2 : rtpbr_ltc_beckmann_2;
+    const float *t1 = lobe == Lobe::GGX        ? rtpbr_ltc_ggx_1
+                      : lobe == Lobe::Beckmann ? rtpbr_ltc_beckmann_1
+                                               : rtpbr_ltc_disney_diffuse_1;
+    const float *t2 = lobe == Lobe::GGX        ? rtpbr_ltc_ggx_2
+                      : lobe == Lobe::Beckmann ? rtpbr_ltc_beckmann_2
+                                               : rtpbr_ltc_disney_diffuse_2;
     float3 N(0, 0, 1);
     float2 uv = rtpbr::LTC_LutCoord(glm::dot(N, V), roughness);
     float4 l1 = fetch(t1, uv), l2 = fetch(t2, uv);
@@ -270,7 +294,7 @@ inline Outcome run_config(const Config &c, FresnelChoice fr, double targetRelErr
     float th = c.viewDeg * 3.14159265f / 180.0f;
     float3 V(std::sin(th), 0.0f, std::cos(th));
     Square sq = make_square(position_dir(c.position, V), c.half);
-    Brdf brdf{c.lobe, rtpbr::Alpha_FromPerceptual(c.roughness)};
+    Brdf brdf = Brdf::make(c.lobe, c.roughness);
     Outcome o;
     o.cfg = c;
     o.albedo = albedo(brdf, V);
@@ -314,9 +338,9 @@ inline std::vector<float> grid_halves(bool reduced) {
     return reduced ? std::vector<float>{0.1f, 0.5f} : std::vector<float>{0.1f, 0.3f, 1.0f};
 }
 
-inline std::vector<Config> grid(bool reduced) {
+inline std::vector<Config> grid(bool reduced, std::vector<Lobe> lobes = {Lobe::GGX, Lobe::Beckmann}) {
     std::vector<Config> g;
-    for (Lobe l : {Lobe::GGX, Lobe::Beckmann})
+    for (Lobe l : lobes)
         for (float r : grid_roughness(reduced))
             for (float v : grid_views(reduced))
                 for (float h : grid_halves(reduced))

@@ -2,7 +2,9 @@
 // ltc_mc.hpp; prints the markdown error table for shaderlib/luts/ltc.md and writes the error
 // plot. Deterministic (fixed seeds); 2 threads.
 //
-//   rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE]
+//   rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse]
+//
+// --diffuse: the Disney diffuse table instead of GGX and Beckmann (the plot has one lobe row).
 #include <atomic>
 #include <cstring>
 #include <mutex>
@@ -15,6 +17,10 @@
 using namespace ltcmc;
 
 namespace {
+
+int index_of(const std::vector<Lobe> &lobes, Lobe l) {
+    return int(std::find(lobes.begin(), lobes.end(), l) - lobes.begin());
+}
 
 void colormap(double t, unsigned char rgb[3]) { // matplotlib "magma" control points
     static const double pts[][3] = {{0.001, 0.000, 0.014}, {0.231, 0.059, 0.439}, {0.550, 0.161, 0.506},
@@ -33,18 +39,20 @@ void colormap(double t, unsigned char rgb[3]) { // matplotlib "magma" control po
 // size (small to large). 8x8-pixel cells, 2-pixel white gaps between groups; colour = log10
 // relative error from 0.1% (dark) to 100% (bright); grey = far-tail light (< 1% of the
 // lobe's energy) or the mirror direction at normal view (same as "normal").
-bool write_plot(const std::string &path, const std::vector<Outcome> &out, const std::vector<float> &rough,
+bool write_plot(const std::string &path, const std::vector<Lobe> &lobes, const std::vector<Outcome> &out,
+                const std::vector<float> &rough,
                 const std::vector<float> &views, const std::vector<float> &halves, std::string &err) {
     const int cell = 8, group = 2, gap = 12;
     const int nr = int(rough.size()), nv = int(views.size()), nh = int(halves.size());
     const int pw = nr * nv * cell + (nr - 1) * group, ph = 4 * nh * cell + 3 * group;
-    const int w = 3 * pw + 2 * gap, h = 2 * ph + gap + gap + 12;
+    const int nl = int(lobes.size());
+    const int w = 3 * pw + 2 * gap, h = nl * ph + (nl - 1) * gap + gap + 12;
     std::vector<unsigned char> img(size_t(w) * h * 3, 255);
     auto index = [](const std::vector<float> &v, float x) {
         return int(std::find(v.begin(), v.end(), x) - v.begin());
     };
     // grey background for every cell, so missing configurations show as grey
-    for (int lobe = 0; lobe < 2; lobe++)
+    for (int lobe = 0; lobe < nl; lobe++)
         for (int m = 0; m < 3; m++)
             for (int ri = 0; ri < nr; ri++)
                 for (int vi = 0; vi < nv; vi++)
@@ -59,7 +67,7 @@ bool write_plot(const std::string &path, const std::vector<Outcome> &out, const 
                         }
     for (const Outcome &o : out) {
         int ri = index(rough, o.cfg.roughness), vi = index(views, o.cfg.viewDeg), hi = index(halves, o.cfg.half);
-        int lobe = o.cfg.lobe == Lobe::GGX ? 0 : 1;
+        int lobe = index_of(lobes, o.cfg.lobe);
         double errs[3] = {o.relExact, o.relClipless, o.relClipTable};
         for (int m = 0; m < 3; m++) {
             unsigned char rgb[3] = {160, 160, 160};
@@ -73,7 +81,7 @@ bool write_plot(const std::string &path, const std::vector<Outcome> &out, const 
                         img[(size_t(y0 + y) * w + size_t(x0 + x)) * 3 + k] = rgb[k];
         }
     }
-    for (int y = 2 * ph + 2 * gap; y < h; y++)
+    for (int y = nl * ph + nl * gap; y < h; y++)
         for (int x = 0; x < w; x++)
             colormap(double(x) / (w - 1), &img[(size_t(y) * w + x) * 3]);
     auto o = OIIO::ImageOutput::create(path);
@@ -93,20 +101,23 @@ bool write_plot(const std::string &path, const std::vector<Outcome> &out, const 
 
 int main(int argc, char **argv) {
     bool reduced = false, verbose = false;
+    std::vector<Lobe> lobes{Lobe::GGX, Lobe::Beckmann};
     std::string png;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--reduced"))
             reduced = true;
+        else if (!strcmp(argv[i], "--diffuse"))
+            lobes = {Lobe::DisneyDiffuse};
         else if (!strcmp(argv[i], "--verbose"))
             verbose = true;
         else if (!strcmp(argv[i], "--png") && i + 1 < argc)
             png = argv[++i];
         else {
-            fprintf(stderr, "usage: rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE]\n");
+            fprintf(stderr, "usage: rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse]\n");
             return 2;
         }
     }
-    std::vector<Config> g = grid(reduced);
+    std::vector<Config> g = grid(reduced, lobes);
     std::vector<Outcome> out(g.size());
     std::atomic<size_t> next{0};
     std::mutex m;
@@ -136,7 +147,7 @@ int main(int argc, char **argv) {
            "|---|---|---|---|---|---|---|---|---|\n");
     double worstRef = 0;
     long maxSamples = 0;
-    for (Lobe l : {Lobe::GGX, Lobe::Beckmann}) {
+    for (Lobe l : lobes) {
         std::vector<double> e[3], tail[3];
         for (const Outcome &o : out) {
             if (o.cfg.lobe != l)
@@ -158,7 +169,7 @@ int main(int argc, char **argv) {
     printf("\nReference: largest relative standard error %.3f%% where the light matters (at most %ld sample pairs).\n", 100 * worstRef,
            maxSamples);
     // Breakdown of the exact method by roughness and view angle.
-    for (Lobe l : {Lobe::GGX, Lobe::Beckmann}) {
+    for (Lobe l : lobes) {
         printf("\n%s, exact clipping, mean relative error by roughness (rows) and view angle (columns):\n\n| r |",
                lobe_name(l));
         std::vector<float> rough = grid_roughness(reduced), views = grid_views(reduced);
@@ -181,7 +192,7 @@ int main(int argc, char **argv) {
         }
     }
     // Breakdown by light position and size.
-    for (Lobe l : {Lobe::GGX, Lobe::Beckmann}) {
+    for (Lobe l : lobes) {
         printf("\n%s, exact clipping, mean relative error by position (rows) and light half-size (columns):\n\n| position |",
                lobe_name(l));
         std::vector<float> halves = grid_halves(reduced);
@@ -206,7 +217,7 @@ int main(int argc, char **argv) {
     if (!png.empty()) {
         std::vector<float> rough = grid_roughness(reduced), views = grid_views(reduced), halves = grid_halves(reduced);
         std::string err;
-        if (!write_plot(png, out, rough, views, halves, err)) {
+        if (!write_plot(png, lobes, out, rough, views, halves, err)) {
             fprintf(stderr, "rtpbr-ltc-validate: error: %s\n", err.c_str());
             return 1;
         }
