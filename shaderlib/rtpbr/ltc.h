@@ -1,0 +1,381 @@
+// rtpbr shader library: polygonal area lights with Linearly Transformed Cosines (LTC).
+//
+// Heitz, Dupuy, Hill & Neubelt 2016, "Real-Time Polygonal-Light Shading with Linearly
+// Transformed Cosines". A BRDF lobe (times the cosine) for one view direction and roughness is
+// approximated by D(w) = D_o(M^-1 w / |M^-1 w|) |det M^-1| / |M^-1 w|^3 with D_o = max(z,0)/pi;
+// the integral of D over a polygon is the integral of D_o over the polygon transformed by
+// M^-1, which has a closed form (Lambert 1760; Arvo 1995, "Applications of Irradiance Tensors").
+//
+// Conventions
+//   - The local LTC frame: z = N, x = normalize(V - N NoV) (so V lies in the xz plane with
+//     x >= 0), y = cross(N, x). Polygons are given by world-space vertex positions and the
+//     shading position P; nothing else is assumed about units.
+//   - Polygons are convex and planar, 3 to RTPBR_LTC_MAX_VERTICES (8) vertices. Their front
+//     face is the side from which the vertices appear counter-clockwise (the OpenGL
+//     convention: normal = cross(p1 - p0, p2 - p0) points toward the front). One-sided lights
+//     emit from the front only; two-sided from both faces.
+//   - Every integral returned is a "form factor": the fraction of the normalised distribution
+//     that falls on the polygon, in [0, 1]. Radiance from a light of radiance Le:
+//       specular  Lo = Le * LTC_FresnelScale(ltc2, f0, f90) * LTC_EvaluatePolygon(.., ltc1, ..)
+//       Lambert   Lo = Le * diffuseColor * LTC_EvaluatePolygon(.., LTC_Identity(), ..)
+//   - The library never samples textures. The caller fetches, with bilinear filtering and
+//     clamp-to-edge, ltc1 = rtpbr_ltc_*_1 and ltc2 = rtpbr_ltc_*_2 at LTC_LutCoord(NoV,
+//     perceptualRoughness), and passes the float4 values in. Table layout: see
+//     shaderlib/luts/ltc.md and rtpbr_ltc_tables.h.
+//   - ltc1 = (m00, m02, m20, m22): the inverse matrix in the local frame, divided by its
+//     middle element, is  M^-1 = | m00 0 m02 |
+//                                |  0  1  0  |
+//                                | m20 0 m22 |   (rows).
+//   - ltc2 = (norm, fresnel, f82, sphere): norm = integral of f cos with F = 1 (the
+//     directional albedo), fresnel = integral of f cos (1 - VoH)^5, f82 = integral of
+//     f cos VoH (1 - VoH)^6 (for LTC_FresnelScaleF82), and in .w, at a different coordinate
+//     (LTC_SphereLutCoord), the horizon-clipped sphere form factor for the clipless path.
+//
+// Horizon clipping. The polygon is clipped to the surface's upper hemisphere *before* the
+// transform (as O3DE does) and then to the LTC's own support, the half-space
+// (M^-1 w).z >= 0, so the transformed polygon lies in z >= 0 where the closed form holds.
+// The second clip is where Heitz et al. clip (after the transform; the same plane seen in the
+// other space); the first one is what makes light from behind the surface never leak in:
+// where the LTC lobe extends below the surface's horizon (grazing views, rough surfaces), the
+// transformed horizon is not z = 0 and clipping only in LTC space would integrate light
+// arriving from under the surface.
+//
+// Flags
+//   RTPBR_LTC_CLIPLESS  0 (default): exact clipping as above.
+//                       1: LTC_EvaluatePolygon uses the sphere proxy of Hill & Heitz 2016
+//                       ("Real-Time Area Lighting: a Journey from Research to Production"):
+//                       no clipping; the unclipped polygon's vector form factor F is
+//                       replaced by the sphere with the same F, clipped to the horizon by
+//                       the analytic approximation max((|F|^2 + F.z) / (|F| + 1), 0).
+//                       The table form (LTC_SphereFormFactor with ltc2.w at
+//                       LTC_SphereLutCoord) is more accurate; errors of both are in ltc.md.
+#ifndef RTPBR_LTC_H
+#define RTPBR_LTC_H
+
+#include "lang.h"
+#include "config.h"
+#include "fresnel.h"
+
+#ifndef RTPBR_LTC_CLIPLESS
+#define RTPBR_LTC_CLIPLESS 0
+#endif
+// Texels per side of the LTC tables (shaderlib/luts/rtpbr_ltc_tables.h defines the same).
+#ifndef RTPBR_LTC_SIZE
+#define RTPBR_LTC_SIZE 64
+#endif
+#define RTPBR_LTC_MAX_VERTICES 8
+// Two half-space clips of a convex polygon add at most one vertex each.
+#define RTPBR_LTC_CLIP_VERTICES 10
+
+RTPBR_NAMESPACE_BEGIN
+
+// ltc1 of the identity transform: the clamped cosine itself (Lambertian diffuse).
+RTPBR_FN float4 LTC_Identity() { return float4(1.0f, 0.0f, 0.0f, 1.0f); }
+
+// A convex planar polygon: world-space vertex positions v[0 .. count-1].
+struct LtcPolygon {
+    float3 v[RTPBR_LTC_MAX_VERTICES];
+    int count;
+};
+
+// A polygon relative to the shading point, in the local LTC frame (the result of
+// LTC_PolygonToLocal); count = 0 when the light cannot contribute.
+struct LtcLocalPolygon {
+    float3 v[RTPBR_LTC_CLIP_VERTICES];
+    int count;
+};
+
+RTPBR_FN LtcPolygon LTC_Triangle(float3 p0, float3 p1, float3 p2) {
+    LtcPolygon p;
+    for (int i = 0; i < RTPBR_LTC_MAX_VERTICES; i++)
+        p.v[i] = p0;
+    p.v[1] = p1;
+    p.v[2] = p2;
+    p.count = 3;
+    return p;
+}
+
+RTPBR_FN LtcPolygon LTC_Quad(float3 p0, float3 p1, float3 p2, float3 p3) {
+    LtcPolygon p = LTC_Triangle(p0, p1, p2);
+    p.v[3] = p3;
+    p.count = 4;
+    return p;
+}
+
+// ---- table coordinates ---------------------------------------------------------------------
+
+// Texture coordinate of the LTC tables for (NoV, perceptual roughness). Texel (i, j) (column i,
+// row j) holds roughness i / (SIZE - 1) and sqrt(1 - NoV) = j / (SIZE - 1): the coordinate maps
+// those values to texel centres, (i + 0.5) / SIZE, so bilinear filtering interpolates between
+// fitted values and never extrapolates (Heitz et al. 2016, the LUT_SCALE/LUT_BIAS of their code).
+RTPBR_FN float2 LTC_LutCoord(float NoV, float perceptualRoughness) {
+    float u = saturate(perceptualRoughness);
+    float v = safe_sqrt(1.0f - saturate(NoV));
+    float scale = (float(RTPBR_LTC_SIZE) - 1.0f) / float(RTPBR_LTC_SIZE);
+    float bias = 0.5f / float(RTPBR_LTC_SIZE);
+    return float2(u * scale + bias, v * scale + bias);
+}
+
+// Texture coordinate of the horizon-clipped sphere form factor (ltc2.w) for a vector form
+// factor F: column = cos of F's elevation mapped to [0, 1] (z * 0.5 + 0.5), row = |F|
+// (= sin^2 of the sphere's angular radius), texel centres as above.
+RTPBR_FN float2 LTC_SphereLutCoord(float3 F) {
+    float len = length(F);
+    float z = len > 0.0f ? F.z / len : 0.0f;
+    float scale = (float(RTPBR_LTC_SIZE) - 1.0f) / float(RTPBR_LTC_SIZE);
+    float bias = 0.5f / float(RTPBR_LTC_SIZE);
+    return float2(saturate(z * 0.5f + 0.5f) * scale + bias, saturate(len) * scale + bias);
+}
+
+// ---- geometry ------------------------------------------------------------------------------
+
+// World-to-local rotation (rows x, y, z of the LTC frame). When V is along N any tangent
+// will do: the fitted lobes are isotropic there.
+RTPBR_FN float3x3 LTC_Frame(float3 N, float3 V) {
+    float3 t = V - N * dot(N, V);
+    float tl2 = dot(t, t);
+    if (tl2 > 1e-10f) {
+        t = t * rsqrt(tl2);
+    } else {
+        float3 up = float3(0.0f, 0.0f, 1.0f);
+        if (abs(N.z) > 0.9f)
+            up = float3(1.0f, 0.0f, 0.0f);
+        t = normalize(cross(up, N));
+    }
+    return rtpbr_mat3_rows(t, cross(N, t), N);
+}
+
+// Sutherland-Hodgman clip of a convex polygon to the half-space dot(p, n) >= 0 (a plane
+// through the shading point). Points on the plane are kept; the output has at most one
+// vertex more than the input (capped at the buffer size for non-convex input).
+RTPBR_FN LtcLocalPolygon LTC_ClipToHalfSpace(LtcLocalPolygon p, float3 n) {
+    LtcLocalPolygon r;
+    r.count = 0;
+    for (int k = 0; k < RTPBR_LTC_CLIP_VERTICES; k++)
+        r.v[k] = RTPBR_F3(0.0f);
+    for (int i = 0; i < p.count; i++) {
+        int j = i + 1 < p.count ? i + 1 : 0;
+        float3 a = p.v[i];
+        float3 b = p.v[j];
+        float da = dot(a, n);
+        float db = dot(b, n);
+        if (da >= 0.0f && r.count < RTPBR_LTC_CLIP_VERTICES) {
+            r.v[r.count] = a;
+            r.count += 1;
+        }
+        if ((da >= 0.0f) != (db >= 0.0f) && r.count < RTPBR_LTC_CLIP_VERTICES) {
+            // da and db have opposite signs: da - db != 0 and t is in [0, 1].
+            r.v[r.count] = a + (b - a) * (da / (da - db));
+            r.count += 1;
+        }
+    }
+    return r;
+}
+
+// Shared part of LTC_PolygonToLocal and LTC_PolygonToLocalUnclipped: the polygon relative to
+// P in the local frame, oriented so that it appears clockwise from P (its Newell normal
+// points away from P), or count = 0 when it cannot contribute: fewer than 3 or more than 8
+// vertices, zero area (collinear or coincident vertices), P on the polygon's plane (edge-on,
+// or a vertex touching P: |plane distance| <= 1e-7 of the polygon's extent), or P behind a
+// one-sided light. NaN input also gives count = 0.
+RTPBR_FN LtcLocalPolygon LTC_PolygonRelative(float3x3 frame, float3 P, LtcPolygon poly, bool twoSided) {
+    LtcLocalPolygon r;
+    r.count = 0;
+    for (int k = 0; k < RTPBR_LTC_CLIP_VERTICES; k++)
+        r.v[k] = RTPBR_F3(0.0f);
+    if (!(poly.count >= 3 && poly.count <= RTPBR_LTC_MAX_VERTICES))
+        return r;
+    float3 p0 = poly.v[0];
+    float3 normal = RTPBR_F3(0.0f); // Newell's normal, from edges relative to p0 (precision)
+    float extent2 = 0.0f;
+    for (int i = 1; i + 1 < poly.count; i++) {
+        float3 e1 = poly.v[i] - p0;
+        float3 e2 = poly.v[i + 1] - p0;
+        normal += cross(e1, e2);
+        extent2 = max(extent2, max(dot(e1, e1), dot(e2, e2)));
+    }
+    float nl = length(normal);
+    float3 d0 = p0 - P;
+    extent2 = max(extent2, dot(d0, d0));
+    if (!(nl > 0.0f))
+        return r;
+    float planeDist = dot(normal, d0) / nl; // > 0: P sees the back face
+    if (!(abs(planeDist) > 1e-7f * sqrt(extent2)))
+        return r;
+    if (!twoSided && planeDist > 0.0f)
+        return r;
+    // Reverse front-facing polygons: every polygon then appears clockwise from P.
+    bool reverse = planeDist < 0.0f;
+    for (int i = 0; i < poly.count; i++) {
+        int src = reverse ? poly.count - 1 - i : i;
+        r.v[i] = rtpbr_mul(frame, poly.v[src] - P);
+    }
+    r.count = poly.count;
+    return r;
+}
+
+// The polygon in the local frame relative to P, clipped to the surface's upper hemisphere
+// (count = 0 when nothing is left or the light cannot contribute; see LTC_PolygonRelative).
+// frame = LTC_Frame(N, V). Compute once per light, then integrate it for each lobe.
+RTPBR_FN LtcLocalPolygon LTC_PolygonToLocal(float3x3 frame, float3 P, LtcPolygon poly, bool twoSided) {
+    LtcLocalPolygon r = LTC_PolygonRelative(frame, P, poly, twoSided);
+    if (r.count == 0)
+        return r;
+    r = LTC_ClipToHalfSpace(r, float3(0.0f, 0.0f, 1.0f));
+    for (int i = 0; i < r.count; i++) // exactly on the horizon, for horizon edges along z
+        r.v[i].z = max(r.v[i].z, 0.0f);
+    if (r.count < 3)
+        r.count = 0;
+    return r;
+}
+
+// The polygon in the local frame relative to P, not clipped (for the clipless path).
+RTPBR_FN LtcLocalPolygon LTC_PolygonToLocalUnclipped(float3x3 frame, float3 P, LtcPolygon poly, bool twoSided) {
+    return LTC_PolygonRelative(frame, P, poly, twoSided);
+}
+
+// ---- integration ---------------------------------------------------------------------------
+
+// M^-1 in the local frame from the table value ltc1 = (m00, m02, m20, m22).
+RTPBR_FN float3x3 LTC_InverseMatrix(float4 ltc1) {
+    return rtpbr_mat3_rows(float3(ltc1.x, 0.0f, ltc1.y), float3(0.0f, 1.0f, 0.0f),
+                           float3(ltc1.z, 0.0f, ltc1.w));
+}
+
+// The edge term of Lambert's formula for the great-circle arc from unit vector a to unit
+// vector b: theta * normalize(cross(a, b)), theta = the angle between them. theta comes from
+// atan2(|a x b|, a.b), accurate at every angle (acos(a.b) loses half the digits near 0 and pi);
+// theta / sin(theta) stays finite when a and b are nearly equal or nearly opposite.
+RTPBR_FN float3 LTC_EdgeVector(float3 a, float3 b) {
+    float3 c = cross(a, b);
+    float s = length(c);
+    float k = s > 0.0f ? atan2(s, dot(a, b)) / s : 1.0f;
+    return c * k;
+}
+
+// A local vertex transformed by M^-1 and projected to the unit sphere. clampZ: the vertex is
+// known to be in z >= 0 after the transform (clipped), so rounding below it is removed.
+RTPBR_FN float3 LTC_TransformVertex(float3x3 minv, float3 p, bool clampZ) {
+    float3 q = rtpbr_mul(minv, p);
+    if (clampZ)
+        q.z = max(q.z, 0.0f);
+    float l2 = dot(q, q);
+    if (l2 > 0.0f)
+        q = q * rsqrt(l2);
+    return q;
+}
+
+// The form factor (in [0, 1]) of a local polygon (from LTC_PolygonToLocal) under the LTC
+// given by ltc1: the integral of the LTC distribution over the part of the polygon above the
+// surface's horizon. With ltc1 = LTC_Identity() it is the polygon's Lambertian form factor.
+RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, float4 ltc1) {
+    if (local.count < 3)
+        return 0.0f;
+    // The LTC is zero where (M^-1 w).z < 0: clip there, so the transformed polygon is in z >= 0.
+    LtcLocalPolygon p = LTC_ClipToHalfSpace(local, float3(ltc1.z, 0.0f, ltc1.w));
+    if (p.count < 3)
+        return 0.0f;
+    float3x3 minv = LTC_InverseMatrix(ltc1);
+    float3 first = LTC_TransformVertex(minv, p.v[0], true);
+    float3 prev = first;
+    float sum = 0.0f;
+    for (int i = 1; i < p.count; i++) {
+        float3 cur = LTC_TransformVertex(minv, p.v[i], true);
+        sum += LTC_EdgeVector(prev, cur).z;
+        prev = cur;
+    }
+    sum += LTC_EdgeVector(prev, first).z;
+    // The polygon is convex and in z >= 0: the sum has one sign (the orientation's).
+    return min(rtpbr_pos(abs(sum) * (0.5f * RTPBR_INV_PI)), 1.0f);
+}
+
+// The vector form factor (Arvo 1995) of an unclipped local polygon (from
+// LTC_PolygonToLocalUnclipped) transformed by M^-1: F = (1 / 2pi) sum of the edge vectors,
+// pointing toward the polygon; |F| is the form factor of the polygon seen head-on and F.z its
+// (signed, unclipped) form factor against the LTC's cosine.
+RTPBR_FN float3 LTC_FormFactorVector(LtcLocalPolygon local, float4 ltc1) {
+    float3 F = RTPBR_F3(0.0f);
+    if (local.count < 3)
+        return F;
+    float3x3 minv = LTC_InverseMatrix(ltc1);
+    float3 first = LTC_TransformVertex(minv, local.v[0], false);
+    float3 prev = first;
+    for (int i = 1; i < local.count; i++) {
+        float3 cur = LTC_TransformVertex(minv, local.v[i], false);
+        F += LTC_EdgeVector(prev, cur);
+        prev = cur;
+    }
+    F += LTC_EdgeVector(prev, first);
+    // Local polygons appear clockwise from P, which makes F point toward them; a transform
+    // with a negative determinant mirrors the orientation.
+    float det = ltc1.x * ltc1.w - ltc1.y * ltc1.z;
+    float s = det < 0.0f ? -0.5f * RTPBR_INV_PI : 0.5f * RTPBR_INV_PI;
+    return F * s;
+}
+
+// Hill & Heitz 2016: the horizon-clipped form factor of the sphere whose vector form factor
+// is F, from the table value sphereLut = ltc2.w fetched at LTC_SphereLutCoord(F).
+RTPBR_FN float LTC_SphereFormFactor(float3 F, float sphereLut) {
+    return min(rtpbr_pos(length(F) * sphereLut), 1.0f);
+}
+
+// Hill & Heitz 2016 (the cheap form of their course code): the same without a table,
+// max((|F|^2 + F.z) / (|F| + 1), 0). Exact for a sphere entirely above the horizon.
+RTPBR_FN float LTC_SphereFormFactorApprox(float3 F) {
+    float l = length(F);
+    return min(rtpbr_pos((l * l + F.z) / (l + 1.0f)), 1.0f);
+}
+
+// One-call form: the form factor of a polygon light at P for the lobe ltc1 (LTC_Identity() for
+// Lambertian diffuse). Exact clipping unless RTPBR_LTC_CLIPLESS (analytic sphere proxy).
+RTPBR_FN float LTC_EvaluatePolygon(float3 N, float3 V, float3 P, LtcPolygon poly, float4 ltc1, bool twoSided) {
+    float3x3 frame = LTC_Frame(N, V);
+#if RTPBR_LTC_CLIPLESS
+    return LTC_SphereFormFactorApprox(LTC_FormFactorVector(LTC_PolygonToLocalUnclipped(frame, P, poly, twoSided), ltc1));
+#else
+    return LTC_IntegrateLocal(LTC_PolygonToLocal(frame, P, poly, twoSided), ltc1);
+#endif
+}
+
+// ---- Fresnel -------------------------------------------------------------------------------
+
+// Hill & Heitz 2016: with Schlick's F = f0 + (f90 - f0)(1 - VoH)^5, the integral of f F cos is
+// f0 * norm + (f90 - f0) * fresnel exactly (norm, fresnel = ltc2.xy).
+RTPBR_FN float3 LTC_FresnelScale(float4 ltc2, float3 f0, float f90) {
+    return f0 * ltc2.x + (RTPBR_F3(f90) - f0) * ltc2.y;
+}
+
+// Kutz et al. 2021, "Novel aspects of the Adobe Standard Material" (the F82 model; Hoffman
+// 2023): F = Schlick(f0) - a VoH (1 - VoH)^6 with a chosen so that F matches f82, the true
+// reflectance at VoH = 1/7 (about 82 degrees). Its integral uses ltc2.z.
+RTPBR_FN float3 LTC_FresnelScaleF82(float4 ltc2, float3 f0, float3 f82) {
+    const float muBar = 1.0f / 7.0f;
+    float m = 1.0f - muBar;
+    float m5 = m * m * m * m * m;
+    float3 schlickBar = f0 + (RTPBR_F3(1.0f) - f0) * m5;
+    float3 a = (schlickBar - f82) / (muBar * m5 * m);
+    return f0 * ltc2.x + (RTPBR_F3(1.0f) - f0) * ltc2.y - a * ltc2.z;
+}
+
+// The exact conductor option: the F82 model fitted to F_Conductor (complex IOR eta + i k)
+// at normal incidence and at VoH = 1/7.
+RTPBR_FN float3 LTC_FresnelScaleConductor(float4 ltc2, float3 eta, float3 k) {
+    return LTC_FresnelScaleF82(ltc2, F_Conductor(1.0f, eta, k), F_Conductor(1.0f / 7.0f, eta, k));
+}
+
+// The Fresnel model selected by RTPBR_FRESNEL: Schlick directly; the exact dielectric and
+// conductor through the F82 model.
+RTPBR_FN float3 LTC_FresnelScaleSelected(float4 ltc2, FresnelParams p) {
+#if RTPBR_FRESNEL == RTPBR_FRESNEL_CONDUCTOR
+    return LTC_FresnelScaleConductor(ltc2, p.eta, p.k);
+#elif RTPBR_FRESNEL == RTPBR_FRESNEL_DIELECTRIC
+    return LTC_FresnelScaleF82(ltc2, RTPBR_F3(F_Dielectric(1.0f, p.eta.x)),
+                               RTPBR_F3(F_Dielectric(1.0f / 7.0f, p.eta.x)));
+#else
+    return LTC_FresnelScale(ltc2, p.f0, p.f90);
+#endif
+}
+
+RTPBR_NAMESPACE_END
+
+#endif // RTPBR_LTC_H

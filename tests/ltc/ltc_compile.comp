@@ -1,0 +1,33 @@
+#version 450
+// Compile check of shaderlib/rtpbr/ltc.h as GLSL (and, with RTPBR_HLSL, as HLSL: see
+// ltc_compile.hlsl). Calls every public function so that each is type-checked.
+#extension GL_GOOGLE_include_directive : require
+#include "rtpbr/ltc.h"
+layout(local_size_x = 1) in;
+layout(std430, binding = 0) buffer Out { vec4 result[]; };
+void main() {
+    vec3 N = vec3(0.0f, 0.0f, 1.0f);
+    vec3 V = normalize(vec3(0.3f, 0.0f, 1.0f));
+    vec3 P = vec3(0.0f);
+    LtcPolygon poly = LTC_Quad(vec3(-1.0f, -1.0f, 2.0f), vec3(1.0f, -1.0f, 2.0f),
+                               vec3(1.0f, 1.0f, 2.0f), vec3(-1.0f, 1.0f, 2.0f));
+    vec4 ltc1 = vec4(1.0f, 0.0f, 0.0f, 1.0f);
+    vec4 ltc2 = vec4(1.0f, 0.1f, 0.01f, 1.0f);
+    vec2 uv = LTC_LutCoord(dot(N, V), 0.5f);
+    mat3 frame = LTC_Frame(N, V);
+    LtcLocalPolygon local = LTC_PolygonToLocal(frame, P, poly, false);
+    float spec = LTC_IntegrateLocal(local, ltc1);
+    float diff = LTC_IntegrateLocal(local, LTC_Identity());
+    vec3 F = LTC_FormFactorVector(LTC_PolygonToLocalUnclipped(frame, P, poly, true), ltc1);
+    vec2 suv = LTC_SphereLutCoord(F);
+    float s1 = LTC_SphereFormFactor(F, 1.0f);
+    float s2 = LTC_SphereFormFactorApprox(F);
+    float e = LTC_EvaluatePolygon(N, V, P, LTC_Triangle(poly.v[0], poly.v[1], poly.v[2]), ltc1, true);
+    vec3 fs = LTC_FresnelScale(ltc2, vec3(0.04f), 1.0f);
+    vec3 fc = LTC_FresnelScaleConductor(ltc2, vec3(0.2f, 0.9f, 1.1f), vec3(3.9f, 2.4f, 2.2f));
+    FresnelParams fp = Fresnel_FromF0(vec3(0.04f));
+    vec3 fsel = LTC_FresnelScaleSelected(ltc2, fp);
+    result[0] = vec4(uv, suv);
+    result[1] = vec4(spec, diff, s1, s2);
+    result[2] = vec4(fs + fc + fsel, e);
+}

@@ -1,0 +1,31 @@
+// Compile check of shaderlib/rtpbr/ltc.h as HLSL (glslang's HLSL front end).
+#define RTPBR_HLSL 1
+#include "rtpbr/ltc.h"
+RWStructuredBuffer<float4> result : register(u0);
+[numthreads(1, 1, 1)]
+void main() {
+    float3 N = float3(0.0f, 0.0f, 1.0f);
+    float3 V = normalize(float3(0.3f, 0.0f, 1.0f));
+    float3 P = RTPBR_F3(0.0f);
+    LtcPolygon poly = LTC_Quad(float3(-1.0f, -1.0f, 2.0f), float3(1.0f, -1.0f, 2.0f),
+                               float3(1.0f, 1.0f, 2.0f), float3(-1.0f, 1.0f, 2.0f));
+    float4 ltc1 = float4(1.0f, 0.0f, 0.0f, 1.0f);
+    float4 ltc2 = float4(1.0f, 0.1f, 0.01f, 1.0f);
+    float2 uv = LTC_LutCoord(dot(N, V), 0.5f);
+    float3x3 frame = LTC_Frame(N, V);
+    LtcLocalPolygon local = LTC_PolygonToLocal(frame, P, poly, false);
+    float spec = LTC_IntegrateLocal(local, ltc1);
+    float diff = LTC_IntegrateLocal(local, LTC_Identity());
+    float3 F = LTC_FormFactorVector(LTC_PolygonToLocalUnclipped(frame, P, poly, true), ltc1);
+    float2 suv = LTC_SphereLutCoord(F);
+    float s1 = LTC_SphereFormFactor(F, 1.0f);
+    float s2 = LTC_SphereFormFactorApprox(F);
+    float e = LTC_EvaluatePolygon(N, V, P, LTC_Triangle(poly.v[0], poly.v[1], poly.v[2]), ltc1, true);
+    float3 fs = LTC_FresnelScale(ltc2, RTPBR_F3(0.04f), 1.0f);
+    float3 fc = LTC_FresnelScaleConductor(ltc2, float3(0.2f, 0.9f, 1.1f), float3(3.9f, 2.4f, 2.2f));
+    FresnelParams fp = Fresnel_FromF0(RTPBR_F3(0.04f));
+    float3 fsel = LTC_FresnelScaleSelected(ltc2, fp);
+    result[0] = float4(uv, suv);
+    result[1] = float4(spec, diff, s1, s2);
+    result[2] = float4(fs + fc + fsel, e);
+}

@@ -1,0 +1,386 @@
+// The fitting itself: BRDF moments, LTC error, Nelder-Mead, continuation over the table.
+#include "ltc_fit.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "rtpbr/microfacet.h"
+#include "rtpbr/sampling.h"
+
+namespace ltcfit {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// ---- the BRDF, from the shaderlib -----------------------------------------------------------
+
+// f(V, L) NoL with F = 1 and the density of L under the shaderlib's visible-normal sampler.
+struct BrdfSample {
+    double value; // f NoL
+    double pdf;
+};
+
+BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha) {
+    glm::vec3 hs = V + L;
+    if (!(V.z > 0.0f) || !(glm::dot(hs, hs) > 1e-12f))
+        return {0.0, 0.0};
+    glm::vec3 H = glm::normalize(hs);
+    if (!(H.z > 0.0f))
+        return {0.0, 0.0};
+    float D, Vis, G1;
+    if (lobe == Lobe::GGX) {
+        D = rtpbr::D_GGX(H.z, alpha);
+        Vis = rtpbr::V_SmithGGXCorrelated(V.z, L.z, alpha);
+        G1 = rtpbr::G1_GGX(V.z, alpha);
+    } else {
+        D = rtpbr::D_Beckmann(H.z, alpha);
+        Vis = rtpbr::V_SmithBeckmann(V.z, L.z, alpha);
+        G1 = rtpbr::G1_Beckmann(V.z, alpha);
+    }
+    // The density of the visible-normal sampler's reflected direction, D_V(h) / (4 VoH) =
+    // G1(V) D(h) / (4 NoV) (Heitz & d'Eon 2014), written with the same D value as f: near the
+    // peak of a sharp lobe D varies faster than float directions resolve, and a second
+    // evaluation (PDF_*_Reflection recomputes h) would not cancel.
+    // The sampler also produces directions below the horizon (where f = 0): their density
+    // counts too, for the two-strategy estimator to stay unbiased there.
+    double pdf = double(G1) * double(D) / (4.0 * double(V.z));
+    double value = L.z > 0.0f ? double(D) * double(Vis) * double(L.z) : 0.0;
+    return {value, pdf};
+}
+
+glm::vec3 brdf_sample(Lobe lobe, glm::vec3 V, float alpha, glm::vec2 u) {
+    glm::vec3 wm = lobe == Lobe::GGX ? rtpbr::Sample_GGX_VNDF(V, alpha, alpha, u)
+                                     : rtpbr::Sample_Beckmann_VNDF(V, alpha, alpha, u);
+    return rtpbr::Reflect_About(V, wm);
+}
+
+// ---- the LTC ----------------------------------------------------------------------------
+
+struct Ltc {
+    glm::dvec3 X{1, 0, 0}, Y{0, 1, 0}, Z{0, 0, 1};
+    double m11 = 1, m22 = 1, m13 = 0;
+    glm::dmat3 M{1.0}, invM{1.0};
+    double detInvM = 1;
+
+    void update() {
+        glm::dmat3 shape(1.0);
+        shape[0][0] = m11; // glm: [column][row]
+        shape[1][1] = m22;
+        shape[2][0] = m13;
+        M = glm::dmat3(X, Y, Z) * shape;
+        invM = glm::inverse(M);
+        detInvM = std::fabs(glm::determinant(invM));
+    }
+    // The normalised LTC density at direction L (unit).
+    double eval(glm::dvec3 L) const {
+        glm::dvec3 lo = invM * L;
+        double l = glm::length(lo);
+        double cosTheta = lo.z / l;
+        if (!(cosTheta > 0.0))
+            return 0.0;
+        return cosTheta / kPi * detInvM / (l * l * l);
+    }
+    glm::dvec3 sample(glm::vec2 u) const {
+        glm::vec3 c = rtpbr::Sample_CosineHemisphere(u);
+        return glm::normalize(M * glm::dvec3(c));
+    }
+};
+
+// Sample points of a side x side grid, centred in their cells: deterministic, and every
+// fit sees the same points (the error is a smooth function of the parameters).
+glm::vec2 grid_point(int i, int side) {
+    return glm::vec2((float(i % side) + 0.5f) / float(side), (float(i / side) + 0.5f) / float(side));
+}
+
+struct Moments {
+    double norm = 0, fresnel = 0, f82 = 0;
+    glm::dvec3 avgDir{0, 0, 1};
+};
+
+// Integrals of f NoL by visible-normal sampling (the weights f NoL / pdf are bounded).
+Moments brdf_moments(Lobe lobe, glm::vec3 V, float alpha, int side) {
+    Moments m;
+    glm::dvec3 dir(0.0);
+    int n = side * side;
+    for (int i = 0; i < n; i++) {
+        glm::vec3 L = brdf_sample(lobe, V, alpha, grid_point(i, side));
+        BrdfSample b = brdf_eval(lobe, V, L, alpha);
+        if (!(b.pdf > 0.0))
+            continue;
+        double w = b.value / b.pdf;
+        double VoH = glm::clamp(double(glm::dot(V, glm::normalize(V + L))), 0.0, 1.0);
+        double s = 1.0 - VoH;
+        double s5 = s * s * s * s * s;
+        m.norm += w;
+        m.fresnel += w * s5;
+        m.f82 += w * VoH * s5 * s;
+        dir += w * glm::dvec3(L);
+    }
+    m.norm /= n;
+    m.fresnel /= n;
+    m.f82 /= n;
+    dir.y = 0.0; // isotropic lobes are symmetric about the plane of incidence
+    m.avgDir = glm::length(dir) > 0.0 ? glm::normalize(dir) : glm::dvec3(0, 0, 1);
+    return m;
+}
+
+// Multiple-importance estimate of  integral |f NoL - norm D_ltc|^p  (p = 3 for the fit,
+// p = 1 for the reported error), with side^2 samples of each distribution.
+double ltc_error(const Ltc &ltc, Lobe lobe, glm::vec3 V, float alpha, double norm, int side, int p) {
+    double sum = 0.0;
+    int n = side * side;
+    for (int i = 0; i < n; i++) {
+        glm::vec2 u = grid_point(i, side);
+        for (int strategy = 0; strategy < 2; strategy++) {
+            glm::dvec3 L = strategy == 0 ? ltc.sample(u) : glm::dvec3(brdf_sample(lobe, V, alpha, u));
+            BrdfSample b = brdf_eval(lobe, V, glm::vec3(L), alpha);
+            double d = ltc.eval(L);
+            double pdfSum = d + b.pdf;
+            if (!(pdfSum > 0.0))
+                continue;
+            double diff = std::fabs(b.value - norm * d);
+            double e = p == 3 ? diff * diff * diff : diff;
+            sum += e / pdfSum;
+        }
+    }
+    return sum / n;
+}
+
+// Nelder & Mead 1965, "A Simplex Method for Function Minimization" (standard coefficients:
+// reflection 1, expansion 2, contraction 1/2, shrink 1/2). Minimises f over R^dim, dim <= 3.
+template <class F>
+std::array<double, 3> nelder_mead(F &&f, std::array<double, 3> start, std::array<double, 3> step, int dim,
+                                  int maxIterations, double tolerance) {
+    std::array<std::array<double, 3>, 4> x;
+    std::array<double, 4> fx;
+    for (int i = 0; i <= dim; i++) {
+        x[i] = start;
+        if (i > 0)
+            x[i][i - 1] += step[i - 1];
+        fx[i] = f(x[i]);
+    }
+    for (int it = 0; it < maxIterations; it++) {
+        // order: x[0] best ... x[dim] worst
+        for (int i = 1; i <= dim; i++)
+            for (int j = i; j > 0 && fx[j] < fx[j - 1]; j--) {
+                std::swap(fx[j], fx[j - 1]);
+                std::swap(x[j], x[j - 1]);
+            }
+        if (std::fabs(fx[dim] - fx[0]) <= tolerance * (std::fabs(fx[0]) + 1e-300))
+            break;
+        std::array<double, 3> c{0, 0, 0};
+        for (int i = 0; i < dim; i++)
+            for (int k = 0; k < dim; k++)
+                c[k] += x[i][k] / dim;
+        auto along = [&](double t) { // c + t (x_worst - c)
+            std::array<double, 3> r = c;
+            for (int k = 0; k < dim; k++)
+                r[k] = c[k] + t * (x[dim][k] - c[k]);
+            return r;
+        };
+        std::array<double, 3> xr = along(-1.0);
+        double fr = f(xr);
+        if (fr < fx[0]) {
+            std::array<double, 3> xe = along(-2.0);
+            double fe = f(xe);
+            if (fe < fr) {
+                x[dim] = xe;
+                fx[dim] = fe;
+            } else {
+                x[dim] = xr;
+                fx[dim] = fr;
+            }
+        } else if (fr < fx[dim - 1]) {
+            x[dim] = xr;
+            fx[dim] = fr;
+        } else {
+            bool outside = fr < fx[dim];
+            std::array<double, 3> xc = along(outside ? -0.5 : 0.5);
+            double fc = f(xc);
+            if (fc < (outside ? fr : fx[dim])) {
+                x[dim] = xc;
+                fx[dim] = fc;
+            } else {
+                for (int i = 1; i <= dim; i++) {
+                    for (int k = 0; k < dim; k++)
+                        x[i][k] = x[0][k] + 0.5 * (x[i][k] - x[0][k]);
+                    fx[i] = f(x[i]);
+                }
+            }
+        }
+    }
+    int best = 0;
+    for (int i = 1; i <= dim; i++)
+        if (fx[i] < fx[best])
+            best = i;
+    return x[best];
+}
+
+// Fits one cell, starting from the shape of `start` (m11, m22, m13).
+Cell fit_cell(Lobe lobe, int col, int row, const FitSettings &s, const Cell *start) {
+    const float r = float(cell_roughness(col, s.size));
+    const float alpha = rtpbr::Alpha_FromPerceptual(r);
+    const double nov = cell_nov(row, s.size);
+    const glm::vec3 V(float(std::sqrt(1.0 - nov * nov)), 0.0f, float(nov));
+
+    Moments mom = brdf_moments(lobe, V, alpha, s.momentSamples);
+    Ltc ltc;
+    const bool isotropic = row == 0; // V = N: the lobe is symmetric about the normal
+    if (isotropic) {
+        ltc.Z = glm::dvec3(0, 0, 1);
+    } else {
+        ltc.Z = mom.avgDir;
+        ltc.X = glm::dvec3(ltc.Z.z, 0.0, -ltc.Z.x);
+    }
+    if (start) {
+        // Sharp lobes scale with alpha: start from the neighbour's shape scaled by the ratio
+        // of the alphas (about 1 for rough lobes).
+        double ratio = double(alpha) / double(rtpbr::Alpha_FromPerceptual(float(start->roughness)));
+        ltc.m11 = start->m11 * ratio;
+        ltc.m22 = start->m22 * ratio;
+        ltc.m13 = isotropic ? 0.0 : start->m13 * ratio;
+    }
+    auto apply = [&](const std::array<double, 3> &p, Ltc &l) {
+        l.m11 = std::exp(glm::clamp(p[0], -30.0, 10.0));
+        l.m22 = isotropic ? l.m11 : std::exp(glm::clamp(p[1], -30.0, 10.0));
+        l.m13 = isotropic ? 0.0 : p[2];
+        l.update();
+    };
+    auto cost = [&](const std::array<double, 3> &p) {
+        Ltc l = ltc;
+        apply(p, l);
+        return ltc_error(l, lobe, V, alpha, mom.norm, s.fitSamples, 3);
+    };
+    std::array<double, 3> p0{std::log(ltc.m11), std::log(ltc.m22), ltc.m13};
+    std::array<double, 3> step{0.1, 0.1, 0.05 * std::max(ltc.m11, 1e-3)};
+    std::array<double, 3> best = nelder_mead(cost, p0, step, isotropic ? 1 : 3, s.maxIterations, 1e-5);
+    apply(best, ltc);
+
+    Cell c;
+    c.roughness = r;
+    c.m11 = ltc.m11;
+    c.m22 = ltc.m22;
+    c.m13 = ltc.m13;
+    c.avgDir = ltc.Z;
+    c.invM = ltc.invM / ltc.invM[1][1];
+    c.norm = mom.norm;
+    c.fresnel = mom.fresnel;
+    c.f82 = mom.f82;
+    c.error = mom.norm > 0.0 ? ltc_error(ltc, lobe, V, alpha, mom.norm, s.errorSamples, 1) / mom.norm : 0.0;
+    return c;
+}
+
+} // namespace
+
+double cell_roughness(int col, int size) { return double(col) / double(size - 1); }
+
+double cell_nov(int row, int size) {
+    double x = double(row) / double(size - 1);
+    return std::max(1.0 - x * x, kMinNoV);
+}
+
+Table fit_table(Lobe lobe, const FitSettings &s, const std::function<void(int, int)> &progress) {
+    auto t0 = std::chrono::steady_clock::now();
+    Table t;
+    t.lobe = lobe;
+    t.size = s.size;
+    t.cells.resize(size_t(s.size) * size_t(s.size));
+    const int last = s.size - 1;
+    // 1. The roughest column, down the view angles (each cell starts from the previous one;
+    //    the first from the clamped cosine itself, m11 = m22 = 1).
+    for (int row = 0; row < s.size; row++)
+        t.cells[size_t(row) * s.size + last] =
+            fit_cell(lobe, last, row, s, row > 0 ? &t.cells[size_t(row - 1) * s.size + last] : nullptr);
+    // 2. Each row from rough to smooth, each cell starting from its rougher neighbour; rows
+    //    are independent, shared among the threads.
+    std::atomic<int> nextRow{0};
+    std::atomic<int> doneRows{0};
+    std::mutex progressMutex;
+    auto worker = [&]() {
+        for (int row = nextRow++; row < s.size; row = nextRow++) {
+            for (int col = last - 1; col >= 0; col--)
+                t.cells[size_t(row) * s.size + col] =
+                    fit_cell(lobe, col, row, s, &t.cells[size_t(row) * s.size + col + 1]);
+            int done = ++doneRows;
+            std::lock_guard<std::mutex> lock(progressMutex);
+            progress(done, s.size);
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int i = 0; i < std::max(1, s.threads); i++)
+        pool.emplace_back(worker);
+    for (std::thread &th : pool)
+        th.join();
+    t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return t;
+}
+
+double clipped_cap_form_factor(double omega, double sigma) {
+    // integral over the cap (polar angle rho from its centre, azimuth phi) of max(cos, 0),
+    // cos = A + B cos(phi) with A = cos(omega) cos(rho), B = sin(omega) sin(rho) >= 0; the
+    // phi integral is closed-form, the rho integral the midpoint rule (the integrand is C^1).
+    const int steps = 4096;
+    double sum = 0.0;
+    for (int i = 0; i < steps; i++) {
+        double rho = sigma * (i + 0.5) / steps;
+        double A = std::cos(omega) * std::cos(rho), B = std::sin(omega) * std::sin(rho);
+        double inner;
+        if (A >= B)
+            inner = 2.0 * kPi * A;
+        else if (A <= -B)
+            inner = 0.0;
+        else {
+            double phi0 = std::acos(-A / B);
+            inner = 2.0 * (A * phi0 + B * std::sin(phi0));
+        }
+        sum += inner * std::sin(rho);
+    }
+    return sum * (sigma / steps) / kPi;
+}
+
+std::vector<float> sphere_table(int size) {
+    std::vector<float> tab(size_t(size) * size);
+    for (int row = 0; row < size; row++)
+        for (int col = 0; col < size; col++) {
+            double z = 2.0 * col / (size - 1) - 1.0;
+            double len = double(row) / (size - 1);
+            double v;
+            if (len <= 0.0)
+                v = std::max(z, 0.0);
+            else
+                v = clipped_cap_form_factor(std::acos(z), std::asin(std::sqrt(len))) / len;
+            tab[size_t(row) * size + col] = float(v);
+        }
+    return tab;
+}
+
+std::vector<float> pack_ltc1(const Table &t) {
+    std::vector<float> out(t.cells.size() * 4);
+    for (size_t i = 0; i < t.cells.size(); i++) {
+        const glm::dmat3 &m = t.cells[i].invM; // glm [column][row]
+        out[4 * i + 0] = float(m[0][0]);         // row 0, column 0
+        out[4 * i + 1] = float(m[2][0]);         // row 0, column 2
+        out[4 * i + 2] = float(m[0][2]);         // row 2, column 0
+        out[4 * i + 3] = float(m[2][2]);         // row 2, column 2
+    }
+    return out;
+}
+
+std::vector<float> pack_ltc2(const Table &t, const std::vector<float> &sphere) {
+    std::vector<float> out(t.cells.size() * 4);
+    for (size_t i = 0; i < t.cells.size(); i++) {
+        out[4 * i + 0] = float(t.cells[i].norm);
+        out[4 * i + 1] = float(t.cells[i].fresnel);
+        out[4 * i + 2] = float(t.cells[i].f82);
+        out[4 * i + 3] = sphere[i];
+    }
+    return out;
+}
+
+} // namespace ltcfit

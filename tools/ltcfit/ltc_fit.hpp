@@ -1,0 +1,82 @@
+// rtpbr-ltcfit: fitting Linearly Transformed Cosines to the shaderlib's microfacet BRDFs.
+//
+// Heitz, Dupuy, Hill & Neubelt 2016, "Real-Time Polygonal-Light Shading with Linearly
+// Transformed Cosines", sec. 4 and their fitting code's method:
+//   - per table cell (perceptual roughness r, view cosine), the lobe to fit is f(V, L) NoL with
+//     F = 1, normalised by its integral `norm` (the directional albedo);
+//   - the LTC is M = [X Y Z] diag-ish(m11, m22, m13): Z is the lobe's average direction, X the
+//     tangent in the plane of incidence, and (m11, m22, m13) shape the clamped cosine;
+//   - the error is the L3 norm of f NoL - norm D_ltc, estimated with the samples of both
+//     distributions (f by visible-normal sampling, the LTC by sampling the cosine and
+//     transforming) weighted by 1 / (pdf_ltc + pdf_brdf), on a fixed grid of sample points;
+//   - it is minimised by Nelder-Mead over (log m11, log m22, m13), starting from the
+//     neighbouring cell's result (continuation).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace ltcfit {
+
+enum class Lobe { GGX, Beckmann };
+
+struct FitSettings {
+    int size = 64;           // table cells per side
+    int fitSamples = 32;     // per-strategy sample grid side for the fit error
+    int momentSamples = 128; // sample grid side for norm / Fresnel / average direction
+    int errorSamples = 64;   // sample grid side for the reported per-cell error
+    int maxIterations = 300; // Nelder-Mead iterations per cell
+    int threads = 2;
+};
+
+// One fitted cell.
+struct Cell {
+    double roughness = 1;      // perceptual roughness of the cell
+    double m11 = 1, m22 = 1, m13 = 0;
+    glm::dvec3 avgDir{0, 0, 1};
+    glm::dmat3 invM{1.0};      // M^-1 normalised by its middle element
+    double norm = 0;           // integral of f NoL (F = 1)
+    double fresnel = 0;        // integral of f NoL (1 - VoH)^5
+    double f82 = 0;            // integral of f NoL VoH (1 - VoH)^6
+    double error = 0;          // integral of |f NoL - norm D_ltc| / norm  (relative L1)
+};
+
+struct Table {
+    Lobe lobe;
+    int size;
+    std::vector<Cell> cells; // row-major: cells[row * size + col], row = view, col = roughness
+    double seconds = 0;      // wall time of the fit
+};
+
+// The cell parameters: column i <-> perceptual roughness i / (size - 1), row j <->
+// sqrt(1 - NoV) = j / (size - 1); NoV is clamped below at kMinNoV.
+constexpr double kMinNoV = 1e-3;
+double cell_roughness(int col, int size);
+double cell_nov(int row, int size);
+
+// Fits one lobe. progress(done rows, total rows) is called from worker threads (serialised).
+Table fit_table(Lobe lobe, const FitSettings &s, const std::function<void(int, int)> &progress);
+
+// The horizon-clipped sphere form factor table (ltc2.w): column i <-> z = 2 i / (size-1) - 1
+// (cosine of the elevation of the sphere's centre), row j <-> |F| = j / (size - 1) (= sin^2
+// of its angular radius); value = clipped form factor / |F| (max(z, 0) at |F| = 0).
+std::vector<float> sphere_table(int size);
+// The clipped form factor of a sphere (cap) of angular radius sigma whose centre is at angle
+// omega from the normal: (1/pi) * integral over the cap above the horizon of cos(theta).
+double clipped_cap_form_factor(double omega, double sigma);
+
+// Writers (return false and fill err on failure).
+bool write_header(const std::string &path, const Table &ggx, const Table &beckmann,
+                  const std::vector<float> &sphere, const std::string &quality, std::string &err);
+bool write_exr(const std::string &path, int size, const std::vector<float> &rgba, std::string &err);
+bool write_error_png(const std::string &path, const Table &ggx, const Table &beckmann, std::string &err);
+
+// Packs a table as the two RGBA float images of the contract (ltc1, ltc2).
+std::vector<float> pack_ltc1(const Table &t);
+std::vector<float> pack_ltc2(const Table &t, const std::vector<float> &sphere);
+
+} // namespace ltcfit
