@@ -538,6 +538,12 @@ bool Builder::camera(int node_index, const Mat4& world) {
     c.aspect = float(pc.aspectRatio);
     c.znear = float(pc.znear);
     c.zfar = float(pc.zfar);
+    // Finite doubles can still overflow the floats they are stored in (znear 1e39).
+    bool finite = std::isfinite(c.aspect) && std::isfinite(c.znear) && std::isfinite(c.zfar);
+    for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(c.position[k]);
+    if (!finite)
+        return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "camera %d (node %d): a parameter overflows a float", index,
+                        node_index);
     c.gltf_node = node_index;
     c.gltf_camera = index;
     scene.cameras.push_back(c);

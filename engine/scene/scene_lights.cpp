@@ -127,10 +127,15 @@ struct LightBuilder {
             l.radiance[k] = m.emission[k];
         }
         l.area = float(area(loop, n));
+        // Huge coordinates can make a finite polygon's area overflow a float.
         if (!std::isfinite(l.area) || !std::isfinite(l.center[0]) || !std::isfinite(l.center[1]) ||
             !std::isfinite(l.center[2]))
             return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "primitive %u (mesh %d): light polygon area overflows",
                             primitive_index, p.gltf_mesh);
+        if (!(l.area > 0.0f)) {  // underflows to 0: emits nothing
+            ctx.warn("primitive %u (mesh %d): light of zero area (as a float) dropped", primitive_index, p.gltf_mesh);
+            return true;
+        }
         l.two_sided = m.double_sided;
         l.primitive = int32_t(primitive_index);
         l.material = int32_t(p.material);
@@ -443,8 +448,10 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
         for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(l.radiance[k]);
         for (const auto& v : l.vertices)
             for (float f : v) finite = finite && std::isfinite(f);
+        for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(l.center[k]);
+        finite = finite && l.area > 0.0f;  // finite doubles can underflow the float area
         if (!finite)
-            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: area light %d overflows (size or radiance)",
+            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: area light %d: radiance or area not representable as a float",
                             node, index);
         l.two_sided = false;
         l.primitive = -1;

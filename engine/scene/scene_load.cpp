@@ -268,8 +268,8 @@ bool check_glb(Context& ctx, const unsigned char* data, size_t size) {
 // Bounds the nesting of JSON arrays/objects: nlohmann builds and destroys
 // values recursively, so a deep nest would exhaust the stack.
 bool check_json_depth(Context& ctx, const char* json, size_t size) {
-    const int max_depth = 256;
-    int depth = 0;
+    const unsigned max_depth = RTPBR_SCENE_MAX_JSON_DEPTH;
+    unsigned depth = 0;
     bool in_string = false, escaped = false;
     for (size_t i = 0; i < size; ++i) {
         char c = json[i];
@@ -282,8 +282,8 @@ bool check_json_depth(Context& ctx, const char* json, size_t size) {
         } else if (c == '[' || c == '{') {
             if (++depth > max_depth)
                 return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON,
-                                "JSON nested deeper than %d levels at byte %zu", max_depth, i);
-        } else if (c == ']' || c == '}') {
+                                "JSON nested deeper than %u levels at byte %zu", max_depth, i);
+        } else if ((c == ']' || c == '}') && depth > 0) {
             --depth;
         }
     }

@@ -5,6 +5,7 @@
 #include <stb_image.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -150,6 +151,20 @@ struct TextureTable {
         if (size == 0 || size > size_t(std::numeric_limits<int>::max()))
             return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE, "image %d: %zu bytes of encoded data",
                             image_index, size);
+        // stb_image refuses PNGs above 2^30 bytes of pixels as "unknown image type": read
+        // the IHDR size (PNG spec: signature, then IHDR width/height big-endian) to say why.
+        static const unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+        if (size >= 24 && std::memcmp(bytes, kPngSignature, 8) == 0 && std::memcmp(bytes + 12, "IHDR", 4) == 0) {
+            const auto be32 = [&](size_t at) {
+                return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 |
+                       uint32_t(bytes[at + 3]);
+            };
+            const uint32_t pw = be32(16), ph = be32(20);
+            if (pw > ctx.max_texture_dimension || ph > ctx.max_texture_dimension)
+                return ctx.fail(RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE,
+                                "image %d: %ux%u exceeds the maximum texture dimension %u", image_index, pw, ph,
+                                ctx.max_texture_dimension);
+        }
         int w = 0, h = 0, comp = 0;
         if (!stbi_info_from_memory(bytes, int(size), &w, &h, &comp))
             return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE,

@@ -6,5 +6,5 @@ layout(set = 0, binding = RTPBR_FRAME_BINDING, std140) uniform Frame {
     vec4 background;      // rgb radiance
     uvec2 size;           // render width, height
     uint light_count;
-    uint frame_pad;
+    float cull_form_factor; // per-tile light culling threshold (lighting.comp); < 0: off
 } frame;

@@ -24,6 +24,13 @@ layout(set = 0, binding = RTPBR_BINDING_GBUFFER_MATERIALS, std430) readonly buff
 
 layout(location = 0) in vec3 in_normal;
 layout(location = 1) in vec3 in_world;
+layout(location = 2) in vec2 in_uv;
+layout(location = 3) in vec4 in_tangent;
+
+layout(set = 1, binding = RTPBR_BINDING_TEXTURE_BASE_COLOR) uniform sampler2D base_color_texture;
+layout(set = 1, binding = RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS) uniform sampler2D metallic_roughness_texture;
+layout(set = 1, binding = RTPBR_BINDING_TEXTURE_EMISSION) uniform sampler2D emission_texture;
+layout(set = 1, binding = RTPBR_BINDING_TEXTURE_NORMAL) uniform sampler2D normal_texture;
 
 layout(location = 0) out vec4 out_gbuffer0; // base colour rgb, metallic
 layout(location = 1) out vec4 out_gbuffer1; // world normal xyz, perceptual roughness
@@ -37,10 +44,22 @@ void main()
     // Every surface reflects on the side the camera sees; it emits there only if that is its
     // front side or the material is double-sided.
     bool back = dot(n, frame.camera_position.xyz - in_world) < 0.0;
+    // glTF normal textures: tangent-space normal (x, y scaled by normalTexture.scale) in the
+    // frame (T, B = w N x T, N) of the interpolated vertex tangent.
+    if (m.specular.z != 0.0 && dot(in_tangent.xyz, in_tangent.xyz) > 0.0) {
+        vec3 t = normalize(in_tangent.xyz - n * dot(n, in_tangent.xyz));
+        vec3 b = (in_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);
+        vec3 ts = texture(normal_texture, in_uv).xyz * 2.0 - 1.0;
+        ts.xy *= m.specular.w;
+        n = normalize(t * ts.x + b * ts.y + n * ts.z);
+    }
     if (back) n = -n;
-    vec3 emission = back && m.specular.y == 0.0 ? vec3(0.0) : m.emission_roughness.xyz;
-    out_gbuffer0 = m.base_color_metallic;
-    out_gbuffer1 = vec4(n, m.emission_roughness.w);
+    vec3 emission = back && m.specular.y == 0.0 ? vec3(0.0) : m.emission_roughness.xyz * texture(emission_texture, in_uv).rgb;
+    // glTF: textures multiply the factors; metallic-roughness holds roughness in g, metallic in b.
+    vec4 mr = texture(metallic_roughness_texture, in_uv);
+    float roughness = clamp(m.emission_roughness.w * mr.g, RTPBR_SHADER_MIN_ROUGHNESS, 1.0);
+    out_gbuffer0 = vec4(m.base_color_metallic.rgb * texture(base_color_texture, in_uv).rgb, m.base_color_metallic.a * mr.b);
+    out_gbuffer1 = vec4(n, roughness);
     out_gbuffer2 = vec4(emission, m.specular_color_ior.w);
     out_gbuffer3 = vec4(m.specular_color_ior.xyz, m.specular.x);
 }

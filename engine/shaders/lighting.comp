@@ -24,8 +24,10 @@ struct Light {
     vec4 vertices[RTPBR_SHADER_MAX_POLYGON_VERTICES];
     vec4 emission; // rgb radiance, w: two-sided
     vec4 plane;    // unit normal, -dot(normal, vertex 0)
+    vec4 sphere;   // bounding sphere: centre, radius
     uint vertex_count;
-    uint pad0, pad1, pad2;
+    float area;
+    uint pad0, pad1;
 };
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_LIGHTS, std430) readonly buffer Lights {
     Light lights[];
@@ -44,6 +46,51 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_BECKMANN_1) uniform sampler2D lu
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_BECKMANN_2) uniform sampler2D lut_ltc_beckmann_2;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_E) uniform sampler2D lut_kc_e;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EAVG) uniform sampler2D lut_kc_eavg;
+
+// ---- per-tile light culling ------------------------------------------------------------------
+// The workgroup's pixels form one screen tile. Their world positions are bounded by a box;
+// light i is kept for the tile (bit i of tile_lights) unless
+//   (1) the light is one-sided and every corner of the box is behind its plane: it cannot
+//       light any point of the tile (exact), or
+//   (2) the box is at distance d > 0 from the light's bounding sphere and A / (pi d^2) <
+//       frame.cull_form_factor: A / (pi d^2) bounds the light's form factor (1/pi) int cos dw
+//       at every point of the tile (the solid angle of a polygon of area A at distance >= d is
+//       at most A / d^2), so the light's diffuse contribution is below Le * albedo *
+//       cull_form_factor. Glossy reflections of such a light are dropped with it (a bias
+//       bounded only for the diffuse term). cull_form_factor < 0 disables this test.
+shared uint tile_min[3];
+shared uint tile_max[3];
+shared uint tile_lights[RTPBR_SHADER_MAX_LIGHTS / 32];
+
+// Floats as uints that sort in the same order (for atomicMin / atomicMax).
+uint ordered_bits(float f)
+{
+    uint u = floatBitsToUint(f);
+    return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u;
+}
+float from_ordered_bits(uint u)
+{
+    return uintBitsToFloat((u & 0x80000000u) != 0u ? u & 0x7fffffffu : ~u);
+}
+
+bool light_may_contribute(Light light, vec3 boxMin, vec3 boxMax)
+{
+    if (light.emission.w == 0.0f) {
+        bool anyInFront = false;
+        for (int c = 0; c < 8; ++c) {
+            vec3 corner = vec3((c & 1) != 0 ? boxMax.x : boxMin.x, (c & 2) != 0 ? boxMax.y : boxMin.y,
+                               (c & 4) != 0 ? boxMax.z : boxMin.z);
+            anyInFront = anyInFront || dot(light.plane.xyz, corner) + light.plane.w > 0.0f;
+        }
+        if (!anyInFront) return false;
+    }
+    if (frame.cull_form_factor >= 0.0f) {
+        vec3 nearest = clamp(light.sphere.xyz, boxMin, boxMax);
+        float d = length(light.sphere.xyz - nearest) - light.sphere.w;
+        if (d > 0.0f && light.area < frame.cull_form_factor * 3.14159265f * d * d) return false;
+    }
+    return true;
+}
 
 #if RTPBR_HAVE_LTC
 // The lighting tables of the NDF this variant is built for.
@@ -85,8 +132,9 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, vec4 g2, vec
 
     mat3 ltcFrame = LTC_Frame(N, V);
     vec3 sum = vec3(0.0f);
-    for (uint i = 0u; i < frame.light_count; ++i) {
-        Light light = lights[i];
+    for (uint word = 0u; word < (frame.light_count + 31u) / 32u; ++word)
+    for (uint bits = tile_lights[word]; bits != 0u; bits &= bits - 1u) {
+        Light light = lights[word * 32u + uint(findLSB(bits))];
         LtcPolygon poly;
         for (int k = 0; k < RTPBR_SHADER_MAX_POLYGON_VERTICES; ++k) poly.v[k] = light.vertices[k].xyz;
         poly.count = int(light.vertex_count);
@@ -111,10 +159,39 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, vec4 g2, vec
 void main()
 {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
+    bool inside = all(lessThan(uvec2(pixel), frame.size));
+    float depth = inside ? texelFetch(gbuffer_depth, pixel, 0).r : 1.0f;
+    bool surface = depth < 1.0f;
+    vec2 ndc = (vec2(pixel) + 0.5f) / vec2(frame.size) * 2.0f - 1.0f;
+    vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
+    vec3 P = world.xyz / world.w;
 
-    float depth = texelFetch(gbuffer_depth, pixel, 0).r;
-    if (depth >= 1.0) {
+    // The tile's bounding box, then its light set (every invocation reaches every barrier).
+    uint local = gl_LocalInvocationIndex;
+    if (local < 3u) {
+        tile_min[local] = 0xffffffffu;
+        tile_max[local] = 0u;
+    }
+    for (uint w = local; w < uint(RTPBR_SHADER_MAX_LIGHTS / 32); w += uint(RTPBR_TILE_SIZE * RTPBR_TILE_SIZE))
+        tile_lights[w] = 0u;
+    barrier();
+    if (surface) {
+        for (int k = 0; k < 3; ++k) {
+            atomicMin(tile_min[k], ordered_bits(P[k]));
+            atomicMax(tile_max[k], ordered_bits(P[k]));
+        }
+    }
+    barrier();
+    if (tile_max[0] != 0u) { // at least one surface pixel in the tile
+        vec3 boxMin = vec3(from_ordered_bits(tile_min[0]), from_ordered_bits(tile_min[1]), from_ordered_bits(tile_min[2]));
+        vec3 boxMax = vec3(from_ordered_bits(tile_max[0]), from_ordered_bits(tile_max[1]), from_ordered_bits(tile_max[2]));
+        for (uint i = local; i < frame.light_count; i += uint(RTPBR_TILE_SIZE * RTPBR_TILE_SIZE))
+            if (light_may_contribute(lights[i], boxMin, boxMax)) atomicOr(tile_lights[i / 32u], 1u << (i % 32u));
+    }
+    barrier();
+
+    if (!inside) return;
+    if (!surface) {
         imageStore(radiance, pixel, vec4(frame.background.rgb, 0.0));
         return;
     }
@@ -124,9 +201,6 @@ void main()
     vec4 g0 = texelFetch(gbuffer0, pixel, 0);
     vec4 g1 = texelFetch(gbuffer1, pixel, 0);
     vec4 g3 = texelFetch(gbuffer3, pixel, 0);
-    vec2 ndc = (vec2(pixel) + 0.5f) / vec2(frame.size) * 2.0f - 1.0f;
-    vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
-    vec3 P = world.xyz / world.w;
     vec3 V = normalize(frame.camera_position.xyz - P);
     result += shade_lights(P, normalize(g1.xyz), V, g0, g1.w, g2, g3);
 #endif

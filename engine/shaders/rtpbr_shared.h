@@ -7,12 +7,25 @@
 // Lighting: one compute workgroup shades one screen tile.
 #define RTPBR_TILE_SIZE 16
 
+// Most lights in a scene (also RTPBR_MAX_LIGHTS in rtpbr.h): the size of a tile's light mask.
+#define RTPBR_SHADER_MAX_LIGHTS 1024
+
+// Lower clamp of perceptual roughness (also RTPBR_MIN_ROUGHNESS in rtpbr.h).
+#define RTPBR_SHADER_MIN_ROUGHNESS 0.045
+
 // Largest polygon a light may have (also RTPBR_MAX_POLYGON_VERTICES in rtpbr.h).
 #define RTPBR_SHADER_MAX_POLYGON_VERTICES 8
 
 // G-buffer pass, descriptor set 0.
 #define RTPBR_BINDING_GBUFFER_FRAME 0     // uniform: rtpbr_shader_frame
 #define RTPBR_BINDING_GBUFFER_MATERIALS 1 // storage: rtpbr_shader_material[]
+
+// G-buffer pass, descriptor set 1: one set per material.
+#define RTPBR_BINDING_TEXTURE_BASE_COLOR 0
+#define RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS 1
+#define RTPBR_BINDING_TEXTURE_EMISSION 2
+#define RTPBR_BINDING_TEXTURE_NORMAL 3
+#define RTPBR_MATERIAL_TEXTURE_COUNT 4
 
 // Lighting pass, descriptor set 0.
 #define RTPBR_BINDING_LIGHT_FRAME 0       // uniform: rtpbr_shader_frame

@@ -54,6 +54,8 @@ void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCom
         vkCmdBindIndexBuffer(cmd, scene->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
         for (uint32_t i = 0; i < scene->draw_count; ++i) {
             const rtpbr_draw *d = &scene->draws[i];
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->gbuffer_layout, 1, 1,
+                                    &scene->material_sets[d->push.material], 0, NULL);
             vkCmdPushConstants(cmd, ctx->gbuffer_layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                                0, sizeof d->push, &d->push);
             vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, 0, 0);

@@ -25,7 +25,7 @@ typedef struct rtpbr_shader_frame {
     float background[4];       // rgb radiance, w unused
     uint32_t size[2];          // render width, height
     uint32_t light_count;
-    uint32_t pad;
+    float cull_form_factor;    // per-tile light culling threshold; < 0: off
 } rtpbr_shader_frame;
 
 // std430 element of the materials buffer (gbuffer.frag).
@@ -33,7 +33,7 @@ typedef struct rtpbr_shader_material {
     float base_color_metallic[4];
     float emission_roughness[4];
     float specular_color_ior[4];
-    float specular[4];         // x: specular factor, y: 1 if emitting on both sides, zw unused
+    float specular[4];         // x: specular factor, y: 1 if emitting on both sides, z: 1 if normal-mapped, w: normal scale
 } rtpbr_shader_material;
 
 // std430 element of the lights buffer (lighting.comp).
@@ -41,8 +41,10 @@ typedef struct rtpbr_shader_light {
     float vertices[RTPBR_SHADER_MAX_POLYGON_VERTICES][4]; // xyz, w unused
     float emission[4];         // rgb radiance, w: 1 if two-sided
     float plane[4];            // unit normal xyz, w = -dot(normal, vertex0)
+    float sphere[4];           // bounding sphere: centre xyz, radius w
     uint32_t vertex_count;
-    uint32_t pad[3];
+    float area;
+    uint32_t pad[2];
 } rtpbr_shader_light;
 
 // Push constants of the G-buffer pass (per draw).
@@ -60,6 +62,14 @@ typedef struct rtpbr_shader_tonemap {
     uint32_t encode;           // RTPBR_ENCODE_*
     uint32_t pad;
 } rtpbr_shader_tonemap;
+
+// The shaders' std140 / std430 sizes of the same structs.
+_Static_assert(sizeof(rtpbr_shader_frame) == 176, "Frame block layout");
+_Static_assert(sizeof(rtpbr_shader_material) == 64, "Material layout");
+_Static_assert(sizeof(rtpbr_shader_light) == 192, "Light layout");
+_Static_assert(sizeof(rtpbr_shader_draw) == 128, "Draw push constants (128 bytes: the guaranteed minimum)");
+_Static_assert(RTPBR_SHADER_MAX_LIGHTS == RTPBR_MAX_LIGHTS, "light limit shared by C and shaders");
+_Static_assert(RTPBR_TILE_SIZE == RTPBR_TILE_SIZE_PIXELS, "tile size shared by C and shaders");
 
 // ---------------------------------------------------------------------------------------------
 // Resources (resources.c)
@@ -115,6 +125,8 @@ struct rtpbr_context {
     VkFence upload_fence;
     VkSampler lut_sampler;        // linear, clamp to edge
     VkSampler gbuffer_sampler;    // nearest (the G-buffer is read with texelFetch)
+    VkSampler texture_sampler;    // material textures: linear, repeat
+    VkDescriptorSetLayout material_set_layout; // set 1 of the G-buffer pass
     rtpbr_lut luts[6];            // in binding order RTPBR_BINDING_LUT_LTC_GGX_1 ...
 
     VkDescriptorSetLayout gbuffer_set_layout;
@@ -139,10 +151,14 @@ typedef struct rtpbr_draw {
 
 struct rtpbr_gpu_scene {
     rtpbr_context *context;
-    rtpbr_buffer vertices;     // float3 position, float3 normal per vertex
+    rtpbr_buffer vertices;     // RTPBR_VERTEX_FLOATS per vertex: position, normal, uv, tangent
     rtpbr_buffer indices;      // uint32, vertex indices already offset per mesh
     rtpbr_buffer materials;    // rtpbr_shader_material[max(material_count, 1)]
     rtpbr_buffer lights;       // rtpbr_shader_light[RTPBR_MAX_LIGHTS], host visible
+    rtpbr_image *textures;     // texture_count images, then a 1x1 white one
+    uint32_t texture_count;
+    VkDescriptorPool material_pool;
+    VkDescriptorSet *material_sets; // one per material slot: its three textures
     rtpbr_draw *draws;
     uint32_t draw_count;
     uint32_t light_count;
@@ -154,6 +170,7 @@ struct rtpbr_gpu_scene {
 // Renderer (renderer.c and the passes)
 
 enum { RTPBR_GBUFFER_COUNT = 4 };
+enum { RTPBR_VERTEX_FLOATS = 12 }; // float3 position, float3 normal, float2 uv, float4 tangent
 
 struct rtpbr_renderer {
     rtpbr_context *context;
@@ -233,6 +250,9 @@ void rtpbr_lut_destroy(rtpbr_context *ctx, rtpbr_lut *lut);
 // Every table of ctx->luts (luts.c): the shader library's tables, or placeholders.
 rtpbr_result rtpbr_luts_create(rtpbr_context *ctx);
 void rtpbr_luts_destroy(rtpbr_context *ctx);
+// Uploads tightly packed texels into a new sampled image (SHADER_READ_ONLY_OPTIMAL).
+rtpbr_result rtpbr_image_create_with_data(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
+                                          const void *texels, size_t bytes, rtpbr_image *out);
 // An image memory barrier on a colour or depth image (one mip, one layer).
 void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
                          VkImageLayout old_layout, VkImageLayout new_layout,

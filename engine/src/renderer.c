@@ -171,6 +171,7 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
         camera = &scene->cameras[desc->camera_index];
     }
     if (!rtpbr_finite((const float *)camera, sizeof *camera / sizeof(float)) || !isfinite(desc->exposure) ||
+        !isfinite(desc->light_cull_form_factor) ||
         !rtpbr_finite(desc->background, 3)) {
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: NaN or infinite camera, exposure or background");
         return RTPBR_ERROR_INVALID_ARGUMENT;
@@ -192,6 +193,8 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
     frame.size[0] = r->width;
     frame.size[1] = r->height;
     frame.light_count = scene->light_count;
+    frame.cull_form_factor = desc->light_cull_form_factor == 0.0f ? RTPBR_DEFAULT_CULL_FORM_FACTOR
+                                                                   : desc->light_cull_form_factor;
     memcpy(r->frame.mapped, &frame, sizeof frame);
 
     VkDescriptorBufferInfo materials = {scene->materials.buffer, 0, VK_WHOLE_SIZE};

@@ -179,8 +179,26 @@ static void record_lut_upload(VkCommandBuffer cmd, void *user)
     vkCmdCopyBufferToImage(cmd, u->staging, u->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     rtpbr_image_barrier(cmd, u->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                        VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
                         VK_ACCESS_SHADER_READ_BIT);
+}
+
+rtpbr_result rtpbr_image_create_with_data(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
+                                          const void *texels, size_t bytes, rtpbr_image *out)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    rtpbr_buffer staging = {0};
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &staging));
+    memcpy(staging.mapped, texels, bytes);
+    RTPBR_TRY(rtpbr_image_create(ctx, width, height, format, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                 out));
+    lut_upload upload = {staging.buffer, out->image, width, height};
+    result = rtpbr_submit_once(ctx, record_lut_upload, &upload);
+    if (result != RTPBR_SUCCESS) rtpbr_image_destroy(ctx, out);
+cleanup:
+    rtpbr_buffer_destroy(ctx, &staging);
+    return result;
 }
 
 // IEEE binary16 from binary32, round to nearest even (values here are finite table entries).

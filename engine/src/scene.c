@@ -92,6 +92,18 @@ static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
         double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         for (int k = 0; k < 3; ++k) g.plane[k] = (float)(n[k] / len);
         g.plane[3] = -(g.plane[0] * l->vertices[0][0] + g.plane[1] * l->vertices[0][1] + g.plane[2] * l->vertices[0][2]);
+        g.area = (float)(0.5 * len);
+        // Bounding sphere: centred on the vertex mean (not minimal, but bounding).
+        double c[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
+        for (uint32_t v = 0; v < l->vertex_count; ++v)
+            for (int k = 0; k < 3; ++k) c[k] += l->vertices[v][k] / (double)l->vertex_count;
+        for (uint32_t v = 0; v < l->vertex_count; ++v) {
+            double d2 = 0.0;
+            for (int k = 0; k < 3; ++k) d2 += (l->vertices[v][k] - c[k]) * (l->vertices[v][k] - c[k]);
+            if (d2 > r2) r2 = d2;
+        }
+        for (int k = 0; k < 3; ++k) g.sphere[k] = (float)c[k];
+        g.sphere[3] = (float)(sqrt(r2) * (1.0 + 1e-6)) + 1e-6f; // rounding must not shrink it
         g.vertex_count = l->vertex_count;
         gpu[i] = g;
     }
@@ -128,6 +140,10 @@ static rtpbr_result validate_mesh(const rtpbr_context *ctx, const rtpbr_mesh_des
     if (!rtpbr_finite(m->positions, 3 * (size_t)m->vertex_count)) FAIL("mesh %u has a NaN or infinite position", index);
     if (m->normals && !rtpbr_finite(m->normals, 3 * (size_t)m->vertex_count))
         FAIL("mesh %u has a NaN or infinite normal", index);
+    if (m->texcoords && !rtpbr_finite(m->texcoords, 2 * (size_t)m->vertex_count))
+        FAIL("mesh %u has a NaN or infinite texture coordinate", index);
+    if (m->tangents && !rtpbr_finite(m->tangents, 4 * (size_t)m->vertex_count))
+        FAIL("mesh %u has a NaN or infinite tangent", index);
     if (!rtpbr_finite(m->transform, 16)) FAIL("mesh %u has a NaN or infinite transform", index);
     if (m->indices)
         for (uint32_t i = 0; i < m->index_count; ++i)
@@ -150,6 +166,8 @@ static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
     g.specular_color_ior[3] = m->ior == 0.0f ? 1.5f : m->ior;
     g.specular[0] = m->specular == 0.0f ? 1.0f : fmaxf(m->specular, 0.0f);
     g.specular[1] = m->double_sided ? 1.0f : 0.0f;
+    g.specular[2] = m->normal_texture ? 1.0f : 0.0f;
+    g.specular[3] = m->normal_scale == 0.0f ? 1.0f : m->normal_scale;
     return g;
 }
 
@@ -157,7 +175,7 @@ static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_mate
 {
     if (!rtpbr_finite(m->base_color, 3) || !rtpbr_finite(&m->metallic, 1) || !rtpbr_finite(&m->roughness, 1) ||
         !rtpbr_finite(m->emission, 3) || !rtpbr_finite(&m->ior, 1) || !rtpbr_finite(&m->specular, 1) ||
-        !rtpbr_finite(m->specular_color, 3)) {
+        !rtpbr_finite(m->specular_color, 3) || !rtpbr_finite(&m->normal_scale, 1)) {
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
@@ -170,9 +188,9 @@ static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_mate
 
 // Area-weighted vertex normals of an indexed triangle list.
 static void smooth_normals(const float *positions, const uint32_t *indices, uint32_t index_count,
-                           uint32_t vertex_count, float *out_normals /* 3 per vertex, stride 6 */)
+                           uint32_t vertex_count, float *out_normals /* 3 per vertex, stride RTPBR_VERTEX_FLOATS */)
 {
-    for (uint32_t i = 0; i < vertex_count; ++i) out_normals[6 * i] = out_normals[6 * i + 1] = out_normals[6 * i + 2] = 0.0f;
+    for (uint32_t i = 0; i < vertex_count; ++i) out_normals[RTPBR_VERTEX_FLOATS * i] = out_normals[RTPBR_VERTEX_FLOATS * i + 1] = out_normals[RTPBR_VERTEX_FLOATS * i + 2] = 0.0f;
     for (uint32_t t = 0; t + 2 < index_count; t += 3) {
         uint32_t a = indices ? indices[t] : t, b = indices ? indices[t + 1] : t + 1, c = indices ? indices[t + 2] : t + 2;
         const float *pa = positions + 3 * a, *pb = positions + 3 * b, *pc = positions + 3 * c;
@@ -181,7 +199,7 @@ static void smooth_normals(const float *positions, const uint32_t *indices, uint
         float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
         uint32_t corners[3] = {a, b, c};
         for (int k = 0; k < 3; ++k)
-            for (int j = 0; j < 3; ++j) out_normals[6 * corners[k] + j] += n[j];
+            for (int j = 0; j < 3; ++j) out_normals[RTPBR_VERTEX_FLOATS * corners[k] + j] += n[j];
     }
 }
 
@@ -193,6 +211,73 @@ static void normal_matrix(const float m[16], float out[12])
     // Columns of the transpose of the inverse's upper 3x3.
     for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r) out[c * 4 + r] = inv[r * 4 + c];
+}
+
+// Uploads the textures (image 0 is a 1x1 white stand-in for "no texture", image i texture i)
+// and writes one descriptor set per material slot.
+static rtpbr_result create_textures(rtpbr_gpu_scene *scene, const rtpbr_gpu_scene_desc *desc, uint32_t material_slots)
+{
+    rtpbr_context *ctx = scene->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkDescriptorSetLayout *layouts = NULL;
+    scene->textures = rtpbr_alloc(ctx, (desc->texture_count + 1) * sizeof *scene->textures);
+    scene->material_sets = rtpbr_alloc(ctx, material_slots * sizeof *scene->material_sets);
+    layouts = rtpbr_alloc(ctx, material_slots * sizeof *layouts);
+    if (!scene->textures || !scene->material_sets || !layouts) {
+        result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+        goto cleanup;
+    }
+    static const uint8_t white[4] = {255, 255, 255, 255};
+    RTPBR_TRY(rtpbr_image_create_with_data(ctx, 1, 1, VK_FORMAT_R8G8B8A8_UNORM, white, 4, &scene->textures[0]));
+    scene->texture_count = 1;
+    for (uint32_t i = 0; i < desc->texture_count; ++i) {
+        const rtpbr_texture_desc *t = &desc->textures[i];
+        RTPBR_TRY(rtpbr_image_create_with_data(ctx, t->width, t->height,
+                                               t->srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM, t->rgba,
+                                               (size_t)t->width * t->height * 4, &scene->textures[i + 1]));
+        scene->texture_count++;
+    }
+
+    VkDescriptorPoolSize size = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, RTPBR_MATERIAL_TEXTURE_COUNT * material_slots};
+    VkDescriptorPoolCreateInfo pool_info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+        .maxSets = material_slots,
+        .poolSizeCount = 1,
+        .pPoolSizes = &size,
+    };
+    RTPBR_VK(ctx, vkCreateDescriptorPool(ctx->device, &pool_info, NULL, &scene->material_pool));
+    for (uint32_t i = 0; i < material_slots; ++i) layouts[i] = ctx->material_set_layout;
+    VkDescriptorSetAllocateInfo alloc = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+        .descriptorPool = scene->material_pool,
+        .descriptorSetCount = material_slots,
+        .pSetLayouts = layouts,
+    };
+    RTPBR_VK(ctx, vkAllocateDescriptorSets(ctx->device, &alloc, scene->material_sets));
+    for (uint32_t m = 0; m < material_slots; ++m) {
+        uint32_t index[RTPBR_MATERIAL_TEXTURE_COUNT] = {0};
+        if (desc->material_count) {
+            index[RTPBR_BINDING_TEXTURE_BASE_COLOR] = desc->materials[m].base_color_texture;
+            index[RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS] = desc->materials[m].metallic_roughness_texture;
+            index[RTPBR_BINDING_TEXTURE_EMISSION] = desc->materials[m].emission_texture;
+            index[RTPBR_BINDING_TEXTURE_NORMAL] = desc->materials[m].normal_texture;
+        }
+        VkDescriptorImageInfo images[RTPBR_MATERIAL_TEXTURE_COUNT];
+        VkWriteDescriptorSet writes[RTPBR_MATERIAL_TEXTURE_COUNT];
+        for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b) {
+            images[b] = (VkDescriptorImageInfo){ctx->texture_sampler, scene->textures[index[b]].view,
+                                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            writes[b] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                               .dstSet = scene->material_sets[m], .dstBinding = b,
+                                               .descriptorCount = 1,
+                                               .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                               .pImageInfo = &images[b]};
+        }
+        vkUpdateDescriptorSets(ctx->device, RTPBR_MATERIAL_TEXTURE_COUNT, writes, 0, NULL);
+    }
+cleanup:
+    rtpbr_free(ctx, layouts);
+    return result; // rtpbr_gpu_scene_destroy frees a half-built set
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -228,7 +313,28 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "scene too large (%llu vertices)", (unsigned long long)total_vertices);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
-    for (uint32_t i = 0; i < desc->material_count; ++i) RTPBR_TRY(validate_material(ctx, &desc->materials[i], i));
+    for (uint32_t i = 0; i < desc->material_count; ++i) {
+        const rtpbr_material_desc *m = &desc->materials[i];
+        RTPBR_TRY(validate_material(ctx, m, i));
+        if (m->base_color_texture > desc->texture_count || m->metallic_roughness_texture > desc->texture_count ||
+            m->emission_texture > desc->texture_count || m->normal_texture > desc->texture_count) {
+            rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u refers to a texture past the scene's %u", i, desc->texture_count);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+    }
+    if (desc->texture_count && !desc->textures) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "texture_count is %u but textures is NULL", desc->texture_count);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    for (uint32_t i = 0; i < desc->texture_count; ++i) {
+        const rtpbr_texture_desc *t = &desc->textures[i];
+        if (!t->rgba || t->width == 0 || t->height == 0 || t->width > RTPBR_MAX_RENDER_SIZE ||
+            t->height > RTPBR_MAX_RENDER_SIZE) {
+            rtpbr_log(ctx, RTPBR_LOG_ERROR, "texture %u: no texels or size %ux%u outside 1..%u", i, t->width, t->height,
+                      RTPBR_MAX_RENDER_SIZE);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+    }
     for (uint32_t i = 0; i < desc->camera_count; ++i)
         if (!rtpbr_finite((const float *)&desc->cameras[i], sizeof desc->cameras[i] / sizeof(float))) {
             rtpbr_log(ctx, RTPBR_LOG_ERROR, "camera %u has a NaN or infinite parameter", i);
@@ -240,7 +346,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     scene->context = ctx;
 
     // Geometry: one interleaved vertex buffer and one index buffer for all meshes.
-    VkDeviceSize vertex_bytes = (total_vertices ? total_vertices : 1) * 6 * sizeof(float);
+    VkDeviceSize vertex_bytes = (total_vertices ? total_vertices : 1) * RTPBR_VERTEX_FLOATS * sizeof(float);
     VkDeviceSize index_bytes = (total_indices ? total_indices : 3) * sizeof(uint32_t);
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, vertex_bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, &scene->vertices));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, index_bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &scene->indices));
@@ -256,14 +362,18 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     uint32_t vertex_base = 0, index_base = 0;
     for (uint32_t i = 0; i < desc->mesh_count; ++i) {
         const rtpbr_mesh_desc *m = &desc->meshes[i];
-        float *dst = vertices + 6 * (size_t)vertex_base;
+        float *dst = vertices + RTPBR_VERTEX_FLOATS * (size_t)vertex_base;
         uint32_t count = m->indices ? m->index_count : m->vertex_count;
         if (m->normals) {
-            for (uint32_t v = 0; v < m->vertex_count; ++v) memcpy(dst + 6 * v + 3, m->normals + 3 * v, 3 * sizeof(float));
+            for (uint32_t v = 0; v < m->vertex_count; ++v) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 3, m->normals + 3 * v, 3 * sizeof(float));
         } else {
             smooth_normals(m->positions, m->indices, count, m->vertex_count, dst + 3);
         }
-        for (uint32_t v = 0; v < m->vertex_count; ++v) memcpy(dst + 6 * v, m->positions + 3 * v, 3 * sizeof(float));
+        for (uint32_t v = 0; v < m->vertex_count; ++v) {
+            memcpy(dst + RTPBR_VERTEX_FLOATS * v, m->positions + 3 * v, 3 * sizeof(float));
+            if (m->texcoords) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 6, m->texcoords + 2 * v, 2 * sizeof(float));
+            if (m->tangents) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 8, m->tangents + 4 * v, 4 * sizeof(float));
+        }
         for (uint32_t k = 0; k < count; ++k) indices[index_base + k] = vertex_base + (m->indices ? m->indices[k] : k);
 
         rtpbr_draw *draw = &scene->draws[scene->draw_count++];
@@ -286,6 +396,8 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         materials[0] = convert_material(&grey);
     }
     for (uint32_t i = 0; i < desc->material_count; ++i) materials[i] = convert_material(&desc->materials[i]);
+
+    RTPBR_TRY(create_textures(scene, desc, material_slots));
 
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, RTPBR_MAX_LIGHTS * sizeof(rtpbr_shader_light),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->lights));
@@ -316,6 +428,10 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_buffer_destroy(ctx, &scene->indices);
     rtpbr_buffer_destroy(ctx, &scene->materials);
     rtpbr_buffer_destroy(ctx, &scene->lights);
+    if (scene->material_pool) vkDestroyDescriptorPool(ctx->device, scene->material_pool, NULL);
+    for (uint32_t i = 0; i < scene->texture_count; ++i) rtpbr_image_destroy(ctx, &scene->textures[i]);
+    rtpbr_free(ctx, scene->textures);
+    rtpbr_free(ctx, scene->material_sets);
     rtpbr_free(ctx, scene->draws);
     rtpbr_free(ctx, scene->cameras);
     rtpbr_free(ctx, scene);

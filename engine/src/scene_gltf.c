@@ -9,8 +9,12 @@
 //   specular_factor           -> specular              (0 -> "none", i.e. -1 in the desc)
 //   specular_color            -> specular_color
 //   double_sided              -> double_sided          (emission on both sides)
-//   clearcoat, sheen, anisotropy, Disney parameters, textures: not used yet (the lighting
-//   pass has no model for them until the shader library provides one).
+//   base_color / metallic_roughness / emission textures -> the same (TEXCOORD_0, bilinear,
+//                                                         repeat; the file's sampler modes
+//                                                         and mipmaps are not used)
+//   normal texture, normal_scale -> the same (tangents from the loader)
+//   clearcoat, sheen, anisotropy, Disney parameters: not used yet (the lighting pass has no
+//   polygon-light model for them).
 // Lights: every loader light (emissive primitives, EXT_lights_area rectangles and disks as
 // their equal-area octagons) becomes a polygonal light with its radiance and sidedness.
 #include <math.h>
@@ -18,6 +22,14 @@
 
 #include "internal.h"
 #include "rtpbr/rtpbr_scene.h"
+
+// 1-based engine texture index of a loader texture index; 0 (none) for -1, out-of-range
+// indices and textures without decoded texels.
+static uint32_t texture_ref(const rtpbr_scene *loaded, int32_t index)
+{
+    if (index < 0 || (uint32_t)index >= loaded->texture_count || !loaded->textures[index].pixels) return 0;
+    return (uint32_t)index + 1;
+}
 
 rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_scene *loaded,
                                          rtpbr_gpu_scene **out_scene)
@@ -38,6 +50,15 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
     rtpbr_material_desc *materials = NULL;
     rtpbr_light_desc *lights = NULL;
     rtpbr_camera_desc *cameras = NULL;
+    rtpbr_texture_desc *textures = NULL;
+    if (loaded->texture_count && !(textures = rtpbr_alloc(ctx, loaded->texture_count * sizeof *textures))) goto oom;
+    for (uint32_t i = 0; i < loaded->texture_count; ++i) {
+        const rtpbr_scene_texture *t = &loaded->textures[i];
+        if (t->pixels) // textures without texels are never referenced (texture_ref)
+            textures[i] = (rtpbr_texture_desc){.width = t->width, .height = t->height, .rgba = t->pixels, .srgb = t->srgb};
+        else
+            textures[i] = (rtpbr_texture_desc){.width = 1, .height = 1, .rgba = (const uint8_t *)"\xff\xff\xff\xff"};
+    }
     if (loaded->primitive_count && !(meshes = rtpbr_alloc(ctx, loaded->primitive_count * sizeof *meshes))) goto oom;
     if (loaded->material_count && !(materials = rtpbr_alloc(ctx, loaded->material_count * sizeof *materials)))
         goto oom;
@@ -49,6 +70,8 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         meshes[i] = (rtpbr_mesh_desc){
             .positions = p->positions,
             .normals = p->normals,
+            .texcoords = p->texcoords,
+            .tangents = p->has_tangents ? p->tangents : NULL,
             .indices = p->indices,
             .vertex_count = p->vertex_count,
             .index_count = p->index_count,
@@ -66,6 +89,12 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         d->specular = m->specular_factor == 0.0f ? -1.0f : m->specular_factor;
         memcpy(d->specular_color, m->specular_color, sizeof d->specular_color);
         d->double_sided = m->double_sided;
+        // Loader texture indices are 0-based with -1 for none; the engine's are 1-based.
+        d->base_color_texture = texture_ref(loaded, m->base_color_texture);
+        d->metallic_roughness_texture = texture_ref(loaded, m->metallic_roughness_texture);
+        d->emission_texture = texture_ref(loaded, m->emission_texture);
+        d->normal_texture = texture_ref(loaded, m->normal_texture);
+        d->normal_scale = m->normal_scale;
         if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
             d->specular = -1.0f; // a black specular colour removes the lobe, like specular = 0
     }
@@ -97,6 +126,8 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         .light_count = loaded->light_count,
         .cameras = cameras,
         .camera_count = loaded->camera_count,
+        .textures = textures,
+        .texture_count = loaded->texture_count,
     };
     result = rtpbr_gpu_scene_create(ctx, &desc, out_scene);
     goto cleanup;
@@ -108,6 +139,7 @@ cleanup:
     rtpbr_free(ctx, materials);
     rtpbr_free(ctx, lights);
     rtpbr_free(ctx, cameras);
+    rtpbr_free(ctx, textures);
     return result;
 }
 
@@ -136,7 +168,7 @@ rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtp
         .error_message = message,
         .error_message_size = sizeof message,
         .max_lights = RTPBR_MAX_LIGHTS,
-        .skip_images = true, // textures are not used by the engine yet
+        .skip_images = false,
     };
     rtpbr_scene *loaded = NULL;
     rtpbr_scene_result sr = rtpbr_scene_load(path, &desc, &loaded);

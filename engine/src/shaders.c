@@ -75,7 +75,7 @@ typedef struct graphics_desc {
     const VkFormat *color_formats;
     uint32_t color_count;
     VkFormat depth_format;      // VK_FORMAT_UNDEFINED: no depth
-    bool vertex_input;          // position + normal, float3 each
+    bool vertex_input;          // position, normal, uv, tangent (RTPBR_VERTEX_FLOATS)
 } graphics_desc;
 
 static rtpbr_result create_graphics(rtpbr_context *ctx, const graphics_desc *d, VkPipeline *out)
@@ -86,16 +86,18 @@ static rtpbr_result create_graphics(rtpbr_context *ctx, const graphics_desc *d, 
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
          .module = d->frag, .pName = "main"},
     };
-    VkVertexInputBindingDescription binding = {0, 6 * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX};
-    VkVertexInputAttributeDescription attributes[2] = {
+    VkVertexInputBindingDescription binding = {0, RTPBR_VERTEX_FLOATS * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX};
+    VkVertexInputAttributeDescription attributes[4] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
+        {2, 0, VK_FORMAT_R32G32_SFLOAT, 6 * sizeof(float)},
+        {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 8 * sizeof(float)},
     };
     VkPipelineVertexInputStateCreateInfo vertex_input = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
         .vertexBindingDescriptionCount = d->vertex_input ? 1 : 0,
         .pVertexBindingDescriptions = &binding,
-        .vertexAttributeDescriptionCount = d->vertex_input ? 2 : 0,
+        .vertexAttributeDescriptionCount = d->vertex_input ? 4 : 0,
         .pVertexAttributeDescriptions = attributes,
     };
     VkPipelineInputAssemblyStateCreateInfo assembly = {
@@ -176,9 +178,21 @@ static rtpbr_result create_gbuffer(rtpbr_context *ctx)
         {RTPBR_BINDING_GBUFFER_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
     };
     RTPBR_TRY(create_set_layout(ctx, bindings, 2, &ctx->gbuffer_set_layout));
-    RTPBR_TRY(create_pipeline_layout(ctx, ctx->gbuffer_set_layout,
-                                     VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                                     sizeof(rtpbr_shader_draw), &ctx->gbuffer_layout));
+    VkDescriptorSetLayoutBinding textures[RTPBR_MATERIAL_TEXTURE_COUNT];
+    for (uint32_t i = 0; i < RTPBR_MATERIAL_TEXTURE_COUNT; ++i)
+        textures[i] = (VkDescriptorSetLayoutBinding){i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                                                     VK_SHADER_STAGE_FRAGMENT_BIT, NULL};
+    RTPBR_TRY(create_set_layout(ctx, textures, RTPBR_MATERIAL_TEXTURE_COUNT, &ctx->material_set_layout));
+    VkDescriptorSetLayout sets[2] = {ctx->gbuffer_set_layout, ctx->material_set_layout};
+    VkPushConstantRange push = {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(rtpbr_shader_draw)};
+    VkPipelineLayoutCreateInfo layout_info = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+        .setLayoutCount = 2,
+        .pSetLayouts = sets,
+        .pushConstantRangeCount = 1,
+        .pPushConstantRanges = &push,
+    };
+    RTPBR_VK(ctx, vkCreatePipelineLayout(ctx->device, &layout_info, NULL, &ctx->gbuffer_layout));
     RTPBR_TRY(rtpbr_shader_module(ctx, SPIRV(rtpbr_spirv_gbuffer_vert), &vert));
     RTPBR_TRY(rtpbr_shader_module(ctx, SPIRV(rtpbr_spirv_gbuffer_frag), &frag));
     graphics_desc d = {
@@ -276,6 +290,7 @@ void rtpbr_pipelines_destroy(rtpbr_context *ctx)
     vkDestroyPipeline(dev, ctx->gbuffer_pipeline, NULL);
     vkDestroyPipelineLayout(dev, ctx->gbuffer_layout, NULL);
     vkDestroyDescriptorSetLayout(dev, ctx->gbuffer_set_layout, NULL);
+    vkDestroyDescriptorSetLayout(dev, ctx->material_set_layout, NULL);
 }
 
 VkPipeline rtpbr_lighting_pipeline(const rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms)

@@ -139,8 +139,9 @@ RTPBR_FN float3 F_Avg_Microfacet(FresnelParams p) {
 // F_avg E_avg / (1 - F_avg (1 - E_avg)); the bounces after the first carry one more F_avg
 // and the uncoloured lobe's average albedo 1 - E_avg is divided out.) 1 when F_avg = 1.
 RTPBR_FN float3 KC_FmsColor(float3 Favg, float Eavg) {
-    float3 f = saturate(Favg);
-    float e = saturate(Eavg);
+    // Clamped to [0, 1] with NaN -> 0 (saturate keeps NaN on some targets).
+    float3 f = float3(min(rtpbr_pos(Favg.x), 1.0f), min(rtpbr_pos(Favg.y), 1.0f), min(rtpbr_pos(Favg.z), 1.0f));
+    float e = min(rtpbr_pos(Eavg), 1.0f);
     return f * f * e / max(RTPBR_F3(1.0f) - f * (1.0f - e), RTPBR_F3(1e-6f));
 }
 
@@ -162,13 +163,16 @@ RTPBR_FN float3 BRDF_SpecularMS(float NoV, float NoL, float NoH, float VoH, floa
                                 FresnelParams fresnel, float Eo, float Ei, float Eavg,
                                 float3 Favg) {
     float3 fss = BRDF_Specular(NoV, NoL, NoH, VoH, alpha, fresnel);
-#if RTPBR_MULTISCATTER
     if (!(NoV > 0.0f) || !(NoL > 0.0f))
         return fss;
-    return fss + KC_FmsColor(Favg, Eavg) * KC_Lobe(Eo, Ei, Eavg);
+    // A 0 / 1 factor rather than an #if around the term keeps every parameter used (no
+    // unused-parameter warnings in C++) and is folded by every compiler.
+#if RTPBR_MULTISCATTER
+    float msOn = 1.0f;
 #else
-    return fss;
+    float msOn = 0.0f;
 #endif
+    return fss + (msOn * KC_Lobe(Eo, Ei, Eavg)) * KC_FmsColor(Favg, Eavg);
 }
 
 // ---- dielectric specular over a diffuse base -----------------------------------------------

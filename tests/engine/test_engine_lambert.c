@@ -113,10 +113,151 @@ static void lambertian_plane(void **state)
     assert_int_equal(log.validation, 0);
 }
 
+// A constant normal texture tilts the shading normal: the plane then matches Lambert's formula
+// for the tilted normal, decoded here from the same 8-bit texel (n = 2 texel / 255 - 1, in the
+// tangent frame T = +X, B = N x T = +Y, N = +Z), wherever the light is above the tilted horizon.
+static void normal_mapped_plane(void **state)
+{
+    (void)state;
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    float plane[12];
+    square_positions(4.0f, 0.0f, plane);
+    const float uv[8] = {0, 1, 1, 1, 1, 0, 0, 0};
+    const float tangents[16] = {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1};
+    const uint8_t texel[4] = {204, 128, 230, 255}; // about (0.6, 0, 0.8): tilted toward +X
+    rtpbr_texture_desc texture = {.width = 1, .height = 1, .rgba = texel};
+    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f,
+                                    .normal_texture = 1};
+    rtpbr_mesh_desc mesh = {.positions = plane, .texcoords = uv, .tangents = tangents, .indices = square_indices,
+                            .vertex_count = 4, .index_count = 6};
+    rtpbr_light_desc light = {.vertices = {{-1.0f, -0.5f, 1.2f}, {-1.0f, 0.7f, 1.5f}, {0.6f, 0.7f, 1.5f}, {0.6f, -0.5f, 1.2f}},
+                              .vertex_count = 4, .emission = {3.0f, 2.0f, 1.0f}};
+    rtpbr_camera_desc camera = {.position = {0.0f, 0.0f, 3.0f}, .target = {0.0f, 0.0f, 0.0f}, .yfov = 1.2f,
+                                .znear = 0.1f, .zfar = 100.0f};
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_create(ctx,
+                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                    .materials = &material, .material_count = 1,
+                                                                    .lights = &light, .light_count = 1,
+                                                                    .cameras = &camera, .camera_count = 1,
+                                                                    .textures = &texture, .texture_count = 1},
+                                            &scene),
+                     RTPBR_SUCCESS);
+    enum { W = 80, H = 60 };
+    rtpbr_renderer *r = NULL;
+    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
+    float *px = malloc(W * H * 16);
+    assert_int_equal(rtpbr_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
+    double n[3] = {2.0 * texel[0] / 255.0 - 1.0, 2.0 * texel[1] / 255.0 - 1.0, 2.0 * texel[2] / 255.0 - 1.0};
+    double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; ++k) n[k] /= nl;
+    // Camera straight down the -Z axis, +Y up: pixel (x, y) sees the plane at
+    // (ndc_x t aspect 3, -ndc_y t 3).
+    double t = tan(0.5 * camera.yfov), aspect = (double)W / H;
+    int checked = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            double p[3] = {((x + 0.5) / W * 2.0 - 1.0) * t * aspect * 3.0, -((y + 0.5) / H * 2.0 - 1.0) * t * 3.0, 0.0};
+            bool above = true;
+            for (int v = 0; v < 4; ++v) {
+                double d = 0.0;
+                for (int k = 0; k < 3; ++k) d += n[k] * (light.vertices[v][k] - p[k]);
+                above = above && d > 0.0;
+            }
+            if (!above || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
+            double ff = lambert_form_factor(p, n, light.vertices, 4);
+            const float *got = px + 4 * (y * W + x);
+            for (int c = 0; c < 3; ++c) {
+                double expect = 0.8 * light.emission[c] * ff;
+                if (fabs(got[c] - expect) > 0.01 * expect)
+                    fail_msg("pixel (%d, %d) channel %d: %.6f, Lambert with the mapped normal %.6f", x, y, c, got[c], expect);
+            }
+            ++checked;
+        }
+    printf("normal-mapped plane: %d pixels within 1%%\n", checked);
+    assert_true(checked > W * H / 3);
+    free(px);
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+}
+
+// Per-tile culling keeps its documented bound: on a Lambertian plane (albedo 0.8) the image
+// with culling differs from the image without by at most 0.8 * cull_form_factor * the sum of
+// the emissions of all lights (each culled light's form factor is below the threshold).
+static void culling_bound(void **state)
+{
+    (void)state;
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    float plane[12];
+    square_positions(30.0f, 0.0f, plane);
+    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f};
+    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    enum { N = 256 };
+    rtpbr_light_desc *lights = calloc(N, sizeof *lights);
+    double emission_sum = 0.0;
+    uint32_t seed = 12345u;
+    for (int i = 0; i < N; ++i) { // small squares facing down (or, one in four, up), 0.5 to 3 m high
+        seed = seed * 1664525u + 1013904223u;
+        float x = -28.0f + 56.0f * (float)(seed >> 8) / 16777216.0f;
+        seed = seed * 1664525u + 1013904223u;
+        float y = -28.0f + 56.0f * (float)(seed >> 8) / 16777216.0f;
+        float z = 0.5f + 2.5f * (float)(i % 7) / 6.0f, h = 0.1f + 0.05f * (float)(i % 5);
+        bool up = i % 4 == 3;
+        float v[4][3] = {{x - h, y - h, z}, {x - h, y + h, z}, {x + h, y + h, z}, {x + h, y - h, z}};
+        for (int k = 0; k < 4; ++k) memcpy(lights[i].vertices[up ? 3 - k : k], v[k], sizeof v[k]);
+        lights[i].vertex_count = 4;
+        lights[i].emission[0] = lights[i].emission[1] = lights[i].emission[2] = 5.0f + (float)(i % 3);
+        emission_sum += lights[i].emission[0];
+    }
+    rtpbr_camera_desc camera = {.position = {0.0f, -12.0f, 14.0f}, .yfov = 1.0f, .znear = 0.1f, .zfar = 200.0f};
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_create(ctx,
+                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                    .materials = &material, .material_count = 1,
+                                                                    .lights = lights, .light_count = N,
+                                                                    .cameras = &camera, .camera_count = 1},
+                                            &scene),
+                     RTPBR_SUCCESS);
+    enum { W = 96, H = 64 };
+    rtpbr_renderer *r = NULL;
+    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    float *culled = malloc(W * H * 16), *full = malloc(W * H * 16);
+    const float threshold = 1e-3f;
+    assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.light_cull_form_factor = threshold}), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_read_radiance(r, culled, W * H * 16), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.light_cull_form_factor = -1.0f}), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_read_radiance(r, full, W * H * 16), RTPBR_SUCCESS);
+    double bound = 0.8 * threshold * emission_sum, worst = 0.0, mean_full = 0.0;
+    for (int i = 0; i < W * H; ++i) {
+        double d = fabs((double)full[4 * i] - culled[4 * i]);
+        if (d > worst) worst = d;
+        mean_full += full[4 * i] / (W * H);
+        assert_true(culled[4 * i] <= full[4 * i] + 1e-5f * full[4 * i]); // culling only removes light
+    }
+    printf("culling (form factor < %g): largest difference %.3g, bound %.3g, mean radiance %.3g\n", threshold,
+           worst, bound, mean_full);
+    assert_true(worst <= bound);
+    assert_true(worst > 0.0); // something was culled: the test exercises the distance bound
+    free(culled);
+    free(full);
+    free(lights);
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(lambertian_plane),
+        cmocka_unit_test(normal_mapped_plane),
+        cmocka_unit_test(culling_bound),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -169,6 +169,75 @@ static void emission_sides(void **state)
     assert_int_equal(log.validation, 0);
 }
 
+// An sRGB emission texture on the square: at the centre of each quadrant (one colour each)
+// radiance = emission factor x the decoded texel (IEC 61966-2-1 decoding written here).
+static double srgb_decode(int v)
+{
+    double c = v / 255.0;
+    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+static void emission_texture(void **state)
+{
+    (void)state;
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    float positions[12];
+    square_positions(1.0f, 0.0f, positions);
+    // uv = ((x + 1) / 2, (1 - y) / 2): texel row 0 is the top (+Y) of the square.
+    const float uv[8] = {0.0f, 1.0f, 1.0f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f};
+    // Four colours, one per quadrant, each 2x2 texels: bilinear filtering near a quadrant's
+    // centre only mixes texels of its colour.
+    const uint8_t colours[16] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 128, 64, 32, 255};
+    uint8_t texels[4 * 4 * 4];
+    for (int ty = 0; ty < 4; ++ty)
+        for (int tx = 0; tx < 4; ++tx) memcpy(texels + 4 * (ty * 4 + tx), colours + 4 * ((ty / 2) * 2 + tx / 2), 4);
+    rtpbr_texture_desc texture = {.width = 4, .height = 4, .rgba = texels, .srgb = 1};
+    rtpbr_material_desc material = {.emission = {2.0f, 2.0f, 2.0f}, .emission_texture = 1};
+    rtpbr_mesh_desc mesh = {.positions = positions, .texcoords = uv, .indices = square_indices, .vertex_count = 4,
+                            .index_count = 6};
+    rtpbr_camera_desc camera = {.position = {0.0f, 0.0f, 3.0f}, .yfov = 0.6f};
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_create(ctx,
+                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                    .materials = &material, .material_count = 1,
+                                                                    .cameras = &camera, .camera_count = 1,
+                                                                    .textures = &texture, .texture_count = 1},
+                                            &scene),
+                     RTPBR_SUCCESS);
+    rtpbr_renderer *r = NULL;
+    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
+    float *px = malloc(W * H * 16);
+    assert_int_equal(rtpbr_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
+    const double t = tan(0.3);
+    for (int q = 0; q < 4; ++q) {
+        double wx = (q % 2) ? 0.5 : -0.5, wy = (q / 2) ? -0.5 : 0.5; // texel q's quadrant centre
+        int x = (int)floor((wx / (t * ((double)W / H) * 3.0) + 1.0) * 0.5 * W);
+        int y = (int)floor((1.0 - wy / (t * 3.0)) * 0.5 * H);
+        const float *p = px + 4 * (y * W + x);
+        for (int c = 0; c < 3; ++c) {
+            double expect = 2.0 * srgb_decode(colours[4 * q + c]);
+            if (!(fabs(p[c] - expect) <= 0.01 * expect + 2e-3)) /* 8-bit texels, fp16 G-buffer */
+                fail_msg("quadrant %d channel %d (pixel %d, %d): %f, expected %f", q, c, x, y, p[c], expect);
+        }
+    }
+    // A texture index past the scene's textures is refused.
+    material.emission_texture = 2;
+    rtpbr_gpu_scene *bad = NULL;
+    assert_int_equal(rtpbr_gpu_scene_create(ctx,
+                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                    .materials = &material, .material_count = 1,
+                                                                    .textures = &texture, .texture_count = 1},
+                                            &bad),
+                     RTPBR_ERROR_INVALID_ARGUMENT);
+    free(px);
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+}
+
 // Create, render and destroy 100 times: the validation layer's object tracker reports any
 // Vulkan object still alive at vkDestroyDevice, and LeakSanitizer (ASan build) host leaks.
 static void lifecycle(void **state)
@@ -311,6 +380,7 @@ int main(void)
         cmocka_unit_test(render_emissive_square),
         cmocka_unit_test(depth_order),
         cmocka_unit_test(emission_sides),
+        cmocka_unit_test(emission_texture),
         cmocka_unit_test(record_into_host_image),
         cmocka_unit_test(lifecycle),
     };

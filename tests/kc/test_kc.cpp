@@ -24,6 +24,8 @@ extern "C" {
 
 using rtpbr::float3;
 
+bool kc_noms_reduces_to_single_scattering(); // kc_noms.cpp, RTPBR_MULTISCATTER=0
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -209,6 +211,12 @@ void test_lobe_reciprocity_positivity(void **) {
     assert_true(rtpbr::KC_Lobe(NAN, 0.5f, 0.5f) >= 0.0f);
     assert_true(rtpbr::KC_Lobe(0.5f, 0.5f, NAN) == 0.0f);
     assert_true(rtpbr::KC_Lobe(0.5f, 0.5f, 1.0f) == 0.0f);
+    float3 msBad = rtpbr::KC_FmsColor(float3(NAN, -1.0f, 7.0f), NAN);
+    assert_true(msBad.x == 0.0f && msBad.y == 0.0f && msBad.z == 0.0f);
+    float3 msOne = rtpbr::KC_FmsColor(float3(1.0f), 0.3f); // F_avg = 1: the lobe is not coloured
+    assert_true(std::fabs(msOne.x - 1.0f) < 1e-6f);
+    assert_true(rtpbr::KC_PolygonLobe(NAN, 0.5f, 0.5f, 0.3f) == 0.0f &&
+                rtpbr::KC_PolygonLobe(0.5f, 0.5f, 0.5f, NAN) == 0.0f);
     // The complete compensated BRDF with table values fetched at both cosines is reciprocal.
     std::uniform_real_distribution<float> V(0.0f, 1.0f);
     rtpbr::FresnelParams fp = rtpbr::Fresnel_FromF0(float3(0.9f, 0.6f, 0.3f));
@@ -281,7 +289,7 @@ void test_tables_regenerate(void **) {
             }
             assert_true(std::fabs(s - rtpbr_kc_Eavg[v][ir]) < 5e-3);
         }
-    print_message("committed vs fresh 256-sample regeneration: worst deviation %.2f sigma\n", worstSigma);
+    print_message("committed vs fresh 1024-sample regeneration: worst deviation %.2f sigma\n", worstSigma);
 }
 
 // ---- colour term against the microsurface random walk ---------------------------------------------
@@ -507,6 +515,8 @@ void test_polygon_form(void **) {
     assert_true(worstRelRough < 0.1);
 }
 
+void test_multiscatter_off(void **) { assert_true(kc_noms_reduces_to_single_scattering()); }
+
 // ---- table coordinates ---------------------------------------------------------------------------
 
 void test_coordinates(void **) {
@@ -529,6 +539,7 @@ void test_coordinates(void **) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_coordinates),
+        cmocka_unit_test(test_multiscatter_off),
         cmocka_unit_test(test_favg_schlick),
         cmocka_unit_test(test_favg_conductor),
         cmocka_unit_test(test_lobe_reciprocity_positivity),

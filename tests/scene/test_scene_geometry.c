@@ -208,6 +208,55 @@ static void test_unindexed_quad_is_one_light(void** state) {
     rtpbr_scene_destroy(scene);
 }
 
+static void test_strip_and_fan_modes(void** state) {
+    (void)state;
+    /* TRIANGLE_STRIP 0,1,2,3 over (0,0) (1,0) (0,1) (1,1): glTF §3.7.2.1 gives
+     * triangles (0,1,2) and (1,3,2), both counter-clockwise about +Z.
+     * TRIANGLE_FAN over the hexagon's centre + ring (8 indices, ring closed):
+     * 6 triangles (0, k, k+1). Each mesh becomes a single light. */
+    const float pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    const uint32_t idx[] = {0, 1, 2, 3};
+    const char* dir = ts_dir("modes");
+    ts_scene s = {.positions = pos, .vertex_count = 4, .indices = idx, .index_count = 4,
+                  .materials = "{\"emissiveFactor\":[1,1,1]}",
+                  .meshes = "{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"mode\":5,"
+                            "\"material\":0}]}"};
+    char* json = ts_scene_json(&s);
+    char err[512];
+    rtpbr_scene* scene = NULL;
+    rtpbr_scene_result r = ts_load_text(dir, "strip.gltf", json, NULL, &scene, err, sizeof err);
+    free(json);
+    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s", err);
+    assert_int_equal(scene->primitives[0].index_count, 6);
+    assert_int_equal(scene->light_count, 1);
+    assert_int_equal(scene->lights[0].vertex_count, 4);
+    assert_convex_ccw(&scene->lights[0]);
+    assert_near(scene->lights[0].normal[2], 1.0, EPS, "strip normal");
+    assert_near(scene->lights[0].area, 1.0, EPS, "strip area");
+    rtpbr_scene_destroy(scene);
+
+    float hex[7 * 3] = {0};
+    for (int k = 0; k < 6; ++k) {
+        hex[3 * (k + 1) + 0] = (float)cos(k * TS_PI / 3.0);
+        hex[3 * (k + 1) + 1] = (float)sin(k * TS_PI / 3.0);
+    }
+    const uint32_t fan[] = {0, 1, 2, 3, 4, 5, 6, 1};
+    s.positions = hex;
+    s.vertex_count = 7;
+    s.indices = fan;
+    s.index_count = 8;
+    s.meshes = "{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"mode\":6,\"material\":0}]}";
+    json = ts_scene_json(&s);
+    r = ts_load_text(dir, "fan.gltf", json, NULL, &scene, err, sizeof err);
+    free(json);
+    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s", err);
+    assert_int_equal(scene->primitives[0].index_count, 18);
+    assert_int_equal(scene->light_count, 1);
+    assert_int_equal(scene->lights[0].vertex_count, 6);
+    assert_near(scene->lights[0].area, 3.0 * sqrt(3.0) / 2.0, 1e-5, "fan hexagon area");
+    rtpbr_scene_destroy(scene);
+}
+
 static void test_non_coplanar_triangles_are_separate(void** state) {
     (void)state;
     /* Triangles folded at 90° along the shared edge (0,0,0)-(0,1,0):
@@ -512,6 +561,7 @@ int main(void) {
         cmocka_unit_test(test_quad_light_over_plane),
         cmocka_unit_test(test_hexagon_fan_is_one_light),
         cmocka_unit_test(test_unindexed_quad_is_one_light),
+        cmocka_unit_test(test_strip_and_fan_modes),
         cmocka_unit_test(test_non_coplanar_triangles_are_separate),
         cmocka_unit_test(test_concave_region_splits_into_convex_lights),
         cmocka_unit_test(test_non_emissive_and_degenerate),

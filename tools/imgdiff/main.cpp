@@ -1,12 +1,10 @@
 // rtpbr-diff: compares a test image with a reference image using LDR-FLIP or HDR-FLIP
 // (flip.h), and reports RMSE, relative MSE and PSNR. See usage() for the exact definitions.
 #include "flip.h"
+#include "image_read.h"
 #include "magma_table.h"
 
 #include <OpenImageIO/imageio.h>
-
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -55,11 +53,6 @@ struct Options {
     float ppd = rtpbr::kFlipDefaultPpd;
 };
 
-struct Image {
-    int width = 0;
-    int height = 0;
-    std::vector<float> rgb;  // linear
-};
 
 // Errors are reported as exactly one line: library messages may hold newlines.
 void fail_message(std::string message) {
@@ -68,29 +61,6 @@ void fail_message(std::string message) {
     std::fprintf(stderr, "rtpbr-diff: %s\n", message.c_str());
 }
 
-// Some codecs (libpng) print their own diagnostics to stderr; OpenImageIO also returns them
-// through geterror(), which we report. Silences fd 2 while alive.
-class SilenceStderr {
-public:
-    SilenceStderr() {
-        std::fflush(stderr);
-        saved_ = dup(STDERR_FILENO);
-        const int null_fd = open("/dev/null", O_WRONLY);
-        if (saved_ >= 0 && null_fd >= 0) dup2(null_fd, STDERR_FILENO);
-        if (null_fd >= 0) close(null_fd);
-    }
-    ~SilenceStderr() {
-        if (saved_ < 0) return;
-        std::fflush(stderr);
-        dup2(saved_, STDERR_FILENO);
-        close(saved_);
-    }
-    SilenceStderr(const SilenceStderr&) = delete;
-    SilenceStderr& operator=(const SilenceStderr&) = delete;
-
-private:
-    int saved_ = -1;
-};
 
 bool parse_number(const char* text, double& value) {
     char* end = nullptr;
@@ -159,47 +129,6 @@ bool parse_args(int argc, char** argv, Options& opt, bool& show_help, std::strin
     return true;
 }
 
-bool read_image(const std::string& path, Image& image, std::string& error) {
-    SilenceStderr quiet;
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) {
-        std::string why = OIIO::geterror();
-        if (why.empty()) why = "cannot open";
-        error = "cannot read '" + path + "': " + why;
-        return false;
-    }
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1 || spec.deep) {
-        error = "'" + path + "' is not a flat 2D image with pixels";
-        return false;
-    }
-    const int nch = spec.nchannels;
-    std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * nch);
-    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, pixels.data())) {
-        error = "cannot decode '" + path + "': " + in->geterror();
-        return false;
-    }
-    in->close();
-    const bool encoded = spec.format.basetype != OIIO::TypeDesc::FLOAT &&
-                         spec.format.basetype != OIIO::TypeDesc::HALF &&
-                         spec.format.basetype != OIIO::TypeDesc::DOUBLE;
-    image.width = spec.width;
-    image.height = spec.height;
-    const std::size_t n = static_cast<std::size_t>(spec.width) * spec.height;
-    image.rgb.resize(n * 3);
-    for (std::size_t i = 0; i < n; ++i) {
-        for (int c = 0; c < 3; ++c) {
-            const int src = nch >= 3 ? c : 0;  // 1 or 2 channels: grey (+ alpha)
-            float v = pixels[i * nch + src];
-            if (!std::isfinite(v)) {
-                error = "'" + path + "' holds NaN or infinite values";
-                return false;
-            }
-            image.rgb[i * 3 + c] = encoded ? rtpbr::srgb_to_linear(v) : v;
-        }
-    }
-    return true;
-}
 
 bool write_heatmap(const std::string& path, const std::vector<float>& error_map, int w, int h,
                    std::string& error) {
@@ -228,7 +157,7 @@ struct PixelMetrics {
     double psnr = 0.0;  // +inf when identical
 };
 
-PixelMetrics pixel_metrics(const Image& ref, const Image& test) {
+PixelMetrics pixel_metrics(const rtpbr::Image& ref, const rtpbr::Image& test) {
     double se = 0.0, rel = 0.0, se_clamped = 0.0;
     for (std::size_t i = 0; i < ref.rgb.size(); ++i) {
         const double r = ref.rgb[i], t = test.rgb[i];
@@ -283,8 +212,8 @@ int run(int argc, char** argv) {
         std::fputs(kUsage, stdout);
         return kExitPass;
     }
-    Image ref, test;
-    if (!read_image(opt.reference, ref, error) || !read_image(opt.test, test, error)) {
+    rtpbr::Image ref, test;
+    if (!rtpbr::read_image(opt.reference, ref, error) || !rtpbr::read_image(opt.test, test, error)) {
         fail_message(error);
         return kExitError;
     }

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <random>
 #include <string>
 
@@ -29,6 +30,7 @@ bool write_exr(const std::string &path, const float *data, int w, int h, const s
     spec.channelnames = {"R"};
     spec.attribute("ImageDescription", desc);
     spec.attribute("compression", "zip");
+    spec.attribute("DateTime", ""); // no capture date: regenerating gives byte-identical files
     if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, data)) {
         std::fprintf(stderr, "lutgen-kc: cannot write %s: %s\n", path.c_str(), out->geterror().c_str());
         return false;
@@ -55,6 +57,13 @@ void print_array(FILE *f, const std::vector<float> &v, int perLine) {
 
 float max_of(const std::vector<float> &v) { return v.empty() ? 0.0f : *std::max_element(v.begin(), v.end()); }
 
+float quantile_of(std::vector<float> v, double q) {
+    if (v.empty())
+        return 0.0f;
+    std::sort(v.begin(), v.end());
+    return v[static_cast<size_t>(q * (v.size() - 1))];
+}
+
 // Trilinear lookup of E_F at (mu, r, eta), as the shader's KC_TableCoord3D addresses it.
 float lookup3(const kc::Tables &t, float mu, float r, float eta) {
     const int nT = t.g.nMu * t.g.nR;
@@ -71,7 +80,7 @@ float lookup3(const kc::Tables &t, float mu, float r, float eta) {
 int main(int argc, char **argv) {
     std::string outDir = ".", csvPath;
     kc::SampleSpec spec;
-    spec.strata = 24;
+    spec.strata = 32;
     spec.replicas = 8;
     int threads = 2;
     bool check = true;
@@ -108,6 +117,11 @@ int main(int argc, char **argv) {
         std::fprintf(stderr, "lutgen-kc: need --strata >= 1, --replicas >= 2, 1 <= --threads <= 64\n");
         return 2;
     }
+    std::error_code ec;
+    if (!std::filesystem::is_directory(outDir, ec)) {
+        std::fprintf(stderr, "lutgen-kc: output directory %s does not exist\n", outDir.c_str());
+        return 1;
+    }
     if (g.nMu != static_cast<int>(rtpbr::KC_LUT_SIZE) || g.nEta != static_cast<int>(rtpbr::KC_LUT_SIZE_ETA) ||
         g.etaAxisMax != rtpbr::KC_ETA_AXIS_MAX) {
         std::fprintf(stderr, "lutgen-kc: table geometry disagrees with kulla_conty.h\n");
@@ -121,8 +135,10 @@ int main(int argc, char **argv) {
         auto tv = std::chrono::steady_clock::now();
         kc::kc_build(variants[v], g, spec, threads, &tables[v]);
         double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
-        std::printf("%-14s %6.1f s  max stderr: E %.2e  E_avg %.2e  E_F %.2e  E_F_avg %.2e\n",
-                    variants[v].name, sec, static_cast<double>(max_of(tables[v].E_err)),
+        std::printf("%-14s %6.1f s  stderr E: median %.1e 99%% %.1e | max stderr: E %.2e  E_avg %.2e  E_F %.2e  "
+                    "E_F_avg %.2e\n",
+                    variants[v].name, sec, static_cast<double>(quantile_of(tables[v].E_err, 0.5)),
+                    static_cast<double>(quantile_of(tables[v].E_err, 0.99)), static_cast<double>(max_of(tables[v].E_err)),
                     static_cast<double>(max_of(tables[v].Eavg_err)), static_cast<double>(max_of(tables[v].EF_err)),
                     static_cast<double>(max_of(tables[v].EFavg_err)));
         std::fflush(stdout);
@@ -173,21 +189,45 @@ int main(int argc, char **argv) {
     for (int v = 0; v < nV; v++)
         std::fprintf(f, "\"%s\"%s", variants[v].name, v + 1 < nV ? ", " : "");
     std::fprintf(f, "};\n");
-    auto emit = [&](const char *name, const char *dims, std::vector<float> kc::Tables::*member) {
-        std::fprintf(f, "\nstatic const float %s[%d]%s = {", name, nV, dims);
-        for (int v = 0; v < nV; v++)
-            print_array(f, tables[v].*member, 8);
-        std::fprintf(f, "};\n");
+    // Fully braced nested initialisers (C's -Wmissing-braces), innermost rows 8 values a line.
+    auto emit = [&](const char *name, std::vector<int> dims, std::vector<float> kc::Tables::*member) {
+        std::string d;
+        for (int n : dims)
+            d += "[" + std::to_string(n) + "]";
+        std::fprintf(f, "\nstatic const float %s[%d]%s = {", name, nV, d.c_str());
+        for (int v = 0; v < nV; v++) {
+            const std::vector<float> &a = tables[v].*member;
+            const int inner = dims.back();
+            const int rows = static_cast<int>(a.size()) / inner;
+            std::fprintf(f, "\n  {");
+            for (int row = 0; row < rows; row++) {
+                // Open / close the braces of every dimension this row starts / ends.
+                int open = 0, close = 0;
+                for (size_t k = 0; k + 1 < dims.size(); k++) {
+                    int block = 1;
+                    for (size_t j = k + 1; j + 1 < dims.size(); j++)
+                        block *= dims[j];
+                    if (row % block == 0)
+                        open++;
+                    if ((row + 1) % block == 0)
+                        close++;
+                }
+                if (open > 0)
+                    std::fprintf(f, "\n    %s", std::string(static_cast<size_t>(open), '{').c_str());
+                std::vector<float> slice(a.begin() + static_cast<std::ptrdiff_t>(row) * inner,
+                                         a.begin() + static_cast<std::ptrdiff_t>(row + 1) * inner);
+                print_array(f, slice, 8);
+                if (close > 0)
+                    std::fprintf(f, "    %s,", std::string(static_cast<size_t>(close), '}').c_str());
+            }
+            std::fprintf(f, "  },");
+        }
+        std::fprintf(f, "\n};\n");
     };
-    char d2[64], d1[32], d3[64], d2a[64];
-    std::snprintf(d2, sizeof d2, "[%d][%d]", g.nR, g.nMu);
-    std::snprintf(d1, sizeof d1, "[%d]", g.nR);
-    std::snprintf(d3, sizeof d3, "[%d][%d][%d]", g.nEta, g.nR, g.nMu);
-    std::snprintf(d2a, sizeof d2a, "[%d][%d]", g.nEta, g.nR);
-    emit("rtpbr_kc_E", d2, &kc::Tables::E);
-    emit("rtpbr_kc_Eavg", d1, &kc::Tables::Eavg);
-    emit("rtpbr_kc_EF", d3, &kc::Tables::EF);
-    emit("rtpbr_kc_EFavg", d2a, &kc::Tables::EFavg);
+    emit("rtpbr_kc_E", {g.nR, g.nMu}, &kc::Tables::E);
+    emit("rtpbr_kc_Eavg", {g.nR}, &kc::Tables::Eavg);
+    emit("rtpbr_kc_EF", {g.nEta, g.nR, g.nMu}, &kc::Tables::EF);
+    emit("rtpbr_kc_EFavg", {g.nEta, g.nR}, &kc::Tables::EFavg);
     std::fprintf(f, "\n#endif // RTPBR_KC_TABLES_H\n");
     std::fclose(f);
 
@@ -209,7 +249,7 @@ int main(int argc, char **argv) {
     // ---- interpolation error and plot data -------------------------------------------------------
     if (check) {
         kc::SampleSpec ref;
-        ref.strata = 32;
+        ref.strata = 64;
         ref.replicas = 4;
         ref.seed = 777;
         std::mt19937 rng(12345);

@@ -14,6 +14,21 @@
 //   rtpbr_gpu_scene     meshes, materials, polygonal lights and cameras uploaded to the GPU.
 //   rtpbr_renderer  the per-resolution targets: G-buffer, linear radiance, display image.
 //
+// The frame (rtpbr_render / rtpbr_record):
+//   1. G-buffer pass: base colour + metallic, world normal + perceptual roughness, emission +
+//      ior, specular colour + factor, depth (every surface is shaded on the side the camera
+//      sees; emission is front-side only unless the material is double-sided).
+//   2. Lighting pass (compute, one workgroup per 16x16 tile): each tile first culls the
+//      scene's lights (rtpbr_render_desc.light_cull_form_factor), then every pixel sums, per
+//      polygonal light, Lambertian diffuse and GGX/Beckmann specular integrated with
+//      Linearly Transformed Cosines and Fresnel from the LTC tables (shaderlib/rtpbr/ltc.h),
+//      plus the Kulla-Conty multiple-scattering lobe over the polygon (kulla_conty.h), plus
+//      emitted radiance. The BRDF and integration math is the shader library's. When the
+//      library is built without ltc.h, lights contribute only through emissive surfaces.
+//   3. Tone mapping: radiance * 2^exposure through a documented operator (rtpbr_tonemap),
+//      sRGB-encoded into the display target.
+//   The linear radiance (before exposure and tone mapping) is kept for rtpbr_read_radiance.
+//
 // Typical headless use:
 //   rtpbr_context *ctx; rtpbr_context_create(&(rtpbr_context_desc){0}, &ctx);
 //   rtpbr_gpu_scene *scene; rtpbr_gpu_scene_load_gltf(ctx, "scene.gltf", &scene);
@@ -162,6 +177,13 @@ typedef struct rtpbr_material_desc {
     float ior;               // dielectric index of refraction (KHR_materials_ior); zero: 1.5
     float specular;          // KHR_materials_specular specularFactor; zero: 1 (set <0 for none, i.e. 0)
     float specular_color[3]; // KHR_materials_specular specularColorFactor; all zero: (1, 1, 1)
+    // Textures: 1-based indices into rtpbr_gpu_scene_desc.textures; 0: none. Sampled with
+    // TEXCOORD_0, bilinear, repeat, no mipmaps; they multiply the factors above (glTF):
+    uint32_t base_color_texture;         // rgb: base colour (give it srgb = 1)
+    uint32_t metallic_roughness_texture; // g: roughness, b: metallic (linear)
+    uint32_t emission_texture;           // rgb: emission (give it srgb = 1)
+    uint32_t normal_texture;             // rgb: tangent-space normal (linear); needs tangents
+    float normal_scale;                  // glTF normalTexture.scale (scales x, y); zero: 1
     // Non-zero: emits from both sides (glTF doubleSided). Default: emission only on the front
     // side, the one the vertex normals point to. Reflection is two-sided either way.
     int double_sided;
@@ -169,9 +191,18 @@ typedef struct rtpbr_material_desc {
 
 #define RTPBR_MIN_ROUGHNESS 0.045f // Filament's lower clamp: keeps alpha^2 representable
 
+typedef struct rtpbr_texture_desc {
+    uint32_t width, height;  // required, 1..RTPBR_MAX_RENDER_SIZE
+    const uint8_t *rgba;     // required: width * height RGBA8 texels, rows top to bottom
+    int srgb;                // non-zero: sRGB-encoded colour; default: linear data
+} rtpbr_texture_desc;
+
 typedef struct rtpbr_mesh_desc {
     const float *positions;   // 3 floats per vertex; required
     const float *normals;     // 3 floats per vertex; NULL: computed (area-weighted smooth)
+    const float *texcoords;   // 2 floats per vertex (glTF TEXCOORD_0); NULL: all zero
+    const float *tangents;    // 4 floats per vertex: xyz, w = bitangent sign (B = w N x T, glTF);
+                              // NULL: zero, and normal textures have no effect
     const uint32_t *indices;  // 3 per triangle; NULL: vertices taken three at a time
     uint32_t vertex_count;    // required, non-zero
     uint32_t index_count;     // a multiple of 3 when indices is set
@@ -206,6 +237,8 @@ typedef struct rtpbr_gpu_scene_desc {
     uint32_t light_count;    // <= RTPBR_MAX_LIGHTS
     const rtpbr_camera_desc *cameras;
     uint32_t camera_count;   // zero: one default camera at (0, 0, 5) looking at the origin
+    const rtpbr_texture_desc *textures;
+    uint32_t texture_count;
 } rtpbr_gpu_scene_desc;
 
 typedef struct rtpbr_gpu_scene rtpbr_gpu_scene;
@@ -280,7 +313,18 @@ typedef struct rtpbr_render_desc {
     rtpbr_ndf ndf;           // default GGX
     rtpbr_multiscatter multiscatter; // default on
     float background[3];     // radiance where no surface is hit; default black
+    // Per-tile light culling (RTPBR_TILE_SIZE^2-pixel tiles). A light is skipped for a tile
+    // when every point of the tile is behind it (one-sided lights; exact), or when the bound
+    // A / (pi d^2) on its form factor at every point of the tile (A its area, d the distance
+    // between the tile's bounding box and the light's bounding sphere) is below this value:
+    // its diffuse contribution is then below emission * albedo * light_cull_form_factor.
+    // Glossy reflections of a culled light are lost with it. Zero: 1e-4; negative: only
+    // the exact test.
+    float light_cull_form_factor;
 } rtpbr_render_desc;
+
+#define RTPBR_DEFAULT_CULL_FORM_FACTOR 1e-4f
+#define RTPBR_TILE_SIZE_PIXELS 16
 
 // Records and submits one frame and waits for it: G-buffer, lighting, tone mapping into the
 // renderer's own targets, which rtpbr_read_* then read back.

@@ -18,8 +18,9 @@
  *
  * Conventions:
  * - glTF units: metres, right-handed, +Y up; cameras look down their local -Z.
- * - Colours are linear RGB (glTF factors are linear). Radiance in W/(sr·m²)
- *   in the glTF "relative" sense: emission = emissiveFactor × emissive_strength.
+ * - Colours are linear RGB (glTF factors are linear). Radiance is in the
+ *   renderer's (relative) unit: emission = emissiveFactor × emissive_strength;
+ *   EXT_lights_area: nits × desc.area_light_radiance_scale (docs/materials.md).
  * - Triangles are counter-clockwise seen from the side their geometric normal
  *   points to (glTF front face). Nodes with a negative-determinant transform
  *   get their index winding flipped so this stays true in world space.
@@ -33,7 +34,8 @@
  * - Input is untrusted: every accessor, buffer view, index and reference is
  *   validated; external files resolve only inside the folder of the .gltf/.glb
  *   (or desc.base_dir); failures return a specific result code and a message
- *   naming the offending object. No global state; thread-safe per call.
+ *   naming the offending object. No global state in the loader: concurrent
+ *   loads are independent.
  */
 #ifndef RTPBR_SCENE_H
 #define RTPBR_SCENE_H
@@ -54,6 +56,7 @@ extern "C" {
 #define RTPBR_SCENE_MAX_INDICES (3u * (1u << 25))    /* total, after triangulation */
 #define RTPBR_SCENE_MAX_FILE_SIZE ((uint64_t)1 << 30)/* any one file or data: URI */
 #define RTPBR_SCENE_MAX_NODE_DEPTH 256u              /* node hierarchy depth   */
+#define RTPBR_SCENE_MAX_JSON_DEPTH 256u              /* JSON array/object nesting */
 #define RTPBR_SCENE_MAX_POLYGON_VERTICES 8u          /* vertices of one light  */
 #define RTPBR_SCENE_ERROR_MESSAGE_SIZE 512u          /* suggested buffer size  */
 
@@ -146,7 +149,7 @@ typedef struct rtpbr_scene_load_desc {
 
 /* One triangle list in world space. Arrays are structure-of-arrays with
  * vertex_count entries each (positions/normals xyz, texcoords uv, tangents
- * xyzw); never NULL when vertex_count > 0. */
+ * xyzw); never NULL when vertex_count > 0 (indices: when index_count > 0). */
 typedef struct rtpbr_scene_primitive {
     uint32_t vertex_count;
     uint32_t index_count;  /* multiple of 3; degenerate triangles removed   */
@@ -155,14 +158,15 @@ typedef struct rtpbr_scene_primitive {
                               (normal matrix = inverse transpose of the node
                               matrix). Generated when missing: area-weighted
                               smooth normals over shared indices, i.e. flat
-                              for unindexed geometry.                      */
+                              for unindexed geometry; also replaces zero or
+                              non-finite normals of the file.              */
     float* texcoords;      /* 2 × vertex_count; zeros if has_texcoords false */
     float* tangents;       /* 4 × vertex_count, world space xyz unit, w = ±1
                               bitangent sign (B = w · cross(N, T)). From the
                               file, else generated per vertex from UVs when
                               the material has a normal texture and UVs
-                              exist (MikkTSpace-like accumulation, not
-                              bit-exact MikkTSpace), else all zero.        */
+                              exist (per-vertex accumulation after Lengyel
+                              2001; not MikkTSpace), else all zero.        */
     uint32_t* indices;     /* index_count entries, each < vertex_count      */
     uint32_t material;     /* index into scene->materials (always valid:
                               a default material is appended if needed)    */
@@ -300,7 +304,8 @@ typedef struct rtpbr_scene_camera {
 
 typedef struct rtpbr_scene {
     rtpbr_scene_primitive* primitives; uint32_t primitive_count;
-    rtpbr_scene_material* materials;   uint32_t material_count;
+    rtpbr_scene_material* materials;   uint32_t material_count; /* [i] = glTF
+                                          material i; a default one last if used */
     rtpbr_scene_texture* textures;     uint32_t texture_count;
     rtpbr_scene_light* lights;         uint32_t light_count;
     rtpbr_scene_camera* cameras;       uint32_t camera_count; /* 0 = none   */

@@ -1,0 +1,125 @@
+// Engine benchmark: frame time of rtpbr_render on the current device against the number of
+// polygonal lights and the resolution, with per-tile culling at its default threshold and
+// without distance culling. Not a test: numbers depend on the machine; compare the ratios
+// printed in one run.
+//   rtpbr-bench-engine [--repeat N] [--sizes 128,256,512] [--lights 1,4,16,64,256]
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "rtpbr/rtpbr.h"
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static int parse_list(const char *text, int *out, int max)
+{
+    int n = 0;
+    char *copy = strdup(text), *save = NULL;
+    for (char *tok = strtok_r(copy, ",", &save); tok && n < max; tok = strtok_r(NULL, ",", &save)) out[n++] = atoi(tok);
+    free(copy);
+    return n;
+}
+
+// A 60 m floor (rough dielectric) under n small square lights at 0.5 to 3 m, scattered by a
+// fixed linear congruential sequence; one light in four faces up (away from the floor).
+static rtpbr_result make_scene(rtpbr_context *ctx, int n, rtpbr_gpu_scene **out)
+{
+    static const float h = 30.0f;
+    float plane[12] = {-h, -h, 0, h, -h, 0, h, h, 0, -h, h, 0};
+    static const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    rtpbr_material_desc material = {.base_color = {0.7f, 0.7f, 0.7f}, .roughness = 0.4f};
+    rtpbr_mesh_desc mesh = {.positions = plane, .indices = indices, .vertex_count = 4, .index_count = 6};
+    rtpbr_light_desc *lights = calloc((size_t)n, sizeof *lights);
+    uint32_t seed = 12345u;
+    for (int i = 0; i < n; ++i) {
+        seed = seed * 1664525u + 1013904223u;
+        float x = -28.0f + 56.0f * (float)(seed >> 8) / 16777216.0f;
+        seed = seed * 1664525u + 1013904223u;
+        float y = -28.0f + 56.0f * (float)(seed >> 8) / 16777216.0f;
+        float z = 0.5f + 2.5f * (float)(i % 7) / 6.0f, s = 0.1f + 0.05f * (float)(i % 5);
+        int up = i % 4 == 3;
+        float v[4][3] = {{x - s, y - s, z}, {x - s, y + s, z}, {x + s, y + s, z}, {x + s, y - s, z}};
+        for (int k = 0; k < 4; ++k) memcpy(lights[i].vertices[up ? 3 - k : k], v[k], sizeof v[k]);
+        lights[i].vertex_count = 4;
+        lights[i].emission[0] = lights[i].emission[1] = lights[i].emission[2] = 20.0f;
+    }
+    rtpbr_camera_desc camera = {.position = {0.0f, -12.0f, 14.0f}, .yfov = 1.0f, .znear = 0.1f, .zfar = 200.0f};
+    rtpbr_gpu_scene_desc desc = {.meshes = &mesh, .mesh_count = 1, .materials = &material, .material_count = 1,
+                                 .lights = lights, .light_count = (uint32_t)n, .cameras = &camera, .camera_count = 1};
+    rtpbr_result r = rtpbr_gpu_scene_create(ctx, &desc, out);
+    free(lights);
+    return r;
+}
+
+int main(int argc, char **argv)
+{
+    int repeat = 5, sizes[8] = {128, 256, 512}, lights[16] = {1, 4, 16, 64, 256};
+    int size_count = 3, light_count = 5;
+    for (int i = 1; i < argc; ++i) {
+        if (!strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--sizes") && i + 1 < argc) size_count = parse_list(argv[++i], sizes, 8);
+        else if (!strcmp(argv[i], "--lights") && i + 1 < argc) light_count = parse_list(argv[++i], lights, 16);
+        else {
+            fprintf(stderr, "usage: %s [--repeat N] [--sizes 128,256] [--lights 1,4,16]\n", argv[0]);
+            return 2;
+        }
+    }
+    if (repeat < 1 || repeat > 1000) repeat = 5;
+    rtpbr_context *ctx = NULL;
+    rtpbr_result r = rtpbr_context_create(&(rtpbr_context_desc){0}, &ctx);
+    if (r != RTPBR_SUCCESS) {
+        fprintf(stderr, "rtpbr-bench-engine: %s\n", rtpbr_result_string(r));
+        return 1;
+    }
+    printf("# device: %s; median of %d frames; ns per pixel-light = frame time / (pixels x lights)\n",
+           rtpbr_context_device_name(ctx), repeat);
+    printf("%6s %6s %8s %12s %12s %16s %16s\n", "size", "lights", "", "culled_ms", "all_ms", "culled_ns/px/l",
+           "all_ns/px/l");
+    double *t = calloc((size_t)repeat, sizeof *t);
+    for (int si = 0; si < size_count; ++si) {
+        rtpbr_renderer *renderer = NULL;
+        r = rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = (uint32_t)sizes[si], .height = (uint32_t)sizes[si]},
+                                  &renderer);
+        for (int li = 0; li < light_count && r == RTPBR_SUCCESS; ++li) {
+            rtpbr_gpu_scene *scene = NULL;
+            r = make_scene(ctx, lights[li], &scene);
+            double ms[2] = {0.0, 0.0};
+            for (int mode = 0; mode < 2 && r == RTPBR_SUCCESS; ++mode) {
+                rtpbr_render_desc rd = {.light_cull_form_factor = mode == 0 ? 0.0f : -1.0f};
+                r = rtpbr_render(renderer, scene, &rd); // warm-up
+                for (int k = 0; k < repeat && r == RTPBR_SUCCESS; ++k) {
+                    double t0 = now();
+                    r = rtpbr_render(renderer, scene, &rd);
+                    t[k] = now() - t0;
+                }
+                qsort(t, (size_t)repeat, sizeof *t, compare_double);
+                ms[mode] = 1e3 * t[repeat / 2];
+            }
+            double px = (double)sizes[si] * sizes[si] * lights[li];
+            if (r == RTPBR_SUCCESS)
+                printf("%6d %6d %8s %12.2f %12.2f %16.2f %16.2f\n", sizes[si], lights[li], "", ms[0], ms[1],
+                       1e6 * ms[0] / px, 1e6 * ms[1] / px);
+            fflush(stdout);
+            rtpbr_gpu_scene_destroy(scene);
+        }
+        rtpbr_renderer_destroy(renderer);
+    }
+    free(t);
+    if (r != RTPBR_SUCCESS) fprintf(stderr, "rtpbr-bench-engine: %s\n", rtpbr_result_string(r));
+    rtpbr_context_destroy(ctx);
+    return r == RTPBR_SUCCESS ? 0 : 1;
+}

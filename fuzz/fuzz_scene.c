@@ -1,0 +1,203 @@
+/* libFuzzer target: the glTF scene loader through its C API (rtpbr_scene_load_memory; GLB
+ * when the input starts with "glTF", else JSON). External URIs resolve under a private
+ * temporary folder holding the bundled scenes' .bin buffers, two small images, a
+ * subfolder, and a symbolic link that points outside of the folder (must be rejected).
+ *
+ * Beyond "no crash, no leak, no UB" the target checks what rtpbr_scene.h promises: on
+ * failure *out is NULL and the message is non-empty; on success every index, material and
+ * texture reference is in range, light polygons have 3..8 vertices, and the limits hold.
+ * A broken promise aborts, which libFuzzer records as a crash. */
+#define _XOPEN_SOURCE 700
+#define _DEFAULT_SOURCE
+#include <rtpbr/rtpbr_scene.h>
+
+#include <dirent.h>
+#include <ftw.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* Limits below the defaults keep one execution fast and within -rss_limit_mb; the code
+ * paths are the same (the limits are only compared against). */
+enum { kFuzzMaxVertices = 1 << 20, kFuzzMaxLights = 4096, kFuzzMaxTexture = 1024 };
+
+static char g_root[64];      /* private temporary folder */
+static char g_base_dir[96];  /* g_root/scene: base_dir of every load */
+static int g_verbose;        /* RTPBR_FUZZ_VERBOSE=1: print each result (seed checks) */
+
+static void check(int ok, const char* what) {
+    if (ok) return;
+    fprintf(stderr, "fuzz_scene: broken promise: %s\n", what);
+    abort();
+}
+
+static void copy_file(const char* from, const char* to) {
+    FILE* in = fopen(from, "rb");
+    FILE* out = in ? fopen(to, "wb") : NULL;
+    char buf[1 << 14];
+    size_t n;
+    while (in && out && (n = fread(buf, 1, sizeof buf, in)) > 0) fwrite(buf, 1, n, out);
+    if (in) fclose(in);
+    if (out) fclose(out);
+}
+
+/* Copies the regular files of `dir` whose name ends in one of the suffixes. */
+static void copy_dir(const char* dir, const char* const* suffixes) {
+    DIR* d = opendir(dir);
+    if (!d) return;
+    struct dirent* e;
+    while ((e = readdir(d)) != NULL) {
+        size_t len = strlen(e->d_name);
+        for (const char* const* s = suffixes; *s; ++s) {
+            size_t sl = strlen(*s);
+            if (len > sl && strcmp(e->d_name + len - sl, *s) == 0) {
+                char from[4096], to[4096];
+                snprintf(from, sizeof from, "%s/%s", dir, e->d_name);
+                snprintf(to, sizeof to, "%s/%s", g_base_dir, e->d_name);
+                copy_file(from, to);
+            }
+        }
+    }
+    closedir(d);
+}
+
+static int remove_entry(const char* path, const struct stat* st, int flag, struct FTW* ftw) {
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+static void cleanup(void) {
+    if (g_root[0]) nftw(g_root, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+int LLVMFuzzerInitialize(int* argc, char*** argv) {
+    (void)argc, (void)argv;
+    g_verbose = getenv("RTPBR_FUZZ_VERBOSE") != NULL;
+    snprintf(g_root, sizeof g_root, "/tmp/rtpbr-fuzz-scene-XXXXXX");
+    if (!mkdtemp(g_root)) {
+        perror("fuzz_scene: mkdtemp");
+        abort();
+    }
+    atexit(cleanup);
+    snprintf(g_base_dir, sizeof g_base_dir, "%s/scene", g_root);
+    mkdir(g_base_dir, 0700);
+    static const char* const bins[] = {".bin", NULL};
+    static const char* const images[] = {".png", ".jpg", NULL};
+    copy_dir(RTPBR_FUZZ_SCENES_DIR, bins);
+    copy_dir(RTPBR_FUZZ_ASSETS_DIR, images);
+    char path[4096], target[4096];
+    snprintf(path, sizeof path, "%s/sub", g_base_dir);
+    mkdir(path, 0700);
+    snprintf(path, sizeof path, "%s/sub/quad_light.bin", g_base_dir);
+    snprintf(target, sizeof target, "%s/quad_light.bin", g_base_dir);
+    copy_file(target, path);
+    snprintf(path, sizeof path, "%s/secret.bin", g_root);
+    copy_file(target, path);
+    snprintf(path, sizeof path, "%s/outside.bin", g_base_dir);
+    if (symlink("../secret.bin", path) != 0) perror("fuzz_scene: symlink");
+    return 0;
+}
+
+static void on_log(rtpbr_scene_log_level level, const char* message, void* user_data) {
+    (void)user_data;
+    check(level <= RTPBR_SCENE_LOG_INFO, "log level in range");
+    check(message != NULL && strlen(message) < (1u << 20), "log message NUL-terminated");
+}
+
+static int finite3(const float* v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
+
+static void check_scene(const rtpbr_scene* s) {
+    uint64_t vertices = 0;
+    for (uint32_t i = 0; i < s->primitive_count; ++i) {
+        const rtpbr_scene_primitive* p = &s->primitives[i];
+        check(p->index_count % 3 == 0, "index_count multiple of 3");
+        check(p->material < s->material_count, "primitive material in range");
+        if (p->vertex_count > 0)
+            check(p->positions && p->normals && p->texcoords && p->tangents, "vertex arrays present");
+        if (p->index_count > 0) check(p->indices != NULL, "index array present");
+        for (uint32_t k = 0; k < p->index_count; ++k)
+            check(p->indices[k] < p->vertex_count, "index < vertex_count");
+        for (uint32_t v = 0; v < p->vertex_count; ++v)
+            check(finite3(&p->positions[3 * (size_t)v]), "finite positions");
+        vertices += p->vertex_count;
+    }
+    check(vertices == s->total_vertex_count, "total_vertex_count");
+    check(vertices <= kFuzzMaxVertices, "max_vertices");
+    for (uint32_t i = 0; i < s->material_count; ++i) {
+        const rtpbr_scene_material* m = &s->materials[i];
+        const float values[] = {m->base_color[0], m->base_color[1], m->base_color[2], m->base_color[3],
+                                m->metallic, m->roughness, m->subsurface, m->specular, m->specular_tint,
+                                m->specular_color[0], m->specular_color[1], m->specular_color[2],
+                                m->specular_factor, m->ior, m->anisotropic, m->anisotropy_rotation, m->sheen,
+                                m->sheen_tint, m->sheen_color[0], m->sheen_color[1], m->sheen_color[2],
+                                m->sheen_roughness, m->clearcoat, m->clearcoat_gloss, m->emission[0],
+                                m->emission[1], m->emission[2], m->emissive_strength, m->normal_scale,
+                                m->alpha_cutoff};
+        for (size_t k = 0; k < sizeof values / sizeof *values; ++k) check(isfinite(values[k]), "finite material");
+        const int32_t t[4] = {m->base_color_texture, m->metallic_roughness_texture, m->normal_texture,
+                              m->emission_texture};
+        for (int k = 0; k < 4; ++k)
+            check(t[k] >= -1 && (t[k] < 0 || (uint32_t)t[k] < s->texture_count), "texture index in range");
+    }
+    for (uint32_t i = 0; i < s->texture_count; ++i) {
+        const rtpbr_scene_texture* t = &s->textures[i];
+        check(t->width <= kFuzzMaxTexture && t->height <= kFuzzMaxTexture, "max_texture_dimension");
+        check((t->width && t->height) == (t->pixels != NULL), "texture pixels iff a size");
+        if (t->pixels) {
+            /* Touch the last texel: the buffer must hold width × height × 4 bytes. */
+            volatile uint8_t last = t->pixels[(size_t)t->width * t->height * 4 - 1];
+            (void)last;
+        }
+    }
+    for (uint32_t i = 0; i < s->camera_count; ++i) {
+        const rtpbr_scene_camera* c = &s->cameras[i];
+        check(finite3(c->position) && finite3(c->forward) && finite3(c->up) && finite3(c->right) &&
+                  isfinite(c->yfov) && isfinite(c->aspect) && isfinite(c->znear) && isfinite(c->zfar),
+              "finite camera");
+    }
+    check(s->light_count <= kFuzzMaxLights, "max_lights");
+    for (uint32_t i = 0; i < s->light_count; ++i) {
+        const rtpbr_scene_light* l = &s->lights[i];
+        check(l->vertex_count >= 3 && l->vertex_count <= RTPBR_SCENE_MAX_POLYGON_VERTICES, "light vertex count");
+        check(finite3(l->normal) && finite3(l->center) && finite3(l->radiance) && isfinite(l->radius), "finite light");
+        for (uint32_t v = 0; v < l->vertex_count; ++v) check(finite3(l->vertices[v]), "finite light vertices");
+        check(isfinite(l->area) && l->area > 0.0f, "light area > 0");
+        check(l->primitive < 0 || (uint32_t)l->primitive < s->primitive_count, "light primitive in range");
+        check(l->material < 0 || (uint32_t)l->material < s->material_count, "light material in range");
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    char err[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
+    rtpbr_scene_load_desc desc = {0};
+    desc.error_message = err;
+    desc.error_message_size = sizeof err;
+    desc.logger.func = on_log;
+    desc.base_dir = g_base_dir;
+    desc.max_vertices = kFuzzMaxVertices;
+    desc.max_lights = kFuzzMaxLights;
+    desc.max_texture_dimension = kFuzzMaxTexture;
+    rtpbr_scene* scene = NULL;
+    /* libFuzzer passes a non-NULL pointer even for empty inputs. */
+    rtpbr_scene_result r = rtpbr_scene_load_memory(data ? (const void*)data : (const void*)"", size, &desc, &scene);
+    if (g_verbose)
+        fprintf(stderr, "fuzz_scene: %s %s (%u primitives, %u lights, %u textures)\n",
+                rtpbr_scene_result_string(r), err, scene ? scene->primitive_count : 0,
+                scene ? scene->light_count : 0, scene ? scene->texture_count : 0);
+    check(r >= RTPBR_SCENE_SUCCESS && r < RTPBR_SCENE_RESULT_COUNT, "result in range");
+    check(strcmp(rtpbr_scene_result_string(r), "RTPBR_SCENE_RESULT_UNKNOWN") != 0, "result has a name");
+    if (r == RTPBR_SCENE_SUCCESS) {
+        check(scene != NULL, "scene on success");
+        check(err[0] == '\0', "empty message on success");
+        check_scene(scene);
+    } else {
+        check(scene == NULL, "*out NULL on failure");
+        check(err[0] != '\0', "message on failure");
+    }
+    rtpbr_scene_destroy(scene);
+    return 0;
+}

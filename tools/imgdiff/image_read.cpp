@@ -1,0 +1,180 @@
+// OpenImageIO reading for rtpbr-diff (image_read.h).
+#include "image_read.h"
+
+#include "flip.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstddef>
+#include <cstdio>
+#include <cstring>
+
+namespace rtpbr {
+
+namespace {
+
+// Some codecs (libpng) print their own diagnostics to stderr; OpenImageIO also returns them
+// through geterror(), which we report. Silences fd 2 while alive.
+class SilenceStderr {
+public:
+    explicit SilenceStderr(bool enable) {
+        if (!enable) return;
+        std::fflush(stderr);
+        saved_ = dup(STDERR_FILENO);
+        const int null_fd = open("/dev/null", O_WRONLY);
+        if (saved_ >= 0 && null_fd >= 0) dup2(null_fd, STDERR_FILENO);
+        if (null_fd >= 0) close(null_fd);
+    }
+    ~SilenceStderr() {
+        if (saved_ < 0) return;
+        std::fflush(stderr);
+        dup2(saved_, STDERR_FILENO);
+        close(saved_);
+    }
+    SilenceStderr(const SilenceStderr&) = delete;
+    SilenceStderr& operator=(const SilenceStderr&) = delete;
+
+private:
+    int saved_ = -1;
+};
+
+// OpenEXR 3.1 and libpng 1.6 trust sizes in a file while reading it, before OpenImageIO sees
+// the spec: an EXR attribute or a PNG text chunk claiming 2 GB makes a corrupt 400-byte file
+// take gigabytes (found by fuzz/fuzz_image). So these containers are walked here first and
+// every size must fit in the file: EXR (magic, version/flags, then per part attributes
+// "name\0type\0size value" ending in an empty name; data windows must also fit max_pixels),
+// PNG (signature, then chunks "length type data crc" up to IEND). Returns false with a
+// message otherwise; what the scan cannot follow is left to the codec to reject.
+bool png_chunks_fit(std::FILE* f, long long file_size, const std::string& path, std::string& error) {
+    long long at = 8;
+    unsigned char head[8];
+    while (at + 12 <= file_size) {
+        if (std::fseek(f, static_cast<long>(at), SEEK_SET) != 0 || std::fread(head, 1, 8, f) != 8) return true;
+        const long long length = static_cast<long long>(head[0]) << 24 | head[1] << 16 | head[2] << 8 | head[3];
+        if (length > file_size - at - 12) {
+            error = "'" + path + "': PNG chunk '" + std::string(reinterpret_cast<const char*>(head + 4), 4) +
+                    "' at byte " + std::to_string(at) + " claims " + std::to_string(length) +
+                    " bytes, more than the file holds";
+            return false;
+        }
+        if (std::memcmp(head + 4, "IEND", 4) == 0) break;
+        at += 12 + length;
+    }
+    return true;
+}
+
+bool container_sizes_fit(const std::string& path, long long max_pixels, std::string& error) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return true;  // OpenImageIO reports why
+    std::vector<unsigned char> head(1 << 16);
+    head.resize(std::fread(head.data(), 1, head.size(), f));
+    long long file_size = -1;
+    if (std::fseek(f, 0, SEEK_END) == 0) file_size = std::ftell(f);
+    static const unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    const bool png = head.size() >= 8 && std::memcmp(head.data(), kPngSignature, 8) == 0;
+    const bool png_fits = !png || file_size < 0 || png_chunks_fit(f, file_size, path, error);
+    std::fclose(f);
+    if (png) return png_fits;
+    auto u32 = [&](std::size_t at) {
+        return static_cast<uint32_t>(head[at]) | static_cast<uint32_t>(head[at + 1]) << 8 |
+               static_cast<uint32_t>(head[at + 2]) << 16 | static_cast<uint32_t>(head[at + 3]) << 24;
+    };
+    if (head.size() < 8 || u32(0) != 20000630u || file_size < 0) return true;  // not EXR
+    const bool multipart = (u32(4) & 0x1000u) != 0;
+    std::size_t at = 8;
+    while (at < head.size()) {
+        if (head[at] == 0) {  // end of a header; a multi-part file ends with an empty one
+            ++at;
+            if (!multipart || (at < head.size() && head[at] == 0)) break;
+            continue;
+        }
+        const auto zero_after = [&](std::size_t from) {
+            return static_cast<std::size_t>(std::find(head.begin() + static_cast<std::ptrdiff_t>(from), head.end(), 0) -
+                                            head.begin());
+        };
+        const std::size_t name_end = zero_after(at);
+        if (name_end >= head.size()) break;
+        const std::size_t type_end = zero_after(name_end + 1);
+        if (type_end + 4 >= head.size()) break;
+        const std::string name(reinterpret_cast<const char*>(&head[at]), name_end - at);
+        const long long size = u32(type_end + 1);
+        const std::size_t value = type_end + 5;
+        if (size > file_size - static_cast<long long>(value)) {
+            error = "'" + path + "': EXR attribute '" + name.substr(0, 64) + "' claims " + std::to_string(size) +
+                    " bytes, more than the file holds";
+            return false;
+        }
+        if (static_cast<std::size_t>(size) > head.size() - value) break;  // beyond what was read
+        if (name == "dataWindow" && size == 16) {
+            const auto s32 = [&](std::size_t i) { return static_cast<long long>(static_cast<int32_t>(u32(value + 4 * i))); };
+            const long long w = s32(2) - s32(0) + 1, h = s32(3) - s32(1) + 1;
+            if (w <= 0 || h <= 0 || w > max_pixels / h) {
+                error = "'" + path + "': EXR data window " + std::to_string(w) + "x" + std::to_string(h) +
+                        (w <= 0 || h <= 0 ? " is empty" : " exceeds the limit of " + std::to_string(max_pixels) + " pixels");
+                return false;
+            }
+        }
+        at = value + static_cast<std::size_t>(size);
+    }
+    return true;
+}
+
+}  // namespace
+
+bool read_image(const std::string& path, Image& image, std::string& error, const ImageReadOptions& options) {
+    SilenceStderr quiet(options.quiet);
+    const long long max_pixels = options.max_pixels > 0 ? options.max_pixels : kMaxImagePixels;
+    if (!container_sizes_fit(path, max_pixels, error)) return false;
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+        std::string why = OIIO::geterror();
+        if (why.empty()) why = "cannot open";
+        error = "cannot read '" + path + "': " + why;
+        return false;
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1 || spec.deep) {
+        error = "'" + path + "' is not a flat 2D image with pixels";
+        return false;
+    }
+    if (spec.width > max_pixels / spec.height) {
+        error = "'" + path + "' is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                ", more than the limit of " + std::to_string(max_pixels) + " pixels";
+        return false;
+    }
+    // Only the channels used: RGB, or grey (channel 0) when there are fewer than 3.
+    const int nch = spec.nchannels >= 3 ? 3 : 1;
+    std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * nch);
+    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, pixels.data())) {
+        error = "cannot decode '" + path + "': " + in->geterror();
+        return false;
+    }
+    in->close();
+    const bool encoded = spec.format.basetype != OIIO::TypeDesc::FLOAT &&
+                         spec.format.basetype != OIIO::TypeDesc::HALF &&
+                         spec.format.basetype != OIIO::TypeDesc::DOUBLE;
+    image.width = spec.width;
+    image.height = spec.height;
+    const std::size_t n = static_cast<std::size_t>(spec.width) * spec.height;
+    image.rgb.resize(n * 3);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (int c = 0; c < 3; ++c) {
+            const int src = nch >= 3 ? c : 0;  // 1 or 2 channels: grey (+ alpha)
+            float v = pixels[i * nch + src];
+            if (!std::isfinite(v)) {
+                error = "'" + path + "' holds NaN or infinite values";
+                return false;
+            }
+            image.rgb[i * 3 + c] = encoded ? srgb_to_linear(v) : v;
+        }
+    }
+    return true;
+}
+
+}  // namespace rtpbr

@@ -1,0 +1,36 @@
+// Image reading of rtpbr-diff (OpenImageIO), a function of its own so the fuzzer
+// (fuzz/fuzz_image.cpp) exercises exactly what the command-line tool runs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rtpbr {
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<float> rgb;  // linear
+};
+
+// Largest image read (width × height): 8192 × 8192. rtpbr-diff keeps about 30 floats per pixel
+// of the two images, so this bounds its memory to a few GB; past it read_image fails with a
+// message instead of letting a corrupt or hostile header claim arbitrary memory.
+constexpr long long kMaxImagePixels = 1LL << 26;
+
+struct ImageReadOptions {
+    // Silences the codecs' own stderr chatter (libpng) while reading; OpenImageIO also
+    // returns it through geterror(), which is reported. The fuzzer turns it off so that
+    // sanitizer reports stay visible.
+    bool quiet = true;
+    // Images with more pixels are refused (see kMaxImagePixels); 0 = kMaxImagePixels.
+    long long max_pixels = kMaxImagePixels;
+};
+
+// Reads any format OpenImageIO reads into linear RGB: integer formats are taken as sRGB and
+// decoded, float formats as linear, grey is replicated, alpha and extra channels ignored.
+// On failure returns false with a one-sentence reason in error.
+bool read_image(const std::string& path, Image& image, std::string& error,
+                const ImageReadOptions& options = ImageReadOptions());
+
+}  // namespace rtpbr
