@@ -49,6 +49,7 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         v->intensity = peak;
         for (int c = 0; c < 3; ++c) v->color[c] = peak > 0.0f ? l->radiance[c] / peak : 1.0f;
         v->two_sided = l->two_sided;
+        v->material = l->material >= 0 && (uint32_t)l->material < in->material_count ? l->material : -1;
         if (l->primitive >= 0 && (uint32_t)l->primitive < in->primitive_count) s->primitive_is_light[l->primitive] = true;
     }
     return true;
@@ -92,9 +93,12 @@ rtpbr_result viewer_scene_upload(const viewer_scene *s, rtpbr_context *ctx, rtpb
         d->vertex_count = l->vertex_count;
         for (int c = 0; c < 3; ++c) d->emission[c] = l->color[c] * l->intensity;
         d->two_sided = l->two_sided;
+        // The light's surface: its source material (as the engine's loader path draws it)
+        // with the edited emission, or a black emitter.
         rtpbr_material_desc *m = &materials[s->material_count + i];
+        if (l->material >= 0) *m = s->materials[l->material];
+        else m->roughness = 1.0f;
         memcpy(m->emission, d->emission, sizeof m->emission);
-        m->roughness = 1.0f;
         m->double_sided = l->two_sided;
         float *pos = light_positions + (size_t)i * RTPBR_MAX_POLYGON_VERTICES * 3;
         float *nrm = light_normals + (size_t)i * RTPBR_MAX_POLYGON_VERTICES * 3;

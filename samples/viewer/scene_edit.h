@@ -14,6 +14,7 @@ typedef struct viewer_light {
     float color[3];     // max component 1
     float intensity;    // radiance = color * intensity
     bool two_sided;
+    int32_t material;   // the emissive material it came from (its surface), -1: none
 } viewer_light;
 
 typedef struct viewer_scene {

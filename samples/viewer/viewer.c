@@ -3,7 +3,10 @@
 // camera, editable polygonal lights and materials, the engine's model toggles, a split view
 // against an oracle reference image, screenshots. Status and frame time are in the title bar.
 //   usage: rtpbr-viewer [SCENE.gltf] [--reference REF.exr] [--width W] [--height H]
-//                       [--frames N --screenshot OUT.png] [--validation]
+//                       [--frames N --screenshot OUT.png] [--keys KEYS] [--validation]
+// --keys replays key presses before the first frame (scripted screenshots): upper-case
+// letters, digits, [ ] - = as themselves; l r u d = arrow keys, p n = PgUp PgDn, t = Tab,
+// h = Home.
 #include "reference.h"
 #include "scene_edit.h"
 #include "window.h"
@@ -233,6 +236,30 @@ static void on_key(GLFWwindow *window, int key, int scancode, int action, int mo
     a->last_title = 0.0; // refresh now
 }
 
+// Replays --keys (see the top of this file); false for a character with no key.
+static bool replay_keys(app *a, const char *keys)
+{
+    for (const char *c = keys; *c; ++c) {
+        int key = 0;
+        if ((*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '[' || *c == ']' || *c == '-' || *c == '=')
+            key = *c; // GLFW key codes of these are their ASCII codes
+        else if (*c == 'l') key = GLFW_KEY_LEFT;
+        else if (*c == 'r') key = GLFW_KEY_RIGHT;
+        else if (*c == 'u') key = GLFW_KEY_UP;
+        else if (*c == 'd') key = GLFW_KEY_DOWN;
+        else if (*c == 'p') key = GLFW_KEY_PAGE_UP;
+        else if (*c == 'n') key = GLFW_KEY_PAGE_DOWN;
+        else if (*c == 't') key = GLFW_KEY_TAB;
+        else if (*c == 'h') key = GLFW_KEY_HOME;
+        if (!key) {
+            fprintf(stderr, "rtpbr-viewer: --keys: no key for '%c'\n", *c);
+            return false;
+        }
+        on_key(a->win.glfw, key, 0, GLFW_PRESS, 0);
+    }
+    return true;
+}
+
 static void on_button(GLFWwindow *window, int button, int action, int mods)
 {
     (void)mods;
@@ -315,6 +342,7 @@ static bool sync_engine(app *a)
 int main(int argc, char **argv)
 {
     const char *scene_path = RTPBR_VIEWER_DEFAULT_SCENE, *reference_path = NULL, *screenshot_path = NULL;
+    const char *keys = "";
     long frames = 0, width = 960, height = 720;
     bool validation = false;
     for (int i = 1; i < argc; ++i) {
@@ -324,11 +352,12 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--frames") && has_value) frames = strtol(argv[++i], NULL, 10);
         else if (!strcmp(argv[i], "--width") && has_value) width = strtol(argv[++i], NULL, 10);
         else if (!strcmp(argv[i], "--height") && has_value) height = strtol(argv[++i], NULL, 10);
+        else if (!strcmp(argv[i], "--keys") && has_value) keys = argv[++i];
         else if (!strcmp(argv[i], "--validation")) validation = true;
         else if (argv[i][0] != '-') scene_path = argv[i];
         else {
             fprintf(stderr, "usage: rtpbr-viewer [SCENE.gltf] [--reference REF.exr] [--width W] [--height H]\n"
-                            "                    [--frames N --screenshot OUT.png] [--validation]\n");
+                            "                    [--frames N --screenshot OUT.png] [--keys KEYS] [--validation]\n");
             return 2;
         }
     }
@@ -359,6 +388,7 @@ int main(int argc, char **argv)
         goto done;
     }
     camera_home(a);
+    if (!replay_keys(a, keys)) goto done;
     if (!frames) fputs(help_text, stdout);
     bool screenshot_written = false;
     for (long frame = 0; !glfwWindowShouldClose(a->win.glfw) && (!frames || frame < frames);) {
