@@ -1,0 +1,108 @@
+// rtpbr oracle: Embree device and scenes.
+#include "embree_scene.h"
+
+#include "internal.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace rtpbr_oracle {
+
+namespace {
+
+void embreeErrorCallback(void *user, RTCError code, const char *message) {
+    auto *errors = static_cast<DeviceErrors *>(user);
+    std::lock_guard<std::mutex> lock(errors->mutex);
+    if (errors->first.empty())
+        errors->first = fmt("Embree error %d: %s", int(code), message ? message : "(no message)");
+}
+
+unsigned attachTriangles(RTCDevice device, RTCScene scene, const float *positions, uint32_t vertexCount,
+                         const uint32_t *indices, uint32_t triangleCount) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (!g)
+        return RTC_INVALID_GEOMETRY_ID;
+    auto *v = static_cast<float *>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertexCount));
+    auto *ix = static_cast<uint32_t *>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triangleCount));
+    if (!v || !ix) {
+        rtcReleaseGeometry(g);
+        return RTC_INVALID_GEOMETRY_ID;
+    }
+    std::memcpy(v, positions, sizeof(float) * 3 * vertexCount);
+    std::memcpy(ix, indices, sizeof(uint32_t) * 3 * triangleCount);
+    rtcCommitGeometry(g);
+    unsigned id = rtcAttachGeometry(scene, g);
+    rtcReleaseGeometry(g);
+    return id;
+}
+
+unsigned attachLight(RTCDevice device, RTCScene scene, const rtpbr_scene_light &L) {
+    float pos[3 * RTPBR_SCENE_MAX_POLYGON_VERTICES];
+    uint32_t idx[3 * RTPBR_SCENE_MAX_POLYGON_VERTICES];
+    for (uint32_t k = 0; k < L.vertex_count; k++)
+        for (int c = 0; c < 3; c++)
+            pos[3 * k + c] = L.vertices[k][c];
+    uint32_t tris = 0;
+    for (uint32_t k = 1; k + 1 < L.vertex_count; k++, tris++) {
+        idx[3 * tris] = 0;
+        idx[3 * tris + 1] = k;
+        idx[3 * tris + 2] = k + 1;
+    }
+    return attachTriangles(device, scene, pos, L.vertex_count, idx, tris);
+}
+
+} // namespace
+
+Result buildEmbree(const rtpbr_scene &scene, EmbreeScene *es, std::string *error) {
+    es->device = rtcNewDevice("threads=1,user_threads=0");
+    if (!es->device) {
+        *error = fmt("cannot create the Embree device (error %d)", int(rtcGetDeviceError(nullptr)));
+        return Result::Embree;
+    }
+    rtcSetDeviceErrorFunction(es->device, embreeErrorCallback, &es->errors);
+    es->full = rtcNewScene(es->device);
+    es->lightsOnly = rtcNewScene(es->device);
+    if (!es->full || !es->lightsOnly) {
+        *error = es->errors.first.empty() ? "cannot create Embree scenes" : es->errors.first;
+        return Result::Embree;
+    }
+    rtcSetSceneBuildQuality(es->full, RTC_BUILD_QUALITY_HIGH);
+    // Emissive primitives are represented by their light polygons (which the loader made
+    // from exactly their triangles), so that every light hit knows its light.
+    std::vector<bool> isLightPrimitive(scene.primitive_count, false);
+    for (uint32_t l = 0; l < scene.light_count; l++)
+        if (scene.lights[l].primitive >= 0 && uint32_t(scene.lights[l].primitive) < scene.primitive_count)
+            isLightPrimitive[uint32_t(scene.lights[l].primitive)] = true;
+    for (uint32_t p = 0; p < scene.primitive_count; p++) {
+        const rtpbr_scene_primitive &prim = scene.primitives[p];
+        if (isLightPrimitive[p] || prim.index_count < 3)
+            continue;
+        unsigned id = attachTriangles(es->device, es->full, prim.positions, prim.vertex_count, prim.indices,
+                                      prim.index_count / 3);
+        if (id == RTC_INVALID_GEOMETRY_ID)
+            break;
+        es->fullGeoms.resize(std::max<size_t>(es->fullGeoms.size(), id + 1));
+        es->fullGeoms[id] = {false, p};
+    }
+    for (uint32_t l = 0; l < scene.light_count; l++) {
+        unsigned id = attachLight(es->device, es->full, scene.lights[l]);
+        unsigned id2 = attachLight(es->device, es->lightsOnly, scene.lights[l]);
+        if (id == RTC_INVALID_GEOMETRY_ID || id2 == RTC_INVALID_GEOMETRY_ID)
+            break;
+        es->fullGeoms.resize(std::max<size_t>(es->fullGeoms.size(), id + 1));
+        es->fullGeoms[id] = {true, l};
+        es->lightOnlyGeoms.resize(std::max<size_t>(es->lightOnlyGeoms.size(), id2 + 1));
+        es->lightOnlyGeoms[id2] = l;
+    }
+    rtcCommitScene(es->full);
+    rtcCommitScene(es->lightsOnly);
+    if (!es->errors.first.empty()) {
+        *error = es->errors.first;
+        return Result::Embree;
+    }
+    return Result::Success;
+}
+
+} // namespace rtpbr_oracle

@@ -1,0 +1,213 @@
+// rtpbr oracle: area light sampling (see lights.h).
+#include "lights.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rtpbr_oracle {
+
+namespace {
+
+using glm::dvec3;
+constexpr double kPi = 3.14159265358979323846;
+
+// Angle at vertex P of the spherical triangle (P, Q, R) of unit vectors.
+double vertexAngle(dvec3 P, dvec3 Q, dvec3 R) {
+    dvec3 n1 = glm::cross(P, Q);
+    dvec3 n2 = glm::cross(P, R);
+    double l = glm::length(n1) * glm::length(n2);
+    if (!(l > 0.0))
+        return 0.0;
+    return std::acos(glm::clamp(glm::dot(n1, n2) / l, -1.0, 1.0));
+}
+
+// Van Oosterom & Strackee 1983, "The Solid Angle of a Plane Triangle":
+// tan(Omega / 2) = |a . (b x c)| / (1 + a.b + b.c + c.a) for unit a, b, c.
+double triangleSolidAngle(dvec3 a, dvec3 b, dvec3 c) {
+    double num = std::fabs(glm::dot(a, glm::cross(b, c)));
+    double den = 1.0 + glm::dot(a, b) + glm::dot(b, c) + glm::dot(c, a);
+    double o = 2.0 * std::atan2(num, den);
+    return o < 0.0 ? o + 2.0 * kPi : o;
+}
+
+// Arvo 1995, "Stratified Sampling of Spherical Triangles", fig. 2: a point uniformly
+// distributed in solid angle on the spherical triangle (A, B, C).
+dvec3 sampleSphericalTriangle(dvec3 A, dvec3 B, dvec3 C, double u1, double u2) {
+    double alpha = vertexAngle(A, B, C);
+    double beta = vertexAngle(B, C, A);
+    double gamma = vertexAngle(C, A, B);
+    double area = alpha + beta + gamma - kPi;
+    double aHat = u1 * area;
+    double s = std::sin(aHat - alpha);
+    double t = std::cos(aHat - alpha);
+    double u = t - std::cos(alpha);
+    double v = s + std::sin(alpha) * glm::dot(A, B);
+    double den = (v * s + u * t) * std::sin(alpha);
+    double q = den != 0.0 ? ((v * t - u * s) * std::cos(alpha) - v) / den : 1.0;
+    q = glm::clamp(q, -1.0, 1.0);
+    dvec3 cPerp = C - glm::dot(C, A) * A;
+    double lc = glm::length(cPerp);
+    dvec3 cHat = lc > 0.0 ? q * A + std::sqrt(std::max(0.0, 1.0 - q * q)) * (cPerp / lc) : A;
+    double z = 1.0 - u2 * (1.0 - glm::dot(cHat, B));
+    dvec3 pPerp = cHat - glm::dot(cHat, B) * B;
+    double lp = glm::length(pPerp);
+    if (!(lp > 0.0))
+        return B;
+    return z * B + std::sqrt(std::max(0.0, 1.0 - z * z)) * (pPerp / lp);
+}
+
+float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+} // namespace
+
+LightSet::LightSet(const rtpbr_scene &scene, LightSampling mode) : mode_(mode) {
+    double total = 0.0;
+    for (uint32_t i = 0; i < scene.light_count; i++) {
+        const rtpbr_scene_light &s = scene.lights[i];
+        Light L;
+        for (uint32_t k = 0; k < s.vertex_count && k < RTPBR_SCENE_MAX_POLYGON_VERTICES; k++)
+            L.v.push_back(dvec3(s.vertices[k][0], s.vertices[k][1], s.vertices[k][2]));
+        L.n = glm::normalize(dvec3(s.normal[0], s.normal[1], s.normal[2]));
+        L.radiance = glm::vec3(s.radiance[0], s.radiance[1], s.radiance[2]);
+        L.twoSided = s.two_sided;
+        L.area = 0.0;
+        for (size_t k = 1; k + 1 < L.v.size(); k++) {
+            double a = 0.5 * glm::length(glm::cross(L.v[k] - L.v[0], L.v[k + 1] - L.v[0]));
+            L.triArea.push_back(a);
+            L.area += a;
+        }
+        double power = double(std::max(luminance(L.radiance), 0.0f)) * L.area * (L.twoSided ? 2.0 : 1.0);
+        if (!(power > 0.0) || !std::isfinite(power))
+            power = 0.0;
+        total += power;
+        cdf_.push_back(total);
+        lights_.push_back(std::move(L));
+    }
+    if (total > 0.0)
+        for (double &c : cdf_)
+            c /= total;
+    else
+        cdf_.assign(cdf_.size(), 1.0); // nothing emits: nothing is ever selected
+}
+
+double LightSet::selectionPdf(uint32_t l) const {
+    double prev = l == 0 ? 0.0 : cdf_[l - 1];
+    return cdf_[l] - prev;
+}
+
+bool LightSet::facing(const Light &L, dvec3 p) const {
+    return L.twoSided || glm::dot(p - L.v[0], L.n) > 0.0;
+}
+
+glm::vec3 LightSet::emitted(uint32_t l, glm::vec3 wi) const {
+    const Light &L = lights_[l];
+    if (L.twoSided || glm::dot(dvec3(wi), L.n) < 0.0)
+        return L.radiance;
+    return glm::vec3(0.0f);
+}
+
+double LightSet::fanSolidAngles(const Light &L, dvec3 p, double *omega) const {
+    dvec3 a = glm::normalize(L.v[0] - p);
+    double sum = 0.0;
+    for (size_t k = 1; k + 1 < L.v.size(); k++) {
+        dvec3 b = glm::normalize(L.v[k] - p);
+        dvec3 c = glm::normalize(L.v[k + 1] - p);
+        omega[k - 1] = triangleSolidAngle(a, b, c);
+        sum += omega[k - 1];
+    }
+    return sum;
+}
+
+bool LightSet::sample(glm::vec3 pf, float uLight, float u1, float u2, LightSample *s) const {
+    if (lights_.empty())
+        return false;
+    uint32_t l = uint32_t(std::lower_bound(cdf_.begin(), cdf_.end(), double(uLight)) - cdf_.begin());
+    // lower_bound can land on a zero-probability light only when uLight equals a CDF step.
+    while (l < cdf_.size() && selectionPdf(l) <= 0.0)
+        l++;
+    if (l >= lights_.size())
+        return false;
+    const Light &L = lights_[l];
+    dvec3 p(pf);
+    if (!facing(L, p))
+        return false;
+    double omega[RTPBR_SCENE_MAX_POLYGON_VERTICES];
+    double total = mode_ == LightSampling::SolidAngle ? fanSolidAngles(L, p, omega) : 0.0;
+    bool bySolidAngle = mode_ == LightSampling::SolidAngle && total >= kMinSolidAngle;
+    const std::vector<double> &weights = L.triArea;
+    double wsum = bySolidAngle ? total : L.area;
+    // Pick a fan triangle and reuse u1 within it.
+    double x = double(u1) * wsum;
+    size_t k = 0;
+    size_t n = weights.size();
+    for (; k + 1 < n; k++) {
+        double w = bySolidAngle ? omega[k] : weights[k];
+        if (x < w)
+            break;
+        x -= w;
+    }
+    double wk = bySolidAngle ? omega[k] : weights[k];
+    double v1 = wk > 0.0 ? glm::clamp(x / wk, 0.0, 1.0) : 0.0;
+    dvec3 q;
+    dvec3 dir;
+    double dist;
+    if (bySolidAngle) {
+        dvec3 A = glm::normalize(L.v[0] - p);
+        dvec3 B = glm::normalize(L.v[k + 1] - p);
+        dvec3 C = glm::normalize(L.v[k + 2] - p);
+        dir = sampleSphericalTriangle(A, B, C, v1, double(u2));
+        // Distance to the light plane along dir.
+        double dn = glm::dot(dir, L.n);
+        if (dn == 0.0)
+            return false;
+        dist = glm::dot(L.v[0] - p, L.n) / dn;
+        if (!(dist > 0.0))
+            return false;
+    } else {
+        // Uniform point on the triangle (v0, v[k+1], v[k+2]) by the square-root map.
+        double su = std::sqrt(v1);
+        double b0 = 1.0 - su;
+        double b1 = su * (1.0 - double(u2));
+        q = b0 * L.v[0] + b1 * L.v[k + 1] + (1.0 - b0 - b1) * L.v[k + 2];
+        dvec3 d = q - p;
+        dist = glm::length(d);
+        if (!(dist > 0.0))
+            return false;
+        dir = d / dist;
+    }
+    s->wi = glm::vec3(dir);
+    s->distance = float(dist);
+    s->light = l;
+    s->radiance = emitted(l, s->wi);
+    // The same density pdf() computes, from the quantities at hand.
+    double sel = selectionPdf(l);
+    if (bySolidAngle) {
+        s->pdf = float(sel / total);
+    } else {
+        double cosL = std::fabs(glm::dot(dir, L.n));
+        s->pdf = cosL > 0.0 && L.area > 0.0 ? float(sel * dist * dist / (cosL * L.area)) : 0.0f;
+    }
+    return s->pdf > 0.0f && std::isfinite(s->pdf);
+}
+
+float LightSet::pdf(glm::vec3 pf, uint32_t l, glm::vec3 wi, float distance) const {
+    if (l >= lights_.size())
+        return 0.0f;
+    const Light &L = lights_[l];
+    dvec3 p(pf);
+    if (!facing(L, p))
+        return 0.0f;
+    double sel = selectionPdf(l);
+    if (mode_ == LightSampling::SolidAngle) {
+        double omega[RTPBR_SCENE_MAX_POLYGON_VERTICES];
+        double total = fanSolidAngles(L, p, omega);
+        if (total >= kMinSolidAngle)
+            return float(sel / total);
+    }
+    double cosL = std::fabs(glm::dot(dvec3(wi), L.n));
+    if (!(cosL > 0.0) || !(L.area > 0.0))
+        return 0.0f;
+    return float(sel * double(distance) * double(distance) / (cosL * L.area));
+}
+
+} // namespace rtpbr_oracle

@@ -1,0 +1,70 @@
+// rtpbr oracle: sampling the polygonal area lights.
+//
+// A light is a convex planar polygon (3..8 vertices) emitting constant radiance from its
+// front face (both faces if two-sided). One light is picked with probability proportional
+// to its power; a point on it is then sampled
+//   - SolidAngle (default): uniformly in the solid angle the polygon subtends: the fan
+//     triangles are picked by solid angle and each is sampled by Arvo 1995, "Stratified
+//     Sampling of Spherical Triangles"; polygons subtending less than kMinSolidAngle fall
+//     back to area sampling (Arvo's formulas lose precision there, and both are equally
+//     good for small lights);
+//   - Area: uniformly in area (the fan triangles by area), for comparison.
+// The density of a direction is a deterministic function of (point, light, direction),
+// which multiple importance sampling needs (pdf()).
+#ifndef RTPBR_ORACLE_LIGHTS_H
+#define RTPBR_ORACLE_LIGHTS_H
+
+#include <rtpbr/rtpbr_scene.h>
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+namespace rtpbr_oracle {
+
+enum class LightSampling { SolidAngle, Area };
+
+struct LightSample {
+    glm::vec3 wi;       // unit direction from the shading point to the light point
+    float distance;     // to the light point
+    glm::vec3 radiance; // emitted towards the shading point
+    float pdf;          // solid-angle density, including the light selection probability
+    uint32_t light;
+};
+
+class LightSet {
+public:
+    static constexpr double kMinSolidAngle = 1e-6;
+
+    LightSet(const rtpbr_scene &scene, LightSampling mode);
+
+    size_t size() const { return lights_.size(); }
+    bool empty() const { return lights_.empty(); }
+    // Radiance leaving light l towards direction -wi (wi points at the light).
+    glm::vec3 emitted(uint32_t l, glm::vec3 wi) const;
+    bool sample(glm::vec3 p, float uLight, float u1, float u2, LightSample *s) const;
+    // Density (solid angle, with selection) of sampling direction wi towards light l from p.
+    float pdf(glm::vec3 p, uint32_t l, glm::vec3 wi, float distance) const;
+
+private:
+    struct Light {
+        std::vector<glm::dvec3> v; // vertices
+        glm::dvec3 n;              // unit normal of the emitting face
+        glm::vec3 radiance;
+        bool twoSided;
+        double area;
+        std::vector<double> triArea; // fan triangles (v0, v[i], v[i+1])
+    };
+    bool facing(const Light &L, glm::dvec3 p) const;
+    // Solid angles of the fan triangles seen from p; returns their sum.
+    double fanSolidAngles(const Light &L, glm::dvec3 p, double *omega) const;
+    double selectionPdf(uint32_t l) const;
+
+    std::vector<Light> lights_;
+    std::vector<double> cdf_; // light selection by power
+    LightSampling mode_;
+};
+
+} // namespace rtpbr_oracle
+
+#endif

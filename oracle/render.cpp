@@ -1,0 +1,594 @@
+// rtpbr oracle: the path tracer (integrator, tiles, threads, accumulation).
+#include "oracle.h"
+
+#include "bsdf.h"
+#include "embree_scene.h"
+#include "internal.h"
+#include "microsurface.h"
+#include "rng.h"
+#include "texture.h"
+
+#include <rtpbr/fresnel.h>
+#include <rtpbr/ndf.h>
+
+#include <embree3/rtcore.h>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+namespace rtpbr_oracle {
+
+
+namespace {
+
+using glm::vec3;
+
+constexpr uint32_t kTileSize = 16;
+// Walks per node of a dielectric layer's albedo table (standard error < 0.002 per node).
+constexpr int kLayerAlbedoWalks = 512;
+
+// The IOR of a dielectric layer: glTF's ior clamped to [1, 4] (ior 0, "F0 = 1" in
+// KHR_materials_ior, becomes 4: F0 = 0.36; noted in README.md).
+float layerEta(float ior) { return ior > 1.0f ? std::min(ior, 4.0f) : (ior == 0.0f ? 4.0f : 1.0f); }
+constexpr uint32_t kRussianRouletteDepth = 3;
+
+
+uint32_t imageHeight(const rtpbr_scene &scene, const RenderSettings &s, uint32_t width) {
+    if (s.height)
+        return s.height;
+    float aspect = s.camera < scene.camera_count ? scene.cameras[s.camera].aspect : 0.0f;
+    if (aspect > 0.0f && std::isfinite(aspect))
+        return std::max(1u, uint32_t(std::lround(double(width) / aspect)));
+    return std::max(1u, width * 3 / 4);
+}
+
+// Everything that changes the image except the sample range, the region and the thread count.
+uint64_t settingsHash(const RenderSettings &s, uint32_t w, uint32_t h) {
+    uint64_t x = mix64(0x6f7261636c65ull);
+    auto add = [&x](uint64_t v) { x = mix64(x ^ v); };
+    add(w);
+    add(h);
+    add(s.camera);
+    add(s.spp);
+    add(s.seed);
+    add(s.directOnly ? 1 : s.maxDepth);
+    add(s.noShadows);
+    add(s.singleScatter);
+    add(uint64_t(s.lightSampling));
+    return x;
+}
+
+// ---- the path tracer -----------------------------------------------------------------------
+
+struct Hit {
+    bool found = false;
+    float t = 0.0f;
+    unsigned geomID = 0, primID = 0;
+    float u = 0.0f, v = 0.0f;
+};
+
+struct SurfacePoint {
+    vec3 p = vec3(0.0f);
+    vec3 ng = vec3(0.0f); // geometric normal, facing the incoming ray
+    vec3 ns = vec3(0.0f); // shading normal, same side as ng
+    vec3 tangent = vec3(0.0f); // shading tangent (anisotropy direction), orthogonal to ns
+    int32_t light = -1;
+    int32_t material = -1;
+    float uv[2] = {0.0f, 0.0f};
+};
+
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited".
+void orthonormalBasis(vec3 n, vec3 *t, vec3 *b) {
+    float sign = std::copysign(1.0f, n.z);
+    float a = -1.0f / (sign + n.z);
+    float bb = n.x * n.y * a;
+    *t = vec3(1.0f + sign * n.x * n.x * a, sign * bb, -sign * n.x);
+    *b = vec3(bb, sign + n.y * n.y * a, -n.y);
+}
+
+class Integrator {
+public:
+    Integrator(const rtpbr_scene &scene, const EmbreeScene &es, const LightSet &lights, const RenderSettings &s,
+               const std::vector<Texture> &textures, const std::vector<const LayerAlbedo *> &layers)
+        : scene_(scene), es_(es), lights_(lights), s_(s), textures_(textures), layers_(layers) {
+        maxDepth_ = s.directOnly ? 1u : std::max(1u, s.maxDepth);
+    }
+
+    uint64_t rays = 0;
+
+    vec3 radiance(vec3 org, vec3 dir, Rng &rng) {
+        vec3 L(0.0f), beta(1.0f);
+        vec3 prevP(0.0f);
+        float prevPdf = 0.0f;
+        for (uint32_t depth = 0;; depth++) {
+            Hit h = intersect(es_.full, org, dir, std::numeric_limits<float>::infinity());
+            if (!h.found)
+                break;
+            SurfacePoint sp = surfacePoint(h, dir);
+            // Emission: seen directly, or found by BSDF sampling (MIS against light sampling;
+            // with noShadows the unoccluded light-only ray below did that already).
+            if (sp.light >= 0 && (depth == 0 || !s_.noShadows)) {
+                vec3 Le = lights_.emitted(uint32_t(sp.light), dir);
+                if (Le.x > 0.0f || Le.y > 0.0f || Le.z > 0.0f) {
+                    float w = 1.0f;
+                    if (depth > 0)
+                        w = misWeight(prevPdf, lights_.pdf(prevP, uint32_t(sp.light), dir, h.t));
+                    L += beta * Le * w;
+                }
+            }
+            if (depth >= maxDepth_ || sp.material < 0)
+                break;
+
+            SurfaceMaterial mat = material(sp);
+            vec3 bt = glm::cross(sp.ns, sp.tangent);
+            auto toLocal = [&](vec3 w) { return vec3(glm::dot(w, sp.tangent), glm::dot(w, bt), glm::dot(w, sp.ns)); };
+            auto toWorld = [&](vec3 w) { return w.x * sp.tangent + w.y * bt + w.z * sp.ns; };
+            vec3 wo = toLocal(-dir);
+            Bsdf bsdf(mat, s_.singleScatter, wo);
+            if (bsdf.isBlack())
+                break;
+            vec3 origin = offset(sp, sp.ng);
+
+            // Light sampling.
+            LightSample ls;
+            float ul = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            if (lights_.sample(sp.p, ul, u1, u2, &ls) && glm::dot(ls.wi, sp.ng) > 0.0f &&
+                (ls.radiance.x > 0.0f || ls.radiance.y > 0.0f || ls.radiance.z > 0.0f)) {
+                vec3 wiL = toLocal(ls.wi);
+                vec3 f = bsdf.eval(wiL, rng);
+                if (f.x > 0.0f || f.y > 0.0f || f.z > 0.0f) {
+                    bool visible = s_.noShadows || unoccluded(origin, sp.p + ls.wi * ls.distance);
+                    if (visible)
+                        L += beta * f * ls.radiance * (misWeight(ls.pdf, bsdf.pdfMis(wiL)) / ls.pdf);
+                }
+            }
+
+            // BSDF sampling.
+            BsdfSample bs;
+            if (!bsdf.sample(rng, &bs))
+                break;
+            vec3 wi = glm::normalize(toWorld(bs.wi));
+            if (!(glm::dot(wi, sp.ng) > 0.0f))
+                break;
+            beta *= bs.weight;
+            if (!(beta.x > 0.0f || beta.y > 0.0f || beta.z > 0.0f))
+                break;
+            if (s_.noShadows) {
+                Hit lh = intersect(es_.lightsOnly, origin, wi, std::numeric_limits<float>::infinity());
+                if (lh.found) {
+                    uint32_t l = es_.lightOnlyGeoms[lh.geomID];
+                    vec3 Le = lights_.emitted(l, wi);
+                    L += beta * Le * misWeight(bs.pdfMis, lights_.pdf(sp.p, l, wi, lh.t));
+                }
+                if (depth + 1 >= maxDepth_)
+                    break; // the next vertex would only add emission, already counted
+            }
+            if (depth + 1 >= kRussianRouletteDepth) {
+                float q = std::min(0.95f, std::max(beta.x, std::max(beta.y, beta.z)));
+                if (rng.uniform() >= q)
+                    break;
+                beta /= q;
+            }
+            prevP = sp.p;
+            prevPdf = bs.pdfMis;
+            org = origin;
+            dir = wi;
+        }
+        return L;
+    }
+
+private:
+    static float misWeight(float a, float b) {
+        // Balance heuristic (Veach 1997, sec. 9.2).
+        return a > 0.0f ? a / (a + b) : 0.0f;
+    }
+
+    Hit intersect(RTCScene scene, vec3 org, vec3 dir, float tfar) {
+        rays++;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRayHit rh;
+        rh.ray.org_x = org.x;
+        rh.ray.org_y = org.y;
+        rh.ray.org_z = org.z;
+        rh.ray.dir_x = dir.x;
+        rh.ray.dir_y = dir.y;
+        rh.ray.dir_z = dir.z;
+        rh.ray.tnear = 0.0f;
+        rh.ray.tfar = tfar;
+        rh.ray.time = 0.0f;
+        rh.ray.mask = 0xffffffffu;
+        rh.ray.id = 0;
+        rh.ray.flags = 0;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene, &ctx, &rh);
+        Hit h;
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+            return h;
+        h.found = true;
+        h.t = rh.ray.tfar;
+        h.geomID = rh.hit.geomID;
+        h.primID = rh.hit.primID;
+        h.u = rh.hit.u;
+        h.v = rh.hit.v;
+        return h;
+    }
+
+    bool occluded(vec3 org, vec3 dir, float tfar) {
+        rays++;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRay r;
+        r.org_x = org.x;
+        r.org_y = org.y;
+        r.org_z = org.z;
+        r.dir_x = dir.x;
+        r.dir_y = dir.y;
+        r.dir_z = dir.z;
+        r.tnear = 0.0f;
+        r.tfar = tfar;
+        r.time = 0.0f;
+        r.mask = 0xffffffffu;
+        r.id = 0;
+        r.flags = 0;
+        rtcOccluded1(es_.full, &ctx, &r);
+        return r.tfar < 0.0f;
+    }
+
+    // The offset that moves a point at p off its surface: relative to its magnitude.
+    static float offsetScale(vec3 p) {
+        return 1e-4f * (1.0f + std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z))));
+    }
+    static vec3 offset(const SurfacePoint &sp, vec3 n) { return sp.p + n * offsetScale(sp.p); }
+
+    // Shadow ray from origin (already off its surface) to a point on a light, stopping short
+    // of the light's surface by the same relative offset.
+    bool unoccluded(vec3 origin, vec3 target) {
+        vec3 d = target - origin;
+        float len = glm::length(d);
+        float tfar = len - offsetScale(target);
+        if (!(tfar > 0.0f))
+            return true;
+        return !occluded(origin, d / len, tfar);
+    }
+
+    SurfacePoint surfacePoint(const Hit &h, vec3 dir) const {
+        SurfacePoint sp;
+        const GeometryRecord &g = es_.fullGeoms[h.geomID];
+        vec3 p0, p1, p2;
+        if (g.isLight) {
+            const rtpbr_scene_light &L = scene_.lights[g.index];
+            p0 = glm::make_vec3(L.vertices[0]);
+            p1 = glm::make_vec3(L.vertices[h.primID + 1]);
+            p2 = glm::make_vec3(L.vertices[h.primID + 2]);
+            sp.light = int32_t(g.index);
+            sp.material = L.material;
+            sp.ng = glm::make_vec3(L.normal);
+            sp.ns = sp.ng;
+            sp.p = (1.0f - h.u - h.v) * p0 + h.u * p1 + h.v * p2;
+        } else {
+            const rtpbr_scene_primitive &prim = scene_.primitives[g.index];
+            const uint32_t *ix = prim.indices + 3 * h.primID;
+            p0 = glm::make_vec3(prim.positions + 3 * ix[0]);
+            p1 = glm::make_vec3(prim.positions + 3 * ix[1]);
+            p2 = glm::make_vec3(prim.positions + 3 * ix[2]);
+            float b0 = 1.0f - h.u - h.v;
+            sp.p = b0 * p0 + h.u * p1 + h.v * p2;
+            sp.ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+            sp.ns = b0 * glm::make_vec3(prim.normals + 3 * ix[0]) + h.u * glm::make_vec3(prim.normals + 3 * ix[1]) +
+                    h.v * glm::make_vec3(prim.normals + 3 * ix[2]);
+            sp.material = int32_t(prim.material);
+            if (prim.has_texcoords)
+                for (int c = 0; c < 2; c++)
+                    sp.uv[c] = b0 * prim.texcoords[2 * ix[0] + c] + h.u * prim.texcoords[2 * ix[1] + c] +
+                               h.v * prim.texcoords[2 * ix[2] + c];
+            if (prim.has_tangents) {
+                vec3 t = b0 * glm::make_vec3(prim.tangents + 4 * ix[0]) + h.u * glm::make_vec3(prim.tangents + 4 * ix[1]) +
+                         h.v * glm::make_vec3(prim.tangents + 4 * ix[2]);
+                sp.tangent = t;
+                applyNormalMap(prim, ix, &sp);
+            }
+        }
+        if (glm::dot(sp.ng, dir) > 0.0f)
+            sp.ng = -sp.ng;
+        float nl = glm::length(sp.ns);
+        sp.ns = nl > 0.0f && std::isfinite(nl) ? sp.ns / nl : sp.ng;
+        if (glm::dot(sp.ns, sp.ng) < 0.0f)
+            sp.ns = -sp.ns;
+        // A shading normal facing away from the viewer would make wo.z <= 0: use the geometry.
+        if (!(glm::dot(sp.ns, -dir) > 1e-4f))
+            sp.ns = sp.ng;
+        vec3 t = sp.tangent - glm::dot(sp.tangent, sp.ns) * sp.ns;
+        float tl = glm::length(t);
+        if (tl > 1e-6f && std::isfinite(tl)) {
+            sp.tangent = t / tl;
+        } else {
+            vec3 b;
+            orthonormalBasis(sp.ns, &sp.tangent, &b);
+        }
+        return sp;
+    }
+
+    // glTF normalTexture: tangent-space normal (2 rgb - 1) scaled in xy by normal_scale, with
+    // the bitangent B = w cross(N, T) (glTF 2.0, meshes: TANGENT). Done in the primitive's
+    // own orientation, before the normal is turned towards the viewer.
+    void applyNormalMap(const rtpbr_scene_primitive &prim, const uint32_t *ix, SurfacePoint *sp) const {
+        const rtpbr_scene_material &m = scene_.materials[prim.material];
+        if (m.normal_texture < 0 || uint32_t(m.normal_texture) >= textures_.size() || !prim.has_texcoords)
+            return;
+        vec3 n = sp->ns;
+        float nl = glm::length(n);
+        if (!(nl > 0.0f) || !std::isfinite(nl))
+            return;
+        n /= nl;
+        vec3 t = sp->tangent - glm::dot(sp->tangent, n) * n;
+        float tl = glm::length(t);
+        if (!(tl > 1e-6f) || !std::isfinite(tl))
+            return;
+        t /= tl;
+        float w = prim.tangents[4 * ix[0] + 3] < 0.0f ? -1.0f : 1.0f;
+        vec3 b = w * glm::cross(n, t);
+        glm::vec4 c = textures_[uint32_t(m.normal_texture)].sample(sp->uv[0], sp->uv[1]);
+        vec3 ts(2.0f * c.x - 1.0f, 2.0f * c.y - 1.0f, 2.0f * c.z - 1.0f);
+        ts.x *= m.normal_scale;
+        ts.y *= m.normal_scale;
+        vec3 mapped = ts.x * t + ts.y * b + ts.z * n;
+        float ml = glm::length(mapped);
+        if (ml > 1e-6f && std::isfinite(ml))
+            sp->ns = mapped / ml;
+    }
+
+    SurfaceMaterial material(SurfacePoint &sp) const {
+        const rtpbr_scene_material &m = scene_.materials[sp.material];
+        SurfaceMaterial out;
+        vec3 base = glm::make_vec3(m.base_color);
+        float metallic = m.metallic;
+        float rough = m.roughness;
+        if (m.base_color_texture >= 0 && uint32_t(m.base_color_texture) < textures_.size())
+            base *= vec3(textures_[uint32_t(m.base_color_texture)].sample(sp.uv[0], sp.uv[1]));
+        if (m.metallic_roughness_texture >= 0 && uint32_t(m.metallic_roughness_texture) < textures_.size()) {
+            glm::vec4 mr = textures_[uint32_t(m.metallic_roughness_texture)].sample(sp.uv[0], sp.uv[1]);
+            rough *= mr.y;
+            metallic *= mr.z;
+        }
+        out.baseColor = glm::clamp(base, vec3(0.0f), vec3(1.0f));
+        out.metallic = glm::clamp(metallic, 0.0f, 1.0f);
+        float alpha = rtpbr::Alpha_FromPerceptual(rough);
+        float aniso = glm::clamp(m.anisotropic, 0.0f, 1.0f);
+        if (aniso > 0.0f) {
+            if (m.model == RTPBR_SCENE_MATERIAL_DISNEY) {
+                glm::vec2 a = rtpbr::Alpha_Anisotropic(alpha, aniso);
+                out.alphaX = a.x;
+                out.alphaY = a.y;
+            } else {
+                // KHR_materials_anisotropy: alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha.
+                out.alphaX = rtpbr::Alpha_Clamp(alpha + (1.0f - alpha) * aniso * aniso);
+                out.alphaY = alpha;
+            }
+            if (m.anisotropy_rotation != 0.0f) {
+                vec3 b = glm::cross(sp.ns, sp.tangent);
+                float c = std::cos(m.anisotropy_rotation), s = std::sin(m.anisotropy_rotation);
+                sp.tangent = c * sp.tangent + s * b;
+            }
+        } else {
+            out.alphaX = out.alphaY = alpha;
+        }
+        out.perceptualRoughness = std::sqrt(std::sqrt(out.alphaX * out.alphaY));
+        out.layer = layers_[uint32_t(sp.material)];
+        if (m.model == RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS && m.clearcoat > 0.0f) {
+            out.clearcoat = glm::clamp(m.clearcoat, 0.0f, 1.0f);
+            out.clearcoatAlpha = rtpbr::Alpha_FromPerceptual(1.0f - m.clearcoat_gloss);
+        }
+        out.specularWeight = glm::clamp(m.specular_factor, 0.0f, 1.0f);
+        if (m.model == RTPBR_SCENE_MATERIAL_DISNEY) {
+            rtpbr::DisneyMaterial &d = out.disneyParams;
+            d.baseColor = out.baseColor;
+            d.metallic = out.metallic;
+            d.subsurface = m.subsurface;
+            d.specular = m.specular;
+            d.specularTint = m.specular_tint;
+            d.roughness = glm::clamp(rough, 0.0f, 1.0f);
+            d.anisotropic = m.anisotropic;
+            d.sheen = m.sheen;
+            d.sheenTint = m.sheen_tint;
+            d.clearcoat = m.clearcoat;
+            d.clearcoatGloss = m.clearcoat_gloss;
+            glm::vec2 a = rtpbr::Disney_SpecularAlphas(rtpbr::Disney_SanitizeMaterial(d));
+            out.alphaX = a.x;
+            out.alphaY = a.y;
+            out.disney = true;
+            out.clearcoat = 0.0f;
+        }
+        return out;
+    }
+
+    const rtpbr_scene &scene_;
+    const EmbreeScene &es_;
+    const LightSet &lights_;
+    const RenderSettings &s_;
+    const std::vector<Texture> &textures_;
+    const std::vector<const LayerAlbedo *> &layers_; // per material
+    uint32_t maxDepth_;
+};
+
+__int128 toFixed(double v) { return __int128(std::ldexp(v, 64)); }
+
+} // namespace
+
+
+// ---- render ----------------------------------------------------------------------------------
+
+Result render(const rtpbr_scene &scene, const RenderSettings &settings, Accumulator *out, std::string *error,
+              const ProgressCallback &progress, RenderStats *stats) {
+    std::string localError;
+    if (!error)
+        error = &localError;
+    Result r = validateScene(scene, settings, error);
+    if (r != Result::Success)
+        return r;
+    RenderSettings s = settings;
+    s.width = s.width ? s.width : 512;
+    s.height = imageHeight(scene, s, s.width);
+    if (s.width > 65536 || s.height > 65536 || uint64_t(s.width) * s.height > (1ull << 28)) {
+        *error = fmt("image %ux%u too large", s.width, s.height);
+        return Result::InvalidArgument;
+    }
+    if (s.spp == 0) {
+        *error = "spp must be at least 1";
+        return Result::InvalidArgument;
+    }
+    uint32_t sEnd = s.sampleEnd ? s.sampleEnd : s.spp;
+    if (s.sampleBegin >= sEnd || sEnd > s.spp) {
+        *error = fmt("sample range %u:%u is empty or outside 0:%u", s.sampleBegin, sEnd, s.spp);
+        return Result::InvalidArgument;
+    }
+    Region reg = s.region;
+    if (reg.x0 == 0 && reg.y0 == 0 && reg.x1 == 0 && reg.y1 == 0)
+        reg = {0, 0, s.width, s.height};
+    if (reg.x0 >= reg.x1 || reg.y0 >= reg.y1 || reg.x1 > s.width || reg.y1 > s.height) {
+        *error = fmt("region %u:%u:%u:%u is empty or outside the %ux%u image", reg.x0, reg.y0, reg.x1, reg.y1, s.width,
+                     s.height);
+        return Result::InvalidArgument;
+    }
+
+    std::vector<Texture> textures;
+    for (uint32_t t = 0; t < scene.texture_count; t++)
+        textures.emplace_back(scene.textures[t]);
+    // The albedo tables of the dielectric layers, one per distinct IOR.
+    std::vector<std::unique_ptr<LayerAlbedo>> layerTables;
+    std::vector<const LayerAlbedo *> layers(scene.material_count, nullptr);
+    for (uint32_t m = 0; m < scene.material_count; m++) {
+        const rtpbr_scene_material &mat = scene.materials[m];
+        bool mayBeDielectric = mat.metallic < 1.0f || mat.metallic_roughness_texture >= 0;
+        if (!mayBeDielectric || !(mat.specular_factor > 0.0f))
+            continue;
+        float eta = layerEta(mat.ior);
+        for (const auto &t : layerTables)
+            if (t->eta() == eta)
+                layers[m] = t.get();
+        if (!layers[m]) {
+            layerTables.push_back(std::make_unique<LayerAlbedo>(eta, kLayerAlbedoWalks));
+            layers[m] = layerTables.back().get();
+        }
+    }
+    LightSet lights(scene, s.lightSampling);
+    EmbreeScene es;
+    r = buildEmbree(scene, &es, error);
+    if (r != Result::Success)
+        return r;
+
+    out->width = s.width;
+    out->height = s.height;
+    out->seed = s.seed;
+    out->settingsHash = settingsHash(s, s.width, s.height);
+    size_t npix = size_t(s.width) * s.height;
+    out->samples.assign(npix, 0);
+    out->sum.assign(3 * npix, 0);
+    out->sumSquares.assign(3 * npix, 0.0);
+    out->nonFinite = 0;
+    out->clamped = 0;
+
+    const rtpbr_scene_camera &cam = scene.cameras[s.camera];
+    const vec3 camPos = glm::make_vec3(cam.position);
+    const vec3 camF = glm::normalize(glm::make_vec3(cam.forward));
+    const vec3 camU = glm::normalize(glm::make_vec3(cam.up));
+    const vec3 camR = glm::normalize(glm::make_vec3(cam.right));
+    const float tanHalf = std::tan(0.5f * cam.yfov);
+    const float aspect = float(s.width) / float(s.height);
+
+    uint32_t tilesX = (reg.x1 - reg.x0 + kTileSize - 1) / kTileSize;
+    uint32_t tilesY = (reg.y1 - reg.y0 + kTileSize - 1) / kTileSize;
+    uint32_t tileCount = tilesX * tilesY;
+    std::atomic<uint32_t> nextTile{0};
+    std::atomic<uint64_t> nonFinite{0}, clamped{0}, totalRays{0};
+    std::mutex progressMutex;
+    uint64_t pixelsDone = 0;
+    const uint64_t pixelsTotal = uint64_t(reg.x1 - reg.x0) * (reg.y1 - reg.y0);
+
+    auto worker = [&]() {
+        Integrator integ(scene, es, lights, s, textures, layers);
+        uint64_t localNonFinite = 0, localClamped = 0;
+        for (;;) {
+            uint32_t tile = nextTile.fetch_add(1);
+            if (tile >= tileCount)
+                break;
+            uint32_t tx0 = reg.x0 + (tile % tilesX) * kTileSize;
+            uint32_t ty0 = reg.y0 + (tile / tilesX) * kTileSize;
+            uint32_t tx1 = std::min(tx0 + kTileSize, reg.x1);
+            uint32_t ty1 = std::min(ty0 + kTileSize, reg.y1);
+            for (uint32_t y = ty0; y < ty1; y++)
+                for (uint32_t x = tx0; x < tx1; x++) {
+                    size_t pix = size_t(y) * s.width + x;
+                    __int128 sum[3] = {0, 0, 0};
+                    double sq[3] = {0.0, 0.0, 0.0};
+                    for (uint32_t k = s.sampleBegin; k < sEnd; k++) {
+                        Rng rng = Rng::forSample(x, y, k, s.seed);
+                        float jx = rng.uniform(), jy = rng.uniform();
+                        float ndcX = (2.0f * (float(x) + jx) / float(s.width) - 1.0f) * tanHalf * aspect;
+                        float ndcY = (1.0f - 2.0f * (float(y) + jy) / float(s.height)) * tanHalf;
+                        vec3 dir = glm::normalize(camF + ndcX * camR + ndcY * camU);
+                        vec3 L = integ.radiance(camPos, dir, rng);
+                        if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z)) {
+                            localNonFinite++;
+                            L = vec3(0.0f);
+                        }
+                        for (int c = 0; c < 3; c++) {
+                            double v = std::max(double(L[c]), 0.0);
+                            if (v > kMaxSampleValue) {
+                                v = kMaxSampleValue;
+                                localClamped++;
+                            }
+                            sum[c] += toFixed(v);
+                            sq[c] += v * v;
+                        }
+                    }
+                    out->samples[pix] = sEnd - s.sampleBegin;
+                    for (int c = 0; c < 3; c++) {
+                        out->sum[3 * pix + c] = sum[c];
+                        out->sumSquares[3 * pix + c] = sq[c];
+                    }
+                }
+            if (progress) {
+                std::lock_guard<std::mutex> lock(progressMutex);
+                pixelsDone += uint64_t(tx1 - tx0) * (ty1 - ty0);
+                progress(pixelsDone, pixelsTotal);
+            }
+        }
+        nonFinite += localNonFinite;
+        clamped += localClamped;
+        totalRays += integ.rays;
+    };
+
+    auto t0 = std::chrono::steady_clock::now();
+    uint32_t threads = s.threads ? s.threads : std::max(1u, std::thread::hardware_concurrency());
+    threads = std::min(threads, std::max(1u, tileCount));
+    std::vector<std::thread> pool;
+    for (uint32_t t = 1; t < threads; t++)
+        pool.emplace_back(worker);
+    worker();
+    for (std::thread &t : pool)
+        t.join();
+    out->nonFinite = nonFinite;
+    out->clamped = clamped;
+    if (stats) {
+        stats->samples = pixelsTotal * (sEnd - s.sampleBegin);
+        stats->rays = totalRays;
+        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    if (!es.errors.first.empty()) {
+        *error = es.errors.first;
+        return Result::Embree;
+    }
+    return Result::Success;
+}
+
+} // namespace rtpbr_oracle

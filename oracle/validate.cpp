@@ -1,0 +1,129 @@
+// rtpbr oracle: result strings and scene validation.
+#include "oracle.h"
+
+#include "internal.h"
+
+#include <cstdarg>
+#include <cstdio>
+
+namespace rtpbr_oracle {
+
+std::string fmt(const char *f, ...) {
+    char buf[512];
+    va_list ap;
+    va_start(ap, f);
+    vsnprintf(buf, sizeof buf, f, ap);
+    va_end(ap);
+    return buf;
+}
+
+const char *resultString(Result r) {
+    switch (r) {
+    case Result::Success: return "success";
+    case Result::InvalidArgument: return "invalid argument";
+    case Result::InvalidScene: return "invalid scene";
+    case Result::NoCamera: return "no camera";
+    case Result::NoLights: return "no lights";
+    case Result::Embree: return "Embree error";
+    case Result::Io: return "I/O error";
+    case Result::Incompatible: return "incompatible accumulators";
+    }
+    return "unknown result";
+}
+
+// ---- validation ------------------------------------------------------------------------------
+
+Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::string *error) {
+    if (scene.camera_count == 0) {
+        *error = "the scene has no camera (the oracle renders from a glTF perspective camera)";
+        return Result::NoCamera;
+    }
+    if (s.camera >= scene.camera_count) {
+        *error = fmt("camera %u requested, the scene has %u", s.camera, scene.camera_count);
+        return Result::NoCamera;
+    }
+    const rtpbr_scene_camera &cam = scene.cameras[s.camera];
+    if (!finite3(cam.position) || !finite3(cam.forward) || !finite3(cam.up) || !finite3(cam.right) ||
+        !(cam.yfov > 0.0f && cam.yfov < 3.14159f)) {
+        *error = fmt("camera %u: non-finite position/orientation or yfov outside (0, pi)", s.camera);
+        return Result::InvalidScene;
+    }
+    for (uint32_t m = 0; m < scene.material_count; m++) {
+        const rtpbr_scene_material &mat = scene.materials[m];
+        const float vals[] = {mat.base_color[0], mat.base_color[1], mat.base_color[2], mat.metallic, mat.roughness,
+                              mat.ior, mat.specular_factor, mat.specular_color[0], mat.specular_color[1],
+                              mat.specular_color[2], mat.anisotropic, mat.anisotropy_rotation, mat.specular,
+                              mat.clearcoat, mat.clearcoat_gloss, mat.normal_scale, mat.subsurface,
+                              mat.specular_tint, mat.sheen, mat.sheen_tint};
+        for (float v : vals)
+            if (!finite(v)) {
+                *error = fmt("material %u: non-finite parameter", m);
+                return Result::InvalidScene;
+            }
+        const int32_t tex[] = {mat.base_color_texture, mat.metallic_roughness_texture, mat.normal_texture};
+        for (int32_t t : tex)
+            if (t >= 0 && uint32_t(t) >= scene.texture_count) {
+                *error = fmt("material %u: texture %d out of range (%u textures)", m, t, scene.texture_count);
+                return Result::InvalidScene;
+            }
+    }
+    for (uint32_t p = 0; p < scene.primitive_count; p++) {
+        const rtpbr_scene_primitive &prim = scene.primitives[p];
+        if (prim.index_count % 3 != 0) {
+            *error = fmt("primitive %u: index count %u is not a multiple of 3", p, prim.index_count);
+            return Result::InvalidScene;
+        }
+        if ((prim.vertex_count > 0 && (!prim.positions || !prim.normals)) || (prim.index_count > 0 && !prim.indices) ||
+            (prim.has_texcoords && !prim.texcoords) || (prim.has_tangents && !prim.tangents)) {
+            *error = fmt("primitive %u: missing vertex or index arrays", p);
+            return Result::InvalidScene;
+        }
+        if (prim.material >= scene.material_count) {
+            *error = fmt("primitive %u: material %u out of range (%u materials)", p, prim.material,
+                         scene.material_count);
+            return Result::InvalidScene;
+        }
+        for (uint32_t v = 0; v < prim.vertex_count; v++)
+            if (!finite3(prim.positions + 3 * v)) {
+                *error = fmt("primitive %u: vertex %u has a non-finite position", p, v);
+                return Result::InvalidScene;
+            }
+        for (uint32_t i = 0; i < prim.index_count; i++)
+            if (prim.indices[i] >= prim.vertex_count) {
+                *error = fmt("primitive %u: index %u = %u out of range (%u vertices)", p, i, prim.indices[i],
+                             prim.vertex_count);
+                return Result::InvalidScene;
+            }
+    }
+    bool emits = false;
+    for (uint32_t l = 0; l < scene.light_count; l++) {
+        const rtpbr_scene_light &L = scene.lights[l];
+        if (L.vertex_count < 3 || L.vertex_count > RTPBR_SCENE_MAX_POLYGON_VERTICES) {
+            *error = fmt("light %u: %u vertices (3..%u allowed)", l, L.vertex_count, RTPBR_SCENE_MAX_POLYGON_VERTICES);
+            return Result::InvalidScene;
+        }
+        for (uint32_t k = 0; k < L.vertex_count; k++)
+            if (!finite3(L.vertices[k])) {
+                *error = fmt("light %u: vertex %u is not finite", l, k);
+                return Result::InvalidScene;
+            }
+        if (!finite3(L.normal) || !finite3(L.radiance) || L.radiance[0] < 0.0f || L.radiance[1] < 0.0f ||
+            L.radiance[2] < 0.0f) {
+            *error = fmt("light %u: non-finite normal or negative/non-finite radiance", l);
+            return Result::InvalidScene;
+        }
+        if (L.material >= 0 && uint32_t(L.material) >= scene.material_count) {
+            *error = fmt("light %u: material %d out of range", l, L.material);
+            return Result::InvalidScene;
+        }
+        if (L.radiance[0] > 0.0f || L.radiance[1] > 0.0f || L.radiance[2] > 0.0f)
+            emits = true;
+    }
+    if (!emits) {
+        *error = "the scene has no lights (no emissive primitive or EXT_lights_area light with radiance > 0)";
+        return Result::NoLights;
+    }
+    return Result::Success;
+}
+
+} // namespace rtpbr_oracle

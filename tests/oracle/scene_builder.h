@@ -1,0 +1,149 @@
+// Hand-built rtpbr scenes for the oracle tests (the loader's structs are plain data).
+#ifndef RTPBR_TESTS_ORACLE_SCENE_BUILDER_H
+#define RTPBR_TESTS_ORACLE_SCENE_BUILDER_H
+
+#include <rtpbr/rtpbr_scene.h>
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <deque>
+#include <vector>
+
+struct SceneBuilder {
+    std::deque<std::vector<float>> floatArrays;
+    std::deque<std::vector<uint32_t>> indexArrays;
+    std::vector<rtpbr_scene_primitive> primitives;
+    std::vector<rtpbr_scene_material> materials;
+    std::vector<rtpbr_scene_light> lights;
+    std::vector<rtpbr_scene_camera> cameras;
+    rtpbr_scene scene{};
+
+    uint32_t material(glm::vec3 base, float metallic, float roughness) {
+        rtpbr_scene_material m{};
+        m.model = RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS;
+        m.base_color[0] = base.x;
+        m.base_color[1] = base.y;
+        m.base_color[2] = base.z;
+        m.base_color[3] = 1.0f;
+        m.metallic = metallic;
+        m.roughness = roughness;
+        m.specular = 0.5f;
+        m.specular_color[0] = m.specular_color[1] = m.specular_color[2] = 1.0f;
+        m.specular_factor = 1.0f;
+        m.ior = 1.5f;
+        m.emissive_strength = 1.0f;
+        m.normal_scale = 1.0f;
+        m.alpha_cutoff = 0.5f;
+        m.base_color_texture = m.metallic_roughness_texture = m.normal_texture = m.emission_texture = -1;
+        m.gltf_material = -1;
+        materials.push_back(m);
+        return uint32_t(materials.size() - 1);
+    }
+
+    // A convex planar polygon as a triangle fan primitive, normal (v1 - v0) x (v2 - v0).
+    void polygon(const std::vector<glm::vec3> &v, uint32_t mat) {
+        glm::vec3 n = glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
+        std::vector<float> pos, nrm;
+        for (glm::vec3 p : v) {
+            pos.insert(pos.end(), {p.x, p.y, p.z});
+            nrm.insert(nrm.end(), {n.x, n.y, n.z});
+        }
+        std::vector<uint32_t> idx;
+        for (uint32_t k = 1; k + 1 < v.size(); k++)
+            idx.insert(idx.end(), {0u, k, k + 1});
+        rtpbr_scene_primitive p{};
+        p.vertex_count = uint32_t(v.size());
+        p.index_count = uint32_t(idx.size());
+        floatArrays.push_back(pos);
+        p.positions = floatArrays.back().data();
+        floatArrays.push_back(nrm);
+        p.normals = floatArrays.back().data();
+        floatArrays.push_back(std::vector<float>(2 * v.size(), 0.0f));
+        p.texcoords = floatArrays.back().data();
+        floatArrays.push_back(std::vector<float>(4 * v.size(), 0.0f));
+        p.tangents = floatArrays.back().data();
+        indexArrays.push_back(idx);
+        p.indices = indexArrays.back().data();
+        p.material = mat;
+        p.gltf_mesh = p.gltf_primitive = p.gltf_node = -1;
+        primitives.push_back(p);
+    }
+
+    // A light polygon without geometry of its own (like EXT_lights_area); material -1 = black.
+    void light(const std::vector<glm::vec3> &v, glm::vec3 radiance, bool twoSided, int32_t mat = -1) {
+        rtpbr_scene_light L{};
+        L.shape = RTPBR_SCENE_LIGHT_POLYGON;
+        L.vertex_count = uint32_t(v.size());
+        glm::vec3 c(0.0f);
+        for (size_t k = 0; k < v.size(); k++) {
+            for (int i = 0; i < 3; i++)
+                L.vertices[k][i] = v[k][i];
+            c += v[k];
+        }
+        glm::vec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+        float area = 0.0f;
+        for (size_t k = 1; k + 1 < v.size(); k++)
+            area += 0.5f * glm::length(glm::cross(v[k] - v[0], v[k + 1] - v[0]));
+        n = glm::normalize(n);
+        c /= float(v.size());
+        for (int i = 0; i < 3; i++) {
+            L.normal[i] = n[i];
+            L.center[i] = c[i];
+            L.radiance[i] = radiance[i];
+        }
+        L.area = area;
+        L.two_sided = twoSided;
+        L.primitive = -1;
+        L.material = mat;
+        L.gltf_node = -1;
+        lights.push_back(L);
+    }
+
+    // A camera at pos looking at target (up hint +y unless parallel).
+    void camera(glm::vec3 pos, glm::vec3 target, float yfov, glm::vec3 upHint = glm::vec3(0, 1, 0)) {
+        rtpbr_scene_camera c{};
+        glm::vec3 f = glm::normalize(target - pos);
+        glm::vec3 r = glm::normalize(glm::cross(f, upHint));
+        glm::vec3 u = glm::cross(r, f);
+        for (int i = 0; i < 3; i++) {
+            c.position[i] = pos[i];
+            c.forward[i] = f[i];
+            c.up[i] = u[i];
+            c.right[i] = r[i];
+        }
+        c.yfov = yfov;
+        c.aspect = 0.0f;
+        c.znear = 0.01f;
+        c.gltf_node = c.gltf_camera = -1;
+        cameras.push_back(c);
+    }
+
+    const rtpbr_scene &build() {
+        scene = rtpbr_scene{};
+        scene.primitives = primitives.data();
+        scene.primitive_count = uint32_t(primitives.size());
+        scene.materials = materials.data();
+        scene.material_count = uint32_t(materials.size());
+        scene.lights = lights.data();
+        scene.light_count = uint32_t(lights.size());
+        scene.cameras = cameras.data();
+        scene.camera_count = uint32_t(cameras.size());
+        return scene;
+    }
+};
+
+// Camera ray direction through pixel coordinates (x, y) in [0, W] x [0, H] as the oracle
+// computes it (pinhole, yfov vertical, image aspect W / H); used by tests to integrate
+// closed-form references over pixel footprints.
+inline glm::vec3 cameraRay(const rtpbr_scene_camera &c, float x, float y, uint32_t W, uint32_t H) {
+    float t = std::tan(0.5f * c.yfov);
+    float a = float(W) / float(H);
+    glm::vec3 f(c.forward[0], c.forward[1], c.forward[2]);
+    glm::vec3 r(c.right[0], c.right[1], c.right[2]);
+    glm::vec3 u(c.up[0], c.up[1], c.up[2]);
+    return glm::normalize(f + (2.0f * x / float(W) - 1.0f) * t * a * r + (1.0f - 2.0f * y / float(H)) * t * u);
+}
+
+#endif
