@@ -210,9 +210,15 @@ bool viewer_window_resize(viewer_window *w)
                               &w->overlay_mapped);
 }
 
+static void on_glfw_error(int code, const char *message)
+{
+    fprintf(stderr, "rtpbr-viewer: GLFW error %d: %s\n", code, message);
+}
+
 bool viewer_window_create(viewer_window *w, int width, int height, bool validation)
 {
     memset(w, 0, sizeof *w);
+    glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit()) {
         fprintf(stderr, "rtpbr-viewer: glfwInit failed (no display?)\n");
         return false;
