@@ -50,6 +50,8 @@ typedef struct app {
     bool split, overlay_dirty;
     // Status.
     double frame_ms, last_title;
+    double steady_ms_sum; // frames after the first (which builds pipelines), for the summary
+    long steady_frames;
     bool screenshot_request;
     unsigned screenshot_counter;
     uint32_t engine_errors;
@@ -410,6 +412,7 @@ int main(int argc, char **argv)
         }
         double now = glfwGetTime();
         a->frame_ms = a->frame_ms > 0.0 ? 0.9 * a->frame_ms + 100.0 * (now - start) : 1000.0 * (now - start);
+        if (frame > 0) a->steady_ms_sum += 1000.0 * (now - start), a->steady_frames++;
         if (shot) {
             char name[64];
             const char *path = screenshot_path && frame == frames - 1 ? screenshot_path : name;
@@ -422,7 +425,10 @@ int main(int argc, char **argv)
         if (now - a->last_title > 0.25) update_title(a), a->last_title = now;
         ++frame;
     }
-    printf("rtpbr-viewer: %.2f ms per frame (smoothed) on %s\n", a->frame_ms, rtpbr_context_device_name(a->ctx));
+    if (a->steady_frames > 0)
+        printf("rtpbr-viewer: %.1f ms per frame (mean of %ld frames after the first) at %ux%u on %s\n",
+               a->steady_ms_sum / (double)a->steady_frames, a->steady_frames, a->win.extent.width,
+               a->win.extent.height, rtpbr_context_device_name(a->ctx));
     status = (screenshot_path && !screenshot_written) || a->engine_errors ? 1 : 0;
 done:
     rtpbr_renderer_destroy(a->renderer);
