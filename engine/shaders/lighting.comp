@@ -202,7 +202,13 @@ void main()
     vec4 g1 = texelFetch(gbuffer1, pixel, 0);
     vec4 g3 = texelFetch(gbuffer3, pixel, 0);
     vec3 V = normalize(frame.camera_position.xyz - P);
-    result += shade_lights(P, normalize(g1.xyz), V, g0, g1.w, g2, g3);
+    vec3 N = normalize(g1.xyz);
+    // The position from the depth buffer is off by up to about one depth quantum along the
+    // view ray; an emitter's own surface could then land on its emitting side and light
+    // itself. Shade a point lifted along N by a few quanta (measured at this depth) instead.
+    vec4 further = frame.inv_view_proj * vec4(ndc, min(depth * (1.0f + 4.0f / 16777216.0f), 1.0f), 1.0f);
+    float lift = length(further.xyz / further.w - P) + 1e-6f * length(frame.camera_position.xyz - P);
+    result += shade_lights(P + N * lift, N, V, g0, g1.w, g2, g3);
 #endif
     // Without ltc.h (RTPBR_HAVE_LTC 0) lights contribute nothing but their emissive geometry.
 
