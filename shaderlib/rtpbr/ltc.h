@@ -26,10 +26,12 @@
 //     middle element, is  M^-1 = | m00 0 m02 |
 //                                |  0  1  0  |
 //                                | m20 0 m22 |   (rows).
-//   - ltc2 = (norm, fresnel, f82, sphere): norm = integral of f cos with F = 1 (the
-//     directional albedo), fresnel = integral of f cos (1 - VoH)^5, f82 = integral of
-//     f cos VoH (1 - VoH)^6 (for LTC_FresnelScaleF82), and in .w, at a different coordinate
-//     (LTC_SphereLutCoord), the horizon-clipped sphere form factor for the clipless path.
+//   - ltc2 = (norm, fresnel, f82, sphere): the integrals of f cos with F = 1, of
+//     f cos (1 - VoH)^5 and of f cos VoH (1 - VoH)^6 (for LTC_FresnelScaleF82), each divided
+//     by the fitted LTC's mass above the horizon (the integral here is clipped there, so a
+//     light filling the hemisphere gives exactly the directional albedo); in .w, at a
+//     different coordinate (LTC_SphereLutCoord), the horizon-clipped sphere form factor for
+//     the clipless path.
 //
 // Horizon clipping. The polygon is clipped to the surface's upper hemisphere *before* the
 // transform (as O3DE does) and then to the LTC's own support, the half-space

@@ -77,6 +77,13 @@ struct Ltc {
         invM = glm::inverse(M);
         detInvM = std::fabs(glm::determinant(invM));
     }
+    // The fraction of the LTC above the horizon: the clamped cosine over the hemisphere
+    // with normal normalize(M^T z), which is (1 + cos of its angle to z) / 2 (the sky view
+    // factor of a tilted plane).
+    double mass_above_horizon() const {
+        glm::dvec3 m(M[0][2], M[1][2], M[2][2]); // row 2 of M = M^T z
+        return 0.5 * (1.0 + m.z / glm::length(m));
+    }
     // The normalised LTC density at direction L (unit).
     double eval(glm::dvec3 L) const {
         glm::dvec3 lo = invM * L;
@@ -85,10 +92,6 @@ struct Ltc {
         if (!(cosTheta > 0.0))
             return 0.0;
         return cosTheta / kPi * detInvM / (l * l * l);
-    }
-    glm::dvec3 sample(glm::vec2 u) const {
-        glm::vec3 c = rtpbr::Sample_CosineHemisphere(u);
-        return glm::normalize(M * glm::dvec3(c));
     }
 };
 
@@ -130,35 +133,63 @@ Moments brdf_moments(Lobe lobe, glm::vec3 V, float alpha, int side) {
     return m;
 }
 
-// Multiple-importance estimate of  integral |f NoL - norm D_ltc|^p  (p = 3 for the fit,
-// p = 1 for the reported error), with side^2 samples of each distribution.
-double ltc_error(const Ltc &ltc, Lobe lobe, glm::vec3 V, float alpha, double norm, int side, int p) {
-    double sum = 0.0;
+// The sample points of both strategies for one cell. The BRDF's samples (and their values
+// and densities) do not depend on the LTC, so they are drawn once per cell; the LTC's are
+// kept as cosine-distributed directions and transformed by each candidate M.
+struct ErrorSamples {
+    std::vector<glm::dvec3> cosine;
+    std::vector<glm::vec3> brdfL;
+    std::vector<BrdfSample> brdf;
+};
+
+ErrorSamples error_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
+    ErrorSamples es;
     int n = side * side;
     for (int i = 0; i < n; i++) {
         glm::vec2 u = grid_point(i, side);
-        for (int strategy = 0; strategy < 2; strategy++) {
-            glm::dvec3 L = strategy == 0 ? ltc.sample(u) : glm::dvec3(brdf_sample(lobe, V, alpha, u));
-            BrdfSample b = brdf_eval(lobe, V, glm::vec3(L), alpha);
-            double d = ltc.eval(L);
-            double pdfSum = d + b.pdf;
-            if (!(pdfSum > 0.0))
-                continue;
-            double diff = std::fabs(b.value - norm * d);
-            double e = p == 3 ? diff * diff * diff : diff;
-            sum += e / pdfSum;
-        }
+        es.cosine.push_back(glm::dvec3(rtpbr::Sample_CosineHemisphere(u)));
+        glm::vec3 L = brdf_sample(lobe, V, alpha, u);
+        es.brdfL.push_back(L);
+        es.brdf.push_back(brdf_eval(lobe, V, L, alpha));
     }
-    return sum / n;
+    return es;
 }
 
+// Multiple-importance estimate of  integral |f NoL - norm D_ltc|^p  (p = 3 for the fit,
+// p = 1 for the reported error): each strategy's samples weighted by 1 / (pdf_ltc + pdf_brdf)
+// (the balance heuristic with one sample of each per grid point).
+// horizon: compare only above the horizon, with the LTC scaled by norm / (its mass above the
+// horizon) (the evaluation clips there, so mass below it is neither light nor error).
+double ltc_error(const Ltc &ltc, const ErrorSamples &es, Lobe lobe, glm::vec3 V, float alpha, double norm, int p,
+                 bool horizon) {
+    double sum = 0.0;
+    const size_t n = es.cosine.size();
+    const double scale = horizon ? norm / ltc.mass_above_horizon() : norm;
+    auto accumulate = [&](double value, double pdfBrdf, double d, double z) {
+        double pdfSum = d + pdfBrdf;
+        if (!(pdfSum > 0.0) || (horizon && !(z > 0.0)))
+            return;
+        double diff = std::fabs(value - scale * d);
+        sum += (p == 3 ? diff * diff * diff : p == 2 ? diff * diff : diff) / pdfSum;
+    };
+    for (size_t i = 0; i < n; i++) {
+        glm::dvec3 L = glm::normalize(ltc.M * es.cosine[i]);
+        BrdfSample b = brdf_eval(lobe, V, glm::vec3(L), alpha);
+        accumulate(b.value, b.pdf, ltc.eval(L), L.z);
+        accumulate(es.brdf[i].value, es.brdf[i].pdf, ltc.eval(glm::dvec3(es.brdfL[i])), double(es.brdfL[i].z));
+    }
+    return sum / double(n);
+}
+
+using Params = std::array<double, 4>;
+
 // Nelder & Mead 1965, "A Simplex Method for Function Minimization" (standard coefficients:
-// reflection 1, expansion 2, contraction 1/2, shrink 1/2). Minimises f over R^dim, dim <= 3.
+// reflection 1, expansion 2, contraction 1/2, shrink 1/2). Minimises f over R^dim, dim <= 4.
 template <class F>
-std::array<double, 3> nelder_mead(F &&f, std::array<double, 3> start, std::array<double, 3> step, int dim,
-                                  int maxIterations, double tolerance) {
-    std::array<std::array<double, 3>, 4> x;
-    std::array<double, 4> fx;
+Params nelder_mead(F &&f, Params start, Params step, int dim,
+                   int maxIterations, double tolerance) {
+    std::array<Params, 5> x;
+    std::array<double, 5> fx;
     for (int i = 0; i <= dim; i++) {
         x[i] = start;
         if (i > 0)
@@ -174,20 +205,20 @@ std::array<double, 3> nelder_mead(F &&f, std::array<double, 3> start, std::array
             }
         if (std::fabs(fx[dim] - fx[0]) <= tolerance * (std::fabs(fx[0]) + 1e-300))
             break;
-        std::array<double, 3> c{0, 0, 0};
+        Params c{0, 0, 0, 0};
         for (int i = 0; i < dim; i++)
             for (int k = 0; k < dim; k++)
                 c[k] += x[i][k] / dim;
         auto along = [&](double t) { // c + t (x_worst - c)
-            std::array<double, 3> r = c;
+            Params r = c;
             for (int k = 0; k < dim; k++)
                 r[k] = c[k] + t * (x[dim][k] - c[k]);
             return r;
         };
-        std::array<double, 3> xr = along(-1.0);
+        Params xr = along(-1.0);
         double fr = f(xr);
         if (fr < fx[0]) {
-            std::array<double, 3> xe = along(-2.0);
+            Params xe = along(-2.0);
             double fe = f(xe);
             if (fe < fr) {
                 x[dim] = xe;
@@ -201,7 +232,7 @@ std::array<double, 3> nelder_mead(F &&f, std::array<double, 3> start, std::array
             fx[dim] = fr;
         } else {
             bool outside = fr < fx[dim];
-            std::array<double, 3> xc = along(outside ? -0.5 : 0.5);
+            Params xc = along(outside ? -0.5 : 0.5);
             double fc = f(xc);
             if (fc < (outside ? fr : fx[dim])) {
                 x[dim] = xc;
@@ -222,22 +253,18 @@ std::array<double, 3> nelder_mead(F &&f, std::array<double, 3> start, std::array
     return x[best];
 }
 
-// Fits one cell, starting from the shape of `start` (m11, m22, m13).
-Cell fit_cell(Lobe lobe, int col, int row, const FitSettings &s, const Cell *start) {
-    const float r = float(cell_roughness(col, s.size));
+// Fits one cell, starting from the shape of `start` (m11, m22, m13, rotation).
+Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *start) {
     const float alpha = rtpbr::Alpha_FromPerceptual(r);
-    const double nov = cell_nov(row, s.size);
     const glm::vec3 V(float(std::sqrt(1.0 - nov * nov)), 0.0f, float(nov));
 
     Moments mom = brdf_moments(lobe, V, alpha, s.momentSamples);
     Ltc ltc;
-    const bool isotropic = row == 0; // V = N: the lobe is symmetric about the normal
-    if (isotropic) {
-        ltc.Z = glm::dvec3(0, 0, 1);
-    } else {
-        ltc.Z = mom.avgDir;
-        ltc.X = glm::dvec3(ltc.Z.z, 0.0, -ltc.Z.x);
-    }
+    const bool isotropic = nov >= 1.0; // V = N: the lobe is symmetric about the normal
+    // The frame's Z starts at the lobe's average direction (Heitz et al.); with
+    // s.freeRotation its angle in the plane of incidence is a fourth parameter.
+    const double baseAngle = isotropic ? 0.0 : std::atan2(mom.avgDir.x, mom.avgDir.z);
+    double rotation = 0.0;
     if (start) {
         // Sharp lobes scale with alpha: start from the neighbour's shape scaled by the ratio
         // of the alphas (about 1 for rough lobes).
@@ -245,21 +272,56 @@ Cell fit_cell(Lobe lobe, int col, int row, const FitSettings &s, const Cell *sta
         ltc.m11 = start->m11 * ratio;
         ltc.m22 = start->m22 * ratio;
         ltc.m13 = isotropic ? 0.0 : start->m13 * ratio;
+        rotation = isotropic || !s.freeRotation ? 0.0 : start->rotation;
     }
-    auto apply = [&](const std::array<double, 3> &p, Ltc &l) {
+    auto apply = [&](const Params &p, Ltc &l) {
         l.m11 = std::exp(glm::clamp(p[0], -30.0, 10.0));
         l.m22 = isotropic ? l.m11 : std::exp(glm::clamp(p[1], -30.0, 10.0));
         l.m13 = isotropic ? 0.0 : p[2];
+        double angle = baseAngle + (isotropic ? 0.0 : glm::clamp(p[3], -1.5, 1.5));
+        l.Z = glm::dvec3(std::sin(angle), 0.0, std::cos(angle));
+        l.X = glm::dvec3(l.Z.z, 0.0, -l.Z.x);
         l.update();
     };
-    auto cost = [&](const std::array<double, 3> &p) {
+    const ErrorSamples fitSamples = error_samples(lobe, V, alpha, s.fitSamples);
+    auto cost = [&](const Params &p) {
         Ltc l = ltc;
         apply(p, l);
-        return ltc_error(l, lobe, V, alpha, mom.norm, s.fitSamples, 3);
+        return ltc_error(l, fitSamples, lobe, V, alpha, mom.norm, s.errorPower, s.horizonNormalised);
     };
-    std::array<double, 3> p0{std::log(ltc.m11), std::log(ltc.m22), ltc.m13};
-    std::array<double, 3> step{0.1, 0.1, 0.05 * std::max(ltc.m11, 1e-3)};
-    std::array<double, 3> best = nelder_mead(cost, p0, step, isotropic ? 1 : 3, s.maxIterations, 1e-5);
+    Params step{0.1, 0.1, 0.05 * std::max(ltc.m11, 1e-3), 0.05};
+    // Heitz et al.'s 3 parameters (Z at the average direction) ...
+    Params best = nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, 0.0}, step,
+                              isotropic ? 1 : 3, s.maxIterations, 1e-5);
+    // Candidates: Heitz et al.'s fit, the 4-parameter fit from the neighbour's rotation, and
+    // the neighbour's shape itself. The lowest L3 cost wins among those that overlap the lobe
+    // (relative L1 error < 1); if none does, the lowest L1 error. The L3 cost, dominated by
+    // the peak values of sharp lobes, can prefer a wide LTC disjoint from the lobe to a
+    // slightly misaligned narrow one (it happens for alpha ~ 1e-3 at grazing views, where
+    // float directions barely resolve the lobe).
+    auto l1 = [&](const Params &p) {
+        Ltc l = ltc;
+        apply(p, l);
+        return ltc_error(l, fitSamples, lobe, V, alpha, mom.norm, 1, s.horizonNormalised) / mom.norm;
+    };
+    std::vector<Params> candidates{best};
+    if (s.freeRotation && !isotropic)
+        candidates.push_back(nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation}, step,
+                                         4, s.maxIterations, 1e-5));
+    if (start)
+        candidates.push_back(Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation});
+    double bestCost = HUGE_VAL, bestL1 = HUGE_VAL;
+    bool overlapping = false;
+    for (const Params &c : candidates) {
+        double e1 = l1(c), e3 = cost(c);
+        bool ok = e1 < 1.0;
+        if ((ok && (!overlapping || e3 < bestCost)) || (!ok && !overlapping && e1 < bestL1)) {
+            best = c;
+            bestCost = e3;
+            bestL1 = e1;
+            overlapping = ok;
+        }
+    }
     apply(best, ltc);
 
     Cell c;
@@ -267,13 +329,23 @@ Cell fit_cell(Lobe lobe, int col, int row, const FitSettings &s, const Cell *sta
     c.m11 = ltc.m11;
     c.m22 = ltc.m22;
     c.m13 = ltc.m13;
+    c.rotation = isotropic ? 0.0 : best[3];
     c.avgDir = ltc.Z;
     c.invM = ltc.invM / ltc.invM[1][1];
-    c.norm = mom.norm;
-    c.fresnel = mom.fresnel;
-    c.f82 = mom.f82;
-    c.error = mom.norm > 0.0 ? ltc_error(ltc, lobe, V, alpha, mom.norm, s.errorSamples, 1) / mom.norm : 0.0;
+    // With horizonNormalised the stored integrals are divided by the LTC's mass above the
+    // horizon: the clipped LTC integral times them gives the BRDF's integral.
+    const double massScale = s.horizonNormalised ? 1.0 / ltc.mass_above_horizon() : 1.0;
+    c.norm = mom.norm * massScale;
+    c.fresnel = mom.fresnel * massScale;
+    c.f82 = mom.f82 * massScale;
+    const ErrorSamples reportSamples = error_samples(lobe, V, alpha, s.errorSamples);
+    c.error = mom.norm > 0.0 ? ltc_error(ltc, reportSamples, lobe, V, alpha, mom.norm, 1, s.horizonNormalised) / mom.norm
+                             : 0.0;
     return c;
+}
+
+Cell fit_cell(Lobe lobe, int col, int row, const FitSettings &s, const Cell *start) {
+    return fit_at(lobe, float(cell_roughness(col, s.size)), cell_nov(row, s.size), s, start);
 }
 
 } // namespace

@@ -26,17 +26,22 @@ enum class Lobe { GGX, Beckmann };
 
 struct FitSettings {
     int size = 64;           // table cells per side
-    int fitSamples = 32;     // per-strategy sample grid side for the fit error
+    int fitSamples = 24;     // per-strategy sample grid side for the fit error
     int momentSamples = 128; // sample grid side for norm / Fresnel / average direction
     int errorSamples = 64;   // sample grid side for the reported per-cell error
-    int maxIterations = 300; // Nelder-Mead iterations per cell
+    int maxIterations = 200; // Nelder-Mead iterations per cell
     int threads = 2;
+    int errorPower = 3;      // fit the L^p norm of the difference (Heitz et al.: 3)
+    bool horizonNormalised = true; // fit above the horizon only, norm / LTC mass above it
+    bool freeRotation = true; // fit the frame's angle too (4 parameters) instead of fixing
+                              // Z at the lobe's average direction (Heitz et al.: fixed)
 };
 
 // One fitted cell.
 struct Cell {
     double roughness = 1;      // perceptual roughness of the cell
     double m11 = 1, m22 = 1, m13 = 0;
+    double rotation = 0;       // angle of the frame's Z from the lobe's average direction
     glm::dvec3 avgDir{0, 0, 1};
     glm::dmat3 invM{1.0};      // M^-1 normalised by its middle element
     double norm = 0;           // integral of f NoL (F = 1)

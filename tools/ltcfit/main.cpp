@@ -1,6 +1,6 @@
 // rtpbr-ltcfit: fits the LTC tables of shaderlib/luts/ (see ltc_fit.hpp and shaderlib/luts/ltc.md).
 //
-//   rtpbr-ltcfit --out DIR [--quick] [--size N] [--threads T]
+//   rtpbr-ltcfit --out DIR [--quick] [--size N] [--threads T] [--no-horizon]
 //
 // Writes DIR/rtpbr_ltc_tables.h, DIR/ltc_{ggx,beckmann}_{1,2}.exr, DIR/ltc_fit_error.png and
 // replaces the generated section of DIR/ltc.md (between the ltcfit markers; appended if
@@ -47,8 +47,11 @@ std::string generated_section(const Table &ggx, const Table &beckmann, const Fit
     o << "Settings: " << s.size << "x" << s.size << " cells, fit error from 2 x " << s.fitSamples << "^2 samples, "
       << "moments from " << s.momentSamples << "^2 samples, reported error from 2 x " << s.errorSamples
       << "^2 samples, at most " << s.maxIterations << " Nelder-Mead iterations per cell, " << s.threads
-      << " threads" << (quick ? " (QUICK, low-quality settings)" : "") << ".\n\n";
-    o << "Per-cell fit error = integral |f NoL - norm D_ltc| / norm (relative L1; 0 = perfect, 2 = disjoint):\n\n";
+      << " threads" << (quick ? " (QUICK, low-quality settings)" : "") << "; L" << s.errorPower << " error"
+      << (s.horizonNormalised ? " above the horizon, integrals divided by the LTC's mass above it" : "")
+      << (s.freeRotation ? "; best of the 3- and 4-parameter fits" : "; 3-parameter fit") << ".\n\n";
+    o << "Per-cell fit error = integral |f NoL - norm D_ltc| / albedo over the upper hemisphere (relative L1; 0 = "
+         "perfect, 2 = disjoint):\n\n";
     o << "| lobe | fit time (s) | mean | median | 95th pct | max |\n|---|---|---|---|---|---|\n";
     for (const Table *t : {&ggx, &beckmann}) {
         Stats st = error_stats(*t);
@@ -89,7 +92,7 @@ bool update_markdown(const std::string &path, const std::string &section, std::s
 }
 
 int usage() {
-    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)]\n");
+    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon]\n");
     return 2;
 }
 
@@ -114,6 +117,8 @@ int main(int argc, char **argv) {
             outDir = argv[++i];
         else if (!strcmp(argv[i], "--quick"))
             quick = true;
+        else if (!strcmp(argv[i], "--no-horizon")) // Heitz et al.'s whole-sphere error, norm = albedo
+            s.horizonNormalised = false;
         else if (!strcmp(argv[i], "--size")) {
             if (!value(8, 256, s.size))
                 return usage();
@@ -144,6 +149,12 @@ int main(int argc, char **argv) {
         total += tables.back().seconds;
         fprintf(stderr, "\nltcfit: %s done in %.1f s; relative L1 error mean %.4f median %.4f p95 %.4f max %.4f\n",
                 lobe_name(lobe), tables.back().seconds, st.mean, st.median, st.p95, st.max);
+        size_t worst = 0;
+        for (size_t i = 0; i < tables.back().cells.size(); i++)
+            if (tables.back().cells[i].error > tables.back().cells[worst].error)
+                worst = i;
+        fprintf(stderr, "ltcfit: %s worst cell: roughness %.3f, NoV %.4f\n", lobe_name(lobe),
+                cell_roughness(int(worst % size_t(s.size)), s.size), cell_nov(int(worst / size_t(s.size)), s.size));
     }
     fprintf(stderr, "ltcfit: total fitting time %.1f s\n", total);
 

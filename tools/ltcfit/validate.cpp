@@ -1,0 +1,215 @@
+// rtpbr-ltc-validate: LTC (committed tables) against Monte Carlo on the full grid of
+// ltc_mc.hpp; prints the markdown error table for shaderlib/luts/ltc.md and writes the error
+// plot. Deterministic (fixed seeds); 2 threads.
+//
+//   rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE]
+#include <atomic>
+#include <cstring>
+#include <mutex>
+#include <thread>
+
+#include <OpenImageIO/imageio.h>
+
+#include "ltc_mc.hpp"
+
+using namespace ltcmc;
+
+namespace {
+
+void colormap(double t, unsigned char rgb[3]) { // matplotlib "magma" control points
+    static const double pts[][3] = {{0.001, 0.000, 0.014}, {0.231, 0.059, 0.439}, {0.550, 0.161, 0.506},
+                                    {0.868, 0.288, 0.409}, {0.996, 0.624, 0.427}, {0.987, 0.991, 0.750}};
+    t = std::clamp(t, 0.0, 1.0) * 5.0;
+    int i = std::min(int(t), 4);
+    double f = t - i;
+    for (int k = 0; k < 3; k++)
+        rgb[k] = (unsigned char)std::lround(255.0 * (pts[i][k] + f * (pts[i + 1][k] - pts[i][k])));
+}
+
+// Error plot: one panel per (lobe, method): GGX top, Beckmann bottom; exact clipping,
+// clipless with the analytic sphere, clipless with the sphere table from left to right. In a
+// panel, column groups = roughness (smooth to rough), columns in a group = view angle (0 to
+// 80 degrees); row groups = position (mirror, normal, side, low), rows in a group = light
+// size (small to large). 8x8-pixel cells, 2-pixel white gaps between groups; colour = log10
+// relative error from 0.1% (dark) to 100% (bright); grey = far-tail light (< 1% of the
+// lobe's energy) or the mirror direction at normal view (same as "normal").
+bool write_plot(const std::string &path, const std::vector<Outcome> &out, const std::vector<float> &rough,
+                const std::vector<float> &views, const std::vector<float> &halves, std::string &err) {
+    const int cell = 8, group = 2, gap = 12;
+    const int nr = int(rough.size()), nv = int(views.size()), nh = int(halves.size());
+    const int pw = nr * nv * cell + (nr - 1) * group, ph = 4 * nh * cell + 3 * group;
+    const int w = 3 * pw + 2 * gap, h = 2 * ph + gap + gap + 12;
+    std::vector<unsigned char> img(size_t(w) * h * 3, 255);
+    auto index = [](const std::vector<float> &v, float x) {
+        return int(std::find(v.begin(), v.end(), x) - v.begin());
+    };
+    // grey background for every cell, so missing configurations show as grey
+    for (int lobe = 0; lobe < 2; lobe++)
+        for (int m = 0; m < 3; m++)
+            for (int ri = 0; ri < nr; ri++)
+                for (int vi = 0; vi < nv; vi++)
+                    for (int pi = 0; pi < 4; pi++)
+                        for (int hi = 0; hi < nh; hi++) {
+                            int x0 = m * (pw + gap) + ri * (nv * cell + group) + vi * cell;
+                            int y0 = lobe * (ph + gap) + pi * (nh * cell + group) + hi * cell;
+                            for (int y = 0; y < cell; y++)
+                                for (int x = 0; x < cell; x++)
+                                    for (int k = 0; k < 3; k++)
+                                        img[(size_t(y0 + y) * w + size_t(x0 + x)) * 3 + k] = 160;
+                        }
+    for (const Outcome &o : out) {
+        int ri = index(rough, o.cfg.roughness), vi = index(views, o.cfg.viewDeg), hi = index(halves, o.cfg.half);
+        int lobe = o.cfg.lobe == Lobe::GGX ? 0 : 1;
+        double errs[3] = {o.relExact, o.relClipless, o.relClipTable};
+        for (int m = 0; m < 3; m++) {
+            unsigned char rgb[3] = {160, 160, 160};
+            if (o.significant)
+                colormap((std::log10(std::max(errs[m], 1e-3)) + 3.0) / 3.0, rgb);
+            int x0 = m * (pw + gap) + ri * (nv * cell + group) + vi * cell;
+            int y0 = lobe * (ph + gap) + o.cfg.position * (nh * cell + group) + hi * cell;
+            for (int y = 0; y < cell; y++)
+                for (int x = 0; x < cell; x++)
+                    for (int k = 0; k < 3; k++)
+                        img[(size_t(y0 + y) * w + size_t(x0 + x)) * 3 + k] = rgb[k];
+        }
+    }
+    for (int y = 2 * ph + 2 * gap; y < h; y++)
+        for (int x = 0; x < w; x++)
+            colormap(double(x) / (w - 1), &img[(size_t(y) * w + x) * 3]);
+    auto o = OIIO::ImageOutput::create(path);
+    if (!o) {
+        err = "cannot create a PNG writer for " + path;
+        return false;
+    }
+    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
+    if (!o->open(path, spec) || !o->write_image(OIIO::TypeDesc::UINT8, img.data()) || !o->close()) {
+        err = "writing " + path + ": " + o->geterror();
+        return false;
+    }
+    return true;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    bool reduced = false, verbose = false;
+    std::string png;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--reduced"))
+            reduced = true;
+        else if (!strcmp(argv[i], "--verbose"))
+            verbose = true;
+        else if (!strcmp(argv[i], "--png") && i + 1 < argc)
+            png = argv[++i];
+        else {
+            fprintf(stderr, "usage: rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE]\n");
+            return 2;
+        }
+    }
+    std::vector<Config> g = grid(reduced);
+    std::vector<Outcome> out(g.size());
+    std::atomic<size_t> next{0};
+    std::mutex m;
+    size_t done = 0;
+    auto worker = [&]() {
+        for (size_t i = next++; i < g.size(); i = next++) {
+            out[i] = run_config(g[i], FresnelChoice{}, 7e-4, 1l << 22, 1 + i);
+            std::lock_guard<std::mutex> lock(m);
+            ++done;
+            if (verbose) {
+                const Outcome &o = out[i];
+                fprintf(stderr, "%-8s r=%.2f view=%2.0f half=%.2f %-6s ref=%.5f (+-%.2e, %ld) ltc=%.5f cl=%.5f ct=%.5f err=%.2f%%\n",
+                        lobe_name(o.cfg.lobe), o.cfg.roughness, o.cfg.viewDeg, o.cfg.half, position_name(o.cfg.position),
+                        o.ref.mean, o.ref.relStdErr, o.ref.samples, o.ltc.exact, o.ltc.clipless, o.ltc.clipless_table,
+                        100 * o.relExact);
+            } else {
+                fprintf(stderr, "\rrtpbr-ltc-validate: %zu/%zu", done, g.size());
+            }
+        }
+    };
+    std::thread t1(worker), t2(worker);
+    t1.join();
+    t2.join();
+    fprintf(stderr, "\n");
+
+    printf("| lobe | method | lights | mean | 95th pct | max | tail lights | tail mean | tail max |\n"
+           "|---|---|---|---|---|---|---|---|---|\n");
+    double worstRef = 0;
+    long maxSamples = 0;
+    for (Lobe l : {Lobe::GGX, Lobe::Beckmann}) {
+        std::vector<double> e[3], tail[3];
+        for (const Outcome &o : out) {
+            if (o.cfg.lobe != l)
+                continue;
+            double v[3] = {o.relExact, o.relClipless, o.relClipTable};
+            for (int k = 0; k < 3; k++)
+                (o.significant ? e[k] : tail[k]).push_back(v[k]);
+            if (o.significant)
+                worstRef = std::max(worstRef, o.ref.relStdErr);
+            maxSamples = std::max(maxSamples, o.ref.samples);
+        }
+        const char *names[3] = {"exact clipping", "clipless, analytic sphere", "clipless, sphere table"};
+        for (int k = 0; k < 3; k++) {
+            Summary s = summarize(e[k]), t = summarize(tail[k]);
+            printf("| %s | %s | %d | %.2f%% | %.2f%% | %.2f%% | %d | %.3f%% | %.3f%% |\n", lobe_name(l), names[k],
+                   s.count, 100 * s.mean, 100 * s.p95, 100 * s.max, t.count, 100 * t.mean, 100 * t.max);
+        }
+    }
+    printf("\nReference: largest relative standard error %.3f%% where the light matters (at most %ld sample pairs).\n", 100 * worstRef,
+           maxSamples);
+    // Breakdown of the exact method by roughness and view angle.
+    for (Lobe l : {Lobe::GGX, Lobe::Beckmann}) {
+        printf("\n%s, exact clipping, mean relative error by roughness (rows) and view angle (columns):\n\n| r |",
+               lobe_name(l));
+        std::vector<float> rough = grid_roughness(reduced), views = grid_views(reduced);
+        for (float v : views)
+            printf(" %g deg |", double(v));
+        printf("\n|---|");
+        for (size_t i = 0; i < views.size(); i++)
+            printf("---|");
+        printf("\n");
+        for (float r : rough) {
+            printf("| %.2f |", double(r));
+            for (float v : views) {
+                std::vector<double> e;
+                for (const Outcome &o : out)
+                    if (o.cfg.lobe == l && o.cfg.roughness == r && o.cfg.viewDeg == v && o.significant)
+                        e.push_back(o.relExact);
+                printf(" %.1f%% |", 100 * summarize(e).mean);
+            }
+            printf("\n");
+        }
+    }
+    // Breakdown by light position and size.
+    for (Lobe l : {Lobe::GGX, Lobe::Beckmann}) {
+        printf("\n%s, exact clipping, mean relative error by position (rows) and light half-size (columns):\n\n| position |",
+               lobe_name(l));
+        std::vector<float> halves = grid_halves(reduced);
+        for (float h : halves)
+            printf(" %g |", double(h));
+        printf("\n|---|");
+        for (size_t i = 0; i < halves.size(); i++)
+            printf("---|");
+        printf("\n");
+        for (int p = 0; p < 4; p++) {
+            printf("| %s |", position_name(p));
+            for (float h : halves) {
+                std::vector<double> e;
+                for (const Outcome &o : out)
+                    if (o.cfg.lobe == l && o.cfg.position == p && o.cfg.half == h && o.significant)
+                        e.push_back(o.relExact);
+                printf(" %.1f%% (%d) |", 100 * summarize(e).mean, summarize(e).count);
+            }
+            printf("\n");
+        }
+    }
+    if (!png.empty()) {
+        std::vector<float> rough = grid_roughness(reduced), views = grid_views(reduced), halves = grid_halves(reduced);
+        std::string err;
+        if (!write_plot(png, out, rough, views, halves, err)) {
+            fprintf(stderr, "rtpbr-ltc-validate: error: %s\n", err.c_str());
+            return 1;
+        }
+    }
+    return 0;
+}
