@@ -5,7 +5,9 @@
 // highlight must be left-right symmetric (the light is centred on the camera's plane of
 // symmetry), the far floor dark, and the image not black. (The light quad itself faces down
 // and the camera is above it: seen from behind, a one-sided light shows nothing.)
-//   usage: test_sample_image OUT.png COMMAND [ARGS...]   (COMMAND must write OUT.png)
+// With --light-visible the light has been turned to face the camera (rotated -90 degrees about
+// X, so it stands vertical at the same centre, facing +Z): its centre must then be near white.
+//   usage: test_sample_image [--light-visible] OUT.png COMMAND [ARGS...]   (COMMAND writes OUT.png)
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -13,12 +15,15 @@
 #include <cmocka.h>
 #include <math.h>
 #include <stb_image.h>
+#include <stdbool.h>
+#include <string.h>
 #include <stdio.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 static const char *png_path;
 static char **command;
+static bool light_visible;
 
 // Camera of quad_light.gltf: position (0, 1.6, 4.2), rotation quaternion (x = -0.17067, w =
 // 0.98533) about X, i.e. pitched down by theta = 2 asin(0.17067); yfov pi/4.
@@ -76,25 +81,31 @@ static void test_run_and_check(void **state)
     // line from the camera to the light mirrored in y = 0, (0, -1.4, 0), meets the floor at
     // t = 1.6 / 3.0: z = 4.2 (1 - 1.6 / 3) = 1.96
     project((const double[3]){-2.8, 0.0, -2.8}, width, height, &fx, &fy); // far floor corner
+    double light = luma_at(rgba, width, height, lx, ly);
     double mirror = luma_at(rgba, width, height, mx, my);
     double far = luma_at(rgba, width, height, fx, fy);
     double left = luma_at(rgba, width, height, mx - 0.15 * width, my);
     double right = luma_at(rgba, width, height, mx + 0.15 * width, my);
-    printf("%dx%d: mean luma %.3f, light centre at (%.0f, %.0f), mirror point (%.0f, %.0f) %.3f, "
+    printf("%dx%d: mean luma %.3f, light centre (%.0f, %.0f) %.3f, mirror point (%.0f, %.0f) %.3f, "
            "+-15%% of the width %.3f %.3f, far floor (%.0f, %.0f) %.3f\n",
-           width, height, mean, lx, ly, mx, my, mirror, left, right, fx, fy, far);
+           width, height, mean, lx, ly, light, mx, my, mirror, left, right, fx, fy, far);
     stbi_image_free(rgba);
     assert_true(mean > 0.05);
     assert_true(mirror > 0.5);
     assert_true(mirror > 4.0 * far);
     assert_true(mirror > left && mirror > right);
     assert_true(fabs(left - right) < 0.05);
+    if (light_visible) assert_true(light > 0.9);
 }
 
 int main(int argc, char **argv)
 {
+    if (argc > 1 && strcmp(argv[1], "--light-visible") == 0) {
+        light_visible = true;
+        ++argv, --argc;
+    }
     if (argc < 3) {
-        fprintf(stderr, "usage: test_sample_image OUT.png COMMAND [ARGS...]\n");
+        fprintf(stderr, "usage: test_sample_image [--light-visible] OUT.png COMMAND [ARGS...]\n");
         return 2;
     }
     png_path = argv[1];
