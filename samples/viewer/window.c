@@ -1,0 +1,367 @@
+// The viewer's Vulkan host (see window.h). Every failing call prints what failed.
+#include "window.h"
+
+#include <stb_image_write.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define CHECK(call)                                                                        \
+    do {                                                                                   \
+        VkResult check_result_ = (call);                                                   \
+        if (check_result_ != VK_SUCCESS) {                                                 \
+            fprintf(stderr, "rtpbr-viewer: %s failed (VkResult %d)\n", #call, check_result_); \
+            return false;                                                                  \
+        }                                                                                  \
+    } while (0)
+
+static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+    VkDebugUtilsMessageTypeFlagsEXT type, const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
+{
+    (void)type;
+    if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+        ((viewer_window *)user)->validation_messages++;
+        fprintf(stderr, "validation: %s\n", data->pMessage);
+    }
+    return VK_FALSE;
+}
+
+static bool create_instance(viewer_window *w, bool validation)
+{
+    uint32_t glfw_count = 0;
+    const char **glfw_exts = glfwGetRequiredInstanceExtensions(&glfw_count);
+    if (!glfw_exts) {
+        fprintf(stderr, "rtpbr-viewer: GLFW found no Vulkan surface support\n");
+        return false;
+    }
+    const char *exts[16];
+    uint32_t ext_count = 0;
+    for (uint32_t i = 0; i < glfw_count && ext_count < 15; ++i) exts[ext_count++] = glfw_exts[i];
+    if (validation) exts[ext_count++] = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+    const char *layer = "VK_LAYER_KHRONOS_validation";
+    VkDebugUtilsMessengerCreateInfoEXT messenger_info = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+        .pfnUserCallback = on_validation, .pUserData = w};
+    VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO, .pApplicationName = "rtpbr-viewer",
+                             .apiVersion = VK_API_VERSION_1_3};
+    VkInstanceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pApplicationInfo = &app,
+        .pNext = validation ? &messenger_info : NULL, .enabledLayerCount = validation ? 1 : 0,
+        .ppEnabledLayerNames = &layer, .enabledExtensionCount = ext_count, .ppEnabledExtensionNames = exts};
+    CHECK(vkCreateInstance(&info, NULL, &w->instance));
+    if (validation) {
+        PFN_vkCreateDebugUtilsMessengerEXT create = (PFN_vkCreateDebugUtilsMessengerEXT)
+            vkGetInstanceProcAddr(w->instance, "vkCreateDebugUtilsMessengerEXT");
+        if (!create) return false;
+        CHECK(create(w->instance, &messenger_info, NULL, &w->messenger));
+    }
+    return true;
+}
+
+// The first Vulkan 1.3 device with a graphics + compute queue family that can present.
+static bool create_device(viewer_window *w)
+{
+    VkPhysicalDevice devices[16];
+    uint32_t count = 16;
+    vkEnumeratePhysicalDevices(w->instance, &count, devices);
+    for (uint32_t i = 0; i < count && !w->physical_device; ++i) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(devices[i], &props);
+        if (props.apiVersion < VK_API_VERSION_1_3) continue;
+        VkQueueFamilyProperties families[16];
+        uint32_t family_count = 16;
+        vkGetPhysicalDeviceQueueFamilyProperties(devices[i], &family_count, families);
+        for (uint32_t f = 0; f < family_count; ++f) {
+            VkBool32 present = VK_FALSE;
+            vkGetPhysicalDeviceSurfaceSupportKHR(devices[i], f, w->surface, &present);
+            if (present && (families[f].queueFlags & VK_QUEUE_GRAPHICS_BIT) &&
+                (families[f].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
+                w->physical_device = devices[i];
+                w->queue_family = f;
+                break;
+            }
+        }
+    }
+    if (!w->physical_device) {
+        fprintf(stderr, "rtpbr-viewer: no Vulkan 1.3 device that can present to the window\n");
+        return false;
+    }
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo queue = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+        .queueFamilyIndex = w->queue_family, .queueCount = 1, .pQueuePriorities = &priority};
+    w->features13 = (VkPhysicalDeviceVulkan13Features){
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES, .dynamicRendering = VK_TRUE};
+    w->features = (VkPhysicalDeviceFeatures2){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+                                               .pNext = &w->features13};
+    const char *ext = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+    VkDeviceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, .pNext = &w->features,
+        .queueCreateInfoCount = 1, .pQueueCreateInfos = &queue, .enabledExtensionCount = 1,
+        .ppEnabledExtensionNames = &ext};
+    CHECK(vkCreateDevice(w->physical_device, &info, NULL, &w->device));
+    vkGetDeviceQueue(w->device, w->queue_family, 0, &w->queue);
+    VkCommandPoolCreateInfo pool = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                    .queueFamilyIndex = w->queue_family};
+    CHECK(vkCreateCommandPool(w->device, &pool, NULL, &w->pool));
+    VkCommandBufferAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+        .commandPool = w->pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
+    CHECK(vkAllocateCommandBuffers(w->device, &alloc, &w->cmd));
+    VkFenceCreateInfo fence = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    CHECK(vkCreateFence(w->device, &fence, NULL, &w->fence));
+    VkSemaphoreCreateInfo sem = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    CHECK(vkCreateSemaphore(w->device, &sem, NULL, &w->acquired));
+    CHECK(vkCreateSemaphore(w->device, &sem, NULL, &w->rendered));
+    return true;
+}
+
+static bool create_host_buffer(viewer_window *w, VkDeviceSize size, VkBufferUsageFlags usage, VkBuffer *buffer,
+                               VkDeviceMemory *memory, void **mapped)
+{
+    VkBufferCreateInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = usage};
+    CHECK(vkCreateBuffer(w->device, &info, NULL, buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(w->device, *buffer, &req);
+    VkPhysicalDeviceMemoryProperties props;
+    vkGetPhysicalDeviceMemoryProperties(w->physical_device, &props);
+    const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    uint32_t type = UINT32_MAX;
+    for (uint32_t i = 0; i < props.memoryTypeCount && type == UINT32_MAX; ++i)
+        if ((req.memoryTypeBits & (1u << i)) && (props.memoryTypes[i].propertyFlags & want) == want) type = i;
+    if (type == UINT32_MAX) {
+        fprintf(stderr, "rtpbr-viewer: no host-visible coherent memory\n");
+        return false;
+    }
+    VkMemoryAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
+                                  .memoryTypeIndex = type};
+    CHECK(vkAllocateMemory(w->device, &alloc, NULL, memory));
+    CHECK(vkBindBufferMemory(w->device, *buffer, *memory, 0));
+    CHECK(vkMapMemory(w->device, *memory, 0, VK_WHOLE_SIZE, 0, mapped));
+    return true;
+}
+
+static void destroy_swapchain(viewer_window *w)
+{
+    for (uint32_t i = 0; i < w->image_count; ++i) vkDestroyImageView(w->device, w->views[i], NULL);
+    w->image_count = 0;
+    if (w->swapchain) vkDestroySwapchainKHR(w->device, w->swapchain, NULL);
+    w->swapchain = VK_NULL_HANDLE;
+    if (w->readback) vkDestroyBuffer(w->device, w->readback, NULL);
+    if (w->readback_memory) vkFreeMemory(w->device, w->readback_memory, NULL);
+    if (w->overlay) vkDestroyBuffer(w->device, w->overlay, NULL);
+    if (w->overlay_memory) vkFreeMemory(w->device, w->overlay_memory, NULL);
+    w->readback = w->overlay = VK_NULL_HANDLE;
+    w->readback_memory = w->overlay_memory = VK_NULL_HANDLE;
+}
+
+bool viewer_window_resize(viewer_window *w)
+{
+    vkDeviceWaitIdle(w->device); // the host's own device: waiting on it is ours to do
+    destroy_swapchain(w);
+    VkSurfaceCapabilitiesKHR caps;
+    CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(w->physical_device, w->surface, &caps));
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                    VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    if ((caps.supportedUsageFlags & usage) != usage) {
+        fprintf(stderr, "rtpbr-viewer: the surface does not support transfers to and from its images\n");
+        return false;
+    }
+    int fb_w = 0, fb_h = 0;
+    glfwGetFramebufferSize(w->glfw, &fb_w, &fb_h);
+    w->extent = caps.currentExtent;
+    if (w->extent.width == UINT32_MAX) w->extent = (VkExtent2D){(uint32_t)fb_w, (uint32_t)fb_h};
+    if (w->extent.width == 0 || w->extent.height == 0) return true; // minimised: nothing to draw
+    VkSurfaceFormatKHR formats[64];
+    uint32_t format_count = 64;
+    vkGetPhysicalDeviceSurfaceFormatsKHR(w->physical_device, w->surface, &format_count, formats);
+    const VkFormat preferred[] = {VK_FORMAT_B8G8R8A8_SRGB, VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_B8G8R8A8_UNORM,
+                                  VK_FORMAT_R8G8B8A8_UNORM};
+    VkSurfaceFormatKHR chosen = {.format = VK_FORMAT_UNDEFINED};
+    for (size_t p = 0; p < 4 && chosen.format == VK_FORMAT_UNDEFINED; ++p)
+        for (uint32_t i = 0; i < format_count; ++i)
+            if (formats[i].format == preferred[p] && formats[i].colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
+                chosen = formats[i];
+    if (chosen.format == VK_FORMAT_UNDEFINED) {
+        fprintf(stderr, "rtpbr-viewer: the surface offers no 8-bit RGBA/BGRA format\n");
+        return false;
+    }
+    w->format = chosen.format;
+    uint32_t images = caps.minImageCount + 1;
+    if (caps.maxImageCount && images > caps.maxImageCount) images = caps.maxImageCount;
+    VkSwapchainCreateInfoKHR info = {.sType = VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR, .surface = w->surface,
+        .minImageCount = images, .imageFormat = chosen.format, .imageColorSpace = chosen.colorSpace,
+        .imageExtent = w->extent, .imageArrayLayers = 1, .imageUsage = usage,
+        .imageSharingMode = VK_SHARING_MODE_EXCLUSIVE, .preTransform = caps.currentTransform,
+        .compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR, .presentMode = VK_PRESENT_MODE_FIFO_KHR,
+        .clipped = VK_TRUE};
+    CHECK(vkCreateSwapchainKHR(w->device, &info, NULL, &w->swapchain));
+    w->image_count = VIEWER_MAX_SWAPCHAIN_IMAGES;
+    CHECK(vkGetSwapchainImagesKHR(w->device, w->swapchain, &w->image_count, w->images));
+    for (uint32_t i = 0; i < w->image_count; ++i) {
+        VkImageViewCreateInfo view = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = w->images[i],
+            .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = w->format,
+            .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+        CHECK(vkCreateImageView(w->device, &view, NULL, &w->views[i]));
+    }
+    VkDeviceSize bytes = (VkDeviceSize)w->extent.width * w->extent.height * 4;
+    return create_host_buffer(w, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, &w->readback, &w->readback_memory,
+                              &w->readback_mapped) &&
+           create_host_buffer(w, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &w->overlay, &w->overlay_memory,
+                              &w->overlay_mapped);
+}
+
+static void on_glfw_error(int code, const char *message)
+{
+    fprintf(stderr, "rtpbr-viewer: GLFW error %d: %s\n", code, message);
+}
+
+bool viewer_window_create(viewer_window *w, int width, int height, bool validation)
+{
+    memset(w, 0, sizeof *w);
+    glfwSetErrorCallback(on_glfw_error);
+    if (!glfwInit()) {
+        fprintf(stderr, "rtpbr-viewer: glfwInit failed (no display?)\n");
+        return false;
+    }
+    if (!glfwVulkanSupported()) {
+        fprintf(stderr, "rtpbr-viewer: GLFW found no Vulkan loader\n");
+        return false;
+    }
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    w->glfw = glfwCreateWindow(width, height, "rtpbr viewer", NULL, NULL);
+    if (!w->glfw) {
+        fprintf(stderr, "rtpbr-viewer: cannot create a %dx%d window\n", width, height);
+        return false;
+    }
+    if (!create_instance(w, validation)) return false;
+    CHECK(glfwCreateWindowSurface(w->instance, w->glfw, NULL, &w->surface));
+    return create_device(w) && viewer_window_resize(w);
+}
+
+void viewer_window_destroy(viewer_window *w)
+{
+    if (w->device) {
+        vkDeviceWaitIdle(w->device);
+        destroy_swapchain(w);
+        if (w->acquired) vkDestroySemaphore(w->device, w->acquired, NULL);
+        if (w->rendered) vkDestroySemaphore(w->device, w->rendered, NULL);
+        if (w->fence) vkDestroyFence(w->device, w->fence, NULL);
+        if (w->pool) vkDestroyCommandPool(w->device, w->pool, NULL);
+        vkDestroyDevice(w->device, NULL);
+    }
+    if (w->surface) vkDestroySurfaceKHR(w->instance, w->surface, NULL);
+    if (w->messenger) {
+        PFN_vkDestroyDebugUtilsMessengerEXT destroy = (PFN_vkDestroyDebugUtilsMessengerEXT)
+            vkGetInstanceProcAddr(w->instance, "vkDestroyDebugUtilsMessengerEXT");
+        if (destroy) destroy(w->instance, w->messenger, NULL);
+    }
+    if (w->instance) vkDestroyInstance(w->instance, NULL);
+    if (w->glfw) glfwDestroyWindow(w->glfw);
+    glfwTerminate();
+    uint32_t messages = w->validation_messages;
+    memset(w, 0, sizeof *w);
+    w->validation_messages = messages;
+}
+
+static void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                          VkAccessFlags src_access, VkAccessFlags dst_access)
+{
+    VkImageMemoryBarrier barrier = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER, .srcAccessMask = src_access,
+        .dstAccessMask = dst_access, .oldLayout = from, .newLayout = to,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .image = image, .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, NULL, 0, NULL,
+                         1, &barrier);
+}
+
+bool viewer_window_frame(viewer_window *w, viewer_record_fn record, void *user, int split_x, bool screenshot,
+                         bool *out_of_date)
+{
+    *out_of_date = false;
+    if (!w->swapchain) return true;
+    uint32_t index = 0;
+    VkResult acquired = vkAcquireNextImageKHR(w->device, w->swapchain, UINT64_MAX, w->acquired, VK_NULL_HANDLE, &index);
+    if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
+        *out_of_date = true;
+        return true;
+    }
+    if (acquired != VK_SUCCESS && acquired != VK_SUBOPTIMAL_KHR) {
+        fprintf(stderr, "rtpbr-viewer: vkAcquireNextImageKHR failed (VkResult %d)\n", acquired);
+        return false;
+    }
+    CHECK(vkResetCommandPool(w->device, w->pool, 0));
+    VkCommandBufferBeginInfo begin = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    CHECK(vkBeginCommandBuffer(w->cmd, &begin));
+    VkImage image = w->images[index];
+    if (!record(w->cmd, image, w->views[index], user)) return false;
+    if (split_x >= 0 && (uint32_t)split_x < w->extent.width) {
+        VkBufferImageCopy region = {.bufferOffset = (VkDeviceSize)split_x * 4, .bufferRowLength = w->extent.width,
+            .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageOffset = {split_x, 0, 0},
+            .imageExtent = {w->extent.width - (uint32_t)split_x, w->extent.height, 1}};
+        vkCmdCopyBufferToImage(w->cmd, w->overlay, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    }
+    if (screenshot) {
+        image_barrier(w->cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                    .imageExtent = {w->extent.width, w->extent.height, 1}};
+        vkCmdCopyImageToBuffer(w->cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, w->readback, 1, &region);
+        VkBufferMemoryBarrier to_host = {.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER,
+            .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT, .dstAccessMask = VK_ACCESS_HOST_READ_BIT,
+            .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+            .buffer = w->readback, .size = VK_WHOLE_SIZE};
+        vkCmdPipelineBarrier(w->cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, NULL, 1,
+                             &to_host, 0, NULL);
+    }
+    // Presentation needs no access mask: the semaphore makes the writes available.
+    image_barrier(w->cmd, image, screenshot ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, screenshot ? 0 : VK_ACCESS_TRANSFER_WRITE_BIT, 0);
+    CHECK(vkEndCommandBuffer(w->cmd));
+    VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_ALL_COMMANDS_BIT;
+    VkSubmitInfo submit = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .waitSemaphoreCount = 1,
+        .pWaitSemaphores = &w->acquired, .pWaitDstStageMask = &wait_stage, .commandBufferCount = 1,
+        .pCommandBuffers = &w->cmd, .signalSemaphoreCount = 1, .pSignalSemaphores = &w->rendered};
+    CHECK(vkResetFences(w->device, 1, &w->fence));
+    CHECK(vkQueueSubmit(w->queue, 1, &submit, w->fence));
+    VkPresentInfoKHR present = {.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR, .waitSemaphoreCount = 1,
+        .pWaitSemaphores = &w->rendered, .swapchainCount = 1, .pSwapchains = &w->swapchain, .pImageIndices = &index};
+    VkResult presented = vkQueuePresentKHR(w->queue, &present);
+    CHECK(vkWaitForFences(w->device, 1, &w->fence, VK_TRUE, UINT64_MAX));
+    // One frame in flight, and the present's semaphore wait finished before the next
+    // acquire can return this semaphore's image: reuse is safe once the queue is idle.
+    CHECK(vkQueueWaitIdle(w->queue));
+    if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR || acquired == VK_SUBOPTIMAL_KHR)
+        *out_of_date = true;
+    else if (presented != VK_SUCCESS) {
+        fprintf(stderr, "rtpbr-viewer: vkQueuePresentKHR failed (VkResult %d)\n", presented);
+        return false;
+    }
+    return true;
+}
+
+uint8_t *viewer_window_overlay(viewer_window *w) { return (uint8_t *)w->overlay_mapped; }
+
+bool viewer_window_bgra(const viewer_window *w)
+{
+    return w->format == VK_FORMAT_B8G8R8A8_SRGB || w->format == VK_FORMAT_B8G8R8A8_UNORM;
+}
+
+bool viewer_window_write_screenshot(const viewer_window *w, const char *path)
+{
+    size_t n = (size_t)w->extent.width * w->extent.height;
+    uint8_t *rgba = malloc(n * 4);
+    if (!rgba) return false;
+    const uint8_t *src = w->readback_mapped;
+    bool bgra = viewer_window_bgra(w);
+    for (size_t i = 0; i < n; ++i) {
+        rgba[4 * i + 0] = src[4 * i + (bgra ? 2 : 0)];
+        rgba[4 * i + 1] = src[4 * i + 1];
+        rgba[4 * i + 2] = src[4 * i + (bgra ? 0 : 2)];
+        rgba[4 * i + 3] = 255;
+    }
+    bool ok = stbi_write_png(path, (int)w->extent.width, (int)w->extent.height, 4, rgba, (int)w->extent.width * 4) != 0;
+    free(rgba);
+    if (!ok) fprintf(stderr, "rtpbr-viewer: cannot write %s\n", path);
+    return ok;
+}
