@@ -117,8 +117,11 @@ def main(argv=None):
             log("unknown scene %r (thresholds.json lists %s)" % (name, ", ".join(config["scenes"])))
             return 2
         sc = dict(settings)
-        sc.update(config["scenes"][name])
+        sc.update({k: v for k, v in config["scenes"][name].items() if k not in ("quick", "full")})
         sc.update(config["scenes"][name].get(mode, {}))
+        if "max_mean" not in sc or "max_p95" not in sc:
+            log("thresholds.json: scene %s has no max_mean/max_p95 for mode %s" % (name, mode))
+            return 2
         gltf = os.path.join(ROOT, "samples", "scenes", name + ".gltf")
         if not os.path.isfile(gltf):
             log("scene file %s missing" % gltf)
