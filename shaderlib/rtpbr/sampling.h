@@ -53,6 +53,19 @@ RTPBR_FN float3 Reflect_About(float3 wo, float3 wm) {
     return 2.0f * dot(wo, wm) * wm - wo;
 }
 
+// The Jacobian of reflection, d(wm) / d(wi) = 1 / (4 |wo.wm|), and the half vector wm of
+// (wo, wi); 0 when wi is below the horizon or wm faces away from wo.
+RTPBR_FN float Reflection_Jacobian(float3 wo, float3 wi, RTPBR_OUT(float3) wm) {
+    float3 hs = wo + wi;
+    float l2 = dot(hs, hs);
+    wm = float3(0.0f, 0.0f, 1.0f);
+    if (!(wi.z > 0.0f) || !(l2 > 1e-20f))
+        return 0.0f;
+    wm = hs * rsqrt(l2);
+    float woDotWm = dot(wo, wm);
+    return woDotWm > 0.0f ? 1.0f / (4.0f * woDotWm) : 0.0f;
+}
+
 // ---- GGX ------------------------------------------------------------------------------------
 
 // Dupuy & Benyoub 2023, "Sampling Visible GGX Normals with Spherical Caps": in the
@@ -93,15 +106,9 @@ RTPBR_FN float PDF_GGX_VNDF(float3 wo, float3 wm, float alphaX, float alphaY) {
 }
 
 RTPBR_FN float PDF_GGX_Reflection(float3 wo, float3 wi, float alphaX, float alphaY) {
-    float3 hs = wo + wi;
-    float l2 = dot(hs, hs);
-    if (!(wi.z > 0.0f) || !(l2 > 1e-20f))
-        return 0.0f;
-    float3 wm = hs * rsqrt(l2);
-    float woDotWm = dot(wo, wm);
-    if (!(woDotWm > 0.0f))
-        return 0.0f;
-    return PDF_GGX_VNDF(wo, wm, alphaX, alphaY) / (4.0f * woDotWm);
+    float3 wm;
+    float jacobian = Reflection_Jacobian(wo, wi, wm);
+    return jacobian > 0.0f ? PDF_GGX_VNDF(wo, wm, alphaX, alphaY) * jacobian : 0.0f;
 }
 
 // ---- Beckmann -------------------------------------------------------------------------------
@@ -177,15 +184,9 @@ RTPBR_FN float PDF_Beckmann_VNDF(float3 wo, float3 wm, float alphaX, float alpha
 }
 
 RTPBR_FN float PDF_Beckmann_Reflection(float3 wo, float3 wi, float alphaX, float alphaY) {
-    float3 hs = wo + wi;
-    float l2 = dot(hs, hs);
-    if (!(wi.z > 0.0f) || !(l2 > 1e-20f))
-        return 0.0f;
-    float3 wm = hs * rsqrt(l2);
-    float woDotWm = dot(wo, wm);
-    if (!(woDotWm > 0.0f))
-        return 0.0f;
-    return PDF_Beckmann_VNDF(wo, wm, alphaX, alphaY) / (4.0f * woDotWm);
+    float3 wm;
+    float jacobian = Reflection_Jacobian(wo, wi, wm);
+    return jacobian > 0.0f ? PDF_Beckmann_VNDF(wo, wm, alphaX, alphaY) * jacobian : 0.0f;
 }
 
 // ---- cosine-weighted hemisphere ------------------------------------------------------------
