@@ -129,10 +129,13 @@ def main():
     ap.add_argument('--height', type=int, default=240)
     ap.add_argument('--spp', type=int, default=64)
     ap.add_argument('--max-depth', type=int, default=16)
-    ap.add_argument('--threads', default='1,2')
+    # One thread count per process: switching dr.set_thread_count between renders in one
+    # process hung Mitsuba (sleeping, no CPU) in our run; run the script once per count.
+    ap.add_argument('--threads', default='2')
     ap.add_argument('--bsdf', choices=['principled', 'conductor'], default='principled')
     ap.add_argument('--outdir', default=tempfile.mkdtemp(prefix='rtpbr_mitsuba_'))
     a = ap.parse_args()
+    os.makedirs(a.outdir, exist_ok=True)
 
     threads = [int(t) for t in a.threads.split(',')]
     t0 = time.perf_counter()
