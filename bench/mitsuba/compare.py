@@ -89,7 +89,7 @@ def run_mitsuba(scene, spp, threads, out):
     t0 = time.perf_counter()
     img = mi.render(scene, spp=spp, seed=threads)  # distinct seeds -> noise floor
     dt = time.perf_counter() - t0
-    mi.util.write_bitmap(out, img)
+    mi.util.write_bitmap(out, img, write_async=False)  # async write was lost at exit
     return dt, np.array(img, dtype=np.float64)[..., :3]
 
 
