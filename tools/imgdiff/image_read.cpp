@@ -6,9 +6,11 @@
 #include <OpenImageIO/imageio.h>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstddef>
@@ -129,6 +131,17 @@ bool container_sizes_fit(const std::string& path, long long max_pixels, std::str
 
 bool read_image(const std::string& path, Image& image, std::string& error, const ImageReadOptions& options) {
     SilenceStderr quiet(options.quiet);
+    // Only regular files go to OpenImageIO: given a directory it tries every format plugin,
+    // and libheif's reader spins forever on one (seen under ASan in the bad-input suite).
+    struct stat st;
+    if (::stat(path.c_str(), &st) != 0) {
+        error = "cannot read '" + path + "': " + std::strerror(errno);
+        return false;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        error = "cannot read '" + path + "': not a regular file";
+        return false;
+    }
     const long long max_pixels = options.max_pixels > 0 ? options.max_pixels : kMaxImagePixels;
     if (!container_sizes_fit(path, max_pixels, error)) return false;
     auto in = OIIO::ImageInput::open(path);
