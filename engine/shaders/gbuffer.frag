@@ -11,13 +11,7 @@ layout(push_constant, std430) uniform Draw {
     uint material;
 } draw;
 
-// C mirror: rtpbr_shader_material.
-struct Material {
-    vec4 base_color_metallic;
-    vec4 emission_roughness;
-    vec4 specular_color_ior;
-    vec4 specular;
-};
+#include "material.glsl"
 layout(set = 0, binding = RTPBR_BINDING_GBUFFER_MATERIALS, std430) readonly buffer Materials {
     Material materials[];
 };
@@ -34,7 +28,7 @@ layout(set = 1, binding = RTPBR_BINDING_TEXTURE_NORMAL) uniform sampler2D normal
 
 layout(location = 0) out vec4 out_gbuffer0; // base colour rgb, metallic
 layout(location = 1) out vec4 out_gbuffer1; // world normal xyz, perceptual roughness
-layout(location = 2) out vec4 out_gbuffer2; // emitted radiance rgb, ior
+layout(location = 2) out vec4 out_gbuffer2; // emitted radiance rgb, material index
 layout(location = 3) out vec4 out_gbuffer3; // specular colour rgb, specular factor
 
 void main()
@@ -60,6 +54,6 @@ void main()
     float roughness = clamp(m.emission_roughness.w * mr.g, RTPBR_SHADER_MIN_ROUGHNESS, 1.0);
     out_gbuffer0 = vec4(m.base_color_metallic.rgb * texture(base_color_texture, in_uv).rgb, m.base_color_metallic.a * mr.b);
     out_gbuffer1 = vec4(n, roughness);
-    out_gbuffer2 = vec4(emission, m.specular_color_ior.w);
+    out_gbuffer2 = vec4(emission, float(draw.material)); // exact: RTPBR_MAX_MATERIALS < 2^24
     out_gbuffer3 = vec4(m.specular_color_ior.xyz, m.specular.x);
 }

@@ -1,19 +1,17 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Lighting pass: one workgroup per RTPBR_TILE_SIZE^2 screen tile; reads the G-buffer and
-// writes linear radiance. Model flags (RTPBR_NDF, RTPBR_MULTISCATTER) come from the build,
+// Lighting pass: one workgroup per RTPBR_TILE_SIZE^2 screen tile; reads the G-buffer and the
+// scene's materials and writes linear radiance. Model flags (RTPBR_NDF, RTPBR_MULTISCATTER) come from the build,
 // one SPIR-V variant per combination. All BRDF and polygon-integration math comes from the
 // shader library (shaderlib/rtpbr); this file only fetches, loops and sums.
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
 #include "rtpbr/fresnel.h"
-#if RTPBR_HAVE_LTC
 #include "rtpbr/ltc.h"
-#endif
-#if RTPBR_HAVE_KC
 #include "rtpbr/kulla_conty.h"
-#endif
+#include "rtpbr/disney.h"
+#include "material.glsl"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
 #include "frame.glsl"
 
@@ -46,6 +44,13 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_BECKMANN_1) uniform sampler2D lu
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_BECKMANN_2) uniform sampler2D lut_ltc_beckmann_2;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_E) uniform sampler2D lut_kc_e;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EAVG) uniform sampler2D lut_kc_eavg;
+layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EF) uniform sampler2D lut_kc_ef;
+layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EFAVG) uniform sampler2D lut_kc_efavg;
+layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_DISNEY_1) uniform sampler2D lut_ltc_disney_1;
+layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_DISNEY_2) uniform sampler2D lut_ltc_disney_2;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_MATERIALS, std430) readonly buffer Materials {
+    Material materials[];
+};
 
 // ---- per-tile light culling ------------------------------------------------------------------
 // The workgroup's pixels form one screen tile. Their world positions are bounded by a box;
@@ -92,7 +97,6 @@ bool light_may_contribute(Light light, vec3 boxMin, vec3 boxMax)
     return true;
 }
 
-#if RTPBR_HAVE_LTC
 // The lighting tables of the NDF this variant is built for.
 #if RTPBR_NDF == RTPBR_NDF_BECKMANN
 #define LUT_LTC_1 lut_ltc_beckmann_1
@@ -104,30 +108,112 @@ bool light_may_contribute(Light light, vec3 boxMin, vec3 boxMax)
 #define KC_CHANNEL r
 #endif
 
-// Reflected radiance from every polygonal light: Lambertian diffuse and LTC specular with
-// Fresnel from the tables (Heitz et al. 2016, shaderlib ltc.h) plus, with RTPBR_MULTISCATTER,
-// the Kulla-Conty multiple-scattering lobe over each polygon (shaderlib kulla_conty.h).
-// Material mapping (glTF metallic-roughness + KHR_materials_specular / _ior):
-//   dielectric f0 = min(F0(ior) * specularColor, 1) * specular, f90 = specular;
-//   metal f0 = baseColor, f90 = 1; mixed by metallic; diffuse colour = baseColor (1 - metallic).
-vec3 shade_lights(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, vec4 g2, vec4 g3)
+// Kulla-Conty tables (shaderlib/luts, kulla_conty.h coordinates).
+float kc_E(float mu, float r) { return textureLod(lut_kc_e, KC_TableCoord(mu, r), 0.0f).KC_CHANNEL; }
+float kc_Eavg(float r) { return textureLod(lut_kc_eavg, vec2(KC_TableCoordAvg(r), 0.5f), 0.0f).KC_CHANNEL; }
+// E_F(mu, r, eta): the eta slices are stacked along v (engine/src/luts.c); two bilinear
+// fetches at the neighbouring slices and a lerp along eta make the trilinear lookup.
+float kc_EF(float mu, float r, float eta)
+{
+    vec2 uv = KC_TableCoord(mu, r);
+    float s = KC_EtaAxis(eta) * (KC_LUT_SIZE_ETA - 1.0f);
+    float s0 = min(floor(s), KC_LUT_SIZE_ETA - 2.0f);
+    float v0 = (s0 + uv.y) / KC_LUT_SIZE_ETA; // uv.y * KC_LUT_SIZE texels into slice s0
+    float e0 = textureLod(lut_kc_ef, vec2(uv.x, v0), 0.0f).KC_CHANNEL;
+    float e1 = textureLod(lut_kc_ef, vec2(uv.x, v0 + 1.0f / KC_LUT_SIZE_ETA), 0.0f).KC_CHANNEL;
+    return mix(e0, e1, s - s0);
+}
+float kc_EFavg(float r, float eta) { return textureLod(lut_kc_efavg, KC_TableCoordAvg2D(r, eta), 0.0f).KC_CHANNEL; }
+
+// Reflected radiance from every polygonal light of the tile. Every lobe's polygon integral
+// comes from the shader library: LTC (Heitz et al. 2016, ltc.h) for the specular lobes and
+// Burley's diffuse, Lambert's polygon formula for the form factor, Kulla-Conty (kulla_conty.h)
+// for the multiple-scattering lobes and the dielectric-over-diffuse layering. The model is
+// the oracle's (oracle/bsdf.h, docs/materials.md):
+//   metallic-roughness: f = (1 - c Fc(NoV)) [metallic f_metal + (1 - metallic) f_dielectric]
+//                           + c f_coat,
+//     f_metal = GGX, Schlick(F0 = baseColor, 1) + its Kulla-Conty lobe,
+//     f_dielectric = w GGX Schlick(F0(ior) specularColor, 1) + w F_ms f_ms
+//                    + baseColor (1 - Es(mu_o)) (1 - Es(mu_i)) / (pi (1 - Es_avg)),
+//     Es = w (E_F + F_ms (1 - E)) (KC_SpecularAlbedoDielectric; E_F with exact Fresnel),
+//     f_coat = GGX(clearcoat roughness), Schlick(0.04, 1) + its Kulla-Conty lobe;
+//   Disney (Burley 2012, disney.h): specular GGX Schlick(Disney_SpecularF0, 1) + Kulla-Conty
+//     lobe, Burley diffuse by its own LTC fit, the subsurface shape and sheen at the polygon's
+//     representative direction, clearcoat 0.25 c GGX(sqrt(GTR1 alpha)) Schlick(0.04, 1).
+// Separable lobes (f_ms, the layered base) integrate as (1 - E(mu_o)) / (1 - E_avg) times the
+// form factor times 1 - E at the representative direction, that of the polygon's vector form
+// factor (KC_PolygonLobe). Anisotropic lobes are shaded isotropically at sqrt(alpha_t alpha_b).
+vec3 shade_lights(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, Material m)
 {
     vec3 baseColor = g0.rgb;
     float metallic = g0.a;
-    vec3 f0Dielectric = min(RTPBR_F3(F0_FromIor(g2.a)) * g3.rgb, RTPBR_F3(1.0f)) * g3.a;
-    vec3 f0 = mix(f0Dielectric, baseColor, metallic);
-    float f90 = mix(g3.a, 1.0f, metallic);
-    vec3 diffuseColor = baseColor * (1.0f - metallic);
     float NoV = saturate(dot(N, V));
+    bool disney = m.coat.z > 0.5f;
 
-    vec2 uv = LTC_LutCoord(NoV, roughness);
+    DisneyMaterial dm;
+    dm.baseColor = baseColor;
+    dm.metallic = metallic;
+    dm.subsurface = m.disney0.x;
+    dm.specular = m.disney0.y;
+    dm.specularTint = m.disney0.z;
+    dm.roughness = roughness;
+    dm.anisotropic = m.disney1.w;
+    dm.sheen = m.disney0.w;
+    dm.sheenTint = m.disney1.x;
+    dm.clearcoat = m.disney1.y;
+    dm.clearcoatGloss = m.disney1.z;
+    dm = Disney_SanitizeMaterial(dm);
+    DisneyMaterial dss = dm; // the subsurface shape alone
+    dss.subsurface = 1.0f;
+
+    // The specular lobe, isotropic at sqrt(alpha_t alpha_b) (KHR: alpha_t = mix(alpha, 1, s^2)).
+    float alpha = roughness * roughness;
+    float aniso = m.coat.w;
+    float specR = disney ? Disney_SpecularTableRoughness(dm) : sqrt(sqrt(mix(alpha, 1.0f, aniso * aniso) * alpha));
+    specR = clamp(specR, RTPBR_SHADER_MIN_ROUGHNESS, 1.0f);
+    float w = m.specular.x;
+    float eta = m.specular_color_ior.w;
+    vec3 f0Dielectric = min(RTPBR_F3(F0_FromIor(eta)) * m.specular_color_ior.rgb, RTPBR_F3(1.0f));
+    vec3 f0 = disney ? Disney_SpecularF0(dm) : mix(w * f0Dielectric, baseColor, metallic);
+    float f90 = disney ? 1.0f : mix(w, 1.0f, metallic);
+    vec2 uv = LTC_LutCoord(NoV, specR);
     vec4 ltc1 = textureLod(LUT_LTC_1, uv, 0.0f);
-    vec4 ltc2 = textureLod(LUT_LTC_2, uv, 0.0f);
-    vec3 specularScale = LTC_FresnelScale(ltc2, f0, f90);
-#if RTPBR_MULTISCATTER && RTPBR_HAVE_KC
-    float Eo = textureLod(lut_kc_e, KC_TableCoord(NoV, roughness), 0.0f).KC_CHANNEL;
-    float Eavg = textureLod(lut_kc_eavg, vec2(KC_TableCoordAvg(roughness), 0.5f), 0.0f).KC_CHANNEL;
-    vec3 Fms = KC_FmsColor(F_Avg_Schlick(f0, f90), Eavg);
+    vec3 specularScale = LTC_FresnelScale(textureLod(LUT_LTC_2, uv, 0.0f), f0, f90);
+    float Eo = kc_E(NoV, specR);
+    float Eavg = kc_Eavg(specR);
+#if RTPBR_MULTISCATTER
+    float FmsDielectric = KC_FmsColor(RTPBR_F3(F_Avg_Dielectric(eta)), Eavg).x;
+    vec3 msColor = disney ? KC_FmsColor(F_Avg_Schlick(f0, 1.0f), Eavg)
+                          : metallic * KC_FmsColor(F_Avg_Schlick(baseColor, 1.0f), Eavg) +
+                                RTPBR_F3((1.0f - metallic) * w * FmsDielectric);
+#else
+    float FmsDielectric = 0.0f;
+    vec3 msColor = RTPBR_F3(0.0f);
+#endif
+    // The layered base (metallic-roughness): the specular layer's albedo at mu_o and on average.
+    vec3 diffuseColor = (1.0f - metallic) * baseColor;
+    float Eso = w * KC_SpecularAlbedoDielectric(kc_EF(NoV, specR, eta), Eo, FmsDielectric);
+    float EsAvg = w * KC_SpecularAlbedoDielectric(kc_EFavg(specR, eta), Eavg, FmsDielectric);
+    // Burley's diffuse (Disney): its LTC fit, column = the material's roughness.
+    vec2 uvd = LTC_LutCoord(NoV, roughness);
+    vec4 ltc1d = textureLod(lut_ltc_disney_1, uvd, 0.0f);
+    vec3 burleyScale = ((1.0f - dm.subsurface) * textureLod(lut_ltc_disney_2, uvd, 0.0f).x) * diffuseColor;
+    // The view direction in the LTC frame (LTC_Frame: x along V's tangential part).
+    vec3 vLocal = vec3(sqrt(max(1.0f - NoV * NoV, 0.0f)), 0.0f, NoV);
+
+    // The coat: KHR clearcoat (attenuates the rest by 1 - c Fc(NoV)) or Disney's (does not).
+    float coat = disney ? RTPBR_DISNEY_CLEARCOAT_SCALE * dm.clearcoat : m.coat.x;
+    float coatR = clamp(disney ? sqrt(Disney_ClearcoatAlpha(dm)) : m.coat.y, RTPBR_SHADER_MIN_ROUGHNESS, 1.0f);
+    float baseAttenuation = disney ? 1.0f : 1.0f - coat * F_Schlick1(0.04f, 1.0f, NoV);
+    vec2 uvc = LTC_LutCoord(NoV, coatR);
+    vec4 ltc1c = textureLod(LUT_LTC_1, uvc, 0.0f);
+    vec3 coatScale = coat * LTC_FresnelScale(textureLod(LUT_LTC_2, uvc, 0.0f), RTPBR_F3(0.04f), 1.0f);
+    float Eoc = kc_E(NoV, coatR);
+    float Eavgc = kc_Eavg(coatR);
+#if RTPBR_MULTISCATTER
+    vec3 msCoat = coat * KC_FmsColor(F_Avg_Schlick(RTPBR_F3(0.04f), 1.0f), Eavgc);
+#else
+    vec3 msCoat = RTPBR_F3(0.0f);
 #endif
 
     mat3 ltcFrame = LTC_Frame(N, V);
@@ -141,20 +227,29 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, vec4 g2, vec
         bool twoSided = light.emission.w != 0.0f;
         LtcLocalPolygon local = LTC_PolygonToLocal(ltcFrame, P, poly, twoSided);
         if (local.count == 0) continue;
-        float diffuseFF = LTC_IntegrateLocal(local, LTC_Identity());
-        vec3 lo = diffuseColor * diffuseFF + specularScale * LTC_IntegrateLocal(local, ltc1);
-#if RTPBR_MULTISCATTER && RTPBR_HAVE_KC
+        float ff = LTC_IntegrateLocal(local, LTC_Identity());
         // The representative direction of the polygon: its vector form factor's.
         vec3 F = LTC_FormFactorVector(LTC_PolygonToLocalUnclipped(ltcFrame, P, poly, twoSided), LTC_Identity());
-        float muRep = length(F) > 0.0f ? saturate(F.z / length(F)) : 0.0f;
-        float Erep = textureLod(lut_kc_e, KC_TableCoord(muRep, roughness), 0.0f).KC_CHANNEL;
-        lo += Fms * KC_PolygonLobe(Eo, Erep, Eavg, diffuseFF);
-#endif
+        float lenF = length(F);
+        vec3 lRep = lenF > 0.0f ? F / lenF : vec3(0.0f, 0.0f, 1.0f);
+        float muRep = saturate(lRep.z);
+        float Erep = kc_E(muRep, specR);
+
+        vec3 lo = specularScale * LTC_IntegrateLocal(local, ltc1) + msColor * KC_PolygonLobe(Eo, Erep, Eavg, ff);
+        float Esrep = w * KC_SpecularAlbedoDielectric(kc_EF(muRep, specR, eta), Erep, FmsDielectric);
+        vec3 base = diffuseColor * KC_PolygonLobe(Eso, Esrep, EsAvg, ff);
+        if (disney) {
+            float LoH = saturate(dot(lRep, normalize(lRep + vLocal)));
+            base = burleyScale * LTC_IntegrateLocal(local, ltc1d) +
+                   (dm.subsurface * Disney_DiffuseLobe(dss, NoV, muRep, LoH) + Disney_SheenLobe(dm, LoH)) * (RTPBR_PI * ff);
+        }
+        lo = (lo + base) * baseAttenuation;
+        if (coat > 0.0f)
+            lo += coatScale * LTC_IntegrateLocal(local, ltc1c) + msCoat * KC_PolygonLobe(Eoc, kc_E(muRep, coatR), Eavgc, ff);
         sum += light.emission.rgb * lo;
     }
     return sum;
 }
-#endif
 
 void main()
 {
@@ -197,10 +292,8 @@ void main()
     }
     vec4 g2 = texelFetch(gbuffer2, pixel, 0);
     vec3 result = g2.rgb; // emitted radiance
-#if RTPBR_HAVE_LTC
     vec4 g0 = texelFetch(gbuffer0, pixel, 0);
     vec4 g1 = texelFetch(gbuffer1, pixel, 0);
-    vec4 g3 = texelFetch(gbuffer3, pixel, 0);
     vec3 V = normalize(frame.camera_position.xyz - P);
     vec3 N = normalize(g1.xyz);
     // The position from the depth buffer is off by up to about one depth quantum along the
@@ -208,9 +301,7 @@ void main()
     // itself. Shade a point lifted along N by a few quanta (measured at this depth) instead.
     vec4 further = frame.inv_view_proj * vec4(ndc, min(depth * (1.0f + 4.0f / 16777216.0f), 1.0f), 1.0f);
     float lift = length(further.xyz / further.w - P) + 1e-6f * length(frame.camera_position.xyz - P);
-    result += shade_lights(P + N * lift, N, V, g0, g1.w, g2, g3);
-#endif
-    // Without ltc.h (RTPBR_HAVE_LTC 0) lights contribute nothing but their emissive geometry.
+    result += shade_lights(P + N * lift, N, V, g0, g1.w, materials[uint(g2.a)]);
 
     imageStore(radiance, pixel, vec4(result, 1.0));
 }

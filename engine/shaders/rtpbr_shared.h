@@ -32,7 +32,7 @@
 #define RTPBR_BINDING_LIGHT_LIGHTS 1      // storage: rtpbr_shader_light[]
 #define RTPBR_BINDING_LIGHT_GBUFFER0 2    // base colour rgb, metallic
 #define RTPBR_BINDING_LIGHT_GBUFFER1 3    // world normal xyz, perceptual roughness
-#define RTPBR_BINDING_LIGHT_GBUFFER2 4    // emitted radiance rgb, ior
+#define RTPBR_BINDING_LIGHT_GBUFFER2 4    // emitted radiance rgb, material index
 #define RTPBR_BINDING_LIGHT_GBUFFER3 5    // specular colour rgb, specular factor
 #define RTPBR_BINDING_LIGHT_DEPTH 6       // depth (0 near .. 1 far)
 #define RTPBR_BINDING_LIGHT_RADIANCE 7    // output, rgba32f storage image
@@ -44,7 +44,17 @@
 #define RTPBR_BINDING_LUT_LTC_BECKMANN_2 11
 #define RTPBR_BINDING_LUT_KC_E 12          // Kulla-Conty E(mu, r)
 #define RTPBR_BINDING_LUT_KC_EAVG 13       // Kulla-Conty E_avg(r)
-#define RTPBR_LIGHTING_BINDING_COUNT 14
+#define RTPBR_BINDING_LUT_KC_EF 14         // E_F(mu, r, eta): the eta slices stacked along v
+#define RTPBR_BINDING_LUT_KC_EFAVG 15      // E_F_avg(r, eta)
+#define RTPBR_BINDING_LUT_LTC_DISNEY_1 16  // M^-1 of the Burley diffuse LTC fit
+#define RTPBR_BINDING_LUT_LTC_DISNEY_2 17  // norm, 0, 0, sphere form factor
+#define RTPBR_LUT_COUNT 10                 // LUT bindings 8 .. 17, in this order
+#define RTPBR_BINDING_LIGHT_MATERIALS 18   // storage: rtpbr_shader_material[]
+#define RTPBR_LIGHTING_BINDING_COUNT 19
+
+// rtpbr_shader_material.coat.z: the material model.
+#define RTPBR_SHADER_MODEL_METALLIC_ROUGHNESS 0
+#define RTPBR_SHADER_MODEL_DISNEY 1
 
 // Tone-mapping pass, descriptor set 0.
 #define RTPBR_BINDING_TONEMAP_RADIANCE 0   // rgba32f storage image, read only

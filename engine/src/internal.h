@@ -34,6 +34,10 @@ typedef struct rtpbr_shader_material {
     float emission_roughness[4];
     float specular_color_ior[4];
     float specular[4];         // x: specular factor, y: 1 if emitting on both sides, z: 1 if normal-mapped, w: normal scale
+    float coat[4];             // x: clearcoat, y: clearcoat perceptual roughness, z: RTPBR_SHADER_MODEL_*, w: anisotropy
+    float disney0[4];          // Disney: subsurface, specular, specular_tint, sheen
+    float disney1[4];          // Disney: sheen_tint, clearcoat, clearcoat_gloss, anisotropic
+    float reserved[4];
 } rtpbr_shader_material;
 
 // std430 element of the lights buffer (lighting.comp).
@@ -65,7 +69,7 @@ typedef struct rtpbr_shader_tonemap {
 
 // The shaders' std140 / std430 sizes of the same structs.
 _Static_assert(sizeof(rtpbr_shader_frame) == 176, "Frame block layout");
-_Static_assert(sizeof(rtpbr_shader_material) == 64, "Material layout");
+_Static_assert(sizeof(rtpbr_shader_material) == 128, "Material layout");
 _Static_assert(sizeof(rtpbr_shader_light) == 192, "Light layout");
 _Static_assert(sizeof(rtpbr_shader_draw) == 128, "Draw push constants (128 bytes: the guaranteed minimum)");
 _Static_assert(RTPBR_SHADER_MAX_LIGHTS == RTPBR_MAX_LIGHTS, "light limit shared by C and shaders");
@@ -127,7 +131,7 @@ struct rtpbr_context {
     VkSampler gbuffer_sampler;    // nearest (the G-buffer is read with texelFetch)
     VkSampler texture_sampler;    // material textures: linear, repeat
     VkDescriptorSetLayout material_set_layout; // set 1 of the G-buffer pass
-    rtpbr_lut luts[6];            // in binding order RTPBR_BINDING_LUT_LTC_GGX_1 ...
+    rtpbr_lut luts[RTPBR_LUT_COUNT]; // in binding order RTPBR_BINDING_LUT_LTC_GGX_1 ...
 
     VkDescriptorSetLayout gbuffer_set_layout;
     VkPipelineLayout gbuffer_layout;

@@ -17,7 +17,13 @@
 #pragma GCC diagnostic pop
 #endif
 
-enum { LUT_LTC_GGX_1, LUT_LTC_GGX_2, LUT_LTC_BECKMANN_1, LUT_LTC_BECKMANN_2, LUT_KC_E, LUT_KC_EAVG };
+// In binding order (rtpbr_shared.h: RTPBR_BINDING_LUT_LTC_GGX_1 + index).
+enum {
+    LUT_LTC_GGX_1, LUT_LTC_GGX_2, LUT_LTC_BECKMANN_1, LUT_LTC_BECKMANN_2, LUT_KC_E, LUT_KC_EAVG, LUT_KC_EF,
+    LUT_KC_EFAVG, LUT_LTC_DISNEY_1, LUT_LTC_DISNEY_2, LUT_COUNT
+};
+_Static_assert(LUT_COUNT == RTPBR_LUT_COUNT, "LUT slots");
+_Static_assert(RTPBR_BINDING_LUT_LTC_DISNEY_2 == RTPBR_BINDING_LUT_LTC_GGX_1 + LUT_LTC_DISNEY_2, "LUT bindings");
 
 #if RTPBR_HAVE_KC_TABLES
 // Kulla-Conty tables of the two NDFs the engine compiles, one per channel: r = GGX, g =
@@ -27,8 +33,12 @@ static rtpbr_result create_kc_luts(rtpbr_context *ctx)
     const int ggx = RTPBR_KC_VARIANT_ggx_hc, beckmann = RTPBR_KC_VARIANT_beckmann_hc;
     float *e = rtpbr_alloc(ctx, RTPBR_KC_SIZE * RTPBR_KC_SIZE * 4 * sizeof(float));
     float *eavg = rtpbr_alloc(ctx, RTPBR_KC_SIZE * 4 * sizeof(float));
+    // E_F(mu, r, eta): a 2D atlas, the eta slices stacked along v (row eta * SIZE + r), as the
+    // lighting shader fetches it (two bilinear fetches and a lerp along eta); E_F_avg: u = r, v = eta.
+    float *ef = rtpbr_alloc(ctx, (size_t)RTPBR_KC_SIZE * RTPBR_KC_SIZE * RTPBR_KC_SIZE_ETA * 4 * sizeof(float));
+    float *efavg = rtpbr_alloc(ctx, (size_t)RTPBR_KC_SIZE * RTPBR_KC_SIZE_ETA * 4 * sizeof(float));
     rtpbr_result result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-    if (e && eavg) {
+    if (e && eavg && ef && efavg) {
         // rtpbr_kc_E[variant][r][mu]: texel x = mu axis, y = roughness (KC_TableCoord).
         for (int r = 0; r < RTPBR_KC_SIZE; ++r)
             for (int mu = 0; mu < RTPBR_KC_SIZE; ++mu) {
@@ -40,11 +50,31 @@ static rtpbr_result create_kc_luts(rtpbr_context *ctx)
             eavg[4 * r + 0] = rtpbr_kc_Eavg[ggx][r];
             eavg[4 * r + 1] = rtpbr_kc_Eavg[beckmann][r];
         }
+        for (int eta = 0; eta < RTPBR_KC_SIZE_ETA; ++eta) {
+            for (int r = 0; r < RTPBR_KC_SIZE; ++r) {
+                for (int mu = 0; mu < RTPBR_KC_SIZE; ++mu) {
+                    float *t = ef + 4 * ((eta * RTPBR_KC_SIZE + r) * RTPBR_KC_SIZE + mu);
+                    t[0] = rtpbr_kc_EF[ggx][eta][r][mu];
+                    t[1] = rtpbr_kc_EF[beckmann][eta][r][mu];
+                    t[2] = t[3] = 0.0f;
+                }
+                float *a = efavg + 4 * (eta * RTPBR_KC_SIZE + r);
+                a[0] = rtpbr_kc_EFavg[ggx][eta][r];
+                a[1] = rtpbr_kc_EFavg[beckmann][eta][r];
+                a[2] = a[3] = 0.0f;
+            }
+        }
         result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, RTPBR_KC_SIZE, e, &ctx->luts[LUT_KC_E]);
         if (result == RTPBR_SUCCESS) result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, 1, eavg, &ctx->luts[LUT_KC_EAVG]);
+        if (result == RTPBR_SUCCESS)
+            result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, RTPBR_KC_SIZE * RTPBR_KC_SIZE_ETA, ef, &ctx->luts[LUT_KC_EF]);
+        if (result == RTPBR_SUCCESS)
+            result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, RTPBR_KC_SIZE_ETA, efavg, &ctx->luts[LUT_KC_EFAVG]);
     }
     rtpbr_free(ctx, e);
     rtpbr_free(ctx, eavg);
+    rtpbr_free(ctx, ef);
+    rtpbr_free(ctx, efavg);
     return result;
 }
 #endif
@@ -56,6 +86,9 @@ rtpbr_result rtpbr_luts_create(rtpbr_context *ctx)
     const float *ltc[4] = {rtpbr_ltc_ggx_1, rtpbr_ltc_ggx_2, rtpbr_ltc_beckmann_1, rtpbr_ltc_beckmann_2};
     for (int i = 0; i < 4 && result == RTPBR_SUCCESS; ++i)
         result = rtpbr_lut_create(ctx, RTPBR_LTC_SIZE, RTPBR_LTC_SIZE, ltc[i], &ctx->luts[LUT_LTC_GGX_1 + i]);
+    const float *disney[2] = {rtpbr_ltc_disney_diffuse_1, rtpbr_ltc_disney_diffuse_2};
+    for (int i = 0; i < 2 && result == RTPBR_SUCCESS; ++i)
+        result = rtpbr_lut_create(ctx, RTPBR_LTC_SIZE, RTPBR_LTC_SIZE, disney[i], &ctx->luts[LUT_LTC_DISNEY_1 + i]);
 #endif
 #if RTPBR_HAVE_KC_TABLES
     if (result == RTPBR_SUCCESS) result = create_kc_luts(ctx);

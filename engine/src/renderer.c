@@ -10,7 +10,7 @@ static rtpbr_result create_descriptors(rtpbr_renderer *r)
     rtpbr_result result = RTPBR_SUCCESS;
     VkDescriptorPoolSize sizes[] = {
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, RTPBR_LIGHTING_BINDING_COUNT},
         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
     };
@@ -43,7 +43,7 @@ static rtpbr_result create_descriptors(rtpbr_renderer *r)
     images[RTPBR_BINDING_LIGHT_DEPTH] =
         (VkDescriptorImageInfo){ctx->gbuffer_sampler, r->depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     images[RTPBR_BINDING_LIGHT_RADIANCE] = (VkDescriptorImageInfo){VK_NULL_HANDLE, r->radiance.view, VK_IMAGE_LAYOUT_GENERAL};
-    for (uint32_t i = 0; i < 6; ++i)
+    for (uint32_t i = 0; i < RTPBR_LUT_COUNT; ++i)
         images[RTPBR_BINDING_LUT_LTC_GGX_1 + i] = (VkDescriptorImageInfo){
             ctx->lut_sampler, ctx->luts[i].image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
 
@@ -55,8 +55,9 @@ static rtpbr_result create_descriptors(rtpbr_renderer *r)
     writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
                                          .dstBinding = RTPBR_BINDING_LIGHT_FRAME, .descriptorCount = 1,
                                          .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &frame};
+    // Every binding from the G-buffer on is an image, but the scene's materials (prepare_frame).
     for (uint32_t b = RTPBR_BINDING_LIGHT_GBUFFER0; b < RTPBR_LIGHTING_BINDING_COUNT; ++b)
-        writes[n++] = (VkWriteDescriptorSet){
+        if (b != RTPBR_BINDING_LIGHT_MATERIALS) writes[n++] = (VkWriteDescriptorSet){
             .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set, .dstBinding = b,
             .descriptorCount = 1,
             .descriptorType = b == RTPBR_BINDING_LIGHT_RADIANCE ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
@@ -199,15 +200,18 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
 
     VkDescriptorBufferInfo materials = {scene->materials.buffer, 0, VK_WHOLE_SIZE};
     VkDescriptorBufferInfo lights = {scene->lights.buffer, 0, VK_WHOLE_SIZE};
-    VkWriteDescriptorSet writes[2] = {
+    VkWriteDescriptorSet writes[3] = {
         {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->gbuffer_set,
          .dstBinding = RTPBR_BINDING_GBUFFER_MATERIALS, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &materials},
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
+         .dstBinding = RTPBR_BINDING_LIGHT_MATERIALS, .descriptorCount = 1,
          .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &materials},
         {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
          .dstBinding = RTPBR_BINDING_LIGHT_LIGHTS, .descriptorCount = 1,
          .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &lights},
     };
-    vkUpdateDescriptorSets(ctx->device, 2, writes, 0, NULL);
+    vkUpdateDescriptorSets(ctx->device, 3, writes, 0, NULL);
     return RTPBR_SUCCESS;
 }
 

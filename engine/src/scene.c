@@ -153,6 +153,8 @@ static rtpbr_result validate_mesh(const rtpbr_context *ctx, const rtpbr_mesh_des
 #undef FAIL
 }
 
+static float clamp01(float x) { return fminf(fmaxf(x, 0.0f), 1.0f); }
+
 static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
 {
     rtpbr_shader_material g = {0};
@@ -168,6 +170,21 @@ static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
     g.specular[1] = m->double_sided ? 1.0f : 0.0f;
     g.specular[2] = m->normal_texture ? 1.0f : 0.0f;
     g.specular[3] = m->normal_scale == 0.0f ? 1.0f : m->normal_scale;
+    g.coat[0] = clamp01(m->clearcoat);
+    float cr = m->clearcoat_roughness == 0.0f ? RTPBR_MIN_ROUGHNESS : m->clearcoat_roughness;
+    g.coat[1] = fminf(fmaxf(cr, RTPBR_MIN_ROUGHNESS), 1.0f);
+    g.coat[2] = m->model == RTPBR_MATERIAL_DISNEY ? (float)RTPBR_SHADER_MODEL_DISNEY
+                                                   : (float)RTPBR_SHADER_MODEL_METALLIC_ROUGHNESS;
+    g.coat[3] = clamp01(m->anisotropy);
+    const rtpbr_disney_params *d = &m->disney;
+    g.disney0[0] = clamp01(d->subsurface);
+    g.disney0[1] = d->specular == 0.0f ? 0.5f : fminf(fmaxf(d->specular, 0.0f), 12.5f);
+    g.disney0[2] = clamp01(d->specular_tint);
+    g.disney0[3] = clamp01(d->sheen);
+    g.disney1[0] = clamp01(d->sheen_tint);
+    g.disney1[1] = clamp01(d->clearcoat);
+    g.disney1[2] = clamp01(d->clearcoat_gloss);
+    g.disney1[3] = clamp01(d->anisotropic);
     return g;
 }
 
@@ -175,8 +192,15 @@ static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_mate
 {
     if (!rtpbr_finite(m->base_color, 3) || !rtpbr_finite(&m->metallic, 1) || !rtpbr_finite(&m->roughness, 1) ||
         !rtpbr_finite(m->emission, 3) || !rtpbr_finite(&m->ior, 1) || !rtpbr_finite(&m->specular, 1) ||
-        !rtpbr_finite(m->specular_color, 3) || !rtpbr_finite(&m->normal_scale, 1)) {
+        !rtpbr_finite(m->specular_color, 3) || !rtpbr_finite(&m->normal_scale, 1) ||
+        !rtpbr_finite(&m->clearcoat, 1) || !rtpbr_finite(&m->clearcoat_roughness, 1) ||
+        !rtpbr_finite(&m->anisotropy, 1) ||
+        !rtpbr_finite((const float *)&m->disney, sizeof m->disney / sizeof(float))) {
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if ((unsigned)m->model > RTPBR_MATERIAL_DISNEY) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u has an unknown model %d", index, (int)m->model);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (m->ior < 0.0f || (m->ior > 0.0f && m->ior < 1.0f)) {

@@ -13,8 +13,14 @@
 //                                                         repeat; the file's sampler modes
 //                                                         and mipmaps are not used)
 //   normal texture, normal_scale -> the same (tangents from the loader)
-//   clearcoat, sheen, anisotropy, Disney parameters: not used yet (the lighting pass has no
-//   polygon-light model for them).
+//   clearcoat, 1 - clearcoat_gloss -> clearcoat, clearcoat_roughness (KHR_materials_clearcoat)
+//   anisotropic               -> anisotropy            (KHR strength; shaded isotropically)
+//   model DISNEY + subsurface, specular, specular_tint, sheen, sheen_tint, clearcoat,
+//   clearcoat_gloss, anisotropic -> model, disney.*    (Burley 2012)
+//   KHR_materials_sheen (sheen_color, sheen_roughness of a metallic-roughness material): not
+//   shaded (the oracle does not render it either).
+//   specular_color is applied to the Schlick F0 of the specular lobe; the oracle's exact
+//   dielectric Fresnel ignores it (a difference only for coloured specular).
 // Lights: every loader light (emissive primitives, EXT_lights_area rectangles and disks as
 // their equal-area octagons) becomes a polygonal light with its radiance and sidedness.
 #include <math.h>
@@ -97,6 +103,23 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         d->normal_scale = m->normal_scale;
         if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
             d->specular = -1.0f; // a black specular colour removes the lobe, like specular = 0
+        if (m->model == RTPBR_SCENE_MATERIAL_DISNEY) {
+            d->model = RTPBR_MATERIAL_DISNEY;
+            d->disney = (rtpbr_disney_params){
+                .subsurface = m->subsurface,
+                .specular = m->specular == 0.0f ? -1.0f : m->specular,
+                .specular_tint = m->specular_tint,
+                .sheen = m->sheen,
+                .sheen_tint = m->sheen_tint,
+                .clearcoat = m->clearcoat,
+                .clearcoat_gloss = m->clearcoat_gloss,
+                .anisotropic = m->anisotropic,
+            };
+        } else {
+            d->clearcoat = m->clearcoat;
+            d->clearcoat_roughness = 1.0f - m->clearcoat_gloss;
+            d->anisotropy = m->anisotropic;
+        }
     }
     for (uint32_t i = 0; i < loaded->light_count; ++i) {
         const rtpbr_scene_light *l = &loaded->lights[i];

@@ -17,7 +17,7 @@
 const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT] = {
     VK_FORMAT_R8G8B8A8_UNORM,      // base colour, metallic
     VK_FORMAT_R16G16B16A16_SFLOAT, // normal, roughness
-    VK_FORMAT_R16G16B16A16_SFLOAT, // emission, ior
+    VK_FORMAT_R32G32B32A32_SFLOAT, // emission, material index (exact as a float up to 2^24)
     VK_FORMAT_R16G16B16A16_SFLOAT, // specular colour, specular
 };
 
@@ -221,6 +221,7 @@ static rtpbr_result create_lighting(rtpbr_context *ctx)
                                                      VK_SHADER_STAGE_COMPUTE_BIT, NULL};
     bindings[RTPBR_BINDING_LIGHT_FRAME].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     bindings[RTPBR_BINDING_LIGHT_LIGHTS].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[RTPBR_BINDING_LIGHT_MATERIALS].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     bindings[RTPBR_BINDING_LIGHT_RADIANCE].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     RTPBR_TRY(create_set_layout(ctx, bindings, RTPBR_LIGHTING_BINDING_COUNT, &ctx->lighting_set_layout));
     RTPBR_TRY(create_pipeline_layout(ctx, ctx->lighting_set_layout, 0, 0, &ctx->lighting_layout));

@@ -169,6 +169,27 @@ RTPBR_API const char *rtpbr_context_device_name(const rtpbr_context *context);
 #define RTPBR_MAX_MATERIALS 65536u
 #define RTPBR_MAX_RENDER_SIZE 16384u     // width and height of a renderer
 
+// Which BRDF a material uses (docs/materials.md has the full mapping).
+typedef enum rtpbr_material_model {
+    RTPBR_MATERIAL_METALLIC_ROUGHNESS = 0, // glTF metallic-roughness + KHR clearcoat/specular/ior/anisotropy
+    RTPBR_MATERIAL_DISNEY = 1,             // Burley 2012's principled BRDF (rtpbr_disney_params)
+} rtpbr_material_model;
+
+// Burley 2012, "Physically-Based Shading at Disney", sec. 5.2: used with RTPBR_MATERIAL_DISNEY
+// together with base_color, metallic and roughness of the material. Values are clamped to
+// [0, 1] (specular to [0, 12.5]) and taken literally, except specular: zero means Burley's
+// default 0.5 (F0 = 0.04), negative means 0.
+typedef struct rtpbr_disney_params {
+    float subsurface;      // blend of Burley diffuse towards the Hanrahan-Krueger shape
+    float specular;        // dielectric F0 = 0.08 specular
+    float specular_tint;   // tints the dielectric F0 towards the base hue
+    float sheen;           // grazing retro-reflective lobe
+    float sheen_tint;      // tints the sheen towards the base hue (Burley's default 0.5)
+    float clearcoat;       // GTR1 coat of weight 0.25 clearcoat (not attenuating the base)
+    float clearcoat_gloss; // coat alpha = mix(0.1, 0.001, gloss) (Burley's default 1)
+    float anisotropic;     // aspect sqrt(1 - 0.9 anisotropic)
+} rtpbr_disney_params;
+
 typedef struct rtpbr_material_desc {
     float base_color[3];     // linear albedo (glTF baseColorFactor.rgb); zero is black
     float metallic;          // [0, 1], taken literally (zero: dielectric)
@@ -187,6 +208,17 @@ typedef struct rtpbr_material_desc {
     // Non-zero: emits from both sides (glTF doubleSided). Default: emission only on the front
     // side, the one the vertex normals point to. Reflection is two-sided either way.
     int double_sided;
+    // KHR_materials_clearcoat: a GGX coat (F0 0.04, f90 1) of weight clearcoat in [0, 1] over
+    // the whole material, which it attenuates by 1 - clearcoat F_coat(NoV). Zero: no coat.
+    float clearcoat;
+    float clearcoat_roughness; // perceptual; zero: RTPBR_MIN_ROUGHNESS
+    // KHR_materials_anisotropy anisotropyStrength in [0, 1]: alpha_t = mix(alpha, 1, s^2),
+    // alpha_b = alpha. The LTC lighting pass has isotropic tables: it shades the lobe as
+    // isotropic at alpha = sqrt(alpha_t alpha_b) (the highlight keeps its energy, not its
+    // stretch; docs/limits.md). The direction (anisotropyRotation) is therefore unused.
+    float anisotropy;
+    rtpbr_material_model model;   // zero: glTF metallic-roughness
+    rtpbr_disney_params disney;   // used when model = RTPBR_MATERIAL_DISNEY
 } rtpbr_material_desc;
 
 #define RTPBR_MIN_ROUGHNESS 0.045f // Filament's lower clamp: keeps alpha^2 representable
