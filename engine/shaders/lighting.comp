@@ -141,8 +141,9 @@ float kc_EFavg(float r, float eta) { return textureLod(lut_kc_efavg, KC_TableCoo
 //     lobe, Burley diffuse by its own LTC fit, the subsurface shape and sheen at the polygon's
 //     representative direction, clearcoat 0.25 c GGX(sqrt(GTR1 alpha)) Schlick(0.04, 1).
 // Separable lobes (f_ms, the layered base) integrate as (1 - E(mu_o)) / (1 - E_avg) times the
-// form factor times 1 - E at the representative direction, that of the polygon's vector form
-// factor (KC_PolygonLobe). Anisotropic lobes are shaded isotropically at sqrt(alpha_t alpha_b).
+// form factor times 1 - (the cosine-weighted mean of E over the polygon), from E at the
+// representative direction (that of the polygon's vector form factor) widened towards E_avg
+// with the polygon's size (KC_PolygonLobe, KC_PolygonMeanE). Anisotropic lobes are shaded isotropically at sqrt(alpha_t alpha_b).
 vec3 shade_lights(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, Material m)
 {
     vec3 baseColor = g0.rgb;
@@ -193,7 +194,8 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, Material m)
     // The layered base (metallic-roughness): the specular layer's albedo at mu_o and on average.
     vec3 diffuseColor = (1.0f - metallic) * baseColor;
     float Eso = w * KC_SpecularAlbedoDielectric(kc_EF(NoV, specR, eta), Eo, FmsDielectric);
-    float EsAvg = w * KC_SpecularAlbedoDielectric(kc_EFavg(specR, eta), Eavg, FmsDielectric);
+    float EFavg = kc_EFavg(specR, eta);
+    float EsAvg = w * KC_SpecularAlbedoDielectric(EFavg, Eavg, FmsDielectric);
     // Burley's diffuse (Disney): its LTC fit, column = the material's roughness.
     vec2 uvd = LTC_LutCoord(NoV, roughness);
     vec4 ltc1d = textureLod(lut_ltc_disney_1, uvd, 0.0f);
@@ -233,10 +235,12 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, Material m)
         float lenF = length(F);
         vec3 lRep = lenF > 0.0f ? F / lenF : vec3(0.0f, 0.0f, 1.0f);
         float muRep = saturate(lRep.z);
-        float Erep = kc_E(muRep, specR);
+        // The cosine-weighted mean of each albedo over the polygon (KC_PolygonMeanE).
+        float Erep = KC_PolygonMeanE(kc_E(muRep, specR), Eavg, lenF);
+        float EFrep = KC_PolygonMeanE(kc_EF(muRep, specR, eta), EFavg, lenF);
 
         vec3 lo = specularScale * LTC_IntegrateLocal(local, ltc1) + msColor * KC_PolygonLobe(Eo, Erep, Eavg, ff);
-        float Esrep = w * KC_SpecularAlbedoDielectric(kc_EF(muRep, specR, eta), Erep, FmsDielectric);
+        float Esrep = w * KC_SpecularAlbedoDielectric(EFrep, Erep, FmsDielectric);
         vec3 base = diffuseColor * KC_PolygonLobe(Eso, Esrep, EsAvg, ff);
         if (disney) {
             float LoH = saturate(dot(lRep, normalize(lRep + vLocal)));
@@ -245,7 +249,7 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, Material m)
         }
         lo = (lo + base) * baseAttenuation;
         if (coat > 0.0f)
-            lo += coatScale * LTC_IntegrateLocal(local, ltc1c) + msCoat * KC_PolygonLobe(Eoc, kc_E(muRep, coatR), Eavgc, ff);
+            lo += coatScale * LTC_IntegrateLocal(local, ltc1c) + msCoat * KC_PolygonLobe(Eoc, KC_PolygonMeanE(kc_E(muRep, coatR), Eavgc, lenF), Eavgc, ff);
         sum += light.emission.rgb * lo;
     }
     return sum;

@@ -232,6 +232,17 @@ RTPBR_FN float3 BRDF_DielectricOverDiffuse(float NoV, float NoL, float NoH, floa
 // the polygon's vector form factor (the "average direction" LTC code computes), whose cosine
 // mu_rep to the normal selects Erep = E(mu_rep, r). Error measured in tests/kc (kulla_conty.md).
 
+// The E of the representative direction, widened with the polygon's size (ours): with |F| the
+// length of the vector form factor (sin^2 of the angular radius for a sphere cap; 1 for the
+// whole hemisphere) the cosine-weighted mean of E over the polygon is taken as
+// lerp(E(mu_rep), E_avg, |F|). It is exact at both ends (a vanishing polygon; the whole
+// hemisphere, whose mean is E_avg by definition) and, for a cap around the normal, wherever
+// E is linear in mu^2 in between. Measured against quadrature in tests/kc.
+RTPBR_FN float KC_PolygonMeanE(float Erep, float Eavg, float lengthF) {
+    float t = lengthF > 0.0f ? min(lengthF, 1.0f) : 0.0f; // NaN -> 0
+    return lerp(Erep, Eavg, t);
+}
+
 // Integral over a polygon of the uncoloured f_ms times cos (for unit radiance).
 // Multiply by KC_FmsColor (or, for the layered base, use E_s values and multiply by rho).
 RTPBR_FN float KC_PolygonLobe(float Eo, float Erep, float Eavg, float formFactor) {
