@@ -67,6 +67,12 @@ typedef struct rtpbr_shader_tonemap {
     uint32_t pad;
 } rtpbr_shader_tonemap;
 
+// Push constants of the Monte Carlo lighting pass (lighting_mc.comp).
+typedef struct rtpbr_shader_mc {
+    uint32_t samples;          // per pixel and light, >= 1
+    uint32_t seed;
+} rtpbr_shader_mc;
+
 // The shaders' std140 / std430 sizes of the same structs.
 _Static_assert(sizeof(rtpbr_shader_frame) == 176, "Frame block layout");
 _Static_assert(sizeof(rtpbr_shader_material) == 128, "Material layout");
@@ -139,6 +145,9 @@ struct rtpbr_context {
     VkDescriptorSetLayout lighting_set_layout;
     VkPipelineLayout lighting_layout;
     VkPipeline lighting_pipelines[RTPBR_LIGHTING_VARIANT_COUNT];
+    // The Monte Carlo lighting pass: same set layout, plus push constants rtpbr_shader_mc.
+    VkPipelineLayout lighting_mc_layout;
+    VkPipeline lighting_mc_pipelines[RTPBR_LIGHTING_VARIANT_COUNT];
     VkDescriptorSetLayout tonemap_set_layout;
     VkPipelineLayout tonemap_layout;
     VkShaderModule tonemap_vert, tonemap_frag;
@@ -276,6 +285,8 @@ rtpbr_result rtpbr_pipelines_create(rtpbr_context *ctx);
 void rtpbr_pipelines_destroy(rtpbr_context *ctx);
 // The lighting pipeline of a shader variant.
 VkPipeline rtpbr_lighting_pipeline(const rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms);
+// The Monte Carlo lighting pipeline of a shader variant (lighting_mc.comp).
+VkPipeline rtpbr_lighting_mc_pipeline(const rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms);
 // The tone-mapping pipeline for a colour-attachment format (created on first use).
 rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkPipeline *out);
 
@@ -284,6 +295,8 @@ rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkP
 
 void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCommandBuffer cmd);
 void rtpbr_lighting_record(rtpbr_renderer *r, VkPipeline pipeline, VkCommandBuffer cmd);
+void rtpbr_lighting_mc_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_shader_mc *params,
+                              VkCommandBuffer cmd);
 void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_shader_tonemap *params,
                           VkImageView target, VkCommandBuffer cmd);
 

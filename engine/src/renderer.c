@@ -182,6 +182,10 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: unknown tonemap, ndf or multiscatter value");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
+    if (desc->mc_samples > RTPBR_MAX_MC_SAMPLES) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: mc_samples %u; at most %u", desc->mc_samples, RTPBR_MAX_MC_SAMPLES);
+        return RTPBR_ERROR_LIMIT_EXCEEDED;
+    }
 
     rtpbr_shader_frame frame = {0};
     rtpbr_camera_matrices(camera, (float)r->width / (float)r->height, frame.view_proj);
@@ -213,6 +217,17 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
     };
     vkUpdateDescriptorSets(ctx->device, 3, writes, 0, NULL);
     return RTPBR_SUCCESS;
+}
+
+// The lighting pass the desc asks for: LTC, or the Monte Carlo reference (mc_samples > 0).
+static void record_lighting(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCommandBuffer cmd)
+{
+    if (desc->mc_samples == 0) {
+        rtpbr_lighting_record(r, rtpbr_lighting_pipeline(r->context, desc->ndf, desc->multiscatter), cmd);
+        return;
+    }
+    rtpbr_shader_mc params = {.samples = desc->mc_samples, .seed = desc->mc_seed};
+    rtpbr_lighting_mc_record(r, rtpbr_lighting_mc_pipeline(r->context, desc->ndf, desc->multiscatter), &params, cmd);
 }
 
 static rtpbr_shader_tonemap tonemap_params(const rtpbr_render_desc *desc, uint32_t encode)
@@ -265,7 +280,7 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     RTPBR_VK(ctx, vkResetCommandBuffer(cmd, 0));
     RTPBR_VK(ctx, vkBeginCommandBuffer(cmd, &begin));
     rtpbr_gbuffer_record(r, scene, cmd);
-    rtpbr_lighting_record(r, rtpbr_lighting_pipeline(ctx, desc->ndf, desc->multiscatter), cmd);
+    record_lighting(r, desc, cmd);
     rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
@@ -315,7 +330,7 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     VkImageLayout new_layout = target->new_layout ? target->new_layout : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     VkCommandBuffer cmd = target->command_buffer;
     rtpbr_gbuffer_record(r, scene, cmd);
-    rtpbr_lighting_record(r, rtpbr_lighting_pipeline(ctx, desc->ndf, desc->multiscatter), cmd);
+    record_lighting(r, desc, cmd);
     rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, target->old_layout,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);

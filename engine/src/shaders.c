@@ -9,6 +9,10 @@
 #include "rtpbr_spirv_lighting_beckmann_ms1.h"
 #include "rtpbr_spirv_lighting_ggx_ms0.h"
 #include "rtpbr_spirv_lighting_ggx_ms1.h"
+#include "rtpbr_spirv_lighting_mc_beckmann_ms0.h"
+#include "rtpbr_spirv_lighting_mc_beckmann_ms1.h"
+#include "rtpbr_spirv_lighting_mc_ggx_ms0.h"
+#include "rtpbr_spirv_lighting_mc_ggx_ms1.h"
 #include "rtpbr_spirv_tonemap_frag.h"
 #include "rtpbr_spirv_tonemap_vert.h"
 
@@ -248,6 +252,36 @@ cleanup:
     return result;
 }
 
+// The Monte Carlo lighting pass: the lighting pass's set layout (created first), its own
+// pipeline layout with the push constants rtpbr_shader_mc.
+static rtpbr_result create_lighting_mc(rtpbr_context *ctx)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkShaderModule module = VK_NULL_HANDLE;
+    RTPBR_TRY(create_pipeline_layout(ctx, ctx->lighting_set_layout, VK_SHADER_STAGE_COMPUTE_BIT,
+                                     sizeof(rtpbr_shader_mc), &ctx->lighting_mc_layout));
+    const rtpbr_spirv variants[RTPBR_LIGHTING_VARIANT_COUNT] = {
+        SPIRV(rtpbr_spirv_lighting_mc_ggx_ms0), SPIRV(rtpbr_spirv_lighting_mc_ggx_ms1),
+        SPIRV(rtpbr_spirv_lighting_mc_beckmann_ms0), SPIRV(rtpbr_spirv_lighting_mc_beckmann_ms1),
+    };
+    for (uint32_t i = 0; i < RTPBR_LIGHTING_VARIANT_COUNT; ++i) {
+        RTPBR_TRY(rtpbr_shader_module(ctx, variants[i], &module));
+        VkComputePipelineCreateInfo info = {
+            .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+            .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                      .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = module, .pName = "main"},
+            .layout = ctx->lighting_mc_layout,
+        };
+        RTPBR_VK(ctx, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL,
+                                               &ctx->lighting_mc_pipelines[i]));
+        vkDestroyShaderModule(ctx->device, module, NULL);
+        module = VK_NULL_HANDLE;
+    }
+cleanup:
+    vkDestroyShaderModule(ctx->device, module, NULL);
+    return result;
+}
+
 static rtpbr_result create_tonemap(rtpbr_context *ctx)
 {
     rtpbr_result result = RTPBR_SUCCESS;
@@ -266,6 +300,7 @@ rtpbr_result rtpbr_pipelines_create(rtpbr_context *ctx)
 {
     rtpbr_result result = create_gbuffer(ctx);
     if (result == RTPBR_SUCCESS) result = create_lighting(ctx);
+    if (result == RTPBR_SUCCESS) result = create_lighting_mc(ctx);
     if (result == RTPBR_SUCCESS) result = create_tonemap(ctx);
     if (result == RTPBR_SUCCESS) {
         // The renderer's own display target: created now so that a bad driver fails early.
@@ -287,6 +322,9 @@ void rtpbr_pipelines_destroy(rtpbr_context *ctx)
     for (uint32_t i = 0; i < RTPBR_LIGHTING_VARIANT_COUNT; ++i)
         vkDestroyPipeline(dev, ctx->lighting_pipelines[i], NULL);
     vkDestroyPipelineLayout(dev, ctx->lighting_layout, NULL);
+    for (uint32_t i = 0; i < RTPBR_LIGHTING_VARIANT_COUNT; ++i)
+        vkDestroyPipeline(dev, ctx->lighting_mc_pipelines[i], NULL);
+    vkDestroyPipelineLayout(dev, ctx->lighting_mc_layout, NULL);
     vkDestroyDescriptorSetLayout(dev, ctx->lighting_set_layout, NULL);
     vkDestroyPipeline(dev, ctx->gbuffer_pipeline, NULL);
     vkDestroyPipelineLayout(dev, ctx->gbuffer_layout, NULL);
@@ -297,6 +335,11 @@ void rtpbr_pipelines_destroy(rtpbr_context *ctx)
 VkPipeline rtpbr_lighting_pipeline(const rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms)
 {
     return ctx->lighting_pipelines[lighting_variant(ndf, ms)];
+}
+
+VkPipeline rtpbr_lighting_mc_pipeline(const rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms)
+{
+    return ctx->lighting_mc_pipelines[lighting_variant(ndf, ms)];
 }
 
 rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkPipeline *out)

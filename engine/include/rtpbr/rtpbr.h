@@ -353,7 +353,17 @@ typedef struct rtpbr_render_desc {
     // Glossy reflections of a culled light are lost with it. Zero: 1e-4; negative: only
     // the exact test.
     float light_cull_form_factor;
+    // The lighting pass. Zero (default): LTC (the real-time pass). N > 0: a brute-force Monte
+    // Carlo reference pass of the same direct-lighting integral and material model, N samples
+    // per pixel per light (light-area and visible-normal sampling combined by MIS; no
+    // per-tile culling); noisy, for benchmarks and tests. At most RTPBR_MAX_MC_SAMPLES
+    // (more: RTPBR_ERROR_LIMIT_EXCEEDED).
+    uint32_t mc_samples;
+    // Random seed of the Monte Carlo pass (each seed gives an independent image). Default 0.
+    uint32_t mc_seed;
 } rtpbr_render_desc;
+
+#define RTPBR_MAX_MC_SAMPLES 65536u
 
 #define RTPBR_DEFAULT_CULL_FORM_FACTOR 1e-4f
 #define RTPBR_TILE_SIZE_PIXELS 16

@@ -1,0 +1,215 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Brute-force Monte Carlo lighting pass: the reference lighting.comp is measured against in
+// bench/ (rtpbr_render_desc.mc_samples). Same G-buffer, lights, descriptor set and output as
+// lighting.comp; the same direct-lighting integral (no visibility), estimated by sampling
+// instead of LTC:
+//   Lo = Le + sum_lights int_light f(V, L) Le NoL dw,
+//   f = diffuseColor / pi + BRDF_Specular (shaderlib microfacet.h, the NDF of the variant,
+//       height-correlated Smith, Schlick Fresnel with f0, f90)
+//       [+ F_ms f_ms, the Kulla-Conty lobe of BRDF_SpecularMS, with RTPBR_MULTISCATTER]
+// with the material mapping of lighting.comp's shade_lights (f0, f90, diffuseColor).
+// Per pixel and light, mc.samples directions, each drawn from the mixture
+//   pdf(w) = (1 - pBrdf) pdf_light(w) + pBrdf pdf_vndf(w)
+// (one-sample MIS with the balance heuristic; Veach & Guibas 1995, "Optimally Combining
+// Sampling Techniques for Monte Carlo Rendering"): pdf_light is uniform area sampling of the
+// polygon (fan triangles picked by area) converted to solid angle, d^2 / (|cos_light| A);
+// pdf_vndf reflects a visible normal (Heitz 2018 / Dupuy & Benyoub 2023 for GGX, Heitz &
+// d'Eon 2014 for Beckmann; shaderlib sampling.h). pBrdf = 0.5 Fs / (Fs + Fd), Fs, Fd the
+// largest channel of the average specular Fresnel and of the diffuse colour: 0 for a surface
+// without specular (pure light sampling), 1/2 for a metal.
+// No per-tile culling: every light is summed at every pixel (lights behind a one-sided light's
+// plane are skipped per pixel, where the integrand is 0). Kept flat (no nested early returns:
+// lavapipe's gallivm limits control-flow nesting, see tests/gpu/kernel.h).
+#include "rtpbr_shared.h"
+#include "rtpbr/lang.h"
+#include "rtpbr/config.h"
+#include "rtpbr/fresnel.h"
+#include "rtpbr/microfacet.h"
+#include "rtpbr/sampling.h"
+#if RTPBR_HAVE_KC
+#include "rtpbr/kulla_conty.h"
+#endif
+#define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
+#include "frame.glsl"
+#include "mc_sampling.glsl"
+
+layout(local_size_x = RTPBR_TILE_SIZE, local_size_y = RTPBR_TILE_SIZE) in;
+
+// C mirror: rtpbr_shader_mc (engine/src/internal.h).
+layout(push_constant) uniform McParams {
+    uint samples; // per pixel and light, >= 1
+    uint seed;
+} mc;
+
+// C mirror: rtpbr_shader_light (the same declaration as lighting.comp's).
+struct Light {
+    vec4 vertices[RTPBR_SHADER_MAX_POLYGON_VERTICES];
+    vec4 emission; // rgb radiance, w: two-sided
+    vec4 plane;    // unit normal, -dot(normal, vertex 0)
+    vec4 sphere;   // bounding sphere: centre, radius
+    uint vertex_count;
+    float area;
+    uint pad0, pad1;
+};
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_LIGHTS, std430) readonly buffer Lights {
+    Light lights[];
+};
+
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER0) uniform sampler2D gbuffer0;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER1) uniform sampler2D gbuffer1;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER2) uniform sampler2D gbuffer2;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER3) uniform sampler2D gbuffer3;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_DEPTH) uniform sampler2D gbuffer_depth;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_RADIANCE, rgba32f) writeonly uniform image2D radiance;
+layout(set = 0, binding = RTPBR_BINDING_LUT_KC_E) uniform sampler2D lut_kc_e;
+layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EAVG) uniform sampler2D lut_kc_eavg;
+
+#if RTPBR_NDF == RTPBR_NDF_BECKMANN
+#define MC_SAMPLE_VNDF Sample_Beckmann_VNDF
+#define MC_PDF_REFLECTION PDF_Beckmann_Reflection
+#define KC_CHANNEL g
+#else
+#define MC_SAMPLE_VNDF Sample_GGX_VNDF
+#define MC_PDF_REFLECTION PDF_GGX_Reflection
+#define KC_CHANNEL r
+#endif
+#define MC_USE_KC (RTPBR_MULTISCATTER && RTPBR_HAVE_KC)
+
+float max3(vec3 v)
+{
+    return max(v.x, max(v.y, v.z));
+}
+
+// Reflected radiance from every polygonal light at P, estimated with mc.samples directions
+// per light.
+vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, vec4 g2, vec4 g3, uvec2 pixel)
+{
+    // Material mapping of lighting.comp's shade_lights.
+    vec3 baseColor = g0.rgb;
+    float metallic = g0.a;
+    vec3 f0Dielectric = min(RTPBR_F3(F0_FromIor(g2.a)) * g3.rgb, RTPBR_F3(1.0f)) * g3.a;
+    vec3 f0 = mix(f0Dielectric, baseColor, metallic);
+    float f90 = mix(g3.a, 1.0f, metallic);
+    vec3 diffuseColor = baseColor * (1.0f - metallic);
+    FresnelParams fresnel;
+    fresnel.f0 = f0;
+    fresnel.f90 = f90;
+    fresnel.eta = RTPBR_F3(g2.a);
+    fresnel.k = RTPBR_F3(0.0f);
+    float alpha = Alpha_FromPerceptual(roughness);
+
+    // Local frame z = N, x toward V (as LTC_Frame); NoV clamped as the LTC table lookup.
+    vec3 T = V - N * dot(N, V);
+    float tl2 = dot(T, T);
+    vec3 up = abs(N.z) > 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 0.0f, 1.0f);
+    T = tl2 > 1e-10f ? T * inversesqrt(tl2) : normalize(cross(up, N));
+    vec3 B = cross(N, T);
+    float NoV = clamp(dot(N, V), 1e-4f, 1.0f);
+    vec3 wo = vec3(sqrt(1.0f - NoV * NoV), 0.0f, NoV);
+
+    // Average Fresnel (Kulla & Conty 2017) of Schlick's f0, f90: sets the strategy weights.
+    vec3 Favg = f0 + (RTPBR_F3(f90) - f0) / 21.0f;
+    float fs = max3(Favg);
+    float fd = max3(diffuseColor);
+    float pBrdf = fs > 0.0f ? 0.5f * fs / (fs + fd) : 0.0f;
+#if MC_USE_KC
+    float Eo = textureLod(lut_kc_e, KC_TableCoord(NoV, roughness), 0.0f).KC_CHANNEL;
+    float Eavg = textureLod(lut_kc_eavg, vec2(KC_TableCoordAvg(roughness), 0.5f), 0.0f).KC_CHANNEL;
+    vec3 FavgKc = F_Avg_Schlick(f0, f90);
+#endif
+
+    uint samples = max(mc.samples, 1u);
+    vec3 sum = vec3(0.0f);
+    for (uint i = 0u; i < frame.light_count; ++i) {
+        Light light = lights[i];
+        uint count = min(light.vertex_count, uint(RTPBR_SHADER_MAX_POLYGON_VERTICES));
+        bool twoSided = light.emission.w != 0.0f;
+        float side = dot(light.plane.xyz, P) + light.plane.w;
+        // Fan triangles (v0, vk, vk+1), k = 1..count-2, and their total area.
+        vec3 v0 = light.vertices[0].xyz;
+        float area = 0.0f;
+        for (uint k = 1u; k + 1u < count; ++k)
+            area += mc_fan_area(v0, light.vertices[k].xyz, light.vertices[k + 1u].xyz);
+        bool lit = count >= 3u && area > 0.0f && (twoSided ? side != 0.0f : side > 0.0f);
+        uint n = lit ? samples : 0u;
+
+        uint rng = mc_seed(pixel, i, mc.seed);
+        vec3 lightSum = vec3(0.0f);
+        for (uint s = 0u; s < n; ++s) {
+            float uStrategy = mc_uniform(rng);
+            float uPick = mc_uniform(rng);
+            vec2 u = vec2(mc_uniform(rng), mc_uniform(rng));
+            bool fromBrdf = uStrategy < pBrdf;
+
+            vec3 wi;
+            float t;
+            bool hit;
+            if (fromBrdf) {
+                // Strategy 2: a visible normal of the specular lobe, reflected; does it hit?
+                vec3 wiLocal = Reflect_About(wo, MC_SAMPLE_VNDF(wo, alpha, alpha, u));
+                wi = T * wiLocal.x + B * wiLocal.y + N * wiLocal.z;
+                hit = mc_ray_polygon(P, wi, light.vertices, count, light.plane, t);
+            } else {
+                // Strategy 1: a uniform point on the polygon (fan triangle chosen by area).
+                float target = uPick * area;
+                float acc = 0.0f;
+                uint pick = 1u;
+                for (uint k = 1u; k + 1u < count; ++k) {
+                    acc += mc_fan_area(v0, light.vertices[k].xyz, light.vertices[k + 1u].xyz);
+                    if (target >= acc && k + 2u < count) pick = k + 1u;
+                }
+                vec3 toLight = mc_triangle_point(v0, light.vertices[pick].xyz, light.vertices[pick + 1u].xyz, u) - P;
+                t = length(toLight);
+                wi = toLight / max(t, 1e-30f);
+                hit = t > 0.0f;
+            }
+            // The light's front faces -plane.xyz travellers; one-sided lights emit only there.
+            float cosLight = -dot(light.plane.xyz, wi);
+            hit = hit && (twoSided ? cosLight != 0.0f : cosLight > 0.0f);
+            float pdfLight = hit ? t * t / (abs(cosLight) * area) : 0.0f;
+
+            vec3 wiLocal = vec3(dot(wi, T), dot(wi, B), dot(wi, N));
+            float pdfBrdf = pBrdf > 0.0f ? MC_PDF_REFLECTION(wo, wiLocal, alpha, alpha) : 0.0f;
+            float pdf = (1.0f - pBrdf) * pdfLight + pBrdf * pdfBrdf;
+
+            float NoL = wiLocal.z;
+            vec3 h = normalize(wo + wiLocal);
+            vec3 f = BRDF_Specular(NoV, NoL, h.z, dot(wo, h), alpha, fresnel) + diffuseColor * RTPBR_INV_PI;
+#if MC_USE_KC
+            float Ei = textureLod(lut_kc_e, KC_TableCoord(max(NoL, 0.0f), roughness), 0.0f).KC_CHANNEL;
+            f += KC_Lobe(Eo, Ei, Eavg) * KC_FmsColor(FavgKc, Eavg);
+#endif
+            bool valid = hit && NoL > 0.0f && pdf > 0.0f;
+            lightSum += valid ? f * (NoL / pdf) : vec3(0.0f);
+        }
+        sum += light.emission.rgb * (lightSum / float(samples));
+    }
+    return sum;
+}
+
+void main()
+{
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    bool inside = all(lessThan(uvec2(pixel), frame.size));
+    float depth = inside ? texelFetch(gbuffer_depth, pixel, 0).r : 1.0f;
+    bool surface = depth < 1.0f;
+    vec2 ndc = (vec2(pixel) + 0.5f) / vec2(frame.size) * 2.0f - 1.0f;
+    vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
+    vec3 P = world.xyz / world.w;
+
+    vec4 result = vec4(frame.background.rgb, 0.0f);
+    if (inside && surface) {
+        vec4 g0 = texelFetch(gbuffer0, pixel, 0);
+        vec4 g1 = texelFetch(gbuffer1, pixel, 0);
+        vec4 g2 = texelFetch(gbuffer2, pixel, 0);
+        vec4 g3 = texelFetch(gbuffer3, pixel, 0);
+        vec3 V = normalize(frame.camera_position.xyz - P);
+        vec3 N = normalize(g1.xyz);
+        // The shading point lifted along N by a few depth quanta, as in lighting.comp.
+        vec4 further = frame.inv_view_proj * vec4(ndc, min(depth * (1.0f + 4.0f / 16777216.0f), 1.0f), 1.0f);
+        float lift = length(further.xyz / further.w - P) + 1e-6f * length(frame.camera_position.xyz - P);
+        result = vec4(g2.rgb + shade_lights_mc(P + N * lift, N, V, g0, g1.w, g2, g3, uvec2(pixel)), 1.0f);
+    }
+    if (inside) imageStore(radiance, pixel, result);
+}

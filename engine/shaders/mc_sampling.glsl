@@ -1,0 +1,70 @@
+// Helpers of the brute-force Monte Carlo lighting pass (lighting_mc.comp): a per-pixel
+// random number stream, uniform area sampling of a convex polygon and ray-polygon
+// intersection. GLSL only (engine shader code, not shader library).
+#ifndef RTPBR_MC_SAMPLING_GLSL
+#define RTPBR_MC_SAMPLING_GLSL
+
+// Jarzynski & Olano 2020, "Hash Functions for GPU Rendering" (JCGT 9(3)): the PCG hash, an
+// LCG step followed by PCG's RXS-M-XS output permutation (O'Neill 2014).
+uint mc_pcg_hash(uint v)
+{
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// The random stream: an LCG state (O'Neill 2014's PCG-RXS-M-XS-32 constants) whose outputs
+// go through the same permutation.
+uint mc_next(inout uint state)
+{
+    state = state * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// A float uniform in [0, 1): the top 24 bits of the next output.
+float mc_uniform(inout uint state)
+{
+    return float(mc_next(state) >> 8u) * (1.0f / 16777216.0f);
+}
+
+// Seed of the stream of one pixel and one light for frame seed `seed`.
+uint mc_seed(uvec2 pixel, uint light, uint seed)
+{
+    return mc_pcg_hash(pixel.x + mc_pcg_hash(pixel.y + mc_pcg_hash(light + mc_pcg_hash(seed))));
+}
+
+// Area of triangle k (1..count-2) of the fan (v0, vk, vk+1) of a polygon.
+float mc_fan_area(vec3 v0, vec3 a, vec3 b)
+{
+    return 0.5f * length(cross(a - v0, b - v0));
+}
+
+// Uniform point on triangle (a, b, c) from two uniform numbers (Osada et al. 2002, "Shape
+// Distributions", sec. 4.2): (1 - sqrt u1) a + sqrt u1 (1 - u2) b + sqrt u1 u2 c.
+vec3 mc_triangle_point(vec3 a, vec3 b, vec3 c, vec2 u)
+{
+    float s = sqrt(u.x);
+    return (1.0f - s) * a + (s * (1.0f - u.y)) * b + (s * u.y) * c;
+}
+
+// Whether the ray P + t w (t > 0) crosses the convex polygon v[0..count) of plane
+// (n, d: dot(n, x) + d = 0), counter-clockwise about n; t receives the distance.
+bool mc_ray_polygon(vec3 P, vec3 w, vec4 v[RTPBR_SHADER_MAX_POLYGON_VERTICES], uint count, vec4 plane,
+                    out float t)
+{
+    float denom = dot(plane.xyz, w);
+    t = denom != 0.0f ? -(dot(plane.xyz, P) + plane.w) / denom : -1.0f;
+    vec3 X = P + t * w;
+    bool inside = t > 0.0f;
+    for (uint k = 0u; k < uint(RTPBR_SHADER_MAX_POLYGON_VERTICES); ++k) {
+        uint j = k + 1u < count ? k + 1u : 0u;
+        bool edge = k < count;
+        vec3 a = v[k].xyz;
+        vec3 b = v[j].xyz;
+        inside = inside && (!edge || dot(cross(b - a, X - a), plane.xyz) >= 0.0f);
+    }
+    return inside;
+}
+
+#endif // RTPBR_MC_SAMPLING_GLSL

@@ -1,0 +1,251 @@
+#define _DEFAULT_SOURCE // M_PI
+// Engine: the brute-force Monte Carlo lighting pass (rtpbr_render_desc.mc_samples).
+//  - Lambertian plane: against Lambert's closed-form irradiance of the polygons (computed here
+//    in double precision, independently of the engine), the MC image is unbiased (image-mean
+//    relative error within 4 standard errors) and its per-pixel error is pure noise (the error
+//    against the closed form has the spread of the difference of two independent seeds).
+//  - Glossy planes (GGX and Beckmann metals): the MC image's mean agrees with the LTC pass's
+//    within the LTC fit error measured in shaderlib/luts/ltc.md.
+//  - Seeds: the same seed gives the same image, another seed another image; bad sample counts
+//    are refused.
+#include <stdlib.h>
+
+#include "engine_test.h"
+
+// Lambert's formula: the form factor (1/pi) int cos dw of a polygon seen from x with normal n,
+// FF = (1 / 2pi) |sum_i theta_i (n . g_i)|, theta_i the angle subtended by edge i, g_i the
+// unit normal of the plane through x and that edge. Valid for a polygon above x's horizon.
+static double lambert_form_factor(const double x[3], const double n[3], const float (*v)[3], uint32_t count)
+{
+    double sum = 0.0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const float *p = v[i], *q = v[(i + 1) % count];
+        double a[3] = {p[0] - x[0], p[1] - x[1], p[2] - x[2]}, b[3] = {q[0] - x[0], q[1] - x[1], q[2] - x[2]};
+        double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+        double cl = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        double theta = atan2(cl, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+        if (cl > 0.0) sum += theta * (n[0] * c[0] + n[1] * c[1] + n[2] * c[2]) / cl;
+    }
+    return fabs(sum) / (2.0 * M_PI);
+}
+
+// The point of the plane z = 0 seen through the centre of pixel (x, y) by a look-at pinhole
+// camera (the documented convention: +Y up); false if the ray misses the plane.
+static bool plane_point(const rtpbr_camera_desc *camera, int x, int y, int w, int h, double p[3])
+{
+    double f[3] = {camera->target[0] - camera->position[0], camera->target[1] - camera->position[1],
+                   camera->target[2] - camera->position[2]};
+    double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    for (int k = 0; k < 3; ++k) f[k] /= fl;
+    double s[3] = {-f[2], 0.0, f[0]}; // f x (0, 1, 0)
+    double sl = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    for (int k = 0; k < 3; ++k) s[k] /= sl;
+    double u[3] = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]};
+    double t = tan(0.5 * camera->yfov), aspect = (double)w / h;
+    double nx = ((x + 0.5) / w * 2.0 - 1.0) * t * aspect, ny = -((y + 0.5) / h * 2.0 - 1.0) * t;
+    double d[3];
+    for (int k = 0; k < 3; ++k) d[k] = f[k] + nx * s[k] + ny * u[k];
+    double hit = -camera->position[2] / d[2];
+    p[0] = camera->position[0] + hit * d[0];
+    p[1] = camera->position[1] + hit * d[1];
+    p[2] = 0.0;
+    return hit > 0.0;
+}
+
+static float *render_radiance(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc,
+                              int w, int h)
+{
+    assert_int_equal(rtpbr_render(r, scene, desc), RTPBR_SUCCESS);
+    float *px = malloc((size_t)w * h * 16);
+    assert_non_null(px);
+    assert_int_equal(rtpbr_read_radiance(r, px, (size_t)w * h * 16), RTPBR_SUCCESS);
+    return px;
+}
+
+// The scene of test_engine_lambert.c: the plane z = 0, [-4, 4]^2, albedo 0.8, no specular
+// lobe, under a tilted quad facing down, a two-sided triangle showing its back to the plane,
+// and a one-sided hexagon facing away from the plane (it must add nothing).
+static void mc_lambertian_plane(void **state)
+{
+    (void)state;
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    float plane[12];
+    square_positions(4.0f, 0.0f, plane);
+    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f};
+    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    rtpbr_light_desc lights[3] = {
+        {.vertices = {{-1.0f, -0.5f, 1.2f}, {-1.0f, 0.7f, 1.5f}, {0.6f, 0.7f, 1.5f}, {0.6f, -0.5f, 1.2f}},
+         .vertex_count = 4, .emission = {3.0f, 2.0f, 1.0f}},
+        {.vertices = {{1.0f, -1.0f, 0.8f}, {2.0f, -0.5f, 0.9f}, {1.2f, 0.2f, 1.0f}}, .vertex_count = 3,
+         .emission = {0.5f, 1.0f, 4.0f}, .two_sided = 1},
+        {.vertex_count = 6, .emission = {100.0f, 100.0f, 100.0f}},
+    };
+    for (int k = 0; k < 6; ++k) {
+        lights[2].vertices[k][0] = -1.5f + 0.6f * (float)cos(k * M_PI / 3.0);
+        lights[2].vertices[k][1] = 1.5f + 0.6f * (float)sin(k * M_PI / 3.0);
+        lights[2].vertices[k][2] = 1.0f;
+    }
+    rtpbr_camera_desc camera = {.position = {0.3f, -0.2f, 3.0f}, .target = {0.2f, 0.0f, 0.0f}, .yfov = 1.2f,
+                                .znear = 0.1f, .zfar = 100.0f};
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_create(ctx,
+                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                    .materials = &material, .material_count = 1,
+                                                                    .lights = lights, .light_count = 3,
+                                                                    .cameras = &camera, .camera_count = 1},
+                                            &scene),
+                     RTPBR_SUCCESS);
+    enum { W = 120, H = 90, SAMPLES = 256 };
+    rtpbr_renderer *r = NULL;
+    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    float *a = render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = SAMPLES, .mc_seed = 1}, W, H);
+    float *b = render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = SAMPLES, .mc_seed = 2}, W, H);
+    float *a2 = render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = SAMPLES, .mc_seed = 1}, W, H);
+    assert_memory_equal(a, a2, (size_t)W * H * 16); // a seed gives one image
+
+    // Per pixel: e = (a - exact) / exact on the sum of the channels (the pixels' samples are
+    // independent, so the e are independent).
+    const double n[3] = {0.0, 0.0, 1.0};
+    double sum_e = 0.0, sum_e2 = 0.0, sum_d2 = 0.0, worst = 0.0;
+    int count = 0, differ = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            double p[3];
+            if (!plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
+            double ff0 = lambert_form_factor(p, n, lights[0].vertices, 4);
+            double ff1 = lambert_form_factor(p, n, lights[1].vertices, 3);
+            double exact = 0.0, got = 0.0, other = 0.0;
+            for (int c = 0; c < 3; ++c) {
+                exact += 0.8 * (lights[0].emission[c] * ff0 + lights[1].emission[c] * ff1);
+                got += a[4 * (y * W + x) + c];
+                other += b[4 * (y * W + x) + c];
+            }
+            double e = (got - exact) / exact, d = (got - other) / exact;
+            sum_e += e;
+            sum_e2 += e * e;
+            sum_d2 += d * d;
+            if (fabs(e) > worst) worst = fabs(e);
+            differ += got != other;
+            ++count;
+        }
+    assert_true(count > W * H / 2);
+    double mean = sum_e / count, sd = sqrt((sum_e2 - count * mean * mean) / (count - 1));
+    double se = sd / sqrt(count);
+    // The error against the closed form is noise only if its mean square is half that of the
+    // difference of two independent images: E (a - x)^2 = var = E (a - b)^2 / 2.
+    double rms_e = sqrt(sum_e2 / count), rms_noise = sqrt(sum_d2 / (2.0 * count));
+    printf("MC Lambertian plane (%d samples/pixel/light): %d pixels, mean relative error %+.5f (standard error "
+           "%.5f), rms %.4f, noise rms from two seeds %.4f, largest %.4f\n",
+           SAMPLES, count, mean, se, rms_e, rms_noise, worst);
+    assert_true(differ > count * 9 / 10); // another seed, another image
+    assert_true(fabs(mean) < 4.0 * se);
+    assert_true(rms_e > 0.9 * rms_noise && rms_e < 1.1 * rms_noise);
+    assert_true(rms_e < 0.05); // and the noise is what area sampling gives at this count
+    free(a);
+    free(a2);
+    free(b);
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+}
+
+// A glossy metal plane under a square light, seen at about 40 degrees: the mean over the
+// image of the MC pass (many samples: its own error is far below the tolerance) and of the
+// LTC pass, single scattering (the LTC tables fit exactly this BRDF). The tolerance is the
+// mean relative LTC-vs-Monte-Carlo error of shaderlib/luts/ltc.md over its grid of lights
+// (GGX 4.61%, Beckmann 10.13%): an image mean averages many such configurations.
+static void mc_glossy_mean(void **state)
+{
+    (void)state;
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    float plane[12];
+    square_positions(4.0f, 0.0f, plane);
+    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    rtpbr_light_desc light = {.vertices = {{-0.6f, 0.2f, 1.5f}, {-0.6f, 1.2f, 1.5f}, {0.6f, 1.2f, 1.5f}, {0.6f, 0.2f, 1.5f}},
+                              .vertex_count = 4, .emission = {4.0f, 4.0f, 4.0f}};
+    rtpbr_camera_desc camera = {.position = {0.0f, -2.2f, 2.0f}, .target = {0.0f, 0.2f, 0.0f}, .yfov = 0.9f,
+                                .znear = 0.1f, .zfar = 100.0f};
+    struct {
+        rtpbr_ndf ndf;
+        float roughness, tolerance;
+    } cases[] = {
+        {RTPBR_NDF_GGX_MODEL, 0.3f, 0.0461f},
+        {RTPBR_NDF_GGX_MODEL, 0.6f, 0.0461f},
+        {RTPBR_NDF_BECKMANN_MODEL, 0.3f, 0.1013f},
+        {RTPBR_NDF_BECKMANN_MODEL, 0.6f, 0.1013f},
+    };
+    enum { W = 96, H = 72, SAMPLES = 256 };
+    rtpbr_renderer *r = NULL;
+    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        rtpbr_material_desc material = {.base_color = {0.95f, 0.64f, 0.54f}, .metallic = 1.0f,
+                                        .roughness = cases[i].roughness};
+        rtpbr_gpu_scene *scene = NULL;
+        assert_int_equal(rtpbr_gpu_scene_create(ctx,
+                                                &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                        .materials = &material, .material_count = 1,
+                                                                        .lights = &light, .light_count = 1,
+                                                                        .cameras = &camera, .camera_count = 1},
+                                                &scene),
+                         RTPBR_SUCCESS);
+        rtpbr_render_desc desc = {.ndf = cases[i].ndf, .multiscatter = RTPBR_MULTISCATTER_OFF,
+                                  .light_cull_form_factor = -1.0f};
+        float *ltc = render_radiance(r, scene, &desc, W, H);
+        desc.mc_samples = SAMPLES;
+        desc.mc_seed = 7;
+        float *mc = render_radiance(r, scene, &desc, W, H);
+        for (int c = 0; c < 3; ++c) {
+            double sum_ltc = 0.0, sum_mc = 0.0;
+            for (int p = 0; p < W * H; ++p) {
+                sum_ltc += ltc[4 * p + c];
+                sum_mc += mc[4 * p + c];
+            }
+            double rel = (sum_ltc - sum_mc) / sum_mc;
+            printf("glossy plane, %s r = %.1f, channel %d: image mean LTC %.5f, MC %.5f, relative %+.4f "
+                   "(tolerance %.4f)\n",
+                   cases[i].ndf == RTPBR_NDF_BECKMANN_MODEL ? "Beckmann" : "GGX", cases[i].roughness, c,
+                   sum_ltc / (W * H), sum_mc / (W * H), rel, cases[i].tolerance);
+            assert_true(sum_mc > 0.0);
+            assert_true(fabs(rel) < cases[i].tolerance);
+        }
+        free(ltc);
+        free(mc);
+        rtpbr_gpu_scene_destroy(scene);
+    }
+    rtpbr_renderer_destroy(r);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+}
+
+// Errors: more samples than the documented limit are refused, and the renderer still works.
+static void mc_limits(void **state)
+{
+    (void)state;
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_create(ctx, &(rtpbr_gpu_scene_desc){0}, &scene), RTPBR_SUCCESS);
+    rtpbr_renderer *r = NULL;
+    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 8, .height = 8}, &r), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.mc_samples = RTPBR_MAX_MC_SAMPLES + 1}),
+                     RTPBR_ERROR_LIMIT_EXCEEDED);
+    assert_true(log.errors > 0);
+    assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.mc_samples = 1}), RTPBR_SUCCESS);
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(mc_lambertian_plane),
+        cmocka_unit_test(mc_glossy_mean),
+        cmocka_unit_test(mc_limits),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
