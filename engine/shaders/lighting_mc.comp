@@ -7,7 +7,8 @@
 //   Lo = Le + sum_lights int_light f(V, L) Le NoL dw,
 //   f = diffuseColor / pi + BRDF_Specular (shaderlib microfacet.h, the NDF of the variant,
 //       height-correlated Smith, Schlick Fresnel with f0, f90)
-//       [+ F_ms f_ms, the Kulla-Conty lobe of BRDF_SpecularMS, with RTPBR_MULTISCATTER]
+//       [BRDF_SpecularMS with RTPBR_MULTISCATTER: + F_ms f_ms, the Kulla-Conty lobe, with
+//       E(NoL) fetched per sample: exact where lighting.comp approximates it over the polygon]
 // with the material mapping of lighting.comp's shade_lights (f0, f90, diffuseColor).
 // Per pixel and light, mc.samples directions, each drawn from the mixture
 //   pdf(w) = (1 - pBrdf) pdf_light(w) + pBrdf pdf_vndf(w)
@@ -175,11 +176,13 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, vec4 g2, 
 
             float NoL = wiLocal.z;
             vec3 h = normalize(wo + wiLocal);
-            vec3 f = BRDF_Specular(NoV, NoL, h.z, dot(wo, h), alpha, fresnel) + diffuseColor * RTPBR_INV_PI;
 #if MC_USE_KC
             float Ei = textureLod(lut_kc_e, KC_TableCoord(max(NoL, 0.0f), roughness), 0.0f).KC_CHANNEL;
-            f += KC_Lobe(Eo, Ei, Eavg) * KC_FmsColor(FavgKc, Eavg);
+            vec3 f = BRDF_SpecularMS(NoV, NoL, h.z, dot(wo, h), alpha, fresnel, Eo, Ei, Eavg, FavgKc);
+#else
+            vec3 f = BRDF_Specular(NoV, NoL, h.z, dot(wo, h), alpha, fresnel);
 #endif
+            f += diffuseColor * RTPBR_INV_PI;
             bool valid = hit && NoL > 0.0f && pdf > 0.0f;
             lightSum += valid ? f * (NoL / pdf) : vec3(0.0f);
         }
