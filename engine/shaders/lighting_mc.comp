@@ -1,24 +1,25 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Brute-force Monte Carlo lighting pass: the reference lighting.comp is measured against in
-// bench/ (rtpbr_render_desc.mc_samples). Same G-buffer, lights, descriptor set and output as
-// lighting.comp; the same direct-lighting integral (no visibility), estimated by sampling
-// instead of LTC:
-//   Lo = Le + sum_lights int_light f(V, L) Le NoL dw,
-//   f = diffuseColor / pi + BRDF_Specular (shaderlib microfacet.h, the NDF of the variant,
-//       height-correlated Smith, Schlick Fresnel with f0, f90)
-//       [BRDF_SpecularMS with RTPBR_MULTISCATTER: + F_ms f_ms, the Kulla-Conty lobe, with
-//       E(NoL) fetched per sample: exact where lighting.comp approximates it over the polygon]
-// with the material mapping of lighting.comp's shade_lights (f0, f90, diffuseColor).
+// bench/ (rtpbr_render_desc.mc_samples). Same G-buffer, lights, materials, descriptor set and
+// output as lighting.comp; the same direct-lighting integral (no visibility) of the same
+// material model (lighting.comp's shade_lights: metallic-roughness with the Kulla-Conty
+// dielectric-over-diffuse layering and KHR clearcoat, or Disney), estimated by sampling
+// instead of LTC: every lobe is evaluated per sample direction by the shader library
+// (BRDF_Specular, KC_Lobe with E, E_F fetched at the sample's NoL, BRDF_DisneyDiffuse /
+// _Sheen / _Clearcoat with the true GTR1 coat), where lighting.comp integrates LTC fits and
+// evaluates the separable lobes at one representative direction per polygon. Like
+// lighting.comp it shades anisotropic lobes isotropically at sqrt(alpha_t alpha_b) (the
+// G-buffer has no tangent).
 // Per pixel and light, mc.samples directions, each drawn from the mixture
 //   pdf(w) = (1 - pBrdf) pdf_light(w) + pBrdf pdf_vndf(w)
 // (one-sample MIS with the balance heuristic; Veach & Guibas 1995, "Optimally Combining
 // Sampling Techniques for Monte Carlo Rendering"): pdf_light is uniform area sampling of the
 // polygon (fan triangles picked by area) converted to solid angle, d^2 / (|cos_light| A);
-// pdf_vndf reflects a visible normal (Heitz 2018 / Dupuy & Benyoub 2023 for GGX, Heitz &
-// d'Eon 2014 for Beckmann; shaderlib sampling.h). pBrdf = 0.5 Fs / (Fs + Fd), Fs, Fd the
-// largest channel of the average specular Fresnel and of the diffuse colour: 0 for a surface
-// without specular (pure light sampling), 1/2 for a metal.
+// pdf_vndf reflects a visible normal of the main specular lobe (Heitz 2018 / Dupuy & Benyoub
+// 2023 for GGX, Heitz & d'Eon 2014 for Beckmann; shaderlib sampling.h). pBrdf = 0.5 Fs /
+// (Fs + Fd), Fs, Fd the largest channel of the specular lobe's average Fresnel and of the
+// diffuse colour: 0 for a surface without specular (pure light sampling), 1/2 for a metal.
 // No per-tile culling: every light is summed at every pixel (lights behind a one-sided light's
 // plane are skipped per pixel, where the integrand is 0). Kept flat (no nested early returns:
 // lavapipe's gallivm limits control-flow nesting, see tests/gpu/kernel.h).
@@ -28,9 +29,9 @@
 #include "rtpbr/fresnel.h"
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"
-#if RTPBR_HAVE_KC
 #include "rtpbr/kulla_conty.h"
-#endif
+#include "rtpbr/disney.h"
+#include "material.glsl"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
 #include "frame.glsl"
 #include "mc_sampling.glsl"
@@ -65,6 +66,11 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_DEPTH) uniform sampler2D gbuffer_d
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_RADIANCE, rgba32f) writeonly uniform image2D radiance;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_E) uniform sampler2D lut_kc_e;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EAVG) uniform sampler2D lut_kc_eavg;
+layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EF) uniform sampler2D lut_kc_ef;
+layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EFAVG) uniform sampler2D lut_kc_efavg;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_MATERIALS, std430) readonly buffer Materials {
+    Material materials[];
+};
 
 #if RTPBR_NDF == RTPBR_NDF_BECKMANN
 #define MC_SAMPLE_VNDF Sample_Beckmann_VNDF
@@ -75,7 +81,23 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EAVG) uniform sampler2D lut_kc_ea
 #define MC_PDF_REFLECTION PDF_GGX_Reflection
 #define KC_CHANNEL r
 #endif
-#define MC_USE_KC (RTPBR_MULTISCATTER && RTPBR_HAVE_KC)
+
+// Kulla-Conty tables (shaderlib/luts, kulla_conty.h coordinates), fetched as lighting.comp does.
+float kc_E(float mu, float r) { return textureLod(lut_kc_e, KC_TableCoord(mu, r), 0.0f).KC_CHANNEL; }
+float kc_Eavg(float r) { return textureLod(lut_kc_eavg, vec2(KC_TableCoordAvg(r), 0.5f), 0.0f).KC_CHANNEL; }
+// E_F(mu, r, eta): the eta slices are stacked along v (engine/src/luts.c); two bilinear
+// fetches at the neighbouring slices and a lerp along eta make the trilinear lookup.
+float kc_EF(float mu, float r, float eta)
+{
+    vec2 uv = KC_TableCoord(mu, r);
+    float s = KC_EtaAxis(eta) * (KC_LUT_SIZE_ETA - 1.0f);
+    float s0 = min(floor(s), KC_LUT_SIZE_ETA - 2.0f);
+    float v0 = (s0 + uv.y) / KC_LUT_SIZE_ETA;
+    float e0 = textureLod(lut_kc_ef, vec2(uv.x, v0), 0.0f).KC_CHANNEL;
+    float e1 = textureLod(lut_kc_ef, vec2(uv.x, v0 + 1.0f / KC_LUT_SIZE_ETA), 0.0f).KC_CHANNEL;
+    return mix(e0, e1, s - s0);
+}
+float kc_EFavg(float r, float eta) { return textureLod(lut_kc_efavg, KC_TableCoordAvg2D(r, eta), 0.0f).KC_CHANNEL; }
 
 float max3(vec3 v)
 {
@@ -84,21 +106,40 @@ float max3(vec3 v)
 
 // Reflected radiance from every polygonal light at P, estimated with mc.samples directions
 // per light.
-vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, vec4 g2, vec4 g3, uvec2 pixel)
+vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, Material m, uvec2 pixel)
 {
-    // Material mapping of lighting.comp's shade_lights.
+    // The material as lighting.comp's shade_lights reads it.
     vec3 baseColor = g0.rgb;
     float metallic = g0.a;
-    vec3 f0Dielectric = min(RTPBR_F3(F0_FromIor(g2.a)) * g3.rgb, RTPBR_F3(1.0f)) * g3.a;
-    vec3 f0 = mix(f0Dielectric, baseColor, metallic);
-    float f90 = mix(g3.a, 1.0f, metallic);
-    vec3 diffuseColor = baseColor * (1.0f - metallic);
+    bool disney = m.coat.z > 0.5f;
+    DisneyMaterial dm;
+    dm.baseColor = baseColor;
+    dm.metallic = metallic;
+    dm.subsurface = m.disney0.x;
+    dm.specular = m.disney0.y;
+    dm.specularTint = m.disney0.z;
+    dm.roughness = roughness;
+    dm.anisotropic = m.disney1.w;
+    dm.sheen = m.disney0.w;
+    dm.sheenTint = m.disney1.x;
+    dm.clearcoat = m.disney1.y;
+    dm.clearcoatGloss = m.disney1.z;
+    dm = Disney_SanitizeMaterial(dm);
+
+    // The specular lobe, isotropic at sqrt(alpha_t alpha_b) (KHR: alpha_t = mix(alpha, 1, s^2)).
+    float alpha = roughness * roughness;
+    float aniso = m.coat.w;
+    float specR = disney ? Disney_SpecularTableRoughness(dm) : sqrt(sqrt(mix(alpha, 1.0f, aniso * aniso) * alpha));
+    specR = clamp(specR, RTPBR_SHADER_MIN_ROUGHNESS, 1.0f);
+    float specAlpha = Alpha_FromPerceptual(specR);
+    float w = m.specular.x;
+    float eta = m.specular_color_ior.w;
+    vec3 f0Dielectric = min(RTPBR_F3(F0_FromIor(eta)) * m.specular_color_ior.rgb, RTPBR_F3(1.0f));
     FresnelParams fresnel;
-    fresnel.f0 = f0;
-    fresnel.f90 = f90;
-    fresnel.eta = RTPBR_F3(g2.a);
+    fresnel.f0 = disney ? Disney_SpecularF0(dm) : mix(w * f0Dielectric, baseColor, metallic);
+    fresnel.f90 = disney ? 1.0f : mix(w, 1.0f, metallic);
+    fresnel.eta = RTPBR_F3(eta);
     fresnel.k = RTPBR_F3(0.0f);
-    float alpha = Alpha_FromPerceptual(roughness);
 
     // Local frame z = N, x toward V (as LTC_Frame); NoV clamped as the LTC table lookup.
     vec3 T = V - N * dot(N, V);
@@ -109,16 +150,47 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, vec4 g2, 
     float NoV = clamp(dot(N, V), 1e-4f, 1.0f);
     vec3 wo = vec3(sqrt(1.0f - NoV * NoV), 0.0f, NoV);
 
-    // Average Fresnel (Kulla & Conty 2017) of Schlick's f0, f90: sets the strategy weights.
-    vec3 Favg = f0 + (RTPBR_F3(f90) - f0) / 21.0f;
-    float fs = max3(Favg);
+    // Kulla-Conty: the lobe colours and the layered base's albedos (lighting.comp's terms).
+    float Eo = kc_E(NoV, specR);
+    float Eavg = kc_Eavg(specR);
+#if RTPBR_MULTISCATTER
+    float FmsDielectric = KC_FmsColor(RTPBR_F3(F_Avg_Dielectric(eta)), Eavg).x;
+    vec3 msColor = disney ? KC_FmsColor(F_Avg_Schlick(fresnel.f0, 1.0f), Eavg)
+                          : metallic * KC_FmsColor(F_Avg_Schlick(baseColor, 1.0f), Eavg) +
+                                RTPBR_F3((1.0f - metallic) * w * FmsDielectric);
+#else
+    float FmsDielectric = 0.0f;
+    vec3 msColor = RTPBR_F3(0.0f);
+#endif
+    vec3 diffuseColor = (1.0f - metallic) * baseColor;
+    bool layered = !disney && w > 0.0f && max3(diffuseColor) > 0.0f; // E_s(mu_i) needed per sample
+    float Eso = w * KC_SpecularAlbedoDielectric(kc_EF(NoV, specR, eta), Eo, FmsDielectric);
+    float EsAvg = w * KC_SpecularAlbedoDielectric(kc_EFavg(specR, eta), Eavg, FmsDielectric);
+    bool needEi = layered || max3(msColor) > 0.0f;
+
+    // The coat: KHR clearcoat (attenuates the rest by 1 - c Fc(NoV)) or Disney's (does not).
+    float coat = disney ? RTPBR_DISNEY_CLEARCOAT_SCALE * dm.clearcoat : m.coat.x;
+    float coatR = clamp(disney ? sqrt(Disney_ClearcoatAlpha(dm)) : m.coat.y, RTPBR_SHADER_MIN_ROUGHNESS, 1.0f);
+    float baseAttenuation = disney ? 1.0f : 1.0f - coat * F_Schlick1(0.04f, 1.0f, NoV);
+    FresnelParams coatFresnel;
+    coatFresnel.f0 = RTPBR_F3(0.04f);
+    coatFresnel.f90 = 1.0f;
+    coatFresnel.eta = RTPBR_F3(1.5f);
+    coatFresnel.k = RTPBR_F3(0.0f);
+    float coatAlpha = Alpha_FromPerceptual(coatR);
+    float Eoc = kc_E(NoV, coatR);
+    float Eavgc = kc_Eavg(coatR);
+#if RTPBR_MULTISCATTER
+    vec3 msCoat = coat * KC_FmsColor(F_Avg_Schlick(RTPBR_F3(0.04f), 1.0f), Eavgc);
+#else
+    vec3 msCoat = RTPBR_F3(0.0f);
+#endif
+
+    // Strategy weights: Schlick's average Fresnel f0 + (f90 - f0) / 21 (Kulla & Conty 2017).
+    float fs = max3(F_Avg_Schlick(fresnel.f0, fresnel.f90));
     float fd = max3(diffuseColor);
     float pBrdf = fs > 0.0f ? 0.5f * fs / (fs + fd) : 0.0f;
-#if MC_USE_KC
-    float Eo = textureLod(lut_kc_e, KC_TableCoord(NoV, roughness), 0.0f).KC_CHANNEL;
-    float Eavg = textureLod(lut_kc_eavg, vec2(KC_TableCoordAvg(roughness), 0.5f), 0.0f).KC_CHANNEL;
-    vec3 FavgKc = F_Avg_Schlick(f0, f90);
-#endif
+    float alphaSample = specAlpha;
 
     uint samples = max(mc.samples, 1u);
     vec3 sum = vec3(0.0f);
@@ -148,7 +220,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, vec4 g2, 
             bool hit;
             if (fromBrdf) {
                 // Strategy 2: a visible normal of the specular lobe, reflected; does it hit?
-                vec3 wiLocal = Reflect_About(wo, MC_SAMPLE_VNDF(wo, alpha, alpha, u));
+                vec3 wiLocal = Reflect_About(wo, MC_SAMPLE_VNDF(wo, alphaSample, alphaSample, u));
                 wi = T * wiLocal.x + B * wiLocal.y + N * wiLocal.z;
                 hit = mc_ray_polygon(P, wi, light.vertices, count, light.plane, t);
             } else {
@@ -171,18 +243,28 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, vec4 g2, 
             float pdfLight = hit ? t * t / (abs(cosLight) * area) : 0.0f;
 
             vec3 wiLocal = vec3(dot(wi, T), dot(wi, B), dot(wi, N));
-            float pdfBrdf = pBrdf > 0.0f ? MC_PDF_REFLECTION(wo, wiLocal, alpha, alpha) : 0.0f;
+            float pdfBrdf = pBrdf > 0.0f ? MC_PDF_REFLECTION(wo, wiLocal, alphaSample, alphaSample) : 0.0f;
             float pdf = (1.0f - pBrdf) * pdfLight + pBrdf * pdfBrdf;
 
             float NoL = wiLocal.z;
             vec3 h = normalize(wo + wiLocal);
-#if MC_USE_KC
-            float Ei = textureLod(lut_kc_e, KC_TableCoord(max(NoL, 0.0f), roughness), 0.0f).KC_CHANNEL;
-            vec3 f = BRDF_SpecularMS(NoV, NoL, h.z, dot(wo, h), alpha, fresnel, Eo, Ei, Eavg, FavgKc);
-#else
-            vec3 f = BRDF_Specular(NoV, NoL, h.z, dot(wo, h), alpha, fresnel);
-#endif
-            f += diffuseColor * RTPBR_INV_PI;
+            float NoH = h.z;
+            float VoH = dot(wo, h);
+            float mu = max(NoL, 0.0f);
+            float Ei = needEi ? kc_E(mu, specR) : 1.0f;
+            vec3 f = BRDF_Specular(NoV, NoL, NoH, VoH, specAlpha, fresnel) + msColor * KC_Lobe(Eo, Ei, Eavg);
+            if (disney) {
+                f += BRDF_DisneyDiffuse(dm, wo, wiLocal) + BRDF_DisneySheen(dm, wo, wiLocal);
+            } else {
+                float Esi = layered ? w * KC_SpecularAlbedoDielectric(kc_EF(mu, specR, eta), Ei, FmsDielectric) : 0.0f;
+                f += diffuseColor * KC_Lobe(Eso, Esi, EsAvg);
+            }
+            f *= baseAttenuation;
+            if (coat > 0.0f) {
+                float coatLobe = disney ? BRDF_DisneyClearcoat(dm, wo, wiLocal)
+                                        : coat * BRDF_Specular(NoV, NoL, NoH, VoH, coatAlpha, coatFresnel).x;
+                f += RTPBR_F3(coatLobe) + msCoat * KC_Lobe(Eoc, kc_E(mu, coatR), Eavgc);
+            }
             bool valid = hit && NoL > 0.0f && pdf > 0.0f;
             lightSum += valid ? f * (NoL / pdf) : vec3(0.0f);
         }
@@ -206,13 +288,12 @@ void main()
         vec4 g0 = texelFetch(gbuffer0, pixel, 0);
         vec4 g1 = texelFetch(gbuffer1, pixel, 0);
         vec4 g2 = texelFetch(gbuffer2, pixel, 0);
-        vec4 g3 = texelFetch(gbuffer3, pixel, 0);
         vec3 V = normalize(frame.camera_position.xyz - P);
         vec3 N = normalize(g1.xyz);
         // The shading point lifted along N by a few depth quanta, as in lighting.comp.
         vec4 further = frame.inv_view_proj * vec4(ndc, min(depth * (1.0f + 4.0f / 16777216.0f), 1.0f), 1.0f);
         float lift = length(further.xyz / further.w - P) + 1e-6f * length(frame.camera_position.xyz - P);
-        result = vec4(g2.rgb + shade_lights_mc(P + N * lift, N, V, g0, g1.w, g2, g3, uvec2(pixel)), 1.0f);
+        result = vec4(g2.rgb + shade_lights_mc(P + N * lift, N, V, g0, g1.w, materials[uint(g2.a)], uvec2(pixel)), 1.0f);
     }
     if (inside) imageStore(radiance, pixel, result);
 }
