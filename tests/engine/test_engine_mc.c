@@ -4,8 +4,10 @@
 //    in double precision, independently of the engine), the MC image is unbiased (image-mean
 //    relative error within 4 standard errors) and its per-pixel error is pure noise (the error
 //    against the closed form has the spread of the difference of two independent seeds).
-//  - Glossy planes (GGX and Beckmann metals): the MC image's mean agrees with the LTC pass's
-//    within the LTC fit error measured in shaderlib/luts/ltc.md.
+//  - Glossy planes (GGX and Beckmann metals; with Kulla-Conty, a layered dielectric, KHR
+//    clearcoat, Disney): the MC image's mean agrees with the LTC pass's within the LTC fit
+//    error measured in shaderlib/luts/ltc.md (plus the Kulla-Conty polygon-lobe error of
+//    kulla_conty.md where those lobes are on).
 //  - Seeds: the same seed gives the same image, another seed another image; bad sample counts
 //    are refused.
 #include <stdlib.h>
