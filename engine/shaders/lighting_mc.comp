@@ -44,60 +44,15 @@ layout(push_constant) uniform McParams {
     uint seed;
 } mc;
 
-// C mirror: rtpbr_shader_light (the same declaration as lighting.comp's).
-struct Light {
-    vec4 vertices[RTPBR_SHADER_MAX_POLYGON_VERTICES];
-    vec4 emission; // rgb radiance, w: two-sided
-    vec4 plane;    // unit normal, -dot(normal, vertex 0)
-    vec4 sphere;   // bounding sphere: centre, radius
-    uint vertex_count;
-    float area;
-    uint pad0, pad1;
-};
-layout(set = 0, binding = RTPBR_BINDING_LIGHT_LIGHTS, std430) readonly buffer Lights {
-    Light lights[];
-};
-
-layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER0) uniform sampler2D gbuffer0;
-layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER1) uniform sampler2D gbuffer1;
-layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER2) uniform sampler2D gbuffer2;
-layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER3) uniform sampler2D gbuffer3;
-layout(set = 0, binding = RTPBR_BINDING_LIGHT_DEPTH) uniform sampler2D gbuffer_depth;
-layout(set = 0, binding = RTPBR_BINDING_LIGHT_RADIANCE, rgba32f) writeonly uniform image2D radiance;
-layout(set = 0, binding = RTPBR_BINDING_LUT_KC_E) uniform sampler2D lut_kc_e;
-layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EAVG) uniform sampler2D lut_kc_eavg;
-layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EF) uniform sampler2D lut_kc_ef;
-layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EFAVG) uniform sampler2D lut_kc_efavg;
-layout(set = 0, binding = RTPBR_BINDING_LIGHT_MATERIALS, std430) readonly buffer Materials {
-    Material materials[];
-};
+#include "lighting_common.glsl"
 
 #if RTPBR_NDF == RTPBR_NDF_BECKMANN
 #define MC_SAMPLE_VNDF Sample_Beckmann_VNDF
 #define MC_PDF_REFLECTION PDF_Beckmann_Reflection
-#define KC_CHANNEL g
 #else
 #define MC_SAMPLE_VNDF Sample_GGX_VNDF
 #define MC_PDF_REFLECTION PDF_GGX_Reflection
-#define KC_CHANNEL r
 #endif
-
-// Kulla-Conty tables (shaderlib/luts, kulla_conty.h coordinates), fetched as lighting.comp does.
-float kc_E(float mu, float r) { return textureLod(lut_kc_e, KC_TableCoord(mu, r), 0.0f).KC_CHANNEL; }
-float kc_Eavg(float r) { return textureLod(lut_kc_eavg, vec2(KC_TableCoordAvg(r), 0.5f), 0.0f).KC_CHANNEL; }
-// E_F(mu, r, eta): the eta slices are stacked along v (engine/src/luts.c); two bilinear
-// fetches at the neighbouring slices and a lerp along eta make the trilinear lookup.
-float kc_EF(float mu, float r, float eta)
-{
-    vec2 uv = KC_TableCoord(mu, r);
-    float s = KC_EtaAxis(eta) * (KC_LUT_SIZE_ETA - 1.0f);
-    float s0 = min(floor(s), KC_LUT_SIZE_ETA - 2.0f);
-    float v0 = (s0 + uv.y) / KC_LUT_SIZE_ETA;
-    float e0 = textureLod(lut_kc_ef, vec2(uv.x, v0), 0.0f).KC_CHANNEL;
-    float e1 = textureLod(lut_kc_ef, vec2(uv.x, v0 + 1.0f / KC_LUT_SIZE_ETA), 0.0f).KC_CHANNEL;
-    return mix(e0, e1, s - s0);
-}
-float kc_EFavg(float r, float eta) { return textureLod(lut_kc_efavg, KC_TableCoordAvg2D(r, eta), 0.0f).KC_CHANNEL; }
 
 float max3(vec3 v)
 {
@@ -106,38 +61,18 @@ float max3(vec3 v)
 
 // Reflected radiance from every polygonal light at P, estimated with mc.samples directions
 // per light.
-vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, Material m, uvec2 pixel)
+vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
 {
-    // The material as lighting.comp's shade_lights reads it.
-    vec3 baseColor = g0.rgb;
-    float metallic = g0.a;
-    bool disney = m.coat.z > 0.5f;
-    DisneyMaterial dm;
-    dm.baseColor = baseColor;
-    dm.metallic = metallic;
-    dm.subsurface = m.disney0.x;
-    dm.specular = m.disney0.y;
-    dm.specularTint = m.disney0.z;
-    dm.roughness = roughness;
-    dm.anisotropic = m.disney1.w;
-    dm.sheen = m.disney0.w;
-    dm.sheenTint = m.disney1.x;
-    dm.clearcoat = m.disney1.y;
-    dm.clearcoatGloss = m.disney1.z;
-    dm = Disney_SanitizeMaterial(dm);
-
-    // The specular lobe, isotropic at sqrt(alpha_t alpha_b) (KHR: alpha_t = mix(alpha, 1, s^2)).
-    float alpha = roughness * roughness;
-    float aniso = m.coat.w;
-    float specR = disney ? Disney_SpecularTableRoughness(dm) : sqrt(sqrt(mix(alpha, 1.0f, aniso * aniso) * alpha));
-    specR = clamp(specR, RTPBR_SHADER_MIN_ROUGHNESS, 1.0f);
+    // The material terms of lighting_common.glsl (those of lighting.comp's shade_lights).
+    bool disney = s.disney;
+    DisneyMaterial dm = s.dm;
+    float specR = s.specR;
     float specAlpha = Alpha_FromPerceptual(specR);
-    float w = m.specular.x;
-    float eta = m.specular_color_ior.w;
-    vec3 f0Dielectric = min(RTPBR_F3(F0_FromIor(eta)) * m.specular_color_ior.rgb, RTPBR_F3(1.0f));
+    float w = s.w;
+    float eta = s.eta;
     FresnelParams fresnel;
-    fresnel.f0 = disney ? Disney_SpecularF0(dm) : mix(w * f0Dielectric, baseColor, metallic);
-    fresnel.f90 = disney ? 1.0f : mix(w, 1.0f, metallic);
+    fresnel.f0 = s.f0;
+    fresnel.f90 = s.f90;
     fresnel.eta = RTPBR_F3(eta);
     fresnel.k = RTPBR_F3(0.0f);
 
@@ -150,41 +85,24 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, vec4 g0, float roughness, Material 
     float NoV = clamp(dot(N, V), 1e-4f, 1.0f);
     vec3 wo = vec3(sqrt(1.0f - NoV * NoV), 0.0f, NoV);
 
-    // Kulla-Conty: the lobe colours and the layered base's albedos (lighting.comp's terms).
-    float Eo = kc_E(NoV, specR);
-    float Eavg = kc_Eavg(specR);
-#if RTPBR_MULTISCATTER
-    float FmsDielectric = KC_FmsColor(RTPBR_F3(F_Avg_Dielectric(eta)), Eavg).x;
-    vec3 msColor = disney ? KC_FmsColor(F_Avg_Schlick(fresnel.f0, 1.0f), Eavg)
-                          : metallic * KC_FmsColor(F_Avg_Schlick(baseColor, 1.0f), Eavg) +
-                                RTPBR_F3((1.0f - metallic) * w * FmsDielectric);
-#else
-    float FmsDielectric = 0.0f;
-    vec3 msColor = RTPBR_F3(0.0f);
-#endif
-    vec3 diffuseColor = (1.0f - metallic) * baseColor;
+    // Kulla-Conty: the lobe colours and the layered base's albedos.
+    float Eo = s.Eo, Eavg = s.Eavg, FmsDielectric = s.FmsDielectric;
+    vec3 msColor = s.msColor;
+    vec3 diffuseColor = s.diffuseColor;
     bool layered = !disney && w > 0.0f && max3(diffuseColor) > 0.0f; // E_s(mu_i) needed per sample
-    float Eso = w * KC_SpecularAlbedoDielectric(kc_EF(NoV, specR, eta), Eo, FmsDielectric);
-    float EsAvg = w * KC_SpecularAlbedoDielectric(kc_EFavg(specR, eta), Eavg, FmsDielectric);
+    float Eso = s.Eso, EsAvg = s.EsAvg;
     bool needEi = layered || max3(msColor) > 0.0f;
 
     // The coat: KHR clearcoat (attenuates the rest by 1 - c Fc(NoV)) or Disney's (does not).
-    float coat = disney ? RTPBR_DISNEY_CLEARCOAT_SCALE * dm.clearcoat : m.coat.x;
-    float coatR = clamp(disney ? sqrt(Disney_ClearcoatAlpha(dm)) : m.coat.y, RTPBR_SHADER_MIN_ROUGHNESS, 1.0f);
-    float baseAttenuation = disney ? 1.0f : 1.0f - coat * F_Schlick1(0.04f, 1.0f, NoV);
+    float coat = s.coat, coatR = s.coatR, baseAttenuation = s.baseAttenuation;
     FresnelParams coatFresnel;
     coatFresnel.f0 = RTPBR_F3(0.04f);
     coatFresnel.f90 = 1.0f;
     coatFresnel.eta = RTPBR_F3(1.5f);
     coatFresnel.k = RTPBR_F3(0.0f);
     float coatAlpha = Alpha_FromPerceptual(coatR);
-    float Eoc = kc_E(NoV, coatR);
-    float Eavgc = kc_Eavg(coatR);
-#if RTPBR_MULTISCATTER
-    vec3 msCoat = coat * KC_FmsColor(F_Avg_Schlick(RTPBR_F3(0.04f), 1.0f), Eavgc);
-#else
-    vec3 msCoat = RTPBR_F3(0.0f);
-#endif
+    float Eoc = s.Eoc, Eavgc = s.Eavgc;
+    vec3 msCoat = s.msCoat;
 
     // Strategy weights: Schlick's average Fresnel f0 + (f90 - f0) / 21 (Kulla & Conty 2017).
     float fs = max3(F_Avg_Schlick(fresnel.f0, fresnel.f90));
@@ -290,10 +208,9 @@ void main()
         vec4 g2 = texelFetch(gbuffer2, pixel, 0);
         vec3 V = normalize(frame.camera_position.xyz - P);
         vec3 N = normalize(g1.xyz);
-        // The shading point lifted along N by a few depth quanta, as in lighting.comp.
-        vec4 further = frame.inv_view_proj * vec4(ndc, min(depth * (1.0f + 4.0f / 16777216.0f), 1.0f), 1.0f);
-        float lift = length(further.xyz / further.w - P) + 1e-6f * length(frame.camera_position.xyz - P);
-        result = vec4(g2.rgb + shade_lights_mc(P + N * lift, N, V, g0, g1.w, materials[uint(g2.a)], uvec2(pixel)), 1.0f);
+        // NoV clamped below as the LTC table lookup does.
+        Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], clamp(dot(N, V), 1e-4f, 1.0f));
+        result = vec4(g2.rgb + shade_lights_mc(lifted_point(ndc, depth, P, N), N, V, s, uvec2(pixel)), 1.0f);
     }
     if (inside) imageStore(radiance, pixel, result);
 }

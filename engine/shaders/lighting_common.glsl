@@ -1,0 +1,169 @@
+// Shared by the lighting passes (lighting.comp: LTC, lighting_mc.comp: Monte Carlo reference):
+// the descriptor set, the table accessors and the per-pixel material terms, so that both
+// passes shade exactly the same model (docs/materials.md, "What each renderer shades").
+// Include after rtpbr_shared.h, the shader-library headers (fresnel.h, kulla_conty.h,
+// disney.h), material.glsl and frame.glsl.
+
+// C mirror: rtpbr_shader_light (engine/src/internal.h).
+struct Light {
+    vec4 vertices[RTPBR_SHADER_MAX_POLYGON_VERTICES];
+    vec4 emission; // rgb radiance, w: two-sided
+    vec4 plane;    // unit normal, -dot(normal, vertex 0)
+    vec4 sphere;   // bounding sphere: centre, radius
+    uint vertex_count;
+    float area;
+    uint pad0, pad1;
+};
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_LIGHTS, std430) readonly buffer Lights {
+    Light lights[];
+};
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_MATERIALS, std430) readonly buffer Materials {
+    Material materials[];
+};
+
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER0) uniform sampler2D gbuffer0;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER1) uniform sampler2D gbuffer1;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER2) uniform sampler2D gbuffer2;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_DEPTH) uniform sampler2D gbuffer_depth;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_RADIANCE, rgba32f) writeonly uniform image2D radiance;
+
+layout(set = 0, binding = RTPBR_BINDING_LUT_KC_E) uniform sampler2D lut_kc_e;
+layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EAVG) uniform sampler2D lut_kc_eavg;
+layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EF) uniform sampler2D lut_kc_ef;
+layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EFAVG) uniform sampler2D lut_kc_efavg;
+
+// The Kulla-Conty tables of the NDF this variant is built for (engine/src/luts.c: r = GGX,
+// g = Beckmann).
+#if RTPBR_NDF == RTPBR_NDF_BECKMANN
+#define KC_CHANNEL g
+#else
+#define KC_CHANNEL r
+#endif
+
+float kc_E(float mu, float r) { return textureLod(lut_kc_e, KC_TableCoord(mu, r), 0.0f).KC_CHANNEL; }
+float kc_Eavg(float r) { return textureLod(lut_kc_eavg, vec2(KC_TableCoordAvg(r), 0.5f), 0.0f).KC_CHANNEL; }
+// E_F(mu, r, eta): the eta slices are stacked along v (engine/src/luts.c); two bilinear
+// fetches at the neighbouring slices and a lerp along eta make the trilinear lookup.
+float kc_EF(float mu, float r, float eta)
+{
+    vec2 uv = KC_TableCoord(mu, r);
+    float s = KC_EtaAxis(eta) * (KC_LUT_SIZE_ETA - 1.0f);
+    float s0 = min(floor(s), KC_LUT_SIZE_ETA - 2.0f);
+    float v0 = (s0 + uv.y) / KC_LUT_SIZE_ETA; // uv.y * KC_LUT_SIZE texels into slice s0
+    float e0 = textureLod(lut_kc_ef, vec2(uv.x, v0), 0.0f).KC_CHANNEL;
+    float e1 = textureLod(lut_kc_ef, vec2(uv.x, v0 + 1.0f / KC_LUT_SIZE_ETA), 0.0f).KC_CHANNEL;
+    return mix(e0, e1, s - s0);
+}
+float kc_EFavg(float r, float eta) { return textureLod(lut_kc_efavg, KC_TableCoordAvg2D(r, eta), 0.0f).KC_CHANNEL; }
+
+// A surface point's material: the G-buffer's per-pixel values and its material record,
+// resolved into the terms both passes use. The model (oracle/bsdf.h):
+//   metallic-roughness: f = (1 - c Fc(NoV)) [metallic f_metal + (1 - metallic) f_dielectric]
+//                           + c f_coat,
+//     f_metal = GGX, Schlick(F0 = baseColor, 1) + its Kulla-Conty lobe,
+//     f_dielectric = w GGX Schlick(F0(ior) specularColor, 1) + w F_ms f_ms
+//                    + baseColor (1 - Es(mu_o)) (1 - Es(mu_i)) / (pi (1 - Es_avg)),
+//     Es = w (E_F + F_ms (1 - E)) (KC_SpecularAlbedoDielectric; E_F with exact Fresnel),
+//     f_coat = GGX(clearcoat roughness), Schlick(0.04, 1) + its Kulla-Conty lobe;
+//   Disney (Burley 2012, disney.h): specular GGX Schlick(Disney_SpecularF0, 1) + its
+//     Kulla-Conty lobe, Burley diffuse + subsurface + sheen, GTR1 clearcoat 0.25 c.
+// Anisotropic lobes are shaded isotropically at sqrt(alpha_t alpha_b) (the G-buffer has no
+// tangent; the LTC tables are isotropic).
+struct Surface {
+    bool disney;
+    DisneyMaterial dm;    // sanitised (Disney materials only)
+    vec3 baseColor;
+    float metallic;
+    float roughness;      // perceptual, the G-buffer's
+    float NoV;
+    float specR;          // perceptual roughness of the (isotropic) specular lobe
+    float w;              // dielectric specular weight (KHR specularFactor)
+    float eta;            // dielectric IOR
+    vec3 f0;              // Schlick F0 and F90 of the specular lobe (metal and dielectric mixed)
+    float f90;
+    vec3 diffuseColor;    // (1 - metallic) baseColor
+    float coat;           // coat weight (Disney: 0.25 clearcoat), 0: none
+    float coatR;          // its perceptual roughness (Disney: sqrt of the GTR1 alpha)
+    float baseAttenuation; // 1 - c Fc(NoV) for KHR clearcoat; 1 for Disney's
+    // Kulla-Conty terms (zero without RTPBR_MULTISCATTER)
+    float Eo, Eavg;       // E(NoV), E_avg of the specular lobe
+    float FmsDielectric;  // F_ms of the dielectric layer
+    vec3 msColor;         // colour of the specular lobe's f_ms
+    float EFavg;          // E_F_avg of the dielectric layer
+    float Eso, EsAvg;     // the layer's albedo at NoV and on average (w included)
+    float Eoc, Eavgc;     // E(NoV), E_avg of the coat
+    vec3 msCoat;          // colour of the coat's f_ms (coat weight included)
+};
+
+Surface surface_terms(vec4 g0, float roughness, Material m, float NoV)
+{
+    Surface s;
+    s.baseColor = g0.rgb;
+    s.metallic = g0.a;
+    s.roughness = roughness;
+    s.NoV = NoV;
+    s.disney = m.coat.z > 0.5f;
+    s.dm.baseColor = s.baseColor;
+    s.dm.metallic = s.metallic;
+    s.dm.subsurface = m.disney0.x;
+    s.dm.specular = m.disney0.y;
+    s.dm.specularTint = m.disney0.z;
+    s.dm.roughness = roughness;
+    s.dm.anisotropic = m.disney1.w;
+    s.dm.sheen = m.disney0.w;
+    s.dm.sheenTint = m.disney1.x;
+    s.dm.clearcoat = m.disney1.y;
+    s.dm.clearcoatGloss = m.disney1.z;
+    s.dm = Disney_SanitizeMaterial(s.dm);
+
+    // KHR_materials_anisotropy: alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha.
+    float alpha = roughness * roughness;
+    float aniso = m.coat.w;
+    s.specR = s.disney ? Disney_SpecularTableRoughness(s.dm) : sqrt(sqrt(mix(alpha, 1.0f, aniso * aniso) * alpha));
+    s.specR = clamp(s.specR, RTPBR_SHADER_MIN_ROUGHNESS, 1.0f);
+    s.w = m.specular.x;
+    s.eta = m.specular_color_ior.w;
+    vec3 f0Dielectric = min(RTPBR_F3(F0_FromIor(s.eta)) * m.specular_color_ior.rgb, RTPBR_F3(1.0f));
+    s.f0 = s.disney ? Disney_SpecularF0(s.dm) : mix(s.w * f0Dielectric, s.baseColor, s.metallic);
+    s.f90 = s.disney ? 1.0f : mix(s.w, 1.0f, s.metallic);
+    s.diffuseColor = (1.0f - s.metallic) * s.baseColor;
+    s.coat = s.disney ? RTPBR_DISNEY_CLEARCOAT_SCALE * s.dm.clearcoat : m.coat.x;
+    s.coatR = clamp(s.disney ? sqrt(Disney_ClearcoatAlpha(s.dm)) : m.coat.y, RTPBR_SHADER_MIN_ROUGHNESS, 1.0f);
+    s.baseAttenuation = s.disney ? 1.0f : 1.0f - s.coat * F_Schlick1(0.04f, 1.0f, NoV);
+
+    s.Eo = kc_E(NoV, s.specR);
+    s.Eavg = kc_Eavg(s.specR);
+#if RTPBR_MULTISCATTER
+    s.FmsDielectric = KC_FmsColor(RTPBR_F3(F_Avg_Dielectric(s.eta)), s.Eavg).x;
+    s.msColor = s.disney ? KC_FmsColor(F_Avg_Schlick(s.f0, 1.0f), s.Eavg)
+                         : s.metallic * KC_FmsColor(F_Avg_Schlick(s.baseColor, 1.0f), s.Eavg) +
+                               RTPBR_F3((1.0f - s.metallic) * s.w * s.FmsDielectric);
+#else
+    s.FmsDielectric = 0.0f;
+    s.msColor = RTPBR_F3(0.0f);
+#endif
+    // The layered base (metallic-roughness): the specular layer's albedo at mu_o and on average.
+    bool layered = !s.disney && s.w > 0.0f;
+    s.EFavg = layered ? kc_EFavg(s.specR, s.eta) : 0.0f;
+    s.Eso = layered ? s.w * KC_SpecularAlbedoDielectric(kc_EF(NoV, s.specR, s.eta), s.Eo, s.FmsDielectric) : 0.0f;
+    s.EsAvg = layered ? s.w * KC_SpecularAlbedoDielectric(s.EFavg, s.Eavg, s.FmsDielectric) : 0.0f;
+    bool coated = s.coat > 0.0f;
+    s.Eoc = coated ? kc_E(NoV, s.coatR) : 1.0f;
+    s.Eavgc = coated ? kc_Eavg(s.coatR) : 1.0f;
+#if RTPBR_MULTISCATTER
+    s.msCoat = s.coat * KC_FmsColor(F_Avg_Schlick(RTPBR_F3(0.04f), 1.0f), s.Eavgc);
+#else
+    s.msCoat = RTPBR_F3(0.0f);
+#endif
+    return s;
+}
+
+// The shading point of a pixel: the position from the depth buffer is off by up to about one
+// depth quantum along the view ray; an emitter's own surface could then land on its emitting
+// side and light itself. The point is lifted along N by a few quanta (measured at this depth).
+vec3 lifted_point(vec2 ndc, float depth, vec3 P, vec3 N)
+{
+    vec4 further = frame.inv_view_proj * vec4(ndc, min(depth * (1.0f + 4.0f / 16777216.0f), 1.0f), 1.0f);
+    float lift = length(further.xyz / further.w - P) + 1e-6f * length(frame.camera_position.xyz - P);
+    return P + N * lift;
+}
