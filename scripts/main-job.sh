@@ -12,7 +12,8 @@ echo "main job: wrote out/brdf-spheres.png"
 # linear radiance (EXR, what the oracle is compared with) and the tone-mapped PNG.
 if [[ -x "$builddir/samples/headless/rtpbr-render" ]]; then
   for ext in exr png; do
-    "$builddir/samples/headless/rtpbr-render" samples/scenes/quad_light.gltf -o "out/engine-quad_light.$ext"
+    "$builddir/samples/headless/rtpbr-render" samples/scenes/quad_light.gltf -o "out/engine-quad_light.$ext" \
+      --supersample 2
   done
 fi
 if [[ -x "$builddir/samples/headless/rtpbr-render" && -x "$builddir/oracle/rtpbr-oracle" ]]; then

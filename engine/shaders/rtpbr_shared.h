@@ -56,6 +56,10 @@
 #define RTPBR_SHADER_MODEL_METALLIC_ROUGHNESS 0
 #define RTPBR_SHADER_MODEL_DISNEY 1
 
+// Supersampling resolve (resolve.comp), descriptor set 0.
+#define RTPBR_BINDING_RESOLVE_SOURCE 0    // rgba32f storage image, (factor W) x (factor H)
+#define RTPBR_BINDING_RESOLVE_TARGET 1    // rgba32f storage image, W x H
+
 // Tone-mapping pass, descriptor set 0.
 #define RTPBR_BINDING_TONEMAP_RADIANCE 0   // rgba32f storage image, read only
 

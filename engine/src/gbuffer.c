@@ -34,15 +34,15 @@ void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCom
     };
     VkRenderingInfo rendering = {
         .sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
-        .renderArea = {{0, 0}, {r->width, r->height}},
+        .renderArea = {{0, 0}, {r->shade_width, r->shade_height}},
         .layerCount = 1,
         .colorAttachmentCount = RTPBR_GBUFFER_COUNT,
         .pColorAttachments = colors,
         .pDepthAttachment = &depth,
     };
     vkCmdBeginRendering(cmd, &rendering);
-    VkViewport viewport = {0.0f, 0.0f, (float)r->width, (float)r->height, 0.0f, 1.0f};
-    VkRect2D scissor = {{0, 0}, {r->width, r->height}};
+    VkViewport viewport = {0.0f, 0.0f, (float)r->shade_width, (float)r->shade_height, 0.0f, 1.0f};
+    VkRect2D scissor = {{0, 0}, {r->shade_width, r->shade_height}};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
     if (scene->draw_count) {

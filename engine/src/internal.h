@@ -59,6 +59,13 @@ typedef struct rtpbr_shader_draw {
     uint32_t pad[3];
 } rtpbr_shader_draw;
 
+// Push constants of the supersampling resolve (resolve.comp).
+typedef struct rtpbr_shader_resolve {
+    uint32_t size[2];
+    uint32_t factor;
+    uint32_t pad;
+} rtpbr_shader_resolve;
+
 // Push constants of the tone-mapping pass.
 typedef struct rtpbr_shader_tonemap {
     float scale;               // 2^exposure
@@ -148,6 +155,9 @@ struct rtpbr_context {
     // The Monte Carlo lighting pass: same set layout, plus push constants rtpbr_shader_mc.
     VkPipelineLayout lighting_mc_layout;
     VkPipeline lighting_mc_pipelines[RTPBR_LIGHTING_VARIANT_COUNT];
+    VkDescriptorSetLayout resolve_set_layout;
+    VkPipelineLayout resolve_layout;
+    VkPipeline resolve_pipeline;
     VkDescriptorSetLayout tonemap_set_layout;
     VkPipelineLayout tonemap_layout;
     VkShaderModule tonemap_vert, tonemap_frag;
@@ -187,7 +197,11 @@ enum { RTPBR_VERTEX_FLOATS = 12 }; // float3 position, float3 normal, float2 uv,
 
 struct rtpbr_renderer {
     rtpbr_context *context;
-    uint32_t width, height;
+    uint32_t width, height;    // of the output (radiance, display, readback)
+    uint32_t supersample;      // >= 1
+    uint32_t shade_width, shade_height; // of the G-buffer and lighting: supersample x the output
+    rtpbr_image radiance_ss;   // the lighting pass's target when supersample > 1 (else unused)
+    VkDescriptorSet resolve_set;
     rtpbr_image gbuffer[RTPBR_GBUFFER_COUNT];
     rtpbr_image depth;
     rtpbr_image radiance;      // rgba32f, GENERAL layout between passes

@@ -12,27 +12,29 @@ static rtpbr_result create_descriptors(rtpbr_renderer *r)
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, RTPBR_LIGHTING_BINDING_COUNT},
-        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4},
     };
     VkDescriptorPoolCreateInfo pool_info = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-        .maxSets = 3,
+        .maxSets = 4,
         .poolSizeCount = sizeof sizes / sizeof sizes[0],
         .pPoolSizes = sizes,
     };
     RTPBR_VK(ctx, vkCreateDescriptorPool(ctx->device, &pool_info, NULL, &r->descriptor_pool));
-    VkDescriptorSetLayout layouts[3] = {ctx->gbuffer_set_layout, ctx->lighting_set_layout, ctx->tonemap_set_layout};
-    VkDescriptorSet sets[3];
+    VkDescriptorSetLayout layouts[4] = {ctx->gbuffer_set_layout, ctx->lighting_set_layout, ctx->tonemap_set_layout,
+                                        ctx->resolve_set_layout};
+    VkDescriptorSet sets[4];
     VkDescriptorSetAllocateInfo alloc = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
         .descriptorPool = r->descriptor_pool,
-        .descriptorSetCount = 3,
+        .descriptorSetCount = 4,
         .pSetLayouts = layouts,
     };
     RTPBR_VK(ctx, vkAllocateDescriptorSets(ctx->device, &alloc, sets));
     r->gbuffer_set = sets[0];
     r->lighting_set = sets[1];
     r->tonemap_set = sets[2];
+    r->resolve_set = sets[3];
 
     // Everything but the scene's buffers is fixed for the renderer's lifetime.
     VkDescriptorBufferInfo frame = {r->frame.buffer, 0, sizeof(rtpbr_shader_frame)};
@@ -42,12 +44,13 @@ static rtpbr_result create_descriptors(rtpbr_renderer *r)
             ctx->gbuffer_sampler, r->gbuffer[i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     images[RTPBR_BINDING_LIGHT_DEPTH] =
         (VkDescriptorImageInfo){ctx->gbuffer_sampler, r->depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    images[RTPBR_BINDING_LIGHT_RADIANCE] = (VkDescriptorImageInfo){VK_NULL_HANDLE, r->radiance.view, VK_IMAGE_LAYOUT_GENERAL};
+    const rtpbr_image *shaded = r->supersample > 1 ? &r->radiance_ss : &r->radiance;
+    images[RTPBR_BINDING_LIGHT_RADIANCE] = (VkDescriptorImageInfo){VK_NULL_HANDLE, shaded->view, VK_IMAGE_LAYOUT_GENERAL};
     for (uint32_t i = 0; i < RTPBR_LUT_COUNT; ++i)
         images[RTPBR_BINDING_LUT_LTC_GGX_1 + i] = (VkDescriptorImageInfo){
             ctx->lut_sampler, ctx->luts[i].image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
 
-    VkWriteDescriptorSet writes[RTPBR_LIGHTING_BINDING_COUNT + 3];
+    VkWriteDescriptorSet writes[RTPBR_LIGHTING_BINDING_COUNT + 5];
     uint32_t n = 0;
     writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->gbuffer_set,
                                          .dstBinding = RTPBR_BINDING_GBUFFER_FRAME, .descriptorCount = 1,
@@ -67,6 +70,14 @@ static rtpbr_result create_descriptors(rtpbr_renderer *r)
     writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->tonemap_set,
                                          .dstBinding = RTPBR_BINDING_TONEMAP_RADIANCE, .descriptorCount = 1,
                                          .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .pImageInfo = &radiance};
+    VkDescriptorImageInfo resolve_images[2] = {{VK_NULL_HANDLE, shaded->view, VK_IMAGE_LAYOUT_GENERAL},
+                                               {VK_NULL_HANDLE, r->radiance.view, VK_IMAGE_LAYOUT_GENERAL}};
+    if (r->supersample > 1)
+        for (uint32_t b = 0; b < 2; ++b)
+            writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                                 .dstSet = r->resolve_set, .dstBinding = b, .descriptorCount = 1,
+                                                 .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                                                 .pImageInfo = &resolve_images[b]};
     vkUpdateDescriptorSets(ctx->device, n, writes, 0, NULL);
 cleanup:
     return result;
@@ -86,22 +97,34 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
                   RTPBR_MAX_RENDER_SIZE);
         return desc->width == 0 || desc->height == 0 ? RTPBR_ERROR_INVALID_ARGUMENT : RTPBR_ERROR_LIMIT_EXCEEDED;
     }
+    uint32_t ss = desc->supersample ? desc->supersample : 1;
+    if (ss > RTPBR_MAX_SUPERSAMPLE || desc->width * ss > RTPBR_MAX_RENDER_SIZE ||
+        desc->height * ss > RTPBR_MAX_RENDER_SIZE) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "renderer supersample %u at %ux%u; at most %u, and %u per side supersampled",
+                  desc->supersample, desc->width, desc->height, RTPBR_MAX_SUPERSAMPLE, RTPBR_MAX_RENDER_SIZE);
+        return RTPBR_ERROR_LIMIT_EXCEEDED;
+    }
     rtpbr_result result = RTPBR_SUCCESS;
     rtpbr_renderer *r = rtpbr_alloc(ctx, sizeof *r);
     if (!r) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
     r->context = ctx;
     r->width = desc->width;
     r->height = desc->height;
-    uint32_t w = desc->width, h = desc->height;
+    r->supersample = ss;
+    r->shade_width = desc->width * ss;
+    r->shade_height = desc->height * ss;
+    uint32_t w = desc->width, h = desc->height, sw = r->shade_width, sh = r->shade_height;
 
     for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i)
-        RTPBR_TRY(rtpbr_image_create(ctx, w, h, rtpbr_gbuffer_formats[i],
+        RTPBR_TRY(rtpbr_image_create(ctx, sw, sh, rtpbr_gbuffer_formats[i],
                                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                                      &r->gbuffer[i]));
-    RTPBR_TRY(rtpbr_image_create(ctx, w, h, RTPBR_DEPTH_FORMAT,
+    RTPBR_TRY(rtpbr_image_create(ctx, sw, sh, RTPBR_DEPTH_FORMAT,
                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, &r->depth));
     RTPBR_TRY(rtpbr_image_create(ctx, w, h, RTPBR_RADIANCE_FORMAT,
                                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &r->radiance));
+    if (ss > 1)
+        RTPBR_TRY(rtpbr_image_create(ctx, sw, sh, RTPBR_RADIANCE_FORMAT, VK_IMAGE_USAGE_STORAGE_BIT, &r->radiance_ss));
     RTPBR_TRY(rtpbr_image_create(ctx, w, h, RTPBR_DISPLAY_FORMAT,
                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &r->display));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, sizeof(rtpbr_shader_frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &r->frame));
@@ -143,6 +166,7 @@ void rtpbr_renderer_destroy(rtpbr_renderer *r)
     for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i) rtpbr_image_destroy(ctx, &r->gbuffer[i]);
     rtpbr_image_destroy(ctx, &r->depth);
     rtpbr_image_destroy(ctx, &r->radiance);
+    rtpbr_image_destroy(ctx, &r->radiance_ss);
     rtpbr_image_destroy(ctx, &r->display);
     rtpbr_free(ctx, r);
 }
@@ -195,8 +219,8 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
     }
     memcpy(frame.camera_position, camera->position, 3 * sizeof(float));
     memcpy(frame.background, desc->background, 3 * sizeof(float));
-    frame.size[0] = r->width;
-    frame.size[1] = r->height;
+    frame.size[0] = r->shade_width;
+    frame.size[1] = r->shade_height;
     frame.light_count = scene->light_count;
     frame.cull_form_factor = desc->light_cull_form_factor == 0.0f ? RTPBR_DEFAULT_CULL_FORM_FACTOR
                                                                    : desc->light_cull_form_factor;

@@ -13,6 +13,7 @@
 #include "rtpbr_spirv_lighting_mc_beckmann_ms1.h"
 #include "rtpbr_spirv_lighting_mc_ggx_ms0.h"
 #include "rtpbr_spirv_lighting_mc_ggx_ms1.h"
+#include "rtpbr_spirv_resolve_comp.h"
 #include "rtpbr_spirv_tonemap_frag.h"
 #include "rtpbr_spirv_tonemap_vert.h"
 
@@ -282,6 +283,31 @@ cleanup:
     return result;
 }
 
+// The supersampling resolve: two storage images, push constants rtpbr_shader_resolve.
+static rtpbr_result create_resolve(rtpbr_context *ctx)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkShaderModule module = VK_NULL_HANDLE;
+    VkDescriptorSetLayoutBinding bindings[2] = {
+        {RTPBR_BINDING_RESOLVE_SOURCE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL},
+        {RTPBR_BINDING_RESOLVE_TARGET, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL},
+    };
+    RTPBR_TRY(create_set_layout(ctx, bindings, 2, &ctx->resolve_set_layout));
+    RTPBR_TRY(create_pipeline_layout(ctx, ctx->resolve_set_layout, VK_SHADER_STAGE_COMPUTE_BIT,
+                                     sizeof(rtpbr_shader_resolve), &ctx->resolve_layout));
+    RTPBR_TRY(rtpbr_shader_module(ctx, SPIRV(rtpbr_spirv_resolve_comp), &module));
+    VkComputePipelineCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                  .module = module, .pName = "main"},
+        .layout = ctx->resolve_layout,
+    };
+    RTPBR_VK(ctx, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL, &ctx->resolve_pipeline));
+cleanup:
+    vkDestroyShaderModule(ctx->device, module, NULL);
+    return result;
+}
+
 static rtpbr_result create_tonemap(rtpbr_context *ctx)
 {
     rtpbr_result result = RTPBR_SUCCESS;
@@ -301,6 +327,7 @@ rtpbr_result rtpbr_pipelines_create(rtpbr_context *ctx)
     rtpbr_result result = create_gbuffer(ctx);
     if (result == RTPBR_SUCCESS) result = create_lighting(ctx);
     if (result == RTPBR_SUCCESS) result = create_lighting_mc(ctx);
+    if (result == RTPBR_SUCCESS) result = create_resolve(ctx);
     if (result == RTPBR_SUCCESS) result = create_tonemap(ctx);
     if (result == RTPBR_SUCCESS) {
         // The renderer's own display target: created now so that a bad driver fails early.
@@ -319,6 +346,9 @@ void rtpbr_pipelines_destroy(rtpbr_context *ctx)
     vkDestroyShaderModule(dev, ctx->tonemap_frag, NULL);
     vkDestroyPipelineLayout(dev, ctx->tonemap_layout, NULL);
     vkDestroyDescriptorSetLayout(dev, ctx->tonemap_set_layout, NULL);
+    vkDestroyPipeline(dev, ctx->resolve_pipeline, NULL);
+    vkDestroyPipelineLayout(dev, ctx->resolve_layout, NULL);
+    vkDestroyDescriptorSetLayout(dev, ctx->resolve_set_layout, NULL);
     for (uint32_t i = 0; i < RTPBR_LIGHTING_VARIANT_COUNT; ++i)
         vkDestroyPipeline(dev, ctx->lighting_pipelines[i], NULL);
     vkDestroyPipelineLayout(dev, ctx->lighting_layout, NULL);

@@ -1,7 +1,7 @@
 // rtpbr-render: headless render of a glTF scene with librtpbr.
 //   rtpbr-render SCENE.gltf -o OUT.exr|OUT.png [--width W] [--height H] [--camera I]
 //                [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]
-//                [--no-multiscatter] [--validation]
+//                [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]
 // OUT.exr holds linear scene radiance (RGB float; no exposure, no tone mapping: the quantity
 // the oracle writes); OUT.png the tone-mapped 8-bit sRGB image.
 #include <cstdio>
@@ -21,7 +21,10 @@ void usage()
     std::fprintf(stderr,
                  "usage: rtpbr-render SCENE.gltf -o OUT.exr|OUT.png [--width W] [--height H] [--camera I]\n"
                  "                    [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]\n"
-                 "                    [--no-multiscatter] [--validation]\n");
+                 "                    [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]\n"
+                 "  --supersample S  anti-aliasing: shade S x S samples per pixel, box-filtered (1..4; default 1)\n"
+                 "  --mc-samples N   brute-force Monte Carlo lighting pass, N samples per pixel and light\n"
+                 "                   (the reference the LTC pass is benchmarked against; default 0: LTC)\n");
 }
 
 void on_log(rtpbr_log_level level, const char *message, void *)
@@ -96,6 +99,10 @@ int main(int argc, char **argv)
             if (t == "ggx") render.ndf = RTPBR_NDF_GGX_MODEL;
             else if (t == "beckmann") render.ndf = RTPBR_NDF_BECKMANN_MODEL;
             else return usage(), 2;
+        } else if (a == "--supersample" && has_value) {
+            if (!parse_uint(argv[++i], size.supersample)) return usage(), 2;
+        } else if (a == "--mc-samples" && has_value) {
+            if (!parse_uint(argv[++i], render.mc_samples)) return usage(), 2;
         } else if (a == "--no-multiscatter") render.multiscatter = RTPBR_MULTISCATTER_OFF;
         else if (a == "--validation") validation = 1;
         else if (a == "-h" || a == "--help") return usage(), 0;

@@ -131,7 +131,8 @@ def main(argv=None):
         w, h = str(sc["width"]), str(sc["height"])
         log("[%d/%d] %s: engine %sx%s" % (k + 1, len(names), name, w, h))
         engine_exr = os.path.join(outdir, "engine.exr")
-        _, t_engine = run([render, gltf, "-o", engine_exr, "--width", w, "--height", h, "--camera", "0"], "rtpbr-render")
+        _, t_engine = run([render, gltf, "-o", engine_exr, "--width", w, "--height", h, "--camera", "0"]
+                          + list(sc.get("engine_flags", [])), "rtpbr-render")
 
         oracle_args = ["--width", w, "--height", h, "--camera", "0", "--spp", str(sc["spp"]),
                        "--seed", str(sc.get("seed", 1))] + list(sc.get("oracle_flags", []))
@@ -162,7 +163,8 @@ def main(argv=None):
         to_png(oiiotool, oracle_exr, os.path.join(outdir, "oracle.png"), exposure)
         results.append({"scene": name, "ok": ok, "max_mean": sc["max_mean"], "max_p95": sc["max_p95"],
                         "width": sc["width"], "height": sc["height"], "spp": sc["spp"],
-                        "oracle_flags": sc.get("oracle_flags", []), "note": sc.get("note", ""),
+                        "oracle_flags": sc.get("oracle_flags", []), "engine_flags": sc.get("engine_flags", []),
+                        "note": sc.get("note", ""),
                         "engine_seconds": round(t_engine, 2), "oracle_seconds": round(t_oracle, 2),
                         "metrics": metrics})
         log("[%d/%d] %s: HDR-FLIP mean %.4f p95 %.4f (limits %.3f / %.3f) %s"

@@ -305,7 +305,14 @@ RTPBR_API rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const 
 typedef struct rtpbr_renderer_desc {
     uint32_t width;          // required, 1..RTPBR_MAX_RENDER_SIZE
     uint32_t height;         // required, 1..RTPBR_MAX_RENDER_SIZE
+    // Anti-aliasing by supersampling: the G-buffer and lighting passes run at (s width) x
+    // (s height) and a box filter averages each s x s block into the output (radiance alpha
+    // becomes the pixel's coverage). 1..RTPBR_MAX_SUPERSAMPLE; zero: 1 (none). Costs s^2.
+    // s width and s height must stay within RTPBR_MAX_RENDER_SIZE.
+    uint32_t supersample;
 } rtpbr_renderer_desc;
+
+#define RTPBR_MAX_SUPERSAMPLE 4u
 
 typedef struct rtpbr_renderer rtpbr_renderer;
 
