@@ -23,6 +23,10 @@ extern "C" {
 
 using namespace sheenref;
 
+// sheen_neubelt.cpp: the same header compiled with RTPBR_SHEEN_VISIBILITY = NEUBELT.
+float sheen_neubelt_V_Sheen(float NoV, float NoL, float alpha);
+float sheen_neubelt_BRDF(float NoV, float NoL, float NoH, float roughness);
+
 namespace {
 
 bool finiteNonNeg(float x) { return std::isfinite(x) && x >= 0.0f; }
@@ -95,6 +99,20 @@ void test_visibility_formulas(void **) {
     // The softened Lambda equals Lambda at normal incidence and exceeds it towards the horizon.
     assert_true(std::fabs(rtpbr::Lambda_CharlieSoftened(1.0f, 0.25f) / rtpbr::Lambda_Charlie(1.0f, 0.25f) - 1.0f) < 1e-5f);
     assert_true(rtpbr::Lambda_CharlieSoftened(0.1f, 0.25f) > rtpbr::Lambda_Charlie(0.1f, 0.25f));
+}
+
+// RTPBR_SHEEN_VISIBILITY picks the visibility of V_Sheen and BRDF_Sheen (default Charlie).
+void test_visibility_flag(void **) {
+    for (float v : {0.1f, 0.5f, 0.9f})
+        for (float l : {0.2f, 0.7f}) {
+            float a = rtpbr::Sheen_Alpha(0.6f);
+            assert_true(rtpbr::V_Sheen(v, l, a) == rtpbr::V_Charlie(v, l, a));
+            assert_true(sheen_neubelt_V_Sheen(v, l, a) == rtpbr::V_Neubelt(v, l));
+            float nh = 0.4f;
+            float ref = rtpbr::D_Charlie(nh, a) * rtpbr::V_Neubelt(v, l);
+            assert_true(std::fabs(sheen_neubelt_BRDF(v, l, nh, 0.6f) - ref) <= 1e-6f * ref);
+            assert_true(rtpbr::V_Charlie(v, l, a) != rtpbr::V_Neubelt(v, l));
+        }
 }
 
 void test_reciprocity(void **) {
@@ -223,7 +241,8 @@ void test_albedo_table(void **) {
 int main() {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_d_normalisation),  cmocka_unit_test(test_sample_charlie_cdf),
-        cmocka_unit_test(test_visibility_formulas), cmocka_unit_test(test_reciprocity),
+        cmocka_unit_test(test_visibility_formulas), cmocka_unit_test(test_visibility_flag),
+        cmocka_unit_test(test_reciprocity),
         cmocka_unit_test(test_edge_inputs),      cmocka_unit_test(test_sampling_density),
         cmocka_unit_test(test_albedo_table),
     };
