@@ -2,8 +2,10 @@
 #include "bsdf.h"
 
 #include <luts/rtpbr_kc_tables.h>
+#include <luts/rtpbr_sheen_tables.h>
 #include <rtpbr/microfacet.h>
 #include <rtpbr/sampling.h>
+#include <rtpbr/sheen.h>
 
 #include <algorithm>
 
@@ -25,6 +27,18 @@ float muOfNode(int i, int n) {
 float singleScatterAlbedo(float mu, float r) {
     const int n = RTPBR_KC_SIZE;
     const auto &E = rtpbr_kc_E[RTPBR_KC_VARIANT_ggx_hc];
+    float fx = std::sqrt(glm::clamp(mu, 0.0f, 1.0f)) * float(n - 1), fr = glm::clamp(r, 0.0f, 1.0f) * float(n - 1);
+    int x0 = std::min(n - 2, int(fx)), r0 = std::min(n - 2, int(fr));
+    float ax = fx - float(x0), ar = fr - float(r0);
+    return (1.0f - ar) * ((1.0f - ax) * E[r0][x0] + ax * E[r0][x0 + 1]) +
+           ar * ((1.0f - ax) * E[r0 + 1][x0] + ax * E[r0 + 1][x0 + 1]);
+}
+
+// E_sheen(mu, r) of the charlie lobe (V_Charlie, sheen.h's default), bilinear on the nodes of
+// the committed table (x = sqrt(mu), r at i / (n - 1)).
+float sheenAlbedo(float mu, float r) {
+    const int n = RTPBR_SHEEN_SIZE;
+    const auto &E = rtpbr_sheen_E[RTPBR_SHEEN_VARIANT_charlie];
     float fx = std::sqrt(glm::clamp(mu, 0.0f, 1.0f)) * float(n - 1), fr = glm::clamp(r, 0.0f, 1.0f) * float(n - 1);
     int x0 = std::min(n - 2, int(fx)), r0 = std::min(n - 2, int(fr));
     float ax = fx - float(x0), ar = fr - float(r0);
@@ -123,13 +137,23 @@ Bsdf::Bsdf(const SurfaceMaterial &m, bool singleScatter, vec3 wo)
     }
     float fc = rtpbr::F_Schlick1(kClearcoatF0, 1.0f, wo.z);
     baseScale_ = 1.0f - m_.clearcoat * fc;
+    m_.sheenColor = rtpbr::Sheen_SanitizeColor(m_.sheenColor);
+    sheenMax_ = rtpbr::Sheen_Max3(m_.sheenColor);
+    sheen_ = sheenMax_ > 0.0f;
+    float sheenScaleO = 1.0f; // the base layer's share at wo (for the lobe probabilities)
+    if (sheen_) {
+        sheenAlpha_ = rtpbr::Sheen_Alpha(m_.sheenRoughness);
+        sheenEo_ = sheenAlbedo(wo.z, glm::clamp(m_.sheenRoughness, 0.0f, 1.0f));
+        sheenScaleO = rtpbr::Sheen_AlbedoScalingView(m_.sheenColor, sheenEo_);
+        probSheen_ = baseScale_ * std::max(sheenMax_ * std::min(sheenEo_, 1.0f), 0.02f);
+    }
     float eo = layerE(wo.z);
     float eavg = m_.layer ? m_.specularWeight * m_.layer->Eavg(m_.perceptualRoughness, single_) : 0.0f;
     baseFactorO_ = eavg < 0.999f ? std::max(0.0f, 1.0f - eo) / (1.0f - eavg) : 0.0f;
     // Lobe selection by each lobe's albedo at wo (rough for the metal).
-    probMetal_ = baseScale_ * m_.metallic * std::max(luminance(m_.baseColor), 0.02f);
-    probCoat_ = baseScale_ * (1.0f - m_.metallic) * std::max(eo, 0.02f);
-    probDiffuse_ = baseScale_ * (1.0f - m_.metallic) * luminance(m_.baseColor) * std::max(0.0f, 1.0f - eo);
+    probMetal_ = sheenScaleO * baseScale_ * m_.metallic * std::max(luminance(m_.baseColor), 0.02f);
+    probCoat_ = sheenScaleO * baseScale_ * (1.0f - m_.metallic) * std::max(eo, 0.02f);
+    probDiffuse_ = sheenScaleO * baseScale_ * (1.0f - m_.metallic) * luminance(m_.baseColor) * std::max(0.0f, 1.0f - eo);
     probClear_ = m_.clearcoat * std::max(fc, 0.02f);
     if (m_.metallic <= 0.0f)
         probMetal_ = 0.0f;
@@ -137,12 +161,13 @@ Bsdf::Bsdf(const SurfaceMaterial &m, bool singleScatter, vec3 wo)
         probCoat_ = 0.0f;
     if (m_.clearcoat <= 0.0f)
         probClear_ = 0.0f;
-    probSum_ = probMetal_ + probCoat_ + probDiffuse_ + probClear_;
+    probSum_ = probMetal_ + probCoat_ + probDiffuse_ + probClear_ + probSheen_;
     if (probSum_ > 0.0f) {
         probMetal_ /= probSum_;
         probCoat_ /= probSum_;
         probDiffuse_ /= probSum_;
         probClear_ /= probSum_;
+        probSheen_ /= probSum_;
     }
 }
 
@@ -150,6 +175,19 @@ float Bsdf::layerE(float mu) const {
     if (!m_.layer || m_.specularWeight <= 0.0f)
         return 0.0f;
     return m_.specularWeight * m_.layer->E(mu, m_.perceptualRoughness, single_);
+}
+
+float Bsdf::sheenScaling(vec3 wi) const {
+    if (!sheen_)
+        return 1.0f;
+    float ei = sheenAlbedo(wi.z, glm::clamp(m_.sheenRoughness, 0.0f, 1.0f));
+    return rtpbr::Sheen_AlbedoScaling(m_.sheenColor, sheenEo_, ei);
+}
+
+vec3 Bsdf::sheenEval(vec3 wi) const {
+    if (!sheen_)
+        return vec3(0.0f);
+    return rtpbr::BRDF_SheenLocal(m_.sheenColor, m_.sheenRoughness, wo_, wi) * wi.z;
 }
 
 float Bsdf::baseWeight(vec3 wi) const { return baseFactorO_ * std::max(0.0f, 1.0f - layerE(wi.z)); }
@@ -271,6 +309,8 @@ vec3 Bsdf::eval(vec3 wi, Rng &rng) const {
             f += (1.0f - m_.metallic) * m_.specularWeight * specularEvalOn(ms_, coatF_, wi, rng);
         f += (1.0f - m_.metallic) * baseWeight(wi) * m_.baseColor * (wi.z * kInvPi);
     }
+    if (sheen_)
+        f = f * sheenScaling(wi) + sheenEval(wi);
     f *= baseScale_;
     if (m_.clearcoat > 0.0f)
         f += m_.clearcoat * specularEvalOn(msClear_, clearF_, wi, rng);
@@ -296,6 +336,8 @@ float Bsdf::pdfMis(vec3 wi) const {
         p += (probMetal_ + probCoat_) * specularPdfMis(ms_, essMain_, wi);
     if (probClear_ > 0.0f)
         p += probClear_ * specularPdfMis(msClear_, essClear_, wi);
+    if (probSheen_ > 0.0f)
+        p += probSheen_ * rtpbr::PDF_SheenLobe(wo_, wi, sheenAlpha_);
     return p;
 }
 
@@ -313,11 +355,20 @@ bool Bsdf::sample(Rng &rng, BsdfSample *s) const {
     } else if (u < probClear_ + probMetal_) {
         if (!specularSampleOn(ms_, metalF_, rng, &s->wi, &weight))
             return false;
-        s->weight = weight * (baseScale_ * m_.metallic / probMetal_);
+        s->weight = weight * (baseScale_ * m_.metallic * sheenScaling(s->wi) / probMetal_);
     } else if (u < probClear_ + probMetal_ + probCoat_) {
         if (!specularSampleOn(ms_, coatF_, rng, &s->wi, &weight))
             return false;
-        s->weight = weight * (baseScale_ * (1.0f - m_.metallic) * m_.specularWeight / probCoat_);
+        s->weight = weight * (baseScale_ * (1.0f - m_.metallic) * m_.specularWeight * sheenScaling(s->wi) / probCoat_);
+    } else if (u < probClear_ + probMetal_ + probCoat_ + probSheen_) {
+        // The sheen lobe by Sample_SheenLobe (half Charlie normals, half uniform): weight f cos / pdf.
+        float u1 = rng.uniform();
+        float u2 = rng.uniform();
+        s->wi = rtpbr::Sample_SheenLobe(wo_, rtpbr::float2(u1, u2), sheenAlpha_);
+        float pdf = rtpbr::PDF_SheenLobe(wo_, s->wi, sheenAlpha_);
+        if (!(s->wi.z > 0.0f) || !(pdf > 0.0f))
+            return false;
+        s->weight = sheenEval(s->wi) * (baseScale_ / (probSheen_ * pdf));
     } else {
         if (!(probDiffuse_ > 0.0f))
             return false;
@@ -326,7 +377,7 @@ bool Bsdf::sample(Rng &rng, BsdfSample *s) const {
         s->wi = rtpbr::Sample_CosineHemisphere(rtpbr::float2(u1, u2));
         if (!(s->wi.z > 0.0f))
             return false;
-        s->weight = m_.baseColor * (baseScale_ * (1.0f - m_.metallic) * baseWeight(s->wi) / probDiffuse_);
+        s->weight = m_.baseColor * (baseScale_ * (1.0f - m_.metallic) * baseWeight(s->wi) * sheenScaling(s->wi) / probDiffuse_);
     }
     s->pdfMis = pdfMis(s->wi);
     return true;

@@ -13,6 +13,11 @@
 // KHR_materials_clearcoat (weight c, coat alpha ac) on top, as its fresnel_coat:
 //   f_coated = (1 - c Fc(wo.z)) f + c * S(GGX ac, Fresnel = Schlick(0.04, 1)),
 //   Fc = Schlick(0.04, 1, .); the coat shares the shading normal.
+// KHR_materials_sheen (sheenColor s != 0), between the clearcoat and the base (KHR order):
+//   f_coated = (1 - c Fc(wo.z)) (f_sheen + A(wo, wi) f) + c * S(...),
+//   f_sheen = s D_Charlie V_Charlie (shaderlib sheen.h, sheenRoughness r_s, alpha = r_s^2),
+//   A = Sheen_AlbedoScaling(s, E(mu_o), E(mu_i)), E = the committed E_sheen table (charlie,
+//   bilinear): KHR's albedo scaling is part of the model, so the oracle uses it as well.
 // Disney materials (disney != null): Burley 2012's principled BRDF (shaderlib disney.h:
 // diffuse + subsurface, sheen, GTR1 clearcoat in closed form) with its specular lobe
 // (anisotropic GGX, Schlick F0 = Disney_SpecularF0) simulated by the walk.
@@ -58,6 +63,8 @@ struct SurfaceMaterial {
     const LayerAlbedo *layer = nullptr; // dielectric layer albedo (its eta is the IOR); null = w 0
     float clearcoat = 0.0f;           // c
     float clearcoatAlpha = 0.001f;    // ac
+    vec3 sheenColor = vec3(0.0f);     // KHR sheenColor (0: no sheen layer)
+    float sheenRoughness = 0.0f;      // KHR sheenRoughness (perceptual)
     bool disney = false;              // Burley's model with disneyParams (alphas from it)
     rtpbr::DisneyMaterial disneyParams{};
 };
@@ -94,6 +101,9 @@ private:
     vec3 evalDisney(vec3 wi, Rng &rng) const;
     bool sampleDisney(Rng &rng, BsdfSample *s) const;
     float pdfMisDisney(vec3 wi) const;
+    // KHR sheen: the base layer's factor Sheen_AlbedoScaling at wi (1 without sheen).
+    float sheenScaling(vec3 wi) const;
+    vec3 sheenEval(vec3 wi) const; // f_sheen |wi.z|
 
     SurfaceMaterial m_;
     bool single_;
@@ -102,7 +112,10 @@ private:
     ConductorFresnel metalF_, coatF_, clearF_;
     float baseScale_ = 1.0f;  // 1 - c Fc(wo.z)
     float baseFactorO_ = 1.0f; // (1 - Es(mu_o)) / (1 - Es_avg)
-    float probMetal_ = 0.0f, probCoat_ = 0.0f, probDiffuse_ = 0.0f, probClear_ = 0.0f, probSum_ = 0.0f;
+    float probMetal_ = 0.0f, probCoat_ = 0.0f, probDiffuse_ = 0.0f, probClear_ = 0.0f, probSheen_ = 0.0f,
+          probSum_ = 0.0f;
+    bool sheen_ = false;
+    float sheenAlpha_ = 1.0f, sheenMax_ = 0.0f, sheenEo_ = 0.0f; // alpha, max3(sheenColor), E(mu_o)
     float disneyClearAlpha_ = 0.1f; // GGX alpha used to sample the GTR1 clearcoat
     float essMain_ = 1.0f, essClear_ = 1.0f; // single-scattering albedo at wo (MIS shaping)
 };

@@ -393,6 +393,10 @@ private:
             out.clearcoatAlpha = rtpbr::Alpha_FromPerceptual(1.0f - m.clearcoat_gloss);
         }
         out.specularWeight = glm::clamp(m.specular_factor, 0.0f, 1.0f);
+        if (m.model == RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS) { // KHR_materials_sheen (bsdf.h)
+            out.sheenColor = glm::clamp(glm::make_vec3(m.sheen_color), vec3(0.0f), vec3(1.0f));
+            out.sheenRoughness = glm::clamp(m.sheen_roughness, 0.0f, 1.0f);
+        }
         if (m.model == RTPBR_SCENE_MATERIAL_DISNEY) {
             rtpbr::DisneyMaterial &d = out.disneyParams;
             d.baseColor = out.baseColor;

@@ -12,6 +12,7 @@
 #include "rtpbr/disney.h"
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"
+#include "rtpbr/sheen.h"
 
 namespace ltcfit {
 
@@ -39,6 +40,14 @@ rtpbr::DisneyMaterial diffuse_material(float r) {
 
 // alpha: the microfacet lobes' alpha; for Lobe::DisneyDiffuse the perceptual roughness.
 BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha) {
+    if (lobe == Lobe::Sheen) { // sampled by Sample_SheenLobe (its density counts below the horizon too)
+        double pdf = double(rtpbr::PDF_SheenLobe(V, L, alpha));
+        if (!(V.z > 0.0f) || !(L.z > 0.0f))
+            return {0.0, pdf};
+        glm::vec3 H = glm::normalize(V + L);
+        double f = double(rtpbr::D_Charlie(H.z, alpha)) * double(rtpbr::V_Charlie(V.z, L.z, alpha));
+        return {f * double(L.z), pdf};
+    }
     if (lobe == Lobe::DisneyDiffuse) { // sampled by the cosine: pdf = NoL / pi
         if (!(V.z > 0.0f) || !(L.z > 0.0f))
             return {0.0, 0.0};
@@ -73,6 +82,8 @@ BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha) {
 }
 
 glm::vec3 brdf_sample(Lobe lobe, glm::vec3 V, float alpha, glm::vec2 u) {
+    if (lobe == Lobe::Sheen)
+        return rtpbr::Sample_SheenLobe(V, u, alpha);
     if (lobe == Lobe::DisneyDiffuse)
         return rtpbr::Sample_CosineHemisphere(u);
     glm::vec3 wm = lobe == Lobe::GGX ? rtpbr::Sample_GGX_VNDF(V, alpha, alpha, u)
@@ -147,8 +158,10 @@ Moments brdf_moments(Lobe lobe, glm::vec3 V, float alpha, int side) {
     }
     m.norm /= n;
     // The diffuse lobe's Fresnel is part of its shape (Fd): no Schlick split, columns 0.
-    m.fresnel = lobe == Lobe::DisneyDiffuse ? 0.0 : m.fresnel / n;
-    m.f82 = lobe == Lobe::DisneyDiffuse ? 0.0 : m.f82 / n;
+    // The sheen lobe has no Fresnel (KHR_materials_sheen: F = 1): columns 0 as well.
+    const bool noFresnel = lobe == Lobe::DisneyDiffuse || lobe == Lobe::Sheen;
+    m.fresnel = noFresnel ? 0.0 : m.fresnel / n;
+    m.f82 = noFresnel ? 0.0 : m.f82 / n;
     dir.y = 0.0; // isotropic lobes are symmetric about the plane of incidence
     m.avgDir = glm::length(dir) > 0.0 ? glm::normalize(dir) : glm::dvec3(0, 0, 1);
     return m;
@@ -277,7 +290,9 @@ Params nelder_mead(F &&f, Params start, Params step, int dim,
 // Fits one cell, starting from the shape of `start` (m11, m22, m13, rotation).
 Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *start) {
     // The diffuse lobe's parameter is the perceptual roughness itself (see brdf_eval).
-    const float alpha = lobe == Lobe::DisneyDiffuse ? r : rtpbr::Alpha_FromPerceptual(r);
+    const float alpha = lobe == Lobe::DisneyDiffuse ? r
+                        : lobe == Lobe::Sheen       ? rtpbr::Sheen_Alpha(r)
+                                                    : rtpbr::Alpha_FromPerceptual(r);
     const glm::vec3 V(float(std::sqrt(1.0 - nov * nov)), 0.0f, float(nov));
 
     Moments mom = brdf_moments(lobe, V, alpha, s.momentSamples);
@@ -290,8 +305,9 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     if (start) {
         // Sharp lobes scale with alpha: start from the neighbour's shape scaled by the ratio
         // of the alphas (about 1 for rough lobes).
-        // The diffuse lobe does not sharpen with roughness: no scaling.
-        double ratio = lobe == Lobe::DisneyDiffuse
+        // The diffuse lobe does not sharpen with roughness, the sheen lobe moves towards the
+        // horizon rather than narrowing around a direction: no scaling for either.
+        double ratio = lobe == Lobe::DisneyDiffuse || lobe == Lobe::Sheen
                            ? 1.0
                            : double(alpha) / double(rtpbr::Alpha_FromPerceptual(float(start->roughness)));
         ltc.m11 = start->m11 * ratio;
@@ -315,9 +331,14 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
         return ltc_error(l, fitSamples, lobe, V, alpha, mom.norm, s.errorPower, s.horizonNormalised);
     };
     Params step{0.1, 0.1, 0.05 * std::max(ltc.m11, 1e-3), 0.05};
+    // The sheen lobe of small alpha at steep views is empty (albedo down to 1e-30): nothing to
+    // fit (the optimiser may push the LTC under the horizon, mass 0, norm infinite); such a
+    // cell keeps its rougher neighbour's shape.
+    const bool emptyLobe = lobe == Lobe::Sheen && !(mom.norm >= 1e-6);
     // Heitz et al.'s 3 parameters (Z at the average direction) ...
-    Params best = nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, 0.0}, step,
-                              isotropic ? 1 : 3, s.maxIterations, 1e-5);
+    Params best = emptyLobe ? Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation}
+                            : nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, 0.0}, step,
+                                          isotropic ? 1 : 3, s.maxIterations, 1e-5);
     // Candidates: Heitz et al.'s fit, the 4-parameter fit from the neighbour's rotation, and
     // the neighbour's shape itself. The lowest L3 cost wins among those that overlap the lobe
     // (relative L1 error < 1); if none does, the lowest L1 error. The L3 cost, dominated by
@@ -330,10 +351,10 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
         return ltc_error(l, fitSamples, lobe, V, alpha, mom.norm, 1, s.horizonNormalised) / mom.norm;
     };
     std::vector<Params> candidates{best};
-    if (s.freeRotation && !isotropic)
+    if (s.freeRotation && !isotropic && !emptyLobe)
         candidates.push_back(nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation}, step,
                                          4, s.maxIterations, 1e-5));
-    if (start)
+    if (start && !emptyLobe)
         candidates.push_back(Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation});
     double bestCost = HUGE_VAL, bestL1 = HUGE_VAL;
     bool overlapping = false;

@@ -25,7 +25,9 @@ namespace ltcfit {
 // DisneyDiffuse: Burley's diffuse lobe (BRDF_DisneyDiffuse: white base colour, metallic 0,
 // subsurface 0, isotropic), the table's roughness axis being the material's perceptual
 // roughness. Its fresnel and f82 columns are 0: the lobe has no separate Fresnel factor.
-enum class Lobe { GGX, Beckmann, DisneyDiffuse };
+// Sheen: the KHR_materials_sheen lobe (rtpbr/sheen.h: D_Charlie x V_Charlie, sheenColor 1),
+// the roughness axis being the sheen perceptual roughness; fresnel = f82 = 0 like the diffuse.
+enum class Lobe { GGX, Beckmann, DisneyDiffuse, Sheen };
 
 struct FitSettings {
     int size = 64;           // table cells per side
@@ -98,5 +100,10 @@ bool write_error_png(const std::string &path, const std::vector<const Table *> &
 // Packs a table as the two RGBA float images of the contract (ltc1, ltc2).
 std::vector<float> pack_ltc1(const Table &t);
 std::vector<float> pack_ltc2(const Table &t, const std::vector<float> &sphere);
+
+// The sheen lobe alone (rtpbr-ltcfit --sheen-only): fits it, writes DIR/rtpbr_ltc_sheen_tables.h
+// (arrays rtpbr_ltc_sheen_1/_2), DIR/ltc_sheen_{1,2}.exr, DIR/ltc_fit_error_sheen.png and the
+// generated section of DIR/sheen.md. Returns the process exit code.
+int run_sheen(const std::string &outDir, const FitSettings &s, bool quick);
 
 } // namespace ltcfit

@@ -16,7 +16,9 @@
 #include "rtpbr/ltc.h"
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"
+#include "rtpbr/sheen.h"
 #include "luts/rtpbr_ltc_tables.h"
+#include "luts/rtpbr_ltc_sheen_tables.h"
 
 namespace ltcmc {
 
@@ -25,10 +27,11 @@ using rtpbr::float3;
 using rtpbr::float4;
 
 // DisneyDiffuse: BRDF_DisneyDiffuse (white, metallic 0, subsurface 0), the table fitted by
-// tools/ltcfit into rtpbr_ltc_disney_diffuse_*.
-enum class Lobe { GGX, Beckmann, DisneyDiffuse };
+// tools/ltcfit into rtpbr_ltc_disney_diffuse_*. Sheen: the KHR_materials_sheen lobe
+// (sheen.h, D_Charlie V_Charlie, sheenColor 1), table rtpbr_ltc_sheen_* (own header).
+enum class Lobe { GGX, Beckmann, DisneyDiffuse, Sheen };
 inline const char *lobe_name(Lobe l) {
-    return l == Lobe::GGX ? "GGX" : l == Lobe::Beckmann ? "Beckmann" : "Disney diffuse";
+    return l == Lobe::GGX ? "GGX" : l == Lobe::Beckmann ? "Beckmann" : l == Lobe::Sheen ? "Sheen" : "Disney diffuse";
 }
 
 // Bilinear fetch with clamp-to-edge at texture coordinate uv, as a GPU sampler does.
@@ -91,9 +94,18 @@ struct Brdf {
     Lobe lobe;
     float alpha; // microfacet alpha; for Lobe::DisneyDiffuse the perceptual roughness
     static Brdf make(Lobe lobe, float roughness) {
+        if (lobe == Lobe::Sheen)
+            return {lobe, rtpbr::Sheen_Alpha(roughness)};
         return {lobe, lobe == Lobe::DisneyDiffuse ? roughness : rtpbr::Alpha_FromPerceptual(roughness)};
     }
     float value_cos(float3 V, float3 L, float &pdf) const {
+        if (lobe == Lobe::Sheen) { // Sample_SheenLobe's density (half Charlie, half uniform)
+            pdf = rtpbr::PDF_SheenLobe(V, L, alpha);
+            if (!(L.z > 0.0f))
+                return 0.0f;
+            float3 H = glm::normalize(V + L);
+            return rtpbr::D_Charlie(H.z, alpha) * rtpbr::V_Charlie(V.z, L.z, alpha) * L.z;
+        }
         if (lobe == Lobe::DisneyDiffuse) {
             pdf = L.z > 0.0f ? L.z * rtpbr::RTPBR_INV_PI : 0.0f;
             rtpbr::DisneyMaterial m = rtpbr::Disney_DefaultMaterial();
@@ -120,6 +132,8 @@ struct Brdf {
         return D * Vis * L.z;
     }
     float3 sample(float3 V, float2 u) const {
+        if (lobe == Lobe::Sheen)
+            return rtpbr::Sample_SheenLobe(V, u, alpha);
         if (lobe == Lobe::DisneyDiffuse)
             return rtpbr::Sample_CosineHemisphere(u);
         float3 wm = lobe == Lobe::GGX ? rtpbr::Sample_GGX_VNDF(V, alpha, alpha, u)
@@ -241,6 +255,10 @@ inline LtcEval ltc_eval(Lobe lobe, float roughness, float3 V, const Square &sq, 
     const float *t2 = lobe == Lobe::GGX        ? rtpbr_ltc_ggx_2
                       : lobe == Lobe::Beckmann ? rtpbr_ltc_beckmann_2
                                                : rtpbr_ltc_disney_diffuse_2;
+    if (lobe == Lobe::Sheen) {
+        t1 = rtpbr_ltc_sheen_1;
+        t2 = rtpbr_ltc_sheen_2;
+    }
     float3 N(0, 0, 1);
     float2 uv = rtpbr::LTC_LutCoord(glm::dot(N, V), roughness);
     float4 l1 = fetch(t1, uv), l2 = fetch(t2, uv);

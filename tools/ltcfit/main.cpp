@@ -134,7 +134,7 @@ bool update_markdown(const std::string &path, const std::string &tag, const std:
 }
 
 int usage() {
-    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon] [--power P (1..3)] [--diffuse-only]\n");
+    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon] [--power P (1..3)] [--diffuse-only] [--sheen-only]\n");
     return 2;
 }
 
@@ -143,7 +143,7 @@ int usage() {
 int main(int argc, char **argv) {
     std::string outDir;
     FitSettings s;
-    bool quick = false, diffuseOnly = false;
+    bool quick = false, diffuseOnly = false, sheenOnly = false;
     for (int i = 1; i < argc; i++) {
         auto value = [&](int lo, int hi, int &dst) {
             if (i + 1 >= argc)
@@ -162,6 +162,8 @@ int main(int argc, char **argv) {
                 return usage();
         } else if (!strcmp(argv[i], "--diffuse-only"))
             diffuseOnly = true;
+        else if (!strcmp(argv[i], "--sheen-only")) // the sheen lobe into its own header (ltc_sheen.cpp)
+            sheenOnly = true;
         else if (!strcmp(argv[i], "--quick"))
             quick = true;
         else if (!strcmp(argv[i], "--no-horizon")) // Heitz et al.'s whole-sphere error, norm = albedo
@@ -183,6 +185,8 @@ int main(int argc, char **argv) {
         s.errorSamples = 32;
         s.maxIterations = 60;
     }
+    if (sheenOnly)
+        return run_sheen(outDir, s, quick);
 
     std::vector<Table> tables;
     double total = 0;

@@ -5,6 +5,7 @@
 //   rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse]
 //
 // --diffuse: the Disney diffuse table instead of GGX and Beckmann (the plot has one lobe row).
+// --sheen: the KHR_materials_sheen table (rtpbr_ltc_sheen_tables.h), likewise.
 #include <atomic>
 #include <cstring>
 #include <mutex>
@@ -108,12 +109,14 @@ int main(int argc, char **argv) {
             reduced = true;
         else if (!strcmp(argv[i], "--diffuse"))
             lobes = {Lobe::DisneyDiffuse};
+        else if (!strcmp(argv[i], "--sheen"))
+            lobes = {Lobe::Sheen};
         else if (!strcmp(argv[i], "--verbose"))
             verbose = true;
         else if (!strcmp(argv[i], "--png") && i + 1 < argc)
             png = argv[++i];
         else {
-            fprintf(stderr, "usage: rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse]\n");
+            fprintf(stderr, "usage: rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse] [--sheen]\n");
             return 2;
         }
     }
