@@ -11,6 +11,7 @@
 #include "rtpbr/ltc.h"
 #include "rtpbr/kulla_conty.h"
 #include "rtpbr/disney.h"
+#include "rtpbr/sheen.h"
 #include "material.glsl"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
 #include "frame.glsl"
@@ -25,6 +26,8 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_BECKMANN_1) uniform sampler2D lu
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_BECKMANN_2) uniform sampler2D lut_ltc_beckmann_2;
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_DISNEY_1) uniform sampler2D lut_ltc_disney_1;
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_DISNEY_2) uniform sampler2D lut_ltc_disney_2;
+layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_SHEEN_1) uniform sampler2D lut_ltc_sheen_1;
+layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_SHEEN_2) uniform sampler2D lut_ltc_sheen_2;
 
 // ---- per-tile light culling ------------------------------------------------------------------
 // The workgroup's pixels form one screen tile. Their world positions are bounded by a box;
@@ -115,6 +118,15 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s)
         ltc1d = textureLod(lut_ltc_disney_1, uvd, 0.0f);
         burleyScale = ((1.0f - s.dm.subsurface) * textureLod(lut_ltc_disney_2, uvd, 0.0f).x) * s.diffuseColor;
     }
+    // KHR sheen: its LTC fit (sheen.h); the layer below is scaled by the KHR albedo scaling
+    // with E_sheen at NoV and at the polygon's representative direction.
+    vec4 ltc1s = LTC_Identity();
+    vec3 sheenScale = RTPBR_F3(0.0f);
+    if (s.sheen) {
+        vec2 uvs = LTC_LutCoord(s.NoV, s.sheenR);
+        ltc1s = textureLod(lut_ltc_sheen_1, uvs, 0.0f);
+        sheenScale = Sheen_LtcScale(textureLod(lut_ltc_sheen_2, uvs, 0.0f), s.sheenColor);
+    }
     // The view direction in the LTC frame (LTC_Frame: x along V's tangential part).
     vec3 vLocal = vec3(sqrt(max(1.0f - s.NoV * s.NoV, 0.0f)), 0.0f, s.NoV);
 
@@ -150,7 +162,11 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s)
             float Esrep = s.w * KC_SpecularAlbedoDielectric(EFrep, Erep, s.FmsDielectric);
             base = s.diffuseColor * KC_PolygonLobe(s.Eso, Esrep, s.EsAvg, ff);
         }
-        lo = (lo + base) * s.baseAttenuation;
+        lo += base;
+        if (s.sheen)
+            lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, sheen_E(muRep, s.sheenR)) +
+                 sheenScale * LTC_IntegrateLocal(local, ltc1s);
+        lo *= s.baseAttenuation;
         if (coated)
             lo += coatScale * LTC_IntegrateLocal(local, ltc1c) +
                   s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(kc_E(muRep, s.coatR), s.Eavgc, lenF), s.Eavgc, ff);

@@ -2,7 +2,7 @@
 // the descriptor set, the table accessors and the per-pixel material terms, so that both
 // passes shade exactly the same model (docs/materials.md, "What each renderer shades").
 // Include after rtpbr_shared.h, the shader-library headers (fresnel.h, kulla_conty.h,
-// disney.h), material.glsl and frame.glsl.
+// disney.h, sheen.h), material.glsl and frame.glsl.
 
 // C mirror: rtpbr_shader_light (engine/src/internal.h).
 struct Light {
@@ -31,6 +31,7 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_KC_E) uniform sampler2D lut_kc_e;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EAVG) uniform sampler2D lut_kc_eavg;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EF) uniform sampler2D lut_kc_ef;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EFAVG) uniform sampler2D lut_kc_efavg;
+layout(set = 0, binding = RTPBR_BINDING_LUT_SHEEN_E) uniform sampler2D lut_sheen_e;
 
 // The Kulla-Conty tables of the NDF this variant is built for (engine/src/luts.c: r = GGX,
 // g = Beckmann).
@@ -55,6 +56,8 @@ float kc_EF(float mu, float r, float eta)
     return mix(e0, e1, s - s0);
 }
 float kc_EFavg(float r, float eta) { return textureLod(lut_kc_efavg, KC_TableCoordAvg2D(r, eta), 0.0f).KC_CHANNEL; }
+// KHR sheen's directional albedo (Charlie lobe; shaderlib/luts/sheen.md).
+float sheen_E(float mu, float r) { return textureLod(lut_sheen_e, Sheen_TableCoord(mu, r), 0.0f).r; }
 
 // A surface point's material: the G-buffer's per-pixel values and its material record,
 // resolved into the terms both passes use. The model (oracle/bsdf.h):
@@ -65,6 +68,8 @@ float kc_EFavg(float r, float eta) { return textureLod(lut_kc_efavg, KC_TableCoo
 //                    + baseColor (1 - Es(mu_o)) (1 - Es(mu_i)) / (pi (1 - Es_avg)),
 //     Es = w (E_F + F_ms (1 - E)) (KC_SpecularAlbedoDielectric; E_F with exact Fresnel),
 //     f_coat = GGX(clearcoat roughness), Schlick(0.04, 1) + its Kulla-Conty lobe;
+//     with KHR sheen, the bracket is f_sheen + A [...], f_sheen = sheenColor D_Charlie V
+//     (sheen.h), A = min(1 - max(sheenColor) E_sheen(mu_o), 1 - max(sheenColor) E_sheen(mu_i));
 //   Disney (Burley 2012, disney.h): specular GGX Schlick(Disney_SpecularF0, 1) + its
 //     Kulla-Conty lobe, Burley diffuse + subsurface + sheen, GTR1 clearcoat 0.25 c.
 // Anisotropic lobes are shaded isotropically at sqrt(alpha_t alpha_b) (the G-buffer has no
@@ -93,6 +98,10 @@ struct Surface {
     float Eso, EsAvg;     // the layer's albedo at NoV and on average (w included)
     float Eoc, Eavgc;     // E(NoV), E_avg of the coat
     vec3 msCoat;          // colour of the coat's f_ms (coat weight included)
+    bool sheen;           // KHR sheen layer present
+    vec3 sheenColor;
+    float sheenR;         // its perceptual roughness
+    float EsheenO;        // E_sheen(NoV)
 };
 
 Surface surface_terms(vec4 g0, float roughness, Material m, float NoV)
@@ -155,6 +164,10 @@ Surface surface_terms(vec4 g0, float roughness, Material m, float NoV)
 #else
     s.msCoat = RTPBR_F3(0.0f);
 #endif
+    s.sheenColor = s.disney ? RTPBR_F3(0.0f) : m.sheen.rgb;
+    s.sheenR = m.sheen.w;
+    s.sheen = max(s.sheenColor.r, max(s.sheenColor.g, s.sheenColor.b)) > 0.0f;
+    s.EsheenO = s.sheen ? sheen_E(NoV, s.sheenR) : 0.0f;
     return s;
 }
 

@@ -31,6 +31,7 @@
 #include "rtpbr/sampling.h"
 #include "rtpbr/kulla_conty.h"
 #include "rtpbr/disney.h"
+#include "rtpbr/sheen.h"
 #include "material.glsl"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
 #include "frame.glsl"
@@ -103,6 +104,9 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
     float coatAlpha = Alpha_FromPerceptual(coatR);
     float Eoc = s.Eoc, Eavgc = s.Eavgc;
     vec3 msCoat = s.msCoat;
+    bool sheen = s.sheen;
+    vec3 sheenColor = s.sheenColor;
+    float sheenR = s.sheenR, EsheenO = s.EsheenO;
 
     // Strategy weights: Schlick's average Fresnel f0 + (f90 - f0) / 21 (Kulla & Conty 2017).
     float fs = max3(F_Avg_Schlick(fresnel.f0, fresnel.f90));
@@ -177,6 +181,9 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
                 float Esi = layered ? w * KC_SpecularAlbedoDielectric(kc_EF(mu, specR, eta), Ei, FmsDielectric) : 0.0f;
                 f += diffuseColor * KC_Lobe(Eso, Esi, EsAvg);
             }
+            if (sheen)
+                f = f * Sheen_AlbedoScaling(sheenColor, EsheenO, sheen_E(mu, sheenR)) +
+                    BRDF_Sheen(sheenColor, sheenR, NoV, NoL, NoH);
             f *= baseAttenuation;
             if (coat > 0.0f) {
                 float coatLobe = disney ? BRDF_DisneyClearcoat(dm, wo, wiLocal)

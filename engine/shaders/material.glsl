@@ -8,5 +8,5 @@ struct Material {
     vec4 coat;     // x: clearcoat, y: clearcoat perceptual roughness, z: model, w: anisotropy
     vec4 disney0;  // Disney: subsurface, specular, specular_tint, sheen
     vec4 disney1;  // Disney: sheen_tint, clearcoat, clearcoat_gloss, anisotropic
-    vec4 reserved;
+    vec4 sheen;    // KHR sheen: colour rgb, perceptual roughness
 };

@@ -48,9 +48,12 @@
 #define RTPBR_BINDING_LUT_KC_EFAVG 15      // E_F_avg(r, eta)
 #define RTPBR_BINDING_LUT_LTC_DISNEY_1 16  // M^-1 of the Burley diffuse LTC fit
 #define RTPBR_BINDING_LUT_LTC_DISNEY_2 17  // norm, 0, 0, sphere form factor
-#define RTPBR_LUT_COUNT 10                 // LUT bindings 8 .. 17, in this order
-#define RTPBR_BINDING_LIGHT_MATERIALS 18   // storage: rtpbr_shader_material[]
-#define RTPBR_LIGHTING_BINDING_COUNT 19
+#define RTPBR_BINDING_LUT_SHEEN_E 18       // KHR sheen albedo E_sheen(mu, r) (Charlie), r channel
+#define RTPBR_BINDING_LUT_LTC_SHEEN_1 19   // M^-1 of the sheen LTC fit
+#define RTPBR_BINDING_LUT_LTC_SHEEN_2 20   // norm, 0, 0, sphere form factor
+#define RTPBR_LUT_COUNT 13                 // LUT bindings 8 .. 20, in this order
+#define RTPBR_BINDING_LIGHT_MATERIALS 21   // storage: rtpbr_shader_material[]
+#define RTPBR_LIGHTING_BINDING_COUNT 22
 
 // rtpbr_shader_material.coat.z: the material model.
 #define RTPBR_SHADER_MODEL_METALLIC_ROUGHNESS 0

@@ -37,7 +37,7 @@ typedef struct rtpbr_shader_material {
     float coat[4];             // x: clearcoat, y: clearcoat perceptual roughness, z: RTPBR_SHADER_MODEL_*, w: anisotropy
     float disney0[4];          // Disney: subsurface, specular, specular_tint, sheen
     float disney1[4];          // Disney: sheen_tint, clearcoat, clearcoat_gloss, anisotropic
-    float reserved[4];
+    float sheen[4];            // KHR sheen: colour rgb, perceptual roughness (zero colour: none)
 } rtpbr_shader_material;
 
 // std430 element of the lights buffer (lighting.comp).

@@ -9,6 +9,13 @@
 #if RTPBR_HAVE_LTC_TABLES
 #include "luts/rtpbr_ltc_tables.h"
 #endif
+#if RTPBR_HAVE_SHEEN_TABLES
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-braces"
+#include "luts/rtpbr_sheen_tables.h"
+#pragma GCC diagnostic pop
+#include "luts/rtpbr_ltc_sheen_tables.h"
+#endif
 #if RTPBR_HAVE_KC_TABLES
 // The generated tables initialise multi-dimensional arrays with flat lists (valid C).
 #pragma GCC diagnostic push
@@ -20,10 +27,11 @@
 // In binding order (rtpbr_shared.h: RTPBR_BINDING_LUT_LTC_GGX_1 + index).
 enum {
     LUT_LTC_GGX_1, LUT_LTC_GGX_2, LUT_LTC_BECKMANN_1, LUT_LTC_BECKMANN_2, LUT_KC_E, LUT_KC_EAVG, LUT_KC_EF,
-    LUT_KC_EFAVG, LUT_LTC_DISNEY_1, LUT_LTC_DISNEY_2, LUT_COUNT
+    LUT_KC_EFAVG, LUT_LTC_DISNEY_1, LUT_LTC_DISNEY_2, LUT_SHEEN_E, LUT_LTC_SHEEN_1, LUT_LTC_SHEEN_2, LUT_COUNT
 };
 _Static_assert(LUT_COUNT == RTPBR_LUT_COUNT, "LUT slots");
 _Static_assert(RTPBR_BINDING_LUT_LTC_DISNEY_2 == RTPBR_BINDING_LUT_LTC_GGX_1 + LUT_LTC_DISNEY_2, "LUT bindings");
+_Static_assert(RTPBR_BINDING_LUT_LTC_SHEEN_2 == RTPBR_BINDING_LUT_LTC_GGX_1 + LUT_LTC_SHEEN_2, "LUT bindings");
 
 #if RTPBR_HAVE_KC_TABLES
 // Kulla-Conty tables of the two NDFs the engine compiles, one per channel: r = GGX, g =
@@ -92,6 +100,21 @@ rtpbr_result rtpbr_luts_create(rtpbr_context *ctx)
 #endif
 #if RTPBR_HAVE_KC_TABLES
     if (result == RTPBR_SUCCESS) result = create_kc_luts(ctx);
+#endif
+#if RTPBR_HAVE_SHEEN_TABLES
+    // KHR sheen: the albedo of the Charlie lobe (r channel) and its LTC fit.
+    if (result == RTPBR_SUCCESS) {
+        float *e = rtpbr_alloc(ctx, RTPBR_SHEEN_SIZE * RTPBR_SHEEN_SIZE * 4 * sizeof(float));
+        if (!e) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+        for (int r = 0; r < RTPBR_SHEEN_SIZE; ++r)
+            for (int mu = 0; mu < RTPBR_SHEEN_SIZE; ++mu)
+                e[4 * (r * RTPBR_SHEEN_SIZE + mu)] = rtpbr_sheen_E[RTPBR_SHEEN_VARIANT_charlie][r][mu];
+        result = rtpbr_lut_create(ctx, RTPBR_SHEEN_SIZE, RTPBR_SHEEN_SIZE, e, &ctx->luts[LUT_SHEEN_E]);
+        rtpbr_free(ctx, e);
+    }
+    const float *sheen[2] = {rtpbr_ltc_sheen_1, rtpbr_ltc_sheen_2};
+    for (int i = 0; i < 2 && result == RTPBR_SUCCESS; ++i)
+        result = rtpbr_lut_create(ctx, RTPBR_LTC_SIZE, RTPBR_LTC_SIZE, sheen[i], &ctx->luts[LUT_LTC_SHEEN_1 + i]);
 #endif
     static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     for (size_t i = 0; i < sizeof ctx->luts / sizeof ctx->luts[0] && result == RTPBR_SUCCESS; ++i)

@@ -17,8 +17,7 @@
 //   anisotropic               -> anisotropy            (KHR strength; shaded isotropically)
 //   model DISNEY + subsurface, specular, specular_tint, sheen, sheen_tint, clearcoat,
 //   clearcoat_gloss, anisotropic -> model, disney.*    (Burley 2012)
-//   KHR_materials_sheen (sheen_color, sheen_roughness of a metallic-roughness material): not
-//   shaded (the oracle does not render it either).
+//   sheen_color, sheen_roughness -> the same           (KHR_materials_sheen, metallic-roughness)
 //   specular_color is applied to the Schlick F0 of the specular lobe; the oracle's exact
 //   dielectric Fresnel ignores it (a difference only for coloured specular).
 // Lights: every loader light (emissive primitives, EXT_lights_area rectangles and disks as
@@ -119,6 +118,8 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
             d->clearcoat = m->clearcoat;
             d->clearcoat_roughness = 1.0f - m->clearcoat_gloss;
             d->anisotropy = m->anisotropic;
+            memcpy(d->sheen_color, m->sheen_color, sizeof d->sheen_color);
+            d->sheen_roughness = m->sheen_roughness;
         }
     }
     for (uint32_t i = 0; i < loaded->light_count; ++i) {

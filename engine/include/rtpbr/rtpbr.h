@@ -217,6 +217,11 @@ typedef struct rtpbr_material_desc {
     // isotropic at alpha = sqrt(alpha_t alpha_b) (the highlight keeps its energy, not its
     // stretch; docs/limits.md). The direction (anisotropyRotation) is therefore unused.
     float anisotropy;
+    // KHR_materials_sheen: a Charlie sheen layer (Estevez & Kulla 2017) of this colour in
+    // [0, 1] over the material below the coat, which it scales by the KHR albedo scaling
+    // 1 - max(sheen_color) E_sheen. All zero: no sheen.
+    float sheen_color[3];
+    float sheen_roughness;        // perceptual, [0, 1]
     rtpbr_material_model model;   // zero: glTF metallic-roughness
     rtpbr_disney_params disney;   // used when model = RTPBR_MATERIAL_DISNEY
 } rtpbr_material_desc;
