@@ -197,6 +197,15 @@ class GltfBuilder:
             ext["KHR_materials_ior"] = {"ior": float(spec["ior"])}
         if "specularFactor" in spec:
             ext["KHR_materials_specular"] = {"specularFactor": float(spec["specularFactor"])}
+        if "clearcoat" in spec:
+            ext["KHR_materials_clearcoat"] = {"clearcoatFactor": float(spec["clearcoat"]),
+                                              "clearcoatRoughnessFactor": float(spec.get("clearcoatRoughness", 0.0))}
+        if "sheenColor" in spec:
+            ext["KHR_materials_sheen"] = {"sheenColorFactor": [float(c) for c in spec["sheenColor"]],
+                                          "sheenRoughnessFactor": float(spec.get("sheenRoughness", 0.0))}
+        if "anisotropyStrength" in spec:
+            ext["KHR_materials_anisotropy"] = {"anisotropyStrength": float(spec["anisotropyStrength"]),
+                                               "anisotropyRotation": float(spec.get("anisotropyRotation", 0.0))}
         if ext:
             m["extensions"] = ext
             self.extensions.update(ext.keys())
