@@ -80,6 +80,7 @@ struct SurfacePoint {
     vec3 ng = vec3(0.0f); // geometric normal, facing the incoming ray
     vec3 ns = vec3(0.0f); // shading normal, same side as ng
     vec3 tangent = vec3(0.0f); // shading tangent (anisotropy direction), orthogonal to ns
+    float tangentSign = 1.0f;  // glTF TANGENT.w: the bitangent is tangentSign cross(ns, tangent)
     int32_t light = -1;
     int32_t material = -1;
     float uv[2] = {0.0f, 0.0f};
@@ -299,6 +300,7 @@ private:
                 vec3 t = b0 * glm::make_vec3(prim.tangents + 4 * ix[0]) + h.u * glm::make_vec3(prim.tangents + 4 * ix[1]) +
                          h.v * glm::make_vec3(prim.tangents + 4 * ix[2]);
                 sp.tangent = t;
+                sp.tangentSign = prim.tangents[4 * ix[0] + 3] < 0.0f ? -1.0f : 1.0f;
                 applyNormalMap(prim, ix, &sp);
             }
         }
@@ -379,7 +381,8 @@ private:
                 out.alphaY = alpha;
             }
             if (m.anisotropy_rotation != 0.0f) {
-                vec3 b = glm::cross(sp.ns, sp.tangent);
+                // KHR_materials_anisotropy: direction = T cos + B sin, B = w cross(N, T) (glTF).
+                vec3 b = sp.tangentSign * glm::cross(sp.ns, sp.tangent);
                 float c = std::cos(m.anisotropy_rotation), s = std::sin(m.anisotropy_rotation);
                 sp.tangent = c * sp.tangent + s * b;
             }

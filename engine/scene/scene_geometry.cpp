@@ -441,9 +441,11 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
             p.texcoords[2 * i + size_t(k)] = float(v);
         }
 
-    // Tangents: from the file, else generated when a normal map needs them.
+    // Tangents: from the file, else generated when a normal map or an anisotropic lobe needs
+    // them (KHR_materials_anisotropy: "when tangents are not specified, client implementations
+    // should calculate tangents"; Disney's anisotropy follows the tangent too).
     p.tangents.assign(4 * n, 0.0f);
-    const bool wants_tangents = scene.materials[material].normal_texture >= 0;
+    const bool wants_tangents = scene.materials[material].normal_texture >= 0 || scene.materials[material].anisotropic > 0.0f;
     if (has_tangents) {
         for (size_t i = 0; i < n; ++i) {
             Vec3 t = {read_component(tan, i, 0), read_component(tan, i, 1), read_component(tan, i, 2)};

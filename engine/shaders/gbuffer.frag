@@ -29,7 +29,7 @@ layout(set = 1, binding = RTPBR_BINDING_TEXTURE_NORMAL) uniform sampler2D normal
 layout(location = 0) out vec4 out_gbuffer0; // base colour rgb, metallic
 layout(location = 1) out vec4 out_gbuffer1; // world normal xyz, perceptual roughness
 layout(location = 2) out vec4 out_gbuffer2; // emitted radiance rgb, material index
-layout(location = 3) out vec4 out_gbuffer3; // specular colour rgb, specular factor
+layout(location = 3) out vec4 out_gbuffer3; // anisotropy direction (world, unit; zero: none)
 
 void main()
 {
@@ -47,6 +47,18 @@ void main()
         ts.xy *= m.specular.w;
         n = normalize(t * ts.x + b * ts.y + n * ts.z);
     }
+    // The anisotropy direction (KHR_materials_anisotropy; Disney: the tangent): the tangent
+    // made orthogonal to the shading normal, rotated toward the bitangent. Zero without tangents.
+    vec3 anisotropyDirection = vec3(0.0);
+    if (dot(in_tangent.xyz, in_tangent.xyz) > 0.0) {
+        vec3 t = in_tangent.xyz - n * dot(n, in_tangent.xyz);
+        if (dot(t, t) > 1e-12) {
+            t = normalize(t);
+            vec3 b = (in_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);
+            float rotation = m.anisotropy.x;
+            anisotropyDirection = t * cos(rotation) + b * sin(rotation);
+        }
+    }
     if (back) n = -n;
     vec3 emission = back && m.specular.y == 0.0 ? vec3(0.0) : m.emission_roughness.xyz * texture(emission_texture, in_uv).rgb;
     // glTF: textures multiply the factors; metallic-roughness holds roughness in g, metallic in b.
@@ -55,5 +67,5 @@ void main()
     out_gbuffer0 = vec4(m.base_color_metallic.rgb * texture(base_color_texture, in_uv).rgb, m.base_color_metallic.a * mr.b);
     out_gbuffer1 = vec4(n, roughness);
     out_gbuffer2 = vec4(emission, float(draw.material)); // exact: RTPBR_MAX_MATERIALS < 2^24
-    out_gbuffer3 = vec4(m.specular_color_ior.xyz, m.specular.x);
+    out_gbuffer3 = vec4(anisotropyDirection, 0.0);
 }

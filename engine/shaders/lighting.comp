@@ -131,6 +131,14 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s)
     vec3 vLocal = vec3(sqrt(max(1.0f - s.NoV * s.NoV, 0.0f)), 0.0f, s.NoV);
 
     mat3 ltcFrame = LTC_Frame(N, V);
+    // The anisotropic stretch about the mirror direction (LTC_AnisotropicStretchInverse): the
+    // anisotropy direction made orthogonal to it; no stretch without one.
+    vec3 mirror = vec3(-vLocal.x, 0.0f, vLocal.z);
+    vec3 anisoLocal = rtpbr_mul(ltcFrame, s.anisoDir);
+    vec3 e1 = anisoLocal - mirror * dot(anisoLocal, mirror);
+    float e1Length = length(e1);
+    bool stretched = s.anisoK > 1.0001f && e1Length > 1e-4f;
+    e1 = stretched ? e1 / e1Length : vec3(1.0f, 0.0f, 0.0f);
     vec3 sum = vec3(0.0f);
     for (uint word = 0u; word < (frame.light_count + 31u) / 32u; ++word)
     for (uint bits = tile_lights[word]; bits != 0u; bits &= bits - 1u) {
@@ -150,7 +158,9 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s)
         // The cosine-weighted mean of each albedo over the polygon (KC_PolygonMeanE).
         float Erep = KC_PolygonMeanE(kc_E(muRep, s.specR), s.Eavg, lenF);
 
-        vec3 lo = specularScale * LTC_IntegrateLocal(local, ltc1) + s.msColor * KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff);
+        LtcLocalPolygon specularLocal = local;
+        if (stretched) specularLocal = LTC_AnisotropicStretchInverse(local, mirror, e1, s.anisoK);
+        vec3 lo = specularScale * LTC_IntegrateLocal(specularLocal, ltc1) + s.msColor * KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff);
         vec3 base;
         if (s.disney) {
             float LoH = saturate(dot(lRep, normalize(lRep + vLocal)));
@@ -220,7 +230,7 @@ void main()
     vec4 g1 = texelFetch(gbuffer1, pixel, 0);
     vec3 V = normalize(frame.camera_position.xyz - P);
     vec3 N = normalize(g1.xyz);
-    Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], saturate(dot(N, V)));
+    Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], saturate(dot(N, V)), texelFetch(gbuffer3, pixel, 0).xyz);
     result += shade_lights(lifted_point(ndc, depth, P, N), N, V, s);
 
     imageStore(radiance, pixel, vec4(result, 1.0));

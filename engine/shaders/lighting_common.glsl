@@ -24,6 +24,7 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_MATERIALS, std430) readonly buffer
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER0) uniform sampler2D gbuffer0;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER1) uniform sampler2D gbuffer1;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER2) uniform sampler2D gbuffer2;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER3) uniform sampler2D gbuffer3;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_DEPTH) uniform sampler2D gbuffer_depth;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_RADIANCE, rgba32f) writeonly uniform image2D radiance;
 
@@ -72,8 +73,9 @@ float sheen_E(float mu, float r) { return textureLod(lut_sheen_e, Sheen_TableCoo
 //     (sheen.h), A = min(1 - max(sheenColor) E_sheen(mu_o), 1 - max(sheenColor) E_sheen(mu_i));
 //   Disney (Burley 2012, disney.h): specular GGX Schlick(Disney_SpecularF0, 1) + its
 //     Kulla-Conty lobe, Burley diffuse + subsurface + sheen, GTR1 clearcoat 0.25 c.
-// Anisotropic lobes are shaded isotropically at sqrt(alpha_t alpha_b) (the G-buffer has no
-// tangent; the LTC tables are isotropic).
+// Anisotropic lobes (alpha_t along the G-buffer's anisotropy direction, alpha_b across it):
+// the tables are looked up at sqrt(alpha_t alpha_b); the LTC pass stretches that isotropic
+// lobe by k = sqrt(alpha_t / alpha_b) along the direction (LTC_AnisotropicStretchInverse).
 struct Surface {
     bool disney;
     DisneyMaterial dm;    // sanitised (Disney materials only)
@@ -81,7 +83,9 @@ struct Surface {
     float metallic;
     float roughness;      // perceptual, the G-buffer's
     float NoV;
-    float specR;          // perceptual roughness of the (isotropic) specular lobe
+    float specR;          // perceptual roughness of the specular lobe's tables, sqrt(sqrt(at ab))
+    vec3 anisoDir;        // anisotropy direction (world, unit) or 0
+    float anisoK;         // sqrt(alpha_t / alpha_b) >= 1; 1: isotropic
     float w;              // dielectric specular weight (KHR specularFactor)
     float eta;            // dielectric IOR
     vec3 f0;              // Schlick F0 and F90 of the specular lobe (metal and dielectric mixed)
@@ -104,7 +108,7 @@ struct Surface {
     float EsheenO;        // E_sheen(NoV)
 };
 
-Surface surface_terms(vec4 g0, float roughness, Material m, float NoV)
+Surface surface_terms(vec4 g0, float roughness, Material m, float NoV, vec3 anisoDir)
 {
     Surface s;
     s.baseColor = g0.rgb;
@@ -130,6 +134,10 @@ Surface surface_terms(vec4 g0, float roughness, Material m, float NoV)
     float aniso = m.coat.w;
     s.specR = s.disney ? Disney_SpecularTableRoughness(s.dm) : sqrt(sqrt(mix(alpha, 1.0f, aniso * aniso) * alpha));
     s.specR = clamp(s.specR, RTPBR_SHADER_MIN_ROUGHNESS, 1.0f);
+    vec2 alphas = s.disney ? Disney_SpecularAlphas(s.dm) : vec2(min(mix(alpha, 1.0f, aniso * aniso), 1.0f), alpha);
+    bool hasDirection = dot(anisoDir, anisoDir) > 0.25f;
+    s.anisoDir = hasDirection ? normalize(anisoDir) : vec3(0.0f);
+    s.anisoK = hasDirection && alphas.y > 0.0f ? sqrt(max(alphas.x / alphas.y, 1.0f)) : 1.0f;
     s.w = m.specular.x;
     s.eta = m.specular_color_ior.w;
     vec3 f0Dielectric = min(RTPBR_F3(F0_FromIor(s.eta)) * m.specular_color_ior.rgb, RTPBR_F3(1.0f));

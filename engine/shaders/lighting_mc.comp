@@ -216,7 +216,8 @@ void main()
         vec3 V = normalize(frame.camera_position.xyz - P);
         vec3 N = normalize(g1.xyz);
         // NoV clamped below as the LTC table lookup does.
-        Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], clamp(dot(N, V), 1e-4f, 1.0f));
+        Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], clamp(dot(N, V), 1e-4f, 1.0f),
+                                  texelFetch(gbuffer3, pixel, 0).xyz);
         result = vec4(g2.rgb + shade_lights_mc(lifted_point(ndc, depth, P, N), N, V, s, uvec2(pixel)), 1.0f);
     }
     if (inside) imageStore(radiance, pixel, result);

@@ -9,4 +9,5 @@ struct Material {
     vec4 disney0;  // Disney: subsurface, specular, specular_tint, sheen
     vec4 disney1;  // Disney: sheen_tint, clearcoat, clearcoat_gloss, anisotropic
     vec4 sheen;    // KHR sheen: colour rgb, perceptual roughness
+    vec4 anisotropy; // x: KHR anisotropy rotation (radians, from the tangent toward the bitangent)
 };

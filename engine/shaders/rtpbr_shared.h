@@ -33,7 +33,7 @@
 #define RTPBR_BINDING_LIGHT_GBUFFER0 2    // base colour rgb, metallic
 #define RTPBR_BINDING_LIGHT_GBUFFER1 3    // world normal xyz, perceptual roughness
 #define RTPBR_BINDING_LIGHT_GBUFFER2 4    // emitted radiance rgb, material index
-#define RTPBR_BINDING_LIGHT_GBUFFER3 5    // specular colour rgb, specular factor
+#define RTPBR_BINDING_LIGHT_GBUFFER3 5    // anisotropy direction (world), 0
 #define RTPBR_BINDING_LIGHT_DEPTH 6       // depth (0 near .. 1 far)
 #define RTPBR_BINDING_LIGHT_RADIANCE 7    // output, rgba32f storage image
 // Lookup tables (combined image samplers, linear filtering, clamp to edge). Until the

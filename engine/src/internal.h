@@ -38,6 +38,7 @@ typedef struct rtpbr_shader_material {
     float disney0[4];          // Disney: subsurface, specular, specular_tint, sheen
     float disney1[4];          // Disney: sheen_tint, clearcoat, clearcoat_gloss, anisotropic
     float sheen[4];            // KHR sheen: colour rgb, perceptual roughness (zero colour: none)
+    float anisotropy[4];       // x: KHR anisotropy rotation (radians, from the tangent toward the bitangent)
 } rtpbr_shader_material;
 
 // std430 element of the lights buffer (lighting.comp).
@@ -82,7 +83,7 @@ typedef struct rtpbr_shader_mc {
 
 // The shaders' std140 / std430 sizes of the same structs.
 _Static_assert(sizeof(rtpbr_shader_frame) == 176, "Frame block layout");
-_Static_assert(sizeof(rtpbr_shader_material) == 128, "Material layout");
+_Static_assert(sizeof(rtpbr_shader_material) == 144, "Material layout");
 _Static_assert(sizeof(rtpbr_shader_light) == 192, "Light layout");
 _Static_assert(sizeof(rtpbr_shader_draw) == 128, "Draw push constants (128 bytes: the guaranteed minimum)");
 _Static_assert(RTPBR_SHADER_MAX_LIGHTS == RTPBR_MAX_LIGHTS, "light limit shared by C and shaders");

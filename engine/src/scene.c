@@ -187,6 +187,7 @@ static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
     g.disney1[3] = clamp01(d->anisotropic);
     for (int k = 0; k < 3; ++k) g.sheen[k] = clamp01(m->sheen_color[k]);
     g.sheen[3] = clamp01(m->sheen_roughness);
+    g.anisotropy[0] = m->anisotropy_rotation;
     return g;
 }
 
@@ -196,7 +197,7 @@ static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_mate
         !rtpbr_finite(m->emission, 3) || !rtpbr_finite(&m->ior, 1) || !rtpbr_finite(&m->specular, 1) ||
         !rtpbr_finite(m->specular_color, 3) || !rtpbr_finite(&m->normal_scale, 1) ||
         !rtpbr_finite(&m->clearcoat, 1) || !rtpbr_finite(&m->clearcoat_roughness, 1) ||
-        !rtpbr_finite(&m->anisotropy, 1) || !rtpbr_finite(m->sheen_color, 3) || !rtpbr_finite(&m->sheen_roughness, 1) ||
+        !rtpbr_finite(&m->anisotropy, 1) || !rtpbr_finite(&m->anisotropy_rotation, 1) || !rtpbr_finite(m->sheen_color, 3) || !rtpbr_finite(&m->sheen_roughness, 1) ||
         !rtpbr_finite((const float *)&m->disney, sizeof m->disney / sizeof(float))) {
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;

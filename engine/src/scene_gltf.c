@@ -14,7 +14,7 @@
 //                                                         and mipmaps are not used)
 //   normal texture, normal_scale -> the same (tangents from the loader)
 //   clearcoat, 1 - clearcoat_gloss -> clearcoat, clearcoat_roughness (KHR_materials_clearcoat)
-//   anisotropic               -> anisotropy            (KHR strength; shaded isotropically)
+//   anisotropic, anisotropy_rotation -> anisotropy, anisotropy_rotation (KHR_materials_anisotropy)
 //   model DISNEY + subsurface, specular, specular_tint, sheen, sheen_tint, clearcoat,
 //   clearcoat_gloss, anisotropic -> model, disney.*    (Burley 2012)
 //   sheen_color, sheen_roughness -> the same           (KHR_materials_sheen, metallic-roughness)
@@ -118,6 +118,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
             d->clearcoat = m->clearcoat;
             d->clearcoat_roughness = 1.0f - m->clearcoat_gloss;
             d->anisotropy = m->anisotropic;
+            d->anisotropy_rotation = m->anisotropy_rotation;
             memcpy(d->sheen_color, m->sheen_color, sizeof d->sheen_color);
             d->sheen_roughness = m->sheen_roughness;
         }

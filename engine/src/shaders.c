@@ -23,7 +23,7 @@ const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT] = {
     VK_FORMAT_R8G8B8A8_UNORM,      // base colour, metallic
     VK_FORMAT_R16G16B16A16_SFLOAT, // normal, roughness
     VK_FORMAT_R32G32B32A32_SFLOAT, // emission, material index (exact as a float up to 2^24)
-    VK_FORMAT_R16G16B16A16_SFLOAT, // specular colour, specular
+    VK_FORMAT_R16G16B16A16_SFLOAT, // anisotropy direction
 };
 
 // Index of a lighting variant: ndf * 2 + multiscatter.

@@ -291,6 +291,27 @@ RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, float4 ltc1) {
     return min(rtpbr_pos(abs(sum) * (0.5f * RTPBR_INV_PI)), 1.0f);
 }
 
+// Anisotropic lobes (ours, from the LTC construction of Heitz et al. 2016): an anisotropic
+// GGX lobe of alphas (at, ab) is approximated by the isotropic lobe of alpha = sqrt(at ab)
+// stretched about its centre c (the mirror direction) by k = sqrt(at / ab) along the
+// anisotropy direction and by 1 / k across it: the slope distribution of D_aniso is D_iso's
+// stretched so (GGX and Beckmann are stretch invariant), and near c directions follow slopes
+// linearly. As an LTC, M_aniso = A M_iso with A = k e1 e1^T + (1 / k) e2 e2^T + c c^T (e1 the
+// anisotropy direction made orthogonal to c, e2 = c x e1; det A = 1), so the polygon integral
+// is the isotropic LTC's over A^-1 P. This applies A^-1 to a local polygon (from
+// LTC_PolygonToLocal, already clipped to the horizon, so only directions above it count).
+// c and e1 unit and orthogonal; k >= 1 when at >= ab (NaN or <= 0: no stretch).
+RTPBR_FN LtcLocalPolygon LTC_AnisotropicStretchInverse(LtcLocalPolygon p, float3 c, float3 e1, float k) {
+    float ik = k > 0.0f ? 1.0f / k : 1.0f;
+    float kk = k > 0.0f ? k : 1.0f;
+    float3 e2 = cross(c, e1);
+    for (int i = 0; i < RTPBR_LTC_CLIP_VERTICES; i++) {
+        float3 v = p.v[i];
+        p.v[i] = e1 * (dot(e1, v) * ik) + e2 * (dot(e2, v) * kk) + c * dot(c, v);
+    }
+    return p;
+}
+
 // The vector form factor (Arvo 1995) of an unclipped local polygon (from
 // LTC_PolygonToLocalUnclipped) transformed by M^-1: F = (1 / 2pi) sum of the edge vectors,
 // pointing toward the polygon; |F| is the form factor of the polygon seen head-on and F.z its

@@ -212,11 +212,13 @@ typedef struct rtpbr_material_desc {
     // the whole material, which it attenuates by 1 - clearcoat F_coat(NoV). Zero: no coat.
     float clearcoat;
     float clearcoat_roughness; // perceptual; zero: RTPBR_MIN_ROUGHNESS
-    // KHR_materials_anisotropy anisotropyStrength in [0, 1]: alpha_t = mix(alpha, 1, s^2),
-    // alpha_b = alpha. The LTC lighting pass has isotropic tables: it shades the lobe as
-    // isotropic at alpha = sqrt(alpha_t alpha_b) (the highlight keeps its energy, not its
-    // stretch; docs/limits.md). The direction (anisotropyRotation) is therefore unused.
+    // KHR_materials_anisotropy anisotropyStrength in [0, 1]: alpha_t = mix(alpha, 1, s^2)
+    // along the anisotropy direction, alpha_b = alpha across it. The direction is the mesh's
+    // tangent rotated by anisotropy_rotation (radians) toward the bitangent; a mesh without
+    // tangents is shaded isotropically at sqrt(alpha_t alpha_b). The LTC pass stretches the
+    // isotropic lobe of that alpha along the direction (engine/README.md).
     float anisotropy;
+    float anisotropy_rotation;
     // KHR_materials_sheen: a Charlie sheen layer (Estevez & Kulla 2017) of this colour in
     // [0, 1] over the material below the coat, which it scales by the KHR albedo scaling
     // 1 - max(sheen_color) E_sheen. All zero: no sheen.
