@@ -190,6 +190,75 @@ static void test_disney_diffuse_albedo(void **state) {
     assert_true(worst < 0.0015);
 }
 
+// Anisotropic GGX through LTC_AnisotropicStretchInverse: the isotropic GGX LTC at
+// alpha = sqrt(at ab), stretched about the mirror direction along the anisotropy direction,
+// against Monte Carlo of the anisotropic BRDF (BRDF_SpecularLocal, F = 1, height-correlated
+// Smith) times the cosine over square lights near the highlight, the anisotropy direction at
+// several azimuths. The reference samples the square's area (256 x 256 stratified points).
+// Measured on this grid (108 lights): mean relative error 9.3% stretched vs 104% for the
+// isotropic LTC at sqrt(at ab) alone (the engine's former approximation); bounds: stretched
+// < 12% (measured + ~30%) and below 0.3 of the isotropic error.
+static void test_anisotropic_stretch_vs_mc(void **state) {
+    (void)state;
+    double sumStretch = 0.0, sumIso = 0.0;
+    int count = 0;
+    rtpbr::FresnelParams one = rtpbr::Fresnel_FromF0(float3(1.0f));
+    for (float roughness : {0.3f, 0.5f})
+        for (float strength : {0.5f, 0.9f})
+            for (float viewDeg : {0.0f, 30.0f, 55.0f})
+                for (float azimuthDeg : {0.0f, 50.0f, 90.0f})
+                    for (int where = 0; where < 3; where++) {
+                        float alpha = roughness * roughness;
+                        float at = std::min(alpha + (1.0f - alpha) * strength * strength, 1.0f), ab = alpha;
+                        float vr = glm::radians(viewDeg), az = glm::radians(azimuthDeg);
+                        float3 V(std::sin(vr), 0.0f, std::cos(vr));
+                        float3 T(std::cos(az), std::sin(az), 0.0f), B(-std::sin(az), std::cos(az), 0.0f);
+                        // Lights at the mirror direction, and tilted along and across the direction.
+                        float3 mirror(-V.x, -V.y, V.z);
+                        float3 dir = where == 0 ? mirror : where == 1 ? glm::normalize(mirror + 0.35f * T)
+                                                                      : glm::normalize(mirror + 0.35f * B);
+                        if (!(dir.z > 0.2f))
+                            continue;
+                        Square sq = make_square(dir, 0.15f);
+                        // Reference: area sampling of the square (distance 1, facing the origin).
+                        const int n = 256;
+                        double ref = 0.0;
+                        for (int i = 0; i < n; i++)
+                            for (int j = 0; j < n; j++) {
+                                float a = -1.0f + 2.0f * (i + 0.5f) / n, b = -1.0f + 2.0f * (j + 0.5f) / n;
+                                float3 p = sq.c + sq.half * (a * sq.e1 + b * sq.e2);
+                                float d2 = glm::dot(p, p);
+                                float3 L = p / std::sqrt(d2);
+                                float3 wo(glm::dot(V, T), glm::dot(V, B), V.z), wi(glm::dot(L, T), glm::dot(L, B), L.z);
+                                float f = rtpbr::BRDF_SpecularLocal(wo, wi, at, ab, one).x * wi.z;
+                                ref += double(f) * std::fabs(glm::dot(sq.d, L)) / d2;
+                            }
+                        ref *= (2.0 * sq.half) * (2.0 * sq.half) / (double(n) * n);
+                        if (!(ref > 1e-3))
+                            continue;
+                        // LTC at the isotropic alpha, with and without the stretch.
+                        float r = std::sqrt(std::sqrt(at * ab));
+                        float4 l1 = fetch(rtpbr_ltc_ggx_1, rtpbr::LTC_LutCoord(V.z, r));
+                        float norm = fetch(rtpbr_ltc_ggx_2, rtpbr::LTC_LutCoord(V.z, r)).x;
+                        rtpbr::float3x3 frame = rtpbr::LTC_Frame(float3(0, 0, 1), V);
+                        rtpbr::LtcLocalPolygon local = rtpbr::LTC_PolygonToLocal(frame, float3(0), sq.poly(), false);
+                        float3 m = rtpbr::rtpbr_mul(frame, mirror), t = rtpbr::rtpbr_mul(frame, T);
+                        float3 e1 = glm::normalize(t - m * glm::dot(t, m));
+                        double iso = norm * rtpbr::LTC_IntegrateLocal(local, l1);
+                        double stretched =
+                            norm * rtpbr::LTC_IntegrateLocal(rtpbr::LTC_AnisotropicStretchInverse(local, m, e1, std::sqrt(at / ab)), l1);
+                        sumStretch += std::fabs(stretched - ref) / ref;
+                        sumIso += std::fabs(iso - ref) / ref;
+                        count++;
+                    }
+    double meanStretch = sumStretch / count, meanIso = sumIso / count;
+    fprintf(stderr, "anisotropic GGX over %d lights: mean relative error %.2f%% stretched, %.2f%% isotropic\n", count,
+            100 * meanStretch, 100 * meanIso);
+    assert_true(count > 60);
+    assert_true(meanStretch < 0.12);
+    assert_true(meanStretch < 0.3 * meanIso);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ggx_vs_mc),
@@ -197,6 +266,7 @@ int main(void) {
         cmocka_unit_test(test_fresnel_scales),
         cmocka_unit_test(test_disney_diffuse_albedo),
         cmocka_unit_test(test_disney_diffuse_vs_mc),
+        cmocka_unit_test(test_anisotropic_stretch_vs_mc),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
