@@ -86,6 +86,7 @@ struct Surface {
     float specR;          // perceptual roughness of the specular lobe's tables, sqrt(sqrt(at ab))
     vec3 anisoDir;        // anisotropy direction (world, unit) or 0
     float anisoK;         // sqrt(alpha_t / alpha_b) >= 1; 1: isotropic
+    vec2 alphas;          // (alpha_t, alpha_b) of the specular lobe (isotropic: both sqrt(at ab))
     float w;              // dielectric specular weight (KHR specularFactor)
     float eta;            // dielectric IOR
     vec3 f0;              // Schlick F0 and F90 of the specular lobe (metal and dielectric mixed)
@@ -138,6 +139,9 @@ Surface surface_terms(vec4 g0, float roughness, Material m, float NoV, vec3 anis
     bool hasDirection = dot(anisoDir, anisoDir) > 0.25f;
     s.anisoDir = hasDirection ? normalize(anisoDir) : vec3(0.0f);
     s.anisoK = hasDirection && alphas.y > 0.0f ? sqrt(max(alphas.x / alphas.y, 1.0f)) : 1.0f;
+    float isotropicAlpha = Alpha_FromPerceptual(s.specR);
+    s.alphas = s.anisoK > 1.0f ? clamp(alphas, RTPBR_F2(RTPBR_MIN_ALPHA), RTPBR_F2(1.0f))
+                               : vec2(isotropicAlpha, isotropicAlpha);
     s.w = m.specular.x;
     s.eta = m.specular_color_ior.w;
     vec3 f0Dielectric = min(RTPBR_F3(F0_FromIor(s.eta)) * m.specular_color_ior.rgb, RTPBR_F3(1.0f));

@@ -68,7 +68,6 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
     bool disney = s.disney;
     DisneyMaterial dm = s.dm;
     float specR = s.specR;
-    float specAlpha = Alpha_FromPerceptual(specR);
     float w = s.w;
     float eta = s.eta;
     FresnelParams fresnel;
@@ -77,14 +76,19 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
     fresnel.eta = RTPBR_F3(eta);
     fresnel.k = RTPBR_F3(0.0f);
 
-    // Local frame z = N, x toward V (as LTC_Frame); NoV clamped as the LTC table lookup.
-    vec3 T = V - N * dot(N, V);
+    // Local frame z = N, x along the anisotropy direction (alpha_t) when there is one, else
+    // toward V (as LTC_Frame); NoV clamped as the LTC table lookup.
+    bool anisotropic = s.anisoK > 1.0f;
+    vec3 T = (anisotropic ? s.anisoDir : V) - N * dot(N, anisotropic ? s.anisoDir : V);
     float tl2 = dot(T, T);
     vec3 up = abs(N.z) > 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 0.0f, 1.0f);
     T = tl2 > 1e-10f ? T * inversesqrt(tl2) : normalize(cross(up, N));
     vec3 B = cross(N, T);
     float NoV = clamp(dot(N, V), 1e-4f, 1.0f);
-    vec3 wo = vec3(sqrt(1.0f - NoV * NoV), 0.0f, NoV);
+    vec2 woTangent = vec2(dot(V, T), dot(V, B));
+    float woTangentLength = length(woTangent);
+    woTangent = woTangentLength > 0.0f ? woTangent * (sqrt(1.0f - NoV * NoV) / woTangentLength) : vec2(0.0f);
+    vec3 wo = vec3(woTangent, NoV);
 
     // Kulla-Conty: the lobe colours and the layered base's albedos.
     float Eo = s.Eo, Eavg = s.Eavg, FmsDielectric = s.FmsDielectric;
@@ -112,7 +116,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
     float fs = max3(F_Avg_Schlick(fresnel.f0, fresnel.f90));
     float fd = max3(diffuseColor);
     float pBrdf = fs > 0.0f ? 0.5f * fs / (fs + fd) : 0.0f;
-    float alphaSample = specAlpha;
+    vec2 alphaSample = s.alphas; // the specular lobe's (alpha_t along T, alpha_b along B)
 
     uint samples = max(mc.samples, 1u);
     vec3 sum = vec3(0.0f);
@@ -142,7 +146,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
             bool hit;
             if (fromBrdf) {
                 // Strategy 2: a visible normal of the specular lobe, reflected; does it hit?
-                vec3 wiLocal = Reflect_About(wo, MC_SAMPLE_VNDF(wo, alphaSample, alphaSample, u));
+                vec3 wiLocal = Reflect_About(wo, MC_SAMPLE_VNDF(wo, alphaSample.x, alphaSample.y, u));
                 wi = T * wiLocal.x + B * wiLocal.y + N * wiLocal.z;
                 hit = mc_ray_polygon(P, wi, light.vertices, count, light.plane, t);
             } else {
@@ -165,7 +169,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
             float pdfLight = hit ? t * t / (abs(cosLight) * area) : 0.0f;
 
             vec3 wiLocal = vec3(dot(wi, T), dot(wi, B), dot(wi, N));
-            float pdfBrdf = pBrdf > 0.0f ? MC_PDF_REFLECTION(wo, wiLocal, alphaSample, alphaSample) : 0.0f;
+            float pdfBrdf = pBrdf > 0.0f ? MC_PDF_REFLECTION(wo, wiLocal, alphaSample.x, alphaSample.y) : 0.0f;
             float pdf = (1.0f - pBrdf) * pdfLight + pBrdf * pdfBrdf;
 
             float NoL = wiLocal.z;
@@ -174,7 +178,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
             float VoH = dot(wo, h);
             float mu = max(NoL, 0.0f);
             float Ei = needEi ? kc_E(mu, specR) : 1.0f;
-            vec3 f = BRDF_Specular(NoV, NoL, NoH, VoH, specAlpha, fresnel) + msColor * KC_Lobe(Eo, Ei, Eavg);
+            vec3 f = BRDF_SpecularLocal(wo, wiLocal, alphaSample.x, alphaSample.y, fresnel) + msColor * KC_Lobe(Eo, Ei, Eavg);
             if (disney) {
                 f += BRDF_DisneyDiffuse(dm, wo, wiLocal) + BRDF_DisneySheen(dm, wo, wiLocal);
             } else {
