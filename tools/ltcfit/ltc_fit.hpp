@@ -40,6 +40,13 @@ struct FitSettings {
     bool horizonNormalised = true; // fit above the horizon only, norm / LTC mass above it
     bool freeRotation = true; // fit the frame's angle too (4 parameters) instead of fixing
                               // Z at the lobe's average direction (Heitz et al.: fixed)
+    // Second stage (microfacet lobes): refine the L3 fit on the error of the integrals over a
+    // fixed set of square lights (see ltc.md, "Polygon refinement"). 0 = off (L3 fit only);
+    // otherwise the side of the sample grid of the reference integrals.
+    int polygonSamples = 256;
+    double polygonFloor = 0.1;  // relative error denominator: integral + floor x albedo
+    double peakWeight = 30.0;   // weight of the squares centred on the lobe (mirror / average)
+    int firstRow = 0;           // development: fit only rows >= firstRow (and the last column)
 };
 
 // One fitted cell.
@@ -54,6 +61,7 @@ struct Cell {
     double fresnel = 0;        // integral of f NoL (1 - VoH)^5
     double f82 = 0;            // integral of f NoL VoH (1 - VoH)^6
     double error = 0;          // integral of |f NoL - norm D_ltc| / norm  (relative L1)
+    double polygonError = 0;   // RMS relative error over the refinement's square lights (0 if off)
 };
 
 struct Table {

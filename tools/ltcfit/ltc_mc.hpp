@@ -283,10 +283,11 @@ inline LtcEval ltc_eval(Lobe lobe, float roughness, float3 V, const Square &sq, 
 struct Config {
     Lobe lobe;
     float roughness, viewDeg, half;
-    int position; // 0 mirror direction, 1 normal, 2 side (azimuth 90, elevation 45), 3 low (elevation 10, azimuth 180)
+    int position; // 0 mirror direction, 1 normal, 2 side (azimuth 90, elevation 45), 3 low (elevation 10, azimuth 180),
+                  // 4 back (elevation 25 on the viewer's side, azimuth 0: a light between the eye and a far floor)
 };
 inline const char *position_name(int p) {
-    static const char *names[] = {"mirror", "normal", "side", "low"};
+    static const char *names[] = {"mirror", "normal", "side", "low", "back"};
     return names[p];
 }
 
@@ -304,7 +305,8 @@ inline float3 position_dir(int p, float3 V) {
     case 0: return float3(-V.x, -V.y, V.z);
     case 1: return float3(0, 0, 1);
     case 2: return float3(0.0f, 0.70710678f, 0.70710678f);
-    default: return float3(-0.98480775f, 0.0f, 0.17364818f);
+    case 3: return float3(-0.98480775f, 0.0f, 0.17364818f);
+    default: return float3(0.90630779f, 0.0f, 0.42261826f);
     }
 }
 
@@ -356,13 +358,15 @@ inline std::vector<float> grid_halves(bool reduced) {
     return reduced ? std::vector<float>{0.1f, 0.5f} : std::vector<float>{0.1f, 0.3f, 1.0f};
 }
 
-inline std::vector<Config> grid(bool reduced, std::vector<Lobe> lobes = {Lobe::GGX, Lobe::Beckmann}) {
+// positions: the default grid has the first four; rtpbr-ltc-validate --back measures position 4 alone.
+inline std::vector<Config> grid(bool reduced, std::vector<Lobe> lobes = {Lobe::GGX, Lobe::Beckmann},
+                                std::vector<int> positions = {0, 1, 2, 3}) {
     std::vector<Config> g;
     for (Lobe l : lobes)
         for (float r : grid_roughness(reduced))
             for (float v : grid_views(reduced))
                 for (float h : grid_halves(reduced))
-                    for (int p = 0; p < 4; p++) {
+                    for (int p : positions) {
                         if (v == 0.0f && p == 0) // the mirror direction is the normal
                             continue;
                         g.push_back({l, r, v, h, p});

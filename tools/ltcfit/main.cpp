@@ -52,7 +52,11 @@ std::string settings_line(const FitSettings &s, bool quick) {
       << "^2 samples, at most " << s.maxIterations << " Nelder-Mead iterations per cell, " << s.threads
       << " threads" << (quick ? " (QUICK, low-quality settings)" : "") << "; L" << s.errorPower << " error"
       << (s.horizonNormalised ? " above the horizon, integrals divided by the LTC's mass above it" : "")
-      << (s.freeRotation ? "; best of the 3- and 4-parameter fits" : "; 3-parameter fit") << ".\n\n";
+      << (s.freeRotation ? "; best of the 3- and 4-parameter fits" : "; 3-parameter fit");
+    if (s.polygonSamples > 0)
+        o << "; microfacet lobes refined on the integrals over square lights (references from " << s.polygonSamples
+          << "^2 samples, floor " << s.polygonFloor << " x albedo, peak weight " << s.peakWeight << ")";
+    o << ".\n\n";
     return o.str();
 }
 
@@ -94,12 +98,18 @@ std::string generated_section(const Table &ggx, const Table &beckmann, const Fit
     o << settings_line(s, quick);
     o << "Per-cell fit error = integral |f NoL - norm D_ltc| / albedo over the upper hemisphere (relative L1; 0 = "
          "perfect, 2 = disjoint):\n\n";
-    o << "| lobe | fit time (s) | mean | median | 95th pct | max |\n|---|---|---|---|---|---|\n";
+    o << "| lobe | fit time (s) | mean | median | 95th pct | max | square lights: mean / max RMS relative error |\n"
+         "|---|---|---|---|---|---|---|\n";
     for (const Table *t : {&ggx, &beckmann}) {
         Stats st = error_stats(*t);
+        double polyMean = 0.0, polyMax = 0.0;
+        for (const Cell &c : t->cells) {
+            polyMean += c.polygonError / double(t->cells.size());
+            polyMax = std::max(polyMax, c.polygonError);
+        }
         char line[256];
-        snprintf(line, sizeof line, "| %s | %.1f | %.4f | %.4f | %.4f | %.4f |\n", lobe_name(t->lobe), t->seconds,
-                 st.mean, st.median, st.p95, st.max);
+        snprintf(line, sizeof line, "| %s | %.1f | %.4f | %.4f | %.4f | %.4f | %.4f / %.4f |\n", lobe_name(t->lobe),
+                 t->seconds, st.mean, st.median, st.p95, st.max, polyMean, polyMax);
         o << line;
     }
     o << "\nHeat map: `ltc_fit_error.png` (GGX left, Beckmann right; x = roughness 0..1, y = sqrt(1 - NoV) "
@@ -134,7 +144,7 @@ bool update_markdown(const std::string &path, const std::string &tag, const std:
 }
 
 int usage() {
-    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon] [--power P (1..3)] [--diffuse-only] [--sheen-only]\n");
+    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon] [--power P (1..3)] [--diffuse-only] [--sheen-only] [--no-polygon] [--peak-weight W] [--polygon-floor F] [--dev-ggx-from-row R]\n");
     return 2;
 }
 
@@ -160,7 +170,20 @@ int main(int argc, char **argv) {
         else if (!strcmp(argv[i], "--power")) { // the L^p error the fit minimises (1, 2, 3)
             if (!value(1, 3, s.errorPower))
                 return usage();
-        } else if (!strcmp(argv[i], "--diffuse-only"))
+        } else if (!strcmp(argv[i], "--dev-ggx-from-row")) { // development: see below
+            if (!value(0, 255, s.firstRow))
+                return usage();
+        } else if (!strcmp(argv[i], "--peak-weight") && i + 1 < argc) { // of the squares centred on the lobe
+            s.peakWeight = atof(argv[++i]);
+            if (!(s.peakWeight >= 0.0 && s.peakWeight <= 1000.0))
+                return usage();
+        } else if (!strcmp(argv[i], "--polygon-floor") && i + 1 < argc) { // x albedo, in the relative error
+            s.polygonFloor = atof(argv[++i]);
+            if (!(s.polygonFloor > 0.0 && s.polygonFloor <= 10.0))
+                return usage();
+        } else if (!strcmp(argv[i], "--no-polygon")) // the L3 fit alone, without the polygon refinement
+            s.polygonSamples = 0;
+        else if (!strcmp(argv[i], "--diffuse-only"))
             diffuseOnly = true;
         else if (!strcmp(argv[i], "--sheen-only")) // the sheen lobe into its own header (ltc_sheen.cpp)
             sheenOnly = true;
@@ -187,6 +210,29 @@ int main(int argc, char **argv) {
     }
     if (sheenOnly)
         return run_sheen(outDir, s, quick);
+
+    if (s.firstRow > 0) {
+        // Development only: refit the GGX rows >= firstRow (NoV below 1 - (firstRow / (size-1))^2)
+        // into DIR/rtpbr_ltc_tables.h, keeping every other array and row of that header.
+        std::string err, quality;
+        PackedTables packed;
+        const std::string header = outDir + "/rtpbr_ltc_tables.h";
+        if (!read_header(header, s.size, packed, quality, err)) {
+            fprintf(stderr, "ltcfit: error: %s\n", err.c_str());
+            return 1;
+        }
+        Table t = fit_table(Lobe::GGX, s, [&](int done, int rows) { fprintf(stderr, "\rltcfit: ggx rows %d/%d", done, rows); });
+        std::vector<float> sphere = sphere_table(s.size), g1 = pack_ltc1(t), g2 = pack_ltc2(t, sphere);
+        const size_t from = size_t(s.firstRow) * size_t(s.size) * 4;
+        std::copy(g1.begin() + long(from), g1.end(), packed.ggx1.begin() + long(from));
+        std::copy(g2.begin() + long(from), g2.end(), packed.ggx2.begin() + long(from));
+        fprintf(stderr, "\nltcfit: %.1f s\n", t.seconds);
+        if (!write_header(header, s.size, packed, quality, err)) {
+            fprintf(stderr, "ltcfit: error: %s\n", err.c_str());
+            return 1;
+        }
+        return 0;
+    }
 
     std::vector<Table> tables;
     double total = 0;
@@ -218,7 +264,8 @@ int main(int argc, char **argv) {
     std::vector<float> sphere = sphere_table(s.size);
     std::string err;
     std::string quality = quick ? "QUICK low-quality fit (--quick), to be replaced by the full fit"
-                                : "full fit (Nelder-Mead on the L3 error, see ltc.md)";
+                                : s.polygonSamples > 0 ? "full fit (Nelder-Mead on the L3 error, then on the polygon integrals, see ltc.md)"
+                                                       : "full fit (Nelder-Mead on the L3 error, see ltc.md)";
     const std::string header = outDir + "/rtpbr_ltc_tables.h";
     PackedTables packed;
     bool ok = true;

@@ -2,8 +2,10 @@
 // ltc_mc.hpp; prints the markdown error table for shaderlib/luts/ltc.md and writes the error
 // plot. Deterministic (fixed seeds); 2 threads.
 //
-//   rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse]
+//   rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse] [--back]
 //
+// --back: only lights at the "back" position (elevation 25 degrees on the viewer's side),
+// which the default grid does not hold; no plot, no breakdown by position.
 // --diffuse: the Disney diffuse table instead of GGX and Beckmann (the plot has one lobe row).
 // --sheen: the KHR_materials_sheen table (rtpbr_ltc_sheen_tables.h), likewise.
 #include <atomic>
@@ -101,7 +103,7 @@ bool write_plot(const std::string &path, const std::vector<Lobe> &lobes, const s
 } // namespace
 
 int main(int argc, char **argv) {
-    bool reduced = false, verbose = false;
+    bool reduced = false, verbose = false, back = false;
     std::vector<Lobe> lobes{Lobe::GGX, Lobe::Beckmann};
     std::string png;
     for (int i = 1; i < argc; i++) {
@@ -111,16 +113,22 @@ int main(int argc, char **argv) {
             lobes = {Lobe::DisneyDiffuse};
         else if (!strcmp(argv[i], "--sheen"))
             lobes = {Lobe::Sheen};
+        else if (!strcmp(argv[i], "--back"))
+            back = true;
         else if (!strcmp(argv[i], "--verbose"))
             verbose = true;
         else if (!strcmp(argv[i], "--png") && i + 1 < argc)
             png = argv[++i];
         else {
-            fprintf(stderr, "usage: rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse] [--sheen]\n");
+            fprintf(stderr, "usage: rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse] [--sheen] [--back]\n");
             return 2;
         }
     }
-    std::vector<Config> g = grid(reduced, lobes);
+    if (back && !png.empty()) {
+        fprintf(stderr, "rtpbr-ltc-validate: --back has no plot\n");
+        return 2;
+    }
+    std::vector<Config> g = back ? grid(reduced, lobes, {4}) : grid(reduced, lobes);
     std::vector<Outcome> out(g.size());
     std::atomic<size_t> next{0};
     std::mutex m;
@@ -195,7 +203,7 @@ int main(int argc, char **argv) {
         }
     }
     // Breakdown by light position and size.
-    for (Lobe l : lobes) {
+    for (Lobe l : back ? std::vector<Lobe>{} : lobes) {
         printf("\n%s, exact clipping, mean relative error by position (rows) and light half-size (columns):\n\n| position |",
                lobe_name(l));
         std::vector<float> halves = grid_halves(reduced);
