@@ -299,9 +299,11 @@ rtpbr_result rtpbr_shader_module(rtpbr_context *ctx, rtpbr_spirv spirv, VkShader
 rtpbr_result rtpbr_pipelines_create(rtpbr_context *ctx);
 void rtpbr_pipelines_destroy(rtpbr_context *ctx);
 // The lighting pipeline of a shader variant.
-VkPipeline rtpbr_lighting_pipeline(const rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms);
+// The lighting pipeline of a model variant (LTC, or the Monte Carlo pass), compiled on first use.
+rtpbr_result rtpbr_lighting_pipeline_get(rtpbr_context *ctx, bool monte_carlo, rtpbr_ndf ndf, rtpbr_multiscatter ms,
+                                         VkPipeline *out);
 // The Monte Carlo lighting pipeline of a shader variant (lighting_mc.comp).
-VkPipeline rtpbr_lighting_mc_pipeline(const rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms);
+
 // The tone-mapping pipeline for a colour-attachment format (created on first use).
 rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkPipeline *out);
 

@@ -244,14 +244,14 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
 }
 
 // The lighting pass the desc asks for: LTC, or the Monte Carlo reference (mc_samples > 0).
-static void record_lighting(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCommandBuffer cmd)
+static void record_lighting(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkPipeline pipeline, VkCommandBuffer cmd)
 {
     if (desc->mc_samples == 0) {
-        rtpbr_lighting_record(r, rtpbr_lighting_pipeline(r->context, desc->ndf, desc->multiscatter), cmd);
+        rtpbr_lighting_record(r, pipeline, cmd);
         return;
     }
     rtpbr_shader_mc params = {.samples = desc->mc_samples, .seed = desc->mc_seed};
-    rtpbr_lighting_mc_record(r, rtpbr_lighting_mc_pipeline(r->context, desc->ndf, desc->multiscatter), &params, cmd);
+    rtpbr_lighting_mc_record(r, pipeline, &params, cmd);
 }
 
 static rtpbr_shader_tonemap tonemap_params(const rtpbr_render_desc *desc, uint32_t encode)
@@ -295,6 +295,9 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     if (r->has_frame) RTPBR_VK(ctx, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
     RTPBR_TRY(prepare_frame(r, scene, desc));
     RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, RTPBR_DISPLAY_FORMAT, &tonemap));
+    // Before any recording: a variant's first use compiles it, which may fail.
+    VkPipeline lighting;
+    RTPBR_TRY(rtpbr_lighting_pipeline_get(ctx, desc->mc_samples > 0, desc->ndf, desc->multiscatter, &lighting));
 
     VkCommandBuffer cmd = r->cmd;
     VkCommandBufferBeginInfo begin = {
@@ -304,7 +307,7 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     RTPBR_VK(ctx, vkResetCommandBuffer(cmd, 0));
     RTPBR_VK(ctx, vkBeginCommandBuffer(cmd, &begin));
     rtpbr_gbuffer_record(r, scene, cmd);
-    record_lighting(r, desc, cmd);
+    record_lighting(r, desc, lighting, cmd);
     rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
@@ -346,6 +349,9 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     if (r->has_frame) RTPBR_VK(ctx, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
     RTPBR_TRY(prepare_frame(r, scene, desc));
     RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, target->format, &tonemap));
+    // Before recording into the host's command buffer: a variant's first use compiles it.
+    VkPipeline lighting;
+    RTPBR_TRY(rtpbr_lighting_pipeline_get(ctx, desc->mc_samples > 0, desc->ndf, desc->multiscatter, &lighting));
 
     // UNORM targets need the sRGB curve in the shader; sRGB targets encode in hardware.
     bool unorm = target->format == VK_FORMAT_R8G8B8A8_UNORM || target->format == VK_FORMAT_B8G8R8A8_UNORM ||
@@ -354,7 +360,7 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     VkImageLayout new_layout = target->new_layout ? target->new_layout : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     VkCommandBuffer cmd = target->command_buffer;
     rtpbr_gbuffer_record(r, scene, cmd);
-    record_lighting(r, desc, cmd);
+    record_lighting(r, desc, lighting, cmd);
     rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, target->old_layout,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);

@@ -231,23 +231,9 @@ static rtpbr_result create_lighting(rtpbr_context *ctx)
     RTPBR_TRY(create_set_layout(ctx, bindings, RTPBR_LIGHTING_BINDING_COUNT, &ctx->lighting_set_layout));
     RTPBR_TRY(create_pipeline_layout(ctx, ctx->lighting_set_layout, 0, 0, &ctx->lighting_layout));
 
-    const rtpbr_spirv variants[RTPBR_LIGHTING_VARIANT_COUNT] = {
-        SPIRV(rtpbr_spirv_lighting_ggx_ms0), SPIRV(rtpbr_spirv_lighting_ggx_ms1),
-        SPIRV(rtpbr_spirv_lighting_beckmann_ms0), SPIRV(rtpbr_spirv_lighting_beckmann_ms1),
-    };
-    for (uint32_t i = 0; i < RTPBR_LIGHTING_VARIANT_COUNT; ++i) {
-        RTPBR_TRY(rtpbr_shader_module(ctx, variants[i], &module));
-        VkComputePipelineCreateInfo info = {
-            .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-            .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                      .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = module, .pName = "main"},
-            .layout = ctx->lighting_layout,
-        };
-        RTPBR_VK(ctx, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL,
-                                               &ctx->lighting_pipelines[i]));
-        vkDestroyShaderModule(ctx->device, module, NULL);
-        module = VK_NULL_HANDLE;
-    }
+    // The default variant (GGX, multiple scattering on) now, so that a bad driver fails early;
+    // the others on first use (rtpbr_lighting_pipeline_get): each costs a shader compilation.
+    RTPBR_TRY(rtpbr_lighting_pipeline_get(ctx, false, RTPBR_NDF_GGX_MODEL, RTPBR_MULTISCATTER_ON, &(VkPipeline){0}));
 cleanup:
     vkDestroyShaderModule(ctx->device, module, NULL);
     return result;
@@ -261,23 +247,7 @@ static rtpbr_result create_lighting_mc(rtpbr_context *ctx)
     VkShaderModule module = VK_NULL_HANDLE;
     RTPBR_TRY(create_pipeline_layout(ctx, ctx->lighting_set_layout, VK_SHADER_STAGE_COMPUTE_BIT,
                                      sizeof(rtpbr_shader_mc), &ctx->lighting_mc_layout));
-    const rtpbr_spirv variants[RTPBR_LIGHTING_VARIANT_COUNT] = {
-        SPIRV(rtpbr_spirv_lighting_mc_ggx_ms0), SPIRV(rtpbr_spirv_lighting_mc_ggx_ms1),
-        SPIRV(rtpbr_spirv_lighting_mc_beckmann_ms0), SPIRV(rtpbr_spirv_lighting_mc_beckmann_ms1),
-    };
-    for (uint32_t i = 0; i < RTPBR_LIGHTING_VARIANT_COUNT; ++i) {
-        RTPBR_TRY(rtpbr_shader_module(ctx, variants[i], &module));
-        VkComputePipelineCreateInfo info = {
-            .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-            .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                      .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = module, .pName = "main"},
-            .layout = ctx->lighting_mc_layout,
-        };
-        RTPBR_VK(ctx, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL,
-                                               &ctx->lighting_mc_pipelines[i]));
-        vkDestroyShaderModule(ctx->device, module, NULL);
-        module = VK_NULL_HANDLE;
-    }
+    // Its pipelines are made on first use (rtpbr_lighting_pipeline_get).
 cleanup:
     vkDestroyShaderModule(ctx->device, module, NULL);
     return result;
@@ -362,14 +332,37 @@ void rtpbr_pipelines_destroy(rtpbr_context *ctx)
     vkDestroyDescriptorSetLayout(dev, ctx->material_set_layout, NULL);
 }
 
-VkPipeline rtpbr_lighting_pipeline(const rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms)
+rtpbr_result rtpbr_lighting_pipeline_get(rtpbr_context *ctx, bool monte_carlo, rtpbr_ndf ndf, rtpbr_multiscatter ms,
+                                         VkPipeline *out)
 {
-    return ctx->lighting_pipelines[lighting_variant(ndf, ms)];
-}
-
-VkPipeline rtpbr_lighting_mc_pipeline(const rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms)
-{
-    return ctx->lighting_mc_pipelines[lighting_variant(ndf, ms)];
+    static const rtpbr_spirv ltc[RTPBR_LIGHTING_VARIANT_COUNT] = {
+        SPIRV(rtpbr_spirv_lighting_ggx_ms0), SPIRV(rtpbr_spirv_lighting_ggx_ms1),
+        SPIRV(rtpbr_spirv_lighting_beckmann_ms0), SPIRV(rtpbr_spirv_lighting_beckmann_ms1),
+    };
+    static const rtpbr_spirv mc[RTPBR_LIGHTING_VARIANT_COUNT] = {
+        SPIRV(rtpbr_spirv_lighting_mc_ggx_ms0), SPIRV(rtpbr_spirv_lighting_mc_ggx_ms1),
+        SPIRV(rtpbr_spirv_lighting_mc_beckmann_ms0), SPIRV(rtpbr_spirv_lighting_mc_beckmann_ms1),
+    };
+    uint32_t v = lighting_variant(ndf, ms);
+    VkPipeline *slot = monte_carlo ? &ctx->lighting_mc_pipelines[v] : &ctx->lighting_pipelines[v];
+    if (*slot) {
+        *out = *slot;
+        return RTPBR_SUCCESS;
+    }
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkShaderModule module = VK_NULL_HANDLE;
+    RTPBR_TRY(rtpbr_shader_module(ctx, monte_carlo ? mc[v] : ltc[v], &module));
+    VkComputePipelineCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                  .module = module, .pName = "main"},
+        .layout = monte_carlo ? ctx->lighting_mc_layout : ctx->lighting_layout,
+    };
+    RTPBR_VK(ctx, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL, slot));
+    *out = *slot;
+cleanup:
+    vkDestroyShaderModule(ctx->device, module, NULL);
+    return result;
 }
 
 rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkPipeline *out)

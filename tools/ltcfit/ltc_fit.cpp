@@ -516,7 +516,7 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     // Second stage: the error of the integrals over square lights, from the best of the L3
     // fit and the neighbour's shape; the L3 fit stays if nothing improves on it.
     double polyErr = 0.0;
-    if (s.polygonSamples > 0 && lobe != Lobe::DisneyDiffuse) {
+    if (s.polygonSamples > 0 && lobe != Lobe::DisneyDiffuse && r >= s.polygonMinRoughness) {
         const PolygonRefs refs = polygon_refs(lobe, V, alpha, mom.avgDir, s.polygonSamples, s.peakWeight);
         auto pcost = [&](const Params &p) {
             Ltc l = ltc;
@@ -528,7 +528,7 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
         if (start) {
             Params neighbour{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation};
             double nc = pcost(neighbour);
-            if (nc < fromCost) {
+            if (nc < fromCost && (l1(neighbour) < 1.0 || l1(neighbour) <= l1(best))) {
                 from = neighbour;
                 fromCost = nc;
             }

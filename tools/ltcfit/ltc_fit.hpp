@@ -46,6 +46,10 @@ struct FitSettings {
     int polygonSamples = 256;
     double polygonFloor = 0.1;  // relative error denominator: integral + floor x albedo
     double peakWeight = 30.0;   // weight of the squares centred on the lobe (mirror / average)
+    // No polygon refinement below this perceptual roughness: the squares cannot resolve
+    // lobes that narrow, and the refinement blew the smoothest columns up (engine spikes of
+    // 1e6 on clear coats and roughness-0 spheres of disney_grid); the L3 fit stays there.
+    double polygonMinRoughness = 0.1;
     int firstRow = 0;           // development: fit only rows >= firstRow (and the last column)
 };
 
