@@ -10,7 +10,7 @@ packages=(
   glslang-tools spirv-tools
   libembree-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenimageio-dev openimageio-tools
-  libcmocka-dev libglm-dev
+  libcmocka-dev libglm-dev valgrind
   clang-14 libfuzzer-14-dev libclang-rt-14-dev
   python3 python3-numpy python3-matplotlib
   xvfb xauth

@@ -28,7 +28,7 @@ static void polygon_lights_scene(void **state)
     assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     float *px = malloc(W * H * 16);
-    assert_int_equal(rtpbr_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
     // scenes.json: light_red (1, 0.25, 0.2) x 12, light_green (0.25, 1, 0.3) x 8,
     // light_blue (0.3, 0.4, 1) x 10. The G-buffer keeps emission in half floats (11 bits);
     // a light's surface also reflects a little of the other lights (less than 2% here).
@@ -68,7 +68,7 @@ static void one_sided_light_from_behind(void **state)
     assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     float *px = malloc(W * H * 16);
-    assert_int_equal(rtpbr_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
     float brightest = 0.0f;
     for (int i = 0; i < W * H; ++i) brightest = fmaxf(brightest, px[4 * i]);
     printf("quad_light: brightest pixel %.3f\n", brightest);

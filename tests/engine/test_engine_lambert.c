@@ -70,7 +70,7 @@ static void lambertian_plane(void **state)
         assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.multiscatter = (rtpbr_multiscatter)ms}),
                          RTPBR_SUCCESS);
         float *px = malloc(W * H * 16);
-        assert_int_equal(rtpbr_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
+        assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
 
         // The camera of the test: a pinhole with the documented look-at convention.
         double f[3] = {camera.target[0] - camera.position[0], camera.target[1] - camera.position[1],
@@ -153,7 +153,7 @@ static void normal_mapped_plane(void **state)
     assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     float *px = malloc(W * H * 16);
-    assert_int_equal(rtpbr_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
     double n[3] = {2.0 * texel[0] / 255.0 - 1.0, 2.0 * texel[1] / 255.0 - 1.0, 2.0 * texel[2] / 255.0 - 1.0};
     double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int k = 0; k < 3; ++k) n[k] /= nl;
@@ -233,9 +233,9 @@ static void culling_bound(void **state)
     float *culled = malloc(W * H * 16), *full = malloc(W * H * 16);
     const float threshold = 1e-3f;
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.light_cull_form_factor = threshold}), RTPBR_SUCCESS);
-    assert_int_equal(rtpbr_read_radiance(r, culled, W * H * 16), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, culled, W * H * 16), RTPBR_SUCCESS);
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.light_cull_form_factor = -1.0f}), RTPBR_SUCCESS);
-    assert_int_equal(rtpbr_read_radiance(r, full, W * H * 16), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, full, W * H * 16), RTPBR_SUCCESS);
     // Per pixel, a light can be culled only if the documented test holds for the tile, and the
     // tile's box contains the pixel's point p, so only if A < cull_form_factor pi d^2 with d the
     // distance from p to any sphere around the light, which is at most the distance from p to
@@ -331,7 +331,7 @@ static void supersampled_coverage(void **state)
                          RTPBR_SUCCESS);
         assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
         float *px = malloc(W * H * 16);
-        assert_int_equal(rtpbr_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
+        assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
         double coverage = 0.0;
         int partial = 0, off_grid = 0;
         for (int i = 0; i < W * H; ++i) {

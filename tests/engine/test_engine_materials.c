@@ -80,7 +80,7 @@ static void render_centre(rtpbr_context *ctx, test_log *log, const rtpbr_materia
     // Culling off: the test lights are meant to be seen whatever their size.
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.light_cull_form_factor = -1.0f}), RTPBR_SUCCESS);
     float px[W * H * 4];
-    assert_int_equal(rtpbr_read_radiance(r, px, sizeof px), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, px, sizeof px), RTPBR_SUCCESS);
     for (int c = 0; c < 3; ++c) {
         out[c] = 0.0f;
         for (int y = H / 2 - 1; y <= H / 2; ++y)

@@ -60,7 +60,7 @@ static float *render_radiance(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, c
     assert_int_equal(rtpbr_render(r, scene, desc), RTPBR_SUCCESS);
     float *px = malloc((size_t)w * h * 16);
     assert_non_null(px);
-    assert_int_equal(rtpbr_read_radiance(r, px, (size_t)w * h * 16), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, px, (size_t)w * h * 16), RTPBR_SUCCESS);
     return px;
 }
 

@@ -30,8 +30,8 @@ static void render_emissive_square(void **state)
 
     float *radiance = malloc(W * H * 16);
     uint8_t *display = malloc(W * H * 4);
-    assert_int_equal(rtpbr_read_radiance(r, radiance, W * H * 16), RTPBR_SUCCESS);
-    assert_int_equal(rtpbr_read_display(r, display, W * H * 4), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, radiance, W * H * 16), RTPBR_SUCCESS);
+    assert_int_equal(test_read_display(r, display, W * H * 4), RTPBR_SUCCESS);
 
     // Where the ray through each pixel centre meets z = 0 (pinhole at z = 3, looking down -Z,
     // rows top to bottom): x = ndc_x * tan(fov/2) * aspect * 3, y = -ndc_y * tan(fov/2) * 3.
@@ -75,7 +75,7 @@ static void render_emissive_square(void **state)
     for (size_t i = 0; i < sizeof ops / sizeof ops[0]; ++i) {
         rtpbr_render_desc o = {.tonemap = ops[i].op, .exposure = -1.0f};
         assert_int_equal(rtpbr_render(r, scene, &o), RTPBR_SUCCESS);
-        assert_int_equal(rtpbr_read_display(r, display, W * H * 4), RTPBR_SUCCESS);
+        assert_int_equal(test_read_display(r, display, W * H * 4), RTPBR_SUCCESS);
         const uint8_t *centre = display + 4 * ((H / 2) * W + W / 2);
         assert_true(abs(centre[1] - test_srgb8(ops[i].expect)) <= 1);
     }
@@ -119,7 +119,7 @@ static void depth_order(void **state)
     assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 32, .height = 32}, &r), RTPBR_SUCCESS);
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     float px[32 * 32 * 4];
-    assert_int_equal(rtpbr_read_radiance(r, px, sizeof px), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, px, sizeof px), RTPBR_SUCCESS);
     const float *centre = px + 4 * (16 * 32 + 16);
     assert_float_equal(centre[0], 1.0f, 0.0f);
     assert_float_equal(centre[1], 0.0f, 0.0f);
@@ -163,7 +163,7 @@ static void emission_sides(void **state)
         for (uint32_t c = 0; c < 2; ++c) {
             assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.camera_index = c}), RTPBR_SUCCESS);
             float px[16 * 16 * 4];
-            assert_int_equal(rtpbr_read_radiance(r, px, sizeof px), RTPBR_SUCCESS);
+            assert_int_equal(test_read_radiance(r, px, sizeof px), RTPBR_SUCCESS);
             const float *centre = px + 4 * (8 * 16 + 8);
             float expect = (c == 0 || double_sided) ? 1.5f : 0.0f;
             assert_float_equal(centre[0], expect, 1e-3f);
@@ -218,7 +218,7 @@ static void emission_texture(void **state)
     assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     float *px = malloc(W * H * 16);
-    assert_int_equal(rtpbr_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
     const double t = tan(0.3);
     for (int q = 0; q < 4; ++q) {
         double wx = (q % 2) ? 0.5 : -0.5, wy = (q / 2) ? -0.5 : 0.5; // texel q's quadrant centre
@@ -247,19 +247,68 @@ static void emission_texture(void **state)
     assert_int_equal(log.validation, 0);
 }
 
-// Create, render and destroy 100 times: the validation layer's object tracker reports any
-// Vulkan object still alive at vkDestroyDevice, and LeakSanitizer (ASan build) host leaks.
+// A host allocator that counts the library's live blocks and bytes (a size header in front).
+typedef struct counting_allocator {
+    long blocks;
+    long long bytes;
+} counting_allocator;
+
+typedef union block_header {
+    size_t size;
+    max_align_t align;
+} block_header;
+
+static void *counting_alloc(size_t size, void *user_data)
+{
+    counting_allocator *a = user_data;
+    block_header *h = malloc(sizeof *h + size);
+    if (!h) return NULL;
+    h->size = size;
+    a->blocks++;
+    a->bytes += (long long)size;
+    return h + 1;
+}
+
+static void counting_free(void *ptr, void *user_data)
+{
+    if (!ptr) return;
+    counting_allocator *a = user_data;
+    block_header *h = (block_header *)ptr - 1;
+    a->blocks--;
+    a->bytes -= (long long)h->size;
+    free(h);
+}
+
+// Create, render and destroy a scene and a renderer many times (100; the environment variable
+// RTPBR_TEST_LIFECYCLE_ITERATIONS sets fewer, as under valgrind), then contexts 5 times (at
+// most as many as iterations): every iteration gives back
+// every host block it took (counted through the context's allocator), the validation layer's
+// object tracker reports any Vulkan object still alive at vkDestroyDevice, and LeakSanitizer
+// (ASan build) or memcheck (valgrind setup) any host leak.
 static void lifecycle(void **state)
 {
     (void)state;
+    int iterations = 100;
+    const char *env = getenv("RTPBR_TEST_LIFECYCLE_ITERATIONS");
+    if (env && atoi(env) > 0) iterations = atoi(env);
     test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    counting_allocator counts = {0};
+    rtpbr_context_desc desc = {
+        .allocator = {counting_alloc, counting_free, &counts},
+        .logger = {test_log_func, &log},
+        .validation = 1,
+    };
+    rtpbr_context *ctx = NULL;
+    assert_int_equal(rtpbr_context_create(&desc, &ctx), RTPBR_SUCCESS);
+    const long context_blocks = counts.blocks;
+    const long long context_bytes = counts.bytes;
+    assert_true(context_blocks > 0); // the context itself comes from the allocator
     float positions[12];
     square_positions(1.0f, 0.0f, positions);
     rtpbr_mesh_desc mesh = {.positions = positions, .indices = square_indices, .vertex_count = 4, .index_count = 6};
     rtpbr_light_desc light = {.vertices = {{-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}}, .vertex_count = 4,
                               .emission = {1, 1, 1}};
-    for (int i = 0; i < 100; ++i) {
+    for (int i = 0; i < iterations; ++i) {
         rtpbr_gpu_scene *scene = NULL;
         rtpbr_renderer *r = NULL;
         assert_int_equal(rtpbr_gpu_scene_create(ctx,
@@ -269,12 +318,18 @@ static void lifecycle(void **state)
                          RTPBR_SUCCESS);
         assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 8 + (uint32_t)i, .height = 8}, &r),
                          RTPBR_SUCCESS);
+        assert_true(counts.blocks > context_blocks); // scene and renderer are host blocks too
         assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
         rtpbr_renderer_destroy(r);
         rtpbr_gpu_scene_destroy(scene);
+        if (counts.blocks != context_blocks || counts.bytes != context_bytes)
+            fail_msg("iteration %d: %ld blocks / %lld bytes live, %ld / %lld before", i, counts.blocks, counts.bytes,
+                     context_blocks, context_bytes);
     }
     rtpbr_context_destroy(ctx);
-    for (int i = 0; i < 5; ++i) rtpbr_context_destroy(test_context(&log));
+    assert_int_equal(counts.blocks, 0);
+    assert_int_equal(counts.bytes, 0);
+    for (int i = 0; i < 5 && i < iterations; ++i) rtpbr_context_destroy(test_context(&log));
     assert_int_equal(log.validation, 0);
     assert_int_equal(log.errors, 0);
 }
@@ -301,7 +356,7 @@ static void record_into_host_image(void **state)
     assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = S, .height = S}, &r), RTPBR_SUCCESS);
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     uint8_t expect[S * S * 4];
-    assert_int_equal(rtpbr_read_display(r, expect, sizeof expect), RTPBR_SUCCESS);
+    assert_int_equal(test_read_display(r, expect, sizeof expect), RTPBR_SUCCESS);
 
     // The host's objects: an image, a host-visible buffer, a command pool and buffer, a fence.
     VkDevice dev = vk.device;
@@ -366,6 +421,7 @@ static void record_into_host_image(void **state)
     assert_int_equal(vkWaitForFences(dev, 1, &fence, VK_TRUE, UINT64_MAX), VK_SUCCESS);
     void *mapped;
     assert_int_equal(vkMapMemory(dev, buffer_memory, 0, VK_WHOLE_SIZE, 0, &mapped), VK_SUCCESS);
+    test_device_output(mapped, S * S * 4);
     const uint8_t *got = mapped;
     for (int i = 0; i < S * S * 4; ++i) assert_true(abs(got[i] - expect[i]) <= 1);
     vkUnmapMemory(dev, buffer_memory);
@@ -393,5 +449,8 @@ int main(void)
         cmocka_unit_test(record_into_host_image),
         cmocka_unit_test(lifecycle),
     };
+    // RTPBR_TEST_FILTER="depth_order" runs only the tests whose names match (cmocka pattern).
+    const char *filter = getenv("RTPBR_TEST_FILTER");
+    if (filter && *filter) cmocka_set_test_filter(filter);
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
