@@ -147,6 +147,42 @@ static void zero_sizes(void **state)
     }
 }
 
+// Materials: NaN or infinite parameters (also in the extension and Disney fields) and an
+// unknown model are refused with INVALID_ARGUMENT; out-of-range values are clamped (accepted).
+static void bad_materials(void **state)
+{
+    rtpbr_context *ctx = CTX;
+    float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    rtpbr_mesh_desc mesh = {.positions = p, .vertex_count = 3};
+    rtpbr_material_desc good = {.base_color = {0.5f, 0.5f, 0.5f}, .roughness = 0.5f, .clearcoat = 2.0f,
+                                .sheen_color = {1.5f, 0.0f, 0.0f}, .anisotropy = -1.0f};
+    rtpbr_material_desc bad[6];
+    for (int i = 0; i < 6; ++i) bad[i] = good;
+    bad[0].clearcoat_roughness = NAN;
+    bad[1].anisotropy_rotation = INFINITY;
+    bad[2].sheen_color[2] = NAN;
+    bad[3].model = (rtpbr_material_model)7;
+    bad[4].model = RTPBR_MATERIAL_DISNEY;
+    bad[4].disney.sheen_tint = NAN;
+    bad[5].sheen_roughness = -INFINITY;
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_create(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                          .materials = &good, .material_count = 1},
+                                            &scene),
+                     RTPBR_SUCCESS);
+    rtpbr_gpu_scene_destroy(scene);
+    for (int i = 0; i < 6; ++i) {
+        scene = NULL;
+        int errors = LOG->errors;
+        assert_int_equal(rtpbr_gpu_scene_create(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                              .materials = &bad[i], .material_count = 1},
+                                                &scene),
+                         RTPBR_ERROR_INVALID_ARGUMENT);
+        assert_null(scene);
+        assert_true(LOG->errors > errors); // explained in the log
+    }
+}
+
 static void bad_lights(void **state)
 {
     rtpbr_context *ctx = CTX;
@@ -257,6 +293,7 @@ int main(void)
         cmocka_unit_test(null_arguments),
         cmocka_unit_test(zero_sizes),
         cmocka_unit_test(bad_lights),
+        cmocka_unit_test(bad_materials),
         cmocka_unit_test(bad_render_arguments),
         cmocka_unit_test(missing_and_malformed_gltf),
     };
