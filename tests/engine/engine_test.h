@@ -103,4 +103,47 @@ static inline int test_srgb8(double c)
     return (int)lround(e * 255.0);
 }
 
+
+// Lambert's formula: the form factor (1/pi) int cos dw of a polygon seen from x with normal n,
+// FF = (1 / 2pi) |sum_i theta_i (n . g_i)|, theta_i the angle subtended by edge i, g_i the
+// unit normal of the plane through x and that edge (Lambert 1760; Arvo 1995). Computed here
+// in double precision, independently of the shader library. Valid for a polygon above x's
+// horizon.
+static inline double test_form_factor(const double x[3], const double n[3], const float (*v)[3], uint32_t count)
+{
+    double sum = 0.0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const float *p = v[i], *q = v[(i + 1) % count];
+        double a[3] = {p[0] - x[0], p[1] - x[1], p[2] - x[2]}, b[3] = {q[0] - x[0], q[1] - x[1], q[2] - x[2]};
+        double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+        double cl = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        double theta = atan2(cl, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+        if (cl > 0.0) sum += theta * (n[0] * c[0] + n[1] * c[1] + n[2] * c[2]) / cl;
+    }
+    return fabs(sum) / (2.0 * 3.14159265358979323846);
+}
+
+// The point of the plane z = 0 seen through the centre of pixel (x, y) of a w x h image by a
+// look-at pinhole camera (the documented convention: +Y up); false if the ray misses the plane.
+static inline bool test_plane_point(const rtpbr_camera_desc *camera, int x, int y, int w, int h, double p[3])
+{
+    double f[3] = {camera->target[0] - camera->position[0], camera->target[1] - camera->position[1],
+                   camera->target[2] - camera->position[2]};
+    double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    for (int k = 0; k < 3; ++k) f[k] /= fl;
+    double s[3] = {-f[2], 0.0, f[0]}; // f x (0, 1, 0)
+    double sl = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    for (int k = 0; k < 3; ++k) s[k] /= sl;
+    double u[3] = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]};
+    double t = tan(0.5 * camera->yfov), aspect = (double)w / h;
+    double nx = ((x + 0.5) / w * 2.0 - 1.0) * t * aspect, ny = -((y + 0.5) / h * 2.0 - 1.0) * t;
+    double d[3];
+    for (int k = 0; k < 3; ++k) d[k] = f[k] + nx * s[k] + ny * u[k];
+    double hit = -camera->position[2] / d[2];
+    p[0] = camera->position[0] + hit * d[0];
+    p[1] = camera->position[1] + hit * d[1];
+    p[2] = 0.0;
+    return hit > 0.0;
+}
+
 #endif

@@ -6,23 +6,6 @@
 
 #include "engine_test.h"
 
-// Lambert's formula: the form factor (1/pi) int cos dw of a polygon seen from x with normal n,
-// FF = (1 / 2pi) |sum_i theta_i (n . g_i)|, theta_i the angle subtended by edge i, g_i the
-// unit normal of the plane through x and that edge. Valid for a polygon above x's horizon.
-static double lambert_form_factor(const double x[3], const double n[3], const float (*v)[3], uint32_t count)
-{
-    double sum = 0.0;
-    for (uint32_t i = 0; i < count; ++i) {
-        const float *p = v[i], *q = v[(i + 1) % count];
-        double a[3] = {p[0] - x[0], p[1] - x[1], p[2] - x[2]}, b[3] = {q[0] - x[0], q[1] - x[1], q[2] - x[2]};
-        double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-        double cl = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-        double theta = atan2(cl, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
-        if (cl > 0.0) sum += theta * (n[0] * c[0] + n[1] * c[1] + n[2] * c[2]) / cl;
-    }
-    return fabs(sum) / (2.0 * M_PI);
-}
-
 static void lambertian_plane(void **state)
 {
     (void)state;
@@ -72,29 +55,15 @@ static void lambertian_plane(void **state)
         float *px = malloc(W * H * 16);
         assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
 
-        // The camera of the test: a pinhole with the documented look-at convention.
-        double f[3] = {camera.target[0] - camera.position[0], camera.target[1] - camera.position[1],
-                       camera.target[2] - camera.position[2]};
-        double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-        for (int k = 0; k < 3; ++k) f[k] /= fl;
-        double s[3] = {-f[2], 0.0, f[0]}; // f x (0, 1, 0)
-        double sl = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-        for (int k = 0; k < 3; ++k) s[k] /= sl;
-        double u[3] = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]};
-        double t = tan(0.5 * camera.yfov), aspect = (double)W / H;
         const double n[3] = {0.0, 0.0, 1.0};
         int checked = 0;
         double worst = 0.0;
         for (int y = 0; y < H; ++y)
             for (int x = 0; x < W; ++x) {
-                double nx = ((x + 0.5) / W * 2.0 - 1.0) * t * aspect, ny = -((y + 0.5) / H * 2.0 - 1.0) * t;
-                double d[3];
-                for (int k = 0; k < 3; ++k) d[k] = f[k] + nx * s[k] + ny * u[k];
-                double hit = -camera.position[2] / d[2];
-                double p[3] = {camera.position[0] + hit * d[0], camera.position[1] + hit * d[1], 0.0};
-                if (!(hit > 0.0) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
-                double ff0 = lambert_form_factor(p, n, lights[0].vertices, 4);
-                double ff1 = lambert_form_factor(p, n, lights[1].vertices, 3);
+                double p[3]; // the pixel's point of the plane (the documented pinhole camera)
+                if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
+                double ff0 = test_form_factor(p, n, lights[0].vertices, 4);
+                double ff1 = test_form_factor(p, n, lights[1].vertices, 3);
                 const float *got = px + 4 * (y * W + x);
                 for (int c = 0; c < 3; ++c) {
                     double expect = 0.8 * (lights[0].emission[c] * ff0 + lights[1].emission[c] * ff1);
@@ -171,7 +140,7 @@ static void normal_mapped_plane(void **state)
                 above = above && d > 0.0;
             }
             if (!above || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
-            double ff = lambert_form_factor(p, n, light.vertices, 4);
+            double ff = test_form_factor(p, n, light.vertices, 4);
             const float *got = px + 4 * (y * W + x);
             for (int c = 0; c < 3; ++c) {
                 double expect = 0.8 * light.emission[c] * ff;
@@ -242,14 +211,6 @@ static void culling_bound(void **state)
     // the light itself. The difference is therefore at most the sum, over the downward lights
     // with A < threshold pi dist(p, light)^2, of their Lambertian contribution 0.8 L FF(p)
     // (Lambert's formula, which the engine matches within 1%: lambertian_plane).
-    double f[3] = {-camera.position[0], -camera.position[1], -camera.position[2]}; // looks at the origin
-    double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-    for (int k = 0; k < 3; ++k) f[k] /= fl;
-    double s[3] = {-f[2], 0.0, f[0]};
-    double sl = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-    for (int k = 0; k < 3; ++k) s[k] /= sl;
-    double u[3] = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]};
-    double t = tan(0.5 * camera.yfov), aspect = (double)W / H;
     const double n[3] = {0.0, 0.0, 1.0};
     double loose = 0.8 * threshold * emission_sum, worst = 0.0, worst_ratio = 0.0, mean_full = 0.0;
     int checked = 0;
@@ -260,12 +221,8 @@ static void culling_bound(void **state)
             if (d > worst) worst = d;
             mean_full += full[4 * i] / (W * H);
             assert_true(culled[4 * i] <= full[4 * i] + 1e-5f * full[4 * i]); // culling only removes light
-            double nx = ((x + 0.5) / W * 2.0 - 1.0) * t * aspect, ny = -((y + 0.5) / H * 2.0 - 1.0) * t;
-            double dir[3];
-            for (int k = 0; k < 3; ++k) dir[k] = f[k] + nx * s[k] + ny * u[k];
-            double hit = -camera.position[2] / dir[2];
-            double p[3] = {camera.position[0] + hit * dir[0], camera.position[1] + hit * dir[1], 0.0};
-            if (!(hit > 0.0) || fabs(p[0]) > 29.5 || fabs(p[1]) > 29.5) continue;
+            double p[3];
+            if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 29.5 || fabs(p[1]) > 29.5) continue;
             double bound = 0.0;
             for (int l = 0; l < N; ++l) {
                 if (l % 4 == 3) continue; // faces up: lights nothing below it, culled or not
@@ -275,7 +232,7 @@ static void culling_bound(void **state)
                 double dist2 = dx * dx + dy * dy + (double)lo[2] * lo[2];
                 double area = (double)(hi[0] - lo[0]) * (hi[1] - lo[1]);
                 if (area < threshold * M_PI * dist2)
-                    bound += 0.8 * lights[l].emission[0] * lambert_form_factor(p, n, lights[l].vertices, 4);
+                    bound += 0.8 * lights[l].emission[0] * test_form_factor(p, n, lights[l].vertices, 4);
             }
             if (d > 1.01 * bound + 1e-6)
                 fail_msg("pixel (%d, %d): culling removed %.4g, more than the cullable lights give (%.4g)", x, y, d,

@@ -11,19 +11,6 @@
 
 #include "engine_test.h"
 
-// Lambert's formula for the form factor of a polygon above x's horizon (as test_engine_lambert.c).
-static double form_factor(const double x[3], const float (*v)[3], uint32_t count)
-{
-    double sum = 0.0;
-    for (uint32_t i = 0; i < count; ++i) {
-        const float *p = v[i], *q = v[(i + 1) % count];
-        double a[3] = {p[0] - x[0], p[1] - x[1], p[2] - x[2]}, b[3] = {q[0] - x[0], q[1] - x[1], q[2] - x[2]};
-        double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-        double cl = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-        if (cl > 0.0) sum += atan2(cl, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * c[2] / cl;
-    }
-    return fabs(sum) / (2.0 * M_PI);
-}
 
 // Burley 2012, sec. 5.3: directional albedo (1/pi) int Fd cos dw of the diffuse shape
 // Fd = (1 + (FD90 - 1)(1 - NoL)^5)(1 + (FD90 - 1)(1 - NoV)^5), FD90 = 0.5 + 2 r LoH^2,
@@ -104,8 +91,8 @@ static void disney_diffuse_albedo(void **state)
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     rtpbr_light_desc sky = sky_light();
-    const double origin[3] = {0.0, 0.0, 0.0};
-    double ff = form_factor(origin, sky.vertices, 4);
+    const double origin[3] = {0.0, 0.0, 0.0}, up[3] = {0.0, 0.0, 1.0};
+    double ff = test_form_factor(origin, up, sky.vertices, 4);
     assert_true(ff > 0.999);
     const float roughness[2] = {0.2f, 1.0f};
     const float angles[3] = {0.2f, 1.05f, 1.3f};
@@ -146,8 +133,8 @@ static void layered_dielectric_energy(void **state)
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     rtpbr_light_desc sky = sky_light();
-    const double origin[3] = {0.0, 0.0, 0.0};
-    double ff = form_factor(origin, sky.vertices, 4);
+    const double origin[3] = {0.0, 0.0, 0.0}, up[3] = {0.0, 0.0, 1.0};
+    double ff = test_form_factor(origin, up, sky.vertices, 4);
     const float roughness[2] = {0.3f, 0.7f};
     const float angles[2] = {0.5f, 1.2f};
     double worst = 0.0;
@@ -232,8 +219,8 @@ static void sheen_albedo_check(void **state)
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     rtpbr_light_desc sky = sky_light();
-    const double origin[3] = {0.0, 0.0, 0.0};
-    double ff = form_factor(origin, sky.vertices, 4);
+    const double origin[3] = {0.0, 0.0, 0.0}, up[3] = {0.0, 0.0, 1.0};
+    double ff = test_form_factor(origin, up, sky.vertices, 4);
     const float roughness[2] = {0.5f, 1.0f};
     const float angles[2] = {0.3f, 1.1f};
     double worst = 0.0;
