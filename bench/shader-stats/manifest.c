@@ -203,8 +203,9 @@ bool ss_manifest_pipelines(const ss_manifest *m, bool (*keep)(const char *name, 
             p->entries[1] = j;
         }
         if (p->shader_count == 0) {
+            fail(error, error_size, "vertex shader %s has no fragment shader %s_frag", e->name, p->name);
             free(list);
-            return fail(error, error_size, "vertex shader %s has no fragment shader %s_frag", e->name, p->name);
+            return false;
         }
         ++n;
     }

@@ -64,4 +64,6 @@ void ss_manifest_finish(ss_manifest *m); // zeroes *m; a zeroed manifest is a no
 bool ss_manifest_pipelines(const ss_manifest *m, bool (*keep)(const char *name, void *user), void *user,
                            ss_pipeline **out, uint32_t *count, char *error, size_t error_size);
 // The per-light pairs, in manifest order of their N = 1 entry. *out is malloc'ed (free()).
+// With the modules loaded, fails when a pair's two builds are the same SPIR-V or two pairs'
+// 1-light builds are (a define the shader ignores).
 bool ss_manifest_pairs(const ss_manifest *m, ss_light_pair **out, uint32_t *count, char *error, size_t error_size);

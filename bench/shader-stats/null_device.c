@@ -4,6 +4,7 @@
 #include "null_device.h"
 
 #include <ctype.h>
+#include <dlfcn.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -41,6 +42,25 @@ static void set_error(char *error, size_t error_size, const char *format, ...)
     va_start(args, format);
     vsnprintf(error, error_size, format, args);
     va_end(args);
+}
+
+// The chip names RADV_FORCE_FAMILY accepts (Mesa 22.3, ac_gpu_info.c's family names, in any
+// case); RADV abort()s on any other, so the name is checked before it reaches the driver.
+static const char *const known_families[] = {
+    "tahiti", "pitcairn", "verde", "oland", "hainan", "bonaire", "kabini", "kaveri", "hawaii", "tonga", "iceland",
+    "carrizo", "fiji", "stoney", "polaris10", "polaris11", "polaris12", "vegam", "vega10", "vega12", "vega20",
+    "raven", "raven2", "renoir", "arcturus", "aldebaran", "navi10", "navi12", "navi14", "navi21", "navi22",
+    "navi23", "navi24", "vangogh", "rembrandt", "gfx1036", "gfx1100", "gfx1101", "gfx1102", "gfx1103",
+};
+
+static bool known_family(const char *family)
+{
+    for (size_t i = 0; i < sizeof known_families / sizeof *known_families; ++i) {
+        const char *a = family, *b = known_families[i];
+        while (*a && tolower((unsigned char)*a) == *b) ++a, ++b;
+        if (*a == '\0' && *b == '\0') return true;
+    }
+    return false;
 }
 
 static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
@@ -222,17 +242,31 @@ static ss_open_result create_device(ss_device *d, char *error, size_t error_size
     return SS_OPEN_OK;
 }
 
+// lavapipe (which the loader initialises too) leaves static state allocated when the loader
+// unloads it at vkDestroyInstance, a leak per instance for LeakSanitizer; the validation
+// layer's frames would lose their names. Loaded once more here, both stay until exit.
+static void keep_driver_libraries_loaded(void)
+{
+    static bool done = false;
+    static const char *const libraries[] = {"libvulkan_lvp.so", "libvulkan_radeon.so", "libVkLayer_khronos_validation.so"};
+    for (size_t i = 0; i < sizeof libraries / sizeof *libraries && !done; ++i)
+        (void)dlopen(libraries[i], RTLD_NOW | RTLD_LOCAL); // absent: nothing to keep
+    done = true;
+}
+
 ss_open_result ss_device_create(const char *family, bool validation, ss_device **out, char *error, size_t error_size)
 {
     *out = NULL;
-    if (!family || !*family) {
-        set_error(error, error_size, "no chip family given");
+    if (!family || !known_family(family)) {
+        set_error(error, error_size, "unknown chip family \"%s\" (RADV_FORCE_FAMILY names: navi21, gfx1100, vega10, ...)",
+                  family ? family : "");
         return SS_OPEN_FAILED;
     }
     if (setenv("RADV_FORCE_FAMILY", family, 1) != 0 || setenv("MESA_SHADER_CACHE_DISABLE", "true", 0) != 0) {
         set_error(error, error_size, "setenv failed");
         return SS_OPEN_FAILED;
     }
+    keep_driver_libraries_loaded();
     ss_device *d = calloc(1, sizeof *d);
     if (!d) {
         set_error(error, error_size, "out of memory");

@@ -1,5 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#ifdef RTPBR_STATS_FIXED_LIGHTS
+#extension GL_EXT_control_flow_attributes : require
+#endif
 // Lighting pass: one workgroup per RTPBR_TILE_SIZE^2 screen tile; reads the G-buffer and the
 // scene's materials and writes linear radiance. Model flags (RTPBR_NDF, RTPBR_MULTISCATTER) come from the build,
 // one SPIR-V variant per combination. All BRDF and polygon-integration math comes from the
@@ -95,6 +98,9 @@ bool light_may_contribute(Light light, vec3 boxMin, vec3 boxMax)
 // evaluated at the representative direction times pi x the form factor; its GTR1 coat is
 // integrated as GGX at the same alpha. Per-pixel table fetches are skipped for lobes the
 // material does not have (coat, Disney diffuse).
+#ifdef RTPBR_STATS_FIXED_LIGHTS
+uint stats_light;
+#endif
 vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s)
 {
     vec2 uv = LTC_LutCoord(s.NoV, s.specR);
@@ -140,9 +146,14 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s)
     bool stretched = s.anisoK > 1.0001f && e1Length > 1e-4f;
     e1 = stretched ? e1 / e1Length : vec3(1.0f, 0.0f, 0.0f);
     vec3 sum = vec3(0.0f);
+#ifdef RTPBR_STATS_FIXED_LIGHTS // bench/shader-stats only: the one light stats_light (see main), no loop
+    [[unroll]] for (uint once = 0u; once < 1u; ++once) {
+        Light light = lights[stats_light];
+#else
     for (uint word = 0u; word < (frame.light_count + 31u) / 32u; ++word)
     for (uint bits = tile_lights[word]; bits != 0u; bits &= bits - 1u) {
         Light light = lights[word * 32u + uint(findLSB(bits))];
+#endif
         LtcPolygon poly;
         for (int k = 0; k < RTPBR_SHADER_MAX_POLYGON_VERTICES; ++k) poly.v[k] = light.vertices[k].xyz;
         poly.count = int(light.vertex_count);
@@ -231,7 +242,24 @@ void main()
     vec3 V = normalize(frame.camera_position.xyz - P);
     vec3 N = normalize(g1.xyz);
     Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], saturate(dot(N, V)), texelFetch(gbuffer3, pixel, 0).xyz);
+#if RTPBR_STATS_MATERIAL_BASIC // bench/shader-stats only: metallic-roughness, no coat, sheen or anisotropy
+    s.disney = false;
+    s.coat = 0.0f;
+    s.sheen = false;
+    s.anisoK = 1.0f;
+#endif
+#ifndef RTPBR_STATS_FIXED_LIGHTS
     result += shade_lights(lifted_point(ndc, depth, P, N), N, V, s);
+#else // bench/shader-stats only: lights 0..N-1, one call (one inlined copy of the loop body) each
+    stats_light = 0u;
+    result += shade_lights(lifted_point(ndc, depth, P, N), N, V, s);
+#if RTPBR_STATS_FIXED_LIGHTS == 2
+    stats_light = 1u;
+    result += shade_lights(lifted_point(ndc, depth, P, N), N, V, s);
+#elif RTPBR_STATS_FIXED_LIGHTS != 1
+#error RTPBR_STATS_FIXED_LIGHTS is 1 or 2
+#endif
+#endif
 
     imageStore(radiance, pixel, vec4(result, 1.0));
 }
