@@ -5,7 +5,7 @@
 // with Linearly Transformed Cosines" (SIGGRAPH), does per pixel and light, written here from
 // the paper: a GGX lobe (the fitted M^-1, one table fetch) and a Lambert lobe (M = I), each
 // integrated over the quad in its own LTC space (transform the 4 vertices, clip to the
-// horizon, sum the edge integrals: the paper's polygon irradiance, Sec. 3 and 4), specular
+// horizon, sum the edge integrals: the paper's polygon irradiance), specular
 // scaled by the second table (norm and Fresnel, one fetch). No Kulla-Conty, no culling, no
 // other material. Compiled for statistics only (never dispatched), with
 // -DRTPBR_STATS_FIXED_LIGHTS=N: exactly N lights, a compile-time count.
@@ -34,13 +34,16 @@ const float LUT_SIZE = 64.0f;
 
 // The integral of the clamped cosine over the arc from a to b (unit vectors), times 2 pi:
 // acos(a . b) times the z of the arc's unit normal (Lambert's polygon formula; the paper's
-// Eq. 11 in LTC space).
+// Eq. 11 in LTC space), with theta / sin(theta) by the rational fit of Hill and Heitz 2016,
+// "Real-Time Area Lighting: a Journey from Research to Production" (SIGGRAPH course), as the
+// demo does, instead of acos.
 float edge_integral(vec3 a, vec3 b)
 {
-    float cosTheta = clamp(dot(a, b), -1.0f, 1.0f);
-    float theta = acos(cosTheta);
-    float sinTheta = sqrt(max(1.0f - cosTheta * cosTheta, 0.0f));
-    return cross(a, b).z * (theta > 1e-4f ? theta / sinTheta : 1.0f);
+    float x = dot(a, b);
+    float y = abs(x);
+    float v = (0.8543985f + (0.4965155f + 0.0145206f * y) * y) / (3.4175940f + (4.1616724f + y) * y);
+    float thetaOverSinTheta = x > 0.0f ? v : 0.5f * inversesqrt(max(1.0f - x * x, 1e-7f)) - v;
+    return cross(a, b).z * thetaOverSinTheta;
 }
 
 // The edge a -> b (unit vectors) clipped to the upper hemisphere z >= 0, by selects rather
