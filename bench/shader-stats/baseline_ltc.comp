@@ -63,6 +63,7 @@ float clipped_edge(vec3 a, vec3 b, inout vec3 leave, inout vec3 enter)
 float ltc_quad(mat3 Minv, vec3 q0, vec3 q1, vec3 q2, vec3 q3, bool twoSided)
 {
     vec3 p0 = normalize(Minv * q0), p1 = normalize(Minv * q1), p2 = normalize(Minv * q2), p3 = normalize(Minv * q3);
+    if (max(max(p0.z, p1.z), max(p2.z, p3.z)) < 0.0f) return 0.0f; // below the horizon (so does the demo)
     // Both stay 0 unless the quad crosses the horizon; then the clipped polygon closes along it.
     vec3 leave = vec3(0.0f), enter = vec3(0.0f);
     float sum = clipped_edge(p0, p1, leave, enter) + clipped_edge(p1, p2, leave, enter) +
