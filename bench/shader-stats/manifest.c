@@ -253,24 +253,14 @@ bool ss_manifest_pairs(const ss_manifest *m, ss_light_pair **out, uint32_t *coun
             free(list);
             return fail(error, error_size, "per-light build %s with 1 light has no 2-light partner", e->name);
         }
-        list[n++] = (ss_light_pair){i, partner};
+        list[n++] = (ss_light_pair){.one = i, .two = partner};
     }
     // A define that changes nothing would make a per-light cost of 0 or a duplicate row.
     for (uint32_t p = 0; p < n; ++p) {
-        const char *problem = NULL, *other = NULL;
-        if (same_module(&m->entries[list[p].one], &m->entries[list[p].two]))
-            problem = "its 1- and 2-light builds are the same SPIR-V (the shader ignores " SS_FIXED_LIGHTS_DEFINE "N)";
-        for (uint32_t q = p + 1; q < n && !problem; ++q)
-            if (same_module(&m->entries[list[p].one], &m->entries[list[q].one])) {
-                problem = "compiles to the same SPIR-V as";
-                other = m->entries[list[q].one].name;
-            }
-        if (problem) {
-            bool ok = fail(error, error_size, "per-light build %s: %s%s%s", m->entries[list[p].one].name, problem,
-                           other ? " " : "", other ? other : "");
-            free(list);
-            return ok;
-        }
+        list[p].ignores_fixed_lights = same_module(&m->entries[list[p].one], &m->entries[list[p].two]);
+        list[p].same_as = UINT32_MAX;
+        for (uint32_t q = 0; q < p && list[p].same_as == UINT32_MAX; ++q)
+            if (same_module(&m->entries[list[p].one], &m->entries[list[q].one])) list[p].same_as = q;
     }
     *out = list;
     *count = n;

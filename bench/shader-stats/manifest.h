@@ -47,6 +47,12 @@ typedef struct ss_pipeline {
 // A per-light pair: entry indices of the N = 1 and N = 2 builds.
 typedef struct ss_light_pair {
     uint32_t one, two;
+    // Found with the modules loaded (else false / UINT32_MAX): the two builds are the same
+    // SPIR-V (the shader ignores RTPBR_STATS_FIXED_LIGHTS), or the 1-light build is the same
+    // SPIR-V as that of the earlier pair same_as (a define the shader ignores). Such pairs
+    // measure nothing new.
+    bool ignores_fixed_lights;
+    uint32_t same_as;
 } ss_light_pair;
 
 // Appends the manifest file's lines to *m. False (error set) on an unreadable file or a
@@ -64,6 +70,4 @@ void ss_manifest_finish(ss_manifest *m); // zeroes *m; a zeroed manifest is a no
 bool ss_manifest_pipelines(const ss_manifest *m, bool (*keep)(const char *name, void *user), void *user,
                            ss_pipeline **out, uint32_t *count, char *error, size_t error_size);
 // The per-light pairs, in manifest order of their N = 1 entry. *out is malloc'ed (free()).
-// With the modules loaded, fails when a pair's two builds are the same SPIR-V or two pairs'
-// 1-light builds are (a define the shader ignores).
 bool ss_manifest_pairs(const ss_manifest *m, ss_light_pair **out, uint32_t *count, char *error, size_t error_size);

@@ -80,6 +80,21 @@ static bool looks_unrolled(const ss_executable *one, const ss_executable *two)
     return i2 - i1 >= MIN_PER_LIGHT_GROWTH * i1;
 }
 
+// Why a per-light pair is not measured (NULL: it is): see ss_light_pair.
+static const char *pair_skip_reason(const ss_manifest *m, const ss_light_pair *pairs, uint32_t p, char *buf, size_t size)
+{
+    if (pairs[p].ignores_fixed_lights) {
+        snprintf(buf, size, "its 1- and 2-light builds are the same SPIR-V: the shader ignores %sN",
+                 SS_FIXED_LIGHTS_DEFINE);
+        return buf;
+    }
+    if (pairs[p].same_as != UINT32_MAX) {
+        snprintf(buf, size, "same SPIR-V as %s (a define the shader ignores)", m->entries[pairs[pairs[p].same_as].one].name);
+        return buf;
+    }
+    return NULL;
+}
+
 static void compile_pipeline(ss_device *device, const ss_manifest *m, const uint32_t *entries, uint32_t count,
                              compiled *out)
 {
@@ -143,6 +158,8 @@ static void print_markdown(const options *opt, const family_result *results, con
     printf("---:|---:|---:|%s\n", opt->baseline ? "---:|" : "");
     for (uint32_t p = 0; p < pair_count; ++p) {
         const char *name = m->entries[pairs[p].one].name;
+        char reason[256];
+        if (pair_skip_reason(m, pairs, p, reason, sizeof reason)) continue;
         for (int f = 0; f < opt->family_count; ++f) {
             const family_result *r = &results[f];
             if (!r->available) continue;
@@ -172,6 +189,11 @@ static void print_markdown(const options *opt, const family_result *results, con
         }
     }
     printf("\n");
+    for (uint32_t p = 0; p < pair_count; ++p) {
+        char reason[256];
+        if (pair_skip_reason(m, pairs, p, reason, sizeof reason))
+            printf("Not measured: %s: %s.\n\n", m->entries[pairs[p].one].name, reason);
+    }
     for (uint32_t p = 0; p < pair_count; ++p)
         for (int f = 0; f < opt->family_count; ++f) {
             const ss_executable *one = first_executable(&results[f].ones[p]), *two = first_executable(&results[f].twos[p]);
@@ -258,6 +280,13 @@ static void print_json(const options *opt, const family_result *results, const s
         for (uint32_t p = 0; p < pair_count; ++p) {
             printf("%s\n   {\"name\": ", p ? "," : "");
             json_string(m->entries[pairs[p].one].name);
+            char reason[256];
+            if (pair_skip_reason(m, pairs, p, reason, sizeof reason)) {
+                printf(", \"not_measured\": ");
+                json_string(reason);
+                printf("}");
+                continue;
+            }
             printf(", \"one_light\": {");
             json_executables(&r->ones[p]);
             printf("}, \"two_lights\": {");
@@ -396,6 +425,8 @@ int main(int argc, char **argv)
             if (!r->pipelines[p].ok) status = 1;
         }
         for (uint32_t p = 0; p < pair_count; ++p) {
+            char reason[256];
+            if (pair_skip_reason(&m, pairs, p, reason, sizeof reason)) continue;
             compile_pipeline(device, &m, &pairs[p].one, 1, &r->ones[p]);
             compile_pipeline(device, &m, &pairs[p].two, 1, &r->twos[p]);
             if (!r->ones[p].ok || !r->twos[p].ok) status = 1;
