@@ -20,6 +20,26 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_LIGHTS, std430) readonly buffer Li
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_MATERIALS, std430) readonly buffer Materials {
     Material materials[];
 };
+// Per-tile light masks written by the culling pass (cull.comp): bit i of word w of a tile is
+// light 32 w + i; RTPBR_TILE_MASK_WORDS words per tile, tiles row by row.
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_TILE_MASKS, std430) buffer TileMasks {
+    uint tile_masks[];
+};
+// The culling pass's tile queues, one per tile class (RTPBR_TILE_CLASS_*): each class's
+// indirect dispatch arguments (x = the number of tiles queued), then the classes' tile lists,
+// frame.tile_capacity entries each (tile index = tile y * frame.tiles_x + tile x).
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_TILE_LISTS, std430) buffer TileLists {
+    uvec4 tile_dispatch[RTPBR_TILE_CLASS_COUNT]; // xyz: VkDispatchIndirectCommand, w unused
+    uint tile_list[];
+};
+
+// The tile class a material needs (RTPBR_TILE_CLASS_BASIC or _FULL): the basic lighting
+// variant shades metallic-roughness materials without clear coat, sheen or anisotropy.
+uint material_tile_class(Material m)
+{
+    bool full = m.coat.z > 0.5f || m.coat.x > 0.0f || m.coat.w > 0.0f || max(m.sheen.r, max(m.sheen.g, m.sheen.b)) > 0.0f;
+    return full ? RTPBR_TILE_CLASS_FULL : RTPBR_TILE_CLASS_BASIC;
+}
 
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER0) uniform sampler2D gbuffer0;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER1) uniform sampler2D gbuffer1;
@@ -109,8 +129,19 @@ struct Surface {
     float EsheenO;        // E_sheen(NoV)
 };
 
+// RTPBR_LIGHTING_FULL 0 (the basic lighting variant) resolves only what
+// material_tile_class calls basic: the Disney, clear-coat, sheen and anisotropy terms become
+// compile-time constants and drop out of the shader.
+#ifndef RTPBR_LIGHTING_FULL
+#define RTPBR_LIGHTING_FULL 1
+#endif
 Surface surface_terms(vec4 g0, float roughness, Material m, float NoV, vec3 anisoDir)
 {
+#if !RTPBR_LIGHTING_FULL
+    m.coat = vec4(0.0f);
+    m.sheen = vec4(0.0f);
+    anisoDir = vec3(0.0f);
+#endif
     Surface s;
     s.baseColor = g0.rgb;
     s.metallic = g0.a;

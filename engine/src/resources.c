@@ -54,6 +54,29 @@ cleanup:
     return result;
 }
 
+rtpbr_result rtpbr_buffer_create_device(rtpbr_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                                        rtpbr_buffer *out)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    memset(out, 0, sizeof *out);
+    VkBufferCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+        .size = size,
+        .usage = usage,
+        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+    };
+    RTPBR_VK(ctx, vkCreateBuffer(ctx->device, &info, NULL, &out->buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(ctx->device, out->buffer, &req);
+    RTPBR_TRY(allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, &out->memory));
+    RTPBR_VK(ctx, vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0));
+    out->size = size;
+    return RTPBR_SUCCESS;
+cleanup:
+    rtpbr_buffer_destroy(ctx, out);
+    return result;
+}
+
 void rtpbr_buffer_destroy(rtpbr_context *ctx, rtpbr_buffer *buffer)
 {
     if (buffer->buffer) vkDestroyBuffer(ctx->device, buffer->buffer, NULL);
