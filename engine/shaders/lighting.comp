@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // Lighting pass: one workgroup per RTPBR_TILE_SIZE^2 screen tile, dispatched indirectly over
 // the tiles that the culling pass (cull.comp) queued for this variant's class
 // (RTPBR_LIGHTING_CLASS: EMPTY, BASIC or FULL); reads the G-buffer, the tile's light mask and
@@ -11,8 +12,9 @@
 // light buffer edge by edge and streamed through one horizon clip into every lobe (ltc.h,
 // "streamed integration").
 // RTPBR_STATS_FIXED_LIGHTS=N (bench/shader-stats only) replaces the tile's light list by
-// lights 0 .. N-1, a compile-time count, so that compile statistics of builds with one and
-// two lights differ by exactly one light.
+// lights 0 .. N-1, a compile-time count, unrolled, and every light by a quad (4 vertices,
+// unrolled), so that compile statistics of builds with one and two lights differ by exactly
+// one quad light in straight-line code (the yardstick's form: bench/shader-stats).
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
@@ -52,6 +54,41 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_SHEEN_2) uniform sampler2D lut_l
 #define LUT_LTC_2 lut_ltc_ggx_2
 #endif
 
+// One pass over light i's edges (vectors from P in the LTC frame): the horizon clip, then the
+// LTC lobe minv; returns its form factor and the clipped polygon's vector form factor F (up to
+// its sign). The basic variant integrates its one LTC lobe in this pass; the full variant
+// runs a pass per lobe the material has, so that one lobe's clip state is live at a time
+// (registers: the lobes' states together spilled on RDNA3).
+float light_lobe(uint i, vec3 P, mat3 ltcFrame, mat3 minv, out vec3 F)
+{
+    LtcClipper horizon = LTC_ClipperBegin();
+    LtcLobe lobe = LTC_LobeBegin(minv);
+    F = vec3(0.0f);
+#ifdef RTPBR_STATS_FIXED_LIGHTS
+    const uint count = 4u;
+#else
+    uint count = lights[i].vertex_count;
+#endif
+    vec3 first = rtpbr_mul(ltcFrame, lights[i].vertices[0].xyz - P);
+    vec3 a = first;
+    [[unroll]] for (uint k = 1u; k <= count + 1u; ++k) {
+        LtcSegment seg;
+        vec3 b = a;
+        if (k <= count) {
+            b = k < count ? rtpbr_mul(ltcFrame, lights[i].vertices[k].xyz - P) : first;
+            seg = LTC_ClipEdge(horizon, a, b);
+        } else {
+            seg = LTC_ClipClose(horizon);
+        }
+        if (seg.valid) {
+            F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+            LTC_LobeEdge(lobe, seg.a, seg.b);
+        }
+        a = b;
+    }
+    return LTC_LobeEnd(lobe);
+}
+
 // Reflected radiance from the tile's polygonal lights, for the model of lighting_common.glsl
 // (surface_terms). Every lobe's polygon integral comes from the shader library: LTC (Heitz et
 // al. 2016, ltc.h) for the specular lobes and Burley's diffuse, the clipped polygon's vector
@@ -62,7 +99,7 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_SHEEN_2) uniform sampler2D lut_l
 // of the polygon's part above the horizon) widened towards E_avg with the polygon's size
 // (KC_PolygonLobe, KC_PolygonMeanE). Disney's subsurface shape and sheen are evaluated at the
 // representative direction times pi x the form factor; its GTR1 coat is integrated as GGX at
-// the same alpha. Per light: one horizon clip, its segments shared by every lobe.
+// the same alpha. Per light and lobe: one pass over the edges (light_lobe).
 vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile)
 {
     vec2 uv = LTC_LutCoord(s.NoV, s.specR);
@@ -107,14 +144,11 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile)
     float e1Length = length(e1);
     if (s.anisoK > 1.0001f && e1Length > 1e-4f)
         specularMinv = LTC_AnisotropicInverseMatrix(ltc1, mirror, e1 / e1Length, s.anisoK);
-    mat3 coatMinv = LTC_InverseMatrix(ltc1c);
-    mat3 burleyMinv = LTC_InverseMatrix(ltc1d);
-    mat3 sheenMinv = LTC_InverseMatrix(ltc1s);
 #endif
 
     vec3 sum = vec3(0.0f);
 #ifdef RTPBR_STATS_FIXED_LIGHTS
-    for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i) {
+    [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i) {
 #else
     uint words = (frame.light_count + 31u) / 32u;
     for (uint word = 0u; word < words; ++word)
@@ -130,38 +164,8 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile)
         if (abs(side) <= 1e-7f * sphere.w || (!twoSided && side < 0.0f) || dot(N, sphere.xyz - P) < -sphere.w)
             continue;
 
-        // One pass over the edges: horizon clip, then every lobe.
-        LtcClipper horizon = LTC_ClipperBegin();
-        LtcLobe specular = LTC_LobeBegin(specularMinv);
-#if RTPBR_LIGHTING_FULL
-        LtcLobe coatLobe = LTC_LobeBegin(coatMinv);
-        LtcLobe burley = LTC_LobeBegin(burleyMinv);
-        LtcLobe sheenLobe = LTC_LobeBegin(sheenMinv);
-#endif
-        vec3 F = vec3(0.0f); // the clipped polygon's vector form factor (up to its sign)
-        uint count = lights[i].vertex_count;
-        vec3 first = rtpbr_mul(ltcFrame, lights[i].vertices[0].xyz - P);
-        vec3 a = first;
-        for (uint k = 1u; k <= count + 1u; ++k) {
-            LtcSegment seg;
-            vec3 b = a;
-            if (k <= count) {
-                b = k < count ? rtpbr_mul(ltcFrame, lights[i].vertices[k].xyz - P) : first;
-                seg = LTC_ClipEdge(horizon, a, b);
-            } else {
-                seg = LTC_ClipClose(horizon);
-            }
-            if (seg.valid) {
-                F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
-                LTC_LobeEdge(specular, seg.a, seg.b);
-#if RTPBR_LIGHTING_FULL
-                if (coated) LTC_LobeEdge(coatLobe, seg.a, seg.b);
-                if (s.disney) LTC_LobeEdge(burley, seg.a, seg.b);
-                if (s.sheen) LTC_LobeEdge(sheenLobe, seg.a, seg.b);
-#endif
-            }
-            a = b;
-        }
+        vec3 F;
+        float specularFF = light_lobe(i, P, ltcFrame, specularMinv, F);
         F = F.z < 0.0f ? -F : F;
         float ff = min(F.z, 1.0f);
         if (!(ff > 0.0f)) continue;
@@ -172,12 +176,13 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile)
         // The cosine-weighted mean of each albedo over the polygon (KC_PolygonMeanE).
         float Erep = KC_PolygonMeanE(kc_E(muRep, s.specR), s.Eavg, lenF);
 
-        vec3 lo = specularScale * LTC_LobeEnd(specular) + s.msColor * KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff);
+        vec3 lo = specularScale * specularFF + s.msColor * KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff);
+        vec3 unusedF;
         vec3 base;
 #if RTPBR_LIGHTING_FULL
         if (s.disney) {
             float LoH = saturate(dot(lRep, normalize(lRep + vLocal)));
-            base = burleyScale * LTC_LobeEnd(burley) +
+            base = burleyScale * light_lobe(i, P, ltcFrame, LTC_InverseMatrix(ltc1d), unusedF) +
                    (s.dm.subsurface * Disney_DiffuseLobe(dss, s.NoV, muRep, LoH) + Disney_SheenLobe(s.dm, LoH)) *
                        (RTPBR_PI * ff);
         } else
@@ -191,10 +196,10 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile)
 #if RTPBR_LIGHTING_FULL
         if (s.sheen)
             lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, sheen_E(muRep, s.sheenR)) +
-                 sheenScale * LTC_LobeEnd(sheenLobe);
+                 sheenScale * light_lobe(i, P, ltcFrame, LTC_InverseMatrix(ltc1s), unusedF);
         lo *= s.baseAttenuation;
         if (coated)
-            lo += coatScale * LTC_LobeEnd(coatLobe) +
+            lo += coatScale * light_lobe(i, P, ltcFrame, LTC_InverseMatrix(ltc1c), unusedF) +
                   s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(kc_E(muRep, s.coatR), s.Eavgc, lenF), s.Eavgc, ff);
 #endif
         sum += lights[i].emission.rgb * lo;
