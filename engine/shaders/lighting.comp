@@ -174,7 +174,8 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile)
         vec3 lRep = F / lenF;
         float muRep = saturate(lRep.z);
         // The cosine-weighted mean of each albedo over the polygon (KC_PolygonMeanE).
-        float Erep = KC_PolygonMeanE(kc_E(muRep, s.specR), s.Eavg, lenF);
+        vec2 eRep = kc_E_EF(muRep, s.specR, s.eta);
+        float Erep = KC_PolygonMeanE(eRep.x, s.Eavg, lenF);
 
         vec3 lo = specularScale * specularFF + s.msColor * KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff);
         vec3 unusedF;
@@ -188,7 +189,7 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile)
         } else
 #endif
         {
-            float EFrep = s.w > 0.0f ? KC_PolygonMeanE(kc_EF(muRep, s.specR, s.eta), s.EFavg, lenF) : 0.0f;
+            float EFrep = s.w > 0.0f ? KC_PolygonMeanE(eRep.y, s.EFavg, lenF) : 0.0f;
             float Esrep = s.w * KC_SpecularAlbedoDielectric(EFrep, Erep, s.FmsDielectric);
             base = s.diffuseColor * KC_PolygonLobe(s.Eso, Esrep, s.EsAvg, ff);
         }

@@ -178,12 +178,13 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
             float NoH = h.z;
             float VoH = dot(wo, h);
             float mu = max(NoL, 0.0f);
-            float Ei = needEi ? kc_E(mu, specR) : 1.0f;
+            vec2 ei = needEi ? kc_E_EF(mu, specR, eta) : vec2(1.0f, 0.0f);
+            float Ei = ei.x;
             vec3 f = BRDF_SpecularLocal(wo, wiLocal, alphaSample.x, alphaSample.y, fresnel) + msColor * KC_Lobe(Eo, Ei, Eavg);
             if (disney) {
                 f += BRDF_DisneyDiffuse(dm, wo, wiLocal) + BRDF_DisneySheen(dm, wo, wiLocal);
             } else {
-                float Esi = layered ? w * KC_SpecularAlbedoDielectric(kc_EF(mu, specR, eta), Ei, FmsDielectric) : 0.0f;
+                float Esi = layered ? w * KC_SpecularAlbedoDielectric(ei.y, Ei, FmsDielectric) : 0.0f;
                 f += diffuseColor * KC_Lobe(Eso, Esi, EsAvg);
             }
             if (sheen)

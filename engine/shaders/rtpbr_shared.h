@@ -43,7 +43,7 @@
 #define RTPBR_BINDING_LUT_LTC_BECKMANN_2 11
 #define RTPBR_BINDING_LUT_KC_E 12          // Kulla-Conty E(mu, r)
 #define RTPBR_BINDING_LUT_KC_EAVG 13       // Kulla-Conty E_avg(r)
-#define RTPBR_BINDING_LUT_KC_EF 14         // E_F(mu, r, eta): the eta slices stacked along v
+#define RTPBR_BINDING_LUT_KC_EF 14         // 3D: E_F(mu, r, eta) and E(mu, r) (engine/src/luts.c)
 #define RTPBR_BINDING_LUT_KC_EFAVG 15      // E_F_avg(r, eta)
 #define RTPBR_BINDING_LUT_LTC_DISNEY_1 16  // M^-1 of the Burley diffuse LTC fit
 #define RTPBR_BINDING_LUT_LTC_DISNEY_2 17  // norm, 0, 0, sphere form factor

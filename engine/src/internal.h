@@ -283,10 +283,10 @@ void rtpbr_image_destroy(rtpbr_context *ctx, rtpbr_image *image);
 // Records into ctx->upload_cmd, submits, waits. record(cmd, user) records the work.
 rtpbr_result rtpbr_submit_once(rtpbr_context *ctx, void (*record)(VkCommandBuffer cmd, void *user),
                                void *user);
-// A lookup table from a C array of width*height RGBA floats (rows along the second
-// coordinate): an RGBA32F image (RGBA16F when the device cannot filter 32-bit floats),
-// SHADER_READ_ONLY_OPTIMAL, sampled through ctx->lut_sampler.
-rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t height, const float *rgba,
+// A lookup table from a C array of width*height*depth RGBA floats (x fastest, then y, then
+// z): an RGBA32F image, 3D when depth > 1 (RGBA16F when the device cannot filter 32-bit
+// floats), SHADER_READ_ONLY_OPTIMAL, sampled through ctx->lut_sampler.
+rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t depth, const float *rgba,
                               rtpbr_lut *out);
 void rtpbr_lut_destroy(rtpbr_context *ctx, rtpbr_lut *lut);
 // Every table of ctx->luts (luts.c): the shader library's tables, or placeholders.
