@@ -90,7 +90,7 @@ float sheen_E(float mu, float r) { return textureLod(lut_sheen_e, Sheen_TableCoo
 //     Kulla-Conty lobe, Burley diffuse + subsurface + sheen, GTR1 clearcoat 0.25 c.
 // Anisotropic lobes (alpha_t along the G-buffer's anisotropy direction, alpha_b across it):
 // the tables are looked up at sqrt(alpha_t alpha_b); the LTC pass stretches that isotropic
-// lobe by k = sqrt(alpha_t / alpha_b) along the direction (LTC_AnisotropicStretchInverse).
+// lobe by k = sqrt(alpha_t / alpha_b) along the direction (LTC_AnisotropicInverseMatrix).
 struct Surface {
     bool disney;
     DisneyMaterial dm;    // sanitised (Disney materials only)

@@ -376,11 +376,23 @@ RTPBR_FN float LTC_LobeEnd(LtcLobe lobe) {
     return min(abs(sum), 1.0f);
 }
 
-// A^-1 v for the anisotropic stretch A = k e1 e1^T + (1 / k) e2 e2^T + c c^T (see
-// LTC_AnisotropicStretchInverse below; A^-1 is symmetric).
+// Anisotropic lobes (ours, from the LTC construction of Heitz et al. 2016): an anisotropic
+// GGX lobe of alphas (at, ab) is approximated by the isotropic lobe of alpha = sqrt(at ab)
+// stretched about its centre c (the mirror direction) by k = sqrt(at / ab) along the
+// anisotropy direction and by 1 / k across it: the slope distribution of D_aniso is D_iso's
+// stretched so (GGX and Beckmann are stretch invariant), and near c directions follow slopes
+// linearly. As an LTC, M_aniso = A M_iso with A = k e1 e1^T + (1 / k) e2 e2^T + c c^T (e1 the
+// anisotropy direction made orthogonal to c, e2 = c x e1; det A = 1), so the polygon integral
+// is the isotropic LTC's over A^-1 P: the lobe's inverse matrix is M^-1 A^-1
+// (LTC_AnisotropicInverseMatrix), applied to polygons already clipped to the horizon, so only
+// directions above it count. c and e1 unit and orthogonal; k >= 1 when at >= ab (NaN or
+// <= 0: no stretch).
+//
+// A^-1 v for the anisotropic stretch A (A^-1 is symmetric).
 RTPBR_FN float3 LTC_AnisotropicUnstretch(float3 v, float3 c, float3 e1, float k) {
+    float kk = k > 0.0f ? k : 1.0f;
     float3 e2 = cross(c, e1);
-    return e1 * (dot(e1, v) / k) + e2 * (dot(e2, v) * k) + c * dot(c, v);
+    return e1 * (dot(e1, v) / kk) + e2 * (dot(e2, v) * kk) + c * dot(c, v);
 }
 
 // M^-1 A^-1: the inverse matrix of the isotropic LTC ltc1 stretched by A (rows of M^-1 times
@@ -395,11 +407,12 @@ RTPBR_FN float3x3 LTC_AnisotropicInverseMatrix(float4 ltc1, float3 c, float3 e1,
 // given by ltc1: the integral of the LTC distribution over the part of the polygon above the
 // surface's horizon. With ltc1 = LTC_Identity() it is the polygon's Lambertian form factor.
 // The streamed lobe integration over the stored polygon (fixed trip count: the compiler can
-// unroll it and index the array statically).
-RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, float4 ltc1) {
+// unroll it and index the array statically). LTC_IntegrateLocalMatrix takes any M^-1 (e.g.
+// LTC_AnisotropicInverseMatrix's).
+RTPBR_FN float LTC_IntegrateLocalMatrix(LtcLocalPolygon local, float3x3 minv) {
     if (local.count < 3)
         return 0.0f;
-    LtcLobe lobe = LTC_LobeBegin(LTC_InverseMatrix(ltc1));
+    LtcLobe lobe = LTC_LobeBegin(minv);
     for (int i = 0; i < RTPBR_LTC_CLIP_VERTICES; i++) {
         if (i < local.count) {
             float3 b = i + 1 < local.count ? local.v[i + 1] : local.v[0];
@@ -409,25 +422,8 @@ RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, float4 ltc1) {
     return LTC_LobeEnd(lobe);
 }
 
-// Anisotropic lobes (ours, from the LTC construction of Heitz et al. 2016): an anisotropic
-// GGX lobe of alphas (at, ab) is approximated by the isotropic lobe of alpha = sqrt(at ab)
-// stretched about its centre c (the mirror direction) by k = sqrt(at / ab) along the
-// anisotropy direction and by 1 / k across it: the slope distribution of D_aniso is D_iso's
-// stretched so (GGX and Beckmann are stretch invariant), and near c directions follow slopes
-// linearly. As an LTC, M_aniso = A M_iso with A = k e1 e1^T + (1 / k) e2 e2^T + c c^T (e1 the
-// anisotropy direction made orthogonal to c, e2 = c x e1; det A = 1), so the polygon integral
-// is the isotropic LTC's over A^-1 P. This applies A^-1 to a local polygon (from
-// LTC_PolygonToLocal, already clipped to the horizon, so only directions above it count).
-// c and e1 unit and orthogonal; k >= 1 when at >= ab (NaN or <= 0: no stretch).
-RTPBR_FN LtcLocalPolygon LTC_AnisotropicStretchInverse(LtcLocalPolygon p, float3 c, float3 e1, float k) {
-    float ik = k > 0.0f ? 1.0f / k : 1.0f;
-    float kk = k > 0.0f ? k : 1.0f;
-    float3 e2 = cross(c, e1);
-    for (int i = 0; i < RTPBR_LTC_CLIP_VERTICES; i++) {
-        float3 v = p.v[i];
-        p.v[i] = e1 * (dot(e1, v) * ik) + e2 * (dot(e2, v) * kk) + c * dot(c, v);
-    }
-    return p;
+RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, float4 ltc1) {
+    return LTC_IntegrateLocalMatrix(local, LTC_InverseMatrix(ltc1));
 }
 
 // The vector form factor (Arvo 1995) of an unclipped local polygon (from
