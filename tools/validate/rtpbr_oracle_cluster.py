@@ -125,6 +125,18 @@ def _identity(x):
     return x
 
 
+def upload_self(client):
+    """Sends this module to the scheduler and the workers, present and future (Dask's upload-file
+    plugins), so the tasks' functions import there; the name is the file's hash, so a second run
+    of the same code replaces the plugin instead of adding one."""
+    from distributed.diagnostics.plugin import SchedulerUploadFile, UploadFile
+    path = os.path.abspath(__file__)
+    with open(path, "rb") as f:
+        name = "rtpbr-oracle-cluster-" + hashlib.sha256(f.read()).hexdigest()[:16]
+    client.register_plugin(SchedulerUploadFile(path, load=True), name=name)
+    client.register_plugin(UploadFile(path, load=True), name=name)
+
+
 # ---- the task (runs on a worker) ----------------------------------------------------------------
 
 def _set_parent_death_signal():
@@ -191,6 +203,8 @@ def render_task(scene, oracle, oracle_hash, args, band, sample_range, threads, k
             if p.returncode < 0:
                 return {"error": "worker %s: rtpbr-oracle killed by signal %d" % (address, -p.returncode),
                         "permanent": False}
+            if isinstance(scene, dict):  # name the files as the client knows them
+                msg = msg.replace(scene_dir + os.sep, "\0")
             return {"error": msg, "permanent": True, "status": p.returncode}
         render_seconds = None
         for ln in p.stderr.splitlines():  # "rtpbr-oracle: WxH, N samples in S s (...)"
@@ -322,9 +336,8 @@ def render(client, scene_path, oracle, oracle_args, out_path, task_seconds=30.0,
     """Renders scene_path with `rtpbr-oracle scene -o out_path oracle_args` on the cluster
     behind client; returns the run's statistics (tasks, workers, retries, seconds, per-task
     overhead). Raises ClusterError with the oracle's message on a permanent failure."""
-    import cloudpickle
     import distributed
-    cloudpickle.register_pickle_by_value(sys.modules[__name__])
+    upload_self(client)
     say = progress or (lambda msg: None)
     name = name or os.path.splitext(os.path.basename(scene_path))[0]
     oracle_args = list(oracle_args)
@@ -376,7 +389,9 @@ def render(client, scene_path, oracle, oracle_args, out_path, task_seconds=30.0,
     def check(res, meta):
         if "error" in res:
             if res["permanent"]:
-                raise ClusterError("%s: %s" % (scene_path, res["error"]), 1)
+                # The oracle's own message, with the shipped scene's paths as the client's.
+                msg = res["error"].replace("\0", os.path.join(os.path.dirname(scene_path), ""))
+                raise ClusterError(msg if msg.startswith("rtpbr-oracle:") else "%s: %s" % (scene_path, msg), 1)
             return False
         stats["workers"].add(res["worker"])
         stats["task_seconds"].append(res["seconds"])
@@ -390,7 +405,7 @@ def render(client, scene_path, oracle, oracle_args, out_path, task_seconds=30.0,
         # The probe: samples [0, p) of the whole image. It is part of the image, and its speed
         # sizes the other tasks.
         probe_samples = max(1, spp // 64)
-        workers_now = len(client.scheduler_info().get("workers", {}))
+        workers_now = len(client.nthreads())
         say("%s: probe task (samples 0:%d of %d) on %d workers" % (name, probe_samples, spp, workers_now))
         while True:
             fut, meta = submit(None, (0, probe_samples), 0)
@@ -414,7 +429,7 @@ def render(client, scene_path, oracle, oracle_args, out_path, task_seconds=30.0,
             rs = probe["render_seconds"] or probe["seconds"]
             rate = width * height * probe_samples / max(rs, 1e-3)
             task_samples = int(rate * task_seconds)
-        workers_now = max(1, len(client.scheduler_info().get("workers", {})))
+        workers_now = max(1, len(client.nthreads()))
         pieces = plan(width, height, spp, probe_samples, task_samples, workers_now)
         total = len(pieces) + 1
         work_total = width * height * (spp - probe_samples)
@@ -466,7 +481,7 @@ def render(client, scene_path, oracle, oracle_args, out_path, task_seconds=30.0,
                 last_report = now
                 left = (now - t_plan) / max(work_done, 1) * (work_total - work_done)
                 say("%s: %d/%d tasks done, %d workers, %s left" % (name, stats["tasks"], total,
-                                                                   len(client.scheduler_info().get("workers", {})),
+                                                                   len(client.nthreads()),
                                                                    _fmt_seconds(left)))
         cmd = [oracle, "--merge"] + acc_files + ["-o", out_path]
         p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -576,4 +591,8 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    # Run as the module, not as __main__: the tasks' functions then travel by module name,
+    # the same way whether rtpbr-validate or this command line submits them.
+    sys.path.insert(0, HERE)
+    import rtpbr_oracle_cluster
+    sys.exit(rtpbr_oracle_cluster.main())
