@@ -55,6 +55,7 @@ ACC_MAGIC = b"RTPBRAC1"
 ACC_HEADER = "<8sIIQQQQ"  # a format, not a struct.Struct: tasks are pickled by value
 ACC_HEADER_SIZE = struct.calcsize(ACC_HEADER)
 TRANSIENT_RESUBMITS = 3
+WORKER_WAIT_SECONDS = float(os.environ.get("RTPBR_CLUSTER_WORKER_WAIT", "1800"))
 
 
 class ClusterError(Exception):
@@ -300,7 +301,9 @@ def connect(scheduler=None, local_workers=0, jobqueue=None, jobs=1, jobqueue_opt
                 raise ClusterError("--jobqueue-option: expected KEY=VALUE, got %r" % opt, 2)
             k, v = opt.split("=", 1)
             kwargs[k.replace("-", "_")] = _parse_value(v)
-        kwargs.setdefault("processes", 1)  # one worker per job: the oracle's threads use the job's cores
+        # One worker per job running one task at a time: the oracle's own threads use the job's cores.
+        kwargs.setdefault("processes", 1)
+        kwargs.setdefault("worker_extra_args", ["--nthreads", "1"])
         cluster = getattr(dask_jobqueue, kind)(**kwargs)
         cluster.scale(jobs=jobs)
         return distributed.Client(cluster), cluster
@@ -406,6 +409,13 @@ def render(client, scene_path, oracle, oracle_args, out_path, task_seconds=30.0,
         # sizes the other tasks.
         probe_samples = max(1, spp // 64)
         workers_now = len(client.nthreads())
+        if not workers_now:  # batch jobs may sit in the queue a while
+            say("%s: waiting up to %.0f s for a worker to join" % (name, WORKER_WAIT_SECONDS))
+            try:
+                client.wait_for_workers(1, timeout=WORKER_WAIT_SECONDS)
+            except TimeoutError:
+                raise ClusterError("no Dask worker joined within %.0f s" % WORKER_WAIT_SECONDS, 2)
+            workers_now = len(client.nthreads())
         say("%s: probe task (samples 0:%d of %d) on %d workers" % (name, probe_samples, spp, workers_now))
         while True:
             fut, meta = submit(None, (0, probe_samples), 0)
