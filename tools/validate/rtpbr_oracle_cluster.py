@@ -134,6 +134,8 @@ def upload_self(client):
     path = os.path.abspath(__file__)
     with open(path, "rb") as f:
         name = "rtpbr-oracle-cluster-" + hashlib.sha256(f.read()).hexdigest()[:16]
+    if client.run_on_scheduler(lambda dask_scheduler: name in dask_scheduler.plugins):
+        return
     client.register_plugin(SchedulerUploadFile(path, load=True), name=name)
     client.register_plugin(UploadFile(path, load=True), name=name)
 
