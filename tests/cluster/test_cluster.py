@@ -12,6 +12,8 @@ kill       one worker process is killed (SIGKILL) while its oracle runs: the run
            reports the rerun, leaves no orphan oracle, and the image is byte-identical.
 bad-scene  a scene whose buffer is cut short fails the run quickly with the oracle's own
            message (the one `rtpbr-oracle` prints in one process), each task started once.
+plan       (no cluster) the cut covers every (row, sample) after the probe exactly once, for
+           many image sizes, sample counts and task sizes, in bands of at least 16 rows.
 """
 import argparse
 import json
@@ -198,9 +200,36 @@ def test_bad_scene(build, oracle, tmp):
     print("bad scene: failed after %.1f s" % seconds)
 
 
+def test_plan(build, oracle, tmp):
+    sys.path.insert(0, os.path.dirname(CLUSTER_CLI))
+    import rtpbr_oracle_cluster as oc
+    import random
+    rng = random.Random(7)
+    bad = []
+    for _ in range(300):
+        w, h, spp = rng.randint(1, 400), rng.randint(1, 300), rng.randint(1, 600)
+        first = max(1, spp // 64)
+        task_samples, workers = rng.choice([1, 1000, 50000, 10 ** 9]), rng.randint(1, 8)
+        pieces = oc.plan(w, h, spp, first, task_samples, workers)
+        cover = {}
+        for (y0, y1), (a, b) in pieces:
+            for y in range(y0, y1):
+                cover.setdefault(y, []).append((a, b))
+        ok = spp == first and not pieces or all(sorted(cover.get(y, [])) and
+                                                 sorted(cover[y])[0][0] == first and sorted(cover[y])[-1][1] == spp and
+                                                 all(p[1] == q[0] for p, q in zip(sorted(cover[y]), sorted(cover[y])[1:]))
+                                                 for y in range(h))
+        ok = ok and all(y1 - y0 >= 16 or h < 32 for (y0, y1), _ in pieces)
+        if not ok:
+            bad.append((w, h, spp, task_samples, workers))
+    check(not bad, "plans cover rows x samples exactly once (failures: %s)" % bad[:3])
+    pieces = oc.plan(128, 96, 64, 1, 120000, 2)
+    check(len(pieces) == 12 and len({p[1] for p in pieces}) == 2, "128x96x63 at 120000 per task: 6 bands x 2 ranges")
+
+
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("test", choices=["equal", "kill", "bad-scene"])
+    ap.add_argument("test", choices=["equal", "kill", "bad-scene", "plan"])
     ap.add_argument("--build", required=True)
     args = ap.parse_args()
     oracle = os.path.join(args.build, "oracle", "rtpbr-oracle")
@@ -209,7 +238,8 @@ def main():
         return 1
     tmp = tempfile.mkdtemp(prefix="rtpbr-cluster-test-")
     try:
-        {"equal": test_equal, "kill": test_kill, "bad-scene": test_bad_scene}[args.test](args.build, oracle, tmp)
+        {"equal": test_equal, "kill": test_kill, "bad-scene": test_bad_scene,
+         "plan": test_plan}[args.test](args.build, oracle, tmp)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     if failures:
