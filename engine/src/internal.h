@@ -194,6 +194,7 @@ struct rtpbr_gpu_scene {
     rtpbr_draw *draws;
     uint32_t draw_count;
     uint32_t light_count;
+    uint32_t material_count;   // of the desc (the buffer has max(material_count, 1) slots)
     rtpbr_camera_desc *cameras;
     uint32_t camera_count;
 };
@@ -203,6 +204,29 @@ struct rtpbr_gpu_scene {
 
 enum { RTPBR_GBUFFER_COUNT = 4 };
 enum { RTPBR_VERTEX_FLOATS = 12 }; // float3 position, float3 normal, float2 uv, float4 tangent
+
+// GPU timestamps around the passes (timing.c): taken at the start and after each pass.
+typedef enum rtpbr_timestamp {
+    RTPBR_TIMESTAMP_START = 0,
+    RTPBR_TIMESTAMP_GBUFFER,
+    RTPBR_TIMESTAMP_LIGHTING,  // after the lighting pass (and the supersampling resolve)
+    RTPBR_TIMESTAMP_TONEMAP,
+    RTPBR_TIMESTAMP_COUNT
+} rtpbr_timestamp;
+
+typedef struct rtpbr_timing {
+    VkQueryPool pool;          // RTPBR_TIMESTAMP_COUNT timestamps; VK_NULL_HANDLE: timings off
+    float ns_per_tick;         // VkPhysicalDeviceLimits.timestampPeriod
+    uint64_t valid_mask;       // the queue family's timestampValidBits
+    bool recorded;             // a frame has written every timestamp
+} rtpbr_timing;
+
+struct rtpbr_renderer;
+rtpbr_result rtpbr_timing_create(struct rtpbr_renderer *r);
+void rtpbr_timing_destroy(struct rtpbr_renderer *r);
+// Records timestamp `which` (START also resets the pool: outside any render pass). No-op
+// when timings are off.
+void rtpbr_timing_mark(struct rtpbr_renderer *r, VkCommandBuffer cmd, rtpbr_timestamp which);
 
 struct rtpbr_renderer {
     rtpbr_context *context;
@@ -225,6 +249,7 @@ struct rtpbr_renderer {
     VkCommandBuffer cmd;
     VkFence fence;
     bool has_frame;            // rtpbr_render completed at least once
+    rtpbr_timing timing;       // GPU timestamps (rtpbr_renderer_desc.timings), else all zero
 };
 
 extern const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT];

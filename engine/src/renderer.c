@@ -162,6 +162,7 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
     RTPBR_VK(ctx, vkAllocateCommandBuffers(ctx->device, &cmd_info, &r->cmd));
     VkFenceCreateInfo fence_info = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     RTPBR_VK(ctx, vkCreateFence(ctx->device, &fence_info, NULL, &r->fence));
+    if (desc->timings) RTPBR_TRY(rtpbr_timing_create(r));
     *out = r;
     return RTPBR_SUCCESS;
 cleanup:
@@ -178,6 +179,7 @@ void rtpbr_renderer_destroy(rtpbr_renderer *r)
         vkDestroyFence(ctx->device, r->fence, NULL);
     }
     if (r->cmd) vkFreeCommandBuffers(ctx->device, ctx->command_pool, 1, &r->cmd);
+    rtpbr_timing_destroy(r);
     if (r->descriptor_pool) vkDestroyDescriptorPool(ctx->device, r->descriptor_pool, NULL);
     rtpbr_buffer_destroy(ctx, &r->frame);
     rtpbr_buffer_destroy(ctx, &r->tile_masks);
@@ -330,13 +332,17 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     };
     RTPBR_VK(ctx, vkResetCommandBuffer(cmd, 0));
     RTPBR_VK(ctx, vkBeginCommandBuffer(cmd, &begin));
+    rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_START);
     rtpbr_gbuffer_record(r, scene, cmd);
+    rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_GBUFFER);
     record_lighting(r, desc, lighting, cmd);
+    rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_LIGHTING);
     rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
     rtpbr_shader_tonemap params = tonemap_params(desc, RTPBR_ENCODE_NONE);
     rtpbr_tonemap_record(r, tonemap, &params, r->display.view, cmd);
+    rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_TONEMAP);
     rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                         VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -383,13 +389,17 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
                  target->format == VK_FORMAT_A2R10G10B10_UNORM_PACK32;
     VkImageLayout new_layout = target->new_layout ? target->new_layout : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     VkCommandBuffer cmd = target->command_buffer;
+    rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_START);
     rtpbr_gbuffer_record(r, scene, cmd);
+    rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_GBUFFER);
     record_lighting(r, desc, lighting, cmd);
+    rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_LIGHTING);
     rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, target->old_layout,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
     rtpbr_shader_tonemap params = tonemap_params(desc, unorm ? RTPBR_ENCODE_SRGB : RTPBR_ENCODE_NONE);
     rtpbr_tonemap_record(r, tonemap, &params, target->view, cmd);
+    rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_TONEMAP);
     if (new_layout != VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL)
         rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                             new_layout, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,

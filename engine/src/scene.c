@@ -240,6 +240,23 @@ static void normal_matrix(const float m[16], float out[12])
         for (int r = 0; r < 3; ++r) out[c * 4 + r] = inv[r * 4 + c];
 }
 
+// Points material slot m's descriptor set at its textures (0: the white stand-in).
+static void write_material_textures(rtpbr_gpu_scene *scene, uint32_t m, const uint32_t index[RTPBR_MATERIAL_TEXTURE_COUNT])
+{
+    rtpbr_context *ctx = scene->context;
+    VkDescriptorImageInfo images[RTPBR_MATERIAL_TEXTURE_COUNT];
+    VkWriteDescriptorSet writes[RTPBR_MATERIAL_TEXTURE_COUNT];
+    for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b) {
+        images[b] = (VkDescriptorImageInfo){ctx->texture_sampler, scene->textures[index[b]].view,
+                                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        writes[b] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                           .dstSet = scene->material_sets[m], .dstBinding = b, .descriptorCount = 1,
+                                           .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                           .pImageInfo = &images[b]};
+    }
+    vkUpdateDescriptorSets(ctx->device, RTPBR_MATERIAL_TEXTURE_COUNT, writes, 0, NULL);
+}
+
 // Uploads the textures (image 0 is a 1x1 white stand-in for "no texture", image i texture i)
 // and writes one descriptor set per material slot.
 static rtpbr_result create_textures(rtpbr_gpu_scene *scene, const rtpbr_gpu_scene_desc *desc, uint32_t material_slots)
@@ -289,18 +306,7 @@ static rtpbr_result create_textures(rtpbr_gpu_scene *scene, const rtpbr_gpu_scen
             index[RTPBR_BINDING_TEXTURE_EMISSION] = desc->materials[m].emission_texture;
             index[RTPBR_BINDING_TEXTURE_NORMAL] = desc->materials[m].normal_texture;
         }
-        VkDescriptorImageInfo images[RTPBR_MATERIAL_TEXTURE_COUNT];
-        VkWriteDescriptorSet writes[RTPBR_MATERIAL_TEXTURE_COUNT];
-        for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b) {
-            images[b] = (VkDescriptorImageInfo){ctx->texture_sampler, scene->textures[index[b]].view,
-                                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-            writes[b] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                                               .dstSet = scene->material_sets[m], .dstBinding = b,
-                                               .descriptorCount = 1,
-                                               .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                               .pImageInfo = &images[b]};
-        }
-        vkUpdateDescriptorSets(ctx->device, RTPBR_MATERIAL_TEXTURE_COUNT, writes, 0, NULL);
+        write_material_textures(scene, m, index);
     }
 cleanup:
     rtpbr_free(ctx, layouts);
@@ -423,6 +429,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         materials[0] = convert_material(&grey);
     }
     for (uint32_t i = 0; i < desc->material_count; ++i) materials[i] = convert_material(&desc->materials[i]);
+    scene->material_count = desc->material_count;
 
     RTPBR_TRY(create_textures(scene, desc, material_slots));
 
@@ -462,6 +469,61 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_free(ctx, scene->draws);
     rtpbr_free(ctx, scene->cameras);
     rtpbr_free(ctx, scene);
+}
+
+rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index, const rtpbr_material_desc *material)
+{
+    if (!scene) return RTPBR_ERROR_INVALID_ARGUMENT;
+    rtpbr_context *ctx = scene->context;
+    if (!material) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_material: material is NULL");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (index >= scene->material_count) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_material: material %u, the scene has %u", index,
+                  scene->material_count);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    rtpbr_result result = validate_material(ctx, material, index);
+    if (result != RTPBR_SUCCESS) return result;
+    uint32_t textures = scene->texture_count - 1; // the host's; image 0 is the white stand-in
+    uint32_t index_of[RTPBR_MATERIAL_TEXTURE_COUNT] = {0};
+    index_of[RTPBR_BINDING_TEXTURE_BASE_COLOR] = material->base_color_texture;
+    index_of[RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS] = material->metallic_roughness_texture;
+    index_of[RTPBR_BINDING_TEXTURE_EMISSION] = material->emission_texture;
+    index_of[RTPBR_BINDING_TEXTURE_NORMAL] = material->normal_texture;
+    for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b)
+        if (index_of[b] > textures) {
+            rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u refers to a texture past the scene's %u", index, textures);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+    ((rtpbr_shader_material *)scene->materials.mapped)[index] = convert_material(material);
+    write_material_textures(scene, index, index_of);
+    return RTPBR_SUCCESS;
+}
+
+rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh, const float transform[16])
+{
+    if (!scene) return RTPBR_ERROR_INVALID_ARGUMENT;
+    rtpbr_context *ctx = scene->context;
+    if (!transform) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: transform is NULL");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (mesh >= scene->draw_count) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: mesh %u, the scene has %u", mesh,
+                  scene->draw_count);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (!rtpbr_finite(transform, 16)) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: mesh %u: NaN or infinite transform", mesh);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    rtpbr_draw *draw = &scene->draws[mesh];
+    if (is_zero(transform, 16)) rtpbr_mat4_identity(draw->push.world_from_object);
+    else memcpy(draw->push.world_from_object, transform, sizeof draw->push.world_from_object);
+    normal_matrix(draw->push.world_from_object, draw->push.normal_matrix);
+    return RTPBR_SUCCESS;
 }
 
 uint32_t rtpbr_gpu_scene_camera_count(const rtpbr_gpu_scene *scene)

@@ -305,6 +305,20 @@ RTPBR_API uint32_t rtpbr_gpu_scene_light_count(const rtpbr_gpu_scene *scene);
 // called while a command buffer recorded with rtpbr_record for this scene is pending.
 RTPBR_API rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
                                                   uint32_t light_count);
+// Edits in place, without re-uploading geometry. Like rtpbr_gpu_scene_set_lights they write
+// host-visible memory the frames read: they must not be called while a command buffer
+// recorded with rtpbr_record for this scene is pending (rtpbr_render has always finished).
+// Replaces material `index` (< the desc's material_count) with *material, validated as by
+// rtpbr_gpu_scene_create (finite values, known model, ior, texture indices within the
+// scene's textures; textures may change). The desc is copied.
+RTPBR_API rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index,
+                                                    const rtpbr_material_desc *material);
+// Replaces the world-from-object transform (column-major, finite; all zero: identity) of
+// mesh `mesh` (< the desc's mesh_count, in the desc's order; for a glTF scene, the loader's
+// primitives in order, whose positions are already in world space, so their transform starts
+// as the identity). Lights do not follow: move them with rtpbr_gpu_scene_set_lights.
+RTPBR_API rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh,
+                                                     const float transform[16]);
 
 // ---------------------------------------------------------------------------------------------
 // Renderers and rendering
@@ -317,6 +331,10 @@ typedef struct rtpbr_renderer_desc {
     // becomes the pixel's coverage). 1..RTPBR_MAX_SUPERSAMPLE; zero: 1 (none). Costs s^2.
     // s width and s height must stay within RTPBR_MAX_RENDER_SIZE.
     uint32_t supersample;
+    // Non-zero: every frame writes GPU timestamps around its passes (a query pool of four
+    // timestamps), read with rtpbr_renderer_timings. Fails with RTPBR_ERROR_MISSING_FEATURE
+    // on a queue family without timestamps. Default: off (no queries recorded).
+    int timings;
 } rtpbr_renderer_desc;
 
 #define RTPBR_MAX_SUPERSAMPLE 4u
@@ -326,6 +344,22 @@ typedef struct rtpbr_renderer rtpbr_renderer;
 RTPBR_API rtpbr_result rtpbr_renderer_create(rtpbr_context *context, const rtpbr_renderer_desc *desc,
                                    rtpbr_renderer **out_renderer);
 RTPBR_API void rtpbr_renderer_destroy(rtpbr_renderer *renderer);
+
+// GPU time of each pass of the renderer's last frame, from its timestamps, in milliseconds.
+typedef struct rtpbr_timings {
+    int valid;          // 0: no frame has completed yet (the other fields are zero)
+    double gbuffer_ms;  // G-buffer pass
+    double lighting_ms; // lighting pass (LTC or Monte Carlo) with the supersampling resolve
+    double tonemap_ms;  // tone mapping into the display image or the host's target
+    double total_ms;    // the sum of the three
+} rtpbr_timings;
+
+// Reads the timestamps of the last frame recorded (rtpbr_render or rtpbr_record) without
+// waiting: when that frame has not finished executing, out->valid is 0. After rtpbr_render
+// the frame has always finished; after rtpbr_record, call it once the host's submission has
+// completed. The renderer must have been created with rtpbr_renderer_desc.timings set
+// (otherwise RTPBR_ERROR_INVALID_ARGUMENT).
+RTPBR_API rtpbr_result rtpbr_renderer_timings(rtpbr_renderer *renderer, rtpbr_timings *out);
 
 // Shader variants compiled at build time from the shader library's flags.
 typedef enum rtpbr_ndf {

@@ -1,0 +1,217 @@
+// Engine: in-place scene edits (rtpbr_gpu_scene_set_material, rtpbr_gpu_scene_set_transform)
+// and the renderer's GPU timings. An edited scene must render exactly as a scene created
+// from scratch with the edited values (the independent path: rtpbr_gpu_scene_create), and
+// bad edits are refused with a message and leave the scene as it was.
+#include <stdlib.h>
+
+#include "engine_test.h"
+
+#define W 64
+#define H 48
+
+typedef struct fixture {
+    test_log log;
+    rtpbr_context *ctx;
+    rtpbr_renderer *renderer;
+    float positions[2][12]; // a floor at z = 0 (material 0) and an emissive square (material 1)
+    rtpbr_mesh_desc meshes[2];
+    rtpbr_material_desc materials[2];
+    rtpbr_light_desc light;
+    rtpbr_camera_desc camera;
+} fixture;
+
+static void fixture_init(fixture *f)
+{
+    memset(f, 0, sizeof *f);
+    f->ctx = test_context(&f->log);
+    square_positions(2.0f, 0.0f, f->positions[0]);
+    square_positions(0.3f, 0.5f, f->positions[1]);
+    for (int i = 0; i < 2; ++i)
+        f->meshes[i] = (rtpbr_mesh_desc){.positions = f->positions[i], .indices = square_indices, .vertex_count = 4,
+                                         .index_count = 6, .material = (uint32_t)i};
+    f->materials[0] = (rtpbr_material_desc){.base_color = {0.8f, 0.6f, 0.4f}, .roughness = 0.5f};
+    f->materials[1] = (rtpbr_material_desc){.emission = {3.0f, 3.0f, 3.0f}, .roughness = 1.0f};
+    // The light faces the floor (-Z): clockwise seen from +Z.
+    const float v[4][3] = {{-0.3f, -0.3f, 1.0f}, {-0.3f, 0.3f, 1.0f}, {0.3f, 0.3f, 1.0f}, {0.3f, -0.3f, 1.0f}};
+    memcpy(f->light.vertices, v, sizeof v);
+    f->light.vertex_count = 4;
+    f->light.emission[0] = f->light.emission[1] = f->light.emission[2] = 5.0f;
+    f->camera = (rtpbr_camera_desc){.position = {0.0f, -2.5f, 3.0f}, .target = {0.0f, 0.0f, 0.0f}, .yfov = 0.9f};
+    rtpbr_renderer_desc rd = {.width = W, .height = H, .timings = 1};
+    assert_int_equal(rtpbr_renderer_create(f->ctx, &rd, &f->renderer), RTPBR_SUCCESS);
+}
+
+static void fixture_finish(fixture *f)
+{
+    rtpbr_renderer_destroy(f->renderer);
+    rtpbr_context_destroy(f->ctx);
+    assert_int_equal(f->log.validation, 0);
+}
+
+static rtpbr_gpu_scene *create_scene(fixture *f)
+{
+    rtpbr_gpu_scene_desc sd = {.meshes = f->meshes, .mesh_count = 2, .materials = f->materials, .material_count = 2,
+                               .lights = &f->light, .light_count = 1, .cameras = &f->camera, .camera_count = 1};
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_create(f->ctx, &sd, &scene), RTPBR_SUCCESS);
+    return scene;
+}
+
+static float *render(fixture *f, rtpbr_gpu_scene *scene)
+{
+    float *out = malloc(W * H * 16);
+    assert_non_null(out);
+    assert_int_equal(rtpbr_render(f->renderer, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(f->renderer, out, W * H * 16), RTPBR_SUCCESS);
+    return out;
+}
+
+static double max_difference(const float *a, const float *b)
+{
+    double d = 0.0;
+    for (int i = 0; i < W * H * 4; ++i) d = fmax(d, fabs((double)a[i] - b[i]));
+    return d;
+}
+
+// A material edit renders as a scene created with the edited material, and differs from the
+// unedited one (the test can fail both ways).
+static void set_material_matches_create(void **state)
+{
+    (void)state;
+    fixture f;
+    fixture_init(&f);
+    rtpbr_gpu_scene *edited = create_scene(&f);
+    float *before = render(&f, edited);
+    rtpbr_material_desc copper = {.base_color = {0.95f, 0.64f, 0.54f}, .metallic = 1.0f, .roughness = 0.2f,
+                                  .clearcoat = 0.5f, .sheen_color = {0.2f, 0.1f, 0.1f}, .sheen_roughness = 0.4f};
+    assert_int_equal(rtpbr_gpu_scene_set_material(edited, 0, &copper), RTPBR_SUCCESS);
+    float *after = render(&f, edited);
+    f.materials[0] = copper;
+    rtpbr_gpu_scene *fresh = create_scene(&f);
+    float *expected = render(&f, fresh);
+    assert_true(max_difference(before, expected) > 0.05);
+    assert_float_equal(max_difference(after, expected), 0.0, 0.0);
+    free(before), free(after), free(expected);
+    rtpbr_gpu_scene_destroy(edited);
+    rtpbr_gpu_scene_destroy(fresh);
+    fixture_finish(&f);
+}
+
+// Moving the emissive square by a transform renders as the square created at the moved
+// position (translation 0.4 along X and a 90-degree turn about Z, about its centre).
+static void set_transform_matches_create(void **state)
+{
+    (void)state;
+    fixture f;
+    fixture_init(&f);
+    rtpbr_gpu_scene *edited = create_scene(&f);
+    float *before = render(&f, edited);
+    // Column-major: rotation (x, y) -> (-y, x), then translation (0.4, 0, 0).
+    const float m[16] = {0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 0.4f, 0, 0, 1};
+    assert_int_equal(rtpbr_gpu_scene_set_transform(edited, 1, m), RTPBR_SUCCESS);
+    float *after = render(&f, edited);
+    for (int v = 0; v < 4; ++v) {
+        float x = f.positions[1][3 * v], y = f.positions[1][3 * v + 1];
+        f.positions[1][3 * v] = -y + 0.4f;
+        f.positions[1][3 * v + 1] = x;
+    }
+    rtpbr_gpu_scene *fresh = create_scene(&f);
+    float *expected = render(&f, fresh);
+    assert_true(max_difference(before, expected) > 1.0); // the emitter moved on screen
+    // The same triangles after a different (but exact) arithmetic path: equal up to rounding
+    // of the vertex positions, which may move a pixel centre across an edge.
+    int differing = 0;
+    for (int i = 0; i < W * H; ++i)
+        if (fabsf(after[4 * i] - expected[4 * i]) > 1e-4f) ++differing;
+    assert_true(differing <= 2);
+    // An all-zero transform is the identity: back to the first image.
+    const float zero[16] = {0};
+    assert_int_equal(rtpbr_gpu_scene_set_transform(edited, 1, zero), RTPBR_SUCCESS);
+    float *back = render(&f, edited);
+    assert_float_equal(max_difference(back, before), 0.0, 0.0);
+    free(before), free(after), free(expected), free(back);
+    rtpbr_gpu_scene_destroy(edited);
+    rtpbr_gpu_scene_destroy(fresh);
+    fixture_finish(&f);
+}
+
+// Bad edits: a message, an error, and the scene renders as before.
+static void bad_edits_are_refused(void **state)
+{
+    (void)state;
+    fixture f;
+    fixture_init(&f);
+    rtpbr_gpu_scene *scene = create_scene(&f);
+    float *before = render(&f, scene);
+    rtpbr_material_desc nan_material = f.materials[0];
+    nan_material.roughness = NAN;
+    rtpbr_material_desc bad_texture = f.materials[0];
+    bad_texture.base_color_texture = 1; // the scene has no textures
+    rtpbr_material_desc bad_ior = f.materials[0];
+    bad_ior.ior = 0.5f;
+    const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    float inf_transform[16];
+    memcpy(inf_transform, identity, sizeof identity);
+    inf_transform[12] = INFINITY;
+#define REFUSED(call, message)                                                              \
+    do {                                                                                    \
+        f.log.last_error[0] = '\0';                                                         \
+        assert_int_equal((call), RTPBR_ERROR_INVALID_ARGUMENT);                             \
+        if (!strstr(f.log.last_error, (message))) fail_msg("%s: \"%s\"", #call, f.log.last_error); \
+    } while (0)
+    REFUSED(rtpbr_gpu_scene_set_material(scene, 2, &f.materials[0]), "the scene has 2");
+    REFUSED(rtpbr_gpu_scene_set_material(scene, 0, NULL), "NULL");
+    REFUSED(rtpbr_gpu_scene_set_material(scene, 0, &nan_material), "NaN");
+    REFUSED(rtpbr_gpu_scene_set_material(scene, 0, &bad_texture), "texture");
+    REFUSED(rtpbr_gpu_scene_set_material(scene, 0, &bad_ior), "ior");
+    REFUSED(rtpbr_gpu_scene_set_transform(scene, 2, identity), "the scene has 2");
+    REFUSED(rtpbr_gpu_scene_set_transform(scene, 0, NULL), "NULL");
+    REFUSED(rtpbr_gpu_scene_set_transform(scene, 1, inf_transform), "infinite");
+#undef REFUSED
+    assert_int_equal(rtpbr_gpu_scene_set_material(NULL, 0, &f.materials[0]), RTPBR_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(rtpbr_gpu_scene_set_transform(NULL, 0, identity), RTPBR_ERROR_INVALID_ARGUMENT);
+    float *after = render(&f, scene);
+    assert_float_equal(max_difference(before, after), 0.0, 0.0);
+    free(before), free(after);
+    rtpbr_gpu_scene_destroy(scene);
+    fixture_finish(&f);
+}
+
+// Timings: positive per-pass times that add up, after a frame; refused without the flag.
+static void renderer_timings(void **state)
+{
+    (void)state;
+    fixture f;
+    fixture_init(&f);
+    rtpbr_timings t;
+    assert_int_equal(rtpbr_renderer_timings(f.renderer, &t), RTPBR_SUCCESS);
+    assert_int_equal(t.valid, 0); // no frame yet
+    rtpbr_gpu_scene *scene = create_scene(&f);
+    free(render(&f, scene));
+    assert_int_equal(rtpbr_renderer_timings(f.renderer, &t), RTPBR_SUCCESS);
+    assert_int_equal(t.valid, 1);
+    assert_true(t.gbuffer_ms > 0.0 && t.lighting_ms > 0.0 && t.tonemap_ms > 0.0);
+    assert_float_equal(t.total_ms, t.gbuffer_ms + t.lighting_ms + t.tonemap_ms, 1e-9);
+    assert_true(t.total_ms < 60000.0);
+    assert_int_equal(rtpbr_renderer_timings(f.renderer, NULL), RTPBR_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(rtpbr_renderer_timings(NULL, &t), RTPBR_ERROR_INVALID_ARGUMENT);
+    rtpbr_renderer *plain = NULL;
+    assert_int_equal(rtpbr_renderer_create(f.ctx, &(rtpbr_renderer_desc){.width = 8, .height = 8}, &plain),
+                     RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_renderer_timings(plain, &t), RTPBR_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(f.log.last_error, "without timings"));
+    rtpbr_renderer_destroy(plain);
+    rtpbr_gpu_scene_destroy(scene);
+    fixture_finish(&f);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(set_material_matches_create),
+        cmocka_unit_test(set_transform_matches_create),
+        cmocka_unit_test(bad_edits_are_refused),
+        cmocka_unit_test(renderer_timings),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
