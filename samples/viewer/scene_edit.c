@@ -6,6 +6,32 @@
 #include <stdlib.h>
 #include <string.h>
 
+static void mat4_identity(float m[16])
+{
+    memset(m, 0, 16 * sizeof(float));
+    m[0] = m[5] = m[10] = m[15] = 1.0f;
+}
+
+// m = a * m (column-major 4x4, affine).
+static void mat4_premultiply(float m[16], const float a[16])
+{
+    float r[16];
+    for (int c = 0; c < 4; ++c)
+        for (int row = 0; row < 4; ++row) {
+            float sum = 0.0f;
+            for (int k = 0; k < 4; ++k) sum += a[k * 4 + row] * m[c * 4 + k];
+            r[c * 4 + row] = sum;
+        }
+    memcpy(m, r, sizeof r);
+}
+
+// 1-based engine texture index of a loader texture index (0: none), as the engine maps it.
+static uint32_t texture_ref(const rtpbr_scene *loaded, int32_t index)
+{
+    if (index < 0 || (uint32_t)index >= loaded->texture_count || !loaded->textures[index].pixels) return 0;
+    return (uint32_t)index + 1;
+}
+
 bool viewer_scene_load(viewer_scene *s, const char *path)
 {
     memset(s, 0, sizeof *s);
@@ -27,7 +53,7 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         viewer_scene_destroy(s);
         return false;
     }
-    // The glTF mapping of docs/materials.md, restricted to what rtpbr_material_desc has.
+    // The glTF mapping of docs/materials.md, as rtpbr_gpu_scene_from_loaded does it.
     for (uint32_t i = 0; i < in->material_count; ++i) {
         const rtpbr_scene_material *m = &in->materials[i];
         rtpbr_material_desc *d = &s->materials[i];
@@ -35,10 +61,31 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         d->metallic = m->metallic;
         d->roughness = m->roughness;
         memcpy(d->emission, m->emission, sizeof d->emission);
-        d->ior = m->ior > 0.0f ? m->ior : 1.5f;
-        d->specular = m->specular_factor > 0.0f ? m->specular_factor : -1.0f;
+        d->ior = m->ior == 0.0f ? 1e6f : m->ior;
+        d->specular = m->specular_factor == 0.0f ? -1.0f : m->specular_factor;
         memcpy(d->specular_color, m->specular_color, sizeof d->specular_color);
         d->double_sided = m->double_sided;
+        d->base_color_texture = texture_ref(in, m->base_color_texture);
+        d->metallic_roughness_texture = texture_ref(in, m->metallic_roughness_texture);
+        d->emission_texture = texture_ref(in, m->emission_texture);
+        d->normal_texture = texture_ref(in, m->normal_texture);
+        d->normal_scale = m->normal_scale;
+        if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
+            d->specular = -1.0f; // a black specular colour removes the lobe
+        if (m->model == RTPBR_SCENE_MATERIAL_DISNEY) {
+            d->model = RTPBR_MATERIAL_DISNEY;
+            d->disney = (rtpbr_disney_params){.subsurface = m->subsurface,
+                .specular = m->specular == 0.0f ? -1.0f : m->specular, .specular_tint = m->specular_tint,
+                .sheen = m->sheen, .sheen_tint = m->sheen_tint, .clearcoat = m->clearcoat,
+                .clearcoat_gloss = m->clearcoat_gloss, .anisotropic = m->anisotropic};
+        } else {
+            d->clearcoat = m->clearcoat;
+            d->clearcoat_roughness = 1.0f - m->clearcoat_gloss;
+            d->anisotropy = m->anisotropic;
+            d->anisotropy_rotation = m->anisotropy_rotation;
+            memcpy(d->sheen_color, m->sheen_color, sizeof d->sheen_color);
+            d->sheen_roughness = m->sheen_roughness;
+        }
     }
     for (uint32_t i = 0; i < in->light_count; ++i) {
         const rtpbr_scene_light *l = &in->lights[i];
@@ -51,6 +98,7 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         v->two_sided = l->two_sided;
         v->material = l->material >= 0 && (uint32_t)l->material < in->material_count ? l->material : -1;
         if (l->primitive >= 0 && (uint32_t)l->primitive < in->primitive_count) s->primitive_is_light[l->primitive] = true;
+        mat4_identity(v->transform);
     }
     return true;
 }
@@ -64,9 +112,31 @@ void viewer_scene_destroy(viewer_scene *s)
     memset(s, 0, sizeof *s);
 }
 
-rtpbr_result viewer_scene_upload(const viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_scene **out)
+// Light i's surface: its source material (as the engine's loader path draws it) with the
+// edited emission, or a black emitter.
+static rtpbr_material_desc light_material(const viewer_scene *s, uint32_t i)
+{
+    const viewer_light *l = &s->lights[i];
+    rtpbr_material_desc m = {.roughness = 1.0f};
+    if (l->material >= 0) m = s->materials[l->material];
+    for (int c = 0; c < 3; ++c) m.emission[c] = l->color[c] * l->intensity;
+    m.double_sided = l->two_sided;
+    return m;
+}
+
+static void light_desc(const viewer_light *l, rtpbr_light_desc *d)
+{
+    memset(d, 0, sizeof *d);
+    memcpy(d->vertices, l->vertices, sizeof d->vertices);
+    d->vertex_count = l->vertex_count;
+    for (int c = 0; c < 3; ++c) d->emission[c] = l->color[c] * l->intensity;
+    d->two_sided = l->two_sided;
+}
+
+rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_scene **out)
 {
     const rtpbr_scene *in = s->loaded;
+    rtpbr_texture_desc *textures = calloc(in->texture_count ? in->texture_count : 1, sizeof *textures);
     uint32_t mesh_cap = in->primitive_count + s->light_count;
     rtpbr_mesh_desc *meshes = calloc(mesh_cap ? mesh_cap : 1, sizeof *meshes);
     rtpbr_material_desc *materials = calloc(s->material_count + s->light_count + 1, sizeof *materials);
@@ -76,30 +146,30 @@ rtpbr_result viewer_scene_upload(const viewer_scene *s, rtpbr_context *ctx, rtpb
     float *light_normals = calloc((size_t)s->light_count * RTPBR_MAX_POLYGON_VERTICES * 3 + 1, sizeof(float));
     uint32_t *light_indices = calloc((size_t)s->light_count * (RTPBR_MAX_POLYGON_VERTICES - 2) * 3 + 1, sizeof(uint32_t));
     rtpbr_result r = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-    if (!meshes || !materials || !lights || !light_positions || !light_normals || !light_indices) goto done;
+    if (!meshes || !materials || !lights || !light_positions || !light_normals || !light_indices || !textures)
+        goto done;
+    for (uint32_t i = 0; i < in->texture_count; ++i) {
+        const rtpbr_scene_texture *t = &in->textures[i];
+        textures[i] = t->pixels ? (rtpbr_texture_desc){.width = t->width, .height = t->height, .rgba = t->pixels,
+                                                      .srgb = t->srgb}
+                                : (rtpbr_texture_desc){.width = 1, .height = 1, .rgba = (const uint8_t *)"\xff\xff\xff\xff"};
+    }
     memcpy(materials, s->materials, s->material_count * sizeof *materials);
     uint32_t mesh_count = 0;
     for (uint32_t i = 0; i < in->primitive_count; ++i) {
         const rtpbr_scene_primitive *p = &in->primitives[i];
         if (s->primitive_is_light[i] || p->vertex_count == 0 || p->index_count == 0) continue;
         meshes[mesh_count++] = (rtpbr_mesh_desc){.positions = p->positions, .normals = p->normals,
-            .indices = p->indices, .vertex_count = p->vertex_count, .index_count = p->index_count,
-            .material = p->material};
+            .texcoords = p->texcoords, .tangents = p->has_tangents ? p->tangents : NULL, .indices = p->indices,
+            .vertex_count = p->vertex_count, .index_count = p->index_count, .material = p->material};
     }
+    s->light_mesh_base = mesh_count;
     for (uint32_t i = 0; i < s->light_count; ++i) {
-        const viewer_light *l = &s->lights[i];
-        rtpbr_light_desc *d = &lights[i];
-        memcpy(d->vertices, l->vertices, sizeof d->vertices);
-        d->vertex_count = l->vertex_count;
-        for (int c = 0; c < 3; ++c) d->emission[c] = l->color[c] * l->intensity;
-        d->two_sided = l->two_sided;
-        // The light's surface: its source material (as the engine's loader path draws it)
-        // with the edited emission, or a black emitter.
-        rtpbr_material_desc *m = &materials[s->material_count + i];
-        if (l->material >= 0) *m = s->materials[l->material];
-        else m->roughness = 1.0f;
-        memcpy(m->emission, d->emission, sizeof m->emission);
-        m->double_sided = l->two_sided;
+        viewer_light *l = &s->lights[i];
+        light_desc(l, &lights[i]);
+        materials[s->material_count + i] = light_material(s, i);
+        mat4_identity(l->transform);
+        l->reshaped = false;
         float *pos = light_positions + (size_t)i * RTPBR_MAX_POLYGON_VERTICES * 3;
         float *nrm = light_normals + (size_t)i * RTPBR_MAX_POLYGON_VERTICES * 3;
         uint32_t *idx = light_indices + (size_t)i * (RTPBR_MAX_POLYGON_VERTICES - 2) * 3;
@@ -120,9 +190,11 @@ rtpbr_result viewer_scene_upload(const viewer_scene *s, rtpbr_context *ctx, rtpb
     }
     // No cameras: the viewer always passes its orbit camera to rtpbr_record.
     rtpbr_gpu_scene_desc desc = {.meshes = meshes, .mesh_count = mesh_count, .materials = materials,
-        .material_count = s->material_count + s->light_count, .lights = lights, .light_count = s->light_count};
+        .material_count = s->material_count + s->light_count, .lights = lights, .light_count = s->light_count,
+        .textures = textures, .texture_count = in->texture_count};
     r = rtpbr_gpu_scene_create(ctx, &desc, out);
 done:
+    free(textures);
     free(meshes);
     free(materials);
     free(lights);
@@ -130,6 +202,79 @@ done:
     free(light_normals);
     free(light_indices);
     return r;
+}
+
+rtpbr_result viewer_scene_update_material(const viewer_scene *s, rtpbr_gpu_scene *gpu, uint32_t material)
+{
+    if (material >= s->material_count) return RTPBR_ERROR_INVALID_ARGUMENT;
+    rtpbr_result r = rtpbr_gpu_scene_set_material(gpu, material, &s->materials[material]);
+    // Lights drawn with this material as their surface follow it.
+    for (uint32_t i = 0; i < s->light_count && r == RTPBR_SUCCESS; ++i)
+        if (s->lights[i].material == (int32_t)material) r = viewer_scene_update_light(s, gpu, i);
+    return r;
+}
+
+rtpbr_result viewer_scene_update_light(const viewer_scene *s, rtpbr_gpu_scene *gpu, uint32_t light)
+{
+    if (light >= s->light_count) return RTPBR_ERROR_INVALID_ARGUMENT;
+    rtpbr_material_desc m = light_material(s, light);
+    rtpbr_result r = rtpbr_gpu_scene_set_material(gpu, s->material_count + light, &m);
+    if (r == RTPBR_SUCCESS) r = rtpbr_gpu_scene_set_transform(gpu, s->light_mesh_base + light, s->lights[light].transform);
+    if (r != RTPBR_SUCCESS) return r;
+    rtpbr_light_desc *lights = calloc(s->light_count, sizeof *lights); // set_lights replaces them all
+    if (!lights) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+    for (uint32_t i = 0; i < s->light_count; ++i) light_desc(&s->lights[i], &lights[i]);
+    r = rtpbr_gpu_scene_set_lights(gpu, lights, s->light_count);
+    free(lights);
+    return r;
+}
+
+bool viewer_scene_needs_upload(const viewer_scene *s)
+{
+    for (uint32_t i = 0; i < s->light_count; ++i)
+        if (s->lights[i].reshaped) return true;
+    return false;
+}
+
+// Möller-Trumbore; the hit distance or -1.
+static float ray_triangle(const float o[3], const float d[3], const float *a, const float *b, const float *c)
+{
+    float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    float p[3] = {d[1] * e2[2] - d[2] * e2[1], d[2] * e2[0] - d[0] * e2[2], d[0] * e2[1] - d[1] * e2[0]};
+    float det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
+    if (fabsf(det) < 1e-12f) return -1.0f;
+    float t0[3] = {o[0] - a[0], o[1] - a[1], o[2] - a[2]};
+    float u = (t0[0] * p[0] + t0[1] * p[1] + t0[2] * p[2]) / det;
+    if (u < 0.0f || u > 1.0f) return -1.0f;
+    float q[3] = {t0[1] * e1[2] - t0[2] * e1[1], t0[2] * e1[0] - t0[0] * e1[2], t0[0] * e1[1] - t0[1] * e1[0]};
+    float v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / det;
+    if (v < 0.0f || u + v > 1.0f) return -1.0f;
+    return (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
+}
+
+bool viewer_scene_pick(const viewer_scene *s, const float origin[3], const float dir[3], int32_t *light,
+                       int32_t *material)
+{
+    float best = INFINITY;
+    *light = *material = -1;
+    const rtpbr_scene *in = s->loaded;
+    for (uint32_t i = 0; i < in->primitive_count; ++i) {
+        const rtpbr_scene_primitive *p = &in->primitives[i];
+        if (s->primitive_is_light[i] || !p->indices) continue;
+        for (uint32_t k = 0; k + 2 < p->index_count; k += 3) {
+            float t = ray_triangle(origin, dir, p->positions + 3 * p->indices[k], p->positions + 3 * p->indices[k + 1],
+                                   p->positions + 3 * p->indices[k + 2]);
+            if (t > 0.0f && t < best) best = t, *material = (int32_t)p->material, *light = -1;
+        }
+    }
+    for (uint32_t i = 0; i < s->light_count; ++i) {
+        const viewer_light *l = &s->lights[i];
+        for (uint32_t k = 1; k + 1 < l->vertex_count; ++k) {
+            float t = ray_triangle(origin, dir, l->vertices[0], l->vertices[k], l->vertices[k + 1]);
+            if (t > 0.0f && t < best) best = t, *light = (int32_t)i, *material = -1;
+        }
+    }
+    return best < INFINITY;
 }
 
 void viewer_light_center(const viewer_light *l, float out[3])
@@ -157,6 +302,22 @@ void viewer_light_translate(viewer_light *l, const float d[3])
 {
     for (uint32_t v = 0; v < l->vertex_count; ++v)
         for (int c = 0; c < 3; ++c) l->vertices[v][c] += d[c];
+    float m[16];
+    mat4_identity(m);
+    memcpy(m + 12, d, 3 * sizeof(float));
+    mat4_premultiply(l->transform, m);
+}
+
+// transform = T(centre) A T(-centre) transform, for the 3x3 linear map A (row-major a[r][c]).
+static void compose_about(viewer_light *l, const float center[3], const float a[3][3])
+{
+    float m[16];
+    mat4_identity(m);
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) m[c * 4 + r] = a[r][c];
+        m[12 + r] = center[r] - (a[r][0] * center[0] + a[r][1] * center[1] + a[r][2] * center[2]);
+    }
+    mat4_premultiply(l->transform, m);
 }
 
 void viewer_light_rotate(viewer_light *l, int axis, float radians)
@@ -169,6 +330,10 @@ void viewer_light_rotate(viewer_light *l, int axis, float radians)
         l->vertices[v][a] = center[a] + cs * pa - sn * pb;
         l->vertices[v][b] = center[b] + sn * pa + cs * pb;
     }
+    float m[3][3] = {{0}};
+    m[axis][axis] = 1.0f;
+    m[a][a] = cs, m[a][b] = -sn, m[b][a] = sn, m[b][b] = cs;
+    compose_about(l, center, m);
 }
 
 void viewer_light_scale(viewer_light *l, float factor)
@@ -177,6 +342,8 @@ void viewer_light_scale(viewer_light *l, float factor)
     viewer_light_center(l, center);
     for (uint32_t v = 0; v < l->vertex_count; ++v)
         for (int c = 0; c < 3; ++c) l->vertices[v][c] = center[c] + factor * (l->vertices[v][c] - center[c]);
+    const float m[3][3] = {{factor, 0, 0}, {0, factor, 0}, {0, 0, factor}};
+    compose_about(l, center, m);
 }
 
 void viewer_light_set_vertex_count(viewer_light *l, uint32_t n)
@@ -203,4 +370,5 @@ void viewer_light_set_vertex_count(viewer_light *l, uint32_t n)
             l->vertices[v][c] = center[c] + radius * (cosf(angle) * t[c] + sinf(angle) * b[c]);
     }
     l->vertex_count = n;
+    l->reshaped = true;
 }

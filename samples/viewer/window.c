@@ -112,6 +112,17 @@ static bool create_device(viewer_window *w)
     VkSemaphoreCreateInfo sem = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     CHECK(vkCreateSemaphore(w->device, &sem, NULL, &w->acquired));
     CHECK(vkCreateSemaphore(w->device, &sem, NULL, &w->rendered));
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(w->physical_device, &props);
+    VkQueueFamilyProperties families[16];
+    uint32_t family_count = 16;
+    vkGetPhysicalDeviceQueueFamilyProperties(w->physical_device, &family_count, families);
+    if (families[w->queue_family].timestampValidBits >= 32 && props.limits.timestampPeriod > 0.0f) {
+        w->ns_per_tick = props.limits.timestampPeriod;
+        VkQueryPoolCreateInfo queries = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+                                         .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = 2};
+        CHECK(vkCreateQueryPool(w->device, &queries, NULL, &w->ui_queries));
+    }
     return true;
 }
 
@@ -247,6 +258,7 @@ void viewer_window_destroy(viewer_window *w)
         if (w->rendered) vkDestroySemaphore(w->device, w->rendered, NULL);
         if (w->fence) vkDestroyFence(w->device, w->fence, NULL);
         if (w->pool) vkDestroyCommandPool(w->device, w->pool, NULL);
+        if (w->ui_queries) vkDestroyQueryPool(w->device, w->ui_queries, NULL);
         vkDestroyDevice(w->device, NULL);
     }
     if (w->surface) vkDestroySurfaceKHR(w->instance, w->surface, NULL);
@@ -274,8 +286,8 @@ static void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from
                          1, &barrier);
 }
 
-bool viewer_window_frame(viewer_window *w, viewer_record_fn record, void *user, int split_x, bool screenshot,
-                         bool *out_of_date)
+bool viewer_window_frame(viewer_window *w, viewer_record_fn record, viewer_record_fn ui, void *user, int split_x,
+                         bool screenshot, bool *out_of_date)
 {
     *out_of_date = false;
     if (!w->swapchain) return true;
@@ -294,13 +306,20 @@ bool viewer_window_frame(viewer_window *w, viewer_record_fn record, void *user, 
                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     CHECK(vkBeginCommandBuffer(w->cmd, &begin));
     VkImage image = w->images[index];
-    if (!record(w->cmd, image, w->views[index], user)) return false;
+    if (!record(w->cmd, image, w->views[index], index, user)) return false;
     if (split_x >= 0 && (uint32_t)split_x < w->extent.width) {
         VkBufferImageCopy region = {.bufferOffset = (VkDeviceSize)split_x * 4, .bufferRowLength = w->extent.width,
             .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageOffset = {split_x, 0, 0},
             .imageExtent = {w->extent.width - (uint32_t)split_x, w->extent.height, 1}};
         vkCmdCopyBufferToImage(w->cmd, w->overlay, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     }
+    bool timed = ui && w->ui_queries;
+    if (timed) {
+        vkCmdResetQueryPool(w->cmd, w->ui_queries, 0, 2);
+        vkCmdWriteTimestamp(w->cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, w->ui_queries, 0);
+    }
+    if (ui && !ui(w->cmd, image, w->views[index], index, user)) return false;
+    if (timed) vkCmdWriteTimestamp(w->cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, w->ui_queries, 1);
     if (screenshot) {
         image_barrier(w->cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                       VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT);
@@ -331,6 +350,11 @@ bool viewer_window_frame(viewer_window *w, viewer_record_fn record, void *user, 
     // One frame in flight, and the present's semaphore wait finished before the next
     // acquire can return this semaphore's image: reuse is safe once the queue is idle.
     CHECK(vkQueueWaitIdle(w->queue));
+    uint64_t ticks[2];
+    w->ui_gpu_ms = 0.0;
+    if (timed && vkGetQueryPoolResults(w->device, w->ui_queries, 0, 2, sizeof ticks, ticks, sizeof ticks[0],
+                                       VK_QUERY_RESULT_64_BIT) == VK_SUCCESS)
+        w->ui_gpu_ms = (double)(ticks[1] - ticks[0]) * w->ns_per_tick * 1e-6;
     if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR || acquired == VK_SUBOPTIMAL_KHR)
         *out_of_date = true;
     else if (presented != VK_SUCCESS) {

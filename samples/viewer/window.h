@@ -39,6 +39,11 @@ typedef struct viewer_window {
     VkDeviceMemory readback_memory, overlay_memory;
     void *readback_mapped, *overlay_mapped;
 
+    // GPU time of the ui() pass of the last frame (two timestamps around it; 0 when none).
+    VkQueryPool ui_queries;
+    float ns_per_tick;
+    double ui_gpu_ms;
+
     uint32_t validation_messages;
 } viewer_window;
 
@@ -50,12 +55,14 @@ void viewer_window_destroy(viewer_window *w);
 bool viewer_window_resize(viewer_window *w);
 
 // One frame: acquire, let record() fill the command buffer for the acquired image, optionally
-// copy overlay rows into the right part of the image from column split_x on (split view),
-// optionally read the image back, submit, present, wait. record leaves the image in
-// TRANSFER_DST_OPTIMAL. Returns false on failure; *out_of_date asks for a resize.
-typedef bool (*viewer_record_fn)(VkCommandBuffer cmd, VkImage image, VkImageView view, void *user);
-bool viewer_window_frame(viewer_window *w, viewer_record_fn record, void *user, int split_x, bool screenshot,
-                         bool *out_of_date);
+// copy overlay rows into the image from column split_x on (split view; 0: the whole image,
+// e.g. the FLIP heat map), let ui() (if not NULL) draw over it, optionally read the image
+// back, submit, present, wait. record and ui leave the image in TRANSFER_DST_OPTIMAL.
+// Returns false on failure; *out_of_date asks for a resize.
+typedef bool (*viewer_record_fn)(VkCommandBuffer cmd, VkImage image, VkImageView view, uint32_t image_index,
+                                 void *user);
+bool viewer_window_frame(viewer_window *w, viewer_record_fn record, viewer_record_fn ui, void *user, int split_x,
+                         bool screenshot, bool *out_of_date);
 
 // The overlay buffer (extent.width * extent.height * 4 bytes, in the swapchain's byte order)
 // and whether the swapchain stores B, G, R, A.

@@ -1,6 +1,7 @@
 // The viewer's light edits (samples/viewer/scene_edit.c) against closed forms: a regular
-// n-gon's area, right-handed rotations, areas under scaling; and the loader-to-viewer mapping
-// of the bundled quad_light scene (numbers read from its glTF by hand).
+// n-gon's area, right-handed rotations, areas under scaling, the tracked transform that moves
+// the uploaded polygon in place; the loader-to-viewer mapping of the bundled quad_light and
+// showcase scenes (numbers read from scenes.json by hand); and picking by ray.
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -27,7 +28,8 @@ static double polygon_area(const viewer_light *l)
 // A 2 x 2 square at height 3 facing down (counter-clockwise seen from below).
 static viewer_light square(void)
 {
-    viewer_light l = {.vertex_count = 4, .color = {1, 1, 1}, .intensity = 1};
+    viewer_light l = {.vertex_count = 4, .color = {1, 1, 1}, .intensity = 1,
+                      .transform = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}};
     const float v[4][3] = {{1, 3, 1}, {-1, 3, 1}, {-1, 3, -1}, {1, 3, -1}};
     for (int i = 0; i < 4; ++i)
         for (int c = 0; c < 3; ++c) l.vertices[i][c] = v[i][c];
@@ -78,6 +80,31 @@ static void test_rotate_scale_translate(void **state)
     assert_float_equal(center[2], 2.0f, 1e-5f);
 }
 
+// The transform the edits compose (the light's emissive mesh is drawn with it instead of being
+// re-uploaded) maps the polygon as uploaded onto the edited polygon.
+static void test_tracked_transform(void **state)
+{
+    (void)state;
+    viewer_light l = square();
+    float uploaded[4][3];
+    for (int v = 0; v < 4; ++v)
+        for (int c = 0; c < 3; ++c) uploaded[v][c] = l.vertices[v][c];
+    viewer_light_rotate(&l, 0, 0.3f);
+    viewer_light_translate(&l, (const float[3]){0.25f, -0.5f, 1.0f});
+    viewer_light_scale(&l, 1.7f);
+    viewer_light_rotate(&l, 2, -1.1f);
+    viewer_light_rotate(&l, 1, 2.0f);
+    assert_false(l.reshaped);
+    for (int v = 0; v < 4; ++v)
+        for (int r = 0; r < 3; ++r) {
+            float x = l.transform[12 + r]; // column-major: m[col * 4 + row]
+            for (int c = 0; c < 3; ++c) x += l.transform[c * 4 + r] * uploaded[v][c];
+            assert_float_equal(x, l.vertices[v][r], 1e-5f);
+        }
+    viewer_light_set_vertex_count(&l, 6); // not affine: needs a new mesh
+    assert_true(l.reshaped);
+}
+
 static void test_load_quad_light(void **state)
 {
     (void)state;
@@ -99,12 +126,46 @@ static void test_load_quad_light(void **state)
     assert_false(viewer_scene_load(&s, RTPBR_SAMPLES_SCENES "/no_such_scene.gltf"));
 }
 
+// showcase (scenes.json): five lights, the KHR extensions mapped as the engine's loader path
+// maps them (clearcoat roughness = 1 - the loader's gloss), and rays from the camera picking
+// the copper sphere, the white quad light and nothing.
+static void test_showcase(void **state)
+{
+    (void)state;
+    viewer_scene s;
+    assert_true(viewer_scene_load(&s, RTPBR_SAMPLES_SCENES "/showcase.gltf"));
+    assert_int_equal(s.light_count, 5);
+    assert_int_equal(s.material_count, 12);
+    const rtpbr_material_desc *layered = &s.materials[3], *velvet = &s.materials[5], *steel = &s.materials[6];
+    assert_float_equal(layered->clearcoat, 1.0f, 1e-6f);
+    assert_float_equal(layered->clearcoat_roughness, 0.05f, 1e-6f);
+    assert_float_equal(layered->ior, 1.5f, 1e-6f);
+    assert_float_equal(velvet->sheen_color[1], 0.6f, 1e-6f);
+    assert_float_equal(velvet->sheen_roughness, 0.35f, 1e-6f);
+    assert_float_equal(steel->anisotropy, 0.8f, 1e-6f);
+    const float eye[3] = {0.0f, 1.5f, 6.5f};
+    const float to_copper[3] = {-1.725f - eye[0], 0.45f - eye[1], 0.0f - eye[2]}; // sphere 1 of 6, spacing 1.15
+    int32_t light, material;
+    assert_true(viewer_scene_pick(&s, eye, to_copper, &light, &material));
+    assert_int_equal(light, -1);
+    assert_int_equal(material, 2);
+    const float to_quad[3] = {-0.9f - eye[0], 1.8f - eye[1], -2.8f - eye[2]};
+    assert_true(viewer_scene_pick(&s, eye, to_quad, &light, &material));
+    assert_int_equal(material, -1);
+    assert_int_equal(s.lights[light].material, 9); // light_white
+    const float up[3] = {0.0f, 1.0f, -0.2f};
+    assert_false(viewer_scene_pick(&s, eye, up, &light, &material));
+    viewer_scene_destroy(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_vertex_count),
         cmocka_unit_test(test_rotate_scale_translate),
+        cmocka_unit_test(test_tracked_transform),
         cmocka_unit_test(test_load_quad_light),
+        cmocka_unit_test(test_showcase),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -71,7 +71,8 @@ static void test_split_view(void **state)
     run((char *[]){args[1], args[4], "-o", beckmann_png, "--width", size_w, "--height", size_h, "--ndf", "beckmann", NULL});
     run((char *[]){args[1], args[4], "-o", ggx_png, "--width", size_w, "--height", size_h, NULL});
     run((char *[]){args[3], "-a", "-s", "-screen 0 1024x768x24", args[2], args[4], "--reference", ref_exr,
-                   "--width", size_w, "--height", size_h, "--frames", "2", "--screenshot", shot, "--validation", NULL});
+                   "--width", size_w, "--height", size_h, "--frames", "2", "--screenshot", shot, "--validation", "--no-ui",
+                   NULL});
     unsigned char *ggx = load(ggx_png), *beckmann = load(beckmann_png), *viewer = load(shot);
     double left = differing(viewer, ggx, 0, W / 2), right = differing(viewer, beckmann, W / 2 + 1, W);
     double models = differing(ggx, beckmann, W / 2 + 1, W); // how much the check can see

@@ -1,0 +1,406 @@
+// The viewer's panels (see ui.h).
+#include "ui.h"
+
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_vulkan.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <new>
+
+struct viewer_ui {
+    VkDevice device = VK_NULL_HANDLE;
+    VkRenderPass pass = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkFramebuffer framebuffers[VIEWER_MAX_SWAPCHAIN_IMAGES] = {};
+    uint32_t framebuffer_count = 0;
+    VkExtent2D extent = {};
+    ImGuiContext *imgui = nullptr;
+    bool glfw_backend = false, vulkan_backend = false;
+};
+
+static bool check(VkResult r, const char *what)
+{
+    if (r != VK_SUCCESS) std::fprintf(stderr, "rtpbr-viewer: %s failed (VkResult %d)\n", what, r);
+    return r == VK_SUCCESS;
+}
+
+static void check_imgui(VkResult r)
+{
+    if (r != VK_SUCCESS) std::fprintf(stderr, "rtpbr-viewer: ImGui's Vulkan backend: VkResult %d\n", r);
+}
+
+// One subpass over the swapchain image, which stays in TRANSFER_DST_OPTIMAL before and after
+// (the engine's frame and the overlay copies leave it there; the screenshot copy and the
+// present barrier start from there).
+static bool create_pass(viewer_ui *ui, VkFormat format)
+{
+    VkAttachmentDescription colour = {};
+    colour.format = format;
+    colour.samples = VK_SAMPLE_COUNT_1_BIT;
+    colour.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    colour.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    colour.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    colour.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    colour.initialLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    colour.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    VkAttachmentReference ref = {0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription subpass = {};
+    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    subpass.colorAttachmentCount = 1;
+    subpass.pColorAttachments = &ref;
+    VkSubpassDependency deps[2] = {};
+    deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+    deps[0].dstSubpass = 0;
+    deps[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    deps[0].srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    deps[1].srcSubpass = 0;
+    deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+    deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    VkRenderPassCreateInfo info = {};
+    info.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+    info.attachmentCount = 1;
+    info.pAttachments = &colour;
+    info.subpassCount = 1;
+    info.pSubpasses = &subpass;
+    info.dependencyCount = 2;
+    info.pDependencies = deps;
+    return check(vkCreateRenderPass(ui->device, &info, nullptr, &ui->pass), "vkCreateRenderPass");
+}
+
+static void destroy_framebuffers(viewer_ui *ui)
+{
+    for (uint32_t i = 0; i < ui->framebuffer_count; ++i) vkDestroyFramebuffer(ui->device, ui->framebuffers[i], nullptr);
+    ui->framebuffer_count = 0;
+}
+
+bool viewer_ui_resize(viewer_ui *ui, viewer_window *w)
+{
+    destroy_framebuffers(ui);
+    ui->extent = w->extent;
+    for (uint32_t i = 0; i < w->image_count; ++i) {
+        VkFramebufferCreateInfo info = {};
+        info.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+        info.renderPass = ui->pass;
+        info.attachmentCount = 1;
+        info.pAttachments = &w->views[i];
+        info.width = w->extent.width;
+        info.height = w->extent.height;
+        info.layers = 1;
+        if (!check(vkCreateFramebuffer(ui->device, &info, nullptr, &ui->framebuffers[i]), "vkCreateFramebuffer"))
+            return false;
+        ui->framebuffer_count = i + 1;
+    }
+    return true;
+}
+
+// The font atlas, uploaded once with a command buffer of the window's pool.
+static bool upload_fonts(viewer_window *w)
+{
+    VkCommandBufferAllocateInfo alloc = {};
+    alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+    alloc.commandPool = w->pool;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VkCommandBuffer cmd;
+    if (!check(vkAllocateCommandBuffers(w->device, &alloc, &cmd), "vkAllocateCommandBuffers")) return false;
+    VkCommandBufferBeginInfo begin = {};
+    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    bool ok = check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer") && ImGui_ImplVulkan_CreateFontsTexture(cmd) &&
+              check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+    if (ok) {
+        VkSubmitInfo submit = {};
+        submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+        submit.commandBufferCount = 1;
+        submit.pCommandBuffers = &cmd;
+        ok = check(vkQueueSubmit(w->queue, 1, &submit, VK_NULL_HANDLE), "vkQueueSubmit") &&
+             check(vkQueueWaitIdle(w->queue), "vkQueueWaitIdle");
+    }
+    vkFreeCommandBuffers(w->device, w->pool, 1, &cmd);
+    ImGui_ImplVulkan_DestroyFontUploadObjects();
+    return ok;
+}
+
+bool viewer_ui_create(viewer_ui **out, viewer_window *w)
+{
+    *out = nullptr;
+    viewer_ui *ui = new (std::nothrow) viewer_ui;
+    if (!ui) return false;
+    ui->device = w->device;
+    IMGUI_CHECKVERSION();
+    ui->imgui = ImGui::CreateContext();
+    ImGuiIO &io = ImGui::GetIO();
+    io.IniFilename = nullptr; // no imgui.ini: every run starts with the same layout
+    ImGui::StyleColorsDark();
+    ImGui::GetStyle().Alpha = 0.92f;
+    VkDescriptorPoolSize size = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
+    VkDescriptorPoolCreateInfo pool = {};
+    pool.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+    pool.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+    pool.maxSets = 1;
+    pool.poolSizeCount = 1;
+    pool.pPoolSizes = &size;
+    bool ok = create_pass(ui, w->format) &&
+              check(vkCreateDescriptorPool(w->device, &pool, nullptr, &ui->pool), "vkCreateDescriptorPool");
+    if (ok) ok = ui->glfw_backend = ImGui_ImplGlfw_InitForVulkan(w->glfw, true); // chains to the app's callbacks
+    if (ok) {
+        ImGui_ImplVulkan_InitInfo info = {};
+        info.Instance = w->instance;
+        info.PhysicalDevice = w->physical_device;
+        info.Device = w->device;
+        info.QueueFamily = w->queue_family;
+        info.Queue = w->queue;
+        info.DescriptorPool = ui->pool;
+        info.MinImageCount = w->image_count < 2 ? 2 : w->image_count;
+        info.ImageCount = info.MinImageCount;
+        info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+        info.CheckVkResultFn = check_imgui;
+        ok = ui->vulkan_backend = ImGui_ImplVulkan_Init(&info, ui->pass);
+    }
+    ok = ok && upload_fonts(w) && viewer_ui_resize(ui, w);
+    if (!ok) {
+        std::fprintf(stderr, "rtpbr-viewer: cannot set up the Dear ImGui panels\n");
+        viewer_ui_destroy(ui);
+        return false;
+    }
+    *out = ui;
+    return true;
+}
+
+void viewer_ui_destroy(viewer_ui *ui)
+{
+    if (!ui) return;
+    destroy_framebuffers(ui);
+    if (ui->vulkan_backend) ImGui_ImplVulkan_Shutdown();
+    if (ui->glfw_backend) ImGui_ImplGlfw_Shutdown();
+    if (ui->imgui) ImGui::DestroyContext(ui->imgui);
+    if (ui->pool) vkDestroyDescriptorPool(ui->device, ui->pool, nullptr);
+    if (ui->pass) vkDestroyRenderPass(ui->device, ui->pass, nullptr);
+    delete ui;
+}
+
+bool viewer_ui_wants_mouse(const viewer_ui *ui) { return ui && ImGui::GetIO().WantCaptureMouse; }
+bool viewer_ui_wants_keyboard(const viewer_ui *ui) { return ui && ImGui::GetIO().WantCaptureKeyboard; }
+
+bool viewer_ui_record(viewer_ui *ui, VkCommandBuffer cmd, uint32_t image_index)
+{
+    if (image_index >= ui->framebuffer_count) return false;
+    VkRenderPassBeginInfo begin = {};
+    begin.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+    begin.renderPass = ui->pass;
+    begin.framebuffer = ui->framebuffers[image_index];
+    begin.renderArea.extent = ui->extent;
+    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
+    vkCmdEndRenderPass(cmd);
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Panels
+
+static void stats_panel(app *a)
+{
+    ImGui::Text("%s", rtpbr_context_device_name(a->ctx));
+    ImGui::Text("frame %.1f ms (%.1f fps)", a->frame_ms, a->frame_ms > 0.0 ? 1000.0 / a->frame_ms : 0.0);
+    if (a->timings.valid)
+        ImGui::Text("GPU: G-buffer %.2f, lighting %.2f, tone map %.2f ms", a->timings.gbuffer_ms,
+                    a->timings.lighting_ms, a->timings.tonemap_ms);
+    else
+        ImGui::TextDisabled("GPU timestamps: not available");
+    ImGui::Text("panels: %.2f ms CPU, %.2f ms GPU", a->ui_ms, a->win.ui_gpu_ms);
+    ImGui::Text("%u lights, %u materials, %ux%u", a->scene.light_count, a->scene.material_count, a->renderer_w,
+                a->renderer_h);
+    if (!a->flip) {
+        ImGui::TextDisabled("HDR-FLIP: no --reference");
+        return;
+    }
+    int rw, rh;
+    viewer_flip_size(a->flip, &rw, &rh);
+    if ((uint32_t)rw != a->renderer_w || (uint32_t)rh != a->renderer_h) {
+        ImGui::TextDisabled("HDR-FLIP: the reference is %dx%d, the view %ux%u", rw, rh, a->renderer_w, a->renderer_h);
+        return;
+    }
+    double mean;
+    bool busy;
+    uint64_t generation = viewer_flip_result(a->flip, &mean, &busy);
+    if (generation == 0) ImGui::Text("HDR-FLIP vs reference: computing...");
+    else
+        ImGui::Text("HDR-FLIP vs reference: %.4f%s", mean, generation != a->view_generation ? " (updating)" : "");
+}
+
+static void technique_panel(app *a)
+{
+    bool changed = false;
+    int pass = a->monte_carlo ? 1 : 0;
+    changed |= ImGui::RadioButton("LTC", &pass, 0);
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("Monte Carlo", &pass, 1);
+    a->monte_carlo = pass == 1;
+    if (a->monte_carlo) {
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(110.0f);
+        changed |= ImGui::SliderInt("samples", &a->mc_samples, 1, 256, "%d", ImGuiSliderFlags_Logarithmic);
+    }
+    bool kc = !a->multiscatter_off;
+    if (ImGui::Checkbox("Kulla-Conty", &kc)) a->multiscatter_off = !kc, changed = true;
+    ImGui::SameLine();
+    int ndf = a->ndf == RTPBR_NDF_BECKMANN_MODEL ? 1 : 0;
+    ImGui::SetNextItemWidth(110.0f);
+    if (ImGui::Combo("NDF", &ndf, "GGX\0Beckmann\0")) {
+        a->ndf = ndf ? RTPBR_NDF_BECKMANN_MODEL : RTPBR_NDF_GGX_MODEL;
+        changed = true;
+    }
+    ImGui::TextDisabled("LTC: exact clipping (sphere proxy: build flag)");
+    ImGui::SetNextItemWidth(150.0f);
+    if (ImGui::SliderFloat("exposure (EV)", &a->exposure, -8.0f, 8.0f, "%+.1f")) a->overlay_dirty = true, changed = true;
+    int op = a->tonemap == RTPBR_TONEMAP_DEFAULT ? 0 : (int)a->tonemap - 1;
+    ImGui::SetNextItemWidth(150.0f);
+    if (ImGui::Combo("tone map", &op, "ACES (Narkowicz)\0Reinhard\0linear (clamp)\0")) {
+        a->tonemap = (rtpbr_tonemap)(op + 1);
+        a->overlay_dirty = true;
+        changed = true;
+    }
+    if (a->reference) {
+        int overlay = (int)a->overlay;
+        bool flip_ok = a->flip != nullptr;
+        ImGui::Text("overlay:");
+        ImGui::SameLine();
+        bool pick = ImGui::RadioButton("none", &overlay, VIEWER_OVERLAY_NONE);
+        ImGui::SameLine();
+        pick |= ImGui::RadioButton("split", &overlay, VIEWER_OVERLAY_SPLIT);
+        if (flip_ok) {
+            ImGui::SameLine();
+            pick |= ImGui::RadioButton("FLIP heat map", &overlay, VIEWER_OVERLAY_HEATMAP);
+        }
+        if (pick) a->overlay = (viewer_overlay)overlay, a->overlay_dirty = true, a->flip_shown = 0;
+    }
+    if (changed) app_changed(a);
+}
+
+static void light_panel(app *a)
+{
+    viewer_scene *s = &a->scene;
+    if (s->light_count == 0) {
+        ImGui::TextDisabled("no polygonal lights");
+        return;
+    }
+    int index = (int)a->light;
+    ImGui::SetNextItemWidth(150.0f);
+    if (ImGui::SliderInt("light", &index, 0, (int)s->light_count - 1)) a->light = (uint32_t)index;
+    viewer_light *l = &s->lights[a->light];
+    bool edited = false;
+    int n = (int)l->vertex_count;
+    if (ImGui::SliderInt("vertices", &n, 3, (int)RTPBR_MAX_POLYGON_VERTICES)) {
+        viewer_light_set_vertex_count(l, (uint32_t)n);
+        edited = true;
+    }
+    float center[3], radius = 0.0f;
+    viewer_light_center(l, center);
+    for (uint32_t v = 0; v < l->vertex_count; ++v) {
+        float d[3] = {l->vertices[v][0] - center[0], l->vertices[v][1] - center[1], l->vertices[v][2] - center[2]};
+        radius += std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / (float)l->vertex_count;
+    }
+    float size = 2.0f * radius;
+    if (ImGui::DragFloat("size (m)", &size, 0.01f, 0.01f, 100.0f, "%.2f") && size > 0.0f && radius > 0.0f) {
+        viewer_light_scale(l, 0.5f * size / radius);
+        edited = true;
+    }
+    float position[3] = {center[0], center[1], center[2]};
+    if (ImGui::DragFloat3("position", position, 0.01f)) {
+        float d[3] = {position[0] - center[0], position[1] - center[1], position[2] - center[2]};
+        viewer_light_translate(l, d);
+        edited = true;
+    }
+    // Turns about the world axes through the centre: the drag's change in degrees.
+    float turn[3] = {0.0f, 0.0f, 0.0f};
+    if (ImGui::DragFloat3("turn (deg)", turn, 0.5f)) {
+        for (int axis = 0; axis < 3; ++axis)
+            if (turn[axis] != 0.0f) viewer_light_rotate(l, axis, turn[axis] * 0.0174532925f);
+        edited = true;
+    }
+    edited |= ImGui::ColorEdit3("colour", l->color, ImGuiColorEditFlags_Float);
+    edited |= ImGui::DragFloat("intensity", &l->intensity, 0.05f, 0.0f, 1e4f, "%.2f");
+    edited |= ImGui::Checkbox("two-sided", &l->two_sided);
+    if (edited) app_light_edited(a);
+}
+
+static void material_panel(app *a)
+{
+    viewer_scene *s = &a->scene;
+    if (s->material_count == 0) {
+        ImGui::TextDisabled("no materials");
+        return;
+    }
+    int index = (int)a->material;
+    ImGui::SetNextItemWidth(150.0f);
+    if (ImGui::SliderInt("material", &index, 0, (int)s->material_count - 1)) a->material = (uint32_t)index;
+    rtpbr_material_desc *m = &s->materials[a->material];
+    bool e = false;
+    e |= ImGui::ColorEdit3("base colour", m->base_color, ImGuiColorEditFlags_Float);
+    e |= ImGui::SliderFloat("metallic", &m->metallic, 0.0f, 1.0f);
+    e |= ImGui::SliderFloat("roughness", &m->roughness, 0.0f, 1.0f);
+    if (m->model == RTPBR_MATERIAL_DISNEY) {
+        ImGui::TextDisabled("Disney principled BRDF (Burley 2012)");
+        rtpbr_disney_params *d = &m->disney;
+        e |= ImGui::SliderFloat("subsurface", &d->subsurface, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("specular", &d->specular, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("specular tint", &d->specular_tint, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("sheen", &d->sheen, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("sheen tint", &d->sheen_tint, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("clearcoat", &d->clearcoat, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("clearcoat gloss", &d->clearcoat_gloss, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("anisotropic", &d->anisotropic, 0.0f, 1.0f);
+    } else {
+        ImGui::TextDisabled("glTF metallic-roughness + KHR_materials_*");
+        e |= ImGui::SliderFloat("ior", &m->ior, 1.0f, 3.0f);
+        e |= ImGui::SliderFloat("specular", &m->specular, 0.0f, 1.0f);
+        e |= ImGui::ColorEdit3("specular colour", m->specular_color, ImGuiColorEditFlags_Float);
+        e |= ImGui::SliderFloat("clearcoat", &m->clearcoat, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("clearcoat rough.", &m->clearcoat_roughness, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("anisotropy", &m->anisotropy, 0.0f, 1.0f);
+        e |= ImGui::SliderAngle("aniso. rotation", &m->anisotropy_rotation, -180.0f, 180.0f);
+        e |= ImGui::ColorEdit3("sheen colour", m->sheen_color, ImGuiColorEditFlags_Float);
+        e |= ImGui::SliderFloat("sheen roughness", &m->sheen_roughness, 0.0f, 1.0f);
+    }
+    if (ImGui::ColorEdit3("emission", m->emission, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) e = true;
+    if (e) app_material_edited(a);
+}
+
+void viewer_ui_build(viewer_ui *ui, app *a)
+{
+    (void)ui;
+    ImGui_ImplVulkan_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_Once);
+    ImGui::SetNextWindowSize(ImVec2(370.0f, 0.0f), ImGuiCond_Once);
+    ImGui::Begin("rtpbr viewer");
+    stats_panel(a);
+    if (ImGui::CollapsingHeader("Technique", ImGuiTreeNodeFlags_DefaultOpen)) technique_panel(a);
+    ImGui::TextDisabled("click: select a light or surface; H: keys");
+    ImGui::End();
+    // The selection on the right: the clicked light or material opens its own panel.
+    float width = ImGui::GetIO().DisplaySize.x;
+    ImGui::SetNextWindowPos(ImVec2(width - 308.0f, 8.0f), ImGuiCond_Once);
+    ImGui::SetNextWindowSize(ImVec2(300.0f, 0.0f), ImGuiCond_Once);
+    ImGui::Begin("selection");
+    ImGui::SetNextItemOpen(a->light_selected, ImGuiCond_Always);
+    bool open = ImGui::CollapsingHeader("Light");
+    if (ImGui::IsItemClicked()) a->light_selected = true; // one of the two panels is open
+    if (open) light_panel(a);
+    ImGui::SetNextItemOpen(!a->light_selected, ImGuiCond_Always);
+    open = ImGui::CollapsingHeader("Material");
+    if (ImGui::IsItemClicked()) a->light_selected = false;
+    if (open) material_panel(a);
+    ImGui::End();
+    ImGui::Render();
+}
