@@ -8,7 +8,7 @@ packages=(
   meson ninja-build pkg-config gcc g++ cmake
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools spirv-tools
-  libembree-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libembree-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libimgui-dev
   libopenimageio-dev openimageio-tools
   libcmocka-dev libglm-dev valgrind
   clang-14 libfuzzer-14-dev libclang-rt-14-dev
