@@ -140,7 +140,9 @@ bool viewer_ui_create(viewer_ui **out, viewer_window *w)
     ImGuiIO &io = ImGui::GetIO();
     io.IniFilename = nullptr; // no imgui.ini: every run starts with the same layout
     ImGui::StyleColorsDark();
-    ImGui::GetStyle().Alpha = 0.92f;
+    // See-through panels: the lights and reflections behind them stay visible.
+    ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 0.6f;
+    ImGui::GetStyle().Colors[ImGuiCol_FrameBg].w = 0.45f;
     VkDescriptorPoolSize size = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
     VkDescriptorPoolCreateInfo pool = {};
     pool.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
@@ -210,13 +212,15 @@ bool viewer_ui_record(viewer_ui *ui, VkCommandBuffer cmd, uint32_t image_index)
 static void stats_panel(app *a)
 {
     ImGui::Text("%s", rtpbr_context_device_name(a->ctx));
-    ImGui::Text("frame %.1f ms (%.1f fps)", a->frame_ms, a->frame_ms > 0.0 ? 1000.0 / a->frame_ms : 0.0);
-    if (a->timings.valid)
-        ImGui::Text("GPU: G-buffer %.2f, lighting %.2f, tone map %.2f ms", a->timings.gbuffer_ms,
-                    a->timings.lighting_ms, a->timings.tonemap_ms);
-    else
-        ImGui::TextDisabled("GPU timestamps: not available");
-    ImGui::Text("panels: %.2f ms CPU, %.2f ms GPU", a->ui_ms, a->win.ui_gpu_ms);
+    if (a->frame_ms > 0.0) ImGui::Text("frame %.1f ms (%.2f fps)", a->frame_ms, 1000.0 / a->frame_ms);
+    else ImGui::Text("frame: the first (it builds the pipelines)");
+    if (a->timings.valid) {
+        ImGui::Text("GPU: G-buffer %.1f ms, lighting %.1f ms", a->timings.gbuffer_ms, a->timings.lighting_ms);
+        ImGui::Text("     tone map %.1f ms; panels %.2f ms", a->timings.tonemap_ms, a->win.ui_gpu_ms);
+    } else {
+        ImGui::TextDisabled("GPU timestamps: not available on this queue");
+    }
+    ImGui::Text("panels: %.2f ms CPU to build", a->ui_ms);
     ImGui::Text("%u lights, %u materials, %ux%u", a->scene.light_count, a->scene.material_count, a->renderer_w,
                 a->renderer_h);
     if (!a->flip) {
@@ -245,26 +249,20 @@ static void technique_panel(app *a)
     ImGui::SameLine();
     changed |= ImGui::RadioButton("Monte Carlo", &pass, 1);
     a->monte_carlo = pass == 1;
-    if (a->monte_carlo) {
-        ImGui::SameLine();
-        ImGui::SetNextItemWidth(110.0f);
-        changed |= ImGui::SliderInt("samples", &a->mc_samples, 1, 256, "%d", ImGuiSliderFlags_Logarithmic);
-    }
+    if (a->monte_carlo)
+        changed |= ImGui::SliderInt("samples/px/light", &a->mc_samples, 1, 256, "%d", ImGuiSliderFlags_Logarithmic);
     bool kc = !a->multiscatter_off;
     if (ImGui::Checkbox("Kulla-Conty", &kc)) a->multiscatter_off = !kc, changed = true;
     ImGui::SameLine();
     int ndf = a->ndf == RTPBR_NDF_BECKMANN_MODEL ? 1 : 0;
-    ImGui::SetNextItemWidth(110.0f);
-    if (ImGui::Combo("NDF", &ndf, "GGX\0Beckmann\0")) {
+        if (ImGui::Combo("NDF", &ndf, "GGX\0Beckmann\0")) {
         a->ndf = ndf ? RTPBR_NDF_BECKMANN_MODEL : RTPBR_NDF_GGX_MODEL;
         changed = true;
     }
     ImGui::TextDisabled("LTC: exact clipping (sphere proxy: build flag)");
-    ImGui::SetNextItemWidth(150.0f);
-    if (ImGui::SliderFloat("exposure (EV)", &a->exposure, -8.0f, 8.0f, "%+.1f")) a->overlay_dirty = true, changed = true;
+        if (ImGui::SliderFloat("exposure (EV)", &a->exposure, -8.0f, 8.0f, "%+.1f")) a->overlay_dirty = true, changed = true;
     int op = a->tonemap == RTPBR_TONEMAP_DEFAULT ? 0 : (int)a->tonemap - 1;
-    ImGui::SetNextItemWidth(150.0f);
-    if (ImGui::Combo("tone map", &op, "ACES (Narkowicz)\0Reinhard\0linear (clamp)\0")) {
+        if (ImGui::Combo("tone map", &op, "ACES (Narkowicz)\0Reinhard\0linear (clamp)\0")) {
         a->tonemap = (rtpbr_tonemap)(op + 1);
         a->overlay_dirty = true;
         changed = true;
@@ -294,8 +292,7 @@ static void light_panel(app *a)
         return;
     }
     int index = (int)a->light;
-    ImGui::SetNextItemWidth(150.0f);
-    if (ImGui::SliderInt("light", &index, 0, (int)s->light_count - 1)) a->light = (uint32_t)index;
+        if (ImGui::SliderInt("light", &index, 0, (int)s->light_count - 1)) a->light = (uint32_t)index;
     viewer_light *l = &s->lights[a->light];
     bool edited = false;
     int n = (int)l->vertex_count;
@@ -341,8 +338,7 @@ static void material_panel(app *a)
         return;
     }
     int index = (int)a->material;
-    ImGui::SetNextItemWidth(150.0f);
-    if (ImGui::SliderInt("material", &index, 0, (int)s->material_count - 1)) a->material = (uint32_t)index;
+        if (ImGui::SliderInt("material", &index, 0, (int)s->material_count - 1)) a->material = (uint32_t)index;
     rtpbr_material_desc *m = &s->materials[a->material];
     bool e = false;
     e |= ImGui::ColorEdit3("base colour", m->base_color, ImGuiColorEditFlags_Float);
@@ -383,16 +379,19 @@ void viewer_ui_build(viewer_ui *ui, app *a)
     ImGui::NewFrame();
     ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_Once);
     ImGui::SetNextWindowSize(ImVec2(370.0f, 0.0f), ImGuiCond_Once);
-    ImGui::Begin("rtpbr viewer");
+    ImGui::Begin("rtpbr viewer", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::PushItemWidth(200.0f); // fixed: the windows size themselves to their content
     stats_panel(a);
     if (ImGui::CollapsingHeader("Technique", ImGuiTreeNodeFlags_DefaultOpen)) technique_panel(a);
     ImGui::TextDisabled("click: select a light or surface; H: keys");
+    ImGui::PopItemWidth();
     ImGui::End();
     // The selection on the right: the clicked light or material opens its own panel.
     float width = ImGui::GetIO().DisplaySize.x;
     ImGui::SetNextWindowPos(ImVec2(width - 308.0f, 8.0f), ImGuiCond_Once);
     ImGui::SetNextWindowSize(ImVec2(300.0f, 0.0f), ImGuiCond_Once);
-    ImGui::Begin("selection");
+    ImGui::Begin("selection", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::PushItemWidth(170.0f);
     ImGui::SetNextItemOpen(a->light_selected, ImGuiCond_Always);
     bool open = ImGui::CollapsingHeader("Light");
     if (ImGui::IsItemClicked()) a->light_selected = true; // one of the two panels is open
@@ -401,6 +400,7 @@ void viewer_ui_build(viewer_ui *ui, app *a)
     open = ImGui::CollapsingHeader("Material");
     if (ImGui::IsItemClicked()) a->light_selected = false;
     if (open) material_panel(a);
+    ImGui::PopItemWidth();
     ImGui::End();
     ImGui::Render();
 }
