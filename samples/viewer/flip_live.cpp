@@ -30,13 +30,12 @@ struct viewer_flip {
     double result_mean = 0.0;
 };
 
-static bool rgb_of(const float *rgba, int w, int h, std::vector<float> &rgb)
+static void rgb_of(const float *rgba, int w, int h, std::vector<float> &rgb)
 {
     size_t n = static_cast<size_t>(w) * h;
     rgb.resize(3 * n);
     for (size_t i = 0; i < n; ++i)
         for (int c = 0; c < 3; ++c) rgb[3 * i + c] = rgba[4 * i + c];
-    return true;
 }
 
 static void run_worker(viewer_flip *f)
