@@ -604,10 +604,15 @@ int main(int argc, char **argv)
         outputs_ok = rtpbr_read_radiance(a->renderer, radiance, bytes) == RTPBR_SUCCESS;
         if (outputs_ok && radiance_path)
             outputs_ok = viewer_write_radiance(radiance_path, radiance, (int)a->renderer_w, (int)a->renderer_h);
-        if (outputs_ok && a->flip) {
-            double mean = viewer_flip_mean_now(a->flip, radiance, (int)a->renderer_w, (int)a->renderer_h);
+        int rw = 0, rh = 0;
+        if (a->flip) viewer_flip_size(a->flip, &rw, &rh);
+        if (outputs_ok && a->flip && (uint32_t)rw == a->renderer_w && (uint32_t)rh == a->renderer_h) {
+            double mean = viewer_flip_mean_now(a->flip, radiance, rw, rh);
             if (mean >= 0.0) printf("rtpbr-viewer: HDR-FLIP mean %.6f against %s\n", mean, reference_path);
             else outputs_ok = false;
+        } else if (a->flip) {
+            printf("rtpbr-viewer: no HDR-FLIP: the reference is %dx%d, the view %ux%u\n", rw, rh, a->renderer_w,
+                   a->renderer_h);
         }
     }
     status = (screenshot_path && !screenshot_written) || a->engine_errors || !outputs_ok ? 1 : 0;
