@@ -349,7 +349,7 @@ RTPBR_API void rtpbr_renderer_destroy(rtpbr_renderer *renderer);
 typedef struct rtpbr_timings {
     int valid;          // 0: no frame has completed yet (the other fields are zero)
     double gbuffer_ms;  // G-buffer pass
-    double lighting_ms; // lighting pass (LTC or Monte Carlo) with the supersampling resolve
+    double lighting_ms; // lighting: the tile cull and the LTC (or Monte Carlo) pass, with the resolve
     double tonemap_ms;  // tone mapping into the display image or the host's target
     double total_ms;    // the sum of the three
 } rtpbr_timings;
