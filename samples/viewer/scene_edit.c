@@ -150,9 +150,10 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
         goto done;
     for (uint32_t i = 0; i < in->texture_count; ++i) {
         const rtpbr_scene_texture *t = &in->textures[i];
+        static const uint8_t white[4] = {255, 255, 255, 255}; // never sampled (no material refers to it)
         textures[i] = t->pixels ? (rtpbr_texture_desc){.width = t->width, .height = t->height, .rgba = t->pixels,
                                                       .srgb = t->srgb}
-                                : (rtpbr_texture_desc){.width = 1, .height = 1, .rgba = (const uint8_t *)"\xff\xff\xff\xff"};
+                                : (rtpbr_texture_desc){.width = 1, .height = 1, .rgba = white};
     }
     memcpy(materials, s->materials, s->material_count * sizeof *materials);
     uint32_t mesh_count = 0;
@@ -219,7 +220,8 @@ rtpbr_result viewer_scene_update_light(const viewer_scene *s, rtpbr_gpu_scene *g
     if (light >= s->light_count) return RTPBR_ERROR_INVALID_ARGUMENT;
     rtpbr_material_desc m = light_material(s, light);
     rtpbr_result r = rtpbr_gpu_scene_set_material(gpu, s->material_count + light, &m);
-    if (r == RTPBR_SUCCESS) r = rtpbr_gpu_scene_set_transform(gpu, s->light_mesh_base + light, s->lights[light].transform);
+    if (r == RTPBR_SUCCESS)
+        r = rtpbr_gpu_scene_set_transform(gpu, s->light_mesh_base + light, s->lights[light].transform);
     if (r != RTPBR_SUCCESS) return r;
     rtpbr_light_desc *lights = calloc(s->light_count, sizeof *lights); // set_lights replaces them all
     if (!lights) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;

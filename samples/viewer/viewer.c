@@ -229,7 +229,8 @@ static void handle_key(app *a, int key)
         break;
     case GLFW_KEY_T: if (l) l->two_sided = !l->two_sided, app_light_edited(a); break;
     case GLFW_KEY_M:
-        if (a->scene.material_count) a->material = (a->material + 1) % a->scene.material_count, a->light_selected = false;
+        if (a->scene.material_count)
+            a->material = (a->material + 1) % a->scene.material_count, a->light_selected = false;
         break;
     case GLFW_KEY_7: case GLFW_KEY_8:
         if (m) m->roughness = fminf(1.0f, fmaxf(0.0f, m->roughness + (key == GLFW_KEY_8 ? 0.05f : -0.05f)));
@@ -559,8 +560,10 @@ int main(int argc, char **argv)
             if (!sync_engine(a)) goto done; // the panels' edits, before the frame records
         }
         bool out_of_date = false;
-        int split_x = a->overlay == VIEWER_OVERLAY_SPLIT ? (int)(a->win.extent.width / 2)
-                                                         : (a->overlay == VIEWER_OVERLAY_HEATMAP ? 0 : -1);
+        // The heat map covers the view once there is an error map (until then: the scene).
+        int split_x = -1;
+        if (a->overlay == VIEWER_OVERLAY_SPLIT) split_x = (int)(a->win.extent.width / 2);
+        else if (a->overlay == VIEWER_OVERLAY_HEATMAP && a->flip_shown) split_x = 0;
         if (!viewer_window_frame(&a->win, record_frame, draw_ui ? record_ui : NULL, a, split_x, shot, &out_of_date))
             goto done;
         if (out_of_date) { // the image may not have been shown: resize and draw the frame again
