@@ -209,7 +209,7 @@ enum { RTPBR_VERTEX_FLOATS = 12 }; // float3 position, float3 normal, float2 uv,
 typedef enum rtpbr_timestamp {
     RTPBR_TIMESTAMP_START = 0,
     RTPBR_TIMESTAMP_GBUFFER,
-    RTPBR_TIMESTAMP_LIGHTING,  // after the lighting pass (and the supersampling resolve)
+    RTPBR_TIMESTAMP_LIGHTING,  // after the tile cull, the lighting pass and the supersampling resolve
     RTPBR_TIMESTAMP_TONEMAP,
     RTPBR_TIMESTAMP_COUNT
 } rtpbr_timestamp;
