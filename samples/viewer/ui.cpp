@@ -387,8 +387,10 @@ void viewer_ui_build(viewer_ui *ui, app *a)
     ImGui::PopItemWidth();
     ImGui::End();
     // The selection on the right: the clicked light or material opens its own panel.
+    // In a window too narrow for both (the default is 960 pixels) it starts collapsed.
     float width = ImGui::GetIO().DisplaySize.x;
     ImGui::SetNextWindowPos(ImVec2(width - 308.0f, 8.0f), ImGuiCond_Once);
+    ImGui::SetNextWindowCollapsed(width < 700.0f, ImGuiCond_Once);
     ImGui::SetNextWindowSize(ImVec2(300.0f, 0.0f), ImGuiCond_Once);
     ImGui::Begin("selection", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
     ImGui::PushItemWidth(170.0f);
