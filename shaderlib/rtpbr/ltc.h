@@ -190,9 +190,9 @@ RTPBR_FN LtcLocalPolygon LTC_PolygonRelative(float3x3 frame, float3 P, LtcPolygo
     float3 p0 = poly.v[0];
     float3 normal = RTPBR_F3(0.0f); // Newell's normal, from edges relative to p0 (precision)
     float extent2 = 0.0f;
-    for (int i = 1; i + 1 < poly.count; i++) {
-        float3 e1 = poly.v[i] - p0;
-        float3 e2 = poly.v[i + 1] - p0;
+    for (int e = 1; e + 1 < poly.count; e++) {
+        float3 e1 = poly.v[e] - p0;
+        float3 e2 = poly.v[e + 1] - p0;
         normal += cross(e1, e2);
         extent2 = max(extent2, max(dot(e1, e1), dot(e2, e2)));
     }
