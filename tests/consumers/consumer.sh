@@ -3,9 +3,10 @@
 #   consumer.sh KIND SRC BUILD PREFIX LIBDIR
 # KIND pkgconfig | cmake | shaders: a fresh DESTDIR install of BUILD into a temporary directory,
 #   then the README's "Install and use" snippets for KIND, run verbatim in a temporary
-#   directory holding host.c / host.frag / host.hlsl, with the environment pointing at the
+#   directory holding host.c / shade.cpp / host.frag / host.hlsl, with the environment pointing at the
 #   staged prefix (PKG_CONFIG_PATH + PKG_CONFIG_SYSROOT_DIR, CMAKE_PREFIX_PATH, LD_LIBRARY_PATH).
 # KIND meson: the same without an install; RTPBR_SRC = SRC (its committed HEAD is cloned).
+# KIND programs: the installed programs of a validation run work from the staged prefix.
 # KIND slang: the installed headers through a second HLSL compiler, Slang's slangc (installed
 #   by scripts/setup.sh into .deps/); exit 77 (skipped) when it is not there.
 set -euo pipefail
@@ -14,7 +15,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/rtpbr-consumer-$kind.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 mkdir "$tmp/work"
-cp "$here/host.c" "$here/host.frag" "$here/host.hlsl" "$tmp/work/"
+cp "$here/host.c" "$here/shade.cpp" "$here/host.frag" "$here/host.hlsl" "$tmp/work/"
 
 if [[ $kind != meson ]]; then
   meson install -C "$build" --no-rebuild --quiet --destdir "$tmp/dest" >/dev/null
@@ -22,6 +23,31 @@ if [[ $kind != meson ]]; then
   export PKG_CONFIG_PATH="$staged/$libdir/pkgconfig" PKG_CONFIG_SYSROOT_DIR="$tmp/dest"
   export CMAKE_PREFIX_PATH="$staged" LD_LIBRARY_PATH="$staged/$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
   echo "consumer $kind: installed into $staged ($(du -sh "$staged" | cut -f1))"
+fi
+
+if [[ $kind == programs ]]; then
+  # The installed programs of a validation run, from the staged prefix alone: each answers
+  # --help; rtpbr-render renders an installed scene; rtpbr-validate finds the programs, its
+  # thresholds and the scenes (an unknown scene name stops it right after those checks).
+  cd "$tmp/work"
+  for p in rtpbr-render rtpbr-oracle rtpbr-diff rtpbr-validate; do
+    "$staged/bin/$p" --help >/dev/null
+  done
+  "$staged/bin/rtpbr-render" "$staged/share/rtpbr/samples/scenes/quad_light.gltf" -o quad.png \
+    --width 32 --height 24 --validation
+  [[ -s quad.png ]]
+  if "$staged/bin/rtpbr-validate" --scenes no_such_scene >validate.log 2>&1 ||
+     ! grep -q "unknown scene 'no_such_scene' (thresholds.json lists quad_light" validate.log; then
+    cat validate.log
+    echo "consumer programs: the installed rtpbr-validate did not find its programs, thresholds or scenes"
+    exit 1
+  fi
+  for scene in $(python3 -c 'import json, sys; print(" ".join(json.load(open(sys.argv[1]))["scenes"]))' \
+                 "$staged/share/rtpbr/tools/validate/thresholds.json"); do
+    [[ -f "$staged/share/rtpbr/samples/scenes/$scene.gltf" ]]
+  done
+  echo "consumer programs: ok"
+  exit 0
 fi
 
 if [[ $kind == slang ]]; then
