@@ -7,6 +7,7 @@
 #   staged prefix (PKG_CONFIG_PATH + PKG_CONFIG_SYSROOT_DIR, CMAKE_PREFIX_PATH, LD_LIBRARY_PATH).
 # KIND meson: the same without an install; RTPBR_SRC = SRC (its committed HEAD is cloned).
 # KIND programs: the installed programs of a validation run work from the staged prefix.
+# KIND tables: the installed raw tables agree with the installed EXR images (check_tables.py).
 # KIND slang: the installed headers through a second HLSL compiler, Slang's slangc (installed
 #   by scripts/setup.sh into .deps/); exit 77 (skipped) when it is not there.
 set -euo pipefail
@@ -48,6 +49,12 @@ if [[ $kind == programs ]]; then
   done
   echo "consumer programs: ok"
   exit 0
+fi
+
+if [[ $kind == tables ]]; then
+  # The installed raw tables against the installed EXR images (check_tables.py).
+  python3 "$here/check_tables.py" "$staged/share/rtpbr/luts" "$(command -v oiiotool)"
+  exit
 fi
 
 if [[ $kind == slang ]]; then
