@@ -2,7 +2,11 @@
 // polygonal lights and the resolution, with per-tile culling at its default threshold and
 // without distance culling. Not a test: numbers depend on the machine; compare the ratios
 // printed in one run.
-//   rtpbr-bench-engine [--repeat N] [--sizes 128,256,512] [--lights 1,4,16,64,256]
+//   rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu]
+// Per size it prints the median frame time for each light count (with tile culling at its
+// default threshold, and with every light shaded that faces the tile), then the fixed cost per
+// pixel (the frame with no lights) and the cost per pixel-light, (t(L) - t(0)) / (pixels L),
+// when 0 is in the light list; otherwise t(L) / (pixels L).
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -12,10 +16,14 @@
 
 #include "rtpbr/rtpbr.h"
 
+// Wall-clock time, or with --cpu the CPU time of the whole process (lavapipe's worker threads
+// included): steadier than wall time on a shared machine, and what a software device spends.
+static clockid_t bench_clock = CLOCK_MONOTONIC;
+
 static double now(void)
 {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
+    clock_gettime(bench_clock, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
@@ -30,6 +38,21 @@ static int parse_list(const char *text, int *out, int max)
     int n = 0;
     char *copy = strdup(text), *save = NULL;
     for (char *tok = strtok_r(copy, ",", &save); tok && n < max; tok = strtok_r(NULL, ",", &save)) out[n++] = atoi(tok);
+    free(copy);
+    return n;
+}
+
+// "W" or "WxH" items.
+static int parse_sizes(const char *text, int (*out)[2], int max)
+{
+    int n = 0;
+    char *copy = strdup(text), *save = NULL;
+    for (char *tok = strtok_r(copy, ",", &save); tok && n < max; tok = strtok_r(NULL, ",", &save)) {
+        char *x = strchr(tok, 'x');
+        out[n][0] = atoi(tok);
+        out[n][1] = x ? atoi(x + 1) : out[n][0];
+        if (out[n][0] > 0 && out[n][1] > 0) n++;
+    }
     free(copy);
     return n;
 }
@@ -67,14 +90,15 @@ static rtpbr_result make_scene(rtpbr_context *ctx, int n, rtpbr_gpu_scene **out)
 
 int main(int argc, char **argv)
 {
-    int repeat = 5, sizes[8] = {128, 256, 512}, lights[16] = {1, 4, 16, 64, 256};
-    int size_count = 3, light_count = 5;
+    int repeat = 5, sizes[8][2] = {{128, 128}, {256, 256}, {512, 512}}, lights[16] = {0, 1, 4, 16, 64, 256};
+    int size_count = 3, light_count = 6;
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = atoi(argv[++i]);
-        else if (!strcmp(argv[i], "--sizes") && i + 1 < argc) size_count = parse_list(argv[++i], sizes, 8);
+        else if (!strcmp(argv[i], "--sizes") && i + 1 < argc) size_count = parse_sizes(argv[++i], sizes, 8);
         else if (!strcmp(argv[i], "--lights") && i + 1 < argc) light_count = parse_list(argv[++i], lights, 16);
+        else if (!strcmp(argv[i], "--cpu")) bench_clock = CLOCK_PROCESS_CPUTIME_ID;
         else {
-            fprintf(stderr, "usage: %s [--repeat N] [--sizes 128,256] [--lights 1,4,16]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--repeat N] [--sizes 1280x720,256] [--lights 0,16,64] [--cpu]\n", argv[0]);
             return 2;
         }
     }
@@ -85,15 +109,18 @@ int main(int argc, char **argv)
         fprintf(stderr, "rtpbr-bench-engine: %s\n", rtpbr_result_string(r));
         return 1;
     }
-    printf("# device: %s; median of %d frames; ns per pixel-light = frame time / (pixels x lights)\n",
-           rtpbr_context_device_name(ctx), repeat);
-    printf("%6s %6s %8s %12s %12s %16s %16s\n", "size", "lights", "", "culled_ms", "all_ms", "culled_ns/px/l",
+    printf("# device: %s; median of %d frames (%s time); ns per pixel-light = frame time / (pixels x lights)\n",
+           rtpbr_context_device_name(ctx), repeat, bench_clock == CLOCK_MONOTONIC ? "wall" : "process CPU");
+    printf("%10s %6s %12s %12s %16s %16s\n", "size", "lights", "culled_ms", "all_ms", "culled_ns/px/l",
            "all_ns/px/l");
     double *t = calloc((size_t)repeat, sizeof *t);
     for (int si = 0; si < size_count; ++si) {
         rtpbr_renderer *renderer = NULL;
-        r = rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = (uint32_t)sizes[si], .height = (uint32_t)sizes[si]},
-                                  &renderer);
+        int w = sizes[si][0], h = sizes[si][1];
+        double base[2] = {0.0, 0.0}; // the frame with no lights, when measured
+        char label[32];
+        snprintf(label, sizeof label, "%dx%d", w, h);
+        r = rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = (uint32_t)w, .height = (uint32_t)h}, &renderer);
         for (int li = 0; li < light_count && r == RTPBR_SUCCESS; ++li) {
             rtpbr_gpu_scene *scene = NULL;
             r = make_scene(ctx, lights[li], &scene);
@@ -109,10 +136,17 @@ int main(int argc, char **argv)
                 qsort(t, (size_t)repeat, sizeof *t, compare_double);
                 ms[mode] = 1e3 * t[repeat / 2];
             }
-            double px = (double)sizes[si] * sizes[si] * lights[li];
-            if (r == RTPBR_SUCCESS)
-                printf("%6d %6d %8s %12.2f %12.2f %16.2f %16.2f\n", sizes[si], lights[li], "", ms[0], ms[1],
-                       1e6 * ms[0] / px, 1e6 * ms[1] / px);
+            double px = (double)w * h;
+            if (r == RTPBR_SUCCESS && lights[li] == 0) {
+                base[0] = ms[0];
+                base[1] = ms[1];
+                printf("%10s %6d %12.2f %12.2f %16s %16s   fixed: %.1f ns/px\n", label, 0, ms[0], ms[1], "-", "-",
+                       1e6 * ms[0] / px);
+            } else if (r == RTPBR_SUCCESS) {
+                double pl = px * lights[li];
+                printf("%10s %6d %12.2f %12.2f %16.2f %16.2f\n", label, lights[li], ms[0], ms[1],
+                       1e6 * (ms[0] - base[0]) / pl, 1e6 * (ms[1] - base[1]) / pl);
+            }
             fflush(stdout);
             rtpbr_gpu_scene_destroy(scene);
         }

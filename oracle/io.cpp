@@ -153,6 +153,7 @@ Result writeImage(const std::string &path, uint32_t width, uint32_t height, cons
     } else {
         spec.attribute("compression", "zip");
     }
+    spec.attribute("DateTime", ""); // no write date: the same render gives a byte-identical file
     if (!out->open(path, spec) || !out->write_image(hdr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, data) ||
         !out->close()) {
         *error = "cannot write " + path + ": " + out->geterror();

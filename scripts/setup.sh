@@ -40,14 +40,32 @@ if [[ ! -f "$repo/.deps/node_modules/gltf-validator/package.json" ]]; then
   npm install --silent --no-audit --no-fund --prefix "$repo/.deps" gltf-validator@2.0.0-dev.3.10 >/dev/null
 fi
 
+# Dask distributed (oracle references on a cluster: tools/validate/rtpbr_oracle_cluster.py, suite
+# 'cluster') into a venv in .deps/venv, from the pinned tools/validate/requirements-cluster.txt;
+# redone only when that file changes (a copy of it in the venv says what is installed).
+venv="$repo/.deps/venv"
+requirements="$repo/tools/validate/requirements-cluster.txt"
+if [[ ! -x "$venv/bin/python3" ]] || ! cmp -s "$requirements" "$venv/rtpbr-requirements.txt"; then
+  if [[ "$(dpkg-query -W -f='${Status}' python3-venv 2>/dev/null || true)" != "install ok installed" ]]; then
+    sudo_cmd=()
+    [[ $(id -u) -eq 0 ]] || sudo_cmd=(sudo)
+    "${sudo_cmd[@]}" apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends python3-venv >/dev/null
+  fi
+  echo "setup: installing Dask (pip) into .deps/venv" >&2
+  /usr/bin/python3 -m venv "$venv"
+  "$venv/bin/pip" install --quiet --disable-pip-version-check -r "$requirements"
+  cp "$requirements" "$venv/rtpbr-requirements.txt"
+fi
+
 # Slang's compiler (slangc) for a second HLSL front end in tests/consumers: the slangtorch wheel
-# on PyPI ships it (only the binary is used; --no-deps: no torch). Into .deps/venv (git-ignored).
+# on PyPI ships it (only the binary is used; --no-deps: no torch). Into .deps/slang-venv (git-ignored).
 # Optional: without it the Slang test is skipped, with a message.
 if [[ ! -x "$repo/.deps/slangc" ]]; then
-  echo "setup: installing slangtorch 1.3.22 (for slangc) from PyPI into .deps/venv" >&2
-  if /usr/bin/python3 -m venv "$repo/.deps/venv" && \
-     "$repo/.deps/venv/bin/pip" install --quiet --no-deps slangtorch==1.3.22; then
-    slangc=$(find "$repo/.deps/venv" -path '*slangtorch/bin/slangc' | head -n 1)
+  echo "setup: installing slangtorch 1.3.22 (for slangc) from PyPI into .deps/slang-venv" >&2
+  if /usr/bin/python3 -m venv "$repo/.deps/slang-venv" && \
+     "$repo/.deps/slang-venv/bin/pip" install --quiet --no-deps slangtorch==1.3.22; then
+    slangc=$(find "$repo/.deps/slang-venv" -path '*slangtorch/bin/slangc' | head -n 1)
     chmod +x "$slangc" && ln -sfn "$slangc" "$repo/.deps/slangc"
   else
     echo "setup: slangtorch could not be installed; the Slang compile check will be skipped" >&2

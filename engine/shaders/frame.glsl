@@ -6,5 +6,8 @@ layout(set = 0, binding = RTPBR_FRAME_BINDING, std140) uniform Frame {
     vec4 background;      // rgb radiance
     uvec2 size;           // render width, height
     uint light_count;
-    float cull_form_factor; // per-tile light culling threshold (lighting.comp); < 0: off
+    float cull_form_factor; // per-tile light culling threshold (cull.comp); < 0: off
+    uint tiles_x;           // lighting tiles per row
+    uint tile_capacity;     // tiles in the frame: the length of each class's tile list
+    uint pad0, pad1;
 } frame;

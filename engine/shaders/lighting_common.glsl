@@ -20,6 +20,26 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_LIGHTS, std430) readonly buffer Li
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_MATERIALS, std430) readonly buffer Materials {
     Material materials[];
 };
+// Per-tile light masks written by the culling pass (cull.comp): bit i of word w of a tile is
+// light 32 w + i; RTPBR_TILE_MASK_WORDS words per tile, tiles row by row.
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_TILE_MASKS, std430) buffer TileMasks {
+    uint tile_masks[];
+};
+// The culling pass's tile queues, one per tile class (RTPBR_TILE_CLASS_*): each class's
+// indirect dispatch arguments (x = the number of tiles queued), then the classes' tile lists,
+// frame.tile_capacity entries each (tile index = tile y * frame.tiles_x + tile x).
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_TILE_LISTS, std430) buffer TileLists {
+    uvec4 tile_dispatch[RTPBR_TILE_CLASS_COUNT]; // xyz: VkDispatchIndirectCommand, w unused
+    uint tile_list[];
+};
+
+// The tile class a material needs (RTPBR_TILE_CLASS_BASIC or _FULL): the basic lighting
+// variant shades metallic-roughness materials without clear coat, sheen or anisotropy.
+uint material_tile_class(Material m)
+{
+    bool full = m.coat.z > 0.5f || m.coat.x > 0.0f || m.coat.w > 0.0f || max(m.sheen.r, max(m.sheen.g, m.sheen.b)) > 0.0f;
+    return full ? RTPBR_TILE_CLASS_FULL : RTPBR_TILE_CLASS_BASIC;
+}
 
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER0) uniform sampler2D gbuffer0;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER1) uniform sampler2D gbuffer1;
@@ -30,31 +50,26 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_RADIANCE, rgba32f) writeonly unifo
 
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_E) uniform sampler2D lut_kc_e;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EAVG) uniform sampler2D lut_kc_eavg;
-layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EF) uniform sampler2D lut_kc_ef;
+layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EF) uniform sampler3D lut_kc_ef;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EFAVG) uniform sampler2D lut_kc_efavg;
 layout(set = 0, binding = RTPBR_BINDING_LUT_SHEEN_E) uniform sampler2D lut_sheen_e;
 
-// The Kulla-Conty tables of the NDF this variant is built for (engine/src/luts.c: r = GGX,
-// g = Beckmann).
+// The Kulla-Conty tables of the NDF this variant is built for (engine/src/luts.c: E and E_avg
+// r = GGX, g = Beckmann; the 3D table rgba = E_F GGX, E_F Beckmann, E GGX, E Beckmann).
 #if RTPBR_NDF == RTPBR_NDF_BECKMANN
 #define KC_CHANNEL g
+#define KC_E_EF_CHANNELS ag
 #else
 #define KC_CHANNEL r
+#define KC_E_EF_CHANNELS br
 #endif
 
 float kc_E(float mu, float r) { return textureLod(lut_kc_e, KC_TableCoord(mu, r), 0.0f).KC_CHANNEL; }
 float kc_Eavg(float r) { return textureLod(lut_kc_eavg, vec2(KC_TableCoordAvg(r), 0.5f), 0.0f).KC_CHANNEL; }
-// E_F(mu, r, eta): the eta slices are stacked along v (engine/src/luts.c); two bilinear
-// fetches at the neighbouring slices and a lerp along eta make the trilinear lookup.
-float kc_EF(float mu, float r, float eta)
+// E(mu, r) and E_F(mu, r, eta) in one trilinear fetch (E is repeated along eta).
+vec2 kc_E_EF(float mu, float r, float eta)
 {
-    vec2 uv = KC_TableCoord(mu, r);
-    float s = KC_EtaAxis(eta) * (KC_LUT_SIZE_ETA - 1.0f);
-    float s0 = min(floor(s), KC_LUT_SIZE_ETA - 2.0f);
-    float v0 = (s0 + uv.y) / KC_LUT_SIZE_ETA; // uv.y * KC_LUT_SIZE texels into slice s0
-    float e0 = textureLod(lut_kc_ef, vec2(uv.x, v0), 0.0f).KC_CHANNEL;
-    float e1 = textureLod(lut_kc_ef, vec2(uv.x, v0 + 1.0f / KC_LUT_SIZE_ETA), 0.0f).KC_CHANNEL;
-    return mix(e0, e1, s - s0);
+    return textureLod(lut_kc_ef, KC_TableCoord3D(mu, r, eta), 0.0f).KC_E_EF_CHANNELS;
 }
 float kc_EFavg(float r, float eta) { return textureLod(lut_kc_efavg, KC_TableCoordAvg2D(r, eta), 0.0f).KC_CHANNEL; }
 // KHR sheen's directional albedo (Charlie lobe; shaderlib/luts/sheen.md).
@@ -75,7 +90,7 @@ float sheen_E(float mu, float r) { return textureLod(lut_sheen_e, Sheen_TableCoo
 //     Kulla-Conty lobe, Burley diffuse + subsurface + sheen, GTR1 clearcoat 0.25 c.
 // Anisotropic lobes (alpha_t along the G-buffer's anisotropy direction, alpha_b across it):
 // the tables are looked up at sqrt(alpha_t alpha_b); the LTC pass stretches that isotropic
-// lobe by k = sqrt(alpha_t / alpha_b) along the direction (LTC_AnisotropicStretchInverse).
+// lobe by k = sqrt(alpha_t / alpha_b) along the direction (LTC_AnisotropicInverseMatrix).
 struct Surface {
     bool disney;
     DisneyMaterial dm;    // sanitised (Disney materials only)
@@ -109,8 +124,19 @@ struct Surface {
     float EsheenO;        // E_sheen(NoV)
 };
 
+// RTPBR_LIGHTING_FULL 0 (the basic lighting variant) resolves only what
+// material_tile_class calls basic: the Disney, clear-coat, sheen and anisotropy terms become
+// compile-time constants and drop out of the shader.
+#ifndef RTPBR_LIGHTING_FULL
+#define RTPBR_LIGHTING_FULL 1
+#endif
 Surface surface_terms(vec4 g0, float roughness, Material m, float NoV, vec3 anisoDir)
 {
+#if !RTPBR_LIGHTING_FULL
+    m.coat = vec4(0.0f);
+    m.sheen = vec4(0.0f);
+    anisoDir = vec3(0.0f);
+#endif
     Surface s;
     s.baseColor = g0.rgb;
     s.metallic = g0.a;
@@ -152,7 +178,8 @@ Surface surface_terms(vec4 g0, float roughness, Material m, float NoV, vec3 anis
     s.coatR = clamp(s.disney ? sqrt(Disney_ClearcoatAlpha(s.dm)) : m.coat.y, RTPBR_SHADER_MIN_ROUGHNESS, 1.0f);
     s.baseAttenuation = s.disney ? 1.0f : 1.0f - s.coat * F_Schlick1(0.04f, 1.0f, NoV);
 
-    s.Eo = kc_E(NoV, s.specR);
+    vec2 eo = kc_E_EF(NoV, s.specR, s.eta);
+    s.Eo = eo.x;
     s.Eavg = kc_Eavg(s.specR);
 #if RTPBR_MULTISCATTER
     s.FmsDielectric = KC_FmsColor(RTPBR_F3(F_Avg_Dielectric(s.eta)), s.Eavg).x;
@@ -166,7 +193,7 @@ Surface surface_terms(vec4 g0, float roughness, Material m, float NoV, vec3 anis
     // The layered base (metallic-roughness): the specular layer's albedo at mu_o and on average.
     bool layered = !s.disney && s.w > 0.0f;
     s.EFavg = layered ? kc_EFavg(s.specR, s.eta) : 0.0f;
-    s.Eso = layered ? s.w * KC_SpecularAlbedoDielectric(kc_EF(NoV, s.specR, s.eta), s.Eo, s.FmsDielectric) : 0.0f;
+    s.Eso = layered ? s.w * KC_SpecularAlbedoDielectric(eo.y, s.Eo, s.FmsDielectric) : 0.0f;
     s.EsAvg = layered ? s.w * KC_SpecularAlbedoDielectric(s.EFavg, s.Eavg, s.FmsDielectric) : 0.0f;
     bool coated = s.coat > 0.0f;
     s.Eoc = coated ? kc_E(NoV, s.coatR) : 1.0f;

@@ -35,7 +35,6 @@
 #include "material.glsl"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
 #include "frame.glsl"
-#include "mc_sampling.glsl"
 
 layout(local_size_x = RTPBR_TILE_SIZE, local_size_y = RTPBR_TILE_SIZE) in;
 
@@ -46,6 +45,7 @@ layout(push_constant) uniform McParams {
 } mc;
 
 #include "lighting_common.glsl"
+#include "mc_sampling.glsl"
 
 #if RTPBR_NDF == RTPBR_NDF_BECKMANN
 #define MC_SAMPLE_VNDF Sample_Beckmann_VNDF
@@ -121,15 +121,16 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
     uint samples = max(mc.samples, 1u);
     vec3 sum = vec3(0.0f);
     for (uint i = 0u; i < frame.light_count; ++i) {
-        Light light = lights[i];
-        uint count = min(light.vertex_count, uint(RTPBR_SHADER_MAX_POLYGON_VERTICES));
-        bool twoSided = light.emission.w != 0.0f;
-        float side = dot(light.plane.xyz, P) + light.plane.w;
+        // The light's fields are read from the buffer where they are used (no private copy).
+        uint count = min(lights[i].vertex_count, uint(RTPBR_SHADER_MAX_POLYGON_VERTICES));
+        bool twoSided = lights[i].emission.w != 0.0f;
+        vec4 plane = lights[i].plane;
+        float side = dot(plane.xyz, P) + plane.w;
         // Fan triangles (v0, vk, vk+1), k = 1..count-2, and their total area.
-        vec3 v0 = light.vertices[0].xyz;
+        vec3 v0 = lights[i].vertices[0].xyz;
         float area = 0.0f;
         for (uint k = 1u; k + 1u < count; ++k)
-            area += mc_fan_area(v0, light.vertices[k].xyz, light.vertices[k + 1u].xyz);
+            area += mc_fan_area(v0, lights[i].vertices[k].xyz, lights[i].vertices[k + 1u].xyz);
         bool lit = count >= 3u && area > 0.0f && (twoSided ? side != 0.0f : side > 0.0f);
         uint n = lit ? samples : 0u;
 
@@ -148,23 +149,23 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
                 // Strategy 2: a visible normal of the specular lobe, reflected; does it hit?
                 vec3 wiLocal = Reflect_About(wo, MC_SAMPLE_VNDF(wo, alphaSample.x, alphaSample.y, u));
                 wi = T * wiLocal.x + B * wiLocal.y + N * wiLocal.z;
-                hit = mc_ray_polygon(P, wi, light.vertices, count, light.plane, t);
+                hit = mc_ray_polygon(P, wi, i, count, t);
             } else {
                 // Strategy 1: a uniform point on the polygon (fan triangle chosen by area).
                 float target = uPick * area;
                 float acc = 0.0f;
                 uint pick = 1u;
                 for (uint k = 1u; k + 1u < count; ++k) {
-                    acc += mc_fan_area(v0, light.vertices[k].xyz, light.vertices[k + 1u].xyz);
+                    acc += mc_fan_area(v0, lights[i].vertices[k].xyz, lights[i].vertices[k + 1u].xyz);
                     if (target >= acc && k + 2u < count) pick = k + 1u;
                 }
-                vec3 toLight = mc_triangle_point(v0, light.vertices[pick].xyz, light.vertices[pick + 1u].xyz, u) - P;
+                vec3 toLight = mc_triangle_point(v0, lights[i].vertices[pick].xyz, lights[i].vertices[pick + 1u].xyz, u) - P;
                 t = length(toLight);
                 wi = toLight / max(t, 1e-30f);
                 hit = t > 0.0f;
             }
             // The light's front faces -plane.xyz travellers; one-sided lights emit only there.
-            float cosLight = -dot(light.plane.xyz, wi);
+            float cosLight = -dot(plane.xyz, wi);
             hit = hit && (twoSided ? cosLight != 0.0f : cosLight > 0.0f);
             float pdfLight = hit ? t * t / (abs(cosLight) * area) : 0.0f;
 
@@ -177,12 +178,13 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
             float NoH = h.z;
             float VoH = dot(wo, h);
             float mu = max(NoL, 0.0f);
-            float Ei = needEi ? kc_E(mu, specR) : 1.0f;
+            vec2 ei = needEi ? kc_E_EF(mu, specR, eta) : vec2(1.0f, 0.0f);
+            float Ei = ei.x;
             vec3 f = BRDF_SpecularLocal(wo, wiLocal, alphaSample.x, alphaSample.y, fresnel) + msColor * KC_Lobe(Eo, Ei, Eavg);
             if (disney) {
                 f += BRDF_DisneyDiffuse(dm, wo, wiLocal) + BRDF_DisneySheen(dm, wo, wiLocal);
             } else {
-                float Esi = layered ? w * KC_SpecularAlbedoDielectric(kc_EF(mu, specR, eta), Ei, FmsDielectric) : 0.0f;
+                float Esi = layered ? w * KC_SpecularAlbedoDielectric(ei.y, Ei, FmsDielectric) : 0.0f;
                 f += diffuseColor * KC_Lobe(Eso, Esi, EsAvg);
             }
             if (sheen)
@@ -197,7 +199,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
             bool valid = hit && NoL > 0.0f && pdf > 0.0f;
             lightSum += valid ? f * (NoL / pdf) : vec3(0.0f);
         }
-        sum += light.emission.rgb * (lightSum / float(samples));
+        sum += lights[i].emission.rgb * (lightSum / float(samples));
     }
     return sum;
 }

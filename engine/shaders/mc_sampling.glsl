@@ -1,6 +1,8 @@
 // Helpers of the brute-force Monte Carlo lighting pass (lighting_mc.comp): a per-pixel
 // random number stream, uniform area sampling of a convex polygon and ray-polygon
-// intersection. GLSL only (engine shader code, not shader library).
+// intersection. GLSL only (engine shader code, not shader library). Include after
+// lighting_common.glsl: polygons are read from the light buffer, never copied into a private
+// array (GPU compilers lower run-time-indexed private arrays into selects or scratch).
 #ifndef RTPBR_MC_SAMPLING_GLSL
 #define RTPBR_MC_SAMPLING_GLSL
 
@@ -48,21 +50,20 @@ vec3 mc_triangle_point(vec3 a, vec3 b, vec3 c, vec2 u)
     return (1.0f - s) * a + (s * (1.0f - u.y)) * b + (s * u.y) * c;
 }
 
-// Whether the ray P + t w (t > 0) crosses the convex polygon v[0..count) of plane
-// (n, d: dot(n, x) + d = 0), counter-clockwise about n; t receives the distance.
-bool mc_ray_polygon(vec3 P, vec3 w, vec4 v[RTPBR_SHADER_MAX_POLYGON_VERTICES], uint count, vec4 plane,
-                    out float t)
+// Whether the ray P + t w (t > 0) crosses the convex polygon of light `light` (count
+// vertices, counter-clockwise about its plane's normal); t receives the distance.
+bool mc_ray_polygon(vec3 P, vec3 w, uint light, uint count, out float t)
 {
+    vec4 plane = lights[light].plane;
     float denom = dot(plane.xyz, w);
     t = denom != 0.0f ? -(dot(plane.xyz, P) + plane.w) / denom : -1.0f;
     vec3 X = P + t * w;
     bool inside = t > 0.0f;
-    for (uint k = 0u; k < uint(RTPBR_SHADER_MAX_POLYGON_VERTICES); ++k) {
-        uint j = k + 1u < count ? k + 1u : 0u;
-        bool edge = k < count;
-        vec3 a = v[k].xyz;
-        vec3 b = v[j].xyz;
-        inside = inside && (!edge || dot(cross(b - a, X - a), plane.xyz) >= 0.0f);
+    vec3 a = lights[light].vertices[count - 1u].xyz;
+    for (uint k = 0u; k < count; ++k) {
+        vec3 b = lights[light].vertices[k].xyz;
+        inside = inside && dot(cross(b - a, X - a), plane.xyz) >= 0.0f;
+        a = b;
     }
     return inside;
 }

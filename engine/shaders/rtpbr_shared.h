@@ -36,15 +36,14 @@
 #define RTPBR_BINDING_LIGHT_GBUFFER3 5    // anisotropy direction (world), 0
 #define RTPBR_BINDING_LIGHT_DEPTH 6       // depth (0 near .. 1 far)
 #define RTPBR_BINDING_LIGHT_RADIANCE 7    // output, rgba32f storage image
-// Lookup tables (combined image samplers, linear filtering, clamp to edge). Until the
-// tables exist these slots hold 1x1 placeholders.
+// Lookup tables (combined image samplers, linear filtering, clamp to edge).
 #define RTPBR_BINDING_LUT_LTC_GGX_1 8      // M^-1 of the GGX LTC fit
 #define RTPBR_BINDING_LUT_LTC_GGX_2 9      // norm, fresnel, 0, sphere form factor
 #define RTPBR_BINDING_LUT_LTC_BECKMANN_1 10
 #define RTPBR_BINDING_LUT_LTC_BECKMANN_2 11
 #define RTPBR_BINDING_LUT_KC_E 12          // Kulla-Conty E(mu, r)
 #define RTPBR_BINDING_LUT_KC_EAVG 13       // Kulla-Conty E_avg(r)
-#define RTPBR_BINDING_LUT_KC_EF 14         // E_F(mu, r, eta): the eta slices stacked along v
+#define RTPBR_BINDING_LUT_KC_EF 14         // 3D: E_F(mu, r, eta) and E(mu, r) (engine/src/luts.c)
 #define RTPBR_BINDING_LUT_KC_EFAVG 15      // E_F_avg(r, eta)
 #define RTPBR_BINDING_LUT_LTC_DISNEY_1 16  // M^-1 of the Burley diffuse LTC fit
 #define RTPBR_BINDING_LUT_LTC_DISNEY_2 17  // norm, 0, 0, sphere form factor
@@ -53,7 +52,18 @@
 #define RTPBR_BINDING_LUT_LTC_SHEEN_2 20   // norm, 0, 0, sphere form factor
 #define RTPBR_LUT_COUNT 13                 // LUT bindings 8 .. 20, in this order
 #define RTPBR_BINDING_LIGHT_MATERIALS 21   // storage: rtpbr_shader_material[]
-#define RTPBR_LIGHTING_BINDING_COUNT 22
+#define RTPBR_BINDING_LIGHT_TILE_MASKS 22  // storage: per-tile light masks (cull.comp)
+#define RTPBR_BINDING_LIGHT_TILE_LISTS 23  // storage: per-class tile queues (cull.comp)
+#define RTPBR_LIGHTING_BINDING_COUNT 24
+
+// Light culling (cull.comp): one invocation per tile, RTPBR_CULL_GROUP^2 tiles per workgroup.
+#define RTPBR_CULL_GROUP 8
+#define RTPBR_TILE_MASK_WORDS (RTPBR_SHADER_MAX_LIGHTS / 32)
+// Tile classes: each has its lighting variant, dispatched indirectly over its tile queue.
+#define RTPBR_TILE_CLASS_EMPTY 0 // no surface pixel or no light left: emission and background
+#define RTPBR_TILE_CLASS_BASIC 1 // metallic-roughness without clear coat, sheen, anisotropy
+#define RTPBR_TILE_CLASS_FULL 2  // any material
+#define RTPBR_TILE_CLASS_COUNT 3
 
 // rtpbr_shader_material.coat.z: the material model.
 #define RTPBR_SHADER_MODEL_METALLIC_ROUGHNESS 0

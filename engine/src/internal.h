@@ -26,6 +26,9 @@ typedef struct rtpbr_shader_frame {
     uint32_t size[2];          // render width, height
     uint32_t light_count;
     float cull_form_factor;    // per-tile light culling threshold; < 0: off
+    uint32_t tiles_x;          // lighting tiles per row
+    uint32_t tile_capacity;    // tiles in the frame (the length of each class's tile list)
+    uint32_t pad[2];
 } rtpbr_shader_frame;
 
 // std430 element of the materials buffer (gbuffer.frag).
@@ -82,7 +85,7 @@ typedef struct rtpbr_shader_mc {
 } rtpbr_shader_mc;
 
 // The shaders' std140 / std430 sizes of the same structs.
-_Static_assert(sizeof(rtpbr_shader_frame) == 176, "Frame block layout");
+_Static_assert(sizeof(rtpbr_shader_frame) == 192, "Frame block layout");
 _Static_assert(sizeof(rtpbr_shader_material) == 144, "Material layout");
 _Static_assert(sizeof(rtpbr_shader_light) == 192, "Light layout");
 _Static_assert(sizeof(rtpbr_shader_draw) == 128, "Draw push constants (128 bytes: the guaranteed minimum)");
@@ -116,6 +119,9 @@ typedef struct rtpbr_lut {
 // Context (core.c, device.c)
 
 #define RTPBR_LIGHTING_VARIANT_COUNT 4 // (GGX, Beckmann) x (multiscatter off, on)
+// LTC lighting pipelines: per variant, one per lit tile class (BASIC, FULL); the EMPTY class
+// has one pipeline of its own (it shades no light).
+#define RTPBR_LIT_CLASS_COUNT (RTPBR_TILE_CLASS_COUNT - 1)
 #define RTPBR_TONEMAP_PIPELINE_CACHE 8 // tone-mapping pipelines, one per target format
 
 typedef struct rtpbr_tonemap_pipeline {
@@ -152,7 +158,9 @@ struct rtpbr_context {
     VkPipeline gbuffer_pipeline;
     VkDescriptorSetLayout lighting_set_layout;
     VkPipelineLayout lighting_layout;
-    VkPipeline lighting_pipelines[RTPBR_LIGHTING_VARIANT_COUNT];
+    VkPipeline lighting_pipelines[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT];
+    VkPipeline lighting_empty_pipeline; // tiles without light: emission and background
+    VkPipeline cull_pipeline;           // cull.comp: tile light masks and class queues
     // The Monte Carlo lighting pass: same set layout, plus push constants rtpbr_shader_mc.
     VkPipelineLayout lighting_mc_layout;
     VkPipeline lighting_mc_pipelines[RTPBR_LIGHTING_VARIANT_COUNT];
@@ -208,6 +216,9 @@ struct rtpbr_renderer {
     rtpbr_image radiance;      // rgba32f, GENERAL layout between passes
     rtpbr_image display;       // R8G8B8A8_SRGB, the target of rtpbr_render
     rtpbr_buffer frame;        // rtpbr_shader_frame, host visible
+    uint32_t tiles_x, tiles_y; // lighting tiles of the shaded image (RTPBR_TILE_SIZE pixels a side)
+    rtpbr_buffer tile_masks;   // RTPBR_TILE_MASK_WORDS uints per tile (cull.comp)
+    rtpbr_buffer tile_lists;   // per class: indirect dispatch arguments, then the tile queues
     rtpbr_buffer radiance_readback, display_readback;
     VkDescriptorPool descriptor_pool;
     VkDescriptorSet gbuffer_set, lighting_set, tonemap_set;
@@ -262,6 +273,9 @@ void rtpbr_device_finish(rtpbr_context *ctx);
 rtpbr_result rtpbr_buffer_create_host(rtpbr_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
                                       rtpbr_buffer *out);
 void rtpbr_buffer_destroy(rtpbr_context *ctx, rtpbr_buffer *buffer);
+// A buffer in device-local memory (any memory when there is none), not mapped.
+rtpbr_result rtpbr_buffer_create_device(rtpbr_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                                        rtpbr_buffer *out);
 // A 2D device-local image with a view (aspect from the format).
 rtpbr_result rtpbr_image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
                                 VkImageUsageFlags usage, rtpbr_image *out);
@@ -269,10 +283,10 @@ void rtpbr_image_destroy(rtpbr_context *ctx, rtpbr_image *image);
 // Records into ctx->upload_cmd, submits, waits. record(cmd, user) records the work.
 rtpbr_result rtpbr_submit_once(rtpbr_context *ctx, void (*record)(VkCommandBuffer cmd, void *user),
                                void *user);
-// A lookup table from a C array of width*height RGBA floats (rows along the second
-// coordinate): an RGBA32F image (RGBA16F when the device cannot filter 32-bit floats),
-// SHADER_READ_ONLY_OPTIMAL, sampled through ctx->lut_sampler.
-rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t height, const float *rgba,
+// A lookup table from a C array of width*height*depth RGBA floats (x fastest, then y, then
+// z): an RGBA32F image, 3D when depth > 1 (RGBA16F when the device cannot filter 32-bit
+// floats), SHADER_READ_ONLY_OPTIMAL, sampled through ctx->lut_sampler.
+rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t depth, const float *rgba,
                               rtpbr_lut *out);
 void rtpbr_lut_destroy(rtpbr_context *ctx, rtpbr_lut *lut);
 // Every table of ctx->luts (luts.c): the shader library's tables, or placeholders.
@@ -298,11 +312,10 @@ typedef struct rtpbr_spirv {
 rtpbr_result rtpbr_shader_module(rtpbr_context *ctx, rtpbr_spirv spirv, VkShaderModule *out);
 rtpbr_result rtpbr_pipelines_create(rtpbr_context *ctx);
 void rtpbr_pipelines_destroy(rtpbr_context *ctx);
-// The lighting pipeline of a shader variant.
-// The lighting pipeline of a model variant (LTC, or the Monte Carlo pass), compiled on first use.
-rtpbr_result rtpbr_lighting_pipeline_get(rtpbr_context *ctx, bool monte_carlo, rtpbr_ndf ndf, rtpbr_multiscatter ms,
-                                         VkPipeline *out);
-// The Monte Carlo lighting pipeline of a shader variant (lighting_mc.comp).
+// The lighting pipelines of a model variant, compiled on first use: the Monte Carlo pass's
+// (out[0]), or the LTC pass's per tile class (out[RTPBR_TILE_CLASS_*]).
+rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, bool monte_carlo, rtpbr_ndf ndf, rtpbr_multiscatter ms,
+                                          VkPipeline out[RTPBR_TILE_CLASS_COUNT]);
 
 // The tone-mapping pipeline for a colour-attachment format (created on first use).
 rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkPipeline *out);
@@ -311,7 +324,7 @@ rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkP
 // Passes (gbuffer.c, lighting.c, tonemap.c)
 
 void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCommandBuffer cmd);
-void rtpbr_lighting_record(rtpbr_renderer *r, VkPipeline pipeline, VkCommandBuffer cmd);
+void rtpbr_lighting_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd);
 void rtpbr_lighting_mc_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_shader_mc *params,
                               VkCommandBuffer cmd);
 void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_shader_tonemap *params,

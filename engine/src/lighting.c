@@ -1,4 +1,4 @@
-// Lighting pass: a compute dispatch over screen tiles that turns the G-buffer into linear
+// Lighting pass: compute dispatches over screen tiles that turn the G-buffer into linear
 // radiance (the shader variant selects the shader-library models), then, with supersampling,
 // the resolve that box-filters it down to the output.
 #include "internal.h"
@@ -21,11 +21,11 @@ static void begin_lighting(rtpbr_renderer *r, VkPipeline pipeline, VkPipelineLay
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &r->lighting_set, 0, NULL);
 }
 
+// After the lighting dispatches: the resolve (supersampling), and the barrier before tone
+// mapping and readback.
 static void end_lighting(rtpbr_renderer *r, VkCommandBuffer cmd)
 {
     const rtpbr_context *ctx = r->context;
-    vkCmdDispatch(cmd, (r->shade_width + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE,
-                  (r->shade_height + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE, 1);
     if (r->supersample > 1) {
         rtpbr_image_barrier(cmd, r->radiance_ss.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
                             VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
@@ -46,9 +46,53 @@ static void end_lighting(rtpbr_renderer *r, VkCommandBuffer cmd)
                         VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 }
 
-void rtpbr_lighting_record(rtpbr_renderer *r, VkPipeline pipeline, VkCommandBuffer cmd)
+// The LTC pass: the culling pass (cull.comp) writes each tile's light mask and queues the tile
+// for its class; then one indirect dispatch per class runs that class's lighting variant over
+// its queue (no barrier inside either kernel).
+void rtpbr_lighting_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd)
 {
-    begin_lighting(r, pipeline, r->context->lighting_layout, cmd);
+    const rtpbr_context *ctx = r->context;
+    // Empty queues: VkDispatchIndirectCommand (0, 1, 1) per class (the previous frame's lighting
+    // read them as indirect arguments and as storage).
+    uint32_t empty[RTPBR_TILE_CLASS_COUNT][4];
+    for (uint32_t c = 0; c < RTPBR_TILE_CLASS_COUNT; ++c) {
+        empty[c][0] = 0;
+        empty[c][1] = empty[c][2] = 1;
+        empty[c][3] = 0;
+    }
+    VkBufferMemoryBarrier before = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT,
+        .dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .buffer = r->tile_lists.buffer,
+        .size = VK_WHOLE_SIZE,
+    };
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, NULL, 1, &before, 0, NULL);
+    vkCmdUpdateBuffer(cmd, r->tile_lists.buffer, 0, sizeof empty, empty);
+    VkBufferMemoryBarrier cleared = before;
+    cleared.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    cleared.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, NULL, 1,
+                         &cleared, 0, NULL);
+
+    begin_lighting(r, ctx->cull_pipeline, ctx->lighting_layout, cmd);
+    vkCmdDispatch(cmd, (r->tiles_x + RTPBR_CULL_GROUP - 1) / RTPBR_CULL_GROUP,
+                  (r->tiles_y + RTPBR_CULL_GROUP - 1) / RTPBR_CULL_GROUP, 1);
+    VkMemoryBarrier culled = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
+        .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT,
+    };
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &culled, 0,
+                         NULL, 0, NULL);
+    for (uint32_t c = 0; c < RTPBR_TILE_CLASS_COUNT; ++c) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[c]);
+        vkCmdDispatchIndirect(cmd, r->tile_lists.buffer, c * 4 * sizeof(uint32_t));
+    }
     end_lighting(r, cmd);
 }
 
@@ -60,5 +104,6 @@ void rtpbr_lighting_mc_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpb
     const rtpbr_context *ctx = r->context;
     begin_lighting(r, pipeline, ctx->lighting_mc_layout, cmd);
     vkCmdPushConstants(cmd, ctx->lighting_mc_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *params, params);
+    vkCmdDispatch(cmd, r->tiles_x, r->tiles_y, 1);
     end_lighting(r, cmd);
 }

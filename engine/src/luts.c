@@ -1,28 +1,17 @@
-// The lookup tables of the lighting pass, uploaded from the shader library's generated C
-// arrays (shaderlib/luts/). A table that is not in the tree yet gets a 1x1 placeholder, so the
-// descriptor slots are always bound; the lighting shader only reads tables it was built with
-// (RTPBR_HAVE_LTC, RTPBR_HAVE_KC).
+// The lookup tables of the lighting passes, uploaded from the shader library's generated C
+// arrays (shaderlib/luts/).
 #include <stdlib.h>
 
 #include "internal.h"
 
-#if RTPBR_HAVE_LTC_TABLES
 #include "luts/rtpbr_ltc_tables.h"
-#endif
-#if RTPBR_HAVE_SHEEN_TABLES
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-braces"
-#include "luts/rtpbr_sheen_tables.h"
-#pragma GCC diagnostic pop
-#include "luts/rtpbr_ltc_sheen_tables.h"
-#endif
-#if RTPBR_HAVE_KC_TABLES
 // The generated tables initialise multi-dimensional arrays with flat lists (valid C).
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-braces"
+#include "luts/rtpbr_sheen_tables.h"
 #include "luts/rtpbr_kc_tables.h"
 #pragma GCC diagnostic pop
-#endif
+#include "luts/rtpbr_ltc_sheen_tables.h"
 
 // In binding order (rtpbr_shared.h: RTPBR_BINDING_LUT_LTC_GGX_1 + index).
 enum {
@@ -33,7 +22,6 @@ _Static_assert(LUT_COUNT == RTPBR_LUT_COUNT, "LUT slots");
 _Static_assert(RTPBR_BINDING_LUT_LTC_DISNEY_2 == RTPBR_BINDING_LUT_LTC_GGX_1 + LUT_LTC_DISNEY_2, "LUT bindings");
 _Static_assert(RTPBR_BINDING_LUT_LTC_SHEEN_2 == RTPBR_BINDING_LUT_LTC_GGX_1 + LUT_LTC_SHEEN_2, "LUT bindings");
 
-#if RTPBR_HAVE_KC_TABLES
 // Kulla-Conty tables of the two NDFs the engine compiles, one per channel: r = GGX, g =
 // Beckmann (both with height-correlated Smith, the shader library's default).
 static rtpbr_result create_kc_luts(rtpbr_context *ctx)
@@ -41,8 +29,10 @@ static rtpbr_result create_kc_luts(rtpbr_context *ctx)
     const int ggx = RTPBR_KC_VARIANT_ggx_hc, beckmann = RTPBR_KC_VARIANT_beckmann_hc;
     float *e = rtpbr_alloc(ctx, RTPBR_KC_SIZE * RTPBR_KC_SIZE * 4 * sizeof(float));
     float *eavg = rtpbr_alloc(ctx, RTPBR_KC_SIZE * 4 * sizeof(float));
-    // E_F(mu, r, eta): a 2D atlas, the eta slices stacked along v (row eta * SIZE + r), as the
-    // lighting shader fetches it (two bilinear fetches and a lerp along eta); E_F_avg: u = r, v = eta.
+    // E_F(mu, r, eta) and E(mu, r) together in one 3D table (u = mu, v = r, w = eta): rgba =
+    // (E_F GGX, E_F Beckmann, E GGX, E Beckmann), E repeated in every eta slice, so that one
+    // trilinear fetch gives a direction's E and E_F (the lighting passes' per-light lookup);
+    // E_F_avg: u = r, v = eta.
     float *ef = rtpbr_alloc(ctx, (size_t)RTPBR_KC_SIZE * RTPBR_KC_SIZE * RTPBR_KC_SIZE_ETA * 4 * sizeof(float));
     float *efavg = rtpbr_alloc(ctx, (size_t)RTPBR_KC_SIZE * RTPBR_KC_SIZE_ETA * 4 * sizeof(float));
     rtpbr_result result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
@@ -64,7 +54,8 @@ static rtpbr_result create_kc_luts(rtpbr_context *ctx)
                     float *t = ef + 4 * ((eta * RTPBR_KC_SIZE + r) * RTPBR_KC_SIZE + mu);
                     t[0] = rtpbr_kc_EF[ggx][eta][r][mu];
                     t[1] = rtpbr_kc_EF[beckmann][eta][r][mu];
-                    t[2] = t[3] = 0.0f;
+                    t[2] = rtpbr_kc_E[ggx][r][mu];
+                    t[3] = rtpbr_kc_E[beckmann][r][mu];
                 }
                 float *a = efavg + 4 * (eta * RTPBR_KC_SIZE + r);
                 a[0] = rtpbr_kc_EFavg[ggx][eta][r];
@@ -72,12 +63,12 @@ static rtpbr_result create_kc_luts(rtpbr_context *ctx)
                 a[2] = a[3] = 0.0f;
             }
         }
-        result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, RTPBR_KC_SIZE, e, &ctx->luts[LUT_KC_E]);
-        if (result == RTPBR_SUCCESS) result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, 1, eavg, &ctx->luts[LUT_KC_EAVG]);
+        result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, RTPBR_KC_SIZE, 1, e, &ctx->luts[LUT_KC_E]);
+        if (result == RTPBR_SUCCESS) result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, 1, 1, eavg, &ctx->luts[LUT_KC_EAVG]);
         if (result == RTPBR_SUCCESS)
-            result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, RTPBR_KC_SIZE * RTPBR_KC_SIZE_ETA, ef, &ctx->luts[LUT_KC_EF]);
+            result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, RTPBR_KC_SIZE, RTPBR_KC_SIZE_ETA, ef, &ctx->luts[LUT_KC_EF]);
         if (result == RTPBR_SUCCESS)
-            result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, RTPBR_KC_SIZE_ETA, efavg, &ctx->luts[LUT_KC_EFAVG]);
+            result = rtpbr_lut_create(ctx, RTPBR_KC_SIZE, RTPBR_KC_SIZE_ETA, 1, efavg, &ctx->luts[LUT_KC_EFAVG]);
     }
     rtpbr_free(ctx, e);
     rtpbr_free(ctx, eavg);
@@ -85,23 +76,17 @@ static rtpbr_result create_kc_luts(rtpbr_context *ctx)
     rtpbr_free(ctx, efavg);
     return result;
 }
-#endif
 
 rtpbr_result rtpbr_luts_create(rtpbr_context *ctx)
 {
     rtpbr_result result = RTPBR_SUCCESS;
-#if RTPBR_HAVE_LTC_TABLES
     const float *ltc[4] = {rtpbr_ltc_ggx_1, rtpbr_ltc_ggx_2, rtpbr_ltc_beckmann_1, rtpbr_ltc_beckmann_2};
     for (int i = 0; i < 4 && result == RTPBR_SUCCESS; ++i)
-        result = rtpbr_lut_create(ctx, RTPBR_LTC_SIZE, RTPBR_LTC_SIZE, ltc[i], &ctx->luts[LUT_LTC_GGX_1 + i]);
+        result = rtpbr_lut_create(ctx, RTPBR_LTC_SIZE, RTPBR_LTC_SIZE, 1, ltc[i], &ctx->luts[LUT_LTC_GGX_1 + i]);
     const float *disney[2] = {rtpbr_ltc_disney_diffuse_1, rtpbr_ltc_disney_diffuse_2};
     for (int i = 0; i < 2 && result == RTPBR_SUCCESS; ++i)
-        result = rtpbr_lut_create(ctx, RTPBR_LTC_SIZE, RTPBR_LTC_SIZE, disney[i], &ctx->luts[LUT_LTC_DISNEY_1 + i]);
-#endif
-#if RTPBR_HAVE_KC_TABLES
+        result = rtpbr_lut_create(ctx, RTPBR_LTC_SIZE, RTPBR_LTC_SIZE, 1, disney[i], &ctx->luts[LUT_LTC_DISNEY_1 + i]);
     if (result == RTPBR_SUCCESS) result = create_kc_luts(ctx);
-#endif
-#if RTPBR_HAVE_SHEEN_TABLES
     // KHR sheen: the albedo of the Charlie lobe (r channel) and its LTC fit.
     if (result == RTPBR_SUCCESS) {
         float *e = rtpbr_alloc(ctx, RTPBR_SHEEN_SIZE * RTPBR_SHEEN_SIZE * 4 * sizeof(float));
@@ -109,16 +94,12 @@ rtpbr_result rtpbr_luts_create(rtpbr_context *ctx)
         for (int r = 0; r < RTPBR_SHEEN_SIZE; ++r)
             for (int mu = 0; mu < RTPBR_SHEEN_SIZE; ++mu)
                 e[4 * (r * RTPBR_SHEEN_SIZE + mu)] = rtpbr_sheen_E[RTPBR_SHEEN_VARIANT_charlie][r][mu];
-        result = rtpbr_lut_create(ctx, RTPBR_SHEEN_SIZE, RTPBR_SHEEN_SIZE, e, &ctx->luts[LUT_SHEEN_E]);
+        result = rtpbr_lut_create(ctx, RTPBR_SHEEN_SIZE, RTPBR_SHEEN_SIZE, 1, e, &ctx->luts[LUT_SHEEN_E]);
         rtpbr_free(ctx, e);
     }
     const float *sheen[2] = {rtpbr_ltc_sheen_1, rtpbr_ltc_sheen_2};
     for (int i = 0; i < 2 && result == RTPBR_SUCCESS; ++i)
-        result = rtpbr_lut_create(ctx, RTPBR_LTC_SIZE, RTPBR_LTC_SIZE, sheen[i], &ctx->luts[LUT_LTC_SHEEN_1 + i]);
-#endif
-    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    for (size_t i = 0; i < sizeof ctx->luts / sizeof ctx->luts[0] && result == RTPBR_SUCCESS; ++i)
-        if (!ctx->luts[i].image.image) result = rtpbr_lut_create(ctx, 1, 1, zero, &ctx->luts[i]);
+        result = rtpbr_lut_create(ctx, RTPBR_LTC_SIZE, RTPBR_LTC_SIZE, 1, sheen[i], &ctx->luts[LUT_LTC_SHEEN_1 + i]);
     return result; // the caller destroys what was made (rtpbr_luts_destroy)
 }
 

@@ -10,7 +10,7 @@ static rtpbr_result create_descriptors(rtpbr_renderer *r)
     rtpbr_result result = RTPBR_SUCCESS;
     VkDescriptorPoolSize sizes[] = {
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5},
         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, RTPBR_LIGHTING_BINDING_COUNT},
         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4},
     };
@@ -58,9 +58,17 @@ static rtpbr_result create_descriptors(rtpbr_renderer *r)
     writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
                                          .dstBinding = RTPBR_BINDING_LIGHT_FRAME, .descriptorCount = 1,
                                          .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &frame};
-    // Every binding from the G-buffer on is an image, but the scene's materials (prepare_frame).
-    for (uint32_t b = RTPBR_BINDING_LIGHT_GBUFFER0; b < RTPBR_LIGHTING_BINDING_COUNT; ++b)
-        if (b != RTPBR_BINDING_LIGHT_MATERIALS) writes[n++] = (VkWriteDescriptorSet){
+    VkDescriptorBufferInfo tile_masks = {r->tile_masks.buffer, 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo tile_lists = {r->tile_lists.buffer, 0, VK_WHOLE_SIZE};
+    writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
+                                         .dstBinding = RTPBR_BINDING_LIGHT_TILE_MASKS, .descriptorCount = 1,
+                                         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &tile_masks};
+    writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
+                                         .dstBinding = RTPBR_BINDING_LIGHT_TILE_LISTS, .descriptorCount = 1,
+                                         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &tile_lists};
+    // The bindings from the G-buffer to the tables are images.
+    for (uint32_t b = RTPBR_BINDING_LIGHT_GBUFFER0; b < RTPBR_BINDING_LUT_LTC_GGX_1 + RTPBR_LUT_COUNT; ++b)
+        writes[n++] = (VkWriteDescriptorSet){
             .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set, .dstBinding = b,
             .descriptorCount = 1,
             .descriptorType = b == RTPBR_BINDING_LIGHT_RADIANCE ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
@@ -128,6 +136,17 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
     RTPBR_TRY(rtpbr_image_create(ctx, w, h, RTPBR_DISPLAY_FORMAT,
                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &r->display));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, sizeof(rtpbr_shader_frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &r->frame));
+    // The culling pass's outputs: a light mask per tile (128 bytes per 256 pixels), and per
+    // tile class its indirect dispatch arguments (a uvec4) and a queue as long as the tile count.
+    r->tiles_x = (sw + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE;
+    r->tiles_y = (sh + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE;
+    VkDeviceSize tiles = (VkDeviceSize)r->tiles_x * r->tiles_y;
+    RTPBR_TRY(rtpbr_buffer_create_device(ctx, tiles * RTPBR_TILE_MASK_WORDS * sizeof(uint32_t),
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &r->tile_masks));
+    RTPBR_TRY(rtpbr_buffer_create_device(ctx, RTPBR_TILE_CLASS_COUNT * (4 + tiles) * sizeof(uint32_t),
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                             VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                         &r->tile_lists));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                        &r->radiance_readback));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -161,6 +180,8 @@ void rtpbr_renderer_destroy(rtpbr_renderer *r)
     if (r->cmd) vkFreeCommandBuffers(ctx->device, ctx->command_pool, 1, &r->cmd);
     if (r->descriptor_pool) vkDestroyDescriptorPool(ctx->device, r->descriptor_pool, NULL);
     rtpbr_buffer_destroy(ctx, &r->frame);
+    rtpbr_buffer_destroy(ctx, &r->tile_masks);
+    rtpbr_buffer_destroy(ctx, &r->tile_lists);
     rtpbr_buffer_destroy(ctx, &r->radiance_readback);
     rtpbr_buffer_destroy(ctx, &r->display_readback);
     for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i) rtpbr_image_destroy(ctx, &r->gbuffer[i]);
@@ -224,6 +245,8 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
     frame.light_count = scene->light_count;
     frame.cull_form_factor = desc->light_cull_form_factor == 0.0f ? RTPBR_DEFAULT_CULL_FORM_FACTOR
                                                                    : desc->light_cull_form_factor;
+    frame.tiles_x = r->tiles_x;
+    frame.tile_capacity = r->tiles_x * r->tiles_y;
     memcpy(r->frame.mapped, &frame, sizeof frame);
 
     VkDescriptorBufferInfo materials = {scene->materials.buffer, 0, VK_WHOLE_SIZE};
@@ -244,14 +267,15 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
 }
 
 // The lighting pass the desc asks for: LTC, or the Monte Carlo reference (mc_samples > 0).
-static void record_lighting(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkPipeline pipeline, VkCommandBuffer cmd)
+static void record_lighting(rtpbr_renderer *r, const rtpbr_render_desc *desc,
+                            const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd)
 {
     if (desc->mc_samples == 0) {
-        rtpbr_lighting_record(r, pipeline, cmd);
+        rtpbr_lighting_record(r, pipelines, cmd);
         return;
     }
     rtpbr_shader_mc params = {.samples = desc->mc_samples, .seed = desc->mc_seed};
-    rtpbr_lighting_mc_record(r, pipeline, &params, cmd);
+    rtpbr_lighting_mc_record(r, pipelines[0], &params, cmd);
 }
 
 static rtpbr_shader_tonemap tonemap_params(const rtpbr_render_desc *desc, uint32_t encode)
@@ -296,8 +320,8 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     RTPBR_TRY(prepare_frame(r, scene, desc));
     RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, RTPBR_DISPLAY_FORMAT, &tonemap));
     // Before any recording: a variant's first use compiles it, which may fail.
-    VkPipeline lighting;
-    RTPBR_TRY(rtpbr_lighting_pipeline_get(ctx, desc->mc_samples > 0, desc->ndf, desc->multiscatter, &lighting));
+    VkPipeline lighting[RTPBR_TILE_CLASS_COUNT];
+    RTPBR_TRY(rtpbr_lighting_pipelines_get(ctx, desc->mc_samples > 0, desc->ndf, desc->multiscatter, lighting));
 
     VkCommandBuffer cmd = r->cmd;
     VkCommandBufferBeginInfo begin = {
@@ -350,8 +374,8 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     RTPBR_TRY(prepare_frame(r, scene, desc));
     RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, target->format, &tonemap));
     // Before recording into the host's command buffer: a variant's first use compiles it.
-    VkPipeline lighting;
-    RTPBR_TRY(rtpbr_lighting_pipeline_get(ctx, desc->mc_samples > 0, desc->ndf, desc->multiscatter, &lighting));
+    VkPipeline lighting[RTPBR_TILE_CLASS_COUNT];
+    RTPBR_TRY(rtpbr_lighting_pipelines_get(ctx, desc->mc_samples > 0, desc->ndf, desc->multiscatter, lighting));
 
     // UNORM targets need the sRGB curve in the shader; sRGB targets encode in hardware.
     bool unorm = target->format == VK_FORMAT_R8G8B8A8_UNORM || target->format == VK_FORMAT_B8G8R8A8_UNORM ||

@@ -54,6 +54,29 @@ cleanup:
     return result;
 }
 
+rtpbr_result rtpbr_buffer_create_device(rtpbr_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                                        rtpbr_buffer *out)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    memset(out, 0, sizeof *out);
+    VkBufferCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+        .size = size,
+        .usage = usage,
+        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+    };
+    RTPBR_VK(ctx, vkCreateBuffer(ctx->device, &info, NULL, &out->buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(ctx->device, out->buffer, &req);
+    RTPBR_TRY(allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, &out->memory));
+    RTPBR_VK(ctx, vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0));
+    out->size = size;
+    return RTPBR_SUCCESS;
+cleanup:
+    rtpbr_buffer_destroy(ctx, out);
+    return result;
+}
+
 void rtpbr_buffer_destroy(rtpbr_context *ctx, rtpbr_buffer *buffer)
 {
     if (buffer->buffer) vkDestroyBuffer(ctx->device, buffer->buffer, NULL);
@@ -67,16 +90,17 @@ static VkImageAspectFlags aspect_of(VkFormat format)
                                                                           : VK_IMAGE_ASPECT_COLOR_BIT;
 }
 
-rtpbr_result rtpbr_image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
-                                VkImageUsageFlags usage, rtpbr_image *out)
+// A 2D image (depth 1) or a 3D one, with a view.
+static rtpbr_result image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format,
+                                 VkImageUsageFlags usage, rtpbr_image *out)
 {
     rtpbr_result result = RTPBR_SUCCESS;
     memset(out, 0, sizeof *out);
     VkImageCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
-        .imageType = VK_IMAGE_TYPE_2D,
+        .imageType = depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D,
         .format = format,
-        .extent = {width, height, 1},
+        .extent = {width, height, depth},
         .mipLevels = 1,
         .arrayLayers = 1,
         .samples = VK_SAMPLE_COUNT_1_BIT,
@@ -93,7 +117,7 @@ rtpbr_result rtpbr_image_create(rtpbr_context *ctx, uint32_t width, uint32_t hei
     VkImageViewCreateInfo view_info = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
         .image = out->image,
-        .viewType = VK_IMAGE_VIEW_TYPE_2D,
+        .viewType = depth > 1 ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D,
         .format = format,
         .subresourceRange = {aspect_of(format), 0, 1, 0, 1},
     };
@@ -105,6 +129,12 @@ rtpbr_result rtpbr_image_create(rtpbr_context *ctx, uint32_t width, uint32_t hei
 cleanup:
     rtpbr_image_destroy(ctx, out);
     return result;
+}
+
+rtpbr_result rtpbr_image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
+                                VkImageUsageFlags usage, rtpbr_image *out)
+{
+    return image_create(ctx, width, height, 1, format, usage, out);
 }
 
 void rtpbr_image_destroy(rtpbr_context *ctx, rtpbr_image *image)
@@ -163,7 +193,7 @@ cleanup:
 typedef struct lut_upload {
     VkBuffer staging;
     VkImage image;
-    uint32_t width, height;
+    uint32_t width, height, depth;
 } lut_upload;
 
 static void record_lut_upload(VkCommandBuffer cmd, void *user)
@@ -174,7 +204,7 @@ static void record_lut_upload(VkCommandBuffer cmd, void *user)
                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
     VkBufferImageCopy region = {
         .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-        .imageExtent = {u->width, u->height, 1},
+        .imageExtent = {u->width, u->height, u->depth},
     };
     vkCmdCopyBufferToImage(cmd, u->staging, u->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     rtpbr_image_barrier(cmd, u->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
@@ -193,7 +223,7 @@ rtpbr_result rtpbr_image_create_with_data(rtpbr_context *ctx, uint32_t width, ui
     memcpy(staging.mapped, texels, bytes);
     RTPBR_TRY(rtpbr_image_create(ctx, width, height, format, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                  out));
-    lut_upload upload = {staging.buffer, out->image, width, height};
+    lut_upload upload = {staging.buffer, out->image, width, height, 1};
     result = rtpbr_submit_once(ctx, record_lut_upload, &upload);
     if (result != RTPBR_SUCCESS) rtpbr_image_destroy(ctx, out);
 cleanup:
@@ -225,18 +255,18 @@ static uint16_t half_from_float(float f)
     return (uint16_t)half;
 }
 
-rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t height, const float *rgba,
+rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t depth, const float *rgba,
                               rtpbr_lut *out)
 {
     rtpbr_result result = RTPBR_SUCCESS;
     rtpbr_buffer staging = {0};
     memset(out, 0, sizeof *out);
-    if (!rgba || width == 0 || height == 0) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "lookup table: no data or zero size (%ux%u)", width, height);
+    if (!rgba || width == 0 || height == 0 || depth == 0) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "lookup table: no data or zero size (%ux%ux%u)", width, height, depth);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
-    if (!rtpbr_finite(rgba, (size_t)width * height * 4)) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "lookup table %ux%u holds a NaN or infinite value", width, height);
+    if (!rtpbr_finite(rgba, (size_t)width * height * depth * 4)) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "lookup table %ux%ux%u holds a NaN or infinite value", width, height, depth);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     // Linear filtering of 32-bit floats is optional in Vulkan; fall back to half floats.
@@ -244,7 +274,7 @@ rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t heigh
     vkGetPhysicalDeviceFormatProperties(ctx->physical_device, VK_FORMAT_R32G32B32A32_SFLOAT, &props);
     bool full = props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
     VkFormat format = full ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
-    size_t count = (size_t)width * height * 4;
+    size_t count = (size_t)width * height * depth * 4;
     size_t bytes = count * (full ? sizeof(float) : sizeof(uint16_t));
 
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &staging));
@@ -254,9 +284,9 @@ rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t heigh
         uint16_t *dst = staging.mapped;
         for (size_t i = 0; i < count; ++i) dst[i] = half_from_float(rgba[i]);
     }
-    RTPBR_TRY(rtpbr_image_create(ctx, width, height, format,
-                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &out->image));
-    lut_upload upload = {staging.buffer, out->image.image, width, height};
+    RTPBR_TRY(image_create(ctx, width, height, depth, format, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                           &out->image));
+    lut_upload upload = {staging.buffer, out->image.image, width, height, depth};
     RTPBR_TRY(rtpbr_submit_once(ctx, record_lut_upload, &upload));
     rtpbr_buffer_destroy(ctx, &staging);
     return RTPBR_SUCCESS;

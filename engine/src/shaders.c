@@ -5,10 +5,16 @@
 
 #include "rtpbr_spirv_gbuffer_frag.h"
 #include "rtpbr_spirv_gbuffer_vert.h"
-#include "rtpbr_spirv_lighting_beckmann_ms0.h"
-#include "rtpbr_spirv_lighting_beckmann_ms1.h"
-#include "rtpbr_spirv_lighting_ggx_ms0.h"
-#include "rtpbr_spirv_lighting_ggx_ms1.h"
+#include "rtpbr_spirv_cull_comp.h"
+#include "rtpbr_spirv_lighting_beckmann_ms0_basic.h"
+#include "rtpbr_spirv_lighting_beckmann_ms0_full.h"
+#include "rtpbr_spirv_lighting_beckmann_ms1_basic.h"
+#include "rtpbr_spirv_lighting_beckmann_ms1_full.h"
+#include "rtpbr_spirv_lighting_empty.h"
+#include "rtpbr_spirv_lighting_ggx_ms0_basic.h"
+#include "rtpbr_spirv_lighting_ggx_ms0_full.h"
+#include "rtpbr_spirv_lighting_ggx_ms1_basic.h"
+#include "rtpbr_spirv_lighting_ggx_ms1_full.h"
 #include "rtpbr_spirv_lighting_mc_beckmann_ms0.h"
 #include "rtpbr_spirv_lighting_mc_beckmann_ms1.h"
 #include "rtpbr_spirv_lighting_mc_ggx_ms0.h"
@@ -216,10 +222,28 @@ cleanup:
     return result;
 }
 
-static rtpbr_result create_lighting(rtpbr_context *ctx)
+static rtpbr_result create_compute(rtpbr_context *ctx, rtpbr_spirv spirv, VkPipelineLayout layout, VkPipeline *out)
 {
     rtpbr_result result = RTPBR_SUCCESS;
     VkShaderModule module = VK_NULL_HANDLE;
+    RTPBR_TRY(rtpbr_shader_module(ctx, spirv, &module));
+    VkComputePipelineCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                  .module = module, .pName = "main"},
+        .layout = layout,
+    };
+    RTPBR_VK(ctx, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL, out));
+cleanup:
+    vkDestroyShaderModule(ctx->device, module, NULL);
+    return result;
+}
+
+// The culling pass and the LTC lighting pass share one set layout (rtpbr_shared.h's
+// RTPBR_BINDING_LIGHT_*).
+static rtpbr_result create_lighting(rtpbr_context *ctx)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
     VkDescriptorSetLayoutBinding bindings[RTPBR_LIGHTING_BINDING_COUNT];
     for (uint32_t i = 0; i < RTPBR_LIGHTING_BINDING_COUNT; ++i)
         bindings[i] = (VkDescriptorSetLayoutBinding){i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
@@ -227,15 +251,20 @@ static rtpbr_result create_lighting(rtpbr_context *ctx)
     bindings[RTPBR_BINDING_LIGHT_FRAME].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     bindings[RTPBR_BINDING_LIGHT_LIGHTS].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     bindings[RTPBR_BINDING_LIGHT_MATERIALS].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[RTPBR_BINDING_LIGHT_TILE_MASKS].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[RTPBR_BINDING_LIGHT_TILE_LISTS].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     bindings[RTPBR_BINDING_LIGHT_RADIANCE].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     RTPBR_TRY(create_set_layout(ctx, bindings, RTPBR_LIGHTING_BINDING_COUNT, &ctx->lighting_set_layout));
     RTPBR_TRY(create_pipeline_layout(ctx, ctx->lighting_set_layout, 0, 0, &ctx->lighting_layout));
+    RTPBR_TRY(create_compute(ctx, SPIRV(rtpbr_spirv_cull_comp), ctx->lighting_layout, &ctx->cull_pipeline));
+    RTPBR_TRY(create_compute(ctx, SPIRV(rtpbr_spirv_lighting_empty), ctx->lighting_layout,
+                             &ctx->lighting_empty_pipeline));
 
     // The default variant (GGX, multiple scattering on) now, so that a bad driver fails early;
-    // the others on first use (rtpbr_lighting_pipeline_get): each costs a shader compilation.
-    RTPBR_TRY(rtpbr_lighting_pipeline_get(ctx, false, RTPBR_NDF_GGX_MODEL, RTPBR_MULTISCATTER_ON, &(VkPipeline){0}));
+    // the others on first use (rtpbr_lighting_pipelines_get): each costs shader compilations.
+    VkPipeline unused[RTPBR_TILE_CLASS_COUNT];
+    RTPBR_TRY(rtpbr_lighting_pipelines_get(ctx, false, RTPBR_NDF_GGX_MODEL, RTPBR_MULTISCATTER_ON, unused));
 cleanup:
-    vkDestroyShaderModule(ctx->device, module, NULL);
     return result;
 }
 
@@ -247,7 +276,7 @@ static rtpbr_result create_lighting_mc(rtpbr_context *ctx)
     VkShaderModule module = VK_NULL_HANDLE;
     RTPBR_TRY(create_pipeline_layout(ctx, ctx->lighting_set_layout, VK_SHADER_STAGE_COMPUTE_BIT,
                                      sizeof(rtpbr_shader_mc), &ctx->lighting_mc_layout));
-    // Its pipelines are made on first use (rtpbr_lighting_pipeline_get).
+    // Its pipelines are made on first use (rtpbr_lighting_pipelines_get).
 cleanup:
     vkDestroyShaderModule(ctx->device, module, NULL);
     return result;
@@ -320,7 +349,9 @@ void rtpbr_pipelines_destroy(rtpbr_context *ctx)
     vkDestroyPipelineLayout(dev, ctx->resolve_layout, NULL);
     vkDestroyDescriptorSetLayout(dev, ctx->resolve_set_layout, NULL);
     for (uint32_t i = 0; i < RTPBR_LIGHTING_VARIANT_COUNT; ++i)
-        vkDestroyPipeline(dev, ctx->lighting_pipelines[i], NULL);
+        for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) vkDestroyPipeline(dev, ctx->lighting_pipelines[i][c], NULL);
+    vkDestroyPipeline(dev, ctx->lighting_empty_pipeline, NULL);
+    vkDestroyPipeline(dev, ctx->cull_pipeline, NULL);
     vkDestroyPipelineLayout(dev, ctx->lighting_layout, NULL);
     for (uint32_t i = 0; i < RTPBR_LIGHTING_VARIANT_COUNT; ++i)
         vkDestroyPipeline(dev, ctx->lighting_mc_pipelines[i], NULL);
@@ -332,36 +363,36 @@ void rtpbr_pipelines_destroy(rtpbr_context *ctx)
     vkDestroyDescriptorSetLayout(dev, ctx->material_set_layout, NULL);
 }
 
-rtpbr_result rtpbr_lighting_pipeline_get(rtpbr_context *ctx, bool monte_carlo, rtpbr_ndf ndf, rtpbr_multiscatter ms,
-                                         VkPipeline *out)
+rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, bool monte_carlo, rtpbr_ndf ndf, rtpbr_multiscatter ms,
+                                          VkPipeline out[RTPBR_TILE_CLASS_COUNT])
 {
-    static const rtpbr_spirv ltc[RTPBR_LIGHTING_VARIANT_COUNT] = {
-        SPIRV(rtpbr_spirv_lighting_ggx_ms0), SPIRV(rtpbr_spirv_lighting_ggx_ms1),
-        SPIRV(rtpbr_spirv_lighting_beckmann_ms0), SPIRV(rtpbr_spirv_lighting_beckmann_ms1),
+    static const rtpbr_spirv ltc[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT] = {
+        {SPIRV(rtpbr_spirv_lighting_ggx_ms0_basic), SPIRV(rtpbr_spirv_lighting_ggx_ms0_full)},
+        {SPIRV(rtpbr_spirv_lighting_ggx_ms1_basic), SPIRV(rtpbr_spirv_lighting_ggx_ms1_full)},
+        {SPIRV(rtpbr_spirv_lighting_beckmann_ms0_basic), SPIRV(rtpbr_spirv_lighting_beckmann_ms0_full)},
+        {SPIRV(rtpbr_spirv_lighting_beckmann_ms1_basic), SPIRV(rtpbr_spirv_lighting_beckmann_ms1_full)},
     };
     static const rtpbr_spirv mc[RTPBR_LIGHTING_VARIANT_COUNT] = {
         SPIRV(rtpbr_spirv_lighting_mc_ggx_ms0), SPIRV(rtpbr_spirv_lighting_mc_ggx_ms1),
         SPIRV(rtpbr_spirv_lighting_mc_beckmann_ms0), SPIRV(rtpbr_spirv_lighting_mc_beckmann_ms1),
     };
+    _Static_assert(RTPBR_TILE_CLASS_EMPTY == 0 && RTPBR_TILE_CLASS_BASIC == 1 && RTPBR_TILE_CLASS_FULL == 2,
+                   "lit classes follow the empty one");
     uint32_t v = lighting_variant(ndf, ms);
-    VkPipeline *slot = monte_carlo ? &ctx->lighting_mc_pipelines[v] : &ctx->lighting_pipelines[v];
-    if (*slot) {
-        *out = *slot;
+    rtpbr_result result = RTPBR_SUCCESS;
+    if (monte_carlo) {
+        if (!ctx->lighting_mc_pipelines[v])
+            RTPBR_TRY(create_compute(ctx, mc[v], ctx->lighting_mc_layout, &ctx->lighting_mc_pipelines[v]));
+        out[0] = ctx->lighting_mc_pipelines[v];
         return RTPBR_SUCCESS;
     }
-    rtpbr_result result = RTPBR_SUCCESS;
-    VkShaderModule module = VK_NULL_HANDLE;
-    RTPBR_TRY(rtpbr_shader_module(ctx, monte_carlo ? mc[v] : ltc[v], &module));
-    VkComputePipelineCreateInfo info = {
-        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_COMPUTE_BIT,
-                  .module = module, .pName = "main"},
-        .layout = monte_carlo ? ctx->lighting_mc_layout : ctx->lighting_layout,
-    };
-    RTPBR_VK(ctx, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL, slot));
-    *out = *slot;
+    out[RTPBR_TILE_CLASS_EMPTY] = ctx->lighting_empty_pipeline;
+    for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) {
+        if (!ctx->lighting_pipelines[v][c])
+            RTPBR_TRY(create_compute(ctx, ltc[v][c], ctx->lighting_layout, &ctx->lighting_pipelines[v][c]));
+        out[RTPBR_TILE_CLASS_BASIC + c] = ctx->lighting_pipelines[v][c];
+    }
 cleanup:
-    vkDestroyShaderModule(ctx->device, module, NULL);
     return result;
 }
 

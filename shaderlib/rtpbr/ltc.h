@@ -244,51 +244,136 @@ RTPBR_FN float3x3 LTC_InverseMatrix(float4 ltc1) {
                            float3(ltc1.z, 0.0f, ltc1.w));
 }
 
-// The edge term of Lambert's formula for the great-circle arc from unit vector a to unit
-// vector b: theta * normalize(cross(a, b)), theta = the angle between them. theta comes from
-// atan2(|a x b|, a.b), accurate at every angle (acos(a.b) loses half the digits near 0 and pi);
-// theta / sin(theta) stays finite when a and b are nearly equal or nearly opposite.
-RTPBR_FN float3 LTC_EdgeVector(float3 a, float3 b) {
+// ---- streamed integration (the real-time path) ----------------------------------------------
+// A light is integrated edge by edge, without ever storing the clipped polygon (GPU compilers
+// turn run-time-indexed private arrays into select chains or scratch memory). The caller walks
+// the light's edges a -> b as vectors from the shading point in the LTC frame (LTC_Frame),
+// clips each to the surface's upper hemisphere with LTC_ClipEdge (one clip per light), and
+// hands every surviving segment to each lobe: LTC_LobeEdge for an LTC lobe (which clips it
+// again to the lobe's own support, in the lobe's space) and LTC_EdgeIntegral for the
+// Lambertian form factor vector. After the last edge, LTC_ClipClose gives the segment that
+// closes the clipped polygon along the horizon, and LTC_LobeEnd the lobe's form factor.
+// Valid for convex planar polygons (a half-space clip then leaves one exit and one entry).
+
+// Heitz, Dupuy, Hill & Neubelt 2017, the fitted edge integral of their LTC code (ltc_code,
+// "IntegrateEdgeVec"): theta / sin(theta) / (2 pi) for two unit vectors with x = cos(theta),
+// as a rational fit in |x| (relative error below 2e-6 on [-1, 1], measured in tests/ltc);
+// for x < 0 the identity theta / sin = pi / sin - (pi - theta) / sin folds it onto |x|. sinT =
+// |a x b|, passed in so that opposite vectors (sin -> 0) stay consistent with the cross product.
+RTPBR_FN float LTC_EdgeFactor(float x, float sinT) {
+    float y = abs(x);
+    float a = 0.8543985f + (0.4965155f + 0.0145206f * y) * y;
+    float b = 3.4175940f + (4.1616724f + y) * y;
+    float v = a / b;
+    return x >= 0.0f ? v : 0.5f / max(sinT, 1e-7f) - v;
+}
+
+// The edge term of Lambert's formula divided by 2 pi for unit vectors a, b:
+// theta / (2 pi sin theta) * cross(a, b) (theta the angle between them); summed over a
+// polygon's edges it is the polygon's vector form factor (Arvo 1995), up to orientation.
+RTPBR_FN float3 LTC_EdgeIntegral(float3 a, float3 b) {
     float3 c = cross(a, b);
-    float s = length(c);
-    float k = s > 0.0f ? atan2(s, dot(a, b)) / s : 1.0f;
-    return c * k;
+    return c * LTC_EdgeFactor(dot(a, b), length(c));
 }
 
-// A local vertex transformed by M^-1 and projected to the unit sphere. clampZ: the vertex is
-// known to be in z >= 0 after the transform (clipped), so rounding below it is removed.
-RTPBR_FN float3 LTC_TransformVertex(float3x3 minv, float3 p, bool clampZ) {
-    float3 q = rtpbr_mul(minv, p);
-    if (clampZ)
-        q.z = max(q.z, 0.0f);
-    float l2 = dot(q, q);
-    if (l2 > 0.0f)
-        q = q * rsqrt(l2);
-    return q;
+// The z component of LTC_EdgeIntegral alone (the form factor against the cosine lobe).
+RTPBR_FN float LTC_EdgeIntegralZ(float3 a, float3 b) {
+    float3 c = cross(a, b);
+    return c.z * LTC_EdgeFactor(dot(a, b), length(c));
 }
 
-// The form factor (in [0, 1]) of a local polygon (from LTC_PolygonToLocal) under the LTC
-// given by ltc1: the integral of the LTC distribution over the part of the polygon above the
-// surface's horizon. With ltc1 = LTC_Identity() it is the polygon's Lambertian form factor.
-RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, float4 ltc1) {
-    if (local.count < 3)
-        return 0.0f;
-    // The LTC is zero where (M^-1 w).z < 0: clip there, so the transformed polygon is in z >= 0.
-    LtcLocalPolygon p = LTC_ClipToHalfSpace(local, float3(ltc1.z, 0.0f, ltc1.w));
-    if (p.count < 3)
-        return 0.0f;
-    float3x3 minv = LTC_InverseMatrix(ltc1);
-    float3 first = LTC_TransformVertex(minv, p.v[0], true);
-    float3 prev = first;
-    float sum = 0.0f;
-    for (int i = 1; i < p.count; i++) {
-        float3 cur = LTC_TransformVertex(minv, p.v[i], true);
-        sum += LTC_EdgeVector(prev, cur).z;
-        prev = cur;
+// v / |v|, and 0 for the zero vector (a vertex at the shading point contributes nothing).
+RTPBR_FN float3 LTC_SafeNormalize(float3 v) {
+    return v * rsqrt(max(dot(v, v), 1e-30f));
+}
+
+// The state of a streamed clip of a convex polygon to the half-space z >= 0 (a plane through
+// the shading point): where its boundary leaves the half-space and where it comes back.
+struct LtcClipper {
+    float3 exitPoint;
+    float3 entryPoint;
+    bool crossed;
+};
+
+// A clipped edge: the segment a -> b, or nothing (valid = false).
+struct LtcSegment {
+    float3 a;
+    float3 b;
+    bool valid;
+};
+
+RTPBR_FN LtcClipper LTC_ClipperBegin() {
+    LtcClipper c;
+    c.exitPoint = RTPBR_F3(0.0f);
+    c.entryPoint = RTPBR_F3(0.0f);
+    c.crossed = false;
+    return c;
+}
+
+// The part of the edge a -> b in z >= 0 (points on the plane are inside); records the exit
+// and entry points for LTC_ClipClose.
+RTPBR_FN LtcSegment LTC_ClipEdge(RTPBR_INOUT(LtcClipper) clip, float3 a, float3 b) {
+    bool inA = a.z >= 0.0f;
+    bool inB = b.z >= 0.0f;
+    // a.z and b.z have opposite signs when the edge crosses: a.z - b.z != 0, t in [0, 1].
+    float t = inA != inB ? a.z / (a.z - b.z) : 0.0f;
+    float3 x = a + (b - a) * t;
+    x.z = 0.0f;
+    if (inA && !inB) {
+        clip.exitPoint = x;
+        clip.crossed = true;
     }
-    sum += LTC_EdgeVector(prev, first).z;
-    // The polygon is convex and in z >= 0: the sum has one sign (the orientation's).
-    return min(rtpbr_pos(abs(sum) * (0.5f * RTPBR_INV_PI)), 1.0f);
+    if (!inA && inB)
+        clip.entryPoint = x;
+    LtcSegment s;
+    s.a = inA ? a : x;
+    s.b = inB ? b : x;
+    s.valid = inA || inB;
+    return s;
+}
+
+// The segment along the plane that closes the clipped polygon (valid when it was crossed).
+RTPBR_FN LtcSegment LTC_ClipClose(LtcClipper clip) {
+    LtcSegment s;
+    s.a = clip.exitPoint;
+    s.b = clip.entryPoint;
+    s.valid = clip.crossed;
+    return s;
+}
+
+// One LTC lobe being integrated over a streamed polygon: its M^-1 (LTC_InverseMatrix, or a
+// general matrix such as LTC_AnisotropicInverseMatrix's), the clip to its support
+// (M^-1 w).z >= 0 done in its own space (a linear map keeps segments straight), and the sum
+// of the edge integrals.
+struct LtcLobe {
+    float3x3 minv;
+    LtcClipper clip;
+    float sum;
+};
+
+RTPBR_FN LtcLobe LTC_LobeBegin(float3x3 minv) {
+    LtcLobe lobe;
+    lobe.minv = minv;
+    lobe.clip = LTC_ClipperBegin();
+    lobe.sum = 0.0f;
+    return lobe;
+}
+
+// Adds the segment a -> b (vectors from the shading point in the LTC frame, already clipped to
+// the surface's upper hemisphere) to the lobe.
+RTPBR_FN void LTC_LobeEdge(RTPBR_INOUT(LtcLobe) lobe, float3 a, float3 b) {
+    LtcSegment s = LTC_ClipEdge(lobe.clip, rtpbr_mul(lobe.minv, a), rtpbr_mul(lobe.minv, b));
+    if (s.valid)
+        lobe.sum += LTC_EdgeIntegralZ(LTC_SafeNormalize(s.a), LTC_SafeNormalize(s.b));
+}
+
+// The lobe's form factor in [0, 1] after the last edge (closes its own clip). A convex
+// polygon in z >= 0 gives a sum of one sign (its orientation's).
+RTPBR_FN float LTC_LobeEnd(LtcLobe lobe) {
+    float sum = lobe.sum;
+    if (lobe.clip.crossed)
+        sum += LTC_EdgeIntegralZ(LTC_SafeNormalize(lobe.clip.exitPoint), LTC_SafeNormalize(lobe.clip.entryPoint));
+    return min(abs(sum), 1.0f);
 }
 
 // Anisotropic lobes (ours, from the LTC construction of Heitz et al. 2016): an anisotropic
@@ -298,18 +383,47 @@ RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, float4 ltc1) {
 // stretched so (GGX and Beckmann are stretch invariant), and near c directions follow slopes
 // linearly. As an LTC, M_aniso = A M_iso with A = k e1 e1^T + (1 / k) e2 e2^T + c c^T (e1 the
 // anisotropy direction made orthogonal to c, e2 = c x e1; det A = 1), so the polygon integral
-// is the isotropic LTC's over A^-1 P. This applies A^-1 to a local polygon (from
-// LTC_PolygonToLocal, already clipped to the horizon, so only directions above it count).
-// c and e1 unit and orthogonal; k >= 1 when at >= ab (NaN or <= 0: no stretch).
-RTPBR_FN LtcLocalPolygon LTC_AnisotropicStretchInverse(LtcLocalPolygon p, float3 c, float3 e1, float k) {
-    float ik = k > 0.0f ? 1.0f / k : 1.0f;
+// is the isotropic LTC's over A^-1 P: the lobe's inverse matrix is M^-1 A^-1
+// (LTC_AnisotropicInverseMatrix), applied to polygons already clipped to the horizon, so only
+// directions above it count. c and e1 unit and orthogonal; k >= 1 when at >= ab (NaN or
+// <= 0: no stretch).
+//
+// A^-1 v for the anisotropic stretch A (A^-1 is symmetric).
+RTPBR_FN float3 LTC_AnisotropicUnstretch(float3 v, float3 c, float3 e1, float k) {
     float kk = k > 0.0f ? k : 1.0f;
     float3 e2 = cross(c, e1);
+    return e1 * (dot(e1, v) / kk) + e2 * (dot(e2, v) * kk) + c * dot(c, v);
+}
+
+// M^-1 A^-1: the inverse matrix of the isotropic LTC ltc1 stretched by A (rows of M^-1 times
+// the symmetric A^-1), for LTC_LobeBegin. c, e1 unit and orthogonal, k >= 1.
+RTPBR_FN float3x3 LTC_AnisotropicInverseMatrix(float4 ltc1, float3 c, float3 e1, float k) {
+    return rtpbr_mat3_rows(LTC_AnisotropicUnstretch(float3(ltc1.x, 0.0f, ltc1.y), c, e1, k),
+                           LTC_AnisotropicUnstretch(float3(0.0f, 1.0f, 0.0f), c, e1, k),
+                           LTC_AnisotropicUnstretch(float3(ltc1.z, 0.0f, ltc1.w), c, e1, k));
+}
+
+// The form factor (in [0, 1]) of a local polygon (from LTC_PolygonToLocal) under the LTC
+// given by ltc1: the integral of the LTC distribution over the part of the polygon above the
+// surface's horizon. With ltc1 = LTC_Identity() it is the polygon's Lambertian form factor.
+// The streamed lobe integration over the stored polygon (fixed trip count: the compiler can
+// unroll it and index the array statically). LTC_IntegrateLocalMatrix takes any M^-1 (e.g.
+// LTC_AnisotropicInverseMatrix's).
+RTPBR_FN float LTC_IntegrateLocalMatrix(LtcLocalPolygon local, float3x3 minv) {
+    if (local.count < 3)
+        return 0.0f;
+    LtcLobe lobe = LTC_LobeBegin(minv);
     for (int i = 0; i < RTPBR_LTC_CLIP_VERTICES; i++) {
-        float3 v = p.v[i];
-        p.v[i] = e1 * (dot(e1, v) * ik) + e2 * (dot(e2, v) * kk) + c * dot(c, v);
+        if (i < local.count) {
+            float3 b = i + 1 < local.count ? local.v[i + 1] : local.v[0];
+            LTC_LobeEdge(lobe, local.v[i], b);
+        }
     }
-    return p;
+    return LTC_LobeEnd(lobe);
+}
+
+RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, float4 ltc1) {
+    return LTC_IntegrateLocalMatrix(local, LTC_InverseMatrix(ltc1));
 }
 
 // The vector form factor (Arvo 1995) of an unclipped local polygon (from
@@ -321,19 +435,16 @@ RTPBR_FN float3 LTC_FormFactorVector(LtcLocalPolygon local, float4 ltc1) {
     if (local.count < 3)
         return F;
     float3x3 minv = LTC_InverseMatrix(ltc1);
-    float3 first = LTC_TransformVertex(minv, local.v[0], false);
-    float3 prev = first;
-    for (int i = 1; i < local.count; i++) {
-        float3 cur = LTC_TransformVertex(minv, local.v[i], false);
-        F += LTC_EdgeVector(prev, cur);
-        prev = cur;
+    for (int i = 0; i < RTPBR_LTC_CLIP_VERTICES; i++) {
+        if (i < local.count) {
+            float3 b = i + 1 < local.count ? local.v[i + 1] : local.v[0];
+            F += LTC_EdgeIntegral(LTC_SafeNormalize(rtpbr_mul(minv, local.v[i])), LTC_SafeNormalize(rtpbr_mul(minv, b)));
+        }
     }
-    F += LTC_EdgeVector(prev, first);
     // Local polygons appear clockwise from P, which makes F point toward them; a transform
     // with a negative determinant mirrors the orientation.
     float det = ltc1.x * ltc1.w - ltc1.y * ltc1.z;
-    float s = det < 0.0f ? -0.5f * RTPBR_INV_PI : 0.5f * RTPBR_INV_PI;
-    return F * s;
+    return det < 0.0f ? -F : F;
 }
 
 // Hill & Heitz 2016: the horizon-clipped form factor of the sphere whose vector form factor

@@ -21,6 +21,7 @@
 
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"
+#include "rtpbr/ltc.h"
 
 #if defined(RTPBR_CPP)
 #define RTPBR_TEST_PRECISE
@@ -109,6 +110,42 @@ RTPBR_FN RtpbrTestArgs rtpbr_test_args(float4 a, float4 b) {
     t.wm = rtpbr_test_dir(a.w, b.x);
     t.u = float2(min(b.x, RTPBR_TEST_BELOW_ONE), min(b.y, RTPBR_TEST_BELOW_ONE));
     return t;
+}
+
+// ltc.h's streamed integration of a planar convex quad around the shading point that the
+// horizon may cut (vertex heights h + gx x + gy y over the unit square's corners rotated by 45
+// degrees, all derived from the arguments), through the horizon clip and one LTC lobe of
+// M^-1 rows (m00, 0, m02), (0, 1, 0), (m20, 0, m22), stretched (LTC_AnisotropicInverseMatrix,
+// about +z along +x by k) when `stretch`. Returns the lobe's form factor (which = 0), or the
+// component `which` - 1 of the clipped quad's vector form factor.
+RTPBR_FN float rtpbr_test_ltc_quad(RtpbrTestArgs t, bool stretch, int which) {
+    RTPBR_TEST_PRECISE float h = 0.5f * t.sc;
+    RTPBR_TEST_PRECISE float gx = t.c1 - 0.5f;
+    RTPBR_TEST_PRECISE float gy = t.c2 - 0.5f;
+    float3 v0 = float3(1.0f, 0.0f, h + gx);
+    float3 v1 = float3(0.0f, 1.0f, h + gy);
+    float3 v2 = float3(-1.0f, 0.0f, h - gx);
+    float3 v3 = float3(0.0f, -1.0f, h - gy);
+    RTPBR_TEST_PRECISE float m02 = 0.5f * t.sc;
+    RTPBR_TEST_PRECISE float m20 = t.c3 - 0.5f;
+    RTPBR_TEST_PRECISE float m22 = 0.5f + t.c0;
+    RTPBR_TEST_PRECISE float k = 1.0f + 3.0f * t.aniso;
+    float4 ltc1 = float4(0.2f + t.perceptual, m02, m20, m22);
+    float3x3 minv = stretch ? LTC_AnisotropicInverseMatrix(ltc1, float3(0.0f, 0.0f, 1.0f), float3(1.0f, 0.0f, 0.0f), k)
+                            : LTC_InverseMatrix(ltc1);
+    LtcClipper horizon = LTC_ClipperBegin();
+    LtcLobe lobe = LTC_LobeBegin(minv);
+    float3 F = RTPBR_F3(0.0f);
+    for (int e = 0; e < 5; e++) {
+        float3 a = e == 0 ? v0 : (e == 1 ? v1 : (e == 2 ? v2 : v3));
+        float3 b = e == 0 ? v1 : (e == 1 ? v2 : (e == 2 ? v3 : v0));
+        LtcSegment seg = e < 4 ? LTC_ClipEdge(horizon, a, b) : LTC_ClipClose(horizon);
+        if (seg.valid) {
+            F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+            LTC_LobeEdge(lobe, seg.a, seg.b);
+        }
+    }
+    return which == 0 ? LTC_LobeEnd(lobe) : (which == 1 ? F.x : (which == 2 ? F.y : F.z));
 }
 
 // Each case assigns instead of returning early: lavapipe (Mesa 22.3, gallivm) miscompiled the

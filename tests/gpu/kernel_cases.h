@@ -17,3 +17,4 @@
 #include "cases/smith.inc"
 #include "cases/microfacet.inc"
 #include "cases/sampling.inc"
+#include "cases/ltc.inc"

@@ -29,5 +29,18 @@ void main() {
     vec3 fsel = LTC_FresnelScaleSelected(ltc2, fp);
     result[0] = vec4(uv, suv);
     result[1] = vec4(spec, diff, s1, s2);
+    // The streamed path: one horizon clip, an anisotropically stretched lobe.
+    LtcClipper horizon = LTC_ClipperBegin();
+    LtcLobe lobe = LTC_LobeBegin(LTC_AnisotropicInverseMatrix(ltc1, vec3(0.0f, 0.0f, 1.0f), vec3(1.0f, 0.0f, 0.0f), 2.0f));
+    vec3 Fs = RTPBR_F3(0.0f);
+    LtcSegment seg = LTC_ClipEdge(horizon, local.v[0], local.v[1]);
+    if (seg.valid) {
+        Fs += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+        LTC_LobeEdge(lobe, seg.a, seg.b);
+    }
+    seg = LTC_ClipClose(horizon);
+    float streamed = LTC_LobeEnd(lobe) + LTC_EdgeIntegralZ(seg.a, seg.b) + LTC_EdgeFactor(0.5f, 0.8f) + Fs.x +
+                     LTC_IntegrateLocalMatrix(local, LTC_InverseMatrix(ltc1));
+    result[3] = RTPBR_F4(streamed);
     result[2] = vec4(fs + fc + fsel, e);
 }

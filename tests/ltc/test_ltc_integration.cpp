@@ -196,7 +196,9 @@ static void test_one_sided(void **state) {
     assert_true(f > 0.1f && b == 0.0f && std::fabs(b2 - f) < 1e-6f);
 }
 
-// The edge integral: theta * normalize(a x b) for angles from 1e-6 to pi - 1e-4, against double.
+// The edge integral (the fitted theta / sin theta of LTC_EdgeFactor): 2 pi LTC_EdgeIntegral(a, b)
+// = theta * normalize(a x b) for angles from 1e-6 to pi - 1e-4, against double; the fit's own
+// error over its whole domain, against the exact theta / sin theta in double.
 static void test_edge_precision(void **state) {
     (void)state;
     double worst = 0.0;
@@ -205,7 +207,7 @@ static void test_edge_precision(void **state) {
         d3 a = unit(d3{1, 0.3, 0.2});
         d3 t = unit(cross(a, d3{0, 0, 1}));
         d3 b = a * std::cos(theta) + t * std::sin(theta);
-        float3 v = rtpbr::LTC_EdgeVector(f3(a), f3(unit(b)));
+        float3 v = rtpbr::LTC_EdgeIntegral(f3(a), f3(unit(b))) * float(2.0 * M_PI);
         d3 expect = unit(cross(a, b)) * theta;
         double err = len(d3{v.x - expect.x, v.y - expect.y, v.z - expect.z});
         double rel = err / theta;
@@ -218,6 +220,16 @@ static void test_edge_precision(void **state) {
             assert_true(rel < 2e-6 || err < 2e-7);
     }
     fprintf(stderr, "edge integral: worst relative error %.2e (angles 1e-6 .. 3.1)\n", worst);
+    double fitWorst = 0.0;
+    for (int i = 0; i <= 200000; i++) {
+        double x = -0.99999 + 1.99999 * i / 200000.0;
+        double theta = std::acos(x), sinT = std::sqrt(1.0 - x * x);
+        double exact = (sinT > 0.0 ? theta / sinT : 1.0) / (2.0 * M_PI);
+        double fit = rtpbr::LTC_EdgeFactor(float(x), float(sinT));
+        fitWorst = std::max(fitWorst, std::fabs(fit - exact) / exact);
+    }
+    fprintf(stderr, "fitted theta / sin theta: worst relative error %.2e on [-0.99999, 1]\n", fitWorst);
+    assert_true(fitWorst < 1e-5);
 }
 
 int main(void) {

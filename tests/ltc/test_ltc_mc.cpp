@@ -193,7 +193,7 @@ static void test_disney_diffuse_albedo(void **state) {
     assert_true(worst < 0.0015);
 }
 
-// Anisotropic GGX through LTC_AnisotropicStretchInverse: the isotropic GGX LTC at
+// Anisotropic GGX through LTC_AnisotropicInverseMatrix: the isotropic GGX LTC at
 // alpha = sqrt(at ab), stretched about the mirror direction along the anisotropy direction,
 // against Monte Carlo of the anisotropic BRDF (BRDF_SpecularLocal, F = 1, height-correlated
 // Smith) times the cosine over square lights near the highlight, the anisotropy direction at
@@ -249,7 +249,7 @@ static void test_anisotropic_stretch_vs_mc(void **state) {
                         float3 e1 = glm::normalize(t - m * glm::dot(t, m));
                         double iso = norm * rtpbr::LTC_IntegrateLocal(local, l1);
                         double stretched =
-                            norm * rtpbr::LTC_IntegrateLocal(rtpbr::LTC_AnisotropicStretchInverse(local, m, e1, std::sqrt(at / ab)), l1);
+                            norm * rtpbr::LTC_IntegrateLocalMatrix(local, rtpbr::LTC_AnisotropicInverseMatrix(l1, m, e1, std::sqrt(at / ab)));
                         sumStretch += std::fabs(stretched - ref) / ref;
                         sumIso += std::fabs(iso - ref) / ref;
                         count++;

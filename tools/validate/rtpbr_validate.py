@@ -7,9 +7,13 @@ control), 2 on errors (a tool missing or failing).
 
     rtpbr_validate.py [--build BUILD] [--thresholds FILE] [--out REPORT] [--quick]
                       [--scenes NAME ...] [--cache DIR] [--no-cache]
+                      [--scheduler tcp://HOST:PORT | --local-workers N | --jobqueue slurm ...]
 
 Oracle images are cached by a hash of the scene files, the oracle's options and the oracle
-binary itself (its version), so a second run re-renders only what changed.
+binary itself (its version), so a second run re-renders only what changed. With a cluster
+option the oracle references are rendered on Dask distributed (rtpbr_oracle_cluster.py: tasks
+of image bands x sample ranges, merged bit for bit into the image one process writes), into the
+same cache; the report says where each reference was rendered (tasks, workers, retries).
 """
 import argparse
 import hashlib
@@ -20,6 +24,8 @@ import shutil
 import subprocess
 import sys
 import time
+
+import rtpbr_oracle_cluster as oracle_cluster
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
@@ -85,7 +91,38 @@ def main(argv=None):
     ap.add_argument("--scenes", nargs="*")
     ap.add_argument("--cache", default=None, help="oracle cache (default BUILD/validate-cache)")
     ap.add_argument("--no-cache", action="store_true")
+    oracle_cluster.add_cluster_arguments(ap)
+    raw_argv = sys.argv[1:] if argv is None else argv
     args = ap.parse_args(argv)
+    on_cluster = bool(args.scheduler or args.local_workers or args.jobqueue)
+    try:
+        if on_cluster:
+            oracle_cluster.ensure_dask(os.path.abspath(__file__), raw_argv)
+        return validate(args, on_cluster)
+    except oracle_cluster.ClusterError as e:
+        log(str(e))
+        return 2
+    finally:
+        if _cluster_state["client"] is not None:
+            _cluster_state["client"].close()
+        if _cluster_state["cluster"] is not None:
+            _cluster_state["cluster"].close()
+
+
+_cluster_state = {"client": None, "cluster": None}
+
+
+def cluster_client(args):
+    """The Dask client, connected on first use (a run whose references are all cached needs none)."""
+    if _cluster_state["client"] is None:
+        log("connecting to %s" % oracle_cluster.cluster_description(args.scheduler, args.local_workers,
+                                                                     args.jobqueue, args.jobs))
+        _cluster_state["client"], _cluster_state["cluster"] = oracle_cluster.connect(
+            args.scheduler, args.local_workers, args.jobqueue, args.jobs, args.jobqueue_option)
+    return _cluster_state["client"]
+
+
+def validate(args, on_cluster):
 
     with open(args.thresholds) as f:
         config = json.load(f)
@@ -140,12 +177,39 @@ def main(argv=None):
         cached = os.path.join(cache, "%s-%s.exr" % (name, key))
         oracle_exr = os.path.join(outdir, "oracle.exr")
         t_oracle = 0.0
+        # How the cached image was rendered, beside it (one process or a cluster run).
+        how_path = cached[:-len(".exr")] + ".json"
         if os.path.isfile(cached) and not args.no_cache:
             log("[%d/%d] %s: oracle from cache" % (k + 1, len(names), name))
+            how = {"where": "local"}
+            if os.path.isfile(how_path):
+                with open(how_path) as f:
+                    how = json.load(f)
+            how["cached"] = True
+        elif on_cluster:
+            log("[%d/%d] %s: oracle %s spp on the cluster" % (k + 1, len(names), name, sc["spp"]))
+            t0 = time.time()
+            stats = oracle_cluster.render(cluster_client(args), gltf, oracle, oracle_args, cached + ".tmp.exr",
+                                          args.task_seconds, args.task_samples, args.task_threads,
+                                          args.worker_oracle, args.shared_scene,
+                                          lambda msg: log("[%d/%d] %s" % (k + 1, len(names), msg)), name)
+            t_oracle = time.time() - t0
+            how = {"where": "cluster", "cluster": oracle_cluster.cluster_description(
+                args.scheduler, args.local_workers, args.jobqueue, args.jobs)}
+            how.update({key: stats[key] for key in ("tasks", "workers", "retries", "seconds",
+                                                   "task_seconds_median", "overhead_seconds_median")})
+            os.replace(cached + ".tmp.exr", cached)
+            with open(how_path, "w") as f:
+                json.dump(how, f, indent=1)
+            how["cached"] = False
         else:
             log("[%d/%d] %s: oracle %s spp (this is the slow part)" % (k + 1, len(names), name, sc["spp"]))
             _, t_oracle = run([oracle, gltf, "-o", cached + ".tmp.exr", "--quiet"] + oracle_args, "rtpbr-oracle")
             os.replace(cached + ".tmp.exr", cached)
+            how = {"where": "local", "seconds": round(t_oracle, 2)}
+            with open(how_path, "w") as f:
+                json.dump(how, f, indent=1)
+            how["cached"] = False
         shutil.copyfile(cached, oracle_exr)
 
         heat = os.path.join(outdir, "flip.png")
@@ -166,7 +230,7 @@ def main(argv=None):
                         "oracle_flags": sc.get("oracle_flags", []), "engine_flags": sc.get("engine_flags", []),
                         "note": sc.get("note", ""),
                         "engine_seconds": round(t_engine, 2), "oracle_seconds": round(t_oracle, 2),
-                        "metrics": metrics})
+                        "oracle_args": oracle_args, "oracle_render": how, "metrics": metrics})
         log("[%d/%d] %s: HDR-FLIP mean %.4f p95 %.4f (limits %.3f / %.3f) %s"
             % (k + 1, len(names), name, metrics["mean"], metrics["p95"], sc["max_mean"], sc["max_p95"],
                "ok" if ok else "EXCEEDED"))
@@ -176,11 +240,39 @@ def main(argv=None):
     return 1 if failed else 0
 
 
+def describe_render(how):
+    """One line on how an oracle reference was rendered, for the report."""
+    if how.get("where") == "cluster":
+        text = ("on %s: %d tasks on %d workers, %d retries, %.1f s (median task %.1f s, of which %.1f s outside "
+                "the render)" % (how.get("cluster", "a Dask cluster"), how["tasks"], how["workers"], how["retries"],
+                                 how["seconds"], how.get("task_seconds_median") or 0.0,
+                                 how.get("overhead_seconds_median") or 0.0))
+    else:
+        text = "in one process" + (", %.1f s" % how["seconds"] if "seconds" in how else "")
+    return ("from the cache (rendered %s)" if how.get("cached") else "rendered %s") % text
+
+
+def rendering_summary(results):
+    renders = [r["oracle_render"] for r in results]
+    fresh = [h for h in renders if not h.get("cached")]
+    on_cluster = [h for h in fresh if h.get("where") == "cluster"]
+    return {"references": len(renders), "from_cache": len(renders) - len(fresh),
+            "in_one_process": len(fresh) - len(on_cluster), "on_cluster": len(on_cluster),
+            "cluster": on_cluster[0]["cluster"] if on_cluster else None,
+            "tasks": sum(h["tasks"] for h in on_cluster), "workers": max([h["workers"] for h in on_cluster] or [0]),
+            "retries": sum(h["retries"] for h in on_cluster)}
+
+
 def write_report(out, results, mode):
+    rendering = rendering_summary(results)
     with open(os.path.join(out, "summary.json"), "w") as f:
-        json.dump({"mode": mode, "scenes": results}, f, indent=1)
+        json.dump({"mode": mode, "oracle_rendering": rendering, "scenes": results}, f, indent=1)
+    how_line = ("Oracle references: %d rendered in one process, %d on %s (%d tasks, up to %d workers, %d retries), "
+                "%d from the cache." % (rendering["in_one_process"], rendering["on_cluster"],
+                                        rendering["cluster"] or "a cluster", rendering["tasks"], rendering["workers"],
+                                        rendering["retries"], rendering["from_cache"]))
     cols = ["scene", "HDR-FLIP mean", "median", "p95", "p99", "max", "RMSE", "relMSE", "limits (mean / p95)", "result"]
-    md = ["# rtpbr validation (%s)" % mode, "", "| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
+    md = ["# rtpbr validation (%s)" % mode, "", how_line, "", "| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     rows_html = []
     for r in results:
         m = r["metrics"]
@@ -196,17 +288,19 @@ def write_report(out, results, mode):
         s = html.escape(r["scene"])
         sections.append(
             "<h2 id='%s'>%s</h2><p>%s</p><p>oracle: %s spp, flags <code>%s</code>; %dx%d; HDR-FLIP mean <b>%.4f</b>, "
-            "p95 %.4f (limits %.3f / %.3f)</p><div class='row'><figure><img src='%s/engine.png'><figcaption>engine "
+            "p95 %.4f (limits %.3f / %.3f)</p><p class='how'>oracle reference %s</p><div class='row'><figure><img src='%s/engine.png'><figcaption>engine "
             "(LTC)</figcaption></figure><figure><img src='%s/oracle.png'><figcaption>oracle (path traced)</figcaption>"
             "</figure><figure><img src='%s/flip.png'><figcaption>HDR-FLIP error (magma)</figcaption></figure></div>"
             % (s, s, html.escape(r["note"]), r["spp"], html.escape(" ".join(r["oracle_flags"])), r["width"], r["height"],
-               r["metrics"]["mean"], r["metrics"]["p95"], r["max_mean"], r["max_p95"], s, s, s))
+               r["metrics"]["mean"], r["metrics"]["p95"], r["max_mean"], r["max_p95"],
+               html.escape(describe_render(r["oracle_render"])), s, s, s))
     page = """<!doctype html><meta charset="utf-8"><title>rtpbr validation</title>
 <style>body{font-family:sans-serif;margin:2em;background:#fafafa}table{border-collapse:collapse}
 td,th{border:1px solid #ccc;padding:4px 8px;text-align:right}tr.bad td{background:#fdd}
 .row{display:flex;gap:12px}figure{margin:0}img{max-width:100%%;image-rendering:pixelated}</style>
 <h1>rtpbr validation: engine against oracle (%s)</h1>
-<table><tr>%s</tr>%s</table>%s""" % (mode, "".join("<th>%s</th>" % c for c in cols), "".join(rows_html), "".join(sections))
+<p>%s</p>
+<table><tr>%s</tr>%s</table>%s""" % (mode, html.escape(how_line), "".join("<th>%s</th>" % c for c in cols), "".join(rows_html), "".join(sections))
     with open(os.path.join(out, "index.html"), "w") as f:
         f.write(page)
 

@@ -1,0 +1,99 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Light culling and tile classification, a dispatch of its own before the lighting pass (so the
+// shading kernel has no barriers: lavapipe runs a workgroup's invocations as coroutines that
+// switch at each barrier). One invocation per RTPBR_TILE_SIZE^2 screen tile: it bounds the
+// world positions of the tile's pixels by a box, keeps the lights that may reach the box (bit
+// i of the tile's mask, tile_masks), and queues the tile for the lighting variant of its class
+// (tile_dispatch / tile_list, consumed by indirect dispatches):
+//   EMPTY  no surface pixel, or no light left: emission and background only;
+//   BASIC  every material of the tile is basic (material_tile_class);
+//   FULL   otherwise.
+// Light i is kept unless
+//   (1) the light is one-sided and every corner of the box is behind its plane: it cannot
+//       light any point of the tile (exact), or
+//   (2) the box is at distance d > 0 from the light's bounding sphere and A / (pi d^2) <
+//       frame.cull_form_factor: A / (pi d^2) bounds the light's form factor (1/pi) int cos dw
+//       at every point of the tile (the solid angle of a polygon of area A at distance >= d is
+//       at most A / d^2), so the light's diffuse contribution is below Le * albedo *
+//       cull_form_factor. Glossy reflections of such a light are dropped with it (a bias
+//       bounded only for the diffuse term). cull_form_factor < 0 disables this test.
+#include "rtpbr_shared.h"
+#include "rtpbr/lang.h"
+#include "rtpbr/config.h"
+#include "rtpbr/fresnel.h"
+#include "rtpbr/kulla_conty.h"
+#include "rtpbr/disney.h"
+#include "rtpbr/sheen.h"
+#include "material.glsl"
+#define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
+#include "frame.glsl"
+
+layout(local_size_x = RTPBR_CULL_GROUP, local_size_y = RTPBR_CULL_GROUP) in;
+
+#include "lighting_common.glsl"
+
+bool light_may_contribute(uint i, vec3 boxMin, vec3 boxMax)
+{
+    vec4 plane = lights[i].plane;
+    if (lights[i].emission.w == 0.0f) {
+        bool anyInFront = false;
+        for (int c = 0; c < 8; ++c) {
+            vec3 corner = vec3((c & 1) != 0 ? boxMax.x : boxMin.x, (c & 2) != 0 ? boxMax.y : boxMin.y,
+                               (c & 4) != 0 ? boxMax.z : boxMin.z);
+            anyInFront = anyInFront || dot(plane.xyz, corner) + plane.w > 0.0f;
+        }
+        if (!anyInFront) return false;
+    }
+    if (frame.cull_form_factor >= 0.0f) {
+        vec4 sphere = lights[i].sphere;
+        vec3 nearest = clamp(sphere.xyz, boxMin, boxMax);
+        float d = length(sphere.xyz - nearest) - sphere.w;
+        if (d > 0.0f && lights[i].area < frame.cull_form_factor * 3.14159265f * d * d) return false;
+    }
+    return true;
+}
+
+void main()
+{
+    uvec2 tileXY = gl_GlobalInvocationID.xy;
+    uint tilesY = (frame.size.y + uint(RTPBR_TILE_SIZE) - 1u) / uint(RTPBR_TILE_SIZE);
+    if (tileXY.x >= frame.tiles_x || tileXY.y >= tilesY) return;
+    uint tile = tileXY.y * frame.tiles_x + tileXY.x;
+
+    // The tile's world-space box and the most demanding class of its materials.
+    vec3 boxMin = vec3(3.402823466e+38f);
+    vec3 boxMax = vec3(-3.402823466e+38f);
+    uint materialClass = RTPBR_TILE_CLASS_EMPTY;
+    uvec2 origin = tileXY * uint(RTPBR_TILE_SIZE);
+    uvec2 end = min(origin + uvec2(RTPBR_TILE_SIZE), frame.size);
+    for (uint y = origin.y; y < end.y; ++y)
+        for (uint x = origin.x; x < end.x; ++x) {
+            float depth = texelFetch(gbuffer_depth, ivec2(x, y), 0).r;
+            if (depth < 1.0f) {
+                vec2 ndc = (vec2(x, y) + 0.5f) / vec2(frame.size) * 2.0f - 1.0f;
+                vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
+                vec3 P = world.xyz / world.w;
+                boxMin = min(boxMin, P);
+                boxMax = max(boxMax, P);
+                if (materialClass != RTPBR_TILE_CLASS_FULL)
+                    materialClass = max(materialClass, material_tile_class(materials[uint(texelFetch(gbuffer2, ivec2(x, y), 0).a)]));
+            }
+        }
+
+    bool anyLight = false;
+    uint words = (frame.light_count + 31u) / 32u;
+    for (uint w = 0u; w < words; ++w) {
+        uint bits = 0u;
+        if (materialClass != RTPBR_TILE_CLASS_EMPTY) {
+            uint count = min(32u, frame.light_count - 32u * w);
+            for (uint b = 0u; b < count; ++b)
+                if (light_may_contribute(32u * w + b, boxMin, boxMax)) bits |= 1u << b;
+        }
+        tile_masks[tile * uint(RTPBR_TILE_MASK_WORDS) + w] = bits;
+        anyLight = anyLight || bits != 0u;
+    }
+    uint tileClass = anyLight ? materialClass : RTPBR_TILE_CLASS_EMPTY;
+    uint slot = atomicAdd(tile_dispatch[tileClass].x, 1u);
+    tile_list[tileClass * frame.tile_capacity + slot] = tile;
+}
