@@ -194,24 +194,5 @@ RTPBR_FN float safe_sqrt(float x) { return rtpbr_safe_sqrt(x); }
 
 RTPBR_NAMESPACE_END
 
-// BEGIN unprefixed vocabulary: the names of rtpbr 0.1 in GLSL and HLSL, kept only until every
-// header uses the prefixed ones; tools/rename_shaderlib_vocab.sh renames them and deletes this
-// block (through the END line).
-#if !defined(RTPBR_CPP)
-#if defined(RTPBR_GLSL)
-#define float2 vec2
-#define float3 vec3
-#define float4 vec4
-#define float3x3 mat3
-#define lerp mix
-#define atan2(y, x) atan(y, x)
-#define rsqrt inversesqrt
-float saturate(float x) { return clamp(x, 0.0f, 1.0f); }
-vec3 saturate(vec3 x) { return clamp(x, vec3(0.0f), vec3(1.0f)); }
-#endif
-float sq(float x) { return x * x; }
-float safe_sqrt(float x) { return sqrt(rtpbr_pos(x)); }
-#endif
-// END unprefixed vocabulary
 
 #endif // RTPBR_LANG_H
