@@ -12,7 +12,7 @@ packages=(
   libopenimageio-dev openimageio-tools
   libcmocka-dev libglm-dev valgrind
   clang-14 libfuzzer-14-dev libclang-rt-14-dev
-  python3 python3-numpy python3-matplotlib
+  python3 python3-numpy python3-matplotlib python3-venv
   xvfb xauth
 )
 # node and npm only when the machine has no node of its own (the CI image brings one)
@@ -56,4 +56,18 @@ if [[ ! -x "$venv/bin/python3" ]] || ! cmp -s "$requirements" "$venv/rtpbr-requi
   /usr/bin/python3 -m venv "$venv"
   "$venv/bin/pip" install --quiet --disable-pip-version-check -r "$requirements"
   cp "$requirements" "$venv/rtpbr-requirements.txt"
+fi
+
+# Slang's compiler (slangc) for a second HLSL front end in tests/consumers: the slangtorch wheel
+# on PyPI ships it (only the binary is used; --no-deps: no torch). Into .deps/slang-venv (git-ignored).
+# Optional: without it the Slang test is skipped, with a message.
+if [[ ! -x "$repo/.deps/slangc" ]]; then
+  echo "setup: installing slangtorch 1.3.22 (for slangc) from PyPI into .deps/slang-venv" >&2
+  if /usr/bin/python3 -m venv "$repo/.deps/slang-venv" && \
+     "$repo/.deps/slang-venv/bin/pip" install --quiet --no-deps slangtorch==1.3.22; then
+    slangc=$(find "$repo/.deps/slang-venv" -path '*slangtorch/bin/slangc' | head -n 1)
+    chmod +x "$slangc" && ln -sfn "$slangc" "$repo/.deps/slangc"
+  else
+    echo "setup: slangtorch could not be installed; the Slang compile check will be skipped" >&2
+  fi
 fi

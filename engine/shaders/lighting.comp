@@ -172,7 +172,7 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile)
         // The representative direction of the polygon: its vector form factor's.
         float lenF = length(F);
         vec3 lRep = F / lenF;
-        float muRep = saturate(lRep.z);
+        float muRep = rtpbr_saturate(lRep.z);
         // The cosine-weighted mean of each albedo over the polygon (KC_PolygonMeanE).
         vec2 eRep = kc_E_EF(muRep, s.specR, s.eta);
         float Erep = KC_PolygonMeanE(eRep.x, s.Eavg, lenF);
@@ -182,7 +182,7 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile)
         vec3 base;
 #if RTPBR_LIGHTING_FULL
         if (s.disney) {
-            float LoH = saturate(dot(lRep, normalize(lRep + vLocal)));
+            float LoH = rtpbr_saturate(dot(lRep, normalize(lRep + vLocal)));
             base = burleyScale * light_lobe(i, P, ltcFrame, LTC_InverseMatrix(ltc1d), unusedF) +
                    (s.dm.subsurface * Disney_DiffuseLobe(dss, s.NoV, muRep, LoH) + Disney_SheenLobe(s.dm, LoH)) *
                        (RTPBR_PI * ff);
@@ -233,7 +233,7 @@ void main()
 #else
     vec3 anisoDir = vec3(0.0f);
 #endif
-    Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], saturate(dot(N, V)), anisoDir);
+    Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], rtpbr_saturate(dot(N, V)), anisoDir);
     result += shade_lights(lifted_point(ndc, depth, P, N), N, V, s, tile);
 #endif
     imageStore(radiance, pixel, vec4(result, 1.0));

@@ -5,6 +5,11 @@
 
 #include "internal.h"
 
+uint32_t rtpbr_version(void)
+{
+    return RTPBR_VERSION;
+}
+
 const char *rtpbr_result_string(rtpbr_result result)
 {
     switch (result) {

@@ -41,7 +41,7 @@ void main()
     vec3 P = inWorldPosition;
     vec3 N = normalize(inWorldNormal);
     vec3 V = normalize(shading.cameraPosition.xyz - P);
-    float NoV = saturate(dot(N, V));
+    float NoV = rtpbr_saturate(dot(N, V));
     float roughness = shading.surface.x;
     float metallic = shading.baseColorMetallic.a;
     vec3 baseColor = shading.baseColorMetallic.rgb;
@@ -79,7 +79,7 @@ void main()
     float Eo = textureLod(kcAlbedo, KC_TableCoord(NoV, roughness), 0.0f).r;
     float Eavg = textureLod(kcAvgAlbedo, vec2(KC_TableCoordAvg(roughness), 0.5f), 0.0f).r;
     float lenF = length(diffuseF);
-    float muRep = lenF > 0.0f ? saturate(diffuseF.z / lenF) : 0.0f;
+    float muRep = lenF > 0.0f ? rtpbr_saturate(diffuseF.z / lenF) : 0.0f;
     float Erep = textureLod(kcAlbedo, KC_TableCoord(muRep, roughness), 0.0f).r;
     lo += KC_FmsColor(F_Avg_Schlick(f0, f90), Eavg) * KC_PolygonLobe(Eo, Erep, Eavg, diffuse);
 #endif

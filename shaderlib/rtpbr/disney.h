@@ -56,7 +56,7 @@ RTPBR_NAMESPACE_BEGIN
 // sense": specular = 1 is F0 = 0.08, IOR ~1.8; 12.5 is F0 = 1). Out-of-range values and NaN
 // are clamped by Disney_SanitizeMaterial.
 struct DisneyMaterial {
-    float3 baseColor;     // linear RGB in [0, 1]; default (0.82, 0.67, 0.16) [B12-brdf]
+    rtpbr_float3 baseColor;     // linear RGB in [0, 1]; default (0.82, 0.67, 0.16) [B12-brdf]
     float metallic;       // 0 dielectric .. 1 metal (linear blend); default 0
     float subsurface;     // blend of Burley diffuse towards the subsurface shape; default 0
     float specular;       // F0 = 0.08 specular for dielectrics; default 0.5 (F0 = 0.04)
@@ -72,7 +72,7 @@ struct DisneyMaterial {
 // The values of the BRDF Explorer's disney.brdf parameter block.
 RTPBR_FN DisneyMaterial Disney_DefaultMaterial() {
     DisneyMaterial m;
-    m.baseColor = float3(0.82f, 0.67f, 0.16f);
+    m.baseColor = rtpbr_float3(0.82f, 0.67f, 0.16f);
     m.metallic = 0.0f;
     m.subsurface = 0.0f;
     m.specular = 0.5f;
@@ -93,7 +93,7 @@ RTPBR_FN float Disney_Clamp(float x, float hi) { return x > 0.0f ? min(x, hi) : 
 
 RTPBR_FN DisneyMaterial Disney_SanitizeMaterial(DisneyMaterial m) {
     DisneyMaterial s;
-    s.baseColor = float3(Disney_Clamp(m.baseColor.x, 1.0f), Disney_Clamp(m.baseColor.y, 1.0f),
+    s.baseColor = rtpbr_float3(Disney_Clamp(m.baseColor.x, 1.0f), Disney_Clamp(m.baseColor.y, 1.0f),
                          Disney_Clamp(m.baseColor.z, 1.0f));
     s.metallic = Disney_Clamp(m.metallic, 1.0f);
     s.subsurface = Disney_Clamp(m.subsurface, 1.0f);
@@ -109,13 +109,13 @@ RTPBR_FN DisneyMaterial Disney_SanitizeMaterial(DisneyMaterial m) {
 }
 
 // Replaces NaN and negative components by 0 and caps at the largest float.
-RTPBR_FN float3 Disney_FiniteNonNegative(float3 v) {
-    return float3(Disney_Clamp(v.x, RTPBR_FLT_MAX), Disney_Clamp(v.y, RTPBR_FLT_MAX),
+RTPBR_FN rtpbr_float3 Disney_FiniteNonNegative(rtpbr_float3 v) {
+    return rtpbr_float3(Disney_Clamp(v.x, RTPBR_FLT_MAX), Disney_Clamp(v.y, RTPBR_FLT_MAX),
                   Disney_Clamp(v.z, RTPBR_FLT_MAX));
 }
 
 // True when both directions are finite and strictly above the horizon.
-RTPBR_FN bool Disney_ValidPair(float3 wo, float3 wi) {
+RTPBR_FN bool Disney_ValidPair(rtpbr_float3 wo, rtpbr_float3 wi) {
     return wo.z > 0.0f && wi.z > 0.0f && dot(wo, wo) < 1e30f && dot(wi, wi) < 1e30f;
 }
 
@@ -127,35 +127,35 @@ RTPBR_FN float Disney_SchlickWeight(float u) {
 }
 
 // [B12-brdf] luminance approximation 0.3 R + 0.6 G + 0.1 B.
-RTPBR_FN float Disney_Luminance(float3 c) { return 0.3f * c.x + 0.6f * c.y + 0.1f * c.z; }
+RTPBR_FN float Disney_Luminance(rtpbr_float3 c) { return 0.3f * c.x + 0.6f * c.y + 0.1f * c.z; }
 
 // [B12-brdf] Ctint: the base colour normalised by its luminance (hue and saturation only);
 // white for a black base colour.
-RTPBR_FN float3 Disney_TintColor(float3 baseColor) {
+RTPBR_FN rtpbr_float3 Disney_TintColor(rtpbr_float3 baseColor) {
     float lum = Disney_Luminance(baseColor);
     if (lum > 0.0f)
         return baseColor / lum;
     return RTPBR_F3(1.0f);
 }
 
-// [B12] sec. 5.5 and [B12-brdf]: F0 = lerp(0.08 specular lerp(1, Ctint, specularTint),
+// [B12] sec. 5.5 and [B12-brdf]: F0 = rtpbr_lerp(0.08 specular rtpbr_lerp(1, Ctint, specularTint),
 // baseColor, metallic), clamped to [0, 1] (0.08 = the F0 of IOR ~1.8: the top of the
 // "plausible" dielectric range). Expects a sanitized material.
-RTPBR_FN float3 Disney_SpecularF0(DisneyMaterial m) {
-    float3 tint = Disney_TintColor(m.baseColor);
-    float3 dielectric = (0.08f * m.specular) * lerp(RTPBR_F3(1.0f), tint, m.specularTint);
-    return saturate(lerp(dielectric, m.baseColor, m.metallic));
+RTPBR_FN rtpbr_float3 Disney_SpecularF0(DisneyMaterial m) {
+    rtpbr_float3 tint = Disney_TintColor(m.baseColor);
+    rtpbr_float3 dielectric = (0.08f * m.specular) * rtpbr_lerp(RTPBR_F3(1.0f), tint, m.specularTint);
+    return rtpbr_saturate(rtpbr_lerp(dielectric, m.baseColor, m.metallic));
 }
 
-// [B12-brdf] Csheen = lerp(1, Ctint, sheenTint).
-RTPBR_FN float3 Disney_SheenColor(DisneyMaterial m) {
-    return lerp(RTPBR_F3(1.0f), Disney_TintColor(m.baseColor), m.sheenTint);
+// [B12-brdf] Csheen = rtpbr_lerp(1, Ctint, sheenTint).
+RTPBR_FN rtpbr_float3 Disney_SheenColor(DisneyMaterial m) {
+    return rtpbr_lerp(RTPBR_F3(1.0f), Disney_TintColor(m.baseColor), m.sheenTint);
 }
 
 // [B12] addenda / [B12-brdf]: aspect = sqrt(1 - 0.9 anisotropic), alphaX = alpha / aspect,
 // alphaY = alpha aspect (the core's Alpha_Anisotropic), alpha = roughness^2; as in [B12-brdf]
 // the lower clamp (RTPBR_MIN_ALPHA = 0.001) applies after the aspect split. Sanitized material.
-RTPBR_FN float2 Disney_SpecularAlphas(DisneyMaterial m) {
+RTPBR_FN rtpbr_float2 Disney_SpecularAlphas(DisneyMaterial m) {
     return Alpha_Anisotropic(m.roughness * m.roughness, m.anisotropic);
 }
 
@@ -163,13 +163,13 @@ RTPBR_FN float2 Disney_SpecularAlphas(DisneyMaterial m) {
 // E and E_avg) for this material: sqrt(alphaX alphaY), = roughness^2 unless clamped.
 RTPBR_FN float Disney_SpecularTableAlpha(DisneyMaterial m) {
     DisneyMaterial s = Disney_SanitizeMaterial(m);
-    float2 a = Disney_SpecularAlphas(s);
+    rtpbr_float2 a = Disney_SpecularAlphas(s);
     return sqrt(a.x * a.y);
 }
 
-// [B12] sec. 5.4 and [B12-brdf]: clearcoat GTR1 alpha = lerp(0.1, 0.001, clearcoatGloss).
+// [B12] sec. 5.4 and [B12-brdf]: clearcoat GTR1 alpha = rtpbr_lerp(0.1, 0.001, clearcoatGloss).
 RTPBR_FN float Disney_ClearcoatAlpha(DisneyMaterial m) {
-    return lerp(0.1f, 0.001f, m.clearcoatGloss);
+    return rtpbr_lerp(0.1f, 0.001f, m.clearcoatGloss);
 }
 
 // [B12-brdf]: the clearcoat's Smith G uses the fixed GGX alpha 0.25.
@@ -193,34 +193,34 @@ RTPBR_FN float Disney_CombineSmith(float lambdaO, float lambdaI) {
 // FD90 = 0.5 + 2 roughness cos^2(theta_d); [B12-brdf]: the subsurface shape after
 // Hanrahan & Krueger 1993 ("Reflection from Layered Surfaces due to Subsurface Scattering"):
 // Fss90 = roughness cos^2(theta_d), ss = 1.25 (Fss (1 / (NoL + NoV) - 0.5) + 0.5), the 1.25
-// "roughly preserving albedo". Result: (1 - metallic) baseColor / pi lerp(Fd, ss, subsurface).
-RTPBR_FN float3 Disney_DiffuseLobe(DisneyMaterial m, float NoV, float NoL, float LoH) {
+// "roughly preserving albedo". Result: (1 - metallic) baseColor / pi rtpbr_lerp(Fd, ss, subsurface).
+RTPBR_FN rtpbr_float3 Disney_DiffuseLobe(DisneyMaterial m, float NoV, float NoL, float LoH) {
     float FL = Disney_SchlickWeight(NoL);
     float FV = Disney_SchlickWeight(NoV);
     float LoH2 = LoH * LoH;
     float Fd90 = 0.5f + 2.0f * m.roughness * LoH2;
-    float Fd = lerp(1.0f, Fd90, FL) * lerp(1.0f, Fd90, FV);
+    float Fd = rtpbr_lerp(1.0f, Fd90, FL) * rtpbr_lerp(1.0f, Fd90, FV);
     float Fss90 = m.roughness * LoH2;
-    float Fss = lerp(1.0f, Fss90, FL) * lerp(1.0f, Fss90, FV);
+    float Fss = rtpbr_lerp(1.0f, Fss90, FL) * rtpbr_lerp(1.0f, Fss90, FV);
     // NoL + NoV > 0 here; the floor keeps 1/x finite for denormal cosines.
     float ss = 1.25f * (Fss * (1.0f / max(NoL + NoV, 1e-7f) - 0.5f) + 0.5f);
-    float shape = lerp(Fd, ss, m.subsurface);
+    float shape = rtpbr_lerp(Fd, ss, m.subsurface);
     return ((1.0f - m.metallic) * RTPBR_INV_PI * shape) * m.baseColor;
 }
 
 // [B12] sec. 5.3: sheen, a Schlick-shaped grazing term sheen Csheen (1 - LoH)^5, scaled by
 // (1 - metallic) like the diffuse ([B12-brdf]).
-RTPBR_FN float3 Disney_SheenLobe(DisneyMaterial m, float LoH) {
+RTPBR_FN rtpbr_float3 Disney_SheenLobe(DisneyMaterial m, float LoH) {
     return ((1.0f - m.metallic) * m.sheen * Disney_SchlickWeight(LoH)) * Disney_SheenColor(m);
 }
 
 // [B12] appendix B.2 / [B12-brdf]: anisotropic GGX (GTR2_aniso) with Smith G and Schlick
 // Fresnel (f90 = 1): D G F / (4 NoL NoV).
-RTPBR_FN float3 Disney_SpecularLobe(DisneyMaterial m, float3 wo, float3 wi, float3 h) {
-    float2 a = Disney_SpecularAlphas(m);
+RTPBR_FN rtpbr_float3 Disney_SpecularLobe(DisneyMaterial m, rtpbr_float3 wo, rtpbr_float3 wi, rtpbr_float3 h) {
+    rtpbr_float2 a = Disney_SpecularAlphas(m);
     float D = D_GGX_Aniso(h.z, h.x, h.y, a.x, a.y);
     float G = Disney_CombineSmith(Lambda_GGX_Aniso(wo, a.x, a.y), Lambda_GGX_Aniso(wi, a.x, a.y));
-    float3 F = F_Schlick(Disney_SpecularF0(m), 1.0f, dot(wo, h));
+    rtpbr_float3 F = F_Schlick(Disney_SpecularF0(m), 1.0f, dot(wo, h));
     return (D * G / max(4.0f * wo.z * wi.z, 1e-30f)) * F;
 }
 
@@ -228,10 +228,10 @@ RTPBR_FN float3 Disney_SpecularLobe(DisneyMaterial m, float3 wo, float3 wi, floa
 // the core's D_GTR at gamma = 1, but with the denominator written a^2 cos^2 + sin^2 and sin^2
 // from h's tangent components: at gloss 1 (alpha = 0.001) 1 - cos^2 near the peak cancels
 // catastrophically in float (D_GTR errs by ~1% there). h is a unit vector in the local frame.
-RTPBR_FN float D_GTR1_Local(float3 h, float alpha) {
+RTPBR_FN float D_GTR1_Local(rtpbr_float3 h, float alpha) {
     if (!(h.z > 0.0f))
         return 0.0f;
-    float a2 = sq(Alpha_Clamp(alpha));
+    float a2 = rtpbr_sq(Alpha_Clamp(alpha));
     if (!(a2 < 0.9999f)) // alpha = 1: the uniform distribution of normals
         return RTPBR_INV_PI;
     float sin2 = h.x * h.x + h.y * h.y;
@@ -240,7 +240,7 @@ RTPBR_FN float D_GTR1_Local(float3 h, float alpha) {
 
 // [B12] sec. 5.4 and [B12-brdf]: clearcoat, 0.25 clearcoat GTR1(alpha_c) G(0.25) F(0.04) /
 // (4 NoL NoV).
-RTPBR_FN float Disney_ClearcoatLobe(DisneyMaterial m, float3 wo, float3 wi, float3 h) {
+RTPBR_FN float Disney_ClearcoatLobe(DisneyMaterial m, rtpbr_float3 wo, rtpbr_float3 wi, rtpbr_float3 h) {
     if (!(m.clearcoat > 0.0f))
         return 0.0f;
     float D = D_GTR1_Local(h, Disney_ClearcoatAlpha(m));
@@ -251,33 +251,33 @@ RTPBR_FN float Disney_ClearcoatLobe(DisneyMaterial m, float3 wo, float3 wi, floa
 }
 
 // Half vector of a valid pair (wo + wi cannot vanish when both are above the horizon).
-RTPBR_FN float3 Disney_HalfVector(float3 wo, float3 wi) {
-    float3 s = wo + wi;
-    return s * rsqrt(max(dot(s, s), 1e-30f));
+RTPBR_FN rtpbr_float3 Disney_HalfVector(rtpbr_float3 wo, rtpbr_float3 wi) {
+    rtpbr_float3 s = wo + wi;
+    return s * rtpbr_rsqrt(max(dot(s, s), 1e-30f));
 }
 
 // ---- public lobe evaluation (any material, any directions) -----------------------------------
 
 // Diffuse + subsurface lobe of BRDF_Disney.
-RTPBR_FN float3 BRDF_DisneyDiffuse(DisneyMaterial material, float3 wo, float3 wi) {
+RTPBR_FN rtpbr_float3 BRDF_DisneyDiffuse(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 wi) {
     if (!Disney_ValidPair(wo, wi))
         return RTPBR_F3(0.0f);
     DisneyMaterial m = Disney_SanitizeMaterial(material);
-    float3 h = Disney_HalfVector(wo, wi);
+    rtpbr_float3 h = Disney_HalfVector(wo, wi);
     return Disney_FiniteNonNegative(Disney_DiffuseLobe(m, wo.z, wi.z, dot(wi, h)));
 }
 
 // Sheen lobe of BRDF_Disney.
-RTPBR_FN float3 BRDF_DisneySheen(DisneyMaterial material, float3 wo, float3 wi) {
+RTPBR_FN rtpbr_float3 BRDF_DisneySheen(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 wi) {
     if (!Disney_ValidPair(wo, wi))
         return RTPBR_F3(0.0f);
     DisneyMaterial m = Disney_SanitizeMaterial(material);
-    float3 h = Disney_HalfVector(wo, wi);
+    rtpbr_float3 h = Disney_HalfVector(wo, wi);
     return Disney_FiniteNonNegative(Disney_SheenLobe(m, dot(wi, h)));
 }
 
 // Specular (anisotropic GGX) lobe of BRDF_Disney.
-RTPBR_FN float3 BRDF_DisneySpecular(DisneyMaterial material, float3 wo, float3 wi) {
+RTPBR_FN rtpbr_float3 BRDF_DisneySpecular(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 wi) {
     if (!Disney_ValidPair(wo, wi))
         return RTPBR_F3(0.0f);
     DisneyMaterial m = Disney_SanitizeMaterial(material);
@@ -285,7 +285,7 @@ RTPBR_FN float3 BRDF_DisneySpecular(DisneyMaterial material, float3 wo, float3 w
 }
 
 // Clearcoat (GTR1) lobe of BRDF_Disney (achromatic).
-RTPBR_FN float BRDF_DisneyClearcoat(DisneyMaterial material, float3 wo, float3 wi) {
+RTPBR_FN float BRDF_DisneyClearcoat(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 wi) {
     if (!Disney_ValidPair(wo, wi))
         return 0.0f;
     DisneyMaterial m = Disney_SanitizeMaterial(material);
@@ -293,13 +293,13 @@ RTPBR_FN float BRDF_DisneyClearcoat(DisneyMaterial material, float3 wo, float3 w
 }
 
 // Burley's principled BRDF ([B12-brdf] BRDF()): diffuse + sheen + specular + clearcoat.
-RTPBR_FN float3 BRDF_Disney(DisneyMaterial material, float3 wo, float3 wi) {
+RTPBR_FN rtpbr_float3 BRDF_Disney(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 wi) {
     if (!Disney_ValidPair(wo, wi))
         return RTPBR_F3(0.0f);
     DisneyMaterial m = Disney_SanitizeMaterial(material);
-    float3 h = Disney_HalfVector(wo, wi);
+    rtpbr_float3 h = Disney_HalfVector(wo, wi);
     float LoH = dot(wi, h);
-    float3 f = Disney_DiffuseLobe(m, wo.z, wi.z, LoH) + Disney_SheenLobe(m, LoH);
+    rtpbr_float3 f = Disney_DiffuseLobe(m, wo.z, wi.z, LoH) + Disney_SheenLobe(m, LoH);
     f = f + Disney_SpecularLobe(m, wo, wi, h);
     f = f + RTPBR_F3(Disney_ClearcoatLobe(m, wo, wi, h));
     return Disney_FiniteNonNegative(f);
@@ -341,8 +341,8 @@ RTPBR_FN float3 BRDF_Disney(DisneyMaterial material, float3 wo, float3 wi) {
 // ggx_hc variant by default, ggx_sep for RTPBR_SMITH_SEPARABLE). With anisotropy the isotropic
 // tables are an approximation (exact per-direction albedos keep the bound exact).
 struct DisneyEnergyTerms {
-    float2 dfgO;
-    float2 dfgI;
+    rtpbr_float2 dfgO;
+    rtpbr_float2 dfgI;
     float Eavg;
 };
 
@@ -354,7 +354,7 @@ RTPBR_FN float Disney_SpecularTableRoughness(DisneyMaterial material) {
 
 // Texture coordinates of E(mu, r) for the direction with cosine NoV, and of E_avg(r)
 // (kulla_conty.h conventions).
-RTPBR_FN float2 Disney_KullaContyCoord(DisneyMaterial material, float NoV) {
+RTPBR_FN rtpbr_float2 Disney_KullaContyCoord(DisneyMaterial material, float NoV) {
     return KC_TableCoord(NoV, Disney_SpecularTableRoughness(material));
 }
 RTPBR_FN float Disney_KullaContyCoordAvg(DisneyMaterial material) {
@@ -366,10 +366,10 @@ RTPBR_FN float Disney_KullaContyCoordAvg(DisneyMaterial material) {
 // B <= E (1 - mu / 2)^5. Overestimating B only overestimates the specular albedo, which darkens
 // the base: the bound of the variant still holds (at mu = 0.5 a smooth dielectric's base loses
 // ~20 % more than with exact split-sum terms; nothing at normal or grazing incidence).
-RTPBR_FN float2 Disney_DfgFromKullaConty(float E, float mu) {
+RTPBR_FN rtpbr_float2 Disney_DfgFromKullaConty(float E, float mu) {
     float e = Disney_Clamp(E, 1.0f);
     float B = e * Disney_SchlickWeight(0.5f * Disney_Clamp(mu, 1.0f));
-    return float2(e - B, B);
+    return rtpbr_float2(e - B, B);
 }
 
 // DisneyEnergyTerms from fetched Kulla-Conty values E(NoV), E(NoL), E_avg.
@@ -383,7 +383,7 @@ RTPBR_FN DisneyEnergyTerms Disney_EnergyTermsFromKullaConty(float Eo, float Ei, 
 }
 
 // The Fresnel colour of f_ms (Kulla & Conty 2017) for Disney's Schlick Fresnel with f90 = 1.
-RTPBR_FN float3 Disney_MultiscatterFresnel(float3 F0, float Eavg) {
+RTPBR_FN rtpbr_float3 Disney_MultiscatterFresnel(rtpbr_float3 F0, float Eavg) {
     return KC_FmsColor(F_Avg_Schlick(F0, 1.0f), Eavg);
 }
 
@@ -393,7 +393,7 @@ RTPBR_FN float3 Disney_MultiscatterFresnel(float3 F0, float Eavg) {
 // whose moments against (1 - mu_i)^5 are Beta integrals (1/21, 1/84, 1/252; derivation in
 // docs/disney.md). Exact, not a bound.
 RTPBR_FN float Disney_DiffuseAlbedo(float mu, float roughness) {
-    float y = saturate(mu > 0.0f ? mu : 0.0f);
+    float y = rtpbr_saturate(mu > 0.0f ? mu : 0.0f);
     float V = Disney_SchlickWeight(y);
     float a = roughness - 0.5f;
     float b = roughness;
@@ -406,7 +406,7 @@ RTPBR_FN float Disney_DiffuseAlbedo(float mu, float roughness) {
 // (each factor lies in [Fss90, 1] and Fss90 <= r), 1/(mu_o + mu_i) - 1/2 >= 0, and
 // 2 integral mu_i / (mu_o + mu_i) dmu_i = 2 (1 - mu_o ln(1 + 1/mu_o)).
 RTPBR_FN float Disney_SubsurfaceAlbedoBound(float mu, float roughness) {
-    float y = max(saturate(mu > 0.0f ? mu : 0.0f), 1e-6f);
+    float y = max(rtpbr_saturate(mu > 0.0f ? mu : 0.0f), 1e-6f);
     float V = Disney_SchlickWeight(y);
     float inv = 2.0f * (1.0f - y * log(1.0f + 1.0f / y)) - 0.5f;
     return 1.25f * ((1.0f - (1.0f - roughness) * V) * inv + 0.5f);
@@ -416,8 +416,8 @@ RTPBR_FN float Disney_SubsurfaceAlbedoBound(float mu, float roughness) {
 // 0.0006 + 0.09 (1 - mu)^2, a fit above the numerically integrated albedo (0.0884 at grazing,
 // 0.00026 at normal incidence; checked by tests/disney).
 RTPBR_FN float Disney_SheenAlbedoBound(float mu) {
-    float y = saturate(mu > 0.0f ? mu : 0.0f);
-    return 0.0006f + 0.09f * sq(1.0f - y);
+    float y = rtpbr_saturate(mu > 0.0f ? mu : 0.0f);
+    return 0.0006f + 0.09f * rtpbr_sq(1.0f - y);
 }
 
 // Upper bound Ucc of the albedo of the clearcoat lobe at clearcoat = 1, over every
@@ -425,13 +425,13 @@ RTPBR_FN float Disney_SheenAlbedoBound(float mu) {
 // the height-correlated G (0.059 at grazing, 0.0094 at normal incidence; checked by
 // tests/disney); the separable G2 is smaller, so the bound holds for both RTPBR_SMITH forms.
 RTPBR_FN float Disney_ClearcoatAlbedoBound(float mu) {
-    float x = 1.0f - saturate(mu > 0.0f ? mu : 0.0f);
+    float x = 1.0f - rtpbr_saturate(mu > 0.0f ? mu : 0.0f);
     return 0.01f + 0.055f * x * sqrt(x);
 }
 
 // Per channel upper bound of the albedo of f_base / (1 - metallic) for a sanitized material.
-RTPBR_FN float3 Disney_BaseAlbedoBound(DisneyMaterial m, float mu) {
-    float shape = lerp(Disney_DiffuseAlbedo(mu, m.roughness),
+RTPBR_FN rtpbr_float3 Disney_BaseAlbedoBound(DisneyMaterial m, float mu) {
+    float shape = rtpbr_lerp(Disney_DiffuseAlbedo(mu, m.roughness),
                        Disney_SubsurfaceAlbedoBound(mu, m.roughness), m.subsurface);
     return shape * m.baseColor + (m.sheen * Disney_SheenAlbedoBound(mu)) * Disney_SheenColor(m);
 }
@@ -439,8 +439,8 @@ RTPBR_FN float3 Disney_BaseAlbedoBound(DisneyMaterial m, float mu) {
 // Sanitized copy of the caller's table values: A, B, E = A + B and E_avg in [0, 1].
 RTPBR_FN DisneyEnergyTerms Disney_SanitizeTerms(DisneyEnergyTerms t) {
     DisneyEnergyTerms s;
-    s.dfgO = float2(Disney_Clamp(t.dfgO.x, 1.0f), Disney_Clamp(t.dfgO.y, 1.0f));
-    s.dfgI = float2(Disney_Clamp(t.dfgI.x, 1.0f), Disney_Clamp(t.dfgI.y, 1.0f));
+    s.dfgO = rtpbr_float2(Disney_Clamp(t.dfgO.x, 1.0f), Disney_Clamp(t.dfgO.y, 1.0f));
+    s.dfgI = rtpbr_float2(Disney_Clamp(t.dfgI.x, 1.0f), Disney_Clamp(t.dfgI.y, 1.0f));
     s.dfgO.x = min(s.dfgO.x, 1.0f - s.dfgO.y);
     s.dfgI.x = min(s.dfgI.x, 1.0f - s.dfgI.y);
     s.Eavg = Disney_Clamp(t.Eavg, 1.0f);
@@ -448,19 +448,19 @@ RTPBR_FN DisneyEnergyTerms Disney_SanitizeTerms(DisneyEnergyTerms t) {
 }
 
 // Albedo of f_spec + f_ms at a direction with table values dfg = (A, B).
-RTPBR_FN float3 Disney_SpecularAlbedo(float3 F0, float2 dfg, float3 Fms) {
+RTPBR_FN rtpbr_float3 Disney_SpecularAlbedo(rtpbr_float3 F0, rtpbr_float2 dfg, rtpbr_float3 Fms) {
     float E = dfg.x + dfg.y;
     return F0 * dfg.x + RTPBR_F3(dfg.y) + Fms * (1.0f - E);
 }
 
 // The scale tb(mu) of the base layer, per channel.
-RTPBR_FN float3 Disney_BaseScale(DisneyMaterial m, float mu, float3 F0, float2 dfg, float3 Fms) {
-    float3 room = saturate(RTPBR_F3(1.0f) - Disney_SpecularAlbedo(F0, dfg, Fms));
+RTPBR_FN rtpbr_float3 Disney_BaseScale(DisneyMaterial m, float mu, rtpbr_float3 F0, rtpbr_float2 dfg, rtpbr_float3 Fms) {
+    rtpbr_float3 room = rtpbr_saturate(RTPBR_F3(1.0f) - Disney_SpecularAlbedo(F0, dfg, Fms));
     return room / max(Disney_BaseAlbedoBound(m, mu), RTPBR_F3(1.0f));
 }
 
 // Kulla-Conty multiple-scattering lobe f_ms (with its Fresnel), for sanitized terms.
-RTPBR_FN float3 Disney_MultiscatterLobe(float3 Fms, DisneyEnergyTerms t) {
+RTPBR_FN rtpbr_float3 Disney_MultiscatterLobe(rtpbr_float3 Fms, DisneyEnergyTerms t) {
     return Fms * KC_Lobe(t.dfgO.x + t.dfgO.y, t.dfgI.x + t.dfgI.y, t.Eavg);
 }
 
@@ -471,43 +471,43 @@ RTPBR_FN float Disney_ClearcoatTransmission(DisneyMaterial m, float NoV, float N
 }
 
 // The glossy part of f_ec: Tcc(o) Tcc(i) f_spec. Needs no table values.
-RTPBR_FN float3 BRDF_DisneyEnergyConservingSpecular(DisneyMaterial material, float3 wo, float3 wi) {
+RTPBR_FN rtpbr_float3 BRDF_DisneyEnergyConservingSpecular(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 wi) {
     if (!Disney_ValidPair(wo, wi))
         return RTPBR_F3(0.0f);
     DisneyMaterial m = Disney_SanitizeMaterial(material);
-    float3 f = Disney_SpecularLobe(m, wo, wi, Disney_HalfVector(wo, wi));
+    rtpbr_float3 f = Disney_SpecularLobe(m, wo, wi, Disney_HalfVector(wo, wi));
     return Disney_FiniteNonNegative(Disney_ClearcoatTransmission(m, wo.z, wi.z) * f);
 }
 
 // The broad part of f_ec: Tcc(o) Tcc(i) [f_ms + tb(o) tb(i) f_base] (multiple scattering, diffuse,
 // subsurface, sheen).
-RTPBR_FN float3 BRDF_DisneyEnergyConservingDiffuse(DisneyMaterial material, float3 wo, float3 wi,
+RTPBR_FN rtpbr_float3 BRDF_DisneyEnergyConservingDiffuse(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 wi,
                                                    DisneyEnergyTerms terms) {
     if (!Disney_ValidPair(wo, wi))
         return RTPBR_F3(0.0f);
     DisneyMaterial m = Disney_SanitizeMaterial(material);
     DisneyEnergyTerms t = Disney_SanitizeTerms(terms);
-    float3 h = Disney_HalfVector(wo, wi);
+    rtpbr_float3 h = Disney_HalfVector(wo, wi);
     float LoH = dot(wi, h);
-    float3 F0 = Disney_SpecularF0(m);
-    float3 Fms = Disney_MultiscatterFresnel(F0, t.Eavg);
-    float3 base = Disney_DiffuseLobe(m, wo.z, wi.z, LoH) + Disney_SheenLobe(m, LoH);
-    float3 tb = Disney_BaseScale(m, wo.z, F0, t.dfgO, Fms) * Disney_BaseScale(m, wi.z, F0, t.dfgI, Fms);
-    float3 f = Disney_MultiscatterLobe(Fms, t) + tb * base;
+    rtpbr_float3 F0 = Disney_SpecularF0(m);
+    rtpbr_float3 Fms = Disney_MultiscatterFresnel(F0, t.Eavg);
+    rtpbr_float3 base = Disney_DiffuseLobe(m, wo.z, wi.z, LoH) + Disney_SheenLobe(m, LoH);
+    rtpbr_float3 tb = Disney_BaseScale(m, wo.z, F0, t.dfgO, Fms) * Disney_BaseScale(m, wi.z, F0, t.dfgI, Fms);
+    rtpbr_float3 f = Disney_MultiscatterLobe(Fms, t) + tb * base;
     return Disney_FiniteNonNegative(Disney_ClearcoatTransmission(m, wo.z, wi.z) * f);
 }
 
 // The energy-conserving variant f_ec (see above): the sum of its diffuse, specular and clearcoat
 // parts.
-RTPBR_FN float3 BRDF_DisneyEnergyConserving(DisneyMaterial material, float3 wo, float3 wi,
+RTPBR_FN rtpbr_float3 BRDF_DisneyEnergyConserving(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 wi,
                                             DisneyEnergyTerms terms) {
-    float3 f = BRDF_DisneyEnergyConservingDiffuse(material, wo, wi, terms) +
+    rtpbr_float3 f = BRDF_DisneyEnergyConservingDiffuse(material, wo, wi, terms) +
                BRDF_DisneyEnergyConservingSpecular(material, wo, wi);
     return Disney_FiniteNonNegative(f + RTPBR_F3(BRDF_DisneyClearcoat(material, wo, wi)));
 }
 
 // The model selected by RTPBR_DISNEY_ENERGY_CONSERVING (terms are ignored by Burley's model).
-RTPBR_FN float3 BRDF_DisneyModel(DisneyMaterial material, float3 wo, float3 wi, DisneyEnergyTerms terms) {
+RTPBR_FN rtpbr_float3 BRDF_DisneyModel(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 wi, DisneyEnergyTerms terms) {
 #if RTPBR_DISNEY_ENERGY_CONSERVING
     return BRDF_DisneyEnergyConserving(material, wo, wi, terms);
 #else
@@ -530,29 +530,29 @@ RTPBR_CONST int RTPBR_DISNEY_LOBE_SPECULAR = 2;
 RTPBR_CONST int RTPBR_DISNEY_LOBE_CLEARCOAT = 4;
 
 struct DisneySample {
-    float3 wi;  // sampled direction (local frame); below the horizon when pdf = 0
+    rtpbr_float3 wi;  // sampled direction (local frame); below the horizon when pdf = 0
     float pdf;  // Disney_PDF(wo, wi), per solid angle; 0 for an invalid sample
     int lobe;   // the RTPBR_DISNEY_LOBE_* that produced wi
 };
 
 // Burley 2012, appendix B.2, eq. 2: GTR1 half vectors, cos^2 theta_h = (1 - a^(2(1 - u))) / (1 - a^2),
 // density D_GTR1(h) cos theta_h.
-RTPBR_FN float3 Sample_GTR1(float alpha, float2 u) {
-    float a2 = sq(Alpha_Clamp(alpha));
+RTPBR_FN rtpbr_float3 Sample_GTR1(float alpha, rtpbr_float2 u) {
+    float a2 = rtpbr_sq(Alpha_Clamp(alpha));
     float cos2 = (1.0f - pow(a2, 1.0f - u.x)) / (1.0f - a2);
     if (!(a2 < 0.9999f)) // alpha -> 1: the limit of the formula, cos^2 theta_h = 1 - u
         cos2 = 1.0f - u.x;
-    float cosTheta = safe_sqrt(min(cos2, 1.0f));
-    float sinTheta = safe_sqrt(1.0f - cosTheta * cosTheta);
+    float cosTheta = rtpbr_safe_sqrt(min(cos2, 1.0f));
+    float sinTheta = rtpbr_safe_sqrt(1.0f - cosTheta * cosTheta);
     float phi = RTPBR_TWO_PI * u.y;
-    return float3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
+    return rtpbr_float3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
 }
 
 // Density of the reflected direction when h ~ D_GTR1(h) cos theta_h: pdf_h / (4 wo.h).
-RTPBR_FN float PDF_GTR1_Reflection(float3 wo, float3 wi, float alpha) {
+RTPBR_FN float PDF_GTR1_Reflection(rtpbr_float3 wo, rtpbr_float3 wi, float alpha) {
     if (!Disney_ValidPair(wo, wi))
         return 0.0f;
-    float3 h = Disney_HalfVector(wo, wi);
+    rtpbr_float3 h = Disney_HalfVector(wo, wi);
     float woDotH = dot(wo, h);
     if (!(woDotH > 0.0f))
         return 0.0f;
@@ -564,15 +564,15 @@ RTPBR_FN float PDF_GTR1_Reflection(float3 wo, float3 wi, float alpha) {
 // specular lum(F_Schlick(F0, NoV)) (at least 0.02: the lobe is never 0),
 // clearcoat 0.25 clearcoat F_Schlick(0.04, NoV). multiscatter > 0 adds a cosine-lobe weight for
 // the energy-conserving variant's f_ms.
-RTPBR_FN float3 Disney_LobeProbabilities(DisneyMaterial m, float NoV, float multiscatter) {
-    float3 F0 = Disney_SpecularF0(m);
+RTPBR_FN rtpbr_float3 Disney_LobeProbabilities(DisneyMaterial m, float NoV, float multiscatter) {
+    rtpbr_float3 F0 = Disney_SpecularF0(m);
     float wd = (1.0f - m.metallic) *
                (Disney_Luminance(m.baseColor) + m.sheen * Disney_Luminance(Disney_SheenColor(m))) +
                multiscatter;
     float ws = max(Disney_Luminance(F_Schlick(F0, 1.0f, NoV)), 0.02f);
     float wc = RTPBR_DISNEY_CLEARCOAT_SCALE * m.clearcoat * F_Schlick1(RTPBR_DISNEY_CLEARCOAT_F0, 1.0f, NoV);
     float total = wd + ws + wc;
-    return float3(wd, ws, wc) / total;
+    return rtpbr_float3(wd, ws, wc) / total;
 }
 
 // The weight of the multiple-scattering lobe in the lobe choice: alpha lum(Favg), roughly the
@@ -580,16 +580,16 @@ RTPBR_FN float3 Disney_LobeProbabilities(DisneyMaterial m, float NoV, float mult
 RTPBR_FN float Disney_MultiscatterWeight(DisneyMaterial m, bool energyConserving) {
     if (!energyConserving)
         return 0.0f;
-    float2 a = Disney_SpecularAlphas(m);
+    rtpbr_float2 a = Disney_SpecularAlphas(m);
     return sqrt(a.x * a.y) * Disney_Luminance(F_Avg_Schlick(Disney_SpecularF0(m), 1.0f));
 }
 
-RTPBR_FN float Disney_PDFEx(DisneyMaterial material, float3 wo, float3 wi, bool energyConserving) {
+RTPBR_FN float Disney_PDFEx(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 wi, bool energyConserving) {
     if (!Disney_ValidPair(wo, wi))
         return 0.0f;
     DisneyMaterial m = Disney_SanitizeMaterial(material);
-    float3 p = Disney_LobeProbabilities(m, wo.z, Disney_MultiscatterWeight(m, energyConserving));
-    float2 a = Disney_SpecularAlphas(m);
+    rtpbr_float3 p = Disney_LobeProbabilities(m, wo.z, Disney_MultiscatterWeight(m, energyConserving));
+    rtpbr_float2 a = Disney_SpecularAlphas(m);
     float pdf = p.x * PDF_CosineHemisphere(wi) + p.y * PDF_GGX_Reflection(wo, wi, a.x, a.y);
     if (p.z > 0.0f)
         pdf += p.z * PDF_GTR1_Reflection(wo, wi, Disney_ClearcoatAlpha(m));
@@ -597,22 +597,22 @@ RTPBR_FN float Disney_PDFEx(DisneyMaterial material, float3 wo, float3 wi, bool 
 }
 
 // u: three uniform numbers in [0, 1): u.x picks the lobe, (u.y, u.z) sample it.
-RTPBR_FN DisneySample Disney_SampleEx(DisneyMaterial material, float3 wo, float3 u, bool energyConserving) {
+RTPBR_FN DisneySample Disney_SampleEx(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 u, bool energyConserving) {
     DisneySample s;
-    s.wi = float3(0.0f, 0.0f, -1.0f);
+    s.wi = rtpbr_float3(0.0f, 0.0f, -1.0f);
     s.pdf = 0.0f;
     s.lobe = 0;
     if (!(wo.z > 0.0f) || !(dot(wo, wo) < 1e30f))
         return s;
     DisneyMaterial m = Disney_SanitizeMaterial(material);
-    float3 p = Disney_LobeProbabilities(m, wo.z, Disney_MultiscatterWeight(m, energyConserving));
-    float2 uv = float2(Disney_Clamp(u.y, 0.99999994f), Disney_Clamp(u.z, 0.99999994f));
+    rtpbr_float3 p = Disney_LobeProbabilities(m, wo.z, Disney_MultiscatterWeight(m, energyConserving));
+    rtpbr_float2 uv = rtpbr_float2(Disney_Clamp(u.y, 0.99999994f), Disney_Clamp(u.z, 0.99999994f));
     float choice = Disney_Clamp(u.x, 0.99999994f);
     if (choice < p.x) {
         s.wi = Sample_CosineHemisphere(uv);
         s.lobe = RTPBR_DISNEY_LOBE_DIFFUSE;
     } else if (choice < p.x + p.y || !(p.z > 0.0f)) {
-        float2 a = Disney_SpecularAlphas(m);
+        rtpbr_float2 a = Disney_SpecularAlphas(m);
         s.wi = Reflect_About(wo, Sample_GGX_VNDF(wo, a.x, a.y, uv));
         s.lobe = RTPBR_DISNEY_LOBE_SPECULAR;
     } else {
@@ -624,11 +624,11 @@ RTPBR_FN DisneySample Disney_SampleEx(DisneyMaterial material, float3 wo, float3
 }
 
 // Mixture density and sampler of the model selected by RTPBR_DISNEY_ENERGY_CONSERVING.
-RTPBR_FN float Disney_PDF(DisneyMaterial material, float3 wo, float3 wi) {
+RTPBR_FN float Disney_PDF(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 wi) {
     return Disney_PDFEx(material, wo, wi, RTPBR_DISNEY_ENERGY_CONSERVING != 0);
 }
 
-RTPBR_FN DisneySample Disney_Sample(DisneyMaterial material, float3 wo, float3 u) {
+RTPBR_FN DisneySample Disney_Sample(DisneyMaterial material, rtpbr_float3 wo, rtpbr_float3 u) {
     return Disney_SampleEx(material, wo, u, RTPBR_DISNEY_ENERGY_CONSERVING != 0);
 }
 

@@ -19,7 +19,7 @@ RTPBR_FN float F_Schlick1(float f0, float f90, float VoH) {
     return f0 + (f90 - f0) * (m2 * m2 * m);
 }
 
-RTPBR_FN float3 F_Schlick(float3 f0, float f90, float VoH) {
+RTPBR_FN rtpbr_float3 F_Schlick(rtpbr_float3 f0, float f90, float VoH) {
     float m = 1.0f - (VoH > 0.0f ? min(VoH, 1.0f) : 0.0f); // NaN-safe clamp
     float m2 = m * m;
     return f0 + (RTPBR_F3(f90) - f0) * (m2 * m2 * m);
@@ -27,7 +27,7 @@ RTPBR_FN float3 F_Schlick(float3 f0, float f90, float VoH) {
 
 // Normal-incidence reflectance of a dielectric interface: ((eta - 1) / (eta + 1))^2.
 RTPBR_FN float F0_FromIor(float eta) {
-    return sq((eta - 1.0f) / (eta + 1.0f));
+    return rtpbr_sq((eta - 1.0f) / (eta + 1.0f));
 }
 
 // Exact unpolarised Fresnel reflectance of a dielectric interface (Born & Wolf, Principles of
@@ -57,52 +57,52 @@ RTPBR_FN float F_Dielectric(float cosThetaI, float eta) {
 // dielectric of index 1, per channel. Real-arithmetic form of the complex Fresnel equations
 // (Lagarde 2013, "Memo on Fresnel equations"; after Born & Wolf sec. 14.2).
 // At normal incidence: ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2); at grazing: 1.
-RTPBR_FN float3 F_Conductor(float cosThetaI, float3 eta, float3 k) {
+RTPBR_FN rtpbr_float3 F_Conductor(float cosThetaI, rtpbr_float3 eta, rtpbr_float3 k) {
     float c = cosThetaI > 0.0f ? min(cosThetaI, 1.0f) : 0.0f; // NaN-safe clamp
     float cos2 = c * c;
     float sin2 = 1.0f - cos2;
-    float3 eta2 = eta * eta;
-    float3 etak2 = eta2 * (k * k);
+    rtpbr_float3 eta2 = eta * eta;
+    rtpbr_float3 etak2 = eta2 * (k * k);
     // a + i b = sqrt(eta^2 - k^2 - sin^2 + 2 i eta k): a^2 + b^2 = |t0 + 2 i eta k|, a b = eta k.
     // The larger of a^2, b^2 comes from the sum, the smaller from the product, and the
     // differences below are written as sums of squares: no cancellation in float (the
     // textbook form loses up to 1e-3 when t0 < 0 with small k, or when F is small).
-    float3 t0 = eta2 - (k * k) - RTPBR_F3(sin2);
-    float3 a2plusb2 = sqrt(t0 * t0 + 4.0f * etak2);
-    float3 hi = 0.5f * (a2plusb2 + abs(t0));
-    float3 lo = etak2 / max(hi, RTPBR_F3(1e-30f));
+    rtpbr_float3 t0 = eta2 - (k * k) - RTPBR_F3(sin2);
+    rtpbr_float3 a2plusb2 = sqrt(t0 * t0 + 4.0f * etak2);
+    rtpbr_float3 hi = 0.5f * (a2plusb2 + abs(t0));
+    rtpbr_float3 lo = etak2 / max(hi, RTPBR_F3(1e-30f));
     // a^2 >= b^2 where t0 >= 0 (a select per channel: HLSL has no vector ternary, and lerp
     // would round the small one against the large one).
-    float3 a2 = float3(t0.x >= 0.0f ? hi.x : lo.x, t0.y >= 0.0f ? hi.y : lo.y, t0.z >= 0.0f ? hi.z : lo.z);
-    float3 b2 = float3(t0.x >= 0.0f ? lo.x : hi.x, t0.y >= 0.0f ? lo.y : hi.y, t0.z >= 0.0f ? lo.z : hi.z);
-    float3 a = sqrt(a2);
-    float3 am = a - RTPBR_F3(c);
-    float3 ap = a + RTPBR_F3(c);
+    rtpbr_float3 a2 = rtpbr_float3(t0.x >= 0.0f ? hi.x : lo.x, t0.y >= 0.0f ? hi.y : lo.y, t0.z >= 0.0f ? hi.z : lo.z);
+    rtpbr_float3 b2 = rtpbr_float3(t0.x >= 0.0f ? lo.x : hi.x, t0.y >= 0.0f ? lo.y : hi.y, t0.z >= 0.0f ? lo.z : hi.z);
+    rtpbr_float3 a = sqrt(a2);
+    rtpbr_float3 am = a - RTPBR_F3(c);
+    rtpbr_float3 ap = a + RTPBR_F3(c);
     // rs = (a^2 + b^2 + cos^2 - 2 a cos) / (a^2 + b^2 + cos^2 + 2 a cos)
-    float3 rs = (am * am + b2) / max(ap * ap + b2, RTPBR_F3(1e-30f));
+    rtpbr_float3 rs = (am * am + b2) / max(ap * ap + b2, RTPBR_F3(1e-30f));
     // rp = rs (cos^2 (a^2 + b^2) + sin^4 - 2 a cos sin^2) / (... + 2 a cos sin^2)
-    float3 em = c * a - RTPBR_F3(sin2);
-    float3 ep = c * a + RTPBR_F3(sin2);
-    float3 bc2 = b2 * cos2;
-    float3 rp = rs * (em * em + bc2) / max(ep * ep + bc2, RTPBR_F3(1e-30f));
-    return saturate(0.5f * (rp + rs));
+    rtpbr_float3 em = c * a - RTPBR_F3(sin2);
+    rtpbr_float3 ep = c * a + RTPBR_F3(sin2);
+    rtpbr_float3 bc2 = b2 * cos2;
+    rtpbr_float3 rp = rs * (em * em + bc2) / max(ep * ep + bc2, RTPBR_F3(1e-30f));
+    return rtpbr_saturate(0.5f * (rp + rs));
 }
 
 // The parameters of whichever Fresnel model RTPBR_FRESNEL selects, so that generic code
 // (BRDF_Specular, ...) can take one argument. Build it with one of the Fresnel_* functions.
 struct FresnelParams {
-    float3 f0;  // normal-incidence reflectance (Schlick); filled by every constructor
+    rtpbr_float3 f0;  // normal-incidence reflectance (Schlick); filled by every constructor
     float f90;  // grazing reflectance (Schlick), usually 1
-    float3 eta; // relative IOR (dielectric: eta.x; conductor: per channel)
-    float3 k;   // conductor extinction per channel (0 for dielectrics)
+    rtpbr_float3 eta; // relative IOR (dielectric: eta.x; conductor: per channel)
+    rtpbr_float3 k;   // conductor extinction per channel (0 for dielectrics)
 };
 
-RTPBR_FN FresnelParams Fresnel_FromF0(float3 f0) {
+RTPBR_FN FresnelParams Fresnel_FromF0(rtpbr_float3 f0) {
     FresnelParams p;
     p.f0 = f0;
     p.f90 = 1.0f;
     // The dielectric with this normal reflectance (from the mean of f0): eta = (1 + sqrt f0) / (1 - sqrt f0).
-    float s = sqrt(saturate((f0.x + f0.y + f0.z) / 3.0f));
+    float s = sqrt(rtpbr_saturate((f0.x + f0.y + f0.z) / 3.0f));
     p.eta = RTPBR_F3((1.0f + s) / max(1.0f - s, 1e-3f));
     p.k = RTPBR_F3(0.0f);
     return p;
@@ -117,7 +117,7 @@ RTPBR_FN FresnelParams Fresnel_FromDielectric(float eta) {
     return p;
 }
 
-RTPBR_FN FresnelParams Fresnel_FromConductor(float3 eta, float3 k) {
+RTPBR_FN FresnelParams Fresnel_FromConductor(rtpbr_float3 eta, rtpbr_float3 k) {
     FresnelParams p;
     p.f0 = F_Conductor(1.0f, eta, k);
     p.f90 = 1.0f;
@@ -127,7 +127,7 @@ RTPBR_FN FresnelParams Fresnel_FromConductor(float3 eta, float3 k) {
 }
 
 // The Fresnel model selected by RTPBR_FRESNEL, at cosine VoH to the microfacet normal.
-RTPBR_FN float3 F_Microfacet(FresnelParams p, float VoH) {
+RTPBR_FN rtpbr_float3 F_Microfacet(FresnelParams p, float VoH) {
 #if RTPBR_FRESNEL == RTPBR_FRESNEL_DIELECTRIC
     return RTPBR_F3(F_Dielectric(VoH, p.eta.x));
 #elif RTPBR_FRESNEL == RTPBR_FRESNEL_CONDUCTOR

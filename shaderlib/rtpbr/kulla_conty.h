@@ -52,7 +52,7 @@ RTPBR_FN float KC_MuAxis(float mu) {
 // medium); eta <= 1 (or NaN) gives 0, where the layer reflects nothing.
 RTPBR_FN float KC_EtaAxis(float eta) {
     float e = eta > 1.0f ? min(eta, 1e6f) : 1.0f;
-    return saturate(((e - 1.0f) / (e + 1.0f)) / KC_ETA_AXIS_MAX);
+    return rtpbr_saturate(((e - 1.0f) / (e + 1.0f)) / KC_ETA_AXIS_MAX);
 }
 
 // Texel-centre coordinate of axis value x in [0, 1] on an N-node axis: node i at i / (N - 1).
@@ -62,8 +62,8 @@ RTPBR_FN float KC_AxisCoord(float x, float n) {
 }
 
 // uv of E(mu, r) (and of the mu-r slices of E_F): u along mu, v along perceptual roughness.
-RTPBR_FN float2 KC_TableCoord(float NoV, float perceptualRoughness) {
-    return float2(KC_AxisCoord(KC_MuAxis(NoV), KC_LUT_SIZE),
+RTPBR_FN rtpbr_float2 KC_TableCoord(float NoV, float perceptualRoughness) {
+    return rtpbr_float2(KC_AxisCoord(KC_MuAxis(NoV), KC_LUT_SIZE),
                   KC_AxisCoord(perceptualRoughness, KC_LUT_SIZE));
 }
 
@@ -73,14 +73,14 @@ RTPBR_FN float KC_TableCoordAvg(float perceptualRoughness) {
 }
 
 // uvw of the 3D table E_F(mu, r, eta) (w along the IOR axis).
-RTPBR_FN float3 KC_TableCoord3D(float NoV, float perceptualRoughness, float eta) {
-    return float3(KC_TableCoord(NoV, perceptualRoughness),
+RTPBR_FN rtpbr_float3 KC_TableCoord3D(float NoV, float perceptualRoughness, float eta) {
+    return rtpbr_float3(KC_TableCoord(NoV, perceptualRoughness),
                   KC_AxisCoord(KC_EtaAxis(eta), KC_LUT_SIZE_ETA));
 }
 
 // uv of the 2D table E_F_avg(r, eta): u along perceptual roughness, v along the IOR axis.
-RTPBR_FN float2 KC_TableCoordAvg2D(float perceptualRoughness, float eta) {
-    return float2(KC_AxisCoord(perceptualRoughness, KC_LUT_SIZE),
+RTPBR_FN rtpbr_float2 KC_TableCoordAvg2D(float perceptualRoughness, float eta) {
+    return rtpbr_float2(KC_AxisCoord(perceptualRoughness, KC_LUT_SIZE),
                   KC_AxisCoord(KC_EtaAxis(eta), KC_LUT_SIZE_ETA));
 }
 
@@ -88,14 +88,14 @@ RTPBR_FN float2 KC_TableCoordAvg2D(float perceptualRoughness, float eta) {
 
 // Schlick's Fresnel in closed form: 2 int_0^1 (1 - mu)^5 mu dmu = 2 B(2, 6) = 1/21, so
 // F_avg = f0 + (f90 - f0) / 21 (Kulla & Conty 2017 give (20 f0 + 1) / 21 for f90 = 1).
-RTPBR_FN float3 F_Avg_Schlick(float3 f0, float f90) {
+RTPBR_FN rtpbr_float3 F_Avg_Schlick(rtpbr_float3 f0, float f90) {
     return f0 + (RTPBR_F3(f90) - f0) * (1.0f / 21.0f);
 }
 
 // One node of the F_avg quadrature: mu = t^2 (dmu = 2 t dt) turns 2 int F(mu) mu dmu into
 // 4 int_0^1 F(t^2) t^3 dt; the nodes and weights are 6-point Gauss-Legendre on [0, 1], the
 // weight already multiplied by 4 t^3.
-RTPBR_FN float3 F_Avg_ConductorNode(float3 eta, float3 k, float t, float w) {
+RTPBR_FN rtpbr_float3 F_Avg_ConductorNode(rtpbr_float3 eta, rtpbr_float3 k, float t, float w) {
     return (w * 4.0f * t * t * t) * F_Conductor(t * t, eta, k);
 }
 
@@ -104,15 +104,15 @@ RTPBR_FN float3 F_Avg_ConductorNode(float3 eta, float3 k, float t, float w) {
 // Absolute error < 5e-5 for eta in [0.05, 4], k in [0, 10] with eta >= 1 or k >= 1 (every
 // metal in the visible range; tests/kc). The kink of total internal reflection (eta < 1 and
 // k -> 0, not a conductor) is not resolved: up to 0.18 there.
-RTPBR_FN float3 F_Avg_Conductor(float3 eta, float3 k) {
-    float3 s = F_Avg_ConductorNode(eta, k, 0.033765242898424f, 0.085662246189585f);
+RTPBR_FN rtpbr_float3 F_Avg_Conductor(rtpbr_float3 eta, rtpbr_float3 k) {
+    rtpbr_float3 s = F_Avg_ConductorNode(eta, k, 0.033765242898424f, 0.085662246189585f);
     s += F_Avg_ConductorNode(eta, k, 0.169395306766868f, 0.180380786524069f);
     s += F_Avg_ConductorNode(eta, k, 0.380690406958402f, 0.233956967286346f);
     s += F_Avg_ConductorNode(eta, k, 0.619309593041598f, 0.233956967286346f);
     s += F_Avg_ConductorNode(eta, k, 0.830604693233132f, 0.180380786524069f);
     s += F_Avg_ConductorNode(eta, k, 0.966234757101576f, 0.085662246189585f);
     // NaN (from NaN input) -> 0, per channel.
-    return float3(min(rtpbr_pos(s.x), 1.0f), min(rtpbr_pos(s.y), 1.0f), min(rtpbr_pos(s.z), 1.0f));
+    return rtpbr_float3(min(rtpbr_pos(s.x), 1.0f), min(rtpbr_pos(s.y), 1.0f), min(rtpbr_pos(s.z), 1.0f));
 }
 
 // Average of the exact dielectric Fresnel seen from the outside (eta > 1).
@@ -122,7 +122,7 @@ RTPBR_FN float F_Avg_Dielectric(float eta) {
 }
 
 // F_avg of the Fresnel model selected by RTPBR_FRESNEL.
-RTPBR_FN float3 F_Avg_Microfacet(FresnelParams p) {
+RTPBR_FN rtpbr_float3 F_Avg_Microfacet(FresnelParams p) {
 #if RTPBR_FRESNEL == RTPBR_FRESNEL_DIELECTRIC
     return RTPBR_F3(F_Avg_Dielectric(p.eta.x));
 #elif RTPBR_FRESNEL == RTPBR_FRESNEL_CONDUCTOR
@@ -138,9 +138,9 @@ RTPBR_FN float3 F_Avg_Microfacet(FresnelParams p) {
 // F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)). (The total energy of all bounces is
 // F_avg E_avg / (1 - F_avg (1 - E_avg)); the bounces after the first carry one more F_avg
 // and the uncoloured lobe's average albedo 1 - E_avg is divided out.) 1 when F_avg = 1.
-RTPBR_FN float3 KC_FmsColor(float3 Favg, float Eavg) {
+RTPBR_FN rtpbr_float3 KC_FmsColor(rtpbr_float3 Favg, float Eavg) {
     // Clamped to [0, 1] with NaN -> 0 (saturate keeps NaN on some targets).
-    float3 f = float3(min(rtpbr_pos(Favg.x), 1.0f), min(rtpbr_pos(Favg.y), 1.0f), min(rtpbr_pos(Favg.z), 1.0f));
+    rtpbr_float3 f = rtpbr_float3(min(rtpbr_pos(Favg.x), 1.0f), min(rtpbr_pos(Favg.y), 1.0f), min(rtpbr_pos(Favg.z), 1.0f));
     float e = min(rtpbr_pos(Eavg), 1.0f);
     return f * f * e / max(RTPBR_F3(1.0f) - f * (1.0f - e), RTPBR_F3(1e-6f));
 }
@@ -159,10 +159,10 @@ RTPBR_FN float KC_Lobe(float Eo, float Ei, float Eavg) {
 // RTPBR_SMITH, RTPBR_FRESNEL; without RTPBR_MULTISCATTER only f_ss. Eo, Ei, Eavg are the
 // fetched E(NoV, r), E(NoL, r), E_avg(r) of the same NDF / Smith variant; Favg =
 // F_Avg_Microfacet(fresnel) (constant per material: hoist it).
-RTPBR_FN float3 BRDF_SpecularMS(float NoV, float NoL, float NoH, float VoH, float alpha,
+RTPBR_FN rtpbr_float3 BRDF_SpecularMS(float NoV, float NoL, float NoH, float VoH, float alpha,
                                 FresnelParams fresnel, float Eo, float Ei, float Eavg,
-                                float3 Favg) {
-    float3 fss = BRDF_Specular(NoV, NoL, NoH, VoH, alpha, fresnel);
+                                rtpbr_float3 Favg) {
+    rtpbr_float3 fss = BRDF_Specular(NoV, NoL, NoH, VoH, alpha, fresnel);
     if (!(NoV > 0.0f) || !(NoL > 0.0f))
         return fss;
     // A 0 / 1 factor rather than an #if around the term keeps every parameter used (no
@@ -190,7 +190,7 @@ RTPBR_FN float3 BRDF_SpecularMS(float NoV, float NoL, float NoH, float VoH, floa
 // Albedo of the compensated dielectric specular (EF = E_F(mu, r, eta), E = E(mu, r); or the
 // averages E_F_avg, E_avg for the average albedo). Fms is a scalar: dielectrics are grey.
 RTPBR_FN float KC_SpecularAlbedoDielectric(float EF, float E, float Fms) {
-    return saturate(EF + Fms * rtpbr_pos(1.0f - E));
+    return rtpbr_saturate(EF + Fms * rtpbr_pos(1.0f - E));
 }
 
 // The diffuse base's energy-conserving lobe (per unit base colour): (1 - Eso)(1 - Esi) /
@@ -203,8 +203,8 @@ RTPBR_FN float Fd_KullaContyLayered(float Eso, float Esi, float EsAvg) {
 // compensation + the base. EFo/EFi/EFavg: E_F(NoV), E_F(NoL), E_F_avg at (r, eta);
 // Eo/Ei/Eavg: the F = 1 tables E(NoV), E(NoL), E_avg at r. Without RTPBR_MULTISCATTER the
 // specular is f_ss alone and E_s = E_F. Specular and base share the NDF / Smith variant.
-RTPBR_FN float3 BRDF_DielectricOverDiffuse(float NoV, float NoL, float NoH, float VoH,
-                                           float alpha, float eta, float3 baseColor,
+RTPBR_FN rtpbr_float3 BRDF_DielectricOverDiffuse(float NoV, float NoL, float NoH, float VoH,
+                                           float alpha, float eta, rtpbr_float3 baseColor,
                                            float EFo, float EFi, float EFavg,
                                            float Eo, float Ei, float Eavg) {
     if (!(NoV > 0.0f) || !(NoL > 0.0f))
@@ -235,12 +235,12 @@ RTPBR_FN float3 BRDF_DielectricOverDiffuse(float NoV, float NoL, float NoH, floa
 // The E of the representative direction, widened with the polygon's size (ours): with |F| the
 // length of the vector form factor (sin^2 of the angular radius for a sphere cap; 1 for the
 // whole hemisphere) the cosine-weighted mean of E over the polygon is taken as
-// lerp(E(mu_rep), E_avg, |F|). It is exact at both ends (a vanishing polygon; the whole
+// rtpbr_lerp(E(mu_rep), E_avg, |F|). It is exact at both ends (a vanishing polygon; the whole
 // hemisphere, whose mean is E_avg by definition) and, for a cap around the normal, wherever
 // E is linear in mu^2 in between. Measured against quadrature in tests/kc.
 RTPBR_FN float KC_PolygonMeanE(float Erep, float Eavg, float lengthF) {
     float t = lengthF > 0.0f ? min(lengthF, 1.0f) : 0.0f; // NaN -> 0
-    return lerp(Erep, Eavg, t);
+    return rtpbr_lerp(Erep, Eavg, t);
 }
 
 // Integral over a polygon of the uncoloured f_ms times cos (for unit radiance).

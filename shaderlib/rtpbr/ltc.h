@@ -20,7 +20,7 @@
 //       Lambert   Lo = Le * diffuseColor * LTC_EvaluatePolygon(.., LTC_Identity(), ..)
 //   - The library never samples textures. The caller fetches, with bilinear filtering and
 //     clamp-to-edge, ltc1 = rtpbr_ltc_*_1 and ltc2 = rtpbr_ltc_*_2 at LTC_LutCoord(NoV,
-//     perceptualRoughness), and passes the float4 values in. Table layout: see
+//     perceptualRoughness), and passes the rtpbr_float4 values in. Table layout: see
 //     shaderlib/luts/ltc.md and rtpbr_ltc_tables.h.
 //   - ltc1 = (m00, m02, m20, m22): the inverse matrix in the local frame, divided by its
 //     middle element, is  M^-1 = | m00 0 m02 |
@@ -72,22 +72,22 @@
 RTPBR_NAMESPACE_BEGIN
 
 // ltc1 of the identity transform: the clamped cosine itself (Lambertian diffuse).
-RTPBR_FN float4 LTC_Identity() { return float4(1.0f, 0.0f, 0.0f, 1.0f); }
+RTPBR_FN rtpbr_float4 LTC_Identity() { return rtpbr_float4(1.0f, 0.0f, 0.0f, 1.0f); }
 
 // A convex planar polygon: world-space vertex positions v[0 .. count-1].
 struct LtcPolygon {
-    float3 v[RTPBR_LTC_MAX_VERTICES];
+    rtpbr_float3 v[RTPBR_LTC_MAX_VERTICES];
     int count;
 };
 
 // A polygon relative to the shading point, in the local LTC frame (the result of
 // LTC_PolygonToLocal); count = 0 when the light cannot contribute.
 struct LtcLocalPolygon {
-    float3 v[RTPBR_LTC_CLIP_VERTICES];
+    rtpbr_float3 v[RTPBR_LTC_CLIP_VERTICES];
     int count;
 };
 
-RTPBR_FN LtcPolygon LTC_Triangle(float3 p0, float3 p1, float3 p2) {
+RTPBR_FN LtcPolygon LTC_Triangle(rtpbr_float3 p0, rtpbr_float3 p1, rtpbr_float3 p2) {
     LtcPolygon p;
     for (int i = 0; i < RTPBR_LTC_MAX_VERTICES; i++)
         p.v[i] = p0;
@@ -97,7 +97,7 @@ RTPBR_FN LtcPolygon LTC_Triangle(float3 p0, float3 p1, float3 p2) {
     return p;
 }
 
-RTPBR_FN LtcPolygon LTC_Quad(float3 p0, float3 p1, float3 p2, float3 p3) {
+RTPBR_FN LtcPolygon LTC_Quad(rtpbr_float3 p0, rtpbr_float3 p1, rtpbr_float3 p2, rtpbr_float3 p3) {
     LtcPolygon p = LTC_Triangle(p0, p1, p2);
     p.v[3] = p3;
     p.count = 4;
@@ -110,38 +110,38 @@ RTPBR_FN LtcPolygon LTC_Quad(float3 p0, float3 p1, float3 p2, float3 p3) {
 // row j) holds roughness i / (SIZE - 1) and sqrt(1 - NoV) = j / (SIZE - 1): the coordinate maps
 // those values to texel centres, (i + 0.5) / SIZE, so bilinear filtering interpolates between
 // fitted values and never extrapolates (Heitz et al. 2016, the LUT_SCALE/LUT_BIAS of their code).
-RTPBR_FN float2 LTC_LutCoord(float NoV, float perceptualRoughness) {
-    float u = saturate(perceptualRoughness);
-    float v = safe_sqrt(1.0f - saturate(NoV));
+RTPBR_FN rtpbr_float2 LTC_LutCoord(float NoV, float perceptualRoughness) {
+    float u = rtpbr_saturate(perceptualRoughness);
+    float v = rtpbr_safe_sqrt(1.0f - rtpbr_saturate(NoV));
     float scale = (float(RTPBR_LTC_SIZE) - 1.0f) / float(RTPBR_LTC_SIZE);
     float bias = 0.5f / float(RTPBR_LTC_SIZE);
-    return float2(u * scale + bias, v * scale + bias);
+    return rtpbr_float2(u * scale + bias, v * scale + bias);
 }
 
 // Texture coordinate of the horizon-clipped sphere form factor (ltc2.w) for a vector form
 // factor F: column = cos of F's elevation mapped to [0, 1] (z * 0.5 + 0.5), row = |F|
 // (= sin^2 of the sphere's angular radius), texel centres as above.
-RTPBR_FN float2 LTC_SphereLutCoord(float3 F) {
+RTPBR_FN rtpbr_float2 LTC_SphereLutCoord(rtpbr_float3 F) {
     float len = length(F);
     float z = len > 0.0f ? F.z / len : 0.0f;
     float scale = (float(RTPBR_LTC_SIZE) - 1.0f) / float(RTPBR_LTC_SIZE);
     float bias = 0.5f / float(RTPBR_LTC_SIZE);
-    return float2(saturate(z * 0.5f + 0.5f) * scale + bias, saturate(len) * scale + bias);
+    return rtpbr_float2(rtpbr_saturate(z * 0.5f + 0.5f) * scale + bias, rtpbr_saturate(len) * scale + bias);
 }
 
 // ---- geometry ------------------------------------------------------------------------------
 
 // World-to-local rotation (rows x, y, z of the LTC frame). When V is along N any tangent
 // will do: the fitted lobes are isotropic there.
-RTPBR_FN float3x3 LTC_Frame(float3 N, float3 V) {
-    float3 t = V - N * dot(N, V);
+RTPBR_FN rtpbr_float3x3 LTC_Frame(rtpbr_float3 N, rtpbr_float3 V) {
+    rtpbr_float3 t = V - N * dot(N, V);
     float tl2 = dot(t, t);
     if (tl2 > 1e-10f) {
-        t = t * rsqrt(tl2);
+        t = t * rtpbr_rsqrt(tl2);
     } else {
-        float3 up = float3(0.0f, 0.0f, 1.0f);
+        rtpbr_float3 up = rtpbr_float3(0.0f, 0.0f, 1.0f);
         if (abs(N.z) > 0.9f)
-            up = float3(1.0f, 0.0f, 0.0f);
+            up = rtpbr_float3(1.0f, 0.0f, 0.0f);
         t = normalize(cross(up, N));
     }
     return rtpbr_mat3_rows(t, cross(N, t), N);
@@ -150,15 +150,15 @@ RTPBR_FN float3x3 LTC_Frame(float3 N, float3 V) {
 // Sutherland-Hodgman clip of a convex polygon to the half-space dot(p, n) >= 0 (a plane
 // through the shading point). Points on the plane are kept; the output has at most one
 // vertex more than the input (capped at the buffer size for non-convex input).
-RTPBR_FN LtcLocalPolygon LTC_ClipToHalfSpace(LtcLocalPolygon p, float3 n) {
+RTPBR_FN LtcLocalPolygon LTC_ClipToHalfSpace(LtcLocalPolygon p, rtpbr_float3 n) {
     LtcLocalPolygon r;
     r.count = 0;
     for (int k = 0; k < RTPBR_LTC_CLIP_VERTICES; k++)
         r.v[k] = RTPBR_F3(0.0f);
     for (int i = 0; i < p.count; i++) {
         int j = i + 1 < p.count ? i + 1 : 0;
-        float3 a = p.v[i];
-        float3 b = p.v[j];
+        rtpbr_float3 a = p.v[i];
+        rtpbr_float3 b = p.v[j];
         float da = dot(a, n);
         float db = dot(b, n);
         if (da >= 0.0f && r.count < RTPBR_LTC_CLIP_VERTICES) {
@@ -180,24 +180,24 @@ RTPBR_FN LtcLocalPolygon LTC_ClipToHalfSpace(LtcLocalPolygon p, float3 n) {
 // vertices, zero area (collinear or coincident vertices), P on the polygon's plane (edge-on,
 // or a vertex touching P: |plane distance| <= 1e-7 of the polygon's extent), or P behind a
 // one-sided light. NaN input also gives count = 0.
-RTPBR_FN LtcLocalPolygon LTC_PolygonRelative(float3x3 frame, float3 P, LtcPolygon poly, bool twoSided) {
+RTPBR_FN LtcLocalPolygon LTC_PolygonRelative(rtpbr_float3x3 frame, rtpbr_float3 P, LtcPolygon poly, bool twoSided) {
     LtcLocalPolygon r;
     r.count = 0;
     for (int k = 0; k < RTPBR_LTC_CLIP_VERTICES; k++)
         r.v[k] = RTPBR_F3(0.0f);
     if (!(poly.count >= 3 && poly.count <= RTPBR_LTC_MAX_VERTICES))
         return r;
-    float3 p0 = poly.v[0];
-    float3 normal = RTPBR_F3(0.0f); // Newell's normal, from edges relative to p0 (precision)
+    rtpbr_float3 p0 = poly.v[0];
+    rtpbr_float3 normal = RTPBR_F3(0.0f); // Newell's normal, from edges relative to p0 (precision)
     float extent2 = 0.0f;
-    for (int i = 1; i + 1 < poly.count; i++) {
-        float3 e1 = poly.v[i] - p0;
-        float3 e2 = poly.v[i + 1] - p0;
+    for (int e = 1; e + 1 < poly.count; e++) {
+        rtpbr_float3 e1 = poly.v[e] - p0;
+        rtpbr_float3 e2 = poly.v[e + 1] - p0;
         normal += cross(e1, e2);
         extent2 = max(extent2, max(dot(e1, e1), dot(e2, e2)));
     }
     float nl = length(normal);
-    float3 d0 = p0 - P;
+    rtpbr_float3 d0 = p0 - P;
     extent2 = max(extent2, dot(d0, d0));
     if (!(nl > 0.0f))
         return r;
@@ -219,11 +219,11 @@ RTPBR_FN LtcLocalPolygon LTC_PolygonRelative(float3x3 frame, float3 P, LtcPolygo
 // The polygon in the local frame relative to P, clipped to the surface's upper hemisphere
 // (count = 0 when nothing is left or the light cannot contribute; see LTC_PolygonRelative).
 // frame = LTC_Frame(N, V). Compute once per light, then integrate it for each lobe.
-RTPBR_FN LtcLocalPolygon LTC_PolygonToLocal(float3x3 frame, float3 P, LtcPolygon poly, bool twoSided) {
+RTPBR_FN LtcLocalPolygon LTC_PolygonToLocal(rtpbr_float3x3 frame, rtpbr_float3 P, LtcPolygon poly, bool twoSided) {
     LtcLocalPolygon r = LTC_PolygonRelative(frame, P, poly, twoSided);
     if (r.count == 0)
         return r;
-    r = LTC_ClipToHalfSpace(r, float3(0.0f, 0.0f, 1.0f));
+    r = LTC_ClipToHalfSpace(r, rtpbr_float3(0.0f, 0.0f, 1.0f));
     for (int i = 0; i < r.count; i++) // exactly on the horizon, for horizon edges along z
         r.v[i].z = max(r.v[i].z, 0.0f);
     if (r.count < 3)
@@ -232,16 +232,16 @@ RTPBR_FN LtcLocalPolygon LTC_PolygonToLocal(float3x3 frame, float3 P, LtcPolygon
 }
 
 // The polygon in the local frame relative to P, not clipped (for the clipless path).
-RTPBR_FN LtcLocalPolygon LTC_PolygonToLocalUnclipped(float3x3 frame, float3 P, LtcPolygon poly, bool twoSided) {
+RTPBR_FN LtcLocalPolygon LTC_PolygonToLocalUnclipped(rtpbr_float3x3 frame, rtpbr_float3 P, LtcPolygon poly, bool twoSided) {
     return LTC_PolygonRelative(frame, P, poly, twoSided);
 }
 
 // ---- integration ---------------------------------------------------------------------------
 
 // M^-1 in the local frame from the table value ltc1 = (m00, m02, m20, m22).
-RTPBR_FN float3x3 LTC_InverseMatrix(float4 ltc1) {
-    return rtpbr_mat3_rows(float3(ltc1.x, 0.0f, ltc1.y), float3(0.0f, 1.0f, 0.0f),
-                           float3(ltc1.z, 0.0f, ltc1.w));
+RTPBR_FN rtpbr_float3x3 LTC_InverseMatrix(rtpbr_float4 ltc1) {
+    return rtpbr_mat3_rows(rtpbr_float3(ltc1.x, 0.0f, ltc1.y), rtpbr_float3(0.0f, 1.0f, 0.0f),
+                           rtpbr_float3(ltc1.z, 0.0f, ltc1.w));
 }
 
 // ---- streamed integration (the real-time path) ----------------------------------------------
@@ -271,34 +271,34 @@ RTPBR_FN float LTC_EdgeFactor(float x, float sinT) {
 // The edge term of Lambert's formula divided by 2 pi for unit vectors a, b:
 // theta / (2 pi sin theta) * cross(a, b) (theta the angle between them); summed over a
 // polygon's edges it is the polygon's vector form factor (Arvo 1995), up to orientation.
-RTPBR_FN float3 LTC_EdgeIntegral(float3 a, float3 b) {
-    float3 c = cross(a, b);
+RTPBR_FN rtpbr_float3 LTC_EdgeIntegral(rtpbr_float3 a, rtpbr_float3 b) {
+    rtpbr_float3 c = cross(a, b);
     return c * LTC_EdgeFactor(dot(a, b), length(c));
 }
 
 // The z component of LTC_EdgeIntegral alone (the form factor against the cosine lobe).
-RTPBR_FN float LTC_EdgeIntegralZ(float3 a, float3 b) {
-    float3 c = cross(a, b);
+RTPBR_FN float LTC_EdgeIntegralZ(rtpbr_float3 a, rtpbr_float3 b) {
+    rtpbr_float3 c = cross(a, b);
     return c.z * LTC_EdgeFactor(dot(a, b), length(c));
 }
 
 // v / |v|, and 0 for the zero vector (a vertex at the shading point contributes nothing).
-RTPBR_FN float3 LTC_SafeNormalize(float3 v) {
-    return v * rsqrt(max(dot(v, v), 1e-30f));
+RTPBR_FN rtpbr_float3 LTC_SafeNormalize(rtpbr_float3 v) {
+    return v * rtpbr_rsqrt(max(dot(v, v), 1e-30f));
 }
 
 // The state of a streamed clip of a convex polygon to the half-space z >= 0 (a plane through
 // the shading point): where its boundary leaves the half-space and where it comes back.
 struct LtcClipper {
-    float3 exitPoint;
-    float3 entryPoint;
+    rtpbr_float3 exitPoint;
+    rtpbr_float3 entryPoint;
     bool crossed;
 };
 
 // A clipped edge: the segment a -> b, or nothing (valid = false).
 struct LtcSegment {
-    float3 a;
-    float3 b;
+    rtpbr_float3 a;
+    rtpbr_float3 b;
     bool valid;
 };
 
@@ -312,12 +312,12 @@ RTPBR_FN LtcClipper LTC_ClipperBegin() {
 
 // The part of the edge a -> b in z >= 0 (points on the plane are inside); records the exit
 // and entry points for LTC_ClipClose.
-RTPBR_FN LtcSegment LTC_ClipEdge(RTPBR_INOUT(LtcClipper) clip, float3 a, float3 b) {
+RTPBR_FN LtcSegment LTC_ClipEdge(RTPBR_INOUT(LtcClipper) clip, rtpbr_float3 a, rtpbr_float3 b) {
     bool inA = a.z >= 0.0f;
     bool inB = b.z >= 0.0f;
     // a.z and b.z have opposite signs when the edge crosses: a.z - b.z != 0, t in [0, 1].
     float t = inA != inB ? a.z / (a.z - b.z) : 0.0f;
-    float3 x = a + (b - a) * t;
+    rtpbr_float3 x = a + (b - a) * t;
     x.z = 0.0f;
     if (inA && !inB) {
         clip.exitPoint = x;
@@ -346,12 +346,12 @@ RTPBR_FN LtcSegment LTC_ClipClose(LtcClipper clip) {
 // (M^-1 w).z >= 0 done in its own space (a linear map keeps segments straight), and the sum
 // of the edge integrals.
 struct LtcLobe {
-    float3x3 minv;
+    rtpbr_float3x3 minv;
     LtcClipper clip;
     float sum;
 };
 
-RTPBR_FN LtcLobe LTC_LobeBegin(float3x3 minv) {
+RTPBR_FN LtcLobe LTC_LobeBegin(rtpbr_float3x3 minv) {
     LtcLobe lobe;
     lobe.minv = minv;
     lobe.clip = LTC_ClipperBegin();
@@ -361,7 +361,7 @@ RTPBR_FN LtcLobe LTC_LobeBegin(float3x3 minv) {
 
 // Adds the segment a -> b (vectors from the shading point in the LTC frame, already clipped to
 // the surface's upper hemisphere) to the lobe.
-RTPBR_FN void LTC_LobeEdge(RTPBR_INOUT(LtcLobe) lobe, float3 a, float3 b) {
+RTPBR_FN void LTC_LobeEdge(RTPBR_INOUT(LtcLobe) lobe, rtpbr_float3 a, rtpbr_float3 b) {
     LtcSegment s = LTC_ClipEdge(lobe.clip, rtpbr_mul(lobe.minv, a), rtpbr_mul(lobe.minv, b));
     if (s.valid)
         lobe.sum += LTC_EdgeIntegralZ(LTC_SafeNormalize(s.a), LTC_SafeNormalize(s.b));
@@ -389,18 +389,18 @@ RTPBR_FN float LTC_LobeEnd(LtcLobe lobe) {
 // <= 0: no stretch).
 //
 // A^-1 v for the anisotropic stretch A (A^-1 is symmetric).
-RTPBR_FN float3 LTC_AnisotropicUnstretch(float3 v, float3 c, float3 e1, float k) {
+RTPBR_FN rtpbr_float3 LTC_AnisotropicUnstretch(rtpbr_float3 v, rtpbr_float3 c, rtpbr_float3 e1, float k) {
     float kk = k > 0.0f ? k : 1.0f;
-    float3 e2 = cross(c, e1);
+    rtpbr_float3 e2 = cross(c, e1);
     return e1 * (dot(e1, v) / kk) + e2 * (dot(e2, v) * kk) + c * dot(c, v);
 }
 
 // M^-1 A^-1: the inverse matrix of the isotropic LTC ltc1 stretched by A (rows of M^-1 times
 // the symmetric A^-1), for LTC_LobeBegin. c, e1 unit and orthogonal, k >= 1.
-RTPBR_FN float3x3 LTC_AnisotropicInverseMatrix(float4 ltc1, float3 c, float3 e1, float k) {
-    return rtpbr_mat3_rows(LTC_AnisotropicUnstretch(float3(ltc1.x, 0.0f, ltc1.y), c, e1, k),
-                           LTC_AnisotropicUnstretch(float3(0.0f, 1.0f, 0.0f), c, e1, k),
-                           LTC_AnisotropicUnstretch(float3(ltc1.z, 0.0f, ltc1.w), c, e1, k));
+RTPBR_FN rtpbr_float3x3 LTC_AnisotropicInverseMatrix(rtpbr_float4 ltc1, rtpbr_float3 c, rtpbr_float3 e1, float k) {
+    return rtpbr_mat3_rows(LTC_AnisotropicUnstretch(rtpbr_float3(ltc1.x, 0.0f, ltc1.y), c, e1, k),
+                           LTC_AnisotropicUnstretch(rtpbr_float3(0.0f, 1.0f, 0.0f), c, e1, k),
+                           LTC_AnisotropicUnstretch(rtpbr_float3(ltc1.z, 0.0f, ltc1.w), c, e1, k));
 }
 
 // The form factor (in [0, 1]) of a local polygon (from LTC_PolygonToLocal) under the LTC
@@ -409,20 +409,20 @@ RTPBR_FN float3x3 LTC_AnisotropicInverseMatrix(float4 ltc1, float3 c, float3 e1,
 // The streamed lobe integration over the stored polygon (fixed trip count: the compiler can
 // unroll it and index the array statically). LTC_IntegrateLocalMatrix takes any M^-1 (e.g.
 // LTC_AnisotropicInverseMatrix's).
-RTPBR_FN float LTC_IntegrateLocalMatrix(LtcLocalPolygon local, float3x3 minv) {
+RTPBR_FN float LTC_IntegrateLocalMatrix(LtcLocalPolygon local, rtpbr_float3x3 minv) {
     if (local.count < 3)
         return 0.0f;
     LtcLobe lobe = LTC_LobeBegin(minv);
     for (int i = 0; i < RTPBR_LTC_CLIP_VERTICES; i++) {
         if (i < local.count) {
-            float3 b = i + 1 < local.count ? local.v[i + 1] : local.v[0];
+            rtpbr_float3 b = i + 1 < local.count ? local.v[i + 1] : local.v[0];
             LTC_LobeEdge(lobe, local.v[i], b);
         }
     }
     return LTC_LobeEnd(lobe);
 }
 
-RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, float4 ltc1) {
+RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, rtpbr_float4 ltc1) {
     return LTC_IntegrateLocalMatrix(local, LTC_InverseMatrix(ltc1));
 }
 
@@ -430,14 +430,14 @@ RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, float4 ltc1) {
 // LTC_PolygonToLocalUnclipped) transformed by M^-1: F = (1 / 2pi) sum of the edge vectors,
 // pointing toward the polygon; |F| is the form factor of the polygon seen head-on and F.z its
 // (signed, unclipped) form factor against the LTC's cosine.
-RTPBR_FN float3 LTC_FormFactorVector(LtcLocalPolygon local, float4 ltc1) {
-    float3 F = RTPBR_F3(0.0f);
+RTPBR_FN rtpbr_float3 LTC_FormFactorVector(LtcLocalPolygon local, rtpbr_float4 ltc1) {
+    rtpbr_float3 F = RTPBR_F3(0.0f);
     if (local.count < 3)
         return F;
-    float3x3 minv = LTC_InverseMatrix(ltc1);
+    rtpbr_float3x3 minv = LTC_InverseMatrix(ltc1);
     for (int i = 0; i < RTPBR_LTC_CLIP_VERTICES; i++) {
         if (i < local.count) {
-            float3 b = i + 1 < local.count ? local.v[i + 1] : local.v[0];
+            rtpbr_float3 b = i + 1 < local.count ? local.v[i + 1] : local.v[0];
             F += LTC_EdgeIntegral(LTC_SafeNormalize(rtpbr_mul(minv, local.v[i])), LTC_SafeNormalize(rtpbr_mul(minv, b)));
         }
     }
@@ -449,21 +449,21 @@ RTPBR_FN float3 LTC_FormFactorVector(LtcLocalPolygon local, float4 ltc1) {
 
 // Hill & Heitz 2016: the horizon-clipped form factor of the sphere whose vector form factor
 // is F, from the table value sphereLut = ltc2.w fetched at LTC_SphereLutCoord(F).
-RTPBR_FN float LTC_SphereFormFactor(float3 F, float sphereLut) {
+RTPBR_FN float LTC_SphereFormFactor(rtpbr_float3 F, float sphereLut) {
     return min(rtpbr_pos(length(F) * sphereLut), 1.0f);
 }
 
 // Hill & Heitz 2016 (the cheap form of their course code): the same without a table,
 // max((|F|^2 + F.z) / (|F| + 1), 0). Exact for a sphere entirely above the horizon.
-RTPBR_FN float LTC_SphereFormFactorApprox(float3 F) {
+RTPBR_FN float LTC_SphereFormFactorApprox(rtpbr_float3 F) {
     float l = length(F);
     return min(rtpbr_pos((l * l + F.z) / (l + 1.0f)), 1.0f);
 }
 
 // One-call form: the form factor of a polygon light at P for the lobe ltc1 (LTC_Identity() for
 // Lambertian diffuse). Exact clipping unless RTPBR_LTC_CLIPLESS (analytic sphere proxy).
-RTPBR_FN float LTC_EvaluatePolygon(float3 N, float3 V, float3 P, LtcPolygon poly, float4 ltc1, bool twoSided) {
-    float3x3 frame = LTC_Frame(N, V);
+RTPBR_FN float LTC_EvaluatePolygon(rtpbr_float3 N, rtpbr_float3 V, rtpbr_float3 P, LtcPolygon poly, rtpbr_float4 ltc1, bool twoSided) {
+    rtpbr_float3x3 frame = LTC_Frame(N, V);
 #if RTPBR_LTC_CLIPLESS
     return LTC_SphereFormFactorApprox(LTC_FormFactorVector(LTC_PolygonToLocalUnclipped(frame, P, poly, twoSided), ltc1));
 #else
@@ -475,31 +475,31 @@ RTPBR_FN float LTC_EvaluatePolygon(float3 N, float3 V, float3 P, LtcPolygon poly
 
 // Hill & Heitz 2016: with Schlick's F = f0 + (f90 - f0)(1 - VoH)^5, the integral of f F cos is
 // f0 * norm + (f90 - f0) * fresnel exactly (norm, fresnel = ltc2.xy).
-RTPBR_FN float3 LTC_FresnelScale(float4 ltc2, float3 f0, float f90) {
+RTPBR_FN rtpbr_float3 LTC_FresnelScale(rtpbr_float4 ltc2, rtpbr_float3 f0, float f90) {
     return f0 * ltc2.x + (RTPBR_F3(f90) - f0) * ltc2.y;
 }
 
 // Kutz et al. 2021, "Novel aspects of the Adobe Standard Material" (the F82 model; Hoffman
 // 2023): F = Schlick(f0) - a VoH (1 - VoH)^6 with a chosen so that F matches f82, the true
 // reflectance at VoH = 1/7 (about 82 degrees). Its integral uses ltc2.z.
-RTPBR_FN float3 LTC_FresnelScaleF82(float4 ltc2, float3 f0, float3 f82) {
+RTPBR_FN rtpbr_float3 LTC_FresnelScaleF82(rtpbr_float4 ltc2, rtpbr_float3 f0, rtpbr_float3 f82) {
     const float muBar = 1.0f / 7.0f;
     float m = 1.0f - muBar;
     float m5 = m * m * m * m * m;
-    float3 schlickBar = f0 + (RTPBR_F3(1.0f) - f0) * m5;
-    float3 a = (schlickBar - f82) / (muBar * m5 * m);
+    rtpbr_float3 schlickBar = f0 + (RTPBR_F3(1.0f) - f0) * m5;
+    rtpbr_float3 a = (schlickBar - f82) / (muBar * m5 * m);
     return f0 * ltc2.x + (RTPBR_F3(1.0f) - f0) * ltc2.y - a * ltc2.z;
 }
 
 // The exact conductor option: the F82 model fitted to F_Conductor (complex IOR eta + i k)
 // at normal incidence and at VoH = 1/7.
-RTPBR_FN float3 LTC_FresnelScaleConductor(float4 ltc2, float3 eta, float3 k) {
+RTPBR_FN rtpbr_float3 LTC_FresnelScaleConductor(rtpbr_float4 ltc2, rtpbr_float3 eta, rtpbr_float3 k) {
     return LTC_FresnelScaleF82(ltc2, F_Conductor(1.0f, eta, k), F_Conductor(1.0f / 7.0f, eta, k));
 }
 
 // The Fresnel model selected by RTPBR_FRESNEL: Schlick directly; the exact dielectric and
 // conductor through the F82 model.
-RTPBR_FN float3 LTC_FresnelScaleSelected(float4 ltc2, FresnelParams p) {
+RTPBR_FN rtpbr_float3 LTC_FresnelScaleSelected(rtpbr_float4 ltc2, FresnelParams p) {
 #if RTPBR_FRESNEL == RTPBR_FRESNEL_CONDUCTOR
     return LTC_FresnelScaleConductor(ltc2, p.eta, p.k);
 #elif RTPBR_FRESNEL == RTPBR_FRESNEL_DIELECTRIC

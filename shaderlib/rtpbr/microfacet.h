@@ -17,7 +17,7 @@
 RTPBR_NAMESPACE_BEGIN
 
 // Isotropic specular BRDF from the usual dot products (n, v, l, h = normalize(v + l)).
-RTPBR_FN float3 BRDF_Specular(float NoV, float NoL, float NoH, float VoH, float alpha,
+RTPBR_FN rtpbr_float3 BRDF_Specular(float NoV, float NoL, float NoH, float VoH, float alpha,
                               FresnelParams fresnel) {
     if (!(NoV > 0.0f) || !(NoL > 0.0f))
         return RTPBR_F3(0.0f);
@@ -29,18 +29,18 @@ RTPBR_FN float3 BRDF_Specular(float NoV, float NoL, float NoH, float VoH, float 
 // The general form in the local shading frame (n = +z, tangent = +x): anisotropic
 // (alphaX along x, alphaY along y), G2 from RTPBR_SMITH with the exact Lambda.
 // Symmetric in (wo, wi): reciprocal.
-RTPBR_FN float3 BRDF_SpecularLocal(float3 wo, float3 wi, float alphaX, float alphaY,
+RTPBR_FN rtpbr_float3 BRDF_SpecularLocal(rtpbr_float3 wo, rtpbr_float3 wi, float alphaX, float alphaY,
                                    FresnelParams fresnel) {
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f))
         return RTPBR_F3(0.0f);
-    float3 hs = wo + wi;
+    rtpbr_float3 hs = wo + wi;
     float hl2 = dot(hs, hs);
     if (!(hl2 > 1e-12f))
         return RTPBR_F3(0.0f);
-    float3 h = hs * rsqrt(hl2);
+    rtpbr_float3 h = hs * rtpbr_rsqrt(hl2);
     float D = D_Microfacet_Aniso(h.z, h.x, h.y, alphaX, alphaY);
     float G = G2_Microfacet(wo, wi, alphaX, alphaY);
-    float3 F = F_Microfacet(fresnel, dot(wo, h));
+    rtpbr_float3 F = F_Microfacet(fresnel, dot(wo, h));
     // Both cosines tiny: the BRDF grows like 1 / (alpha (NoL + NoV)); the floor keeps it finite.
     return (D * G / max(4.0f * wo.z * wi.z, 1e-30f)) * F;
 }

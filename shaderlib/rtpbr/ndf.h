@@ -22,15 +22,15 @@ RTPBR_FN float Alpha_Clamp(float alpha) {
 
 // Burley 2012, "Physically-Based Shading at Disney": alpha = perceptual roughness squared.
 RTPBR_FN float Alpha_FromPerceptual(float perceptualRoughness) {
-    float r = saturate(perceptualRoughness > 0.0f ? perceptualRoughness : 0.0f);
+    float r = rtpbr_saturate(perceptualRoughness > 0.0f ? perceptualRoughness : 0.0f);
     return Alpha_Clamp(r * r);
 }
 
 // Burley 2012, "Physically-Based Shading at Disney", addenda: anisotropic aspect ratio
 // aspect = sqrt(1 - 0.9 anisotropic), alphaX = alpha / aspect, alphaY = alpha * aspect.
-RTPBR_FN float2 Alpha_Anisotropic(float alpha, float anisotropic) {
-    float aspect = sqrt(1.0f - 0.9f * saturate(anisotropic));
-    return float2(Alpha_Clamp(alpha / aspect), Alpha_Clamp(alpha * aspect));
+RTPBR_FN rtpbr_float2 Alpha_Anisotropic(float alpha, float anisotropic) {
+    float aspect = sqrt(1.0f - 0.9f * rtpbr_saturate(anisotropic));
+    return rtpbr_float2(Alpha_Clamp(alpha / aspect), Alpha_Clamp(alpha * aspect));
 }
 
 // Trowbridge & Reitz 1975; Walter et al. 2007, "Microfacet Models for Refraction through
@@ -39,7 +39,7 @@ RTPBR_FN float D_GGX(float NoH, float alpha) {
     if (!(NoH > 0.0f))
         return 0.0f;
     float c = min(NoH, 1.0f);
-    float a2 = sq(Alpha_Clamp(alpha));
+    float a2 = rtpbr_sq(Alpha_Clamp(alpha));
     // (a2 - 1) c^2 + 1 written as (c a2 - c) c + 1 keeps precision near c = 1 (Filament).
     float d = (c * a2 - c) * c + 1.0f;
     return a2 / (RTPBR_PI * d * d);
@@ -52,7 +52,7 @@ RTPBR_FN float D_GGX_Aniso(float NoH, float ToH, float BoH, float alphaX, float 
         return 0.0f;
     float ax = Alpha_Clamp(alphaX);
     float ay = Alpha_Clamp(alphaY);
-    float d = sq(ToH / ax) + sq(BoH / ay) + NoH * NoH;
+    float d = rtpbr_sq(ToH / ax) + rtpbr_sq(BoH / ay) + NoH * NoH;
     return 1.0f / (RTPBR_PI * ax * ay * d * d);
 }
 
@@ -60,8 +60,8 @@ RTPBR_FN float D_GGX_Aniso(float NoH, float ToH, float BoH, float alphaX, float 
 RTPBR_FN float D_Beckmann(float NoH, float alpha) {
     if (!(NoH > 0.0f))
         return 0.0f;
-    float c2 = sq(min(NoH, 1.0f));
-    float a2 = sq(Alpha_Clamp(alpha));
+    float c2 = rtpbr_sq(min(NoH, 1.0f));
+    float a2 = rtpbr_sq(Alpha_Clamp(alpha));
     float e = (1.0f - c2) / (c2 * a2);
     if (e > 80.0f) // exp(-80) ~ 2e-35: the lobe is 0 in float, and c2^2 may underflow.
         return 0.0f;
@@ -75,8 +75,8 @@ RTPBR_FN float D_Beckmann_Aniso(float NoH, float ToH, float BoH, float alphaX, f
         return 0.0f;
     float ax = Alpha_Clamp(alphaX);
     float ay = Alpha_Clamp(alphaY);
-    float c2 = sq(min(NoH, 1.0f));
-    float e = (sq(ToH / ax) + sq(BoH / ay)) / c2;
+    float c2 = rtpbr_sq(min(NoH, 1.0f));
+    float e = (rtpbr_sq(ToH / ax) + rtpbr_sq(BoH / ay)) / c2;
     if (e > 80.0f)
         return 0.0f;
     return exp(-e) / (RTPBR_PI * ax * ay * c2 * c2);

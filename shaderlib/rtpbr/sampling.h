@@ -49,19 +49,19 @@ RTPBR_FN float rtpbr_erfinv(float x) {
 }
 
 // Reflects wo about the microfacet normal wm: wi = 2 (wo.wm) wm - wo.
-RTPBR_FN float3 Reflect_About(float3 wo, float3 wm) {
+RTPBR_FN rtpbr_float3 Reflect_About(rtpbr_float3 wo, rtpbr_float3 wm) {
     return 2.0f * dot(wo, wm) * wm - wo;
 }
 
 // The Jacobian of reflection, d(wm) / d(wi) = 1 / (4 |wo.wm|), and the half vector wm of
 // (wo, wi); 0 when wi is below the horizon or wm faces away from wo.
-RTPBR_FN float Reflection_Jacobian(float3 wo, float3 wi, RTPBR_OUT(float3) wm) {
-    float3 hs = wo + wi;
+RTPBR_FN float Reflection_Jacobian(rtpbr_float3 wo, rtpbr_float3 wi, RTPBR_OUT(rtpbr_float3) wm) {
+    rtpbr_float3 hs = wo + wi;
     float l2 = dot(hs, hs);
-    wm = float3(0.0f, 0.0f, 1.0f);
+    wm = rtpbr_float3(0.0f, 0.0f, 1.0f);
     if (!(wi.z > 0.0f) || !(l2 > 1e-20f))
         return 0.0f;
-    wm = hs * rsqrt(l2);
+    wm = hs * rtpbr_rsqrt(l2);
     float woDotWm = dot(wo, wm);
     return woDotWm > 0.0f ? 1.0f / (4.0f * woDotWm) : 0.0f;
 }
@@ -72,30 +72,30 @@ RTPBR_FN float Reflection_Jacobian(float3 wo, float3 wi, RTPBR_OUT(float3) wm) {
 // configuration stretched to alpha = 1, the visible normals are c + wo_std with c uniform on
 // the spherical cap z >= -wo_std.z; unstretching gives the GGX visible normal
 // (equivalent to Heitz 2018, "Sampling the GGX Distribution of Visible Normals").
-RTPBR_FN float3 Sample_GGX_VNDF(float3 wo, float alphaX, float alphaY, float2 u) {
+RTPBR_FN rtpbr_float3 Sample_GGX_VNDF(rtpbr_float3 wo, float alphaX, float alphaY, rtpbr_float2 u) {
     if (!(wo.z > 0.0f))
-        return float3(0.0f, 0.0f, 1.0f);
+        return rtpbr_float3(0.0f, 0.0f, 1.0f);
     float ax = Alpha_Clamp(alphaX);
     float ay = Alpha_Clamp(alphaY);
-    float3 wStd = normalize(float3(wo.x * ax, wo.y * ay, wo.z));
+    rtpbr_float3 wStd = normalize(rtpbr_float3(wo.x * ax, wo.y * ay, wo.z));
     float phi = RTPBR_TWO_PI * u.x;
     // c is uniform on the cap z >= -wStd.z: z = (1 - u.y) (1 + wStd.z) - wStd.z, written so
     // that nothing cancels near the cap's poles: 1 - z = u.y (1 + wStd.z) and
     // 1 + z = (1 - wStd.z) + (1 - u.y) (1 + wStd.z), with 1 - wStd.z = (x^2 + y^2) / (1 + wStd.z).
     float onePlusW = 1.0f + wStd.z;
     float oneMinusW = (wStd.x * wStd.x + wStd.y * wStd.y) / onePlusW;
-    float sinTheta = safe_sqrt(u.y * onePlusW * (oneMinusW + (1.0f - u.y) * onePlusW));
+    float sinTheta = rtpbr_safe_sqrt(u.y * onePlusW * (oneMinusW + (1.0f - u.y) * onePlusW));
     // hStd = c + wStd, c = (sinTheta cos phi, sinTheta sin phi, z); hStd.z = z + wStd.z.
-    float3 hStd = float3(sinTheta * cos(phi) + wStd.x, sinTheta * sin(phi) + wStd.y,
+    rtpbr_float3 hStd = rtpbr_float3(sinTheta * cos(phi) + wStd.x, sinTheta * sin(phi) + wStd.y,
                          (1.0f - u.y) * (1.0f + wStd.z));
-    float3 h = float3(hStd.x * ax, hStd.y * ay, max(hStd.z, 0.0f));
+    rtpbr_float3 h = rtpbr_float3(hStd.x * ax, hStd.y * ay, max(hStd.z, 0.0f));
     float l2 = dot(h, h);
     if (!(l2 > 1e-20f))
-        return float3(0.0f, 0.0f, 1.0f);
-    return h * rsqrt(l2);
+        return rtpbr_float3(0.0f, 0.0f, 1.0f);
+    return h * rtpbr_rsqrt(l2);
 }
 
-RTPBR_FN float PDF_GGX_VNDF(float3 wo, float3 wm, float alphaX, float alphaY) {
+RTPBR_FN float PDF_GGX_VNDF(rtpbr_float3 wo, rtpbr_float3 wm, float alphaX, float alphaY) {
     if (!(wo.z > 0.0f) || !(wm.z > 0.0f))
         return 0.0f;
     float woDotWm = dot(wo, wm);
@@ -105,8 +105,8 @@ RTPBR_FN float PDF_GGX_VNDF(float3 wo, float3 wm, float alphaX, float alphaY) {
            D_GGX_Aniso(wm.z, wm.x, wm.y, alphaX, alphaY) / wo.z;
 }
 
-RTPBR_FN float PDF_GGX_Reflection(float3 wo, float3 wi, float alphaX, float alphaY) {
-    float3 wm;
+RTPBR_FN float PDF_GGX_Reflection(rtpbr_float3 wo, rtpbr_float3 wi, float alphaX, float alphaY) {
+    rtpbr_float3 wm;
     float jacobian = Reflection_Jacobian(wo, wi, wm);
     return jacobian > 0.0f ? PDF_GGX_VNDF(wo, wm, alphaX, alphaY) * jacobian : 0.0f;
 }
@@ -150,12 +150,12 @@ RTPBR_FN float Beckmann_SampleSlopeX(float mu, float u) {
     return x;
 }
 
-RTPBR_FN float3 Sample_Beckmann_VNDF(float3 wo, float alphaX, float alphaY, float2 u) {
+RTPBR_FN rtpbr_float3 Sample_Beckmann_VNDF(rtpbr_float3 wo, float alphaX, float alphaY, rtpbr_float2 u) {
     if (!(wo.z > 0.0f))
-        return float3(0.0f, 0.0f, 1.0f);
+        return rtpbr_float3(0.0f, 0.0f, 1.0f);
     float ax = Alpha_Clamp(alphaX);
     float ay = Alpha_Clamp(alphaY);
-    float3 wStd = normalize(float3(wo.x * ax, wo.y * ay, wo.z));
+    rtpbr_float3 wStd = normalize(rtpbr_float3(wo.x * ax, wo.y * ay, wo.z));
     // sin(theta) from the tangential components (1 - z^2 cancels near the normal, where it
     // would lose the azimuth of wo).
     float sinTheta = sqrt(wStd.x * wStd.x + wStd.y * wStd.y);
@@ -170,10 +170,10 @@ RTPBR_FN float3 Sample_Beckmann_VNDF(float3 wo, float alphaX, float alphaY, floa
     }
     float x = (cosPhi * sx - sinPhi * sy) * ax;
     float y = (sinPhi * sx + cosPhi * sy) * ay;
-    return normalize(float3(-x, -y, 1.0f));
+    return normalize(rtpbr_float3(-x, -y, 1.0f));
 }
 
-RTPBR_FN float PDF_Beckmann_VNDF(float3 wo, float3 wm, float alphaX, float alphaY) {
+RTPBR_FN float PDF_Beckmann_VNDF(rtpbr_float3 wo, rtpbr_float3 wm, float alphaX, float alphaY) {
     if (!(wo.z > 0.0f) || !(wm.z > 0.0f))
         return 0.0f;
     float woDotWm = dot(wo, wm);
@@ -183,8 +183,8 @@ RTPBR_FN float PDF_Beckmann_VNDF(float3 wo, float3 wm, float alphaX, float alpha
     return G1 * woDotWm * D_Beckmann_Aniso(wm.z, wm.x, wm.y, alphaX, alphaY) / wo.z;
 }
 
-RTPBR_FN float PDF_Beckmann_Reflection(float3 wo, float3 wi, float alphaX, float alphaY) {
-    float3 wm;
+RTPBR_FN float PDF_Beckmann_Reflection(rtpbr_float3 wo, rtpbr_float3 wi, float alphaX, float alphaY) {
+    rtpbr_float3 wm;
     float jacobian = Reflection_Jacobian(wo, wi, wm);
     return jacobian > 0.0f ? PDF_Beckmann_VNDF(wo, wm, alphaX, alphaY) * jacobian : 0.0f;
 }
@@ -192,8 +192,8 @@ RTPBR_FN float PDF_Beckmann_Reflection(float3 wo, float3 wi, float alphaX, float
 // ---- cosine-weighted hemisphere ------------------------------------------------------------
 
 // Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square", then Malley's method.
-RTPBR_FN float3 Sample_CosineHemisphere(float2 u) {
-    float2 d = 2.0f * u - RTPBR_F2(1.0f);
+RTPBR_FN rtpbr_float3 Sample_CosineHemisphere(rtpbr_float2 u) {
+    rtpbr_float2 d = 2.0f * u - RTPBR_F2(1.0f);
     float r = 0.0f;
     float phi = 0.0f;
     if (d.x != 0.0f || d.y != 0.0f) {
@@ -208,10 +208,10 @@ RTPBR_FN float3 Sample_CosineHemisphere(float2 u) {
     float x = r * cos(phi);
     float y = r * sin(phi);
     // z = sqrt(1 - r^2), not sqrt(1 - x^2 - y^2): no cancellation at the rim.
-    return float3(x, y, safe_sqrt((1.0f - abs(r)) * (1.0f + abs(r))));
+    return rtpbr_float3(x, y, rtpbr_safe_sqrt((1.0f - abs(r)) * (1.0f + abs(r))));
 }
 
-RTPBR_FN float PDF_CosineHemisphere(float3 w) {
+RTPBR_FN float PDF_CosineHemisphere(rtpbr_float3 w) {
     return w.z > 0.0f ? w.z * RTPBR_INV_PI : 0.0f;
 }
 

@@ -49,12 +49,12 @@ RTPBR_NAMESPACE_BEGIN
 // NaN-safe clamp to [0, 1] (NaN and negatives give 0).
 RTPBR_FN float Sheen_Clamp01(float x) { return x > 0.0f ? min(x, 1.0f) : 0.0f; }
 
-RTPBR_FN float3 Sheen_SanitizeColor(float3 c) {
-    return float3(Sheen_Clamp01(c.x), Sheen_Clamp01(c.y), Sheen_Clamp01(c.z));
+RTPBR_FN rtpbr_float3 Sheen_SanitizeColor(rtpbr_float3 c) {
+    return rtpbr_float3(Sheen_Clamp01(c.x), Sheen_Clamp01(c.y), Sheen_Clamp01(c.z));
 }
 
 // [KHR] sheen layering: max3(sheenColor), the layer's weight in the albedo scaling.
-RTPBR_FN float Sheen_Max3(float3 c) { return max(max(c.x, c.y), c.z); }
+RTPBR_FN float Sheen_Max3(rtpbr_float3 c) { return max(max(c.x, c.y), c.z); }
 
 // alpha = sheenRoughness^2 ([KHR], Filament), clamped to [RTPBR_MIN_ALPHA, 1].
 RTPBR_FN float Sheen_Alpha(float sheenRoughness) {
@@ -76,12 +76,12 @@ RTPBR_FN float D_Charlie(float NoH, float alpha) {
 
 // Samples h with density D_Charlie(h) cos(theta_h) (the CDF sin(theta_h)^(2 + 1/alpha) = u.x
 // inverts in closed form; [EK17] sec. 2).
-RTPBR_FN float3 Sample_Charlie(float2 u, float alpha) {
+RTPBR_FN rtpbr_float3 Sample_Charlie(rtpbr_float2 u, float alpha) {
     float a = max(alpha > 0.0f ? alpha : RTPBR_MIN_ALPHA, RTPBR_MIN_ALPHA);
     float sinTheta = pow(Sheen_Clamp01(u.x), a / (2.0f * a + 1.0f));
-    float cosTheta = safe_sqrt(1.0f - sinTheta * sinTheta);
+    float cosTheta = rtpbr_safe_sqrt(1.0f - sinTheta * sinTheta);
     float phi = RTPBR_TWO_PI * Sheen_Clamp01(u.y);
-    return float3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
+    return rtpbr_float3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
 }
 
 // ---- visibility ------------------------------------------------------------------------------
@@ -90,12 +90,12 @@ RTPBR_FN float3 Sample_Charlie(float2 u, float alpha) {
 // L(x) = a / (1 + b x^c) + d x + e, coefficients interpolated between the fits at r = 0 and
 // r = 1 with t = (1 - r)^2 (r = alpha, as [KHR]'s reference).
 RTPBR_FN float Sheen_CharlieL(float x, float alpha) {
-    float t = sq(1.0f - saturate(alpha));
-    float a = lerp(21.5473f, 25.3245f, t);
-    float b = lerp(3.82987f, 3.32435f, t);
-    float c = lerp(0.19823f, 0.16801f, t);
-    float d = lerp(-1.97760f, -1.27393f, t);
-    float e = lerp(-4.32054f, -4.85967f, t);
+    float t = rtpbr_sq(1.0f - rtpbr_saturate(alpha));
+    float a = rtpbr_lerp(21.5473f, 25.3245f, t);
+    float b = rtpbr_lerp(3.82987f, 3.32435f, t);
+    float c = rtpbr_lerp(0.19823f, 0.16801f, t);
+    float d = rtpbr_lerp(-1.97760f, -1.27393f, t);
+    float e = rtpbr_lerp(-4.32054f, -4.85967f, t);
     return a / (1.0f + b * pow(rtpbr_pos(x), c)) + d * x + e;
 }
 
@@ -153,7 +153,7 @@ RTPBR_FN float V_Sheen(float NoV, float NoL, float alpha) {
 // ---- the lobe --------------------------------------------------------------------------------
 
 // [KHR] f_sheen = sheenColor D V (F = 1), without the cosine. 0 unless NoV, NoL > 0.
-RTPBR_FN float3 BRDF_Sheen(float3 sheenColor, float sheenRoughness, float NoV, float NoL, float NoH) {
+RTPBR_FN rtpbr_float3 BRDF_Sheen(rtpbr_float3 sheenColor, float sheenRoughness, float NoV, float NoL, float NoH) {
     float alpha = Sheen_Alpha(sheenRoughness);
     float v = V_Sheen(NoV, NoL, alpha);
     float dv = min(D_Charlie(NoH, alpha) * v, RTPBR_FLT_MAX);
@@ -161,14 +161,14 @@ RTPBR_FN float3 BRDF_Sheen(float3 sheenColor, float sheenRoughness, float NoV, f
 }
 
 // BRDF_Sheen in the local frame (n = +z): the half vector from wo and wi.
-RTPBR_FN float3 BRDF_SheenLocal(float3 sheenColor, float sheenRoughness, float3 wo, float3 wi) {
+RTPBR_FN rtpbr_float3 BRDF_SheenLocal(rtpbr_float3 sheenColor, float sheenRoughness, rtpbr_float3 wo, rtpbr_float3 wi) {
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f) || !(dot(wo, wo) < 1e30f) || !(dot(wi, wi) < 1e30f))
         return RTPBR_F3(0.0f);
-    float3 hs = wo + wi;
+    rtpbr_float3 hs = wo + wi;
     float hl = dot(hs, hs);
     if (!(hl > 0.0f))
         return RTPBR_F3(0.0f);
-    return BRDF_Sheen(sheenColor, sheenRoughness, wo.z, wi.z, hs.z * rsqrt(hl));
+    return BRDF_Sheen(sheenColor, sheenRoughness, wo.z, wi.z, hs.z * rtpbr_rsqrt(hl));
 }
 
 // ---- layering --------------------------------------------------------------------------------
@@ -176,21 +176,21 @@ RTPBR_FN float3 BRDF_SheenLocal(float3 sheenColor, float sheenRoughness, float3 
 // [KHR] "Albedo-scaling technique" (Conty & Kulla 2017): the factor of the base layer,
 // min(1 - max3(sheenColor) E(NoV), 1 - max3(sheenColor) E(NoL)), E = E_sheen fetched at
 // Sheen_TableCoord(NoV or NoL, sheenRoughness). In [0, 1].
-RTPBR_FN float Sheen_AlbedoScaling(float3 sheenColor, float E_NoV, float E_NoL) {
+RTPBR_FN float Sheen_AlbedoScaling(rtpbr_float3 sheenColor, float E_NoV, float E_NoL) {
     float m = Sheen_Max3(Sheen_SanitizeColor(sheenColor));
-    return saturate(min(1.0f - m * Sheen_Clamp01(E_NoV), 1.0f - m * Sheen_Clamp01(E_NoL)));
+    return rtpbr_saturate(min(1.0f - m * Sheen_Clamp01(E_NoV), 1.0f - m * Sheen_Clamp01(E_NoL)));
 }
 
 // [KHR] the view-only form 1 - max3(sheenColor) E(NoV): one lookup, usable for the
 // environment (irradiance and specular) and for lights alike.
-RTPBR_FN float Sheen_AlbedoScalingView(float3 sheenColor, float E_NoV) {
+RTPBR_FN float Sheen_AlbedoScalingView(rtpbr_float3 sheenColor, float E_NoV) {
     float m = Sheen_Max3(Sheen_SanitizeColor(sheenColor));
-    return saturate(1.0f - m * Sheen_Clamp01(E_NoV));
+    return rtpbr_saturate(1.0f - m * Sheen_Clamp01(E_NoV));
 }
 
 // uv at which to fetch the E_sheen table (rtpbr_sheen_E, 32 x 32): u = sqrt(NoV) axis, v =
 // sheen perceptual roughness, node i at i / 31 on texel centres (the Kulla-Conty layout).
-RTPBR_FN float2 Sheen_TableCoord(float NoV, float sheenRoughness) {
+RTPBR_FN rtpbr_float2 Sheen_TableCoord(float NoV, float sheenRoughness) {
     return KC_TableCoord(NoV, Sheen_Clamp01(sheenRoughness));
 }
 
@@ -198,7 +198,7 @@ RTPBR_FN float2 Sheen_TableCoord(float NoV, float sheenRoughness) {
 // LTC_LutCoord(NoV, sheenRoughness)): Lo = Le * Sheen_LtcScale(ltc2, sheenColor) *
 // LTC_IntegrateLocal(local, ltc1). ltc2.x = norm (norm x the LTC's mass above the horizon =
 // the lobe's albedo); the lobe has no Fresnel columns.
-RTPBR_FN float3 Sheen_LtcScale(float4 ltc2, float3 sheenColor) {
+RTPBR_FN rtpbr_float3 Sheen_LtcScale(rtpbr_float4 ltc2, rtpbr_float3 sheenColor) {
     float norm = ltc2.x > 0.0f ? min(ltc2.x, RTPBR_FLT_MAX) : 0.0f; // NaN -> 0
     return Sheen_SanitizeColor(sheenColor) * norm;
 }
@@ -209,24 +209,24 @@ RTPBR_FN float3 Sheen_LtcScale(float4 ltc2, float3 sheenColor) {
 // otherwise the uniform hemisphere (the lobe of small alpha is a ring near the horizon, which
 // the D sampling alone misses at normal view; the uniform half bounds the weights). u.x is
 // rescaled in each half, so stratified u stay stratified. The result may be below the horizon.
-RTPBR_FN float3 Sample_SheenLobe(float3 wo, float2 u, float alpha) {
+RTPBR_FN rtpbr_float3 Sample_SheenLobe(rtpbr_float3 wo, rtpbr_float2 u, float alpha) {
     if (u.x < 0.5f) {
-        float3 h = Sample_Charlie(float2(2.0f * u.x, u.y), alpha);
+        rtpbr_float3 h = Sample_Charlie(rtpbr_float2(2.0f * u.x, u.y), alpha);
         return 2.0f * dot(wo, h) * h - wo;
     }
-    float z = saturate(2.0f * u.x - 1.0f);
-    float r = safe_sqrt(1.0f - z * z);
+    float z = rtpbr_saturate(2.0f * u.x - 1.0f);
+    float r = rtpbr_safe_sqrt(1.0f - z * z);
     float phi = RTPBR_TWO_PI * u.y;
-    return float3(r * cos(phi), r * sin(phi), z);
+    return rtpbr_float3(r * cos(phi), r * sin(phi), z);
 }
 
 // The density of Sample_SheenLobe (solid angle): 0.5 D(h) NoH / (4 VoH) + 0.5 / (2 pi).
-RTPBR_FN float PDF_SheenLobe(float3 wo, float3 wi, float alpha) {
+RTPBR_FN float PDF_SheenLobe(rtpbr_float3 wo, rtpbr_float3 wi, float alpha) {
     float p = wi.z > 0.0f ? 0.25f * RTPBR_INV_PI : 0.0f;
-    float3 hs = wo + wi;
+    rtpbr_float3 hs = wo + wi;
     float hl = dot(hs, hs);
     if (hl > 0.0f) {
-        float3 h = hs * rsqrt(hl);
+        rtpbr_float3 h = hs * rtpbr_rsqrt(hl);
         float VoH = dot(wo, h);
         if (h.z > 0.0f && VoH > 0.0f)
             p += 0.5f * D_Charlie(h.z, alpha) * h.z / (4.0f * VoH);

@@ -51,17 +51,17 @@ RTPBR_FN float Lambda_GGX(float cosTheta, float alpha) {
     if (!(cosTheta > 0.0f))
         return RTPBR_LAMBDA_MAX;
     float c = min(cosTheta, 1.0f);
-    float a2 = sq(Alpha_Clamp(alpha));
+    float a2 = rtpbr_sq(Alpha_Clamp(alpha));
     float s = sqrt(a2 + (1.0f - a2) * c * c); // = c sqrt(1 + a2 tan^2)
     return 0.5f * (s - c) / c;
 }
 
 // Anisotropic GGX Lambda of the local direction w (n = +z) (Heitz 2014, eq. 86 with
 // alpha_o^2 = ax^2 cos^2 phi + ay^2 sin^2 phi).
-RTPBR_FN float Lambda_GGX_Aniso(float3 w, float alphaX, float alphaY) {
+RTPBR_FN float Lambda_GGX_Aniso(rtpbr_float3 w, float alphaX, float alphaY) {
     if (!(w.z > 0.0f))
         return RTPBR_LAMBDA_MAX;
-    float A = sq(Alpha_Clamp(alphaX) * w.x) + sq(Alpha_Clamp(alphaY) * w.y);
+    float A = rtpbr_sq(Alpha_Clamp(alphaX) * w.x) + rtpbr_sq(Alpha_Clamp(alphaY) * w.y);
     float z2 = w.z * w.z;
     float s = sqrt(z2 + A); // = z sqrt(1 + A / z^2)
     return 0.5f * (s - w.z) / w.z;
@@ -72,14 +72,14 @@ RTPBR_FN float G1_GGX(float cosTheta, float alpha) {
     if (!(cosTheta > 0.0f))
         return 0.0f;
     float c = min(cosTheta, 1.0f);
-    float a2 = sq(Alpha_Clamp(alpha));
+    float a2 = rtpbr_sq(Alpha_Clamp(alpha));
     return 2.0f * c / (c + sqrt(a2 + (1.0f - a2) * c * c));
 }
 
-RTPBR_FN float G1_GGX_Aniso(float3 w, float alphaX, float alphaY) {
+RTPBR_FN float G1_GGX_Aniso(rtpbr_float3 w, float alphaX, float alphaY) {
     if (!(w.z > 0.0f))
         return 0.0f;
-    float A = sq(Alpha_Clamp(alphaX) * w.x) + sq(Alpha_Clamp(alphaY) * w.y);
+    float A = rtpbr_sq(Alpha_Clamp(alphaX) * w.x) + rtpbr_sq(Alpha_Clamp(alphaY) * w.y);
     return 2.0f * w.z / (w.z + sqrt(w.z * w.z + A));
 }
 
@@ -101,16 +101,16 @@ RTPBR_FN float Lambda_Beckmann(float cosTheta, float alpha) {
     if (!(cosTheta > 0.0f))
         return RTPBR_LAMBDA_MAX;
     float c = min(cosTheta, 1.0f);
-    float s = safe_sqrt(1.0f - c * c);
+    float s = rtpbr_safe_sqrt(1.0f - c * c);
     if (s <= 0.0f)
         return 0.0f;
     return Lambda_Beckmann_FromA(c / (Alpha_Clamp(alpha) * s));
 }
 
-RTPBR_FN float Lambda_Beckmann_Aniso(float3 w, float alphaX, float alphaY) {
+RTPBR_FN float Lambda_Beckmann_Aniso(rtpbr_float3 w, float alphaX, float alphaY) {
     if (!(w.z > 0.0f))
         return RTPBR_LAMBDA_MAX;
-    float d = sqrt(sq(Alpha_Clamp(alphaX) * w.x) + sq(Alpha_Clamp(alphaY) * w.y));
+    float d = sqrt(rtpbr_sq(Alpha_Clamp(alphaX) * w.x) + rtpbr_sq(Alpha_Clamp(alphaY) * w.y));
     if (d <= 0.0f)
         return 0.0f;
     return Lambda_Beckmann_FromA(w.z / d);
@@ -121,7 +121,7 @@ RTPBR_FN float G1_Beckmann_Fast(float cosTheta, float alpha) {
     if (!(cosTheta > 0.0f))
         return 0.0f;
     float c = min(cosTheta, 1.0f);
-    float s = safe_sqrt(1.0f - c * c);
+    float s = rtpbr_safe_sqrt(1.0f - c * c);
     if (s <= 0.0f)
         return 1.0f;
     float a = c / (Alpha_Clamp(alpha) * s);
@@ -151,7 +151,7 @@ RTPBR_FN float G2_HeightCorrelated(float lambdaO, float lambdaI) {
 // The Lambda of the NDF selected by RTPBR_NDF, anisotropic form (local direction w, n = +z).
 // GTR has no closed-form Smith Lambda for gamma != 2: it uses the GGX Lambda, as Burley 2012
 // does for the clearcoat lobe.
-RTPBR_FN float Lambda_Microfacet(float3 w, float alphaX, float alphaY) {
+RTPBR_FN float Lambda_Microfacet(rtpbr_float3 w, float alphaX, float alphaY) {
 #if RTPBR_NDF == RTPBR_NDF_BECKMANN
     return Lambda_Beckmann_Aniso(w, alphaX, alphaY);
 #else
@@ -160,7 +160,7 @@ RTPBR_FN float Lambda_Microfacet(float3 w, float alphaX, float alphaY) {
 }
 
 // G2 of the selected NDF and RTPBR_SMITH combination (local directions, n = +z).
-RTPBR_FN float G2_Microfacet(float3 wo, float3 wi, float alphaX, float alphaY) {
+RTPBR_FN float G2_Microfacet(rtpbr_float3 wo, rtpbr_float3 wi, float alphaX, float alphaY) {
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f))
         return 0.0f;
     float lo = Lambda_Microfacet(wo, alphaX, alphaY);
@@ -181,21 +181,21 @@ RTPBR_FN float V_SmithGGXCorrelated(float NoV, float NoL, float alpha) {
         return 0.0f;
     float v = min(NoV, 1.0f);
     float l = min(NoL, 1.0f);
-    float a2 = sq(Alpha_Clamp(alpha));
+    float a2 = rtpbr_sq(Alpha_Clamp(alpha));
     float lambdaV = l * sqrt(v * v * (1.0f - a2) + a2);
     float lambdaL = v * sqrt(l * l * (1.0f - a2) + a2);
     return 0.5f / (lambdaV + lambdaL);
 }
 
 // Hammon 2017, "PBR Diffuse Lighting for GGX+Smith Microsurfaces": the fast approximation of
-// the height-correlated GGX visibility, V ~ 0.5 / lerp(2 NoL NoV, NoL + NoV, alpha).
+// the height-correlated GGX visibility, V ~ 0.5 / rtpbr_lerp(2 NoL NoV, NoL + NoV, alpha).
 RTPBR_FN float V_SmithGGXCorrelated_Fast(float NoV, float NoL, float alpha) {
     if (!(NoV > 0.0f) || !(NoL > 0.0f))
         return 0.0f;
     float v = min(NoV, 1.0f);
     float l = min(NoL, 1.0f);
     float a = Alpha_Clamp(alpha);
-    return 0.5f / lerp(2.0f * l * v, l + v, a);
+    return 0.5f / rtpbr_lerp(2.0f * l * v, l + v, a);
 }
 
 // Separable Smith GGX visibility: G1(V) G1(L) / (4 NoL NoV).
@@ -204,7 +204,7 @@ RTPBR_FN float V_SmithGGXSeparable(float NoV, float NoL, float alpha) {
         return 0.0f;
     float v = min(NoV, 1.0f);
     float l = min(NoL, 1.0f);
-    float a2 = sq(Alpha_Clamp(alpha));
+    float a2 = rtpbr_sq(Alpha_Clamp(alpha));
     // G1(c) / (2c) = 1 / (c + sqrt(a2 + (1 - a2) c^2))
     return 1.0f / ((v + sqrt(a2 + (1.0f - a2) * v * v)) * (l + sqrt(a2 + (1.0f - a2) * l * l)));
 }

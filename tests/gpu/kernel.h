@@ -1,7 +1,7 @@
 // rtpbr GPU test kernel: one source that says what the GPU (GLSL and HLSL builds) and the
 // CPU (C++ build) both evaluate.
 //
-//   float rtpbr_test_eval(float4 a, float4 b, uint j)
+//   float rtpbr_test_eval(rtpbr_float4 a, rtpbr_float4 b, uint j)
 //
 // maps one input tuple (a, b: eight uniforms in [0, 1], made on the host by a fixed-seed PRNG
 // with a share of exact 0 / 1 / near-0 / near-1 values, see test_gpu.c) and an output index
@@ -46,20 +46,20 @@ struct RtpbrTestArgs {
     float aniso;          // anisotropy in [0, 1] (a.w)
     float gamma;          // GTR exponent: [0.5, 4], 10% of tuples within 5e-5 of 1 (series path)
     float eta;            // dielectric relative IOR in [1.01, 3]
-    float3 etaC;          // conductor IOR per channel in [0.1, 3]
-    float3 kC;            // conductor extinction per channel in [0, 8]
+    rtpbr_float3 etaC;          // conductor IOR per channel in [0.1, 3]
+    rtpbr_float3 kC;            // conductor extinction per channel in [0, 8]
     float f0, f90;        // Schlick parameters in [0, 1]
-    float3 f0C;           // coloured f0 in [0, 1]
+    rtpbr_float3 f0C;           // coloured f0 in [0, 1]
     float lambdaO, lambdaI; // Smith Lambda values in [0, 1e3]
     float beckA;          // Beckmann a = cot(theta) / alpha in [0, 10]
     float mu;             // cot(theta) of a direction, [0, 1e6]
-    float3 wo, wi, wm;    // local directions (n = +z), z = c0, c1, a.w; azimuths from b.z, b.w, b.x
-    float2 u;             // a sample pair (b.x, b.y) in [0, 1) (the samplers' domain)
+    rtpbr_float3 wo, wi, wm;    // local directions (n = +z), z = c0, c1, a.w; azimuths from b.z, b.w, b.x
+    rtpbr_float2 u;             // a sample pair (b.x, b.y) in [0, 1) (the samplers' domain)
 };
 
 // A direction with cosine c to +z and an azimuth picked by t in [0, 1] through the rational
 // parametrisation of the circle by q = tan(phi / 2) (two half circles, t < 0.5 and t >= 0.5).
-RTPBR_FN float3 rtpbr_test_dir(float c, float t) {
+RTPBR_FN rtpbr_float3 rtpbr_test_dir(float c, float t) {
     RTPBR_TEST_PRECISE float v = 4.0f * t;
     RTPBR_TEST_PRECISE float sgn = v < 2.0f ? 1.0f : -1.0f;
     RTPBR_TEST_PRECISE float q = v < 2.0f ? v - 1.0f : v - 3.0f;
@@ -67,7 +67,7 @@ RTPBR_FN float3 rtpbr_test_dir(float c, float t) {
     RTPBR_TEST_PRECISE float cosPhi = sgn * (1.0f - q * q) / d;
     RTPBR_TEST_PRECISE float sinPhi = sgn * (2.0f * q) / d;
     RTPBR_TEST_PRECISE float s = sqrt(max(1.0f - c * c, 0.0f));
-    return float3(s * cosPhi, s * sinPhi, c);
+    return rtpbr_float3(s * cosPhi, s * sinPhi, c);
 }
 
 RTPBR_FN float rtpbr_test_lerp(float lo, float hi, float t) {
@@ -75,7 +75,7 @@ RTPBR_FN float rtpbr_test_lerp(float lo, float hi, float t) {
     return r;
 }
 
-RTPBR_FN RtpbrTestArgs rtpbr_test_args(float4 a, float4 b) {
+RTPBR_FN RtpbrTestArgs rtpbr_test_args(rtpbr_float4 a, rtpbr_float4 b) {
     RtpbrTestArgs t;
     t.c0 = a.x;
     t.c1 = a.y;
@@ -94,12 +94,12 @@ RTPBR_FN RtpbrTestArgs rtpbr_test_args(float4 a, float4 b) {
     else
         t.gamma = rtpbr_test_lerp(0.5f, 4.0f, b.w);
     t.eta = rtpbr_test_lerp(1.01f, 3.0f, b.z);
-    t.etaC = float3(rtpbr_test_lerp(0.1f, 3.0f, b.z), rtpbr_test_lerp(0.1f, 3.0f, b.w),
+    t.etaC = rtpbr_float3(rtpbr_test_lerp(0.1f, 3.0f, b.z), rtpbr_test_lerp(0.1f, 3.0f, b.w),
                     rtpbr_test_lerp(0.1f, 3.0f, a.w));
-    t.kC = float3(8.0f * b.x, 8.0f * b.y, 8.0f * a.z);
+    t.kC = rtpbr_float3(8.0f * b.x, 8.0f * b.y, 8.0f * a.z);
     t.f0 = b.z;
     t.f90 = b.w;
-    t.f0C = float3(b.z, b.w, a.w);
+    t.f0C = rtpbr_float3(b.z, b.w, a.w);
     t.lambdaO = 1e3f * a.x * a.x;
     t.lambdaI = 1e3f * a.y * a.y;
     t.beckA = 10.0f * a.x;
@@ -108,7 +108,7 @@ RTPBR_FN RtpbrTestArgs rtpbr_test_args(float4 a, float4 b) {
     t.wo = rtpbr_test_dir(a.x, b.z);
     t.wi = rtpbr_test_dir(a.y, b.w);
     t.wm = rtpbr_test_dir(a.w, b.x);
-    t.u = float2(min(b.x, RTPBR_TEST_BELOW_ONE), min(b.y, RTPBR_TEST_BELOW_ONE));
+    t.u = rtpbr_float2(min(b.x, RTPBR_TEST_BELOW_ONE), min(b.y, RTPBR_TEST_BELOW_ONE));
     return t;
 }
 
@@ -122,23 +122,23 @@ RTPBR_FN float rtpbr_test_ltc_quad(RtpbrTestArgs t, bool stretch, int which) {
     RTPBR_TEST_PRECISE float h = 0.5f * t.sc;
     RTPBR_TEST_PRECISE float gx = t.c1 - 0.5f;
     RTPBR_TEST_PRECISE float gy = t.c2 - 0.5f;
-    float3 v0 = float3(1.0f, 0.0f, h + gx);
-    float3 v1 = float3(0.0f, 1.0f, h + gy);
-    float3 v2 = float3(-1.0f, 0.0f, h - gx);
-    float3 v3 = float3(0.0f, -1.0f, h - gy);
+    rtpbr_float3 v0 = rtpbr_float3(1.0f, 0.0f, h + gx);
+    rtpbr_float3 v1 = rtpbr_float3(0.0f, 1.0f, h + gy);
+    rtpbr_float3 v2 = rtpbr_float3(-1.0f, 0.0f, h - gx);
+    rtpbr_float3 v3 = rtpbr_float3(0.0f, -1.0f, h - gy);
     RTPBR_TEST_PRECISE float m02 = 0.5f * t.sc;
     RTPBR_TEST_PRECISE float m20 = t.c3 - 0.5f;
     RTPBR_TEST_PRECISE float m22 = 0.5f + t.c0;
     RTPBR_TEST_PRECISE float k = 1.0f + 3.0f * t.aniso;
-    float4 ltc1 = float4(0.2f + t.perceptual, m02, m20, m22);
-    float3x3 minv = stretch ? LTC_AnisotropicInverseMatrix(ltc1, float3(0.0f, 0.0f, 1.0f), float3(1.0f, 0.0f, 0.0f), k)
+    rtpbr_float4 ltc1 = rtpbr_float4(0.2f + t.perceptual, m02, m20, m22);
+    rtpbr_float3x3 minv = stretch ? LTC_AnisotropicInverseMatrix(ltc1, rtpbr_float3(0.0f, 0.0f, 1.0f), rtpbr_float3(1.0f, 0.0f, 0.0f), k)
                             : LTC_InverseMatrix(ltc1);
     LtcClipper horizon = LTC_ClipperBegin();
     LtcLobe lobe = LTC_LobeBegin(minv);
-    float3 F = RTPBR_F3(0.0f);
+    rtpbr_float3 F = RTPBR_F3(0.0f);
     for (int e = 0; e < 5; e++) {
-        float3 a = e == 0 ? v0 : (e == 1 ? v1 : (e == 2 ? v2 : v3));
-        float3 b = e == 0 ? v1 : (e == 1 ? v2 : (e == 2 ? v3 : v0));
+        rtpbr_float3 a = e == 0 ? v0 : (e == 1 ? v1 : (e == 2 ? v2 : v3));
+        rtpbr_float3 b = e == 0 ? v1 : (e == 1 ? v2 : (e == 2 ? v3 : v0));
         LtcSegment seg = e < 4 ? LTC_ClipEdge(horizon, a, b) : LTC_ClipClose(horizon);
         if (seg.valid) {
             F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
@@ -152,7 +152,7 @@ RTPBR_FN float rtpbr_test_ltc_quad(RtpbrTestArgs t, bool stretch, int which) {
 // early-return form of this chain (outputs past ~75 came out wrong, the same SPIR-V with fewer
 // cases was right); returns are lowered to nested ifs and gallivm's control-flow nesting is
 // limited (LP_MAX_TGSI_NESTING = 80), the likely cause. Keep the chain flat.
-RTPBR_FN float rtpbr_test_eval(float4 a, float4 b, uint j) {
+RTPBR_FN float rtpbr_test_eval(rtpbr_float4 a, rtpbr_float4 b, uint j) {
     RtpbrTestArgs t = rtpbr_test_args(a, b);
     uint n = 0u;
     float r = 0.0f;

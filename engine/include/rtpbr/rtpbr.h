@@ -61,6 +61,22 @@ extern "C" {
 #endif
 
 // ---------------------------------------------------------------------------------------------
+// Version (semantic versioning; CHANGELOG.md says what changed). Before 1.0 a minor release
+// may change the ABI: the shared library's soname carries major.minor (librtpbr.so.0.2).
+// The build checks these against meson.build's project version.
+
+#define RTPBR_VERSION_MAJOR 0
+#define RTPBR_VERSION_MINOR 2
+#define RTPBR_VERSION_PATCH 0
+#define RTPBR_MAKE_VERSION(major, minor, patch) (((uint32_t)(major) << 22) | ((uint32_t)(minor) << 12) | (uint32_t)(patch))
+#define RTPBR_VERSION RTPBR_MAKE_VERSION(RTPBR_VERSION_MAJOR, RTPBR_VERSION_MINOR, RTPBR_VERSION_PATCH)
+
+// The version of the library actually loaded, as RTPBR_MAKE_VERSION(major, minor, patch)
+// (the layout of VK_MAKE_API_VERSION without the variant: major >> 22, minor >> 12 & 0x3ff,
+// patch & 0xfff). Compare with RTPBR_VERSION, the header's, to detect a mismatched library.
+RTPBR_API uint32_t rtpbr_version(void);
+
+// ---------------------------------------------------------------------------------------------
 // Results, allocator, logger
 
 typedef enum rtpbr_result {
