@@ -306,14 +306,14 @@ static void test_nonfinite(void** state) {
     s = triangle();
     s.nodes = "{\"mesh\":0,\"scale\":[3e38,3e38,3e38],\"translation\":[3e38,0,0]}";
     expect_scene(dir, "overflow.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, NULL);
-    /* JSON has no NaN literal; 1e39 is +Inf as a float (refused even where the value
-     * would be clamped to [0,1]), 1e400 is not even a double. */
+    /* JSON has no NaN literal; 1e39 is +Inf as a float, 1e400 is not even a double. Where
+     * the schema bounds a factor to [0, 1], 1e39 is a schema error (issue 18). */
     s = triangle();
     s.material = 0;
     s.materials = "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1e39,0,0,1]}}";
-    expect_scene(dir, "colour.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "baseColorFactor");
+    expect_scene(dir, "colour.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "baseColorFactor");
     s.materials = "{\"emissiveFactor\":[1,-1e39,0]}";
-    expect_scene(dir, "emission.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "emissiveFactor");
+    expect_scene(dir, "emission.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "emissiveFactor");
     /* Factors without an upper bound must not overflow the float they are stored in. */
     s.materials = "{\"extensions\":{\"KHR_materials_specular\":{\"specularColorFactor\":[1,1e39,0]}}}";
     expect_scene(dir, "specular.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "specularColorFactor");
