@@ -5,8 +5,9 @@
 // defines for the core objects is checked (types, minimum/maximum, enums, array lengths,
 // uniqueness of node lists, required properties); unknown properties, extensions and
 // extras are left to the code that reads them. Errors are RTPBR_SCENE_ERROR_INVALID_JSON
-// with a JSON pointer to the value. Reference: the glTF 2.0 JSON schema,
-// https://github.com/KhronosGroup/glTF/tree/main/specification/2.0/schema
+// with a JSON pointer to the value; an index to an element that does not exist is
+// RTPBR_SCENE_ERROR_INVALID_REFERENCE, whether or not the scene uses the referring object.
+// Reference: the glTF 2.0 JSON schema, https://github.com/KhronosGroup/glTF/tree/main/specification/2.0/schema
 #include "scene_internal.hpp"
 
 #include <nlohmann/json.hpp>
@@ -47,8 +48,24 @@ struct Checker {
         if (d < lo || d > hi) return fail(at + "/" + key, "integer out of range");
         return true;
     }
-    bool index(const json& o, const std::string& at, const char* key, bool required = false) {
-        return integer(o, at, key, 0.0, kMaxIndex, required);
+    // Number of elements of the top-level array `name` (0 if absent or not an array).
+    size_t count_of(const char* name) const {
+        auto it = root.find(name);
+        return it != root.end() && it->is_array() ? it->size() : 0;
+    }
+    bool unresolved(const std::string& where, const char* key, double value, const char* target) {
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "%s: %s %.0f does not exist (%zu %s)", where.c_str(), key,
+                        value, count_of(target), target);
+    }
+    // An index into the top-level array `target`: an integer in range, and the element exists.
+    bool index(const json& o, const std::string& at, const char* key, const char* target, bool required = false) {
+        if (!integer(o, at, key, 0.0, kMaxIndex, required)) return false;
+        auto it = o.find(key);
+        // Attribute names are keys of their own: name the target ("accessor 9") there.
+        const char* noun = std::string(target) == "accessors" ? "accessor" : key;
+        if (it != o.end() && number(*it) >= double(count_of(target)))
+            return unresolved(at + "/" + key, noun, number(*it), target);
+        return true;
     }
     bool real(const json& o, const std::string& at, const char* key, double lo, double hi, bool required = false,
               bool exclusive_lo = false) {
@@ -108,7 +125,7 @@ struct Checker {
         return true;
     }
     // Array of unique indices, at least one.
-    bool indices(const json& o, const std::string& at, const char* key) {
+    bool indices(const json& o, const std::string& at, const char* key, const char* target) {
         auto it = o.find(key);
         if (it == o.end()) return true;
         if (!it->is_array() || it->empty()) return fail(at + "/" + key, "must be a non-empty array of indices");
@@ -117,6 +134,7 @@ struct Checker {
             if (!is_integer(e) || number(e) < 0.0 || number(e) > kMaxIndex)
                 return fail(at + "/" + key, "element is not an index");
             if (!seen.insert(number(e)).second) return fail(at + "/" + key, "indices must be unique");
+            if (number(e) >= double(count_of(target))) return unresolved(at + "/" + key, "node", number(e), target);
         }
         return true;
     }
@@ -140,16 +158,15 @@ struct Checker {
         if (it == o.end()) return true;
         const std::string p = at + "/" + key;
         if (!it->is_object()) return fail(p, "must be an object");
-        if (!index(*it, p, "index", true) || !integer(*it, p, "texCoord", 0, kMaxIndex) || !object(*it, p, "extensions"))
-            return false;
-        if (extra && std::string(extra) == "scale") return real(*it, p, "scale", -HUGE_VAL, HUGE_VAL);
-        if (extra && std::string(extra) == "strength") return real(*it, p, "strength", 0.0, 1.0);
-        return true;
+        if (extra && std::string(extra) == "scale" && !real(*it, p, "scale", -HUGE_VAL, HUGE_VAL)) return false;
+        if (extra && std::string(extra) == "strength" && !real(*it, p, "strength", 0.0, 1.0)) return false;
+        return integer(*it, p, "texCoord", 0, kMaxIndex) && object(*it, p, "extensions") &&
+               index(*it, p, "index", "textures", true);
     }
 
     // ---- objects ----
     bool accessor(const json& a, const std::string& at) {
-        if (!common(a, at) || !index(a, at, "bufferView") || !integer(a, at, "byteOffset", 0, HUGE_VAL) ||
+        if (!common(a, at) || !index(a, at, "bufferView", "bufferViews") || !integer(a, at, "byteOffset", 0, HUGE_VAL) ||
             !int_enum(a, at, "componentType", {5120, 5121, 5122, 5123, 5125, 5126}, true) ||
             !boolean(a, at, "normalized") || !integer(a, at, "count", 1, HUGE_VAL, true) ||
             !string_enum(a, at, "type", {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"}, true) ||
@@ -165,14 +182,14 @@ struct Checker {
             const std::string q = p + "/" + part;
             if (it == sp->end()) return fail(q, "required object missing");
             if (!it->is_object()) return fail(q, "must be an object");
-            if (!index(*it, q, "bufferView", true) || !integer(*it, q, "byteOffset", 0, HUGE_VAL)) return false;
+            if (!index(*it, q, "bufferView", "bufferViews", true) || !integer(*it, q, "byteOffset", 0, HUGE_VAL)) return false;
             if (std::string(part) == "indices" && !int_enum(*it, q, "componentType", {5121, 5123, 5125}, true))
                 return false;
         }
         return true;
     }
     bool buffer_view(const json& v, const std::string& at) {
-        if (!common(v, at) || !index(v, at, "buffer", true) || !integer(v, at, "byteOffset", 0, HUGE_VAL) ||
+        if (!common(v, at) || !index(v, at, "buffer", "buffers", true) || !integer(v, at, "byteOffset", 0, HUGE_VAL) ||
             !integer(v, at, "byteLength", 1, HUGE_VAL, true) || !int_enum(v, at, "target", {34962, 34963}))
             return false;
         auto it = v.find("byteStride");
@@ -209,7 +226,7 @@ struct Checker {
     }
     bool image(const json& i, const std::string& at) {
         return common(i, at) && string(i, at, "uri") && string_enum(i, at, "mimeType", {"image/jpeg", "image/png"}) &&
-               index(i, at, "bufferView");
+               index(i, at, "bufferView", "bufferViews");
     }
     bool material(const json& m, const std::string& at) {
         if (!common(m, at)) return false;
@@ -241,8 +258,8 @@ struct Checker {
             if (attrs == pr.end()) return fail(q + "/attributes", "required object missing");
             if (!attrs->is_object() || attrs->empty()) return fail(q + "/attributes", "must be a non-empty object");
             for (auto it = attrs->begin(); it != attrs->end(); ++it)
-                if (!index(*attrs, q + "/attributes", it.key().c_str(), true)) return false;
-            if (!index(pr, q, "indices") || !index(pr, q, "material") || !int_enum(pr, q, "mode", {0, 1, 2, 3, 4, 5, 6}) ||
+                if (!index(*attrs, q + "/attributes", it.key().c_str(), "accessors", true)) return false;
+            if (!index(pr, q, "indices", "accessors") || !index(pr, q, "material", "materials") || !int_enum(pr, q, "mode", {0, 1, 2, 3, 4, 5, 6}) ||
                 !object(pr, q, "extensions"))
                 return false;
             auto targets = pr.find("targets");
@@ -251,15 +268,15 @@ struct Checker {
                 for (const json& t : *targets) {
                     if (!t.is_object()) return fail(q + "/targets", "element is not an object");
                     for (auto it = t.begin(); it != t.end(); ++it)
-                        if (!index(t, q + "/targets", it.key().c_str(), true)) return false;
+                        if (!index(t, q + "/targets", it.key().c_str(), "accessors", true)) return false;
                 }
             }
         }
         return true;
     }
     bool node(const json& n, const std::string& at) {
-        return common(n, at) && index(n, at, "camera") && indices(n, at, "children") && index(n, at, "skin") &&
-               numbers(n, at, "matrix", 16, -HUGE_VAL, HUGE_VAL) && index(n, at, "mesh") &&
+        return common(n, at) && index(n, at, "camera", "cameras") && indices(n, at, "children", "nodes") && index(n, at, "skin", "skins") &&
+               numbers(n, at, "matrix", 16, -HUGE_VAL, HUGE_VAL) && index(n, at, "mesh", "meshes") &&
                numbers(n, at, "rotation", 4, -1.0, 1.0) && numbers(n, at, "scale", 3, -HUGE_VAL, HUGE_VAL) &&
                numbers(n, at, "translation", 3, -HUGE_VAL, HUGE_VAL) &&
                numbers(n, at, "weights", 0, -HUGE_VAL, HUGE_VAL);
@@ -269,9 +286,9 @@ struct Checker {
                int_enum(s, at, "minFilter", {9728, 9729, 9984, 9985, 9986, 9987}) &&
                int_enum(s, at, "wrapS", {33071, 33648, 10497}) && int_enum(s, at, "wrapT", {33071, 33648, 10497});
     }
-    bool scene(const json& s, const std::string& at) { return common(s, at) && indices(s, at, "nodes"); }
+    bool scene(const json& s, const std::string& at) { return common(s, at) && indices(s, at, "nodes", "nodes"); }
     bool texture(const json& t, const std::string& at) {
-        return common(t, at) && index(t, at, "sampler") && index(t, at, "source");
+        return common(t, at) && index(t, at, "sampler", "samplers") && index(t, at, "source", "images");
     }
     bool any(const json& o, const std::string& at) { return common(o, at); }
 
@@ -314,7 +331,7 @@ struct Checker {
             }
         }
         return
-               index(root, "", "scene") && object(root, "", "extensions") &&
+               index(root, "", "scene", "scenes") && object(root, "", "extensions") &&
                array_of("accessors", &Checker::accessor) && array_of("animations", &Checker::any) &&
                array_of("buffers", &Checker::buffer) && array_of("bufferViews", &Checker::buffer_view) &&
                array_of("cameras", &Checker::camera) && array_of("images", &Checker::image) &&
