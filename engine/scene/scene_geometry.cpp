@@ -258,8 +258,10 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "%s: invalid mode %d", usage, src.mode);
     if (!src.targets.empty()) ctx.warn("%s: morph targets ignored", usage);
     auto pos_it = src.attributes.find("POSITION");
-    if (pos_it == src.attributes.end())
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "%s: no POSITION attribute", usage);
+    if (pos_it == src.attributes.end()) {  // valid glTF (the validator warns): nothing to draw
+        ctx.warn("%s: no POSITION attribute; primitive skipped", usage);
+        return true;
+    }
 
     static const int kFloat[] = {TINYGLTF_COMPONENT_TYPE_FLOAT};
     static const int kTexcoord[] = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
@@ -269,9 +271,10 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     AccessorView pos, nrm, uv, tan, idx;
     if (!validate_accessor(ctx, model, pos_it->second, "POSITION", TINYGLTF_TYPE_VEC3, kFloat, 1, &pos))
         return false;
-    if (!pos.data)  // all-zero positions: nothing to draw, and a cheap way to ask for huge allocations
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "%s: POSITION accessor %d has no bufferView",
-                        usage, pos_it->second);
+    if (!pos.data) {  // glTF: no bufferView = zeros; all triangles degenerate, nothing allocated
+        ctx.warn("%s: POSITION accessor %d has no bufferView (all zeros); primitive skipped", usage, pos_it->second);
+        return true;
+    }
     const size_t n = pos.count;
     if (scene.total_vertices + n > ctx.max_vertices)
         return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES,
@@ -308,9 +311,10 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     if (src.indices >= 0) {
         if (!validate_accessor(ctx, model, src.indices, "indices", TINYGLTF_TYPE_SCALAR, kIndex, 3, &idx))
             return false;
-        if (!idx.data)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "%s: index accessor %d has no bufferView",
-                            usage, src.indices);
+        if (!idx.data) {  // all indices 0: every triangle degenerate
+            ctx.warn("%s: index accessor %d has no bufferView (all zeros); primitive skipped", usage, src.indices);
+            return true;
+        }
         if (idx.count > RTPBR_SCENE_MAX_INDICES)
             return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES, "%s: %zu indices exceed the limit", usage,
                             idx.count);

@@ -250,6 +250,8 @@ bool check_glb(Context& ctx, const unsigned char* data, size_t size, bool* has_u
     if (json_type != 0x4E4F534Au)
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: first chunk type 0x%08x is not JSON",
                         json_type);
+    if (json_length % 4 != 0)
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: JSON chunk length %u is not a multiple of 4", json_length);
     if (json_length == 0 || json_length > length - 20)
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB,
                         "GLB: JSON chunk length %u exceeds the file length %u", json_length,
@@ -262,6 +264,9 @@ bool check_glb(Context& ctx, const unsigned char* data, size_t size, bool* has_u
         if (at + 8 > length)
             return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: truncated header of chunk %u", chunk);
         uint32_t chunk_length = read_u32le(data + at), chunk_type = read_u32le(data + at + 4);
+        if (chunk_length % 4 != 0)
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: chunk %u (type 0x%08x) length %u is not a multiple of 4",
+                            chunk, chunk_type, chunk_length);
         if (at + 8 + chunk_length > length)
             return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB,
                             "GLB: chunk %u (type 0x%08x) length %u exceeds the file length %u", chunk, chunk_type,

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <set>
 
 namespace rtpbr_scene_detail {
@@ -27,8 +28,19 @@ struct Checker {
     Context& ctx;
     const json& root;
 
+    // "node 3 (/nodes/3/rotation)" for a JSON pointer into a top-level array.
+    static std::string describe(const std::string& where) {
+        const size_t slash = where.find('/', 1);
+        if (where.size() < 2 || slash == std::string::npos) return where;
+        std::string kind = where.substr(1, slash - 1);
+        if (kind == "meshes") kind = "mesh";
+        else if (!kind.empty() && kind.back() == 's') kind.pop_back();
+        const size_t end = where.find('/', slash + 1);
+        return kind + " " + where.substr(slash + 1, end == std::string::npos ? std::string::npos : end - slash - 1) +
+               " (" + where + ")";
+    }
     bool fail(const std::string& where, const char* what) {
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "%s: %s", where.c_str(), what);
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "%s: %s", describe(where).c_str(), what);
     }
 
     static bool is_integer(const json& v) {
@@ -54,7 +66,7 @@ struct Checker {
         return it != root.end() && it->is_array() ? it->size() : 0;
     }
     bool unresolved(const std::string& where, const char* key, double value, const char* target) {
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "%s: %s %.0f does not exist (%zu %s)", where.c_str(), key,
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "%s: %s %.0f does not exist (%zu %s)", describe(where).c_str(), key,
                         value, count_of(target), target);
     }
     // An index into the top-level array `target`: an integer in range, and the element exists.
@@ -172,6 +184,14 @@ struct Checker {
             !string_enum(a, at, "type", {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"}, true) ||
             !numbers(a, at, "max", 0, -HUGE_VAL, HUGE_VAL, 1, 16) || !numbers(a, at, "min", 0, -HUGE_VAL, HUGE_VAL, 1, 16))
             return false;
+        if (!accessor_in_view(a, at)) return false;
+        // min and max have one element per component of the type.
+        const size_t components = type_components(a["type"].get_ref<const std::string&>());
+        for (const char* key : {"min", "max"}) {
+            auto it = a.find(key);
+            if (it != a.end() && it->size() != components)
+                return fail(at + "/" + key, "needs one element per component of the accessor's type");
+        }
         auto sp = a.find("sparse");
         if (sp == a.end()) return true;
         const std::string p = at + "/sparse";
@@ -188,10 +208,56 @@ struct Checker {
         }
         return true;
     }
+    static size_t component_size(double type) {
+        return type == 5120 || type == 5121 ? 1 : type == 5122 || type == 5123 ? 2 : 4;
+    }
+    static size_t type_components(const std::string& type) {
+        static const std::pair<const char*, size_t> kComponents[] = {
+            {"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4}, {"MAT2", 4}, {"MAT3", 9}, {"MAT4", 16}};
+        for (const auto& c : kComponents)
+            if (type == c.first) return c.second;
+        return 0;
+    }
+    // The accessor's first byte aligned to its component size, and its last byte inside the
+    // view (glTF 2.0 3.6.2.4; matrices' column padding is not modelled: the loader reads none).
+    bool accessor_in_view(const json& a, const std::string& at) {
+        auto vi = a.find("bufferView");
+        if (vi == a.end()) return true;
+        const json& view = root["bufferViews"][size_t(number(*vi))];
+        if (!view.is_object()) return true;  // reported with the bufferViews
+        auto num = [](const json& o, const char* key, double fallback) {
+            auto it = o.find(key);
+            return it != o.end() && it->is_number() ? it->get<double>() : fallback;
+        };
+        const size_t csize = component_size(number(a["componentType"]));
+        const size_t element = csize * type_components(a["type"].get_ref<const std::string&>());
+        const double offset = num(a, "byteOffset", 0), view_offset = num(view, "byteOffset", 0);
+        if (std::fmod(offset + view_offset, double(csize)) != 0.0)
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+                            "%s: byteOffset %.0f + bufferView byteOffset %.0f is not a multiple of %zu", describe(at).c_str(),
+                            offset, view_offset, csize);
+        const double stride = num(view, "byteStride", double(element));
+        const double last = offset + stride * (number(a["count"]) - 1.0) + double(element);
+        if (last > num(view, "byteLength", 0))
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+                            "%s: byteOffset + count * stride needs %.0f bytes, exceeds bufferView %.0f (%.0f bytes)",
+                            describe(at).c_str(), last, number(*vi), num(view, "byteLength", 0));
+        return true;
+    }
     bool buffer_view(const json& v, const std::string& at) {
         if (!common(v, at) || !index(v, at, "buffer", "buffers", true) || !integer(v, at, "byteOffset", 0, HUGE_VAL) ||
-            !integer(v, at, "byteLength", 1, HUGE_VAL, true) || !int_enum(v, at, "target", {34962, 34963}))
+            !integer(v, at, "byteLength", 1, HUGE_VAL, true) || !soft_enum(v, at, "target", {34962, 34963}))
             return false;
+        // The view within its buffer's declared length (the data's length is checked on use).
+        auto buf = root.find("buffers");
+        const size_t b = size_t(number(v["buffer"]));
+        const json& buffer = (*buf)[b];
+        const double offset = v.contains("byteOffset") ? number(v["byteOffset"]) : 0.0;
+        if (buffer.is_object() && buffer.contains("byteLength") && buffer["byteLength"].is_number() &&
+            offset + number(v["byteLength"]) > number(buffer["byteLength"]))
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+                            "%s: byteOffset %.0f + byteLength %.0f exceeds buffer %zu (byteLength %.0f)", describe(at).c_str(),
+                            offset, number(v["byteLength"]), b, number(buffer["byteLength"]));
         auto it = v.find("byteStride");
         if (it != v.end() &&
             (!integer(v, at, "byteStride", 4, 252) || std::fmod(number(*it), 4.0) != 0.0))
@@ -241,8 +307,44 @@ struct Checker {
         }
         return texture_info(m, at, "normalTexture", "scale") && texture_info(m, at, "occlusionTexture", "strength") &&
                texture_info(m, at, "emissiveTexture") && numbers(m, at, "emissiveFactor", 3, 0.0, 1.0) &&
-               string_enum(m, at, "alphaMode", {"OPAQUE", "MASK", "BLEND"}) &&
+               alpha_mode(m, at) &&
                real(m, at, "alphaCutoff", 0.0, HUGE_VAL) && boolean(m, at, "doubleSided");
+    }
+    // The Khronos validator only warns about an unknown alphaMode (as opaque); so does this.
+    bool alpha_mode(const json& m, const std::string& at) {
+        auto it = m.find("alphaMode");
+        if (it == m.end()) return true;
+        if (!it->is_string()) return fail(at + "/alphaMode", "must be a string");
+        const std::string& mode = it->get_ref<const std::string&>();
+        if (mode != "OPAQUE" && mode != "MASK" && mode != "BLEND")
+            ctx.warn("%s/alphaMode: unknown value '%s' read as OPAQUE", at.c_str(), mode.size() > 40 ? "..." : mode.c_str());
+        return true;
+    }
+    // Each texture of the primitive's material reads a TEXCOORD_n the primitive must have.
+    bool texcoords_present(const json& primitive, const json& attributes, const std::string& at) {
+        auto mi = primitive.find("material");
+        if (mi == primitive.end() || !is_integer(*mi) || number(*mi) < 0 || number(*mi) >= double(count_of("materials")))
+            return true;  // reported by index()
+        const json& material = root["materials"][size_t(number(*mi))];
+        if (!material.is_object()) return true;
+        std::vector<const json*> infos;
+        for (const char* key : {"normalTexture", "occlusionTexture", "emissiveTexture"})
+            if (material.contains(key)) infos.push_back(&material[key]);
+        auto pbr = material.find("pbrMetallicRoughness");
+        if (pbr != material.end() && pbr->is_object())
+            for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"})
+                if (pbr->contains(key)) infos.push_back(&(*pbr)[key]);
+        for (const json* info : infos) {
+            if (!info->is_object()) continue;
+            auto tc = info->find("texCoord");
+            const double set = tc != info->end() && tc->is_number() ? number(*tc) : 0.0;
+            if (!attributes.contains("TEXCOORD_" + std::to_string(static_cast<long long>(set))))
+                return fail(at + "/attributes",
+                            ("the material reads TEXCOORD_" + std::to_string(static_cast<long long>(set)) +
+                             ", which the primitive does not have")
+                                .c_str());
+        }
+        return true;
     }
     bool mesh(const json& m, const std::string& at) {
         if (!common(m, at) || !numbers(m, at, "weights", 0, -HUGE_VAL, HUGE_VAL)) return false;
@@ -257,8 +359,35 @@ struct Checker {
             auto attrs = pr.find("attributes");
             if (attrs == pr.end()) return fail(q + "/attributes", "required object missing");
             if (!attrs->is_object() || attrs->empty()) return fail(q + "/attributes", "must be a non-empty object");
-            for (auto it = attrs->begin(); it != attrs->end(); ++it)
+            for (auto it = attrs->begin(); it != attrs->end(); ++it) {
+                if (!known_attribute(it.key())) return fail(q + "/attributes/" + it.key(), "not a glTF attribute name");
                 if (!index(*attrs, q + "/attributes", it.key().c_str(), "accessors", true)) return false;
+            }
+            // A bufferView's target, when given, must match its use.
+            auto view_target = [&](const json& accessor_index) -> double {
+                const json& acc = root["accessors"][size_t(number(accessor_index))];
+                if (!acc.is_object() || !acc.contains("bufferView")) return 0.0;
+                const json& view = root["bufferViews"][size_t(number(acc["bufferView"]))];
+                return view.is_object() && view.contains("target") && view["target"].is_number()
+                           ? number(view["target"])
+                           : 0.0;
+            };
+            // Vertex attributes sharing a bufferView need its byteStride (glTF 2.0 3.6.2.4).
+            std::map<size_t, size_t> attribute_views;
+            for (auto it = attrs->begin(); it != attrs->end(); ++it) {
+                const json& acc = root["accessors"][size_t(number(it.value()))];
+                if (acc.is_object() && acc.contains("bufferView")) ++attribute_views[size_t(number(acc["bufferView"]))];
+            }
+            for (const auto& uses : attribute_views)
+                if (uses.second > 1 && !root["bufferViews"][uses.first].contains("byteStride"))
+                    return fail(q + "/attributes", "attributes share a bufferView without byteStride");
+            for (auto it = attrs->begin(); it != attrs->end(); ++it)
+                if (view_target(it.value()) == 34963.0)
+                    return fail(q + "/attributes/" + it.key(), "its bufferView's target is ELEMENT_ARRAY_BUFFER");
+            if (!index(pr, q, "indices", "accessors")) return false;
+            if (pr.contains("indices") && view_target(pr["indices"]) == 34962.0)
+                return fail(q + "/indices", "its bufferView's target is ARRAY_BUFFER");
+            if (!texcoords_present(pr, *attrs, q)) return false;
             if (!index(pr, q, "indices", "accessors") || !index(pr, q, "material", "materials") || !int_enum(pr, q, "mode", {0, 1, 2, 3, 4, 5, 6}) ||
                 !object(pr, q, "extensions"))
                 return false;
@@ -275,22 +404,75 @@ struct Checker {
         return true;
     }
     bool node(const json& n, const std::string& at) {
+        // A matrix must be a TRS transform: its last row is (0, 0, 0, 1) (column-major).
+        auto m = n.find("matrix");
+        if (m != n.end() && m->is_array() && m->size() == 16) {
+            bool numeric = true;
+            for (const json& e : *m) numeric = numeric && e.is_number();
+            if (numeric && (number((*m)[3]) != 0.0 || number((*m)[7]) != 0.0 || number((*m)[11]) != 0.0 ||
+                            number((*m)[15]) != 1.0))
+                return fail(at + "/matrix", "not a TRS transform (last row must be 0, 0, 0, 1)");
+        }
+        // rotation is a unit quaternion (the validator's tolerance is of this order).
+        auto r = n.find("rotation");
+        if (r != n.end() && r->is_array() && r->size() == 4) {
+            double len2 = 0;
+            for (const json& e : *r) len2 += e.is_number() ? number(e) * number(e) : 0.0;
+            if (std::fabs(std::sqrt(len2) - 1.0) > 5e-3) return fail(at + "/rotation", "not a unit quaternion");
+        }
         return common(n, at) && index(n, at, "camera", "cameras") && indices(n, at, "children", "nodes") && index(n, at, "skin", "skins") &&
                numbers(n, at, "matrix", 16, -HUGE_VAL, HUGE_VAL) && index(n, at, "mesh", "meshes") &&
                numbers(n, at, "rotation", 4, -1.0, 1.0) && numbers(n, at, "scale", 3, -HUGE_VAL, HUGE_VAL) &&
                numbers(n, at, "translation", 3, -HUGE_VAL, HUGE_VAL) &&
                numbers(n, at, "weights", 0, -HUGE_VAL, HUGE_VAL);
     }
+    // An integer outside the enum is only a warning for the Khronos validator where the reader
+    // has a sensible default (bufferView target, sampler filters and wraps); so it is here.
+    bool soft_enum(const json& o, const std::string& at, const char* key, std::initializer_list<int> values) {
+        if (!integer(o, at, key, -HUGE_VAL, HUGE_VAL)) return false;
+        auto it = o.find(key);
+        if (it == o.end()) return true;
+        for (int v : values)
+            if (number(*it) == double(v)) return true;
+        ctx.warn("%s/%s: unknown value %.0f, the default is used", at.c_str(), key, number(*it));
+        return true;
+    }
     bool sampler(const json& s, const std::string& at) {
-        return common(s, at) && int_enum(s, at, "magFilter", {9728, 9729}) &&
-               int_enum(s, at, "minFilter", {9728, 9729, 9984, 9985, 9986, 9987}) &&
-               int_enum(s, at, "wrapS", {33071, 33648, 10497}) && int_enum(s, at, "wrapT", {33071, 33648, 10497});
+        return common(s, at) && soft_enum(s, at, "magFilter", {9728, 9729}) &&
+               soft_enum(s, at, "minFilter", {9728, 9729, 9984, 9985, 9986, 9987}) &&
+               soft_enum(s, at, "wrapS", {33071, 33648, 10497}) && soft_enum(s, at, "wrapT", {33071, 33648, 10497});
     }
     bool scene(const json& s, const std::string& at) { return common(s, at) && indices(s, at, "nodes", "nodes"); }
     bool texture(const json& t, const std::string& at) {
         return common(t, at) && index(t, at, "sampler", "samplers") && index(t, at, "source", "images");
     }
     bool any(const json& o, const std::string& at) { return common(o, at); }
+    // "^[0-9]+\\.[0-9]+$" (asset.version, asset.minVersion).
+    bool version_pattern(const json& asset, const char* key) {
+        auto it = asset.find(key);
+        if (it == asset.end() || !it->is_string()) return true;
+        const std::string& v = it->get_ref<const std::string&>();
+        const size_t dot = v.find('.');
+        auto digits = [](const std::string& t) {
+            return !t.empty() && t.find_first_not_of("0123456789") == std::string::npos;
+        };
+        if (dot == std::string::npos || !digits(v.substr(0, dot)) || !digits(v.substr(dot + 1)))
+            return fail(std::string("/asset/") + key, "must look like 2.0");
+        return true;
+    }
+    // Attribute semantics of glTF 2.0 (3.7.2.1), or application-specific ones starting with '_'.
+    static bool known_attribute(const std::string& name) {
+        if (name == "POSITION" || name == "NORMAL" || name == "TANGENT" || (!name.empty() && name[0] == '_'))
+            return true;
+        for (const char* prefix : {"TEXCOORD_", "COLOR_", "JOINTS_", "WEIGHTS_"}) {
+            const std::string p(prefix);
+            if (name.compare(0, p.size(), p) == 0 && name.size() > p.size() &&
+                name.find_first_not_of("0123456789", p.size()) == std::string::npos &&
+                (name.size() == p.size() + 1 || name[p.size()] != '0'))
+                return true;
+        }
+        return false;
+    }
 
     template <typename F>
     bool array_of(const char* key, F check) {
@@ -314,7 +496,8 @@ struct Checker {
         auto asset = root.find("asset");
         if (asset == root.end()) return fail("/asset", "required object missing");
         if (!asset->is_object()) return fail("/asset", "must be an object");
-        if (!string(*asset, "/asset", "version", true) || !string(*asset, "/asset", "minVersion") ||
+        if (!string(*asset, "/asset", "version", true) || !version_pattern(*asset, "version") ||
+            !version_pattern(*asset, "minVersion") || !string(*asset, "/asset", "minVersion") ||
             !string(*asset, "/asset", "generator") || !string(*asset, "/asset", "copyright") ||
             !object(*asset, "/asset", "extensions"))
             return false;

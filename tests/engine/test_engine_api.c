@@ -195,7 +195,7 @@ static rtpbr_result session(failing_allocator *a, test_log *log)
     static const uint32_t indices[] = {0, 2, 1};
     static const uint8_t texel[4] = {255, 128, 0, 255};
     rtpbr_mesh_desc mesh = {.positions = positions, .indices = indices, .vertex_count = 3, .index_count = 3};
-    rtpbr_material_desc material = {.base_color = {1, 1, 1, 1}, .roughness = 0.5f, .base_color_texture = 1};
+    rtpbr_material_desc material = {.base_color = {1, 1, 1}, .roughness = 0.5f, .base_color_texture = 1};
     rtpbr_texture_desc texture = {.width = 1, .height = 1, .rgba = texel};
     rtpbr_gpu_scene_desc scene_desc = {
         .meshes = &mesh, .mesh_count = 1, .materials = &material, .material_count = 1,
