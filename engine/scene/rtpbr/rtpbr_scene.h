@@ -162,7 +162,10 @@ typedef struct rtpbr_scene_load_desc {
 
 /* One triangle list in world space. Arrays are structure-of-arrays with
  * vertex_count entries each (positions/normals xyz, texcoords uv, tangents
- * xyzw); never NULL when vertex_count > 0 (indices: when index_count > 0). */
+ * xyzw); never NULL when vertex_count > 0 (indices: when index_count > 0).
+ * A glTF primitive left without a triangle (a node scaled by 0, only
+ * degenerate triangles, no POSITION) is not listed (a warning is logged), so
+ * index_count > 0 for every loaded primitive. */
 typedef struct rtpbr_scene_primitive {
     uint32_t vertex_count;
     uint32_t index_count;  /* multiple of 3; degenerate triangles removed   */
