@@ -118,7 +118,7 @@ static void check_scene(const rtpbr_scene* s) {
     uint64_t vertices = 0;
     for (uint32_t i = 0; i < s->primitive_count; ++i) {
         const rtpbr_scene_primitive* p = &s->primitives[i];
-        check(p->index_count % 3 == 0, "index_count multiple of 3");
+        check(p->index_count % 3 == 0 && p->index_count > 0, "index_count a positive multiple of 3");
         check(p->material < s->material_count, "primitive material in range");
         if (p->vertex_count > 0)
             check(p->positions && p->normals && p->texcoords && p->tangents, "vertex arrays present");
