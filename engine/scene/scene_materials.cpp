@@ -102,6 +102,40 @@ const tinygltf::Value* find_extension(const tinygltf::ExtensionMap& map, const c
     return it == map.end() ? nullptr : &it->second;
 }
 
+// stb_image 2022-09-08 (Debian 12) builds a JPEG Huffman table of up to 16 x 255 codes into
+// arrays of 257 entries: a DHT segment whose code counts sum past 256 writes out of bounds
+// (found by fuzz_scene; upstream checks it since 2.28). Every DHT segment is checked here
+// before stb_image sees the file, including those between the scans of a progressive JPEG.
+bool jpeg_huffman_tables_ok(const unsigned char* p, size_t size) {
+    size_t at = 2;  // after SOI
+    while (at + 4 <= size) {
+        if (p[at] != 0xff) {  // entropy-coded data: skip to the next marker
+            ++at;
+            continue;
+        }
+        const unsigned marker = p[at + 1];
+        if (marker == 0xff || marker == 0x00 || (marker >= 0xd0 && marker <= 0xd7) || marker == 0x01) {
+            ++at;  // fill byte, stuffed 0xff, restart marker or TEM: no length follows
+            continue;
+        }
+        if (marker == 0xd9) return true;  // EOI
+        const size_t length = size_t(p[at + 2]) << 8 | p[at + 3];
+        if (length < 2 || at + 2 + length > size) return true;  // truncated: stb_image reports it
+        if (marker == 0xc4) {
+            size_t t = at + 4;
+            const size_t end = at + 2 + length;
+            while (t + 17 <= end) {
+                unsigned codes = 0;
+                for (int i = 1; i <= 16; ++i) codes += p[t + size_t(i)];
+                if (codes > 256) return false;
+                t += 17 + codes;
+            }
+        }
+        at += 2 + length;
+    }
+    return true;
+}
+
 struct TextureTable {
     Context& ctx;
     const tinygltf::Model& model;
@@ -186,6 +220,9 @@ struct TextureTable {
                             "are decoded",
                             image_index, bytes[0], size > 1 ? bytes[1] : 0, size > 2 ? bytes[2] : 0,
                             size > 3 ? bytes[3] : 0);
+        if (jpeg && !jpeg_huffman_tables_ok(bytes, size))
+            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE,
+                            "image %d: corrupt JPEG (a Huffman table with more than 256 codes)", image_index);
         int w = 0, h = 0, comp = 0;
         if (!stbi_info_from_memory(bytes, int(size), &w, &h, &comp))
             return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE,
