@@ -120,26 +120,28 @@ static void read_radiance_before_render(void **state)
     assert_int_equal(log.validation, 0);
 }
 
+// A node scaled by 0 and a visible instance of the same triangle.
+static const char kHiddenNodeGltf[] =
+    "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1]}],"
+    "\"nodes\":[{\"mesh\":0,\"scale\":[0,0,0]},{\"mesh\":0,\"translation\":[0,-1,0]}],"
+    "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+    "\"min\":[-1,0,-1],\"max\":[1,0,1]}],"
+    "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
+    "\"buffers\":[{\"byteLength\":36,\"uri\":\"data:application/octet-stream;base64,"
+    "AACAvwAAAAAAAIC/AACAPwAAAAAAAIC/AACAPwAAAAAAAIA/\"}]}";
+
 // Issue 18, class 4: a node scaled by 0 (the usual way to hide an object) leaves a primitive
 // without triangles; it is skipped with a warning, and the rest of the scene loads (the
 // engine refused the whole scene: "the index count is not a positive multiple of 3").
 static void hidden_node_does_not_hide_the_scene(void **state)
 {
     (void)state;
-    static const char gltf[] =
-        "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1]}],"
-        "\"nodes\":[{\"mesh\":0,\"scale\":[0,0,0]},{\"mesh\":0,\"translation\":[0,-1,0]}],"
-        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
-        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
-        "\"min\":[-1,0,-1],\"max\":[1,0,1]}],"
-        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
-        "\"buffers\":[{\"byteLength\":36,\"uri\":\"data:application/octet-stream;base64,"
-        "AACAvwAAAAAAAIC/AACAPwAAAAAAAIC/AACAPwAAAAAAAIA/\"}]}";
     char path[] = "/tmp/rtpbr-engine-hidden-XXXXXX.gltf";
     int fd = mkstemps(path, 5);
     assert_true(fd >= 0);
     FILE *f = fdopen(fd, "w");
-    fputs(gltf, f);
+    fputs(kHiddenNodeGltf, f);
     fclose(f);
     warn_log log = {0};
     rtpbr_context *ctx = NULL;
@@ -179,7 +181,10 @@ static void failing_free(void *ptr, void *user_data)
     free(ptr);
 }
 
-// A whole session: context, a scene with a light, a renderer, one render, a light update.
+static const char *g_gltf_path; // written by allocation_failures_are_logged
+
+// A whole session: context, a scene with a light, a renderer, one render, a light update,
+// a glTF scene loaded.
 // Returns the first failing result (everything created is destroyed either way).
 static rtpbr_result session(failing_allocator *a, test_log *log)
 {
@@ -207,6 +212,10 @@ static rtpbr_result session(failing_allocator *a, test_log *log)
     if (r == RTPBR_SUCCESS) r = rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 4, .height = 4}, &renderer);
     if (r == RTPBR_SUCCESS) r = rtpbr_render(renderer, scene, &(rtpbr_render_desc){0});
     if (r == RTPBR_SUCCESS) r = rtpbr_gpu_scene_set_lights(scene, &kLight, 1);
+    // The glTF path: the loader allocates what it returns through the same host allocator.
+    rtpbr_gpu_scene *loaded = NULL;
+    if (r == RTPBR_SUCCESS) r = rtpbr_gpu_scene_load_gltf(ctx, g_gltf_path, &loaded);
+    rtpbr_gpu_scene_destroy(loaded);
     rtpbr_renderer_destroy(renderer);
     rtpbr_gpu_scene_destroy(scene);
     rtpbr_context_destroy(ctx);
@@ -216,6 +225,13 @@ static rtpbr_result session(failing_allocator *a, test_log *log)
 static void allocation_failures_are_logged(void **state)
 {
     (void)state;
+    char path[] = "/tmp/rtpbr-engine-alloc-XXXXXX.gltf";
+    int fd = mkstemps(path, 5);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    fputs(kHiddenNodeGltf, f);
+    fclose(f);
+    g_gltf_path = path;
     failing_allocator a = {.fail_at = -1};
     test_log log = {0};
     assert_int_equal(session(&a, &log), RTPBR_SUCCESS);
@@ -234,6 +250,7 @@ static void allocation_failures_are_logged(void **state)
         assert_int_equal(f.live, 0);
         assert_int_equal(flog.validation, 0);
     }
+    remove(path);
 }
 
 int main(void)
