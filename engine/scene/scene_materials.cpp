@@ -105,10 +105,14 @@ const tinygltf::Value* find_extension(const tinygltf::ExtensionMap& map, const c
 // stb_image 2022-09-08 (Debian 12) builds a JPEG Huffman table of up to 16 x 255 codes into
 // arrays of 257 entries: a DHT segment whose code counts sum past 256 writes out of bounds
 // (found by fuzz_scene; upstream checks it since 2.28). Every DHT segment is checked here
-// before stb_image sees the file, including those between the scans of a progressive JPEG.
+// before stb_image sees the file, including those between the scans of a progressive JPEG,
+// and read the way stb_image reads it: table after table while the segment length says more
+// follow, each table's 17 header bytes read even past the segment's end (zeros past the end
+// of the data).
 bool jpeg_huffman_tables_ok(const unsigned char* p, size_t size) {
+    auto byte = [&](size_t i) -> unsigned { return i < size ? p[i] : 0u; };
     size_t at = 2;  // after SOI
-    while (at + 4 <= size) {
+    while (at + 1 < size) {
         if (p[at] != 0xff) {  // entropy-coded data: skip to the next marker
             ++at;
             continue;
@@ -119,19 +123,19 @@ bool jpeg_huffman_tables_ok(const unsigned char* p, size_t size) {
             continue;
         }
         if (marker == 0xd9) return true;  // EOI
-        const size_t length = size_t(p[at + 2]) << 8 | p[at + 3];
-        if (length < 2 || at + 2 + length > size) return true;  // truncated: stb_image reports it
+        const long length = long(byte(at + 2) << 8 | byte(at + 3));
         if (marker == 0xc4) {
             size_t t = at + 4;
-            const size_t end = at + 2 + length;
-            while (t + 17 <= end) {
+            for (long left = length - 2; left > 0;) {
                 unsigned codes = 0;
-                for (int i = 1; i <= 16; ++i) codes += p[t + size_t(i)];
+                for (size_t i = 1; i <= 16; ++i) codes += byte(t + i);
                 if (codes > 256) return false;
                 t += 17 + codes;
+                left -= 17 + long(codes);
             }
         }
-        at += 2 + length;
+        if (length < 2) return true;  // stb_image stops at such a segment
+        at += 2 + size_t(length);
     }
     return true;
 }
