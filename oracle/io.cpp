@@ -1,6 +1,12 @@
 // rtpbr oracle: accumulators (merge, resolve, files) and image output.
 #include "oracle.h"
 
+#include "internal.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
@@ -87,9 +93,23 @@ Result writeAccumulator(const std::string &path, const Accumulator &acc, std::st
     return Result::Success;
 }
 
-Result readAccumulator(const std::string &path, Accumulator *acc, std::string *error) {
-    std::unique_ptr<FILE, FileCloser> f(fopen(path.c_str(), "rb"));
+Result readAccumulator(const std::string &path, Accumulator *acc, std::string *error, uint64_t memoryLimit) {
+    // Regular files only: opening a FIFO for reading would block until a writer comes, so it
+    // is opened non-blocking and refused by fstat before anything is read.
+    int fd = open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        *error = "cannot open " + path + ": " + strerror(errno);
+        return Result::Io;
+    }
+    struct stat st;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        close(fd);
+        *error = path + ": not a regular file";
+        return Result::Io;
+    }
+    std::unique_ptr<FILE, FileCloser> f(fdopen(fd, "rb"));
     if (!f) {
+        close(fd);
         *error = "cannot open " + path + ": " + strerror(errno);
         return Result::Io;
     }
@@ -107,6 +127,14 @@ Result readAccumulator(const std::string &path, Accumulator *acc, std::string *e
         return Result::Io;
     }
     size_t npix = size_t(dims[0]) * dims[1];
+    const uint64_t fileBytes = 8 + sizeof dims + sizeof meta + uint64_t(npix) * (4 + 48 + 24);
+    if (uint64_t(st.st_size) != fileBytes) {
+        *error = fmt("%s: %llu bytes, a %ux%u accumulator has %llu", path.c_str(), (unsigned long long)st.st_size,
+                     dims[0], dims[1], (unsigned long long)fileBytes);
+        return Result::Io;
+    }
+    if (!checkMemory(uint64_t(npix) * kBytesPerPixel, memoryLimit, path, error))
+        return Result::Io;
     acc->width = dims[0];
     acc->height = dims[1];
     acc->seed = meta[0];

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
+#include <new>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -33,7 +35,10 @@ const char *kUsage =
     "  --stderr-image SE.exr    per-pixel standard error of the mean radiance\n"
     "  --preview OUT.png        sRGB preview (clamped radiance x exposure)\n"
     "  --exposure E             preview exposure multiplier (default 1)\n"
-    "  --quiet                  no progress bar or summary\n";
+    "  --quiet                  no progress bar or summary\n"
+    "  --memory-limit MIB       refuse work that needs more memory than this (default: what\n"
+    "                           the system has available; docs/limits.md)\n"
+    "  --texture-memory MIB     decoded texture budget of the loader (default 256)\n";
 
 bool parseU32(const char *s, uint32_t *out) {
     char *end = nullptr;
@@ -124,11 +129,12 @@ int writeOutputs(const rtpbr_oracle::Accumulator &acc, const std::string &out, c
 
 } // namespace
 
-int main(int argc, char **argv) {
+static int run(int argc, char **argv) {
     rtpbr_oracle::RenderSettings s;
     std::string scenePath, outPath, stderrPath, previewPath;
     std::vector<std::string> mergeInputs;
     bool merging = false, quiet = false;
+    uint64_t textureBudget = 0; // 0: the loader's default
     float exposure = 1.0f;
     for (int i = 1; i < argc; i++) {
         std::string a = argv[i];
@@ -225,6 +231,11 @@ int main(int argc, char **argv) {
                 return fail("--exposure: expected a positive number");
         } else if (a == "--quiet") {
             quiet = true;
+        } else if (a == "--memory-limit" || a == "--texture-memory") {
+            uint32_t mib = 0;
+            if (!u32(a.c_str(), &mib) || mib == 0)
+                return 2;
+            (a == "--memory-limit" ? s.memoryLimit : textureBudget) = uint64_t(mib) << 20;
         } else if (a == "--merge") {
             merging = true;
         } else if (!a.empty() && a[0] == '-') {
@@ -250,7 +261,7 @@ int main(int argc, char **argv) {
             return fail("--merge takes accumulator files only");
         for (size_t i = 0; i < mergeInputs.size(); i++) {
             rtpbr_oracle::Accumulator part;
-            if (rtpbr_oracle::readAccumulator(mergeInputs[i], &part, &error) != rtpbr_oracle::Result::Success)
+            if (rtpbr_oracle::readAccumulator(mergeInputs[i], &part, &error, s.memoryLimit) != rtpbr_oracle::Result::Success)
                 return fail(error);
             if (i == 0)
                 acc = std::move(part);
@@ -268,6 +279,7 @@ int main(int argc, char **argv) {
     rtpbr_scene_load_desc desc = {};
     desc.error_message = loadError;
     desc.error_message_size = sizeof loadError;
+    desc.texture_memory_budget = textureBudget;
     desc.logger.func = logToStderr;
     desc.logger.user_data = &quiet;
     rtpbr_scene *scene = nullptr;
@@ -289,4 +301,16 @@ int main(int argc, char **argv) {
                      double(stats.rays) / stats.seconds * 1e-6,
                      acc.nonFinite ? ", non-finite samples were zeroed" : "");
     return writeOutputs(acc, outPath, stderrPath, previewPath, exposure);
+}
+
+// Memory needs are checked before the large allocations (rtpbr_oracle::checkMemory); what the
+// estimates do not cover (OpenImageIO's and Embree's own buffers) ends here with a message.
+int main(int argc, char **argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::bad_alloc &) {
+        return fail("out of memory (see docs/limits.md for the oracle's memory needs)");
+    } catch (const std::exception &e) {
+        return fail(std::string("unexpected error: ") + e.what());
+    }
 }

@@ -59,6 +59,7 @@ struct RenderSettings {
     uint32_t sampleBegin = 0;  // sample range [sampleBegin, sampleEnd) of this run;
     uint32_t sampleEnd = 0;    // sampleEnd 0 = spp
     Region region;             // pixels this run renders
+    uint64_t memoryLimit = 0;  // bytes the render may need at most; 0: what the system has
 };
 
 // Per-pixel sums of one render (or of merged renders). Pixels outside the region are 0.
@@ -72,6 +73,9 @@ struct Accumulator {
     uint64_t nonFinite = 0;         // samples discarded because NaN/Inf
     uint64_t clamped = 0;           // samples clamped to kMaxSampleValue
 };
+// Host memory per pixel: the accumulator (4 + 48 + 24 bytes) and the resolved image with its
+// standard error (2 x 12 bytes).
+constexpr uint64_t kBytesPerPixel = 100;
 constexpr double kMaxSampleValue = 1099511627776.0; // 2^40: keeps every int128 sum exact
 
 struct RenderStats {
@@ -101,7 +105,7 @@ void resolve(const Accumulator &acc, std::vector<float> *rgb, std::vector<float>
 
 // The accumulator file (".acc"): a small binary format, see README.md.
 Result writeAccumulator(const std::string &path, const Accumulator &acc, std::string *error);
-Result readAccumulator(const std::string &path, Accumulator *acc, std::string *error);
+Result readAccumulator(const std::string &path, Accumulator *acc, std::string *error, uint64_t memoryLimit = 0);
 
 // OpenImageIO output: EXR (float RGB, linear) or, for .png/.jpg, an sRGB preview of the
 // clamped radiance times exposure.

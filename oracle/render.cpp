@@ -471,6 +471,21 @@ Result render(const rtpbr_scene &scene, const RenderSettings &settings, Accumula
         return Result::InvalidArgument;
     }
 
+    // The memory need, stated and checked before anything large is allocated: the accumulator
+    // (76 bytes per pixel) and the resolved image with its standard error (24), the textures as
+    // linear float RGBA (16 per texel), Embree's copy of the triangles and its BVH (about 64
+    // bytes per triangle, measured as an upper bound on the bundled scenes).
+    uint64_t texels = 0, triangles = 0;
+    for (uint32_t t = 0; t < scene.texture_count; t++)
+        texels += uint64_t(scene.textures[t].width) * scene.textures[t].height;
+    for (uint32_t p = 0; p < scene.primitive_count; p++)
+        triangles += scene.primitives[p].index_count / 3;
+    const uint64_t need = uint64_t(s.width) * s.height * kBytesPerPixel + texels * 16 + triangles * 64;
+    if (!checkMemory(need, s.memoryLimit, fmt("rendering %ux%u with %llu texels and %llu triangles", s.width, s.height,
+                               (unsigned long long)texels, (unsigned long long)triangles),
+                     error))
+        return Result::InvalidArgument;
+
     std::vector<Texture> textures;
     for (uint32_t t = 0; t < scene.texture_count; t++)
         textures.emplace_back(scene.textures[t]);

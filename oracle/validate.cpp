@@ -3,8 +3,13 @@
 
 #include "internal.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
+#include <cstring>
 
 namespace rtpbr_oracle {
 
@@ -31,7 +36,58 @@ const char *resultString(Result r) {
     return "unknown result";
 }
 
+// ---- memory ----------------------------------------------------------------------------------
+
+uint64_t availableMemory() {
+    uint64_t avail = UINT64_MAX;
+    if (FILE *f = std::fopen("/proc/meminfo", "r")) {
+        char line[256];
+        unsigned long long kb;
+        while (std::fgets(line, sizeof line, f))
+            if (std::sscanf(line, "MemAvailable: %llu kB", &kb) == 1) {
+                avail = uint64_t(kb) * 1024;
+                break;
+            }
+        std::fclose(f);
+    }
+    struct rlimit lim;
+    if (getrlimit(RLIMIT_AS, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY) {
+        uint64_t mapped = 0;
+        if (FILE *f = std::fopen("/proc/self/statm", "r")) {
+            unsigned long long pages;
+            if (std::fscanf(f, "%llu", &pages) == 1)
+                mapped = uint64_t(pages) * uint64_t(sysconf(_SC_PAGESIZE));
+            std::fclose(f);
+        }
+        uint64_t room = uint64_t(lim.rlim_cur) > mapped ? uint64_t(lim.rlim_cur) - mapped : 0;
+        avail = std::min(avail, room);
+    }
+    return avail;
+}
+
+bool checkMemory(uint64_t need, uint64_t limit, const std::string &what, std::string *error) {
+    uint64_t avail = availableMemory();
+    if (limit)
+        avail = std::min(avail, limit);
+    if (need <= avail)
+        return true;
+    *error = fmt("%s needs %.2f GiB of memory, %.2f GiB are available", what.c_str(), double(need) / 1073741824.0,
+                 double(avail) / 1073741824.0);
+    return false;
+}
+
 // ---- validation ------------------------------------------------------------------------------
+
+namespace {
+
+bool withinExtent(const float *v) {
+    for (int k = 0; k < 3; k++)
+        if (!(std::fabs(v[k]) <= kMaxSceneCoordinate))
+            return false;
+    return true;
+}
+
+} // namespace
 
 Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::string *error) {
     if (scene.camera_count == 0) {
@@ -46,6 +102,12 @@ Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::str
     if (!finite3(cam.position) || !finite3(cam.forward) || !finite3(cam.up) || !finite3(cam.right) ||
         !(cam.yfov > 0.0f && cam.yfov < 3.14159f)) {
         *error = fmt("camera %u: non-finite position/orientation or yfov outside (0, pi)", s.camera);
+        return Result::InvalidScene;
+    }
+    if (!withinExtent(cam.position)) {
+        *error = fmt("camera %u: position (%g, %g, %g) beyond the oracle's scene extent of +-%g", s.camera,
+                     double(cam.position[0]), double(cam.position[1]), double(cam.position[2]),
+                     double(kMaxSceneCoordinate));
         return Result::InvalidScene;
     }
     for (uint32_t m = 0; m < scene.material_count; m++) {
@@ -87,6 +149,10 @@ Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::str
             if (!finite3(prim.positions + 3 * v)) {
                 *error = fmt("primitive %u: vertex %u has a non-finite position", p, v);
                 return Result::InvalidScene;
+            } else if (!withinExtent(prim.positions + 3 * v)) {
+                *error = fmt("primitive %u: vertex %u lies beyond the oracle's scene extent of +-%g", p, v,
+                             double(kMaxSceneCoordinate));
+                return Result::InvalidScene;
             }
         for (uint32_t i = 0; i < prim.index_count; i++)
             if (prim.indices[i] >= prim.vertex_count) {
@@ -105,6 +171,10 @@ Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::str
         for (uint32_t k = 0; k < L.vertex_count; k++)
             if (!finite3(L.vertices[k])) {
                 *error = fmt("light %u: vertex %u is not finite", l, k);
+                return Result::InvalidScene;
+            } else if (!withinExtent(L.vertices[k])) {
+                *error = fmt("light %u: vertex %u lies beyond the oracle's scene extent of +-%g", l, k,
+                             double(kMaxSceneCoordinate));
                 return Result::InvalidScene;
             }
         if (!finite3(L.normal) || !finite3(L.radiance) || L.radiance[0] < 0.0f || L.radiance[1] < 0.0f ||

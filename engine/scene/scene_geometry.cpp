@@ -258,8 +258,10 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "%s: invalid mode %d", usage, src.mode);
     if (!src.targets.empty()) ctx.warn("%s: morph targets ignored", usage);
     auto pos_it = src.attributes.find("POSITION");
-    if (pos_it == src.attributes.end())
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "%s: no POSITION attribute", usage);
+    if (pos_it == src.attributes.end()) {  // valid glTF (the validator warns): nothing to draw
+        ctx.warn("%s: no POSITION attribute; primitive skipped", usage);
+        return true;
+    }
 
     static const int kFloat[] = {TINYGLTF_COMPONENT_TYPE_FLOAT};
     static const int kTexcoord[] = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
@@ -269,9 +271,10 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     AccessorView pos, nrm, uv, tan, idx;
     if (!validate_accessor(ctx, model, pos_it->second, "POSITION", TINYGLTF_TYPE_VEC3, kFloat, 1, &pos))
         return false;
-    if (!pos.data)  // all-zero positions: nothing to draw, and a cheap way to ask for huge allocations
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "%s: POSITION accessor %d has no bufferView",
-                        usage, pos_it->second);
+    if (!pos.data) {  // glTF: no bufferView = zeros; all triangles degenerate, nothing allocated
+        ctx.warn("%s: POSITION accessor %d has no bufferView (all zeros); primitive skipped", usage, pos_it->second);
+        return true;
+    }
     const size_t n = pos.count;
     if (scene.total_vertices + n > ctx.max_vertices)
         return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES,
@@ -308,9 +311,10 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     if (src.indices >= 0) {
         if (!validate_accessor(ctx, model, src.indices, "indices", TINYGLTF_TYPE_SCALAR, kIndex, 3, &idx))
             return false;
-        if (!idx.data)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "%s: index accessor %d has no bufferView",
-                            usage, src.indices);
+        if (!idx.data) {  // all indices 0: every triangle degenerate
+            ctx.warn("%s: index accessor %d has no bufferView (all zeros); primitive skipped", usage, src.indices);
+            return true;
+        }
         if (idx.count > RTPBR_SCENE_MAX_INDICES)
             return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES, "%s: %zu indices exceed the limit", usage,
                             idx.count);
@@ -393,6 +397,12 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
         p.indices.insert(p.indices.end(), {a, b, c});
     }
     if (dropped) ctx.warn("%s (node %d): %zu degenerate triangles dropped", usage, node_index, dropped);
+    // Nothing left (a node scaled by 0 is the usual way to hide an object): the primitive is
+    // left out, so that neither renderer meets a mesh without triangles.
+    if (p.indices.empty()) {
+        ctx.warn("%s (node %d): no non-degenerate triangle; primitive skipped", usage, node_index);
+        return true;
+    }
 
     // Normals: file normals through the cofactor matrix, else area-weighted.
     std::vector<Vec3> smooth;
@@ -556,8 +566,9 @@ bool Builder::node(int index, const Mat4& parent, unsigned depth) {
     if (index < 0 || size_t(index) >= model.nodes.size())
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "node %d does not exist (%zu nodes)", index,
                         model.nodes.size());
-    if (depth > RTPBR_SCENE_MAX_NODE_DEPTH)
-        return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED, "node %d: hierarchy deeper than %u", index,
+    // depth counts from 0 at a root: RTPBR_SCENE_MAX_NODE_DEPTH levels are depths 0 .. MAX-1.
+    if (depth >= RTPBR_SCENE_MAX_NODE_DEPTH)
+        return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED, "node %d: hierarchy deeper than %u levels", index,
                         RTPBR_SCENE_MAX_NODE_DEPTH);
     if (on_path[size_t(index)])
         return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED, "node %d: the node hierarchy has a cycle", index);
@@ -624,8 +635,54 @@ bool node_local_matrix(Context& ctx, const tinygltf::Node& n, int index, Mat4* o
     return true;
 }
 
+namespace {
+
+// glTF 2.0 requires the nodes to form disjoint strict trees: a node has at most one parent,
+// no cycles, and a scene's root nodes are nobody's children. Checked on every node, reached
+// or not, so that the answer does not depend on which scene is shown.
+bool check_forest(Context& ctx, const tinygltf::Model& model) {
+    const size_t count = model.nodes.size();
+    std::vector<int> parent(count, -1);
+    for (size_t i = 0; i < count; ++i)
+        for (int c : model.nodes[i].children) {
+            if (c < 0 || size_t(c) >= count)
+                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "node %zu: child %d does not exist (%zu nodes)",
+                                i, c, count);
+            if (parent[size_t(c)] >= 0)
+                return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED,
+                                "node %d is a child of both node %d and node %zu (nodes must form a tree)", c,
+                                parent[size_t(c)], i);
+            parent[size_t(c)] = int(i);
+        }
+    // With one parent each, a cycle is a parent chain that returns to a node of the same walk.
+    std::vector<size_t> walk(count, SIZE_MAX);  // the walk that first visited a node
+    for (size_t start = 0; start < count; ++start) {
+        for (size_t i = start; walk[i] == SIZE_MAX;) {
+            walk[i] = start;
+            if (parent[i] < 0) break;
+            i = size_t(parent[i]);
+            if (walk[i] == start)
+                return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED, "node %zu: the node hierarchy has a cycle", i);
+        }
+    }
+    for (size_t s = 0; s < model.scenes.size(); ++s)
+        for (int r : model.scenes[s].nodes) {
+            if (r < 0 || size_t(r) >= count)
+                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "scene %zu: node %d does not exist (%zu nodes)",
+                                s, r, count);
+            if (parent[size_t(r)] >= 0)
+                return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED,
+                                "scene %zu: root node %d is also a child of node %d (nodes must form a tree)", s, r,
+                                parent[size_t(r)]);
+        }
+    return true;
+}
+
+}  // namespace
+
 bool convert_nodes(Context& ctx, const tinygltf::Model& model, Scene& scene,
                    std::vector<std::pair<int, Mat4>>* light_nodes) {
+    if (!check_forest(ctx, model)) return false;
     Builder b{ctx, model, scene, light_nodes, std::vector<char>(model.nodes.size(), 0), 0};
     std::vector<int> roots;
     if (!model.scenes.empty()) {

@@ -30,6 +30,8 @@ struct Context {
     uint32_t max_lights = RTPBR_SCENE_MAX_LIGHTS;
     uint32_t max_texture_dimension = RTPBR_SCENE_MAX_TEXTURE_DIMENSION;
     float area_light_radiance_scale = 1.0f;
+    uint64_t texture_budget = RTPBR_SCENE_DEFAULT_TEXTURE_BUDGET;
+    uint64_t texture_bytes = 0;  // decoded texels held so far (decoded images and their copies)
 
     // Canonical absolute folder external URIs must stay in; empty = reject all.
     std::string base_dir;
@@ -80,6 +82,10 @@ struct Scene {
     uint64_t total_vertices = 0;
     uint64_t total_indices = 0;
 };
+
+// scene_schema.cpp: the glTF 2.0 schema's types, ranges and required properties of the
+// core objects, on the JSON text (syntax errors are left to tinygltf).
+bool check_schema(Context& ctx, const char* json_text, size_t size);
 
 // scene_materials.cpp: fills scene.materials (one per glTF material, plus a
 // default one appended on demand by default_material()) and scene.textures.

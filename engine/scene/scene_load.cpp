@@ -228,7 +228,9 @@ uint32_t read_u32le(const unsigned char* p) {
            static_cast<uint32_t>(p[2]) << 16 | static_cast<uint32_t>(p[3]) << 24;
 }
 
-bool check_glb(Context& ctx, const unsigned char* data, size_t size) {
+// Checks the GLB header and chunk table. *has_unknown_second_chunk: the chunk after the JSON
+// exists and is not BIN (tinygltf 2.7 refuses that, so it is shown the JSON chunk only).
+bool check_glb(Context& ctx, const unsigned char* data, size_t size, bool* has_unknown_second_chunk) {
     if (size < 12)
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: %zu bytes, shorter than the 12-byte header",
                         size);
@@ -248,19 +250,34 @@ bool check_glb(Context& ctx, const unsigned char* data, size_t size) {
     if (json_type != 0x4E4F534Au)
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: first chunk type 0x%08x is not JSON",
                         json_type);
+    if (json_length % 4 != 0)
+        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: JSON chunk length %u is not a multiple of 4", json_length);
     if (json_length == 0 || json_length > length - 20)
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB,
                         "GLB: JSON chunk length %u exceeds the file length %u", json_length,
                         length);
-    uint64_t bin_start = 20ull + json_length;
-    if (bin_start < length) {
-        if (bin_start + 8 > length)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: truncated BIN chunk header");
-        uint32_t bin_length = read_u32le(data + bin_start);
-        if (bin_start + 8 + bin_length > length)
+    // Chunks after the JSON: an optional BIN chunk second, then chunks of any other type,
+    // which readers must ignore (glTF 2.0, "Binary glTF Layout"). Every chunk must fit.
+    *has_unknown_second_chunk = false;
+    uint64_t at = 20ull + json_length;
+    for (unsigned chunk = 1; at < length; ++chunk) {
+        if (at + 8 > length)
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: truncated header of chunk %u", chunk);
+        uint32_t chunk_length = read_u32le(data + at), chunk_type = read_u32le(data + at + 4);
+        if (chunk_length % 4 != 0)
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: chunk %u (type 0x%08x) length %u is not a multiple of 4",
+                            chunk, chunk_type, chunk_length);
+        if (at + 8 + chunk_length > length)
             return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB,
-                            "GLB: BIN chunk length %u exceeds the file length %u", bin_length,
-                            length);
+                            "GLB: chunk %u (type 0x%08x) length %u exceeds the file length %u", chunk, chunk_type,
+                            chunk_length, length);
+        if (chunk_type == 0x004E4942u && chunk != 1)
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: BIN chunk in position %u (only the second chunk may be BIN)",
+                            chunk + 1);
+        if (chunk_type == 0x4E4F534Au)
+            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: a second JSON chunk (chunk %u)", chunk);
+        if (chunk == 1 && chunk_type != 0x004E4942u) *has_unknown_second_chunk = true;
+        at += 8ull + chunk_length;
     }
     return true;
 }
@@ -457,6 +474,7 @@ bool setup_context(Context& ctx, const rtpbr_scene_load_desc* desc) {
         return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ARGUMENT,
                         "desc.area_light_radiance_scale must be finite and >= 0");
     if (scale > 0.0f) ctx.area_light_radiance_scale = scale;
+    if (ctx.desc.texture_memory_budget) ctx.texture_budget = ctx.desc.texture_memory_budget;
     return true;
 }
 
@@ -490,17 +508,30 @@ rtpbr_scene_result load_model(Context& ctx, const unsigned char* data, size_t si
         return ctx.result;
     }
     bool is_glb = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+    std::vector<unsigned char> glb_without_unknown;
     if (want_glb || is_glb) {
-        if (!check_glb(ctx, data, size)) return ctx.result;
+        bool unknown_second_chunk = false;
+        if (!check_glb(ctx, data, size, &unknown_second_chunk)) return ctx.result;
         uint32_t json_length = read_u32le(data + 12);
-        if (!check_json_depth(ctx, reinterpret_cast<const char*>(data) + 20, json_length))
+        if (!check_json_depth(ctx, reinterpret_cast<const char*>(data) + 20, json_length) ||
+            !check_schema(ctx, reinterpret_cast<const char*>(data) + 20, json_length))
             return ctx.result;
+        if (unknown_second_chunk) {
+            ctx.warn("GLB: chunks of unknown type ignored");
+            glb_without_unknown.assign(data, data + 20 + size_t(json_length));
+            const uint32_t length = 20u + json_length;
+            for (int k = 0; k < 4; ++k) glb_without_unknown[size_t(8 + k)] = static_cast<unsigned char>(length >> (8 * k));
+            data = glb_without_unknown.data();
+            size = glb_without_unknown.size();
+        }
         is_glb = true;
     } else {
         if (size < 2)
             return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "JSON: %zu bytes, empty document", size),
                    ctx.result;
-        if (!check_json_depth(ctx, reinterpret_cast<const char*>(data), size)) return ctx.result;
+        if (!check_json_depth(ctx, reinterpret_cast<const char*>(data), size) ||
+            !check_schema(ctx, reinterpret_cast<const char*>(data), size))
+            return ctx.result;
     }
 
     tinygltf::TinyGLTF loader;

@@ -102,6 +102,44 @@ const tinygltf::Value* find_extension(const tinygltf::ExtensionMap& map, const c
     return it == map.end() ? nullptr : &it->second;
 }
 
+// stb_image 2022-09-08 (Debian 12) builds a JPEG Huffman table of up to 16 x 255 codes into
+// arrays of 257 entries: a DHT segment whose code counts sum past 256 writes out of bounds
+// (found by fuzz_scene; upstream checks it since 2.28). Every DHT segment is checked here
+// before stb_image sees the file, including those between the scans of a progressive JPEG,
+// and read the way stb_image reads it: table after table while the segment length says more
+// follow, each table's 17 header bytes read even past the segment's end (zeros past the end
+// of the data).
+bool jpeg_huffman_tables_ok(const unsigned char* p, size_t size) {
+    auto byte = [&](size_t i) -> unsigned { return i < size ? p[i] : 0u; };
+    size_t at = 2;  // after SOI
+    while (at + 1 < size) {
+        if (p[at] != 0xff) {  // entropy-coded data: skip to the next marker
+            ++at;
+            continue;
+        }
+        const unsigned marker = p[at + 1];
+        if (marker == 0xff || marker == 0x00 || (marker >= 0xd0 && marker <= 0xd7) || marker == 0x01) {
+            ++at;  // fill byte, stuffed 0xff, restart marker or TEM: no length follows
+            continue;
+        }
+        if (marker == 0xd9) return true;  // EOI
+        const long length = long(byte(at + 2) << 8 | byte(at + 3));
+        if (marker == 0xc4) {
+            size_t t = at + 4;
+            for (long left = length - 2; left > 0;) {
+                unsigned codes = 0;
+                for (size_t i = 1; i <= 16; ++i) codes += byte(t + i);
+                if (codes > 256) return false;
+                t += 17 + codes;
+                left -= 17 + long(codes);
+            }
+        }
+        if (length < 2) return true;  // stb_image stops at such a segment
+        at += 2 + size_t(length);
+    }
+    return true;
+}
+
 struct TextureTable {
     Context& ctx;
     const tinygltf::Model& model;
@@ -141,6 +179,16 @@ struct TextureTable {
         return true;
     }
 
+    // Checks that `bytes` more decoded texels fit in the budget (they are counted by the caller).
+    bool reserve_texels(int image_index, uint64_t bytes, int w, int h) {
+        if (bytes <= ctx.texture_budget && ctx.texture_bytes <= ctx.texture_budget - bytes) return true;
+        return ctx.fail(RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE,
+                        "image %d (%dx%d): %.1f MiB of decoded texels would exceed the texture memory budget of "
+                        "%.1f MiB (%.1f MiB already used; desc.texture_memory_budget)",
+                        image_index, w, h, double(bytes) / 1048576.0, double(ctx.texture_budget) / 1048576.0,
+                        double(ctx.texture_bytes) / 1048576.0);
+    }
+
     bool decode(int image_index) {
         if (decoded.count(image_index)) return true;
         auto& slot = decoded[image_index];
@@ -165,6 +213,20 @@ struct TextureTable {
                                 "image %d: %ux%u exceeds the maximum texture dimension %u", image_index, pw, ph,
                                 ctx.max_texture_dimension);
         }
+        // Only the formats glTF 2.0 allows (and our docs name) are decoded: stb_image would
+        // also decode PNM, TGA, PSD, ... whose few-byte headers can claim 8000² pixels.
+        static const unsigned char kJpegSoi[3] = {0xff, 0xd8, 0xff};
+        const bool png = size >= 8 && std::memcmp(bytes, kPngSignature, 8) == 0;
+        const bool jpeg = size >= 3 && std::memcmp(bytes, kJpegSoi, 3) == 0;
+        if (!png && !jpeg)
+            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE,
+                            "image %d: neither PNG nor JPEG (first bytes %02x %02x %02x %02x); only these "
+                            "are decoded",
+                            image_index, bytes[0], size > 1 ? bytes[1] : 0, size > 2 ? bytes[2] : 0,
+                            size > 3 ? bytes[3] : 0);
+        if (jpeg && !jpeg_huffman_tables_ok(bytes, size))
+            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE,
+                            "image %d: corrupt JPEG (a Huffman table with more than 256 codes)", image_index);
         int w = 0, h = 0, comp = 0;
         if (!stbi_info_from_memory(bytes, int(size), &w, &h, &comp))
             return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE,
@@ -175,6 +237,9 @@ struct TextureTable {
             return ctx.fail(RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE,
                             "image %d: %dx%d exceeds the maximum texture dimension %u", image_index,
                             w, h, ctx.max_texture_dimension);
+        // The budget, from the header, before the decoder reserves anything.
+        const uint64_t bytes_per_texel = png && stbi_is_16_bit_from_memory(bytes, int(size)) ? 8 : 4;
+        if (!reserve_texels(image_index, uint64_t(w) * uint64_t(h) * bytes_per_texel, w, h)) return false;
         tinygltf::Image image;
         image.name = model.images[size_t(image_index)].name;
         std::string err, warn;
@@ -191,6 +256,7 @@ struct TextureTable {
         if (image.image.size() != texels * size_t(image.bits / 8))
             return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE, "image %d: decoded size mismatch", image_index);
         slot.first = {uint32_t(w), uint32_t(h)};
+        ctx.texture_bytes += texels;  // what stays; the 16-bit intermediate goes below
         if (image.bits == 8) {
             slot.second = std::move(image.image);
         } else {
@@ -246,6 +312,10 @@ struct TextureTable {
         if (!decode(tex.source)) return false;
         Texture t;
         const auto& d = decoded[tex.source];
+        // Each texture holds its own copy of the image's texels.
+        const uint64_t copy_bytes = uint64_t(d.first.first) * d.first.second * 4;
+        if (!reserve_texels(tex.source, copy_bytes, int(d.first.first), int(d.first.second))) return false;
+        ctx.texture_bytes += copy_bytes;
         t.width = d.first.first;
         t.height = d.first.second;
         t.pixels = d.second;

@@ -32,6 +32,7 @@ void *rtpbr_alloc(const rtpbr_context *ctx, size_t size)
 {
     void *p = ctx->allocator.alloc ? ctx->allocator.alloc(size, ctx->allocator.user_data) : malloc(size);
     if (p) memset(p, 0, size);
+    else rtpbr_log(ctx, RTPBR_LOG_ERROR, "out of host memory: an allocation of %zu bytes failed", size);
     return p;
 }
 
@@ -113,10 +114,7 @@ rtpbr_result rtpbr_context_create(const rtpbr_context_desc *desc, rtpbr_context 
 
     rtpbr_context bootstrap = {.allocator = desc->allocator, .logger = desc->logger};
     rtpbr_context *ctx = rtpbr_alloc(&bootstrap, sizeof *ctx);
-    if (!ctx) {
-        rtpbr_log(&bootstrap, RTPBR_LOG_ERROR, "rtpbr_context_create: out of host memory");
-        return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-    }
+    if (!ctx) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
     *ctx = bootstrap;
 
     rtpbr_result result;
@@ -171,6 +169,16 @@ cleanup:
 void rtpbr_context_destroy(rtpbr_context *ctx)
 {
     if (!ctx) return;
+    if (ctx->scenes || ctx->renderers) {
+        uint32_t scenes = 0, renderers = 0;
+        for (const rtpbr_gpu_scene *s = ctx->scenes; s; s = s->next) ++scenes;
+        for (const rtpbr_renderer *r = ctx->renderers; r; r = r->next) ++renderers;
+        rtpbr_log(ctx, RTPBR_LOG_WARNING,
+                  "rtpbr_context_destroy: destroying %u scene(s) and %u renderer(s) the host did not destroy",
+                  scenes, renderers);
+        while (ctx->renderers) rtpbr_renderer_destroy(ctx->renderers);
+        while (ctx->scenes) rtpbr_gpu_scene_destroy(ctx->scenes);
+    }
     if (ctx->device) {
         if (ctx->upload_fence) vkWaitForFences(ctx->device, 1, &ctx->upload_fence, VK_TRUE, UINT64_MAX);
         rtpbr_pipelines_destroy(ctx);

@@ -19,33 +19,35 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
     return VK_FALSE;
 }
 
-static bool has_layer(rtpbr_context *ctx, const char *name)
+// *found: whether the instance layer is installed. Fails only when out of host memory.
+static rtpbr_result has_layer(rtpbr_context *ctx, const char *name, bool *found)
 {
+    *found = false;
     uint32_t count = 0;
-    if (vkEnumerateInstanceLayerProperties(&count, NULL) != VK_SUCCESS || count == 0) return false;
+    if (vkEnumerateInstanceLayerProperties(&count, NULL) != VK_SUCCESS || count == 0) return RTPBR_SUCCESS;
     VkLayerProperties *layers = rtpbr_alloc(ctx, count * sizeof *layers);
-    if (!layers) return false;
-    bool found = false;
+    if (!layers) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
     if (vkEnumerateInstanceLayerProperties(&count, layers) == VK_SUCCESS)
-        for (uint32_t i = 0; i < count && !found; ++i) found = strcmp(layers[i].layerName, name) == 0;
+        for (uint32_t i = 0; i < count && !*found; ++i) *found = strcmp(layers[i].layerName, name) == 0;
     rtpbr_free(ctx, layers);
-    return found;
+    return RTPBR_SUCCESS;
 }
 
-// A queue family with graphics and compute, or UINT32_MAX.
-static uint32_t find_queue_family(rtpbr_context *ctx, VkPhysicalDevice pd)
+// *family: a queue family with graphics and compute, or UINT32_MAX. Fails only when out of
+// host memory.
+static rtpbr_result find_queue_family(rtpbr_context *ctx, VkPhysicalDevice pd, uint32_t *family)
 {
+    *family = UINT32_MAX;
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, NULL);
     VkQueueFamilyProperties *families = rtpbr_alloc(ctx, (count ? count : 1) * sizeof *families);
-    if (!families) return UINT32_MAX;
+    if (!families) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, families);
-    uint32_t found = UINT32_MAX;
     const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-    for (uint32_t i = 0; i < count && found == UINT32_MAX; ++i)
-        if ((families[i].queueFlags & need) == need && families[i].queueCount > 0) found = i;
+    for (uint32_t i = 0; i < count && *family == UINT32_MAX; ++i)
+        if ((families[i].queueFlags & need) == need && families[i].queueCount > 0) *family = i;
     rtpbr_free(ctx, families);
-    return found;
+    return RTPBR_SUCCESS;
 }
 
 static bool supports_dynamic_rendering(VkPhysicalDevice pd)
@@ -81,7 +83,9 @@ static void adopt_physical_device(rtpbr_context *ctx, VkPhysicalDevice pd)
 static rtpbr_result create_instance(rtpbr_context *ctx, bool validation)
 {
     rtpbr_result result = RTPBR_SUCCESS;
-    if (validation && !has_layer(ctx, VALIDATION_LAYER)) {
+    bool layer = false;
+    if (validation && (result = has_layer(ctx, VALIDATION_LAYER, &layer)) != RTPBR_SUCCESS) return result;
+    if (validation && !layer) {
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "validation requested but %s is not installed", VALIDATION_LAYER);
         return RTPBR_ERROR_MISSING_FEATURE;
     }
@@ -159,8 +163,10 @@ static rtpbr_result choose_physical_device(rtpbr_context *ctx, uint32_t device_i
     for (uint32_t i = 0; i < count; ++i) {
         VkPhysicalDeviceProperties props;
         vkGetPhysicalDeviceProperties(devices[i], &props);
+        uint32_t family = UINT32_MAX;
+        RTPBR_TRY(find_queue_family(ctx, devices[i], &family));
         bool ok = props.apiVersion >= VK_API_VERSION_1_3 && supports_dynamic_rendering(devices[i]) &&
-                  find_queue_family(ctx, devices[i]) != UINT32_MAX;
+                  family != UINT32_MAX;
         rtpbr_log(ctx, RTPBR_LOG_DEBUG, "device %u: %s (%s)", i, props.deviceName, ok ? "suitable" : "unsuitable");
         if (!ok) continue;
         ++suitable;
@@ -192,7 +198,7 @@ rtpbr_result rtpbr_device_init_standalone(rtpbr_context *ctx, const rtpbr_contex
     rtpbr_result result = RTPBR_SUCCESS;
     RTPBR_TRY(create_instance(ctx, desc->validation != 0));
     RTPBR_TRY(choose_physical_device(ctx, desc->device_index));
-    ctx->queue_family = find_queue_family(ctx, ctx->physical_device);
+    RTPBR_TRY(find_queue_family(ctx, ctx->physical_device, &ctx->queue_family));
 
     float priority = 1.0f;
     VkDeviceQueueCreateInfo queue_info = {

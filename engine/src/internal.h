@@ -171,6 +171,10 @@ struct rtpbr_context {
     VkPipelineLayout tonemap_layout;
     VkShaderModule tonemap_vert, tonemap_frag;
     rtpbr_tonemap_pipeline tonemap_pipelines[RTPBR_TONEMAP_PIPELINE_CACHE];
+    // Live children, so that rtpbr_context_destroy can destroy what the host left behind
+    // (rtpbr.h states the teardown order). Linked through their own prev/next fields.
+    rtpbr_gpu_scene *scenes;
+    rtpbr_renderer *renderers;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -183,6 +187,7 @@ typedef struct rtpbr_draw {
 
 struct rtpbr_gpu_scene {
     rtpbr_context *context;
+    rtpbr_gpu_scene *prev, *next; // in context->scenes
     rtpbr_buffer vertices;     // RTPBR_VERTEX_FLOATS per vertex: position, normal, uv, tangent
     rtpbr_buffer indices;      // uint32, vertex indices already offset per mesh
     rtpbr_buffer materials;    // rtpbr_shader_material[max(material_count, 1)]
@@ -230,6 +235,7 @@ void rtpbr_timing_mark(struct rtpbr_renderer *r, VkCommandBuffer cmd, rtpbr_time
 
 struct rtpbr_renderer {
     rtpbr_context *context;
+    rtpbr_renderer *prev, *next; // in context->renderers
     uint32_t width, height;    // of the output (radiance, display, readback)
     uint32_t supersample;      // >= 1
     uint32_t shade_width, shade_height; // of the G-buffer and lighting: supersample x the output
@@ -250,6 +256,7 @@ struct rtpbr_renderer {
     VkFence fence;
     bool has_frame;            // rtpbr_render completed at least once
     rtpbr_timing timing;       // GPU timestamps (rtpbr_renderer_desc.timings), else all zero
+    bool has_radiance;         // rtpbr_render or rtpbr_record has filled radiance_readback
 };
 
 extern const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT];
@@ -257,10 +264,28 @@ extern const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT];
 #define RTPBR_RADIANCE_FORMAT VK_FORMAT_R32G32B32A32_SFLOAT
 #define RTPBR_DISPLAY_FORMAT VK_FORMAT_R8G8B8A8_SRGB
 
+// Intrusive doubly linked lists of a context's children (prev/next fields, head pointer).
+#define RTPBR_LIST_LINK(head, node)                                                                 \
+    do {                                                                                            \
+        (node)->prev = NULL;                                                                        \
+        (node)->next = (head);                                                                      \
+        if (head) (head)->prev = (node);                                                            \
+        (head) = (node);                                                                            \
+    } while (0)
+#define RTPBR_LIST_UNLINK(head, node)                                                               \
+    do {                                                                                            \
+        if ((node)->prev) (node)->prev->next = (node)->next;                                        \
+        else if ((head) == (node)) (head) = (node)->next;                                           \
+        if ((node)->next) (node)->next->prev = (node)->prev;                                        \
+        (node)->prev = (node)->next = NULL;                                                         \
+    } while (0)
+
 // ---------------------------------------------------------------------------------------------
 // Helpers (core.c)
 
-void *rtpbr_alloc(const rtpbr_context *ctx, size_t size); // zeroed
+// Zeroed; on failure logs "out of host memory" with the size, so every caller's
+// RTPBR_ERROR_OUT_OF_HOST_MEMORY has a message.
+void *rtpbr_alloc(const rtpbr_context *ctx, size_t size);
 void rtpbr_free(const rtpbr_context *ctx, void *ptr);
 void rtpbr_log(const rtpbr_context *ctx, rtpbr_log_level level, const char *fmt, ...) RTPBR_PRINTF(3, 4);
 void rtpbr_logv(const rtpbr_logger *logger, rtpbr_log_level level, const char *fmt, va_list args);

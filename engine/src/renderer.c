@@ -116,6 +116,7 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
     rtpbr_renderer *r = rtpbr_alloc(ctx, sizeof *r);
     if (!r) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
     r->context = ctx;
+    RTPBR_LIST_LINK(ctx->renderers, r);
     r->width = desc->width;
     r->height = desc->height;
     r->supersample = ss;
@@ -191,6 +192,7 @@ void rtpbr_renderer_destroy(rtpbr_renderer *r)
     rtpbr_image_destroy(ctx, &r->radiance);
     rtpbr_image_destroy(ctx, &r->radiance_ss);
     rtpbr_image_destroy(ctx, &r->display);
+    RTPBR_LIST_UNLINK(ctx->renderers, r);
     rtpbr_free(ctx, r);
 }
 
@@ -360,6 +362,7 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     RTPBR_VK(ctx, vkQueueSubmit(ctx->queue, 1, &submit, r->fence));
     r->has_frame = true;
     RTPBR_VK(ctx, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+    r->has_radiance = true;
 cleanup:
     return result;
 }
@@ -406,6 +409,7 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
                             VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                             VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
     record_readback(r, cmd, false);
+    r->has_radiance = true; // once the host's submission completes (rtpbr.h)
     r->has_frame = false; // rtpbr_read_display has nothing of this frame: the host owns its target
 cleanup:
     return result;
@@ -418,6 +422,10 @@ rtpbr_result rtpbr_read_radiance(rtpbr_renderer *r, float *rgba, size_t size_byt
     if (!rgba || size_bytes < need) {
         rtpbr_log(r->context, RTPBR_LOG_ERROR, "rtpbr_read_radiance: need a buffer of %zu bytes, got %zu%s", need,
                   size_bytes, rgba ? "" : " (NULL)");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (!r->has_radiance) {
+        rtpbr_log(r->context, RTPBR_LOG_ERROR, "rtpbr_read_radiance: nothing rendered with rtpbr_render or rtpbr_record yet");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     memcpy(rgba, r->radiance_readback.mapped, need);

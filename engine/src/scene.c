@@ -377,6 +377,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     scene = rtpbr_alloc(ctx, sizeof *scene);
     if (!scene) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
     scene->context = ctx;
+    RTPBR_LIST_LINK(ctx->scenes, scene);
 
     // Geometry: one interleaved vertex buffer and one index buffer for all meshes.
     VkDeviceSize vertex_bytes = (total_vertices ? total_vertices : 1) * RTPBR_VERTEX_FLOATS * sizeof(float);
@@ -468,6 +469,7 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_free(ctx, scene->material_sets);
     rtpbr_free(ctx, scene->draws);
     rtpbr_free(ctx, scene->cameras);
+    RTPBR_LIST_UNLINK(ctx->scenes, scene);
     rtpbr_free(ctx, scene);
 }
 

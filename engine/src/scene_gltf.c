@@ -45,6 +45,24 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     *out_scene = NULL;
+    // A hand-built or corrupted rtpbr_scene: every non-zero count needs its array.
+    const struct {
+        uint32_t count;
+        const void *array;
+        const char *name;
+    } arrays[] = {
+        {loaded->primitive_count, loaded->primitives, "primitives"},
+        {loaded->material_count, loaded->materials, "materials"},
+        {loaded->texture_count, loaded->textures, "textures"},
+        {loaded->light_count, loaded->lights, "lights"},
+        {loaded->camera_count, loaded->cameras, "cameras"},
+    };
+    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
+        if (arrays[i].count && !arrays[i].array) {
+            rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_from_loaded: %s is NULL with %s_count = %u",
+                      arrays[i].name, arrays[i].name, arrays[i].count);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
     if (loaded->light_count > RTPBR_MAX_LIGHTS) {
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "scene has %u lights; at most RTPBR_MAX_LIGHTS = %u are allowed",
                   loaded->light_count, RTPBR_MAX_LIGHTS);
@@ -157,7 +175,6 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
     result = rtpbr_gpu_scene_create(ctx, &desc, out_scene);
     goto cleanup;
 oom:
-    rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_from_loaded: out of host memory");
     result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
 cleanup:
     rtpbr_free(ctx, meshes);

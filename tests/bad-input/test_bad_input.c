@@ -245,8 +245,8 @@ static void test_accessors_out_of_range(void** state) {
     ts_scene s = triangle();
     s.accessors = "{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
                   "{\"bufferView\":7,\"componentType\":5125,\"count\":3,\"type\":\"SCALAR\"}";
-    /* tinygltf's own schema check sees this one first: a JSON (schema) error. */
-    expect_scene(dir, "view.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "bufferView");
+    /* Every index is resolved before tinygltf reads the file (issue 18). */
+    expect_scene(dir, "view.gltf", &s, RTPBR_SCENE_ERROR_INVALID_REFERENCE, "bufferView 7");
     s.accessors = "{\"bufferView\":0,\"byteOffset\":36,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
                   "{\"bufferView\":1,\"componentType\":5125,\"count\":3,\"type\":\"SCALAR\"}";
     expect_scene(dir, "offset.gltf", &s, RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "accessor 0");
@@ -306,14 +306,14 @@ static void test_nonfinite(void** state) {
     s = triangle();
     s.nodes = "{\"mesh\":0,\"scale\":[3e38,3e38,3e38],\"translation\":[3e38,0,0]}";
     expect_scene(dir, "overflow.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, NULL);
-    /* JSON has no NaN literal; 1e39 is +Inf as a float (refused even where the value
-     * would be clamped to [0,1]), 1e400 is not even a double. */
+    /* JSON has no NaN literal; 1e39 is +Inf as a float, 1e400 is not even a double. Where
+     * the schema bounds a factor to [0, 1], 1e39 is a schema error (issue 18). */
     s = triangle();
     s.material = 0;
     s.materials = "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1e39,0,0,1]}}";
-    expect_scene(dir, "colour.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "baseColorFactor");
+    expect_scene(dir, "colour.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "baseColorFactor");
     s.materials = "{\"emissiveFactor\":[1,-1e39,0]}";
-    expect_scene(dir, "emission.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "emissiveFactor");
+    expect_scene(dir, "emission.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "emissiveFactor");
     /* Factors without an upper bound must not overflow the float they are stored in. */
     s.materials = "{\"extensions\":{\"KHR_materials_specular\":{\"specularColorFactor\":[1,1e39,0]}}}";
     expect_scene(dir, "specular.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "specularColorFactor");
@@ -756,6 +756,216 @@ static void test_uri_confinement(void** state) {
     free(dir);
 }
 
+/* ---- issue 18: what the second hostile corpus found --------------------------- */
+
+/* Class 2: a value of the wrong type or out of the schema's range is INVALID_JSON (tinygltf
+ * replaced it by the default, and stored 4294967296 in an int as 0). */
+static void test_schema_types(void** state) {
+    (void)state;
+    const char* dir = ts_dir("schema");
+    static const struct {
+        const char* nodes;
+        const char* materials;
+        const char* extra;
+        const char* pointer;
+    } cases[] = {
+        {"{\"mesh\":0,\"translation\":[\"NaN\",0,0]}", NULL, NULL, "/nodes/0/translation"},
+        {"{\"mesh\":0,\"scale\":null}", NULL, NULL, "/nodes/0/scale"},
+        {"{\"mesh\":0,\"rotation\":{\"x\":0}}", NULL, NULL, "/nodes/0/rotation"},
+        {"{\"mesh\":0,\"rotation\":[0,0,0,2]}", NULL, NULL, "/nodes/0/rotation"},
+        {"{\"mesh\":\"0\"}", NULL, NULL, "/nodes/0/mesh"},
+        {"{\"mesh\":4294967296}", NULL, NULL, "/nodes/0/mesh"},
+        {"{\"mesh\":0.5}", NULL, NULL, "/nodes/0/mesh"},
+        {"{\"mesh\":-1}", NULL, NULL, "/nodes/0/mesh"},
+        {"{\"mesh\":0,\"children\":[]}", NULL, NULL, "/nodes/0/children"},
+        {NULL, "{\"doubleSided\":\"yes\"}", NULL, "/materials/0/doubleSided"},
+        {NULL, "{\"pbrMetallicRoughness\":{\"roughnessFactor\":{}}}", NULL, "roughnessFactor"},
+        {NULL, "{\"pbrMetallicRoughness\":{\"metallicFactor\":null}}", NULL, "metallicFactor"},
+        {NULL, "{\"alphaMode\":7}", NULL, "alphaMode"},
+        {NULL, "{\"normalTexture\":{\"index\":0,\"scale\":\"1\"}}", NULL, "normalTexture"},
+        {NULL, NULL, ",\"extensionsRequired\":\"KHR_draco_mesh_compression\"", "/extensionsRequired"},
+        {NULL, NULL, ",\"extensionsUsed\":[\"EXT_lights_area\"],\"extensionsRequired\":{\"0\":\"X\"}",
+         "/extensionsRequired"},
+        {NULL, NULL, ",\"scene\":\"0\"", "/scene"},
+        {NULL, NULL, ",\"samplers\":[{\"wrapS\":\"REPEAT\"}]", "/samplers/0/wrapS"},
+        {NULL, NULL, ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":\"wide\",\"znear\":1}}]",
+         "/cameras/0/perspective/yfov"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        ts_scene s = triangle();
+        if (cases[i].nodes) s.nodes = cases[i].nodes;
+        if (cases[i].materials) s.materials = cases[i].materials, s.material = 0;
+        s.extra = cases[i].extra;
+        char name[32];
+        snprintf(name, sizeof name, "case%zu.gltf", i);
+        expect_scene(dir, name, &s, RTPBR_SCENE_ERROR_INVALID_JSON, cases[i].pointer);
+    }
+    /* The same document with correct types loads (the checks are not over-eager). */
+    ts_scene s = triangle();
+    s.nodes = "{\"mesh\":0,\"translation\":[1,0,0],\"rotation\":[0,0,0,1],\"scale\":[1,1,1],\"children\":[1]},"
+              "{\"mesh\":0,\"matrix\":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}";
+    s.material = 0;
+    s.materials = "{\"doubleSided\":true,\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,"
+                  "\"pbrMetallicRoughness\":{\"roughnessFactor\":0.5,\"metallicFactor\":1}}";
+    s.extra = ",\"scene\":0,\"samplers\":[{\"wrapS\":33071}]";
+    expect_scene(dir, "good.gltf", &s, RTPBR_SCENE_SUCCESS, NULL);
+}
+
+/* Class 2: glTF nodes form disjoint strict trees; the depth limit is the documented one. */
+static void test_node_forest(void** state) {
+    (void)state;
+    const char* dir = ts_dir("forest");
+    ts_scene s = triangle();
+    s.nodes = "{\"mesh\":0,\"children\":[2]},{\"children\":[2]},{\"mesh\":0}";
+    s.scene_nodes = "0,1";
+    expect_scene(dir, "shared.gltf", &s, RTPBR_SCENE_ERROR_UNSUPPORTED, "child of both");
+    s.nodes = "{\"mesh\":0,\"children\":[1]},{\"mesh\":0}";
+    expect_scene(dir, "rootchild.gltf", &s, RTPBR_SCENE_ERROR_UNSUPPORTED, "root node 1");
+    s.nodes = "{\"mesh\":0},{\"children\":[2]},{\"children\":[1]}";
+    s.scene_nodes = "0";
+    expect_scene(dir, "cycle.gltf", &s, RTPBR_SCENE_ERROR_UNSUPPORTED, "cycle");
+    s.nodes = "{\"mesh\":0,\"children\":[0]}";
+    expect_scene(dir, "self.gltf", &s, RTPBR_SCENE_ERROR_UNSUPPORTED, NULL);
+    /* A chain of RTPBR_SCENE_MAX_NODE_DEPTH nodes loads; one more is refused. */
+    for (unsigned levels = RTPBR_SCENE_MAX_NODE_DEPTH; levels <= RTPBR_SCENE_MAX_NODE_DEPTH + 1; ++levels) {
+        char* nodes = calloc(levels, 32);
+        size_t at = 0;
+        for (unsigned i = 0; i < levels; ++i)
+            at += (size_t)(i + 1 < levels ? sprintf(nodes + at, "{\"children\":[%u]},", i + 1)
+                                          : sprintf(nodes + at, "{\"mesh\":0}"));
+        s.nodes = nodes;
+        if (levels == RTPBR_SCENE_MAX_NODE_DEPTH) expect_scene(dir, "deep.gltf", &s, RTPBR_SCENE_SUCCESS, NULL);
+        else expect_scene(dir, "deeper.gltf", &s, RTPBR_SCENE_ERROR_UNSUPPORTED, "deeper than 256");
+        free(nodes);
+    }
+}
+
+/* GLB of `json` followed by chunks given as (type, length) pairs (zero-filled payloads). */
+static unsigned char* glb_with_chunks(const char* json, const uint32_t* chunks, size_t chunk_count, size_t* size) {
+    size_t json_len = (strlen(json) + 3) / 4 * 4;
+    *size = 20 + json_len;
+    for (size_t i = 0; i < chunk_count; ++i) *size += 8 + chunks[2 * i + 1];
+    unsigned char* g = calloc(1, *size);
+    uint32_t head[5] = {0x46546C67u, 2, (uint32_t)*size, (uint32_t)json_len, 0x4E4F534Au};
+    memcpy(g, head, sizeof head);
+    memset(g + 20, ' ', json_len);
+    memcpy(g + 20, json, strlen(json));
+    size_t at = 20 + json_len;
+    for (size_t i = 0; i < chunk_count; ++i) {
+        uint32_t ch[2] = {chunks[2 * i + 1], chunks[2 * i]};
+        memcpy(g + at, ch, sizeof ch);
+        at += 8 + chunks[2 * i + 1];
+    }
+    return g;
+}
+
+/* Class 2: glTF 2.0 says readers ignore chunks of unknown types (tinygltf refused one in
+ * second position); chunks must still fit in the file, and BIN may only come second. */
+static void test_glb_unknown_chunks(void** state) {
+    (void)state;
+    ts_scene s = triangle(); /* data: URI buffer: no BIN chunk needed */
+    char* json = ts_scene_json(&s);
+    static const uint32_t unknown_second[] = {0x5A595858u, 16};
+    static const uint32_t bin_then_unknown[] = {0x004E4942u, 8, 0x5A595858u, 4};
+    static const uint32_t two_unknown[] = {0x5A595858u, 4, 0x12345678u, 0};
+    const struct {
+        const uint32_t* chunks;
+        size_t count;
+        rtpbr_scene_result want;
+    } cases[] = {
+        {unknown_second, 1, RTPBR_SCENE_SUCCESS},
+        {bin_then_unknown, 2, RTPBR_SCENE_SUCCESS},
+        {two_unknown, 2, RTPBR_SCENE_SUCCESS},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        size_t size = 0;
+        unsigned char* glb = glb_with_chunks(json, cases[i].chunks, cases[i].count, &size);
+        loaded l;
+        load_memory(&l, glb, size, NULL);
+        if (l.result != cases[i].want)
+            fail_msg("GLB case %zu: %s (%s)", i, rtpbr_scene_result_string(l.result), l.message);
+        if (l.result == RTPBR_SCENE_SUCCESS) assert_int_equal(l.scene->primitive_count, 1);
+        release(&l);
+        /* The last chunk's length one past the file end: refused. */
+        uint32_t last_len;
+        size_t last = size - 8 - cases[i].chunks[2 * cases[i].count - 1];
+        memcpy(&last_len, glb + last, 4);
+        last_len += 4;
+        memcpy(glb + last, &last_len, 4);
+        load_memory(&l, glb, size, NULL);
+        if (l.result != RTPBR_SCENE_ERROR_INVALID_GLB)
+            fail_msg("GLB case %zu, chunk past the end: %s (%s)", i, rtpbr_scene_result_string(l.result), l.message);
+        release(&l);
+        free(glb);
+    }
+    static const uint32_t late_bin[] = {0x5A595858u, 4, 0x004E4942u, 4};
+    size_t size = 0;
+    unsigned char* glb = glb_with_chunks(json, late_bin, 2, &size);
+    loaded l;
+    load_memory(&l, glb, size, NULL);
+    assert_int_equal(l.result, RTPBR_SCENE_ERROR_INVALID_GLB);
+    release(&l);
+    free(glb);
+    free(json);
+}
+
+/* Class 3: only PNG and JPEG are decoded, and decoded texel memory is bounded by a budget
+ * checked from the header before decoding. */
+static void test_image_formats_and_budget(void** state) {
+    (void)state;
+    const char* dir = ts_dir("image-budget");
+    char* json = textured_json("image.bin");
+    /* A 17-byte PPM and an 18-byte TGA header that claim 8000 x 8000 pixels. */
+    static const char ppm[] = "P6\n8000 8000\n255\n";
+    ts_write(dir, "image.bin", ppm, strlen(ppm));
+    expect_text(dir, "ppm.gltf", json, NULL, RTPBR_SCENE_ERROR_IMAGE_DECODE, "neither PNG nor JPEG");
+    unsigned char tga[18] = {0, 0, 2};
+    tga[12] = 8000 & 0xff, tga[13] = 8000 >> 8, tga[14] = 8000 & 0xff, tga[15] = 8000 >> 8, tga[16] = 32;
+    ts_write(dir, "image.bin", tga, sizeof tga);
+    expect_text(dir, "tga.gltf", json, NULL, RTPBR_SCENE_ERROR_IMAGE_DECODE, "neither PNG nor JPEG");
+    /* A PNG whose header claims 9000 x 9000 (309 MiB decoded): over the default budget of
+     * 256 MiB, refused from the header (a decode error would mean it was decoded). */
+    unsigned char png[57];
+    png_claiming(png, 9000, 9000);
+    ts_write(dir, "image.bin", png, sizeof png);
+    expect_text(dir, "bomb.gltf", json, NULL, RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE, "budget");
+    /* The budget is the host's: a real 16 x 16 PNG (1 KiB decoded) over a 1000-byte budget. */
+    unsigned char px[16 * 16 * 4];
+    memset(px, 100, sizeof px);
+    size_t real_size = 0;
+    unsigned char* real = ts_png(px, 16, 16, &real_size);
+    ts_write(dir, "image.bin", real, real_size);
+    rtpbr_scene_load_desc desc = {0};
+    desc.texture_memory_budget = 1000;
+    expect_text(dir, "budget.gltf", json, &desc, RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE, "budget");
+    expect_text(dir, "default.gltf", json, NULL, RTPBR_SCENE_SUCCESS, NULL);
+    free(real);
+    free(json);
+}
+
+/* Class 4: a node scaled by 0 hides its primitives; they are skipped with a warning and the
+ * rest of the scene loads (the engine refused a primitive without triangles). */
+static void test_hidden_node(void** state) {
+    (void)state;
+    const char* dir = ts_dir("hidden");
+    ts_scene s = triangle();
+    s.nodes = "{\"mesh\":0,\"scale\":[0,0,0]},{\"mesh\":0}";
+    s.scene_nodes = "0,1";
+    char* json = ts_scene_json(&s);
+    ts_write(dir, "hidden.gltf", json, strlen(json));
+    char* path = ts_path(dir, "hidden.gltf");
+    loaded l;
+    load_path(&l, path, NULL);
+    if (l.result != RTPBR_SCENE_SUCCESS) fail_msg("%s", l.message);
+    assert_int_equal(l.scene->primitive_count, 1);
+    assert_int_equal(l.scene->primitives[0].gltf_node, 1);
+    assert_true(l.scene->primitives[0].index_count > 0);
+    assert_true(l.counts.warnings >= 1);
+    release(&l);
+    free(path);
+    free(json);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_truncated),         cmocka_unit_test(test_wrong_magic),
@@ -764,6 +974,9 @@ int main(void) {
         cmocka_unit_test(test_bad_lights),        cmocka_unit_test(test_too_many_lights),
         cmocka_unit_test(test_textures),          cmocka_unit_test(test_paths),
         cmocka_unit_test(test_uri_confinement),
+        cmocka_unit_test(test_schema_types),      cmocka_unit_test(test_node_forest),
+        cmocka_unit_test(test_glb_unknown_chunks), cmocka_unit_test(test_image_formats_and_budget),
+        cmocka_unit_test(test_hidden_node),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -12,6 +12,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 using namespace rtpbr_oracle;
@@ -44,6 +45,8 @@ struct GltfOptions {
     bool nanVertex = false;
     std::string bufferUri; // empty: embedded data URI
     int bufferLengthDelta = 0;
+    std::string cameraTranslation = "[0,0.5,3]";
+    std::string floorNode = R"({"mesh":0})"; // e.g. scaled by 0 to hide it
 };
 
 // One quad (floor, material 0) and one emissive quad (light, material 1) above it.
@@ -57,8 +60,8 @@ std::string makeGltf(const GltfOptions &o) {
     data += std::string(reinterpret_cast<const char *>(idx), sizeof idx);
     std::ostringstream j;
     j << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1)" << (o.camera ? ",2" : "") << R"(]}],)"
-      << R"("nodes":[{"mesh":0},{"mesh":1})"
-      << (o.camera ? R"(,{"camera":0,"translation":[0,0.5,3]})" : "") << "],"
+      << R"("nodes":[)" << o.floorNode << R"(,{"mesh":1})"
+      << (o.camera ? R"(,{"camera":0,"translation":)" + o.cameraTranslation + "}" : "") << "],"
       << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":2,"material":0}]},)"
       << R"({"primitives":[{"attributes":{"POSITION":1},"indices":3,"material":1}]}],)"
       << R"("materials":[{"pbrMetallicRoughness":{"metallicFactor":0}},{"emissiveFactor":)"
@@ -233,6 +236,64 @@ void test_not_gltf(void **) {
     assert_true(err.find("FILE_NOT_FOUND") != std::string::npos);
 }
 
+// Issue 18, class 1: finite but absurd values reach Embree only within its range (a camera
+// translated by 1e19 tripped Embree's ray.valid() assertion and aborted).
+void test_absurd_extent(void **) {
+    GltfOptions o;
+    o.cameraTranslation = "[0,0.5,1e19]";
+    expectFailure(writeFile("oracle_test_far_camera.gltf", makeGltf(o)), "oracle:invalid scene", "scene extent");
+    o = GltfOptions();
+    o.floorNode = R"({"mesh":0,"scale":[1e17,1,1e17]})";
+    expectFailure(writeFile("oracle_test_huge_floor.gltf", makeGltf(o)), "oracle:invalid scene", "scene extent");
+}
+
+// Issue 18, class 4: a node scaled by 0 (hidden) leaves a primitive without triangles; the
+// loader skips it with a warning and the scene still renders.
+void test_hidden_node(void **) {
+    GltfOptions o;
+    o.floorNode = R"({"mesh":0,"scale":[0,0,0]})";
+    std::string f = writeFile("oracle_test_hidden.gltf", makeGltf(o));
+    std::string message;
+    assert_string_equal(loadAndValidate(f, &message).c_str(), "ok");
+    std::string err;
+    int status = runOracle(f, &err);
+    if (status != 0)
+        fail_msg("hidden node: exit %d: %s", status, err.c_str());
+    std::remove("oracle_test_bad.exr");
+}
+
+// Issue 18, class 1: --merge opens regular files only (a FIFO blocked it forever; the test
+// would time out), and the memory need is stated and checked before allocating.
+void test_merge_and_memory(void **) {
+    std::remove("oracle_test.fifo");
+    assert_int_equal(mkfifo("oracle_test.fifo", 0600), 0);
+    std::string err;
+    assert_int_equal(runOracleArgs("--merge oracle_test.fifo -o oracle_test_x.exr", &err), 1);
+    std::remove("oracle_test.fifo");
+    if (err.find("not a regular file") == std::string::npos)
+        fail_msg("FIFO: stderr \"%s\"", err.c_str());
+    std::string f = writeFile("oracle_test_memory.gltf", makeGltf({}));
+    // 16384 x 16384 at 100 bytes per pixel: 25 GiB, over a 1 GiB limit, refused with a message.
+    assert_int_equal(runOracleArgs("'" + f + "' -o oracle_test_x.exr --width 16384 --height 16384 --quiet "
+                                   "--memory-limit 1024",
+                                   &err),
+                     1);
+    if (err.find("needs 25.00 GiB") == std::string::npos)
+        fail_msg("memory: stderr \"%s\"", err.c_str());
+    // An accumulator file whose header claims more pixels than its size holds is refused.
+    assert_int_equal(runOracleArgs("'" + f + "' --width 4 --height 4 --spp 1 --quiet -o oracle_test_ok.acc", &err), 0);
+    std::string bytes = readAll("oracle_test_ok.acc");
+    assert_true(bytes.size() > 16);
+    uint32_t dims[2] = {65536, 4096};
+    bytes.replace(8, sizeof dims, reinterpret_cast<const char *>(dims), sizeof dims);
+    writeFile("oracle_test_lying.acc", bytes);
+    assert_int_equal(runOracleArgs("--merge oracle_test_lying.acc -o oracle_test_x.exr", &err), 1);
+    if (err.find("accumulator has") == std::string::npos)
+        fail_msg("lying accumulator: stderr \"%s\"", err.c_str());
+    for (const char *p : {"oracle_test_ok.acc", "oracle_test_lying.acc", "oracle_test_x.exr"})
+        std::remove(p);
+}
+
 // Hand-built scenes (plain data, no loader) are validated by the oracle itself.
 void test_hand_built_bad_scenes(void **) {
     std::string err;
@@ -287,6 +348,8 @@ int main(int argc, char **argv) {
         cmocka_unit_test(test_short_buffer),       cmocka_unit_test(test_nan_vertex),
         cmocka_unit_test(test_no_camera),          cmocka_unit_test(test_no_lights),
         cmocka_unit_test(test_not_gltf),           cmocka_unit_test(test_hand_built_bad_scenes),
+        cmocka_unit_test(test_absurd_extent),      cmocka_unit_test(test_hidden_node),
+        cmocka_unit_test(test_merge_and_memory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

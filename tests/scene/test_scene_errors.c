@@ -178,11 +178,13 @@ static void test_indices_and_values(void** state) {
     expect_scene(dir, "disney.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "sheen");
     s.materials = NULL;
     s.material = -1;
-    s.extra = ",\"extensionsRequired\":[\"KHR_draco_mesh_compression\"]";
+    s.extra = ",\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"
+              "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"]";
     expect_scene(dir, "required.gltf", &s, RTPBR_SCENE_ERROR_UNSUPPORTED, "KHR_draco_mesh_compression");
     s.extra = ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0,\"znear\":0.1}}]";
     s.nodes = "{\"mesh\":0,\"camera\":0}";
-    expect_scene(dir, "camera.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "camera 0");
+    expect_scene(dir, "camera.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "/cameras/0");
+    s.extra = ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":1,\"znear\":0.1}}]";
     s.nodes = "{\"mesh\":0,\"camera\":4}";
     expect_scene(dir, "camref.gltf", &s, RTPBR_SCENE_ERROR_INVALID_REFERENCE, "camera 4");
     s.nodes = "{\"extensions\":{\"EXT_lights_area\":{\"light\":2}}}";

@@ -82,7 +82,7 @@ RTPBR_API uint32_t rtpbr_version(void);
 typedef enum rtpbr_result {
     RTPBR_SUCCESS = 0,
     RTPBR_ERROR_INVALID_ARGUMENT,    // NULL where an object is required, zero sizes, NaN, ...
-    RTPBR_ERROR_OUT_OF_HOST_MEMORY,
+    RTPBR_ERROR_OUT_OF_HOST_MEMORY,  // an allocation failed; the log names its size
     RTPBR_ERROR_OUT_OF_DEVICE_MEMORY,
     RTPBR_ERROR_NO_DEVICE,           // no Vulkan implementation or no suitable device
     RTPBR_ERROR_MISSING_FEATURE,     // the device lacks (or the host did not enable) a requirement
@@ -165,6 +165,9 @@ typedef struct rtpbr_context rtpbr_context;
 
 RTPBR_API rtpbr_result rtpbr_context_create(const rtpbr_context_desc *desc, rtpbr_context **out_context);
 // Waits for the library's own work, then destroys everything the context created.
+// Teardown order: destroy renderers and scenes first, then the context. Scenes and renderers
+// still alive are destroyed here (with a warning in the log, since it usually means a leak in
+// the host); their handles are then invalid and must not be passed to rtpbr_*_destroy again.
 RTPBR_API void rtpbr_context_destroy(rtpbr_context *context);
 // Number of warning/error messages the validation layer has reported so far (0 when off).
 RTPBR_API uint32_t rtpbr_context_validation_message_count(const rtpbr_context *context);
@@ -312,6 +315,7 @@ RTPBR_API rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *context, const c
                                                  rtpbr_gpu_scene **out_scene);
 // Uploads a scene the host loaded (or built) with the loader's C API; the material mapping is
 // the table in rtpbr_gpu_scene_load_gltf's documentation below. The loaded scene is not kept.
+// A non-zero count with a NULL array: RTPBR_ERROR_INVALID_ARGUMENT.
 RTPBR_API rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *context, const struct rtpbr_scene *loaded,
                                                    rtpbr_gpu_scene **out_scene);
 RTPBR_API void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene);
@@ -439,7 +443,8 @@ RTPBR_API rtpbr_result rtpbr_render(rtpbr_renderer *renderer, const rtpbr_gpu_sc
 
 // Linear scene radiance of the last rtpbr_render (no exposure, no tone mapping): RGBA32F,
 // rows top to bottom, width * height * 4 floats (alpha 1 on surfaces, 0 on background).
-// size_bytes must be at least width * height * 16.
+// size_bytes must be at least width * height * 16. INVALID_ARGUMENT (with a message) before
+// the first rtpbr_render or rtpbr_record, like rtpbr_read_display.
 RTPBR_API rtpbr_result rtpbr_read_radiance(rtpbr_renderer *renderer, float *rgba, size_t size_bytes);
 // The tone-mapped display image of the last rtpbr_render: 8-bit sRGB-encoded RGBA, rows top to
 // bottom. size_bytes must be at least width * height * 4.

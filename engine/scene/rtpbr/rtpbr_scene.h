@@ -59,6 +59,10 @@ extern "C" {
 #define RTPBR_SCENE_MAX_JSON_DEPTH 256u              /* JSON array/object nesting */
 #define RTPBR_SCENE_MAX_POLYGON_VERTICES 8u          /* vertices of one light  */
 #define RTPBR_SCENE_ERROR_MESSAGE_SIZE 512u          /* suggested buffer size  */
+/* Default budget of decoded texel memory (RGBA8, all textures of a scene,
+ * desc.texture_memory_budget): 256 MiB, e.g. one 8192² or sixteen 2048²
+ * textures. Checked against each image's header before it is decoded.    */
+#define RTPBR_SCENE_DEFAULT_TEXTURE_BUDGET ((uint64_t)256 << 20)
 
 /* ---- results ------------------------------------------------------------ */
 typedef enum rtpbr_scene_result {
@@ -82,7 +86,8 @@ typedef enum rtpbr_scene_result {
     RTPBR_SCENE_ERROR_IMAGE_DECODE,       /* image data could not be decoded  */
     RTPBR_SCENE_ERROR_TOO_MANY_VERTICES,  /* > max_vertices or max indices    */
     RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS,    /* > max_lights                     */
-    RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE,  /* > max_texture_dimension          */
+    RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE,  /* > max_texture_dimension, or over
+                                             desc.texture_memory_budget       */
     RTPBR_SCENE_ERROR_OUT_OF_MEMORY,
     RTPBR_SCENE_RESULT_COUNT
 } rtpbr_scene_result;
@@ -140,6 +145,14 @@ typedef struct rtpbr_scene_load_desc {
      * 0 = 1 (nits used as the renderer's radiance unit, like emissive
      * materials). 1/683 gives W/(sr·m²) at 555 nm. */
     float area_light_radiance_scale;
+    /* Bytes of decoded texels (4 per texel, 8 while a 16-bit PNG is reduced)
+     * the scene's textures may take together; an image that would exceed it
+     * is RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE, refused from its header before
+     * any pixel memory is reserved. 0 = RTPBR_SCENE_DEFAULT_TEXTURE_BUDGET;
+     * any other value is used as given (a 16384² texture needs 1 GiB). Only
+     * PNG and JPEG images are decoded; other formats are
+     * RTPBR_SCENE_ERROR_IMAGE_DECODE. */
+    uint64_t texture_memory_budget;
 } rtpbr_scene_load_desc;
 
 /* ---- scene data ---------------------------------------------------------
@@ -149,7 +162,10 @@ typedef struct rtpbr_scene_load_desc {
 
 /* One triangle list in world space. Arrays are structure-of-arrays with
  * vertex_count entries each (positions/normals xyz, texcoords uv, tangents
- * xyzw); never NULL when vertex_count > 0 (indices: when index_count > 0). */
+ * xyzw); never NULL when vertex_count > 0 (indices: when index_count > 0).
+ * A glTF primitive left without a triangle (a node scaled by 0, only
+ * degenerate triangles, no POSITION) is not listed (a warning is logged), so
+ * index_count > 0 for every loaded primitive. */
 typedef struct rtpbr_scene_primitive {
     uint32_t vertex_count;
     uint32_t index_count;  /* multiple of 3; degenerate triangles removed   */
