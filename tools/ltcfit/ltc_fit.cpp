@@ -6,6 +6,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <mutex>
 #include <thread>
 
@@ -132,6 +134,47 @@ glm::vec2 grid_point(int i, int side) {
     return glm::vec2((float(i % side) + 0.5f) / float(side), (float(i / side) + 0.5f) / float(side));
 }
 
+// The BRDF's sample directions at the points of a side x side grid, in grid order: the same
+// directions as brdf_sample(grid_point(i, side)). For Beckmann, Sample_Beckmann_VNDF's costly
+// slope inversion (Beckmann_SampleSlopeX: Newton on erfc) depends only on the view (through
+// mu) and on u.x, which takes `side` values on the grid: it is computed once per column and
+// composed as Sample_Beckmann_VNDF does (same operations, so the same bits; checked against
+// Sample_Beckmann_VNDF on the first row of every grid).
+std::vector<glm::vec3> brdf_grid_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
+    std::vector<glm::vec3> out(size_t(side) * size_t(side));
+    if (lobe != Lobe::Beckmann || !(V.z > 0.0f)) {
+        for (int i = 0; i < side * side; i++)
+            out[size_t(i)] = brdf_sample(lobe, V, alpha, grid_point(i, side));
+        return out;
+    }
+    const float a = rtpbr::Alpha_Clamp(alpha);
+    const glm::vec3 wStd = glm::normalize(glm::vec3(V.x * a, V.y * a, V.z));
+    const float sinTheta = std::sqrt(wStd.x * wStd.x + wStd.y * wStd.y);
+    const float mu = sinTheta > 1e-6f ? wStd.z / sinTheta : 1e6f;
+    float cosPhi = 1.0f, sinPhi = 0.0f;
+    if (sinTheta > 0.0f) {
+        cosPhi = wStd.x / sinTheta;
+        sinPhi = wStd.y / sinTheta;
+    }
+    std::vector<float> sx(static_cast<size_t>(side)), sy(static_cast<size_t>(side));
+    for (int k = 0; k < side; k++) {
+        glm::vec2 u = grid_point(k * side + k, side); // column k, row k
+        sx[size_t(k)] = rtpbr::Beckmann_SampleSlopeX(mu, u.x);
+        sy[size_t(k)] = rtpbr::rtpbr_erfinv(2.0f * glm::clamp(u.y, 1e-6f, 1.0f - 1e-6f) - 1.0f);
+    }
+    for (int i = 0; i < side * side; i++) {
+        const float x = (cosPhi * sx[size_t(i % side)] - sinPhi * sy[size_t(i / side)]) * a;
+        const float y = (sinPhi * sx[size_t(i % side)] + cosPhi * sy[size_t(i / side)]) * a;
+        out[size_t(i)] = rtpbr::Reflect_About(V, glm::normalize(glm::vec3(-x, -y, 1.0f)));
+    }
+    for (int i = 0; i < side; i++) // the composition above must stay Sample_Beckmann_VNDF's
+        if (out[size_t(i)] != brdf_sample(lobe, V, alpha, grid_point(i, side))) {
+            fprintf(stderr, "ltcfit: internal error: the Beckmann grid sampler differs from Sample_Beckmann_VNDF\n");
+            std::abort();
+        }
+    return out;
+}
+
 struct WeightedDir {
     glm::dvec3 L;
     double w; // f NoL / pdf
@@ -150,8 +193,9 @@ Moments brdf_moments(Lobe lobe, glm::vec3 V, float alpha, int side, bool keep) {
     m.sampleCount = side * side;
     glm::dvec3 dir(0.0);
     int n = side * side;
+    const std::vector<glm::vec3> dirs = brdf_grid_samples(lobe, V, alpha, side);
     for (int i = 0; i < n; i++) {
-        glm::vec3 L = brdf_sample(lobe, V, alpha, grid_point(i, side));
+        glm::vec3 L = dirs[size_t(i)];
         BrdfSample b = brdf_eval(lobe, V, L, alpha);
         if (!(b.pdf > 0.0))
             continue;
@@ -189,10 +233,11 @@ struct ErrorSamples {
 ErrorSamples error_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
     ErrorSamples es;
     int n = side * side;
+    const std::vector<glm::vec3> dirs = brdf_grid_samples(lobe, V, alpha, side);
     for (int i = 0; i < n; i++) {
         glm::vec2 u = grid_point(i, side);
         es.cosine.push_back(glm::dvec3(rtpbr::Sample_CosineHemisphere(u)));
-        glm::vec3 L = brdf_sample(lobe, V, alpha, u);
+        glm::vec3 L = dirs[size_t(i)];
         es.brdfL.push_back(L);
         es.brdf.push_back(brdf_eval(lobe, V, L, alpha));
     }
@@ -396,8 +441,9 @@ PolygonRefs polygon_refs(Lobe lobe, const Moments &mom, glm::vec3 V, float alpha
             x /= double(mom.sampleCount);
     } else {
         const int n = s.polygonSamples * s.polygonSamples;
+        const std::vector<glm::vec3> dirs = brdf_grid_samples(lobe, V, alpha, s.polygonSamples);
         for (int i = 0; i < n; i++) {
-            glm::vec3 L = brdf_sample(lobe, V, alpha, grid_point(i, s.polygonSamples));
+            const glm::vec3 L = dirs[size_t(i)];
             BrdfSample b = brdf_eval(lobe, V, L, alpha);
             if (!(b.pdf > 0.0) || !(b.value > 0.0))
                 continue;
