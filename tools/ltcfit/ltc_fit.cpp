@@ -6,6 +6,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <mutex>
 #include <thread>
 
@@ -132,22 +134,74 @@ glm::vec2 grid_point(int i, int side) {
     return glm::vec2((float(i % side) + 0.5f) / float(side), (float(i / side) + 0.5f) / float(side));
 }
 
+// The BRDF's sample directions at the points of a side x side grid, in grid order: the same
+// directions as brdf_sample(grid_point(i, side)). For Beckmann, Sample_Beckmann_VNDF's costly
+// slope inversion (Beckmann_SampleSlopeX: Newton on erfc) depends only on the view (through
+// mu) and on u.x, which takes `side` values on the grid: it is computed once per column and
+// composed as Sample_Beckmann_VNDF does (same operations, so the same bits; checked against
+// Sample_Beckmann_VNDF on the first row of every grid).
+std::vector<glm::vec3> brdf_grid_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
+    std::vector<glm::vec3> out(size_t(side) * size_t(side));
+    if (lobe != Lobe::Beckmann || !(V.z > 0.0f)) {
+        for (int i = 0; i < side * side; i++)
+            out[size_t(i)] = brdf_sample(lobe, V, alpha, grid_point(i, side));
+        return out;
+    }
+    const float a = rtpbr::Alpha_Clamp(alpha);
+    const glm::vec3 wStd = glm::normalize(glm::vec3(V.x * a, V.y * a, V.z));
+    const float sinTheta = std::sqrt(wStd.x * wStd.x + wStd.y * wStd.y);
+    const float mu = sinTheta > 1e-6f ? wStd.z / sinTheta : 1e6f;
+    float cosPhi = 1.0f, sinPhi = 0.0f;
+    if (sinTheta > 0.0f) {
+        cosPhi = wStd.x / sinTheta;
+        sinPhi = wStd.y / sinTheta;
+    }
+    std::vector<float> sx(static_cast<size_t>(side)), sy(static_cast<size_t>(side));
+    for (int k = 0; k < side; k++) {
+        glm::vec2 u = grid_point(k * side + k, side); // column k, row k
+        sx[size_t(k)] = rtpbr::Beckmann_SampleSlopeX(mu, u.x);
+        sy[size_t(k)] = rtpbr::rtpbr_erfinv(2.0f * glm::clamp(u.y, 1e-6f, 1.0f - 1e-6f) - 1.0f);
+    }
+    for (int i = 0; i < side * side; i++) {
+        const float x = (cosPhi * sx[size_t(i % side)] - sinPhi * sy[size_t(i / side)]) * a;
+        const float y = (sinPhi * sx[size_t(i % side)] + cosPhi * sy[size_t(i / side)]) * a;
+        out[size_t(i)] = rtpbr::Reflect_About(V, glm::normalize(glm::vec3(-x, -y, 1.0f)));
+    }
+    for (int i = 0; i < side; i++) // the composition above must stay Sample_Beckmann_VNDF's
+        if (out[size_t(i)] != brdf_sample(lobe, V, alpha, grid_point(i, side))) {
+            fprintf(stderr, "ltcfit: internal error: the Beckmann grid sampler differs from Sample_Beckmann_VNDF\n");
+            std::abort();
+        }
+    return out;
+}
+
+struct WeightedDir {
+    glm::dvec3 L;
+    double w; // f NoL / pdf
+};
+
 struct Moments {
     double norm = 0, fresnel = 0, f82 = 0;
     glm::dvec3 avgDir{0, 0, 1};
+    std::vector<WeightedDir> samples; // the samples with w > 0, if kept (polygon refinement)
+    int sampleCount = 0;
 };
 
 // Integrals of f NoL by visible-normal sampling (the weights f NoL / pdf are bounded).
-Moments brdf_moments(Lobe lobe, glm::vec3 V, float alpha, int side) {
+Moments brdf_moments(Lobe lobe, glm::vec3 V, float alpha, int side, bool keep) {
     Moments m;
+    m.sampleCount = side * side;
     glm::dvec3 dir(0.0);
     int n = side * side;
+    const std::vector<glm::vec3> dirs = brdf_grid_samples(lobe, V, alpha, side);
     for (int i = 0; i < n; i++) {
-        glm::vec3 L = brdf_sample(lobe, V, alpha, grid_point(i, side));
+        glm::vec3 L = dirs[size_t(i)];
         BrdfSample b = brdf_eval(lobe, V, L, alpha);
         if (!(b.pdf > 0.0))
             continue;
         double w = b.value / b.pdf;
+        if (keep && w > 0.0)
+            m.samples.push_back({glm::dvec3(L), w});
         double VoH = glm::clamp(double(glm::dot(V, glm::normalize(V + L))), 0.0, 1.0);
         double s = 1.0 - VoH;
         double s5 = s * s * s * s * s;
@@ -179,10 +233,11 @@ struct ErrorSamples {
 ErrorSamples error_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
     ErrorSamples es;
     int n = side * side;
+    const std::vector<glm::vec3> dirs = brdf_grid_samples(lobe, V, alpha, side);
     for (int i = 0; i < n; i++) {
         glm::vec2 u = grid_point(i, side);
         es.cosine.push_back(glm::dvec3(rtpbr::Sample_CosineHemisphere(u)));
-        glm::vec3 L = brdf_sample(lobe, V, alpha, u);
+        glm::vec3 L = dirs[size_t(i)];
         es.brdfL.push_back(L);
         es.brdf.push_back(brdf_eval(lobe, V, L, alpha));
     }
@@ -226,54 +281,17 @@ double ltc_error(const Ltc &ltc, const ErrorSamples &es, Lobe lobe, glm::vec3 V,
 // covering the hemisphere, plus squares centred on the lobe (weighted peakWeight):
 //   e_k = |norm / mass * I_ltc(k) - I_brdf(k)| / (I_brdf(k) + floor * albedo).
 
-// A square of half-size `half` at distance 1 in direction c (unit), facing the origin.
+// A square light: centre c at distance 1 from the shading point, its plane's normal d
+// pointing away from the shading point (the light faces the point), axes e1, e2, half-size.
+// ring >= 0: a floor square (see test_squares), whose error is relative to its ring.
 struct TestSquare {
-    glm::dvec3 c, e1, e2;
-    double half, weight;
+    glm::dvec3 c, d, e1, e2;
+    double half = 0, weight = 0;
+    int ring = -1;
+    double cosCone = 1;     // cos of the largest angle between c and a direction in the square
+    glm::dvec3 clipped[8];  // the square clipped to the horizon (constant per cell)
+    int clippedCount = 0;
 };
-
-TestSquare make_square(glm::dvec3 c, double half, double weight) {
-    TestSquare s;
-    s.c = glm::normalize(c);
-    s.e1 = glm::normalize(std::fabs(s.c.z) < 0.9 ? glm::cross(glm::dvec3(0, 0, 1), s.c) : glm::cross(glm::dvec3(1, 0, 0), s.c));
-    s.e2 = glm::cross(s.c, s.e1);
-    s.half = half;
-    s.weight = weight;
-    return s;
-}
-
-// The lobe is symmetric about the plane of incidence (y = 0): azimuths 0 (the viewer's side)
-// to 180 degrees (the mirror side) suffice.
-std::vector<TestSquare> test_squares(glm::dvec3 V, glm::dvec3 avgDir, double alpha, double peakWeight) {
-    std::vector<TestSquare> v;
-    const double deg = kPi / 180.0;
-    for (double el : {8.0, 20.0, 35.0, 50.0, 65.0, 80.0, 90.0})
-        for (double az = 0.0; az <= 180.0 && (el < 90.0 || az == 0.0); az += 30.0)
-            for (double h : {0.15, 0.4, 1.0})
-                v.push_back(make_square(glm::dvec3(std::cos(el * deg) * std::cos(az * deg),
-                                                   std::cos(el * deg) * std::sin(az * deg), std::sin(el * deg)),
-                                        h, 1.0));
-    glm::dvec3 mirror(-V.x, 0.0, std::max(V.z, 0.1)); // not under the horizon
-    // Sharp lobes (alpha below ~0.02) fit inside the smallest of these: squares of the lobe's
-    // own width (alpha, 3 alpha) keep its shape measured.
-    for (glm::dvec3 c : {mirror, avgDir}) // consecutive squares of one centre (see polygon_refs)
-        for (double h : {alpha, 3.0 * alpha, 0.05, 0.1, 0.2, 0.4})
-            if (h >= 0.05 || 3.0 * alpha < 0.05)
-                v.push_back(make_square(c, h, peakWeight));
-    return v;
-}
-
-// L's coordinates on the plane of the square (dot(c, x) = 1) along e1, e2: L is in the square
-// when both are within half. Squares of one centre share the projection.
-bool project_on_square(const TestSquare &s, glm::dvec3 L, double &u, double &v) {
-    double den = glm::dot(L, s.c);
-    if (!(den > 0.0))
-        return false;
-    glm::dvec3 q = L / den - s.c;
-    u = std::fabs(glm::dot(q, s.e1));
-    v = std::fabs(glm::dot(q, s.e2));
-    return true;
-}
 
 // Sutherland-Hodgman against the half-space dot(n, p) >= 0 (convex polygon, at most 10 vertices out).
 int clip_half_space(const glm::dvec3 *in, int n, glm::dvec3 nrm, glm::dvec3 *out) {
@@ -289,16 +307,99 @@ int clip_half_space(const glm::dvec3 *in, int n, glm::dvec3 nrm, glm::dvec3 *out
     return m;
 }
 
-// The LTC's integral over the square's part above the horizon (as ltc.h computes it, in
-// double): clipped to z >= 0 and to the LTC's support, transformed by M^-1, Lambert's formula.
-double ltc_square_integral(const Ltc &l, const TestSquare &s) {
+TestSquare finish_square(TestSquare s) {
     glm::dvec3 p[4] = {s.c - s.half * s.e1 - s.half * s.e2, s.c + s.half * s.e1 - s.half * s.e2,
                        s.c + s.half * s.e1 + s.half * s.e2, s.c - s.half * s.e1 + s.half * s.e2};
-    glm::dvec3 a[8], b[10];
-    int n = clip_half_space(p, 4, glm::dvec3(0, 0, 1), a);
-    if (n < 3)
+    s.cosCone = 1.0;
+    for (const glm::dvec3 &q : p) // the farthest direction of a convex polygon is a corner's
+        s.cosCone = std::min(s.cosCone, glm::dot(glm::normalize(q), s.c));
+    s.cosCone -= 1e-12;
+    s.clippedCount = clip_half_space(p, 4, glm::dvec3(0, 0, 1), s.clipped);
+    return s;
+}
+
+// Facing the shading point.
+TestSquare make_square(glm::dvec3 c, double half, double weight) {
+    TestSquare s;
+    s.c = glm::normalize(c);
+    s.d = s.c;
+    s.e1 = glm::normalize(std::fabs(s.c.z) < 0.9 ? glm::cross(glm::dvec3(0, 0, 1), s.c) : glm::cross(glm::dvec3(1, 0, 0), s.c));
+    s.e2 = glm::cross(s.c, s.e1);
+    s.half = half;
+    s.weight = weight;
+    return finish_square(s);
+}
+
+// Horizontal, facing down (a ceiling panel seen from the floor).
+TestSquare make_ceiling_square(glm::dvec3 c, double half, double weight, int ring) {
+    TestSquare s;
+    s.c = glm::normalize(c);
+    s.d = glm::dvec3(0, 0, 1);
+    s.e1 = glm::dvec3(1, 0, 0);
+    s.e2 = glm::dvec3(0, 1, 0);
+    s.half = half;
+    s.weight = weight;
+    s.ring = ring;
+    return finish_square(s);
+}
+
+// The lobe is symmetric about the plane of incidence (y = 0): azimuths 0 (the viewer's side)
+// to 180 degrees (the mirror side) suffice.
+std::vector<TestSquare> test_squares(glm::dvec3 V, glm::dvec3 avgDir, double alpha, const FitSettings &s) {
+    std::vector<TestSquare> v;
+    const double deg = kPi / 180.0;
+    auto dir = [&](double el, double az) {
+        return glm::dvec3(std::cos(el * deg) * std::cos(az * deg), std::cos(el * deg) * std::sin(az * deg),
+                          std::sin(el * deg));
+    };
+    for (double el : {8.0, 20.0, 35.0, 50.0, 65.0, 80.0, 90.0})
+        for (double az = 0.0; az <= 180.0 && (el < 90.0 || az == 0.0); az += 30.0)
+            for (double h : {0.15, 0.4, 1.0})
+                v.push_back(make_square(dir(el, az), h, 1.0));
+    glm::dvec3 mirror(-V.x, 0.0, std::max(V.z, 0.1)); // not under the horizon
+    // Sharp lobes (alpha below ~0.02) fit inside the smallest of these: squares of the lobe's
+    // own width (alpha, 3 alpha) keep its shape measured.
+    for (glm::dvec3 c : {mirror, avgDir})
+        for (double h : {alpha, 3.0 * alpha, 0.05, 0.1, 0.2, 0.4})
+            if (h >= 0.05 || 3.0 * alpha < 0.05)
+                v.push_back(make_square(c, h, s.peakWeight));
+    // Floors (issue 19): ceiling panels near the floor's horizon, all around: a ring of
+    // azimuths per elevation. What a floor image shows is relative to its brightest part,
+    // so each square's error is relative to its own integral + horizonFloor x the brightest
+    // integral of its ring (see polygon_refs).
+    if (s.horizonWeight > 0.0) {
+        int ring = 0;
+        for (double el : {3.0, 7.0, 12.0, 17.0, 25.0, 35.0}) {
+            for (double az : {0.0, 45.0, 90.0, 135.0, 180.0})
+                for (double h : {0.1, 0.3})
+                    v.push_back(make_ceiling_square(dir(el, az), h, s.horizonWeight * (az == 0.0 || az == 180.0 ? 1.0 : 2.0), ring));
+            ring++;
+        }
+    }
+    return v;
+}
+
+// Whether direction L (unit) passes through the square.
+bool in_square(const TestSquare &s, glm::dvec3 L) {
+    if (glm::dot(L, s.c) < s.cosCone)
+        return false;
+    double den = glm::dot(L, s.d);
+    if (!(den > 0.0))
+        return false;
+    // facing squares (d = c, the plane dot(c, x) = 1): L / den, as before issue 19 (same bits)
+    glm::dvec3 q = s.ring < 0 ? L / den - s.c : L * (glm::dot(s.c, s.d) / den) - s.c;
+    return std::fabs(glm::dot(q, s.e1)) <= s.half && std::fabs(glm::dot(q, s.e2)) <= s.half;
+}
+
+// The LTC's integral over the square's part above the horizon (as ltc.h computes it, in
+// double): clipped to z >= 0 (once per cell) and to the LTC's support, transformed by M^-1,
+// Lambert's formula.
+double ltc_square_integral(const Ltc &l, const TestSquare &s) {
+    if (s.clippedCount < 3)
         return 0.0;
-    n = clip_half_space(a, n, glm::dvec3(l.invM[0][2], l.invM[1][2], l.invM[2][2]), b); // row 2 of M^-1
+    glm::dvec3 b[10];
+    const glm::dvec3 support(l.invM[0][2], l.invM[1][2], l.invM[2][2]); // row 2 of M^-1
+    int n = clip_half_space(s.clipped, s.clippedCount, support, b);
     if (n < 3)
         return 0.0;
     for (int i = 0; i < n; i++)
@@ -316,44 +417,64 @@ double ltc_square_integral(const Ltc &l, const TestSquare &s) {
 struct PolygonRefs {
     std::vector<TestSquare> squares;
     std::vector<double> integral; // of f NoL over each square
+    std::vector<double> denom;    // of each square's relative error
     double albedo = 0.0;
 };
 
-// The BRDF's integrals over the squares by the visible-normal sampler on a side x side grid
-// (weights f NoL / pdf are bounded by 1).
-PolygonRefs polygon_refs(Lobe lobe, glm::vec3 V, float alpha, glm::dvec3 avgDir, int side, double peakWeight) {
+// The BRDF's integrals over the squares by the visible-normal sampler on a fixed grid
+// (weights f NoL / pdf are bounded by 1): their own polygonSamples^2 points, or (--fast) the
+// moments' samples.
+PolygonRefs polygon_refs(Lobe lobe, const Moments &mom, glm::vec3 V, float alpha, const FitSettings &s) {
     PolygonRefs r;
-    r.squares = test_squares(glm::dvec3(V), avgDir, double(alpha), peakWeight);
+    r.squares = test_squares(glm::dvec3(V), mom.avgDir, double(alpha), s);
     r.integral.assign(r.squares.size(), 0.0);
-    const int n = side * side;
-    for (int i = 0; i < n; i++) {
-        glm::vec3 L = brdf_sample(lobe, V, alpha, grid_point(i, side));
-        BrdfSample b = brdf_eval(lobe, V, L, alpha);
-        if (!(b.pdf > 0.0) || !(b.value > 0.0))
-            continue;
-        double w = b.value / b.pdf;
-        r.albedo += w;
-        double u = 0.0, v = 0.0;
-        bool front = false;
-        for (size_t k = 0; k < r.squares.size(); k++) {
-            if (k == 0 || r.squares[k].c != r.squares[k - 1].c)
-                front = project_on_square(r.squares[k], glm::dvec3(L), u, v);
-            if (front && u <= r.squares[k].half && v <= r.squares[k].half)
+    auto add = [&](glm::dvec3 L, double w) {
+        for (size_t k = 0; k < r.squares.size(); k++)
+            if (in_square(r.squares[k], L))
                 r.integral[k] += w;
+    };
+    if (s.fast) {
+        for (const WeightedDir &wd : mom.samples)
+            add(wd.L, wd.w);
+        r.albedo = mom.norm;
+        for (double &x : r.integral)
+            x /= double(mom.sampleCount);
+    } else {
+        const int n = s.polygonSamples * s.polygonSamples;
+        const std::vector<glm::vec3> dirs = brdf_grid_samples(lobe, V, alpha, s.polygonSamples);
+        for (int i = 0; i < n; i++) {
+            const glm::vec3 L = dirs[size_t(i)];
+            BrdfSample b = brdf_eval(lobe, V, L, alpha);
+            if (!(b.pdf > 0.0) || !(b.value > 0.0))
+                continue;
+            double w = b.value / b.pdf;
+            r.albedo += w;
+            add(glm::dvec3(L), w);
         }
+        for (double &x : r.integral)
+            x /= n;
+        r.albedo /= n;
     }
-    for (double &x : r.integral)
-        x /= n;
-    r.albedo /= n;
+    double ringMax[16] = {0};
+    for (size_t k = 0; k < r.squares.size(); k++)
+        if (r.squares[k].ring >= 0)
+            ringMax[r.squares[k].ring] = std::max(ringMax[r.squares[k].ring], r.integral[k]);
+    for (size_t k = 0; k < r.squares.size(); k++) {
+        const TestSquare &q = r.squares[k];
+        double floor = q.ring >= 0 && !s.horizonAlbedoFloor ? s.horizonFloor * ringMax[q.ring]
+                       : q.ring >= 0                        ? s.horizonFloor * r.albedo
+                                                            : s.polygonFloor * r.albedo;
+        r.denom.push_back(r.integral[k] + std::max(floor, 1e-30));
+    }
     return r;
 }
 
 // Weighted mean of the squared relative errors of the integrals (norm = the albedo).
-double polygon_error(const Ltc &l, const PolygonRefs &r, double norm, double floor) {
+double polygon_error(const Ltc &l, const PolygonRefs &r, double norm) {
     const double scale = norm / l.mass_above_horizon();
     double sum = 0.0, wsum = 0.0;
     for (size_t k = 0; k < r.squares.size(); k++) {
-        double e = (scale * ltc_square_integral(l, r.squares[k]) - r.integral[k]) / (r.integral[k] + floor * r.albedo);
+        double e = (scale * ltc_square_integral(l, r.squares[k]) - r.integral[k]) / r.denom[k];
         sum += r.squares[k].weight * e * e;
         wsum += r.squares[k].weight;
     }
@@ -440,7 +561,9 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
                                                     : rtpbr::Alpha_FromPerceptual(r);
     const glm::vec3 V(float(std::sqrt(1.0 - nov * nov)), 0.0f, float(nov));
 
-    Moments mom = brdf_moments(lobe, V, alpha, s.momentSamples);
+    const bool refine = s.polygonSamples > 0 && lobe != Lobe::DisneyDiffuse && r >= s.polygonMinRoughness;
+    Moments mom = brdf_moments(lobe, V, alpha, s.momentSamples, refine && s.fast);
+
     Ltc ltc;
     const bool isotropic = nov >= 1.0; // V = N: the lobe is symmetric about the normal
     // The frame's Z starts at the lobe's average direction (Heitz et al.); with
@@ -469,7 +592,11 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
         l.X = glm::dvec3(l.Z.z, 0.0, -l.Z.x);
         l.update();
     };
-    const ErrorSamples fitSamples = error_samples(lobe, V, alpha, s.fitSamples);
+    // --fast: where the polygon refinement follows, the L3 fit is only its start (and
+    // fallback), and a coarser one is taken.
+    const bool coarseL3 = refine && s.fast;
+    const int l3Iterations = coarseL3 ? s.refinedL3Iterations : s.maxIterations;
+    const ErrorSamples fitSamples = error_samples(lobe, V, alpha, coarseL3 ? s.refinedL3Samples : s.fitSamples);
     auto cost = [&](const Params &p) {
         Ltc l = ltc;
         apply(p, l);
@@ -483,7 +610,7 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     // Heitz et al.'s 3 parameters (Z at the average direction) ...
     Params best = emptyLobe ? Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation}
                             : nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, 0.0}, step,
-                                          isotropic ? 1 : 3, s.maxIterations, 1e-5);
+                                          isotropic ? 1 : 3, l3Iterations, 1e-5);
     // Candidates: Heitz et al.'s fit, the 4-parameter fit from the neighbour's rotation, and
     // the neighbour's shape itself. The lowest L3 cost wins among those that overlap the lobe
     // (relative L1 error < 1); if none does, the lowest L1 error. The L3 cost, dominated by
@@ -498,7 +625,7 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     std::vector<Params> candidates{best};
     if (s.freeRotation && !isotropic && !emptyLobe)
         candidates.push_back(nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation}, step,
-                                         4, s.maxIterations, 1e-5));
+                                         4, l3Iterations, 1e-5));
     if (start && !emptyLobe)
         candidates.push_back(Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation});
     double bestCost = HUGE_VAL, bestL1 = HUGE_VAL;
@@ -516,12 +643,13 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     // Second stage: the error of the integrals over square lights, from the best of the L3
     // fit and the neighbour's shape; the L3 fit stays if nothing improves on it.
     double polyErr = 0.0;
-    if (s.polygonSamples > 0 && lobe != Lobe::DisneyDiffuse && r >= s.polygonMinRoughness) {
-        const PolygonRefs refs = polygon_refs(lobe, V, alpha, mom.avgDir, s.polygonSamples, s.peakWeight);
+    if (refine) {
+        const PolygonRefs refs = polygon_refs(lobe, mom, V, alpha, s);
+
         auto pcost = [&](const Params &p) {
             Ltc l = ltc;
             apply(p, l);
-            return polygon_error(l, refs, mom.norm, s.polygonFloor);
+            return polygon_error(l, refs, mom.norm);
         };
         Params from = best;
         double fromCost = pcost(best);
@@ -620,6 +748,7 @@ Table fit_table(Lobe lobe, const FitSettings &s, const std::function<void(int, i
     for (std::thread &th : pool)
         th.join();
     t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
     return t;
 }
 

@@ -46,6 +46,16 @@ struct FitSettings {
     int polygonSamples = 256;
     double polygonFloor = 0.1;  // relative error denominator: integral + floor x albedo
     double peakWeight = 30.0;   // weight of the squares centred on the lobe (mirror / average)
+    // --fast (issue 19, measured in ltc.md; not what the committed tables were fitted with):
+    // the reference integrals from the moments' momentSamples^2 samples instead of their own,
+    // and, where the refinement follows, an L3 fit from refinedL3Samples^2 samples and at most
+    // refinedL3Iterations iterations (it only starts the refinement).
+    bool fast = false;
+    int refinedL3Samples = 16;
+    int refinedL3Iterations = 100;
+    double horizonWeight = 0.0;
+    double horizonFloor = 0.1;
+    bool horizonAlbedoFloor = false;
     // No polygon refinement below this perceptual roughness: the squares cannot resolve
     // lobes that narrow, and the refinement blew the smoothest columns up (engine spikes of
     // 1e6 on clear coats and roughness-0 spheres of disney_grid); the L3 fit stays there.

@@ -9,6 +9,8 @@
 // GGX and Beckmann arrays read back from the existing one (the same bytes). Deterministic: fixed sample grids, no random numbers; the tables do not depend on
 // the thread count.
 #include <algorithm>
+#include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -53,9 +55,19 @@ std::string settings_line(const FitSettings &s, bool quick) {
       << " threads" << (quick ? " (QUICK, low-quality settings)" : "") << "; L" << s.errorPower << " error"
       << (s.horizonNormalised ? " above the horizon, integrals divided by the LTC's mass above it" : "")
       << (s.freeRotation ? "; best of the 3- and 4-parameter fits" : "; 3-parameter fit");
-    if (s.polygonSamples > 0)
-        o << "; microfacet lobes refined on the integrals over square lights (references from " << s.polygonSamples
-          << "^2 samples, floor " << s.polygonFloor << " x albedo, peak weight " << s.peakWeight << ")";
+    if (s.polygonSamples > 0) {
+        o << "; microfacet lobes refined on the integrals over square lights (references from ";
+        if (s.fast)
+            o << "the moments' " << s.momentSamples << "^2 samples, L3 start from " << s.refinedL3Samples
+              << "^2 samples and at most " << s.refinedL3Iterations << " iterations (--fast)";
+        else
+            o << s.polygonSamples << "^2 samples";
+        o << ", floor " << s.polygonFloor << " x albedo, peak weight " << s.peakWeight;
+        if (s.horizonWeight > 0.0)
+            o << "; floor squares weighted " << s.horizonWeight << ", floor " << s.horizonFloor
+              << (s.horizonAlbedoFloor ? " x albedo" : " x their ring's brightest");
+        o << ")";
+    }
     o << ".\n\n";
     return o.str();
 }
@@ -144,7 +156,7 @@ bool update_markdown(const std::string &path, const std::string &tag, const std:
 }
 
 int usage() {
-    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon] [--power P (1..3)] [--diffuse-only] [--sheen-only] [--no-polygon] [--peak-weight W] [--polygon-floor F] [--dev-ggx-from-row R]\n");
+    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon] [--power P (1..3)] [--diffuse-only] [--sheen-only] [--no-polygon] [--peak-weight W] [--polygon-floor F] [--fast] [--horizon-weight W] [--horizon-floor F] [--horizon-albedo-floor] [--dev-ggx-from-row R]\n");
     return 2;
 }
 
@@ -181,8 +193,20 @@ int main(int argc, char **argv) {
             s.polygonFloor = atof(argv[++i]);
             if (!(s.polygonFloor > 0.0 && s.polygonFloor <= 10.0))
                 return usage();
-        } else if (!strcmp(argv[i], "--no-polygon")) // the L3 fit alone, without the polygon refinement
+        } else if (!strcmp(argv[i], "--horizon-weight") && i + 1 < argc) { // of each floor square (0 = none)
+            s.horizonWeight = atof(argv[++i]);
+            if (!(s.horizonWeight >= 0.0 && s.horizonWeight <= 1000.0))
+                return usage();
+        } else if (!strcmp(argv[i], "--horizon-floor") && i + 1 < argc) { // x the ring's brightest integral
+            s.horizonFloor = atof(argv[++i]);
+            if (!(s.horizonFloor > 0.0 && s.horizonFloor <= 10.0))
+                return usage();
+        } else if (!strcmp(argv[i], "--horizon-albedo-floor")) // floor squares' floor x albedo instead
+            s.horizonAlbedoFloor = true;
+        else if (!strcmp(argv[i], "--no-polygon")) // the L3 fit alone, without the polygon refinement
             s.polygonSamples = 0;
+        else if (!strcmp(argv[i], "--fast")) // coarser references and L3 start (issue 19; see ltc.md)
+            s.fast = true;
         else if (!strcmp(argv[i], "--diffuse-only"))
             diffuseOnly = true;
         else if (!strcmp(argv[i], "--sheen-only")) // the sheen lobe into its own header (ltc_sheen.cpp)
@@ -236,13 +260,18 @@ int main(int argc, char **argv) {
 
     std::vector<Table> tables;
     double total = 0;
+    const std::clock_t cpuStart = std::clock();
     std::vector<Lobe> lobes{Lobe::GGX, Lobe::Beckmann, Lobe::DisneyDiffuse};
     if (diffuseOnly)
         lobes = {Lobe::DisneyDiffuse};
     for (Lobe lobe : lobes) {
         fprintf(stderr, "ltcfit: fitting %s, %dx%d cells, %d threads\n", lobe_name(lobe), s.size, s.size, s.threads);
+        const auto start = std::chrono::steady_clock::now();
         tables.push_back(fit_table(lobe, s, [&](int done, int rows) {
-            fprintf(stderr, "\rltcfit: %s rows %d/%d", lobe_name(lobe), done, rows);
+            // elapsed, and the time left if the remaining rows cost what the done ones did
+            double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            fprintf(stderr, "\rltcfit: %s rows %d/%d, %.0f s, about %.0f s left ", lobe_name(lobe), done, rows, t,
+                    t / done * (rows - done));
             fflush(stderr);
         }));
         Stats st = error_stats(tables.back());
@@ -256,7 +285,8 @@ int main(int argc, char **argv) {
         fprintf(stderr, "ltcfit: %s worst cell: roughness %.3f, NoV %.4f\n", lobe_name(lobe),
                 cell_roughness(int(worst % size_t(s.size)), s.size), cell_nov(int(worst / size_t(s.size)), s.size));
     }
-    fprintf(stderr, "ltcfit: total fitting time %.1f s\n", total);
+    fprintf(stderr, "ltcfit: total fitting time %.1f s wall, %.1f s CPU (all threads)\n", total,
+            double(std::clock() - cpuStart) / CLOCKS_PER_SEC);
     const Table &diffuse = tables.back();
     fprintf(stderr, "ltcfit: disney_diffuse albedo vs Disney_DiffuseAlbedo: max relative difference %.2e\n",
             diffuse_albedo_error(diffuse));

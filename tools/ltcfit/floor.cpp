@@ -1,0 +1,221 @@
+// rtpbr-ltc-floor: LTC against a converged quadrature on floors lit by lights near their
+// horizon and seen at low angles (issue 19). Per case (roughness, light elevation, NoV), a
+// floor around the light is shaded twice: one patch of P x P points per light azimuth 0, 30,
+// ..., 180 degrees from the viewer's side (the lobe is symmetric about the plane of incidence:
+// 30..150 stand for their mirror images too and count twice), each shaded
+//   - LTC: the tables (the compiled-in rtpbr_ltc_tables.h, or --tables FILE) fetched with
+//     GPU-like bilinear filtering at LTC_LutCoord, LTC_PolygonToLocal + LTC_IntegrateLocal,
+//     times norm (F = 1): what a renderer computes;
+//   - reference: the integral of the true BRDF (the shaderlib's D x V, F = 1) x NoL over the
+//     light, by composite Gauss-Legendre quadrature over the light's area (no noise; the light
+//     is seen nearly edge-on, so the area parametrisation keeps the integrand smooth; across
+//     the plane of incidence, where the grazing lobe is narrow, on nodes crowded toward it, see
+//     quadrature()), checked against the same rule with half the points per axis (printed:
+//     the largest difference).
+// The light is a horizontal square of half-size 0.15 facing down (a ceiling panel), centred at
+// distance 1 from the patch centre in direction (elevation e, azimuth phi from the viewer's
+// side: 0 = the light between the eye and the floor, the "far floor" of a scene, 180 = the
+// mirror side, the near floor); the patch spans +-0.2 around its centre (elevations within
+// about +-20% of e); V is the same at every point (a distant camera) with NoV given.
+// Floor error of a case = sum |LTC - ref| / sum ref over all its points (the relative L1 error
+// of the floor image: dominated by the bright mirror side, as in a picture). Prints markdown
+// tables (per NoV: roughness x elevation; with the signed error of the far floor, azimuth 0,
+// and of the near floor, 180) and writes signed error maps.
+//
+//   rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] [--quick] [--threads T]
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+#include <thread>
+
+#include <OpenImageIO/imageio.h>
+
+#include "ltc_fit.hpp"
+#include "ltc_floor.hpp"
+
+using namespace ltcfloor;
+
+namespace {
+
+// Diverging colour: blue (LTC too dark) - white (exact) - red (too bright), saturating at +-50%.
+void diverging(float e, unsigned char rgb[3]) {
+    float t = std::clamp(e / 0.5f, -1.0f, 1.0f);
+    float a = std::fabs(t);
+    unsigned char lo = (unsigned char)std::lround(255.0f * (1.0f - a));
+    if (t >= 0) {
+        rgb[0] = 255, rgb[1] = lo, rgb[2] = lo;
+    } else {
+        rgb[0] = lo, rgb[1] = lo, rgb[2] = 255;
+    }
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    Lobe lobe = Lobe::GGX;
+    std::string tablesPath, png;
+    bool quick = false;
+    int threads = 2;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--lobe") && i + 1 < argc) {
+            std::string l = argv[++i];
+            if (l == "ggx")
+                lobe = Lobe::GGX;
+            else if (l == "beckmann")
+                lobe = Lobe::Beckmann;
+            else if (l == "diffuse")
+                lobe = Lobe::DisneyDiffuse;
+            else {
+                fprintf(stderr, "rtpbr-ltc-floor: unknown lobe '%s' (ggx, beckmann, diffuse)\n", l.c_str());
+                return 2;
+            }
+        } else if (!strcmp(argv[i], "--tables") && i + 1 < argc)
+            tablesPath = argv[++i];
+        else if (!strcmp(argv[i], "--png") && i + 1 < argc)
+            png = argv[++i];
+        else if (!strcmp(argv[i], "--quick"))
+            quick = true;
+        else if (!strcmp(argv[i], "--threads") && i + 1 < argc) {
+            threads = atoi(argv[++i]);
+            if (threads < 1 || threads > 64) {
+                fprintf(stderr, "rtpbr-ltc-floor: --threads must be 1..64\n");
+                return 2;
+            }
+        } else {
+            fprintf(stderr, "usage: rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] "
+                            "[--quick] [--threads T]\n");
+            return 2;
+        }
+    }
+    ltcfit::PackedTables packed;
+    Tables tab{lobe == Lobe::GGX ? rtpbr_ltc_ggx_1 : lobe == Lobe::Beckmann ? rtpbr_ltc_beckmann_1 : rtpbr_ltc_disney_diffuse_1,
+               lobe == Lobe::GGX ? rtpbr_ltc_ggx_2 : lobe == Lobe::Beckmann ? rtpbr_ltc_beckmann_2 : rtpbr_ltc_disney_diffuse_2};
+    if (!tablesPath.empty()) {
+        std::string quality, err;
+        if (!ltcfit::read_header(tablesPath, RTPBR_LTC_SIZE, packed, quality, err)) {
+            fprintf(stderr, "rtpbr-ltc-floor: error: %s\n", err.c_str());
+            return 1;
+        }
+        tab = lobe == Lobe::GGX        ? Tables{packed.ggx1.data(), packed.ggx2.data()}
+              : lobe == Lobe::Beckmann ? Tables{packed.beckmann1.data(), packed.beckmann2.data()}
+                                       : Tables{packed.diffuse1.data(), packed.diffuse2.data()};
+    }
+    const std::vector<float> rough = quick ? std::vector<float>{0.3f, 0.5f, 0.8f}
+                                           : std::vector<float>{0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.8f};
+    const std::vector<float> elevs = quick ? std::vector<float>{2.0f, 10.0f, 30.0f}
+                                           : std::vector<float>{2.0f, 5.0f, 10.0f, 20.0f, 40.0f};
+    const std::vector<float> novs = quick ? std::vector<float>{0.1f, 0.3f} : std::vector<float>{0.1f, 0.2f, 0.3f, 0.5f};
+    const std::vector<float> azims{0.0f, 30.0f, 60.0f, 90.0f, 120.0f, 150.0f, 180.0f};
+    const int P = quick ? 6 : 8, sub = quick ? 6 : 8;
+    std::vector<Case> cases;
+    for (float v : novs)
+        for (float r : rough)
+            for (float e : elevs)
+                for (float a : azims)
+                    cases.push_back({r, e, v, a});
+    std::vector<CaseResult> out(cases.size());
+    std::atomic<size_t> next{0};
+    std::atomic<size_t> done{0};
+    std::mutex m;
+    auto worker = [&]() {
+        for (size_t i = next++; i < cases.size(); i = next++) {
+            out[i] = run_case(cases[i], lobe, tab, P, sub);
+            size_t d = ++done;
+            std::lock_guard<std::mutex> lock(m);
+            fprintf(stderr, "\rrtpbr-ltc-floor: %zu/%zu", d, cases.size());
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; t++)
+        pool.emplace_back(worker);
+    for (std::thread &t : pool)
+        t.join();
+    fprintf(stderr, "\n");
+
+    auto find = [&](float r, float e, float v, float a) -> const CaseResult & {
+        for (const CaseResult &c : out)
+            if (c.c.roughness == r && c.c.elevDeg == e && c.c.nov == v && c.c.azimDeg == a)
+                return c;
+        return out[0];
+    };
+    struct Floor {
+        double err, farSigned, nearSigned;
+    };
+    auto floor_of = [&](float r, float e, float v) {
+        std::vector<CaseResult> az;
+        for (float a : azims)
+            az.push_back(find(r, e, v, a));
+        return Floor{ltcfloor::floor_error(az), find(r, e, v, 0.0f).signedErr, find(r, e, v, 180.0f).signedErr};
+    };
+    double quadWorst = 0, grazingWorst = 0, sumAll = 0, sumGrazing = 0;
+    int nAll = 0, nGrazing = 0;
+    const CaseResult *quadCase = &out[0];
+    for (const CaseResult &c : out)
+        if (c.quadDiff > quadWorst) {
+            quadWorst = c.quadDiff;
+            quadCase = &c;
+        }
+    printf("%s floor error (sum |LTC - ref| / sum ref over the floor), %s tables; [signed error of the far floor "
+           "(light azimuth 0, on the viewer's side) / of the near floor (azimuth 180, the mirror side)]:\n",
+           ltcmc::lobe_name(lobe), tablesPath.empty() ? "compiled-in" : tablesPath.c_str());
+    for (float v : novs) {
+        printf("\nNoV = %.1f\n\n| r |", double(v));
+        for (float e : elevs)
+            printf(" %g deg |", double(e));
+        printf("\n|---|");
+        for (size_t i = 0; i < elevs.size(); i++)
+            printf("---|");
+        printf("\n");
+        for (float r : rough) {
+            printf("| %.1f |", double(r));
+            for (float e : elevs) {
+                Floor f = floor_of(r, e, v);
+                printf(" **%.1f%%** [%+.0f%% / %+.0f%%] |", 100 * f.err, 100 * f.farSigned, 100 * f.nearSigned);
+                sumAll += f.err;
+                nAll++;
+                if (e <= 10.0f && v <= 0.3f && r >= 0.3f && r <= 0.8f) {
+                    grazingWorst = std::max(grazingWorst, f.err);
+                    sumGrazing += f.err;
+                    nGrazing++;
+                }
+            }
+            printf("\n");
+        }
+    }
+    printf("\nAll %d floors: mean floor error %.2f%%; grazing (elevation <= 10, NoV <= 0.3, r 0.3-0.8, %d floors): "
+           "mean %.2f%%, worst %.2f%%. Quadrature: largest difference between %d x %d points and half as many per axis, relative to the "
+           "patch's largest value: %.1e (r %.1f, elevation %g, NoV %.1f, azimuth %g).\n",
+           nAll, 100 * sumAll / nAll, nGrazing, 100 * sumGrazing / std::max(nGrazing, 1), 100 * grazingWorst, 8 * sub,
+           16 * sub, quadWorst, double(quadCase->c.roughness), double(quadCase->c.elevDeg), double(quadCase->c.nov),
+           double(quadCase->c.azimDeg));
+
+    if (!png.empty()) {
+        // Rows: NoV (top = 0.1) x roughness; columns: elevation x azimuth. One P x P tile per
+        // case (scaled 4x), 2-pixel gaps, 6-pixel gaps between NoV blocks and elevation groups.
+        const int s = 4, tile = P * s, gap = 2, big = 8;
+        const int nc = int(elevs.size() * azims.size()), nr = int(novs.size() * rough.size());
+        const int w = nc * (tile + gap) + int(elevs.size()) * big, h = nr * (tile + gap) + int(novs.size()) * big;
+        std::vector<unsigned char> img(size_t(w) * h * 3, 96);
+        for (size_t vi = 0; vi < novs.size(); vi++)
+            for (size_t ri = 0; ri < rough.size(); ri++)
+                for (size_t ei = 0; ei < elevs.size(); ei++)
+                    for (size_t ai = 0; ai < azims.size(); ai++) {
+                        const CaseResult &c = find(rough[ri], elevs[ei], novs[vi], azims[ai]);
+                        int x0 = int(ei * azims.size() + ai) * (tile + gap) + int(ei) * big;
+                        int y0 = int(vi * rough.size() + ri) * (tile + gap) + int(vi) * big;
+                        for (int y = 0; y < tile; y++)
+                            for (int x = 0; x < tile; x++)
+                                diverging(c.map[size_t(y / s) * P + size_t(x / s)],
+                                          &img[(size_t(y0 + y) * w + size_t(x0 + x)) * 3]);
+                    }
+        auto o = OIIO::ImageOutput::create(png);
+        OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
+        if (!o || !o->open(png, spec) || !o->write_image(OIIO::TypeDesc::UINT8, img.data()) || !o->close()) {
+            fprintf(stderr, "rtpbr-ltc-floor: error: cannot write %s\n", png.c_str());
+            return 1;
+        }
+    }
+    return 0;
+}

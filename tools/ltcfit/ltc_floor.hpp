@@ -1,0 +1,130 @@
+// LTC against a converged quadrature on floors lit by lights near their horizon (issue 19):
+// the cases of rtpbr-ltc-floor (tools/ltcfit/floor.cpp, which documents the geometry and the
+// error measure) and of the test (tests/ltc/test_ltc_mc.cpp, a reduced sweep).
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "ltc_mc.hpp"
+
+namespace ltcfloor {
+
+using ltcmc::float2;
+using ltcmc::float3;
+using ltcmc::float4;
+using ltcmc::Lobe;
+
+struct Case {
+    float roughness, elevDeg, nov, azimDeg;
+};
+
+struct CaseResult {
+    Case c;
+    double sumAbs = 0, sumSigned = 0, sumRef = 0;
+    double err = 0;         // sum |ltc - ref| / sum ref
+    double signedErr = 0;   // sum (ltc - ref) / sum ref
+    double quadDiff = 0;    // max |ref(n) - ref(n/2)| / max ref over the patch
+    std::vector<float> map; // (ltc - ref) / ref per point, P x P
+};
+
+constexpr float kHalf = 0.15f;  // light half-size
+constexpr float kPatch = 0.2f;  // patch half-size
+
+// Gauss-Legendre nodes and weights on [-1, 1], 8 points (Abramowitz & Stegun 25.4.30).
+constexpr double kGlX[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+constexpr double kGlW[4] = {0.3626837833783620, 0.3137066859002945, 0.2223810344533745, 0.1012285362903763};
+
+// n-point composite Gauss-Legendre rule (panels of 8) on [a, b]: nodes and weights appended.
+inline void gauss_legendre(double a, double b, int panels, std::vector<double> &x, std::vector<double> &w) {
+    const double h = (b - a) / panels;
+    for (int k = 0; k < panels; k++)
+        for (int i = 0; i < 8; i++) {
+            double t = i < 4 ? -kGlX[3 - i] : kGlX[i - 4], wt = i < 4 ? kGlW[3 - i] : kGlW[i - 4];
+            x.push_back(a + h * (k + 0.5 * (t + 1.0)));
+            w.push_back(0.5 * h * wt);
+        }
+}
+
+// Integral over the light (horizontal square at centre.z facing down) of f NoL seen from point
+// p. Across the plane of incidence (y) the lobe of a grazing view is very narrow (H turns by
+// about dy / (V.z + L.z) for a lateral step dy of L): there y = p.y + w sinh(t) with w = 1e-3
+// puts the nodes densest at the plane of incidence (y = p.y) and still covers the whole
+// light; `sub` panels of 8 points along x, 2 sub along t.
+inline double quadrature(const ltcmc::Brdf &brdf, float3 V, float3 p, float3 centre, int sub) {
+    std::vector<double> xs, wx, ts, wt;
+    gauss_legendre(centre.x - kHalf, centre.x + kHalf, sub, xs, wx);
+    const double w = 1e-3;
+    gauss_legendre(std::asinh((centre.y - kHalf - p.y) / w), std::asinh((centre.y + kHalf - p.y) / w), 2 * sub, ts, wt);
+    double sum = 0.0;
+    for (size_t i = 0; i < xs.size(); i++)
+        for (size_t j = 0; j < ts.size(); j++) {
+            double y = p.y + w * std::sinh(ts[j]);
+            double jac = w * std::cosh(ts[j]);
+            glm::dvec3 d(xs[i] - p.x, y - p.y, double(centre.z) - p.z);
+            double d2 = glm::dot(d, d);
+            glm::dvec3 L = d / std::sqrt(d2);
+            float pdf;
+            double f = brdf.value_cos(V, float3(L), pdf); // f NoL
+            // dA -> solid angle: cos at the light (its normal is -z) / d^2
+            sum += f * L.z / d2 * wx[i] * wt[j] * jac;
+        }
+    return sum;
+}
+
+struct Tables {
+    const float *t1, *t2;
+};
+
+inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub) {
+    CaseResult r;
+    r.c = c;
+    const float deg = 3.14159265f / 180.0f;
+    float3 V(std::sqrt(1.0f - c.nov * c.nov), 0.0f, c.nov);
+    float e = c.elevDeg * deg, az = c.azimDeg * deg;
+    float3 centre(std::cos(e) * std::cos(az), std::cos(e) * std::sin(az), std::sin(e));
+    ltcmc::Brdf brdf = ltcmc::Brdf::make(lobe, c.roughness);
+    float3 N(0, 0, 1);
+    float4 l1 = ltcmc::fetch(tab.t1, rtpbr::LTC_LutCoord(c.nov, c.roughness));
+    float4 l2 = ltcmc::fetch(tab.t2, rtpbr::LTC_LutCoord(c.nov, c.roughness));
+    rtpbr::float3x3 frame = rtpbr::LTC_Frame(N, V);
+    double sumAbs = 0, sumSigned = 0, sumRef = 0, maxRef = 0, maxDiff = 0;
+    r.map.resize(size_t(P) * P);
+    for (int j = 0; j < P; j++)
+        for (int i = 0; i < P; i++) {
+            float3 p(kPatch * (2.0f * (i + 0.5f) / P - 1.0f), kPatch * (2.0f * (j + 0.5f) / P - 1.0f), 0.0f);
+            // facing down: counter-clockwise seen from below
+            float3 q0 = centre + float3(-kHalf, -kHalf, 0), q1 = centre + float3(-kHalf, kHalf, 0),
+                   q2 = centre + float3(kHalf, kHalf, 0), q3 = centre + float3(kHalf, -kHalf, 0);
+            rtpbr::LtcPolygon poly = rtpbr::LTC_Quad(q0, q1, q2, q3);
+            double ltc = double(l2.x) * rtpbr::LTC_IntegrateLocal(rtpbr::LTC_PolygonToLocal(frame, p, poly, true), l1);
+            double ref = quadrature(brdf, V, p, centre, sub);
+            double coarse = quadrature(brdf, V, p, centre, sub / 2);
+            maxDiff = std::max(maxDiff, std::fabs(ref - coarse));
+            maxRef = std::max(maxRef, ref);
+            sumAbs += std::fabs(ltc - ref);
+            sumSigned += ltc - ref;
+            sumRef += ref;
+            r.map[size_t(j) * P + i] = ref > 0 ? float((ltc - ref) / ref) : 0.0f;
+        }
+    r.sumAbs = sumAbs, r.sumSigned = sumSigned, r.sumRef = sumRef;
+    r.err = sumRef > 0 ? sumAbs / sumRef : 0.0;
+    r.signedErr = sumRef > 0 ? sumSigned / sumRef : 0.0;
+    r.quadDiff = maxRef > 0 ? maxDiff / maxRef : 0.0;
+    return r;
+}
+
+// One floor = the cases of all azimuths of a (roughness, elevation, NoV): azimuths strictly
+// between 0 and 180 stand for their mirror images too and count twice.
+// Its error: sum |LTC - ref| / sum ref over all its points.
+inline double floor_error(const std::vector<CaseResult> &azimuths) {
+    double abs = 0.0, ref = 0.0;
+    for (const CaseResult &c : azimuths) {
+        double w = c.c.azimDeg == 0.0f || c.c.azimDeg == 180.0f ? 1.0 : 2.0;
+        abs += w * c.sumAbs;
+        ref += w * c.sumRef;
+    }
+    return ref > 0.0 ? abs / ref : 0.0;
+}
+
+} // namespace ltcfloor
