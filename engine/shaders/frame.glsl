@@ -7,4 +7,5 @@ layout(set = 0, binding = RTPBR_FRAME_BINDING, std140) uniform Frame {
     uvec2 size;           // render width, height
     uint light_count;
     float cull_form_factor; // per-tile light culling threshold (lighting.comp); < 0: off
+    uint shadow_light_count; // lights with a shadow ratio (shadow_ratio.glsl); 0: shadows off
 } frame;

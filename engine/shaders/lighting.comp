@@ -19,6 +19,7 @@
 layout(local_size_x = RTPBR_TILE_SIZE, local_size_y = RTPBR_TILE_SIZE) in;
 
 #include "lighting_common.glsl"
+#include "shadow_ratio.glsl"
 
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_GGX_1) uniform sampler2D lut_ltc_ggx_1;
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_GGX_2) uniform sampler2D lut_ltc_ggx_2;
@@ -142,7 +143,8 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s)
     vec3 sum = vec3(0.0f);
     for (uint word = 0u; word < (frame.light_count + 31u) / 32u; ++word)
     for (uint bits = tile_lights[word]; bits != 0u; bits &= bits - 1u) {
-        Light light = lights[word * 32u + uint(findLSB(bits))];
+        uint lightIndex = word * 32u + uint(findLSB(bits));
+        Light light = lights[lightIndex];
         LtcPolygon poly;
         for (int k = 0; k < RTPBR_SHADER_MAX_POLYGON_VERTICES; ++k) poly.v[k] = light.vertices[k].xyz;
         poly.count = int(light.vertex_count);
@@ -180,7 +182,7 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s)
         if (coated)
             lo += coatScale * LTC_IntegrateLocal(local, ltc1c) +
                   s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(kc_E(muRep, s.coatR), s.Eavgc, lenF), s.Eavgc, ff);
-        sum += light.emission.rgb * lo;
+        sum += light.emission.rgb * lo * shadow_factor(lightIndex);
     }
     return sum;
 }

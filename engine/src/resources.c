@@ -70,6 +70,12 @@ static VkImageAspectFlags aspect_of(VkFormat format)
 rtpbr_result rtpbr_image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
                                 VkImageUsageFlags usage, rtpbr_image *out)
 {
+    return rtpbr_image_create_layers(ctx, width, height, 0, format, usage, out);
+}
+
+rtpbr_result rtpbr_image_create_layers(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t layers,
+                                       VkFormat format, VkImageUsageFlags usage, rtpbr_image *out)
+{
     rtpbr_result result = RTPBR_SUCCESS;
     memset(out, 0, sizeof *out);
     VkImageCreateInfo info = {
@@ -78,7 +84,7 @@ rtpbr_result rtpbr_image_create(rtpbr_context *ctx, uint32_t width, uint32_t hei
         .format = format,
         .extent = {width, height, 1},
         .mipLevels = 1,
-        .arrayLayers = 1,
+        .arrayLayers = layers ? layers : 1,
         .samples = VK_SAMPLE_COUNT_1_BIT,
         .tiling = VK_IMAGE_TILING_OPTIMAL,
         .usage = usage,
@@ -93,9 +99,9 @@ rtpbr_result rtpbr_image_create(rtpbr_context *ctx, uint32_t width, uint32_t hei
     VkImageViewCreateInfo view_info = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
         .image = out->image,
-        .viewType = VK_IMAGE_VIEW_TYPE_2D,
+        .viewType = layers ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
         .format = format,
-        .subresourceRange = {aspect_of(format), 0, 1, 0, 1},
+        .subresourceRange = {aspect_of(format), 0, 1, 0, layers ? layers : 1},
     };
     RTPBR_VK(ctx, vkCreateImageView(ctx->device, &view_info, NULL, &out->view));
     out->format = format;

@@ -349,6 +349,18 @@ typedef enum rtpbr_tonemap {
     RTPBR_TONEMAP_LINEAR,    // f(x) = clamp(x, 0, 1)
 } rtpbr_tonemap;
 
+typedef enum rtpbr_shadows {
+    RTPBR_SHADOWS_DEFAULT = 0, // off
+    RTPBR_SHADOWS_OFF,
+    RTPBR_SHADOWS_ON,
+} rtpbr_shadows;
+
+typedef enum rtpbr_shadow_denoiser {
+    RTPBR_SHADOW_DENOISER_DEFAULT = 0, // on
+    RTPBR_SHADOW_DENOISER_ON,
+    RTPBR_SHADOW_DENOISER_OFF,
+} rtpbr_shadow_denoiser;
+
 typedef struct rtpbr_render_desc {
     // The camera: if camera is set it is used; otherwise the scene's camera number
     // camera_index (default 0). camera_index out of range: RTPBR_ERROR_INVALID_ARGUMENT.
@@ -375,7 +387,32 @@ typedef struct rtpbr_render_desc {
     uint32_t mc_samples;
     // Random seed of the Monte Carlo pass (each seed gives an independent image). Default 0.
     uint32_t mc_seed;
+    // Area-light shadows (default off): the ratio estimator of Heitz, Hill & McGuire 2018,
+    // "Combining Analytic Direct Illumination and Stochastic Shadows". Per pixel and shadowed
+    // light, shadow_samples points on the light (uniform by area, stratified) are traced
+    // against the scene's triangles (a BVH built at scene creation); the light's result (LTC,
+    // or the Monte Carlo pass's) is multiplied by the ratio of the shadowed to the unshadowed
+    // estimate of its cosine-weighted irradiance, both from the same samples and each denoised
+    // by a depth- and normal-guided spatial filter. Exact in the limit for Lambertian
+    // surfaces; glossy lobes get the cosine-weighted visibility of the light. The first
+    // RTPBR_MAX_SHADOWED_LIGHTS lights of the scene cast shadows, the others do not.
+    // Costs per frame about shadow_samples rays per pixel and shadowed light.
+    rtpbr_shadows shadows;
+    // Samples per pixel and shadowed light; zero: RTPBR_DEFAULT_SHADOW_SAMPLES. At most
+    // RTPBR_MAX_SHADOW_SAMPLES (more: RTPBR_ERROR_LIMIT_EXCEEDED).
+    uint32_t shadow_samples;
+    // The spatial denoiser of both estimates (default on): a (2 r + 1)^2 window, r =
+    // RTPBR_SHADOW_DENOISE_RADIUS, weighted by the neighbours' distance to the pixel's tangent
+    // plane and their normals' agreement. Off: each pixel's own ratio.
+    rtpbr_shadow_denoiser shadow_denoiser;
+    // Random seed of the shadow samples (each seed gives an independent pattern). Default 0.
+    uint32_t shadow_seed;
 } rtpbr_render_desc;
+
+#define RTPBR_MAX_SHADOWED_LIGHTS 8u
+#define RTPBR_DEFAULT_SHADOW_SAMPLES 4u
+#define RTPBR_MAX_SHADOW_SAMPLES 4096u
+#define RTPBR_SHADOW_DENOISE_RADIUS 3u
 
 #define RTPBR_MAX_MC_SAMPLES 65536u
 
