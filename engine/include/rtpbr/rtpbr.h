@@ -18,6 +18,8 @@
 //   1. G-buffer pass: base colour + metallic, world normal + perceptual roughness, emission +
 //      ior, specular colour + factor, depth (every surface is shaded on the side the camera
 //      sees; emission is front-side only unless the material is double-sided).
+//   1b. With rtpbr_render_desc.shadows on: the shadow passes (compute): per pixel and shadowed
+//      light, shadow rays against the scene's BVH, then a denoised shadow ratio per light.
 //   2. Lighting pass (compute, one workgroup per 16x16 tile): each tile first culls the
 //      scene's lights (rtpbr_render_desc.light_cull_form_factor), then every pixel sums, per
 //      polygonal light, Lambertian diffuse and GGX/Beckmann specular integrated with
@@ -25,6 +27,8 @@
 //      plus the Kulla-Conty multiple-scattering lobe over the polygon (kulla_conty.h), plus
 //      emitted radiance. The BRDF and integration math is the shader library's. When the
 //      library is built without ltc.h, lights contribute only through emissive surfaces.
+//      With shadows, each of the first RTPBR_MAX_SHADOWED_LIGHTS lights is multiplied by
+//      its shadow ratio at the pixel.
 //   3. Tone mapping: radiance * 2^exposure through a documented operator (rtpbr_tonemap),
 //      sRGB-encoded into the display target.
 //   The linear radiance (before exposure and tone mapping) is kept for rtpbr_read_radiance.
@@ -40,7 +44,7 @@
 // Threading: an rtpbr_context and everything created from it must be used from one thread
 // at a time (the host serialises calls). In embedded mode the host must also not use the
 // queue it handed over while an rtpbr call that submits work (rtpbr_gpu_scene_create*,
-// rtpbr_render, rtpbr_read_*) is running.
+// rtpbr_renderer_create, rtpbr_render, rtpbr_read_*) is running.
 #ifndef RTPBR_H
 #define RTPBR_H
 
@@ -318,6 +322,9 @@ typedef struct rtpbr_renderer_desc {
     // s width and s height must stay within RTPBR_MAX_RENDER_SIZE.
     uint32_t supersample;
 } rtpbr_renderer_desc;
+// A renderer holds, besides its G-buffer and radiance images, the shadow passes' estimates
+// and ratios: 2 x 4 bytes per shading pixel and shadowed light (RTPBR_MAX_SHADOWED_LIGHTS),
+// 64 bytes per shading pixel, allocated at creation whether or not shadows are used.
 
 #define RTPBR_MAX_SUPERSAMPLE 4u
 
