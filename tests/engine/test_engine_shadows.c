@@ -137,6 +137,31 @@ typedef struct penumbra_error {
 // Lit floor pixels: the closed form is at least 5% of the unoccluded light's (deep in the
 // umbra's edge the relative error of any estimator of a near-zero value is unbounded; the
 // darkest 5% are checked in absolute terms instead, with the umbra).
+// With RTPBR_SHADOW_ERROR_MAP=FILE.ppm in the environment, measure() of the default settings
+// writes the per-pixel relative error of the lit floor pixels there (binary PPM): blue
+// (engine darker) to red (brighter), full colour at 5%; dark grey: darkest/umbra pixels,
+// black: not checked. Only for looking at; nothing is checked from it.
+static void write_error_map(const char *path, const float *rel)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) return;
+    fprintf(f, "P6\n%d %d\n255\n", W, H);
+    for (int i = 0; i < W * H; ++i) {
+        unsigned char rgb[3] = {0, 0, 0};
+        if (isnan(rel[i])) {
+            rgb[0] = rgb[1] = rgb[2] = 0;
+        } else if (isinf(rel[i])) {
+            rgb[0] = rgb[1] = rgb[2] = 48;
+        } else {
+            double t = fmin(fabs(rel[i]) / 0.05, 1.0);
+            rgb[rel[i] > 0 ? 0 : 2] = (unsigned char)(255.0 * t);
+            rgb[1] = (unsigned char)(255.0 * (1.0 - t) * 0.25);
+        }
+        fwrite(rgb, 1, 3, f);
+    }
+    fclose(f);
+}
+
 static penumbra_error measure(penumbra_scene *ps, const rtpbr_render_desc *desc)
 {
     assert_int_equal(rtpbr_render(ps->renderer, ps->scene, desc), RTPBR_SUCCESS);
@@ -146,6 +171,8 @@ static penumbra_error measure(penumbra_scene *ps, const rtpbr_render_desc *desc)
     const float l = (float)LIGHT_HALF, z = (float)Z_LIGHT;
     const float light[4][3] = {{-l, -l, z}, {-l, l, z}, {l, l, z}, {l, -l, z}};
     penumbra_error e = {0};
+    float *map = malloc(W * H * sizeof(float));
+    for (int i = 0; i < W * H; ++i) map[i] = NAN;
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             double p[3];
@@ -157,17 +184,24 @@ static penumbra_error measure(penumbra_scene *ps, const rtpbr_render_desc *desc)
             double got = px[4 * (y * W + x)], expect = ALBEDO * EMISSION * ff;
             if (ff >= 0.05 * full) {
                 double rel = (got - expect) / expect;
+                map[y * W + x] = (float)rel;
                 e.mean_abs += fabs(rel);
                 e.mean_signed += rel;
                 e.lit++;
             } else {
                 double dark = fabs(got - expect) / (ALBEDO * EMISSION * full);
+                map[y * W + x] = INFINITY;
                 if (dark > e.umbra_max) e.umbra_max = dark;
                 e.umbra_mean += dark;
                 e.umbra++;
             }
         }
     free(px);
+    const char *map_path = getenv("RTPBR_SHADOW_ERROR_MAP");
+    if (map_path && desc->shadow_samples == 0 && desc->shadow_denoiser == RTPBR_SHADOW_DENOISER_DEFAULT &&
+        desc->shadows == RTPBR_SHADOWS_ON)
+        write_error_map(map_path, map);
+    free(map);
     e.mean_abs /= e.lit;
     e.mean_signed /= e.lit;
     if (e.umbra) e.umbra_mean /= e.umbra;
