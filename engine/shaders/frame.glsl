@@ -9,5 +9,6 @@ layout(set = 0, binding = RTPBR_FRAME_BINDING, std140) uniform Frame {
     float cull_form_factor; // per-tile light culling threshold (cull.comp); < 0: off
     uint tiles_x;           // lighting tiles per row
     uint tile_capacity;     // tiles in the frame: the length of each class's tile list
-    uint pad0, pad1;
+    uint shadow_light_count; // lights with a shadow ratio (shadow_ratio.glsl); 0: shadows off
+    uint pad0;
 } frame;

@@ -35,6 +35,7 @@
 layout(local_size_x = RTPBR_TILE_SIZE, local_size_y = RTPBR_TILE_SIZE) in;
 
 #include "lighting_common.glsl"
+#include "shadow_ratio.glsl"
 
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_GGX_1) uniform sampler2D lut_ltc_ggx_1;
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_GGX_2) uniform sampler2D lut_ltc_ggx_2;
@@ -100,7 +101,7 @@ float light_lobe(uint i, vec3 P, mat3 ltcFrame, mat3 minv, out vec3 F)
 // (KC_PolygonLobe, KC_PolygonMeanE). Disney's subsurface shape and sheen are evaluated at the
 // representative direction times pi x the form factor; its GTR1 coat is integrated as GGX at
 // the same alpha. Per light and lobe: one pass over the edges (light_lobe).
-vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile)
+vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
 {
     vec2 uv = LTC_LutCoord(s.NoV, s.specR);
     vec4 ltc1 = textureLod(LUT_LTC_1, uv, 0.0f);
@@ -203,7 +204,7 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile)
             lo += coatScale * light_lobe(i, P, ltcFrame, LTC_InverseMatrix(ltc1c), unusedF) +
                   s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(kc_E(muRep, s.coatR), s.Eavgc, lenF), s.Eavgc, ff);
 #endif
-        sum += lights[i].emission.rgb * lo;
+        sum += lights[i].emission.rgb * lo * shadow_factor(i, pixel);
     }
     return sum;
 }
@@ -234,7 +235,7 @@ void main()
     vec3 anisoDir = vec3(0.0f);
 #endif
     Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], rtpbr_saturate(dot(N, V)), anisoDir);
-    result += shade_lights(lifted_point(ndc, depth, P, N), N, V, s, tile);
+    result += shade_lights(lifted_point(ndc, depth, P, N), N, V, s, tile, pixel);
 #endif
     imageStore(radiance, pixel, vec4(result, 1.0));
 }

@@ -46,6 +46,7 @@ layout(push_constant) uniform McParams {
 
 #include "lighting_common.glsl"
 #include "mc_sampling.glsl"
+#include "shadow_ratio.glsl"
 
 #if RTPBR_NDF == RTPBR_NDF_BECKMANN
 #define MC_SAMPLE_VNDF Sample_Beckmann_VNDF
@@ -199,7 +200,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
             bool valid = hit && NoL > 0.0f && pdf > 0.0f;
             lightSum += valid ? f * (NoL / pdf) : vec3(0.0f);
         }
-        sum += lights[i].emission.rgb * (lightSum / float(samples));
+        sum += lights[i].emission.rgb * (lightSum / float(samples)) * shadow_factor(i, ivec2(pixel));
     }
     return sum;
 }

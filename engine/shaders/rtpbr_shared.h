@@ -54,7 +54,7 @@
 #define RTPBR_BINDING_LIGHT_MATERIALS 21   // storage: rtpbr_shader_material[]
 #define RTPBR_BINDING_LIGHT_TILE_MASKS 22  // storage: per-tile light masks (cull.comp)
 #define RTPBR_BINDING_LIGHT_TILE_LISTS 23  // storage: per-class tile queues (cull.comp)
-#define RTPBR_LIGHTING_BINDING_COUNT 24
+#define RTPBR_LIGHTING_BINDING_COUNT 25 // with RTPBR_BINDING_LIGHT_SHADOW_RATIO (24, below)
 
 // Light culling (cull.comp): one invocation per tile, RTPBR_CULL_GROUP^2 tiles per workgroup.
 #define RTPBR_CULL_GROUP 8
@@ -84,5 +84,25 @@
 // Output encodings of the tone-mapping pass.
 #define RTPBR_ENCODE_NONE 0 // sRGB attachment (hardware encodes) or float target
 #define RTPBR_ENCODE_SRGB 1 // UNORM attachment: the shader applies the sRGB curve
+
+// Area-light shadows (issue 17; engine/src/shadow.c, shaders/shadow*.comp, bvh.glsl).
+// Lights 0 .. RTPBR_SHADER_MAX_SHADOWED_LIGHTS - 1 of a scene cast shadows (also
+// RTPBR_MAX_SHADOWED_LIGHTS in rtpbr.h); the others are unshadowed.
+#define RTPBR_SHADER_MAX_SHADOWED_LIGHTS 8
+// Deepest BVH node (root: depth 0) = the traversal stack's size.
+#define RTPBR_BVH_MAX_DEPTH 32
+// Lighting pass: the shadow ratios, a sampler2DArray (layer = light index), read with texelFetch.
+#define RTPBR_BINDING_LIGHT_SHADOW_RATIO 24
+// Shadow passes, descriptor set 0 (shadow.comp traces, shadow_denoise.comp filters).
+#define RTPBR_BINDING_SHADOW_FRAME 0          // uniform: rtpbr_shader_frame
+#define RTPBR_BINDING_SHADOW_LIGHTS 1         // storage: rtpbr_shader_light[]
+#define RTPBR_BINDING_SHADOW_DEPTH 2          // depth (0 near .. 1 far)
+#define RTPBR_BINDING_SHADOW_NORMAL 3         // G-buffer 1: world normal xyz, roughness
+#define RTPBR_BINDING_SHADOW_BVH_NODES 4      // storage: rtpbr_shader_bvh_node[]
+#define RTPBR_BINDING_SHADOW_BVH_TRIANGLES 5  // storage: rtpbr_shader_bvh_triangle[]
+#define RTPBR_BINDING_SHADOW_ESTIMATES 6      // r32ui storage image array: packHalf2x16(shadowed, unshadowed)
+#define RTPBR_BINDING_SHADOW_RATIO 7          // r32f storage image array: shadowed / unshadowed
+#define RTPBR_SHADOW_BINDING_COUNT 8
+#define RTPBR_SHADOW_GROUP_SIZE 8             // 8 x 8 pixels per workgroup
 
 #endif // RTPBR_SHARED_H

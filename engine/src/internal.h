@@ -28,7 +28,8 @@ typedef struct rtpbr_shader_frame {
     float cull_form_factor;    // per-tile light culling threshold; < 0: off
     uint32_t tiles_x;          // lighting tiles per row
     uint32_t tile_capacity;    // tiles in the frame (the length of each class's tile list)
-    uint32_t pad[2];
+    uint32_t shadow_light_count; // lights 0 .. this - 1 are multiplied by their shadow ratio (shadow.c)
+    uint32_t pad;
 } rtpbr_shader_frame;
 
 // std430 element of the materials buffer (gbuffer.frag).
@@ -84,8 +85,32 @@ typedef struct rtpbr_shader_mc {
     uint32_t seed;
 } rtpbr_shader_mc;
 
+// std430 element of a scene's BVH node buffer (bvh.c, shaders/bvh.glsl).
+typedef struct rtpbr_shader_bvh_node {
+    float min[3];
+    uint32_t left_or_first;    // interior (count 0): left child, the right one follows; leaf: first triangle
+    float max[3];
+    uint32_t count;            // triangles of a leaf; 0: interior node
+} rtpbr_shader_bvh_node;
+
+// std430 element of a scene's BVH triangle buffer: vertex 0 and the two edges from it.
+typedef struct rtpbr_shader_bvh_triangle {
+    float v0[4], e1[4], e2[4];
+} rtpbr_shader_bvh_triangle;
+
+// Push constants of the shadow passes (shadow.comp, shadow_denoise.comp).
+typedef struct rtpbr_shader_shadow {
+    uint32_t samples;          // per pixel and shadowed light, >= 1
+    uint32_t seed;
+    uint32_t radius;           // of the denoiser's (2 radius + 1)^2 window; 0: no denoising
+    uint32_t pad;
+} rtpbr_shader_shadow;
+
 // The shaders' std140 / std430 sizes of the same structs.
 _Static_assert(sizeof(rtpbr_shader_frame) == 192, "Frame block layout");
+_Static_assert(sizeof(rtpbr_shader_bvh_node) == 32, "BVH node layout");
+_Static_assert(sizeof(rtpbr_shader_bvh_triangle) == 48, "BVH triangle layout");
+_Static_assert(RTPBR_SHADER_MAX_SHADOWED_LIGHTS == RTPBR_MAX_SHADOWED_LIGHTS, "shadowed light limit shared by C and shaders");
 _Static_assert(sizeof(rtpbr_shader_material) == 144, "Material layout");
 _Static_assert(sizeof(rtpbr_shader_light) == 192, "Light layout");
 _Static_assert(sizeof(rtpbr_shader_draw) == 128, "Draw push constants (128 bytes: the guaranteed minimum)");
@@ -175,6 +200,10 @@ struct rtpbr_context {
     // (rtpbr.h states the teardown order). Linked through their own prev/next fields.
     rtpbr_gpu_scene *scenes;
     rtpbr_renderer *renderers;
+    // The shadow passes (shadow.c): one set layout and pipeline layout, pipelines on first use.
+    VkDescriptorSetLayout shadow_set_layout;
+    VkPipelineLayout shadow_layout;
+    VkPipeline shadow_trace_pipeline, shadow_denoise_pipeline;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -202,6 +231,9 @@ struct rtpbr_gpu_scene {
     uint32_t material_count;   // of the desc (the buffer has max(material_count, 1) slots)
     rtpbr_camera_desc *cameras;
     uint32_t camera_count;
+    rtpbr_buffer bvh_nodes;     // rtpbr_shader_bvh_node[bvh_node_count] (bvh.c)
+    rtpbr_buffer bvh_triangles; // rtpbr_shader_bvh_triangle[max(bvh_triangle_count, 1)]
+    uint32_t bvh_node_count, bvh_triangle_count;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -257,6 +289,10 @@ struct rtpbr_renderer {
     bool has_frame;            // rtpbr_render completed at least once
     rtpbr_timing timing;       // GPU timestamps (rtpbr_renderer_desc.timings), else all zero
     bool has_radiance;         // rtpbr_render or rtpbr_record has filled radiance_readback
+    // Shadows (shadow.c), at the shading size, RTPBR_MAX_SHADOWED_LIGHTS layers, GENERAL layout:
+    rtpbr_image shadow_estimates; // R32_UINT: packHalf2x16(shadowed, unshadowed estimate)
+    rtpbr_image shadow_ratio;     // R32_SFLOAT: denoised shadowed / unshadowed (lighting binding)
+    VkDescriptorSet shadow_set;
 };
 
 extern const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT];
@@ -330,6 +366,9 @@ rtpbr_result rtpbr_buffer_create_device(rtpbr_context *ctx, VkDeviceSize size, V
 rtpbr_result rtpbr_image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
                                 VkImageUsageFlags usage, rtpbr_image *out);
 void rtpbr_image_destroy(rtpbr_context *ctx, rtpbr_image *image);
+// The same with `layers` array layers and a 2D-array view (layers 0: rtpbr_image_create's).
+rtpbr_result rtpbr_image_create_layers(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t layers,
+                                       VkFormat format, VkImageUsageFlags usage, rtpbr_image *out);
 // Records into ctx->upload_cmd, submits, waits. record(cmd, user) records the work.
 rtpbr_result rtpbr_submit_once(rtpbr_context *ctx, void (*record)(VkCommandBuffer cmd, void *user),
                                void *user);
@@ -379,6 +418,24 @@ void rtpbr_lighting_mc_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpb
                               VkCommandBuffer cmd);
 void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_shader_tonemap *params,
                           VkImageView target, VkCommandBuffer cmd);
+
+// ---------------------------------------------------------------------------------------------
+// Shadows: the scene's BVH (bvh.c) and the shadow passes (shadow.c)
+
+// Builds the BVH of the scene's uploaded triangles (world space) into scene->bvh_*.
+rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene);
+void rtpbr_bvh_destroy(rtpbr_gpu_scene *scene); // accepts a half-built scene
+// The set and pipeline layouts (context creation); the pipelines are made on first use.
+rtpbr_result rtpbr_shadow_layouts_create(rtpbr_context *ctx);
+void rtpbr_shadow_pipelines_destroy(rtpbr_context *ctx);
+rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx);
+// The renderer's shadow images (in GENERAL layout) and descriptor set (from r->descriptor_pool).
+rtpbr_result rtpbr_shadow_targets_create(rtpbr_renderer *r);
+void rtpbr_shadow_targets_destroy(rtpbr_renderer *r);
+// Writes the scene's buffers into the shadow set (prepare_frame).
+void rtpbr_shadow_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
+// Records the trace and denoise dispatches; the ratios are ready for the lighting pass after.
+void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_shader_shadow *params, VkCommandBuffer cmd);
 
 // ---------------------------------------------------------------------------------------------
 // Math (math.c): column-major 4x4 matrices

@@ -9,14 +9,14 @@ static rtpbr_result create_descriptors(rtpbr_renderer *r)
     rtpbr_context *ctx = r->context;
     rtpbr_result result = RTPBR_SUCCESS;
     VkDescriptorPoolSize sizes[] = {
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5},
-        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, RTPBR_LIGHTING_BINDING_COUNT},
-        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4},
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 + 1},  // + the shadow set's (shadow.c)
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 + 3},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, RTPBR_LIGHTING_BINDING_COUNT + 2},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4 + 2},
     };
     VkDescriptorPoolCreateInfo pool_info = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-        .maxSets = 4,
+        .maxSets = 4 + 1,
         .poolSizeCount = sizeof sizes / sizeof sizes[0],
         .pPoolSizes = sizes,
     };
@@ -66,7 +66,8 @@ static rtpbr_result create_descriptors(rtpbr_renderer *r)
     writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
                                          .dstBinding = RTPBR_BINDING_LIGHT_TILE_LISTS, .descriptorCount = 1,
                                          .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &tile_lists};
-    // The bindings from the G-buffer to the tables are images.
+    // The bindings from the G-buffer to the tables are images (the shadow ratios, after them,
+    // are written by rtpbr_shadow_targets_create).
     for (uint32_t b = RTPBR_BINDING_LIGHT_GBUFFER0; b < RTPBR_BINDING_LUT_LTC_GGX_1 + RTPBR_LUT_COUNT; ++b)
         writes[n++] = (VkWriteDescriptorSet){
             .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set, .dstBinding = b,
@@ -153,6 +154,7 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                        &r->display_readback));
     RTPBR_TRY(create_descriptors(r));
+    RTPBR_TRY(rtpbr_shadow_targets_create(r));
 
     VkCommandBufferAllocateInfo cmd_info = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
@@ -192,6 +194,7 @@ void rtpbr_renderer_destroy(rtpbr_renderer *r)
     rtpbr_image_destroy(ctx, &r->radiance);
     rtpbr_image_destroy(ctx, &r->radiance_ss);
     rtpbr_image_destroy(ctx, &r->display);
+    rtpbr_shadow_targets_destroy(r);
     RTPBR_LIST_UNLINK(ctx->renderers, r);
     rtpbr_free(ctx, r);
 }
@@ -235,6 +238,20 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: mc_samples %u; at most %u", desc->mc_samples, RTPBR_MAX_MC_SAMPLES);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
+    if ((unsigned)desc->shadows > RTPBR_SHADOWS_ON || (unsigned)desc->shadow_denoiser > RTPBR_SHADOW_DENOISER_OFF) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: unknown shadows or shadow_denoiser value");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (desc->shadow_samples > RTPBR_MAX_SHADOW_SAMPLES) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: shadow_samples %u; at most %u", desc->shadow_samples,
+                  RTPBR_MAX_SHADOW_SAMPLES);
+        return RTPBR_ERROR_LIMIT_EXCEEDED;
+    }
+    bool shadows = desc->shadows == RTPBR_SHADOWS_ON;
+    if (shadows) {
+        rtpbr_result result = rtpbr_shadow_pipelines_get(ctx); // before any recording: may compile
+        if (result != RTPBR_SUCCESS) return result;
+    }
 
     rtpbr_shader_frame frame = {0};
     rtpbr_camera_matrices(camera, (float)r->width / (float)r->height, frame.view_proj);
@@ -251,7 +268,11 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
                                                                    : desc->light_cull_form_factor;
     frame.tiles_x = r->tiles_x;
     frame.tile_capacity = r->tiles_x * r->tiles_y;
+    frame.shadow_light_count = !shadows ? 0
+                               : scene->light_count < RTPBR_MAX_SHADOWED_LIGHTS ? scene->light_count
+                                                                                : RTPBR_MAX_SHADOWED_LIGHTS;
     memcpy(r->frame.mapped, &frame, sizeof frame);
+    if (shadows) rtpbr_shadow_bind_scene(r, scene);
 
     VkDescriptorBufferInfo materials = {scene->materials.buffer, 0, VK_WHOLE_SIZE};
     VkDescriptorBufferInfo lights = {scene->lights.buffer, 0, VK_WHOLE_SIZE};
@@ -274,6 +295,14 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
 static void record_lighting(rtpbr_renderer *r, const rtpbr_render_desc *desc,
                             const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd)
 {
+    if (desc->shadows == RTPBR_SHADOWS_ON) { // the shadow ratios the lighting pass multiplies by
+        rtpbr_shader_shadow shadow = {
+            .samples = desc->shadow_samples ? desc->shadow_samples : RTPBR_DEFAULT_SHADOW_SAMPLES,
+            .seed = desc->shadow_seed,
+            .radius = desc->shadow_denoiser == RTPBR_SHADOW_DENOISER_OFF ? 0 : RTPBR_SHADOW_DENOISE_RADIUS,
+        };
+        rtpbr_shadow_record(r, &shadow, cmd);
+    }
     if (desc->mc_samples == 0) {
         rtpbr_lighting_record(r, pipelines, cmd);
         return;

@@ -90,9 +90,9 @@ static VkImageAspectFlags aspect_of(VkFormat format)
                                                                           : VK_IMAGE_ASPECT_COLOR_BIT;
 }
 
-// A 2D image (depth 1) or a 3D one, with a view.
-static rtpbr_result image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format,
-                                 VkImageUsageFlags usage, rtpbr_image *out)
+// A 2D image with a view: 3D when depth > 1, a 2D array of `layers` layers when layers > 0.
+static rtpbr_result image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t depth, uint32_t layers,
+                                 VkFormat format, VkImageUsageFlags usage, rtpbr_image *out)
 {
     rtpbr_result result = RTPBR_SUCCESS;
     memset(out, 0, sizeof *out);
@@ -102,7 +102,7 @@ static rtpbr_result image_create(rtpbr_context *ctx, uint32_t width, uint32_t he
         .format = format,
         .extent = {width, height, depth},
         .mipLevels = 1,
-        .arrayLayers = 1,
+        .arrayLayers = layers ? layers : 1,
         .samples = VK_SAMPLE_COUNT_1_BIT,
         .tiling = VK_IMAGE_TILING_OPTIMAL,
         .usage = usage,
@@ -117,9 +117,9 @@ static rtpbr_result image_create(rtpbr_context *ctx, uint32_t width, uint32_t he
     VkImageViewCreateInfo view_info = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
         .image = out->image,
-        .viewType = depth > 1 ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D,
+        .viewType = depth > 1 ? VK_IMAGE_VIEW_TYPE_3D : layers ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
         .format = format,
-        .subresourceRange = {aspect_of(format), 0, 1, 0, 1},
+        .subresourceRange = {aspect_of(format), 0, 1, 0, layers ? layers : 1},
     };
     RTPBR_VK(ctx, vkCreateImageView(ctx->device, &view_info, NULL, &out->view));
     out->format = format;
@@ -134,7 +134,13 @@ cleanup:
 rtpbr_result rtpbr_image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
                                 VkImageUsageFlags usage, rtpbr_image *out)
 {
-    return image_create(ctx, width, height, 1, format, usage, out);
+    return image_create(ctx, width, height, 1, 0, format, usage, out);
+}
+
+rtpbr_result rtpbr_image_create_layers(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t layers,
+                                       VkFormat format, VkImageUsageFlags usage, rtpbr_image *out)
+{
+    return image_create(ctx, width, height, 1, layers, format, usage, out);
 }
 
 void rtpbr_image_destroy(rtpbr_context *ctx, rtpbr_image *image)
@@ -284,8 +290,8 @@ rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t heigh
         uint16_t *dst = staging.mapped;
         for (size_t i = 0; i < count; ++i) dst[i] = half_from_float(rgba[i]);
     }
-    RTPBR_TRY(image_create(ctx, width, height, depth, format, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                           &out->image));
+    RTPBR_TRY(image_create(ctx, width, height, depth, 0, format,
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &out->image));
     lut_upload upload = {staging.buffer, out->image.image, width, height, depth};
     RTPBR_TRY(rtpbr_submit_once(ctx, record_lut_upload, &upload));
     rtpbr_buffer_destroy(ctx, &staging);

@@ -421,6 +421,8 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         index_base += count;
     }
 
+    RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (shadow.c)
+
     uint32_t material_slots = desc->material_count ? desc->material_count : 1;
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, material_slots * sizeof(rtpbr_shader_material),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->materials));
@@ -463,6 +465,7 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_buffer_destroy(ctx, &scene->indices);
     rtpbr_buffer_destroy(ctx, &scene->materials);
     rtpbr_buffer_destroy(ctx, &scene->lights);
+    rtpbr_bvh_destroy(scene);
     if (scene->material_pool) vkDestroyDescriptorPool(ctx->device, scene->material_pool, NULL);
     for (uint32_t i = 0; i < scene->texture_count; ++i) rtpbr_image_destroy(ctx, &scene->textures[i]);
     rtpbr_free(ctx, scene->textures);

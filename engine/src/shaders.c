@@ -328,6 +328,7 @@ rtpbr_result rtpbr_pipelines_create(rtpbr_context *ctx)
     if (result == RTPBR_SUCCESS) result = create_lighting_mc(ctx);
     if (result == RTPBR_SUCCESS) result = create_resolve(ctx);
     if (result == RTPBR_SUCCESS) result = create_tonemap(ctx);
+    if (result == RTPBR_SUCCESS) result = rtpbr_shadow_layouts_create(ctx);
     if (result == RTPBR_SUCCESS) {
         // The renderer's own display target: created now so that a bad driver fails early.
         VkPipeline unused;
@@ -339,6 +340,7 @@ rtpbr_result rtpbr_pipelines_create(rtpbr_context *ctx)
 void rtpbr_pipelines_destroy(rtpbr_context *ctx)
 {
     VkDevice dev = ctx->device;
+    rtpbr_shadow_pipelines_destroy(ctx);
     for (uint32_t i = 0; i < RTPBR_TONEMAP_PIPELINE_CACHE; ++i)
         vkDestroyPipeline(dev, ctx->tonemap_pipelines[i].pipeline, NULL);
     vkDestroyShaderModule(dev, ctx->tonemap_vert, NULL);

@@ -2,6 +2,7 @@
 //   rtpbr-render SCENE.gltf -o OUT.exr|OUT.png [--width W] [--height H] [--camera I]
 //                [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]
 //                [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]
+//                [--shadows] [--shadow-samples N] [--no-shadow-denoiser]
 // OUT.exr holds linear scene radiance (RGB float; no exposure, no tone mapping: the quantity
 // the oracle writes); OUT.png the tone-mapped 8-bit sRGB image.
 #include <cstdio>
@@ -22,6 +23,10 @@ void usage()
                  "usage: rtpbr-render SCENE.gltf -o OUT.exr|OUT.png [--width W] [--height H] [--camera I]\n"
                  "                    [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]\n"
                  "                    [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]\n"
+                 "                    [--shadows] [--shadow-samples N] [--no-shadow-denoiser]\n"
+                 "  --shadows        area-light shadows (ratio estimator; the first 8 lights cast shadows)\n"
+                 "  --shadow-samples N  shadow rays per pixel and shadowed light (default 4; implies --shadows)\n"
+                 "  --no-shadow-denoiser  each pixel's own shadow ratio, unfiltered\n"
                  "  --supersample S  anti-aliasing: shade S x S samples per pixel, box-filtered (1..4; default 1)\n"
                  "  --mc-samples N   brute-force Monte Carlo lighting pass, N samples per pixel and light\n"
                  "                   (the reference the LTC pass is benchmarked against; default 0: LTC)\n");
@@ -103,7 +108,12 @@ int main(int argc, char **argv)
             if (!parse_uint(argv[++i], size.supersample)) return usage(), 2;
         } else if (a == "--mc-samples" && has_value) {
             if (!parse_uint(argv[++i], render.mc_samples)) return usage(), 2;
-        } else if (a == "--no-multiscatter") render.multiscatter = RTPBR_MULTISCATTER_OFF;
+        } else if (a == "--shadow-samples" && has_value) {
+            if (!parse_uint(argv[++i], render.shadow_samples)) return usage(), 2;
+            render.shadows = RTPBR_SHADOWS_ON;
+        } else if (a == "--shadows") render.shadows = RTPBR_SHADOWS_ON;
+        else if (a == "--no-shadow-denoiser") render.shadow_denoiser = RTPBR_SHADOW_DENOISER_OFF;
+        else if (a == "--no-multiscatter") render.multiscatter = RTPBR_MULTISCATTER_OFF;
         else if (a == "--validation") validation = 1;
         else if (a == "-h" || a == "--help") return usage(), 0;
         else if (a[0] != '-' && scene_path.empty()) scene_path = a;

@@ -18,6 +18,8 @@
 //   1. G-buffer pass: base colour + metallic, world normal + perceptual roughness, emission +
 //      ior, specular colour + factor, depth (every surface is shaded on the side the camera
 //      sees; emission is front-side only unless the material is double-sided).
+//   1b. With rtpbr_render_desc.shadows on: the shadow passes (compute): per pixel and shadowed
+//      light, shadow rays against the scene's BVH, then a denoised shadow ratio per light.
 //   2. Lighting pass (compute, one workgroup per 16x16 tile): each tile first culls the
 //      scene's lights (rtpbr_render_desc.light_cull_form_factor), then every pixel sums, per
 //      polygonal light, Lambertian diffuse and GGX/Beckmann specular integrated with
@@ -25,6 +27,8 @@
 //      plus the Kulla-Conty multiple-scattering lobe over the polygon (kulla_conty.h), plus
 //      emitted radiance. The BRDF and integration math is the shader library's. When the
 //      library is built without ltc.h, lights contribute only through emissive surfaces.
+//      With shadows, each of the first RTPBR_MAX_SHADOWED_LIGHTS lights is multiplied by
+//      its shadow ratio at the pixel.
 //   3. Tone mapping: radiance * 2^exposure through a documented operator (rtpbr_tonemap),
 //      sRGB-encoded into the display target.
 //   The linear radiance (before exposure and tone mapping) is kept for rtpbr_read_radiance.
@@ -40,7 +44,7 @@
 // Threading: an rtpbr_context and everything created from it must be used from one thread
 // at a time (the host serialises calls). In embedded mode the host must also not use the
 // queue it handed over while an rtpbr call that submits work (rtpbr_gpu_scene_create*,
-// rtpbr_render, rtpbr_read_*) is running.
+// rtpbr_renderer_create, rtpbr_render, rtpbr_read_*) is running.
 #ifndef RTPBR_H
 #define RTPBR_H
 
@@ -356,6 +360,9 @@ typedef struct rtpbr_renderer_desc {
     // on a queue family without timestamps. Default: off (no queries recorded).
     int timings;
 } rtpbr_renderer_desc;
+// A renderer holds, besides its G-buffer and radiance images, the shadow passes' estimates
+// and ratios: 2 x 4 bytes per shading pixel and shadowed light (RTPBR_MAX_SHADOWED_LIGHTS),
+// 64 bytes per shading pixel, allocated at creation whether or not shadows are used.
 
 #define RTPBR_MAX_SUPERSAMPLE 4u
 
@@ -403,6 +410,18 @@ typedef enum rtpbr_tonemap {
     RTPBR_TONEMAP_LINEAR,    // f(x) = clamp(x, 0, 1)
 } rtpbr_tonemap;
 
+typedef enum rtpbr_shadows {
+    RTPBR_SHADOWS_DEFAULT = 0, // off
+    RTPBR_SHADOWS_OFF,
+    RTPBR_SHADOWS_ON,
+} rtpbr_shadows;
+
+typedef enum rtpbr_shadow_denoiser {
+    RTPBR_SHADOW_DENOISER_DEFAULT = 0, // on
+    RTPBR_SHADOW_DENOISER_ON,
+    RTPBR_SHADOW_DENOISER_OFF,
+} rtpbr_shadow_denoiser;
+
 typedef struct rtpbr_render_desc {
     // The camera: if camera is set it is used; otherwise the scene's camera number
     // camera_index (default 0). camera_index out of range: RTPBR_ERROR_INVALID_ARGUMENT.
@@ -429,7 +448,32 @@ typedef struct rtpbr_render_desc {
     uint32_t mc_samples;
     // Random seed of the Monte Carlo pass (each seed gives an independent image). Default 0.
     uint32_t mc_seed;
+    // Area-light shadows (default off): the ratio estimator of Heitz, Hill & McGuire 2018,
+    // "Combining Analytic Direct Illumination and Stochastic Shadows". Per pixel and shadowed
+    // light, shadow_samples points on the light (uniform by area, stratified) are traced
+    // against the scene's triangles (a BVH built at scene creation); the light's result (LTC,
+    // or the Monte Carlo pass's) is multiplied by the ratio of the shadowed to the unshadowed
+    // estimate of its cosine-weighted irradiance, both from the same samples and each denoised
+    // by a depth- and normal-guided spatial filter. Exact in the limit for Lambertian
+    // surfaces; glossy lobes get the cosine-weighted visibility of the light. The first
+    // RTPBR_MAX_SHADOWED_LIGHTS lights of the scene cast shadows, the others do not.
+    // Costs per frame about shadow_samples rays per pixel and shadowed light.
+    rtpbr_shadows shadows;
+    // Samples per pixel and shadowed light; zero: RTPBR_DEFAULT_SHADOW_SAMPLES. At most
+    // RTPBR_MAX_SHADOW_SAMPLES (more: RTPBR_ERROR_LIMIT_EXCEEDED).
+    uint32_t shadow_samples;
+    // The spatial denoiser of both estimates (default on): a (2 r + 1)^2 window, r =
+    // RTPBR_SHADOW_DENOISE_RADIUS, weighted by the neighbours' distance to the pixel's tangent
+    // plane and their normals' agreement. Off: each pixel's own ratio.
+    rtpbr_shadow_denoiser shadow_denoiser;
+    // Random seed of the shadow samples (each seed gives an independent pattern). Default 0.
+    uint32_t shadow_seed;
 } rtpbr_render_desc;
+
+#define RTPBR_MAX_SHADOWED_LIGHTS 8u
+#define RTPBR_DEFAULT_SHADOW_SAMPLES 4u
+#define RTPBR_MAX_SHADOW_SAMPLES 4096u
+#define RTPBR_SHADOW_DENOISE_RADIUS 3u
 
 #define RTPBR_MAX_MC_SAMPLES 65536u
 

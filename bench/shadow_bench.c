@@ -1,0 +1,100 @@
+// Shadow benchmark (issue 17): the frame time of a glTF scene with area-light shadows on
+// (at several samples per pixel and light) against the same frame without, renders
+// interleaved so that machine load hits both alike. Not a test: compare the ratios of one run.
+//   rtpbr-bench-shadows SCENE.gltf [--width W] [--height H] [--repeat N] [--samples 1,4,16]
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "rtpbr/rtpbr.h"
+
+static double now(clockid_t clock)
+{
+    struct timespec t;
+    clock_gettime(clock, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+enum { MAX_CONFIGS = 8, MAX_REPEAT = 64 };
+
+int main(int argc, char **argv)
+{
+    const char *path = NULL;
+    uint32_t width = 960, height = 720;
+    int repeat = 5;
+    int samples[MAX_CONFIGS] = {0, 4}, configs = 2; // 0: shadows off
+    for (int i = 1; i < argc; ++i) {
+        if (!strcmp(argv[i], "--width") && i + 1 < argc) width = (uint32_t)atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--height") && i + 1 < argc) height = (uint32_t)atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--samples") && i + 1 < argc) {
+            configs = 1;
+            char *copy = strdup(argv[++i]), *save = NULL;
+            for (char *t = strtok_r(copy, ",", &save); t && configs < MAX_CONFIGS; t = strtok_r(NULL, ",", &save))
+                samples[configs++] = atoi(t);
+            free(copy);
+        } else if (argv[i][0] != '-' && !path) path = argv[i];
+        else {
+            fprintf(stderr, "usage: %s SCENE.gltf [--width W] [--height H] [--repeat N] [--samples 1,4,16]\n", argv[0]);
+            return 2;
+        }
+    }
+    if (!path || repeat < 1 || repeat > MAX_REPEAT) {
+        fprintf(stderr, "usage: %s SCENE.gltf [--width W] [--height H] [--repeat N (1..%d)] [--samples 1,4,16]\n",
+                argv[0], MAX_REPEAT);
+        return 2;
+    }
+    rtpbr_context *ctx = NULL;
+    rtpbr_gpu_scene *scene = NULL;
+    rtpbr_renderer *r = NULL;
+    int status = 1;
+    if (rtpbr_context_create(&(rtpbr_context_desc){0}, &ctx) != RTPBR_SUCCESS ||
+        rtpbr_gpu_scene_load_gltf(ctx, path, &scene) != RTPBR_SUCCESS ||
+        rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = width, .height = height}, &r) != RTPBR_SUCCESS) {
+        fprintf(stderr, "shadow bench: setup failed\n");
+        goto done;
+    }
+    double wall[MAX_CONFIGS][MAX_REPEAT], cpu[MAX_CONFIGS][MAX_REPEAT];
+    for (int rep = -1; rep < repeat; ++rep) // rep -1: warm-up (pipelines compiled on first use)
+        for (int c = 0; c < configs; ++c) {
+            rtpbr_render_desc desc = {.shadows = samples[c] ? RTPBR_SHADOWS_ON : RTPBR_SHADOWS_OFF,
+                                      .shadow_samples = (uint32_t)samples[c]};
+            double w0 = now(CLOCK_MONOTONIC), c0 = now(CLOCK_PROCESS_CPUTIME_ID);
+            if (rtpbr_render(r, scene, &desc) != RTPBR_SUCCESS) {
+                fprintf(stderr, "shadow bench: render failed\n");
+                goto done;
+            }
+            if (rep >= 0) {
+                wall[c][rep] = now(CLOCK_MONOTONIC) - w0;
+                cpu[c][rep] = now(CLOCK_PROCESS_CPUTIME_ID) - c0;
+            }
+        }
+    printf("%s, %ux%u, %u lights, median of %d frames\n\n", path, width, height, rtpbr_gpu_scene_light_count(scene),
+           repeat);
+    printf("| shadows | wall ms | CPU ms | wall / unshadowed | CPU / unshadowed |\n|---|---|---|---|---|\n");
+    double base_wall = 0.0, base_cpu = 0.0;
+    for (int c = 0; c < configs; ++c) {
+        qsort(wall[c], (size_t)repeat, sizeof(double), compare_double);
+        qsort(cpu[c], (size_t)repeat, sizeof(double), compare_double);
+        double mw = wall[c][repeat / 2], mc = cpu[c][repeat / 2];
+        if (c == 0) base_wall = mw, base_cpu = mc;
+        char label[32];
+        if (samples[c]) snprintf(label, sizeof label, "on, %d samples", samples[c]);
+        else snprintf(label, sizeof label, "off");
+        printf("| %s | %.1f | %.1f | %.2f | %.2f |\n", label, 1e3 * mw, 1e3 * mc, mw / base_wall, mc / base_cpu);
+    }
+    status = 0;
+done:
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_context_destroy(ctx);
+    return status;
+}

@@ -1,0 +1,104 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Shadow pass, step 1 of 2 (issue 17): the two Monte Carlo estimates of the ratio estimator
+// (Heitz, Hill & McGuire 2018, "Combining Analytic Direct Illumination and Stochastic
+// Shadows"), per pixel and shadowed light k < frame.shadow_light_count, from the same samples:
+//   unshadowed U = (1/n) sum_j w_j,  shadowed S = (1/n) sum_j w_j V(x, y_j),
+//   w_j = A max(cos_x, 0) cos_y / |y_j - x|^2,
+// y_j uniform on the light polygon by area (pdf 1/A; a fan triangle picked by area, then a
+// uniform point on it), so both estimate the cosine-weighted solid-angle integrals
+// int_light cos_x dw (with and without visibility): the Lambertian weight. cos_y is the
+// light's cosine toward x (its absolute value for a two-sided light; 0 behind a one-sided one).
+// The n points are a rank-1 lattice (the R2 sequence, Roberts 2018) shifted per pixel and
+// light by a hash (Cranley-Patterson rotation): stratified, and independent between pixels.
+// V traces a ray from x (lifted off the surface by a few depth ulps) to y_j, shortened by
+// 1e-3 of its length so that the light's own emitting triangles do not occlude it.
+// shadow_denoise.comp filters S and U and writes S / U.
+#include "rtpbr_shared.h"
+#include "shadow_common.glsl"
+#include "bvh.glsl"
+
+// C mirror: rtpbr_shader_light (engine/src/internal.h; as lighting_common.glsl's Light).
+struct Light {
+    vec4 vertices[RTPBR_SHADER_MAX_POLYGON_VERTICES];
+    vec4 emission; // rgb radiance, w: two-sided
+    vec4 plane;    // unit normal, -dot(normal, vertex 0)
+    vec4 sphere;   // bounding sphere: centre, radius
+    uint vertex_count;
+    float area;
+    uint pad0, pad1;
+};
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_LIGHTS, std430) readonly buffer Lights {
+    Light lights[];
+};
+
+// Jarzynski & Olano 2020, "Hash Functions for GPU Rendering": PCG.
+uint pcg_hash(uint v)
+{
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+void main()
+{
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
+    float depth = texelFetch(gbuffer_depth, pixel, 0).r;
+    uint lightCount = min(frame.shadow_light_count, frame.light_count);
+    if (depth >= 1.0f) {
+        for (uint k = 0u; k < lightCount; ++k) imageStore(shadow_estimates, ivec3(pixel, int(k)), uvec4(0u));
+        return;
+    }
+    vec3 P = shadow_world_point(pixel, depth);
+    vec3 N = normalize(texelFetch(gbuffer_normal, pixel, 0).xyz);
+    // Lift x off the surface by the world distance of 4 depth ulps (as lighting_common.glsl's
+    // lifted_point) plus a small fraction of the viewing distance: no self-shadowing.
+    vec2 ndc = (vec2(pixel) + 0.5f) / vec2(frame.size) * 2.0f - 1.0f;
+    vec4 further = frame.inv_view_proj * vec4(ndc, min(depth * (1.0f + 4.0f / 16777216.0f), 1.0f), 1.0f);
+    float lift = length(further.xyz / further.w - P) + 1e-4f * length(frame.camera_position.xyz - P);
+    vec3 origin = P + N * lift;
+
+    for (uint k = 0u; k < lightCount; ++k) {
+        Light light = lights[k];
+        bool twoSided = light.emission.w != 0.0f;
+        float shadowed = 0.0f, unshadowed = 0.0f;
+        // Behind a one-sided light, or the light below the horizon everywhere: both stay 0.
+        bool facing = twoSided || dot(light.plane.xyz, origin) + light.plane.w > 0.0f;
+        uint h = pcg_hash(uint(pixel.x) + pcg_hash(uint(pixel.y) + pcg_hash(k + pcg_hash(params.seed))));
+        vec2 shift = vec2(float(h & 0xffffu), float(h >> 16u)) / 65536.0f;
+        vec3 v0 = light.vertices[0].xyz;
+        for (uint j = 0u; facing && j < params.samples; ++j) {
+            // R2: the lattice of the plastic number (Roberts 2018).
+            vec2 u = fract(shift + float(j) * vec2(0.7548776662f, 0.5698402910f));
+            // The fan triangle (v0, v_i, v_i+1) holding u.x of the area, and u.x rescaled in it.
+            float target = u.x * light.area;
+            float below = 0.0f;
+            vec3 a = light.vertices[1].xyz, b = light.vertices[2].xyz;
+            float triArea = 0.5f * length(cross(a - v0, b - v0));
+            for (uint i = 1u; i + 2u < light.vertex_count && below + triArea < target; ++i) {
+                below += triArea;
+                a = b;
+                b = light.vertices[i + 2u].xyz;
+                triArea = 0.5f * length(cross(a - v0, b - v0));
+            }
+            float ux = clamp((target - below) / max(triArea, 1e-30f), 0.0f, 1.0f);
+            // Uniform on the triangle (Turk 1990): sqrt warps the first coordinate.
+            float su = sqrt(ux);
+            vec3 y = v0 * (1.0f - su) + a * (su * (1.0f - u.y)) + b * (su * u.y);
+            vec3 d = y - origin;
+            float dist2 = dot(d, d);
+            float dist = sqrt(dist2);
+            vec3 l = d / dist;
+            float cosX = dot(N, l);
+            float cosY = -dot(light.plane.xyz, l);
+            cosY = twoSided ? abs(cosY) : cosY;
+            float w = cosX > 0.0f && cosY > 0.0f ? light.area * cosX * cosY / dist2 : 0.0f;
+            unshadowed += w;
+            if (w > 0.0f && !bvh_occluded(origin, d, 1.0f - 1e-3f)) shadowed += w;
+        }
+        float n = float(max(params.samples, 1u));
+        imageStore(shadow_estimates, ivec3(pixel, int(k)),
+                   uvec4(packHalf2x16(min(vec2(shadowed, unshadowed) / n, vec2(65504.0f))), 0u, 0u, 0u));
+    }
+}

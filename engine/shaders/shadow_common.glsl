@@ -1,0 +1,26 @@
+// Shared by the shadow passes (shadow.comp, shadow_denoise.comp): descriptor set, push
+// constants and the G-buffer's surface point. Include after rtpbr_shared.h.
+#define RTPBR_FRAME_BINDING RTPBR_BINDING_SHADOW_FRAME
+#include "frame.glsl"
+
+layout(local_size_x = RTPBR_SHADOW_GROUP_SIZE, local_size_y = RTPBR_SHADOW_GROUP_SIZE) in;
+
+// C mirror: rtpbr_shader_shadow (engine/src/internal.h).
+layout(push_constant) uniform ShadowParams {
+    uint samples; // per pixel and shadowed light, >= 1
+    uint seed;
+    uint radius;  // the denoiser's window is (2 radius + 1)^2 pixels; 0: none
+} params;
+
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_DEPTH) uniform sampler2D gbuffer_depth;
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_NORMAL) uniform sampler2D gbuffer_normal;
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_ESTIMATES, r32ui) uniform uimage2DArray shadow_estimates;
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_RATIO, r32f) writeonly uniform image2DArray shadow_ratio_out;
+
+// The world-space point of a pixel at a depth (as lighting.comp).
+vec3 shadow_world_point(ivec2 pixel, float depth)
+{
+    vec2 ndc = (vec2(pixel) + 0.5f) / vec2(frame.size) * 2.0f - 1.0f;
+    vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
+    return world.xyz / world.w;
+}

@@ -1,0 +1,232 @@
+// A bounding volume hierarchy over the scene's triangles in world space, built on the host at
+// scene upload by a binned SAH builder (Wald 2007, "On fast Construction of SAH-based Bounding
+// Volume Hierarchies": RTPBR_BVH_BINS centroid bins per axis, traversal cost 1, intersection
+// cost 1 per triangle), for the shadow rays of the shadow pass (shadow.c, shaders/bvh.glsl).
+//
+// GPU layout (two storage buffers, std430; C mirror rtpbr_shader_bvh_node / _triangle):
+//   nodes:     32 bytes each: vec3 box min, uint left_or_first, vec3 box max, uint count.
+//              count == 0: an interior node whose children are nodes left_or_first and
+//              left_or_first + 1 (siblings are adjacent); count > 0: a leaf holding triangles
+//              left_or_first .. left_or_first + count - 1. Node 0 is the root. No node is deeper
+//              than RTPBR_BVH_MAX_DEPTH, so a traversal stack of that many entries suffices.
+//   triangles: 48 bytes each: vertex 0, edge v1 - v0, edge v2 - v0 (vec4s, w unused), ready for
+//              the Moeller-Trumbore test; ordered by leaf.
+// A scene without triangles gets one empty leaf whose box (min > max) no ray enters.
+#include <float.h>
+#include <string.h>
+
+#include "internal.h"
+
+enum { RTPBR_BVH_BINS = 16, RTPBR_BVH_LEAF_SIZE = 4 };
+
+typedef struct aabb {
+    float min[3], max[3];
+} aabb;
+
+typedef struct build_state {
+    const float (*tri)[9];     // world-space vertices per triangle
+    float (*centroid)[3];
+    uint32_t *order;           // triangle indices, partitioned in place
+    rtpbr_shader_bvh_node *nodes;
+    uint32_t node_count;
+} build_state;
+
+static aabb aabb_empty(void)
+{
+    return (aabb){{FLT_MAX, FLT_MAX, FLT_MAX}, {-FLT_MAX, -FLT_MAX, -FLT_MAX}};
+}
+
+static void aabb_grow(aabb *b, const float p[3])
+{
+    for (int k = 0; k < 3; ++k) {
+        if (p[k] < b->min[k]) b->min[k] = p[k];
+        if (p[k] > b->max[k]) b->max[k] = p[k];
+    }
+}
+
+static void aabb_merge(aabb *b, const aabb *o)
+{
+    aabb_grow(b, o->min);
+    aabb_grow(b, o->max);
+}
+
+static float aabb_half_area(const aabb *b)
+{
+    float d[3];
+    for (int k = 0; k < 3; ++k) d[k] = b->max[k] > b->min[k] ? b->max[k] - b->min[k] : 0.0f;
+    return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+}
+
+static void make_leaf(build_state *s, uint32_t node, const aabb *box, uint32_t first, uint32_t count)
+{
+    rtpbr_shader_bvh_node *n = &s->nodes[node];
+    memcpy(n->min, box->min, sizeof n->min);
+    memcpy(n->max, box->max, sizeof n->max);
+    n->left_or_first = first;
+    n->count = count;
+}
+
+// Builds the subtree of triangles order[first .. first + count) into nodes[node].
+static void build(build_state *s, uint32_t node, uint32_t first, uint32_t count, uint32_t depth)
+{
+    aabb box = aabb_empty(), cbox = aabb_empty();
+    for (uint32_t i = first; i < first + count; ++i) {
+        const float *t = s->tri[s->order[i]];
+        for (int v = 0; v < 3; ++v) aabb_grow(&box, t + 3 * v);
+        aabb_grow(&cbox, s->centroid[s->order[i]]);
+    }
+    if (count <= 1 || depth + 1 >= RTPBR_BVH_MAX_DEPTH) {
+        make_leaf(s, node, &box, first, count);
+        return;
+    }
+    // The best of the (bins - 1) planes of each axis by the surface area heuristic.
+    float best_cost = FLT_MAX;
+    int best_axis = -1, best_plane = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        float lo = cbox.min[axis], extent = cbox.max[axis] - lo;
+        if (!(extent > 0.0f)) continue;
+        aabb bins[RTPBR_BVH_BINS];
+        uint32_t counts[RTPBR_BVH_BINS] = {0};
+        for (int b = 0; b < RTPBR_BVH_BINS; ++b) bins[b] = aabb_empty();
+        float scale = RTPBR_BVH_BINS / extent;
+        for (uint32_t i = first; i < first + count; ++i) {
+            uint32_t t = s->order[i];
+            int b = (int)((s->centroid[t][axis] - lo) * scale);
+            b = b < 0 ? 0 : b >= RTPBR_BVH_BINS ? RTPBR_BVH_BINS - 1 : b;
+            counts[b]++;
+            for (int v = 0; v < 3; ++v) aabb_grow(&bins[b], s->tri[t] + 3 * v);
+        }
+        // Sweep from the right for the right sides' areas, then from the left.
+        float right_area[RTPBR_BVH_BINS];
+        uint32_t right_count[RTPBR_BVH_BINS];
+        aabb acc = aabb_empty();
+        uint32_t n = 0;
+        for (int b = RTPBR_BVH_BINS - 1; b > 0; --b) {
+            aabb_merge(&acc, &bins[b]);
+            n += counts[b];
+            right_area[b] = aabb_half_area(&acc);
+            right_count[b] = n;
+        }
+        acc = aabb_empty();
+        n = 0;
+        for (int plane = 1; plane < RTPBR_BVH_BINS; ++plane) { // left = bins [0, plane)
+            aabb_merge(&acc, &bins[plane - 1]);
+            n += counts[plane - 1];
+            if (n == 0 || right_count[plane] == 0) continue;
+            float cost = aabb_half_area(&acc) * (float)n + right_area[plane] * (float)right_count[plane];
+            if (cost < best_cost) {
+                best_cost = cost;
+                best_axis = axis;
+                best_plane = plane;
+            }
+        }
+    }
+    float area = aabb_half_area(&box);
+    float split_cost = area > 0.0f ? 1.0f + best_cost / area : FLT_MAX;
+    // No plane separates the centroids, or a small leaf is cheaper than its best split.
+    if (best_axis < 0 || (count <= RTPBR_BVH_LEAF_SIZE && split_cost >= (float)count)) {
+        make_leaf(s, node, &box, first, count);
+        return;
+    }
+    float lo = cbox.min[best_axis], scale = RTPBR_BVH_BINS / (cbox.max[best_axis] - lo);
+    uint32_t i = first, j = first + count;
+    while (i < j) {
+        int b = (int)((s->centroid[s->order[i]][best_axis] - lo) * scale);
+        b = b >= RTPBR_BVH_BINS ? RTPBR_BVH_BINS - 1 : b;
+        if (b < best_plane) {
+            ++i;
+        } else {
+            uint32_t t = s->order[i];
+            s->order[i] = s->order[--j];
+            s->order[j] = t;
+        }
+    }
+    uint32_t left_count = i - first;
+    uint32_t left = s->node_count;
+    s->node_count += 2;
+    rtpbr_shader_bvh_node *n = &s->nodes[node];
+    memcpy(n->min, box.min, sizeof n->min);
+    memcpy(n->max, box.max, sizeof n->max);
+    n->left_or_first = left;
+    n->count = 0;
+    build(s, left, first, left_count, depth + 1);
+    build(s, left + 1, first + left_count, count - left_count, depth + 1);
+}
+
+static void transform_point(const float m[16], const float p[3], float out[3])
+{
+    for (int k = 0; k < 3; ++k) out[k] = m[k] * p[0] + m[4 + k] * p[1] + m[8 + k] * p[2] + m[12 + k];
+}
+
+rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
+{
+    rtpbr_context *ctx = scene->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    uint32_t tri_count = 0;
+    for (uint32_t d = 0; d < scene->draw_count; ++d) tri_count += scene->draws[d].index_count / 3;
+
+    build_state s = {0};
+    float (*tri)[9] = NULL;
+    uint32_t node_slots = tri_count ? 2 * tri_count - 1 : 1;
+    if (tri_count) {
+        tri = rtpbr_alloc(ctx, tri_count * sizeof *tri);
+        s.centroid = rtpbr_alloc(ctx, tri_count * sizeof *s.centroid);
+        s.order = rtpbr_alloc(ctx, tri_count * sizeof *s.order);
+    }
+    s.nodes = rtpbr_alloc(ctx, node_slots * sizeof *s.nodes);
+    if ((tri_count && (!tri || !s.centroid || !s.order)) || !s.nodes) {
+        result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+        goto cleanup;
+    }
+    // World-space triangles from the scene's (already uploaded, host-visible) buffers.
+    const float *vertices = scene->vertices.mapped;
+    const uint32_t *indices = scene->indices.mapped;
+    uint32_t t = 0;
+    for (uint32_t d = 0; d < scene->draw_count; ++d) {
+        const rtpbr_draw *draw = &scene->draws[d];
+        for (uint32_t k = 0; k + 2 < draw->index_count; k += 3, ++t) {
+            for (int v = 0; v < 3; ++v)
+                transform_point(draw->push.world_from_object,
+                                vertices + RTPBR_VERTEX_FLOATS * (size_t)indices[draw->first_index + k + v], tri[t] + 3 * v);
+            for (int c = 0; c < 3; ++c) s.centroid[t][c] = (tri[t][c] + tri[t][3 + c] + tri[t][6 + c]) / 3.0f;
+            s.order[t] = t;
+        }
+    }
+    s.tri = (const float (*)[9])tri;
+    s.node_count = 1;
+    if (tri_count) {
+        build(&s, 0, 0, tri_count, 0);
+    } else {
+        aabb none = aabb_empty();
+        make_leaf(&s, 0, &none, 0, 0);
+    }
+
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, s.node_count * sizeof(rtpbr_shader_bvh_node),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->bvh_nodes));
+    memcpy(scene->bvh_nodes.mapped, s.nodes, s.node_count * sizeof(rtpbr_shader_bvh_node));
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, (tri_count ? tri_count : 1) * sizeof(rtpbr_shader_bvh_triangle),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->bvh_triangles));
+    rtpbr_shader_bvh_triangle *out = scene->bvh_triangles.mapped;
+    if (!tri_count) memset(out, 0, sizeof *out);
+    for (uint32_t i = 0; i < tri_count; ++i) {
+        const float *p = tri[s.order[i]];
+        rtpbr_shader_bvh_triangle g = {{p[0], p[1], p[2], 0.0f},
+                                       {p[3] - p[0], p[4] - p[1], p[5] - p[2], 0.0f},
+                                       {p[6] - p[0], p[7] - p[1], p[8] - p[2], 0.0f}};
+        out[i] = g;
+    }
+    scene->bvh_node_count = s.node_count;
+    scene->bvh_triangle_count = tri_count;
+cleanup:
+    rtpbr_free(ctx, tri);
+    rtpbr_free(ctx, s.centroid);
+    rtpbr_free(ctx, s.order);
+    rtpbr_free(ctx, s.nodes);
+    return result;
+}
+
+void rtpbr_bvh_destroy(rtpbr_gpu_scene *scene)
+{
+    rtpbr_buffer_destroy(scene->context, &scene->bvh_nodes);
+    rtpbr_buffer_destroy(scene->context, &scene->bvh_triangles);
+}
