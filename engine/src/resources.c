@@ -29,8 +29,10 @@ static rtpbr_result allocate(rtpbr_context *ctx, VkMemoryRequirements req, VkMem
     return vr == VK_SUCCESS ? RTPBR_SUCCESS : rtpbr_vk_fail(ctx, vr, "vkAllocateMemory");
 }
 
-rtpbr_result rtpbr_buffer_create_host(rtpbr_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
-                                      rtpbr_buffer *out)
+// A buffer in memory with the properties `want` (else `fallback`), mapped when host-visible.
+static rtpbr_result buffer_create(rtpbr_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                                  VkMemoryPropertyFlags want, VkMemoryPropertyFlags fallback, bool map,
+                                  rtpbr_buffer *out)
 {
     rtpbr_result result = RTPBR_SUCCESS;
     memset(out, 0, sizeof *out);
@@ -43,10 +45,9 @@ rtpbr_result rtpbr_buffer_create_host(rtpbr_context *ctx, VkDeviceSize size, VkB
     RTPBR_VK(ctx, vkCreateBuffer(ctx->device, &info, NULL, &out->buffer));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(ctx->device, out->buffer, &req);
-    const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-    RTPBR_TRY(allocate(ctx, req, host | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, host, &out->memory));
+    RTPBR_TRY(allocate(ctx, req, want, fallback, &out->memory));
     RTPBR_VK(ctx, vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0));
-    RTPBR_VK(ctx, vkMapMemory(ctx->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped));
+    if (map) RTPBR_VK(ctx, vkMapMemory(ctx->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped));
     out->size = size;
     return RTPBR_SUCCESS;
 cleanup:
@@ -54,27 +55,17 @@ cleanup:
     return result;
 }
 
+rtpbr_result rtpbr_buffer_create_host(rtpbr_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                                      rtpbr_buffer *out)
+{
+    const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    return buffer_create(ctx, size, usage, host | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, host, true, out);
+}
+
 rtpbr_result rtpbr_buffer_create_device(rtpbr_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
                                         rtpbr_buffer *out)
 {
-    rtpbr_result result = RTPBR_SUCCESS;
-    memset(out, 0, sizeof *out);
-    VkBufferCreateInfo info = {
-        .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
-        .size = size,
-        .usage = usage,
-        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
-    };
-    RTPBR_VK(ctx, vkCreateBuffer(ctx->device, &info, NULL, &out->buffer));
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(ctx->device, out->buffer, &req);
-    RTPBR_TRY(allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, &out->memory));
-    RTPBR_VK(ctx, vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0));
-    out->size = size;
-    return RTPBR_SUCCESS;
-cleanup:
-    rtpbr_buffer_destroy(ctx, out);
-    return result;
+    return buffer_create(ctx, size, usage, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, false, out);
 }
 
 void rtpbr_buffer_destroy(rtpbr_context *ctx, rtpbr_buffer *buffer)
