@@ -551,7 +551,10 @@ static bool read_statistics(ss_device *d, VkPipeline pipeline, ss_pipeline_stats
     out->executable_count = count;
     for (uint32_t e = 0; e < count; ++e) {
         ss_executable *x = &out->executables[e];
-        snprintf(x->name, sizeof x->name, "%s", executables[e].name);
+        // The driver's name, cut to our field (executable names are short: "Compute Shader").
+        size_t length = strnlen(executables[e].name, sizeof x->name - 1);
+        memcpy(x->name, executables[e].name, length);
+        x->name[length] = '\0';
         x->subgroup_size = executables[e].subgroupSize;
         VkPipelineExecutableInfoKHR info = {
             .sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR, .pipeline = pipeline, .executableIndex = e};
