@@ -4,7 +4,7 @@
 //   oracle_bench SCENE.gltf... [--width W] [--spp N]
 #include "oracle.h"
 
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 
 #include <cmath>
 #include <cstdio>
@@ -52,12 +52,12 @@ double meanRelativeStderr(const Accumulator &acc) {
 }
 
 int benchScene(const char *path, uint32_t width, uint32_t spp) {
-    char err[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
-    rtpbr_scene_load_desc desc = {};
+    char err[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
+    rtpbr_gltf_load_desc desc = {};
     desc.error_message = err;
     desc.error_message_size = sizeof err;
-    rtpbr_scene *scene = nullptr;
-    if (rtpbr_scene_load(path, &desc, &scene) != RTPBR_SCENE_SUCCESS) {
+    rtpbr_gltf_scene *scene = nullptr;
+    if (rtpbr_gltf_load(path, &desc, &scene) != RTPBR_GLTF_SUCCESS) {
         std::fprintf(stderr, "oracle_bench: %s: %s\n", path, err);
         return 1;
     }
@@ -100,7 +100,7 @@ int benchScene(const char *path, uint32_t width, uint32_t spp) {
         std::fflush(stdout);
     }
     std::printf("\n");
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
     return status;
 }
 

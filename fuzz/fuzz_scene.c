@@ -1,15 +1,15 @@
-/* libFuzzer target: the glTF scene loader through its C API (rtpbr_scene_load_memory; GLB
+/* libFuzzer target: the glTF scene loader through its C API (rtpbr_gltf_load_memory; GLB
  * when the input starts with "glTF", else JSON). External URIs resolve under a private
  * temporary folder holding the bundled scenes' .bin buffers, two small images, a
  * subfolder, and a symbolic link that points outside of the folder (must be rejected).
  *
- * Beyond "no crash, no leak, no UB" the target checks what rtpbr_scene.h promises: on
+ * Beyond "no crash, no leak, no UB" the target checks what rtpbr_gltf.h promises: on
  * failure *out is NULL and the message is non-empty; on success every index, material and
  * texture reference is in range, light polygons have 3..8 vertices, and the limits hold.
  * A broken promise aborts, which libFuzzer records as a crash. */
 #define _XOPEN_SOURCE 700
 #define _DEFAULT_SOURCE
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 
 #include <dirent.h>
 #include <ftw.h>
@@ -106,18 +106,18 @@ int LLVMFuzzerInitialize(int* argc, char*** argv) {
     return 0;
 }
 
-static void on_log(rtpbr_scene_log_level level, const char* message, void* user_data) {
+static void on_log(rtpbr_gltf_log_level level, const char* message, void* user_data) {
     (void)user_data;
-    check(level <= RTPBR_SCENE_LOG_INFO, "log level in range");
+    check(level <= RTPBR_GLTF_LOG_INFO, "log level in range");
     check(message != NULL && strlen(message) < (1u << 20), "log message NUL-terminated");
 }
 
 static int finite3(const float* v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
 
-static void check_scene(const rtpbr_scene* s) {
+static void check_scene(const rtpbr_gltf_scene* s) {
     uint64_t vertices = 0;
     for (uint32_t i = 0; i < s->primitive_count; ++i) {
-        const rtpbr_scene_primitive* p = &s->primitives[i];
+        const rtpbr_gltf_primitive* p = &s->primitives[i];
         check(p->index_count % 3 == 0 && p->index_count > 0, "index_count a positive multiple of 3");
         check(p->material < s->material_count, "primitive material in range");
         if (p->vertex_count > 0)
@@ -132,7 +132,7 @@ static void check_scene(const rtpbr_scene* s) {
     check(vertices == s->total_vertex_count, "total_vertex_count");
     check(vertices <= kFuzzMaxVertices, "max_vertices");
     for (uint32_t i = 0; i < s->material_count; ++i) {
-        const rtpbr_scene_material* m = &s->materials[i];
+        const rtpbr_gltf_material* m = &s->materials[i];
         const float values[] = {m->base_color[0], m->base_color[1], m->base_color[2], m->base_color[3],
                                 m->metallic, m->roughness, m->subsurface, m->specular, m->specular_tint,
                                 m->specular_color[0], m->specular_color[1], m->specular_color[2],
@@ -148,7 +148,7 @@ static void check_scene(const rtpbr_scene* s) {
             check(t[k] >= -1 && (t[k] < 0 || (uint32_t)t[k] < s->texture_count), "texture index in range");
     }
     for (uint32_t i = 0; i < s->texture_count; ++i) {
-        const rtpbr_scene_texture* t = &s->textures[i];
+        const rtpbr_gltf_texture* t = &s->textures[i];
         check(t->width <= kFuzzMaxTexture && t->height <= kFuzzMaxTexture, "max_texture_dimension");
         check((t->width && t->height) == (t->pixels != NULL), "texture pixels iff a size");
         if (t->pixels) {
@@ -158,15 +158,15 @@ static void check_scene(const rtpbr_scene* s) {
         }
     }
     for (uint32_t i = 0; i < s->camera_count; ++i) {
-        const rtpbr_scene_camera* c = &s->cameras[i];
+        const rtpbr_gltf_camera* c = &s->cameras[i];
         check(finite3(c->position) && finite3(c->forward) && finite3(c->up) && finite3(c->right) &&
                   isfinite(c->yfov) && isfinite(c->aspect) && isfinite(c->znear) && isfinite(c->zfar),
               "finite camera");
     }
     check(s->light_count <= kFuzzMaxLights, "max_lights");
     for (uint32_t i = 0; i < s->light_count; ++i) {
-        const rtpbr_scene_light* l = &s->lights[i];
-        check(l->vertex_count >= 3 && l->vertex_count <= RTPBR_SCENE_MAX_POLYGON_VERTICES, "light vertex count");
+        const rtpbr_gltf_light* l = &s->lights[i];
+        check(l->vertex_count >= 3 && l->vertex_count <= RTPBR_GLTF_MAX_POLYGON_VERTICES, "light vertex count");
         check(finite3(l->normal) && finite3(l->center) && finite3(l->radiance) && isfinite(l->radius), "finite light");
         for (uint32_t v = 0; v < l->vertex_count; ++v) check(finite3(l->vertices[v]), "finite light vertices");
         check(isfinite(l->area) && l->area > 0.0f, "light area > 0");
@@ -176,8 +176,8 @@ static void check_scene(const rtpbr_scene* s) {
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    char err[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
-    rtpbr_scene_load_desc desc = {0};
+    char err[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
+    rtpbr_gltf_load_desc desc = {0};
     desc.error_message = err;
     desc.error_message_size = sizeof err;
     desc.logger.func = on_log;
@@ -186,16 +186,16 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     desc.max_lights = kFuzzMaxLights;
     desc.max_texture_dimension = kFuzzMaxTexture;
     desc.texture_memory_budget = kFuzzTextureBudget;
-    rtpbr_scene* scene = NULL;
+    rtpbr_gltf_scene* scene = NULL;
     /* libFuzzer passes a non-NULL pointer even for empty inputs. */
-    rtpbr_scene_result r = rtpbr_scene_load_memory(data ? (const void*)data : (const void*)"", size, &desc, &scene);
+    rtpbr_gltf_result r = rtpbr_gltf_load_memory(data ? (const void*)data : (const void*)"", size, &desc, &scene);
     if (g_verbose)
         fprintf(stderr, "fuzz_scene: %s %s (%u primitives, %u lights, %u textures)\n",
-                rtpbr_scene_result_string(r), err, scene ? scene->primitive_count : 0,
+                rtpbr_gltf_result_string(r), err, scene ? scene->primitive_count : 0,
                 scene ? scene->light_count : 0, scene ? scene->texture_count : 0);
-    check(r >= RTPBR_SCENE_SUCCESS && r < RTPBR_SCENE_RESULT_COUNT, "result in range");
-    check(strcmp(rtpbr_scene_result_string(r), "RTPBR_SCENE_RESULT_UNKNOWN") != 0, "result has a name");
-    if (r == RTPBR_SCENE_SUCCESS) {
+    check(r >= RTPBR_GLTF_SUCCESS && r < RTPBR_GLTF_RESULT_COUNT, "result in range");
+    check(strcmp(rtpbr_gltf_result_string(r), "RTPBR_GLTF_RESULT_UNKNOWN") != 0, "result has a name");
+    if (r == RTPBR_GLTF_SUCCESS) {
         check(scene != NULL, "scene on success");
         check(err[0] == '\0', "empty message on success");
         check_scene(scene);
@@ -203,6 +203,6 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         check(scene == NULL, "*out NULL on failure");
         check(err[0] != '\0', "message on failure");
     }
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
     return 0;
 }

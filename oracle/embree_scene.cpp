@@ -38,9 +38,9 @@ unsigned attachTriangles(RTCDevice device, RTCScene scene, const float *position
     return id;
 }
 
-unsigned attachLight(RTCDevice device, RTCScene scene, const rtpbr_scene_light &L) {
-    float pos[3 * RTPBR_SCENE_MAX_POLYGON_VERTICES];
-    uint32_t idx[3 * RTPBR_SCENE_MAX_POLYGON_VERTICES];
+unsigned attachLight(RTCDevice device, RTCScene scene, const rtpbr_gltf_light &L) {
+    float pos[3 * RTPBR_GLTF_MAX_POLYGON_VERTICES];
+    uint32_t idx[3 * RTPBR_GLTF_MAX_POLYGON_VERTICES];
     for (uint32_t k = 0; k < L.vertex_count; k++)
         for (int c = 0; c < 3; c++)
             pos[3 * k + c] = L.vertices[k][c];
@@ -55,7 +55,7 @@ unsigned attachLight(RTCDevice device, RTCScene scene, const rtpbr_scene_light &
 
 } // namespace
 
-Result buildEmbree(const rtpbr_scene &scene, EmbreeScene *es, std::string *error) {
+Result buildEmbree(const rtpbr_gltf_scene &scene, EmbreeScene *es, std::string *error) {
     es->device = rtcNewDevice("threads=1,user_threads=0");
     if (!es->device) {
         *error = fmt("cannot create the Embree device (error %d)", int(rtcGetDeviceError(nullptr)));
@@ -76,7 +76,7 @@ Result buildEmbree(const rtpbr_scene &scene, EmbreeScene *es, std::string *error
         if (scene.lights[l].primitive >= 0 && uint32_t(scene.lights[l].primitive) < scene.primitive_count)
             isLightPrimitive[uint32_t(scene.lights[l].primitive)] = true;
     for (uint32_t p = 0; p < scene.primitive_count; p++) {
-        const rtpbr_scene_primitive &prim = scene.primitives[p];
+        const rtpbr_gltf_primitive &prim = scene.primitives[p];
         if (isLightPrimitive[p] || prim.index_count < 3)
             continue;
         unsigned id = attachTriangles(es->device, es->full, prim.positions, prim.vertex_count, prim.indices,

@@ -42,7 +42,7 @@ struct EmbreeScene {
 
 // Builds `full` (surfaces + light polygons) and `lightsOnly` (light polygons, for
 // --no-shadows); the first device error, if any, becomes *error.
-Result buildEmbree(const rtpbr_scene &scene, EmbreeScene *es, std::string *error);
+Result buildEmbree(const rtpbr_gltf_scene &scene, EmbreeScene *es, std::string *error);
 
 } // namespace rtpbr_oracle
 

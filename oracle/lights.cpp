@@ -60,12 +60,12 @@ float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * 
 
 } // namespace
 
-LightSet::LightSet(const rtpbr_scene &scene, LightSampling mode) : mode_(mode) {
+LightSet::LightSet(const rtpbr_gltf_scene &scene, LightSampling mode) : mode_(mode) {
     double total = 0.0;
     for (uint32_t i = 0; i < scene.light_count; i++) {
-        const rtpbr_scene_light &s = scene.lights[i];
+        const rtpbr_gltf_light &s = scene.lights[i];
         Light L;
-        for (uint32_t k = 0; k < s.vertex_count && k < RTPBR_SCENE_MAX_POLYGON_VERTICES; k++)
+        for (uint32_t k = 0; k < s.vertex_count && k < RTPBR_GLTF_MAX_POLYGON_VERTICES; k++)
             L.v.push_back(dvec3(s.vertices[k][0], s.vertices[k][1], s.vertices[k][2]));
         L.n = glm::normalize(dvec3(s.normal[0], s.normal[1], s.normal[2]));
         L.radiance = glm::vec3(s.radiance[0], s.radiance[1], s.radiance[2]);
@@ -131,7 +131,7 @@ bool LightSet::sample(glm::vec3 pf, float uLight, float u1, float u2, LightSampl
     dvec3 p(pf);
     if (!facing(L, p))
         return false;
-    double omega[RTPBR_SCENE_MAX_POLYGON_VERTICES];
+    double omega[RTPBR_GLTF_MAX_POLYGON_VERTICES];
     double total = mode_ == LightSampling::SolidAngle ? fanSolidAngles(L, p, omega) : 0.0;
     bool bySolidAngle = mode_ == LightSampling::SolidAngle && total >= kMinSolidAngle;
     const std::vector<double> &weights = L.triArea;
@@ -199,7 +199,7 @@ float LightSet::pdf(glm::vec3 pf, uint32_t l, glm::vec3 wi, float distance) cons
         return 0.0f;
     double sel = selectionPdf(l);
     if (mode_ == LightSampling::SolidAngle) {
-        double omega[RTPBR_SCENE_MAX_POLYGON_VERTICES];
+        double omega[RTPBR_GLTF_MAX_POLYGON_VERTICES];
         double total = fanSolidAngles(L, p, omega);
         if (total >= kMinSolidAngle)
             return float(sel / total);

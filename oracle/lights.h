@@ -14,7 +14,7 @@
 #ifndef RTPBR_ORACLE_LIGHTS_H
 #define RTPBR_ORACLE_LIGHTS_H
 
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 
 #include <glm/glm.hpp>
 
@@ -36,7 +36,7 @@ class LightSet {
 public:
     static constexpr double kMinSolidAngle = 1e-6;
 
-    LightSet(const rtpbr_scene &scene, LightSampling mode);
+    LightSet(const rtpbr_gltf_scene &scene, LightSampling mode);
 
     size_t size() const { return lights_.size(); }
     bool empty() const { return lights_.empty(); }

@@ -1,7 +1,7 @@
 // rtpbr-oracle: command-line front end of the path tracer (see README.md).
 #include "oracle.h"
 
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 
 #include <chrono>
 #include <cinttypes>
@@ -95,9 +95,9 @@ struct ProgressBar {
     }
 };
 
-void logToStderr(rtpbr_scene_log_level level, const char *message, void *user) {
+void logToStderr(rtpbr_gltf_log_level level, const char *message, void *user) {
     bool quiet = *static_cast<bool *>(user);
-    if (level == RTPBR_SCENE_LOG_WARNING && !quiet)
+    if (level == RTPBR_GLTF_LOG_WARNING && !quiet)
         std::fprintf(stderr, "rtpbr-oracle: scene warning: %s\n", message);
 }
 
@@ -275,23 +275,23 @@ static int run(int argc, char **argv) {
         return 2;
     }
 
-    char loadError[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
-    rtpbr_scene_load_desc desc = {};
+    char loadError[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
+    rtpbr_gltf_load_desc desc = {};
     desc.error_message = loadError;
     desc.error_message_size = sizeof loadError;
     desc.texture_memory_budget = textureBudget;
     desc.logger.func = logToStderr;
     desc.logger.user_data = &quiet;
-    rtpbr_scene *scene = nullptr;
-    rtpbr_scene_result lr = rtpbr_scene_load(scenePath.c_str(), &desc, &scene);
-    if (lr != RTPBR_SCENE_SUCCESS)
-        return fail(scenePath + ": " + rtpbr_scene_result_string(lr) + ": " + loadError);
+    rtpbr_gltf_scene *scene = nullptr;
+    rtpbr_gltf_result lr = rtpbr_gltf_load(scenePath.c_str(), &desc, &scene);
+    if (lr != RTPBR_GLTF_SUCCESS)
+        return fail(scenePath + ": " + rtpbr_gltf_result_string(lr) + ": " + loadError);
 
     ProgressBar bar{!quiet && isatty(STDERR_FILENO)};
     rtpbr_oracle::RenderStats stats;
     rtpbr_oracle::Result r =
         rtpbr_oracle::render(*scene, s, &acc, &error, [&bar](uint64_t d, uint64_t t) { bar(d, t); }, &stats);
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
     if (r != rtpbr_oracle::Result::Success)
         return fail(scenePath + ": " + rtpbr_oracle::resultString(r) + ": " + error);
     if (!quiet)

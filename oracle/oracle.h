@@ -19,7 +19,7 @@
 
 #include "lights.h"
 
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 
 #include <cstdint>
 #include <functional>
@@ -89,9 +89,9 @@ using ProgressCallback = std::function<void(uint64_t pixelsDone, uint64_t pixels
 
 // Checks the scene data the renderer relies on (finite vertices, indices in range, material
 // references, a camera, an emitting light); error describes the first problem.
-Result validateScene(const rtpbr_scene &scene, const RenderSettings &settings, std::string *error);
+Result validateScene(const rtpbr_gltf_scene &scene, const RenderSettings &settings, std::string *error);
 
-Result render(const rtpbr_scene &scene, const RenderSettings &settings, Accumulator *out, std::string *error,
+Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Accumulator *out, std::string *error,
               const ProgressCallback &progress, RenderStats *stats = nullptr);
 
 // Adds b into a. Both must come from the same image size, seed and settings (checked);

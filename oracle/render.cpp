@@ -41,7 +41,7 @@ float layerEta(float ior) { return ior > 1.0f ? std::min(ior, 4.0f) : (ior == 0.
 constexpr uint32_t kRussianRouletteDepth = 3;
 
 
-uint32_t imageHeight(const rtpbr_scene &scene, const RenderSettings &s, uint32_t width) {
+uint32_t imageHeight(const rtpbr_gltf_scene &scene, const RenderSettings &s, uint32_t width) {
     if (s.height)
         return s.height;
     float aspect = s.camera < scene.camera_count ? scene.cameras[s.camera].aspect : 0.0f;
@@ -97,7 +97,7 @@ void orthonormalBasis(vec3 n, vec3 *t, vec3 *b) {
 
 class Integrator {
 public:
-    Integrator(const rtpbr_scene &scene, const EmbreeScene &es, const LightSet &lights, const RenderSettings &s,
+    Integrator(const rtpbr_gltf_scene &scene, const EmbreeScene &es, const LightSet &lights, const RenderSettings &s,
                const std::vector<Texture> &textures, const std::vector<const LayerAlbedo *> &layers)
         : scene_(scene), es_(es), lights_(lights), s_(s), textures_(textures), layers_(layers) {
         maxDepth_ = s.directOnly ? 1u : std::max(1u, s.maxDepth);
@@ -271,7 +271,7 @@ private:
         const GeometryRecord &g = es_.fullGeoms[h.geomID];
         vec3 p0, p1, p2;
         if (g.isLight) {
-            const rtpbr_scene_light &L = scene_.lights[g.index];
+            const rtpbr_gltf_light &L = scene_.lights[g.index];
             p0 = glm::make_vec3(L.vertices[0]);
             p1 = glm::make_vec3(L.vertices[h.primID + 1]);
             p2 = glm::make_vec3(L.vertices[h.primID + 2]);
@@ -281,7 +281,7 @@ private:
             sp.ns = sp.ng;
             sp.p = (1.0f - h.u - h.v) * p0 + h.u * p1 + h.v * p2;
         } else {
-            const rtpbr_scene_primitive &prim = scene_.primitives[g.index];
+            const rtpbr_gltf_primitive &prim = scene_.primitives[g.index];
             const uint32_t *ix = prim.indices + 3 * h.primID;
             p0 = glm::make_vec3(prim.positions + 3 * ix[0]);
             p1 = glm::make_vec3(prim.positions + 3 * ix[1]);
@@ -327,8 +327,8 @@ private:
     // glTF normalTexture: tangent-space normal (2 rgb - 1) scaled in xy by normal_scale, with
     // the bitangent B = w cross(N, T) (glTF 2.0, meshes: TANGENT). Done in the primitive's
     // own orientation, before the normal is turned towards the viewer.
-    void applyNormalMap(const rtpbr_scene_primitive &prim, const uint32_t *ix, SurfacePoint *sp) const {
-        const rtpbr_scene_material &m = scene_.materials[prim.material];
+    void applyNormalMap(const rtpbr_gltf_primitive &prim, const uint32_t *ix, SurfacePoint *sp) const {
+        const rtpbr_gltf_material &m = scene_.materials[prim.material];
         if (m.normal_texture < 0 || uint32_t(m.normal_texture) >= textures_.size() || !prim.has_texcoords)
             return;
         vec3 n = sp->ns;
@@ -354,7 +354,7 @@ private:
     }
 
     SurfaceMaterial material(SurfacePoint &sp) const {
-        const rtpbr_scene_material &m = scene_.materials[sp.material];
+        const rtpbr_gltf_material &m = scene_.materials[sp.material];
         SurfaceMaterial out;
         vec3 base = glm::make_vec3(m.base_color);
         float metallic = m.metallic;
@@ -371,7 +371,7 @@ private:
         float alpha = rtpbr::Alpha_FromPerceptual(rough);
         float aniso = glm::clamp(m.anisotropic, 0.0f, 1.0f);
         if (aniso > 0.0f) {
-            if (m.model == RTPBR_SCENE_MATERIAL_DISNEY) {
+            if (m.model == RTPBR_GLTF_MATERIAL_DISNEY) {
                 glm::vec2 a = rtpbr::Alpha_Anisotropic(alpha, aniso);
                 out.alphaX = a.x;
                 out.alphaY = a.y;
@@ -391,16 +391,16 @@ private:
         }
         out.perceptualRoughness = std::sqrt(std::sqrt(out.alphaX * out.alphaY));
         out.layer = layers_[uint32_t(sp.material)];
-        if (m.model == RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS && m.clearcoat > 0.0f) {
+        if (m.model == RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS && m.clearcoat > 0.0f) {
             out.clearcoat = glm::clamp(m.clearcoat, 0.0f, 1.0f);
             out.clearcoatAlpha = rtpbr::Alpha_FromPerceptual(1.0f - m.clearcoat_gloss);
         }
         out.specularWeight = glm::clamp(m.specular_factor, 0.0f, 1.0f);
-        if (m.model == RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS) { // KHR_materials_sheen (bsdf.h)
+        if (m.model == RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS) { // KHR_materials_sheen (bsdf.h)
             out.sheenColor = glm::clamp(glm::make_vec3(m.sheen_color), vec3(0.0f), vec3(1.0f));
             out.sheenRoughness = glm::clamp(m.sheen_roughness, 0.0f, 1.0f);
         }
-        if (m.model == RTPBR_SCENE_MATERIAL_DISNEY) {
+        if (m.model == RTPBR_GLTF_MATERIAL_DISNEY) {
             rtpbr::DisneyMaterial &d = out.disneyParams;
             d.baseColor = out.baseColor;
             d.metallic = out.metallic;
@@ -422,7 +422,7 @@ private:
         return out;
     }
 
-    const rtpbr_scene &scene_;
+    const rtpbr_gltf_scene &scene_;
     const EmbreeScene &es_;
     const LightSet &lights_;
     const RenderSettings &s_;
@@ -438,7 +438,7 @@ __int128 toFixed(double v) { return __int128(std::ldexp(v, 64)); }
 
 // ---- render ----------------------------------------------------------------------------------
 
-Result render(const rtpbr_scene &scene, const RenderSettings &settings, Accumulator *out, std::string *error,
+Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Accumulator *out, std::string *error,
               const ProgressCallback &progress, RenderStats *stats) {
     std::string localError;
     if (!error)
@@ -493,7 +493,7 @@ Result render(const rtpbr_scene &scene, const RenderSettings &settings, Accumula
     std::vector<std::unique_ptr<LayerAlbedo>> layerTables;
     std::vector<const LayerAlbedo *> layers(scene.material_count, nullptr);
     for (uint32_t m = 0; m < scene.material_count; m++) {
-        const rtpbr_scene_material &mat = scene.materials[m];
+        const rtpbr_gltf_material &mat = scene.materials[m];
         bool mayBeDielectric = mat.metallic < 1.0f || mat.metallic_roughness_texture >= 0;
         if (!mayBeDielectric || !(mat.specular_factor > 0.0f))
             continue;
@@ -523,7 +523,7 @@ Result render(const rtpbr_scene &scene, const RenderSettings &settings, Accumula
     out->nonFinite = 0;
     out->clamped = 0;
 
-    const rtpbr_scene_camera &cam = scene.cameras[s.camera];
+    const rtpbr_gltf_camera &cam = scene.cameras[s.camera];
     const vec3 camPos = glm::make_vec3(cam.position);
     const vec3 camF = glm::normalize(glm::make_vec3(cam.forward));
     const vec3 camU = glm::normalize(glm::make_vec3(cam.up));

@@ -2,7 +2,7 @@
 #ifndef RTPBR_ORACLE_TEXTURE_H
 #define RTPBR_ORACLE_TEXTURE_H
 
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 
 #include <glm/glm.hpp>
 
@@ -16,7 +16,7 @@ namespace rtpbr_oracle {
 // the oracle averages many samples per pixel, which filters the texture over the footprint.
 class Texture {
 public:
-    explicit Texture(const rtpbr_scene_texture &t) : w_(t.width), h_(t.height), wrapS_(t.wrap_s), wrapT_(t.wrap_t) {
+    explicit Texture(const rtpbr_gltf_texture &t) : w_(t.width), h_(t.height), wrapS_(t.wrap_s), wrapT_(t.wrap_t) {
         nearest_ = t.nearest;
         if (!t.pixels || w_ == 0 || h_ == 0) {
             w_ = h_ = 0;
@@ -54,10 +54,10 @@ public:
     }
 
 private:
-    static int wrap(int i, int n, rtpbr_scene_wrap mode) {
-        if (mode == RTPBR_SCENE_WRAP_CLAMP_TO_EDGE)
+    static int wrap(int i, int n, rtpbr_gltf_wrap mode) {
+        if (mode == RTPBR_GLTF_WRAP_CLAMP_TO_EDGE)
             return i < 0 ? 0 : (i >= n ? n - 1 : i);
-        if (mode == RTPBR_SCENE_WRAP_MIRRORED_REPEAT) {
+        if (mode == RTPBR_GLTF_WRAP_MIRRORED_REPEAT) {
             int p = ((i % (2 * n)) + 2 * n) % (2 * n);
             return p < n ? p : 2 * n - 1 - p;
         }
@@ -68,7 +68,7 @@ private:
     }
 
     uint32_t w_, h_;
-    rtpbr_scene_wrap wrapS_, wrapT_;
+    rtpbr_gltf_wrap wrapS_, wrapT_;
     bool nearest_ = false;
     std::vector<glm::vec4> texels_;
 };

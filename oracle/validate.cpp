@@ -89,7 +89,7 @@ bool withinExtent(const float *v) {
 
 } // namespace
 
-Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::string *error) {
+Result validateScene(const rtpbr_gltf_scene &scene, const RenderSettings &s, std::string *error) {
     if (scene.camera_count == 0) {
         *error = "the scene has no camera (the oracle renders from a glTF perspective camera)";
         return Result::NoCamera;
@@ -98,7 +98,7 @@ Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::str
         *error = fmt("camera %u requested, the scene has %u", s.camera, scene.camera_count);
         return Result::NoCamera;
     }
-    const rtpbr_scene_camera &cam = scene.cameras[s.camera];
+    const rtpbr_gltf_camera &cam = scene.cameras[s.camera];
     if (!finite3(cam.position) || !finite3(cam.forward) || !finite3(cam.up) || !finite3(cam.right) ||
         !(cam.yfov > 0.0f && cam.yfov < 3.14159f)) {
         *error = fmt("camera %u: non-finite position/orientation or yfov outside (0, pi)", s.camera);
@@ -111,7 +111,7 @@ Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::str
         return Result::InvalidScene;
     }
     for (uint32_t m = 0; m < scene.material_count; m++) {
-        const rtpbr_scene_material &mat = scene.materials[m];
+        const rtpbr_gltf_material &mat = scene.materials[m];
         const float vals[] = {mat.base_color[0], mat.base_color[1], mat.base_color[2], mat.metallic, mat.roughness,
                               mat.ior, mat.specular_factor, mat.specular_color[0], mat.specular_color[1],
                               mat.specular_color[2], mat.anisotropic, mat.anisotropy_rotation, mat.specular,
@@ -130,7 +130,7 @@ Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::str
             }
     }
     for (uint32_t p = 0; p < scene.primitive_count; p++) {
-        const rtpbr_scene_primitive &prim = scene.primitives[p];
+        const rtpbr_gltf_primitive &prim = scene.primitives[p];
         if (prim.index_count % 3 != 0) {
             *error = fmt("primitive %u: index count %u is not a multiple of 3", p, prim.index_count);
             return Result::InvalidScene;
@@ -163,9 +163,9 @@ Result validateScene(const rtpbr_scene &scene, const RenderSettings &s, std::str
     }
     bool emits = false;
     for (uint32_t l = 0; l < scene.light_count; l++) {
-        const rtpbr_scene_light &L = scene.lights[l];
-        if (L.vertex_count < 3 || L.vertex_count > RTPBR_SCENE_MAX_POLYGON_VERTICES) {
-            *error = fmt("light %u: %u vertices (3..%u allowed)", l, L.vertex_count, RTPBR_SCENE_MAX_POLYGON_VERTICES);
+        const rtpbr_gltf_light &L = scene.lights[l];
+        if (L.vertex_count < 3 || L.vertex_count > RTPBR_GLTF_MAX_POLYGON_VERTICES) {
+            *error = fmt("light %u: %u vertices (3..%u allowed)", l, L.vertex_count, RTPBR_GLTF_MAX_POLYGON_VERTICES);
             return Result::InvalidScene;
         }
         for (uint32_t k = 0; k < L.vertex_count; k++)

@@ -10,13 +10,13 @@ mkdir -p out
 echo "main job: wrote out/brdf-spheres.png"
 # The engine (librtpbr, Vulkan; lavapipe when there is no GPU) on the default scene:
 # linear radiance (EXR, what the oracle is compared with) and the tone-mapped PNG.
-if [[ -x "$builddir/samples/headless/rtpbr-render" ]]; then
+if [[ -x "$builddir/tools/render/rtpbr-render" ]]; then
   for ext in exr png; do
-    "$builddir/samples/headless/rtpbr-render" samples/scenes/quad_light.gltf -o "out/engine-quad_light.$ext" \
+    "$builddir/tools/render/rtpbr-render" samples/scenes/quad_light.gltf -o "out/engine-quad_light.$ext" \
       --supersample 2
   done
 fi
-if [[ -x "$builddir/samples/headless/rtpbr-render" && -x "$builddir/oracle/rtpbr-oracle" ]]; then
+if [[ -x "$builddir/tools/render/rtpbr-render" && -x "$builddir/oracle/rtpbr-oracle" ]]; then
   python3 tools/validate/rtpbr_validate.py --build "$builddir" --out report --scenes quad_light
   echo "main job: engine against oracle on quad_light: report/index.html (summary in report/summary.md)"
 else

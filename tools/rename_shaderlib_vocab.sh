@@ -28,7 +28,7 @@ if ((${#files[@]} == 0)); then
       ls samples/shader-include/* 2>/dev/null
       find tests tools oracle bench -type f \( -name '*.glsl' -o -name '*.comp' -o -name '*.frag' \
            -o -name '*.vert' -o -name '*.hlsl' -o -name '*.inc' \) 2>/dev/null
-      ls tests/gpu/kernel.h tests/gpu/kernel_cases.h 2>/dev/null
+      ls tests/shaderlib/gpu/kernel.h tests/shaderlib/gpu/kernel_cases.h 2>/dev/null
     } | grep -v '^tests/consumers/' | sort -u)
   # lang.h: drop the block of unprefixed names (BEGIN ... END unprefixed vocabulary).
   sed -i '/^\/\/ BEGIN unprefixed vocabulary/,/^\/\/ END unprefixed vocabulary/d' shaderlib/rtpbr/lang.h

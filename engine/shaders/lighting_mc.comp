@@ -22,7 +22,7 @@
 // diffuse colour: 0 for a surface without specular (pure light sampling), 1/2 for a metal.
 // No per-tile culling: every light is summed at every pixel (lights behind a one-sided light's
 // plane are skipped per pixel, where the integrand is 0). Kept flat (no nested early returns:
-// lavapipe's gallivm limits control-flow nesting, see tests/gpu/kernel.h).
+// lavapipe's gallivm limits control-flow nesting, see tests/shaderlib/gpu/kernel.h).
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"

@@ -1,4 +1,4 @@
-// Scenes from the glTF loader (engine/scene): the loader's plain data mapped onto
+// Scenes from the glTF loader (scene): the loader's plain data mapped onto
 // rtpbr_gpu_scene_desc.
 //
 // Material mapping (loader field -> engine), one table:
@@ -26,17 +26,17 @@
 #include <string.h>
 
 #include "internal.h"
-#include "rtpbr/rtpbr_scene.h"
+#include "rtpbr/rtpbr_gltf.h"
 
 // 1-based engine texture index of a loader texture index; 0 (none) for -1, out-of-range
 // indices and textures without decoded texels.
-static uint32_t texture_ref(const rtpbr_scene *loaded, int32_t index)
+static uint32_t texture_ref(const rtpbr_gltf_scene *loaded, int32_t index)
 {
     if (index < 0 || (uint32_t)index >= loaded->texture_count || !loaded->textures[index].pixels) return 0;
     return (uint32_t)index + 1;
 }
 
-rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_scene *loaded,
+rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_gltf_scene *loaded,
                                          rtpbr_gpu_scene **out_scene)
 {
     if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
@@ -45,7 +45,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     *out_scene = NULL;
-    // A hand-built or corrupted rtpbr_scene: every non-zero count needs its array.
+    // A hand-built or corrupted rtpbr_gltf_scene: every non-zero count needs its array.
     const struct {
         uint32_t count;
         const void *array;
@@ -76,7 +76,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
     rtpbr_texture_desc *textures = NULL;
     if (loaded->texture_count && !(textures = rtpbr_alloc(ctx, loaded->texture_count * sizeof *textures))) goto oom;
     for (uint32_t i = 0; i < loaded->texture_count; ++i) {
-        const rtpbr_scene_texture *t = &loaded->textures[i];
+        const rtpbr_gltf_texture *t = &loaded->textures[i];
         if (t->pixels) // textures without texels are never referenced (texture_ref)
             textures[i] = (rtpbr_texture_desc){.width = t->width, .height = t->height, .rgba = t->pixels, .srgb = t->srgb};
         else
@@ -89,7 +89,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
     if (loaded->camera_count && !(cameras = rtpbr_alloc(ctx, loaded->camera_count * sizeof *cameras))) goto oom;
 
     for (uint32_t i = 0; i < loaded->primitive_count; ++i) {
-        const rtpbr_scene_primitive *p = &loaded->primitives[i];
+        const rtpbr_gltf_primitive *p = &loaded->primitives[i];
         meshes[i] = (rtpbr_mesh_desc){
             .positions = p->positions,
             .normals = p->normals,
@@ -102,7 +102,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         }; // positions are already in world space: identity transform
     }
     for (uint32_t i = 0; i < loaded->material_count; ++i) {
-        const rtpbr_scene_material *m = &loaded->materials[i];
+        const rtpbr_gltf_material *m = &loaded->materials[i];
         rtpbr_material_desc *d = &materials[i];
         memcpy(d->base_color, m->base_color, sizeof d->base_color);
         d->metallic = m->metallic;
@@ -120,7 +120,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         d->normal_scale = m->normal_scale;
         if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
             d->specular = -1.0f; // a black specular colour removes the lobe, like specular = 0
-        if (m->model == RTPBR_SCENE_MATERIAL_DISNEY) {
+        if (m->model == RTPBR_GLTF_MATERIAL_DISNEY) {
             d->model = RTPBR_MATERIAL_DISNEY;
             d->disney = (rtpbr_disney_params){
                 .subsurface = m->subsurface,
@@ -142,7 +142,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         }
     }
     for (uint32_t i = 0; i < loaded->light_count; ++i) {
-        const rtpbr_scene_light *l = &loaded->lights[i];
+        const rtpbr_gltf_light *l = &loaded->lights[i];
         rtpbr_light_desc *d = &lights[i];
         d->vertex_count = l->vertex_count;
         uint32_t n = l->vertex_count <= RTPBR_MAX_POLYGON_VERTICES ? l->vertex_count : RTPBR_MAX_POLYGON_VERTICES;
@@ -151,7 +151,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         d->two_sided = l->two_sided;
     }
     for (uint32_t i = 0; i < loaded->camera_count; ++i) {
-        const rtpbr_scene_camera *c = &loaded->cameras[i];
+        const rtpbr_gltf_camera *c = &loaded->cameras[i];
         rtpbr_camera_desc *d = &cameras[i];
         memcpy(d->position, c->position, sizeof d->position);
         for (int k = 0; k < 3; ++k) d->target[k] = c->position[k] + c->forward[k];
@@ -187,11 +187,11 @@ cleanup:
 
 #if RTPBR_HAVE_SCENE_LOADER
 
-static void forward_loader_log(rtpbr_scene_log_level level, const char *message, void *user_data)
+static void forward_loader_log(rtpbr_gltf_log_level level, const char *message, void *user_data)
 {
     const rtpbr_context *ctx = user_data;
-    rtpbr_log(ctx, level == RTPBR_SCENE_LOG_ERROR ? RTPBR_LOG_ERROR
-                   : level == RTPBR_SCENE_LOG_WARNING ? RTPBR_LOG_WARNING : RTPBR_LOG_INFO,
+    rtpbr_log(ctx, level == RTPBR_GLTF_LOG_ERROR ? RTPBR_LOG_ERROR
+                   : level == RTPBR_GLTF_LOG_WARNING ? RTPBR_LOG_WARNING : RTPBR_LOG_INFO,
               "glTF loader: %s", message);
 }
 
@@ -203,8 +203,8 @@ rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtp
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     *out_scene = NULL;
-    char message[RTPBR_SCENE_ERROR_MESSAGE_SIZE] = "";
-    rtpbr_scene_load_desc desc = {
+    char message[RTPBR_GLTF_ERROR_MESSAGE_SIZE] = "";
+    rtpbr_gltf_load_desc desc = {
         .allocator = {ctx->allocator.alloc, ctx->allocator.free, ctx->allocator.user_data},
         .logger = {forward_loader_log, ctx},
         .error_message = message,
@@ -212,20 +212,20 @@ rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtp
         .max_lights = RTPBR_MAX_LIGHTS,
         .skip_images = false,
     };
-    rtpbr_scene *loaded = NULL;
-    rtpbr_scene_result sr = rtpbr_scene_load(path, &desc, &loaded);
-    if (sr != RTPBR_SCENE_SUCCESS) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "cannot load %s: %s: %s", path, rtpbr_scene_result_string(sr), message);
+    rtpbr_gltf_scene *loaded = NULL;
+    rtpbr_gltf_result sr = rtpbr_gltf_load(path, &desc, &loaded);
+    if (sr != RTPBR_GLTF_SUCCESS) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR, "cannot load %s: %s: %s", path, rtpbr_gltf_result_string(sr), message);
         switch (sr) {
-        case RTPBR_SCENE_ERROR_IO: return RTPBR_ERROR_IO;
-        case RTPBR_SCENE_ERROR_OUT_OF_MEMORY: return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-        case RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS: return RTPBR_ERROR_LIMIT_EXCEEDED;
-        case RTPBR_SCENE_ERROR_INVALID_ARGUMENT: return RTPBR_ERROR_INVALID_ARGUMENT;
+        case RTPBR_GLTF_ERROR_IO: return RTPBR_ERROR_IO;
+        case RTPBR_GLTF_ERROR_OUT_OF_MEMORY: return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+        case RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS: return RTPBR_ERROR_LIMIT_EXCEEDED;
+        case RTPBR_GLTF_ERROR_INVALID_ARGUMENT: return RTPBR_ERROR_INVALID_ARGUMENT;
         default: return RTPBR_ERROR_SCENE_LOAD;
         }
     }
     rtpbr_result result = rtpbr_gpu_scene_from_loaded(ctx, loaded, out_scene);
-    rtpbr_scene_destroy(loaded);
+    rtpbr_gltf_destroy(loaded);
     return result;
 }
 
@@ -239,7 +239,7 @@ rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtp
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_load_gltf: path or out_scene is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
-    rtpbr_log(ctx, RTPBR_LOG_ERROR, "librtpbr was built without the glTF loader (engine/scene)");
+    rtpbr_log(ctx, RTPBR_LOG_ERROR, "librtpbr was built without the glTF loader (scene)");
     return RTPBR_ERROR_MISSING_FEATURE;
 }
 

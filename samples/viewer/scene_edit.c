@@ -26,7 +26,7 @@ static void mat4_premultiply(float m[16], const float a[16])
 }
 
 // 1-based engine texture index of a loader texture index (0: none), as the engine maps it.
-static uint32_t texture_ref(const rtpbr_scene *loaded, int32_t index)
+static uint32_t texture_ref(const rtpbr_gltf_scene *loaded, int32_t index)
 {
     if (index < 0 || (uint32_t)index >= loaded->texture_count || !loaded->textures[index].pixels) return 0;
     return (uint32_t)index + 1;
@@ -35,14 +35,14 @@ static uint32_t texture_ref(const rtpbr_scene *loaded, int32_t index)
 bool viewer_scene_load(viewer_scene *s, const char *path)
 {
     memset(s, 0, sizeof *s);
-    char error[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
-    rtpbr_scene_load_desc desc = {.error_message = error, .error_message_size = sizeof error};
-    rtpbr_scene_result r = rtpbr_scene_load(path, &desc, &s->loaded);
-    if (r != RTPBR_SCENE_SUCCESS) {
-        fprintf(stderr, "rtpbr-viewer: %s: %s: %s\n", path, rtpbr_scene_result_string(r), error);
+    char error[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
+    rtpbr_gltf_load_desc desc = {.error_message = error, .error_message_size = sizeof error};
+    rtpbr_gltf_result r = rtpbr_gltf_load(path, &desc, &s->loaded);
+    if (r != RTPBR_GLTF_SUCCESS) {
+        fprintf(stderr, "rtpbr-viewer: %s: %s: %s\n", path, rtpbr_gltf_result_string(r), error);
         return false;
     }
-    const rtpbr_scene *in = s->loaded;
+    const rtpbr_gltf_scene *in = s->loaded;
     s->material_count = in->material_count;
     s->light_count = in->light_count;
     s->materials = calloc(in->material_count ? in->material_count : 1, sizeof *s->materials);
@@ -55,7 +55,7 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
     }
     // The glTF mapping of docs/materials.md, as rtpbr_gpu_scene_from_loaded does it.
     for (uint32_t i = 0; i < in->material_count; ++i) {
-        const rtpbr_scene_material *m = &in->materials[i];
+        const rtpbr_gltf_material *m = &in->materials[i];
         rtpbr_material_desc *d = &s->materials[i];
         memcpy(d->base_color, m->base_color, sizeof d->base_color);
         d->metallic = m->metallic;
@@ -72,7 +72,7 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         d->normal_scale = m->normal_scale;
         if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
             d->specular = -1.0f; // a black specular colour removes the lobe
-        if (m->model == RTPBR_SCENE_MATERIAL_DISNEY) {
+        if (m->model == RTPBR_GLTF_MATERIAL_DISNEY) {
             d->model = RTPBR_MATERIAL_DISNEY;
             d->disney = (rtpbr_disney_params){.subsurface = m->subsurface,
                 .specular = m->specular == 0.0f ? -1.0f : m->specular, .specular_tint = m->specular_tint,
@@ -88,7 +88,7 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         }
     }
     for (uint32_t i = 0; i < in->light_count; ++i) {
-        const rtpbr_scene_light *l = &in->lights[i];
+        const rtpbr_gltf_light *l = &in->lights[i];
         viewer_light *v = &s->lights[i];
         v->vertex_count = l->vertex_count;
         memcpy(v->vertices, l->vertices, sizeof v->vertices);
@@ -105,7 +105,7 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
 
 void viewer_scene_destroy(viewer_scene *s)
 {
-    rtpbr_scene_destroy(s->loaded);
+    rtpbr_gltf_destroy(s->loaded);
     free(s->materials);
     free(s->lights);
     free(s->primitive_is_light);
@@ -135,7 +135,7 @@ static void light_desc(const viewer_light *l, rtpbr_light_desc *d)
 
 rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_scene **out)
 {
-    const rtpbr_scene *in = s->loaded;
+    const rtpbr_gltf_scene *in = s->loaded;
     rtpbr_texture_desc *textures = calloc(in->texture_count ? in->texture_count : 1, sizeof *textures);
     uint32_t mesh_cap = in->primitive_count + s->light_count;
     rtpbr_mesh_desc *meshes = calloc(mesh_cap ? mesh_cap : 1, sizeof *meshes);
@@ -149,7 +149,7 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
     if (!meshes || !materials || !lights || !light_positions || !light_normals || !light_indices || !textures)
         goto done;
     for (uint32_t i = 0; i < in->texture_count; ++i) {
-        const rtpbr_scene_texture *t = &in->textures[i];
+        const rtpbr_gltf_texture *t = &in->textures[i];
         static const uint8_t white[4] = {255, 255, 255, 255}; // never sampled (no material refers to it)
         textures[i] = t->pixels ? (rtpbr_texture_desc){.width = t->width, .height = t->height, .rgba = t->pixels,
                                                       .srgb = t->srgb}
@@ -158,7 +158,7 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
     memcpy(materials, s->materials, s->material_count * sizeof *materials);
     uint32_t mesh_count = 0;
     for (uint32_t i = 0; i < in->primitive_count; ++i) {
-        const rtpbr_scene_primitive *p = &in->primitives[i];
+        const rtpbr_gltf_primitive *p = &in->primitives[i];
         if (s->primitive_is_light[i] || p->vertex_count == 0 || p->index_count == 0) continue;
         meshes[mesh_count++] = (rtpbr_mesh_desc){.positions = p->positions, .normals = p->normals,
             .texcoords = p->texcoords, .tangents = p->has_tangents ? p->tangents : NULL, .indices = p->indices,
@@ -259,9 +259,9 @@ bool viewer_scene_pick(const viewer_scene *s, const float origin[3], const float
 {
     float best = INFINITY;
     *light = *material = -1;
-    const rtpbr_scene *in = s->loaded;
+    const rtpbr_gltf_scene *in = s->loaded;
     for (uint32_t i = 0; i < in->primitive_count; ++i) {
-        const rtpbr_scene_primitive *p = &in->primitives[i];
+        const rtpbr_gltf_primitive *p = &in->primitives[i];
         if (s->primitive_is_light[i] || !p->indices) continue;
         for (uint32_t k = 0; k + 2 < p->index_count; k += 3) {
             float t = ray_triangle(origin, dir, p->positions + 3 * p->indices[k], p->positions + 3 * p->indices[k + 1],

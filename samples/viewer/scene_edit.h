@@ -7,7 +7,7 @@
 #define RTPBR_VIEWER_SCENE_EDIT_H
 
 #include <rtpbr/rtpbr.h>
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 #include <stdbool.h>
 
 #ifdef __cplusplus
@@ -28,7 +28,7 @@ typedef struct viewer_light {
 } viewer_light;
 
 typedef struct viewer_scene {
-    rtpbr_scene *loaded;
+    rtpbr_gltf_scene *loaded;
     rtpbr_material_desc *materials; // one per loaded material (edited in place)
     uint32_t material_count;
     viewer_light *lights;

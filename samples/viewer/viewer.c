@@ -65,7 +65,7 @@ static void camera_position(const app *a, float out[3])
 // along its view ray), else a view of the whole bounding box.
 static void camera_home(app *a)
 {
-    const rtpbr_scene *s = a->scene.loaded;
+    const rtpbr_gltf_scene *s = a->scene.loaded;
     float center[3], extent = 0.0f;
     for (int c = 0; c < 3; ++c) {
         center[c] = 0.5f * (s->bounds_min[c] + s->bounds_max[c]);
@@ -73,7 +73,7 @@ static void camera_home(app *a)
     }
     a->yfov = 0.7853982f;
     if (s->camera_count > 0) {
-        const rtpbr_scene_camera *cam = &s->cameras[0];
+        const rtpbr_gltf_camera *cam = &s->cameras[0];
         float to_center[3] = {center[0] - cam->position[0], center[1] - cam->position[1], center[2] - cam->position[2]};
         float d = to_center[0] * cam->forward[0] + to_center[1] * cam->forward[1] + to_center[2] * cam->forward[2];
         a->distance = d > 0.1f ? d : fmaxf(extent, 1.0f);

@@ -414,7 +414,7 @@ RTPBR_FN float Disney_SubsurfaceAlbedoBound(float mu, float roughness) {
 
 // Upper bound of the albedo of the sheen shape (1 - LoH)^5 (no 1/pi in [B12-brdf]):
 // 0.0006 + 0.09 (1 - mu)^2, a fit above the numerically integrated albedo (0.0884 at grazing,
-// 0.00026 at normal incidence; checked by tests/disney).
+// 0.00026 at normal incidence; checked by tests/shaderlib/disney).
 RTPBR_FN float Disney_SheenAlbedoBound(float mu) {
     float y = rtpbr_saturate(mu > 0.0f ? mu : 0.0f);
     return 0.0006f + 0.09f * rtpbr_sq(1.0f - y);
@@ -423,7 +423,7 @@ RTPBR_FN float Disney_SheenAlbedoBound(float mu) {
 // Upper bound Ucc of the albedo of the clearcoat lobe at clearcoat = 1, over every
 // clearcoatGloss: 0.01 + 0.055 (1 - mu)^1.5, a fit above the numerically integrated albedo with
 // the height-correlated G (0.059 at grazing, 0.0094 at normal incidence; checked by
-// tests/disney); the separable G2 is smaller, so the bound holds for both RTPBR_SMITH forms.
+// tests/shaderlib/disney); the separable G2 is smaller, so the bound holds for both RTPBR_SMITH forms.
 RTPBR_FN float Disney_ClearcoatAlbedoBound(float mu) {
     float x = 1.0f - rtpbr_saturate(mu > 0.0f ? mu : 0.0f);
     return 0.01f + 0.055f * x * sqrt(x);

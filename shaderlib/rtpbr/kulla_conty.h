@@ -102,7 +102,7 @@ RTPBR_FN rtpbr_float3 F_Avg_ConductorNode(rtpbr_float3 eta, rtpbr_float3 k, floa
 // Average of the exact conductor Fresnel (complex IOR eta + i k, per channel), by a fixed
 // 6-point Gauss-Legendre quadrature in t = sqrt(mu); with k = 0 it is the dielectric F_avg.
 // Absolute error < 5e-5 for eta in [0.05, 4], k in [0, 10] with eta >= 1 or k >= 1 (every
-// metal in the visible range; tests/kc). The kink of total internal reflection (eta < 1 and
+// metal in the visible range; tests/shaderlib/kc). The kink of total internal reflection (eta < 1 and
 // k -> 0, not a conductor) is not resolved: up to 0.18 there.
 RTPBR_FN rtpbr_float3 F_Avg_Conductor(rtpbr_float3 eta, rtpbr_float3 k) {
     rtpbr_float3 s = F_Avg_ConductorNode(eta, k, 0.033765242898424f, 0.085662246189585f);
@@ -230,14 +230,14 @@ RTPBR_FN rtpbr_float3 BRDF_DielectricOverDiffuse(float NoV, float NoL, float NoH
 // pi * formFactor (formFactor = (1/pi) int_P mu_i dw, what LTC / Lambert's polygon formula
 // give for the clipped polygon), times 1 - E at a representative direction: the direction of
 // the polygon's vector form factor (the "average direction" LTC code computes), whose cosine
-// mu_rep to the normal selects Erep = E(mu_rep, r). Error measured in tests/kc (kulla_conty.md).
+// mu_rep to the normal selects Erep = E(mu_rep, r). Error measured in tests/shaderlib/kc (kulla_conty.md).
 
 // The E of the representative direction, widened with the polygon's size (ours): with |F| the
 // length of the vector form factor (sin^2 of the angular radius for a sphere cap; 1 for the
 // whole hemisphere) the cosine-weighted mean of E over the polygon is taken as
 // rtpbr_lerp(E(mu_rep), E_avg, |F|). It is exact at both ends (a vanishing polygon; the whole
 // hemisphere, whose mean is E_avg by definition) and, for a cap around the normal, wherever
-// E is linear in mu^2 in between. Measured against quadrature in tests/kc.
+// E is linear in mu^2 in between. Measured against quadrature in tests/shaderlib/kc.
 RTPBR_FN float KC_PolygonMeanE(float Erep, float Eavg, float lengthF) {
     float t = lengthF > 0.0f ? min(lengthF, 1.0f) : 0.0f; // NaN -> 0
     return rtpbr_lerp(Erep, Eavg, t);

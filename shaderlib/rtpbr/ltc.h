@@ -257,7 +257,7 @@ RTPBR_FN rtpbr_float3x3 LTC_InverseMatrix(rtpbr_float4 ltc1) {
 
 // Heitz, Dupuy, Hill & Neubelt 2017, the fitted edge integral of their LTC code (ltc_code,
 // "IntegrateEdgeVec"): theta / sin(theta) / (2 pi) for two unit vectors with x = cos(theta),
-// as a rational fit in |x| (relative error below 2e-6 on [-1, 1], measured in tests/ltc);
+// as a rational fit in |x| (relative error below 2e-6 on [-1, 1], measured in tests/shaderlib/ltc);
 // for x < 0 the identity theta / sin = pi / sin - (pi - theta) / sin folds it onto |x|. sinT =
 // |a x b|, passed in so that opposite vectors (sin -> 0) stay consistent with the cross product.
 RTPBR_FN float LTC_EdgeFactor(float x, float sinT) {

@@ -1,24 +1,24 @@
 /* Regression inputs of the fuzzers and hand-made bad files (tests/bad-input/scenes/):
  *   load_bad_files DIR
- * reads DIR/expected.txt, lines "FILE RESULT [MEMORY_RESULT]" (rtpbr_scene_result names;
+ * reads DIR/expected.txt, lines "FILE RESULT [MEMORY_RESULT]" (rtpbr_gltf_result names;
  * MEMORY_RESULT when loading from memory differs, e.g. a .glb with a broken magic is JSON
  * there, "-" = not loadable from memory: a folder, a missing file; '#' starts a comment),
  * loads each FILE by path and from memory (base_dir DIR), checks
  * the result, that a message is given and that no scene is returned. A crash, a leak
  * (ASan build) or a wrong result fails the test. */
 #define _POSIX_C_SOURCE 200809L
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static int check(const char* what, const char* file, rtpbr_scene_result got, const char* want,
-                 const rtpbr_scene* scene, const char* message) {
-    int ok = strcmp(rtpbr_scene_result_string(got), want) == 0 && message[0] != '\0';
-    if (got != RTPBR_SCENE_SUCCESS && scene) ok = 0;
-    printf("%s %s (%s): %s: %s\n", ok ? "ok  " : "FAIL", file, what, rtpbr_scene_result_string(got),
+static int check(const char* what, const char* file, rtpbr_gltf_result got, const char* want,
+                 const rtpbr_gltf_scene* scene, const char* message) {
+    int ok = strcmp(rtpbr_gltf_result_string(got), want) == 0 && message[0] != '\0';
+    if (got != RTPBR_GLTF_SUCCESS && scene) ok = 0;
+    printf("%s %s (%s): %s: %s\n", ok ? "ok  " : "FAIL", file, what, rtpbr_gltf_result_string(got),
            message[0] ? message : "(no message)");
     if (!ok) printf("     expected %s\n", want);
     return ok;
@@ -65,16 +65,16 @@ int main(int argc, char** argv) {
         if (fields < 2) continue;
         if (fields == 2) memcpy(want_memory, want, sizeof want);
         ++cases;
-        char message[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
-        rtpbr_scene_load_desc desc = {0};
+        char message[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
+        rtpbr_gltf_load_desc desc = {0};
         desc.error_message = message;
         desc.error_message_size = sizeof message;
         snprintf(path, sizeof path, "%s/%s", dir, file);
-        rtpbr_scene* scene = (rtpbr_scene*)(uintptr_t)1;
-        rtpbr_scene_result r = rtpbr_scene_load(path, &desc, &scene);
-        if (r == RTPBR_SCENE_SUCCESS) snprintf(message, sizeof message, "(loaded)");
+        rtpbr_gltf_scene* scene = (rtpbr_gltf_scene*)(uintptr_t)1;
+        rtpbr_gltf_result r = rtpbr_gltf_load(path, &desc, &scene);
+        if (r == RTPBR_GLTF_SUCCESS) snprintf(message, sizeof message, "(loaded)");
         failures += !check("path", file, r, want, scene, message);
-        if (r == RTPBR_SCENE_SUCCESS) rtpbr_scene_destroy(scene);
+        if (r == RTPBR_GLTF_SUCCESS) rtpbr_gltf_destroy(scene);
 
         if (strcmp(want_memory, "-") == 0) continue;
         size_t size = 0;
@@ -85,11 +85,11 @@ int main(int argc, char** argv) {
             continue;
         }
         desc.base_dir = dir;
-        scene = (rtpbr_scene*)(uintptr_t)1;
-        r = rtpbr_scene_load_memory(data, size, &desc, &scene);
-        if (r == RTPBR_SCENE_SUCCESS) snprintf(message, sizeof message, "(loaded)");
+        scene = (rtpbr_gltf_scene*)(uintptr_t)1;
+        r = rtpbr_gltf_load_memory(data, size, &desc, &scene);
+        if (r == RTPBR_GLTF_SUCCESS) snprintf(message, sizeof message, "(loaded)");
         failures += !check("memory", file, r, want_memory, scene, message);
-        if (r == RTPBR_SCENE_SUCCESS) rtpbr_scene_destroy(scene);
+        if (r == RTPBR_GLTF_SUCCESS) rtpbr_gltf_destroy(scene);
         free(data);
     }
     fclose(list);

@@ -1,5 +1,5 @@
 /* Bad-input suite (issue 10): every malformed, hostile or oversized input gets a specific
- * rtpbr_scene_result and a message naming the problem; nothing crashes and nothing leaks
+ * rtpbr_gltf_result and a message naming the problem; nothing crashes and nothing leaks
  * (the suite runs under ASan+UBSan in CI; a counting allocator checks the scene's own
  * memory here too). Inputs are generated at run time; the fuzzers' regression inputs are
  * run by load_bad_files.c. */
@@ -36,20 +36,20 @@ static void count_free(void* p, void* user) {
     if (p) ((counts*)user)->live--;
     free(p);
 }
-static void count_log(rtpbr_scene_log_level level, const char* message, void* user) {
+static void count_log(rtpbr_gltf_log_level level, const char* message, void* user) {
     assert_non_null(message);
-    if (level == RTPBR_SCENE_LOG_WARNING) ((counts*)user)->warnings++;
+    if (level == RTPBR_GLTF_LOG_WARNING) ((counts*)user)->warnings++;
 }
 
 typedef struct loaded {
-    rtpbr_scene_result result;
-    char message[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
-    rtpbr_scene* scene;
+    rtpbr_gltf_result result;
+    char message[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
+    rtpbr_gltf_scene* scene;
     counts counts;
 } loaded;
 
-static rtpbr_scene_load_desc make_desc(loaded* out, const rtpbr_scene_load_desc* base) {
-    rtpbr_scene_load_desc desc = {0};
+static rtpbr_gltf_load_desc make_desc(loaded* out, const rtpbr_gltf_load_desc* base) {
+    rtpbr_gltf_load_desc desc = {0};
     if (base) desc = *base;
     desc.allocator.alloc = count_alloc;
     desc.allocator.free = count_free;
@@ -62,52 +62,52 @@ static rtpbr_scene_load_desc make_desc(loaded* out, const rtpbr_scene_load_desc*
 }
 
 static void finish(loaded* l, const char* name) {
-    if (l->result != RTPBR_SCENE_SUCCESS) {
-        if (l->scene) fail_msg("%s: a scene returned with %s", name, rtpbr_scene_result_string(l->result));
-        if (!l->message[0]) fail_msg("%s: %s without a message", name, rtpbr_scene_result_string(l->result));
+    if (l->result != RTPBR_GLTF_SUCCESS) {
+        if (l->scene) fail_msg("%s: a scene returned with %s", name, rtpbr_gltf_result_string(l->result));
+        if (!l->message[0]) fail_msg("%s: %s without a message", name, rtpbr_gltf_result_string(l->result));
         if (l->counts.live != 0) fail_msg("%s: %ld scene allocations not freed on failure", name, l->counts.live);
     }
 }
 
 /* `l` must stay where it is until release(): the scene's allocator points into it. */
-static void load_path(loaded* l, const char* path, const rtpbr_scene_load_desc* base) {
+static void load_path(loaded* l, const char* path, const rtpbr_gltf_load_desc* base) {
     memset(l, 0, sizeof *l);
-    rtpbr_scene_load_desc desc = make_desc(l, base);
-    l->scene = (rtpbr_scene*)(uintptr_t)1; /* must be overwritten */
-    l->result = rtpbr_scene_load(path, &desc, &l->scene);
+    rtpbr_gltf_load_desc desc = make_desc(l, base);
+    l->scene = (rtpbr_gltf_scene*)(uintptr_t)1; /* must be overwritten */
+    l->result = rtpbr_gltf_load(path, &desc, &l->scene);
     finish(l, path);
 }
 
-static void load_memory(loaded* l, const void* data, size_t size, const rtpbr_scene_load_desc* base) {
+static void load_memory(loaded* l, const void* data, size_t size, const rtpbr_gltf_load_desc* base) {
     memset(l, 0, sizeof *l);
-    rtpbr_scene_load_desc desc = make_desc(l, base);
-    l->scene = (rtpbr_scene*)(uintptr_t)1;
-    l->result = rtpbr_scene_load_memory(data, size, &desc, &l->scene);
+    rtpbr_gltf_load_desc desc = make_desc(l, base);
+    l->scene = (rtpbr_gltf_scene*)(uintptr_t)1;
+    l->result = rtpbr_gltf_load_memory(data, size, &desc, &l->scene);
     finish(l, "memory");
 }
 
 static void release(loaded* l) {
-    rtpbr_scene_destroy(l->scene);
+    rtpbr_gltf_destroy(l->scene);
     l->scene = NULL;
     assert_int_equal(l->counts.live, 0);
 }
 
 /* Writes text as dir/name, loads it, expects want and a message containing needle. */
-static void expect_text(const char* dir, const char* name, const char* text, const rtpbr_scene_load_desc* desc,
-                        rtpbr_scene_result want, const char* needle) {
+static void expect_text(const char* dir, const char* name, const char* text, const rtpbr_gltf_load_desc* desc,
+                        rtpbr_gltf_result want, const char* needle) {
     ts_write(dir, name, text, strlen(text));
     char* path = ts_path(dir, name);
     loaded l;
     load_path(&l, path, desc);
     if (l.result != want)
-        fail_msg("%s: got %s (%s), expected %s", name, rtpbr_scene_result_string(l.result), l.message,
-                 rtpbr_scene_result_string(want));
+        fail_msg("%s: got %s (%s), expected %s", name, rtpbr_gltf_result_string(l.result), l.message,
+                 rtpbr_gltf_result_string(want));
     if (needle && !strstr(l.message, needle)) fail_msg("%s: message '%s' lacks '%s'", name, l.message, needle);
     release(&l);
     free(path);
 }
 
-static void expect_scene(const char* dir, const char* name, const ts_scene* s, rtpbr_scene_result want,
+static void expect_scene(const char* dir, const char* name, const ts_scene* s, rtpbr_gltf_result want,
                          const char* needle) {
     char* json = ts_scene_json(s);
     expect_text(dir, name, json, NULL, want, needle);
@@ -155,16 +155,16 @@ static void test_truncated(void** state) {
     unsigned char* glb = triangle_glb(&size);
     loaded whole;
     load_memory(&whole, glb, size, NULL);
-    if (whole.result != RTPBR_SCENE_SUCCESS) fail_msg("control GLB: %s", whole.message);
+    if (whole.result != RTPBR_GLTF_SUCCESS) fail_msg("control GLB: %s", whole.message);
     assert_int_equal(whole.scene->primitive_count, 1);
     release(&whole);
     /* Every proper prefix of the GLB: the header length no longer matches. */
     for (size_t cut = 0; cut < size; ++cut) {
         loaded l;
     load_memory(&l, glb, cut, NULL);
-        rtpbr_scene_result want = cut < 4 ? RTPBR_SCENE_ERROR_INVALID_JSON : RTPBR_SCENE_ERROR_INVALID_GLB;
+        rtpbr_gltf_result want = cut < 4 ? RTPBR_GLTF_ERROR_INVALID_JSON : RTPBR_GLTF_ERROR_INVALID_GLB;
         if (l.result != want)
-            fail_msg("GLB cut at %zu of %zu: %s (%s)", cut, size, rtpbr_scene_result_string(l.result), l.message);
+            fail_msg("GLB cut at %zu of %zu: %s (%s)", cut, size, rtpbr_gltf_result_string(l.result), l.message);
         release(&l);
     }
     /* The same through a .glb path: short files are GLB errors from the first byte. */
@@ -173,7 +173,7 @@ static void test_truncated(void** state) {
     char* path = ts_path(dir, "cut.glb");
     loaded l;
     load_path(&l, path, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_INVALID_GLB);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_INVALID_GLB);
     assert_non_null(strstr(l.message, "exceeds"));
     release(&l);
     free(path);
@@ -186,8 +186,8 @@ static void test_truncated(void** state) {
     for (size_t cut = 0; cut + 1 < len; cut += 5) {
         loaded t;
     load_memory(&t, json, cut, NULL);
-        if (t.result != RTPBR_SCENE_ERROR_INVALID_JSON)
-            fail_msg("JSON cut at %zu: %s (%s)", cut, rtpbr_scene_result_string(t.result), t.message);
+        if (t.result != RTPBR_GLTF_ERROR_INVALID_JSON)
+            fail_msg("JSON cut at %zu: %s (%s)", cut, rtpbr_gltf_result_string(t.result), t.message);
         release(&t);
     }
     free(json);
@@ -203,25 +203,25 @@ static void test_wrong_magic(void** state) {
     char* path = ts_path(dir, "magic.glb");
     loaded l;
     load_path(&l, path, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_INVALID_GLB);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_INVALID_GLB);
     assert_non_null(strstr(l.message, "magic"));
     release(&l);
     free(path);
     /* From memory, no magic means JSON, and binary garbage is not JSON. */
     load_memory(&l, glb, size, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_INVALID_JSON);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_INVALID_JSON);
     release(&l);
     /* Version 3 and a BIN chunk where JSON should be. */
     memcpy(glb, "glTF", 4);
     glb[4] = 3;
     load_memory(&l, glb, size, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_INVALID_GLB);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_INVALID_GLB);
     assert_non_null(strstr(l.message, "version 3"));
     release(&l);
     glb[4] = 2;
     memcpy(glb + 16, "BIN", 4);
     load_memory(&l, glb, size, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_INVALID_GLB);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_INVALID_GLB);
     assert_non_null(strstr(l.message, "not JSON"));
     release(&l);
     free(glb);
@@ -232,7 +232,7 @@ static void test_wrong_magic(void** state) {
     ts_write(dir, "image.gltf", png, png_size);
     path = ts_path(dir, "image.gltf");
     load_path(&l, path, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_INVALID_JSON);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_INVALID_JSON);
     release(&l);
     free(path);
     free(png);
@@ -246,10 +246,10 @@ static void test_accessors_out_of_range(void** state) {
     s.accessors = "{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
                   "{\"bufferView\":7,\"componentType\":5125,\"count\":3,\"type\":\"SCALAR\"}";
     /* Every index is resolved before tinygltf reads the file (issue 18). */
-    expect_scene(dir, "view.gltf", &s, RTPBR_SCENE_ERROR_INVALID_REFERENCE, "bufferView 7");
+    expect_scene(dir, "view.gltf", &s, RTPBR_GLTF_ERROR_INVALID_REFERENCE, "bufferView 7");
     s.accessors = "{\"bufferView\":0,\"byteOffset\":36,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
                   "{\"bufferView\":1,\"componentType\":5125,\"count\":3,\"type\":\"SCALAR\"}";
-    expect_scene(dir, "offset.gltf", &s, RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "accessor 0");
+    expect_scene(dir, "offset.gltf", &s, RTPBR_GLTF_ERROR_INVALID_ACCESSOR, "accessor 0");
     s.accessors = "{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
                   "{\"bufferView\":1,\"componentType\":5125,\"count\":4000000000,\"type\":\"SCALAR\"}";
     char* json = ts_scene_json(&s);
@@ -257,14 +257,14 @@ static void test_accessors_out_of_range(void** state) {
     char* path = ts_path(dir, "count.gltf");
     loaded l;
     load_path(&l, path, NULL);
-    assert_true(l.result == RTPBR_SCENE_ERROR_INVALID_ACCESSOR || l.result == RTPBR_SCENE_ERROR_TOO_MANY_VERTICES);
+    assert_true(l.result == RTPBR_GLTF_ERROR_INVALID_ACCESSOR || l.result == RTPBR_GLTF_ERROR_TOO_MANY_VERTICES);
     release(&l);
     free(path);
     free(json);
     /* Mesh attribute naming an accessor that does not exist. */
     s = triangle();
     s.meshes = "{\"primitives\":[{\"attributes\":{\"POSITION\":9},\"indices\":1}]}";
-    expect_scene(dir, "attr.gltf", &s, RTPBR_SCENE_ERROR_INVALID_REFERENCE, NULL);
+    expect_scene(dir, "attr.gltf", &s, RTPBR_GLTF_ERROR_INVALID_REFERENCE, NULL);
     /* A bufferView past the end of its buffer. */
     s = triangle();
     s.extra = NULL;
@@ -272,7 +272,7 @@ static void test_accessors_out_of_range(void** state) {
     char* at = strstr(json, "\"byteLength\":36}");
     assert_non_null(at);
     memcpy(at, "\"byteLength\":99}", 16);
-    expect_text(dir, "viewlen.gltf", json, NULL, RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "exceeds buffer 0");
+    expect_text(dir, "viewlen.gltf", json, NULL, RTPBR_GLTF_ERROR_INVALID_ACCESSOR, "exceeds buffer 0");
     free(json);
 }
 
@@ -282,10 +282,10 @@ static void test_indices_past_vertices(void** state) {
     static const uint32_t past[] = {0, 1, 3};
     ts_scene s = triangle();
     s.indices = past;
-    expect_scene(dir, "past.gltf", &s, RTPBR_SCENE_ERROR_INDEX_OUT_OF_RANGE, "3");
+    expect_scene(dir, "past.gltf", &s, RTPBR_GLTF_ERROR_INDEX_OUT_OF_RANGE, "3");
     static const uint32_t huge[] = {0, 1, 0xFFFFFFFFu};
     s.indices = huge;
-    expect_scene(dir, "huge.gltf", &s, RTPBR_SCENE_ERROR_INDEX_OUT_OF_RANGE, NULL);
+    expect_scene(dir, "huge.gltf", &s, RTPBR_GLTF_ERROR_INDEX_OUT_OF_RANGE, NULL);
 }
 
 /* ---- NaN / Inf ---------------------------------------------------------------- */
@@ -297,55 +297,55 @@ static void test_nonfinite(void** state) {
     ts_scene s = triangle();
     s.positions = pos;
     pos[4] = NAN;
-    expect_scene(dir, "nan.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "POSITION");
+    expect_scene(dir, "nan.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, "POSITION");
     pos[4] = INFINITY;
-    expect_scene(dir, "inf.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "POSITION");
+    expect_scene(dir, "inf.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, "POSITION");
     pos[4] = -INFINITY;
-    expect_scene(dir, "ninf.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "POSITION");
+    expect_scene(dir, "ninf.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, "POSITION");
     /* Finite positions that overflow once transformed. */
     s = triangle();
     s.nodes = "{\"mesh\":0,\"scale\":[3e38,3e38,3e38],\"translation\":[3e38,0,0]}";
-    expect_scene(dir, "overflow.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, NULL);
+    expect_scene(dir, "overflow.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, NULL);
     /* JSON has no NaN literal; 1e39 is +Inf as a float, 1e400 is not even a double. Where
      * the schema bounds a factor to [0, 1], 1e39 is a schema error (issue 18). */
     s = triangle();
     s.material = 0;
     s.materials = "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1e39,0,0,1]}}";
-    expect_scene(dir, "colour.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "baseColorFactor");
+    expect_scene(dir, "colour.gltf", &s, RTPBR_GLTF_ERROR_INVALID_JSON, "baseColorFactor");
     s.materials = "{\"emissiveFactor\":[1,-1e39,0]}";
-    expect_scene(dir, "emission.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "emissiveFactor");
+    expect_scene(dir, "emission.gltf", &s, RTPBR_GLTF_ERROR_INVALID_JSON, "emissiveFactor");
     /* Factors without an upper bound must not overflow the float they are stored in. */
     s.materials = "{\"extensions\":{\"KHR_materials_specular\":{\"specularColorFactor\":[1,1e39,0]}}}";
-    expect_scene(dir, "specular.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "specularColorFactor");
+    expect_scene(dir, "specular.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, "specularColorFactor");
     s.materials = "{\"extensions\":{\"KHR_materials_ior\":{\"ior\":1e39}}}";
-    expect_scene(dir, "ior.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "ior");
+    expect_scene(dir, "ior.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, "ior");
     s.materials = "{\"emissiveFactor\":[1,1e400,0]}"; /* not even a double: the JSON parser says so */
-    expect_scene(dir, "emission-double.gltf", &s, RTPBR_SCENE_ERROR_INVALID_JSON, "1e400");
+    expect_scene(dir, "emission-double.gltf", &s, RTPBR_GLTF_ERROR_INVALID_JSON, "1e400");
     s.materials = "{\"emissiveFactor\":[1,1,1],\"extensions\":{\"KHR_materials_emissive_strength\":"
                   "{\"emissiveStrength\":1e39}}}";
-    expect_scene(dir, "strength.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, NULL);
+    expect_scene(dir, "strength.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, NULL);
     s = triangle();
     s.nodes = "{\"mesh\":0,\"translation\":[0,1e39,0]}";
-    expect_scene(dir, "translation.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, NULL);
+    expect_scene(dir, "translation.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, NULL);
     s.nodes = "{\"extensions\":{\"EXT_lights_area\":{\"light\":0}}}";
     s.scene_nodes = "0";
     s.extra = ",\"extensionsUsed\":[\"EXT_lights_area\"],\"extensions\":{\"EXT_lights_area\":{\"lights\":"
               "[{\"type\":\"rect\",\"color\":[1,1e39,1],\"intensity\":10,\"size\":1}]}}";
-    expect_scene(dir, "lightcolour.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "light 0");
+    expect_scene(dir, "lightcolour.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, "light 0");
     s.extra = ",\"extensionsUsed\":[\"EXT_lights_area\"],\"extensions\":{\"EXT_lights_area\":{\"lights\":"
               "[{\"type\":\"rect\",\"color\":[1,1,1],\"intensity\":1e30,\"size\":1e20}]}}";
-    expect_scene(dir, "lightarea.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "not representable");
+    expect_scene(dir, "lightarea.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, "not representable");
     s.extra = ",\"extensionsUsed\":[\"EXT_lights_area\"],\"extensions\":{\"EXT_lights_area\":{\"lights\":"
               "[{\"type\":\"disk\",\"color\":[1e20,1,1],\"intensity\":1e20,\"size\":1}]}}";
-    expect_scene(dir, "lightradiance.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "not representable");
+    expect_scene(dir, "lightradiance.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, "not representable");
     s.extra = ",\"extensionsUsed\":[\"EXT_lights_area\"],\"extensions\":{\"EXT_lights_area\":{\"lights\":"
               "[{\"type\":\"rect\",\"intensity\":1,\"size\":1e-30}]}}";
-    expect_scene(dir, "lighttiny.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "not representable");
+    expect_scene(dir, "lighttiny.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, "not representable");
     s = triangle();
     s.nodes = "{\"mesh\":0},{\"camera\":0}";
     s.scene_nodes = "0,1";
     s.extra = ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":1,\"znear\":1e39}}]";
-    expect_scene(dir, "camera.gltf", &s, RTPBR_SCENE_ERROR_NONFINITE, "camera 0");
+    expect_scene(dir, "camera.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, "camera 0");
 }
 
 /* ---- degenerate geometry and lights -------------------------------------------- */
@@ -361,7 +361,7 @@ static void test_degenerate(void** state) {
     char* path = ts_path(dir, "degenerate.gltf");
     loaded l;
     load_path(&l, path, NULL);
-    if (l.result != RTPBR_SCENE_SUCCESS) fail_msg("%s", l.message);
+    if (l.result != RTPBR_GLTF_SUCCESS) fail_msg("%s", l.message);
     assert_int_equal(l.scene->primitives[0].index_count, 3);
     assert_true(l.counts.warnings >= 1);
     release(&l);
@@ -375,7 +375,7 @@ static void test_degenerate(void** state) {
     ts_write(dir, "empty.gltf", json, strlen(json));
     path = ts_path(dir, "empty.gltf");
     load_path(&l, path, NULL);
-    if (l.result != RTPBR_SCENE_SUCCESS) fail_msg("%s", l.message);
+    if (l.result != RTPBR_GLTF_SUCCESS) fail_msg("%s", l.message);
     assert_int_equal(l.scene->total_index_count, 0);
     assert_int_equal(l.scene->light_count, 0);
     release(&l);
@@ -395,7 +395,7 @@ static void test_bad_lights(void** state) {
     char* path = ts_path(dir, "zeroarea.gltf");
     loaded l;
     load_path(&l, path, NULL);
-    if (l.result != RTPBR_SCENE_SUCCESS) fail_msg("%s", l.message);
+    if (l.result != RTPBR_GLTF_SUCCESS) fail_msg("%s", l.message);
     assert_int_equal(l.scene->light_count, 0);
     release(&l);
     free(path);
@@ -412,10 +412,10 @@ static void test_bad_lights(void** state) {
     ts_write(dir, "fold.gltf", json, strlen(json));
     path = ts_path(dir, "fold.gltf");
     load_path(&l, path, NULL);
-    if (l.result != RTPBR_SCENE_SUCCESS) fail_msg("%s", l.message);
+    if (l.result != RTPBR_GLTF_SUCCESS) fail_msg("%s", l.message);
     assert_int_equal(l.scene->light_count, 2);
     for (uint32_t i = 0; i < 2; ++i) {
-        const rtpbr_scene_light* L = &l.scene->lights[i];
+        const rtpbr_gltf_light* L = &l.scene->lights[i];
         assert_int_equal(L->vertex_count, 3);
         assert_float_equal(L->area, 0.5f, 1e-6f);
         /* planar: every vertex on the plane through the centre with the light's normal */
@@ -433,23 +433,23 @@ static void test_bad_lights(void** state) {
     e.nodes = "{\"mesh\":0},{\"extensions\":{\"EXT_lights_area\":{\"light\":0}}}";
     e.scene_nodes = "0,1";
     e.extra = ",\"extensions\":{\"EXT_lights_area\":{\"lights\":[{\"type\":\"rect\",\"intensity\":10,\"size\":0}]}}";
-    expect_scene(dir, "size0.gltf", &e, RTPBR_SCENE_ERROR_INVALID_JSON, "light 0");
+    expect_scene(dir, "size0.gltf", &e, RTPBR_GLTF_ERROR_INVALID_JSON, "light 0");
     e.nodes = "{\"mesh\":0},{\"scale\":[0,0,0],\"extensions\":{\"EXT_lights_area\":{\"light\":0}}}";
     e.extra = ",\"extensions\":{\"EXT_lights_area\":{\"lights\":[{\"type\":\"rect\",\"intensity\":10,\"size\":1}]}}";
-    expect_scene(dir, "scale0.gltf", &e, RTPBR_SCENE_ERROR_NONFINITE, "degenerate transform");
+    expect_scene(dir, "scale0.gltf", &e, RTPBR_GLTF_ERROR_NONFINITE, "degenerate transform");
     /* A light index past the list, and an unknown shape. */
     e.nodes = "{\"mesh\":0},{\"extensions\":{\"EXT_lights_area\":{\"light\":5}}}";
-    expect_scene(dir, "index.gltf", &e, RTPBR_SCENE_ERROR_INVALID_REFERENCE, NULL);
+    expect_scene(dir, "index.gltf", &e, RTPBR_GLTF_ERROR_INVALID_REFERENCE, NULL);
     e.nodes = "{\"mesh\":0},{\"extensions\":{\"EXT_lights_area\":{\"light\":0}}}";
     e.extra = ",\"extensions\":{\"EXT_lights_area\":{\"lights\":[{\"type\":\"sphere\",\"intensity\":10}]}}";
-    expect_scene(dir, "shape.gltf", &e, RTPBR_SCENE_ERROR_UNSUPPORTED, "sphere");
+    expect_scene(dir, "shape.gltf", &e, RTPBR_GLTF_ERROR_UNSUPPORTED, "sphere");
 }
 
-/* More lights than RTPBR_SCENE_MAX_LIGHTS (65536): one EXT_lights_area light instanced
+/* More lights than RTPBR_GLTF_MAX_LIGHTS (65536): one EXT_lights_area light instanced
  * by 65537 nodes, JSON built at run time (about 3 MB). */
 static void test_too_many_lights(void** state) {
     (void)state;
-    const unsigned n = RTPBR_SCENE_MAX_LIGHTS + 1;
+    const unsigned n = RTPBR_GLTF_MAX_LIGHTS + 1;
     const char* node = "{\"extensions\":{\"EXT_lights_area\":{\"light\":0}}},";
     size_t cap = 512 + (size_t)n * (strlen(node) + 8);
     char* json = malloc(cap);
@@ -470,18 +470,18 @@ static void test_too_many_lights(void** state) {
     assert_true(at < cap);
     loaded l;
     load_memory(&l, json, at, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS);
     assert_non_null(strstr(l.message, "65536"));
     release(&l);
     /* A host limit below it works the same way, and exactly at the limit loads. */
-    rtpbr_scene_load_desc desc = {0};
+    rtpbr_gltf_load_desc desc = {0};
     desc.max_lights = n - 1;
     load_memory(&l, json, at, &desc);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS);
     release(&l);
     desc.max_lights = n; /* larger than the hard limit: clamped to it */
     load_memory(&l, json, at, &desc);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS);
     release(&l);
     free(json);
 }
@@ -537,7 +537,7 @@ static void test_textures(void** state) {
     const char* dir = ts_dir("textures");
     /* Missing texture file, and a texture naming a missing image. */
     char* json = textured_json("nothere.png");
-    expect_text(dir, "missing.gltf", json, NULL, RTPBR_SCENE_ERROR_FILE_NOT_FOUND, "nothere.png");
+    expect_text(dir, "missing.gltf", json, NULL, RTPBR_GLTF_ERROR_FILE_NOT_FOUND, "nothere.png");
     free(json);
     static const float uv[] = {0, 0, 1, 0, 0, 1};
     ts_scene s = triangle();
@@ -545,38 +545,38 @@ static void test_textures(void** state) {
     s.material = 0;
     s.materials = "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}";
     s.extra = ",\"textures\":[{\"source\":3}]";
-    expect_scene(dir, "source.gltf", &s, RTPBR_SCENE_ERROR_INVALID_REFERENCE, "3");
+    expect_scene(dir, "source.gltf", &s, RTPBR_GLTF_ERROR_INVALID_REFERENCE, "3");
     s.extra = NULL;
-    expect_scene(dir, "texture.gltf", &s, RTPBR_SCENE_ERROR_INVALID_REFERENCE, NULL);
+    expect_scene(dir, "texture.gltf", &s, RTPBR_GLTF_ERROR_INVALID_REFERENCE, NULL);
 
     /* Absurd sizes: refused from the header, before any pixel memory is reserved. */
     unsigned char png[57];
     png_claiming(png, 100000, 100000);
     ts_write(dir, "huge.png", png, sizeof png);
     json = textured_json("huge.png");
-    expect_text(dir, "huge.gltf", json, NULL, RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE, "100000x100000");
-    png_claiming(png, RTPBR_SCENE_MAX_TEXTURE_DIMENSION + 1, 1);
+    expect_text(dir, "huge.gltf", json, NULL, RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE, "100000x100000");
+    png_claiming(png, RTPBR_GLTF_MAX_TEXTURE_DIMENSION + 1, 1);
     ts_write(dir, "huge.png", png, sizeof png);
-    expect_text(dir, "wide.gltf", json, NULL, RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE, "16385x1");
+    expect_text(dir, "wide.gltf", json, NULL, RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE, "16385x1");
     /* Within the limits but no pixel data: a decode error. */
     png_claiming(png, 64, 64);
     ts_write(dir, "huge.png", png, sizeof png);
-    expect_text(dir, "empty.gltf", json, NULL, RTPBR_SCENE_ERROR_IMAGE_DECODE, "image 0");
+    expect_text(dir, "empty.gltf", json, NULL, RTPBR_GLTF_ERROR_IMAGE_DECODE, "image 0");
     /* A host limit below a real image. */
     size_t real_size = 0;
     unsigned char px[4 * 4 * 4];
     memset(px, 200, sizeof px);
     unsigned char* real = ts_png(px, 4, 4, &real_size);
     ts_write(dir, "huge.png", real, real_size);
-    rtpbr_scene_load_desc desc = {0};
+    rtpbr_gltf_load_desc desc = {0};
     desc.max_texture_dimension = 3;
-    expect_text(dir, "limit.gltf", json, &desc, RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE, "4x4");
+    expect_text(dir, "limit.gltf", json, &desc, RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE, "4x4");
     desc.max_texture_dimension = 4;
-    expect_text(dir, "limit.gltf", json, &desc, RTPBR_SCENE_SUCCESS, NULL);
+    expect_text(dir, "limit.gltf", json, &desc, RTPBR_GLTF_SUCCESS, NULL);
     free(real);
     /* Not an image at all. */
     ts_write(dir, "huge.png", "hello", 5);
-    expect_text(dir, "text.gltf", json, NULL, RTPBR_SCENE_ERROR_IMAGE_DECODE, NULL);
+    expect_text(dir, "text.gltf", json, NULL, RTPBR_GLTF_ERROR_IMAGE_DECODE, NULL);
     free(json);
 }
 
@@ -587,46 +587,46 @@ static void test_paths(void** state) {
     char* missing = ts_path(dir, "missing.gltf");
     loaded l;
     load_path(&l, missing, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_FILE_NOT_FOUND);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_FILE_NOT_FOUND);
     assert_non_null(strstr(l.message, "missing.gltf"));
     release(&l);
     free(missing);
     char* through_file = ts_path(dir, "plain.gltf/scene.gltf"); /* a file used as a folder */
     ts_write(dir, "plain.gltf", "{}", 2);
     load_path(&l, through_file, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_FILE_NOT_FOUND);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_FILE_NOT_FOUND);
     release(&l);
     free(through_file);
     load_path(&l, dir, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_IO);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_IO);
     assert_non_null(strstr(l.message, "directory"));
     release(&l);
     char* folder_glb = ts_path(dir, "folder.glb");
     mkdir(folder_glb, 0755);
     load_path(&l, folder_glb, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_IO);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_IO);
     release(&l);
     free(folder_glb);
     load_path(&l, "", NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_FILE_NOT_FOUND);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_FILE_NOT_FOUND);
     release(&l);
     /* A FIFO must be refused without opening it (opening would block). */
     char* fifo = ts_path(dir, "fifo.gltf");
     unlink(fifo);
     assert_int_equal(mkfifo(fifo, 0600), 0);
     load_path(&l, fifo, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_IO);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_IO);
     assert_non_null(strstr(l.message, "regular"));
     release(&l);
     unlink(fifo);
     free(fifo);
     /* base_dir that does not exist. */
-    rtpbr_scene_load_desc desc = {0};
+    rtpbr_gltf_load_desc desc = {0};
     desc.base_dir = "/nonexistent/rtpbr/base";
     ts_scene s = triangle();
     char* json = ts_scene_json(&s);
     load_memory(&l, json, strlen(json), &desc);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_FILE_NOT_FOUND);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_FILE_NOT_FOUND);
     assert_non_null(strstr(l.message, "/nonexistent/rtpbr/base"));
     release(&l);
     free(json);
@@ -649,16 +649,16 @@ static void test_uri_confinement(void** state) {
 
     /* Controls: inside the folder and in a subfolder load. */
     s.buffer_uri = "tri.bin";
-    expect_scene(dir, "ok.gltf", &s, RTPBR_SCENE_SUCCESS, NULL);
+    expect_scene(dir, "ok.gltf", &s, RTPBR_GLTF_SUCCESS, NULL);
     s.buffer_uri = "sub/tri.bin";
-    expect_scene(dir, "ok-sub.gltf", &s, RTPBR_SCENE_SUCCESS, NULL);
+    expect_scene(dir, "ok-sub.gltf", &s, RTPBR_GLTF_SUCCESS, NULL);
     s.buffer_uri = "sub%2Ftri.bin"; /* percent-encoded '/', decoded like tinygltf */
     char* json = ts_scene_json(&s);
     ts_write(dir, "pct.gltf", json, strlen(json));
     char* path = ts_path(dir, "pct.gltf");
     loaded l;
     load_path(&l, path, NULL);
-    assert_true(l.result == RTPBR_SCENE_SUCCESS || l.result == RTPBR_SCENE_ERROR_FILE_NOT_FOUND);
+    assert_true(l.result == RTPBR_GLTF_SUCCESS || l.result == RTPBR_GLTF_ERROR_FILE_NOT_FOUND);
     release(&l);
     free(path);
     free(json);
@@ -668,17 +668,17 @@ static void test_uri_confinement(void** state) {
                              "..%2Foutside.bin", "sub/..%2f..%2foutside.bin"};
     for (size_t i = 0; i < sizeof escapes / sizeof *escapes; ++i) {
         s.buffer_uri = escapes[i];
-        expect_scene(dir, "escape.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, "..");
+        expect_scene(dir, "escape.gltf", &s, RTPBR_GLTF_ERROR_URI_REJECTED, "..");
     }
     char* abs = ts_path(root, "outside.bin");
     s.buffer_uri = abs;
-    expect_scene(dir, "absolute.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, "absolute");
+    expect_scene(dir, "absolute.gltf", &s, RTPBR_GLTF_ERROR_URI_REJECTED, "absolute");
     s.buffer_uri = "%2Fetc%2Fpasswd";
-    expect_scene(dir, "absolute-pct.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, "absolute");
+    expect_scene(dir, "absolute-pct.gltf", &s, RTPBR_GLTF_ERROR_URI_REJECTED, "absolute");
     s.buffer_uri = "file:///etc/passwd";
-    expect_scene(dir, "file-scheme.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, NULL);
+    expect_scene(dir, "file-scheme.gltf", &s, RTPBR_GLTF_ERROR_URI_REJECTED, NULL);
     s.buffer_uri = "http://example.com/tri.bin";
-    expect_scene(dir, "http.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, NULL);
+    expect_scene(dir, "http.gltf", &s, RTPBR_GLTF_ERROR_URI_REJECTED, NULL);
     free(abs);
 
     /* Symbolic links leading out of the folder (to a file and to a folder). */
@@ -687,18 +687,18 @@ static void test_uri_confinement(void** state) {
     unlink(link);
     assert_int_equal(symlink(target, link), 0);
     s.buffer_uri = "link.bin";
-    expect_scene(dir, "symlink.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, "outside");
+    expect_scene(dir, "symlink.gltf", &s, RTPBR_GLTF_ERROR_URI_REJECTED, "outside");
     char* link_dir = ts_path(dir, "up");
     unlink(link_dir);
     assert_int_equal(symlink(root, link_dir), 0);
     s.buffer_uri = "up/outside.bin";
-    expect_scene(dir, "symlink-dir.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, "outside");
+    expect_scene(dir, "symlink-dir.gltf", &s, RTPBR_GLTF_ERROR_URI_REJECTED, "outside");
     /* A link that stays inside is fine. */
     char* inner = ts_path(dir, "inner.bin");
     unlink(inner);
     assert_int_equal(symlink("sub/tri.bin", inner), 0);
     s.buffer_uri = "inner.bin";
-    expect_scene(dir, "symlink-inner.gltf", &s, RTPBR_SCENE_SUCCESS, NULL);
+    expect_scene(dir, "symlink-inner.gltf", &s, RTPBR_GLTF_SUCCESS, NULL);
 
     /* Shell syntax is never expanded or executed: each is refused, and the commands did
      * not run. A file literally named like the pattern would not be found either. */
@@ -712,7 +712,7 @@ static void test_uri_confinement(void** state) {
     for (size_t i = 0; i < sizeof shell / sizeof *shell; ++i) {
         s.buffer_uri = shell[i];
         char* name = ts_format("shell%zu.gltf", i);
-        expect_scene(dir, name, &s, RTPBR_SCENE_ERROR_URI_REJECTED, "not allowed");
+        expect_scene(dir, name, &s, RTPBR_GLTF_ERROR_URI_REJECTED, "not allowed");
         free(name);
         assert_false(ts_exists(pwned));
     }
@@ -721,7 +721,7 @@ static void test_uri_confinement(void** state) {
     free(semicolon);
     /* Control characters (a JSON-escaped newline) are refused as well. */
     s.buffer_uri = "tri\\n.bin";
-    expect_scene(dir, "newline.gltf", &s, RTPBR_SCENE_ERROR_URI_REJECTED, "not allowed");
+    expect_scene(dir, "newline.gltf", &s, RTPBR_GLTF_ERROR_URI_REJECTED, "not allowed");
 
     /* Image URIs go through the same confinement as buffers. */
     size_t png_size = 0;
@@ -730,17 +730,17 @@ static void test_uri_confinement(void** state) {
     ts_write(root, "outside.png", png, png_size);
     free(png);
     json = textured_json("../outside.png");
-    expect_text(dir, "image-escape.gltf", json, NULL, RTPBR_SCENE_ERROR_URI_REJECTED, "..");
+    expect_text(dir, "image-escape.gltf", json, NULL, RTPBR_GLTF_ERROR_URI_REJECTED, "..");
     free(json);
     json = textured_json("$(touch pwned).png");
-    expect_text(dir, "image-shell.gltf", json, NULL, RTPBR_SCENE_ERROR_URI_REJECTED, "not allowed");
+    expect_text(dir, "image-shell.gltf", json, NULL, RTPBR_GLTF_ERROR_URI_REJECTED, "not allowed");
     free(json);
 
     /* From memory: no base_dir, no external files at all. */
     s.buffer_uri = "tri.bin";
     json = ts_scene_json(&s);
     load_memory(&l, json, strlen(json), NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_URI_REJECTED);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_URI_REJECTED);
     release(&l);
     free(json);
 
@@ -798,7 +798,7 @@ static void test_schema_types(void** state) {
         s.extra = cases[i].extra;
         char name[32];
         snprintf(name, sizeof name, "case%zu.gltf", i);
-        expect_scene(dir, name, &s, RTPBR_SCENE_ERROR_INVALID_JSON, cases[i].pointer);
+        expect_scene(dir, name, &s, RTPBR_GLTF_ERROR_INVALID_JSON, cases[i].pointer);
     }
     /* The same document with correct types loads (the checks are not over-eager). */
     ts_scene s = triangle();
@@ -808,7 +808,7 @@ static void test_schema_types(void** state) {
     s.materials = "{\"doubleSided\":true,\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,"
                   "\"pbrMetallicRoughness\":{\"roughnessFactor\":0.5,\"metallicFactor\":1}}";
     s.extra = ",\"scene\":0,\"samplers\":[{\"wrapS\":33071}]";
-    expect_scene(dir, "good.gltf", &s, RTPBR_SCENE_SUCCESS, NULL);
+    expect_scene(dir, "good.gltf", &s, RTPBR_GLTF_SUCCESS, NULL);
 }
 
 /* Class 2: glTF nodes form disjoint strict trees; the depth limit is the documented one. */
@@ -818,24 +818,24 @@ static void test_node_forest(void** state) {
     ts_scene s = triangle();
     s.nodes = "{\"mesh\":0,\"children\":[2]},{\"children\":[2]},{\"mesh\":0}";
     s.scene_nodes = "0,1";
-    expect_scene(dir, "shared.gltf", &s, RTPBR_SCENE_ERROR_UNSUPPORTED, "child of both");
+    expect_scene(dir, "shared.gltf", &s, RTPBR_GLTF_ERROR_UNSUPPORTED, "child of both");
     s.nodes = "{\"mesh\":0,\"children\":[1]},{\"mesh\":0}";
-    expect_scene(dir, "rootchild.gltf", &s, RTPBR_SCENE_ERROR_UNSUPPORTED, "root node 1");
+    expect_scene(dir, "rootchild.gltf", &s, RTPBR_GLTF_ERROR_UNSUPPORTED, "root node 1");
     s.nodes = "{\"mesh\":0},{\"children\":[2]},{\"children\":[1]}";
     s.scene_nodes = "0";
-    expect_scene(dir, "cycle.gltf", &s, RTPBR_SCENE_ERROR_UNSUPPORTED, "cycle");
+    expect_scene(dir, "cycle.gltf", &s, RTPBR_GLTF_ERROR_UNSUPPORTED, "cycle");
     s.nodes = "{\"mesh\":0,\"children\":[0]}";
-    expect_scene(dir, "self.gltf", &s, RTPBR_SCENE_ERROR_UNSUPPORTED, NULL);
-    /* A chain of RTPBR_SCENE_MAX_NODE_DEPTH nodes loads; one more is refused. */
-    for (unsigned levels = RTPBR_SCENE_MAX_NODE_DEPTH; levels <= RTPBR_SCENE_MAX_NODE_DEPTH + 1; ++levels) {
+    expect_scene(dir, "self.gltf", &s, RTPBR_GLTF_ERROR_UNSUPPORTED, NULL);
+    /* A chain of RTPBR_GLTF_MAX_NODE_DEPTH nodes loads; one more is refused. */
+    for (unsigned levels = RTPBR_GLTF_MAX_NODE_DEPTH; levels <= RTPBR_GLTF_MAX_NODE_DEPTH + 1; ++levels) {
         char* nodes = calloc(levels, 32);
         size_t at = 0;
         for (unsigned i = 0; i < levels; ++i)
             at += (size_t)(i + 1 < levels ? sprintf(nodes + at, "{\"children\":[%u]},", i + 1)
                                           : sprintf(nodes + at, "{\"mesh\":0}"));
         s.nodes = nodes;
-        if (levels == RTPBR_SCENE_MAX_NODE_DEPTH) expect_scene(dir, "deep.gltf", &s, RTPBR_SCENE_SUCCESS, NULL);
-        else expect_scene(dir, "deeper.gltf", &s, RTPBR_SCENE_ERROR_UNSUPPORTED, "deeper than 256");
+        if (levels == RTPBR_GLTF_MAX_NODE_DEPTH) expect_scene(dir, "deep.gltf", &s, RTPBR_GLTF_SUCCESS, NULL);
+        else expect_scene(dir, "deeper.gltf", &s, RTPBR_GLTF_ERROR_UNSUPPORTED, "deeper than 256");
         free(nodes);
     }
 }
@@ -871,11 +871,11 @@ static void test_glb_unknown_chunks(void** state) {
     const struct {
         const uint32_t* chunks;
         size_t count;
-        rtpbr_scene_result want;
+        rtpbr_gltf_result want;
     } cases[] = {
-        {unknown_second, 1, RTPBR_SCENE_SUCCESS},
-        {bin_then_unknown, 2, RTPBR_SCENE_SUCCESS},
-        {two_unknown, 2, RTPBR_SCENE_SUCCESS},
+        {unknown_second, 1, RTPBR_GLTF_SUCCESS},
+        {bin_then_unknown, 2, RTPBR_GLTF_SUCCESS},
+        {two_unknown, 2, RTPBR_GLTF_SUCCESS},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         size_t size = 0;
@@ -883,8 +883,8 @@ static void test_glb_unknown_chunks(void** state) {
         loaded l;
         load_memory(&l, glb, size, NULL);
         if (l.result != cases[i].want)
-            fail_msg("GLB case %zu: %s (%s)", i, rtpbr_scene_result_string(l.result), l.message);
-        if (l.result == RTPBR_SCENE_SUCCESS) assert_int_equal(l.scene->primitive_count, 1);
+            fail_msg("GLB case %zu: %s (%s)", i, rtpbr_gltf_result_string(l.result), l.message);
+        if (l.result == RTPBR_GLTF_SUCCESS) assert_int_equal(l.scene->primitive_count, 1);
         release(&l);
         /* The last chunk's length one past the file end: refused. */
         uint32_t last_len;
@@ -893,8 +893,8 @@ static void test_glb_unknown_chunks(void** state) {
         last_len += 4;
         memcpy(glb + last, &last_len, 4);
         load_memory(&l, glb, size, NULL);
-        if (l.result != RTPBR_SCENE_ERROR_INVALID_GLB)
-            fail_msg("GLB case %zu, chunk past the end: %s (%s)", i, rtpbr_scene_result_string(l.result), l.message);
+        if (l.result != RTPBR_GLTF_ERROR_INVALID_GLB)
+            fail_msg("GLB case %zu, chunk past the end: %s (%s)", i, rtpbr_gltf_result_string(l.result), l.message);
         release(&l);
         free(glb);
     }
@@ -903,7 +903,7 @@ static void test_glb_unknown_chunks(void** state) {
     unsigned char* glb = glb_with_chunks(json, late_bin, 2, &size);
     loaded l;
     load_memory(&l, glb, size, NULL);
-    assert_int_equal(l.result, RTPBR_SCENE_ERROR_INVALID_GLB);
+    assert_int_equal(l.result, RTPBR_GLTF_ERROR_INVALID_GLB);
     release(&l);
     free(glb);
     free(json);
@@ -918,27 +918,27 @@ static void test_image_formats_and_budget(void** state) {
     /* A 17-byte PPM and an 18-byte TGA header that claim 8000 x 8000 pixels. */
     static const char ppm[] = "P6\n8000 8000\n255\n";
     ts_write(dir, "image.bin", ppm, strlen(ppm));
-    expect_text(dir, "ppm.gltf", json, NULL, RTPBR_SCENE_ERROR_IMAGE_DECODE, "neither PNG nor JPEG");
+    expect_text(dir, "ppm.gltf", json, NULL, RTPBR_GLTF_ERROR_IMAGE_DECODE, "neither PNG nor JPEG");
     unsigned char tga[18] = {0, 0, 2};
     tga[12] = 8000 & 0xff, tga[13] = 8000 >> 8, tga[14] = 8000 & 0xff, tga[15] = 8000 >> 8, tga[16] = 32;
     ts_write(dir, "image.bin", tga, sizeof tga);
-    expect_text(dir, "tga.gltf", json, NULL, RTPBR_SCENE_ERROR_IMAGE_DECODE, "neither PNG nor JPEG");
+    expect_text(dir, "tga.gltf", json, NULL, RTPBR_GLTF_ERROR_IMAGE_DECODE, "neither PNG nor JPEG");
     /* A PNG whose header claims 9000 x 9000 (309 MiB decoded): over the default budget of
      * 256 MiB, refused from the header (a decode error would mean it was decoded). */
     unsigned char png[57];
     png_claiming(png, 9000, 9000);
     ts_write(dir, "image.bin", png, sizeof png);
-    expect_text(dir, "bomb.gltf", json, NULL, RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE, "budget");
+    expect_text(dir, "bomb.gltf", json, NULL, RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE, "budget");
     /* The budget is the host's: a real 16 x 16 PNG (1 KiB decoded) over a 1000-byte budget. */
     unsigned char px[16 * 16 * 4];
     memset(px, 100, sizeof px);
     size_t real_size = 0;
     unsigned char* real = ts_png(px, 16, 16, &real_size);
     ts_write(dir, "image.bin", real, real_size);
-    rtpbr_scene_load_desc desc = {0};
+    rtpbr_gltf_load_desc desc = {0};
     desc.texture_memory_budget = 1000;
-    expect_text(dir, "budget.gltf", json, &desc, RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE, "budget");
-    expect_text(dir, "default.gltf", json, NULL, RTPBR_SCENE_SUCCESS, NULL);
+    expect_text(dir, "budget.gltf", json, &desc, RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE, "budget");
+    expect_text(dir, "default.gltf", json, NULL, RTPBR_GLTF_SUCCESS, NULL);
     free(real);
     free(json);
 }
@@ -956,7 +956,7 @@ static void test_hidden_node(void** state) {
     char* path = ts_path(dir, "hidden.gltf");
     loaded l;
     load_path(&l, path, NULL);
-    if (l.result != RTPBR_SCENE_SUCCESS) fail_msg("%s", l.message);
+    if (l.result != RTPBR_GLTF_SUCCESS) fail_msg("%s", l.message);
     assert_int_equal(l.scene->primitive_count, 1);
     assert_int_equal(l.scene->primitives[0].gltf_node, 1);
     assert_true(l.scene->primitives[0].index_count > 0);

@@ -10,7 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 
 #include "engine_test.h"
 
@@ -25,10 +25,10 @@ static void from_loaded_null_arrays(void **state)
     (void)state;
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
-    rtpbr_scene_material material = {.base_color = {1, 1, 1, 1}, .roughness = 0.5f};
+    rtpbr_gltf_material material = {.base_color = {1, 1, 1, 1}, .roughness = 0.5f};
     // Each count non-zero with its array NULL, the other arrays valid or empty.
     for (int which = 0; which < 5; ++which) {
-        rtpbr_scene loaded = {0};
+        rtpbr_gltf_scene loaded = {0};
         loaded.material_count = 1;
         loaded.materials = &material;
         switch (which) {

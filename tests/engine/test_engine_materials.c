@@ -196,7 +196,7 @@ static void clearcoat_layer(void **state)
 
 // KHR sheen over a black base under the near-hemisphere light reads the lobe's directional
 // albedo E_sheen(NoV): the engine integrates its LTC fit (norm x mass = albedo within 0.36%,
-// shaderlib/luts/sheen.md); the reference is the albedo table (tests/sheen checks it against
+// shaderlib/luts/sheen.md); the reference is the albedo table (tests/shaderlib/sheen checks it against
 // an independent quadrature within 1.4%), interpolated here with the documented coordinates.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-braces"

@@ -2,7 +2,7 @@
 #ifndef RTPBR_TESTS_ORACLE_SCENE_BUILDER_H
 #define RTPBR_TESTS_ORACLE_SCENE_BUILDER_H
 
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 
 #include <glm/glm.hpp>
 
@@ -14,15 +14,15 @@
 struct SceneBuilder {
     std::deque<std::vector<float>> floatArrays;
     std::deque<std::vector<uint32_t>> indexArrays;
-    std::vector<rtpbr_scene_primitive> primitives;
-    std::vector<rtpbr_scene_material> materials;
-    std::vector<rtpbr_scene_light> lights;
-    std::vector<rtpbr_scene_camera> cameras;
-    rtpbr_scene scene{};
+    std::vector<rtpbr_gltf_primitive> primitives;
+    std::vector<rtpbr_gltf_material> materials;
+    std::vector<rtpbr_gltf_light> lights;
+    std::vector<rtpbr_gltf_camera> cameras;
+    rtpbr_gltf_scene scene{};
 
     uint32_t material(glm::vec3 base, float metallic, float roughness) {
-        rtpbr_scene_material m{};
-        m.model = RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS;
+        rtpbr_gltf_material m{};
+        m.model = RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS;
         m.base_color[0] = base.x;
         m.base_color[1] = base.y;
         m.base_color[2] = base.z;
@@ -53,7 +53,7 @@ struct SceneBuilder {
         std::vector<uint32_t> idx;
         for (uint32_t k = 1; k + 1 < v.size(); k++)
             idx.insert(idx.end(), {0u, k, k + 1});
-        rtpbr_scene_primitive p{};
+        rtpbr_gltf_primitive p{};
         p.vertex_count = uint32_t(v.size());
         p.index_count = uint32_t(idx.size());
         floatArrays.push_back(pos);
@@ -73,8 +73,8 @@ struct SceneBuilder {
 
     // A light polygon without geometry of its own (like EXT_lights_area); material -1 = black.
     void light(const std::vector<glm::vec3> &v, glm::vec3 radiance, bool twoSided, int32_t mat = -1) {
-        rtpbr_scene_light L{};
-        L.shape = RTPBR_SCENE_LIGHT_POLYGON;
+        rtpbr_gltf_light L{};
+        L.shape = RTPBR_GLTF_LIGHT_POLYGON;
         L.vertex_count = uint32_t(v.size());
         glm::vec3 c(0.0f);
         for (size_t k = 0; k < v.size(); k++) {
@@ -103,7 +103,7 @@ struct SceneBuilder {
 
     // A camera at pos looking at target (up hint +y unless parallel).
     void camera(glm::vec3 pos, glm::vec3 target, float yfov, glm::vec3 upHint = glm::vec3(0, 1, 0)) {
-        rtpbr_scene_camera c{};
+        rtpbr_gltf_camera c{};
         glm::vec3 f = glm::normalize(target - pos);
         glm::vec3 r = glm::normalize(glm::cross(f, upHint));
         glm::vec3 u = glm::cross(r, f);
@@ -120,8 +120,8 @@ struct SceneBuilder {
         cameras.push_back(c);
     }
 
-    const rtpbr_scene &build() {
-        scene = rtpbr_scene{};
+    const rtpbr_gltf_scene &build() {
+        scene = rtpbr_gltf_scene{};
         scene.primitives = primitives.data();
         scene.primitive_count = uint32_t(primitives.size());
         scene.materials = materials.data();
@@ -137,7 +137,7 @@ struct SceneBuilder {
 // Camera ray direction through pixel coordinates (x, y) in [0, W] x [0, H] as the oracle
 // computes it (pinhole, yfov vertical, image aspect W / H); used by tests to integrate
 // closed-form references over pixel footprints.
-inline glm::vec3 cameraRay(const rtpbr_scene_camera &c, float x, float y, uint32_t W, uint32_t H) {
+inline glm::vec3 cameraRay(const rtpbr_gltf_camera &c, float x, float y, uint32_t W, uint32_t H) {
     float t = std::tan(0.5f * c.yfov);
     float a = float(W) / float(H);
     glm::vec3 f(c.forward[0], c.forward[1], c.forward[2]);

@@ -88,19 +88,19 @@ std::string writeFile(const std::string &name, const std::string &text) {
 // Loads with the shared loader, then validates for the oracle. Returns a short tag of what
 // failed: "load:<result>" or "oracle:<result>" or "ok".
 std::string loadAndValidate(const std::string &path, std::string *message) {
-    char err[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
-    rtpbr_scene_load_desc desc = {};
+    char err[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
+    rtpbr_gltf_load_desc desc = {};
     desc.error_message = err;
     desc.error_message_size = sizeof err;
-    rtpbr_scene *scene = nullptr;
-    rtpbr_scene_result lr = rtpbr_scene_load(path.c_str(), &desc, &scene);
-    if (lr != RTPBR_SCENE_SUCCESS) {
+    rtpbr_gltf_scene *scene = nullptr;
+    rtpbr_gltf_result lr = rtpbr_gltf_load(path.c_str(), &desc, &scene);
+    if (lr != RTPBR_GLTF_SUCCESS) {
         *message = err;
-        return std::string("load:") + rtpbr_scene_result_string(lr);
+        return std::string("load:") + rtpbr_gltf_result_string(lr);
     }
     RenderSettings s;
     Result r = validateScene(*scene, s, message);
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
     return r == Result::Success ? "ok" : std::string("oracle:") + resultString(r);
 }
 
@@ -194,7 +194,7 @@ void test_cli_split_and_merge(void **) {
 void test_missing_buffer(void **) {
     GltfOptions o;
     o.bufferUri = "oracle_test_missing.bin";
-    expectFailure(writeFile("oracle_test_missing_buffer.gltf", makeGltf(o)), "load:RTPBR_SCENE_ERROR_FILE_NOT_FOUND",
+    expectFailure(writeFile("oracle_test_missing_buffer.gltf", makeGltf(o)), "load:RTPBR_GLTF_ERROR_FILE_NOT_FOUND",
                   "oracle_test_missing.bin");
 }
 
@@ -210,7 +210,7 @@ void test_short_buffer(void **) {
 void test_nan_vertex(void **) {
     GltfOptions o;
     o.nanVertex = true;
-    expectFailure(writeFile("oracle_test_nan.gltf", makeGltf(o)), "load:RTPBR_SCENE_ERROR_NONFINITE", "NONFINITE");
+    expectFailure(writeFile("oracle_test_nan.gltf", makeGltf(o)), "load:RTPBR_GLTF_ERROR_NONFINITE", "NONFINITE");
 }
 
 void test_no_camera(void **) {
@@ -330,7 +330,7 @@ void test_hand_built_bad_scenes(void **) {
         b.build();
         assert_true(render(b.scene, s, &acc, &err, nullptr) == Result::Success);
     }
-    rtpbr_scene empty{};
+    rtpbr_gltf_scene empty{};
     assert_true(render(empty, s, &acc, &err, nullptr) == Result::NoCamera);
 }
 

@@ -44,7 +44,7 @@ RenderSettings baseSettings() {
     return s;
 }
 
-Accumulator renderOrFail(const rtpbr_scene &scene, const RenderSettings &s) {
+Accumulator renderOrFail(const rtpbr_gltf_scene &scene, const RenderSettings &s) {
     Accumulator acc;
     std::string err;
     Result r = render(scene, s, &acc, &err, nullptr);

@@ -51,7 +51,7 @@ struct Scene {
 };
 
 // Reference radiance of pixel (x, y): the closed form averaged over the pixel footprint.
-double referencePixel(const rtpbr_scene_camera &cam, uint32_t x, uint32_t y) {
+double referencePixel(const rtpbr_gltf_camera &cam, uint32_t x, uint32_t y) {
     const int q = 6;
     double sum = 0.0;
     glm::dvec3 o(cam.position[0], cam.position[1], cam.position[2]);

@@ -27,12 +27,12 @@ void test_base_color_texture(void **) {
         b.light({c[f[0]], c[f[1]], c[f[2]], c[f[3]]}, glm::vec3(1.0f), true);
     b.camera(glm::vec3(0.0f, 3.0f, 0.01f), glm::vec3(0.0f), 0.5f);
     uint8_t texels[8] = {188, 188, 188, 255, 255, 255, 255, 255}; // sRGB 188 = linear 0.50289
-    rtpbr_scene_texture tex{};
+    rtpbr_gltf_texture tex{};
     tex.width = 2;
     tex.height = 1;
     tex.pixels = texels;
     tex.srgb = true;
-    tex.wrap_s = tex.wrap_t = RTPBR_SCENE_WRAP_CLAMP_TO_EDGE;
+    tex.wrap_s = tex.wrap_t = RTPBR_GLTF_WRAP_CLAMP_TO_EDGE;
     tex.nearest = true;
     tex.gltf_texture = -1;
     b.build();

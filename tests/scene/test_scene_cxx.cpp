@@ -1,6 +1,6 @@
 // The public header from C++ (the oracle's language): compiles warning-free
 // with -Wall -Wextra, links, loads a scene from memory.
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 
 #include <cstdarg>
 #include <cstddef>
@@ -24,19 +24,19 @@ static void test_load_from_cxx(void**) {
         R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
         R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
-    rtpbr_scene_load_desc desc{};
-    char err[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
+    rtpbr_gltf_load_desc desc{};
+    char err[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
     desc.error_message = err;
     desc.error_message_size = sizeof err;
-    rtpbr_scene* scene = nullptr;
-    rtpbr_scene_result r = rtpbr_scene_load_memory(json.data(), json.size(), &desc, &scene);
-    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s: %s", rtpbr_scene_result_string(r), err);
+    rtpbr_gltf_scene* scene = nullptr;
+    rtpbr_gltf_result r = rtpbr_gltf_load_memory(json.data(), json.size(), &desc, &scene);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s", rtpbr_gltf_result_string(r), err);
     assert_int_equal(scene->primitive_count, 1);
     assert_int_equal(scene->primitives[0].vertex_count, 3);
     assert_int_equal(scene->primitives[0].index_count, 3);
     assert_true(scene->primitives[0].positions[3] == 1.0f);
     assert_true(scene->primitives[0].normals[2] == 1.0f);  // generated flat normal
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 }
 
 int main() {

@@ -31,7 +31,7 @@ static void cross3(const double* a, const double* b, double* o) {
 }
 
 /* Every corner turns left about the light normal (convex, consistent winding). */
-static void assert_convex_ccw(const rtpbr_scene_light* l) {
+static void assert_convex_ccw(const rtpbr_gltf_light* l) {
     assert_true(l->vertex_count >= 3 && l->vertex_count <= 8);
     for (uint32_t i = 0; i < l->vertex_count; ++i) {
         double e1[3], e2[3], c[3];
@@ -46,7 +46,7 @@ static void assert_convex_ccw(const rtpbr_scene_light* l) {
 }
 
 /* Is point (x,y,z) one of the light's vertices? */
-static int has_vertex(const rtpbr_scene_light* l, double x, double y, double z) {
+static int has_vertex(const rtpbr_gltf_light* l, double x, double y, double z) {
     for (uint32_t i = 0; i < l->vertex_count; ++i)
         if (fabs(l->vertices[i][0] - x) < EPS && fabs(l->vertices[i][1] - y) < EPS &&
             fabs(l->vertices[i][2] - z) < EPS)
@@ -83,10 +83,10 @@ static void test_quad_light_over_plane(void** state) {
     };
     char* json = ts_scene_json(&s);
     char err[512];
-    rtpbr_scene* scene = NULL;
-    rtpbr_scene_result r = ts_load_text(dir, "scene.gltf", json, NULL, &scene, err, sizeof err);
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, "scene.gltf", json, NULL, &scene, err, sizeof err);
     free(json);
-    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s: %s", rtpbr_scene_result_string(r), err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s", rtpbr_gltf_result_string(r), err);
     assert_int_equal(scene->primitive_count, 2);
     assert_int_equal(scene->material_count, 2);
     assert_int_equal(scene->camera_count, 1);
@@ -94,7 +94,7 @@ static void test_quad_light_over_plane(void** state) {
     assert_int_equal(scene->total_vertex_count, 8);
     assert_int_equal(scene->total_index_count, 12);
 
-    const rtpbr_scene_primitive* floor = &scene->primitives[0];
+    const rtpbr_gltf_primitive* floor = &scene->primitives[0];
     assert_int_equal(floor->vertex_count, 4);
     assert_int_equal(floor->index_count, 6);
     assert_int_equal(floor->material, 0);
@@ -105,7 +105,7 @@ static void test_quad_light_over_plane(void** state) {
         assert_near(floor->positions[3 * v + 2], 10.0 * kQuad[3 * v + 2], EPS, "floor z");
         assert_near(floor->normals[3 * v + 1], 1.0, EPS, "floor normal y");
     }
-    const rtpbr_scene_primitive* lp = &scene->primitives[1];
+    const rtpbr_gltf_primitive* lp = &scene->primitives[1];
     for (uint32_t v = 0; v < 4; ++v) {
         assert_near(lp->positions[3 * v + 0], kQuad[3 * v + 0], EPS, "light x");
         assert_near(lp->positions[3 * v + 1], 2.0, EPS, "light y");
@@ -114,8 +114,8 @@ static void test_quad_light_over_plane(void** state) {
     }
 
     /* 2 coplanar triangles → one quad, facing down, radiance (1,.5,.25)×4. */
-    const rtpbr_scene_light* l = &scene->lights[0];
-    assert_int_equal(l->shape, RTPBR_SCENE_LIGHT_POLYGON);
+    const rtpbr_gltf_light* l = &scene->lights[0];
+    assert_int_equal(l->shape, RTPBR_GLTF_LIGHT_POLYGON);
     assert_int_equal(l->vertex_count, 4);
     assert_convex_ccw(l);
     assert_near(l->normal[0], 0.0, EPS, "nx");
@@ -132,7 +132,7 @@ static void test_quad_light_over_plane(void** state) {
     assert_int_equal(l->material, 1);
     assert_near(l->center[1], 2.0, EPS, "center y");
 
-    const rtpbr_scene_camera* c = &scene->cameras[0];
+    const rtpbr_gltf_camera* c = &scene->cameras[0];
     const double cam[4][3] = {{1, 1, 5}, {-1, 0, 0}, {0, 1, 0}, {0, 0, -1}};
     for (int k = 0; k < 3; ++k) {
         assert_near(c->position[k], cam[0][k], EPS, "camera position");
@@ -150,11 +150,11 @@ static void test_quad_light_over_plane(void** state) {
         assert_near(scene->bounds_min[k], lo[k], EPS, "bounds min");
         assert_near(scene->bounds_max[k], hi[k], EPS, "bounds max");
     }
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 }
 
-static rtpbr_scene* load_emissive(const char* name, const float* pos, size_t nv, const uint32_t* idx,
-                                  size_t ni, const rtpbr_scene_load_desc* desc, rtpbr_scene_result* result) {
+static rtpbr_gltf_scene* load_emissive(const char* name, const float* pos, size_t nv, const uint32_t* idx,
+                                  size_t ni, const rtpbr_gltf_load_desc* desc, rtpbr_gltf_result* result) {
     const char* dir = ts_dir(name);
     ts_scene s = {
         .positions = pos, .vertex_count = nv, .indices = idx, .index_count = ni, .material = 0,
@@ -162,10 +162,10 @@ static rtpbr_scene* load_emissive(const char* name, const float* pos, size_t nv,
     };
     char* json = ts_scene_json(&s);
     char err[512];
-    rtpbr_scene* scene = NULL;
+    rtpbr_gltf_scene* scene = NULL;
     *result = ts_load_text(dir, "scene.gltf", json, desc, &scene, err, sizeof err);
     free(json);
-    if (*result != RTPBR_SCENE_SUCCESS && !desc) fail_msg("%s: %s", rtpbr_scene_result_string(*result), err);
+    if (*result != RTPBR_GLTF_SUCCESS && !desc) fail_msg("%s: %s", rtpbr_gltf_result_string(*result), err);
     return scene;
 }
 
@@ -180,17 +180,17 @@ static void test_hexagon_fan_is_one_light(void** state) {
     }
     uint32_t idx[18];
     for (uint32_t k = 0; k < 6; ++k) idx[3 * k] = 0, idx[3 * k + 1] = 1 + k, idx[3 * k + 2] = 1 + (k + 1) % 6;
-    rtpbr_scene_result r;
-    rtpbr_scene* scene = load_emissive("hexagon", pos, 7, idx, 18, NULL, &r);
+    rtpbr_gltf_result r;
+    rtpbr_gltf_scene* scene = load_emissive("hexagon", pos, 7, idx, 18, NULL, &r);
     assert_int_equal(scene->light_count, 1);
-    const rtpbr_scene_light* l = &scene->lights[0];
+    const rtpbr_gltf_light* l = &scene->lights[0];
     assert_int_equal(l->vertex_count, 6);
     assert_convex_ccw(l);
     assert_near(l->normal[2], 1.0, EPS, "normal z");
     assert_near(l->area, 3.0 * sqrt(3.0) / 2.0, 1e-5, "hexagon area");
     for (int k = 0; k < 6; ++k) assert_true(has_vertex(l, pos[3 * (k + 1)], pos[3 * (k + 1) + 1], 0.0));
     assert_true(l->two_sided);
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 }
 
 static void test_unindexed_quad_is_one_light(void** state) {
@@ -199,13 +199,13 @@ static void test_unindexed_quad_is_one_light(void** state) {
      * indices 0..5): vertices are welded by position, giving one quad. */
     const float pos[] = {0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 0, 0, 2, 1, 0, 0, 1, 0};
     const uint32_t idx[] = {0, 1, 2, 3, 4, 5};
-    rtpbr_scene_result r;
-    rtpbr_scene* scene = load_emissive("unindexed", pos, 6, idx, 6, NULL, &r);
+    rtpbr_gltf_result r;
+    rtpbr_gltf_scene* scene = load_emissive("unindexed", pos, 6, idx, 6, NULL, &r);
     assert_int_equal(scene->light_count, 1);
     assert_int_equal(scene->lights[0].vertex_count, 4);
     assert_convex_ccw(&scene->lights[0]);
     assert_near(scene->lights[0].area, 2.0, EPS, "2×1 quad area");
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 }
 
 static void test_strip_and_fan_modes(void** state) {
@@ -223,17 +223,17 @@ static void test_strip_and_fan_modes(void** state) {
                             "\"material\":0}]}"};
     char* json = ts_scene_json(&s);
     char err[512];
-    rtpbr_scene* scene = NULL;
-    rtpbr_scene_result r = ts_load_text(dir, "strip.gltf", json, NULL, &scene, err, sizeof err);
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, "strip.gltf", json, NULL, &scene, err, sizeof err);
     free(json);
-    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s", err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
     assert_int_equal(scene->primitives[0].index_count, 6);
     assert_int_equal(scene->light_count, 1);
     assert_int_equal(scene->lights[0].vertex_count, 4);
     assert_convex_ccw(&scene->lights[0]);
     assert_near(scene->lights[0].normal[2], 1.0, EPS, "strip normal");
     assert_near(scene->lights[0].area, 1.0, EPS, "strip area");
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 
     float hex[7 * 3] = {0};
     for (int k = 0; k < 6; ++k) {
@@ -249,12 +249,12 @@ static void test_strip_and_fan_modes(void** state) {
     json = ts_scene_json(&s);
     r = ts_load_text(dir, "fan.gltf", json, NULL, &scene, err, sizeof err);
     free(json);
-    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s", err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
     assert_int_equal(scene->primitives[0].index_count, 18);
     assert_int_equal(scene->light_count, 1);
     assert_int_equal(scene->lights[0].vertex_count, 6);
     assert_near(scene->lights[0].area, 3.0 * sqrt(3.0) / 2.0, 1e-5, "fan hexagon area");
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 }
 
 static void test_non_coplanar_triangles_are_separate(void** state) {
@@ -263,12 +263,12 @@ static void test_non_coplanar_triangles_are_separate(void** state) {
      * normals +Z and +X. */
     const float pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
     const uint32_t idx[] = {0, 1, 2, 0, 2, 3};
-    rtpbr_scene_result r;
-    rtpbr_scene* scene = load_emissive("fold", pos, 4, idx, 6, NULL, &r);
+    rtpbr_gltf_result r;
+    rtpbr_gltf_scene* scene = load_emissive("fold", pos, 4, idx, 6, NULL, &r);
     assert_int_equal(scene->light_count, 2);
     int seen_z = 0, seen_x = 0;
     for (uint32_t i = 0; i < 2; ++i) {
-        const rtpbr_scene_light* l = &scene->lights[i];
+        const rtpbr_gltf_light* l = &scene->lights[i];
         assert_int_equal(l->vertex_count, 3);
         assert_convex_ccw(l);
         assert_near(l->area, 0.5, EPS, "triangle area");
@@ -277,13 +277,13 @@ static void test_non_coplanar_triangles_are_separate(void** state) {
     }
     assert_int_equal(seen_z, 1);
     assert_int_equal(seen_x, 1);
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 
     /* The same with max_lights = 1: a specific error, no scene. */
-    rtpbr_scene_load_desc desc = {0};
+    rtpbr_gltf_load_desc desc = {0};
     desc.max_lights = 1;
     scene = load_emissive("fold_limit", pos, 4, idx, 6, &desc, &r);
-    assert_int_equal(r, RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS);
+    assert_int_equal(r, RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS);
     assert_null(scene);
 }
 
@@ -296,8 +296,8 @@ static void test_concave_region_splits_into_convex_lights(void** state) {
         for (int x = 0; x < 3; ++x) pos[3 * (y * 3 + x)] = (float)x, pos[3 * (y * 3 + x) + 1] = (float)y,
                                     pos[3 * (y * 3 + x) + 2] = 0.0f;
     const uint32_t idx[] = {0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4, 3, 4, 7, 3, 7, 6};
-    rtpbr_scene_result r;
-    rtpbr_scene* scene = load_emissive("lshape", pos, 9, idx, 18, NULL, &r);
+    rtpbr_gltf_result r;
+    rtpbr_gltf_scene* scene = load_emissive("lshape", pos, 9, idx, 18, NULL, &r);
     assert_true(scene->light_count >= 2 && scene->light_count <= 6);
     double area = 0.0;
     for (uint32_t i = 0; i < scene->light_count; ++i) {
@@ -305,7 +305,7 @@ static void test_concave_region_splits_into_convex_lights(void** state) {
         area += scene->lights[i].area;
     }
     assert_near(area, 3.0, 1e-5, "total light area");
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 }
 
 static void test_non_emissive_and_degenerate(void** state) {
@@ -317,10 +317,10 @@ static void test_non_emissive_and_degenerate(void** state) {
     ts_scene s = {.positions = pos, .vertex_count = 4, .indices = idx, .index_count = 9, .material = -1};
     char* json = ts_scene_json(&s);
     char err[512];
-    rtpbr_scene* scene = NULL;
-    rtpbr_scene_result r = ts_load_text(dir, "scene.gltf", json, NULL, &scene, err, sizeof err);
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, "scene.gltf", json, NULL, &scene, err, sizeof err);
     free(json);
-    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s", err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
     assert_int_equal(scene->light_count, 0);
     assert_int_equal(scene->primitives[0].index_count, 3);
     /* No material: a default one (glTF defaults) is appended. */
@@ -331,7 +331,7 @@ static void test_non_emissive_and_degenerate(void** state) {
     /* Generated flat normal of triangle (0,1,2): +Z. */
     assert_near(scene->primitives[0].normals[2], 1.0, EPS, "generated normal");
     assert_int_equal(scene->camera_count, 0);
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 }
 
 static void test_mirrored_node_keeps_ccw_winding(void** state) {
@@ -344,14 +344,14 @@ static void test_mirrored_node_keeps_ccw_winding(void** state) {
                   .nodes = "{\"mesh\":0,\"scale\":[-1,1,1]}"};
     char* json = ts_scene_json(&s);
     char err[512];
-    rtpbr_scene* scene = NULL;
-    rtpbr_scene_result r = ts_load_text(dir, "scene.gltf", json, NULL, &scene, err, sizeof err);
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, "scene.gltf", json, NULL, &scene, err, sizeof err);
     free(json);
-    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s", err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
     assert_int_equal(scene->light_count, 1);
     assert_convex_ccw(&scene->lights[0]);
     assert_near(scene->lights[0].normal[1], 1.0, EPS, "mirrored light normal");
-    const rtpbr_scene_primitive* p = &scene->primitives[0];
+    const rtpbr_gltf_primitive* p = &scene->primitives[0];
     for (uint32_t t = 0; t < p->index_count; t += 3) {
         double e1[3], e2[3], c[3];
         sub3(&p->positions[3 * p->indices[t + 1]], &p->positions[3 * p->indices[t]], e1);
@@ -359,7 +359,7 @@ static void test_mirrored_node_keeps_ccw_winding(void** state) {
         cross3(e1, e2, c);
         assert_true(c[1] > 0.0);
     }
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 }
 
 static void test_ext_lights_area(void** state) {
@@ -386,13 +386,13 @@ static void test_ext_lights_area(void** state) {
         "{\"extensions\":{\"EXT_lights_area\":{\"light\":2}}}],"
         "\"scenes\":[{\"nodes\":[0,1,2]}],\"scene\":0}";
     char err[512];
-    rtpbr_scene* scene = NULL;
-    rtpbr_scene_result r = ts_load_text(dir, "lights.gltf", json, NULL, &scene, err, sizeof err);
-    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s: %s", rtpbr_scene_result_string(r), err);
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, "lights.gltf", json, NULL, &scene, err, sizeof err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s", rtpbr_gltf_result_string(r), err);
     assert_int_equal(scene->light_count, 3);
 
-    const rtpbr_scene_light* rect = &scene->lights[0];
-    assert_int_equal(rect->shape, RTPBR_SCENE_LIGHT_POLYGON);
+    const rtpbr_gltf_light* rect = &scene->lights[0];
+    assert_int_equal(rect->shape, RTPBR_GLTF_LIGHT_POLYGON);
     assert_int_equal(rect->vertex_count, 4);
     assert_convex_ccw(rect);
     assert_near(rect->normal[1], -1.0, EPS, "rect normal");
@@ -406,8 +406,8 @@ static void test_ext_lights_area(void** state) {
     assert_int_equal(rect->gltf_node, 0);
     assert_false(rect->two_sided);
 
-    const rtpbr_scene_light* disk = &scene->lights[1];
-    assert_int_equal(disk->shape, RTPBR_SCENE_LIGHT_DISK);
+    const rtpbr_gltf_light* disk = &scene->lights[1];
+    assert_int_equal(disk->shape, RTPBR_GLTF_LIGHT_DISK);
     assert_int_equal(disk->vertex_count, 8);
     assert_convex_ccw(disk);
     assert_near(disk->radius, 1.0, EPS, "disk radius");
@@ -428,7 +428,7 @@ static void test_ext_lights_area(void** state) {
     assert_near(octagon, TS_PI, 1e-5, "octagon area = disk area");
     assert_near(disk->radiance[0], 50.0, 1e-4, "disk radiance");
 
-    const rtpbr_scene_light* legacy = &scene->lights[2];
+    const rtpbr_gltf_light* legacy = &scene->lights[2];
     assert_near(legacy->area, 3.0, EPS, "legacy rect area");
     assert_near(legacy->radiance[1], 10.0, EPS, "legacy luminance");
     assert_near(legacy->normal[2], -1.0, EPS, "legacy normal");
@@ -438,15 +438,15 @@ static void test_ext_lights_area(void** state) {
     assert_near(scene->bounds_min[0], -1.5, EPS, "bounds min x");
     assert_near(scene->bounds_max[0], 1.0 + R, 1e-5, "bounds max x");
     assert_near(scene->bounds_max[1], 3.0, EPS, "bounds max y");
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 
     /* area_light_radiance_scale multiplies the radiance. */
-    rtpbr_scene_load_desc desc = {0};
+    rtpbr_gltf_load_desc desc = {0};
     desc.area_light_radiance_scale = 0.25f;
     r = ts_load_text(dir, "lights.gltf", json, &desc, &scene, err, sizeof err);
-    assert_int_equal(r, RTPBR_SCENE_SUCCESS);
+    assert_int_equal(r, RTPBR_GLTF_SUCCESS);
     assert_near(scene->lights[0].radiance[0], 25.0, 1e-4, "scaled radiance");
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 }
 
 static void test_glb_and_memory(void** state) {
@@ -477,23 +477,23 @@ static void test_glb_and_memory(void** state) {
     const char* dir = ts_dir("glb");
     ts_write(dir, "quad.glb", glb, total);
     char* path = ts_path(dir, "quad.glb");
-    rtpbr_scene* scene = NULL;
-    rtpbr_scene_result r = rtpbr_scene_load(path, NULL, &scene);
-    assert_int_equal(r, RTPBR_SCENE_SUCCESS);
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = rtpbr_gltf_load(path, NULL, &scene);
+    assert_int_equal(r, RTPBR_GLTF_SUCCESS);
     assert_int_equal(scene->primitives[0].vertex_count, 4);
     assert_near(scene->primitives[0].positions[2], 0.5 - 3.0, EPS, "glb translated z");
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 
-    r = rtpbr_scene_load_memory(glb, total, NULL, &scene);
-    assert_int_equal(r, RTPBR_SCENE_SUCCESS);
+    r = rtpbr_gltf_load_memory(glb, total, NULL, &scene);
+    assert_int_equal(r, RTPBR_GLTF_SUCCESS);
     assert_int_equal(scene->primitives[0].index_count, 6);
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 
     /* Same JSON with a data: URI, from memory without base_dir. */
     char* text = ts_scene_json(&s);
-    r = rtpbr_scene_load_memory(text, strlen(text), NULL, &scene);
-    assert_int_equal(r, RTPBR_SCENE_SUCCESS);
-    rtpbr_scene_destroy(scene);
+    r = rtpbr_gltf_load_memory(text, strlen(text), NULL, &scene);
+    assert_int_equal(r, RTPBR_GLTF_SUCCESS);
+    rtpbr_gltf_destroy(scene);
     free(text);
     free(path);
     free(glb);
@@ -534,9 +534,9 @@ static void test_sparse_positions(void** state) {
     char* json = ts_format(fmt, uri, bin.size, o_pos, o_idx, o_si, o_sv, o_ti, o_tv, 3);
     const char* dir = ts_dir("sparse");
     char err[512];
-    rtpbr_scene* scene = NULL;
-    rtpbr_scene_result r = ts_load_text(dir, "sparse.gltf", json, NULL, &scene, err, sizeof err);
-    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s: %s", rtpbr_scene_result_string(r), err);
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, "sparse.gltf", json, NULL, &scene, err, sizeof err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s", rtpbr_gltf_result_string(r), err);
     const float* p = scene->primitives[0].positions;
     assert_near(p[6], 3.0, 0, "sparse x");
     assert_near(p[7], 2.0, 0, "sparse y");
@@ -545,12 +545,12 @@ static void test_sparse_positions(void** state) {
     const float want[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     for (int k = 0; k < 9; ++k) assert_near(t[k], want[k], 0, "zero base + sparse");
     assert_int_equal(scene->primitives[1].index_count, 3);
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
     free(json);
     /* count 2 < sparse index 2: rejected, naming the accessor */
     json = ts_format(fmt, uri, bin.size, o_pos, o_idx, o_si, o_sv, o_ti, o_tv, 2);
     r = ts_load_text(dir, "sparse_bad.gltf", json, NULL, &scene, err, sizeof err);
-    assert_int_equal(r, RTPBR_SCENE_ERROR_INVALID_ACCESSOR);
+    assert_int_equal(r, RTPBR_GLTF_ERROR_INVALID_ACCESSOR);
     assert_non_null(strstr(err, "accessor 2"));
     free(json);
     free(uri);

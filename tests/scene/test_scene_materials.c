@@ -25,22 +25,22 @@ static const float kQuad[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}; /* z = 0, CCW
 static const uint32_t kQuadIdx[] = {0, 1, 2, 0, 2, 3};
 static const float kQuadUv[] = {0, 0, 1, 0, 1, 1, 0, 1};           /* u = x, v = y */
 
-static rtpbr_scene* load_materials(const char* name, const char* materials, const char* extra) {
+static rtpbr_gltf_scene* load_materials(const char* name, const char* materials, const char* extra) {
     const char* dir = ts_dir(name);
     ts_scene s = {.positions = kQuad, .vertex_count = 4, .indices = kQuadIdx, .index_count = 6,
                   .texcoords = kQuadUv, .material = 0, .materials = materials, .extra = extra};
     char* json = ts_scene_json(&s);
     char err[512];
-    rtpbr_scene* scene = NULL;
-    rtpbr_scene_result r = ts_load_text(dir, "m.gltf", json, NULL, &scene, err, sizeof err);
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, "m.gltf", json, NULL, &scene, err, sizeof err);
     free(json);
-    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s: %s", rtpbr_scene_result_string(r), err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s", rtpbr_gltf_result_string(r), err);
     return scene;
 }
 
 static void test_khr_extensions(void** state) {
     (void)state;
-    rtpbr_scene* scene = load_materials(
+    rtpbr_gltf_scene* scene = load_materials(
         "khr",
         "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.6,0.4,1],\"metallicFactor\":0.3,"
         "\"roughnessFactor\":0.7},\"emissiveFactor\":[0.1,0.2,0.3],\"doubleSided\":true,"
@@ -52,8 +52,8 @@ static void test_khr_extensions(void** state) {
         "\"KHR_materials_sheen\":{\"sheenColorFactor\":[0.2,0.5,0.4],\"sheenRoughnessFactor\":0.3},"
         "\"KHR_materials_anisotropy\":{\"anisotropyStrength\":0.4,\"anisotropyRotation\":1.2}}}",
         NULL);
-    const rtpbr_scene_material* m = &scene->materials[0];
-    assert_int_equal(m->model, RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS);
+    const rtpbr_gltf_material* m = &scene->materials[0];
+    assert_int_equal(m->model, RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS);
     near(m->base_color[0], 0.8f, "base r");
     near(m->base_color[1], 0.6f, "base g");
     near(m->base_color[2], 0.4f, "base b");
@@ -82,7 +82,7 @@ static void test_khr_extensions(void** state) {
     near(m->specular_tint, 0.0, "specular tint");
     near(m->sheen_tint, 0.0, "sheen tint");
     assert_true(m->double_sided);
-    assert_int_equal(m->alpha_mode, RTPBR_SCENE_ALPHA_MASK);
+    assert_int_equal(m->alpha_mode, RTPBR_GLTF_ALPHA_MASK);
     near(m->alpha_cutoff, 0.3f, "alpha cutoff");
     assert_int_equal(m->base_color_texture, -1);
     assert_int_equal(m->gltf_material, 0);
@@ -90,12 +90,12 @@ static void test_khr_extensions(void** state) {
     assert_int_equal(scene->light_count, 1);
     near(scene->lights[0].radiance[2], 0.3f * 5.0f, "light radiance");
     assert_true(scene->lights[0].two_sided);
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 }
 
 static void test_defaults_and_disney_extras(void** state) {
     (void)state;
-    rtpbr_scene* scene = load_materials(
+    rtpbr_gltf_scene* scene = load_materials(
         "disney",
         "{},"
         "{\"extras\":{\"rtpbr_disney\":{\"baseColor\":[0.1,0.2,0.3],\"metallic\":0.1,\"roughness\":0.4,"
@@ -105,8 +105,8 @@ static void test_defaults_and_disney_extras(void** state) {
         NULL);
     assert_int_equal(scene->material_count, 3);
     /* glTF defaults (spec §5.19): white, metallic = roughness = 1, ior 1.5 */
-    const rtpbr_scene_material* d = &scene->materials[0];
-    assert_int_equal(d->model, RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS);
+    const rtpbr_gltf_material* d = &scene->materials[0];
+    assert_int_equal(d->model, RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS);
     for (int k = 0; k < 4; ++k) near(d->base_color[k], 1.0, "default base colour");
     near(d->metallic, 1.0, "default metallic");
     near(d->roughness, 1.0, "default roughness");
@@ -120,13 +120,13 @@ static void test_defaults_and_disney_extras(void** state) {
     near(d->emissive_strength, 1.0, "default strength");
     near(d->normal_scale, 1.0, "default normal scale");
     near(d->alpha_cutoff, 0.5, "default cutoff");
-    assert_int_equal(d->alpha_mode, RTPBR_SCENE_ALPHA_OPAQUE);
+    assert_int_equal(d->alpha_mode, RTPBR_GLTF_ALPHA_OPAQUE);
     assert_false(d->double_sided);
     assert_int_equal(d->normal_texture, -1);
     assert_int_equal(scene->light_count, 0);
 
-    const rtpbr_scene_material* m = &scene->materials[1];
-    assert_int_equal(m->model, RTPBR_SCENE_MATERIAL_DISNEY);
+    const rtpbr_gltf_material* m = &scene->materials[1];
+    assert_int_equal(m->model, RTPBR_GLTF_MATERIAL_DISNEY);
     near(m->base_color[0], 0.1f, "disney base r");
     near(m->base_color[2], 0.3f, "disney base b");
     near(m->base_color[3], 1.0, "disney base a (kept)");
@@ -145,11 +145,11 @@ static void test_defaults_and_disney_extras(void** state) {
     if (fabs(f * f - 0.024) > 1e-6) fail_msg("ior %g gives F0 %g, expected 0.024", m->ior, f * f);
 
     /* ior only → specular = F0(2)/0.08 = (1/3)²/0.08 = 1.3889, clamped to 1 */
-    const rtpbr_scene_material* q = &scene->materials[2];
-    assert_int_equal(q->model, RTPBR_SCENE_MATERIAL_DISNEY);
+    const rtpbr_gltf_material* q = &scene->materials[2];
+    assert_int_equal(q->model, RTPBR_GLTF_MATERIAL_DISNEY);
     near(q->ior, 2.0, "disney ior");
     near(q->specular, 1.0, "specular from ior, clamped");
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 }
 
 static void test_textures_and_tangents(void** state) {
@@ -177,37 +177,37 @@ static void test_textures_and_tangents(void** state) {
                                "\"emissiveTexture\":{\"index\":0}}"};
     char* json = ts_scene_json(&s);
     char err[512];
-    rtpbr_scene* scene = NULL;
-    rtpbr_scene_result r = ts_load_text(dir, "t.gltf", json, NULL, &scene, err, sizeof err);
-    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s: %s", rtpbr_scene_result_string(r), err);
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, "t.gltf", json, NULL, &scene, err, sizeof err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s", rtpbr_gltf_result_string(r), err);
     assert_int_equal(scene->texture_count, 2);
-    const rtpbr_scene_material* m = &scene->materials[0];
+    const rtpbr_gltf_material* m = &scene->materials[0];
     assert_int_equal(m->base_color_texture, m->emission_texture);
     assert_int_equal(m->metallic_roughness_texture, m->normal_texture);
     assert_int_not_equal(m->base_color_texture, m->normal_texture);
     near(m->normal_scale, 0.5, "normal scale");
-    const rtpbr_scene_texture* c = &scene->textures[m->base_color_texture];
-    const rtpbr_scene_texture* n = &scene->textures[m->normal_texture];
+    const rtpbr_gltf_texture* c = &scene->textures[m->base_color_texture];
+    const rtpbr_gltf_texture* n = &scene->textures[m->normal_texture];
     assert_true(c->srgb);
     assert_false(n->srgb);
     assert_int_equal(c->gltf_texture, 0);
     assert_int_equal(n->gltf_texture, 1);
     for (int t = 0; t < 2; ++t) {
-        const rtpbr_scene_texture* x = t ? n : c;
+        const rtpbr_gltf_texture* x = t ? n : c;
         assert_int_equal(x->width, 2);
         assert_int_equal(x->height, 2);
         assert_non_null(x->pixels);
         assert_memory_equal(x->pixels, px, 16);
     }
-    assert_int_equal(c->wrap_s, RTPBR_SCENE_WRAP_REPEAT);
-    assert_int_equal(n->wrap_s, RTPBR_SCENE_WRAP_CLAMP_TO_EDGE);
-    assert_int_equal(n->wrap_t, RTPBR_SCENE_WRAP_MIRRORED_REPEAT);
+    assert_int_equal(c->wrap_s, RTPBR_GLTF_WRAP_REPEAT);
+    assert_int_equal(n->wrap_s, RTPBR_GLTF_WRAP_CLAMP_TO_EDGE);
+    assert_int_equal(n->wrap_t, RTPBR_GLTF_WRAP_MIRRORED_REPEAT);
     assert_true(n->nearest);
     assert_false(c->nearest);
 
     /* Normal map + UVs, no TANGENT: generated. u = x, v = y on a +Z quad →
      * T = +X, B = +Y, w = sign((N × T)·B) = +1. */
-    const rtpbr_scene_primitive* p = &scene->primitives[0];
+    const rtpbr_gltf_primitive* p = &scene->primitives[0];
     assert_true(p->has_texcoords);
     assert_true(p->has_tangents);
     assert_true(p->tangents_generated);
@@ -217,23 +217,23 @@ static void test_textures_and_tangents(void** state) {
         near(p->tangents[4 * v + 3], 1.0, "tangent w");
         near(p->texcoords[2 * v], kQuadUv[2 * v], "texcoord u");
     }
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 
     /* skip_images: same indices, no pixels. */
-    rtpbr_scene_load_desc desc = {0};
+    rtpbr_gltf_load_desc desc = {0};
     desc.skip_images = true;
     r = ts_load_text(dir, "t.gltf", json, &desc, &scene, err, sizeof err);
-    assert_int_equal(r, RTPBR_SCENE_SUCCESS);
+    assert_int_equal(r, RTPBR_GLTF_SUCCESS);
     assert_int_equal(scene->texture_count, 2);
     assert_null(scene->textures[0].pixels);
     assert_int_equal(scene->textures[0].width, 0);
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
 
     /* Limits and broken images get their own codes. */
     desc.skip_images = false;
     desc.max_texture_dimension = 1;
     r = ts_load_text(dir, "t.gltf", json, &desc, &scene, err, sizeof err);
-    assert_int_equal(r, RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE);
+    assert_int_equal(r, RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE);
     assert_null(scene);
     assert_non_null(strstr(err, "image"));
 
@@ -246,7 +246,7 @@ static void test_textures_and_tangents(void** state) {
     s.materials = "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}";
     json = ts_scene_json(&s);
     r = ts_load_text(dir, "bad.gltf", json, NULL, &scene, err, sizeof err);
-    assert_int_equal(r, RTPBR_SCENE_ERROR_IMAGE_DECODE);
+    assert_int_equal(r, RTPBR_GLTF_ERROR_IMAGE_DECODE);
     assert_null(scene);
     assert_non_null(strstr(err, "image 0"));
 
@@ -282,18 +282,18 @@ static void test_glb_buffer_view_image(void** state) {
     size_t glb_size;
     unsigned char* glb = ts_glb(json, bin.bytes, bin.size, &glb_size);
     char err[512];
-    rtpbr_scene_load_desc desc = {0};
+    rtpbr_gltf_load_desc desc = {0};
     desc.error_message = err;
     desc.error_message_size = sizeof err;
-    rtpbr_scene* scene = NULL;
-    rtpbr_scene_result r = rtpbr_scene_load_memory(glb, glb_size, &desc, &scene);
-    if (r != RTPBR_SCENE_SUCCESS) fail_msg("%s: %s", rtpbr_scene_result_string(r), err);
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = rtpbr_gltf_load_memory(glb, glb_size, &desc, &scene);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s", rtpbr_gltf_result_string(r), err);
     assert_int_equal(scene->texture_count, 1);
     assert_int_equal(scene->textures[0].width, 3);
     assert_int_equal(scene->textures[0].height, 1);
     assert_memory_equal(scene->textures[0].pixels, px, 12);
     assert_true(scene->textures[0].srgb);
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
     free(json);
     free(glb);
 
@@ -301,8 +301,8 @@ static void test_glb_buffer_view_image(void** state) {
      * pass, against the buffer's byteLength, since issue 18). */
     json = ts_format(fmt, bin.size, png_at, png_size + 4096);
     glb = ts_glb(json, bin.bytes, bin.size, &glb_size);
-    r = rtpbr_scene_load_memory(glb, glb_size, &desc, &scene);
-    assert_int_equal(r, RTPBR_SCENE_ERROR_INVALID_ACCESSOR);
+    r = rtpbr_gltf_load_memory(glb, glb_size, &desc, &scene);
+    assert_int_equal(r, RTPBR_GLTF_ERROR_INVALID_ACCESSOR);
     assert_null(scene);
     if (!strstr(err, "bufferView 3")) fail_msg("message: %s", err);
     free(json);

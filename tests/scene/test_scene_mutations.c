@@ -24,9 +24,9 @@ static uint32_t rng(void) { /* PCG-style LCG step, high bits */
     return (uint32_t)(rng_state >> 33);
 }
 
-static void check_scene(const rtpbr_scene* s) {
+static void check_scene(const rtpbr_gltf_scene* s) {
     for (uint32_t i = 0; i < s->primitive_count; ++i) {
-        const rtpbr_scene_primitive* p = &s->primitives[i];
+        const rtpbr_gltf_primitive* p = &s->primitives[i];
         assert_true(p->index_count % 3 == 0);
         assert_true(p->material < s->material_count);
         for (uint32_t k = 0; k < p->index_count; ++k) assert_true(p->indices[k] < p->vertex_count);
@@ -36,18 +36,18 @@ static void check_scene(const rtpbr_scene* s) {
         }
     }
     for (uint32_t i = 0; i < s->material_count; ++i) {
-        const rtpbr_scene_material* m = &s->materials[i];
+        const rtpbr_gltf_material* m = &s->materials[i];
         const int32_t tex[4] = {m->base_color_texture, m->metallic_roughness_texture, m->normal_texture,
                                 m->emission_texture};
         for (int k = 0; k < 4; ++k) assert_true(tex[k] >= -1 && tex[k] < (int32_t)s->texture_count);
     }
     for (uint32_t i = 0; i < s->texture_count; ++i) {
-        const rtpbr_scene_texture* t = &s->textures[i];
+        const rtpbr_gltf_texture* t = &s->textures[i];
         if (t->pixels) assert_true(t->width > 0 && t->height > 0);
     }
     for (uint32_t i = 0; i < s->light_count; ++i) {
-        const rtpbr_scene_light* l = &s->lights[i];
-        assert_true(l->vertex_count >= 3 && l->vertex_count <= RTPBR_SCENE_MAX_POLYGON_VERTICES);
+        const rtpbr_gltf_light* l = &s->lights[i];
+        assert_true(l->vertex_count >= 3 && l->vertex_count <= RTPBR_GLTF_MAX_POLYGON_VERTICES);
         assert_true(l->primitive >= -1 && l->primitive < (int32_t)s->primitive_count);
         for (int k = 0; k < 3; ++k) assert_true(isfinite(l->normal[k]) && isfinite(l->radiance[k]));
     }
@@ -135,17 +135,17 @@ static size_t run(const unsigned char* base, size_t base_size, size_t lo, size_t
         size_t size = base_size;
         memcpy(buf, base, base_size);
         mutate(buf, &size, lo, base_size - hi_from_end);
-        char err[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
-        rtpbr_scene_load_desc desc = {0};
+        char err[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
+        rtpbr_gltf_load_desc desc = {0};
         desc.error_message = err;
         desc.error_message_size = sizeof err;
-        rtpbr_scene* scene = (rtpbr_scene*)(uintptr_t)1;
-        rtpbr_scene_result r = rtpbr_scene_load_memory(buf, size, &desc, &scene);
-        assert_true(r >= 0 && r < RTPBR_SCENE_RESULT_COUNT);
-        if (r == RTPBR_SCENE_SUCCESS) {
+        rtpbr_gltf_scene* scene = (rtpbr_gltf_scene*)(uintptr_t)1;
+        rtpbr_gltf_result r = rtpbr_gltf_load_memory(buf, size, &desc, &scene);
+        assert_true(r >= 0 && r < RTPBR_GLTF_RESULT_COUNT);
+        if (r == RTPBR_GLTF_SUCCESS) {
             assert_non_null(scene);
             check_scene(scene);
-            rtpbr_scene_destroy(scene);
+            rtpbr_gltf_destroy(scene);
             ++*successes;
         } else {
             assert_null(scene);
@@ -161,10 +161,10 @@ static void test_mutated_json(void** state) {
     (void)state;
     rng_state = 12345;
     char* json = base_json();
-    rtpbr_scene* scene = NULL;
-    assert_int_equal(rtpbr_scene_load_memory(json, strlen(json), NULL, &scene), RTPBR_SCENE_SUCCESS);
+    rtpbr_gltf_scene* scene = NULL;
+    assert_int_equal(rtpbr_gltf_load_memory(json, strlen(json), NULL, &scene), RTPBR_GLTF_SUCCESS);
     assert_int_equal(scene->light_count, 3);
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
     int ok = 0;
     size_t failed = run((const unsigned char*)json, strlen(json), 0, 0, kMutations, &ok);
     print_message("JSON: %d mutated scenes loaded, %zu rejected\n", ok, failed);
@@ -201,10 +201,10 @@ static void test_mutated_glb(void** state) {
     uint32_t bh[2] = {(uint32_t)blen, 0x004E4942u};
     memcpy(glb + 20 + jlen, bh, 8);
     memcpy(glb + 28 + jlen, bin.bytes, bin.size);
-    rtpbr_scene* scene = NULL;
-    assert_int_equal(rtpbr_scene_load_memory(glb, total, NULL, &scene), RTPBR_SCENE_SUCCESS);
+    rtpbr_gltf_scene* scene = NULL;
+    assert_int_equal(rtpbr_gltf_load_memory(glb, total, NULL, &scene), RTPBR_GLTF_SUCCESS);
     assert_int_equal(scene->light_count, 1);
-    rtpbr_scene_destroy(scene);
+    rtpbr_gltf_destroy(scene);
     int ok = 0;
     /* in-place mutations of the JSON chunk and the BIN payload only */
     size_t failed = run(glb, total, 20, 1, kMutations, &ok);

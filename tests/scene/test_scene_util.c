@@ -198,7 +198,7 @@ static void remove_tree(const char* dir) {
 
 const char* ts_dir(const char* name) {
     static char path[4096];
-    const char* root = getenv("RTPBR_SCENE_TEST_DIR");
+    const char* root = getenv("RTPBR_GLTF_TEST_DIR");
     snprintf(path, sizeof path, "%s/scene-test-data", root ? root : "/tmp");
     mkdir(path, 0755);
     snprintf(path, sizeof path, "%s/scene-test-data/%s", root ? root : "/tmp", name);
@@ -221,16 +221,16 @@ void ts_write(const char* dir, const char* file, const void* data, size_t size) 
     free(p);
 }
 
-rtpbr_scene_result ts_load_text(const char* dir, const char* name, const char* text,
-                                const rtpbr_scene_load_desc* desc, rtpbr_scene** out, char* err,
+rtpbr_gltf_result ts_load_text(const char* dir, const char* name, const char* text,
+                                const rtpbr_gltf_load_desc* desc, rtpbr_gltf_scene** out, char* err,
                                 size_t err_size) {
     ts_write(dir, name, text, strlen(text));
-    rtpbr_scene_load_desc d = {0};
+    rtpbr_gltf_load_desc d = {0};
     if (desc) d = *desc;
     d.error_message = err;
     d.error_message_size = err_size;
     char* p = ts_path(dir, name);
-    rtpbr_scene_result r = rtpbr_scene_load(p, &d, out);
+    rtpbr_gltf_result r = rtpbr_gltf_load(p, &d, out);
     free(p);
     return r;
 }

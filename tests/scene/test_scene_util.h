@@ -3,7 +3,7 @@
 #ifndef TEST_SCENE_UTIL_H
 #define TEST_SCENE_UTIL_H
 
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 
 #include <stdarg.h>
 #include <stddef.h>
@@ -54,7 +54,7 @@ unsigned char* ts_glb(const char* json, const void* bin, size_t bin_size, size_t
 /* RGBA8 image as an uncompressed (stored deflate) PNG (malloc'd). */
 unsigned char* ts_png(const unsigned char* rgba, uint32_t width, uint32_t height, size_t* size);
 
-/* Folder for this test under RTPBR_SCENE_TEST_DIR (or /tmp), created fresh. */
+/* Folder for this test under RTPBR_GLTF_TEST_DIR (or /tmp), created fresh. */
 const char* ts_dir(const char* name);
 char* ts_path(const char* dir, const char* file)
 #if defined(__GNUC__)
@@ -65,8 +65,8 @@ int ts_exists(const char* path);
 void ts_write(const char* dir, const char* file, const void* data, size_t size);
 
 /* Loads text as a file `name` in dir with default options plus an error buffer. */
-rtpbr_scene_result ts_load_text(const char* dir, const char* name, const char* text,
-                                const rtpbr_scene_load_desc* desc, rtpbr_scene** out,
+rtpbr_gltf_result ts_load_text(const char* dir, const char* name, const char* text,
+                                const rtpbr_gltf_load_desc* desc, rtpbr_gltf_scene** out,
                                 char* err, size_t err_size);
 
 #endif

@@ -53,20 +53,20 @@ ACCEPTED_ERRORS = {
 # The validator reports no error, and the loader refuses the file with this result and a
 # message containing this text.
 REFUSED_CLEAN = {
-    ('RTPBR_SCENE_ERROR_NONFINITE', ''): 'finite JSON numbers that overflow a float (1e39), or transforms that '
+    ('RTPBR_GLTF_ERROR_NONFINITE', ''): 'finite JSON numbers that overflow a float (1e39), or transforms that '
                                          'make a world position or camera overflow: the outputs are floats '
                                          '(docs/limits.md, "numbers")',
-    ('RTPBR_SCENE_ERROR_INVALID_JSON', 'needs 0 < yfov < pi'): 'a camera neither renderer can project '
+    ('RTPBR_GLTF_ERROR_INVALID_JSON', 'needs 0 < yfov < pi'): 'a camera neither renderer can project '
                                                                '(yfov >= pi; the validator only warns)',
-    ('RTPBR_SCENE_ERROR_INVALID_JSON', '/type: value not allowed'): 'a camera of unknown type: neither renderer '
+    ('RTPBR_GLTF_ERROR_INVALID_JSON', '/type: value not allowed'): 'a camera of unknown type: neither renderer '
                                                                    'could use it (the validator only warns)',
-    ('RTPBR_SCENE_ERROR_INVALID_JSON', 'invalid bufferView'): 'tinygltf 2.7 refuses an accessor without '
+    ('RTPBR_GLTF_ERROR_INVALID_JSON', 'invalid bufferView'): 'tinygltf 2.7 refuses an accessor without '
                                                              'bufferView used for indices (glTF: all zeros)',
-    ('RTPBR_SCENE_ERROR_IMAGE_DECODE', ''): 'an image neither PNG nor JPEG, or truncated: nothing can be '
+    ('RTPBR_GLTF_ERROR_IMAGE_DECODE', ''): 'an image neither PNG nor JPEG, or truncated: nothing can be '
                                             'textured from it (the validator only warns: '
                                             'IMAGE_UNRECOGNIZED_FORMAT)',
-    ('RTPBR_SCENE_ERROR_UNSUPPORTED', 'hierarchy deeper than'): 'the documented node depth limit of 256 levels '
-                                                                '(RTPBR_SCENE_MAX_NODE_DEPTH; the walk recurses)',
+    ('RTPBR_GLTF_ERROR_UNSUPPORTED', 'hierarchy deeper than'): 'the documented node depth limit of 256 levels '
+                                                                '(RTPBR_GLTF_MAX_NODE_DEPTH; the walk recurses)',
 }
 
 
@@ -335,7 +335,7 @@ def main():
     for path in files:
         v, (result, message) = verdicts[path], results[path]
         codes = sorted({e.split(' ')[0] for e in v['errors']})
-        loads = result == 'RTPBR_SCENE_SUCCESS'
+        loads = result == 'RTPBR_GLTF_SUCCESS'
         if bool(codes) != loads:
             agree += 1
             continue
@@ -352,7 +352,7 @@ def main():
                 continue
             failures.append('%s [%s]: validator clean (warnings %s), the loader refuses: %s %s' %
                             (path, notes[path], v['warnings'], result, message))
-    refused_by_both = sum(1 for p in files if verdicts[p]['errors'] and results[p][0] != 'RTPBR_SCENE_SUCCESS')
+    refused_by_both = sum(1 for p in files if verdicts[p]['errors'] and results[p][0] != 'RTPBR_GLTF_SUCCESS')
     print('%d files (seed %d): %d agree (%d refused by both, %d loaded by both), %d excused, %d disagree' %
           (len(files), seed, agree, refused_by_both, agree - refused_by_both, sum(excused.values()), len(failures)))
     for k, n in sorted(excused.items(), key=str):

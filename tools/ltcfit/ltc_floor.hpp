@@ -1,6 +1,6 @@
 // LTC against a converged quadrature on floors lit by lights near their horizon (issue 19):
 // the cases of rtpbr-ltc-floor (tools/ltcfit/floor.cpp, which documents the geometry and the
-// error measure) and of the test (tests/ltc/test_ltc_mc.cpp, a reduced sweep).
+// error measure) and of the test (tests/shaderlib/ltc/test_ltc_mc.cpp, a reduced sweep).
 #pragma once
 
 #include <cmath>

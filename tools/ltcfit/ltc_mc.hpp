@@ -1,7 +1,7 @@
 // LTC against Monte Carlo: the integral of the true BRDF x cosine over a polygon light,
 // estimated by multiple importance sampling, compared with the LTC evaluation from the
 // committed tables (fetched with GPU-like bilinear filtering). Shared by the test
-// (tests/ltc/test_ltc_mc.cpp, reduced grid, bounds) and rtpbr-ltc-validate (full grid, table
+// (tests/shaderlib/ltc/test_ltc_mc.cpp, reduced grid, bounds) and rtpbr-ltc-validate (full grid, table
 // and plot for shaderlib/luts/ltc.md).
 #pragma once
 

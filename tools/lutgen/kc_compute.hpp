@@ -1,4 +1,4 @@
-// Kulla-Conty table computation, shared by the generator (lutgen_kc) and tests/kc.
+// Kulla-Conty table computation, shared by the generator (lutgen_kc) and tests/shaderlib/kc.
 //
 // Each NDF / Smith variant of the shader library is compiled in its own translation unit
 // (kc_variant.cpp with RTPBR_* flags and RTPBR_CPP_VARIANT); kc_variants() lists them.

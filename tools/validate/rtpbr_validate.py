@@ -130,7 +130,7 @@ def validate(args, on_cluster):
     settings = dict(config["defaults"])
     settings.update(config.get(mode, {}))
 
-    render = find_tool(args.build, "rtpbr-render", ["samples/headless", "engine"])
+    render = find_tool(args.build, "rtpbr-render", ["tools/render", "engine"])
     oracle = find_tool(args.build, "rtpbr-oracle", ["oracle"])
     diff = find_tool(args.build, "rtpbr-diff", ["tools/imgdiff"])
     oiiotool = shutil.which("oiiotool")

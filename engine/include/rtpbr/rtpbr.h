@@ -304,14 +304,14 @@ typedef struct rtpbr_gpu_scene_desc {
 } rtpbr_gpu_scene_desc;
 
 typedef struct rtpbr_gpu_scene rtpbr_gpu_scene;
-struct rtpbr_scene; // a scene loaded by the glTF loader (engine/scene/rtpbr/rtpbr_scene.h)
+struct rtpbr_gltf_scene; // a scene loaded by the glTF loader (scene/rtpbr/rtpbr_gltf.h)
 
 // Validates everything (finite numbers, index ranges, planar non-degenerate lights) before
 // touching the GPU; a scene with no meshes and no lights is valid (renders the background).
 // Lights are not drawn: a light is seen only through an emissive mesh (glTF scenes have one).
 RTPBR_API rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *context, const rtpbr_gpu_scene_desc *desc,
                                               rtpbr_gpu_scene **out_scene);
-// Loads a glTF 2.0 file through the rtpbr scene loader (engine/scene). Emissive primitives
+// Loads a glTF 2.0 file through the rtpbr scene loader (scene). Emissive primitives
 // and EXT_lights_area lights become polygonal lights; cameras come from the file (none in
 // the file: the default camera of rtpbr_gpu_scene_desc). Missing or malformed file:
 // RTPBR_ERROR_SCENE_LOAD or RTPBR_ERROR_IO, with the loader's message in the log.
@@ -320,7 +320,7 @@ RTPBR_API rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *context, const c
 // Uploads a scene the host loaded (or built) with the loader's C API; the material mapping is
 // the table in rtpbr_gpu_scene_load_gltf's documentation below. The loaded scene is not kept.
 // A non-zero count with a NULL array: RTPBR_ERROR_INVALID_ARGUMENT.
-RTPBR_API rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *context, const struct rtpbr_scene *loaded,
+RTPBR_API rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *context, const struct rtpbr_gltf_scene *loaded,
                                                    rtpbr_gpu_scene **out_scene);
 RTPBR_API void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene);
 RTPBR_API uint32_t rtpbr_gpu_scene_camera_count(const rtpbr_gpu_scene *scene);

@@ -4,9 +4,9 @@
 // so a schema error would otherwise load as something else. Every property the schema
 // defines for the core objects is checked (types, minimum/maximum, enums, array lengths,
 // uniqueness of node lists, required properties); unknown properties, extensions and
-// extras are left to the code that reads them. Errors are RTPBR_SCENE_ERROR_INVALID_JSON
+// extras are left to the code that reads them. Errors are RTPBR_GLTF_ERROR_INVALID_JSON
 // with a JSON pointer to the value; an index to an element that does not exist is
-// RTPBR_SCENE_ERROR_INVALID_REFERENCE, whether or not the scene uses the referring object.
+// RTPBR_GLTF_ERROR_INVALID_REFERENCE, whether or not the scene uses the referring object.
 // Reference: the glTF 2.0 JSON schema, https://github.com/KhronosGroup/glTF/tree/main/specification/2.0/schema
 #include "scene_internal.hpp"
 
@@ -15,7 +15,7 @@
 #include <map>
 #include <set>
 
-namespace rtpbr_scene_detail {
+namespace rtpbr_gltf_detail {
 
 namespace {
 
@@ -40,7 +40,7 @@ struct Checker {
                " (" + where + ")";
     }
     bool fail(const std::string& where, const char* what) {
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "%s: %s", describe(where).c_str(), what);
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "%s: %s", describe(where).c_str(), what);
     }
 
     static bool is_integer(const json& v) {
@@ -66,7 +66,7 @@ struct Checker {
         return it != root.end() && it->is_array() ? it->size() : 0;
     }
     bool unresolved(const std::string& where, const char* key, double value, const char* target) {
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "%s: %s %.0f does not exist (%zu %s)", describe(where).c_str(), key,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "%s: %s %.0f does not exist (%zu %s)", describe(where).c_str(), key,
                         value, count_of(target), target);
     }
     // An index into the top-level array `target`: an integer in range, and the element exists.
@@ -233,13 +233,13 @@ struct Checker {
         const size_t element = csize * type_components(a["type"].get_ref<const std::string&>());
         const double offset = num(a, "byteOffset", 0), view_offset = num(view, "byteOffset", 0);
         if (std::fmod(offset + view_offset, double(csize)) != 0.0)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR,
                             "%s: byteOffset %.0f + bufferView byteOffset %.0f is not a multiple of %zu", describe(at).c_str(),
                             offset, view_offset, csize);
         const double stride = num(view, "byteStride", double(element));
         const double last = offset + stride * (number(a["count"]) - 1.0) + double(element);
         if (last > num(view, "byteLength", 0))
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR,
                             "%s: byteOffset + count * stride needs %.0f bytes, exceeds bufferView %.0f (%.0f bytes)",
                             describe(at).c_str(), last, number(*vi), num(view, "byteLength", 0));
         return true;
@@ -255,7 +255,7 @@ struct Checker {
         const double offset = v.contains("byteOffset") ? number(v["byteOffset"]) : 0.0;
         if (buffer.is_object() && buffer.contains("byteLength") && buffer["byteLength"].is_number() &&
             offset + number(v["byteLength"]) > number(buffer["byteLength"]))
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR,
                             "%s: byteOffset %.0f + byteLength %.0f exceeds buffer %zu (byteLength %.0f)", describe(at).c_str(),
                             offset, number(v["byteLength"]), b, number(buffer["byteLength"]));
         auto it = v.find("byteStride");
@@ -534,4 +534,4 @@ bool check_schema(Context& ctx, const char* json_text, size_t size) {
     return Checker{ctx, doc}.run();
 }
 
-}  // namespace rtpbr_scene_detail
+}  // namespace rtpbr_gltf_detail

@@ -1,4 +1,4 @@
-// glTF materials → rtpbr_scene_material (the table in docs/materials.md) and
+// glTF materials → rtpbr_gltf_material (the table in docs/materials.md) and
 // texture decoding (through tinygltf's stb_image based LoadImageData).
 #include "scene_internal.hpp"
 
@@ -11,7 +11,7 @@
 #include <limits>
 #include <utility>
 
-namespace rtpbr_scene_detail {
+namespace rtpbr_gltf_detail {
 
 namespace {
 
@@ -25,11 +25,11 @@ struct MaterialReader {
         if (!obj.IsObject() || !obj.Has(key)) return true;
         const tinygltf::Value& v = obj.Get(key);
         if (!v.IsNumber())
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: %s.%s must be a number",
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: %s.%s must be a number",
                             material_index, block, key);
         *out = v.GetNumberAsDouble();
         if (!fits_float(*out))
-            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: %s.%s is not finite",
+            return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "material %d: %s.%s is not finite",
                             material_index, block, key);
         return true;
     }
@@ -41,18 +41,18 @@ struct MaterialReader {
         if (!obj.IsObject() || !obj.Has(key)) return true;
         const tinygltf::Value& v = obj.Get(key);
         if (!v.IsArray() || (v.ArrayLen() != n && v.ArrayLen() != n_alt))
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON,
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON,
                             "material %d: %s.%s must be an array of %zu numbers", material_index,
                             block, key, n);
         for (size_t i = 0; i < v.ArrayLen(); ++i) {
             const tinygltf::Value& e = v.Get(static_cast<int>(i));
             if (!e.IsNumber())
-                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON,
+                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON,
                                 "material %d: %s.%s[%zu] must be a number", material_index, block,
                                 key, i);
             double d = e.GetNumberAsDouble();
             if (!fits_float(d))
-                return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: %s.%s[%zu] is not finite",
+                return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "material %d: %s.%s[%zu] is not finite",
                                 material_index, block, key, i);
             out[i] = static_cast<float>(d);
         }
@@ -64,11 +64,11 @@ struct MaterialReader {
 bool finite_vector(Context& ctx, const std::vector<double>& v, size_t n, int material,
                    const char* name, float* out) {
     if (v.size() != n)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: %s has %zu components, expected %zu",
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: %s has %zu components, expected %zu",
                         material, name, v.size(), n);
     for (size_t i = 0; i < n; ++i) {
         if (!fits_float(v[i]))
-            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: %s[%zu] is not finite",
+            return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "material %d: %s[%zu] is not finite",
                             material, name, i);
         out[i] = static_cast<float>(v[i]);
     }
@@ -151,17 +151,17 @@ struct TextureTable {
         const tinygltf::Image& image = model.images[size_t(image_index)];
         if (image.bufferView >= 0) {
             if (size_t(image.bufferView) >= model.bufferViews.size())
-                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE,
                                 "image %d: bufferView %d does not exist (%zu bufferViews)",
                                 image_index, image.bufferView, model.bufferViews.size());
             const tinygltf::BufferView& view = model.bufferViews[size_t(image.bufferView)];
             if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
-                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE,
                                 "bufferView %d: buffer %d does not exist", image.bufferView,
                                 view.buffer);
             const size_t buffer_size = model.buffers[size_t(view.buffer)].data.size();
             if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset)
-                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR,
                                 "image %d: bufferView %d (byteOffset %zu + byteLength %zu) exceeds "
                                 "buffer %d (%zu bytes)",
                                 image_index, image.bufferView, view.byteOffset, view.byteLength,
@@ -172,7 +172,7 @@ struct TextureTable {
         }
         auto it = ctx.encoded_images.find(image_index);
         if (it == ctx.encoded_images.end() || it->second.empty())
-            return ctx.fail(RTPBR_SCENE_ERROR_FILE_NOT_FOUND, "image %d: '%s' could not be loaded",
+            return ctx.fail(RTPBR_GLTF_ERROR_FILE_NOT_FOUND, "image %d: '%s' could not be loaded",
                             image_index, image.uri.size() > 200 ? "(long uri)" : image.uri.c_str());
         *bytes = it->second.data();
         *size = it->second.size();
@@ -182,7 +182,7 @@ struct TextureTable {
     // Checks that `bytes` more decoded texels fit in the budget (they are counted by the caller).
     bool reserve_texels(int image_index, uint64_t bytes, int w, int h) {
         if (bytes <= ctx.texture_budget && ctx.texture_bytes <= ctx.texture_budget - bytes) return true;
-        return ctx.fail(RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE,
+        return ctx.fail(RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE,
                         "image %d (%dx%d): %.1f MiB of decoded texels would exceed the texture memory budget of "
                         "%.1f MiB (%.1f MiB already used; desc.texture_memory_budget)",
                         image_index, w, h, double(bytes) / 1048576.0, double(ctx.texture_budget) / 1048576.0,
@@ -197,7 +197,7 @@ struct TextureTable {
         size_t size = 0;
         if (!encoded_bytes(image_index, &bytes, &size)) return false;
         if (size == 0 || size > size_t(std::numeric_limits<int>::max()))
-            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE, "image %d: %zu bytes of encoded data",
+            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE, "image %d: %zu bytes of encoded data",
                             image_index, size);
         // stb_image refuses PNGs above 2^30 bytes of pixels as "unknown image type": read
         // the IHDR size (PNG spec: signature, then IHDR width/height big-endian) to say why.
@@ -209,7 +209,7 @@ struct TextureTable {
             };
             const uint32_t pw = be32(16), ph = be32(20);
             if (pw > ctx.max_texture_dimension || ph > ctx.max_texture_dimension)
-                return ctx.fail(RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE,
+                return ctx.fail(RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE,
                                 "image %d: %ux%u exceeds the maximum texture dimension %u", image_index, pw, ph,
                                 ctx.max_texture_dimension);
         }
@@ -219,22 +219,22 @@ struct TextureTable {
         const bool png = size >= 8 && std::memcmp(bytes, kPngSignature, 8) == 0;
         const bool jpeg = size >= 3 && std::memcmp(bytes, kJpegSoi, 3) == 0;
         if (!png && !jpeg)
-            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE,
+            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE,
                             "image %d: neither PNG nor JPEG (first bytes %02x %02x %02x %02x); only these "
                             "are decoded",
                             image_index, bytes[0], size > 1 ? bytes[1] : 0, size > 2 ? bytes[2] : 0,
                             size > 3 ? bytes[3] : 0);
         if (jpeg && !jpeg_huffman_tables_ok(bytes, size))
-            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE,
+            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE,
                             "image %d: corrupt JPEG (a Huffman table with more than 256 codes)", image_index);
         int w = 0, h = 0, comp = 0;
         if (!stbi_info_from_memory(bytes, int(size), &w, &h, &comp))
-            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE,
+            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE,
                             "image %d: not a decodable PNG/JPEG image (%s)", image_index,
                             stbi_failure_reason() ? stbi_failure_reason() : "unknown");
         if (w <= 0 || h <= 0 || uint32_t(w) > ctx.max_texture_dimension ||
             uint32_t(h) > ctx.max_texture_dimension)
-            return ctx.fail(RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE,
+            return ctx.fail(RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE,
                             "image %d: %dx%d exceeds the maximum texture dimension %u", image_index,
                             w, h, ctx.max_texture_dimension);
         // The budget, from the header, before the decoder reserves anything.
@@ -245,16 +245,16 @@ struct TextureTable {
         std::string err, warn;
         // user_data NULL = tinygltf's default option: channels expanded to RGBA.
         if (!tinygltf::LoadImageData(&image, image_index, &err, &warn, 0, 0, bytes, int(size), nullptr))
-            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE, "image %d: %s", image_index,
+            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE, "image %d: %s", image_index,
                             err.substr(0, err.find('\n')).c_str());
         if (image.width != w || image.height != h || image.component != 4 ||
             (image.bits != 8 && image.bits != 16))
-            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE,
+            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE,
                             "image %d: decoder returned %dx%d with %d channels of %d bits",
                             image_index, image.width, image.height, image.component, image.bits);
         const size_t texels = size_t(w) * size_t(h) * 4;
         if (image.image.size() != texels * size_t(image.bits / 8))
-            return ctx.fail(RTPBR_SCENE_ERROR_IMAGE_DECODE, "image %d: decoded size mismatch", image_index);
+            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE, "image %d: decoded size mismatch", image_index);
         slot.first = {uint32_t(w), uint32_t(h)};
         ctx.texture_bytes += texels;  // what stays; the 16-bit intermediate goes below
         if (image.bits == 8) {
@@ -270,10 +270,10 @@ struct TextureTable {
         return true;
     }
 
-    static rtpbr_scene_wrap wrap(int gl) {
-        if (gl == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return RTPBR_SCENE_WRAP_CLAMP_TO_EDGE;
-        if (gl == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return RTPBR_SCENE_WRAP_MIRRORED_REPEAT;
-        return RTPBR_SCENE_WRAP_REPEAT;
+    static rtpbr_gltf_wrap wrap(int gl) {
+        if (gl == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return RTPBR_GLTF_WRAP_CLAMP_TO_EDGE;
+        if (gl == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return RTPBR_GLTF_WRAP_MIRRORED_REPEAT;
+        return RTPBR_GLTF_WRAP_REPEAT;
     }
 
     // Returns false on failure; *out = -1 when the texture is unusable.
@@ -284,7 +284,7 @@ struct TextureTable {
         if (info_extensions.count("KHR_texture_transform"))
             ctx.warn("material %d: %s: KHR_texture_transform ignored", material, slot_name);
         if (size_t(texture_index) >= model.textures.size())
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE,
                             "material %d: %s.index %d does not exist (%zu textures)", material,
                             slot_name, texture_index, model.textures.size());
         if (tex_coord != 0)
@@ -302,11 +302,11 @@ struct TextureTable {
             return true;
         }
         if (size_t(tex.source) >= model.images.size())
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE,
                             "texture %d: source image %d does not exist (%zu images)", texture_index,
                             tex.source, model.images.size());
         if (tex.sampler >= 0 && size_t(tex.sampler) >= model.samplers.size())
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE,
                             "texture %d: sampler %d does not exist (%zu samplers)", texture_index,
                             tex.sampler, model.samplers.size());
         if (!decode(tex.source)) return false;
@@ -337,9 +337,9 @@ struct TextureTable {
 };
 
 bool convert_material(Context& ctx, const tinygltf::Model& model, int index, TextureTable& textures,
-                      rtpbr_scene_material* out) {
+                      rtpbr_gltf_material* out) {
     const tinygltf::Material& src = model.materials[size_t(index)];
-    rtpbr_scene_material m = make_default_material();
+    rtpbr_gltf_material m = make_default_material();
     m.gltf_material = index;
     const auto& pbr = src.pbrMetallicRoughness;
 
@@ -348,19 +348,19 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         return false;
     for (int k = 0; k < 4; ++k) m.base_color[k] = clamp01(ctx, m.base_color[k], index, "baseColorFactor");
     if (!fits_float(pbr.metallicFactor) || !fits_float(pbr.roughnessFactor))
-        return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: metallic/roughnessFactor not finite", index);
+        return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "material %d: metallic/roughnessFactor not finite", index);
     m.metallic = clamp01(ctx, float(pbr.metallicFactor), index, "metallicFactor");
     m.roughness = clamp01(ctx, float(pbr.roughnessFactor), index, "roughnessFactor");
     float emissive[3];
     if (!finite_vector(ctx, src.emissiveFactor, 3, index, "emissiveFactor", emissive)) return false;
     for (int k = 0; k < 3; ++k) emissive[k] = clamp01(ctx, emissive[k], index, "emissiveFactor");
     m.double_sided = src.doubleSided;
-    if (src.alphaMode == "MASK") m.alpha_mode = RTPBR_SCENE_ALPHA_MASK;
-    else if (src.alphaMode == "BLEND") m.alpha_mode = RTPBR_SCENE_ALPHA_BLEND;
+    if (src.alphaMode == "MASK") m.alpha_mode = RTPBR_GLTF_ALPHA_MASK;
+    else if (src.alphaMode == "BLEND") m.alpha_mode = RTPBR_GLTF_ALPHA_BLEND;
     else if (src.alphaMode != "OPAQUE" && !src.alphaMode.empty())
         ctx.warn("material %d: unknown alphaMode '%s' treated as OPAQUE", index, src.alphaMode.c_str());
     if (!fits_float(src.alphaCutoff) || !fits_float(src.normalTexture.scale))
-        return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "material %d: alphaCutoff/normalTexture.scale not finite", index);
+        return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "material %d: alphaCutoff/normalTexture.scale not finite", index);
     m.alpha_cutoff = float(src.alphaCutoff);
     m.normal_scale = float(src.normalTexture.scale);
 
@@ -385,7 +385,7 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         MaterialReader r{ctx, index, "KHR_materials_emissive_strength"};
         if (!r.number(*ext, "emissiveStrength", 1.0, &d)) return false;
         if (d < 0.0)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: emissiveStrength %g < 0", index, d);
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: emissiveStrength %g < 0", index, d);
         m.emissive_strength = float(d);
     }
     for (int k = 0; k < 3; ++k) m.emission[k] = emissive[k] * m.emissive_strength;
@@ -395,7 +395,7 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         MaterialReader r{ctx, index, "KHR_materials_ior"};
         if (!r.number(*ext, "ior", 1.5, &d)) return false;
         if (!(d == 0.0 || d >= 1.0))
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: KHR_materials_ior.ior %g is neither 0 nor >= 1",
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: KHR_materials_ior.ior %g is neither 0 nor >= 1",
                             index, d);
         m.ior = float(d);
         has_ior = true;
@@ -408,7 +408,7 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         if (!r.vector(*ext, "specularColorFactor", 3, 0, m.specular_color, &present)) return false;
         for (int k = 0; k < 3; ++k)
             if (m.specular_color[k] < 0.0f)
-                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: specularColorFactor < 0", index);
+                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: specularColorFactor < 0", index);
     }
     // KHR_materials_clearcoat
     if ((ext = find_extension(src.extensions, "KHR_materials_clearcoat"))) {
@@ -449,8 +449,8 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
     if (extras.IsObject() && extras.Has("rtpbr_disney")) {
         const tinygltf::Value& dis = extras.Get("rtpbr_disney");
         if (!dis.IsObject())
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: extras.rtpbr_disney must be an object", index);
-        m.model = RTPBR_SCENE_MATERIAL_DISNEY;
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: extras.rtpbr_disney must be an object", index);
+        m.model = RTPBR_GLTF_MATERIAL_DISNEY;
         MaterialReader r{ctx, index, "extras.rtpbr_disney"};
         struct Field { const char* key; float* dst; };
         const Field fields[] = {
@@ -472,7 +472,7 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         if (disney_ior) {
             if (!r.number(dis, "ior", 1.5, &d)) return false;
             if (d < 1.0)
-                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "material %d: extras.rtpbr_disney.ior %g < 1", index, d);
+                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: extras.rtpbr_disney.ior %g < 1", index, d);
             m.ior = float(d);
         }
         if (dis.Has("specular") && !disney_ior && !has_ior) m.ior = ior_from_disney_specular(m.specular);
@@ -493,11 +493,11 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
 
 }  // namespace
 
-rtpbr_scene_material make_default_material() {
+rtpbr_gltf_material make_default_material() {
     // glTF 2.0 §3.9.6 default material: metallic = roughness = 1, white.
-    rtpbr_scene_material m;
+    rtpbr_gltf_material m;
     std::memset(&m, 0, sizeof m);
-    m.model = RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS;
+    m.model = RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS;
     for (int k = 0; k < 4; ++k) m.base_color[k] = 1.0f;
     m.metallic = 1.0f;
     m.roughness = 1.0f;
@@ -509,7 +509,7 @@ rtpbr_scene_material make_default_material() {
     m.emissive_strength = 1.0f;
     m.normal_scale = 1.0f;
     m.alpha_cutoff = 0.5f;
-    m.alpha_mode = RTPBR_SCENE_ALPHA_OPAQUE;
+    m.alpha_mode = RTPBR_GLTF_ALPHA_OPAQUE;
     m.base_color_texture = m.metallic_roughness_texture = m.normal_texture = m.emission_texture = -1;
     m.gltf_material = -1;
     return m;
@@ -530,4 +530,4 @@ bool convert_materials(Context& ctx, const tinygltf::Model& model, Scene& scene)
     return true;
 }
 
-}  // namespace rtpbr_scene_detail
+}  // namespace rtpbr_gltf_detail

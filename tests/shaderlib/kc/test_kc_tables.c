@@ -1,4 +1,4 @@
-// tests/kc: the committed Kulla-Conty tables compile as C11 and hold physically required
+// tests/shaderlib/kc: the committed Kulla-Conty tables compile as C11 and hold physically required
 // values: albedos in [0, 1], E_F <= E, a mirror (r = 0) reflects everything with F = 1 and
 // exactly the Fresnel average with the dielectric Fresnel, and roughness only loses energy.
 #include <math.h>

@@ -1,7 +1,7 @@
 // Internal declarations of the scene loader (C++17). Not installed.
 #pragma once
 
-#include <rtpbr/rtpbr_scene.h>
+#include <rtpbr/rtpbr_gltf.h>
 
 #include <tiny_gltf.h>
 
@@ -14,29 +14,29 @@
 #include <string>
 #include <vector>
 
-namespace rtpbr_scene_detail {
+namespace rtpbr_gltf_detail {
 
 #if defined(__GNUC__)
-#define RTPBR_SCENE_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#define RTPBR_GLTF_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
-#define RTPBR_SCENE_PRINTF(a, b)
+#define RTPBR_GLTF_PRINTF(a, b)
 #endif
 
 // Per-call state: options with defaults applied, the first failure, the
 // logger. Passed to tinygltf callbacks as user_data; nothing is global.
 struct Context {
-    rtpbr_scene_load_desc desc{};
-    uint32_t max_vertices = RTPBR_SCENE_MAX_VERTICES;
-    uint32_t max_lights = RTPBR_SCENE_MAX_LIGHTS;
-    uint32_t max_texture_dimension = RTPBR_SCENE_MAX_TEXTURE_DIMENSION;
+    rtpbr_gltf_load_desc desc{};
+    uint32_t max_vertices = RTPBR_GLTF_MAX_VERTICES;
+    uint32_t max_lights = RTPBR_GLTF_MAX_LIGHTS;
+    uint32_t max_texture_dimension = RTPBR_GLTF_MAX_TEXTURE_DIMENSION;
     float area_light_radiance_scale = 1.0f;
-    uint64_t texture_budget = RTPBR_SCENE_DEFAULT_TEXTURE_BUDGET;
+    uint64_t texture_budget = RTPBR_GLTF_DEFAULT_TEXTURE_BUDGET;
     uint64_t texture_bytes = 0;  // decoded texels held so far (decoded images and their copies)
 
     // Canonical absolute folder external URIs must stay in; empty = reject all.
     std::string base_dir;
 
-    rtpbr_scene_result result = RTPBR_SCENE_SUCCESS;
+    rtpbr_gltf_result result = RTPBR_GLTF_SUCCESS;
     std::string message;
 
     // Encoded bytes of images given by URI (captured by the image callback,
@@ -44,11 +44,11 @@ struct Context {
     std::map<int, std::vector<unsigned char>> encoded_images;
 
     // Records the first failure; later ones are ignored. Always returns false.
-    bool fail(rtpbr_scene_result r, const char* fmt, ...) RTPBR_SCENE_PRINTF(3, 4);
-    void warn(const char* fmt, ...) RTPBR_SCENE_PRINTF(2, 3);
-    void info(const char* fmt, ...) RTPBR_SCENE_PRINTF(2, 3);
-    bool failed() const { return result != RTPBR_SCENE_SUCCESS; }
-    void log(rtpbr_scene_log_level level, const std::string& text) const;
+    bool fail(rtpbr_gltf_result r, const char* fmt, ...) RTPBR_GLTF_PRINTF(3, 4);
+    void warn(const char* fmt, ...) RTPBR_GLTF_PRINTF(2, 3);
+    void info(const char* fmt, ...) RTPBR_GLTF_PRINTF(2, 3);
+    bool failed() const { return result != RTPBR_GLTF_SUCCESS; }
+    void log(rtpbr_gltf_log_level level, const std::string& text) const;
 };
 
 // Finite and representable as a float (outputs are float).
@@ -70,15 +70,15 @@ struct Primitive {
 struct Texture {
     uint32_t width = 0, height = 0;
     std::vector<uint8_t> pixels;
-    rtpbr_scene_texture info{};
+    rtpbr_gltf_texture info{};
 };
 
 struct Scene {
     std::vector<Primitive> primitives;
-    std::vector<rtpbr_scene_material> materials;
+    std::vector<rtpbr_gltf_material> materials;
     std::vector<Texture> textures;
-    std::vector<rtpbr_scene_light> lights;
-    std::vector<rtpbr_scene_camera> cameras;
+    std::vector<rtpbr_gltf_light> lights;
+    std::vector<rtpbr_gltf_camera> cameras;
     uint64_t total_vertices = 0;
     uint64_t total_indices = 0;
 };
@@ -91,7 +91,7 @@ bool check_schema(Context& ctx, const char* json_text, size_t size);
 // default one appended on demand by default_material()) and scene.textures.
 bool convert_materials(Context& ctx, const tinygltf::Model& model, Scene& scene);
 uint32_t default_material(Scene& scene);
-rtpbr_scene_material make_default_material();
+rtpbr_gltf_material make_default_material();
 
 // scene_geometry.cpp: walks the node tree, fills primitives and cameras.
 bool convert_nodes(Context& ctx, const tinygltf::Model& model, Scene& scene,
@@ -106,4 +106,4 @@ bool lights_from_primitive(Context& ctx, Scene& scene, uint32_t primitive_index)
 bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& scene,
                           const std::vector<std::pair<int, Mat4>>& light_nodes);
 
-}  // namespace rtpbr_scene_detail
+}  // namespace rtpbr_gltf_detail

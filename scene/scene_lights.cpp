@@ -7,12 +7,12 @@
 #include <cstring>
 #include <limits>
 
-namespace rtpbr_scene_detail {
+namespace rtpbr_gltf_detail {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr size_t kMaxVerts = RTPBR_SCENE_MAX_POLYGON_VERTICES;
+constexpr size_t kMaxVerts = RTPBR_GLTF_MAX_POLYGON_VERTICES;
 // sin of the angle below which three vertices count as collinear, and
 // 1 - cos of the angle below which two triangle normals count as parallel.
 constexpr double kCollinearSin = 1e-6;
@@ -105,14 +105,14 @@ struct LightBuilder {
 
     bool emit(const std::vector<uint32_t>& loop, const Vec3& n) {
         if (scene.lights.size() >= ctx.max_lights)
-            return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS,
+            return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS,
                             "primitive %u (mesh %d): more than %u area lights", primitive_index,
                             scene.primitives[primitive_index].gltf_mesh, ctx.max_lights);
         const Primitive& p = scene.primitives[primitive_index];
-        const rtpbr_scene_material& m = scene.materials[p.material];
-        rtpbr_scene_light l;
+        const rtpbr_gltf_material& m = scene.materials[p.material];
+        rtpbr_gltf_light l;
         std::memset(&l, 0, sizeof l);
-        l.shape = RTPBR_SCENE_LIGHT_POLYGON;
+        l.shape = RTPBR_GLTF_LIGHT_POLYGON;
         l.vertex_count = uint32_t(loop.size());
         Vec3 center{0, 0, 0};
         for (size_t i = 0; i < loop.size(); ++i) {
@@ -130,7 +130,7 @@ struct LightBuilder {
         // Huge coordinates can make a finite polygon's area overflow a float.
         if (!std::isfinite(l.area) || !std::isfinite(l.center[0]) || !std::isfinite(l.center[1]) ||
             !std::isfinite(l.center[2]))
-            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "primitive %u (mesh %d): light polygon area overflows",
+            return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "primitive %u (mesh %d): light polygon area overflows",
                             primitive_index, p.gltf_mesh);
         if (!(l.area > 0.0f)) {  // underflows to 0: emits nothing
             ctx.warn("primitive %u (mesh %d): light of zero area (as a float) dropped", primitive_index, p.gltf_mesh);
@@ -321,7 +321,7 @@ double number_or(const tinygltf::Value& obj, const char* key, double def, bool* 
 
 bool lights_from_primitive(Context& ctx, Scene& scene, uint32_t primitive_index) {
     const Primitive& p = scene.primitives[primitive_index];
-    const rtpbr_scene_material& m = scene.materials[p.material];
+    const rtpbr_gltf_material& m = scene.materials[p.material];
     if (!(std::max(m.emission[0], std::max(m.emission[1], m.emission[2])) > 0.0f)) return true;
     LightBuilder b{ctx, scene, primitive_index, {}, {}, {}, 0.0};
     return b.run();
@@ -342,16 +342,16 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
         bool bad = false;
         const double li = number_or(ref, "light", -1.0, &bad);
         if (bad || !ref.IsObject() || !ref.Has("light") || li != std::floor(li))
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "node %d: EXT_lights_area.light must be an integer",
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "node %d: EXT_lights_area.light must be an integer",
                             node);
         if (!lights || li < 0.0 || li >= double(lights->ArrayLen()))
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE,
                             "node %d: EXT_lights_area light %.0f does not exist (%zu lights)", node, li,
                             lights ? lights->ArrayLen() : size_t(0));
         const int index = int(li);
         const tinygltf::Value& L = lights->Get(index);
         if (!L.IsObject())
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "EXT_lights_area light %d is not an object", index);
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "EXT_lights_area light %d is not an object", index);
         // Current draft: "type" + "size" (+ "rect.aspect") + "intensity";
         // the earlier draft of the same pull request: "shape", "width",
         // "height", "radius", "luminance". Both are read.
@@ -359,13 +359,13 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
         for (const char* key : {"type", "shape"})
             if (type.empty() && L.Has(key) && L.Get(key).IsString()) type = L.Get(key).Get<std::string>();
         if (type != "rect" && type != "disk")
-            return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED, "EXT_lights_area light %d: type '%s' not supported",
+            return ctx.fail(RTPBR_GLTF_ERROR_UNSUPPORTED, "EXT_lights_area light %d: type '%s' not supported",
                             index, type.c_str());
         float color[3] = {1, 1, 1};
         if (L.Has("color")) {
             const tinygltf::Value& c = L.Get("color");
             if (!c.IsArray() || c.ArrayLen() != 3)
-                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "EXT_lights_area light %d: color must be 3 numbers",
+                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "EXT_lights_area light %d: color must be 3 numbers",
                                 index);
             for (int k = 0; k < 3; ++k) {
                 if (!c.Get(k).IsNumber()) bad = true;
@@ -384,15 +384,15 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
             radius = 0.5 * size;
         }
         if (bad)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "EXT_lights_area light %d: a property is not a number",
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "EXT_lights_area light %d: a property is not a number",
                             index);
         const double values[] = {color[0], color[1], color[2], intensity, width, height, radius};
         for (double v : values)
             if (!fits_float(v))
-                return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "EXT_lights_area light %d: non-finite property", index);
+                return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "EXT_lights_area light %d: non-finite property", index);
         if (color[0] < 0 || color[1] < 0 || color[2] < 0 || intensity < 0.0 || width <= 0.0 ||
             height <= 0.0 || radius <= 0.0)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON,
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON,
                             "EXT_lights_area light %d: color/intensity must be >= 0 and sizes > 0", index);
 
         // Node frame: centre, rotation by Gram-Schmidt, largest axis scale.
@@ -402,32 +402,32 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
         const double scale = std::max(length(x), std::max(length(y), length(zc)));
         const double lx = length(x);
         if (!(lx > 0.0) || !(scale > 0.0))
-            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: degenerate transform for an area light", node);
+            return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: degenerate transform for an area light", node);
         x = scaled(x, 1.0 / lx);
         y = sub(y, scaled(x, dot(x, y)));
         const double ly = length(y);
         if (!(ly > 0.0))
-            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: degenerate transform for an area light", node);
+            return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: degenerate transform for an area light", node);
         y = scaled(y, 1.0 / ly);
         const Vec3 z = cross(x, y);
         const Vec3 n = scaled(z, -1.0);  // emits towards local -Z
 
         if (scene.lights.size() >= ctx.max_lights)
-            return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS, "node %d: more than %u area lights", node,
+            return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS, "node %d: more than %u area lights", node,
                             ctx.max_lights);
-        rtpbr_scene_light l;
+        rtpbr_gltf_light l;
         std::memset(&l, 0, sizeof l);
         std::vector<std::array<double, 2>> local;  // (x, y) in the light plane, clockwise about +Z
         if (type == "rect") {
             const double hw = 0.5 * width * scale, hh = 0.5 * height * scale;
-            l.shape = RTPBR_SCENE_LIGHT_POLYGON;
+            l.shape = RTPBR_GLTF_LIGHT_POLYGON;
             local = {{-hw, -hh}, {-hw, hh}, {hw, hh}, {hw, -hh}};
             l.area = float(4.0 * hw * hh);
         } else {
             const double r = radius * scale;
             // Regular octagon with the disk's area: 2·sqrt(2)·R² = π r².
             const double R = r * std::sqrt(kPi / (2.0 * std::sqrt(2.0)));
-            l.shape = RTPBR_SCENE_LIGHT_DISK;
+            l.shape = RTPBR_GLTF_LIGHT_DISK;
             for (int k = 0; k < 8; ++k) {
                 const double a = -2.0 * kPi * k / 8.0;
                 local.push_back({R * std::cos(a), R * std::sin(a)});
@@ -451,7 +451,7 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
         for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(l.center[k]);
         finite = finite && l.area > 0.0f;  // finite doubles can underflow the float area
         if (!finite)
-            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: area light %d: radiance or area not representable as a float",
+            return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: area light %d: radiance or area not representable as a float",
                             node, index);
         l.two_sided = false;
         l.primitive = -1;
@@ -462,4 +462,4 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
     return true;
 }
 
-}  // namespace rtpbr_scene_detail
+}  // namespace rtpbr_gltf_detail

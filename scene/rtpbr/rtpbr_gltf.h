@@ -1,4 +1,4 @@
-/* rtpbr_scene.h — glTF 2.0 scene loader shared by the engine (C11) and the
+/* rtpbr_gltf.h — glTF 2.0 scene loader shared by the engine (C11) and the
  * oracle (C++). One loader, one material mapping (docs/materials.md).
  *
  * The loader flattens a glTF scene into plain data in WORLD space:
@@ -6,15 +6,15 @@
  * rtpbr material model, decoded RGBA8 textures, polygonal area lights
  * (emissive primitives + EXT_lights_area), perspective cameras, a bounding box.
  *
- *   rtpbr_scene_load_desc desc = {0};               // zero = defaults
- *   char err[RTPBR_SCENE_ERROR_MESSAGE_SIZE];
+ *   rtpbr_gltf_load_desc desc = {0};               // zero = defaults
+ *   char err[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
  *   desc.error_message = err; desc.error_message_size = sizeof err;
- *   rtpbr_scene* scene = NULL;
- *   rtpbr_scene_result r = rtpbr_scene_load("room.gltf", &desc, &scene);
- *   if (r != RTPBR_SCENE_SUCCESS) fprintf(stderr, "%s: %s\n",
- *                                         rtpbr_scene_result_string(r), err);
+ *   rtpbr_gltf_scene* scene = NULL;
+ *   rtpbr_gltf_result r = rtpbr_gltf_load("room.gltf", &desc, &scene);
+ *   if (r != RTPBR_GLTF_SUCCESS) fprintf(stderr, "%s: %s\n",
+ *                                         rtpbr_gltf_result_string(r), err);
  *   ...
- *   rtpbr_scene_destroy(scene);                     // NULL is a no-op
+ *   rtpbr_gltf_destroy(scene);                     // NULL is a no-op
  *
  * Conventions:
  * - glTF units: metres, right-handed, +Y up; cameras look down their local -Z.
@@ -37,8 +37,8 @@
  *   naming the offending object. No global state in the loader: concurrent
  *   loads are independent.
  */
-#ifndef RTPBR_SCENE_H
-#define RTPBR_SCENE_H
+#ifndef RTPBR_GLTF_H
+#define RTPBR_GLTF_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -50,89 +50,89 @@ extern "C" {
 
 /* ---- limits --------------------------------------------------------------
  * Hard limits; a desc may lower (never raise) the first three.              */
-#define RTPBR_SCENE_MAX_VERTICES (1u << 24)          /* total, all primitives  */
-#define RTPBR_SCENE_MAX_LIGHTS 65536u                /* all area lights        */
-#define RTPBR_SCENE_MAX_TEXTURE_DIMENSION 16384u     /* width and height       */
-#define RTPBR_SCENE_MAX_INDICES (3u * (1u << 25))    /* total, after triangulation */
-#define RTPBR_SCENE_MAX_FILE_SIZE ((uint64_t)1 << 30)/* any one file or data: URI */
-#define RTPBR_SCENE_MAX_NODE_DEPTH 256u              /* node hierarchy depth   */
-#define RTPBR_SCENE_MAX_JSON_DEPTH 256u              /* JSON array/object nesting */
-#define RTPBR_SCENE_MAX_POLYGON_VERTICES 8u          /* vertices of one light  */
-#define RTPBR_SCENE_ERROR_MESSAGE_SIZE 512u          /* suggested buffer size  */
+#define RTPBR_GLTF_MAX_VERTICES (1u << 24)          /* total, all primitives  */
+#define RTPBR_GLTF_MAX_LIGHTS 65536u                /* all area lights        */
+#define RTPBR_GLTF_MAX_TEXTURE_DIMENSION 16384u     /* width and height       */
+#define RTPBR_GLTF_MAX_INDICES (3u * (1u << 25))    /* total, after triangulation */
+#define RTPBR_GLTF_MAX_FILE_SIZE ((uint64_t)1 << 30)/* any one file or data: URI */
+#define RTPBR_GLTF_MAX_NODE_DEPTH 256u              /* node hierarchy depth   */
+#define RTPBR_GLTF_MAX_JSON_DEPTH 256u              /* JSON array/object nesting */
+#define RTPBR_GLTF_MAX_POLYGON_VERTICES 8u          /* vertices of one light  */
+#define RTPBR_GLTF_ERROR_MESSAGE_SIZE 512u          /* suggested buffer size  */
 /* Default budget of decoded texel memory (RGBA8, all textures of a scene,
  * desc.texture_memory_budget): 256 MiB, e.g. one 8192² or sixteen 2048²
  * textures. Checked against each image's header before it is decoded.    */
-#define RTPBR_SCENE_DEFAULT_TEXTURE_BUDGET ((uint64_t)256 << 20)
+#define RTPBR_GLTF_DEFAULT_TEXTURE_BUDGET ((uint64_t)256 << 20)
 
 /* ---- results ------------------------------------------------------------ */
-typedef enum rtpbr_scene_result {
-    RTPBR_SCENE_SUCCESS = 0,
-    RTPBR_SCENE_ERROR_INVALID_ARGUMENT,   /* NULL path/out, bad desc values   */
-    RTPBR_SCENE_ERROR_FILE_NOT_FOUND,     /* scene or referenced file missing */
-    RTPBR_SCENE_ERROR_IO,                 /* unreadable, a directory, too big */
-    RTPBR_SCENE_ERROR_INVALID_GLB,        /* bad GLB magic/version/chunks     */
-    RTPBR_SCENE_ERROR_INVALID_JSON,       /* JSON syntax or glTF schema error */
-    RTPBR_SCENE_ERROR_URI_REJECTED,       /* absolute path, '..' escape, shell
+typedef enum rtpbr_gltf_result {
+    RTPBR_GLTF_SUCCESS = 0,
+    RTPBR_GLTF_ERROR_INVALID_ARGUMENT,   /* NULL path/out, bad desc values   */
+    RTPBR_GLTF_ERROR_FILE_NOT_FOUND,     /* scene or referenced file missing */
+    RTPBR_GLTF_ERROR_IO,                 /* unreadable, a directory, too big */
+    RTPBR_GLTF_ERROR_INVALID_GLB,        /* bad GLB magic/version/chunks     */
+    RTPBR_GLTF_ERROR_INVALID_JSON,       /* JSON syntax or glTF schema error */
+    RTPBR_GLTF_ERROR_URI_REJECTED,       /* absolute path, '..' escape, shell
                                              characters, unsupported scheme   */
-    RTPBR_SCENE_ERROR_INVALID_REFERENCE,  /* index to a missing node, mesh,
+    RTPBR_GLTF_ERROR_INVALID_REFERENCE,  /* index to a missing node, mesh,
                                              material, texture, camera, image */
-    RTPBR_SCENE_ERROR_INVALID_ACCESSOR,   /* accessor/bufferView/buffer bounds,
+    RTPBR_GLTF_ERROR_INVALID_ACCESSOR,   /* accessor/bufferView/buffer bounds,
                                              type, stride, count mismatch     */
-    RTPBR_SCENE_ERROR_INDEX_OUT_OF_RANGE, /* vertex index >= vertex count     */
-    RTPBR_SCENE_ERROR_NONFINITE,          /* NaN/Inf position, transform,
+    RTPBR_GLTF_ERROR_INDEX_OUT_OF_RANGE, /* vertex index >= vertex count     */
+    RTPBR_GLTF_ERROR_NONFINITE,          /* NaN/Inf position, transform,
                                              camera or light parameter        */
-    RTPBR_SCENE_ERROR_UNSUPPORTED,        /* extensionsRequired we cannot do,
+    RTPBR_GLTF_ERROR_UNSUPPORTED,        /* extensionsRequired we cannot do,
                                              a node cycle, too deep hierarchy */
-    RTPBR_SCENE_ERROR_IMAGE_DECODE,       /* image data could not be decoded  */
-    RTPBR_SCENE_ERROR_TOO_MANY_VERTICES,  /* > max_vertices or max indices    */
-    RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS,    /* > max_lights                     */
-    RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE,  /* > max_texture_dimension, or over
+    RTPBR_GLTF_ERROR_IMAGE_DECODE,       /* image data could not be decoded  */
+    RTPBR_GLTF_ERROR_TOO_MANY_VERTICES,  /* > max_vertices or max indices    */
+    RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS,    /* > max_lights                     */
+    RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE,  /* > max_texture_dimension, or over
                                              desc.texture_memory_budget       */
-    RTPBR_SCENE_ERROR_OUT_OF_MEMORY,
-    RTPBR_SCENE_RESULT_COUNT
-} rtpbr_scene_result;
+    RTPBR_GLTF_ERROR_OUT_OF_MEMORY,
+    RTPBR_GLTF_RESULT_COUNT
+} rtpbr_gltf_result;
 
-/* Static English name of a result ("RTPBR_SCENE_ERROR_URI_REJECTED");
- * "RTPBR_SCENE_RESULT_UNKNOWN" for values out of range. */
-const char* rtpbr_scene_result_string(rtpbr_scene_result result);
+/* Static English name of a result ("RTPBR_GLTF_ERROR_URI_REJECTED");
+ * "RTPBR_GLTF_RESULT_UNKNOWN" for values out of range. */
+const char* rtpbr_gltf_result_string(rtpbr_gltf_result result);
 
 /* ---- host callbacks ----------------------------------------------------- */
-typedef struct rtpbr_scene_allocator {
+typedef struct rtpbr_gltf_allocator {
     /* Both set or both NULL (NULL = malloc/free). Used for everything the
      * returned scene owns; tinygltf's own temporaries use C++ new/delete. */
     void* (*alloc)(size_t size, void* user_data);
     void (*free)(void* ptr, void* user_data);
     void* user_data;
-} rtpbr_scene_allocator;
+} rtpbr_gltf_allocator;
 
-typedef enum rtpbr_scene_log_level {
-    RTPBR_SCENE_LOG_ERROR = 0,   /* the message also written to error_message */
-    RTPBR_SCENE_LOG_WARNING = 1, /* something ignored or repaired             */
-    RTPBR_SCENE_LOG_INFO = 2,    /* summary of what was loaded                */
-} rtpbr_scene_log_level;
+typedef enum rtpbr_gltf_log_level {
+    RTPBR_GLTF_LOG_ERROR = 0,   /* the message also written to error_message */
+    RTPBR_GLTF_LOG_WARNING = 1, /* something ignored or repaired             */
+    RTPBR_GLTF_LOG_INFO = 2,    /* summary of what was loaded                */
+} rtpbr_gltf_log_level;
 
-typedef struct rtpbr_scene_logger {
+typedef struct rtpbr_gltf_logger {
     /* NULL = silent. message is NUL-terminated, valid during the call only. */
-    void (*func)(rtpbr_scene_log_level level, const char* message, void* user_data);
+    void (*func)(rtpbr_gltf_log_level level, const char* message, void* user_data);
     void* user_data;
-} rtpbr_scene_logger;
+} rtpbr_gltf_logger;
 
 /* ---- load description (zero-initialise; zero = default) ------------------ */
-typedef struct rtpbr_scene_load_desc {
-    rtpbr_scene_allocator allocator; /* default: malloc/free                 */
-    rtpbr_scene_logger logger;       /* default: no logging                  */
+typedef struct rtpbr_gltf_load_desc {
+    rtpbr_gltf_allocator allocator; /* default: malloc/free                 */
+    rtpbr_gltf_logger logger;       /* default: no logging                  */
     /* Optional caller buffer receiving the detailed message of a failure
      * ("accessor 3: byteOffset+count*stride exceeds bufferView 2 (1024
      * bytes)"); always NUL-terminated when size > 0, "" on success. */
     char* error_message;
     size_t error_message_size;
-    /* Limits; 0 = the RTPBR_SCENE_MAX_* default, larger values are clamped. */
+    /* Limits; 0 = the RTPBR_GLTF_MAX_* default, larger values are clamped. */
     uint32_t max_vertices;
     uint32_t max_lights;
     uint32_t max_texture_dimension;
     /* Folder against which external URIs resolve, for
-     * rtpbr_scene_load_memory (NULL there = external URIs are rejected) and
-     * as an override for rtpbr_scene_load (NULL = the scene file's folder). */
+     * rtpbr_gltf_load_memory (NULL there = external URIs are rejected) and
+     * as an override for rtpbr_gltf_load (NULL = the scene file's folder). */
     const char* base_dir;
     /* true = do not decode images: textures get width/height 0, pixels NULL
      * (texture indices in materials stay valid). Default false = decode. */
@@ -141,23 +141,23 @@ typedef struct rtpbr_scene_load_desc {
      * Default false: every primitive whose material emits becomes lights. */
     bool no_emissive_lights;
     /* EXT_lights_area gives luminance in nits (cd/m²). Radiance written to
-     * rtpbr_scene_light = color × intensity × area_light_radiance_scale;
+     * rtpbr_gltf_light = color × intensity × area_light_radiance_scale;
      * 0 = 1 (nits used as the renderer's radiance unit, like emissive
      * materials). 1/683 gives W/(sr·m²) at 555 nm. */
     float area_light_radiance_scale;
     /* Bytes of decoded texels (4 per texel, 8 while a 16-bit PNG is reduced)
      * the scene's textures may take together; an image that would exceed it
-     * is RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE, refused from its header before
-     * any pixel memory is reserved. 0 = RTPBR_SCENE_DEFAULT_TEXTURE_BUDGET;
+     * is RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE, refused from its header before
+     * any pixel memory is reserved. 0 = RTPBR_GLTF_DEFAULT_TEXTURE_BUDGET;
      * any other value is used as given (a 16384² texture needs 1 GiB). Only
      * PNG and JPEG images are decoded; other formats are
-     * RTPBR_SCENE_ERROR_IMAGE_DECODE. */
+     * RTPBR_GLTF_ERROR_IMAGE_DECODE. */
     uint64_t texture_memory_budget;
-} rtpbr_scene_load_desc;
+} rtpbr_gltf_load_desc;
 
 /* ---- scene data ---------------------------------------------------------
  * Everything is plain data; a host may fill these structs by hand (a scene
- * built by hand belongs to its builder: never pass it to rtpbr_scene_destroy).
+ * built by hand belongs to its builder: never pass it to rtpbr_gltf_destroy).
  */
 
 /* One triangle list in world space. Arrays are structure-of-arrays with
@@ -166,7 +166,7 @@ typedef struct rtpbr_scene_load_desc {
  * A glTF primitive left without a triangle (a node scaled by 0, only
  * degenerate triangles, no POSITION) is not listed (a warning is logged), so
  * index_count > 0 for every loaded primitive. */
-typedef struct rtpbr_scene_primitive {
+typedef struct rtpbr_gltf_primitive {
     uint32_t vertex_count;
     uint32_t index_count;  /* multiple of 3; degenerate triangles removed   */
     float* positions;      /* 3 × vertex_count, world space                 */
@@ -196,26 +196,26 @@ typedef struct rtpbr_scene_primitive {
     bool has_tangents;     /* tangents are meaningful (file or generated)   */
     float bounds_min[3];   /* world-space AABB of the referenced vertices   */
     float bounds_max[3];
-} rtpbr_scene_primitive;
+} rtpbr_gltf_primitive;
 
-typedef enum rtpbr_scene_material_model {
+typedef enum rtpbr_gltf_material_model {
     /* glTF metallic-roughness + KHR extensions (Filament-like evaluation). */
-    RTPBR_SCENE_MATERIAL_METALLIC_ROUGHNESS = 0,
+    RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS = 0,
     /* Burley 2012 Disney principled BRDF: material.extras.rtpbr_disney set. */
-    RTPBR_SCENE_MATERIAL_DISNEY = 1,
-} rtpbr_scene_material_model;
+    RTPBR_GLTF_MATERIAL_DISNEY = 1,
+} rtpbr_gltf_material_model;
 
-typedef enum rtpbr_scene_alpha_mode {
-    RTPBR_SCENE_ALPHA_OPAQUE = 0, /* recorded; rtpbr renders all materials */
-    RTPBR_SCENE_ALPHA_MASK = 1,   /* as opaque (base_color[3] is ignored)  */
-    RTPBR_SCENE_ALPHA_BLEND = 2,
-} rtpbr_scene_alpha_mode;
+typedef enum rtpbr_gltf_alpha_mode {
+    RTPBR_GLTF_ALPHA_OPAQUE = 0, /* recorded; rtpbr renders all materials */
+    RTPBR_GLTF_ALPHA_MASK = 1,   /* as opaque (base_color[3] is ignored)  */
+    RTPBR_GLTF_ALPHA_BLEND = 2,
+} rtpbr_gltf_alpha_mode;
 
 /* The rtpbr material model. The mapping from glTF is one table:
  * docs/materials.md. Fields are named after Burley 2012's parameters;
  * all scalars in [0,1] unless stated. */
-typedef struct rtpbr_scene_material {
-    rtpbr_scene_material_model model;
+typedef struct rtpbr_gltf_material {
+    rtpbr_gltf_material_model model;
     float base_color[4];      /* linear RGBA, baseColorFactor               */
     float metallic;           /* metallicFactor                             */
     float roughness;          /* PERCEPTUAL roughness (α = roughness²)      */
@@ -247,7 +247,7 @@ typedef struct rtpbr_scene_material {
     float emissive_strength;  /* KHR_materials_emissive_strength, default 1 */
     float normal_scale;       /* normalTexture.scale, default 1             */
     float alpha_cutoff;       /* default 0.5                                */
-    rtpbr_scene_alpha_mode alpha_mode;
+    rtpbr_gltf_alpha_mode alpha_mode;
     bool double_sided;
     /* Indices into scene->textures, -1 = none. Colour textures (base colour,
      * emission) are flagged sRGB; the others linear. */
@@ -257,38 +257,38 @@ typedef struct rtpbr_scene_material {
     int32_t emission_texture;           /* multiplies emission; NOT used for
                                            light radiance                  */
     int32_t gltf_material;    /* source glTF material, -1 = default material */
-} rtpbr_scene_material;
+} rtpbr_gltf_material;
 
-typedef enum rtpbr_scene_wrap {
-    RTPBR_SCENE_WRAP_REPEAT = 0,
-    RTPBR_SCENE_WRAP_CLAMP_TO_EDGE = 1,
-    RTPBR_SCENE_WRAP_MIRRORED_REPEAT = 2,
-} rtpbr_scene_wrap;
+typedef enum rtpbr_gltf_wrap {
+    RTPBR_GLTF_WRAP_REPEAT = 0,
+    RTPBR_GLTF_WRAP_CLAMP_TO_EDGE = 1,
+    RTPBR_GLTF_WRAP_MIRRORED_REPEAT = 2,
+} rtpbr_gltf_wrap;
 
 /* A decoded texture: always RGBA8, rows top to bottom, width × height × 4
  * bytes. A glTF texture used both as colour and as data appears twice. */
-typedef struct rtpbr_scene_texture {
+typedef struct rtpbr_gltf_texture {
     uint32_t width, height;    /* 0 × 0 when desc.skip_images              */
     uint8_t* pixels;           /* NULL when desc.skip_images                */
     bool srgb;                 /* true: texels are sRGB-encoded colour      */
-    rtpbr_scene_wrap wrap_s, wrap_t;
+    rtpbr_gltf_wrap wrap_s, wrap_t;
     bool nearest;              /* magFilter NEAREST (else linear)           */
     int32_t gltf_texture;      /* source glTF texture index                 */
-} rtpbr_scene_texture;
+} rtpbr_gltf_texture;
 
-typedef enum rtpbr_scene_light_shape {
-    RTPBR_SCENE_LIGHT_POLYGON = 0, /* convex planar polygon, vertices[]      */
-    RTPBR_SCENE_LIGHT_DISK = 1,    /* disk: center, radius, normal; vertices[]
+typedef enum rtpbr_gltf_light_shape {
+    RTPBR_GLTF_LIGHT_POLYGON = 0, /* convex planar polygon, vertices[]      */
+    RTPBR_GLTF_LIGHT_DISK = 1,    /* disk: center, radius, normal; vertices[]
                                       holds an equal-area regular octagon
                                       for polygon-only consumers            */
-} rtpbr_scene_light_shape;
+} rtpbr_gltf_light_shape;
 
 /* One planar area light in world space, emitting radiance uniformly
  * (Lambertian emitter) from its front side (and back if two_sided). */
-typedef struct rtpbr_scene_light {
-    rtpbr_scene_light_shape shape;
+typedef struct rtpbr_gltf_light {
+    rtpbr_gltf_light_shape shape;
     uint32_t vertex_count;  /* 3..8 */
-    float vertices[RTPBR_SCENE_MAX_POLYGON_VERTICES][3];
+    float vertices[RTPBR_GLTF_MAX_POLYGON_VERTICES][3];
                             /* convex, counter-clockwise seen from the side
                                normal points to: normal ∝ (v1-v0)×(v2-v0)   */
     float normal[3];        /* unit, emitting side                          */
@@ -302,10 +302,10 @@ typedef struct rtpbr_scene_light {
     int32_t material;       /* emitting material, -1 for EXT_lights_area    */
     int32_t gltf_node;      /* node carrying an EXT_lights_area light, or the
                                primitive's node                            */
-} rtpbr_scene_light;
+} rtpbr_gltf_light;
 
 /* A perspective camera, world space. */
-typedef struct rtpbr_scene_camera {
+typedef struct rtpbr_gltf_camera {
     float position[3];
     float forward[3];      /* unit, node's -Z                               */
     float up[3];           /* unit, node's +Y, orthogonalised              */
@@ -316,15 +316,15 @@ typedef struct rtpbr_scene_camera {
     float zfar;            /* 0 = infinite                                  */
     int32_t gltf_node;
     int32_t gltf_camera;
-} rtpbr_scene_camera;
+} rtpbr_gltf_camera;
 
-typedef struct rtpbr_scene {
-    rtpbr_scene_primitive* primitives; uint32_t primitive_count;
-    rtpbr_scene_material* materials;   uint32_t material_count; /* [i] = glTF
+typedef struct rtpbr_gltf_scene {
+    rtpbr_gltf_primitive* primitives; uint32_t primitive_count;
+    rtpbr_gltf_material* materials;   uint32_t material_count; /* [i] = glTF
                                           material i; a default one last if used */
-    rtpbr_scene_texture* textures;     uint32_t texture_count;
-    rtpbr_scene_light* lights;         uint32_t light_count;
-    rtpbr_scene_camera* cameras;       uint32_t camera_count; /* 0 = none   */
+    rtpbr_gltf_texture* textures;     uint32_t texture_count;
+    rtpbr_gltf_light* lights;         uint32_t light_count;
+    rtpbr_gltf_camera* cameras;       uint32_t camera_count; /* 0 = none   */
     uint32_t total_vertex_count;
     uint32_t total_index_count;
     /* World AABB of all primitives and area lights (disk lights: the disk
@@ -332,27 +332,27 @@ typedef struct rtpbr_scene {
     float bounds_min[3];
     float bounds_max[3];
     /* Set by the loader (how to free); ignored in hand-built scenes. */
-    rtpbr_scene_allocator allocator;
-} rtpbr_scene;
+    rtpbr_gltf_allocator allocator;
+} rtpbr_gltf_scene;
 
 /* Loads a .gltf (JSON, external or data: URIs) or .glb file. On success
  * *out receives the scene; on failure *out is NULL, the result says why and
  * desc->error_message (if given) names the offending object. desc may be
  * NULL (all defaults). */
-rtpbr_scene_result rtpbr_scene_load(const char* path, const rtpbr_scene_load_desc* desc,
-                                    rtpbr_scene** out);
+rtpbr_gltf_result rtpbr_gltf_load(const char* path, const rtpbr_gltf_load_desc* desc,
+                                    rtpbr_gltf_scene** out);
 
 /* Same from memory: GLB if data starts with "glTF", else JSON. External
  * URIs resolve under desc->base_dir, or are rejected when it is NULL. */
-rtpbr_scene_result rtpbr_scene_load_memory(const void* data, size_t size,
-                                           const rtpbr_scene_load_desc* desc,
-                                           rtpbr_scene** out);
+rtpbr_gltf_result rtpbr_gltf_load_memory(const void* data, size_t size,
+                                           const rtpbr_gltf_load_desc* desc,
+                                           rtpbr_gltf_scene** out);
 
 /* Frees a scene returned by a load function. NULL is a no-op. */
-void rtpbr_scene_destroy(rtpbr_scene* scene);
+void rtpbr_gltf_destroy(rtpbr_gltf_scene* scene);
 
 #ifdef __cplusplus
 } /* extern "C" */
 #endif
 
-#endif /* RTPBR_SCENE_H */
+#endif /* RTPBR_GLTF_H */

@@ -16,7 +16,7 @@
 #include <limits>
 #include <new>
 
-namespace rtpbr_scene_detail {
+namespace rtpbr_gltf_detail {
 
 namespace {
 
@@ -34,8 +34,8 @@ std::string vformat(const char* fmt, va_list args) {
 
 }  // namespace
 
-bool Context::fail(rtpbr_scene_result r, const char* fmt, ...) {
-    if (result != RTPBR_SCENE_SUCCESS) return false;
+bool Context::fail(rtpbr_gltf_result r, const char* fmt, ...) {
+    if (result != RTPBR_GLTF_SUCCESS) return false;
     va_list args;
     va_start(args, fmt);
     result = r;
@@ -50,7 +50,7 @@ void Context::warn(const char* fmt, ...) {
     va_start(args, fmt);
     std::string text = vformat(fmt, args);
     va_end(args);
-    log(RTPBR_SCENE_LOG_WARNING, text);
+    log(RTPBR_GLTF_LOG_WARNING, text);
 }
 
 void Context::info(const char* fmt, ...) {
@@ -59,10 +59,10 @@ void Context::info(const char* fmt, ...) {
     va_start(args, fmt);
     std::string text = vformat(fmt, args);
     va_end(args);
-    log(RTPBR_SCENE_LOG_INFO, text);
+    log(RTPBR_GLTF_LOG_INFO, text);
 }
 
-void Context::log(rtpbr_scene_log_level level, const std::string& text) const {
+void Context::log(rtpbr_gltf_log_level level, const std::string& text) const {
     if (desc.logger.func) desc.logger.func(level, text.c_str(), desc.logger.user_data);
 }
 
@@ -79,7 +79,7 @@ const char kShellCharacters[] = "$`~*?[]{}|;&<>\\\"'";
 std::string expand_file_path(const std::string& joined, void* user_data) {
     Context& ctx = *static_cast<Context*>(user_data);
     if (ctx.base_dir.empty()) {
-        ctx.fail(RTPBR_SCENE_ERROR_URI_REJECTED,
+        ctx.fail(RTPBR_GLTF_ERROR_URI_REJECTED,
                  "external file '%s' rejected: loading from memory without base_dir",
                  joined.c_str());
         return std::string();
@@ -90,13 +90,13 @@ std::string expand_file_path(const std::string& joined, void* user_data) {
     const std::string rel = joined.substr(prefix.size());
     if (rel.empty()) return std::string();
     if (rel[0] == '/') {
-        ctx.fail(RTPBR_SCENE_ERROR_URI_REJECTED, "uri '%s': absolute paths are not allowed",
+        ctx.fail(RTPBR_GLTF_ERROR_URI_REJECTED, "uri '%s': absolute paths are not allowed",
                  rel.c_str());
         return std::string();
     }
     for (unsigned char c : rel) {
         if (c < 0x20 || c == 0x7f || std::strchr(kShellCharacters, c)) {
-            ctx.fail(RTPBR_SCENE_ERROR_URI_REJECTED,
+            ctx.fail(RTPBR_GLTF_ERROR_URI_REJECTED,
                      "uri '%s': character '%c' (0x%02x) is not allowed in file names",
                      rel.c_str(), c >= 0x20 && c < 0x7f ? c : '?', c);
             return std::string();
@@ -109,12 +109,12 @@ std::string expand_file_path(const std::string& joined, void* user_data) {
         if (end == std::string::npos) end = rel.size();
         const std::string part = rel.substr(start, end - start);
         if (part == "..") {
-            ctx.fail(RTPBR_SCENE_ERROR_URI_REJECTED,
+            ctx.fail(RTPBR_GLTF_ERROR_URI_REJECTED,
                      "uri '%s': '..' would escape the scene folder", rel.c_str());
             return std::string();
         }
         if (first && part.find(':') != std::string::npos) {
-            ctx.fail(RTPBR_SCENE_ERROR_URI_REJECTED,
+            ctx.fail(RTPBR_GLTF_ERROR_URI_REJECTED,
                      "uri '%s': only relative file paths and data: URIs are supported",
                      rel.c_str());
             return std::string();
@@ -125,14 +125,14 @@ std::string expand_file_path(const std::string& joined, void* user_data) {
     // Symbolic links must not lead out of the folder either.
     char* real = realpath(joined.c_str(), nullptr);
     if (!real) {
-        ctx.fail(RTPBR_SCENE_ERROR_FILE_NOT_FOUND, "uri '%s': file not found in '%s'",
+        ctx.fail(RTPBR_GLTF_ERROR_FILE_NOT_FOUND, "uri '%s': file not found in '%s'",
                  rel.c_str(), ctx.base_dir.c_str());
         return std::string();
     }
     std::string resolved(real);
     std::free(real);
     if (resolved.compare(0, prefix.size(), prefix) != 0) {
-        ctx.fail(RTPBR_SCENE_ERROR_URI_REJECTED, "uri '%s': resolves outside the scene folder",
+        ctx.fail(RTPBR_GLTF_ERROR_URI_REJECTED, "uri '%s': resolves outside the scene folder",
                  rel.c_str());
         return std::string();
     }
@@ -144,41 +144,41 @@ bool file_exists(const std::string& path, void* user_data) {
     if (path.empty()) return false;
     struct stat st;
     if (stat(path.c_str(), &st) != 0) {
-        ctx.fail(RTPBR_SCENE_ERROR_FILE_NOT_FOUND, "file '%s' not found", path.c_str());
+        ctx.fail(RTPBR_GLTF_ERROR_FILE_NOT_FOUND, "file '%s' not found", path.c_str());
         return false;
     }
     if (!S_ISREG(st.st_mode)) {
-        ctx.fail(RTPBR_SCENE_ERROR_IO, "'%s' is not a regular file", path.c_str());
+        ctx.fail(RTPBR_GLTF_ERROR_IO, "'%s' is not a regular file", path.c_str());
         return false;
     }
     return true;
 }
 
 // Reads a whole regular file; the result code says why it failed.
-rtpbr_scene_result read_file(const std::string& path, std::vector<unsigned char>* out,
+rtpbr_gltf_result read_file(const std::string& path, std::vector<unsigned char>* out,
                              std::string* why) {
     struct stat st;
     if (stat(path.c_str(), &st) != 0) {
         *why = std::strerror(errno);
-        return errno == ENOENT || errno == ENOTDIR ? RTPBR_SCENE_ERROR_FILE_NOT_FOUND
-                                                   : RTPBR_SCENE_ERROR_IO;
+        return errno == ENOENT || errno == ENOTDIR ? RTPBR_GLTF_ERROR_FILE_NOT_FOUND
+                                                   : RTPBR_GLTF_ERROR_IO;
     }
     if (S_ISDIR(st.st_mode)) {
         *why = "is a directory";
-        return RTPBR_SCENE_ERROR_IO;
+        return RTPBR_GLTF_ERROR_IO;
     }
     if (!S_ISREG(st.st_mode)) {
         *why = "is not a regular file";
-        return RTPBR_SCENE_ERROR_IO;
+        return RTPBR_GLTF_ERROR_IO;
     }
-    if (static_cast<uint64_t>(st.st_size) > RTPBR_SCENE_MAX_FILE_SIZE) {
-        *why = "larger than RTPBR_SCENE_MAX_FILE_SIZE (1 GiB)";
-        return RTPBR_SCENE_ERROR_IO;
+    if (static_cast<uint64_t>(st.st_size) > RTPBR_GLTF_MAX_FILE_SIZE) {
+        *why = "larger than RTPBR_GLTF_MAX_FILE_SIZE (1 GiB)";
+        return RTPBR_GLTF_ERROR_IO;
     }
     FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) {
         *why = std::strerror(errno);
-        return RTPBR_SCENE_ERROR_IO;
+        return RTPBR_GLTF_ERROR_IO;
     }
     out->resize(static_cast<size_t>(st.st_size));
     size_t got = out->empty() ? 0 : std::fread(out->data(), 1, out->size(), f);
@@ -186,17 +186,17 @@ rtpbr_scene_result read_file(const std::string& path, std::vector<unsigned char>
     std::fclose(f);
     if (error || got != out->size()) {
         *why = "short read";
-        return RTPBR_SCENE_ERROR_IO;
+        return RTPBR_GLTF_ERROR_IO;
     }
-    return RTPBR_SCENE_SUCCESS;
+    return RTPBR_GLTF_SUCCESS;
 }
 
 bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path,
                      void* user_data) {
     Context& ctx = *static_cast<Context*>(user_data);
     std::string why;
-    rtpbr_scene_result r = read_file(path, out, &why);
-    if (r != RTPBR_SCENE_SUCCESS) {
+    rtpbr_gltf_result r = read_file(path, out, &why);
+    if (r != RTPBR_GLTF_SUCCESS) {
         ctx.fail(r, "cannot read '%s': %s", path.c_str(), why.c_str());
         if (err) *err = why;
         return false;
@@ -232,28 +232,28 @@ uint32_t read_u32le(const unsigned char* p) {
 // exists and is not BIN (tinygltf 2.7 refuses that, so it is shown the JSON chunk only).
 bool check_glb(Context& ctx, const unsigned char* data, size_t size, bool* has_unknown_second_chunk) {
     if (size < 12)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: %zu bytes, shorter than the 12-byte header",
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB, "GLB: %zu bytes, shorter than the 12-byte header",
                         size);
     if (std::memcmp(data, "glTF", 4) != 0)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB,
                         "GLB: bad magic 0x%08x (expected 0x46546c67 'glTF')", read_u32le(data));
     uint32_t version = read_u32le(data + 4), length = read_u32le(data + 8);
     if (version != 2)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: version %u, only 2 is supported",
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB, "GLB: version %u, only 2 is supported",
                         version);
     if (length > size)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB,
                         "GLB: header length %u exceeds the %zu bytes available", length, size);
     if (length < 20)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: no JSON chunk (length %u)", length);
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB, "GLB: no JSON chunk (length %u)", length);
     uint32_t json_length = read_u32le(data + 12), json_type = read_u32le(data + 16);
     if (json_type != 0x4E4F534Au)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: first chunk type 0x%08x is not JSON",
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB, "GLB: first chunk type 0x%08x is not JSON",
                         json_type);
     if (json_length % 4 != 0)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: JSON chunk length %u is not a multiple of 4", json_length);
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB, "GLB: JSON chunk length %u is not a multiple of 4", json_length);
     if (json_length == 0 || json_length > length - 20)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB,
                         "GLB: JSON chunk length %u exceeds the file length %u", json_length,
                         length);
     // Chunks after the JSON: an optional BIN chunk second, then chunks of any other type,
@@ -262,20 +262,20 @@ bool check_glb(Context& ctx, const unsigned char* data, size_t size, bool* has_u
     uint64_t at = 20ull + json_length;
     for (unsigned chunk = 1; at < length; ++chunk) {
         if (at + 8 > length)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: truncated header of chunk %u", chunk);
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB, "GLB: truncated header of chunk %u", chunk);
         uint32_t chunk_length = read_u32le(data + at), chunk_type = read_u32le(data + at + 4);
         if (chunk_length % 4 != 0)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: chunk %u (type 0x%08x) length %u is not a multiple of 4",
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB, "GLB: chunk %u (type 0x%08x) length %u is not a multiple of 4",
                             chunk, chunk_type, chunk_length);
         if (at + 8 + chunk_length > length)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB,
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB,
                             "GLB: chunk %u (type 0x%08x) length %u exceeds the file length %u", chunk, chunk_type,
                             chunk_length, length);
         if (chunk_type == 0x004E4942u && chunk != 1)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: BIN chunk in position %u (only the second chunk may be BIN)",
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB, "GLB: BIN chunk in position %u (only the second chunk may be BIN)",
                             chunk + 1);
         if (chunk_type == 0x4E4F534Au)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_GLB, "GLB: a second JSON chunk (chunk %u)", chunk);
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_GLB, "GLB: a second JSON chunk (chunk %u)", chunk);
         if (chunk == 1 && chunk_type != 0x004E4942u) *has_unknown_second_chunk = true;
         at += 8ull + chunk_length;
     }
@@ -285,7 +285,7 @@ bool check_glb(Context& ctx, const unsigned char* data, size_t size, bool* has_u
 // Bounds the nesting of JSON arrays/objects: nlohmann builds and destroys
 // values recursively, so a deep nest would exhaust the stack.
 bool check_json_depth(Context& ctx, const char* json, size_t size) {
-    const unsigned max_depth = RTPBR_SCENE_MAX_JSON_DEPTH;
+    const unsigned max_depth = RTPBR_GLTF_MAX_JSON_DEPTH;
     unsigned depth = 0;
     bool in_string = false, escaped = false;
     for (size_t i = 0; i < size; ++i) {
@@ -298,7 +298,7 @@ bool check_json_depth(Context& ctx, const char* json, size_t size) {
             in_string = true;
         } else if (c == '[' || c == '{') {
             if (++depth > max_depth)
-                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON,
+                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON,
                                 "JSON nested deeper than %u levels at byte %zu", max_depth, i);
         } else if ((c == ']' || c == '}') && depth > 0) {
             --depth;
@@ -307,7 +307,7 @@ bool check_json_depth(Context& ctx, const char* json, size_t size) {
     return true;
 }
 
-void forward_lines(const Context& ctx, rtpbr_scene_log_level level, const std::string& text) {
+void forward_lines(const Context& ctx, rtpbr_gltf_log_level level, const std::string& text) {
     size_t start = 0;
     while (start < text.size()) {
         size_t end = text.find('\n', start);
@@ -333,7 +333,7 @@ bool check_required_extensions(Context& ctx, const tinygltf::Model& model) {
         bool known = false;
         for (const char* s : kSupportedRequiredExtensions) known = known || name == s;
         if (!known)
-            return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED,
+            return ctx.fail(RTPBR_GLTF_ERROR_UNSUPPORTED,
                             "extension '%s' is required by the file but not supported", name.c_str());
     }
     return true;
@@ -342,7 +342,7 @@ bool check_required_extensions(Context& ctx, const tinygltf::Model& model) {
 // ---- output ----------------------------------------------------------------
 
 struct Allocator {
-    rtpbr_scene_allocator a;
+    rtpbr_gltf_allocator a;
     void* alloc(size_t n) const {
         if (n == 0) n = 1;
         return a.alloc ? a.alloc(n, a.user_data) : std::malloc(n);
@@ -380,22 +380,22 @@ void grow_bounds(float* lo, float* hi, const float* p) {
     }
 }
 
-rtpbr_scene_result build_output(Context& ctx, const Scene& in, rtpbr_scene** out) {
+rtpbr_gltf_result build_output(Context& ctx, const Scene& in, rtpbr_gltf_scene** out) {
     Allocator al{ctx.desc.allocator};
-    rtpbr_scene* s = alloc_zeroed<rtpbr_scene>(al, 1);
-    if (!s) return RTPBR_SCENE_ERROR_OUT_OF_MEMORY;
+    rtpbr_gltf_scene* s = alloc_zeroed<rtpbr_gltf_scene>(al, 1);
+    if (!s) return RTPBR_GLTF_ERROR_OUT_OF_MEMORY;
     s->allocator = ctx.desc.allocator;
     bool ok = true;
 
     float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
     if (!in.primitives.empty()) {
-        s->primitives = alloc_zeroed<rtpbr_scene_primitive>(al, in.primitives.size());
+        s->primitives = alloc_zeroed<rtpbr_gltf_primitive>(al, in.primitives.size());
         ok = s->primitives != nullptr;
         if (ok) s->primitive_count = static_cast<uint32_t>(in.primitives.size());
     }
     for (size_t i = 0; ok && i < in.primitives.size(); ++i) {
         const Primitive& p = in.primitives[i];
-        rtpbr_scene_primitive& o = s->primitives[i];
+        rtpbr_gltf_primitive& o = s->primitives[i];
         o.vertex_count = static_cast<uint32_t>(p.positions.size() / 3);
         o.index_count = static_cast<uint32_t>(p.indices.size());
         ok = copy_array(al, p.positions, &o.positions) && copy_array(al, p.normals, &o.normals) &&
@@ -421,7 +421,7 @@ rtpbr_scene_result build_output(Context& ctx, const Scene& in, rtpbr_scene** out
     if (ok) ok = copy_array(al, in.materials, &s->materials);
     if (ok) s->material_count = static_cast<uint32_t>(in.materials.size());
     if (ok && !in.textures.empty()) {
-        s->textures = alloc_zeroed<rtpbr_scene_texture>(al, in.textures.size());
+        s->textures = alloc_zeroed<rtpbr_gltf_texture>(al, in.textures.size());
         ok = s->textures != nullptr;
         if (ok) s->texture_count = static_cast<uint32_t>(in.textures.size());
     }
@@ -435,12 +435,12 @@ rtpbr_scene_result build_output(Context& ctx, const Scene& in, rtpbr_scene** out
     if (ok) ok = copy_array(al, in.cameras, &s->cameras);
     if (ok) s->camera_count = static_cast<uint32_t>(in.cameras.size());
     if (!ok) {
-        rtpbr_scene_destroy(s);
-        return RTPBR_SCENE_ERROR_OUT_OF_MEMORY;
+        rtpbr_gltf_destroy(s);
+        return RTPBR_GLTF_ERROR_OUT_OF_MEMORY;
     }
-    for (const rtpbr_scene_light& l : in.lights) {
+    for (const rtpbr_gltf_light& l : in.lights) {
         for (uint32_t v = 0; v < l.vertex_count; ++v) grow_bounds(lo, hi, l.vertices[v]);
-        if (l.shape == RTPBR_SCENE_LIGHT_DISK) {
+        if (l.shape == RTPBR_GLTF_LIGHT_DISK) {
             // The disk itself: centre ± r·sqrt(1 - n_k²) along each axis.
             for (int k = 0; k < 3; ++k) {
                 float e = l.radius * std::sqrt(std::max(0.0f, 1.0f - l.normal[k] * l.normal[k]));
@@ -456,14 +456,14 @@ rtpbr_scene_result build_output(Context& ctx, const Scene& in, rtpbr_scene** out
     s->total_vertex_count = static_cast<uint32_t>(in.total_vertices);
     s->total_index_count = static_cast<uint32_t>(in.total_indices);
     *out = s;
-    return RTPBR_SCENE_SUCCESS;
+    return RTPBR_GLTF_SUCCESS;
 }
 
-bool setup_context(Context& ctx, const rtpbr_scene_load_desc* desc) {
+bool setup_context(Context& ctx, const rtpbr_gltf_load_desc* desc) {
     if (desc) ctx.desc = *desc;
     if (ctx.desc.error_message && ctx.desc.error_message_size > 0) ctx.desc.error_message[0] = '\0';
     if ((ctx.desc.allocator.alloc == nullptr) != (ctx.desc.allocator.free == nullptr))
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ARGUMENT,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ARGUMENT,
                         "desc.allocator: alloc and free must both be set or both be NULL");
     if (ctx.desc.max_vertices) ctx.max_vertices = std::min(ctx.desc.max_vertices, ctx.max_vertices);
     if (ctx.desc.max_lights) ctx.max_lights = std::min(ctx.desc.max_lights, ctx.max_lights);
@@ -471,7 +471,7 @@ bool setup_context(Context& ctx, const rtpbr_scene_load_desc* desc) {
         ctx.max_texture_dimension = std::min(ctx.desc.max_texture_dimension, ctx.max_texture_dimension);
     float scale = ctx.desc.area_light_radiance_scale;
     if (!(std::isfinite(scale) && scale >= 0.0f))
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ARGUMENT,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ARGUMENT,
                         "desc.area_light_radiance_scale must be finite and >= 0");
     if (scale > 0.0f) ctx.area_light_radiance_scale = scale;
     if (ctx.desc.texture_memory_budget) ctx.texture_budget = ctx.desc.texture_memory_budget;
@@ -481,30 +481,30 @@ bool setup_context(Context& ctx, const rtpbr_scene_load_desc* desc) {
 bool set_base_dir(Context& ctx, const std::string& dir) {
     char* real = realpath(dir.c_str(), nullptr);
     if (!real)
-        return ctx.fail(RTPBR_SCENE_ERROR_FILE_NOT_FOUND, "base directory '%s': %s", dir.c_str(),
+        return ctx.fail(RTPBR_GLTF_ERROR_FILE_NOT_FOUND, "base directory '%s': %s", dir.c_str(),
                         std::strerror(errno));
     ctx.base_dir = real;
     std::free(real);
     return true;
 }
 
-rtpbr_scene_result finish(Context& ctx, rtpbr_scene_result r) {
-    if (r != RTPBR_SCENE_SUCCESS) {
-        if (ctx.result == RTPBR_SCENE_SUCCESS) ctx.result = r;
-        if (ctx.message.empty()) ctx.message = rtpbr_scene_result_string(r);
+rtpbr_gltf_result finish(Context& ctx, rtpbr_gltf_result r) {
+    if (r != RTPBR_GLTF_SUCCESS) {
+        if (ctx.result == RTPBR_GLTF_SUCCESS) ctx.result = r;
+        if (ctx.message.empty()) ctx.message = rtpbr_gltf_result_string(r);
         if (ctx.desc.error_message && ctx.desc.error_message_size > 0)
             std::snprintf(ctx.desc.error_message, ctx.desc.error_message_size, "%s",
                           ctx.message.c_str());
-        ctx.log(RTPBR_SCENE_LOG_ERROR, ctx.message);
+        ctx.log(RTPBR_GLTF_LOG_ERROR, ctx.message);
         return ctx.result;
     }
     return r;
 }
 
-rtpbr_scene_result load_model(Context& ctx, const unsigned char* data, size_t size, bool want_glb,
-                              rtpbr_scene** out) {
-    if (size > RTPBR_SCENE_MAX_FILE_SIZE) {
-        ctx.fail(RTPBR_SCENE_ERROR_IO, "input of %zu bytes exceeds RTPBR_SCENE_MAX_FILE_SIZE", size);
+rtpbr_gltf_result load_model(Context& ctx, const unsigned char* data, size_t size, bool want_glb,
+                              rtpbr_gltf_scene** out) {
+    if (size > RTPBR_GLTF_MAX_FILE_SIZE) {
+        ctx.fail(RTPBR_GLTF_ERROR_IO, "input of %zu bytes exceeds RTPBR_GLTF_MAX_FILE_SIZE", size);
         return ctx.result;
     }
     bool is_glb = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
@@ -527,7 +527,7 @@ rtpbr_scene_result load_model(Context& ctx, const unsigned char* data, size_t si
         is_glb = true;
     } else {
         if (size < 2)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "JSON: %zu bytes, empty document", size),
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "JSON: %zu bytes, empty document", size),
                    ctx.result;
         if (!check_json_depth(ctx, reinterpret_cast<const char*>(data), size) ||
             !check_schema(ctx, reinterpret_cast<const char*>(data), size))
@@ -556,15 +556,15 @@ rtpbr_scene_result load_model(Context& ctx, const unsigned char* data, size_t si
     else
         ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(data),
                                         static_cast<unsigned int>(size), base);
-    forward_lines(ctx, RTPBR_SCENE_LOG_WARNING, warn);
+    forward_lines(ctx, RTPBR_GLTF_LOG_WARNING, warn);
     if (ctx.failed()) return ctx.result;  // our callbacks know best what went wrong
     // tinygltf reports some schema errors (e.g. a 3-element baseColorFactor)
     // in err while still returning true: those are errors here too.
     if (!ok || !err.empty()) {
-        rtpbr_scene_result r = RTPBR_SCENE_ERROR_INVALID_JSON;
-        if (err.find("File not found") != std::string::npos) r = RTPBR_SCENE_ERROR_FILE_NOT_FOUND;
+        rtpbr_gltf_result r = RTPBR_GLTF_ERROR_INVALID_JSON;
+        if (err.find("File not found") != std::string::npos) r = RTPBR_GLTF_ERROR_FILE_NOT_FOUND;
         else if (err.find("glTF binary") != std::string::npos || err.find("Chunk") != std::string::npos)
-            r = RTPBR_SCENE_ERROR_INVALID_GLB;
+            r = RTPBR_GLTF_ERROR_INVALID_GLB;
         ctx.fail(r, "%s", first_line(err).c_str());
         return ctx.result;
     }
@@ -584,8 +584,8 @@ rtpbr_scene_result load_model(Context& ctx, const unsigned char* data, size_t si
              scene.primitives.size(), static_cast<unsigned long long>(scene.total_vertices),
              static_cast<unsigned long long>(scene.total_indices), scene.materials.size(),
              scene.textures.size(), scene.lights.size(), scene.cameras.size());
-    rtpbr_scene_result r = build_output(ctx, scene, out);
-    if (r != RTPBR_SCENE_SUCCESS) ctx.fail(r, "out of memory while copying the scene");
+    rtpbr_gltf_result r = build_output(ctx, scene, out);
+    if (r != RTPBR_GLTF_SUCCESS) ctx.fail(r, "out of memory while copying the scene");
     return r;
 }
 
@@ -597,48 +597,48 @@ bool ends_with_glb(const std::string& path) {
 }
 
 }  // namespace
-}  // namespace rtpbr_scene_detail
+}  // namespace rtpbr_gltf_detail
 
-using namespace rtpbr_scene_detail;
+using namespace rtpbr_gltf_detail;
 
-extern "C" const char* rtpbr_scene_result_string(rtpbr_scene_result result) {
+extern "C" const char* rtpbr_gltf_result_string(rtpbr_gltf_result result) {
     switch (result) {
-    case RTPBR_SCENE_SUCCESS: return "RTPBR_SCENE_SUCCESS";
-    case RTPBR_SCENE_ERROR_INVALID_ARGUMENT: return "RTPBR_SCENE_ERROR_INVALID_ARGUMENT";
-    case RTPBR_SCENE_ERROR_FILE_NOT_FOUND: return "RTPBR_SCENE_ERROR_FILE_NOT_FOUND";
-    case RTPBR_SCENE_ERROR_IO: return "RTPBR_SCENE_ERROR_IO";
-    case RTPBR_SCENE_ERROR_INVALID_GLB: return "RTPBR_SCENE_ERROR_INVALID_GLB";
-    case RTPBR_SCENE_ERROR_INVALID_JSON: return "RTPBR_SCENE_ERROR_INVALID_JSON";
-    case RTPBR_SCENE_ERROR_URI_REJECTED: return "RTPBR_SCENE_ERROR_URI_REJECTED";
-    case RTPBR_SCENE_ERROR_INVALID_REFERENCE: return "RTPBR_SCENE_ERROR_INVALID_REFERENCE";
-    case RTPBR_SCENE_ERROR_INVALID_ACCESSOR: return "RTPBR_SCENE_ERROR_INVALID_ACCESSOR";
-    case RTPBR_SCENE_ERROR_INDEX_OUT_OF_RANGE: return "RTPBR_SCENE_ERROR_INDEX_OUT_OF_RANGE";
-    case RTPBR_SCENE_ERROR_NONFINITE: return "RTPBR_SCENE_ERROR_NONFINITE";
-    case RTPBR_SCENE_ERROR_UNSUPPORTED: return "RTPBR_SCENE_ERROR_UNSUPPORTED";
-    case RTPBR_SCENE_ERROR_IMAGE_DECODE: return "RTPBR_SCENE_ERROR_IMAGE_DECODE";
-    case RTPBR_SCENE_ERROR_TOO_MANY_VERTICES: return "RTPBR_SCENE_ERROR_TOO_MANY_VERTICES";
-    case RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS: return "RTPBR_SCENE_ERROR_TOO_MANY_LIGHTS";
-    case RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE: return "RTPBR_SCENE_ERROR_TEXTURE_TOO_LARGE";
-    case RTPBR_SCENE_ERROR_OUT_OF_MEMORY: return "RTPBR_SCENE_ERROR_OUT_OF_MEMORY";
-    case RTPBR_SCENE_RESULT_COUNT: break;
+    case RTPBR_GLTF_SUCCESS: return "RTPBR_GLTF_SUCCESS";
+    case RTPBR_GLTF_ERROR_INVALID_ARGUMENT: return "RTPBR_GLTF_ERROR_INVALID_ARGUMENT";
+    case RTPBR_GLTF_ERROR_FILE_NOT_FOUND: return "RTPBR_GLTF_ERROR_FILE_NOT_FOUND";
+    case RTPBR_GLTF_ERROR_IO: return "RTPBR_GLTF_ERROR_IO";
+    case RTPBR_GLTF_ERROR_INVALID_GLB: return "RTPBR_GLTF_ERROR_INVALID_GLB";
+    case RTPBR_GLTF_ERROR_INVALID_JSON: return "RTPBR_GLTF_ERROR_INVALID_JSON";
+    case RTPBR_GLTF_ERROR_URI_REJECTED: return "RTPBR_GLTF_ERROR_URI_REJECTED";
+    case RTPBR_GLTF_ERROR_INVALID_REFERENCE: return "RTPBR_GLTF_ERROR_INVALID_REFERENCE";
+    case RTPBR_GLTF_ERROR_INVALID_ACCESSOR: return "RTPBR_GLTF_ERROR_INVALID_ACCESSOR";
+    case RTPBR_GLTF_ERROR_INDEX_OUT_OF_RANGE: return "RTPBR_GLTF_ERROR_INDEX_OUT_OF_RANGE";
+    case RTPBR_GLTF_ERROR_NONFINITE: return "RTPBR_GLTF_ERROR_NONFINITE";
+    case RTPBR_GLTF_ERROR_UNSUPPORTED: return "RTPBR_GLTF_ERROR_UNSUPPORTED";
+    case RTPBR_GLTF_ERROR_IMAGE_DECODE: return "RTPBR_GLTF_ERROR_IMAGE_DECODE";
+    case RTPBR_GLTF_ERROR_TOO_MANY_VERTICES: return "RTPBR_GLTF_ERROR_TOO_MANY_VERTICES";
+    case RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS: return "RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS";
+    case RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE: return "RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE";
+    case RTPBR_GLTF_ERROR_OUT_OF_MEMORY: return "RTPBR_GLTF_ERROR_OUT_OF_MEMORY";
+    case RTPBR_GLTF_RESULT_COUNT: break;
     }
-    return "RTPBR_SCENE_RESULT_UNKNOWN";
+    return "RTPBR_GLTF_RESULT_UNKNOWN";
 }
 
-extern "C" rtpbr_scene_result rtpbr_scene_load(const char* path, const rtpbr_scene_load_desc* desc,
-                                               rtpbr_scene** out) {
+extern "C" rtpbr_gltf_result rtpbr_gltf_load(const char* path, const rtpbr_gltf_load_desc* desc,
+                                               rtpbr_gltf_scene** out) {
     Context ctx;
     try {
         if (out) *out = nullptr;
         if (!setup_context(ctx, desc)) return finish(ctx, ctx.result);
         if (!path || !out) {
-            ctx.fail(RTPBR_SCENE_ERROR_INVALID_ARGUMENT, "rtpbr_scene_load: path and out must not be NULL");
+            ctx.fail(RTPBR_GLTF_ERROR_INVALID_ARGUMENT, "rtpbr_gltf_load: path and out must not be NULL");
             return finish(ctx, ctx.result);
         }
         std::vector<unsigned char> data;
         std::string why;
-        rtpbr_scene_result r = read_file(path, &data, &why);
-        if (r != RTPBR_SCENE_SUCCESS) {
+        rtpbr_gltf_result r = read_file(path, &data, &why);
+        if (r != RTPBR_GLTF_SUCCESS) {
             ctx.fail(r, "cannot read scene '%s': %s", path, why.c_str());
             return finish(ctx, r);
         }
@@ -653,40 +653,40 @@ extern "C" rtpbr_scene_result rtpbr_scene_load(const char* path, const rtpbr_sce
         if (!set_base_dir(ctx, dir)) return finish(ctx, ctx.result);
         return finish(ctx, load_model(ctx, data.data(), data.size(), ends_with_glb(path), out));
     } catch (const std::bad_alloc&) {
-        ctx.fail(RTPBR_SCENE_ERROR_OUT_OF_MEMORY, "out of memory");
+        ctx.fail(RTPBR_GLTF_ERROR_OUT_OF_MEMORY, "out of memory");
     } catch (const std::exception& e) {
-        ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "%s", e.what());
+        ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "%s", e.what());
     }
     return finish(ctx, ctx.result);
 }
 
-extern "C" rtpbr_scene_result rtpbr_scene_load_memory(const void* data, size_t size,
-                                                      const rtpbr_scene_load_desc* desc,
-                                                      rtpbr_scene** out) {
+extern "C" rtpbr_gltf_result rtpbr_gltf_load_memory(const void* data, size_t size,
+                                                      const rtpbr_gltf_load_desc* desc,
+                                                      rtpbr_gltf_scene** out) {
     Context ctx;
     try {
         if (out) *out = nullptr;
         if (!setup_context(ctx, desc)) return finish(ctx, ctx.result);
         if (!data || !out) {
-            ctx.fail(RTPBR_SCENE_ERROR_INVALID_ARGUMENT,
-                     "rtpbr_scene_load_memory: data and out must not be NULL");
+            ctx.fail(RTPBR_GLTF_ERROR_INVALID_ARGUMENT,
+                     "rtpbr_gltf_load_memory: data and out must not be NULL");
             return finish(ctx, ctx.result);
         }
         if (ctx.desc.base_dir && !set_base_dir(ctx, ctx.desc.base_dir)) return finish(ctx, ctx.result);
         return finish(ctx, load_model(ctx, static_cast<const unsigned char*>(data), size, false, out));
     } catch (const std::bad_alloc&) {
-        ctx.fail(RTPBR_SCENE_ERROR_OUT_OF_MEMORY, "out of memory");
+        ctx.fail(RTPBR_GLTF_ERROR_OUT_OF_MEMORY, "out of memory");
     } catch (const std::exception& e) {
-        ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "%s", e.what());
+        ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "%s", e.what());
     }
     return finish(ctx, ctx.result);
 }
 
-extern "C" void rtpbr_scene_destroy(rtpbr_scene* scene) {
+extern "C" void rtpbr_gltf_destroy(rtpbr_gltf_scene* scene) {
     if (!scene) return;
     Allocator al{scene->allocator};
     for (uint32_t i = 0; scene->primitives && i < scene->primitive_count; ++i) {
-        rtpbr_scene_primitive& p = scene->primitives[i];
+        rtpbr_gltf_primitive& p = scene->primitives[i];
         al.release(p.positions);
         al.release(p.normals);
         al.release(p.texcoords);

@@ -1,4 +1,4 @@
-// tests/kc: Kulla-Conty energy compensation (shaderlib/rtpbr/kulla_conty.h, shaderlib/luts).
+// tests/shaderlib/kc: Kulla-Conty energy compensation (shaderlib/rtpbr/kulla_conty.h, shaderlib/luts).
 // Every reference here is independent of the code under test: numerical quadratures written
 // here (NDF inverse-CDF quadrature in half-vector space, Gauss-Legendre in mu), Lambert's
 // polygon formula, a fresh Monte Carlo regeneration, and the microsurface random walk of

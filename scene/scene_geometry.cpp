@@ -6,7 +6,7 @@
 #include <cstring>
 #include <limits>
 
-namespace rtpbr_scene_detail {
+namespace rtpbr_gltf_detail {
 
 Mat4 mat_mul(const Mat4& a, const Mat4& b) {
     Mat4 r{};
@@ -108,27 +108,27 @@ bool view_slice(Context& ctx, const tinygltf::Model& model, int accessor, const 
                 size_t offset, size_t count, size_t element, bool use_stride, const unsigned char** data,
                 size_t* stride) {
     if (view < 0 || size_t(view) >= model.bufferViews.size())
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE,
                         "accessor %d%s: bufferView %d does not exist (%zu bufferViews)", accessor, part, view,
                         model.bufferViews.size());
     const tinygltf::BufferView& v = model.bufferViews[size_t(view)];
     if (v.buffer < 0 || size_t(v.buffer) >= model.buffers.size())
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "bufferView %d: buffer %d does not exist", view,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "bufferView %d: buffer %d does not exist", view,
                         v.buffer);
     const size_t buffer_size = model.buffers[size_t(v.buffer)].data.size();
     if (v.byteOffset > buffer_size || v.byteLength > buffer_size - v.byteOffset)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR,
                         "bufferView %d: byteOffset %zu + byteLength %zu exceeds buffer %d (%zu bytes)", view,
                         v.byteOffset, v.byteLength, v.buffer, buffer_size);
     *stride = use_stride && v.byteStride ? v.byteStride : element;
     if (use_stride && v.byteStride && (v.byteStride < element || v.byteStride > 252))
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR,
                         "accessor %d: bufferView %d byteStride %zu invalid for %zu-byte elements", accessor, view,
                         v.byteStride, element);
     // Last byte touched: offset + (count-1)·stride + element ≤ byteLength.
     const size_t room = offset <= v.byteLength ? v.byteLength - offset : 0;
     if (offset > v.byteLength || element > room || (count - 1) > (room - element) / *stride)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR,
                         "accessor %d%s: byteOffset %zu + count %zu * stride %zu exceeds bufferView %d "
                         "(%zu bytes)",
                         accessor, part, offset, count, *stride, view, v.byteLength);
@@ -140,23 +140,23 @@ bool validate_accessor(Context& ctx, const tinygltf::Model& model, int index, co
                        int expected_type, const int* allowed_components, size_t n_allowed,
                        AccessorView* out) {
     if (index < 0 || size_t(index) >= model.accessors.size())
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE,
                         "%s: accessor %d does not exist (%zu accessors)", usage, index,
                         model.accessors.size());
     const tinygltf::Accessor& a = model.accessors[size_t(index)];
     if (a.type != expected_type)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "accessor %d (%s): type %s, expected %s",
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR, "accessor %d (%s): type %s, expected %s",
                         index, usage, type_name(a.type), type_name(expected_type));
     bool allowed = false;
     for (size_t i = 0; i < n_allowed; ++i) allowed = allowed || a.componentType == allowed_components[i];
     if (!allowed)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR,
                         "accessor %d (%s): componentType %d not allowed here", index, usage,
                         a.componentType);
     if (a.count == 0)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "accessor %d (%s): count is 0", index, usage);
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR, "accessor %d (%s): count is 0", index, usage);
     if (a.count > size_t(std::numeric_limits<uint32_t>::max()))
-        return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES, "accessor %d (%s): count %zu too large",
+        return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_VERTICES, "accessor %d (%s): count %zu too large",
                         index, usage, a.count);
     out->count = a.count;
     out->component_type = a.componentType;
@@ -172,14 +172,14 @@ bool validate_accessor(Context& ctx, const tinygltf::Model& model, int index, co
 
     // Sparse (glTF 2.0 §3.6.2.3): dense copy of the base, then substitution.
     if (a.count > ctx.max_vertices)
-        return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES, "accessor %d (%s): sparse count %zu exceeds the limit %u",
+        return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_VERTICES, "accessor %d (%s): sparse count %zu exceeds the limit %u",
                         index, usage, a.count, ctx.max_vertices);
     const int ictype = a.sparse.indices.componentType;
     if (a.sparse.count <= 0 || size_t(a.sparse.count) > a.count || a.sparse.indices.byteOffset < 0 ||
         a.sparse.values.byteOffset < 0 ||
         (ictype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ictype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
          ictype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR,
                         "accessor %d (%s): invalid sparse count %d, byteOffset or index componentType %d", index,
                         usage, a.sparse.count, ictype);
     const size_t n_sparse = size_t(a.sparse.count), isize = size_t(component_size(ictype));
@@ -199,7 +199,7 @@ bool validate_accessor(Context& ctx, const tinygltf::Model& model, int index, co
         else if (isize == 2) { uint16_t t; std::memcpy(&t, indices + 2 * i, 2); target = t; }
         else std::memcpy(&target, indices + 4 * i, 4);
         if (target >= a.count)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR, "accessor %d (%s): sparse index %u >= count %zu",
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR, "accessor %d (%s): sparse index %u >= count %zu",
                             index, usage, target, a.count);
         std::memcpy(&out->dense[size_t(target) * element], values + i * element, element);
     }
@@ -255,7 +255,7 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
         return true;
     }
     if (src.mode > TINYGLTF_MODE_TRIANGLE_FAN)
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "%s: invalid mode %d", usage, src.mode);
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "%s: invalid mode %d", usage, src.mode);
     if (!src.targets.empty()) ctx.warn("%s: morph targets ignored", usage);
     auto pos_it = src.attributes.find("POSITION");
     if (pos_it == src.attributes.end()) {  // valid glTF (the validator warns): nothing to draw
@@ -277,7 +277,7 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     }
     const size_t n = pos.count;
     if (scene.total_vertices + n > ctx.max_vertices)
-        return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES,
+        return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_VERTICES,
                         "%s (node %d): %llu + %zu vertices exceed the limit of %u", usage, node_index,
                         static_cast<unsigned long long>(scene.total_vertices), n, ctx.max_vertices);
     auto attribute = [&](const char* name, int type, const int* comps, size_t n_comps, AccessorView* v) {
@@ -285,7 +285,7 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
         if (it == src.attributes.end()) return true;
         if (!validate_accessor(ctx, model, it->second, name, type, comps, n_comps, v)) return false;
         if (v->count != n)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_ACCESSOR,
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR,
                             "%s: %s accessor %d has %zu elements, POSITION has %zu", usage, name,
                             it->second, v->count, n);
         return true;
@@ -300,7 +300,7 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     if (src.material < 0) {
         material = default_material(scene);
     } else if (size_t(src.material) >= model.materials.size()) {
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "%s: material %d does not exist (%zu materials)",
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "%s: material %d does not exist (%zu materials)",
                         usage, src.material, model.materials.size());
     } else {
         material = uint32_t(src.material);
@@ -315,14 +315,14 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
             ctx.warn("%s: index accessor %d has no bufferView (all zeros); primitive skipped", usage, src.indices);
             return true;
         }
-        if (idx.count > RTPBR_SCENE_MAX_INDICES)
-            return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES, "%s: %zu indices exceed the limit", usage,
+        if (idx.count > RTPBR_GLTF_MAX_INDICES)
+            return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_VERTICES, "%s: %zu indices exceed the limit", usage,
                             idx.count);
         raw.resize(idx.count);
         for (size_t i = 0; i < idx.count; ++i) {
             double v = read_component(idx, i, 0);
             if (v >= double(n))
-                return ctx.fail(RTPBR_SCENE_ERROR_INDEX_OUT_OF_RANGE,
+                return ctx.fail(RTPBR_GLTF_ERROR_INDEX_OUT_OF_RANGE,
                                 "%s: index %.0f at position %zu (accessor %d) >= vertex count %zu",
                                 usage, v, i, src.indices, n);
             raw[i] = uint32_t(v);
@@ -336,8 +336,8 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     const uint64_t tri_indices = mode == TINYGLTF_MODE_TRIANGLES ? raw.size() / 3 * 3
                                  : raw.size() >= 3             ? 3 * uint64_t(raw.size() - 2)
                                                                : 0;
-    if (scene.total_indices + tri_indices > RTPBR_SCENE_MAX_INDICES)
-        return ctx.fail(RTPBR_SCENE_ERROR_TOO_MANY_VERTICES, "%s: index count exceeds RTPBR_SCENE_MAX_INDICES",
+    if (scene.total_indices + tri_indices > RTPBR_GLTF_MAX_INDICES)
+        return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_VERTICES, "%s: index count exceeds RTPBR_GLTF_MAX_INDICES",
                         usage);
     tris.reserve(size_t(tri_indices));
     if (mode == TINYGLTF_MODE_TRIANGLES) {
@@ -370,12 +370,12 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     for (size_t i = 0; i < n; ++i) {
         Vec3 local = {read_component(pos, i, 0), read_component(pos, i, 1), read_component(pos, i, 2)};
         if (!std::isfinite(local[0]) || !std::isfinite(local[1]) || !std::isfinite(local[2]))
-            return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE,
+            return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE,
                             "%s: POSITION accessor %d element %zu is not finite", usage, pos_it->second, i);
         Vec3 w = transform_point(world, local);
         for (int k = 0; k < 3; ++k) {
             if (!std::isfinite(float(w[size_t(k)])))
-                return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE,
+                return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE,
                                 "%s (node %d): world position of vertex %zu overflows", usage, node_index, i);
             p.positions[3 * i + size_t(k)] = float(w[size_t(k)]);
         }
@@ -447,7 +447,7 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
         for (int k = 0; k < 2; ++k) {
             double v = read_component(uv, i, k);
             if (!std::isfinite(v))
-                return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "%s: TEXCOORD_0 element %zu is not finite", usage, i);
+                return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "%s: TEXCOORD_0 element %zu is not finite", usage, i);
             p.texcoords[2 * i + size_t(k)] = float(v);
         }
 
@@ -514,7 +514,7 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
 bool Builder::camera(int node_index, const Mat4& world) {
     const int index = model.nodes[size_t(node_index)].camera;
     if (size_t(index) >= model.cameras.size())
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "node %d: camera %d does not exist (%zu cameras)",
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "node %d: camera %d does not exist (%zu cameras)",
                         node_index, index, model.cameras.size());
     const tinygltf::Camera& cam = model.cameras[size_t(index)];
     if (cam.type != "perspective") {
@@ -523,22 +523,22 @@ bool Builder::camera(int node_index, const Mat4& world) {
     }
     const tinygltf::PerspectiveCamera& pc = cam.perspective;
     if (!fits_float(pc.yfov) || !fits_float(pc.znear) || !fits_float(pc.zfar) || !fits_float(pc.aspectRatio))
-        return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "camera %d: non-finite parameter", index);
+        return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "camera %d: non-finite parameter", index);
     if (!(pc.yfov > 0.0 && pc.yfov < 3.14159265358979323846) || pc.znear <= 0.0 || pc.aspectRatio < 0.0 ||
         (pc.zfar != 0.0 && pc.zfar <= pc.znear))
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON,
                         "camera %d: needs 0 < yfov < pi, znear > 0, zfar > znear (yfov %g znear %g zfar %g)",
                         index, pc.yfov, pc.znear, pc.zfar);
-    rtpbr_scene_camera c;
+    rtpbr_gltf_camera c;
     std::memset(&c, 0, sizeof c);
     const Vec3 pos = transform_point(world, {0, 0, 0});
     Vec3 fwd = transform_dir(world, {0, 0, -1}), up = transform_dir(world, {0, 1, 0});
     if (!normalize(&fwd))
-        return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: degenerate camera transform", node_index);
+        return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: degenerate camera transform", node_index);
     const double uf = dot(up, fwd);
     for (int k = 0; k < 3; ++k) up[size_t(k)] -= uf * fwd[size_t(k)];
     if (!normalize(&up))
-        return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: degenerate camera transform", node_index);
+        return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: degenerate camera transform", node_index);
     const Vec3 right = cross(fwd, up);
     for (int k = 0; k < 3; ++k) {
         c.position[k] = float(pos[size_t(k)]);
@@ -554,7 +554,7 @@ bool Builder::camera(int node_index, const Mat4& world) {
     bool finite = std::isfinite(c.aspect) && std::isfinite(c.znear) && std::isfinite(c.zfar);
     for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(c.position[k]);
     if (!finite)
-        return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "camera %d (node %d): a parameter overflows a float", index,
+        return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "camera %d (node %d): a parameter overflows a float", index,
                         node_index);
     c.gltf_node = node_index;
     c.gltf_camera = index;
@@ -564,16 +564,16 @@ bool Builder::camera(int node_index, const Mat4& world) {
 
 bool Builder::node(int index, const Mat4& parent, unsigned depth) {
     if (index < 0 || size_t(index) >= model.nodes.size())
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "node %d does not exist (%zu nodes)", index,
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "node %d does not exist (%zu nodes)", index,
                         model.nodes.size());
-    // depth counts from 0 at a root: RTPBR_SCENE_MAX_NODE_DEPTH levels are depths 0 .. MAX-1.
-    if (depth >= RTPBR_SCENE_MAX_NODE_DEPTH)
-        return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED, "node %d: hierarchy deeper than %u levels", index,
-                        RTPBR_SCENE_MAX_NODE_DEPTH);
+    // depth counts from 0 at a root: RTPBR_GLTF_MAX_NODE_DEPTH levels are depths 0 .. MAX-1.
+    if (depth >= RTPBR_GLTF_MAX_NODE_DEPTH)
+        return ctx.fail(RTPBR_GLTF_ERROR_UNSUPPORTED, "node %d: hierarchy deeper than %u levels", index,
+                        RTPBR_GLTF_MAX_NODE_DEPTH);
     if (on_path[size_t(index)])
-        return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED, "node %d: the node hierarchy has a cycle", index);
+        return ctx.fail(RTPBR_GLTF_ERROR_UNSUPPORTED, "node %d: the node hierarchy has a cycle", index);
     if (++visits > 4 * model.nodes.size() + 1024)
-        return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED, "node %d: nodes are shared by many parents (not a tree)",
+        return ctx.fail(RTPBR_GLTF_ERROR_UNSUPPORTED, "node %d: nodes are shared by many parents (not a tree)",
                         index);
     const tinygltf::Node& n = model.nodes[size_t(index)];
     Mat4 local;
@@ -582,7 +582,7 @@ bool Builder::node(int index, const Mat4& parent, unsigned depth) {
     if (n.skin >= 0) ctx.warn("node %d: skin ignored (bind pose used)", index);
     if (n.mesh >= 0) {
         if (size_t(n.mesh) >= model.meshes.size())
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "node %d: mesh %d does not exist (%zu meshes)",
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "node %d: mesh %d does not exist (%zu meshes)",
                             index, n.mesh, model.meshes.size());
         const size_t count = model.meshes[size_t(n.mesh)].primitives.size();
         for (size_t p = 0; p < count; ++p)
@@ -606,22 +606,22 @@ bool node_local_matrix(Context& ctx, const tinygltf::Node& n, int index, Mat4* o
         return true;
     };
     if (!finite(n.matrix) || !finite(n.translation) || !finite(n.rotation) || !finite(n.scale))
-        return ctx.fail(RTPBR_SCENE_ERROR_NONFINITE, "node %d: non-finite transform", index);
+        return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: non-finite transform", index);
     if (!n.matrix.empty()) {
         if (n.matrix.size() != 16)
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "node %d: matrix has %zu elements", index, n.matrix.size());
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "node %d: matrix has %zu elements", index, n.matrix.size());
         std::copy(n.matrix.begin(), n.matrix.end(), out->begin());
         return true;
     }
     if ((!n.translation.empty() && n.translation.size() != 3) || (!n.rotation.empty() && n.rotation.size() != 4) ||
         (!n.scale.empty() && n.scale.size() != 3))
-        return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "node %d: translation/rotation/scale of wrong length", index);
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "node %d: translation/rotation/scale of wrong length", index);
     double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
     if (!n.translation.empty()) std::copy(n.translation.begin(), n.translation.end(), t);
     if (!n.rotation.empty()) std::copy(n.rotation.begin(), n.rotation.end(), q);
     if (!n.scale.empty()) std::copy(n.scale.begin(), n.scale.end(), s);
     const double ql = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    if (!(ql > 0.0)) return ctx.fail(RTPBR_SCENE_ERROR_INVALID_JSON, "node %d: zero rotation quaternion", index);
+    if (!(ql > 0.0)) return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "node %d: zero rotation quaternion", index);
     if (std::fabs(ql - 1.0) > 1e-3) ctx.warn("node %d: rotation quaternion normalised", index);
     const double x = q[0] / ql, y = q[1] / ql, z = q[2] / ql, w = q[3] / ql;
     // M = T · R · S, R from the unit quaternion (x, y, z, w).
@@ -646,10 +646,10 @@ bool check_forest(Context& ctx, const tinygltf::Model& model) {
     for (size_t i = 0; i < count; ++i)
         for (int c : model.nodes[i].children) {
             if (c < 0 || size_t(c) >= count)
-                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "node %zu: child %d does not exist (%zu nodes)",
+                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "node %zu: child %d does not exist (%zu nodes)",
                                 i, c, count);
             if (parent[size_t(c)] >= 0)
-                return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED,
+                return ctx.fail(RTPBR_GLTF_ERROR_UNSUPPORTED,
                                 "node %d is a child of both node %d and node %zu (nodes must form a tree)", c,
                                 parent[size_t(c)], i);
             parent[size_t(c)] = int(i);
@@ -662,16 +662,16 @@ bool check_forest(Context& ctx, const tinygltf::Model& model) {
             if (parent[i] < 0) break;
             i = size_t(parent[i]);
             if (walk[i] == start)
-                return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED, "node %zu: the node hierarchy has a cycle", i);
+                return ctx.fail(RTPBR_GLTF_ERROR_UNSUPPORTED, "node %zu: the node hierarchy has a cycle", i);
         }
     }
     for (size_t s = 0; s < model.scenes.size(); ++s)
         for (int r : model.scenes[s].nodes) {
             if (r < 0 || size_t(r) >= count)
-                return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "scene %zu: node %d does not exist (%zu nodes)",
+                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "scene %zu: node %d does not exist (%zu nodes)",
                                 s, r, count);
             if (parent[size_t(r)] >= 0)
-                return ctx.fail(RTPBR_SCENE_ERROR_UNSUPPORTED,
+                return ctx.fail(RTPBR_GLTF_ERROR_UNSUPPORTED,
                                 "scene %zu: root node %d is also a child of node %d (nodes must form a tree)", s, r,
                                 parent[size_t(r)]);
         }
@@ -688,7 +688,7 @@ bool convert_nodes(Context& ctx, const tinygltf::Model& model, Scene& scene,
     if (!model.scenes.empty()) {
         int s = model.defaultScene;
         if (s >= 0 && size_t(s) >= model.scenes.size())
-            return ctx.fail(RTPBR_SCENE_ERROR_INVALID_REFERENCE, "scene %d does not exist (%zu scenes)", s,
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "scene %d does not exist (%zu scenes)", s,
                             model.scenes.size());
         roots = model.scenes[size_t(s < 0 ? 0 : s)].nodes;
     } else {  // no scenes: every node that is nobody's child
@@ -704,4 +704,4 @@ bool convert_nodes(Context& ctx, const tinygltf::Model& model, Scene& scene,
     return true;
 }
 
-}  // namespace rtpbr_scene_detail
+}  // namespace rtpbr_gltf_detail
