@@ -1,8 +1,72 @@
-// Constants shared by the engine's C code and its GLSL shaders (included by both).
-// Only #defines live here: layouts of the structs below are spelled out twice, in
-// engine/src/internal.h (C) and in the shaders, next to a comment pointing here.
+// The contract between the engine's C code and its GLSL shaders, included by both: constants,
+// binding numbers, and the layouts of the structs both sides read, each declared once.
 #ifndef RTPBR_SHARED_H
 #define RTPBR_SHARED_H
+
+// ---------------------------------------------------------------------------------------------
+// Declaring a struct once for C and GLSL.
+//
+// A struct is an X-macro list of fields, FIELDS(F, S) = F(S, TYPE, name, array_suffix) ...,
+// with S the C struct's name (passed through for the layout checks), TYPE one of MAT4,
+// VEC4, UVEC4, VEC3, UVEC2, FLOAT, UINT and array_suffix empty or [count] (arrays only of
+// VEC4, UVEC4 and MAT4, whose std140 and std430 strides agree). GLSL expands the list into a
+// block or struct body; C into a struct with the same member names, and
+// RTPBR_SHARED_CHECK_LAYOUT asserts at compile time that every member sits where std140 and
+// std430 put it (vec4, vec3 and mat4 on 16 bytes, uvec2 on 8) and that the size is a multiple
+// of 16, so a field added in the wrong place fails the C build instead of misreading silently.
+#if defined(VULKAN) || defined(GL_core_profile) || defined(GL_es_profile)
+#define RTPBR_SHARED_GLSL_MAT4 mat4
+#define RTPBR_SHARED_GLSL_VEC4 vec4
+#define RTPBR_SHARED_GLSL_UVEC4 uvec4
+#define RTPBR_SHARED_GLSL_VEC3 vec3
+#define RTPBR_SHARED_GLSL_UVEC2 uvec2
+#define RTPBR_SHARED_GLSL_FLOAT float
+#define RTPBR_SHARED_GLSL_UINT uint
+#define RTPBR_SHARED_FIELD(S, type, name, array) RTPBR_SHARED_GLSL_##type name array;
+#else
+#include <stddef.h>
+#include <stdint.h>
+#define RTPBR_SHARED_C_MAT4(name, array) float name array[16];
+#define RTPBR_SHARED_C_VEC4(name, array) float name array[4];
+#define RTPBR_SHARED_C_UVEC4(name, array) uint32_t name array[4];
+#define RTPBR_SHARED_C_VEC3(name, array) float name array[3];
+#define RTPBR_SHARED_C_UVEC2(name, array) uint32_t name array[2];
+#define RTPBR_SHARED_C_FLOAT(name, array) float name array;
+#define RTPBR_SHARED_C_UINT(name, array) uint32_t name array;
+#define RTPBR_SHARED_FIELD(S, type, name, array) RTPBR_SHARED_C_##type(name, array)
+// The base alignment of each type in std140 and std430 (for the types allowed above they agree).
+#define RTPBR_SHARED_ALIGN_MAT4 16
+#define RTPBR_SHARED_ALIGN_VEC4 16
+#define RTPBR_SHARED_ALIGN_UVEC4 16
+#define RTPBR_SHARED_ALIGN_VEC3 16
+#define RTPBR_SHARED_ALIGN_UVEC2 8
+#define RTPBR_SHARED_ALIGN_FLOAT 4
+#define RTPBR_SHARED_ALIGN_UINT 4
+// Declares the C struct S from its field list.
+#define RTPBR_SHARED_STRUCT(S, FIELDS) typedef struct S { FIELDS(RTPBR_SHARED_FIELD, S) } S;
+// Compile-time layout checks of a struct declared with RTPBR_SHARED_STRUCT (C only).
+#define RTPBR_SHARED_CHECK_FIELD(S, type, name, array)                                           \
+    _Static_assert(offsetof(S, name) % RTPBR_SHARED_ALIGN_##type == 0,                           \
+                   #S "." #name ": not where std140/std430 put a " #type);
+#define RTPBR_SHARED_CHECK_LAYOUT(S, FIELDS)                                                     \
+    _Static_assert(sizeof(S) % 16 == 0, #S ": size is not a multiple of 16 bytes");            \
+    FIELDS(RTPBR_SHARED_CHECK_FIELD, S)
+#endif
+
+// The per-frame uniform block (std140), binding RTPBR_BINDING_*_FRAME of each pass: written once
+// per frame by renderer.c, read by every pass (frame.glsl).
+#define RTPBR_FRAME_FIELDS(F, S)                                                                  \
+    F(S, MAT4, view_proj, )          /* clip from world, column-major */                            \
+    F(S, MAT4, inv_view_proj, )      /* world from clip */                                          \
+    F(S, VEC4, camera_position, )    /* xyz; w unused */                                            \
+    F(S, VEC4, background, )         /* rgb radiance; w unused */                                   \
+    F(S, UVEC2, size, )              /* render width, height */                                     \
+    F(S, UINT, light_count, )                                                                       \
+    F(S, FLOAT, cull_form_factor, )  /* per-tile light culling threshold (cull.comp); < 0: off */  \
+    F(S, UINT, tiles_x, )            /* lighting tiles per row */                                   \
+    F(S, UINT, tile_capacity, )      /* tiles in the frame: the length of each class's queue */     \
+    F(S, UINT, shadow_light_count, ) /* lights 0 .. this - 1 have a shadow ratio; 0: shadows off */ \
+    F(S, UINT, pad0, )
 
 // Lighting: one compute workgroup shades one screen tile.
 #define RTPBR_TILE_SIZE 16

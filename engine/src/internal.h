@@ -17,20 +17,9 @@
 // ---------------------------------------------------------------------------------------------
 // GPU-side structs (std140 / std430; layouts must match the shaders)
 
-// Uniform block "Frame" in gbuffer.vert, lighting.comp.
-typedef struct rtpbr_shader_frame {
-    float view_proj[16];       // clip-from-world, column-major
-    float inv_view_proj[16];   // world-from-clip
-    float camera_position[4];  // xyz, w unused
-    float background[4];       // rgb radiance, w unused
-    uint32_t size[2];          // render width, height
-    uint32_t light_count;
-    float cull_form_factor;    // per-tile light culling threshold; < 0: off
-    uint32_t tiles_x;          // lighting tiles per row
-    uint32_t tile_capacity;    // tiles in the frame (the length of each class's tile list)
-    uint32_t shadow_light_count; // lights 0 .. this - 1 are multiplied by their shadow ratio (shadow.c)
-    uint32_t pad;
-} rtpbr_shader_frame;
+// The per-frame uniform block (fields in rtpbr_shared.h).
+RTPBR_SHARED_STRUCT(rtpbr_shader_frame, RTPBR_FRAME_FIELDS)
+RTPBR_SHARED_CHECK_LAYOUT(rtpbr_shader_frame, RTPBR_FRAME_FIELDS)
 
 // std430 element of the materials buffer (gbuffer.frag).
 typedef struct rtpbr_shader_material {
