@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
+#include "rtpbr_tools/image.hpp"
 
 #include "flip.h"
 #include "image_read.h"
@@ -54,14 +54,6 @@ bool parse_list(const char *text, std::vector<uint32_t> &out)
         pos = end + 1;
     }
     return !out.empty();
-}
-
-bool write_image(const std::string &path, int w, int h, int channels, OIIO::TypeDesc type, const void *pixels)
-{
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) return false;
-    OIIO::ImageSpec spec(w, h, channels, type);
-    return out->open(path, spec) && out->write_image(type, pixels) && out->close();
 }
 
 struct Measure {
@@ -273,11 +265,12 @@ int main(int argc, char **argv)
                         ltc.flip_mean, o.samples.back(), mc.back().flip_mean);
         if (!o.out.empty()) {
             auto save = [&](const std::string &name, const Measure &m) {
-                bool ok = write_image(o.out + "/" + name + ".exr", (int)o.width, (int)o.height, 3,
-                                      OIIO::TypeDesc::FLOAT, m.rgb.data()) &&
-                          write_image(o.out + "/" + name + ".png", (int)o.width, (int)o.height, 4,
-                                      OIIO::TypeDesc::UINT8, m.display.data());
-                if (!ok) std::fprintf(stderr, "rtpbr-bench-mc: cannot write %s/%s\n", o.out.c_str(), name.c_str());
+                std::string error;
+                bool ok = rtpbr_tools::write_image_float(o.out + "/" + name + ".exr", (int)o.width, (int)o.height, 3,
+                                                         m.rgb.data(), error) &&
+                          rtpbr_tools::write_image_u8(o.out + "/" + name + ".png", (int)o.width, (int)o.height, 4,
+                                                      m.display.data(), error);
+                if (!ok) std::fprintf(stderr, "rtpbr-bench-mc: %s\n", error.c_str());
             };
             save("ltc", ltc);
             for (size_t i = 0; i < mc.size(); ++i) save("mc" + std::to_string(o.samples[i]), mc[i]);

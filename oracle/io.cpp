@@ -7,7 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <OpenImageIO/imageio.h>
+#include "rtpbr_tools/image.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -161,15 +161,13 @@ Result writeImage(const std::string &path, uint32_t width, uint32_t height, cons
     for (char &c : ext)
         c = char(std::tolower(c));
     bool hdr = ext == ".exr" || ext == ".hdr";
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) {
-        *error = "cannot write " + path + ": " + OIIO::geterror();
-        return Result::Io;
-    }
-    OIIO::ImageSpec spec(int(width), int(height), 3, hdr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    rtpbr_tools::ImageWrite image;
+    image.width = int(width), image.height = int(height), image.channels = 3;
     std::vector<uint8_t> ldr;
-    const void *data = rgb.data();
-    if (!hdr) {
+    if (hdr) {
+        image.pixels = rgb.data();
+        image.attributes = {{"compression", "zip"}};
+    } else {
         ldr.resize(rgb.size());
         for (size_t i = 0; i < rgb.size(); i++) {
             float v = std::min(std::max(rgb[i] * exposure, 0.0f), 1.0f);
@@ -177,16 +175,12 @@ Result writeImage(const std::string &path, uint32_t width, uint32_t height, cons
             v = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
             ldr[i] = uint8_t(std::lround(v * 255.0f));
         }
-        data = ldr.data();
-    } else {
-        spec.attribute("compression", "zip");
+        image.pixels = ldr.data();
+        image.pixel_type = image.file_type = rtpbr_tools::PixelType::UInt8;
     }
-    spec.attribute("DateTime", ""); // no write date: the same render gives a byte-identical file
-    if (!out->open(path, spec) || !out->write_image(hdr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, data) ||
-        !out->close()) {
-        *error = "cannot write " + path + ": " + out->geterror();
+    image.attributes.push_back({"DateTime", ""}); // no write date: the same render gives a byte-identical file
+    if (!rtpbr_tools::write_image(path, image, *error))
         return Result::Io;
-    }
     return Result::Success;
 }
 

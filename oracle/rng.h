@@ -8,27 +8,17 @@
 
 #include <cstdint>
 
+#include "rtpbr_tools/rng.h"
+
 namespace rtpbr_oracle {
 
-// SplitMix64 finaliser (Steele, Lea, Flood 2014, "Fast Splittable Pseudorandom Number
-// Generators"): a bijective 64-bit mixer.
-inline uint64_t mix64(uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
+// SplitMix64's finaliser (tools/common), the hash of the seeds.
+inline uint64_t mix64(uint64_t z) { return rtpbr_tools_mix64(z); }
 
-// PCG32 (O'Neill 2014, "PCG: A Family of Simple Fast Space-Efficient Statistically Good
-// Algorithms for Random Number Generation"), XSH-RR output.
-class Rng {
+// PCG32 (tools/common) with the seeding of one pixel sample.
+class Rng : public rtpbr_tools::Pcg32 {
 public:
-    Rng(uint64_t seed, uint64_t stream) {
-        inc_ = (stream << 1u) | 1u;
-        state_ = 0;
-        next();
-        state_ += seed;
-        next();
-    }
+    using Pcg32::Pcg32;
 
     // The generator of one pixel sample.
     static Rng forSample(uint32_t px, uint32_t py, uint64_t sample, uint64_t seed) {
@@ -38,20 +28,8 @@ public:
         return Rng(c, mix64(c ^ b));
     }
 
-    uint32_t next() {
-        uint64_t old = state_;
-        state_ = old * 6364136223846793005ull + inc_;
-        uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
-        uint32_t rot = uint32_t(old >> 59u);
-        return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
-    }
-
     // Uniform in [0, 1): 24 random bits, so 1 is never returned in float.
-    float uniform() { return float(next() >> 8) * (1.0f / 16777216.0f); }
-
-private:
-    uint64_t state_;
-    uint64_t inc_;
+    float uniform() { return uniform_float(); }
 };
 
 } // namespace rtpbr_oracle

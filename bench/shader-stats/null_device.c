@@ -13,6 +13,7 @@
 #include <vulkan/vulkan.h>
 
 #include "spirv_reflect.h"
+#include "vk_host.h"
 
 #define VALIDATION_LAYER "VK_LAYER_KHRONOS_validation"
 #define MAX_SETS 8
@@ -25,13 +26,11 @@ const char *const ss_statistic_columns[SS_STAT_COUNT] = {SS_STATISTICS(SS_COLUMN
 const char *const ss_statistic_keys[SS_STAT_COUNT] = {SS_STATISTICS(SS_KEY)};
 
 struct ss_device {
-    VkInstance instance;
-    VkDebugUtilsMessengerEXT messenger;
+    vk_host host; // the instance and its validation messenger (tests/common); the device is ours
     VkPhysicalDevice physical_device;
     VkDevice device;
     PFN_vkGetPipelineExecutablePropertiesKHR get_executables;
     PFN_vkGetPipelineExecutableStatisticsKHR get_statistics;
-    uint32_t validation_messages;
     char name[VK_MAX_PHYSICAL_DEVICE_NAME_SIZE];
     char driver_info[VK_MAX_DRIVER_INFO_SIZE];
 };
@@ -63,19 +62,6 @@ static bool known_family(const char *family)
     return false;
 }
 
-static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                            VkDebugUtilsMessageTypeFlagsEXT types,
-                                                            const VkDebugUtilsMessengerCallbackDataEXT *data,
-                                                            void *user_data)
-{
-    (void)types;
-    ss_device *device = user_data;
-    device->validation_messages++;
-    fprintf(stderr, "validation %s: %s\n", severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning",
-            data && data->pMessage ? data->pMessage : "(no message)");
-    return VK_FALSE;
-}
-
 static bool has_validation_layer(void)
 {
     uint32_t count = 0;
@@ -102,57 +88,22 @@ static bool contains_ignoring_case(const char *haystack, const char *needle)
 
 static ss_open_result create_instance(ss_device *d, bool validation, char *error, size_t error_size)
 {
-    VkApplicationInfo app = {
-        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
-        .pApplicationName = "rtpbr-shader-stats",
-        .apiVersion = VK_API_VERSION_1_3,
-    };
-    VkDebugUtilsMessengerCreateInfoEXT messenger_info = {
-        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
-        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
-        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
-        .pfnUserCallback = on_validation_message,
-        .pUserData = d,
-    };
-    const char *layers[] = {VALIDATION_LAYER};
-    const char *extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
-    VkInstanceCreateInfo info = {
-        .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
-        .pNext = validation ? &messenger_info : NULL,
-        .pApplicationInfo = &app,
-        .enabledLayerCount = validation ? 1 : 0,
-        .ppEnabledLayerNames = layers,
-        .enabledExtensionCount = validation ? 1 : 0,
-        .ppEnabledExtensionNames = extensions,
-    };
-    VkResult vr = vkCreateInstance(&info, NULL, &d->instance);
-    if (vr == VK_ERROR_INCOMPATIBLE_DRIVER) {
-        set_error(error, error_size, "no Vulkan driver (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER)");
-        return SS_OPEN_UNAVAILABLE;
+    const vk_host_desc desc = {.app_name = "rtpbr-shader-stats", .api_version = VK_API_VERSION_1_3,
+                               .without_validation = !validation};
+    switch (vk_host_init_instance(&d->host, &desc, error, error_size)) {
+    case VK_HOST_OK: return SS_OPEN_OK;
+    case VK_HOST_NO_DRIVER: return SS_OPEN_UNAVAILABLE;
+    default: return SS_OPEN_FAILED;
     }
-    if (vr != VK_SUCCESS) {
-        set_error(error, error_size, "vkCreateInstance failed (VkResult %d)", (int)vr);
-        return SS_OPEN_FAILED;
-    }
-    if (validation) {
-        PFN_vkCreateDebugUtilsMessengerEXT create_messenger =
-            (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(d->instance, "vkCreateDebugUtilsMessengerEXT");
-        if (!create_messenger || create_messenger(d->instance, &messenger_info, NULL, &d->messenger) != VK_SUCCESS) {
-            set_error(error, error_size, "could not create the validation messenger");
-            return SS_OPEN_FAILED;
-        }
-    }
-    return SS_OPEN_OK;
 }
 
 // The RADV device of the family, told apart from llvmpipe and any real GPU by driver id and name.
 static ss_open_result choose_device(ss_device *d, const char *family, char *error, size_t error_size)
 {
     uint32_t count = 0;
-    VkResult vr = vkEnumeratePhysicalDevices(d->instance, &count, NULL);
+    VkResult vr = vkEnumeratePhysicalDevices(d->host.instance, &count, NULL);
     VkPhysicalDevice *devices = count ? calloc(count, sizeof *devices) : NULL;
-    if (vr == VK_SUCCESS && devices) vr = vkEnumeratePhysicalDevices(d->instance, &count, devices);
+    if (vr == VK_SUCCESS && devices) vr = vkEnumeratePhysicalDevices(d->host.instance, &count, devices);
     bool radv_seen = false;
     char other[VK_MAX_PHYSICAL_DEVICE_NAME_SIZE] = "";
     for (uint32_t i = 0; devices && vr >= VK_SUCCESS && i < count; ++i) {
@@ -275,7 +226,7 @@ ss_open_result ss_device_create(const char *family, bool validation, ss_device *
     ss_open_result result = create_instance(d, validation && has_validation_layer(), error, error_size);
     if (result == SS_OPEN_OK) result = choose_device(d, family, error, error_size);
     if (result == SS_OPEN_OK) result = create_device(d, error, error_size);
-    if (result == SS_OPEN_OK && d->validation_messages > 0) {
+    if (result == SS_OPEN_OK && d->host.messages > 0) {
         set_error(error, error_size, "validation messages while opening %s", d->name);
         result = SS_OPEN_FAILED;
     }
@@ -291,18 +242,13 @@ void ss_device_destroy(ss_device *d)
 {
     if (!d) return;
     if (d->device) vkDestroyDevice(d->device, NULL);
-    if (d->messenger) {
-        PFN_vkDestroyDebugUtilsMessengerEXT destroy_messenger =
-            (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(d->instance, "vkDestroyDebugUtilsMessengerEXT");
-        if (destroy_messenger) destroy_messenger(d->instance, d->messenger, NULL);
-    }
-    if (d->instance) vkDestroyInstance(d->instance, NULL);
+    vk_host_finish(&d->host);
     free(d);
 }
 
 const char *ss_device_name(const ss_device *d) { return d->name; }
 const char *ss_device_driver_info(const ss_device *d) { return d->driver_info; }
-bool ss_device_validating(const ss_device *d) { return d->messenger != VK_NULL_HANDLE; }
+bool ss_device_validating(const ss_device *d) { return d->host.messenger != VK_NULL_HANDLE; }
 
 // ---- pipelines ----------------------------------------------------------------------------
 
@@ -599,7 +545,7 @@ bool ss_device_compile(ss_device *d, const ss_shader *shaders, uint32_t shader_c
         set_error(error, error_size, "a pipeline has one compute or two graphics shaders, not %u", shader_count);
         return false;
     }
-    uint32_t messages_before = d->validation_messages;
+    uint32_t messages_before = d->host.messages;
     pipeline_objects o = {0};
     ss_reflection refl[2];
     const ss_reflection *vs = NULL, *fs = NULL, *cs = NULL;
@@ -643,9 +589,9 @@ bool ss_device_compile(ss_device *d, const ss_shader *shaders, uint32_t shader_c
                     : create_graphics(d, vs, fs, &o, vs_module, fs_module, error, error_size);
     ok = ok && read_statistics(d, o.pipeline, out, error, error_size);
     destroy_objects(d->device, &o);
-    if (ok && d->validation_messages != messages_before) {
+    if (ok && d->host.messages != messages_before) {
         set_error(error, error_size, "%s: %u validation message(s)", shaders[0].name,
-                  d->validation_messages - messages_before);
+                  d->host.messages - messages_before);
         ok = false;
     }
     return ok;

@@ -65,10 +65,26 @@ typedef struct app {
     const char *notice;
 } app;
 
-// What the panels call after editing the app (they set fields directly, then say so).
-void app_changed(app *a);                // anything the engine draws (bumps view_generation)
-void app_light_edited(app *a);           // the selected light's polygon, colour or sides
-void app_material_edited(app *a);        // the selected material
+// What the panels call after editing the app (they set fields directly, then say so). Inline
+// here, so that the panels (ui.cpp) and the app (viewer.c) do not call each other in a circle.
+// Anything the engine draws (bumps view_generation).
+static inline void app_changed(app *a) { a->view_generation++; }
+
+// The selected light's polygon, colour or sides.
+static inline void app_light_edited(app *a)
+{
+    a->lights_dirty = true;
+    a->light_selected = true;
+    app_changed(a);
+}
+
+// The selected material.
+static inline void app_material_edited(app *a)
+{
+    a->materials_dirty = true;
+    a->light_selected = false;
+    app_changed(a);
+}
 
 #ifdef __cplusplus
 }

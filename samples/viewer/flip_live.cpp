@@ -3,9 +3,9 @@
 
 #include "flip.h"
 #include "image_read.h"
-#include "magma_table.h"
+#include "rtpbr_tools/colormap.hpp"
+#include "rtpbr_tools/image.hpp"
 
-#include <OpenImageIO/imageio.h>
 #include <algorithm>
 #include <cmath>
 #include <condition_variable>
@@ -129,9 +129,8 @@ void viewer_flip_heatmap(viewer_flip *f, uint8_t *dst, int w, int h, bool bgra)
         for (int x = 0; x < w; ++x) {
             float e = have ? f->error_map[static_cast<size_t>(y) * mh / h * mw + static_cast<size_t>(x) * mw / w] : 0.0f;
             // rtpbr-diff's quantisation (--heatmap)
-            int k = static_cast<int>(std::lround(std::min(1.0f, std::max(0.0f, e)) * 255.0f));
             uint8_t rgb[3];
-            for (int c = 0; c < 3; ++c) rgb[c] = static_cast<uint8_t>(std::lround(rtpbr::kMagma[k][c] * 255.0f));
+            rtpbr_tools::magma(e, rgb);
             uint8_t *o = dst + 4 * (static_cast<size_t>(y) * w + x);
             o[0] = bgra ? rgb[2] : rgb[0], o[1] = rgb[1], o[2] = bgra ? rgb[0] : rgb[2], o[3] = 255;
         }
@@ -156,13 +155,11 @@ double viewer_flip_mean_now(const viewer_flip *f, const float *rgba, int w, int 
 
 bool viewer_write_radiance(const char *path, const float *rgba, int w, int h)
 {
-    auto out = OIIO::ImageOutput::create(path);
-    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
     std::vector<float> rgb;
     rgb_of(rgba, w, h, rgb);
-    if (!out || !out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()) || !out->close()) {
-        std::fprintf(stderr, "rtpbr-viewer: cannot write %s: %s\n", path,
-                     out ? out->geterror().c_str() : OIIO::geterror().c_str());
+    std::string error;
+    if (!rtpbr_tools::write_image_float(path, w, h, 3, rgb.data(), error)) {
+        std::fprintf(stderr, "rtpbr-viewer: %s\n", error.c_str());
         return false;
     }
     return true;

@@ -38,22 +38,6 @@ static void on_log(rtpbr_log_level level, const char *message, void *user)
     }
 }
 
-void app_changed(app *a) { a->view_generation++; }
-
-void app_light_edited(app *a)
-{
-    a->lights_dirty = true;
-    a->light_selected = true;
-    app_changed(a);
-}
-
-void app_material_edited(app *a)
-{
-    a->materials_dirty = true;
-    a->light_selected = false;
-    app_changed(a);
-}
-
 static void camera_position(const app *a, float out[3])
 {
     out[0] = a->target[0] + a->distance * cosf(a->pitch) * sinf(a->yaw);

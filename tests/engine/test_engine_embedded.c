@@ -4,100 +4,41 @@
 #include <stdlib.h>
 
 #include "engine_test.h"
+#include "vk_host.h"
 
-typedef struct host {
-    int messages;
-    VkInstance instance;
-    VkDebugUtilsMessengerEXT messenger;
-    VkPhysicalDevice physical_device;
-    uint32_t family;
-    VkDevice device;
-    VkQueue queue;
-} host;
-
-static VKAPI_ATTR VkBool32 VKAPI_CALL host_on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                     VkDebugUtilsMessageTypeFlagsEXT types,
-                                                     const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
-{
-    (void)severity, (void)types;
-    ((host *)user)->messages++;
-    fprintf(stderr, "HOST VALIDATION MESSAGE: %s\n", data->pMessage);
-    return VK_FALSE;
-}
-
-static void host_create(host *h, bool dynamic_rendering, VkPhysicalDeviceVulkan13Features *f13)
+// The host's instance (validation on, every message counted), lavapipe, one graphics+compute
+// queue, Vulkan 1.3 with dynamic rendering on or off.
+static void host_create(vk_host *h, bool dynamic_rendering, VkPhysicalDeviceVulkan13Features *f13)
 {
     memset(h, 0, sizeof *h);
-    VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
-    VkDebugUtilsMessengerCreateInfoEXT mi = {
-        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
-        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
-        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
-        .pfnUserCallback = host_on_message,
-        .pUserData = h,
-    };
-    VkValidationFeaturesEXT vf = {.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT, .pNext = &mi,
-                                  .enabledValidationFeatureCount = 1, .pEnabledValidationFeatures = enables};
-    const char *layers[] = {"VK_LAYER_KHRONOS_validation"};
-    const char *extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
-    VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO, .apiVersion = VK_API_VERSION_1_3};
-    VkInstanceCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pNext = &vf, .pApplicationInfo = &app,
-                               .enabledLayerCount = 1, .ppEnabledLayerNames = layers,
-                               .enabledExtensionCount = 1, .ppEnabledExtensionNames = extensions};
-    assert_int_equal(vkCreateInstance(&ii, NULL, &h->instance), VK_SUCCESS);
-    PFN_vkCreateDebugUtilsMessengerEXT create =
-        (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(h->instance, "vkCreateDebugUtilsMessengerEXT");
-    assert_non_null(create);
-    assert_int_equal(create(h->instance, &mi, NULL, &h->messenger), VK_SUCCESS);
-
-    uint32_t count = 1;
-    VkResult vr = vkEnumeratePhysicalDevices(h->instance, &count, &h->physical_device);
-    assert_true(vr == VK_SUCCESS || vr == VK_INCOMPLETE);
-    assert_int_equal(count, 1);
-    VkQueueFamilyProperties families[16];
-    count = 16;
-    vkGetPhysicalDeviceQueueFamilyProperties(h->physical_device, &count, families);
-    h->family = UINT32_MAX;
-    for (uint32_t i = 0; i < count && h->family == UINT32_MAX; ++i)
-        if ((families[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
-            (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT))
-            h->family = i;
-    assert_int_not_equal(h->family, UINT32_MAX);
-
-    float priority = 1.0f;
-    VkDeviceQueueCreateInfo qi = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, .queueFamilyIndex = h->family,
-                                  .queueCount = 1, .pQueuePriorities = &priority};
     *f13 = (VkPhysicalDeviceVulkan13Features){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
                                               .dynamicRendering = dynamic_rendering};
     VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = f13};
-    VkDeviceCreateInfo di = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, .pNext = &features,
-                             .queueCreateInfoCount = 1, .pQueueCreateInfos = &qi};
-    assert_int_equal(vkCreateDevice(h->physical_device, &di, NULL, &h->device), VK_SUCCESS);
-    vkGetDeviceQueue(h->device, h->family, 0, &h->queue);
+    vk_host_desc desc = {.app_name = "rtpbr-test-engine-embedded", .api_version = VK_API_VERSION_1_3,
+                         .queue_flags = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT, .device_next = &features};
+    char error[512] = "";
+    vk_host_result r = vk_host_init(h, &desc, error, sizeof error);
+    if (r != VK_HOST_OK) fprintf(stderr, "host: %s\n", error);
+    assert_int_equal(r, VK_HOST_OK);
 }
 
-static void host_destroy(host *h)
+static void host_destroy(vk_host *h)
 {
-    vkDestroyDevice(h->device, NULL); // the object tracker reports anything rtpbr left behind
-    PFN_vkDestroyDebugUtilsMessengerEXT destroy =
-        (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(h->instance, "vkDestroyDebugUtilsMessengerEXT");
-    destroy(h->instance, h->messenger, NULL);
-    vkDestroyInstance(h->instance, NULL);
+    vk_host_finish(h); // the object tracker reports anything rtpbr left behind
 }
 
-static rtpbr_vulkan_device handover(const host *h, const VkPhysicalDeviceVulkan13Features *f13,
+static rtpbr_vulkan_device handover(const vk_host *h, const VkPhysicalDeviceVulkan13Features *f13,
                                     VkPhysicalDeviceFeatures2 *features)
 {
     *features = (VkPhysicalDeviceFeatures2){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
                                             .pNext = (void *)f13};
-    return (rtpbr_vulkan_device){h->instance, h->physical_device, h->device, h->queue, h->family, features};
+    return (rtpbr_vulkan_device){h->instance, h->physical_device, h->device, h->queue, h->queue_family, features};
 }
 
 static void embedded_render_leaves_host_untouched(void **state)
 {
     (void)state;
-    host h;
+    vk_host h;
     VkPhysicalDeviceVulkan13Features f13;
     host_create(&h, true, &f13);
 
@@ -119,7 +60,7 @@ static void embedded_render_leaves_host_untouched(void **state)
                      VK_SUCCESS);
     assert_int_equal(vkBindBufferMemory(h.device, buffer, memory, 0), VK_SUCCESS);
     VkCommandPool pool;
-    VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, .queueFamilyIndex = h.family};
+    VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, .queueFamilyIndex = h.queue_family};
     assert_int_equal(vkCreateCommandPool(h.device, &pi, NULL, &pool), VK_SUCCESS);
     VkFence fence;
     assert_int_equal(vkCreateFence(h.device, &(VkFenceCreateInfo){.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO}, NULL, &fence),
@@ -189,7 +130,7 @@ static void embedded_render_leaves_host_untouched(void **state)
 static void embedded_missing_feature(void **state)
 {
     (void)state;
-    host h;
+    vk_host h;
     VkPhysicalDeviceVulkan13Features f13;
     host_create(&h, false, &f13);
     test_log log = {0};

@@ -1,6 +1,6 @@
 // Writes the small images the rtpbr-diff command-line tests compare (into the directory given),
 // so no test image is committed. All content is deterministic.
-#include <OpenImageIO/imageio.h>
+#include "rtpbr_tools/image.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -10,15 +10,12 @@
 
 namespace {
 
-bool write(const std::string& path, int w, int h, const std::vector<float>& rgb, OIIO::TypeDesc type) {
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) {
-        std::fprintf(stderr, "make_images: cannot create %s: %s\n", path.c_str(), OIIO::geterror().c_str());
-        return false;
-    }
-    OIIO::ImageSpec spec(w, h, 3, type);
-    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()) || !out->close()) {
-        std::fprintf(stderr, "make_images: cannot write %s: %s\n", path.c_str(), out->geterror().c_str());
+bool write(const std::string& path, int w, int h, const std::vector<float>& rgb, rtpbr_tools::PixelType type) {
+    rtpbr_tools::ImageWrite image;
+    image.width = w, image.height = h, image.channels = 3, image.pixels = rgb.data(), image.file_type = type;
+    std::string error;
+    if (!rtpbr_tools::write_image(path, image, error)) {
+        std::fprintf(stderr, "make_images: %s\n", error.c_str());
         return false;
     }
     return true;
@@ -56,13 +53,13 @@ int main(int argc, char** argv) {
         slight[i] = std::fmin(1.0f, std::fmax(0.0f, ref[i] + 0.02f * n));
         strong[i] = std::fmin(1.0f, std::fmax(0.0f, ref[i] + 0.3f * n));
     }
-    bool ok = write(dir + "/ref.png", w, h, ref, OIIO::TypeDesc::UINT8) &&
-              write(dir + "/ref_copy.png", w, h, ref, OIIO::TypeDesc::UINT8) &&
-              write(dir + "/slight.png", w, h, slight, OIIO::TypeDesc::UINT8) &&
-              write(dir + "/strong.png", w, h, strong, OIIO::TypeDesc::UINT8) &&
-              write(dir + "/small.png", w / 2, h / 2, scene(w / 2, h / 2, 1.0f), OIIO::TypeDesc::UINT8) &&
-              write(dir + "/ref.exr", w, h, scene(w, h, 8.0f), OIIO::TypeDesc::HALF) &&
-              write(dir + "/test.exr", w, h, scene(w, h, 9.0f), OIIO::TypeDesc::HALF);
+    bool ok = write(dir + "/ref.png", w, h, ref, rtpbr_tools::PixelType::UInt8) &&
+              write(dir + "/ref_copy.png", w, h, ref, rtpbr_tools::PixelType::UInt8) &&
+              write(dir + "/slight.png", w, h, slight, rtpbr_tools::PixelType::UInt8) &&
+              write(dir + "/strong.png", w, h, strong, rtpbr_tools::PixelType::UInt8) &&
+              write(dir + "/small.png", w / 2, h / 2, scene(w / 2, h / 2, 1.0f), rtpbr_tools::PixelType::UInt8) &&
+              write(dir + "/ref.exr", w, h, scene(w, h, 8.0f), rtpbr_tools::PixelType::Half) &&
+              write(dir + "/test.exr", w, h, scene(w, h, 9.0f), rtpbr_tools::PixelType::Half);
     std::FILE* junk = std::fopen((dir + "/not_an_image.png").c_str(), "wb");
     if (!junk) return 2;
     std::fputs("this is not a PNG\n", junk);

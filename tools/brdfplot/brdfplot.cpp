@@ -4,7 +4,7 @@
 // A quick look at the shader library's C++ build; the engine and the oracle render scenes.
 #include <rtpbr/microfacet.h>
 
-#include <OpenImageIO/imageio.h>
+#include "rtpbr_tools/image.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -83,14 +83,9 @@ int main(int argc, char **argv) {
                 pixels[(size_t(y) * W + x) * 3 + k] = (unsigned char)std::lround(255.0f * to_srgb(color[k]));
         }
     }
-    auto file = OIIO::ImageOutput::create(out);
-    if (!file) {
-        std::fprintf(stderr, "rtpbr-brdfplot: cannot write %s: %s\n", out.c_str(), OIIO::geterror().c_str());
-        return 1;
-    }
-    OIIO::ImageSpec spec(W, H, 3, OIIO::TypeDesc::UINT8);
-    if (!file->open(out, spec) || !file->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !file->close()) {
-        std::fprintf(stderr, "rtpbr-brdfplot: writing %s failed: %s\n", out.c_str(), file->geterror().c_str());
+    std::string error;
+    if (!rtpbr_tools::write_image_u8(out, W, H, 3, pixels.data(), error)) {
+        std::fprintf(stderr, "rtpbr-brdfplot: %s\n", error.c_str());
         return 1;
     }
     return 0;

@@ -2,9 +2,8 @@
 // (flip.h), and reports RMSE, relative MSE and PSNR. See usage() for the exact definitions.
 #include "flip.h"
 #include "image_read.h"
-#include "magma_table.h"
-
-#include <OpenImageIO/imageio.h>
+#include "rtpbr_tools/colormap.hpp"
+#include "rtpbr_tools/image.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -132,20 +131,11 @@ bool parse_args(int argc, char** argv, Options& opt, bool& show_help, std::strin
 
 bool write_heatmap(const std::string& path, const std::vector<float>& error_map, int w, int h,
                    std::string& error) {
-    std::vector<unsigned char> rgb(error_map.size() * 3);
-    for (std::size_t i = 0; i < error_map.size(); ++i) {
-        const int index = static_cast<int>(std::lround(std::min(1.0f, std::max(0.0f, error_map[i])) * 255.0f));
-        for (int c = 0; c < 3; ++c)
-            rgb[i * 3 + c] = static_cast<unsigned char>(std::lround(rtpbr::kMagma[index][c] * 255.0f));
-    }
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) {
-        error = "cannot write heat map '" + path + "': " + OIIO::geterror();
-        return false;
-    }
-    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close()) {
-        error = "cannot write heat map '" + path + "': " + out->geterror();
+    std::vector<uint8_t> rgb(error_map.size() * 3);
+    for (std::size_t i = 0; i < error_map.size(); ++i)
+        rtpbr_tools::magma(error_map[i], &rgb[i * 3]);
+    if (!rtpbr_tools::write_image_u8(path, w, h, 3, rgb.data(), error)) {
+        error = "heat map: " + error;
         return false;
     }
     return true;

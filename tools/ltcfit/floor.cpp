@@ -30,10 +30,9 @@
 #include <mutex>
 #include <thread>
 
-#include <OpenImageIO/imageio.h>
-
 #include "ltc_fit.hpp"
 #include "ltc_floor.hpp"
+#include "rtpbr_tools/image.hpp"
 
 using namespace ltcfloor;
 
@@ -210,10 +209,9 @@ int main(int argc, char **argv) {
                                 diverging(c.map[size_t(y / s) * P + size_t(x / s)],
                                           &img[(size_t(y0 + y) * w + size_t(x0 + x)) * 3]);
                     }
-        auto o = OIIO::ImageOutput::create(png);
-        OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-        if (!o || !o->open(png, spec) || !o->write_image(OIIO::TypeDesc::UINT8, img.data()) || !o->close()) {
-            fprintf(stderr, "rtpbr-ltc-floor: error: cannot write %s\n", png.c_str());
+        std::string err;
+        if (!rtpbr_tools::write_image_u8(png, w, h, 3, img.data(), err)) {
+            fprintf(stderr, "rtpbr-ltc-floor: error: %s\n", err.c_str());
             return 1;
         }
     }

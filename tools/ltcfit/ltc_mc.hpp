@@ -19,6 +19,7 @@
 #include "rtpbr/sheen.h"
 #include "luts/rtpbr_ltc_tables.h"
 #include "luts/rtpbr_ltc_sheen_tables.h"
+#include "rtpbr_tools/rng.h"
 
 namespace ltcmc {
 
@@ -50,17 +51,10 @@ inline float4 fetch(const float *tab, float2 uv) {
     return a + (b - a) * fy;
 }
 
-// SplitMix64 (Steele et al. 2014): deterministic uniform floats in [0, 1).
-struct Rng {
-    uint64_t s;
-    explicit Rng(uint64_t seed) : s(seed) {}
-    uint64_t next() {
-        uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    float uniform() { return float(next() >> 40) * (1.0f / 16777216.0f); }
+// Deterministic uniform floats in [0, 1): SplitMix64 (tools/common).
+struct Rng : rtpbr_tools::SplitMix64 {
+    using SplitMix64::SplitMix64;
+    float uniform() { return uniform_float(); }
 };
 
 // A square light of half-size `half` at distance 1 in direction `dir`, facing the shading

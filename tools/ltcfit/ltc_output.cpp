@@ -10,7 +10,8 @@
 #include <sstream>
 #include <string>
 
-#include <OpenImageIO/imageio.h>
+#include "rtpbr_tools/colormap.hpp"
+#include "rtpbr_tools/image.hpp"
 
 namespace ltcfit {
 
@@ -143,34 +144,11 @@ bool read_header(const std::string &path, int size, PackedTables &t, std::string
 }
 
 bool write_exr(const std::string &path, int size, const std::vector<float> &rgba, std::string &err) {
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) {
-        err = "cannot create an EXR writer for " + path + ": " + OIIO::geterror();
-        return false;
-    }
-    OIIO::ImageSpec spec(size, size, 4, OIIO::TypeDesc::FLOAT);
-    spec.attribute("compression", "zip");
-    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgba.data()) || !out->close()) {
-        err = "writing " + path + ": " + out->geterror();
-        return false;
-    }
-    return true;
+    rtpbr_tools::ImageWrite image;
+    image.width = image.height = size, image.channels = 4, image.pixels = rgba.data();
+    image.attributes = {{"compression", "zip"}};
+    return rtpbr_tools::write_image(path, image, err);
 }
-
-namespace {
-
-// A perceptually ordered dark-to-bright map (control points of matplotlib's "magma").
-void colormap(double t, unsigned char rgb[3]) {
-    static const double pts[][3] = {{0.001, 0.000, 0.014}, {0.231, 0.059, 0.439}, {0.550, 0.161, 0.506},
-                                    {0.868, 0.288, 0.409}, {0.996, 0.624, 0.427}, {0.987, 0.991, 0.750}};
-    t = std::clamp(t, 0.0, 1.0) * 5.0;
-    int i = std::min(int(t), 4);
-    double f = t - i;
-    for (int k = 0; k < 3; k++)
-        rgb[k] = (unsigned char)std::lround(255.0 * (pts[i][k] + f * (pts[i + 1][k] - pts[i][k])));
-}
-
-} // namespace
 
 // One panel per table, left to right, each cell 4x4 pixels, x = roughness (0 left),
 // y = sqrt(1 - NoV) (0 top); colour = log10 of the relative L1 error from 1e-3 (dark) to
@@ -185,22 +163,12 @@ bool write_error_png(const std::string &path, const std::vector<const Table *> &
             for (int x = 0; x < n * scale; x++) {
                 double e = tabs[p]->cells[size_t(y / scale) * n + x / scale].error;
                 double t = (std::log10(std::max(e, 1e-3)) + 3.0) / 3.0;
-                colormap(t, &img[(size_t(y) * w + x + p * (n * scale + gap)) * 3]);
+                rtpbr_tools::magma_coarse(t, &img[(size_t(y) * w + x + p * (n * scale + gap)) * 3]);
             }
     for (int y = n * scale + gap; y < h; y++)
         for (int x = 0; x < w; x++)
-            colormap(double(x) / (w - 1), &img[(size_t(y) * w + x) * 3]);
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) {
-        err = "cannot create a PNG writer for " + path + ": " + OIIO::geterror();
-        return false;
-    }
-    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, img.data()) || !out->close()) {
-        err = "writing " + path + ": " + out->geterror();
-        return false;
-    }
-    return true;
+            rtpbr_tools::magma_coarse(double(x) / (w - 1), &img[(size_t(y) * w + x) * 3]);
+    return rtpbr_tools::write_image_u8(path, w, h, 3, img.data(), err);
 }
 
 } // namespace ltcfit

@@ -1,6 +1,7 @@
 // rtpbr-ltcfit --sheen-only: the KHR_materials_sheen lobe's LTC table, written to its own
 // header (rtpbr_ltc_sheen_tables.h) so that rtpbr_ltc_tables.h is untouched.
 #include "ltc_fit.hpp"
+#include "rtpbr_tools/markdown.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -66,31 +67,6 @@ bool write_sheen_header(const std::string &path, int n, const std::vector<float>
     return true;
 }
 
-bool update_section(const std::string &path, const std::string &section, std::string &err) {
-    std::string text;
-    {
-        std::ifstream in(path);
-        if (in) {
-            std::stringstream ss;
-            ss << in.rdbuf();
-            text = ss.str();
-        }
-    }
-    const std::string begin = "<!-- ltcfit-sheen:begin", end = "<!-- ltcfit-sheen:end -->\n";
-    size_t b = text.find(begin), e = text.find(end);
-    if (b != std::string::npos && e != std::string::npos && e > b)
-        text = text.substr(0, b) + section + text.substr(e + end.size());
-    else
-        text += (text.empty() ? "" : "\n") + section;
-    std::ofstream out(path);
-    out << text;
-    if (!out) {
-        err = "cannot write " + path;
-        return false;
-    }
-    return true;
-}
-
 } // namespace
 
 int run_sheen(const std::string &outDir, const FitSettings &s, bool quick) {
@@ -147,7 +123,7 @@ int run_sheen(const std::string &outDir, const FitSettings &s, bool quick) {
              es.empty() ? 0.0 : es[std::min(es.size() - 1, size_t(0.95 * double(es.size() - 1) + 0.5))],
              es.empty() ? 0.0 : es.back());
     o << line << "<!-- ltcfit-sheen:end -->\n";
-    ok = ok && update_section(outDir + "/sheen.md", o.str(), err);
+    ok = ok && rtpbr_tools::replace_markdown_section(outDir + "/sheen.md", "ltcfit-sheen", o.str(), err);
     if (!ok) {
         fprintf(stderr, "ltcfit: error: %s\n", err.c_str());
         return 1;

@@ -22,6 +22,7 @@
 
 #include "ltc_fit.hpp"
 #include "rtpbr/disney.h"
+#include "rtpbr_tools/markdown.hpp"
 
 using namespace ltcfit;
 
@@ -128,31 +129,6 @@ std::string generated_section(const Table &ggx, const Table &beckmann, const Fit
          "0..1 downwards; colour log10 error from 1e-3, dark, to 1, bright).\n";
     o << "<!-- ltcfit:end -->\n";
     return o.str();
-}
-
-bool update_markdown(const std::string &path, const std::string &tag, const std::string &section, std::string &err) {
-    std::string text;
-    {
-        std::ifstream in(path);
-        if (in) {
-            std::stringstream ss;
-            ss << in.rdbuf();
-            text = ss.str();
-        }
-    }
-    const std::string begin = "<!-- " + tag + ":begin", end = "<!-- " + tag + ":end -->\n";
-    size_t b = text.find(begin), e = text.find(end);
-    if (b != std::string::npos && e != std::string::npos && e > b)
-        text = text.substr(0, b) + section + text.substr(e + end.size());
-    else
-        text += (text.empty() ? "" : "\n") + section;
-    std::ofstream out(path);
-    out << text;
-    if (!out) {
-        err = "cannot write " + path;
-        return false;
-    }
-    return true;
 }
 
 int usage() {
@@ -319,10 +295,10 @@ int main(int argc, char **argv) {
     }
     if (!diffuseOnly) {
         ok = ok && write_error_png(outDir + "/ltc_fit_error.png", {&tables[0], &tables[1]}, err);
-        ok = ok && update_markdown(outDir + "/ltc.md", "ltcfit", generated_section(tables[0], tables[1], s, quick), err);
+        ok = ok && rtpbr_tools::replace_markdown_section(outDir + "/ltc.md", "ltcfit", generated_section(tables[0], tables[1], s, quick), err);
     }
     ok = ok && write_error_png(outDir + "/ltc_fit_error_disney_diffuse.png", {&diffuse}, err);
-    ok = ok && update_markdown(outDir + "/ltc.md", "ltcfit-diffuse", diffuse_section(diffuse, s, quick), err);
+    ok = ok && rtpbr_tools::replace_markdown_section(outDir + "/ltc.md", "ltcfit-diffuse", diffuse_section(diffuse, s, quick), err);
     if (!ok) {
         fprintf(stderr, "ltcfit: error: %s\n", err.c_str());
         return 1;

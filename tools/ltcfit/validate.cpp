@@ -13,9 +13,9 @@
 #include <mutex>
 #include <thread>
 
-#include <OpenImageIO/imageio.h>
-
 #include "ltc_mc.hpp"
+#include "rtpbr_tools/colormap.hpp"
+#include "rtpbr_tools/image.hpp"
 
 using namespace ltcmc;
 
@@ -23,16 +23,6 @@ namespace {
 
 int index_of(const std::vector<Lobe> &lobes, Lobe l) {
     return int(std::find(lobes.begin(), lobes.end(), l) - lobes.begin());
-}
-
-void colormap(double t, unsigned char rgb[3]) { // matplotlib "magma" control points
-    static const double pts[][3] = {{0.001, 0.000, 0.014}, {0.231, 0.059, 0.439}, {0.550, 0.161, 0.506},
-                                    {0.868, 0.288, 0.409}, {0.996, 0.624, 0.427}, {0.987, 0.991, 0.750}};
-    t = std::clamp(t, 0.0, 1.0) * 5.0;
-    int i = std::min(int(t), 4);
-    double f = t - i;
-    for (int k = 0; k < 3; k++)
-        rgb[k] = (unsigned char)std::lround(255.0 * (pts[i][k] + f * (pts[i + 1][k] - pts[i][k])));
 }
 
 // Error plot: one panel per (lobe, method): GGX top, Beckmann bottom; exact clipping,
@@ -75,7 +65,7 @@ bool write_plot(const std::string &path, const std::vector<Lobe> &lobes, const s
         for (int m = 0; m < 3; m++) {
             unsigned char rgb[3] = {160, 160, 160};
             if (o.significant)
-                colormap((std::log10(std::max(errs[m], 1e-3)) + 3.0) / 3.0, rgb);
+                rtpbr_tools::magma_coarse((std::log10(std::max(errs[m], 1e-3)) + 3.0) / 3.0, rgb);
             int x0 = m * (pw + gap) + ri * (nv * cell + group) + vi * cell;
             int y0 = lobe * (ph + gap) + o.cfg.position * (nh * cell + group) + hi * cell;
             for (int y = 0; y < cell; y++)
@@ -86,18 +76,8 @@ bool write_plot(const std::string &path, const std::vector<Lobe> &lobes, const s
     }
     for (int y = nl * ph + nl * gap; y < h; y++)
         for (int x = 0; x < w; x++)
-            colormap(double(x) / (w - 1), &img[(size_t(y) * w + x) * 3]);
-    auto o = OIIO::ImageOutput::create(path);
-    if (!o) {
-        err = "cannot create a PNG writer for " + path;
-        return false;
-    }
-    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-    if (!o->open(path, spec) || !o->write_image(OIIO::TypeDesc::UINT8, img.data()) || !o->close()) {
-        err = "writing " + path + ": " + o->geterror();
-        return false;
-    }
-    return true;
+            rtpbr_tools::magma_coarse(double(x) / (w - 1), &img[(size_t(y) * w + x) * 3]);
+    return rtpbr_tools::write_image_u8(path, w, h, 3, img.data(), err);
 }
 
 } // namespace

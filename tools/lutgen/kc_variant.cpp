@@ -6,6 +6,8 @@
 #include <rtpbr/microfacet.h>
 #include <rtpbr/sampling.h>
 
+#include "rtpbr_tools/rng.h"
+
 #include <cmath>
 
 #define KC_CAT2(a, b) a##_##b
@@ -15,24 +17,6 @@
 namespace kc {
 
 namespace {
-
-// PCG32 (O'Neill 2014), one stream per cell and replica: the tables do not depend on threading.
-struct Pcg32 {
-    std::uint64_t state, inc;
-    Pcg32(std::uint64_t seed, std::uint64_t stream) : state(0), inc((stream << 1u) | 1u) {
-        next();
-        state += seed;
-        next();
-    }
-    std::uint32_t next() {
-        std::uint64_t old = state;
-        state = old * 6364136223846793005ull + inc;
-        std::uint32_t xorshifted = static_cast<std::uint32_t>(((old >> 18u) ^ old) >> 27u);
-        std::uint32_t rot = static_cast<std::uint32_t>(old >> 59u);
-        return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
-    }
-    float uniform() { return static_cast<float>(next() >> 8) * (1.0f / 16777216.0f); }
-};
 
 std::uint64_t cell_stream(float mu, float r, std::uint64_t replica) {
     std::uint64_t a = static_cast<std::uint64_t>(std::llround(mu * 1e7));
@@ -68,12 +52,13 @@ void KC_NAME(kc_cell)(float mu, float perceptualRoughness, const float *etas, in
     double sumE = 0.0, sumE2 = 0.0;
     double sumF[kMaxEta] = {}, sumF2[kMaxEta] = {};
     for (int rep = 0; rep < spec.replicas; rep++) {
-        Pcg32 rng(spec.seed, cell_stream(mu, perceptualRoughness, static_cast<std::uint64_t>(rep)));
+        // PCG32, one stream per cell and replica: the tables do not depend on threading.
+        rtpbr_tools::Pcg32 rng(spec.seed, cell_stream(mu, perceptualRoughness, static_cast<std::uint64_t>(rep)));
         double accE = 0.0;
         double accF[kMaxEta] = {};
         for (int a = 0; a < n; a++) {
             for (int b = 0; b < n; b++) {
-                rtpbr::float2 u((a + rng.uniform()) / n, (b + rng.uniform()) / n);
+                rtpbr::float2 u((a + rng.uniform_float()) / n, (b + rng.uniform_float()) / n);
                 rtpbr::float3 wm = sample_vndf(wo, alpha, u);
                 rtpbr::float3 wi = rtpbr::Reflect_About(wo, wm);
                 if (!(wi.z > 0.0f))

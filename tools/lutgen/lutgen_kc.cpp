@@ -6,7 +6,7 @@
 
 #include <rtpbr/kulla_conty.h>
 
-#include <OpenImageIO/imageio.h>
+#include "rtpbr_tools/image.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -21,21 +21,16 @@
 namespace {
 
 bool write_exr(const std::string &path, const float *data, int w, int h, const std::string &desc) {
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) {
-        std::fprintf(stderr, "lutgen-kc: cannot create %s: %s\n", path.c_str(), OIIO::geterror().c_str());
+    rtpbr_tools::ImageWrite image;
+    image.width = w, image.height = h, image.channels = 1, image.pixels = data;
+    image.channel_names = {"R"};
+    // No capture date: regenerating gives byte-identical files.
+    image.attributes = {{"ImageDescription", desc}, {"compression", "zip"}, {"DateTime", ""}};
+    std::string error;
+    if (!rtpbr_tools::write_image(path, image, error)) {
+        std::fprintf(stderr, "lutgen-kc: %s\n", error.c_str());
         return false;
     }
-    OIIO::ImageSpec spec(w, h, 1, OIIO::TypeDesc::FLOAT);
-    spec.channelnames = {"R"};
-    spec.attribute("ImageDescription", desc);
-    spec.attribute("compression", "zip");
-    spec.attribute("DateTime", ""); // no capture date: regenerating gives byte-identical files
-    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, data)) {
-        std::fprintf(stderr, "lutgen-kc: cannot write %s: %s\n", path.c_str(), out->geterror().c_str());
-        return false;
-    }
-    out->close();
     return true;
 }
 

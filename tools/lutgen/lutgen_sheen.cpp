@@ -8,6 +8,9 @@
 // cell: a rerun gives the same bytes.
 #include <rtpbr/sheen.h>
 
+#include "rtpbr_tools/markdown.hpp"
+#include "rtpbr_tools/rng.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -26,18 +29,6 @@ constexpr int kSize = 32;
 constexpr int kVariants = 2; // 0 charlie (V_Charlie, the default), 1 neubelt (V_Neubelt)
 const char *const kVariantNames[kVariants] = {"charlie", "neubelt"};
 
-// SplitMix64 (Steele et al. 2014).
-struct Rng {
-    uint64_t s;
-    float uniform() {
-        uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        z ^= z >> 31;
-        return float(z >> 40) * (1.0f / 16777216.0f);
-    }
-};
-
 double node_mu(int i) {
     double x = double(i) / (kSize - 1);
     return i == 0 ? 1e-4 : x * x;
@@ -52,13 +43,13 @@ CellResult cell(int variant, int ir, int imu, int strata, int replicas) {
     const float alpha = rtpbr::Sheen_Alpha(r);
     const float mu = float(node_mu(imu));
     const glm::vec3 wo(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
-    Rng rng{0x7368656e00000000ull ^ (uint64_t(variant) << 24) ^ (uint64_t(ir) << 12) ^ uint64_t(imu)};
+    rtpbr_tools::SplitMix64 rng(0x7368656e00000000ull ^ (uint64_t(variant) << 24) ^ (uint64_t(ir) << 12) ^ uint64_t(imu));
     double sum = 0.0, sum2 = 0.0;
     for (int k = 0; k < replicas; k++) {
         double acc = 0.0;
         for (int j = 0; j < strata * strata; j++) {
-            glm::vec2 u((float(j % strata) + rng.uniform()) / float(strata),
-                        (float(j / strata) + rng.uniform()) / float(strata));
+            glm::vec2 u((float(j % strata) + rng.uniform_float()) / float(strata),
+                        (float(j / strata) + rng.uniform_float()) / float(strata));
             glm::vec3 wi = rtpbr::Sample_SheenLobe(wo, u, alpha);
             if (!(wi.z > 0.0f))
                 continue;
@@ -85,27 +76,6 @@ std::string float_literal(float x) {
     if (s.find_first_of(".e") == std::string::npos)
         s += ".0";
     return s + "f";
-}
-
-bool update_markdown(const std::string &path, const std::string &section) {
-    std::string text;
-    {
-        std::ifstream in(path);
-        if (in) {
-            std::stringstream ss;
-            ss << in.rdbuf();
-            text = ss.str();
-        }
-    }
-    const std::string begin = "<!-- lutgen-sheen:begin", end = "<!-- lutgen-sheen:end -->\n";
-    size_t b = text.find(begin), e = text.find(end);
-    if (b != std::string::npos && e != std::string::npos && e > b)
-        text = text.substr(0, b) + section + text.substr(e + end.size());
-    else
-        text += (text.empty() ? "" : "\n") + section;
-    std::ofstream out(path);
-    out << text;
-    return bool(out);
 }
 
 int usage() {
@@ -226,8 +196,9 @@ int main(int argc, char **argv) {
         md << line;
     }
     md << "<!-- lutgen-sheen:end -->\n";
-    if (!update_markdown(out + "/sheen.md", md.str())) {
-        std::fprintf(stderr, "lutgen-sheen: cannot write %s/sheen.md\n", out.c_str());
+    std::string error;
+    if (!rtpbr_tools::replace_markdown_section(out + "/sheen.md", "lutgen-sheen", md.str(), error)) {
+        std::fprintf(stderr, "lutgen-sheen: %s\n", error.c_str());
         return 1;
     }
     std::fprintf(stderr, "lutgen-sheen: wrote %s; max stderr charlie %.2e neubelt %.2e; max E %.4f / %.4f\n",

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
+#include "rtpbr_tools/image.hpp"
 
 #include "rtpbr/rtpbr.h"
 
@@ -53,21 +53,6 @@ bool parse_uint(const char *text, uint32_t &out)
     unsigned long v = std::strtoul(text, &end, 10);
     if (!end || *end || end == text || v > 1u << 20) return false;
     out = static_cast<uint32_t>(v);
-    return true;
-}
-
-bool write_image(const std::string &path, int w, int h, int channels, OIIO::TypeDesc type, const void *pixels)
-{
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) {
-        std::fprintf(stderr, "rtpbr-render: cannot write %s: %s\n", path.c_str(), OIIO::geterror().c_str());
-        return false;
-    }
-    OIIO::ImageSpec spec(w, h, channels, type);
-    if (!out->open(path, spec) || !out->write_image(type, pixels) || !out->close()) {
-        std::fprintf(stderr, "rtpbr-render: cannot write %s: %s\n", path.c_str(), out->geterror().c_str());
-        return false;
-    }
     return true;
 }
 
@@ -133,6 +118,11 @@ int main(int argc, char **argv)
     if (r == RTPBR_SUCCESS) r = rtpbr_gpu_scene_load_gltf(ctx, scene_path.c_str(), &scene);
     if (r == RTPBR_SUCCESS) r = rtpbr_renderer_create(ctx, &size, &renderer);
     if (r == RTPBR_SUCCESS) r = rtpbr_render(renderer, scene, &render);
+    std::string error;
+    auto write_out = [&error](bool written) {
+        if (!written) std::fprintf(stderr, "rtpbr-render: %s\n", error.c_str());
+        return written;
+    };
     if (r == RTPBR_SUCCESS) {
         int w = static_cast<int>(size.width), h = static_cast<int>(size.height);
         if (exr) {
@@ -140,13 +130,13 @@ int main(int argc, char **argv)
             r = rtpbr_read_radiance(renderer, rgba.data(), rgba.size() * sizeof(float));
             for (size_t p = 0; p < size_t(w) * h; ++p)
                 for (int c = 0; c < 3; ++c) rgb[3 * p + c] = rgba[4 * p + c];
-            if (r == RTPBR_SUCCESS && write_image(out_path, w, h, 3, OIIO::TypeDesc::FLOAT, rgb.data())) status = 0;
+            if (r == RTPBR_SUCCESS && write_out(rtpbr_tools::write_image_float(out_path, w, h, 3, rgb.data(), error))) status = 0;
         } else {
             std::vector<uint8_t> rgba(size_t(w) * h * 4), rgb(size_t(w) * h * 3);
             r = rtpbr_read_display(renderer, rgba.data(), rgba.size());
             for (size_t p = 0; p < size_t(w) * h; ++p)
                 for (int c = 0; c < 3; ++c) rgb[3 * p + c] = rgba[4 * p + c];
-            if (r == RTPBR_SUCCESS && write_image(out_path, w, h, 3, OIIO::TypeDesc::UINT8, rgb.data())) status = 0;
+            if (r == RTPBR_SUCCESS && write_out(rtpbr_tools::write_image_u8(out_path, w, h, 3, rgb.data(), error))) status = 0;
         }
     }
     if (r != RTPBR_SUCCESS) std::fprintf(stderr, "rtpbr-render: failed: %s\n", rtpbr_result_string(r));

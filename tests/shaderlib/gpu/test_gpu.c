@@ -37,6 +37,7 @@
 #include <cmocka.h>
 
 #include "kernel_cpu.h"
+#include "rtpbr_tools/rng.h"
 #include "vk_compute.h"
 
 #include "eval_glsl_ggx_hc_schlick.spv.h"
@@ -82,26 +83,18 @@ typedef struct test_state {
 
 /* ---- inputs ------------------------------------------------------------------------------ */
 
-static uint64_t splitmix64(uint64_t *s) {
-    uint64_t z = (*s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
-static float uniform01(uint64_t *s) { return (float)(splitmix64(s) >> 40) * 0x1p-24f; }
 
 static float input_number(uint64_t *s) {
-    uint32_t kind = (uint32_t)(splitmix64(s) % 64u);
+    uint32_t kind = (uint32_t)(rtpbr_tools_splitmix64_next(s) % 64u);
     if (kind < 2)
         return 0.0f;
     if (kind < 4)
         return 1.0f;
     if (kind < 12) {
-        float d = powf(10.0f, -6.0f + 4.0f * uniform01(s)); /* [1e-6, 1e-2] */
+        float d = powf(10.0f, -6.0f + 4.0f * rtpbr_tools_splitmix64_float(s)); /* [1e-6, 1e-2] */
         return kind < 8 ? d : 1.0f - d;
     }
-    return uniform01(s);
+    return rtpbr_tools_splitmix64_float(s);
 }
 
 /* ---- comparison ------------------------------------------------------------------------ */

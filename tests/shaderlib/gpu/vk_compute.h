@@ -1,8 +1,8 @@
 /* rtpbr GPU test: a minimal Vulkan compute harness.
  *
- * One instance with VK_LAYER_KHRONOS_validation (required) and synchronization validation,
- * a VK_EXT_debug_utils messenger that counts every message that is not plain loader chatter,
- * one device (lavapipe preferred: a CPU device, or one named llvmpipe), one compute queue.
+ * The tests' Vulkan host (tests/common/vk_host.h): one instance with VK_LAYER_KHRONOS_validation
+ * (required) and synchronization validation, a VK_EXT_debug_utils messenger that counts every
+ * message that is not plain loader chatter, one device (lavapipe preferred), one compute queue.
  * vkc_dispatch() runs one compute shader over host-visible storage buffers and reads the
  * result back. Every failure is a result code plus a message in the context (or in `err` for
  * vkc_create); nothing aborts.

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "rtpbr_tools/rng.h"
+
 namespace ltcref {
 
 struct d3 {
@@ -19,17 +21,10 @@ inline d3 cross(d3 a, d3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b
 inline double len(d3 a) { return std::sqrt(dot(a, a)); }
 inline d3 unit(d3 a) { return a * (1.0 / len(a)); }
 
-// Deterministic generator (SplitMix64; Steele et al. 2014), uniform doubles in [0, 1).
-struct Rng {
-    uint64_t s;
-    explicit Rng(uint64_t seed) : s(seed) {}
-    uint64_t next() {
-        uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
+// Deterministic generator (SplitMix64, tools/common), uniform doubles in [0, 1).
+struct Rng : rtpbr_tools::SplitMix64 {
+    using SplitMix64::SplitMix64;
+    double uniform() { return uniform_double(); }
     double range(double a, double b) { return a + (b - a) * uniform(); }
     d3 direction() { // uniform on the sphere
         double z = range(-1.0, 1.0), phi = range(0.0, 2.0 * M_PI), r = std::sqrt(1.0 - z * z);

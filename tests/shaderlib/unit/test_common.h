@@ -8,29 +8,17 @@
 #include <stdint.h>
 #include <stddef.h>
 #include "rtpbr_shim.h"
+#include "rtpbr_tools/rng.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
 
-/* PCG32 (O'Neill 2014, pcg-random.org: the minimal pcg32 generator). */
-typedef struct test_rng { uint64_t state, inc; } test_rng;
-static inline uint32_t test_rng_u32(test_rng *r) {
-    uint64_t old = r->state;
-    r->state = old * 6364136223846793005ULL + r->inc;
-    uint32_t xorshifted = (uint32_t)(((old >> 18u) ^ old) >> 27u);
-    uint32_t rot = (uint32_t)(old >> 59u);
-    return (xorshifted >> rot) | (xorshifted << ((-rot) & 31));
-}
-static inline test_rng test_rng_make(uint64_t seed) {
-    test_rng r = {0u, (seed << 1u) | 1u};
-    test_rng_u32(&r);
-    r.state += 0x853c49e6748fea9bULL + seed;
-    test_rng_u32(&r);
-    return r;
-}
+/* PCG32 (tools/common), seeded as pcg-random.org's minimal example seeds stream `seed`. */
+typedef rtpbr_tools_pcg32 test_rng;
+static inline test_rng test_rng_make(uint64_t seed) { return rtpbr_tools_pcg32_make(0x853c49e6748fea9bULL + seed, seed); }
 /* uniform in [0, 1) with 24 random bits, exactly representable as float */
-static inline float test_rng_float(test_rng *r) { return (float)(test_rng_u32(r) >> 8) * (1.0f / 16777216.0f); }
+static inline float test_rng_float(test_rng *r) { return rtpbr_tools_pcg32_float(r); }
 
 static inline rtpbr_v3 v3(float x, float y, float z) { rtpbr_v3 v = {x, y, z}; return v; }
 static inline rtpbr_v3 v3_spherical(double theta, double phi) {
