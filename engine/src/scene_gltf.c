@@ -5,7 +5,8 @@
 //   base_color.rgb            -> base_color            (alpha ignored: everything is opaque)
 //   metallic, roughness       -> metallic, roughness   (perceptual; alpha = r^2)
 //   emission                  -> emission              (emissiveFactor x emissive_strength)
-//   ior                       -> ior                   (0, "F0 = 1" in KHR_materials_ior, -> 1e6)
+//   ior                       -> ior                   (0, Fresnel 1 in KHR_materials_ior, ->
+//                                                       RTPBR_IOR_FRESNEL_ONE)
 //   specular_factor           -> specular              (0 -> "none", i.e. -1 in the desc)
 //   specular_color            -> specular_color
 //   double_sided              -> double_sided          (emission on both sides)
@@ -13,7 +14,7 @@
 //                                                         repeat; the file's sampler modes
 //                                                         and mipmaps are not used)
 //   normal texture, normal_scale -> the same (tangents from the loader)
-//   clearcoat, 1 - clearcoat_gloss -> clearcoat, clearcoat_roughness (KHR_materials_clearcoat)
+//   clearcoat, clearcoat_roughness -> the same         (KHR_materials_clearcoat)
 //   anisotropic, anisotropy_rotation -> anisotropy, anisotropy_rotation (KHR_materials_anisotropy)
 //   model DISNEY + subsurface, specular, specular_tint, sheen, sheen_tint, clearcoat,
 //   clearcoat_gloss, anisotropic -> model, disney.*    (Burley 2012)
@@ -108,7 +109,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         d->metallic = m->metallic;
         d->roughness = m->roughness;
         memcpy(d->emission, m->emission, sizeof d->emission);
-        d->ior = m->ior == 0.0f ? 1e6f : m->ior;
+        d->ior = m->ior == 0.0f ? RTPBR_IOR_FRESNEL_ONE : m->ior;
         d->specular = m->specular_factor == 0.0f ? -1.0f : m->specular_factor;
         memcpy(d->specular_color, m->specular_color, sizeof d->specular_color);
         d->double_sided = m->double_sided;
@@ -134,7 +135,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
             };
         } else {
             d->clearcoat = m->clearcoat;
-            d->clearcoat_roughness = 1.0f - m->clearcoat_gloss;
+            d->clearcoat_roughness = m->clearcoat_roughness;
             d->anisotropy = m->anisotropic;
             d->anisotropy_rotation = m->anisotropy_rotation;
             memcpy(d->sheen_color, m->sheen_color, sizeof d->sheen_color);
