@@ -138,7 +138,7 @@ static void check_scene(const rtpbr_gltf_scene* s) {
                                 m->specular_color[0], m->specular_color[1], m->specular_color[2],
                                 m->specular_factor, m->ior, m->anisotropic, m->anisotropy_rotation, m->sheen,
                                 m->sheen_tint, m->sheen_color[0], m->sheen_color[1], m->sheen_color[2],
-                                m->sheen_roughness, m->clearcoat, m->clearcoat_gloss, m->emission[0],
+                                m->sheen_roughness, m->clearcoat, m->clearcoat_roughness, m->clearcoat_gloss, m->emission[0],
                                 m->emission[1], m->emission[2], m->emissive_strength, m->normal_scale,
                                 m->alpha_cutoff};
         for (size_t k = 0; k < sizeof values / sizeof *values; ++k) check(isfinite(values[k]), "finite material");

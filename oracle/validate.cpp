@@ -115,7 +115,7 @@ Result validateScene(const rtpbr_gltf_scene &scene, const RenderSettings &s, std
         const float vals[] = {mat.base_color[0], mat.base_color[1], mat.base_color[2], mat.metallic, mat.roughness,
                               mat.ior, mat.specular_factor, mat.specular_color[0], mat.specular_color[1],
                               mat.specular_color[2], mat.anisotropic, mat.anisotropy_rotation, mat.specular,
-                              mat.clearcoat, mat.clearcoat_gloss, mat.normal_scale, mat.subsurface,
+                              mat.clearcoat, mat.clearcoat_roughness, mat.clearcoat_gloss, mat.normal_scale, mat.subsurface,
                               mat.specular_tint, mat.sheen, mat.sheen_tint};
         for (float v : vals)
             if (!finite(v)) {

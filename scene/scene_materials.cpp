@@ -416,7 +416,7 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         if (!r.number(*ext, "clearcoatFactor", 0.0, &d)) return false;
         m.clearcoat = clamp01(ctx, float(d), index, "clearcoatFactor");
         if (!r.number(*ext, "clearcoatRoughnessFactor", 0.0, &d)) return false;
-        m.clearcoat_gloss = 1.0f - clamp01(ctx, float(d), index, "clearcoatRoughnessFactor");
+        m.clearcoat_roughness = clamp01(ctx, float(d), index, "clearcoatRoughnessFactor");
     }
     // KHR_materials_sheen
     if ((ext = find_extension(src.extensions, "KHR_materials_sheen"))) {

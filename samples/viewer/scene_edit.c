@@ -61,7 +61,7 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         d->metallic = m->metallic;
         d->roughness = m->roughness;
         memcpy(d->emission, m->emission, sizeof d->emission);
-        d->ior = m->ior == 0.0f ? 1e6f : m->ior;
+        d->ior = m->ior == 0.0f ? RTPBR_IOR_FRESNEL_ONE : m->ior;
         d->specular = m->specular_factor == 0.0f ? -1.0f : m->specular_factor;
         memcpy(d->specular_color, m->specular_color, sizeof d->specular_color);
         d->double_sided = m->double_sided;
@@ -80,7 +80,7 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
                 .clearcoat_gloss = m->clearcoat_gloss, .anisotropic = m->anisotropic};
         } else {
             d->clearcoat = m->clearcoat;
-            d->clearcoat_roughness = 1.0f - m->clearcoat_gloss;
+            d->clearcoat_roughness = m->clearcoat_roughness;
             d->anisotropy = m->anisotropic;
             d->anisotropy_rotation = m->anisotropy_rotation;
             memcpy(d->sheen_color, m->sheen_color, sizeof d->sheen_color);

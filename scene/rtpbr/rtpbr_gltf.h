@@ -241,8 +241,9 @@ typedef struct rtpbr_gltf_material {
     float sheen_color[3];     /* KHR sheenColorFactor (linear RGB)          */
     float sheen_roughness;    /* KHR sheenRoughnessFactor (perceptual)      */
     float clearcoat;          /* KHR clearcoatFactor / Disney clearcoat     */
-    float clearcoat_gloss;    /* Disney clearcoatGloss; from KHR:
-                                 1 - clearcoatRoughnessFactor              */
+    float clearcoat_roughness;/* KHR clearcoatRoughnessFactor as stored
+                                 (perceptual), default 0                   */
+    float clearcoat_gloss;    /* Disney clearcoatGloss only, default 1      */
     float emission[3];        /* radiance = emissiveFactor × emissive_strength */
     float emissive_strength;  /* KHR_materials_emissive_strength, default 1 */
     float normal_scale;       /* normalTexture.scale, default 1             */
