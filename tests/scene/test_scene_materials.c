@@ -72,7 +72,8 @@ static void test_khr_extensions(void** state) {
     near(m->specular_color[0], 0.9f, "specular color r");
     near(m->specular_color[2], 0.7f, "specular color b");
     near(m->clearcoat, 0.6f, "clearcoat");
-    near(m->clearcoat_gloss, 0.8, "clearcoat gloss = 1 - roughness");
+    near(m->clearcoat_roughness, 0.2, "clearcoatRoughnessFactor as stored");
+    near(m->clearcoat_gloss, 1.0, "clearcoat gloss: Disney only (default 1)");
     near(m->sheen, 0.5f, "sheen = max(sheenColor)");
     near(m->sheen_color[1], 0.5f, "sheen color");
     near(m->sheen_roughness, 0.3f, "sheen roughness");
