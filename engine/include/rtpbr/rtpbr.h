@@ -253,7 +253,7 @@ typedef struct rtpbr_material_desc {
 } rtpbr_material_desc;
 
 // Lower clamp of perceptual roughness (Filament's): RTPBR_MATERIAL_MIN_ROUGHNESS of
-// shaderlib/rtpbr/material.h, which applies it (tests/shaderlib/unit/test_material.cpp asserts
+// shaderlib/rtpbr/material.h, which applies it (tests/shaderlib/material/test_material.cpp asserts
 // that the two are equal).
 #define RTPBR_MIN_ROUGHNESS 0.045f
 // rtpbr_material_desc.ior of KHR_materials_ior's ior 0: "the effective IOR becomes positive
