@@ -39,28 +39,27 @@ constexpr int kLayerAlbedoWalks = 512;
 // The inputs of the shader library's material resolve from a loader material, before textures.
 rtpbr::MaterialInputs materialInputs(const rtpbr_gltf_material &m) {
     rtpbr::MaterialInputs in;
-    in.model = m.model == RTPBR_GLTF_MATERIAL_DISNEY ? rtpbr::RTPBR_MATERIAL_MODEL_DISNEY
-                                                     : rtpbr::RTPBR_MATERIAL_MODEL_METALLIC_ROUGHNESS;
+    in.model = m.has_disney ? rtpbr::RTPBR_MATERIAL_MODEL_DISNEY : rtpbr::RTPBR_MATERIAL_MODEL_METALLIC_ROUGHNESS;
     in.baseColor = glm::make_vec3(m.base_color);
     in.metallic = m.metallic;
     in.roughness = m.roughness;
-    in.ior = m.ior;
-    in.specularFactor = m.specular_factor;
-    in.specularColor = glm::make_vec3(m.specular_color);
-    in.clearcoat = m.clearcoat;
-    in.clearcoatRoughness = m.clearcoat_roughness;
-    in.sheenColor = glm::make_vec3(m.sheen_color);
-    in.sheenRoughness = m.sheen_roughness;
-    in.anisotropyStrength = m.anisotropic;
+    in.ior = m.ior.ior;
+    in.specularFactor = m.specular.specular_factor;
+    in.specularColor = glm::make_vec3(m.specular.specular_color_factor);
+    in.clearcoat = m.clearcoat.clearcoat_factor;
+    in.clearcoatRoughness = m.clearcoat.clearcoat_roughness_factor;
+    in.sheenColor = glm::make_vec3(m.sheen.sheen_color_factor);
+    in.sheenRoughness = m.sheen.sheen_roughness_factor;
+    in.anisotropyStrength = m.anisotropy.anisotropy_strength;
     in.disney = rtpbr::Disney_DefaultMaterial();
-    in.disney.subsurface = m.subsurface;
-    in.disney.specular = m.specular;
-    in.disney.specularTint = m.specular_tint;
-    in.disney.anisotropic = m.anisotropic;
-    in.disney.sheen = m.sheen;
-    in.disney.sheenTint = m.sheen_tint;
-    in.disney.clearcoat = m.clearcoat;
-    in.disney.clearcoatGloss = m.clearcoat_gloss;
+    in.disney.subsurface = m.disney.subsurface;
+    in.disney.specular = m.disney.specular;
+    in.disney.specularTint = m.disney.specular_tint;
+    in.disney.anisotropic = m.disney.anisotropic;
+    in.disney.sheen = m.disney.sheen;
+    in.disney.sheenTint = m.disney.sheen_tint;
+    in.disney.clearcoat = m.disney.clearcoat;
+    in.disney.clearcoatGloss = m.disney.clearcoat_gloss;
     return in;
 }
 
@@ -400,11 +399,11 @@ private:
         out.perceptualRoughness = p.tableRoughness;
         out.specularWeight = p.specularWeight;
         out.layer = layers_[uint32_t(sp.material)];
-        if (p.alphas.x != p.alphas.y && m.model == RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS &&
-            m.anisotropy_rotation != 0.0f) {
+        float rotation = m.anisotropy.anisotropy_rotation;
+        if (p.alphas.x != p.alphas.y && !p.disney && rotation != 0.0f) {
             // KHR_materials_anisotropy: direction = T cos + B sin, B = w cross(N, T) (glTF).
             vec3 b = sp.tangentSign * glm::cross(sp.ns, sp.tangent);
-            float c = std::cos(m.anisotropy_rotation), s = std::sin(m.anisotropy_rotation);
+            float c = std::cos(rotation), s = std::sin(rotation);
             sp.tangent = c * sp.tangent + s * b;
         }
         if (p.disney) { // Burley's coat is part of the closed-form Disney lobes (bsdf.h)
@@ -492,9 +491,9 @@ Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Acc
     for (uint32_t m = 0; m < scene.material_count; m++) {
         const rtpbr_gltf_material &mat = scene.materials[m];
         bool mayBeDielectric = mat.metallic < 1.0f || mat.metallic_roughness_texture >= 0;
-        if (!mayBeDielectric || !(mat.specular_factor > 0.0f))
+        if (!mayBeDielectric || !(mat.specular.specular_factor > 0.0f))
             continue;
-        float eta = rtpbr::Material_DielectricEta(mat.ior); // KHR_materials_ior (material.h)
+        float eta = rtpbr::Material_DielectricEta(mat.ior.ior); // KHR_materials_ior (material.h)
         for (const auto &t : layerTables)
             if (t->eta() == eta)
                 layers[m] = t.get();
