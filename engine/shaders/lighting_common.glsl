@@ -220,7 +220,7 @@ Surface surface_terms(vec4 g0, float roughness, Material m, float NoV, vec3 anis
     s.Eoc = coated ? kc_E(NoV, s.coatR) : 1.0f;
     s.Eavgc = coated ? kc_Eavg(s.coatR) : 1.0f;
 #if RTPBR_MULTISCATTER
-    s.msCoat = s.coat * KC_FmsColor(F_Avg_Schlick(RTPBR_F3(0.04f), 1.0f), s.Eavgc);
+    s.msCoat = s.coat * KC_FmsColor(F_Avg_Schlick(RTPBR_F3(RTPBR_MATERIAL_COAT_F0), 1.0f), s.Eavgc);
 #else
     s.msCoat = RTPBR_F3(0.0f);
 #endif
