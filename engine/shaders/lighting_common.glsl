@@ -92,8 +92,9 @@ float sheen_E(float mu, float r) { return textureLod(lut_sheen_e, Sheen_TableCoo
 // lobe by k = sqrt(alpha_t / alpha_b) along the direction (LTC_AnisotropicInverseMatrix).
 struct Surface {
     bool disney;
-    DisneyMaterial dm;    // sanitised (Disney materials only); the fields up to baseAttenuation
-                          // are material.h's Material_Resolve
+    DisneyMaterial dm;    // sanitised (Disney materials only); the material fields up to
+                          // baseAttenuation come from material.h's Material_Resolve (NoV and
+                          // the anisotropy direction from the G-buffer)
     vec3 baseColor;
     float metallic;
     float roughness;      // perceptual, the G-buffer's
