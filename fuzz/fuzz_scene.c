@@ -134,13 +134,17 @@ static void check_scene(const rtpbr_gltf_scene* s) {
     for (uint32_t i = 0; i < s->material_count; ++i) {
         const rtpbr_gltf_material* m = &s->materials[i];
         const float values[] = {m->base_color[0], m->base_color[1], m->base_color[2], m->base_color[3],
-                                m->metallic, m->roughness, m->subsurface, m->specular, m->specular_tint,
-                                m->specular_color[0], m->specular_color[1], m->specular_color[2],
-                                m->specular_factor, m->ior, m->anisotropic, m->anisotropy_rotation, m->sheen,
-                                m->sheen_tint, m->sheen_color[0], m->sheen_color[1], m->sheen_color[2],
-                                m->sheen_roughness, m->clearcoat, m->clearcoat_gloss, m->emission[0],
-                                m->emission[1], m->emission[2], m->emissive_strength, m->normal_scale,
-                                m->alpha_cutoff};
+                                m->metallic, m->roughness, m->ior.ior, m->specular.specular_factor,
+                                m->specular.specular_color_factor[0], m->specular.specular_color_factor[1],
+                                m->specular.specular_color_factor[2], m->clearcoat.clearcoat_factor,
+                                m->clearcoat.clearcoat_roughness_factor, m->sheen.sheen_color_factor[0],
+                                m->sheen.sheen_color_factor[1], m->sheen.sheen_color_factor[2],
+                                m->sheen.sheen_roughness_factor, m->anisotropy.anisotropy_strength,
+                                m->anisotropy.anisotropy_rotation, m->emissive_strength.emissive_strength,
+                                m->disney.subsurface, m->disney.specular, m->disney.specular_tint,
+                                m->disney.anisotropic, m->disney.sheen, m->disney.sheen_tint, m->disney.clearcoat,
+                                m->disney.clearcoat_gloss, m->emission[0], m->emission[1], m->emission[2],
+                                m->normal_scale, m->alpha_cutoff};
         for (size_t k = 0; k < sizeof values / sizeof *values; ++k) check(isfinite(values[k]), "finite material");
         const int32_t t[4] = {m->base_color_texture, m->metallic_roughness_texture, m->normal_texture,
                               m->emission_texture};

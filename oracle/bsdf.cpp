@@ -3,6 +3,7 @@
 
 #include <luts/rtpbr_kc_tables.h>
 #include <luts/rtpbr_sheen_tables.h>
+#include <rtpbr/material.h>
 #include <rtpbr/microfacet.h>
 #include <rtpbr/sampling.h>
 #include <rtpbr/sheen.h>
@@ -14,7 +15,7 @@ namespace rtpbr_oracle {
 namespace {
 
 float luminance(vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-constexpr float kClearcoatF0 = 0.04f; // KHR_materials_clearcoat: ior 1.5
+constexpr float kClearcoatF0 = rtpbr::RTPBR_MATERIAL_COAT_F0; // KHR_materials_clearcoat: ior 1.5
 constexpr float kInvPi = 0.31830988618379067f;
 
 float muOfNode(int i, int n) {

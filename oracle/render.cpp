@@ -9,6 +9,7 @@
 #include "texture.h"
 
 #include <rtpbr/fresnel.h>
+#include <rtpbr/material.h>
 #include <rtpbr/ndf.h>
 
 #include <embree3/rtcore.h>
@@ -35,9 +36,33 @@ constexpr uint32_t kTileSize = 16;
 // Walks per node of a dielectric layer's albedo table (standard error < 0.002 per node).
 constexpr int kLayerAlbedoWalks = 512;
 
-// The IOR of a dielectric layer: glTF's ior clamped to [1, 4] (ior 0, "F0 = 1" in
-// KHR_materials_ior, becomes 4: F0 = 0.36; noted in README.md).
-float layerEta(float ior) { return ior > 1.0f ? std::min(ior, 4.0f) : (ior == 0.0f ? 4.0f : 1.0f); }
+// The inputs of the shader library's material resolve from a loader material, before textures.
+rtpbr::MaterialInputs materialInputs(const rtpbr_gltf_material &m) {
+    rtpbr::MaterialInputs in;
+    in.model = m.has_disney ? rtpbr::RTPBR_MATERIAL_MODEL_DISNEY : rtpbr::RTPBR_MATERIAL_MODEL_METALLIC_ROUGHNESS;
+    in.baseColor = glm::make_vec3(m.base_color);
+    in.metallic = m.metallic;
+    in.roughness = m.roughness;
+    in.ior = m.ior.ior;
+    in.specularFactor = m.specular.specular_factor;
+    in.specularColor = glm::make_vec3(m.specular.specular_color_factor);
+    in.clearcoat = m.clearcoat.clearcoat_factor;
+    in.clearcoatRoughness = m.clearcoat.clearcoat_roughness_factor;
+    in.sheenColor = glm::make_vec3(m.sheen.sheen_color_factor);
+    in.sheenRoughness = m.sheen.sheen_roughness_factor;
+    in.anisotropyStrength = m.anisotropy.anisotropy_strength;
+    in.disney = rtpbr::Disney_DefaultMaterial();
+    in.disney.subsurface = m.disney.subsurface;
+    in.disney.specular = m.disney.specular;
+    in.disney.specularTint = m.disney.specular_tint;
+    in.disney.anisotropic = m.disney.anisotropic;
+    in.disney.sheen = m.disney.sheen;
+    in.disney.sheenTint = m.disney.sheen_tint;
+    in.disney.clearcoat = m.disney.clearcoat;
+    in.disney.clearcoatGloss = m.disney.clearcoat_gloss;
+    return in;
+}
+
 constexpr uint32_t kRussianRouletteDepth = 3;
 
 
@@ -353,71 +378,42 @@ private:
             sp->ns = mapped / ml;
     }
 
+    // The material at a surface point: the loader's factors times the textures, resolved by the
+    // shader library's Material_Resolve (material.h), the function the engine's shaders call.
     SurfaceMaterial material(SurfacePoint &sp) const {
         const rtpbr_gltf_material &m = scene_.materials[sp.material];
-        SurfaceMaterial out;
-        vec3 base = glm::make_vec3(m.base_color);
-        float metallic = m.metallic;
-        float rough = m.roughness;
+        rtpbr::MaterialInputs in = materialInputs(m);
         if (m.base_color_texture >= 0 && uint32_t(m.base_color_texture) < textures_.size())
-            base *= vec3(textures_[uint32_t(m.base_color_texture)].sample(sp.uv[0], sp.uv[1]));
+            in.baseColor *= vec3(textures_[uint32_t(m.base_color_texture)].sample(sp.uv[0], sp.uv[1]));
         if (m.metallic_roughness_texture >= 0 && uint32_t(m.metallic_roughness_texture) < textures_.size()) {
             glm::vec4 mr = textures_[uint32_t(m.metallic_roughness_texture)].sample(sp.uv[0], sp.uv[1]);
-            rough *= mr.y;
-            metallic *= mr.z;
+            in.roughness *= mr.y;
+            in.metallic *= mr.z;
         }
-        out.baseColor = glm::clamp(base, vec3(0.0f), vec3(1.0f));
-        out.metallic = glm::clamp(metallic, 0.0f, 1.0f);
-        float alpha = rtpbr::Alpha_FromPerceptual(rough);
-        float aniso = glm::clamp(m.anisotropic, 0.0f, 1.0f);
-        if (aniso > 0.0f) {
-            if (m.model == RTPBR_GLTF_MATERIAL_DISNEY) {
-                glm::vec2 a = rtpbr::Alpha_Anisotropic(alpha, aniso);
-                out.alphaX = a.x;
-                out.alphaY = a.y;
-            } else {
-                // KHR_materials_anisotropy: alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha.
-                out.alphaX = rtpbr::Alpha_Clamp(alpha + (1.0f - alpha) * aniso * aniso);
-                out.alphaY = alpha;
-            }
-            if (m.anisotropy_rotation != 0.0f) {
-                // KHR_materials_anisotropy: direction = T cos + B sin, B = w cross(N, T) (glTF).
-                vec3 b = sp.tangentSign * glm::cross(sp.ns, sp.tangent);
-                float c = std::cos(m.anisotropy_rotation), s = std::sin(m.anisotropy_rotation);
-                sp.tangent = c * sp.tangent + s * b;
-            }
-        } else {
-            out.alphaX = out.alphaY = alpha;
-        }
-        out.perceptualRoughness = std::sqrt(std::sqrt(out.alphaX * out.alphaY));
+        rtpbr::MaterialParams p = rtpbr::Material_Resolve(in);
+        SurfaceMaterial out;
+        out.baseColor = p.baseColor;
+        out.metallic = p.metallic;
+        out.alphaX = p.alphas.x;
+        out.alphaY = p.alphas.y;
+        out.perceptualRoughness = p.tableRoughness;
+        out.specularWeight = p.specularWeight;
         out.layer = layers_[uint32_t(sp.material)];
-        if (m.model == RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS && m.clearcoat > 0.0f) {
-            out.clearcoat = glm::clamp(m.clearcoat, 0.0f, 1.0f);
-            out.clearcoatAlpha = rtpbr::Alpha_FromPerceptual(1.0f - m.clearcoat_gloss);
+        float rotation = m.anisotropy.anisotropy_rotation;
+        if (p.alphas.x != p.alphas.y && !p.disney && rotation != 0.0f) {
+            // KHR_materials_anisotropy: direction = T cos + B sin, B = w cross(N, T) (glTF).
+            vec3 b = sp.tangentSign * glm::cross(sp.ns, sp.tangent);
+            float c = std::cos(rotation), s = std::sin(rotation);
+            sp.tangent = c * sp.tangent + s * b;
         }
-        out.specularWeight = glm::clamp(m.specular_factor, 0.0f, 1.0f);
-        if (m.model == RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS) { // KHR_materials_sheen (bsdf.h)
-            out.sheenColor = glm::clamp(glm::make_vec3(m.sheen_color), vec3(0.0f), vec3(1.0f));
-            out.sheenRoughness = glm::clamp(m.sheen_roughness, 0.0f, 1.0f);
-        }
-        if (m.model == RTPBR_GLTF_MATERIAL_DISNEY) {
-            rtpbr::DisneyMaterial &d = out.disneyParams;
-            d.baseColor = out.baseColor;
-            d.metallic = out.metallic;
-            d.subsurface = m.subsurface;
-            d.specular = m.specular;
-            d.specularTint = m.specular_tint;
-            d.roughness = glm::clamp(rough, 0.0f, 1.0f);
-            d.anisotropic = m.anisotropic;
-            d.sheen = m.sheen;
-            d.sheenTint = m.sheen_tint;
-            d.clearcoat = m.clearcoat;
-            d.clearcoatGloss = m.clearcoat_gloss;
-            glm::vec2 a = rtpbr::Disney_SpecularAlphas(rtpbr::Disney_SanitizeMaterial(d));
-            out.alphaX = a.x;
-            out.alphaY = a.y;
+        if (p.disney) { // Burley's coat is part of the closed-form Disney lobes (bsdf.h)
             out.disney = true;
-            out.clearcoat = 0.0f;
+            out.disneyParams = p.dm;
+        } else {
+            out.clearcoat = p.coat;
+            out.clearcoatAlpha = p.coatAlpha;
+            out.sheenColor = p.sheenColor; // KHR_materials_sheen (bsdf.h)
+            out.sheenRoughness = p.sheenRoughness;
         }
         return out;
     }
@@ -495,9 +491,9 @@ Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Acc
     for (uint32_t m = 0; m < scene.material_count; m++) {
         const rtpbr_gltf_material &mat = scene.materials[m];
         bool mayBeDielectric = mat.metallic < 1.0f || mat.metallic_roughness_texture >= 0;
-        if (!mayBeDielectric || !(mat.specular_factor > 0.0f))
+        if (!mayBeDielectric || !(mat.specular.specular_factor > 0.0f))
             continue;
-        float eta = layerEta(mat.ior);
+        float eta = rtpbr::Material_DielectricEta(mat.ior.ior); // KHR_materials_ior (material.h)
         for (const auto &t : layerTables)
             if (t->eta() == eta)
                 layers[m] = t.get();

@@ -112,11 +112,16 @@ Result validateScene(const rtpbr_gltf_scene &scene, const RenderSettings &s, std
     }
     for (uint32_t m = 0; m < scene.material_count; m++) {
         const rtpbr_gltf_material &mat = scene.materials[m];
+        const rtpbr_gltf_disney &dn = mat.disney;
         const float vals[] = {mat.base_color[0], mat.base_color[1], mat.base_color[2], mat.metallic, mat.roughness,
-                              mat.ior, mat.specular_factor, mat.specular_color[0], mat.specular_color[1],
-                              mat.specular_color[2], mat.anisotropic, mat.anisotropy_rotation, mat.specular,
-                              mat.clearcoat, mat.clearcoat_gloss, mat.normal_scale, mat.subsurface,
-                              mat.specular_tint, mat.sheen, mat.sheen_tint};
+                              mat.ior.ior, mat.specular.specular_factor, mat.specular.specular_color_factor[0],
+                              mat.specular.specular_color_factor[1], mat.specular.specular_color_factor[2],
+                              mat.anisotropy.anisotropy_strength, mat.anisotropy.anisotropy_rotation,
+                              mat.clearcoat.clearcoat_factor, mat.clearcoat.clearcoat_roughness_factor,
+                              mat.sheen.sheen_color_factor[0], mat.sheen.sheen_color_factor[1],
+                              mat.sheen.sheen_color_factor[2], mat.sheen.sheen_roughness_factor, mat.normal_scale,
+                              dn.subsurface, dn.specular, dn.specular_tint, dn.anisotropic, dn.sheen, dn.sheen_tint,
+                              dn.clearcoat, dn.clearcoat_gloss};
         for (float v : vals)
             if (!finite(v)) {
                 *error = fmt("material %u: non-finite parameter", m);

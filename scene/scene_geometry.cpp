@@ -455,7 +455,9 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     // them (KHR_materials_anisotropy: "when tangents are not specified, client implementations
     // should calculate tangents"; Disney's anisotropy follows the tangent too).
     p.tangents.assign(4 * n, 0.0f);
-    const bool wants_tangents = scene.materials[material].normal_texture >= 0 || scene.materials[material].anisotropic > 0.0f;
+    const rtpbr_gltf_material& mat = scene.materials[material];
+    const bool wants_tangents = mat.normal_texture >= 0 || mat.anisotropy.anisotropy_strength > 0.0f ||
+                                (mat.has_disney && mat.disney.anisotropic > 0.0f);
     if (has_tangents) {
         for (size_t i = 0; i < n; ++i) {
             Vec3 t = {read_component(tan, i, 0), read_component(tan, i, 1), read_component(tan, i, 2)};

@@ -91,12 +91,6 @@ float f0_from_ior(float ior) {
     return r * r;
 }
 
-// Inverse of Burley's F0 = 0.08 × specular, solved for the index of refraction.
-float ior_from_disney_specular(float specular) {
-    float s = std::sqrt(std::min(0.999f, 0.08f * specular));
-    return (1.0f + s) / (1.0f - s);
-}
-
 const tinygltf::Value* find_extension(const tinygltf::ExtensionMap& map, const char* name) {
     auto it = map.find(name);
     return it == map.end() ? nullptr : &it->second;
@@ -386,54 +380,58 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         if (!r.number(*ext, "emissiveStrength", 1.0, &d)) return false;
         if (d < 0.0)
             return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: emissiveStrength %g < 0", index, d);
-        m.emissive_strength = float(d);
+        m.emissive_strength.emissive_strength = float(d);
+        m.has_emissive_strength = true;
     }
-    for (int k = 0; k < 3; ++k) m.emission[k] = emissive[k] * m.emissive_strength;
+    for (int k = 0; k < 3; ++k) m.emission[k] = emissive[k] * m.emissive_strength.emissive_strength;
     // KHR_materials_ior
-    bool has_ior = false;
     if ((ext = find_extension(src.extensions, "KHR_materials_ior"))) {
         MaterialReader r{ctx, index, "KHR_materials_ior"};
         if (!r.number(*ext, "ior", 1.5, &d)) return false;
         if (!(d == 0.0 || d >= 1.0))
             return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: KHR_materials_ior.ior %g is neither 0 nor >= 1",
                             index, d);
-        m.ior = float(d);
-        has_ior = true;
+        m.ior.ior = float(d);
+        m.has_ior = true;
     }
     // KHR_materials_specular
     if ((ext = find_extension(src.extensions, "KHR_materials_specular"))) {
         MaterialReader r{ctx, index, "KHR_materials_specular"};
         if (!r.number(*ext, "specularFactor", 1.0, &d)) return false;
-        m.specular_factor = clamp01(ctx, float(d), index, "specularFactor");
-        if (!r.vector(*ext, "specularColorFactor", 3, 0, m.specular_color, &present)) return false;
+        m.specular.specular_factor = clamp01(ctx, float(d), index, "specularFactor");
+        if (!r.vector(*ext, "specularColorFactor", 3, 0, m.specular.specular_color_factor, &present)) return false;
         for (int k = 0; k < 3; ++k)
-            if (m.specular_color[k] < 0.0f)
+            if (m.specular.specular_color_factor[k] < 0.0f)
                 return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: specularColorFactor < 0", index);
+        m.has_specular = true;
     }
     // KHR_materials_clearcoat
     if ((ext = find_extension(src.extensions, "KHR_materials_clearcoat"))) {
         MaterialReader r{ctx, index, "KHR_materials_clearcoat"};
         if (!r.number(*ext, "clearcoatFactor", 0.0, &d)) return false;
-        m.clearcoat = clamp01(ctx, float(d), index, "clearcoatFactor");
+        m.clearcoat.clearcoat_factor = clamp01(ctx, float(d), index, "clearcoatFactor");
         if (!r.number(*ext, "clearcoatRoughnessFactor", 0.0, &d)) return false;
-        m.clearcoat_gloss = 1.0f - clamp01(ctx, float(d), index, "clearcoatRoughnessFactor");
+        m.clearcoat.clearcoat_roughness_factor = clamp01(ctx, float(d), index, "clearcoatRoughnessFactor");
+        m.has_clearcoat = true;
     }
     // KHR_materials_sheen
     if ((ext = find_extension(src.extensions, "KHR_materials_sheen"))) {
         MaterialReader r{ctx, index, "KHR_materials_sheen"};
-        if (!r.vector(*ext, "sheenColorFactor", 3, 0, m.sheen_color, &present)) return false;
-        for (int k = 0; k < 3; ++k) m.sheen_color[k] = clamp01(ctx, m.sheen_color[k], index, "sheenColorFactor");
-        m.sheen = std::max(m.sheen_color[0], std::max(m.sheen_color[1], m.sheen_color[2]));
+        float* color = m.sheen.sheen_color_factor;
+        if (!r.vector(*ext, "sheenColorFactor", 3, 0, color, &present)) return false;
+        for (int k = 0; k < 3; ++k) color[k] = clamp01(ctx, color[k], index, "sheenColorFactor");
         if (!r.number(*ext, "sheenRoughnessFactor", 0.0, &d)) return false;
-        m.sheen_roughness = clamp01(ctx, float(d), index, "sheenRoughnessFactor");
+        m.sheen.sheen_roughness_factor = clamp01(ctx, float(d), index, "sheenRoughnessFactor");
+        m.has_sheen = true;
     }
     // KHR_materials_anisotropy
     if ((ext = find_extension(src.extensions, "KHR_materials_anisotropy"))) {
         MaterialReader r{ctx, index, "KHR_materials_anisotropy"};
         if (!r.number(*ext, "anisotropyStrength", 0.0, &d)) return false;
-        m.anisotropic = clamp01(ctx, float(d), index, "anisotropyStrength");
+        m.anisotropy.anisotropy_strength = clamp01(ctx, float(d), index, "anisotropyStrength");
         if (!r.number(*ext, "anisotropyRotation", 0.0, &d)) return false;
-        m.anisotropy_rotation = float(d);
+        m.anisotropy.anisotropy_rotation = float(d);
+        m.has_anisotropy = true;
     }
     for (const auto& e : src.extensions)
         if (e.first.rfind("KHR_materials_", 0) == 0 && e.first != "KHR_materials_emissive_strength" &&
@@ -441,8 +439,6 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
             e.first != "KHR_materials_clearcoat" && e.first != "KHR_materials_sheen" &&
             e.first != "KHR_materials_anisotropy")
             ctx.warn("material %d: extension %s ignored", index, e.first.c_str());
-    // glTF dielectric F0 expressed as Burley's specular.
-    m.specular = std::min(1.0f, f0_from_ior(m.ior) * m.specular_factor / 0.08f);
 
     // Disney parameters from extras.rtpbr_disney (Burley 2012 names).
     const tinygltf::Value& extras = src.extras;
@@ -450,15 +446,16 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         const tinygltf::Value& dis = extras.Get("rtpbr_disney");
         if (!dis.IsObject())
             return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: extras.rtpbr_disney must be an object", index);
-        m.model = RTPBR_GLTF_MATERIAL_DISNEY;
+        m.has_disney = true;
         MaterialReader r{ctx, index, "extras.rtpbr_disney"};
+        rtpbr_gltf_disney& dn = m.disney;
         struct Field { const char* key; float* dst; };
         const Field fields[] = {
-            {"metallic", &m.metallic},       {"roughness", &m.roughness},
-            {"subsurface", &m.subsurface},   {"specular", &m.specular},
-            {"specularTint", &m.specular_tint}, {"anisotropic", &m.anisotropic},
-            {"sheen", &m.sheen},             {"sheenTint", &m.sheen_tint},
-            {"clearcoat", &m.clearcoat},     {"clearcoatGloss", &m.clearcoat_gloss},
+            {"metallic", &m.metallic},          {"roughness", &m.roughness},
+            {"subsurface", &dn.subsurface},     {"specular", &dn.specular},
+            {"specularTint", &dn.specular_tint}, {"anisotropic", &dn.anisotropic},
+            {"sheen", &dn.sheen},               {"sheenTint", &dn.sheen_tint},
+            {"clearcoat", &dn.clearcoat},       {"clearcoatGloss", &dn.clearcoat_gloss},
         };
         for (const Field& f : fields) {
             if (!dis.Has(f.key)) continue;
@@ -468,16 +465,16 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         float color[4] = {m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]};
         if (!r.vector(dis, "baseColor", 3, 4, color, &present)) return false;
         for (int k = 0; k < 4; ++k) m.base_color[k] = clamp01(ctx, color[k], index, "baseColor");
-        bool disney_ior = dis.Has("ior");
-        if (disney_ior) {
+        // Burley's specular from an IOR when the file gives none: F0(ior) x specularFactor / 0.08.
+        float ior = m.ior.ior;
+        if (dis.Has("ior")) {
             if (!r.number(dis, "ior", 1.5, &d)) return false;
             if (d < 1.0)
                 return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: extras.rtpbr_disney.ior %g < 1", index, d);
-            m.ior = float(d);
+            ior = float(d);
         }
-        if (dis.Has("specular") && !disney_ior && !has_ior) m.ior = ior_from_disney_specular(m.specular);
-        if (!dis.Has("specular") && disney_ior)
-            m.specular = std::min(1.0f, f0_from_ior(m.ior) * m.specular_factor / 0.08f);
+        if (!dis.Has("specular"))
+            dn.specular = std::min(1.0f, f0_from_ior(ior) * m.specular.specular_factor / 0.08f);
         static const char* const known[] = {"metallic", "roughness", "subsurface", "specular",
                                             "specularTint", "anisotropic", "sheen", "sheenTint",
                                             "clearcoat", "clearcoatGloss", "baseColor", "ior"};
@@ -497,16 +494,17 @@ rtpbr_gltf_material make_default_material() {
     // glTF 2.0 §3.9.6 default material: metallic = roughness = 1, white.
     rtpbr_gltf_material m;
     std::memset(&m, 0, sizeof m);
-    m.model = RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS;
     for (int k = 0; k < 4; ++k) m.base_color[k] = 1.0f;
     m.metallic = 1.0f;
     m.roughness = 1.0f;
-    m.ior = 1.5f;
-    m.specular_factor = 1.0f;
-    for (int k = 0; k < 3; ++k) m.specular_color[k] = 1.0f;
-    m.specular = f0_from_ior(1.5f) / 0.08f;
-    m.clearcoat_gloss = 1.0f;
-    m.emissive_strength = 1.0f;
+    // The extensions' defaults (their has_ flags stay false).
+    m.ior.ior = 1.5f;
+    m.specular.specular_factor = 1.0f;
+    for (int k = 0; k < 3; ++k) m.specular.specular_color_factor[k] = 1.0f;
+    m.emissive_strength.emissive_strength = 1.0f;
+    // Burley's defaults (BRDF Explorer's disney.brdf): specular 0.5 (F0 0.04), gloss 1.
+    m.disney.specular = 0.5f;
+    m.disney.clearcoat_gloss = 1.0f;
     m.normal_scale = 1.0f;
     m.alpha_cutoff = 0.5f;
     m.alpha_mode = RTPBR_GLTF_ALPHA_OPAQUE;

@@ -25,6 +25,7 @@
 #include "rtpbr/kulla_conty.h"
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"
+#include "rtpbr/material.h"
 #include "material.glsl"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
 #include "frame.glsl"

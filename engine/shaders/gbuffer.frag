@@ -2,6 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // G-buffer pass: writes the material parameters the lighting pass needs.
 #include "rtpbr_shared.h"
+#include "rtpbr/lang.h"
+#include "rtpbr/material.h"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_GBUFFER_FRAME
 #include "frame.glsl"
 
@@ -40,11 +42,11 @@ void main()
     bool back = dot(n, frame.camera_position.xyz - in_world) < 0.0;
     // glTF normal textures: tangent-space normal (x, y scaled by normalTexture.scale) in the
     // frame (T, B = w N x T, N) of the interpolated vertex tangent.
-    if (m.specular.z != 0.0 && dot(in_tangent.xyz, in_tangent.xyz) > 0.0) {
+    if ((m.flags & RTPBR_MATERIAL_FLAG_NORMAL_MAPPED) != 0u && dot(in_tangent.xyz, in_tangent.xyz) > 0.0) {
         vec3 t = normalize(in_tangent.xyz - n * dot(n, in_tangent.xyz));
         vec3 b = (in_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);
         vec3 ts = texture(normal_texture, in_uv).xyz * 2.0 - 1.0;
-        ts.xy *= m.specular.w;
+        ts.xy *= m.normal_scale;
         n = normalize(t * ts.x + b * ts.y + n * ts.z);
     }
     // The anisotropy direction (KHR_materials_anisotropy; Disney: the tangent): the tangent
@@ -55,16 +57,18 @@ void main()
         if (dot(t, t) > 1e-12) {
             t = normalize(t);
             vec3 b = (in_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);
-            float rotation = m.anisotropy.x;
+            float rotation = m.anisotropy_rotation;
             anisotropyDirection = t * cos(rotation) + b * sin(rotation);
         }
     }
     if (back) n = -n;
-    vec3 emission = back && m.specular.y == 0.0 ? vec3(0.0) : m.emission_roughness.xyz * texture(emission_texture, in_uv).rgb;
+    vec3 emission = back && (m.flags & RTPBR_MATERIAL_FLAG_DOUBLE_SIDED) == 0u ? vec3(0.0) : m.emission * texture(emission_texture, in_uv).rgb;
     // glTF: textures multiply the factors; metallic-roughness holds roughness in g, metallic in b.
     vec4 mr = texture(metallic_roughness_texture, in_uv);
-    float roughness = clamp(m.emission_roughness.w * mr.g, RTPBR_SHADER_MIN_ROUGHNESS, 1.0);
-    out_gbuffer0 = vec4(m.base_color_metallic.rgb * texture(base_color_texture, in_uv).rgb, m.base_color_metallic.a * mr.b);
+    // The roughness floor of the shader library's material resolve (material.h), applied here
+    // so that the lighting passes read the G-buffer's roughness as the resolve would.
+    float roughness = Material_PerceptualRoughness(m.roughness * mr.g);
+    out_gbuffer0 = vec4(m.base_color * texture(base_color_texture, in_uv).rgb, rtpbr_saturate(m.metallic * mr.b));
     out_gbuffer1 = vec4(n, roughness);
     out_gbuffer2 = vec4(emission, float(draw.material)); // exact: RTPBR_MAX_MATERIALS < 2^24
     out_gbuffer3 = vec4(anisotropyDirection, 0.0);

@@ -23,6 +23,7 @@
 #include "rtpbr/kulla_conty.h"
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"
+#include "rtpbr/material.h"
 #include "material.glsl"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
 #include "frame.glsl"
@@ -115,7 +116,7 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
     if (coated) {
         vec2 uvc = LTC_LutCoord(s.NoV, s.coatR);
         ltc1c = textureLod(LUT_LTC_1, uvc, 0.0f);
-        coatScale = s.coat * LTC_FresnelScale(textureLod(LUT_LTC_2, uvc, 0.0f), RTPBR_F3(0.04f), 1.0f);
+        coatScale = s.coat * LTC_FresnelScale(textureLod(LUT_LTC_2, uvc, 0.0f), RTPBR_F3(RTPBR_MATERIAL_COAT_F0), 1.0f);
     }
     // Burley's diffuse (Disney): its LTC fit, column = the material's roughness.
     vec4 ltc1d = LTC_Identity();

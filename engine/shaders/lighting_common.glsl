@@ -2,7 +2,7 @@
 // the descriptor set, the table accessors and the per-pixel material terms, so that both
 // passes shade exactly the same model (docs/materials.md, "What each renderer shades").
 // Include after rtpbr_shared.h, the shader-library headers (fresnel.h, kulla_conty.h,
-// disney.h, sheen.h), material.glsl and frame.glsl.
+// disney.h, sheen.h, material.h), material.glsl and frame.glsl.
 
 // C mirror: rtpbr_shader_light (engine/src/internal.h).
 struct Light {
@@ -37,8 +37,7 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_TILE_LISTS, std430) buffer TileLis
 // variant shades metallic-roughness materials without clear coat, sheen or anisotropy.
 uint material_tile_class(Material m)
 {
-    bool full = m.coat.z > 0.5f || m.coat.x > 0.0f || m.coat.w > 0.0f || max(m.sheen.r, max(m.sheen.g, m.sheen.b)) > 0.0f;
-    return full ? RTPBR_TILE_CLASS_FULL : RTPBR_TILE_CLASS_BASIC;
+    return (m.flags & RTPBR_MATERIAL_FLAGS_FULL) != 0u ? RTPBR_TILE_CLASS_FULL : RTPBR_TILE_CLASS_BASIC;
 }
 
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER0) uniform sampler2D gbuffer0;
@@ -93,7 +92,9 @@ float sheen_E(float mu, float r) { return textureLod(lut_sheen_e, Sheen_TableCoo
 // lobe by k = sqrt(alpha_t / alpha_b) along the direction (LTC_AnisotropicInverseMatrix).
 struct Surface {
     bool disney;
-    DisneyMaterial dm;    // sanitised (Disney materials only)
+    DisneyMaterial dm;    // sanitised (Disney materials only); the material fields up to
+                          // baseAttenuation come from material.h's Material_Resolve (NoV and
+                          // the anisotropy direction from the G-buffer)
     vec3 baseColor;
     float metallic;
     float roughness;      // perceptual, the G-buffer's
@@ -130,53 +131,74 @@ struct Surface {
 #ifndef RTPBR_LIGHTING_FULL
 #define RTPBR_LIGHTING_FULL 1
 #endif
+// The material record and the G-buffer's per-pixel values as the inputs of the shader
+// library's material resolve (material.h). The basic variant's inputs have no coat, sheen,
+// anisotropy or Disney model.
+MaterialInputs material_inputs(vec4 g0, float roughness, Material m)
+{
+    MaterialInputs in_;
+    in_.model = (m.flags & RTPBR_MATERIAL_FLAG_DISNEY) != 0u ? RTPBR_MATERIAL_MODEL_DISNEY
+                                                             : RTPBR_MATERIAL_MODEL_METALLIC_ROUGHNESS;
+    in_.baseColor = g0.rgb;
+    in_.metallic = g0.a;
+    in_.roughness = roughness;
+    in_.ior = m.ior;
+    in_.specularFactor = m.specular_factor;
+    in_.specularColor = m.specular_color;
+    in_.clearcoat = m.clearcoat;
+    in_.clearcoatRoughness = m.clearcoat_roughness;
+    in_.sheenColor = m.sheen_color;
+    in_.sheenRoughness = m.sheen_roughness;
+    in_.anisotropyStrength = m.anisotropy_strength;
+    in_.disney.baseColor = g0.rgb;
+    in_.disney.metallic = g0.a;
+    in_.disney.roughness = roughness;
+    in_.disney.subsurface = m.disney_subsurface;
+    in_.disney.specular = m.disney_specular;
+    in_.disney.specularTint = m.disney_specular_tint;
+    in_.disney.anisotropic = m.disney_anisotropic;
+    in_.disney.sheen = m.disney_sheen;
+    in_.disney.sheenTint = m.disney_sheen_tint;
+    in_.disney.clearcoat = m.disney_clearcoat;
+    in_.disney.clearcoatGloss = m.disney_clearcoat_gloss;
+#if !RTPBR_LIGHTING_FULL
+    in_.model = RTPBR_MATERIAL_MODEL_METALLIC_ROUGHNESS;
+    in_.clearcoat = 0.0f;
+    in_.sheenColor = vec3(0.0f);
+    in_.anisotropyStrength = 0.0f;
+#endif
+    return in_;
+}
+
 Surface surface_terms(vec4 g0, float roughness, Material m, float NoV, vec3 anisoDir)
 {
 #if !RTPBR_LIGHTING_FULL
-    m.coat = vec4(0.0f);
-    m.sheen = vec4(0.0f);
     anisoDir = vec3(0.0f);
 #endif
+    MaterialParams p = Material_Resolve(material_inputs(g0, roughness, m));
     Surface s;
-    s.baseColor = g0.rgb;
-    s.metallic = g0.a;
-    s.roughness = roughness;
+    s.disney = p.disney;
+    s.dm = p.dm;
+    s.baseColor = p.baseColor;
+    s.metallic = p.metallic;
+    s.roughness = p.roughness;
     s.NoV = NoV;
-    s.disney = m.coat.z > 0.5f;
-    s.dm.baseColor = s.baseColor;
-    s.dm.metallic = s.metallic;
-    s.dm.subsurface = m.disney0.x;
-    s.dm.specular = m.disney0.y;
-    s.dm.specularTint = m.disney0.z;
-    s.dm.roughness = roughness;
-    s.dm.anisotropic = m.disney1.w;
-    s.dm.sheen = m.disney0.w;
-    s.dm.sheenTint = m.disney1.x;
-    s.dm.clearcoat = m.disney1.y;
-    s.dm.clearcoatGloss = m.disney1.z;
-    s.dm = Disney_SanitizeMaterial(s.dm);
-
-    // KHR_materials_anisotropy: alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha.
-    float alpha = roughness * roughness;
-    float aniso = m.coat.w;
-    s.specR = s.disney ? Disney_SpecularTableRoughness(s.dm) : sqrt(sqrt(mix(alpha, 1.0f, aniso * aniso) * alpha));
-    s.specR = clamp(s.specR, RTPBR_SHADER_MIN_ROUGHNESS, 1.0f);
-    vec2 alphas = s.disney ? Disney_SpecularAlphas(s.dm) : vec2(min(mix(alpha, 1.0f, aniso * aniso), 1.0f), alpha);
+    s.specR = p.tableRoughness;
+    // Anisotropic lobes: alpha_t along the G-buffer's direction; without one, isotropic.
     bool hasDirection = dot(anisoDir, anisoDir) > 0.25f;
     s.anisoDir = hasDirection ? normalize(anisoDir) : vec3(0.0f);
-    s.anisoK = hasDirection && alphas.y > 0.0f ? sqrt(max(alphas.x / alphas.y, 1.0f)) : 1.0f;
+    s.anisoK = hasDirection && p.alphas.y > 0.0f ? sqrt(max(p.alphas.x / p.alphas.y, 1.0f)) : 1.0f;
     float isotropicAlpha = Alpha_FromPerceptual(s.specR);
-    s.alphas = s.anisoK > 1.0f ? clamp(alphas, RTPBR_F2(RTPBR_MIN_ALPHA), RTPBR_F2(1.0f))
+    s.alphas = s.anisoK > 1.0f ? clamp(p.alphas, RTPBR_F2(RTPBR_MIN_ALPHA), RTPBR_F2(1.0f))
                                : vec2(isotropicAlpha, isotropicAlpha);
-    s.w = m.specular.x;
-    s.eta = m.specular_color_ior.w;
-    vec3 f0Dielectric = min(RTPBR_F3(F0_FromIor(s.eta)) * m.specular_color_ior.rgb, RTPBR_F3(1.0f));
-    s.f0 = s.disney ? Disney_SpecularF0(s.dm) : mix(s.w * f0Dielectric, s.baseColor, s.metallic);
-    s.f90 = s.disney ? 1.0f : mix(s.w, 1.0f, s.metallic);
-    s.diffuseColor = (1.0f - s.metallic) * s.baseColor;
-    s.coat = s.disney ? RTPBR_DISNEY_CLEARCOAT_SCALE * s.dm.clearcoat : m.coat.x;
-    s.coatR = clamp(s.disney ? sqrt(Disney_ClearcoatAlpha(s.dm)) : m.coat.y, RTPBR_SHADER_MIN_ROUGHNESS, 1.0f);
-    s.baseAttenuation = s.disney ? 1.0f : 1.0f - s.coat * F_Schlick1(0.04f, 1.0f, NoV);
+    s.w = p.specularWeight;
+    s.eta = p.eta;
+    s.f0 = p.f0;
+    s.f90 = p.f90;
+    s.diffuseColor = p.diffuseColor;
+    s.coat = p.coat;
+    s.coatR = p.coatRoughness;
+    s.baseAttenuation = Material_BaseAttenuation(p, NoV);
 
     vec2 eo = kc_E_EF(NoV, s.specR, s.eta);
     s.Eo = eo.x;
@@ -199,12 +221,12 @@ Surface surface_terms(vec4 g0, float roughness, Material m, float NoV, vec3 anis
     s.Eoc = coated ? kc_E(NoV, s.coatR) : 1.0f;
     s.Eavgc = coated ? kc_Eavg(s.coatR) : 1.0f;
 #if RTPBR_MULTISCATTER
-    s.msCoat = s.coat * KC_FmsColor(F_Avg_Schlick(RTPBR_F3(0.04f), 1.0f), s.Eavgc);
+    s.msCoat = s.coat * KC_FmsColor(F_Avg_Schlick(RTPBR_F3(RTPBR_MATERIAL_COAT_F0), 1.0f), s.Eavgc);
 #else
     s.msCoat = RTPBR_F3(0.0f);
 #endif
-    s.sheenColor = s.disney ? RTPBR_F3(0.0f) : m.sheen.rgb;
-    s.sheenR = m.sheen.w;
+    s.sheenColor = p.sheenColor;
+    s.sheenR = p.sheenRoughness;
     s.sheen = max(s.sheenColor.r, max(s.sheenColor.g, s.sheenColor.b)) > 0.0f;
     s.EsheenO = s.sheen ? sheen_E(NoV, s.sheenR) : 0.0f;
     return s;

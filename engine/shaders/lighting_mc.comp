@@ -32,6 +32,7 @@
 #include "rtpbr/kulla_conty.h"
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"
+#include "rtpbr/material.h"
 #include "material.glsl"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
 #include "frame.glsl"
@@ -102,7 +103,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
     // The coat: KHR clearcoat (attenuates the rest by 1 - c Fc(NoV)) or Disney's (does not).
     float coat = s.coat, coatR = s.coatR, baseAttenuation = s.baseAttenuation;
     FresnelParams coatFresnel;
-    coatFresnel.f0 = RTPBR_F3(0.04f);
+    coatFresnel.f0 = RTPBR_F3(RTPBR_MATERIAL_COAT_F0);
     coatFresnel.f90 = 1.0f;
     coatFresnel.eta = RTPBR_F3(1.5f);
     coatFresnel.k = RTPBR_F3(0.0f);

@@ -68,14 +68,54 @@
     F(S, UINT, shadow_light_count, ) /* lights 0 .. this - 1 have a shadow ratio; 0: shadows off */ \
     F(S, UINT, pad0, )
 
+// The material record (std430), an element of the materials buffer (binding
+// RTPBR_BINDING_GBUFFER_MATERIALS and RTPBR_BINDING_LIGHT_MATERIALS): written by
+// convert_material (engine/src/scene.c) from rtpbr_material_desc, read by gbuffer.frag and,
+// through shaderlib/rtpbr/material.h's Material_Resolve, by the lighting passes
+// (lighting_common.glsl). Factors as glTF stores them (the resolve applies the rules);
+// defaults of the desc already applied.
+#define RTPBR_MATERIAL_FIELDS(F, S)                                                                 \
+    F(S, VEC3, base_color, )          /* linear RGB (baseColorFactor) */                          \
+    F(S, FLOAT, metallic, )                                                                       \
+    F(S, VEC3, emission, )            /* emitted radiance */                                      \
+    F(S, FLOAT, roughness, )          /* perceptual (the resolve floors it) */                    \
+    F(S, VEC3, specular_color, )      /* KHR_materials_specular specularColorFactor */            \
+    F(S, FLOAT, ior, )                /* KHR_materials_ior; 0: Fresnel 1 at every angle */        \
+    F(S, FLOAT, specular_factor, )    /* KHR_materials_specular specularFactor */                 \
+    F(S, FLOAT, normal_scale, )       /* glTF normalTexture.scale */                              \
+    F(S, FLOAT, anisotropy_strength, ) /* KHR_materials_anisotropy */                             \
+    F(S, FLOAT, anisotropy_rotation, ) /* radians, from the tangent toward the bitangent */       \
+    F(S, VEC3, sheen_color, )         /* KHR_materials_sheen sheenColorFactor */                  \
+    F(S, FLOAT, sheen_roughness, )    /* KHR_materials_sheen, perceptual */                       \
+    F(S, FLOAT, clearcoat, )          /* KHR_materials_clearcoat clearcoatFactor */               \
+    F(S, FLOAT, clearcoat_roughness, ) /* KHR clearcoatRoughnessFactor, perceptual */             \
+    F(S, UINT, flags, )               /* RTPBR_MATERIAL_FLAG_* */                                 \
+    F(S, UINT, pad0, )                                                                            \
+    F(S, FLOAT, disney_subsurface, )  /* Burley 2012 (RTPBR_MATERIAL_FLAG_DISNEY) */              \
+    F(S, FLOAT, disney_specular, )                                                                \
+    F(S, FLOAT, disney_specular_tint, )                                                           \
+    F(S, FLOAT, disney_sheen, )                                                                   \
+    F(S, FLOAT, disney_sheen_tint, )                                                              \
+    F(S, FLOAT, disney_clearcoat, )                                                               \
+    F(S, FLOAT, disney_clearcoat_gloss, )                                                         \
+    F(S, FLOAT, disney_anisotropic, )
+// Bits of the material record's flags.
+#define RTPBR_MATERIAL_FLAG_DOUBLE_SIDED 1u  // emits from both sides
+#define RTPBR_MATERIAL_FLAG_NORMAL_MAPPED 2u // has a normal texture
+#define RTPBR_MATERIAL_FLAG_DISNEY 4u        // Burley's model (else glTF metallic-roughness)
+#define RTPBR_MATERIAL_FLAG_CLEARCOAT 8u     // KHR clearcoat > 0
+#define RTPBR_MATERIAL_FLAG_SHEEN 16u        // KHR sheen colour not black
+#define RTPBR_MATERIAL_FLAG_ANISOTROPY 32u   // KHR anisotropy strength > 0
+// The features only the full lighting variant shades (material_tile_class).
+#define RTPBR_MATERIAL_FLAGS_FULL                                                                 \
+    (RTPBR_MATERIAL_FLAG_DISNEY | RTPBR_MATERIAL_FLAG_CLEARCOAT | RTPBR_MATERIAL_FLAG_SHEEN |     \
+     RTPBR_MATERIAL_FLAG_ANISOTROPY)
+
 // Lighting: one compute workgroup shades one screen tile.
 #define RTPBR_TILE_SIZE 16
 
 // Most lights in a scene (also RTPBR_MAX_LIGHTS in rtpbr.h): the size of a tile's light mask.
 #define RTPBR_SHADER_MAX_LIGHTS 1024
-
-// Lower clamp of perceptual roughness (also RTPBR_MIN_ROUGHNESS in rtpbr.h).
-#define RTPBR_SHADER_MIN_ROUGHNESS 0.045
 
 // Largest polygon a light may have (also RTPBR_MAX_POLYGON_VERTICES in rtpbr.h).
 #define RTPBR_SHADER_MAX_POLYGON_VERTICES 8
@@ -128,10 +168,6 @@
 #define RTPBR_TILE_CLASS_BASIC 1 // metallic-roughness without clear coat, sheen, anisotropy
 #define RTPBR_TILE_CLASS_FULL 2  // any material
 #define RTPBR_TILE_CLASS_COUNT 3
-
-// rtpbr_shader_material.coat.z: the material model.
-#define RTPBR_SHADER_MODEL_METALLIC_ROUGHNESS 0
-#define RTPBR_SHADER_MODEL_DISNEY 1
 
 // Supersampling resolve (resolve.comp), descriptor set 0.
 #define RTPBR_BINDING_RESOLVE_SOURCE 0    // rgba32f storage image, (factor W) x (factor H)

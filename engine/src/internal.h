@@ -21,18 +21,9 @@
 RTPBR_SHARED_STRUCT(rtpbr_shader_frame, RTPBR_FRAME_FIELDS)
 RTPBR_SHARED_CHECK_LAYOUT(rtpbr_shader_frame, RTPBR_FRAME_FIELDS)
 
-// std430 element of the materials buffer (gbuffer.frag).
-typedef struct rtpbr_shader_material {
-    float base_color_metallic[4];
-    float emission_roughness[4];
-    float specular_color_ior[4];
-    float specular[4];         // x: specular factor, y: 1 if emitting on both sides, z: 1 if normal-mapped, w: normal scale
-    float coat[4];             // x: clearcoat, y: clearcoat perceptual roughness, z: RTPBR_SHADER_MODEL_*, w: anisotropy
-    float disney0[4];          // Disney: subsurface, specular, specular_tint, sheen
-    float disney1[4];          // Disney: sheen_tint, clearcoat, clearcoat_gloss, anisotropic
-    float sheen[4];            // KHR sheen: colour rgb, perceptual roughness (zero colour: none)
-    float anisotropy[4];       // x: KHR anisotropy rotation (radians, from the tangent toward the bitangent)
-} rtpbr_shader_material;
+// The material record (fields in rtpbr_shared.h).
+RTPBR_SHARED_STRUCT(rtpbr_shader_material, RTPBR_MATERIAL_FIELDS)
+RTPBR_SHARED_CHECK_LAYOUT(rtpbr_shader_material, RTPBR_MATERIAL_FIELDS)
 
 // std430 element of the lights buffer (lighting.comp).
 typedef struct rtpbr_shader_light {
@@ -100,7 +91,7 @@ _Static_assert(sizeof(rtpbr_shader_frame) == 192, "Frame block layout");
 _Static_assert(sizeof(rtpbr_shader_bvh_node) == 32, "BVH node layout");
 _Static_assert(sizeof(rtpbr_shader_bvh_triangle) == 48, "BVH triangle layout");
 _Static_assert(RTPBR_SHADER_MAX_SHADOWED_LIGHTS == RTPBR_MAX_SHADOWED_LIGHTS, "shadowed light limit shared by C and shaders");
-_Static_assert(sizeof(rtpbr_shader_material) == 144, "Material layout");
+_Static_assert(sizeof(rtpbr_shader_material) == 128, "Material layout");
 _Static_assert(sizeof(rtpbr_shader_light) == 192, "Light layout");
 _Static_assert(sizeof(rtpbr_shader_draw) == 128, "Draw push constants (128 bytes: the guaranteed minimum)");
 _Static_assert(RTPBR_SHADER_MAX_LIGHTS == RTPBR_MAX_LIGHTS, "light limit shared by C and shaders");

@@ -153,41 +153,44 @@ static rtpbr_result validate_mesh(const rtpbr_context *ctx, const rtpbr_mesh_des
 #undef FAIL
 }
 
-static float clamp01(float x) { return fminf(fmaxf(x, 0.0f), 1.0f); }
-
+// The desc's defaults applied, the values stored as glTF factors; the material rules (roughness
+// floor, ior, clearcoat and Disney mappings) are applied by the shaders, in
+// shaderlib/rtpbr/material.h's Material_Resolve, which the oracle calls as well.
 static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
 {
     rtpbr_shader_material g = {0};
-    memcpy(g.base_color_metallic, m->base_color, 3 * sizeof(float));
-    g.base_color_metallic[3] = fminf(fmaxf(m->metallic, 0.0f), 1.0f);
-    memcpy(g.emission_roughness, m->emission, 3 * sizeof(float));
-    float r = m->roughness == 0.0f ? RTPBR_MIN_ROUGHNESS : m->roughness;
-    g.emission_roughness[3] = fminf(fmaxf(r, RTPBR_MIN_ROUGHNESS), 1.0f);
-    if (is_zero(m->specular_color, 3)) g.specular_color_ior[0] = g.specular_color_ior[1] = g.specular_color_ior[2] = 1.0f;
-    else memcpy(g.specular_color_ior, m->specular_color, 3 * sizeof(float));
-    g.specular_color_ior[3] = m->ior == 0.0f ? 1.5f : m->ior;
-    g.specular[0] = m->specular == 0.0f ? 1.0f : fmaxf(m->specular, 0.0f);
-    g.specular[1] = m->double_sided ? 1.0f : 0.0f;
-    g.specular[2] = m->normal_texture ? 1.0f : 0.0f;
-    g.specular[3] = m->normal_scale == 0.0f ? 1.0f : m->normal_scale;
-    g.coat[0] = clamp01(m->clearcoat);
-    float cr = m->clearcoat_roughness == 0.0f ? RTPBR_MIN_ROUGHNESS : m->clearcoat_roughness;
-    g.coat[1] = fminf(fmaxf(cr, RTPBR_MIN_ROUGHNESS), 1.0f);
-    g.coat[2] = m->model == RTPBR_MATERIAL_DISNEY ? (float)RTPBR_SHADER_MODEL_DISNEY
-                                                   : (float)RTPBR_SHADER_MODEL_METALLIC_ROUGHNESS;
-    g.coat[3] = clamp01(m->anisotropy);
+    memcpy(g.base_color, m->base_color, sizeof g.base_color);
+    g.metallic = m->metallic;
+    memcpy(g.emission, m->emission, sizeof g.emission);
+    g.roughness = m->roughness;
+    if (is_zero(m->specular_color, 3)) g.specular_color[0] = g.specular_color[1] = g.specular_color[2] = 1.0f;
+    else memcpy(g.specular_color, m->specular_color, sizeof g.specular_color);
+    g.ior = m->ior == 0.0f ? 1.5f : m->ior == RTPBR_IOR_FRESNEL_ONE ? 0.0f : m->ior;
+    g.specular_factor = m->specular == 0.0f ? 1.0f : fmaxf(m->specular, 0.0f);
+    g.normal_scale = m->normal_scale == 0.0f ? 1.0f : m->normal_scale;
+    g.anisotropy_strength = m->anisotropy;
+    g.anisotropy_rotation = m->anisotropy_rotation;
+    memcpy(g.sheen_color, m->sheen_color, sizeof g.sheen_color);
+    g.sheen_roughness = m->sheen_roughness;
+    g.clearcoat = m->clearcoat;
+    g.clearcoat_roughness = m->clearcoat_roughness;
     const rtpbr_disney_params *d = &m->disney;
-    g.disney0[0] = clamp01(d->subsurface);
-    g.disney0[1] = d->specular == 0.0f ? 0.5f : fminf(fmaxf(d->specular, 0.0f), 12.5f);
-    g.disney0[2] = clamp01(d->specular_tint);
-    g.disney0[3] = clamp01(d->sheen);
-    g.disney1[0] = clamp01(d->sheen_tint);
-    g.disney1[1] = clamp01(d->clearcoat);
-    g.disney1[2] = clamp01(d->clearcoat_gloss);
-    g.disney1[3] = clamp01(d->anisotropic);
-    for (int k = 0; k < 3; ++k) g.sheen[k] = clamp01(m->sheen_color[k]);
-    g.sheen[3] = clamp01(m->sheen_roughness);
-    g.anisotropy[0] = m->anisotropy_rotation;
+    g.disney_subsurface = d->subsurface;
+    g.disney_specular = d->specular == 0.0f ? 0.5f : d->specular;
+    g.disney_specular_tint = d->specular_tint;
+    g.disney_sheen = d->sheen;
+    g.disney_sheen_tint = d->sheen_tint;
+    g.disney_clearcoat = d->clearcoat;
+    g.disney_clearcoat_gloss = d->clearcoat_gloss;
+    g.disney_anisotropic = d->anisotropic;
+    bool disney = m->model == RTPBR_MATERIAL_DISNEY;
+    g.flags = (m->double_sided ? RTPBR_MATERIAL_FLAG_DOUBLE_SIDED : 0u) |
+              (m->normal_texture ? RTPBR_MATERIAL_FLAG_NORMAL_MAPPED : 0u) |
+              (disney ? RTPBR_MATERIAL_FLAG_DISNEY : 0u) |
+              (!disney && m->clearcoat > 0.0f ? RTPBR_MATERIAL_FLAG_CLEARCOAT : 0u) |
+              (!disney && !(m->sheen_color[0] <= 0.0f && m->sheen_color[1] <= 0.0f && m->sheen_color[2] <= 0.0f)
+                   ? RTPBR_MATERIAL_FLAG_SHEEN : 0u) |
+              (!disney && m->anisotropy > 0.0f ? RTPBR_MATERIAL_FLAG_ANISOTROPY : 0u);
     return g;
 }
 
@@ -206,8 +209,10 @@ static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_mate
         rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u has an unknown model %d", index, (int)m->model);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
-    if (m->ior < 0.0f || (m->ior > 0.0f && m->ior < 1.0f)) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u has ior %g; it must be >= 1 (or 0 for the default)", index, m->ior);
+    if (m->ior != RTPBR_IOR_FRESNEL_ONE && (m->ior < 0.0f || (m->ior > 0.0f && m->ior < 1.0f))) {
+        rtpbr_log(ctx, RTPBR_LOG_ERROR,
+                  "material %u has ior %g; it must be >= 1 (or 0 for the default, RTPBR_IOR_FRESNEL_ONE for Fresnel 1)",
+                  index, m->ior);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     return RTPBR_SUCCESS;

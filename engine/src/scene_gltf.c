@@ -5,21 +5,23 @@
 //   base_color.rgb            -> base_color            (alpha ignored: everything is opaque)
 //   metallic, roughness       -> metallic, roughness   (perceptual; alpha = r^2)
 //   emission                  -> emission              (emissiveFactor x emissive_strength)
-//   ior                       -> ior                   (0, "F0 = 1" in KHR_materials_ior, -> 1e6)
-//   specular_factor           -> specular              (0 -> "none", i.e. -1 in the desc)
-//   specular_color            -> specular_color
+//   ior.ior                   -> ior                   (0, Fresnel 1 in KHR_materials_ior, ->
+//                                                       RTPBR_IOR_FRESNEL_ONE)
+//   specular.specular_factor  -> specular              (0 -> "none", i.e. -1 in the desc)
+//   specular.specular_color_factor -> specular_color   (black: no lobe, like specular = 0)
 //   double_sided              -> double_sided          (emission on both sides)
 //   base_color / metallic_roughness / emission textures -> the same (TEXCOORD_0, bilinear,
 //                                                         repeat; the file's sampler modes
 //                                                         and mipmaps are not used)
 //   normal texture, normal_scale -> the same (tangents from the loader)
-//   clearcoat, 1 - clearcoat_gloss -> clearcoat, clearcoat_roughness (KHR_materials_clearcoat)
-//   anisotropic, anisotropy_rotation -> anisotropy, anisotropy_rotation (KHR_materials_anisotropy)
-//   model DISNEY + subsurface, specular, specular_tint, sheen, sheen_tint, clearcoat,
-//   clearcoat_gloss, anisotropic -> model, disney.*    (Burley 2012)
-//   sheen_color, sheen_roughness -> the same           (KHR_materials_sheen, metallic-roughness)
-//   specular_color is applied to the Schlick F0 of the specular lobe; the oracle's exact
-//   dielectric Fresnel ignores it (a difference only for coloured specular).
+//   clearcoat.*               -> clearcoat, clearcoat_roughness (KHR_materials_clearcoat)
+//   anisotropy.*              -> anisotropy, anisotropy_rotation (KHR_materials_anisotropy)
+//   sheen.*                   -> sheen_color, sheen_roughness (KHR_materials_sheen)
+//   has_disney, disney.*      -> model DISNEY, disney.* (Burley 2012)
+// The material rules (roughness floor, ior, coat and Disney mappings) are applied by the
+// shaders through shaderlib/rtpbr/material.h, as in the oracle. specular_color is applied to
+// the Schlick F0 of the specular lobe; the oracle's exact dielectric Fresnel ignores it (a
+// difference only for coloured specular).
 // Lights: every loader light (emissive primitives, EXT_lights_area rectangles and disks as
 // their equal-area octagons) becomes a polygonal light with its radiance and sidedness.
 #include <math.h>
@@ -108,9 +110,9 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         d->metallic = m->metallic;
         d->roughness = m->roughness;
         memcpy(d->emission, m->emission, sizeof d->emission);
-        d->ior = m->ior == 0.0f ? 1e6f : m->ior;
-        d->specular = m->specular_factor == 0.0f ? -1.0f : m->specular_factor;
-        memcpy(d->specular_color, m->specular_color, sizeof d->specular_color);
+        d->ior = m->ior.ior == 0.0f ? RTPBR_IOR_FRESNEL_ONE : m->ior.ior;
+        d->specular = m->specular.specular_factor == 0.0f ? -1.0f : m->specular.specular_factor;
+        memcpy(d->specular_color, m->specular.specular_color_factor, sizeof d->specular_color);
         d->double_sided = m->double_sided;
         // Loader texture indices are 0-based with -1 for none; the engine's are 1-based.
         d->base_color_texture = texture_ref(loaded, m->base_color_texture);
@@ -120,25 +122,26 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         d->normal_scale = m->normal_scale;
         if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
             d->specular = -1.0f; // a black specular colour removes the lobe, like specular = 0
-        if (m->model == RTPBR_GLTF_MATERIAL_DISNEY) {
+        if (!m->has_disney) {
+            d->clearcoat = m->clearcoat.clearcoat_factor;
+            d->clearcoat_roughness = m->clearcoat.clearcoat_roughness_factor;
+            d->anisotropy = m->anisotropy.anisotropy_strength;
+            d->anisotropy_rotation = m->anisotropy.anisotropy_rotation;
+            memcpy(d->sheen_color, m->sheen.sheen_color_factor, sizeof d->sheen_color);
+            d->sheen_roughness = m->sheen.sheen_roughness_factor;
+        } else {
+            const rtpbr_gltf_disney *dn = &m->disney;
             d->model = RTPBR_MATERIAL_DISNEY;
             d->disney = (rtpbr_disney_params){
-                .subsurface = m->subsurface,
-                .specular = m->specular == 0.0f ? -1.0f : m->specular,
-                .specular_tint = m->specular_tint,
-                .sheen = m->sheen,
-                .sheen_tint = m->sheen_tint,
-                .clearcoat = m->clearcoat,
-                .clearcoat_gloss = m->clearcoat_gloss,
-                .anisotropic = m->anisotropic,
+                .subsurface = dn->subsurface,
+                .specular = dn->specular == 0.0f ? -1.0f : dn->specular,
+                .specular_tint = dn->specular_tint,
+                .sheen = dn->sheen,
+                .sheen_tint = dn->sheen_tint,
+                .clearcoat = dn->clearcoat,
+                .clearcoat_gloss = dn->clearcoat_gloss,
+                .anisotropic = dn->anisotropic,
             };
-        } else {
-            d->clearcoat = m->clearcoat;
-            d->clearcoat_roughness = 1.0f - m->clearcoat_gloss;
-            d->anisotropy = m->anisotropic;
-            d->anisotropy_rotation = m->anisotropy_rotation;
-            memcpy(d->sheen_color, m->sheen_color, sizeof d->sheen_color);
-            d->sheen_roughness = m->sheen_roughness;
         }
     }
     for (uint32_t i = 0; i < loaded->light_count; ++i) {

@@ -61,9 +61,9 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         d->metallic = m->metallic;
         d->roughness = m->roughness;
         memcpy(d->emission, m->emission, sizeof d->emission);
-        d->ior = m->ior == 0.0f ? 1e6f : m->ior;
-        d->specular = m->specular_factor == 0.0f ? -1.0f : m->specular_factor;
-        memcpy(d->specular_color, m->specular_color, sizeof d->specular_color);
+        d->ior = m->ior.ior == 0.0f ? RTPBR_IOR_FRESNEL_ONE : m->ior.ior;
+        d->specular = m->specular.specular_factor == 0.0f ? -1.0f : m->specular.specular_factor;
+        memcpy(d->specular_color, m->specular.specular_color_factor, sizeof d->specular_color);
         d->double_sided = m->double_sided;
         d->base_color_texture = texture_ref(in, m->base_color_texture);
         d->metallic_roughness_texture = texture_ref(in, m->metallic_roughness_texture);
@@ -72,19 +72,20 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         d->normal_scale = m->normal_scale;
         if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
             d->specular = -1.0f; // a black specular colour removes the lobe
-        if (m->model == RTPBR_GLTF_MATERIAL_DISNEY) {
+        if (m->has_disney) {
+            const rtpbr_gltf_disney *dn = &m->disney;
             d->model = RTPBR_MATERIAL_DISNEY;
-            d->disney = (rtpbr_disney_params){.subsurface = m->subsurface,
-                .specular = m->specular == 0.0f ? -1.0f : m->specular, .specular_tint = m->specular_tint,
-                .sheen = m->sheen, .sheen_tint = m->sheen_tint, .clearcoat = m->clearcoat,
-                .clearcoat_gloss = m->clearcoat_gloss, .anisotropic = m->anisotropic};
+            d->disney = (rtpbr_disney_params){.subsurface = dn->subsurface,
+                .specular = dn->specular == 0.0f ? -1.0f : dn->specular, .specular_tint = dn->specular_tint,
+                .sheen = dn->sheen, .sheen_tint = dn->sheen_tint, .clearcoat = dn->clearcoat,
+                .clearcoat_gloss = dn->clearcoat_gloss, .anisotropic = dn->anisotropic};
         } else {
-            d->clearcoat = m->clearcoat;
-            d->clearcoat_roughness = 1.0f - m->clearcoat_gloss;
-            d->anisotropy = m->anisotropic;
-            d->anisotropy_rotation = m->anisotropy_rotation;
-            memcpy(d->sheen_color, m->sheen_color, sizeof d->sheen_color);
-            d->sheen_roughness = m->sheen_roughness;
+            d->clearcoat = m->clearcoat.clearcoat_factor;
+            d->clearcoat_roughness = m->clearcoat.clearcoat_roughness_factor;
+            d->anisotropy = m->anisotropy.anisotropy_strength;
+            d->anisotropy_rotation = m->anisotropy.anisotropy_rotation;
+            memcpy(d->sheen_color, m->sheen.sheen_color_factor, sizeof d->sheen_color);
+            d->sheen_roughness = m->sheen.sheen_roughness_factor;
         }
     }
     for (uint32_t i = 0; i < in->light_count; ++i) {

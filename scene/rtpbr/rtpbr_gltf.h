@@ -198,57 +198,80 @@ typedef struct rtpbr_gltf_primitive {
     float bounds_max[3];
 } rtpbr_gltf_primitive;
 
-typedef enum rtpbr_gltf_material_model {
-    /* glTF metallic-roughness + KHR extensions (Filament-like evaluation). */
-    RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS = 0,
-    /* Burley 2012 Disney principled BRDF: material.extras.rtpbr_disney set. */
-    RTPBR_GLTF_MATERIAL_DISNEY = 1,
-} rtpbr_gltf_material_model;
-
 typedef enum rtpbr_gltf_alpha_mode {
     RTPBR_GLTF_ALPHA_OPAQUE = 0, /* recorded; rtpbr renders all materials */
     RTPBR_GLTF_ALPHA_MASK = 1,   /* as opaque (base_color[3] is ignored)  */
     RTPBR_GLTF_ALPHA_BLEND = 2,
 } rtpbr_gltf_alpha_mode;
 
-/* The rtpbr material model. The mapping from glTF is one table:
- * docs/materials.md. Fields are named after Burley 2012's parameters;
- * all scalars in [0,1] unless stated. */
+/* The material extensions, each in its own struct with a has_ flag in
+ * rtpbr_gltf_material (as cgltf does). Values as the file stores them;
+ * when has_ is false the struct holds the extension's defaults. Scalars
+ * documented in [0,1] are clamped (with a warning). */
+typedef struct rtpbr_gltf_ior {              /* KHR_materials_ior          */
+    float ior;                /* >= 1, default 1.5; 0: the spec's infinite
+                                 IOR (Fresnel 1 at every angle)            */
+} rtpbr_gltf_ior;
+typedef struct rtpbr_gltf_specular {         /* KHR_materials_specular     */
+    float specular_factor;          /* [0,1], default 1                     */
+    float specular_color_factor[3]; /* linear RGB >= 0 (may exceed 1),
+                                       default 1, 1, 1                     */
+} rtpbr_gltf_specular;
+typedef struct rtpbr_gltf_clearcoat {        /* KHR_materials_clearcoat    */
+    float clearcoat_factor;           /* [0,1], default 0                   */
+    float clearcoat_roughness_factor; /* perceptual, [0,1], default 0       */
+} rtpbr_gltf_clearcoat;
+typedef struct rtpbr_gltf_sheen {            /* KHR_materials_sheen        */
+    float sheen_color_factor[3];      /* linear RGB, [0,1], default 0       */
+    float sheen_roughness_factor;     /* perceptual, [0,1], default 0       */
+} rtpbr_gltf_sheen;
+typedef struct rtpbr_gltf_anisotropy {       /* KHR_materials_anisotropy   */
+    float anisotropy_strength;        /* [0,1], default 0                   */
+    float anisotropy_rotation;        /* radians, counter-clockwise from the
+                                         tangent, default 0                */
+} rtpbr_gltf_anisotropy;
+typedef struct rtpbr_gltf_emissive_strength { /* KHR_materials_emissive_strength */
+    float emissive_strength;          /* >= 0, default 1                    */
+} rtpbr_gltf_emissive_strength;
+/* Burley 2012's principled BRDF: material.extras.rtpbr_disney (its
+ * baseColor, metallic and roughness keys set the core fields, which mean
+ * the same in both models). Burley's defaults. */
+typedef struct rtpbr_gltf_disney {
+    float subsurface;         /* [0,1], default 0                           */
+    float specular;           /* F0 = 0.08 specular, [0,1]; default from the
+                                 IOR: F0(ior) x specular_factor / 0.08 (0.5
+                                 for ior 1.5), ior = extras' "ior" key, else
+                                 KHR_materials_ior's                       */
+    float specular_tint;      /* default 0                                  */
+    float anisotropic;        /* aspect sqrt(1 - 0.9 anisotropic), default 0 */
+    float sheen;              /* default 0                                  */
+    float sheen_tint;         /* default 0                                  */
+    float clearcoat;          /* GTR1 coat of weight 0.25 clearcoat, default 0 */
+    float clearcoat_gloss;    /* GTR1 alpha mix(0.1, 0.001, gloss), default 1 */
+} rtpbr_gltf_disney;
+
+/* A glTF material: the core metallic-roughness fields, then each supported
+ * extension in its own struct (docs/materials.md has the table). The
+ * renderers resolve it with shaderlib/rtpbr/material.h: Disney's model when
+ * has_disney, else glTF metallic-roughness with the KHR extensions. */
 typedef struct rtpbr_gltf_material {
-    rtpbr_gltf_material_model model;
-    float base_color[4];      /* linear RGBA, baseColorFactor               */
-    float metallic;           /* metallicFactor                             */
-    float roughness;          /* PERCEPTUAL roughness (α = roughness²)      */
-    float subsurface;         /* Disney only (extras)                       */
-    float specular;           /* Disney "specular": F0 = 0.08 × specular;
-                                 from glTF: F0(ior) × specularFactor / 0.08,
-                                 clamped to [0,1] (0.5 for ior 1.5)        */
-    float specular_tint;      /* Disney only (extras)                       */
-    float specular_color[3];  /* KHR_materials_specular specularColorFactor
-                                 (linear RGB, may exceed 1)                */
-    float specular_factor;    /* KHR_materials_specular specularFactor (F90
-                                 weight of the dielectric lobe), default 1 */
-    float ior;                /* KHR_materials_ior, default 1.5; 0 allowed
-                                 by the spec = F0 of 1                     */
-    float anisotropic;        /* KHR_materials_anisotropy anisotropyStrength
-                                 or Disney anisotropic; how it maps to
-                                 (αt, αb) depends on model (materials.md)  */
-    float anisotropy_rotation;/* radians, counter-clockwise from the tangent
-                                 in the tangent plane (KHR rotation)       */
-    float sheen;              /* Disney sheen weight; from KHR_materials_sheen:
-                                 max component of sheenColorFactor         */
-    float sheen_tint;         /* Disney only (extras)                       */
-    float sheen_color[3];     /* KHR sheenColorFactor (linear RGB)          */
-    float sheen_roughness;    /* KHR sheenRoughnessFactor (perceptual)      */
-    float clearcoat;          /* KHR clearcoatFactor / Disney clearcoat     */
-    float clearcoat_gloss;    /* Disney clearcoatGloss; from KHR:
-                                 1 - clearcoatRoughnessFactor              */
-    float emission[3];        /* radiance = emissiveFactor × emissive_strength */
-    float emissive_strength;  /* KHR_materials_emissive_strength, default 1 */
+    float base_color[4];      /* linear RGBA, baseColorFactor, [0,1]        */
+    float metallic;           /* metallicFactor, [0,1]                      */
+    float roughness;          /* PERCEPTUAL roughness (α = roughness²), [0,1] */
+    float emission[3];        /* radiance = emissiveFactor (clamped to
+                                 [0,1]) × emissive_strength                */
     float normal_scale;       /* normalTexture.scale, default 1             */
     float alpha_cutoff;       /* default 0.5                                */
     rtpbr_gltf_alpha_mode alpha_mode;
     bool double_sided;
+    bool has_ior, has_specular, has_clearcoat, has_sheen, has_anisotropy, has_emissive_strength, has_disney;
+    rtpbr_gltf_ior ior;
+    rtpbr_gltf_specular specular;
+    rtpbr_gltf_clearcoat clearcoat;
+    rtpbr_gltf_sheen sheen;
+    rtpbr_gltf_anisotropy anisotropy;
+    rtpbr_gltf_emissive_strength emissive_strength;
+    rtpbr_gltf_disney disney;
     /* Indices into scene->textures, -1 = none. Colour textures (base colour,
      * emission) are flagged sRGB; the others linear. */
     int32_t base_color_texture;

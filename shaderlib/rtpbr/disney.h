@@ -141,10 +141,12 @@ RTPBR_FN rtpbr_float3 Disney_TintColor(rtpbr_float3 baseColor) {
 // [B12] sec. 5.5 and [B12-brdf]: F0 = rtpbr_lerp(0.08 specular rtpbr_lerp(1, Ctint, specularTint),
 // baseColor, metallic), clamped to [0, 1] (0.08 = the F0 of IOR ~1.8: the top of the
 // "plausible" dielectric range). Expects a sanitized material.
+// The blends are written as sums of non-negative terms: no cancellation, so that the GLSL,
+// HLSL and C++ builds round alike even where the result is tiny.
 RTPBR_FN rtpbr_float3 Disney_SpecularF0(DisneyMaterial m) {
     rtpbr_float3 tint = Disney_TintColor(m.baseColor);
-    rtpbr_float3 dielectric = (0.08f * m.specular) * rtpbr_lerp(RTPBR_F3(1.0f), tint, m.specularTint);
-    return rtpbr_saturate(rtpbr_lerp(dielectric, m.baseColor, m.metallic));
+    rtpbr_float3 dielectric = (0.08f * m.specular) * (RTPBR_F3(1.0f - m.specularTint) + m.specularTint * tint);
+    return rtpbr_saturate((1.0f - m.metallic) * dielectric + m.metallic * m.baseColor);
 }
 
 // [B12-brdf] Csheen = rtpbr_lerp(1, Ctint, sheenTint).

@@ -49,10 +49,11 @@ RTPBR_FN float KC_MuAxis(float mu) {
 }
 
 // The IOR axis value in [0, 1] of a relative IOR eta (> 1: light arrives from the thinner
-// medium); eta <= 1 (or NaN) gives 0, where the layer reflects nothing.
+// medium); eta <= 1 (or NaN) gives 0, where the layer reflects nothing. (eta - 1) / (eta + 1)
+// is written 1 - 2 / (eta + 1) so that an infinite eta gives 1, not inf / inf.
 RTPBR_FN float KC_EtaAxis(float eta) {
-    float e = eta > 1.0f ? min(eta, 1e6f) : 1.0f;
-    return rtpbr_saturate(((e - 1.0f) / (e + 1.0f)) / KC_ETA_AXIS_MAX);
+    float e = eta > 1.0f ? eta : 1.0f;
+    return rtpbr_saturate((1.0f - 2.0f / (e + 1.0f)) / KC_ETA_AXIS_MAX);
 }
 
 // Texel-centre coordinate of axis value x in [0, 1] on an N-node axis: node i at i / (N - 1).

@@ -20,6 +20,7 @@
 #include "rtpbr/ltc.h"
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"
+#include "rtpbr/material.h"
 
 // ... and after it, as types and functions of its own.
 struct float2 { float x, y; };

@@ -18,6 +18,7 @@
 #include "rtpbr/ltc.h"
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"
+#include "rtpbr/material.h"
 
 // ... and after it, as functions of its own.
 float safe_sqrt(float x) { return sqrt(max(x, 0.0f)); }

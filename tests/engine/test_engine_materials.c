@@ -6,8 +6,10 @@
 //   - a white dielectric over a white base (Kulla-Conty layering) conserves energy: under the
 //     same light it reads 1 (an additive diffuse + specular model reads 1 + the specular albedo);
 //   - KHR clearcoat: the coat attenuates the base by 1 - c F_Schlick(0.04, NoV) and its lobe is
-//     the specular lobe of a dielectric with F0 = 0.04.
+//     the specular lobe of a dielectric with F0 = 0.04;
+//   - KHR ior 0 (Fresnel 1 at every angle) reflects as a white metal.
 #include <stdlib.h>
+#include <string.h>
 
 #include "engine_test.h"
 
@@ -194,6 +196,45 @@ static void clearcoat_layer(void **state)
     assert_int_equal(log.validation, 0);
 }
 
+// KHR_materials_ior's ior 0 (RTPBR_IOR_FRESNEL_ONE: infinite IOR, Fresnel 1 at every angle):
+// a black dielectric then reflects exactly as a white metal (F0 = F90 = 1) of the same
+// roughness, and nothing shows through the layer but what its albedo tables leave (black base).
+static void ior_fresnel_one(void **state)
+{
+    (void)state;
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    rtpbr_light_desc light = {
+        .vertices = {{-0.5f, 1.2f, 1.5f}, {-0.5f, 2.2f, 1.5f}, {0.5f, 2.2f, 1.5f}, {0.5f, 1.2f, 1.5f}},
+        .vertex_count = 4, .emission = {2.0f, 2.0f, 2.0f}};
+    const float angles[2] = {0.3f, 0.8f};
+    for (int j = 0; j < 2; ++j) {
+        view v = {angles[j], 1.0f};
+        rtpbr_material_desc mirror = {.roughness = 0.4f, .ior = RTPBR_IOR_FRESNEL_ONE};
+        rtpbr_material_desc metal = {.base_color = {1.0f, 1.0f, 1.0f}, .metallic = 1.0f, .roughness = 0.4f};
+        rtpbr_material_desc glass = {.roughness = 0.4f, .ior = 1.5f};
+        float a[3], b[3], c[3];
+        render_centre(ctx, &log, &mirror, &light, 1, v, a);
+        render_centre(ctx, &log, &metal, &light, 1, v, b);
+        render_centre(ctx, &log, &glass, &light, 1, v, c);
+        printf("ior 0 (Fresnel 1) %.5f, white metal %.5f, ior 1.5 %.5f at %.2f rad\n", a[1], b[1], c[1],
+               (double)angles[j]);
+        assert_true(b[1] > 0.05f);
+        assert_true(fabsf(a[1] - b[1]) < 2e-3f * b[1]);
+        assert_true(c[1] < 0.2f * b[1]); // an ordinary dielectric reflects far less
+    }
+    rtpbr_material_desc invalid = {.roughness = 0.4f, .ior = -2.0f};
+    rtpbr_gpu_scene *scene = NULL;
+    rtpbr_mesh_desc mesh = {.positions = (const float[9]){0, 0, 0, 1, 0, 0, 0, 1, 0}, .vertex_count = 3};
+    assert_int_equal(rtpbr_gpu_scene_create(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                         .materials = &invalid, .material_count = 1},
+                                            &scene),
+                     RTPBR_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(log.last_error, "ior"));
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+}
+
 // KHR sheen over a black base under the near-hemisphere light reads the lobe's directional
 // albedo E_sheen(NoV): the engine integrates its LTC fit (norm x mass = albedo within 0.36%,
 // shaderlib/luts/sheen.md); the reference is the albedo table (tests/shaderlib/sheen checks it against
@@ -251,6 +292,7 @@ int main(void)
         cmocka_unit_test(layered_dielectric_energy),
         cmocka_unit_test(clearcoat_layer),
         cmocka_unit_test(sheen_albedo_check),
+        cmocka_unit_test(ior_fresnel_one),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -22,18 +22,19 @@ struct SceneBuilder {
 
     uint32_t material(glm::vec3 base, float metallic, float roughness) {
         rtpbr_gltf_material m{};
-        m.model = RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS;
         m.base_color[0] = base.x;
         m.base_color[1] = base.y;
         m.base_color[2] = base.z;
         m.base_color[3] = 1.0f;
         m.metallic = metallic;
         m.roughness = roughness;
-        m.specular = 0.5f;
-        m.specular_color[0] = m.specular_color[1] = m.specular_color[2] = 1.0f;
-        m.specular_factor = 1.0f;
-        m.ior = 1.5f;
-        m.emissive_strength = 1.0f;
+        m.specular.specular_color_factor[0] = m.specular.specular_color_factor[1] =
+            m.specular.specular_color_factor[2] = 1.0f;
+        m.specular.specular_factor = 1.0f;
+        m.ior.ior = 1.5f;
+        m.emissive_strength.emissive_strength = 1.0f;
+        m.disney.specular = 0.5f;
+        m.disney.clearcoat_gloss = 1.0f;
         m.normal_scale = 1.0f;
         m.alpha_cutoff = 0.5f;
         m.base_color_texture = m.metallic_roughness_texture = m.normal_texture = m.emission_texture = -1;

@@ -61,8 +61,8 @@ struct Furnace {
     // 30 degrees (anisotropy_rotation).
     explicit Furnace(float alpha, float anisotropy = 0.0f) {
         uint32_t metal = b.material(glm::vec3(1.0f), 1.0f, std::sqrt(alpha));
-        b.materials[metal].anisotropic = anisotropy;
-        b.materials[metal].anisotropy_rotation = 0.5236f;
+        b.materials[metal].anisotropy.anisotropy_strength = anisotropy;
+        b.materials[metal].anisotropy.anisotropy_rotation = 0.5236f;
         b.polygon({{-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1}}, metal);
         if (anisotropy > 0.0f) {
             std::vector<float> &t = b.floatArrays[b.floatArrays.size() - 1];

@@ -35,13 +35,13 @@ struct Scene {
     SceneBuilder b;
     explicit Scene(bool occluder) {
         uint32_t white = b.material(glm::vec3(kAlbedo), 0.0f, 1.0f);
-        b.materials[white].specular_factor = 0.0f; // no specular layer: pure Lambert
+        b.materials[white].specular.specular_factor = 0.0f; // no specular layer: pure Lambert
         b.polygon({{-40, 0, 40}, {40, 0, 40}, {40, 0, -40}, {-40, 0, -40}}, white);
         b.light(kLight, glm::vec3(kRadiance), false);
         assert_true(b.lights.back().normal[1] < -0.99f);
         if (occluder) {
             uint32_t black = b.material(glm::vec3(0.0f), 0.0f, 1.0f);
-            b.materials[black].specular_factor = 0.0f;
+            b.materials[black].specular.specular_factor = 0.0f;
             // Between the light and the plane, above the camera (which looks down): invisible.
             b.polygon({{-1, 1.0f, -1}, {-1, 1.0f, 1}, {1, 1.0f, 1}, {1, 1.0f, -1}}, black);
         }

@@ -13,7 +13,7 @@ namespace {
 void test_base_color_texture(void **) {
     SceneBuilder b;
     uint32_t plate = b.material(glm::vec3(0.8f), 0.0f, 1.0f);
-    b.materials[plate].specular_factor = 0.0f;
+    b.materials[plate].specular.specular_factor = 0.0f;
     b.materials[plate].base_color_texture = 0;
     b.polygon({{-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1}}, plate);
     // u = 0 at x = -1, u = 1 at x = +1.

@@ -53,7 +53,7 @@ static void test_khr_extensions(void** state) {
         "\"KHR_materials_anisotropy\":{\"anisotropyStrength\":0.4,\"anisotropyRotation\":1.2}}}",
         NULL);
     const rtpbr_gltf_material* m = &scene->materials[0];
-    assert_int_equal(m->model, RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS);
+    assert_false(m->has_disney);
     near(m->base_color[0], 0.8f, "base r");
     near(m->base_color[1], 0.6f, "base g");
     near(m->base_color[2], 0.4f, "base b");
@@ -64,23 +64,21 @@ static void test_khr_extensions(void** state) {
     near(m->emission[0], 0.1f * 5.0f, "emission r");
     near(m->emission[1], 0.2f * 5.0f, "emission g");
     near(m->emission[2], 0.3f * 5.0f, "emission b");
-    near(m->emissive_strength, 5.0, "strength");
-    near(m->ior, 1.8f, "ior");
-    /* F0(1.8) = (0.8/2.8)² = 0.0816327; × specularFactor 0.5 / 0.08 = 0.5102041 */
-    near(m->specular, 0.5102040816, "Burley specular from ior and specularFactor");
-    near(m->specular_factor, 0.5, "specularFactor");
-    near(m->specular_color[0], 0.9f, "specular color r");
-    near(m->specular_color[2], 0.7f, "specular color b");
-    near(m->clearcoat, 0.6f, "clearcoat");
-    near(m->clearcoat_gloss, 0.8, "clearcoat gloss = 1 - roughness");
-    near(m->sheen, 0.5f, "sheen = max(sheenColor)");
-    near(m->sheen_color[1], 0.5f, "sheen color");
-    near(m->sheen_roughness, 0.3f, "sheen roughness");
-    near(m->anisotropic, 0.4f, "anisotropy strength");
-    near(m->anisotropy_rotation, 1.2f, "anisotropy rotation");
-    near(m->subsurface, 0.0, "subsurface");
-    near(m->specular_tint, 0.0, "specular tint");
-    near(m->sheen_tint, 0.0, "sheen tint");
+    /* Each extension as the file stores it, in its own struct with its has_ flag. */
+    assert_true(m->has_emissive_strength && m->has_ior && m->has_specular && m->has_clearcoat &&
+                m->has_sheen && m->has_anisotropy);
+    near(m->emissive_strength.emissive_strength, 5.0, "strength");
+    near(m->ior.ior, 1.8f, "ior");
+    near(m->specular.specular_factor, 0.5, "specularFactor");
+    near(m->specular.specular_color_factor[0], 0.9f, "specular color r");
+    near(m->specular.specular_color_factor[2], 0.7f, "specular color b");
+    near(m->clearcoat.clearcoat_factor, 0.6f, "clearcoat");
+    near(m->clearcoat.clearcoat_roughness_factor, 0.2f, "clearcoatRoughnessFactor as stored");
+    near(m->sheen.sheen_color_factor[0], 0.2f, "sheen color r");
+    near(m->sheen.sheen_color_factor[1], 0.5f, "sheen color g");
+    near(m->sheen.sheen_roughness_factor, 0.3f, "sheen roughness");
+    near(m->anisotropy.anisotropy_strength, 0.4f, "anisotropy strength");
+    near(m->anisotropy.anisotropy_rotation, 1.2f, "anisotropy rotation");
     assert_true(m->double_sided);
     assert_int_equal(m->alpha_mode, RTPBR_GLTF_ALPHA_MASK);
     near(m->alpha_cutoff, 0.3f, "alpha cutoff");
@@ -106,18 +104,23 @@ static void test_defaults_and_disney_extras(void** state) {
     assert_int_equal(scene->material_count, 3);
     /* glTF defaults (spec §5.19): white, metallic = roughness = 1, ior 1.5 */
     const rtpbr_gltf_material* d = &scene->materials[0];
-    assert_int_equal(d->model, RTPBR_GLTF_MATERIAL_METALLIC_ROUGHNESS);
+    assert_false(d->has_disney || d->has_ior || d->has_specular || d->has_clearcoat || d->has_sheen ||
+                 d->has_anisotropy || d->has_emissive_strength);
     for (int k = 0; k < 4; ++k) near(d->base_color[k], 1.0, "default base colour");
     near(d->metallic, 1.0, "default metallic");
     near(d->roughness, 1.0, "default roughness");
-    near(d->ior, 1.5, "default ior");
-    near(d->specular, 0.04 / 0.08, "default Burley specular (F0 0.04)");
-    near(d->specular_factor, 1.0, "default specularFactor");
-    near(d->specular_color[1], 1.0, "default specular colour");
-    near(d->clearcoat, 0.0, "default clearcoat");
-    near(d->clearcoat_gloss, 1.0, "default clearcoat gloss");
+    /* Absent extensions hold their defaults. */
+    near(d->ior.ior, 1.5, "default ior");
+    near(d->specular.specular_factor, 1.0, "default specularFactor");
+    near(d->specular.specular_color_factor[1], 1.0, "default specular colour");
+    near(d->clearcoat.clearcoat_factor, 0.0, "default clearcoat");
+    near(d->clearcoat.clearcoat_roughness_factor, 0.0, "default clearcoat roughness");
+    near(d->sheen.sheen_color_factor[2], 0.0, "default sheen");
+    near(d->anisotropy.anisotropy_strength, 0.0, "default anisotropy");
+    near(d->emissive_strength.emissive_strength, 1.0, "default strength");
+    near(d->disney.specular, 0.5, "Burley's default specular (F0 0.04)");
+    near(d->disney.clearcoat_gloss, 1.0, "Burley's default clearcoat gloss");
     near(d->emission[0], 0.0, "default emission");
-    near(d->emissive_strength, 1.0, "default strength");
     near(d->normal_scale, 1.0, "default normal scale");
     near(d->alpha_cutoff, 0.5, "default cutoff");
     assert_int_equal(d->alpha_mode, RTPBR_GLTF_ALPHA_OPAQUE);
@@ -126,29 +129,30 @@ static void test_defaults_and_disney_extras(void** state) {
     assert_int_equal(scene->light_count, 0);
 
     const rtpbr_gltf_material* m = &scene->materials[1];
-    assert_int_equal(m->model, RTPBR_GLTF_MATERIAL_DISNEY);
+    assert_true(m->has_disney);
     near(m->base_color[0], 0.1f, "disney base r");
     near(m->base_color[2], 0.3f, "disney base b");
     near(m->base_color[3], 1.0, "disney base a (kept)");
     near(m->metallic, 0.1f, "disney metallic");
     near(m->roughness, 0.4f, "disney roughness");
-    near(m->subsurface, 0.25, "subsurface");
-    near(m->specular, 0.3f, "disney specular");
-    near(m->specular_tint, 0.5, "specular tint");
-    near(m->anisotropic, 0.6f, "anisotropic");
-    near(m->sheen, 0.2f, "sheen");
-    near(m->sheen_tint, 0.75, "sheen tint");
-    near(m->clearcoat, 0.35f, "clearcoat");
-    near(m->clearcoat_gloss, 0.9f, "clearcoat gloss");
-    /* ior derived from Burley's F0 = 0.08 × specular: ((ior-1)/(ior+1))² = 0.024 */
-    double f = (m->ior - 1.0) / (m->ior + 1.0);
-    if (fabs(f * f - 0.024) > 1e-6) fail_msg("ior %g gives F0 %g, expected 0.024", m->ior, f * f);
+    near(m->disney.subsurface, 0.25, "subsurface");
+    near(m->disney.specular, 0.3f, "disney specular");
+    near(m->disney.specular_tint, 0.5, "specular tint");
+    near(m->disney.anisotropic, 0.6f, "anisotropic");
+    near(m->disney.sheen, 0.2f, "sheen");
+    near(m->disney.sheen_tint, 0.75, "sheen tint");
+    near(m->disney.clearcoat, 0.35f, "clearcoat");
+    near(m->disney.clearcoat_gloss, 0.9f, "clearcoat gloss");
+    /* Disney's keys do not touch the KHR structs. */
+    assert_false(m->has_clearcoat || m->has_sheen || m->has_anisotropy || m->has_ior);
+    near(m->clearcoat.clearcoat_factor, 0.0, "no KHR clearcoat from Disney's");
+    near(m->anisotropy.anisotropy_strength, 0.0, "no KHR anisotropy from Disney's");
+    near(m->ior.ior, 1.5, "KHR ior untouched");
 
     /* ior only → specular = F0(2)/0.08 = (1/3)²/0.08 = 1.3889, clamped to 1 */
     const rtpbr_gltf_material* q = &scene->materials[2];
-    assert_int_equal(q->model, RTPBR_GLTF_MATERIAL_DISNEY);
-    near(q->ior, 2.0, "disney ior");
-    near(q->specular, 1.0, "specular from ior, clamped");
+    assert_true(q->has_disney);
+    near(q->disney.specular, 1.0, "specular from ior, clamped");
     rtpbr_gltf_destroy(scene);
 }
 

@@ -218,7 +218,8 @@ typedef struct rtpbr_material_desc {
     float metallic;          // [0, 1], taken literally (zero: dielectric)
     float roughness;         // perceptual roughness r in [0, 1] (alpha = r^2); zero: RTPBR_MIN_ROUGHNESS
     float emission[3];       // emitted radiance (glTF emissiveFactor * emissive_strength)
-    float ior;               // dielectric index of refraction (KHR_materials_ior); zero: 1.5
+    float ior;               // dielectric index of refraction >= 1 (KHR_materials_ior); zero: 1.5;
+                             // RTPBR_IOR_FRESNEL_ONE: KHR's ior 0 (Fresnel 1 at every angle)
     float specular;          // KHR_materials_specular specularFactor; zero: 1 (set <0 for none, i.e. 0)
     float specular_color[3]; // KHR_materials_specular specularColorFactor; all zero: (1, 1, 1)
     // Textures: 1-based indices into rtpbr_gpu_scene_desc.textures; 0: none. Sampled with
@@ -251,7 +252,13 @@ typedef struct rtpbr_material_desc {
     rtpbr_disney_params disney;   // used when model = RTPBR_MATERIAL_DISNEY
 } rtpbr_material_desc;
 
-#define RTPBR_MIN_ROUGHNESS 0.045f // Filament's lower clamp: keeps alpha^2 representable
+// Lower clamp of perceptual roughness (Filament's): RTPBR_MATERIAL_MIN_ROUGHNESS of
+// shaderlib/rtpbr/material.h, which applies it (tests/shaderlib/material/test_material.cpp asserts
+// that the two are equal).
+#define RTPBR_MIN_ROUGHNESS 0.045f
+// rtpbr_material_desc.ior of KHR_materials_ior's ior 0: "the effective IOR becomes positive
+// infinity and the Fresnel term must evaluate to 1" (the specular-glossiness mode).
+#define RTPBR_IOR_FRESNEL_ONE (-1.0f)
 
 typedef struct rtpbr_texture_desc {
     uint32_t width, height;  // required, 1..RTPBR_MAX_RENDER_SIZE

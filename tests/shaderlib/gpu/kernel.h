@@ -22,6 +22,7 @@
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"
 #include "rtpbr/ltc.h"
+#include "rtpbr/material.h"
 
 #if defined(RTPBR_CPP)
 #define RTPBR_TEST_PRECISE
@@ -146,6 +147,71 @@ RTPBR_FN float rtpbr_test_ltc_quad(RtpbrTestArgs t, bool stretch, int which) {
         }
     }
     return which == 0 ? LTC_LobeEnd(lobe) : (which == 1 ? F.x : (which == 2 ? F.y : F.z));
+}
+
+// A scalar argument in the regimes of rtpbr_test_material, picked by b.w: x (b.w < 0.4), then
+// 0 (< 0.6), negative, huge (1e30), NaN, +infinity. NaN and infinity come from an overflow of
+// run-time values (no division by zero), so that no compiler folds them.
+RTPBR_FN float rtpbr_test_hostile(float x, rtpbr_float4 a, rtpbr_float4 b) {
+    RTPBR_TEST_PRECISE float big = 1e30f * (1.0f + a.x);
+    RTPBR_TEST_PRECISE float inf = big * big;
+    RTPBR_TEST_PRECISE float nan = inf - inf;
+    return b.w < 0.4f ? x : (b.w < 0.6f ? 0.0f : (b.w < 0.7f ? -0.5f - a.x : (b.w < 0.8f ? big : (b.w < 0.9f ? nan : inf))));
+}
+
+// material.h's inputs from (a, b) in one of seven regimes picked by b.w: ordinary values
+// (b.w < 0.4), ordinary with ior 0 (KHR's F = 1 mode; < 0.5), then every scalar of the
+// material (colours included) set to the same hostile value of rtpbr_test_hostile: 0
+// (roughness 0, ior 0, ...), negative, huge, NaN, +infinity.
+RTPBR_FN MaterialInputs rtpbr_test_material(rtpbr_float4 a, rtpbr_float4 b, int model) {
+    MaterialInputs m;
+    m.model = model;
+    m.baseColor = rtpbr_float3(a.x, a.y, b.x);
+    m.metallic = b.y;
+    m.roughness = a.z;
+    m.ior = b.w < 0.4f ? rtpbr_test_lerp(1.0f, 3.0f, b.z) : 0.0f;
+    m.specularFactor = a.w;
+    m.specularColor = rtpbr_float3(2.0f * b.z, b.x, a.y);
+    m.clearcoat = a.x;
+    m.clearcoatRoughness = a.w;
+    m.sheenColor = rtpbr_float3(b.y, a.z, a.x);
+    m.sheenRoughness = b.x;
+    m.anisotropyStrength = a.w;
+    m.disney.baseColor = RTPBR_F3(0.0f); // ignored by the resolve: the fields above are used
+    m.disney.metallic = 0.0f;
+    m.disney.roughness = 0.0f;
+    m.disney.subsurface = a.y;
+    m.disney.specular = 12.5f * b.z * b.z;
+    m.disney.specularTint = b.x;
+    m.disney.anisotropic = a.w;
+    m.disney.sheen = b.y;
+    m.disney.sheenTint = a.x;
+    m.disney.clearcoat = b.z;
+    m.disney.clearcoatGloss = a.z;
+    float h = rtpbr_test_hostile(0.0f, a, b);
+    if (b.w >= 0.5f) {
+        rtpbr_float3 h3 = rtpbr_float3(h, h, h);
+        m.baseColor = h3;
+        m.metallic = h;
+        m.roughness = h;
+        m.ior = h;
+        m.specularFactor = h;
+        m.specularColor = h3;
+        m.clearcoat = h;
+        m.clearcoatRoughness = h;
+        m.sheenColor = h3;
+        m.sheenRoughness = h;
+        m.anisotropyStrength = h;
+        m.disney.subsurface = h;
+        m.disney.specular = h;
+        m.disney.specularTint = h;
+        m.disney.anisotropic = h;
+        m.disney.sheen = h;
+        m.disney.sheenTint = h;
+        m.disney.clearcoat = h;
+        m.disney.clearcoatGloss = h;
+    }
+    return m;
 }
 
 // Each case assigns instead of returning early: lavapipe (Mesa 22.3, gallivm) miscompiled the

@@ -18,3 +18,4 @@
 #include "cases/microfacet.inc"
 #include "cases/sampling.inc"
 #include "cases/ltc.inc"
+#include "cases/material.inc"
