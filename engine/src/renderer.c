@@ -7,7 +7,7 @@
 
 rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc *desc, rtpbr_renderer **out)
 {
-    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!ctx) return rtpbr_null_object(__func__, "context");
     if (!desc || !out) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_renderer_create: desc or out_renderer is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
@@ -244,7 +244,7 @@ static void record_readback(rtpbr_renderer *r, VkCommandBuffer cmd, bool display
 
 rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc)
 {
-    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!r) return rtpbr_null_object(__func__, "renderer");
     rtpbr_context *ctx = r->context;
     rtpbr_result result = RTPBR_SUCCESS;
     VkPipeline tonemap;
@@ -297,7 +297,7 @@ cleanup:
 rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc,
                           const rtpbr_record_desc *target)
 {
-    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!r) return rtpbr_null_object(__func__, "renderer");
     rtpbr_context *ctx = r->context;
     if (!target || !target->command_buffer || !target->image || !target->view ||
         target->format == VK_FORMAT_UNDEFINED) {
@@ -343,7 +343,7 @@ cleanup:
 
 rtpbr_result rtpbr_read_radiance(rtpbr_renderer *r, float *rgba, size_t size_bytes)
 {
-    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!r) return rtpbr_null_object(__func__, "renderer");
     size_t need = (size_t)r->width * r->height * 16;
     if (!rgba || size_bytes < need) {
         rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_read_radiance: need a buffer of %zu bytes, got %zu%s", need,
@@ -360,7 +360,7 @@ rtpbr_result rtpbr_read_radiance(rtpbr_renderer *r, float *rgba, size_t size_byt
 
 rtpbr_result rtpbr_read_display(rtpbr_renderer *r, uint8_t *rgba, size_t size_bytes)
 {
-    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!r) return rtpbr_null_object(__func__, "renderer");
     size_t need = (size_t)r->width * r->height * 4;
     if (!rgba || size_bytes < need) {
         rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_read_display: need a buffer of %zu bytes, got %zu%s", need,

@@ -113,7 +113,7 @@ static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
 
 rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights, uint32_t light_count)
 {
-    if (!scene) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!scene) return rtpbr_null_object(__func__, "scene");
     rtpbr_result result = validate_lights(scene->context, lights, light_count);
     if (result == RTPBR_SUCCESS) write_lights(scene, lights, light_count);
     return result;
@@ -277,7 +277,7 @@ cleanup:
 
 rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_desc *desc, rtpbr_gpu_scene **out_scene)
 {
-    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!ctx) return rtpbr_null_object(__func__, "context");
     if (!desc || !out_scene) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_create: desc or out_scene is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
@@ -427,7 +427,7 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
 
 rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index, const rtpbr_material_desc *material)
 {
-    if (!scene) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!scene) return rtpbr_null_object(__func__, "scene");
     rtpbr_context *ctx = scene->context;
     if (!material) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_material: material is NULL");
@@ -458,7 +458,7 @@ rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index
 
 rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh, const float transform[16])
 {
-    if (!scene) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!scene) return rtpbr_null_object(__func__, "scene");
     rtpbr_context *ctx = scene->context;
     if (!transform) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: transform is NULL");

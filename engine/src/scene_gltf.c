@@ -39,7 +39,7 @@ static uint32_t texture_ref(const rtpbr_gltf_scene *loaded, int32_t index)
 rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_gltf_scene *loaded,
                                          rtpbr_gpu_scene **out_scene)
 {
-    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!ctx) return rtpbr_null_object(__func__, "context");
     if (!loaded || !out_scene) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_from_loaded: loaded or out_scene is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
@@ -191,7 +191,7 @@ static void forward_loader_log(rtpbr_gltf_log_level level, const char *message, 
 
 rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtpbr_gpu_scene **out_scene)
 {
-    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!ctx) return rtpbr_null_object(__func__, "context");
     if (!path || !out_scene) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_load_gltf: path or out_scene is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;

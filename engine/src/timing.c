@@ -51,7 +51,7 @@ void rtpbr_timing_mark(rtpbr_renderer *r, VkCommandBuffer cmd, rtpbr_timestamp w
 
 rtpbr_result rtpbr_renderer_timings(rtpbr_renderer *r, rtpbr_timings *out)
 {
-    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!r) return rtpbr_null_object(__func__, "renderer");
     if (!out) {
         rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_renderer_timings: out is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;

@@ -93,3 +93,9 @@ rtpbr_result rtpbr_vk_fail(const rtpbr_host *host, VkResult vr, const char *what
     default: return RTPBR_ERROR_VULKAN;
     }
 }
+
+rtpbr_result rtpbr_null_object(const char *function, const char *object)
+{
+    rtpbr_log(&(rtpbr_host){0}, RTPBR_LOG_ERROR, "%s: %s is NULL", function, object);
+    return RTPBR_ERROR_INVALID_ARGUMENT;
+}

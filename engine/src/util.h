@@ -31,6 +31,10 @@ void rtpbr_logv(const rtpbr_host *host, rtpbr_log_level level, const char *fmt, 
 // Logs "<what> failed: <VkResult name>" and maps the VkResult to an rtpbr_result.
 rtpbr_result rtpbr_vk_fail(const rtpbr_host *host, VkResult vr, const char *what);
 const char *rtpbr_vk_result_name(VkResult vr);
+// A public function's object argument (context, scene, renderer) is NULL: there is no host
+// logger to reach, so the message goes to stderr (the default logger); returns
+// RTPBR_ERROR_INVALID_ARGUMENT.
+rtpbr_result rtpbr_null_object(const char *function, const char *object);
 
 // The engine's one error idiom: a function that can fail declares `rtpbr_result result`,
 // checks every call with these, and ends with a `cleanup:` label that releases what it made
