@@ -189,7 +189,7 @@
 #define RTPBR_ENCODE_NONE 0 // sRGB attachment (hardware encodes) or float target
 #define RTPBR_ENCODE_SRGB 1 // UNORM attachment: the shader applies the sRGB curve
 
-// Area-light shadows (issue 17; engine/src/shadow.c, shaders/shadow*.comp, bvh.glsl).
+// Area-light shadows (issue 17; engine/src/passes/shadow.c, shaders/shadow*.comp, bvh.glsl).
 // Lights 0 .. RTPBR_SHADER_MAX_SHADOWED_LIGHTS - 1 of a scene cast shadows (also
 // RTPBR_MAX_SHADOWED_LIGHTS in rtpbr.h); the others are unshadowed.
 #define RTPBR_SHADER_MAX_SHADOWED_LIGHTS 8

@@ -1,7 +1,7 @@
 // A bounding volume hierarchy over the scene's triangles in world space, built on the host at
 // scene upload by a binned SAH builder (Wald 2007, "On fast Construction of SAH-based Bounding
 // Volume Hierarchies": RTPBR_BVH_BINS centroid bins per axis, traversal cost 1, intersection
-// cost 1 per triangle), for the shadow rays of the shadow pass (shadow.c, shaders/bvh.glsl).
+// cost 1 per triangle), for the shadow rays of the shadow pass (passes/shadow.c, shaders/bvh.glsl).
 //
 // GPU layout (two storage buffers, std430; fields declared in rtpbr_shared.h, RTPBR_BVH_*_FIELDS):
 //   nodes:     32 bytes each: vec3 box min, uint left_or_first, vec3 box max, uint count.

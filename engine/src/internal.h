@@ -154,7 +154,7 @@ struct rtpbr_context {
     rtpbr_tonemap_pass tonemap;
     rtpbr_shadow_pass shadow;
     // Live children, so that rtpbr_context_destroy can destroy what the host left behind
-    // (rtpbr.h states the teardown order). Linked through their own prev/next fields.
+    // (rtpbr.h: the context owns them). Linked through their own prev/next fields.
     rtpbr_gpu_scene *scenes;
     rtpbr_renderer *renderers;
 };
@@ -241,7 +241,7 @@ struct rtpbr_renderer {
     bool has_frame;            // rtpbr_render completed at least once
     rtpbr_timing timing;       // GPU timestamps (rtpbr_renderer_desc.timings), else all zero
     bool has_radiance;         // rtpbr_render or rtpbr_record has filled radiance_readback
-    // Shadows (shadow.c), at the shading size, RTPBR_MAX_SHADOWED_LIGHTS layers, GENERAL layout:
+    // Shadows (passes/shadow.c), at the shading size, RTPBR_MAX_SHADOWED_LIGHTS layers, GENERAL layout:
     rtpbr_image shadow_estimates; // R32_UINT: packHalf2x16(shadowed, unshadowed estimate)
     rtpbr_image shadow_ratio;     // R32_SFLOAT: denoised shadowed / unshadowed (lighting binding)
 };
@@ -300,7 +300,7 @@ rtpbr_result rtpbr_submit_once(rtpbr_context *ctx, void (*record)(VkCommandBuffe
 rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t depth, const float *rgba,
                               rtpbr_lut *out);
 void rtpbr_lut_destroy(rtpbr_context *ctx, rtpbr_lut *lut);
-// Every table of ctx->luts (luts.c): the shader library's tables, or placeholders.
+// Every table of ctx->luts (luts.c), from the shader library's generated arrays.
 rtpbr_result rtpbr_luts_create(rtpbr_context *ctx);
 void rtpbr_luts_destroy(rtpbr_context *ctx);
 // Uploads tightly packed texels into a new sampled image (SHADER_READ_ONLY_OPTIMAL).

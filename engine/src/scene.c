@@ -376,7 +376,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         index_base += count;
     }
 
-    RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (shadow.c)
+    RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (passes/shadow.c)
 
     uint32_t material_slots = desc->material_count ? desc->material_count : 1;
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, material_slots * sizeof(rtpbr_shader_material),
