@@ -62,11 +62,11 @@ rtpbr_result rtpbr_context_create(const rtpbr_context_desc *desc, rtpbr_context 
     RTPBR_TRY(rtpbr_luts_create(ctx));
     // The passes' layouts and pipelines (variants other than the defaults: on first use).
     RTPBR_TRY(rtpbr_gbuffer_pass_init(ctx));
-    RTPBR_TRY(rtpbr_shadow_pass_init(ctx));
     RTPBR_TRY(rtpbr_lighting_pass_init(ctx));
     RTPBR_TRY(rtpbr_lighting_mc_pass_init(ctx));
     RTPBR_TRY(rtpbr_resolve_pass_init(ctx));
     RTPBR_TRY(rtpbr_tonemap_pass_init(ctx));
+    RTPBR_TRY(rtpbr_shadow_pass_init(ctx));
 
     *out_context = ctx;
     return RTPBR_SUCCESS;

@@ -6,7 +6,6 @@
 
 #include "rtpbr/rtpbr.h"
 #include "rtpbr_shared.h"
-#include "passes/pipeline.h"
 #include "util.h"
 
 // ---------------------------------------------------------------------------------------------
@@ -68,6 +67,13 @@ typedef struct rtpbr_image {
     VkFormat format;
     uint32_t width, height;
 } rtpbr_image;
+
+// One descriptor set of a renderer, in a pool of its own sized from its pass's binding table
+// (passes/pipeline.c).
+typedef struct rtpbr_descriptor_set {
+    VkDescriptorPool pool;
+    VkDescriptorSet set;
+} rtpbr_descriptor_set;
 
 // A lookup table: an RGBA float image sampled with linear filtering, built from a C array.
 typedef struct rtpbr_lut {

@@ -25,8 +25,10 @@ static rtpbr_result allocate(rtpbr_context *ctx, VkMemoryRequirements req, VkMem
         .allocationSize = req.size,
         .memoryTypeIndex = type,
     };
-    VkResult vr = vkAllocateMemory(ctx->device, &info, NULL, out);
-    return vr == VK_SUCCESS ? RTPBR_SUCCESS : rtpbr_vk_fail(&ctx->host, vr, "vkAllocateMemory");
+    rtpbr_result result = RTPBR_SUCCESS;
+    RTPBR_VK(&ctx->host, vkAllocateMemory(ctx->device, &info, NULL, out));
+cleanup:
+    return result;
 }
 
 // A buffer in memory with the properties `want` (else `fallback`), mapped when host-visible.
@@ -216,14 +218,15 @@ rtpbr_result rtpbr_image_create_with_data(rtpbr_context *ctx, uint32_t width, ui
 {
     rtpbr_result result = RTPBR_SUCCESS;
     rtpbr_buffer staging = {0};
+    memset(out, 0, sizeof *out);
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &staging));
     memcpy(staging.mapped, texels, bytes);
     RTPBR_TRY(rtpbr_image_create(ctx, width, height, format, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                  out));
     lut_upload upload = {staging.buffer, out->image, width, height, 1};
-    result = rtpbr_submit_once(ctx, record_lut_upload, &upload);
-    if (result != RTPBR_SUCCESS) rtpbr_image_destroy(ctx, out);
+    RTPBR_TRY(rtpbr_submit_once(ctx, record_lut_upload, &upload));
 cleanup:
+    if (result != RTPBR_SUCCESS) rtpbr_image_destroy(ctx, out); // accepts a zeroed or half-built image
     rtpbr_buffer_destroy(ctx, &staging);
     return result;
 }

@@ -87,7 +87,7 @@ static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
         rtpbr_shader_light g = {0};
         for (uint32_t v = 0; v < l->vertex_count; ++v) memcpy(g.vertices[v], l->vertices[v], 3 * sizeof(float));
         memcpy(g.radiance, l->emission, sizeof g.radiance);
-        g.two_sided = l->two_sided ? 1u : 0u;
+        g.two_sided = l->two_sided ? 1.0f : 0.0f;
         double n[3];
         polygon_normal(l->vertices, l->vertex_count, n);
         double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);

@@ -8,7 +8,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "rtpbr/rtpbr.h"
+#include "../internal.h"
 
 // SPIR-V compiled by the build (engine/shaders/meson.build) and embedded as uint32 arrays.
 typedef struct rtpbr_spirv {
@@ -24,12 +24,6 @@ typedef struct rtpbr_bindings {
     uint32_t count;
 } rtpbr_bindings;
 #define RTPBR_BINDINGS(table) ((rtpbr_bindings){table, sizeof table / sizeof table[0]})
-
-// One descriptor set of a renderer or scene, from its own pool (sized from the binding table).
-typedef struct rtpbr_descriptor_set {
-    VkDescriptorPool pool;
-    VkDescriptorSet set;
-} rtpbr_descriptor_set;
 
 rtpbr_result rtpbr_shader_module(rtpbr_context *ctx, rtpbr_spirv spirv, VkShaderModule *out);
 rtpbr_result rtpbr_set_layout_create(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSetLayout *out);
