@@ -90,7 +90,10 @@ void rtpbr_context_destroy(rtpbr_context *ctx)
         while (ctx->scenes) rtpbr_gpu_scene_destroy(ctx->scenes);
     }
     if (ctx->device) {
-        if (ctx->upload_fence) vkWaitForFences(ctx->device, 1, &ctx->upload_fence, VK_TRUE, UINT64_MAX);
+        if (ctx->upload_fence) {
+            VkResult vr = vkWaitForFences(ctx->device, 1, &ctx->upload_fence, VK_TRUE, UINT64_MAX);
+            if (vr != VK_SUCCESS) rtpbr_vk_fail(&ctx->host, vr, "vkWaitForFences (rtpbr_context_destroy)");
+        }
         rtpbr_tonemap_pass_finish(ctx);
         rtpbr_resolve_pass_finish(ctx);
         rtpbr_lighting_mc_pass_finish(ctx);

@@ -95,7 +95,8 @@ void rtpbr_renderer_destroy(rtpbr_renderer *r)
     if (!r) return;
     rtpbr_context *ctx = r->context;
     if (r->fence) {
-        if (r->has_frame) vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX);
+        VkResult vr = r->has_frame ? vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX) : VK_SUCCESS;
+        if (vr != VK_SUCCESS) rtpbr_vk_fail(&ctx->host, vr, "vkWaitForFences (rtpbr_renderer_destroy)");
         vkDestroyFence(ctx->device, r->fence, NULL);
     }
     if (r->cmd) vkFreeCommandBuffers(ctx->device, ctx->command_pool, 1, &r->cmd);
