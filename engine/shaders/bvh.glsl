@@ -3,16 +3,12 @@
 // only run-time-indexed private array; nodes and triangles are read from storage buffers.
 // Include after rtpbr_shared.h; define BVH_SET before including (the descriptor set).
 
-// C mirror: rtpbr_shader_bvh_node.
+// Fields declared once, in rtpbr_shared.h (C: rtpbr_shader_bvh_node, rtpbr_shader_bvh_triangle).
 struct BvhNode {
-    vec3 boxMin;
-    uint leftOrFirst; // interior: left child (the right one is leftOrFirst + 1); leaf: first triangle
-    vec3 boxMax;
-    uint count;       // 0: interior
+    RTPBR_BVH_NODE_FIELDS(RTPBR_SHARED_FIELD, BvhNode)
 };
-// C mirror: rtpbr_shader_bvh_triangle.
 struct BvhTriangle {
-    vec4 v0, e1, e2;
+    RTPBR_BVH_TRIANGLE_FIELDS(RTPBR_SHARED_FIELD, BvhTriangle)
 };
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_BVH_NODES, std430) readonly buffer BvhNodes {
     BvhNode bvh_nodes[];
@@ -56,21 +52,21 @@ bool bvh_occluded(vec3 o, vec3 d, float tMax)
     int sp = 0;
     uint node = 0u;
     BvhNode root = bvh_nodes[0];
-    if (!bvh_box_hit(root.boxMin, root.boxMax, o, invD, tMax)) return false;
+    if (!bvh_box_hit(root.box_min, root.box_max, o, invD, tMax)) return false;
     for (;;) {
         BvhNode n = bvh_nodes[node];
         if (n.count > 0u) {
-            for (uint i = n.leftOrFirst; i < n.leftOrFirst + n.count; ++i)
+            for (uint i = n.left_or_first; i < n.left_or_first + n.count; ++i)
                 if (bvh_triangle_hit(bvh_triangles[i], o, d, tMax)) return true;
         } else {
-            BvhNode left = bvh_nodes[n.leftOrFirst];
-            BvhNode right = bvh_nodes[n.leftOrFirst + 1u];
-            bool hitLeft = bvh_box_hit(left.boxMin, left.boxMax, o, invD, tMax);
-            bool hitRight = bvh_box_hit(right.boxMin, right.boxMax, o, invD, tMax);
+            BvhNode left = bvh_nodes[n.left_or_first];
+            BvhNode right = bvh_nodes[n.left_or_first + 1u];
+            bool hitLeft = bvh_box_hit(left.box_min, left.box_max, o, invD, tMax);
+            bool hitRight = bvh_box_hit(right.box_min, right.box_max, o, invD, tMax);
             if (hitLeft || hitRight) {
                 // Descend into one, keep the other for later; the depth bound keeps sp in range.
-                node = hitLeft ? n.leftOrFirst : n.leftOrFirst + 1u;
-                if (hitLeft && hitRight) stack[sp++] = n.leftOrFirst + 1u;
+                node = hitLeft ? n.left_or_first : n.left_or_first + 1u;
+                if (hitLeft && hitRight) stack[sp++] = n.left_or_first + 1u;
                 continue;
             }
         }

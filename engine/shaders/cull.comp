@@ -37,7 +37,7 @@ layout(local_size_x = RTPBR_CULL_GROUP, local_size_y = RTPBR_CULL_GROUP) in;
 bool light_may_contribute(uint i, vec3 boxMin, vec3 boxMax)
 {
     vec4 plane = lights[i].plane;
-    if (lights[i].emission.w == 0.0f) {
+    if (lights[i].two_sided == 0.0f) {
         bool anyInFront = false;
         for (int c = 0; c < 8; ++c) {
             vec3 corner = vec3((c & 1) != 0 ? boxMax.x : boxMin.x, (c & 2) != 0 ? boxMax.y : boxMin.y,

@@ -7,11 +7,7 @@
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_GBUFFER_FRAME
 #include "frame.glsl"
 
-layout(push_constant, std430) uniform Draw {
-    mat4 world_from_object;
-    vec4 normal_matrix[3];
-    uint material;
-} draw;
+#include "draw.glsl"
 
 #include "material.glsl"
 layout(set = 0, binding = RTPBR_BINDING_GBUFFER_MATERIALS, std430) readonly buffer Materials {

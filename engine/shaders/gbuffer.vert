@@ -5,11 +5,7 @@
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_GBUFFER_FRAME
 #include "frame.glsl"
 
-layout(push_constant, std430) uniform Draw {
-    mat4 world_from_object;
-    vec4 normal_matrix[3]; // columns of the inverse-transpose 3x3
-    uint material;
-} draw;
+#include "draw.glsl"
 
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;

@@ -162,7 +162,7 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
         vec4 plane = lights[i].plane;
         vec4 sphere = lights[i].sphere;
         float side = dot(plane.xyz, P) + plane.w; // > 0: the front (emitting) side
-        bool twoSided = lights[i].emission.w != 0.0f;
+        bool twoSided = lights[i].two_sided != 0.0f;
         if (abs(side) <= 1e-7f * sphere.w || (!twoSided && side < 0.0f) || dot(N, sphere.xyz - P) < -sphere.w)
             continue;
 
@@ -205,7 +205,7 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
             lo += coatScale * light_lobe(i, P, ltcFrame, LTC_InverseMatrix(ltc1c), unusedF) +
                   s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(kc_E(muRep, s.coatR), s.Eavgc, lenF), s.Eavgc, ff);
 #endif
-        sum += lights[i].emission.rgb * lo * shadow_factor(i, pixel);
+        sum += lights[i].radiance * lo * shadow_factor(i, pixel);
     }
     return sum;
 }

@@ -4,16 +4,7 @@
 // Include after rtpbr_shared.h, the shader-library headers (fresnel.h, kulla_conty.h,
 // disney.h, sheen.h, material.h), material.glsl and frame.glsl.
 
-// C mirror: rtpbr_shader_light (engine/src/internal.h).
-struct Light {
-    vec4 vertices[RTPBR_SHADER_MAX_POLYGON_VERTICES];
-    vec4 emission; // rgb radiance, w: two-sided
-    vec4 plane;    // unit normal, -dot(normal, vertex 0)
-    vec4 sphere;   // bounding sphere: centre, radius
-    uint vertex_count;
-    float area;
-    uint pad0, pad1;
-};
+#include "light.glsl"
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_LIGHTS, std430) readonly buffer Lights {
     Light lights[];
 };

@@ -40,9 +40,8 @@
 layout(local_size_x = RTPBR_TILE_SIZE, local_size_y = RTPBR_TILE_SIZE) in;
 
 // C mirror: rtpbr_shader_mc (engine/src/internal.h).
-layout(push_constant) uniform McParams {
-    uint samples; // per pixel and light, >= 1
-    uint seed;
+layout(push_constant, std430) uniform McParams {
+    RTPBR_MC_FIELDS(RTPBR_SHARED_FIELD, McParams)
 } mc;
 
 #include "lighting_common.glsl"
@@ -125,7 +124,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
     for (uint i = 0u; i < frame.light_count; ++i) {
         // The light's fields are read from the buffer where they are used (no private copy).
         uint count = min(lights[i].vertex_count, uint(RTPBR_SHADER_MAX_POLYGON_VERTICES));
-        bool twoSided = lights[i].emission.w != 0.0f;
+        bool twoSided = lights[i].two_sided != 0.0f;
         vec4 plane = lights[i].plane;
         float side = dot(plane.xyz, P) + plane.w;
         // Fan triangles (v0, vk, vk+1), k = 1..count-2, and their total area.
@@ -201,7 +200,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
             bool valid = hit && NoL > 0.0f && pdf > 0.0f;
             lightSum += valid ? f * (NoL / pdf) : vec3(0.0f);
         }
-        sum += lights[i].emission.rgb * (lightSum / float(samples)) * shadow_factor(i, ivec2(pixel));
+        sum += lights[i].radiance * (lightSum / float(samples)) * shadow_factor(i, ivec2(pixel));
     }
     return sum;
 }

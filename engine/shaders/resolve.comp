@@ -9,10 +9,9 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = RTPBR_BINDING_RESOLVE_SOURCE, rgba32f) readonly uniform image2D source;
 layout(set = 0, binding = RTPBR_BINDING_RESOLVE_TARGET, rgba32f) writeonly uniform image2D target;
-// C mirror: rtpbr_shader_resolve.
-layout(push_constant) uniform Resolve {
-    uvec2 size;   // of the target
-    uint factor;  // samples per pixel along each axis
+// Fields declared once, in rtpbr_shared.h (RTPBR_RESOLVE_FIELDS; C: rtpbr_shader_resolve).
+layout(push_constant, std430) uniform Resolve {
+    RTPBR_RESOLVE_FIELDS(RTPBR_SHARED_FIELD, Resolve)
 } params;
 
 void main()

@@ -131,6 +131,15 @@
 #define RTPBR_BINDING_TEXTURE_NORMAL 3
 #define RTPBR_MATERIAL_TEXTURE_COUNT 4
 
+// G-buffer pass push constants (std430), one block per draw (rtpbr_shader_draw, gbuffer.vert).
+#define RTPBR_DRAW_FIELDS(F, S)                                                                   \
+    F(S, MAT4, world_from_object, )                                                                \
+    F(S, VEC4, normal_matrix, [3]) /* columns of the inverse-transpose 3x3; w unused */          \
+    F(S, UINT, material, )         /* index into the materials buffer */                          \
+    F(S, UINT, pad0, )                                                                             \
+    F(S, UINT, pad1, )                                                                             \
+    F(S, UINT, pad2, )
+
 // Lighting pass, descriptor set 0.
 #define RTPBR_BINDING_LIGHT_FRAME 0       // uniform: rtpbr_shader_frame
 #define RTPBR_BINDING_LIGHT_LIGHTS 1      // storage: rtpbr_shader_light[]
@@ -160,6 +169,19 @@
 #define RTPBR_BINDING_LIGHT_TILE_LISTS 23  // storage: per-class tile queues (cull.comp)
 #define RTPBR_LIGHTING_BINDING_COUNT 25 // with RTPBR_BINDING_LIGHT_SHADOW_RATIO (24, below)
 
+// One polygonal light, the std430 element of the lights buffer (RTPBR_BINDING_LIGHT_LIGHTS,
+// RTPBR_BINDING_SHADOW_LIGHTS; rtpbr_shader_light, light.glsl): written by engine/src/scene.c.
+#define RTPBR_LIGHT_FIELDS(F, S)                                                                  \
+    F(S, VEC4, vertices, [RTPBR_SHADER_MAX_POLYGON_VERTICES]) /* xyz; w unused */                 \
+    F(S, VEC3, radiance, )     /* emitted radiance, rgb */                                         \
+    F(S, FLOAT, two_sided, )   /* 1: emits on both sides; 0: on the front side (plane normal) */  \
+    F(S, VEC4, plane, )        /* unit normal xyz, w = -dot(normal, vertex 0) */                  \
+    F(S, VEC4, sphere, )       /* bounding sphere: centre xyz, radius w */                        \
+    F(S, UINT, vertex_count, ) /* 3 .. RTPBR_SHADER_MAX_POLYGON_VERTICES */                       \
+    F(S, FLOAT, area, )                                                                            \
+    F(S, UINT, pad0, )                                                                             \
+    F(S, UINT, pad1, )
+
 // Light culling (cull.comp): one invocation per tile, RTPBR_CULL_GROUP^2 tiles per workgroup.
 #define RTPBR_CULL_GROUP 8
 #define RTPBR_TILE_MASK_WORDS (RTPBR_SHADER_MAX_LIGHTS / 32)
@@ -169,12 +191,30 @@
 #define RTPBR_TILE_CLASS_FULL 2  // any material
 #define RTPBR_TILE_CLASS_COUNT 3
 
+// Monte Carlo lighting pass push constants (std430; rtpbr_shader_mc, lighting_mc.comp).
+#define RTPBR_MC_FIELDS(F, S)                                                                     \
+    F(S, UINT, samples, ) /* per pixel and light, >= 1 */                                         \
+    F(S, UINT, seed, )                                                                             \
+    F(S, UINT, pad0, )                                                                             \
+    F(S, UINT, pad1, )
+
 // Supersampling resolve (resolve.comp), descriptor set 0.
 #define RTPBR_BINDING_RESOLVE_SOURCE 0    // rgba32f storage image, (factor W) x (factor H)
 #define RTPBR_BINDING_RESOLVE_TARGET 1    // rgba32f storage image, W x H
+// Its push constants (std430; rtpbr_shader_resolve).
+#define RTPBR_RESOLVE_FIELDS(F, S)                                                                \
+    F(S, UVEC2, size, )  /* of the target */                                                       \
+    F(S, UINT, factor, ) /* samples per pixel along each axis */                                   \
+    F(S, UINT, pad0, )
 
 // Tone-mapping pass, descriptor set 0.
 #define RTPBR_BINDING_TONEMAP_RADIANCE 0   // rgba32f storage image, read only
+// Its push constants (std430; rtpbr_shader_tonemap, tonemap.frag).
+#define RTPBR_TONEMAP_FIELDS(F, S)                                                                \
+    F(S, FLOAT, scale, ) /* 2^exposure */                                                          \
+    F(S, UINT, op, )     /* RTPBR_TONEMAP_OP_* */                                                  \
+    F(S, UINT, encode, ) /* RTPBR_ENCODE_* */                                                      \
+    F(S, UINT, pad0, )
 
 // Tone-mapping operators (values of rtpbr_tonemap in rtpbr.h minus the default).
 #define RTPBR_TONEMAP_OP_ACES 1
@@ -185,7 +225,7 @@
 #define RTPBR_ENCODE_NONE 0 // sRGB attachment (hardware encodes) or float target
 #define RTPBR_ENCODE_SRGB 1 // UNORM attachment: the shader applies the sRGB curve
 
-// Area-light shadows (issue 17; engine/src/shadow.c, shaders/shadow*.comp, bvh.glsl).
+// Area-light shadows (issue 17; engine/src/passes/shadow.c, shaders/shadow*.comp, bvh.glsl).
 // Lights 0 .. RTPBR_SHADER_MAX_SHADOWED_LIGHTS - 1 of a scene cast shadows (also
 // RTPBR_MAX_SHADOWED_LIGHTS in rtpbr.h); the others are unshadowed.
 #define RTPBR_SHADER_MAX_SHADOWED_LIGHTS 8
@@ -204,5 +244,24 @@
 #define RTPBR_BINDING_SHADOW_RATIO 7          // r32f storage image array: shadowed / unshadowed
 #define RTPBR_SHADOW_BINDING_COUNT 8
 #define RTPBR_SHADOW_GROUP_SIZE 8             // 8 x 8 pixels per workgroup
+// Push constants of both shadow passes (std430; rtpbr_shader_shadow).
+#define RTPBR_SHADOW_FIELDS(F, S)                                                                 \
+    F(S, UINT, samples, ) /* per pixel and shadowed light, >= 1 */                                 \
+    F(S, UINT, seed, )                                                                             \
+    F(S, UINT, radius, )  /* of the denoiser's (2 radius + 1)^2 window; 0: no denoising */        \
+    F(S, UINT, pad0, )
+// A BVH node, the std430 element of RTPBR_BINDING_SHADOW_BVH_NODES (rtpbr_shader_bvh_node,
+// bvh.glsl; engine/src/bvh.c documents the tree).
+#define RTPBR_BVH_NODE_FIELDS(F, S)                                                               \
+    F(S, VEC3, box_min, )                                                                          \
+    F(S, UINT, left_or_first, ) /* interior: left child, the right one follows; leaf: first triangle */ \
+    F(S, VEC3, box_max, )                                                                          \
+    F(S, UINT, count, )         /* triangles of a leaf; 0: interior node */
+// A triangle, the std430 element of RTPBR_BINDING_SHADOW_BVH_TRIANGLES: vertex 0 and the two
+// edges from it (w unused), ready for the Moeller-Trumbore test.
+#define RTPBR_BVH_TRIANGLE_FIELDS(F, S)                                                           \
+    F(S, VEC4, v0, )                                                                               \
+    F(S, VEC4, e1, )                                                                               \
+    F(S, VEC4, e2, )
 
 #endif // RTPBR_SHARED_H

@@ -18,16 +18,7 @@
 #include "shadow_common.glsl"
 #include "bvh.glsl"
 
-// C mirror: rtpbr_shader_light (engine/src/internal.h; as lighting_common.glsl's Light).
-struct Light {
-    vec4 vertices[RTPBR_SHADER_MAX_POLYGON_VERTICES];
-    vec4 emission; // rgb radiance, w: two-sided
-    vec4 plane;    // unit normal, -dot(normal, vertex 0)
-    vec4 sphere;   // bounding sphere: centre, radius
-    uint vertex_count;
-    float area;
-    uint pad0, pad1;
-};
+#include "light.glsl"
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_LIGHTS, std430) readonly buffer Lights {
     Light lights[];
 };
@@ -61,7 +52,7 @@ void main()
 
     for (uint k = 0u; k < lightCount; ++k) {
         Light light = lights[k];
-        bool twoSided = light.emission.w != 0.0f;
+        bool twoSided = light.two_sided != 0.0f;
         float shadowed = 0.0f, unshadowed = 0.0f;
         // Behind a one-sided light, or the light below the horizon everywhere: both stay 0.
         bool facing = twoSided || dot(light.plane.xyz, origin) + light.plane.w > 0.0f;

@@ -5,11 +5,9 @@
 
 layout(local_size_x = RTPBR_SHADOW_GROUP_SIZE, local_size_y = RTPBR_SHADOW_GROUP_SIZE) in;
 
-// C mirror: rtpbr_shader_shadow (engine/src/internal.h).
-layout(push_constant) uniform ShadowParams {
-    uint samples; // per pixel and shadowed light, >= 1
-    uint seed;
-    uint radius;  // the denoiser's window is (2 radius + 1)^2 pixels; 0: none
+// Fields declared once, in rtpbr_shared.h (RTPBR_SHADOW_FIELDS; C: rtpbr_shader_shadow).
+layout(push_constant, std430) uniform ShadowParams {
+    RTPBR_SHADOW_FIELDS(RTPBR_SHARED_FIELD, ShadowParams)
 } params;
 
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_DEPTH) uniform sampler2D gbuffer_depth;

@@ -3,10 +3,9 @@
 // Tone mapping: exposure, a display operator, optional sRGB encoding (constants: rtpbr_shader_tonemap).
 #include "rtpbr_shared.h"
 
+// Fields declared once, in rtpbr_shared.h (RTPBR_TONEMAP_FIELDS; C: rtpbr_shader_tonemap).
 layout(push_constant, std430) uniform Params {
-    float scale; // 2^exposure
-    uint op;     // RTPBR_TONEMAP_OP_*
-    uint encode; // RTPBR_ENCODE_*
+    RTPBR_TONEMAP_FIELDS(RTPBR_SHARED_FIELD, Params)
 } params;
 
 layout(set = 0, binding = RTPBR_BINDING_TONEMAP_RADIANCE, rgba32f) readonly uniform image2D radiance;

@@ -1,9 +1,9 @@
 // A bounding volume hierarchy over the scene's triangles in world space, built on the host at
 // scene upload by a binned SAH builder (Wald 2007, "On fast Construction of SAH-based Bounding
 // Volume Hierarchies": RTPBR_BVH_BINS centroid bins per axis, traversal cost 1, intersection
-// cost 1 per triangle), for the shadow rays of the shadow pass (shadow.c, shaders/bvh.glsl).
+// cost 1 per triangle), for the shadow rays of the shadow pass (passes/shadow.c, shaders/bvh.glsl).
 //
-// GPU layout (two storage buffers, std430; C mirror rtpbr_shader_bvh_node / _triangle):
+// GPU layout (two storage buffers, std430; fields declared in rtpbr_shared.h, RTPBR_BVH_*_FIELDS):
 //   nodes:     32 bytes each: vec3 box min, uint left_or_first, vec3 box max, uint count.
 //              count == 0: an interior node whose children are nodes left_or_first and
 //              left_or_first + 1 (siblings are adjacent); count > 0: a leaf holding triangles
@@ -60,8 +60,8 @@ static float aabb_half_area(const aabb *b)
 static void make_leaf(build_state *s, uint32_t node, const aabb *box, uint32_t first, uint32_t count)
 {
     rtpbr_shader_bvh_node *n = &s->nodes[node];
-    memcpy(n->min, box->min, sizeof n->min);
-    memcpy(n->max, box->max, sizeof n->max);
+    memcpy(n->box_min, box->min, sizeof n->box_min);
+    memcpy(n->box_max, box->max, sizeof n->box_max);
     n->left_or_first = first;
     n->count = count;
 }
@@ -145,8 +145,8 @@ static void build(build_state *s, uint32_t node, uint32_t first, uint32_t count,
     uint32_t left = s->node_count;
     s->node_count += 2;
     rtpbr_shader_bvh_node *n = &s->nodes[node];
-    memcpy(n->min, box.min, sizeof n->min);
-    memcpy(n->max, box.max, sizeof n->max);
+    memcpy(n->box_min, box.min, sizeof n->box_min);
+    memcpy(n->box_max, box.max, sizeof n->box_max);
     n->left_or_first = left;
     n->count = 0;
     build(s, left, first, left_count, depth + 1);
@@ -169,15 +169,11 @@ rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
     float (*tri)[9] = NULL;
     uint32_t node_slots = tri_count ? 2 * tri_count - 1 : 1;
     if (tri_count) {
-        tri = rtpbr_alloc(ctx, tri_count * sizeof *tri);
-        s.centroid = rtpbr_alloc(ctx, tri_count * sizeof *s.centroid);
-        s.order = rtpbr_alloc(ctx, tri_count * sizeof *s.order);
+        RTPBR_ALLOC(&ctx->host, tri, tri_count * sizeof *tri);
+        RTPBR_ALLOC(&ctx->host, s.centroid, tri_count * sizeof *s.centroid);
+        RTPBR_ALLOC(&ctx->host, s.order, tri_count * sizeof *s.order);
     }
-    s.nodes = rtpbr_alloc(ctx, node_slots * sizeof *s.nodes);
-    if ((tri_count && (!tri || !s.centroid || !s.order)) || !s.nodes) {
-        result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-        goto cleanup;
-    }
+    RTPBR_ALLOC(&ctx->host, s.nodes, node_slots * sizeof *s.nodes);
     // World-space triangles from the scene's (already uploaded, host-visible) buffers.
     const float *vertices = scene->vertices.mapped;
     const uint32_t *indices = scene->indices.mapped;
@@ -218,10 +214,10 @@ rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
     scene->bvh_node_count = s.node_count;
     scene->bvh_triangle_count = tri_count;
 cleanup:
-    rtpbr_free(ctx, tri);
-    rtpbr_free(ctx, s.centroid);
-    rtpbr_free(ctx, s.order);
-    rtpbr_free(ctx, s.nodes);
+    rtpbr_free(&ctx->host, tri);
+    rtpbr_free(&ctx->host, s.centroid);
+    rtpbr_free(&ctx->host, s.order);
+    rtpbr_free(&ctx->host, s.nodes);
     return result;
 }
 

@@ -14,7 +14,7 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
     rtpbr_context *ctx = user_data;
     bool error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     ctx->validation_messages++;
-    rtpbr_log(ctx, error ? RTPBR_LOG_ERROR : RTPBR_LOG_WARNING, "validation: %s",
+    rtpbr_log(&ctx->host, error ? RTPBR_LOG_ERROR : RTPBR_LOG_WARNING, "validation: %s",
               data && data->pMessage ? data->pMessage : "(no message)");
     return VK_FALSE;
 }
@@ -23,14 +23,16 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
 static rtpbr_result has_layer(rtpbr_context *ctx, const char *name, bool *found)
 {
     *found = false;
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkLayerProperties *layers = NULL;
     uint32_t count = 0;
     if (vkEnumerateInstanceLayerProperties(&count, NULL) != VK_SUCCESS || count == 0) return RTPBR_SUCCESS;
-    VkLayerProperties *layers = rtpbr_alloc(ctx, count * sizeof *layers);
-    if (!layers) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+    RTPBR_ALLOC(&ctx->host, layers, count * sizeof *layers);
     if (vkEnumerateInstanceLayerProperties(&count, layers) == VK_SUCCESS)
         for (uint32_t i = 0; i < count && !*found; ++i) *found = strcmp(layers[i].layerName, name) == 0;
-    rtpbr_free(ctx, layers);
-    return RTPBR_SUCCESS;
+cleanup:
+    rtpbr_free(&ctx->host, layers);
+    return result;
 }
 
 // *family: a queue family with graphics and compute, or UINT32_MAX. Fails only when out of
@@ -38,16 +40,18 @@ static rtpbr_result has_layer(rtpbr_context *ctx, const char *name, bool *found)
 static rtpbr_result find_queue_family(rtpbr_context *ctx, VkPhysicalDevice pd, uint32_t *family)
 {
     *family = UINT32_MAX;
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkQueueFamilyProperties *families = NULL;
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, NULL);
-    VkQueueFamilyProperties *families = rtpbr_alloc(ctx, (count ? count : 1) * sizeof *families);
-    if (!families) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+    RTPBR_ALLOC(&ctx->host, families, (count ? count : 1) * sizeof *families);
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, families);
     const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
     for (uint32_t i = 0; i < count && *family == UINT32_MAX; ++i)
         if ((families[i].queueFlags & need) == need && families[i].queueCount > 0) *family = i;
-    rtpbr_free(ctx, families);
-    return RTPBR_SUCCESS;
+cleanup:
+    rtpbr_free(&ctx->host, families);
+    return result;
 }
 
 static bool supports_dynamic_rendering(VkPhysicalDevice pd)
@@ -86,7 +90,7 @@ static rtpbr_result create_instance(rtpbr_context *ctx, bool validation)
     bool layer = false;
     if (validation && (result = has_layer(ctx, VALIDATION_LAYER, &layer)) != RTPBR_SUCCESS) return result;
     if (validation && !layer) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "validation requested but %s is not installed", VALIDATION_LAYER);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "validation requested but %s is not installed", VALIDATION_LAYER);
         return RTPBR_ERROR_MISSING_FEATURE;
     }
     VkApplicationInfo app = {
@@ -125,19 +129,19 @@ static rtpbr_result create_instance(rtpbr_context *ctx, bool validation)
     };
     VkResult vr = vkCreateInstance(&info, NULL, &ctx->instance);
     if (vr == VK_ERROR_INCOMPATIBLE_DRIVER) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "no Vulkan implementation found (vkCreateInstance: %s)",
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "no Vulkan implementation found (vkCreateInstance: %s)",
                   rtpbr_vk_result_name(vr));
         return RTPBR_ERROR_NO_DEVICE;
     }
-    RTPBR_VK(ctx, vr);
+    RTPBR_VK(&ctx->host, vr);
     if (validation) {
         PFN_vkCreateDebugUtilsMessengerEXT create_messenger =
             (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(ctx->instance, "vkCreateDebugUtilsMessengerEXT");
         if (!create_messenger) {
-            rtpbr_log(ctx, RTPBR_LOG_ERROR, "vkCreateDebugUtilsMessengerEXT not available");
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "vkCreateDebugUtilsMessengerEXT not available");
             return RTPBR_ERROR_MISSING_FEATURE;
         }
-        RTPBR_VK(ctx, create_messenger(ctx->instance, &messenger_info, NULL, &ctx->messenger));
+        RTPBR_VK(&ctx->host, create_messenger(ctx->instance, &messenger_info, NULL, &ctx->messenger));
     }
 cleanup:
     return result;
@@ -148,14 +152,10 @@ static rtpbr_result choose_physical_device(rtpbr_context *ctx, uint32_t device_i
     rtpbr_result result = RTPBR_SUCCESS;
     VkPhysicalDevice *devices = NULL;
     uint32_t count = 0;
-    RTPBR_VK(ctx, vkEnumeratePhysicalDevices(ctx->instance, &count, NULL));
-    if (count == 0) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "no Vulkan physical device");
-        return RTPBR_ERROR_NO_DEVICE;
-    }
-    devices = rtpbr_alloc(ctx, count * sizeof *devices);
-    if (!devices) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-    RTPBR_VK(ctx, vkEnumeratePhysicalDevices(ctx->instance, &count, devices));
+    RTPBR_VK(&ctx->host, vkEnumeratePhysicalDevices(ctx->instance, &count, NULL));
+    if (count == 0) RTPBR_FAIL(&ctx->host, RTPBR_ERROR_NO_DEVICE, "no Vulkan physical device");
+    RTPBR_ALLOC(&ctx->host, devices, count * sizeof *devices);
+    RTPBR_VK(&ctx->host, vkEnumeratePhysicalDevices(ctx->instance, &count, devices));
 
     VkPhysicalDevice best = VK_NULL_HANDLE;
     int best_rank = 99;
@@ -167,7 +167,7 @@ static rtpbr_result choose_physical_device(rtpbr_context *ctx, uint32_t device_i
         RTPBR_TRY(find_queue_family(ctx, devices[i], &family));
         bool ok = props.apiVersion >= VK_API_VERSION_1_3 && supports_dynamic_rendering(devices[i]) &&
                   family != UINT32_MAX;
-        rtpbr_log(ctx, RTPBR_LOG_DEBUG, "device %u: %s (%s)", i, props.deviceName, ok ? "suitable" : "unsuitable");
+        rtpbr_log(&ctx->host, RTPBR_LOG_DEBUG, "device %u: %s (%s)", i, props.deviceName, ok ? "suitable" : "unsuitable");
         if (!ok) continue;
         ++suitable;
         if (device_index != RTPBR_DEVICE_AUTO) {
@@ -179,17 +179,17 @@ static rtpbr_result choose_physical_device(rtpbr_context *ctx, uint32_t device_i
     }
     if (best == VK_NULL_HANDLE) {
         if (device_index != RTPBR_DEVICE_AUTO && suitable > 0)
-            rtpbr_log(ctx, RTPBR_LOG_ERROR, "device_index %u requested but only %u suitable device(s)",
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "device_index %u requested but only %u suitable device(s)",
                       device_index, suitable);
         else
-            rtpbr_log(ctx, RTPBR_LOG_ERROR,
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
                       "no Vulkan device with Vulkan 1.3, dynamicRendering and a graphics+compute queue");
         result = RTPBR_ERROR_NO_DEVICE;
         goto cleanup;
     }
     adopt_physical_device(ctx, best);
 cleanup:
-    rtpbr_free(ctx, devices);
+    rtpbr_free(&ctx->host, devices);
     return result;
 }
 
@@ -218,9 +218,9 @@ rtpbr_result rtpbr_device_init_standalone(rtpbr_context *ctx, const rtpbr_contex
         .queueCreateInfoCount = 1,
         .pQueueCreateInfos = &queue_info,
     };
-    RTPBR_VK(ctx, vkCreateDevice(ctx->physical_device, &info, NULL, &ctx->device));
+    RTPBR_VK(&ctx->host, vkCreateDevice(ctx->physical_device, &info, NULL, &ctx->device));
     vkGetDeviceQueue(ctx->device, ctx->queue_family, 0, &ctx->queue);
-    rtpbr_log(ctx, RTPBR_LOG_INFO, "standalone device: %s", ctx->device_name);
+    rtpbr_log(&ctx->host, RTPBR_LOG_INFO, "standalone device: %s", ctx->device_name);
 cleanup:
     return result;
 }
@@ -243,19 +243,19 @@ rtpbr_result rtpbr_device_init_embedded(rtpbr_context *ctx, const rtpbr_vulkan_d
 {
     ctx->embedded = true;
     if (!host->instance || !host->physical_device || !host->device || !host->queue) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR,
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
                   "embedded mode needs instance, physical_device, device and queue (one is VK_NULL_HANDLE)");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(host->physical_device, &props);
     if (props.apiVersion < VK_API_VERSION_1_3) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "embedded device %s supports Vulkan %u.%u; 1.3 is required",
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "embedded device %s supports Vulkan %u.%u; 1.3 is required",
                   props.deviceName, VK_API_VERSION_MAJOR(props.apiVersion), VK_API_VERSION_MINOR(props.apiVersion));
         return RTPBR_ERROR_MISSING_FEATURE;
     }
     if (!host_enabled_dynamic_rendering(host->enabled_features)) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR,
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
                   "embedded device: dynamicRendering was not enabled (enabled_features lists what the "
                   "host passed to vkCreateDevice; it must enable VkPhysicalDeviceVulkan13Features::dynamicRendering)");
         return RTPBR_ERROR_MISSING_FEATURE;
@@ -268,7 +268,7 @@ rtpbr_result rtpbr_device_init_embedded(rtpbr_context *ctx, const rtpbr_vulkan_d
     const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
     if (host->queue_family_index >= family_count ||
         (families[host->queue_family_index].queueFlags & need) != need) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "embedded queue family %u does not support graphics and compute",
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "embedded queue family %u does not support graphics and compute",
                   host->queue_family_index);
         return RTPBR_ERROR_MISSING_FEATURE;
     }
@@ -277,7 +277,7 @@ rtpbr_result rtpbr_device_init_embedded(rtpbr_context *ctx, const rtpbr_vulkan_d
     ctx->queue = host->queue;
     ctx->queue_family = host->queue_family_index;
     adopt_physical_device(ctx, host->physical_device);
-    rtpbr_log(ctx, RTPBR_LOG_INFO, "embedded in the host's device: %s", ctx->device_name);
+    rtpbr_log(&ctx->host, RTPBR_LOG_INFO, "embedded in the host's device: %s", ctx->device_name);
     return RTPBR_SUCCESS;
 }
 

@@ -2,17 +2,11 @@
 #ifndef RTPBR_INTERNAL_H
 #define RTPBR_INTERNAL_H
 
-#include <stdarg.h>
 #include <stdbool.h>
 
 #include "rtpbr/rtpbr.h"
 #include "rtpbr_shared.h"
-
-#if defined(__GNUC__)
-#define RTPBR_PRINTF(f, a) __attribute__((format(printf, f, a)))
-#else
-#define RTPBR_PRINTF(f, a)
-#endif
+#include "util.h"
 
 // ---------------------------------------------------------------------------------------------
 // GPU-side structs (std140 / std430; layouts must match the shaders)
@@ -25,66 +19,16 @@ RTPBR_SHARED_CHECK_LAYOUT(rtpbr_shader_frame, RTPBR_FRAME_FIELDS)
 RTPBR_SHARED_STRUCT(rtpbr_shader_material, RTPBR_MATERIAL_FIELDS)
 RTPBR_SHARED_CHECK_LAYOUT(rtpbr_shader_material, RTPBR_MATERIAL_FIELDS)
 
-// std430 element of the lights buffer (lighting.comp).
-typedef struct rtpbr_shader_light {
-    float vertices[RTPBR_SHADER_MAX_POLYGON_VERTICES][4]; // xyz, w unused
-    float emission[4];         // rgb radiance, w: 1 if two-sided
-    float plane[4];            // unit normal xyz, w = -dot(normal, vertex0)
-    float sphere[4];           // bounding sphere: centre xyz, radius w
-    uint32_t vertex_count;
-    float area;
-    uint32_t pad[2];
-} rtpbr_shader_light;
-
-// Push constants of the G-buffer pass (per draw).
-typedef struct rtpbr_shader_draw {
-    float world_from_object[16];
-    float normal_matrix[12];   // inverse-transpose 3x3 as three vec4 columns (std430)
-    uint32_t material;
-    uint32_t pad[3];
-} rtpbr_shader_draw;
-
-// Push constants of the supersampling resolve (resolve.comp).
-typedef struct rtpbr_shader_resolve {
-    uint32_t size[2];
-    uint32_t factor;
-    uint32_t pad;
-} rtpbr_shader_resolve;
-
-// Push constants of the tone-mapping pass.
-typedef struct rtpbr_shader_tonemap {
-    float scale;               // 2^exposure
-    uint32_t op;               // RTPBR_TONEMAP_OP_*
-    uint32_t encode;           // RTPBR_ENCODE_*
-    uint32_t pad;
-} rtpbr_shader_tonemap;
-
-// Push constants of the Monte Carlo lighting pass (lighting_mc.comp).
-typedef struct rtpbr_shader_mc {
-    uint32_t samples;          // per pixel and light, >= 1
-    uint32_t seed;
-} rtpbr_shader_mc;
-
-// std430 element of a scene's BVH node buffer (bvh.c, shaders/bvh.glsl).
-typedef struct rtpbr_shader_bvh_node {
-    float min[3];
-    uint32_t left_or_first;    // interior (count 0): left child, the right one follows; leaf: first triangle
-    float max[3];
-    uint32_t count;            // triangles of a leaf; 0: interior node
-} rtpbr_shader_bvh_node;
-
-// std430 element of a scene's BVH triangle buffer: vertex 0 and the two edges from it.
-typedef struct rtpbr_shader_bvh_triangle {
-    float v0[4], e1[4], e2[4];
-} rtpbr_shader_bvh_triangle;
-
-// Push constants of the shadow passes (shadow.comp, shadow_denoise.comp).
-typedef struct rtpbr_shader_shadow {
-    uint32_t samples;          // per pixel and shadowed light, >= 1
-    uint32_t seed;
-    uint32_t radius;           // of the denoiser's (2 radius + 1)^2 window; 0: no denoising
-    uint32_t pad;
-} rtpbr_shader_shadow;
+// The rest of the contract (fields and meaning in rtpbr_shared.h, next to each pass's bindings).
+#define RTPBR_DECLARE_SHARED(S, FIELDS) RTPBR_SHARED_STRUCT(S, FIELDS) RTPBR_SHARED_CHECK_LAYOUT(S, FIELDS)
+RTPBR_DECLARE_SHARED(rtpbr_shader_light, RTPBR_LIGHT_FIELDS)
+RTPBR_DECLARE_SHARED(rtpbr_shader_draw, RTPBR_DRAW_FIELDS)
+RTPBR_DECLARE_SHARED(rtpbr_shader_resolve, RTPBR_RESOLVE_FIELDS)
+RTPBR_DECLARE_SHARED(rtpbr_shader_tonemap, RTPBR_TONEMAP_FIELDS)
+RTPBR_DECLARE_SHARED(rtpbr_shader_mc, RTPBR_MC_FIELDS)
+RTPBR_DECLARE_SHARED(rtpbr_shader_bvh_node, RTPBR_BVH_NODE_FIELDS)
+RTPBR_DECLARE_SHARED(rtpbr_shader_bvh_triangle, RTPBR_BVH_TRIANGLE_FIELDS)
+RTPBR_DECLARE_SHARED(rtpbr_shader_shadow, RTPBR_SHADOW_FIELDS)
 
 // The shaders' std140 / std430 sizes of the same structs.
 _Static_assert(sizeof(rtpbr_shader_frame) == 192, "Frame block layout");
@@ -115,13 +59,20 @@ typedef struct rtpbr_image {
     uint32_t width, height;
 } rtpbr_image;
 
+// One descriptor set of a renderer, in a pool of its own sized from its pass's binding table
+// (passes/pipeline.c).
+typedef struct rtpbr_descriptor_set {
+    VkDescriptorPool pool;
+    VkDescriptorSet set;
+} rtpbr_descriptor_set;
+
 // A lookup table: an RGBA float image sampled with linear filtering, built from a C array.
 typedef struct rtpbr_lut {
     rtpbr_image image;
 } rtpbr_lut;
 
 // ---------------------------------------------------------------------------------------------
-// Context (core.c, device.c)
+// Context (context.c, device.c)
 
 #define RTPBR_LIGHTING_VARIANT_COUNT 4 // (GGX, Beckmann) x (multiscatter off, on)
 // LTC lighting pipelines: per variant, one per lit tile class (BASIC, FULL); the EMPTY class
@@ -129,14 +80,51 @@ typedef struct rtpbr_lut {
 #define RTPBR_LIT_CLASS_COUNT (RTPBR_TILE_CLASS_COUNT - 1)
 #define RTPBR_TONEMAP_PIPELINE_CACHE 8 // tone-mapping pipelines, one per target format
 
+// Each pass's layouts and pipelines, made and destroyed by its file in passes/ (init at
+// context creation, finish at its destruction; a half-built one is finished like a whole one).
+typedef struct rtpbr_gbuffer_pass {              // passes/gbuffer.c
+    VkDescriptorSetLayout set_layout;            // set 0: frame, materials (one set per renderer)
+    VkDescriptorSetLayout material_set_layout;   // set 1: a material's textures (per scene material)
+    VkPipelineLayout layout;                     // + push constants rtpbr_shader_draw
+    VkPipeline pipeline;
+} rtpbr_gbuffer_pass;
+
+typedef struct rtpbr_lighting_pass {             // passes/lighting.c, passes/lighting_mc.c
+    VkDescriptorSetLayout set_layout;            // shared by cull, LTC and Monte Carlo
+    VkPipelineLayout layout;                     // cull and LTC: no push constants
+    VkPipeline cull;                             // cull.comp: tile light masks and class queues
+    VkPipeline empty;                            // tiles without light: emission and background
+    VkPipeline ltc[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT]; // compiled on first use
+    VkPipelineLayout mc_layout;                  // + push constants rtpbr_shader_mc
+    VkPipeline mc[RTPBR_LIGHTING_VARIANT_COUNT]; // compiled on first use
+} rtpbr_lighting_pass;
+
+typedef struct rtpbr_resolve_pass {              // passes/resolve.c
+    VkDescriptorSetLayout set_layout;
+    VkPipelineLayout layout;                     // + push constants rtpbr_shader_resolve
+    VkPipeline pipeline;
+} rtpbr_resolve_pass;
+
 typedef struct rtpbr_tonemap_pipeline {
     VkFormat format;
     VkPipeline pipeline;
 } rtpbr_tonemap_pipeline;
 
+typedef struct rtpbr_tonemap_pass {              // passes/tonemap.c
+    VkDescriptorSetLayout set_layout;
+    VkPipelineLayout layout;                     // + push constants rtpbr_shader_tonemap
+    VkShaderModule vert, frag;
+    rtpbr_tonemap_pipeline pipelines[RTPBR_TONEMAP_PIPELINE_CACHE]; // one per target format, on first use
+} rtpbr_tonemap_pass;
+
+typedef struct rtpbr_shadow_pass {               // passes/shadow.c
+    VkDescriptorSetLayout set_layout;            // shared by the trace and the denoiser
+    VkPipelineLayout layout;                     // + push constants rtpbr_shader_shadow
+    VkPipeline trace, denoise;                   // compiled on first use
+} rtpbr_shadow_pass;
+
 struct rtpbr_context {
-    rtpbr_allocator allocator;
-    rtpbr_logger logger;
+    rtpbr_host host;              // the desc's allocator and logger
     bool embedded;
     uint32_t validation_messages;
     char device_name[VK_MAX_PHYSICAL_DEVICE_NAME_SIZE];
@@ -155,35 +143,17 @@ struct rtpbr_context {
     VkSampler lut_sampler;        // linear, clamp to edge
     VkSampler gbuffer_sampler;    // nearest (the G-buffer is read with texelFetch)
     VkSampler texture_sampler;    // material textures: linear, repeat
-    VkDescriptorSetLayout material_set_layout; // set 1 of the G-buffer pass
     rtpbr_lut luts[RTPBR_LUT_COUNT]; // in binding order RTPBR_BINDING_LUT_LTC_GGX_1 ...
 
-    VkDescriptorSetLayout gbuffer_set_layout;
-    VkPipelineLayout gbuffer_layout;
-    VkPipeline gbuffer_pipeline;
-    VkDescriptorSetLayout lighting_set_layout;
-    VkPipelineLayout lighting_layout;
-    VkPipeline lighting_pipelines[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT];
-    VkPipeline lighting_empty_pipeline; // tiles without light: emission and background
-    VkPipeline cull_pipeline;           // cull.comp: tile light masks and class queues
-    // The Monte Carlo lighting pass: same set layout, plus push constants rtpbr_shader_mc.
-    VkPipelineLayout lighting_mc_layout;
-    VkPipeline lighting_mc_pipelines[RTPBR_LIGHTING_VARIANT_COUNT];
-    VkDescriptorSetLayout resolve_set_layout;
-    VkPipelineLayout resolve_layout;
-    VkPipeline resolve_pipeline;
-    VkDescriptorSetLayout tonemap_set_layout;
-    VkPipelineLayout tonemap_layout;
-    VkShaderModule tonemap_vert, tonemap_frag;
-    rtpbr_tonemap_pipeline tonemap_pipelines[RTPBR_TONEMAP_PIPELINE_CACHE];
+    rtpbr_gbuffer_pass gbuffer;
+    rtpbr_lighting_pass lighting;
+    rtpbr_resolve_pass resolve;
+    rtpbr_tonemap_pass tonemap;
+    rtpbr_shadow_pass shadow;
     // Live children, so that rtpbr_context_destroy can destroy what the host left behind
-    // (rtpbr.h states the teardown order). Linked through their own prev/next fields.
+    // (rtpbr.h: the context owns them). Linked through their own prev/next fields.
     rtpbr_gpu_scene *scenes;
     rtpbr_renderer *renderers;
-    // The shadow passes (shadow.c): one set layout and pipeline layout, pipelines on first use.
-    VkDescriptorSetLayout shadow_set_layout;
-    VkPipelineLayout shadow_layout;
-    VkPipeline shadow_trace_pipeline, shadow_denoise_pipeline;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -203,8 +173,8 @@ struct rtpbr_gpu_scene {
     rtpbr_buffer lights;       // rtpbr_shader_light[RTPBR_MAX_LIGHTS], host visible
     rtpbr_image *textures;     // texture_count images, then a 1x1 white one
     uint32_t texture_count;
-    VkDescriptorPool material_pool;
-    VkDescriptorSet *material_sets; // one per material slot: its three textures
+    VkDescriptorPool material_pool;  // passes/gbuffer.c
+    VkDescriptorSet *material_sets; // one per material slot: its RTPBR_MATERIAL_TEXTURE_COUNT textures
     rtpbr_draw *draws;
     uint32_t draw_count;
     uint32_t light_count;
@@ -252,7 +222,6 @@ struct rtpbr_renderer {
     uint32_t supersample;      // >= 1
     uint32_t shade_width, shade_height; // of the G-buffer and lighting: supersample x the output
     rtpbr_image radiance_ss;   // the lighting pass's target when supersample > 1 (else unused)
-    VkDescriptorSet resolve_set;
     rtpbr_image gbuffer[RTPBR_GBUFFER_COUNT];
     rtpbr_image depth;
     rtpbr_image radiance;      // rgba32f, GENERAL layout between passes
@@ -262,17 +231,16 @@ struct rtpbr_renderer {
     rtpbr_buffer tile_masks;   // RTPBR_TILE_MASK_WORDS uints per tile (cull.comp)
     rtpbr_buffer tile_lists;   // per class: indirect dispatch arguments, then the tile queues
     rtpbr_buffer radiance_readback, display_readback;
-    VkDescriptorPool descriptor_pool;
-    VkDescriptorSet gbuffer_set, lighting_set, tonemap_set;
+    // Each pass's descriptor set (made and written by its file in passes/).
+    rtpbr_descriptor_set gbuffer_set, lighting_set, resolve_set, tonemap_set, shadow_set;
     VkCommandBuffer cmd;
     VkFence fence;
     bool has_frame;            // rtpbr_render completed at least once
     rtpbr_timing timing;       // GPU timestamps (rtpbr_renderer_desc.timings), else all zero
     bool has_radiance;         // rtpbr_render or rtpbr_record has filled radiance_readback
-    // Shadows (shadow.c), at the shading size, RTPBR_MAX_SHADOWED_LIGHTS layers, GENERAL layout:
+    // Shadows (passes/shadow.c), at the shading size, RTPBR_MAX_SHADOWED_LIGHTS layers, GENERAL layout:
     rtpbr_image shadow_estimates; // R32_UINT: packHalf2x16(shadowed, unshadowed estimate)
     rtpbr_image shadow_ratio;     // R32_SFLOAT: denoised shadowed / unshadowed (lighting binding)
-    VkDescriptorSet shadow_set;
 };
 
 extern const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT];
@@ -294,35 +262,6 @@ extern const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT];
         else if ((head) == (node)) (head) = (node)->next;                                           \
         if ((node)->next) (node)->next->prev = (node)->prev;                                        \
         (node)->prev = (node)->next = NULL;                                                         \
-    } while (0)
-
-// ---------------------------------------------------------------------------------------------
-// Helpers (core.c)
-
-// Zeroed; on failure logs "out of host memory" with the size, so every caller's
-// RTPBR_ERROR_OUT_OF_HOST_MEMORY has a message.
-void *rtpbr_alloc(const rtpbr_context *ctx, size_t size);
-void rtpbr_free(const rtpbr_context *ctx, void *ptr);
-void rtpbr_log(const rtpbr_context *ctx, rtpbr_log_level level, const char *fmt, ...) RTPBR_PRINTF(3, 4);
-void rtpbr_logv(const rtpbr_logger *logger, rtpbr_log_level level, const char *fmt, va_list args);
-// Logs "<what> failed: <VkResult name>" and maps the VkResult to an rtpbr_result.
-rtpbr_result rtpbr_vk_fail(const rtpbr_context *ctx, VkResult vr, const char *what);
-const char *rtpbr_vk_result_name(VkResult vr);
-
-// Checks a VkResult inside a function with a `result` variable and a `cleanup` label.
-#define RTPBR_VK(ctx, call)                                   \
-    do {                                                      \
-        VkResult vr_ = (call);                                \
-        if (vr_ != VK_SUCCESS) {                              \
-            result = rtpbr_vk_fail((ctx), vr_, #call);        \
-            goto cleanup;                                     \
-        }                                                     \
-    } while (0)
-// Propagates an rtpbr_result inside such a function.
-#define RTPBR_TRY(call)                                       \
-    do {                                                      \
-        result = (call);                                      \
-        if (result != RTPBR_SUCCESS) goto cleanup;            \
     } while (0)
 
 // ---------------------------------------------------------------------------------------------
@@ -358,7 +297,7 @@ rtpbr_result rtpbr_submit_once(rtpbr_context *ctx, void (*record)(VkCommandBuffe
 rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t depth, const float *rgba,
                               rtpbr_lut *out);
 void rtpbr_lut_destroy(rtpbr_context *ctx, rtpbr_lut *lut);
-// Every table of ctx->luts (luts.c): the shader library's tables, or placeholders.
+// Every table of ctx->luts (luts.c), from the shader library's generated arrays.
 rtpbr_result rtpbr_luts_create(rtpbr_context *ctx);
 void rtpbr_luts_destroy(rtpbr_context *ctx);
 // Uploads tightly packed texels into a new sampled image (SHADER_READ_ONLY_OPTIMAL).
@@ -371,60 +310,10 @@ void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags 
                          VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
 
 // ---------------------------------------------------------------------------------------------
-// Shaders and pipelines (shaders.c); SPIR-V is embedded by the build (spirv.c, generated)
-
-typedef struct rtpbr_spirv {
-    const uint32_t *code;
-    size_t size;               // bytes
-} rtpbr_spirv;
-
-rtpbr_result rtpbr_shader_module(rtpbr_context *ctx, rtpbr_spirv spirv, VkShaderModule *out);
-rtpbr_result rtpbr_pipelines_create(rtpbr_context *ctx);
-void rtpbr_pipelines_destroy(rtpbr_context *ctx);
-// The lighting pipelines of a model variant, compiled on first use: the Monte Carlo pass's
-// (out[0]), or the LTC pass's per tile class (out[RTPBR_TILE_CLASS_*]).
-rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, bool monte_carlo, rtpbr_ndf ndf, rtpbr_multiscatter ms,
-                                          VkPipeline out[RTPBR_TILE_CLASS_COUNT]);
-
-// The tone-mapping pipeline for a colour-attachment format (created on first use).
-rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkPipeline *out);
-
-// ---------------------------------------------------------------------------------------------
-// Passes (gbuffer.c, lighting.c, tonemap.c)
-
-void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCommandBuffer cmd);
-void rtpbr_lighting_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd);
-void rtpbr_lighting_mc_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_shader_mc *params,
-                              VkCommandBuffer cmd);
-void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_shader_tonemap *params,
-                          VkImageView target, VkCommandBuffer cmd);
-
-// ---------------------------------------------------------------------------------------------
-// Shadows: the scene's BVH (bvh.c) and the shadow passes (shadow.c)
+// The scene's BVH for the shadow rays (bvh.c)
 
 // Builds the BVH of the scene's uploaded triangles (world space) into scene->bvh_*.
 rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene);
 void rtpbr_bvh_destroy(rtpbr_gpu_scene *scene); // accepts a half-built scene
-// The set and pipeline layouts (context creation); the pipelines are made on first use.
-rtpbr_result rtpbr_shadow_layouts_create(rtpbr_context *ctx);
-void rtpbr_shadow_pipelines_destroy(rtpbr_context *ctx);
-rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx);
-// The renderer's shadow images (in GENERAL layout) and descriptor set (from r->descriptor_pool).
-rtpbr_result rtpbr_shadow_targets_create(rtpbr_renderer *r);
-void rtpbr_shadow_targets_destroy(rtpbr_renderer *r);
-// Writes the scene's buffers into the shadow set (prepare_frame).
-void rtpbr_shadow_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
-// Records the trace and denoise dispatches; the ratios are ready for the lighting pass after.
-void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_shader_shadow *params, VkCommandBuffer cmd);
-
-// ---------------------------------------------------------------------------------------------
-// Math (math.c): column-major 4x4 matrices
-
-void rtpbr_mat4_identity(float m[16]);
-void rtpbr_mat4_mul(float out[16], const float a[16], const float b[16]);
-bool rtpbr_mat4_invert(float out[16], const float m[16]);
-// Vulkan clip space (y down, depth 0..1), right-handed view looking down -Z.
-void rtpbr_camera_matrices(const rtpbr_camera_desc *camera, float aspect, float view_proj[16]);
-bool rtpbr_finite(const float *v, size_t n);
 
 #endif // RTPBR_INTERNAL_H

@@ -2,7 +2,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "internal.h"
+#include "util.h"
 
 void rtpbr_mat4_identity(float m[16])
 {

@@ -3,119 +3,32 @@
 #include <string.h>
 
 #include "internal.h"
-
-static rtpbr_result create_descriptors(rtpbr_renderer *r)
-{
-    rtpbr_context *ctx = r->context;
-    rtpbr_result result = RTPBR_SUCCESS;
-    VkDescriptorPoolSize sizes[] = {
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 + 1},  // + the shadow set's (shadow.c)
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 + 3},
-        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, RTPBR_LIGHTING_BINDING_COUNT + 2},
-        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4 + 2},
-    };
-    VkDescriptorPoolCreateInfo pool_info = {
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-        .maxSets = 4 + 1,
-        .poolSizeCount = sizeof sizes / sizeof sizes[0],
-        .pPoolSizes = sizes,
-    };
-    RTPBR_VK(ctx, vkCreateDescriptorPool(ctx->device, &pool_info, NULL, &r->descriptor_pool));
-    VkDescriptorSetLayout layouts[4] = {ctx->gbuffer_set_layout, ctx->lighting_set_layout, ctx->tonemap_set_layout,
-                                        ctx->resolve_set_layout};
-    VkDescriptorSet sets[4];
-    VkDescriptorSetAllocateInfo alloc = {
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
-        .descriptorPool = r->descriptor_pool,
-        .descriptorSetCount = 4,
-        .pSetLayouts = layouts,
-    };
-    RTPBR_VK(ctx, vkAllocateDescriptorSets(ctx->device, &alloc, sets));
-    r->gbuffer_set = sets[0];
-    r->lighting_set = sets[1];
-    r->tonemap_set = sets[2];
-    r->resolve_set = sets[3];
-
-    // Everything but the scene's buffers is fixed for the renderer's lifetime.
-    VkDescriptorBufferInfo frame = {r->frame.buffer, 0, sizeof(rtpbr_shader_frame)};
-    VkDescriptorImageInfo images[RTPBR_LIGHTING_BINDING_COUNT] = {{0}};
-    for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i)
-        images[RTPBR_BINDING_LIGHT_GBUFFER0 + i] = (VkDescriptorImageInfo){
-            ctx->gbuffer_sampler, r->gbuffer[i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    images[RTPBR_BINDING_LIGHT_DEPTH] =
-        (VkDescriptorImageInfo){ctx->gbuffer_sampler, r->depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    const rtpbr_image *shaded = r->supersample > 1 ? &r->radiance_ss : &r->radiance;
-    images[RTPBR_BINDING_LIGHT_RADIANCE] = (VkDescriptorImageInfo){VK_NULL_HANDLE, shaded->view, VK_IMAGE_LAYOUT_GENERAL};
-    for (uint32_t i = 0; i < RTPBR_LUT_COUNT; ++i)
-        images[RTPBR_BINDING_LUT_LTC_GGX_1 + i] = (VkDescriptorImageInfo){
-            ctx->lut_sampler, ctx->luts[i].image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-
-    VkWriteDescriptorSet writes[RTPBR_LIGHTING_BINDING_COUNT + 5];
-    uint32_t n = 0;
-    writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->gbuffer_set,
-                                         .dstBinding = RTPBR_BINDING_GBUFFER_FRAME, .descriptorCount = 1,
-                                         .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &frame};
-    writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
-                                         .dstBinding = RTPBR_BINDING_LIGHT_FRAME, .descriptorCount = 1,
-                                         .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &frame};
-    VkDescriptorBufferInfo tile_masks = {r->tile_masks.buffer, 0, VK_WHOLE_SIZE};
-    VkDescriptorBufferInfo tile_lists = {r->tile_lists.buffer, 0, VK_WHOLE_SIZE};
-    writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
-                                         .dstBinding = RTPBR_BINDING_LIGHT_TILE_MASKS, .descriptorCount = 1,
-                                         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &tile_masks};
-    writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
-                                         .dstBinding = RTPBR_BINDING_LIGHT_TILE_LISTS, .descriptorCount = 1,
-                                         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &tile_lists};
-    // The bindings from the G-buffer to the tables are images (the shadow ratios, after them,
-    // are written by rtpbr_shadow_targets_create).
-    for (uint32_t b = RTPBR_BINDING_LIGHT_GBUFFER0; b < RTPBR_BINDING_LUT_LTC_GGX_1 + RTPBR_LUT_COUNT; ++b)
-        writes[n++] = (VkWriteDescriptorSet){
-            .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set, .dstBinding = b,
-            .descriptorCount = 1,
-            .descriptorType = b == RTPBR_BINDING_LIGHT_RADIANCE ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
-                                                                : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-            .pImageInfo = &images[b]};
-    VkDescriptorImageInfo radiance = {VK_NULL_HANDLE, r->radiance.view, VK_IMAGE_LAYOUT_GENERAL};
-    writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->tonemap_set,
-                                         .dstBinding = RTPBR_BINDING_TONEMAP_RADIANCE, .descriptorCount = 1,
-                                         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .pImageInfo = &radiance};
-    VkDescriptorImageInfo resolve_images[2] = {{VK_NULL_HANDLE, shaded->view, VK_IMAGE_LAYOUT_GENERAL},
-                                               {VK_NULL_HANDLE, r->radiance.view, VK_IMAGE_LAYOUT_GENERAL}};
-    if (r->supersample > 1)
-        for (uint32_t b = 0; b < 2; ++b)
-            writes[n++] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                                                 .dstSet = r->resolve_set, .dstBinding = b, .descriptorCount = 1,
-                                                 .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                                                 .pImageInfo = &resolve_images[b]};
-    vkUpdateDescriptorSets(ctx->device, n, writes, 0, NULL);
-cleanup:
-    return result;
-}
+#include "passes/passes.h"
 
 rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc *desc, rtpbr_renderer **out)
 {
-    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!ctx) return rtpbr_null_object(__func__, "context");
     if (!desc || !out) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_renderer_create: desc or out_renderer is NULL");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_renderer_create: desc or out_renderer is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     *out = NULL;
     if (desc->width == 0 || desc->height == 0 || desc->width > RTPBR_MAX_RENDER_SIZE ||
         desc->height > RTPBR_MAX_RENDER_SIZE) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "renderer size %ux%u; each side must be 1..%u", desc->width, desc->height,
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "renderer size %ux%u; each side must be 1..%u", desc->width, desc->height,
                   RTPBR_MAX_RENDER_SIZE);
         return desc->width == 0 || desc->height == 0 ? RTPBR_ERROR_INVALID_ARGUMENT : RTPBR_ERROR_LIMIT_EXCEEDED;
     }
     uint32_t ss = desc->supersample ? desc->supersample : 1;
     if (ss > RTPBR_MAX_SUPERSAMPLE || desc->width * ss > RTPBR_MAX_RENDER_SIZE ||
         desc->height * ss > RTPBR_MAX_RENDER_SIZE) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "renderer supersample %u at %ux%u; at most %u, and %u per side supersampled",
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "renderer supersample %u at %ux%u; at most %u, and %u per side supersampled",
                   desc->supersample, desc->width, desc->height, RTPBR_MAX_SUPERSAMPLE, RTPBR_MAX_RENDER_SIZE);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
     rtpbr_result result = RTPBR_SUCCESS;
-    rtpbr_renderer *r = rtpbr_alloc(ctx, sizeof *r);
-    if (!r) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+    rtpbr_renderer *r = NULL;
+    RTPBR_ALLOC(&ctx->host, r, sizeof *r);
     r->context = ctx;
     RTPBR_LIST_LINK(ctx->renderers, r);
     r->width = desc->width;
@@ -153,8 +66,12 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
                                        &r->radiance_readback));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                        &r->display_readback));
-    RTPBR_TRY(create_descriptors(r));
-    RTPBR_TRY(rtpbr_shadow_targets_create(r));
+    // Each pass's descriptor set (the lighting set binds the shadow ratios: after the shadows).
+    RTPBR_TRY(rtpbr_gbuffer_renderer_init(r));
+    RTPBR_TRY(rtpbr_shadow_renderer_init(r));
+    RTPBR_TRY(rtpbr_lighting_renderer_init(r));
+    RTPBR_TRY(rtpbr_resolve_renderer_init(r));
+    RTPBR_TRY(rtpbr_tonemap_renderer_init(r));
 
     VkCommandBufferAllocateInfo cmd_info = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
@@ -162,9 +79,9 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
         .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
         .commandBufferCount = 1,
     };
-    RTPBR_VK(ctx, vkAllocateCommandBuffers(ctx->device, &cmd_info, &r->cmd));
+    RTPBR_VK(&ctx->host, vkAllocateCommandBuffers(ctx->device, &cmd_info, &r->cmd));
     VkFenceCreateInfo fence_info = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    RTPBR_VK(ctx, vkCreateFence(ctx->device, &fence_info, NULL, &r->fence));
+    RTPBR_VK(&ctx->host, vkCreateFence(ctx->device, &fence_info, NULL, &r->fence));
     if (desc->timings) RTPBR_TRY(rtpbr_timing_create(r));
     *out = r;
     return RTPBR_SUCCESS;
@@ -178,12 +95,17 @@ void rtpbr_renderer_destroy(rtpbr_renderer *r)
     if (!r) return;
     rtpbr_context *ctx = r->context;
     if (r->fence) {
-        if (r->has_frame) vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX);
+        VkResult vr = r->has_frame ? vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX) : VK_SUCCESS;
+        if (vr != VK_SUCCESS) rtpbr_vk_fail(&ctx->host, vr, "vkWaitForFences (rtpbr_renderer_destroy)");
         vkDestroyFence(ctx->device, r->fence, NULL);
     }
     if (r->cmd) vkFreeCommandBuffers(ctx->device, ctx->command_pool, 1, &r->cmd);
     rtpbr_timing_destroy(r);
-    if (r->descriptor_pool) vkDestroyDescriptorPool(ctx->device, r->descriptor_pool, NULL);
+    rtpbr_tonemap_renderer_finish(r);
+    rtpbr_resolve_renderer_finish(r);
+    rtpbr_lighting_renderer_finish(r);
+    rtpbr_shadow_renderer_finish(r);
+    rtpbr_gbuffer_renderer_finish(r);
     rtpbr_buffer_destroy(ctx, &r->frame);
     rtpbr_buffer_destroy(ctx, &r->tile_masks);
     rtpbr_buffer_destroy(ctx, &r->tile_lists);
@@ -194,9 +116,8 @@ void rtpbr_renderer_destroy(rtpbr_renderer *r)
     rtpbr_image_destroy(ctx, &r->radiance);
     rtpbr_image_destroy(ctx, &r->radiance_ss);
     rtpbr_image_destroy(ctx, &r->display);
-    rtpbr_shadow_targets_destroy(r);
     RTPBR_LIST_UNLINK(ctx->renderers, r);
-    rtpbr_free(ctx, r);
+    rtpbr_free(&ctx->host, r);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -207,17 +128,17 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
 {
     rtpbr_context *ctx = r->context;
     if (!scene || !desc) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: scene or desc is NULL");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "render: scene or desc is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (scene->context != ctx) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: the scene belongs to another context");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "render: the scene belongs to another context");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     const rtpbr_camera_desc *camera = desc->camera;
     if (!camera) {
         if (desc->camera_index >= scene->camera_count) {
-            rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: camera %u requested, the scene has %u", desc->camera_index,
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "render: camera %u requested, the scene has %u", desc->camera_index,
                       scene->camera_count);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
@@ -226,24 +147,24 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
     if (!rtpbr_finite((const float *)camera, sizeof *camera / sizeof(float)) || !isfinite(desc->exposure) ||
         !isfinite(desc->light_cull_form_factor) ||
         !rtpbr_finite(desc->background, 3)) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: NaN or infinite camera, exposure or background");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "render: NaN or infinite camera, exposure or background");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if ((unsigned)desc->tonemap > RTPBR_TONEMAP_LINEAR || (unsigned)desc->ndf > RTPBR_NDF_BECKMANN_MODEL ||
         (unsigned)desc->multiscatter > RTPBR_MULTISCATTER_OFF) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: unknown tonemap, ndf or multiscatter value");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "render: unknown tonemap, ndf or multiscatter value");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (desc->mc_samples > RTPBR_MAX_MC_SAMPLES) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: mc_samples %u; at most %u", desc->mc_samples, RTPBR_MAX_MC_SAMPLES);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "render: mc_samples %u; at most %u", desc->mc_samples, RTPBR_MAX_MC_SAMPLES);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
     if ((unsigned)desc->shadows > RTPBR_SHADOWS_ON || (unsigned)desc->shadow_denoiser > RTPBR_SHADOW_DENOISER_OFF) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: unknown shadows or shadow_denoiser value");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "render: unknown shadows or shadow_denoiser value");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (desc->shadow_samples > RTPBR_MAX_SHADOW_SAMPLES) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: shadow_samples %u; at most %u", desc->shadow_samples,
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "render: shadow_samples %u; at most %u", desc->shadow_samples,
                   RTPBR_MAX_SHADOW_SAMPLES);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
@@ -256,7 +177,7 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
     rtpbr_shader_frame frame = {0};
     rtpbr_camera_matrices(camera, (float)r->width / (float)r->height, frame.view_proj);
     if (!rtpbr_mat4_invert(frame.inv_view_proj, frame.view_proj)) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "render: degenerate camera");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "render: degenerate camera");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     memcpy(frame.camera_position, camera->position, 3 * sizeof(float));
@@ -272,49 +193,28 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
                                : scene->light_count < RTPBR_MAX_SHADOWED_LIGHTS ? scene->light_count
                                                                                 : RTPBR_MAX_SHADOWED_LIGHTS;
     memcpy(r->frame.mapped, &frame, sizeof frame);
+    rtpbr_gbuffer_bind_scene(r, scene);
+    rtpbr_lighting_bind_scene(r, scene);
     if (shadows) rtpbr_shadow_bind_scene(r, scene);
-
-    VkDescriptorBufferInfo materials = {scene->materials.buffer, 0, VK_WHOLE_SIZE};
-    VkDescriptorBufferInfo lights = {scene->lights.buffer, 0, VK_WHOLE_SIZE};
-    VkWriteDescriptorSet writes[3] = {
-        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->gbuffer_set,
-         .dstBinding = RTPBR_BINDING_GBUFFER_MATERIALS, .descriptorCount = 1,
-         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &materials},
-        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
-         .dstBinding = RTPBR_BINDING_LIGHT_MATERIALS, .descriptorCount = 1,
-         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &materials},
-        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->lighting_set,
-         .dstBinding = RTPBR_BINDING_LIGHT_LIGHTS, .descriptorCount = 1,
-         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &lights},
-    };
-    vkUpdateDescriptorSets(ctx->device, 3, writes, 0, NULL);
     return RTPBR_SUCCESS;
 }
 
-// The lighting pass the desc asks for: LTC, or the Monte Carlo reference (mc_samples > 0).
+// The lighting pass the desc asks for: LTC, or the Monte Carlo reference (mc_samples > 0),
+// after the shadow passes when shadows are on.
 static void record_lighting(rtpbr_renderer *r, const rtpbr_render_desc *desc,
                             const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd)
 {
-    if (desc->shadows == RTPBR_SHADOWS_ON) { // the shadow ratios the lighting pass multiplies by
-        rtpbr_shader_shadow shadow = {
-            .samples = desc->shadow_samples ? desc->shadow_samples : RTPBR_DEFAULT_SHADOW_SAMPLES,
-            .seed = desc->shadow_seed,
-            .radius = desc->shadow_denoiser == RTPBR_SHADOW_DENOISER_OFF ? 0 : RTPBR_SHADOW_DENOISE_RADIUS,
-        };
-        rtpbr_shadow_record(r, &shadow, cmd);
-    }
-    if (desc->mc_samples == 0) {
-        rtpbr_lighting_record(r, pipelines, cmd);
-        return;
-    }
-    rtpbr_shader_mc params = {.samples = desc->mc_samples, .seed = desc->mc_seed};
-    rtpbr_lighting_mc_record(r, pipelines[0], &params, cmd);
+    if (desc->shadows == RTPBR_SHADOWS_ON) rtpbr_shadow_record(r, desc, cmd); // the ratios lighting multiplies by
+    if (desc->mc_samples == 0) rtpbr_lighting_record(r, pipelines, cmd);
+    else rtpbr_lighting_mc_record(r, pipelines[0], desc, cmd);
 }
 
-static rtpbr_shader_tonemap tonemap_params(const rtpbr_render_desc *desc, uint32_t encode)
+// The lighting pipelines the desc asks for, compiled on first use (before any recording).
+static rtpbr_result get_lighting(rtpbr_context *ctx, const rtpbr_render_desc *desc,
+                                 VkPipeline out[RTPBR_TILE_CLASS_COUNT])
 {
-    uint32_t op = desc->tonemap == RTPBR_TONEMAP_DEFAULT ? RTPBR_TONEMAP_OP_ACES : (uint32_t)desc->tonemap;
-    return (rtpbr_shader_tonemap){.scale = exp2f(desc->exposure), .op = op, .encode = encode};
+    if (desc->mc_samples == 0) return rtpbr_lighting_pipelines_get(ctx, desc->ndf, desc->multiscatter, out);
+    return rtpbr_lighting_mc_pipeline_get(ctx, desc->ndf, desc->multiscatter, &out[0]);
 }
 
 // Copies the radiance image into its readback buffer (and the display image, if given).
@@ -345,24 +245,24 @@ static void record_readback(rtpbr_renderer *r, VkCommandBuffer cmd, bool display
 
 rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc)
 {
-    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!r) return rtpbr_null_object(__func__, "renderer");
     rtpbr_context *ctx = r->context;
     rtpbr_result result = RTPBR_SUCCESS;
     VkPipeline tonemap;
-    if (r->has_frame) RTPBR_VK(ctx, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+    if (r->has_frame) RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
     RTPBR_TRY(prepare_frame(r, scene, desc));
     RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, RTPBR_DISPLAY_FORMAT, &tonemap));
     // Before any recording: a variant's first use compiles it, which may fail.
     VkPipeline lighting[RTPBR_TILE_CLASS_COUNT];
-    RTPBR_TRY(rtpbr_lighting_pipelines_get(ctx, desc->mc_samples > 0, desc->ndf, desc->multiscatter, lighting));
+    RTPBR_TRY(get_lighting(ctx, desc, lighting));
 
     VkCommandBuffer cmd = r->cmd;
     VkCommandBufferBeginInfo begin = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
         .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
     };
-    RTPBR_VK(ctx, vkResetCommandBuffer(cmd, 0));
-    RTPBR_VK(ctx, vkBeginCommandBuffer(cmd, &begin));
+    RTPBR_VK(&ctx->host, vkResetCommandBuffer(cmd, 0));
+    RTPBR_VK(&ctx->host, vkBeginCommandBuffer(cmd, &begin));
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_START);
     rtpbr_gbuffer_record(r, scene, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_GBUFFER);
@@ -371,26 +271,25 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    rtpbr_shader_tonemap params = tonemap_params(desc, RTPBR_ENCODE_NONE);
-    rtpbr_tonemap_record(r, tonemap, &params, r->display.view, cmd);
+    rtpbr_tonemap_record(r, tonemap, desc, RTPBR_ENCODE_NONE, r->display.view, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_TONEMAP);
     rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                         VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                         VK_ACCESS_TRANSFER_READ_BIT);
     record_readback(r, cmd, true);
-    RTPBR_VK(ctx, vkEndCommandBuffer(cmd));
+    RTPBR_VK(&ctx->host, vkEndCommandBuffer(cmd));
 
     VkSubmitInfo submit = {
         .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
         .commandBufferCount = 1,
         .pCommandBuffers = &cmd,
     };
-    RTPBR_VK(ctx, vkResetFences(ctx->device, 1, &r->fence));
+    RTPBR_VK(&ctx->host, vkResetFences(ctx->device, 1, &r->fence));
     r->has_frame = false; // the fence is unsignalled until the submission below succeeds
-    RTPBR_VK(ctx, vkQueueSubmit(ctx->queue, 1, &submit, r->fence));
+    RTPBR_VK(&ctx->host, vkQueueSubmit(ctx->queue, 1, &submit, r->fence));
     r->has_frame = true;
-    RTPBR_VK(ctx, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+    RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
     r->has_radiance = true;
 cleanup:
     return result;
@@ -399,21 +298,21 @@ cleanup:
 rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc,
                           const rtpbr_record_desc *target)
 {
-    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!r) return rtpbr_null_object(__func__, "renderer");
     rtpbr_context *ctx = r->context;
     if (!target || !target->command_buffer || !target->image || !target->view ||
         target->format == VK_FORMAT_UNDEFINED) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_record: command_buffer, image, view and format are required");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_record: command_buffer, image, view and format are required");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     rtpbr_result result = RTPBR_SUCCESS;
     VkPipeline tonemap;
-    if (r->has_frame) RTPBR_VK(ctx, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+    if (r->has_frame) RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
     RTPBR_TRY(prepare_frame(r, scene, desc));
     RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, target->format, &tonemap));
     // Before recording into the host's command buffer: a variant's first use compiles it.
     VkPipeline lighting[RTPBR_TILE_CLASS_COUNT];
-    RTPBR_TRY(rtpbr_lighting_pipelines_get(ctx, desc->mc_samples > 0, desc->ndf, desc->multiscatter, lighting));
+    RTPBR_TRY(get_lighting(ctx, desc, lighting));
 
     // UNORM targets need the sRGB curve in the shader; sRGB targets encode in hardware.
     bool unorm = target->format == VK_FORMAT_R8G8B8A8_UNORM || target->format == VK_FORMAT_B8G8R8A8_UNORM ||
@@ -429,8 +328,7 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, target->old_layout,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    rtpbr_shader_tonemap params = tonemap_params(desc, unorm ? RTPBR_ENCODE_SRGB : RTPBR_ENCODE_NONE);
-    rtpbr_tonemap_record(r, tonemap, &params, target->view, cmd);
+    rtpbr_tonemap_record(r, tonemap, desc, unorm ? RTPBR_ENCODE_SRGB : RTPBR_ENCODE_NONE, target->view, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_TONEMAP);
     if (new_layout != VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL)
         rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -446,15 +344,15 @@ cleanup:
 
 rtpbr_result rtpbr_read_radiance(rtpbr_renderer *r, float *rgba, size_t size_bytes)
 {
-    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!r) return rtpbr_null_object(__func__, "renderer");
     size_t need = (size_t)r->width * r->height * 16;
     if (!rgba || size_bytes < need) {
-        rtpbr_log(r->context, RTPBR_LOG_ERROR, "rtpbr_read_radiance: need a buffer of %zu bytes, got %zu%s", need,
+        rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_read_radiance: need a buffer of %zu bytes, got %zu%s", need,
                   size_bytes, rgba ? "" : " (NULL)");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (!r->has_radiance) {
-        rtpbr_log(r->context, RTPBR_LOG_ERROR, "rtpbr_read_radiance: nothing rendered with rtpbr_render or rtpbr_record yet");
+        rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_read_radiance: nothing rendered with rtpbr_render or rtpbr_record yet");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     memcpy(rgba, r->radiance_readback.mapped, need);
@@ -463,15 +361,15 @@ rtpbr_result rtpbr_read_radiance(rtpbr_renderer *r, float *rgba, size_t size_byt
 
 rtpbr_result rtpbr_read_display(rtpbr_renderer *r, uint8_t *rgba, size_t size_bytes)
 {
-    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!r) return rtpbr_null_object(__func__, "renderer");
     size_t need = (size_t)r->width * r->height * 4;
     if (!rgba || size_bytes < need) {
-        rtpbr_log(r->context, RTPBR_LOG_ERROR, "rtpbr_read_display: need a buffer of %zu bytes, got %zu%s", need,
+        rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_read_display: need a buffer of %zu bytes, got %zu%s", need,
                   size_bytes, rgba ? "" : " (NULL)");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (!r->has_frame) {
-        rtpbr_log(r->context, RTPBR_LOG_ERROR, "rtpbr_read_display: nothing rendered with rtpbr_render yet");
+        rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_read_display: nothing rendered with rtpbr_render yet");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     memcpy(rgba, r->display_readback.mapped, need);

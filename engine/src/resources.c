@@ -17,7 +17,7 @@ static rtpbr_result allocate(rtpbr_context *ctx, VkMemoryRequirements req, VkMem
     uint32_t type = find_memory_type(ctx, req.memoryTypeBits, want);
     if (type == UINT32_MAX) type = find_memory_type(ctx, req.memoryTypeBits, fallback);
     if (type == UINT32_MAX) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "no Vulkan memory type with properties 0x%x", (unsigned)fallback);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "no Vulkan memory type with properties 0x%x", (unsigned)fallback);
         return RTPBR_ERROR_OUT_OF_DEVICE_MEMORY;
     }
     VkMemoryAllocateInfo info = {
@@ -25,8 +25,10 @@ static rtpbr_result allocate(rtpbr_context *ctx, VkMemoryRequirements req, VkMem
         .allocationSize = req.size,
         .memoryTypeIndex = type,
     };
-    VkResult vr = vkAllocateMemory(ctx->device, &info, NULL, out);
-    return vr == VK_SUCCESS ? RTPBR_SUCCESS : rtpbr_vk_fail(ctx, vr, "vkAllocateMemory");
+    rtpbr_result result = RTPBR_SUCCESS;
+    RTPBR_VK(&ctx->host, vkAllocateMemory(ctx->device, &info, NULL, out));
+cleanup:
+    return result;
 }
 
 // A buffer in memory with the properties `want` (else `fallback`), mapped when host-visible.
@@ -42,12 +44,12 @@ static rtpbr_result buffer_create(rtpbr_context *ctx, VkDeviceSize size, VkBuffe
         .usage = usage,
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
     };
-    RTPBR_VK(ctx, vkCreateBuffer(ctx->device, &info, NULL, &out->buffer));
+    RTPBR_VK(&ctx->host, vkCreateBuffer(ctx->device, &info, NULL, &out->buffer));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(ctx->device, out->buffer, &req);
     RTPBR_TRY(allocate(ctx, req, want, fallback, &out->memory));
-    RTPBR_VK(ctx, vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0));
-    if (map) RTPBR_VK(ctx, vkMapMemory(ctx->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped));
+    RTPBR_VK(&ctx->host, vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0));
+    if (map) RTPBR_VK(&ctx->host, vkMapMemory(ctx->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped));
     out->size = size;
     return RTPBR_SUCCESS;
 cleanup:
@@ -100,11 +102,11 @@ static rtpbr_result image_create(rtpbr_context *ctx, uint32_t width, uint32_t he
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
         .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
     };
-    RTPBR_VK(ctx, vkCreateImage(ctx->device, &info, NULL, &out->image));
+    RTPBR_VK(&ctx->host, vkCreateImage(ctx->device, &info, NULL, &out->image));
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(ctx->device, out->image, &req);
     RTPBR_TRY(allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, &out->memory));
-    RTPBR_VK(ctx, vkBindImageMemory(ctx->device, out->image, out->memory, 0));
+    RTPBR_VK(&ctx->host, vkBindImageMemory(ctx->device, out->image, out->memory, 0));
     VkImageViewCreateInfo view_info = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
         .image = out->image,
@@ -112,7 +114,7 @@ static rtpbr_result image_create(rtpbr_context *ctx, uint32_t width, uint32_t he
         .format = format,
         .subresourceRange = {aspect_of(format), 0, 1, 0, layers ? layers : 1},
     };
-    RTPBR_VK(ctx, vkCreateImageView(ctx->device, &view_info, NULL, &out->view));
+    RTPBR_VK(&ctx->host, vkCreateImageView(ctx->device, &view_info, NULL, &out->view));
     out->format = format;
     out->width = width;
     out->height = height;
@@ -168,18 +170,18 @@ rtpbr_result rtpbr_submit_once(rtpbr_context *ctx, void (*record)(VkCommandBuffe
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
         .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
     };
-    RTPBR_VK(ctx, vkResetCommandBuffer(ctx->upload_cmd, 0));
-    RTPBR_VK(ctx, vkBeginCommandBuffer(ctx->upload_cmd, &begin));
+    RTPBR_VK(&ctx->host, vkResetCommandBuffer(ctx->upload_cmd, 0));
+    RTPBR_VK(&ctx->host, vkBeginCommandBuffer(ctx->upload_cmd, &begin));
     record(ctx->upload_cmd, user);
-    RTPBR_VK(ctx, vkEndCommandBuffer(ctx->upload_cmd));
+    RTPBR_VK(&ctx->host, vkEndCommandBuffer(ctx->upload_cmd));
     VkSubmitInfo submit = {
         .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
         .commandBufferCount = 1,
         .pCommandBuffers = &ctx->upload_cmd,
     };
-    RTPBR_VK(ctx, vkResetFences(ctx->device, 1, &ctx->upload_fence));
-    RTPBR_VK(ctx, vkQueueSubmit(ctx->queue, 1, &submit, ctx->upload_fence));
-    RTPBR_VK(ctx, vkWaitForFences(ctx->device, 1, &ctx->upload_fence, VK_TRUE, UINT64_MAX));
+    RTPBR_VK(&ctx->host, vkResetFences(ctx->device, 1, &ctx->upload_fence));
+    RTPBR_VK(&ctx->host, vkQueueSubmit(ctx->queue, 1, &submit, ctx->upload_fence));
+    RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &ctx->upload_fence, VK_TRUE, UINT64_MAX));
 cleanup:
     return result;
 }
@@ -216,14 +218,15 @@ rtpbr_result rtpbr_image_create_with_data(rtpbr_context *ctx, uint32_t width, ui
 {
     rtpbr_result result = RTPBR_SUCCESS;
     rtpbr_buffer staging = {0};
+    memset(out, 0, sizeof *out);
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &staging));
     memcpy(staging.mapped, texels, bytes);
     RTPBR_TRY(rtpbr_image_create(ctx, width, height, format, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                  out));
     lut_upload upload = {staging.buffer, out->image, width, height, 1};
-    result = rtpbr_submit_once(ctx, record_lut_upload, &upload);
-    if (result != RTPBR_SUCCESS) rtpbr_image_destroy(ctx, out);
+    RTPBR_TRY(rtpbr_submit_once(ctx, record_lut_upload, &upload));
 cleanup:
+    if (result != RTPBR_SUCCESS) rtpbr_image_destroy(ctx, out); // accepts a zeroed or half-built image
     rtpbr_buffer_destroy(ctx, &staging);
     return result;
 }
@@ -259,11 +262,11 @@ rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t heigh
     rtpbr_buffer staging = {0};
     memset(out, 0, sizeof *out);
     if (!rgba || width == 0 || height == 0 || depth == 0) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "lookup table: no data or zero size (%ux%ux%u)", width, height, depth);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "lookup table: no data or zero size (%ux%ux%u)", width, height, depth);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (!rtpbr_finite(rgba, (size_t)width * height * depth * 4)) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "lookup table %ux%ux%u holds a NaN or infinite value", width, height, depth);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "lookup table %ux%ux%u holds a NaN or infinite value", width, height, depth);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     // Linear filtering of 32-bit floats is optional in Vulkan; fall back to half floats.

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "passes/passes.h"
 
 // ---------------------------------------------------------------------------------------------
 // Lights
@@ -22,17 +23,17 @@ static void polygon_normal(const float (*v)[3], uint32_t n, double out[3])
 static rtpbr_result validate_light(const rtpbr_context *ctx, const rtpbr_light_desc *l, uint32_t index)
 {
     if (l->vertex_count < 3 || l->vertex_count > RTPBR_MAX_POLYGON_VERTICES) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "light %u has %u vertices; 3 to %u are allowed", index, l->vertex_count,
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has %u vertices; 3 to %u are allowed", index, l->vertex_count,
                   RTPBR_MAX_POLYGON_VERTICES);
         return l->vertex_count > RTPBR_MAX_POLYGON_VERTICES ? RTPBR_ERROR_LIMIT_EXCEEDED
                                                             : RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (!rtpbr_finite(&l->vertices[0][0], 3 * l->vertex_count) || !rtpbr_finite(l->emission, 3)) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "light %u has a NaN or infinite vertex or emission", index);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has a NaN or infinite vertex or emission", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (l->emission[0] < 0.0f || l->emission[1] < 0.0f || l->emission[2] < 0.0f) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "light %u has negative emission", index);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has negative emission", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     double n[3];
@@ -47,14 +48,14 @@ static rtpbr_result validate_light(const rtpbr_context *ctx, const rtpbr_light_d
     }
     extent = sqrt(extent);
     if (!(len > 1e-12 * extent * extent) || extent == 0.0) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "light %u is degenerate (zero area)", index);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u is degenerate (zero area)", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     for (uint32_t i = 1; i < l->vertex_count; ++i) {
         double d = 0.0;
         for (int k = 0; k < 3; ++k) d += n[k] / len * ((double)l->vertices[i][k] - l->vertices[0][k]);
         if (fabs(d) > 1e-3 * extent) {
-            rtpbr_log(ctx, RTPBR_LOG_ERROR, "light %u is not planar (vertex %u is %g off the plane)", index, i, d);
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u is not planar (vertex %u is %g off the plane)", index, i, d);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
     }
@@ -64,11 +65,11 @@ static rtpbr_result validate_light(const rtpbr_context *ctx, const rtpbr_light_d
 static rtpbr_result validate_lights(const rtpbr_context *ctx, const rtpbr_light_desc *lights, uint32_t count)
 {
     if (count > RTPBR_MAX_LIGHTS) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "%u lights; at most RTPBR_MAX_LIGHTS = %u are allowed", count, RTPBR_MAX_LIGHTS);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "%u lights; at most RTPBR_MAX_LIGHTS = %u are allowed", count, RTPBR_MAX_LIGHTS);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
     if (count > 0 && !lights) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "light_count is %u but lights is NULL", count);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light_count is %u but lights is NULL", count);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     for (uint32_t i = 0; i < count; ++i) {
@@ -85,8 +86,8 @@ static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
         const rtpbr_light_desc *l = &lights[i];
         rtpbr_shader_light g = {0};
         for (uint32_t v = 0; v < l->vertex_count; ++v) memcpy(g.vertices[v], l->vertices[v], 3 * sizeof(float));
-        memcpy(g.emission, l->emission, 3 * sizeof(float));
-        g.emission[3] = l->two_sided ? 1.0f : 0.0f;
+        memcpy(g.radiance, l->emission, sizeof g.radiance);
+        g.two_sided = l->two_sided ? 1.0f : 0.0f;
         double n[3];
         polygon_normal(l->vertices, l->vertex_count, n);
         double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -112,7 +113,7 @@ static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
 
 rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights, uint32_t light_count)
 {
-    if (!scene) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!scene) return rtpbr_null_object(__func__, "scene");
     rtpbr_result result = validate_lights(scene->context, lights, light_count);
     if (result == RTPBR_SUCCESS) write_lights(scene, lights, light_count);
     return result;
@@ -131,7 +132,7 @@ static bool is_zero(const float *v, size_t n)
 static rtpbr_result validate_mesh(const rtpbr_context *ctx, const rtpbr_mesh_desc *m, uint32_t index,
                                   uint32_t material_count)
 {
-#define FAIL(...) do { rtpbr_log(ctx, RTPBR_LOG_ERROR, __VA_ARGS__); return RTPBR_ERROR_INVALID_ARGUMENT; } while (0)
+#define FAIL(...) do { rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, __VA_ARGS__); return RTPBR_ERROR_INVALID_ARGUMENT; } while (0)
     if (!m->positions || m->vertex_count == 0) FAIL("mesh %u has no positions", index);
     if (m->indices ? (m->index_count == 0 || m->index_count % 3) : (m->vertex_count % 3))
         FAIL("mesh %u: the index (or, without indices, vertex) count is not a positive multiple of 3", index);
@@ -202,15 +203,15 @@ static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_mate
         !rtpbr_finite(&m->clearcoat, 1) || !rtpbr_finite(&m->clearcoat_roughness, 1) ||
         !rtpbr_finite(&m->anisotropy, 1) || !rtpbr_finite(&m->anisotropy_rotation, 1) || !rtpbr_finite(m->sheen_color, 3) || !rtpbr_finite(&m->sheen_roughness, 1) ||
         !rtpbr_finite((const float *)&m->disney, sizeof m->disney / sizeof(float))) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if ((unsigned)m->model > RTPBR_MATERIAL_DISNEY) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u has an unknown model %d", index, (int)m->model);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has an unknown model %d", index, (int)m->model);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (m->ior != RTPBR_IOR_FRESNEL_ONE && (m->ior < 0.0f || (m->ior > 0.0f && m->ior < 1.0f))) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR,
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
                   "material %u has ior %g; it must be >= 1 (or 0 for the default, RTPBR_IOR_FRESNEL_ONE for Fresnel 1)",
                   index, m->ior);
         return RTPBR_ERROR_INVALID_ARGUMENT;
@@ -235,31 +236,14 @@ static void smooth_normals(const float *positions, const uint32_t *indices, uint
     }
 }
 
-static void normal_matrix(const float m[16], float out[12])
+static void normal_matrix(const float m[16], float out[3][4])
 {
     float inv[16];
-    memset(out, 0, 12 * sizeof(float));
+    memset(out, 0, 3 * sizeof out[0]);
     if (!rtpbr_mat4_invert(inv, m)) return;
     // Columns of the transpose of the inverse's upper 3x3.
     for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) out[c * 4 + r] = inv[r * 4 + c];
-}
-
-// Points material slot m's descriptor set at its textures (0: the white stand-in).
-static void write_material_textures(rtpbr_gpu_scene *scene, uint32_t m, const uint32_t index[RTPBR_MATERIAL_TEXTURE_COUNT])
-{
-    rtpbr_context *ctx = scene->context;
-    VkDescriptorImageInfo images[RTPBR_MATERIAL_TEXTURE_COUNT];
-    VkWriteDescriptorSet writes[RTPBR_MATERIAL_TEXTURE_COUNT];
-    for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b) {
-        images[b] = (VkDescriptorImageInfo){ctx->texture_sampler, scene->textures[index[b]].view,
-                                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        writes[b] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                                           .dstSet = scene->material_sets[m], .dstBinding = b, .descriptorCount = 1,
-                                           .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                           .pImageInfo = &images[b]};
-    }
-    vkUpdateDescriptorSets(ctx->device, RTPBR_MATERIAL_TEXTURE_COUNT, writes, 0, NULL);
+        for (int r = 0; r < 3; ++r) out[c][r] = inv[r * 4 + c];
 }
 
 // Uploads the textures (image 0 is a 1x1 white stand-in for "no texture", image i texture i)
@@ -268,14 +252,7 @@ static rtpbr_result create_textures(rtpbr_gpu_scene *scene, const rtpbr_gpu_scen
 {
     rtpbr_context *ctx = scene->context;
     rtpbr_result result = RTPBR_SUCCESS;
-    VkDescriptorSetLayout *layouts = NULL;
-    scene->textures = rtpbr_alloc(ctx, (desc->texture_count + 1) * sizeof *scene->textures);
-    scene->material_sets = rtpbr_alloc(ctx, material_slots * sizeof *scene->material_sets);
-    layouts = rtpbr_alloc(ctx, material_slots * sizeof *layouts);
-    if (!scene->textures || !scene->material_sets || !layouts) {
-        result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-        goto cleanup;
-    }
+    RTPBR_ALLOC(&ctx->host, scene->textures, (desc->texture_count + 1) * sizeof *scene->textures);
     static const uint8_t white[4] = {255, 255, 255, 255};
     RTPBR_TRY(rtpbr_image_create_with_data(ctx, 1, 1, VK_FORMAT_R8G8B8A8_UNORM, white, 4, &scene->textures[0]));
     scene->texture_count = 1;
@@ -286,23 +263,7 @@ static rtpbr_result create_textures(rtpbr_gpu_scene *scene, const rtpbr_gpu_scen
                                                (size_t)t->width * t->height * 4, &scene->textures[i + 1]));
         scene->texture_count++;
     }
-
-    VkDescriptorPoolSize size = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, RTPBR_MATERIAL_TEXTURE_COUNT * material_slots};
-    VkDescriptorPoolCreateInfo pool_info = {
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-        .maxSets = material_slots,
-        .poolSizeCount = 1,
-        .pPoolSizes = &size,
-    };
-    RTPBR_VK(ctx, vkCreateDescriptorPool(ctx->device, &pool_info, NULL, &scene->material_pool));
-    for (uint32_t i = 0; i < material_slots; ++i) layouts[i] = ctx->material_set_layout;
-    VkDescriptorSetAllocateInfo alloc = {
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
-        .descriptorPool = scene->material_pool,
-        .descriptorSetCount = material_slots,
-        .pSetLayouts = layouts,
-    };
-    RTPBR_VK(ctx, vkAllocateDescriptorSets(ctx->device, &alloc, scene->material_sets));
+    RTPBR_TRY(rtpbr_gbuffer_material_sets_create(scene, material_slots));
     for (uint32_t m = 0; m < material_slots; ++m) {
         uint32_t index[RTPBR_MATERIAL_TEXTURE_COUNT] = {0};
         if (desc->material_count) {
@@ -311,10 +272,9 @@ static rtpbr_result create_textures(rtpbr_gpu_scene *scene, const rtpbr_gpu_scen
             index[RTPBR_BINDING_TEXTURE_EMISSION] = desc->materials[m].emission_texture;
             index[RTPBR_BINDING_TEXTURE_NORMAL] = desc->materials[m].normal_texture;
         }
-        write_material_textures(scene, m, index);
+        rtpbr_gbuffer_write_material_textures(scene, m, index);
     }
 cleanup:
-    rtpbr_free(ctx, layouts);
     return result; // rtpbr_gpu_scene_destroy frees a half-built set
 }
 
@@ -322,9 +282,9 @@ cleanup:
 
 rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_desc *desc, rtpbr_gpu_scene **out_scene)
 {
-    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!ctx) return rtpbr_null_object(__func__, "context");
     if (!desc || !out_scene) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_create: desc or out_scene is NULL");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_create: desc or out_scene is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     *out_scene = NULL;
@@ -332,11 +292,11 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     rtpbr_gpu_scene *scene = NULL;
     if ((desc->mesh_count && !desc->meshes) || (desc->material_count && !desc->materials) ||
         (desc->camera_count && !desc->cameras)) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_create: a non-zero count with a NULL array");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_create: a non-zero count with a NULL array");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (desc->material_count > RTPBR_MAX_MATERIALS) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "%u materials; at most %u are allowed", desc->material_count, RTPBR_MAX_MATERIALS);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "%u materials; at most %u are allowed", desc->material_count, RTPBR_MAX_MATERIALS);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
     RTPBR_TRY(validate_lights(ctx, desc->lights, desc->light_count));
@@ -348,7 +308,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         total_indices += m->indices ? m->index_count : m->vertex_count;
     }
     if (total_vertices > UINT32_MAX / 2 || total_indices > UINT32_MAX / 2) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "scene too large (%llu vertices)", (unsigned long long)total_vertices);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "scene too large (%llu vertices)", (unsigned long long)total_vertices);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
     for (uint32_t i = 0; i < desc->material_count; ++i) {
@@ -356,31 +316,30 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         RTPBR_TRY(validate_material(ctx, m, i));
         if (m->base_color_texture > desc->texture_count || m->metallic_roughness_texture > desc->texture_count ||
             m->emission_texture > desc->texture_count || m->normal_texture > desc->texture_count) {
-            rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u refers to a texture past the scene's %u", i, desc->texture_count);
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u refers to a texture past the scene's %u", i, desc->texture_count);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
     }
     if (desc->texture_count && !desc->textures) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "texture_count is %u but textures is NULL", desc->texture_count);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "texture_count is %u but textures is NULL", desc->texture_count);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     for (uint32_t i = 0; i < desc->texture_count; ++i) {
         const rtpbr_texture_desc *t = &desc->textures[i];
         if (!t->rgba || t->width == 0 || t->height == 0 || t->width > RTPBR_MAX_RENDER_SIZE ||
             t->height > RTPBR_MAX_RENDER_SIZE) {
-            rtpbr_log(ctx, RTPBR_LOG_ERROR, "texture %u: no texels or size %ux%u outside 1..%u", i, t->width, t->height,
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "texture %u: no texels or size %ux%u outside 1..%u", i, t->width, t->height,
                       RTPBR_MAX_RENDER_SIZE);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
     }
     for (uint32_t i = 0; i < desc->camera_count; ++i)
         if (!rtpbr_finite((const float *)&desc->cameras[i], sizeof desc->cameras[i] / sizeof(float))) {
-            rtpbr_log(ctx, RTPBR_LOG_ERROR, "camera %u has a NaN or infinite parameter", i);
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "camera %u has a NaN or infinite parameter", i);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
 
-    scene = rtpbr_alloc(ctx, sizeof *scene);
-    if (!scene) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+    RTPBR_ALLOC(&ctx->host, scene, sizeof *scene);
     scene->context = ctx;
     RTPBR_LIST_LINK(ctx->scenes, scene);
 
@@ -390,11 +349,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, vertex_bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, &scene->vertices));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, index_bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &scene->indices));
     if (desc->mesh_count) {
-        scene->draws = rtpbr_alloc(ctx, desc->mesh_count * sizeof *scene->draws);
-        if (!scene->draws) {
-            result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-            goto cleanup;
-        }
+        RTPBR_ALLOC(&ctx->host, scene->draws, desc->mesh_count * sizeof *scene->draws);
     }
     float *vertices = scene->vertices.mapped;
     uint32_t *indices = scene->indices.mapped;
@@ -426,7 +381,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         index_base += count;
     }
 
-    RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (shadow.c)
+    RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (passes/shadow.c)
 
     uint32_t material_slots = desc->material_count ? desc->material_count : 1;
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, material_slots * sizeof(rtpbr_shader_material),
@@ -446,18 +401,13 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     write_lights(scene, desc->lights, desc->light_count);
 
     scene->camera_count = desc->camera_count ? desc->camera_count : 1;
-    scene->cameras = rtpbr_alloc(ctx, scene->camera_count * sizeof *scene->cameras);
-    if (!scene->cameras) {
-        result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-        goto cleanup;
-    }
+    RTPBR_ALLOC(&ctx->host, scene->cameras, scene->camera_count * sizeof *scene->cameras);
     if (desc->camera_count) memcpy(scene->cameras, desc->cameras, desc->camera_count * sizeof *scene->cameras);
     else scene->cameras[0] = (rtpbr_camera_desc){.position = {0.0f, 0.0f, 5.0f}};
 
     *out_scene = scene;
     return RTPBR_SUCCESS;
 cleanup:
-    if (result == RTPBR_SUCCESS) result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
     rtpbr_gpu_scene_destroy(scene);
     return result;
 }
@@ -471,26 +421,25 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_buffer_destroy(ctx, &scene->materials);
     rtpbr_buffer_destroy(ctx, &scene->lights);
     rtpbr_bvh_destroy(scene);
-    if (scene->material_pool) vkDestroyDescriptorPool(ctx->device, scene->material_pool, NULL);
+    rtpbr_gbuffer_material_sets_destroy(scene);
     for (uint32_t i = 0; i < scene->texture_count; ++i) rtpbr_image_destroy(ctx, &scene->textures[i]);
-    rtpbr_free(ctx, scene->textures);
-    rtpbr_free(ctx, scene->material_sets);
-    rtpbr_free(ctx, scene->draws);
-    rtpbr_free(ctx, scene->cameras);
+    rtpbr_free(&ctx->host, scene->textures);
+    rtpbr_free(&ctx->host, scene->draws);
+    rtpbr_free(&ctx->host, scene->cameras);
     RTPBR_LIST_UNLINK(ctx->scenes, scene);
-    rtpbr_free(ctx, scene);
+    rtpbr_free(&ctx->host, scene);
 }
 
 rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index, const rtpbr_material_desc *material)
 {
-    if (!scene) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!scene) return rtpbr_null_object(__func__, "scene");
     rtpbr_context *ctx = scene->context;
     if (!material) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_material: material is NULL");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_material: material is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (index >= scene->material_count) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_material: material %u, the scene has %u", index,
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_material: material %u, the scene has %u", index,
                   scene->material_count);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
@@ -504,29 +453,29 @@ rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index
     index_of[RTPBR_BINDING_TEXTURE_NORMAL] = material->normal_texture;
     for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b)
         if (index_of[b] > textures) {
-            rtpbr_log(ctx, RTPBR_LOG_ERROR, "material %u refers to a texture past the scene's %u", index, textures);
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u refers to a texture past the scene's %u", index, textures);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
     ((rtpbr_shader_material *)scene->materials.mapped)[index] = convert_material(material);
-    write_material_textures(scene, index, index_of);
+    rtpbr_gbuffer_write_material_textures(scene, index, index_of);
     return RTPBR_SUCCESS;
 }
 
 rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh, const float transform[16])
 {
-    if (!scene) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!scene) return rtpbr_null_object(__func__, "scene");
     rtpbr_context *ctx = scene->context;
     if (!transform) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: transform is NULL");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: transform is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (mesh >= scene->draw_count) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: mesh %u, the scene has %u", mesh,
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: mesh %u, the scene has %u", mesh,
                   scene->draw_count);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (!rtpbr_finite(transform, 16)) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: mesh %u: NaN or infinite transform", mesh);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: mesh %u: NaN or infinite transform", mesh);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     rtpbr_draw *draw = &scene->draws[mesh];

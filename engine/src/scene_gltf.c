@@ -41,9 +41,9 @@ static uint32_t texture_ref(const rtpbr_gltf_scene *loaded, int32_t index)
 rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_gltf_scene *loaded,
                                          rtpbr_gpu_scene **out_scene)
 {
-    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!ctx) return rtpbr_null_object(__func__, "context");
     if (!loaded || !out_scene) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_from_loaded: loaded or out_scene is NULL");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_from_loaded: loaded or out_scene is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     *out_scene = NULL;
@@ -61,12 +61,12 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
         if (arrays[i].count && !arrays[i].array) {
-            rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_from_loaded: %s is NULL with %s_count = %u",
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_from_loaded: %s is NULL with %s_count = %u",
                       arrays[i].name, arrays[i].name, arrays[i].count);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
     if (loaded->light_count > RTPBR_MAX_LIGHTS) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "scene has %u lights; at most RTPBR_MAX_LIGHTS = %u are allowed",
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "scene has %u lights; at most RTPBR_MAX_LIGHTS = %u are allowed",
                   loaded->light_count, RTPBR_MAX_LIGHTS);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
@@ -76,7 +76,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
     rtpbr_light_desc *lights = NULL;
     rtpbr_camera_desc *cameras = NULL;
     rtpbr_texture_desc *textures = NULL;
-    if (loaded->texture_count && !(textures = rtpbr_alloc(ctx, loaded->texture_count * sizeof *textures))) goto oom;
+    if (loaded->texture_count) RTPBR_ALLOC(&ctx->host, textures, loaded->texture_count * sizeof *textures);
     for (uint32_t i = 0; i < loaded->texture_count; ++i) {
         const rtpbr_gltf_texture *t = &loaded->textures[i];
         if (t->pixels) // textures without texels are never referenced (texture_ref)
@@ -84,11 +84,10 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         else
             textures[i] = (rtpbr_texture_desc){.width = 1, .height = 1, .rgba = (const uint8_t *)"\xff\xff\xff\xff"};
     }
-    if (loaded->primitive_count && !(meshes = rtpbr_alloc(ctx, loaded->primitive_count * sizeof *meshes))) goto oom;
-    if (loaded->material_count && !(materials = rtpbr_alloc(ctx, loaded->material_count * sizeof *materials)))
-        goto oom;
-    if (loaded->light_count && !(lights = rtpbr_alloc(ctx, loaded->light_count * sizeof *lights))) goto oom;
-    if (loaded->camera_count && !(cameras = rtpbr_alloc(ctx, loaded->camera_count * sizeof *cameras))) goto oom;
+    if (loaded->primitive_count) RTPBR_ALLOC(&ctx->host, meshes, loaded->primitive_count * sizeof *meshes);
+    if (loaded->material_count) RTPBR_ALLOC(&ctx->host, materials, loaded->material_count * sizeof *materials);
+    if (loaded->light_count) RTPBR_ALLOC(&ctx->host, lights, loaded->light_count * sizeof *lights);
+    if (loaded->camera_count) RTPBR_ALLOC(&ctx->host, cameras, loaded->camera_count * sizeof *cameras);
 
     for (uint32_t i = 0; i < loaded->primitive_count; ++i) {
         const rtpbr_gltf_primitive *p = &loaded->primitives[i];
@@ -176,39 +175,34 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         .texture_count = loaded->texture_count,
     };
     result = rtpbr_gpu_scene_create(ctx, &desc, out_scene);
-    goto cleanup;
-oom:
-    result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
 cleanup:
-    rtpbr_free(ctx, meshes);
-    rtpbr_free(ctx, materials);
-    rtpbr_free(ctx, lights);
-    rtpbr_free(ctx, cameras);
-    rtpbr_free(ctx, textures);
+    rtpbr_free(&ctx->host, meshes);
+    rtpbr_free(&ctx->host, materials);
+    rtpbr_free(&ctx->host, lights);
+    rtpbr_free(&ctx->host, cameras);
+    rtpbr_free(&ctx->host, textures);
     return result;
 }
-
-#if RTPBR_HAVE_SCENE_LOADER
 
 static void forward_loader_log(rtpbr_gltf_log_level level, const char *message, void *user_data)
 {
     const rtpbr_context *ctx = user_data;
-    rtpbr_log(ctx, level == RTPBR_GLTF_LOG_ERROR ? RTPBR_LOG_ERROR
+    rtpbr_log(&ctx->host, level == RTPBR_GLTF_LOG_ERROR ? RTPBR_LOG_ERROR
                    : level == RTPBR_GLTF_LOG_WARNING ? RTPBR_LOG_WARNING : RTPBR_LOG_INFO,
               "glTF loader: %s", message);
 }
 
 rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtpbr_gpu_scene **out_scene)
 {
-    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!ctx) return rtpbr_null_object(__func__, "context");
     if (!path || !out_scene) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_load_gltf: path or out_scene is NULL");
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_load_gltf: path or out_scene is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     *out_scene = NULL;
     char message[RTPBR_GLTF_ERROR_MESSAGE_SIZE] = "";
     rtpbr_gltf_load_desc desc = {
-        .allocator = {ctx->allocator.alloc, ctx->allocator.free, ctx->allocator.user_data},
+        .allocator = {ctx->host.allocator.alloc, ctx->host.allocator.free, ctx->host.allocator.user_data},
         .logger = {forward_loader_log, ctx},
         .error_message = message,
         .error_message_size = sizeof message,
@@ -218,7 +212,7 @@ rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtp
     rtpbr_gltf_scene *loaded = NULL;
     rtpbr_gltf_result sr = rtpbr_gltf_load(path, &desc, &loaded);
     if (sr != RTPBR_GLTF_SUCCESS) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "cannot load %s: %s: %s", path, rtpbr_gltf_result_string(sr), message);
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "cannot load %s: %s: %s", path, rtpbr_gltf_result_string(sr), message);
         switch (sr) {
         case RTPBR_GLTF_ERROR_IO: return RTPBR_ERROR_IO;
         case RTPBR_GLTF_ERROR_OUT_OF_MEMORY: return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
@@ -231,19 +225,3 @@ rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtp
     rtpbr_gltf_destroy(loaded);
     return result;
 }
-
-#else
-
-rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *ctx, const char *path, rtpbr_gpu_scene **out_scene)
-{
-    if (out_scene) *out_scene = NULL;
-    if (!ctx) return RTPBR_ERROR_INVALID_ARGUMENT;
-    if (!path || !out_scene) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_load_gltf: path or out_scene is NULL");
-        return RTPBR_ERROR_INVALID_ARGUMENT;
-    }
-    rtpbr_log(ctx, RTPBR_LOG_ERROR, "librtpbr was built without the glTF loader (scene)");
-    return RTPBR_ERROR_MISSING_FEATURE;
-}
-
-#endif

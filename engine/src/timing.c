@@ -9,18 +9,15 @@ rtpbr_result rtpbr_timing_create(rtpbr_renderer *r)
     rtpbr_result result = RTPBR_SUCCESS;
     uint32_t family_count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(ctx->physical_device, &family_count, NULL);
-    VkQueueFamilyProperties *families = rtpbr_alloc(ctx, (family_count ? family_count : 1) * sizeof *families);
-    if (!families) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+    VkQueueFamilyProperties *families = NULL;
+    RTPBR_ALLOC(&ctx->host, families, (family_count ? family_count : 1) * sizeof *families);
     vkGetPhysicalDeviceQueueFamilyProperties(ctx->physical_device, &family_count, families);
     uint32_t valid_bits = ctx->queue_family < family_count ? families[ctx->queue_family].timestampValidBits : 0;
-    rtpbr_free(ctx, families);
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(ctx->physical_device, &props);
-    if (valid_bits == 0 || props.limits.timestampPeriod <= 0.0f) {
-        rtpbr_log(ctx, RTPBR_LOG_ERROR, "renderer timings: the queue family %u has no timestamp support",
-                  ctx->queue_family);
-        return RTPBR_ERROR_MISSING_FEATURE;
-    }
+    if (valid_bits == 0 || props.limits.timestampPeriod <= 0.0f)
+        RTPBR_FAIL(&ctx->host, RTPBR_ERROR_MISSING_FEATURE,
+                   "renderer timings: the queue family %u has no timestamp support", ctx->queue_family);
     r->timing.ns_per_tick = props.limits.timestampPeriod;
     r->timing.valid_mask = valid_bits >= 64 ? UINT64_MAX : ((uint64_t)1 << valid_bits) - 1;
     VkQueryPoolCreateInfo info = {
@@ -28,8 +25,9 @@ rtpbr_result rtpbr_timing_create(rtpbr_renderer *r)
         .queryType = VK_QUERY_TYPE_TIMESTAMP,
         .queryCount = RTPBR_TIMESTAMP_COUNT,
     };
-    RTPBR_VK(ctx, vkCreateQueryPool(ctx->device, &info, NULL, &r->timing.pool));
+    RTPBR_VK(&ctx->host, vkCreateQueryPool(ctx->device, &info, NULL, &r->timing.pool));
 cleanup:
+    rtpbr_free(&ctx->host, families);
     return result;
 }
 
@@ -53,14 +51,14 @@ void rtpbr_timing_mark(rtpbr_renderer *r, VkCommandBuffer cmd, rtpbr_timestamp w
 
 rtpbr_result rtpbr_renderer_timings(rtpbr_renderer *r, rtpbr_timings *out)
 {
-    if (!r) return RTPBR_ERROR_INVALID_ARGUMENT;
+    if (!r) return rtpbr_null_object(__func__, "renderer");
     if (!out) {
-        rtpbr_log(r->context, RTPBR_LOG_ERROR, "rtpbr_renderer_timings: out is NULL");
+        rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_renderer_timings: out is NULL");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     *out = (rtpbr_timings){0};
     if (!r->timing.pool) {
-        rtpbr_log(r->context, RTPBR_LOG_ERROR, "rtpbr_renderer_timings: the renderer was created without timings");
+        rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_renderer_timings: the renderer was created without timings");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (!r->timing.recorded) return RTPBR_SUCCESS; // no frame yet: valid stays 0
@@ -68,7 +66,7 @@ rtpbr_result rtpbr_renderer_timings(rtpbr_renderer *r, rtpbr_timings *out)
     VkResult vr = vkGetQueryPoolResults(r->context->device, r->timing.pool, 0, RTPBR_TIMESTAMP_COUNT, sizeof ticks,
                                         ticks, sizeof ticks[0], VK_QUERY_RESULT_64_BIT);
     if (vr == VK_NOT_READY) return RTPBR_SUCCESS; // the frame is still executing
-    if (vr != VK_SUCCESS) return rtpbr_vk_fail(r->context, vr, "vkGetQueryPoolResults");
+    if (vr != VK_SUCCESS) return rtpbr_vk_fail(&r->context->host, vr, "vkGetQueryPoolResults");
     double ms[RTPBR_TIMESTAMP_COUNT - 1];
     for (int i = 0; i + 1 < RTPBR_TIMESTAMP_COUNT; ++i)
         ms[i] = (double)((ticks[i + 1] - ticks[i]) & r->timing.valid_mask) * r->timing.ns_per_tick * 1e-6;

@@ -65,16 +65,35 @@ static void warn_log_func(rtpbr_log_level level, const char *message, void *user
     }
 }
 
-// Live children at rtpbr_context_destroy: destroyed with the context. Leak checkers (ASan in
-// CI, valgrind in engine-valgrind) see any host memory left; the validation layer sees any
-// Vulkan object left (a message fails the test).
+// Host blocks allocated through rtpbr_allocator and not yet freed.
+static void *counting_alloc(size_t size, void *user_data)
+{
+    void *p = malloc(size);
+    if (p) ++*(long *)user_data;
+    return p;
+}
+
+static void counting_free(void *ptr, void *user_data)
+{
+    if (ptr) --*(long *)user_data;
+    free(ptr);
+}
+
+// Live children at rtpbr_context_destroy: destroyed with the context. The host allocator sees
+// every block of the library come back (leak checkers, ASan in CI, see the rest); the
+// validation layer sees any Vulkan object left (a message fails the test).
 static void context_destroys_children(void **state)
 {
     (void)state;
     warn_log log = {0};
+    long live_blocks = 0;
     rtpbr_context *ctx = NULL;
-    assert_int_equal(rtpbr_context_create(&(rtpbr_context_desc){.logger = {warn_log_func, &log}, .validation = 1}, &ctx),
-                     RTPBR_SUCCESS);
+    rtpbr_context_desc desc = {
+        .allocator = {counting_alloc, counting_free, &live_blocks},
+        .logger = {warn_log_func, &log},
+        .validation = 1,
+    };
+    assert_int_equal(rtpbr_context_create(&desc, &ctx), RTPBR_SUCCESS);
     rtpbr_gpu_scene *scenes[2] = {NULL, NULL};
     rtpbr_renderer *renderers[3] = {NULL, NULL, NULL};
     for (int i = 0; i < 2; ++i)
@@ -88,7 +107,10 @@ static void context_destroys_children(void **state)
     rtpbr_renderer_destroy(renderers[1]);
     rtpbr_gpu_scene_destroy(scenes[0]);
     assert_int_equal(rtpbr_render(renderers[2], scenes[1], &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
+    long live_with_children = live_blocks;
     rtpbr_context_destroy(ctx);
+    assert_true(live_with_children > 0);
+    assert_int_equal(live_blocks, 0);
     assert_int_equal(log.base.validation, 0);
     assert_int_equal(log.warnings, 1);
     assert_non_null(strstr(log.last_warning, "1 scene(s) and 2 renderer(s)"));

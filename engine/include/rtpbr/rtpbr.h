@@ -6,29 +6,44 @@
 //     default documented next to it;
 //   - everything that can fail returns an rtpbr_result; rtpbr_result_string() names it and
 //     the log callback receives a readable message saying what failed and why;
-//   - no global state: all state hangs off an rtpbr_context; no abort()/exit().
+//   - no global state: all state hangs off an rtpbr_context; no abort()/exit();
+//   - a NULL object where one is required (context, scene, renderer) returns
+//     RTPBR_ERROR_INVALID_ARGUMENT with its message on stderr: there is no logger to reach;
+//   - every array and struct a function takes (the *_desc structs and what they point to,
+//     lights, materials, transforms) is read during the call and copied where it is kept:
+//     the caller may free or reuse it as soon as the call returns. The exceptions are said
+//     where they apply: the allocator and logger of rtpbr_context_desc (kept, with their
+//     user_data, for the context's lifetime) and the host's Vulkan objects (embedded mode,
+//     rtpbr_record_desc), which the host keeps alive while they are in use.
 //
-// Objects:
-//   rtpbr_context   a Vulkan device (standalone: created here; embedded: the host's),
-//                   the compiled pipelines and the lookup tables.
-//   rtpbr_gpu_scene     meshes, materials, polygonal lights and cameras uploaded to the GPU.
-//   rtpbr_renderer  the per-resolution targets: G-buffer, linear radiance, display image.
+// Objects and ownership:
+//   rtpbr_context    a Vulkan device (standalone: created here; embedded: the host's), the
+//                    passes' pipelines and the lookup tables. Owns the scenes and renderers
+//                    created from it: rtpbr_context_destroy destroys those still alive.
+//   rtpbr_gpu_scene  meshes, materials, polygonal lights, cameras and textures on the GPU,
+//                    with a BVH of its triangles for the shadow rays.
+//   rtpbr_renderer   the per-resolution targets: G-buffer, shadow ratios, linear radiance,
+//                    display image, readback buffers.
+//   A scene may be rendered by any renderer of its context, and a renderer may render any
+//   scene of its context.
 //
 // The frame (rtpbr_render / rtpbr_record):
-//   1. G-buffer pass: base colour + metallic, world normal + perceptual roughness, emission +
-//      ior, specular colour + factor, depth (every surface is shaded on the side the camera
-//      sees; emission is front-side only unless the material is double-sided).
+//   1. G-buffer pass: base colour + metallic, world normal + perceptual roughness, emitted
+//      radiance + material index, anisotropy direction, depth (every surface is shaded on the
+//      side the camera sees; emission is front-side only unless the material is double-sided).
 //   1b. With rtpbr_render_desc.shadows on: the shadow passes (compute): per pixel and shadowed
 //      light, shadow rays against the scene's BVH, then a denoised shadow ratio per light.
-//   2. Lighting pass (compute, one workgroup per 16x16 tile): each tile first culls the
-//      scene's lights (rtpbr_render_desc.light_cull_form_factor), then every pixel sums, per
-//      polygonal light, Lambertian diffuse and GGX/Beckmann specular integrated with
-//      Linearly Transformed Cosines and Fresnel from the LTC tables (shaderlib/rtpbr/ltc.h),
-//      plus the Kulla-Conty multiple-scattering lobe over the polygon (kulla_conty.h), plus
-//      emitted radiance. The BRDF and integration math is the shader library's. When the
-//      library is built without ltc.h, lights contribute only through emissive surfaces.
-//      With shadows, each of the first RTPBR_MAX_SHADOWED_LIGHTS lights is multiplied by
-//      its shadow ratio at the pixel.
+//   2. Lighting (compute, RTPBR_TILE_SIZE_PIXELS-square tiles): a culling dispatch keeps, per
+//      tile, the lights that may reach it (rtpbr_render_desc.light_cull_form_factor) and sorts
+//      the tile into a class by the materials it holds; then one indirect dispatch per class
+//      runs the lighting variant for that class, which sums, per polygonal light, the
+//      material's diffuse and specular lobes integrated over the polygon with Linearly
+//      Transformed Cosines (shaderlib/rtpbr/ltc.h; GGX or Beckmann, rtpbr_render_desc.ndf),
+//      the Kulla-Conty multiple-scattering lobe (kulla_conty.h), clear coat and sheen layers,
+//      plus emitted radiance; all BRDF and integration math is the shader library's. With
+//      shadows, each of the first RTPBR_MAX_SHADOWED_LIGHTS lights is multiplied by its
+//      shadow ratio at the pixel. rtpbr_render_desc.mc_samples replaces this pass by a Monte
+//      Carlo reference of the same integral.
 //   3. Tone mapping: radiance * 2^exposure through a documented operator (rtpbr_tonemap),
 //      sRGB-encoded into the display target.
 //   The linear radiance (before exposure and tone mapping) is kept for rtpbr_read_radiance.
@@ -100,8 +115,13 @@ typedef enum rtpbr_result {
 // A static English name of the result ("invalid argument"); never NULL.
 RTPBR_API const char *rtpbr_result_string(rtpbr_result result);
 
-// Host allocator for every host allocation the library makes. Both functions NULL: malloc/free.
-// alloc must return memory aligned for any C type (like malloc), or NULL on failure.
+// Host allocator for the host memory librtpbr allocates: its objects, the scenes' host-side
+// data and every temporary array, and on the glTF path the loaded scene the loader returns.
+// Not through it: the Vulkan implementation's own allocations (the library passes no
+// VkAllocationCallbacks), and tinygltf's parsing of a glTF file (C++ new/delete inside the
+// loader, freed before rtpbr_gpu_scene_load_gltf returns). Both functions NULL: malloc/free.
+// alloc must return memory aligned for any C type (like malloc), or NULL on failure; every
+// failure is then reported as RTPBR_ERROR_OUT_OF_HOST_MEMORY with the size in the log.
 typedef struct rtpbr_allocator {
     void *(*alloc)(size_t size, void *user_data);
     void (*free)(void *ptr, void *user_data);
@@ -315,6 +335,8 @@ struct rtpbr_gltf_scene; // a scene loaded by the glTF loader (scene/rtpbr/rtpbr
 
 // Validates everything (finite numbers, index ranges, planar non-degenerate lights) before
 // touching the GPU; a scene with no meshes and no lights is valid (renders the background).
+// Every array of the desc (meshes and their vertex and index arrays, materials, lights,
+// cameras, textures and their texels) is copied during the call; none is kept.
 // Lights are not drawn: a light is seen only through an emissive mesh (glTF scenes have one).
 RTPBR_API rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *context, const rtpbr_gpu_scene_desc *desc,
                                               rtpbr_gpu_scene **out_scene);
@@ -324,16 +346,18 @@ RTPBR_API rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *context, const rtpb
 // RTPBR_ERROR_SCENE_LOAD or RTPBR_ERROR_IO, with the loader's message in the log.
 RTPBR_API rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *context, const char *path,
                                                  rtpbr_gpu_scene **out_scene);
-// Uploads a scene the host loaded (or built) with the loader's C API; the material mapping is
-// the table in rtpbr_gpu_scene_load_gltf's documentation below. The loaded scene is not kept.
+// Uploads a scene the host loaded (or built) with the loader's C API, mapped as
+// rtpbr_gpu_scene_load_gltf maps it (docs/materials.md has the table). The loaded scene is
+// read during the call and not kept: the host may destroy it as soon as this returns.
 // A non-zero count with a NULL array: RTPBR_ERROR_INVALID_ARGUMENT.
 RTPBR_API rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *context, const struct rtpbr_gltf_scene *loaded,
                                                    rtpbr_gpu_scene **out_scene);
 RTPBR_API void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene);
 RTPBR_API uint32_t rtpbr_gpu_scene_camera_count(const rtpbr_gpu_scene *scene);
 RTPBR_API uint32_t rtpbr_gpu_scene_light_count(const rtpbr_gpu_scene *scene);
-// Replaces every light (same validation and limits as rtpbr_gpu_scene_create). Must not be
-// called while a command buffer recorded with rtpbr_record for this scene is pending.
+// Replaces every light (same validation and limits as rtpbr_gpu_scene_create; the array is
+// copied). Must not be called while a command buffer recorded with rtpbr_record for this
+// scene is pending.
 RTPBR_API rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
                                                   uint32_t light_count);
 // Edits in place, without re-uploading geometry. Like rtpbr_gpu_scene_set_lights they write
@@ -347,7 +371,8 @@ RTPBR_API rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint
 // Replaces the world-from-object transform (column-major, finite; all zero: identity) of
 // mesh `mesh` (< the desc's mesh_count, in the desc's order; for a glTF scene, the loader's
 // primitives in order, whose positions are already in world space, so their transform starts
-// as the identity). Lights do not follow: move them with rtpbr_gpu_scene_set_lights.
+// as the identity). The matrix is copied. Lights do not follow: move them with
+// rtpbr_gpu_scene_set_lights.
 RTPBR_API rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh,
                                                      const float transform[16]);
 

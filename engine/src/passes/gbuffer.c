@@ -1,0 +1,221 @@
+// G-buffer pass: rasterises every mesh into base colour + metallic, world normal + perceptual
+// roughness, emission + material index, anisotropy direction, and depth.
+#include "passes.h"
+
+#include "../internal.h"
+#include "pipeline.h"
+#include "rtpbr_spirv_gbuffer_frag.h"
+#include "rtpbr_spirv_gbuffer_vert.h"
+
+const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT] = {
+    VK_FORMAT_R8G8B8A8_UNORM,      // base colour, metallic
+    VK_FORMAT_R16G16B16A16_SFLOAT, // normal, roughness
+    VK_FORMAT_R32G32B32A32_SFLOAT, // emission, material index (exact as a float up to 2^24)
+    VK_FORMAT_R16G16B16A16_SFLOAT, // anisotropy direction
+};
+
+// Set 0, one per renderer.
+static const VkDescriptorSetLayoutBinding frame_bindings[] = {
+    {RTPBR_BINDING_GBUFFER_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+     VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
+    {RTPBR_BINDING_GBUFFER_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
+};
+// Set 1, one per material slot of a scene.
+static const VkDescriptorSetLayoutBinding material_bindings[RTPBR_MATERIAL_TEXTURE_COUNT] = {
+    {RTPBR_BINDING_TEXTURE_BASE_COLOR, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
+    {RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+     NULL},
+    {RTPBR_BINDING_TEXTURE_EMISSION, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
+    {RTPBR_BINDING_TEXTURE_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
+};
+
+rtpbr_result rtpbr_gbuffer_pass_init(rtpbr_context *ctx)
+{
+    rtpbr_gbuffer_pass *pass = &ctx->gbuffer;
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
+    RTPBR_TRY(rtpbr_set_layout_create(ctx, RTPBR_BINDINGS(frame_bindings), &pass->set_layout));
+    RTPBR_TRY(rtpbr_set_layout_create(ctx, RTPBR_BINDINGS(material_bindings), &pass->material_set_layout));
+    VkDescriptorSetLayout sets[2] = {pass->set_layout, pass->material_set_layout};
+    RTPBR_TRY(rtpbr_pipeline_layout_create(ctx, sets, 2, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                           sizeof(rtpbr_shader_draw), &pass->layout));
+    RTPBR_TRY(rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_gbuffer_vert), &vert));
+    RTPBR_TRY(rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_gbuffer_frag), &frag));
+    // The scene's vertex layout (RTPBR_VERTEX_FLOATS): position, normal, uv, tangent.
+    VkVertexInputBindingDescription binding = {0, RTPBR_VERTEX_FLOATS * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX};
+    VkVertexInputAttributeDescription attributes[4] = {
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
+        {2, 0, VK_FORMAT_R32G32_SFLOAT, 6 * sizeof(float)},
+        {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 8 * sizeof(float)},
+    };
+    VkPipelineVertexInputStateCreateInfo vertex_input = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
+        .vertexBindingDescriptionCount = 1,
+        .pVertexBindingDescriptions = &binding,
+        .vertexAttributeDescriptionCount = 4,
+        .pVertexAttributeDescriptions = attributes,
+    };
+    rtpbr_graphics_desc d = {
+        .vert = vert,
+        .frag = frag,
+        .layout = pass->layout,
+        .color_formats = rtpbr_gbuffer_formats,
+        .color_count = RTPBR_GBUFFER_COUNT,
+        .depth_format = RTPBR_DEPTH_FORMAT,
+        .vertex_input = &vertex_input,
+    };
+    RTPBR_TRY(rtpbr_graphics_pipeline_create(ctx, &d, &pass->pipeline));
+cleanup:
+    vkDestroyShaderModule(ctx->device, vert, NULL);
+    vkDestroyShaderModule(ctx->device, frag, NULL);
+    return result; // the caller finishes a half-built pass
+}
+
+void rtpbr_gbuffer_pass_finish(rtpbr_context *ctx)
+{
+    rtpbr_gbuffer_pass *pass = &ctx->gbuffer;
+    vkDestroyPipeline(ctx->device, pass->pipeline, NULL);
+    vkDestroyPipelineLayout(ctx->device, pass->layout, NULL);
+    vkDestroyDescriptorSetLayout(ctx->device, pass->set_layout, NULL);
+    vkDestroyDescriptorSetLayout(ctx->device, pass->material_set_layout, NULL);
+    *pass = (rtpbr_gbuffer_pass){0};
+}
+
+rtpbr_result rtpbr_gbuffer_renderer_init(rtpbr_renderer *r)
+{
+    rtpbr_context *ctx = r->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    RTPBR_TRY(rtpbr_descriptor_set_create(ctx, RTPBR_BINDINGS(frame_bindings), ctx->gbuffer.set_layout,
+                                          &r->gbuffer_set));
+    rtpbr_descriptor_write_buffer(ctx, RTPBR_BINDINGS(frame_bindings), r->gbuffer_set.set,
+                                  RTPBR_BINDING_GBUFFER_FRAME, r->frame.buffer, sizeof(rtpbr_shader_frame));
+cleanup:
+    return result;
+}
+
+void rtpbr_gbuffer_renderer_finish(rtpbr_renderer *r)
+{
+    rtpbr_descriptor_set_destroy(r->context, &r->gbuffer_set);
+}
+
+rtpbr_result rtpbr_gbuffer_material_sets_create(rtpbr_gpu_scene *scene, uint32_t material_slots)
+{
+    rtpbr_context *ctx = scene->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkDescriptorSetLayout *layouts = NULL;
+    RTPBR_ALLOC(&ctx->host, scene->material_sets, material_slots * sizeof *scene->material_sets);
+    RTPBR_ALLOC(&ctx->host, layouts, material_slots * sizeof *layouts);
+    RTPBR_TRY(rtpbr_descriptor_pool_create(ctx, RTPBR_BINDINGS(material_bindings), material_slots,
+                                           &scene->material_pool));
+    for (uint32_t i = 0; i < material_slots; ++i) layouts[i] = ctx->gbuffer.material_set_layout;
+    VkDescriptorSetAllocateInfo alloc = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+        .descriptorPool = scene->material_pool,
+        .descriptorSetCount = material_slots,
+        .pSetLayouts = layouts,
+    };
+    RTPBR_VK(&ctx->host, vkAllocateDescriptorSets(ctx->device, &alloc, scene->material_sets));
+cleanup:
+    rtpbr_free(&ctx->host, layouts);
+    return result; // rtpbr_gbuffer_material_sets_destroy frees a half-built state
+}
+
+void rtpbr_gbuffer_material_sets_destroy(rtpbr_gpu_scene *scene)
+{
+    rtpbr_context *ctx = scene->context;
+    if (scene->material_pool) vkDestroyDescriptorPool(ctx->device, scene->material_pool, NULL);
+    rtpbr_free(&ctx->host, scene->material_sets);
+    scene->material_pool = VK_NULL_HANDLE;
+    scene->material_sets = NULL;
+}
+
+void rtpbr_gbuffer_write_material_textures(rtpbr_gpu_scene *scene, uint32_t m,
+                                           const uint32_t texture[RTPBR_MATERIAL_TEXTURE_COUNT])
+{
+    rtpbr_context *ctx = scene->context;
+    for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b)
+        rtpbr_descriptor_write_image(ctx, RTPBR_BINDINGS(material_bindings), scene->material_sets[m],
+                                     material_bindings[b].binding, ctx->texture_sampler,
+                                     scene->textures[texture[material_bindings[b].binding]].view,
+                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+void rtpbr_gbuffer_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
+{
+    rtpbr_descriptor_write_buffer(r->context, RTPBR_BINDINGS(frame_bindings), r->gbuffer_set.set,
+                                  RTPBR_BINDING_GBUFFER_MATERIALS, scene->materials.buffer, VK_WHOLE_SIZE);
+}
+
+void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCommandBuffer cmd)
+{
+    const rtpbr_context *ctx = r->context;
+    // The previous frame's lighting pass read these images: wait for it, discard contents.
+    for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i)
+        rtpbr_image_barrier(cmd, r->gbuffer[i].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                            VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
+                            VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    rtpbr_image_barrier(cmd, r->depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
+                        VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                        VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+
+    VkRenderingAttachmentInfo colors[RTPBR_GBUFFER_COUNT];
+    for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i)
+        colors[i] = (VkRenderingAttachmentInfo){
+            .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+            .imageView = r->gbuffer[i].view,
+            .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+            .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
+            .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+        };
+    VkRenderingAttachmentInfo depth = {
+        .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+        .imageView = r->depth.view,
+        .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+        .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
+        .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+        .clearValue.depthStencil = {1.0f, 0},
+    };
+    VkRenderingInfo rendering = {
+        .sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
+        .renderArea = {{0, 0}, {r->shade_width, r->shade_height}},
+        .layerCount = 1,
+        .colorAttachmentCount = RTPBR_GBUFFER_COUNT,
+        .pColorAttachments = colors,
+        .pDepthAttachment = &depth,
+    };
+    vkCmdBeginRendering(cmd, &rendering);
+    VkViewport viewport = {0.0f, 0.0f, (float)r->shade_width, (float)r->shade_height, 0.0f, 1.0f};
+    VkRect2D scissor = {{0, 0}, {r->shade_width, r->shade_height}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    if (scene->draw_count) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->gbuffer.pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->gbuffer.layout, 0, 1, &r->gbuffer_set.set,
+                                0, NULL);
+        VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(cmd, 0, 1, &scene->vertices.buffer, &offset);
+        vkCmdBindIndexBuffer(cmd, scene->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+        for (uint32_t i = 0; i < scene->draw_count; ++i) {
+            const rtpbr_draw *d = &scene->draws[i];
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->gbuffer.layout, 1, 1,
+                                    &scene->material_sets[d->push.material], 0, NULL);
+            vkCmdPushConstants(cmd, ctx->gbuffer.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                               0, sizeof d->push, &d->push);
+            vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, 0, 0);
+        }
+    }
+    vkCmdEndRendering(cmd);
+
+    for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i)
+        rtpbr_image_barrier(cmd, r->gbuffer[i].image, VK_IMAGE_ASPECT_COLOR_BIT,
+                            VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                            VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    rtpbr_image_barrier(cmd, r->depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                        VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                        VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_SHADER_READ_BIT);
+}

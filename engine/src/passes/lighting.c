@@ -1,0 +1,233 @@
+// Lighting pass: the tile cull (cull.comp) writes each tile's light mask and queues the tile
+// for its class; then one indirect dispatch per class runs that class's LTC variant
+// (lighting.comp) over its queue, turning the G-buffer into linear radiance; with
+// supersampling, the resolve (resolve.c) box-filters it down to the output.
+#include "passes.h"
+
+#include "../internal.h"
+#include "pipeline.h"
+#include "rtpbr_spirv_cull_comp.h"
+#include "rtpbr_spirv_lighting_beckmann_ms0_basic.h"
+#include "rtpbr_spirv_lighting_beckmann_ms0_full.h"
+#include "rtpbr_spirv_lighting_beckmann_ms1_basic.h"
+#include "rtpbr_spirv_lighting_beckmann_ms1_full.h"
+#include "rtpbr_spirv_lighting_empty.h"
+#include "rtpbr_spirv_lighting_ggx_ms0_basic.h"
+#include "rtpbr_spirv_lighting_ggx_ms0_full.h"
+#include "rtpbr_spirv_lighting_ggx_ms1_basic.h"
+#include "rtpbr_spirv_lighting_ggx_ms1_full.h"
+
+// The set of the cull, LTC and Monte Carlo passes (rtpbr_shared.h: RTPBR_BINDING_LIGHT_*).
+#define COMPUTE(binding, type) {binding, VK_DESCRIPTOR_TYPE_##type, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL}
+static const VkDescriptorSetLayoutBinding bindings[] = {
+    COMPUTE(RTPBR_BINDING_LIGHT_FRAME, UNIFORM_BUFFER),
+    COMPUTE(RTPBR_BINDING_LIGHT_LIGHTS, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_LIGHT_GBUFFER0, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LIGHT_GBUFFER1, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LIGHT_GBUFFER2, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LIGHT_GBUFFER3, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LIGHT_DEPTH, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LIGHT_RADIANCE, STORAGE_IMAGE),
+    COMPUTE(RTPBR_BINDING_LUT_LTC_GGX_1, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LUT_LTC_GGX_2, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LUT_LTC_BECKMANN_1, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LUT_LTC_BECKMANN_2, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LUT_KC_E, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LUT_KC_EAVG, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LUT_KC_EF, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LUT_KC_EFAVG, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LUT_LTC_DISNEY_1, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LUT_LTC_DISNEY_2, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LUT_SHEEN_E, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LUT_LTC_SHEEN_1, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LUT_LTC_SHEEN_2, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LIGHT_MATERIALS, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_LIGHT_TILE_MASKS, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_LIGHT_TILE_LISTS, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_LIGHT_SHADOW_RATIO, COMBINED_IMAGE_SAMPLER),
+};
+#undef COMPUTE
+_Static_assert(sizeof bindings / sizeof bindings[0] == RTPBR_LIGHTING_BINDING_COUNT, "every lighting binding");
+_Static_assert(RTPBR_BINDING_LUT_LTC_SHEEN_2 + 1 == RTPBR_BINDING_LUT_LTC_GGX_1 + RTPBR_LUT_COUNT, "LUT bindings");
+
+uint32_t rtpbr_lighting_variant(rtpbr_ndf ndf, rtpbr_multiscatter ms)
+{
+    uint32_t n = ndf == RTPBR_NDF_BECKMANN_MODEL ? 1 : 0;
+    uint32_t m = ms == RTPBR_MULTISCATTER_OFF ? 0 : 1;
+    return n * 2 + m;
+}
+
+rtpbr_result rtpbr_lighting_pass_init(rtpbr_context *ctx)
+{
+    rtpbr_lighting_pass *pass = &ctx->lighting;
+    rtpbr_result result = RTPBR_SUCCESS;
+    RTPBR_TRY(rtpbr_set_layout_create(ctx, RTPBR_BINDINGS(bindings), &pass->set_layout));
+    RTPBR_TRY(rtpbr_pipeline_layout_create(ctx, &pass->set_layout, 1, 0, 0, &pass->layout));
+    RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_cull_comp), pass->layout, &pass->cull));
+    RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_lighting_empty), pass->layout, &pass->empty));
+    // The default variant (GGX, multiple scattering on) now, so that a bad driver fails early;
+    // the others on first use (rtpbr_lighting_pipelines_get): each costs shader compilations.
+    VkPipeline unused[RTPBR_TILE_CLASS_COUNT];
+    RTPBR_TRY(rtpbr_lighting_pipelines_get(ctx, RTPBR_NDF_GGX_MODEL, RTPBR_MULTISCATTER_ON, unused));
+cleanup:
+    return result; // the caller finishes a half-built pass
+}
+
+void rtpbr_lighting_pass_finish(rtpbr_context *ctx)
+{
+    rtpbr_lighting_pass *pass = &ctx->lighting;
+    for (uint32_t v = 0; v < RTPBR_LIGHTING_VARIANT_COUNT; ++v)
+        for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) vkDestroyPipeline(ctx->device, pass->ltc[v][c], NULL);
+    vkDestroyPipeline(ctx->device, pass->empty, NULL);
+    vkDestroyPipeline(ctx->device, pass->cull, NULL);
+    vkDestroyPipelineLayout(ctx->device, pass->layout, NULL);
+    vkDestroyDescriptorSetLayout(ctx->device, pass->set_layout, NULL);
+    // (the Monte Carlo pipelines and layout are lighting_mc.c's)
+    for (uint32_t v = 0; v < RTPBR_LIGHTING_VARIANT_COUNT; ++v)
+        for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) pass->ltc[v][c] = VK_NULL_HANDLE;
+    pass->empty = pass->cull = VK_NULL_HANDLE;
+    pass->layout = VK_NULL_HANDLE;
+    pass->set_layout = VK_NULL_HANDLE;
+}
+
+rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms,
+                                          VkPipeline out[RTPBR_TILE_CLASS_COUNT])
+{
+    static const rtpbr_spirv ltc[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT] = {
+        {RTPBR_SPIRV(rtpbr_spirv_lighting_ggx_ms0_basic), RTPBR_SPIRV(rtpbr_spirv_lighting_ggx_ms0_full)},
+        {RTPBR_SPIRV(rtpbr_spirv_lighting_ggx_ms1_basic), RTPBR_SPIRV(rtpbr_spirv_lighting_ggx_ms1_full)},
+        {RTPBR_SPIRV(rtpbr_spirv_lighting_beckmann_ms0_basic), RTPBR_SPIRV(rtpbr_spirv_lighting_beckmann_ms0_full)},
+        {RTPBR_SPIRV(rtpbr_spirv_lighting_beckmann_ms1_basic), RTPBR_SPIRV(rtpbr_spirv_lighting_beckmann_ms1_full)},
+    };
+    _Static_assert(RTPBR_TILE_CLASS_EMPTY == 0 && RTPBR_TILE_CLASS_BASIC == 1 && RTPBR_TILE_CLASS_FULL == 2,
+                   "lit classes follow the empty one");
+    rtpbr_lighting_pass *pass = &ctx->lighting;
+    uint32_t v = rtpbr_lighting_variant(ndf, ms);
+    rtpbr_result result = RTPBR_SUCCESS;
+    out[RTPBR_TILE_CLASS_EMPTY] = pass->empty;
+    for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) {
+        if (!pass->ltc[v][c]) RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, ltc[v][c], pass->layout, &pass->ltc[v][c]));
+        out[RTPBR_TILE_CLASS_BASIC + c] = pass->ltc[v][c];
+    }
+cleanup:
+    return result;
+}
+
+// Everything but the scene's buffers is fixed for the renderer's lifetime.
+rtpbr_result rtpbr_lighting_renderer_init(rtpbr_renderer *r)
+{
+    rtpbr_context *ctx = r->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    RTPBR_TRY(rtpbr_descriptor_set_create(ctx, RTPBR_BINDINGS(bindings), ctx->lighting.set_layout, &r->lighting_set));
+    VkDescriptorSet set = r->lighting_set.set;
+    const rtpbr_bindings table = RTPBR_BINDINGS(bindings);
+    const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    rtpbr_descriptor_write_buffer(ctx, table, set, RTPBR_BINDING_LIGHT_FRAME, r->frame.buffer, sizeof(rtpbr_shader_frame));
+    rtpbr_descriptor_write_buffer(ctx, table, set, RTPBR_BINDING_LIGHT_TILE_MASKS, r->tile_masks.buffer, VK_WHOLE_SIZE);
+    rtpbr_descriptor_write_buffer(ctx, table, set, RTPBR_BINDING_LIGHT_TILE_LISTS, r->tile_lists.buffer, VK_WHOLE_SIZE);
+    for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i)
+        rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_LIGHT_GBUFFER0 + i, ctx->gbuffer_sampler,
+                                     r->gbuffer[i].view, read);
+    rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_LIGHT_DEPTH, ctx->gbuffer_sampler, r->depth.view, read);
+    const rtpbr_image *shaded = r->supersample > 1 ? &r->radiance_ss : &r->radiance;
+    rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_LIGHT_RADIANCE, VK_NULL_HANDLE, shaded->view,
+                                 VK_IMAGE_LAYOUT_GENERAL);
+    for (uint32_t i = 0; i < RTPBR_LUT_COUNT; ++i)
+        rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_LUT_LTC_GGX_1 + i, ctx->lut_sampler,
+                                     ctx->luts[i].image.view, read);
+    // The shadow ratios stay in GENERAL layout (shadow.c), read with texelFetch.
+    rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_LIGHT_SHADOW_RATIO, ctx->gbuffer_sampler,
+                                 r->shadow_ratio.view, VK_IMAGE_LAYOUT_GENERAL);
+cleanup:
+    return result;
+}
+
+void rtpbr_lighting_renderer_finish(rtpbr_renderer *r)
+{
+    rtpbr_descriptor_set_destroy(r->context, &r->lighting_set);
+}
+
+void rtpbr_lighting_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
+{
+    const rtpbr_bindings table = RTPBR_BINDINGS(bindings);
+    rtpbr_descriptor_write_buffer(r->context, table, r->lighting_set.set, RTPBR_BINDING_LIGHT_MATERIALS,
+                                  scene->materials.buffer, VK_WHOLE_SIZE);
+    rtpbr_descriptor_write_buffer(r->context, table, r->lighting_set.set, RTPBR_BINDING_LIGHT_LIGHTS,
+                                  scene->lights.buffer, VK_WHOLE_SIZE);
+}
+
+// The image the lighting pass writes: the output, or its supersampled version.
+static VkImage shade_target(const rtpbr_renderer *r)
+{
+    return r->supersample > 1 ? r->radiance_ss.image : r->radiance.image;
+}
+
+void rtpbr_lighting_begin(rtpbr_renderer *r, VkPipeline pipeline, VkPipelineLayout layout, VkCommandBuffer cmd)
+{
+    // The previous frame's tone mapping, readback or resolve read the image.
+    rtpbr_image_barrier(cmd, shade_target(r), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_GENERAL,
+                        VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                        0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &r->lighting_set.set, 0, NULL);
+}
+
+void rtpbr_lighting_end(rtpbr_renderer *r, VkCommandBuffer cmd)
+{
+    if (r->supersample > 1) rtpbr_resolve_record(r, cmd);
+    rtpbr_image_barrier(cmd, r->radiance.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                        VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+}
+
+// The LTC pass: the culling pass (cull.comp) writes each tile's light mask and queues the tile
+// for its class; then one indirect dispatch per class runs that class's lighting variant over
+// its queue (no barrier inside either kernel).
+void rtpbr_lighting_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd)
+{
+    const rtpbr_context *ctx = r->context;
+    // Empty queues: VkDispatchIndirectCommand (0, 1, 1) per class (the previous frame's lighting
+    // read them as indirect arguments and as storage).
+    uint32_t empty[RTPBR_TILE_CLASS_COUNT][4];
+    for (uint32_t c = 0; c < RTPBR_TILE_CLASS_COUNT; ++c) {
+        empty[c][0] = 0;
+        empty[c][1] = empty[c][2] = 1;
+        empty[c][3] = 0;
+    }
+    VkBufferMemoryBarrier before = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT,
+        .dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .buffer = r->tile_lists.buffer,
+        .size = VK_WHOLE_SIZE,
+    };
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, NULL, 1, &before, 0, NULL);
+    vkCmdUpdateBuffer(cmd, r->tile_lists.buffer, 0, sizeof empty, empty);
+    VkBufferMemoryBarrier cleared = before;
+    cleared.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    cleared.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, NULL, 1,
+                         &cleared, 0, NULL);
+
+    rtpbr_lighting_begin(r, ctx->lighting.cull, ctx->lighting.layout, cmd);
+    vkCmdDispatch(cmd, (r->tiles_x + RTPBR_CULL_GROUP - 1) / RTPBR_CULL_GROUP,
+                  (r->tiles_y + RTPBR_CULL_GROUP - 1) / RTPBR_CULL_GROUP, 1);
+    VkMemoryBarrier culled = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
+        .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT,
+    };
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &culled, 0,
+                         NULL, 0, NULL);
+    for (uint32_t c = 0; c < RTPBR_TILE_CLASS_COUNT; ++c) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[c]);
+        vkCmdDispatchIndirect(cmd, r->tile_lists.buffer, c * 4 * sizeof(uint32_t));
+    }
+    rtpbr_lighting_end(r, cmd);
+}

@@ -1,0 +1,95 @@
+// The passes of a frame, one file each in passes/, in the order a frame records them. Each
+// file owns its pass's part of the GPU contract: the set layout (one binding table, from
+// which the descriptor pool and every write take their types), the pipeline layout and
+// pipelines, the descriptor writes, and the recording. The frame's orchestration (which
+// passes run, barriers between the renderer's images, submission) is renderer.c's.
+//
+// Life cycle of each pass:
+//   *_pass_init(ctx) / *_pass_finish(ctx)   layouts and pipelines in the context (finish
+//                                           accepts a half-built pass);
+//   *_renderer_init(r) / *_renderer_finish(r) the pass's descriptor set of a renderer, written
+//                                           once with the renderer's images;
+//   *_bind_scene(r, scene)                  the scene's buffers, written before recording;
+//   *_record(r, ..., cmd)                   the commands.
+// Pipelines not made at init are compiled on first use (*_get), before any recording starts.
+#ifndef RTPBR_PASSES_H
+#define RTPBR_PASSES_H
+
+#include <stdbool.h>
+
+#include "rtpbr/rtpbr.h"
+#include "rtpbr_shared.h"
+
+// ---- G-buffer (passes/gbuffer.c): rasterises every mesh into the G-buffer and depth. -----
+rtpbr_result rtpbr_gbuffer_pass_init(rtpbr_context *ctx);
+void rtpbr_gbuffer_pass_finish(rtpbr_context *ctx);
+rtpbr_result rtpbr_gbuffer_renderer_init(rtpbr_renderer *r);
+void rtpbr_gbuffer_renderer_finish(rtpbr_renderer *r);
+// A scene's per-material texture sets (set 1): scene->material_pool and material_sets, one
+// per material slot; then rtpbr_gbuffer_write_material_textures points slot m at its
+// textures (indices into scene->textures, 0: the white stand-in).
+rtpbr_result rtpbr_gbuffer_material_sets_create(rtpbr_gpu_scene *scene, uint32_t material_slots);
+void rtpbr_gbuffer_material_sets_destroy(rtpbr_gpu_scene *scene);
+void rtpbr_gbuffer_write_material_textures(rtpbr_gpu_scene *scene, uint32_t m,
+                                           const uint32_t texture[RTPBR_MATERIAL_TEXTURE_COUNT]);
+void rtpbr_gbuffer_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
+void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCommandBuffer cmd);
+
+// ---- Shadows (passes/shadow.c): ray-traced shadow ratios per shadowed light. -------------
+rtpbr_result rtpbr_shadow_pass_init(rtpbr_context *ctx);
+void rtpbr_shadow_pass_finish(rtpbr_context *ctx);
+rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx);
+// The renderer's shadow images (in GENERAL layout from here on) and descriptor set.
+rtpbr_result rtpbr_shadow_renderer_init(rtpbr_renderer *r);
+void rtpbr_shadow_renderer_finish(rtpbr_renderer *r);
+void rtpbr_shadow_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
+// The trace and denoise dispatches; the ratios are ready for the lighting pass after them.
+void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCommandBuffer cmd);
+
+// ---- Lighting (passes/lighting.c): the tile cull, then the LTC pass per tile class. -------
+// The Monte Carlo reference (passes/lighting_mc.c) shares its set layout and descriptor set.
+rtpbr_result rtpbr_lighting_pass_init(rtpbr_context *ctx);
+void rtpbr_lighting_pass_finish(rtpbr_context *ctx);
+// The LTC pipelines of a model variant, one per tile class (out[RTPBR_TILE_CLASS_*]),
+// compiled on first use.
+rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms,
+                                          VkPipeline out[RTPBR_TILE_CLASS_COUNT]);
+// Index of a model variant in rtpbr_lighting_pass's arrays.
+uint32_t rtpbr_lighting_variant(rtpbr_ndf ndf, rtpbr_multiscatter ms);
+// After rtpbr_shadow_renderer_init (the set binds the shadow ratios).
+rtpbr_result rtpbr_lighting_renderer_init(rtpbr_renderer *r);
+void rtpbr_lighting_renderer_finish(rtpbr_renderer *r);
+void rtpbr_lighting_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
+void rtpbr_lighting_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd);
+// Shared by both lighting passes: the barrier and binds before their dispatches, and after
+// them the resolve (supersampling) and the barrier before tone mapping and readback.
+void rtpbr_lighting_begin(rtpbr_renderer *r, VkPipeline pipeline, VkPipelineLayout layout, VkCommandBuffer cmd);
+void rtpbr_lighting_end(rtpbr_renderer *r, VkCommandBuffer cmd);
+
+// ---- Monte Carlo lighting (passes/lighting_mc.c). ------------------------------------------
+rtpbr_result rtpbr_lighting_mc_pass_init(rtpbr_context *ctx); // after rtpbr_lighting_pass_init
+void rtpbr_lighting_mc_pass_finish(rtpbr_context *ctx);
+// The pipeline of a model variant, compiled on first use.
+rtpbr_result rtpbr_lighting_mc_pipeline_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, VkPipeline *out);
+void rtpbr_lighting_mc_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_render_desc *desc,
+                              VkCommandBuffer cmd);
+
+// ---- Supersampling resolve (passes/resolve.c): box filter from the shading size. ----------
+rtpbr_result rtpbr_resolve_pass_init(rtpbr_context *ctx);
+void rtpbr_resolve_pass_finish(rtpbr_context *ctx);
+rtpbr_result rtpbr_resolve_renderer_init(rtpbr_renderer *r); // no set without supersampling
+void rtpbr_resolve_renderer_finish(rtpbr_renderer *r);
+void rtpbr_resolve_record(rtpbr_renderer *r, VkCommandBuffer cmd);
+
+// ---- Tone mapping (passes/tonemap.c): radiance into a display target. ---------------------
+rtpbr_result rtpbr_tonemap_pass_init(rtpbr_context *ctx);
+void rtpbr_tonemap_pass_finish(rtpbr_context *ctx);
+// The pipeline for a colour-attachment format (created on first use).
+rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkPipeline *out);
+rtpbr_result rtpbr_tonemap_renderer_init(rtpbr_renderer *r);
+void rtpbr_tonemap_renderer_finish(rtpbr_renderer *r);
+// encode: RTPBR_ENCODE_* (the target's format decides).
+void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_render_desc *desc, uint32_t encode,
+                          VkImageView target, VkCommandBuffer cmd);
+
+#endif // RTPBR_PASSES_H

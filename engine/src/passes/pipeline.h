@@ -1,0 +1,62 @@
+// What every pass file uses to build its part of the GPU contract: shader modules from the
+// embedded SPIR-V, set and pipeline layouts, compute and graphics pipelines, and descriptor
+// sets whose pool and writes follow the same binding table as their layout, so that each
+// binding's type is written once (in the pass's table).
+#ifndef RTPBR_PASSES_PIPELINE_H
+#define RTPBR_PASSES_PIPELINE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "../internal.h"
+
+// SPIR-V compiled by the build (engine/shaders/meson.build) and embedded as uint32 arrays.
+typedef struct rtpbr_spirv {
+    const uint32_t *code;
+    size_t size; // bytes
+} rtpbr_spirv;
+#define RTPBR_SPIRV(name) ((rtpbr_spirv){name, sizeof name})
+
+// A pass's binding table: one entry per binding, descriptorCount 1, in the order of the
+// binding numbers of rtpbr_shared.h.
+typedef struct rtpbr_bindings {
+    const VkDescriptorSetLayoutBinding *entries;
+    uint32_t count;
+} rtpbr_bindings;
+#define RTPBR_BINDINGS(table) ((rtpbr_bindings){table, sizeof table / sizeof table[0]})
+
+rtpbr_result rtpbr_shader_module(rtpbr_context *ctx, rtpbr_spirv spirv, VkShaderModule *out);
+rtpbr_result rtpbr_set_layout_create(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSetLayout *out);
+// A pipeline layout of `set_count` sets and, if push_size > 0, one push-constant range.
+rtpbr_result rtpbr_pipeline_layout_create(rtpbr_context *ctx, const VkDescriptorSetLayout *sets, uint32_t set_count,
+                                          VkShaderStageFlags push_stages, uint32_t push_size, VkPipelineLayout *out);
+rtpbr_result rtpbr_compute_pipeline_create(rtpbr_context *ctx, rtpbr_spirv spirv, VkPipelineLayout layout,
+                                           VkPipeline *out);
+// A graphics pipeline with dynamic rendering, dynamic viewport and scissor, no blending,
+// no culling, triangle lists.
+typedef struct rtpbr_graphics_desc {
+    VkShaderModule vert, frag;
+    VkPipelineLayout layout;
+    const VkFormat *color_formats;
+    uint32_t color_count;       // at most 4
+    VkFormat depth_format;      // VK_FORMAT_UNDEFINED: no depth
+    const VkPipelineVertexInputStateCreateInfo *vertex_input; // NULL: no vertex input
+} rtpbr_graphics_desc;
+rtpbr_result rtpbr_graphics_pipeline_create(rtpbr_context *ctx, const rtpbr_graphics_desc *desc, VkPipeline *out);
+
+// A pool for `sets` sets of the binding table and the sets themselves (out[0 .. sets)).
+rtpbr_result rtpbr_descriptor_pool_create(rtpbr_context *ctx, rtpbr_bindings bindings, uint32_t sets,
+                                          VkDescriptorPool *out);
+// A descriptor set of `layout` (made from `bindings`) in a pool of its own.
+rtpbr_result rtpbr_descriptor_set_create(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSetLayout layout,
+                                         rtpbr_descriptor_set *out);
+// Accepts a half-built or zeroed set.
+void rtpbr_descriptor_set_destroy(rtpbr_context *ctx, rtpbr_descriptor_set *set);
+// Points a buffer or image binding of a set made from `bindings` at a resource (the
+// descriptor type from the binding table).
+void rtpbr_descriptor_write_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
+                                   VkBuffer buffer, VkDeviceSize range);
+void rtpbr_descriptor_write_image(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
+                                  VkSampler sampler, VkImageView view, VkImageLayout layout);
+
+#endif // RTPBR_PASSES_PIPELINE_H

@@ -1,0 +1,176 @@
+// Area-light shadows (issue 17): the ratio estimator of Heitz, Hill & McGuire 2018,
+// "Combining Analytic Direct Illumination and Stochastic Shadows", as two compute passes that
+// run between the G-buffer and the lighting pass:
+//   1. shadow.comp traces, per pixel and shadowed light, rtpbr_render_desc.shadow_samples
+//      rays to points on the light against the scene's BVH (../bvh.c) and writes the shadowed
+//      and unshadowed estimates of the light's cosine-weighted irradiance (layer = light);
+//   2. shadow_denoise.comp filters both estimates with the same depth- and normal-guided
+//      weights and writes their ratio (layer = light).
+// The lighting passes multiply light i's result by the ratio of layer i (shaders/
+// shadow_ratio.glsl, binding RTPBR_BINDING_LIGHT_SHADOW_RATIO) for i < shadow_light_count
+// of the frame block. Lights 0 .. RTPBR_MAX_SHADOWED_LIGHTS - 1 cast shadows.
+// Memory: 8 bytes per shading pixel and shadowed-light slot (64 bytes per pixel), allocated
+// with the renderer.
+#include "passes.h"
+
+#include "../internal.h"
+#include "pipeline.h"
+#include "rtpbr_spirv_shadow_comp.h"
+#include "rtpbr_spirv_shadow_denoise_comp.h"
+
+#define COMPUTE(binding, type) {binding, VK_DESCRIPTOR_TYPE_##type, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL}
+static const VkDescriptorSetLayoutBinding bindings[] = {
+    COMPUTE(RTPBR_BINDING_SHADOW_FRAME, UNIFORM_BUFFER),
+    COMPUTE(RTPBR_BINDING_SHADOW_LIGHTS, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_SHADOW_DEPTH, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_SHADOW_NORMAL, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_SHADOW_BVH_NODES, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_SHADOW_BVH_TRIANGLES, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_SHADOW_ESTIMATES, STORAGE_IMAGE),
+    COMPUTE(RTPBR_BINDING_SHADOW_RATIO, STORAGE_IMAGE),
+};
+#undef COMPUTE
+_Static_assert(sizeof bindings / sizeof bindings[0] == RTPBR_SHADOW_BINDING_COUNT, "every shadow binding");
+
+rtpbr_result rtpbr_shadow_pass_init(rtpbr_context *ctx)
+{
+    rtpbr_shadow_pass *pass = &ctx->shadow;
+    rtpbr_result result = RTPBR_SUCCESS;
+    RTPBR_TRY(rtpbr_set_layout_create(ctx, RTPBR_BINDINGS(bindings), &pass->set_layout));
+    RTPBR_TRY(rtpbr_pipeline_layout_create(ctx, &pass->set_layout, 1, VK_SHADER_STAGE_COMPUTE_BIT,
+                                           sizeof(rtpbr_shader_shadow), &pass->layout));
+cleanup:
+    return result; // the caller finishes a half-built pass; the pipelines are made on first use
+}
+
+void rtpbr_shadow_pass_finish(rtpbr_context *ctx)
+{
+    rtpbr_shadow_pass *pass = &ctx->shadow;
+    vkDestroyPipeline(ctx->device, pass->trace, NULL);
+    vkDestroyPipeline(ctx->device, pass->denoise, NULL);
+    vkDestroyPipelineLayout(ctx->device, pass->layout, NULL);
+    vkDestroyDescriptorSetLayout(ctx->device, pass->set_layout, NULL);
+    *pass = (rtpbr_shadow_pass){0};
+}
+
+rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx)
+{
+    rtpbr_shadow_pass *pass = &ctx->shadow;
+    rtpbr_result result = RTPBR_SUCCESS;
+    if (!pass->trace)
+        RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_comp), pass->layout, &pass->trace));
+    if (!pass->denoise)
+        RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_denoise_comp), pass->layout,
+                                                &pass->denoise));
+cleanup:
+    return result;
+}
+
+// Both images from UNDEFINED to GENERAL, where they stay (the lighting set binds the ratios
+// even with shadows off, so they must be in a valid layout from the start).
+static void record_initial_layouts(VkCommandBuffer cmd, void *user)
+{
+    const rtpbr_renderer *r = user;
+    VkImageMemoryBarrier barriers[2];
+    const VkImage images[2] = {r->shadow_estimates.image, r->shadow_ratio.image};
+    for (int i = 0; i < 2; ++i)
+        barriers[i] = (VkImageMemoryBarrier){
+            .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
+            .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+            .oldLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+            .newLayout = VK_IMAGE_LAYOUT_GENERAL,
+            .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+            .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+            .image = images[i],
+            .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, RTPBR_MAX_SHADOWED_LIGHTS},
+        };
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, NULL, 0,
+                         NULL, 2, barriers);
+}
+
+rtpbr_result rtpbr_shadow_renderer_init(rtpbr_renderer *r)
+{
+    rtpbr_context *ctx = r->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    RTPBR_TRY(rtpbr_image_create_layers(ctx, r->shade_width, r->shade_height, RTPBR_MAX_SHADOWED_LIGHTS,
+                                        VK_FORMAT_R32_UINT, VK_IMAGE_USAGE_STORAGE_BIT, &r->shadow_estimates));
+    RTPBR_TRY(rtpbr_image_create_layers(ctx, r->shade_width, r->shade_height, RTPBR_MAX_SHADOWED_LIGHTS,
+                                        VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                        &r->shadow_ratio));
+    RTPBR_TRY(rtpbr_submit_once(ctx, record_initial_layouts, r));
+
+    RTPBR_TRY(rtpbr_descriptor_set_create(ctx, RTPBR_BINDINGS(bindings), ctx->shadow.set_layout, &r->shadow_set));
+    const rtpbr_bindings table = RTPBR_BINDINGS(bindings);
+    VkDescriptorSet set = r->shadow_set.set;
+    const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    rtpbr_descriptor_write_buffer(ctx, table, set, RTPBR_BINDING_SHADOW_FRAME, r->frame.buffer,
+                                  sizeof(rtpbr_shader_frame));
+    rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_SHADOW_DEPTH, ctx->gbuffer_sampler, r->depth.view, read);
+    rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_SHADOW_NORMAL, ctx->gbuffer_sampler,
+                                 r->gbuffer[1].view, read);
+    rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_SHADOW_ESTIMATES, VK_NULL_HANDLE,
+                                 r->shadow_estimates.view, VK_IMAGE_LAYOUT_GENERAL);
+    rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_SHADOW_RATIO, VK_NULL_HANDLE, r->shadow_ratio.view,
+                                 VK_IMAGE_LAYOUT_GENERAL);
+cleanup:
+    return result; // the caller destroys the renderer, and with it a half-built state
+}
+
+void rtpbr_shadow_renderer_finish(rtpbr_renderer *r)
+{
+    rtpbr_descriptor_set_destroy(r->context, &r->shadow_set);
+    rtpbr_image_destroy(r->context, &r->shadow_estimates);
+    rtpbr_image_destroy(r->context, &r->shadow_ratio);
+}
+
+void rtpbr_shadow_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
+{
+    const rtpbr_bindings table = RTPBR_BINDINGS(bindings);
+    rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_LIGHTS,
+                                  scene->lights.buffer, VK_WHOLE_SIZE);
+    rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_BVH_NODES,
+                                  scene->bvh_nodes.buffer, VK_WHOLE_SIZE);
+    rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_BVH_TRIANGLES,
+                                  scene->bvh_triangles.buffer, VK_WHOLE_SIZE);
+}
+
+// A memory barrier between compute dispatches on one of the shadow images (all layers).
+static void compute_barrier(VkCommandBuffer cmd, VkImage image, VkAccessFlags src, VkAccessFlags dst)
+{
+    VkImageMemoryBarrier barrier = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
+        .srcAccessMask = src,
+        .dstAccessMask = dst,
+        .oldLayout = VK_IMAGE_LAYOUT_GENERAL,
+        .newLayout = VK_IMAGE_LAYOUT_GENERAL,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .image = image,
+        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, RTPBR_MAX_SHADOWED_LIGHTS},
+    };
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, NULL,
+                         0, NULL, 1, &barrier);
+}
+
+void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCommandBuffer cmd)
+{
+    const rtpbr_context *ctx = r->context;
+    rtpbr_shader_shadow params = {
+        .samples = desc->shadow_samples ? desc->shadow_samples : RTPBR_DEFAULT_SHADOW_SAMPLES,
+        .seed = desc->shadow_seed,
+        .radius = desc->shadow_denoiser == RTPBR_SHADOW_DENOISER_OFF ? 0 : RTPBR_SHADOW_DENOISE_RADIUS,
+    };
+    uint32_t gx = (r->shade_width + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE;
+    uint32_t gy = (r->shade_height + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE;
+    // The previous frame's denoise read the estimates, its lighting pass read the ratios.
+    compute_barrier(cmd, r->shadow_estimates.image, VK_ACCESS_SHADER_READ_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.layout, 0, 1, &r->shadow_set.set, 0, NULL);
+    vkCmdPushConstants(cmd, ctx->shadow.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.trace);
+    vkCmdDispatch(cmd, gx, gy, 1);
+    compute_barrier(cmd, r->shadow_estimates.image, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
+    compute_barrier(cmd, r->shadow_ratio.image, VK_ACCESS_SHADER_READ_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.denoise);
+    vkCmdDispatch(cmd, gx, gy, 1);
+    compute_barrier(cmd, r->shadow_ratio.image, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
+}
