@@ -764,6 +764,17 @@ Cell fit_cell(Lobe lobe, int col, int row, const FitSettings &s, const Cell *sta
 
 } // namespace
 
+Cell fit_exact(Lobe lobe, double r, double nov, const FitSettings &s) {
+    // As a row of the table, at this view: from the roughest end (a start of M = I) down to r
+    // in the table's steps, each fit starting from the previous one.
+    const double step = 1.0 / double(s.size - 1);
+    int steps = int(std::floor((1.0 - r) / step + 1e-9));
+    Cell c = fit_at(lobe, float(r + steps * step), nov, s, nullptr);
+    for (int k = steps - 1; k >= 0; k--)
+        c = fit_at(lobe, float(r + k * step), nov, s, &c);
+    return c;
+}
+
 double cell_roughness(int col, int size) { return double(col) / double(size - 1); }
 
 double cell_nov(int row, int size) {

@@ -92,6 +92,10 @@ constexpr double kMinNoV = 1e-3;
 double cell_roughness(int col, int size);
 double cell_nov(int row, int size);
 
+// The fit of one cell at exactly (perceptual roughness r, NoV), as the table's row
+// continuation from r = 1 would reach it (for measuring the table's interpolation error).
+Cell fit_exact(Lobe lobe, double r, double nov, const FitSettings &s);
+
 // Fits one lobe. progress(done rows, total rows) is called from worker threads (serialised).
 Table fit_table(Lobe lobe, const FitSettings &s, const std::function<void(int, int)> &progress);
 // Fits several lobes at once on one pool of s.threads threads (each lobe's serial first column

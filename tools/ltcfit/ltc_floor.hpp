@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include "ltc_mc.hpp"
@@ -72,8 +73,76 @@ inline double quadrature(const ltcmc::Brdf &brdf, float3 V, float3 p, float3 cen
     return sum;
 }
 
+// Experiments (issue 19, rtpbr-ltc-floor --elevation-correction / --direction-correction;
+// not in the engine): the LTC result scaled by a factor that depends on where the lit part of
+// the light is, seen from the surface: F = the vector form factor of the horizon-clipped
+// polygon in the shading frame (x toward V; what the engine's basic variant computes already
+// for Lambert), its elevation sin e = F.z / |F| and (with azimuth bins) its azimuth phi =
+// atan2(|F.y|, F.x) from the viewer's side. The factor of a bin is the ratio of the true
+// BRDF's integral over the bin's directions (a band of elevations, all azimuths or a range of
+// them) to the LTC's, for this (NoV, roughness): where the LTC puts too much light (the mirror
+// side at 2 degrees) it is < 1, too little > 1. Elevation bins uniform in sqrt(sin e) (dense
+// near the horizon), azimuth bins uniform in phi; bilinear between bin centres as a texture.
+struct DirectionCorrection {
+    static constexpr int kElev = 16, kMaxAz = 12;
+    int az = 1; // azimuth bins (1: elevation only)
+    double c[kElev][kMaxAz];
+    static int elev_bin(double z) { return std::min(int(std::sqrt(std::max(z, 0.0)) * kElev), kElev - 1); }
+    int az_bin(double x, double y) const {
+        return std::min(int(std::atan2(std::fabs(y), x) / 3.14159265358979 * az), az - 1);
+    }
+    double at(float3 F) const {
+        const double len = glm::length(glm::dvec3(F));
+        if (!(len > 0.0))
+            return 1.0;
+        auto coord = [](double v, int n) {
+            double x = std::clamp(v * n - 0.5, 0.0, double(n - 1));
+            int i = std::min(int(x), std::max(n - 2, 0));
+            return std::pair<int, double>(i, n > 1 ? x - i : 0.0);
+        };
+        auto [i, fi] = coord(std::sqrt(std::clamp(double(F.z) / len, 0.0, 1.0)), kElev);
+        auto [j, fj] = coord(std::atan2(std::fabs(double(F.y)), double(F.x)) / 3.14159265358979, az);
+        const int j1 = std::min(j + 1, az - 1);
+        double lo = c[i][j] + (c[i][j1] - c[i][j]) * fj, hi = c[i + 1][j] + (c[i + 1][j1] - c[i + 1][j]) * fj;
+        return lo + (hi - lo) * fi;
+    }
+};
+
+inline DirectionCorrection direction_correction(Lobe lobe, float nov, float r, float4 l1, float4 l2, int azBins,
+                                                int side) {
+    DirectionCorrection e;
+    e.az = azBins;
+    const float3 V(std::sqrt(1.0f - nov * nov), 0.0f, nov);
+    const ltcmc::Brdf brdf = ltcmc::Brdf::make(lobe, r);
+    const glm::dmat3 M = glm::inverse(glm::dmat3(rtpbr::LTC_InverseMatrix(l1)));
+    double ref[DirectionCorrection::kElev][DirectionCorrection::kMaxAz] = {};
+    double ltc[DirectionCorrection::kElev][DirectionCorrection::kMaxAz] = {};
+    const double n = double(side) * side;
+    for (int j = 0; j < side; j++)
+        for (int i = 0; i < side; i++) {
+            float2 u((i + 0.5f) / side, (j + 0.5f) / side);
+            float3 L = brdf.sample(V, u);
+            float pdf;
+            float f = brdf.value_cos(V, L, pdf);
+            if (L.z > 0.0f && pdf > 0.0f && f > 0.0f)
+                ref[e.elev_bin(double(L.z))][e.az_bin(double(L.x), double(L.y))] += double(f) / double(pdf) / n;
+            glm::dvec3 Lt = glm::normalize(M * glm::dvec3(rtpbr::Sample_CosineHemisphere(u)));
+            if (Lt.z > 0.0)
+                ltc[e.elev_bin(Lt.z)][e.az_bin(Lt.x, Lt.y)] += double(l2.x) / n;
+        }
+    for (int k = 0; k < DirectionCorrection::kElev; k++)
+        for (int a = 0; a < DirectionCorrection::kMaxAz; a++)
+            e.c[k][a] = a < azBins && ltc[k][a] > 1e-4 * double(l2.x) ? ref[k][a] / ltc[k][a] : 1.0;
+    return e;
+}
+
 struct Tables {
+    Tables(const float *a, const float *b) : t1(a), t2(b) {}
     const float *t1, *t2;
+    // If set: the LTC of this case without the table's interpolation (ltc1, ltc2 as fetched);
+    // rtpbr-ltc-floor --exact-cells.
+    std::function<void(const Case &, float4 &, float4 &)> exact;
+    int correctionAzimuths = 0; // 0: none; else DirectionCorrection's azimuth bins (above)
 };
 
 inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub) {
@@ -87,7 +156,12 @@ inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub)
     float3 N(0, 0, 1);
     float4 l1 = ltcmc::fetch(tab.t1, rtpbr::LTC_LutCoord(c.nov, c.roughness));
     float4 l2 = ltcmc::fetch(tab.t2, rtpbr::LTC_LutCoord(c.nov, c.roughness));
+    if (tab.exact)
+        tab.exact(c, l1, l2);
     rtpbr::float3x3 frame = rtpbr::LTC_Frame(N, V);
+    DirectionCorrection corr{};
+    if (tab.correctionAzimuths > 0)
+        corr = direction_correction(lobe, c.nov, c.roughness, l1, l2, tab.correctionAzimuths, 512);
     double sumAbs = 0, sumSigned = 0, sumRef = 0, maxRef = 0, maxDiff = 0;
     r.map.resize(size_t(P) * P);
     for (int j = 0; j < P; j++)
@@ -97,7 +171,10 @@ inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub)
             float3 q0 = centre + float3(-kHalf, -kHalf, 0), q1 = centre + float3(-kHalf, kHalf, 0),
                    q2 = centre + float3(kHalf, kHalf, 0), q3 = centre + float3(kHalf, -kHalf, 0);
             rtpbr::LtcPolygon poly = rtpbr::LTC_Quad(q0, q1, q2, q3);
-            double ltc = double(l2.x) * rtpbr::LTC_IntegrateLocal(rtpbr::LTC_PolygonToLocal(frame, p, poly, true), l1);
+            const rtpbr::LtcLocalPolygon local = rtpbr::LTC_PolygonToLocal(frame, p, poly, true);
+            double ltc = double(l2.x) * rtpbr::LTC_IntegrateLocal(local, l1);
+            if (tab.correctionAzimuths > 0)
+                ltc *= corr.at(rtpbr::LTC_FormFactorVector(local, rtpbr::LTC_Identity()));
             double ref = quadrature(brdf, V, p, centre, sub);
             double coarse = quadrature(brdf, V, p, centre, sub / 2);
             maxDiff = std::max(maxDiff, std::fabs(ref - coarse));
