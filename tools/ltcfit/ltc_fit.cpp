@@ -421,45 +421,88 @@ double ltc_square_integral(const Ltc &l, const TestSquare &s) {
     return std::fabs(sum) / (2.0 * kPi);
 }
 
-// Which squares a direction above the horizon can hit, by bins of its (x, y) (issue 19: the
-// references tested each of the 256^2 samples against every square, 37% of the fit's CPU).
-// A bin keeps, in ascending order, the squares whose cone can reach some direction of the
-// bin: the largest dot(L, c) over the bin's box in (x, y, z) is at least the square's cone
-// cosine (with a margin for float directions that are not exactly unit). The squares a
-// direction hits and the order of their sums are unchanged, so the integrals are the same bits.
-class SquareBins {
+// The squares a direction hits, for the references' 256^2 samples per cell (issue 19: testing
+// every sample against every square was 37% of the fit's CPU, then the exact tests of the
+// squares left 27%).
+//  - Squares that share their plane and axes (test_squares makes them consecutively: one
+//    position, several half-sizes) form a group: the direction's point in that plane is
+//    computed once per group, then compared with each half-size.
+//  - Directions above the horizon are binned by their (x, y); a bin keeps the groups whose
+//    widest cone can reach some direction of the bin: the largest dot(L, c) over the bin's box
+//    in (x, y, z) is at least the cone's cosine (with a margin for float directions that are
+//    not exactly unit).
+// Each square's test is in_square's, in its order (cone, facing, bounds), and each integral
+// still sums its samples in their order: the integrals are the same bits.
+class SquareHits {
   public:
-    explicit SquareBins(const std::vector<TestSquare> &squares) : bins_(size_t(kSide) * kSide) {
+    explicit SquareHits(const std::vector<TestSquare> &squares) : squares_(squares), bins_(size_t(kSide) * kSide) {
+        for (size_t k = 0; k < squares.size(); k++) {
+            const TestSquare &q = squares[k];
+            const bool same = !groups_.empty() && (q.ring < 0) == (squares[groups_.back().first].ring < 0) &&
+                              q.c == squares[groups_.back().first].c && q.d == squares[groups_.back().first].d &&
+                              q.e1 == squares[groups_.back().first].e1 && q.e2 == squares[groups_.back().first].e2;
+            if (same) {
+                groups_.back().count++;
+                groups_.back().cosCone = std::min(groups_.back().cosCone, q.cosCone);
+            } else {
+                groups_.push_back({k, 1, q.cosCone});
+            }
+        }
         for (int by = 0; by < kSide; by++)
             for (int bx = 0; bx < kSide; bx++) {
                 const double x0 = -1.0 + 2.0 * bx / kSide, x1 = -1.0 + 2.0 * (bx + 1) / kSide;
                 const double y0 = -1.0 + 2.0 * by / kSide, y1 = -1.0 + 2.0 * (by + 1) / kSide;
-                auto minSq = [](double a, double b) { return a <= 0.0 && b >= 0.0 ? 0.0 : std::min(a * a, b * b); };
+                auto minSq = [](double lo, double hi) { return lo <= 0.0 && hi >= 0.0 ? 0.0 : std::min(lo * lo, hi * hi); };
                 const double r2min = minSq(x0, x1) + minSq(y0, y1);
                 const double r2max = std::max(x0 * x0, x1 * x1) + std::max(y0 * y0, y1 * y1);
                 if (r2min > 1.0 + 1e-3)
                     continue; // outside the unit disk: no direction lands here
                 const double z0 = std::sqrt(std::max(0.0, 1.0 - r2max)), z1 = std::sqrt(std::max(0.0, 1.0 - r2min));
-                for (size_t k = 0; k < squares.size(); k++) {
-                    const glm::dvec3 &c = squares[k].c;
+                for (size_t g = 0; g < groups_.size(); g++) {
+                    const glm::dvec3 &c = squares[groups_[g].first].c;
                     const double reach = std::max(c.x * x0, c.x * x1) + std::max(c.y * y0, c.y * y1) +
                                          std::max(c.z * z0, c.z * z1);
-                    if (reach >= squares[k].cosCone - 1e-3)
-                        bins_[size_t(by) * kSide + bx].push_back(uint16_t(k));
+                    if (reach >= groups_[g].cosCone - 1e-3)
+                        bins_[size_t(by) * kSide + bx].push_back(uint16_t(g));
                 }
             }
     }
-    // The candidate squares of L, or null where the bins do not apply (L at or below the horizon).
-    const std::vector<uint16_t> *candidates(glm::dvec3 L) const {
-        if (!(L.z > 0.0))
-            return nullptr;
+    // Calls hit(k) for every square k that direction L passes through (in_square).
+    template <class F> void for_each_hit(glm::dvec3 L, F &&hit) const {
+        if (!(L.z > 0.0)) { // not binned: every square
+            for (size_t k = 0; k < squares_.size(); k++)
+                if (in_square(squares_[k], L))
+                    hit(k);
+            return;
+        }
         const int bx = std::clamp(int((L.x + 1.0) * 0.5 * kSide), 0, kSide - 1);
         const int by = std::clamp(int((L.y + 1.0) * 0.5 * kSide), 0, kSide - 1);
-        return &bins_[size_t(by) * kSide + bx];
+        for (uint16_t g : bins_[size_t(by) * kSide + bx]) {
+            const Group &gr = groups_[g];
+            const TestSquare &first = squares_[gr.first];
+            const double cosL = glm::dot(L, first.c);
+            if (cosL < gr.cosCone)
+                continue;
+            const double den = glm::dot(L, first.d);
+            if (!(den > 0.0))
+                continue;
+            // as in_square
+            const glm::dvec3 q = first.ring < 0 ? L / den - first.c : L * (glm::dot(first.c, first.d) / den) - first.c;
+            const double u = std::fabs(glm::dot(q, first.e1)), v = std::fabs(glm::dot(q, first.e2));
+            for (size_t k = gr.first; k < gr.first + gr.count; k++)
+                if (!(cosL < squares_[k].cosCone) && u <= squares_[k].half && v <= squares_[k].half)
+                    hit(k);
+        }
     }
 
   private:
+    struct Group {
+        size_t first, count;
+        double cosCone; // the widest member's
+    };
     static constexpr int kSide = 32;
+    const std::vector<TestSquare> &squares_;
+    std::vector<Group> groups_;
     std::vector<std::vector<uint16_t>> bins_;
 };
 
@@ -477,18 +520,8 @@ PolygonRefs polygon_refs(Lobe lobe, const Moments &mom, glm::vec3 V, float alpha
     PolygonRefs r;
     r.squares = test_squares(glm::dvec3(V), mom.avgDir, double(alpha), s);
     r.integral.assign(r.squares.size(), 0.0);
-    const SquareBins bins(r.squares);
-    auto add = [&](glm::dvec3 L, double w) {
-        if (const std::vector<uint16_t> *near = bins.candidates(L)) {
-            for (uint16_t k : *near) // ascending k: each integral sums the same terms in the same order
-                if (in_square(r.squares[k], L))
-                    r.integral[k] += w;
-            return;
-        }
-        for (size_t k = 0; k < r.squares.size(); k++)
-            if (in_square(r.squares[k], L))
-                r.integral[k] += w;
-    };
+    const SquareHits hits(r.squares);
+    auto add = [&](glm::dvec3 L, double w) { hits.for_each_hit(L, [&](size_t k) { r.integral[k] += w; }); };
     if (s.fast) {
         for (const WeightedDir &wd : mom.samples)
             add(wd.L, wd.w);
