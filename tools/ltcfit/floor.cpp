@@ -23,6 +23,10 @@
 // and of the near floor, 180) and writes signed error maps.
 //
 //   rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] [--quick] [--threads T]
+//                   [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction]
+// The last four are the experiments of issue 19's second round (shaderlib/luts/ltc.md): the
+// LTC fitted at each case's exact (roughness, NoV) instead of the table's interpolation, and
+// the LTC corrected by the direction of the lit part of the light (ltc_floor.hpp).
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -59,6 +63,7 @@ int main(int argc, char **argv) {
     std::string tablesPath, png;
     bool quick = false, exactCells = false;
     int correctionAzimuths = 0;
+    bool residual = false;
     int threads = 2;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--lobe") && i + 1 < argc) {
@@ -85,6 +90,10 @@ int main(int argc, char **argv) {
             correctionAzimuths = 1;
         else if (!strcmp(argv[i], "--direction-correction")) // experiment, see ltc_floor.hpp
             correctionAzimuths = 12;
+        else if (!strcmp(argv[i], "--residual-correction")) { // experiment, see ltc_floor.hpp
+            correctionAzimuths = 12;
+            residual = true;
+        }
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc) {
             threads = atoi(argv[++i]);
             if (threads < 1 || threads > 64) {
@@ -93,7 +102,7 @@ int main(int argc, char **argv) {
             }
         } else {
             fprintf(stderr, "usage: rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] "
-                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction]\n");
+                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction]\n");
             return 2;
         }
     }
@@ -156,6 +165,7 @@ int main(int argc, char **argv) {
         };
     }
     tab.correctionAzimuths = correctionAzimuths;
+    tab.residual = residual;
     std::vector<Case> cases;
     for (float v : novs)
         for (float r : rough)

@@ -86,12 +86,15 @@ inline double quadrature(const ltcmc::Brdf &brdf, float3 V, float3 p, float3 cen
 struct DirectionCorrection {
     static constexpr int kElev = 16, kMaxAz = 12;
     int az = 1; // azimuth bins (1: elevation only)
-    double c[kElev][kMaxAz];
+    double c[kElev][kMaxAz];   // the ratio (--elevation-correction, --direction-correction)
+    double add[kElev][kMaxAz]; // (ref - LTC) / the bin's cosine mass (--residual-correction)
     static int elev_bin(double z) { return std::min(int(std::sqrt(std::max(z, 0.0)) * kElev), kElev - 1); }
     int az_bin(double x, double y) const {
         return std::min(int(std::atan2(std::fabs(y), x) / 3.14159265358979 * az), az - 1);
     }
-    double at(float3 F) const {
+    double at(float3 F) const { return lookup(F, c); }
+    double residual_at(float3 F) const { return lookup(F, add); }
+    double lookup(float3 F, const double (&tab)[kElev][kMaxAz]) const {
         const double len = glm::length(glm::dvec3(F));
         if (!(len > 0.0))
             return 1.0;
@@ -103,7 +106,7 @@ struct DirectionCorrection {
         auto [i, fi] = coord(std::sqrt(std::clamp(double(F.z) / len, 0.0, 1.0)), kElev);
         auto [j, fj] = coord(std::atan2(std::fabs(double(F.y)), double(F.x)) / 3.14159265358979, az);
         const int j1 = std::min(j + 1, az - 1);
-        double lo = c[i][j] + (c[i][j1] - c[i][j]) * fj, hi = c[i + 1][j] + (c[i + 1][j1] - c[i + 1][j]) * fj;
+        double lo = tab[i][j] + (tab[i][j1] - tab[i][j]) * fj, hi = tab[i + 1][j] + (tab[i + 1][j1] - tab[i + 1][j]) * fj;
         return lo + (hi - lo) * fi;
     }
 };
@@ -117,6 +120,7 @@ inline DirectionCorrection direction_correction(Lobe lobe, float nov, float r, f
     const glm::dmat3 M = glm::inverse(glm::dmat3(rtpbr::LTC_InverseMatrix(l1)));
     double ref[DirectionCorrection::kElev][DirectionCorrection::kMaxAz] = {};
     double ltc[DirectionCorrection::kElev][DirectionCorrection::kMaxAz] = {};
+    double cosMass[DirectionCorrection::kElev][DirectionCorrection::kMaxAz] = {};
     const double n = double(side) * side;
     for (int j = 0; j < side; j++)
         for (int i = 0; i < side; i++) {
@@ -126,13 +130,17 @@ inline DirectionCorrection direction_correction(Lobe lobe, float nov, float r, f
             float f = brdf.value_cos(V, L, pdf);
             if (L.z > 0.0f && pdf > 0.0f && f > 0.0f)
                 ref[e.elev_bin(double(L.z))][e.az_bin(double(L.x), double(L.y))] += double(f) / double(pdf) / n;
-            glm::dvec3 Lt = glm::normalize(M * glm::dvec3(rtpbr::Sample_CosineHemisphere(u)));
+            const glm::dvec3 cosL(rtpbr::Sample_CosineHemisphere(u));
+            cosMass[e.elev_bin(cosL.z)][e.az_bin(cosL.x, cosL.y)] += 1.0 / n;
+            glm::dvec3 Lt = glm::normalize(M * cosL);
             if (Lt.z > 0.0)
                 ltc[e.elev_bin(Lt.z)][e.az_bin(Lt.x, Lt.y)] += double(l2.x) / n;
         }
     for (int k = 0; k < DirectionCorrection::kElev; k++)
-        for (int a = 0; a < DirectionCorrection::kMaxAz; a++)
+        for (int a = 0; a < DirectionCorrection::kMaxAz; a++) {
             e.c[k][a] = a < azBins && ltc[k][a] > 1e-4 * double(l2.x) ? ref[k][a] / ltc[k][a] : 1.0;
+            e.add[k][a] = a < azBins && cosMass[k][a] > 0.0 ? (ref[k][a] - ltc[k][a]) / cosMass[k][a] : 0.0;
+        }
     return e;
 }
 
@@ -143,6 +151,7 @@ struct Tables {
     // rtpbr-ltc-floor --exact-cells.
     std::function<void(const Case &, float4 &, float4 &)> exact;
     int correctionAzimuths = 0; // 0: none; else DirectionCorrection's azimuth bins (above)
+    bool residual = false;      // additive (LTC + residual x F.z) instead of the ratio
 };
 
 inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub) {
@@ -173,8 +182,10 @@ inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub)
             rtpbr::LtcPolygon poly = rtpbr::LTC_Quad(q0, q1, q2, q3);
             const rtpbr::LtcLocalPolygon local = rtpbr::LTC_PolygonToLocal(frame, p, poly, true);
             double ltc = double(l2.x) * rtpbr::LTC_IntegrateLocal(local, l1);
-            if (tab.correctionAzimuths > 0)
-                ltc *= corr.at(rtpbr::LTC_FormFactorVector(local, rtpbr::LTC_Identity()));
+            if (tab.correctionAzimuths > 0) {
+                const float3 F = rtpbr::LTC_FormFactorVector(local, rtpbr::LTC_Identity());
+                ltc = tab.residual ? std::max(ltc + corr.residual_at(F) * double(F.z), 0.0) : ltc * corr.at(F);
+            }
             double ref = quadrature(brdf, V, p, centre, sub);
             double coarse = quadrature(brdf, V, p, centre, sub / 2);
             maxDiff = std::max(maxDiff, std::fabs(ref - coarse));
