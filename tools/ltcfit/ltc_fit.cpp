@@ -43,8 +43,45 @@ rtpbr::DisneyMaterial diffuse_material(float r) {
     return m;
 }
 
+// The terms of a microfacet evaluation that depend only on the view (issue 19: a Beckmann
+// evaluation took Lambda(V) twice, in G1 and in V_SmithBeckmann, each an exp and an erfc, and
+// the fit evaluates the same view hundreds of thousands of times per cell).
+struct ViewTerms {
+    float G1 = 0.0f;      // G1(V)
+    float lambdaV = 0.0f; // Beckmann: Lambda(min(NoV, 1))
+};
+
+ViewTerms view_terms(Lobe lobe, glm::vec3 V, float alpha) {
+    ViewTerms t;
+    if (lobe == Lobe::GGX)
+        t.G1 = rtpbr::G1_GGX(V.z, alpha);
+    else if (lobe == Lobe::Beckmann) {
+        t.G1 = rtpbr::G1_Beckmann(V.z, alpha);
+        t.lambdaV = rtpbr::Lambda_Beckmann(std::min(V.z, 1.0f), alpha);
+    }
+    return t;
+}
+
+// V_SmithBeckmann(NoV, NoL, alpha) with Lambda(NoV) given: the same operations on the same
+// values, so the same float (a mismatch aborts the fit, see check_view_terms). The library's
+// default Smith (height-correlated, exact Lambda) only; other choices take V_SmithBeckmann.
+float vis_beckmann(float NoV, float NoL, float alpha, float lambdaV) {
+#if !RTPBR_SMITH_FAST && RTPBR_SMITH != RTPBR_SMITH_SEPARABLE
+    if (!(NoV > 0.0f) || !(NoL > 0.0f))
+        return 0.0f;
+    float v = std::min(NoV, 1.0f);
+    float l = std::min(NoL, 1.0f);
+    float G = rtpbr::G2_HeightCorrelated(lambdaV, rtpbr::Lambda_Beckmann(l, alpha));
+    return G / (4.0f * v * l);
+#else
+    (void)lambdaV;
+    return rtpbr::V_SmithBeckmann(NoV, NoL, alpha);
+#endif
+}
+
 // alpha: the microfacet lobes' alpha; for Lobe::DisneyDiffuse the perceptual roughness.
-BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha) {
+// vt: view_terms(lobe, V, alpha), or null to compute them here.
+BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha, const ViewTerms *vt = nullptr) {
     if (lobe == Lobe::Sheen) { // sampled by Sample_SheenLobe (its density counts below the horizon too)
         double pdf = double(rtpbr::PDF_SheenLobe(V, L, alpha));
         if (!(V.z > 0.0f) || !(L.z > 0.0f))
@@ -69,11 +106,11 @@ BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha) {
     if (lobe == Lobe::GGX) {
         D = rtpbr::D_GGX(H.z, alpha);
         Vis = rtpbr::V_SmithGGXCorrelated(V.z, L.z, alpha);
-        G1 = rtpbr::G1_GGX(V.z, alpha);
+        G1 = vt ? vt->G1 : rtpbr::G1_GGX(V.z, alpha);
     } else {
         D = rtpbr::D_Beckmann(H.z, alpha);
-        Vis = rtpbr::V_SmithBeckmann(V.z, L.z, alpha);
-        G1 = rtpbr::G1_Beckmann(V.z, alpha);
+        Vis = vt ? vis_beckmann(V.z, L.z, alpha, vt->lambdaV) : rtpbr::V_SmithBeckmann(V.z, L.z, alpha);
+        G1 = vt ? vt->G1 : rtpbr::G1_Beckmann(V.z, alpha);
     }
     // The density of the visible-normal sampler's reflected direction, D_V(h) / (4 VoH) =
     // G1(V) D(h) / (4 NoV) (Heitz & d'Eon 2014), written with the same D value as f: near the
@@ -197,9 +234,10 @@ Moments brdf_moments(Lobe lobe, glm::vec3 V, float alpha, int side, bool keep) {
     glm::dvec3 dir(0.0);
     int n = side * side;
     const std::vector<glm::vec3> dirs = brdf_grid_samples(lobe, V, alpha, side);
+    const ViewTerms vt = view_terms(lobe, V, alpha);
     for (int i = 0; i < n; i++) {
         glm::vec3 L = dirs[size_t(i)];
-        BrdfSample b = brdf_eval(lobe, V, L, alpha);
+        BrdfSample b = brdf_eval(lobe, V, L, alpha, &vt);
         if (!(b.pdf > 0.0))
             continue;
         double w = b.value / b.pdf;
@@ -237,12 +275,19 @@ ErrorSamples error_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
     ErrorSamples es;
     int n = side * side;
     const std::vector<glm::vec3> dirs = brdf_grid_samples(lobe, V, alpha, side);
+    const ViewTerms vt = view_terms(lobe, V, alpha);
     for (int i = 0; i < n; i++) {
         glm::vec2 u = grid_point(i, side);
         es.cosine.push_back(glm::dvec3(rtpbr::Sample_CosineHemisphere(u)));
         glm::vec3 L = dirs[size_t(i)];
         es.brdfL.push_back(L);
-        es.brdf.push_back(brdf_eval(lobe, V, L, alpha));
+        es.brdf.push_back(brdf_eval(lobe, V, L, alpha, &vt));
+        // the per-view terms must give the library's values (see vis_beckmann)
+        const BrdfSample ref = brdf_eval(lobe, V, L, alpha);
+        if (i < side && (ref.value != es.brdf.back().value || ref.pdf != es.brdf.back().pdf)) {
+            fprintf(stderr, "ltcfit: internal error: the per-view BRDF terms differ from the library's\n");
+            std::abort();
+        }
     }
     return es;
 }
@@ -264,11 +309,12 @@ double ltc_error(const Ltc &ltc, const ErrorSamples &es, Lobe lobe, glm::vec3 V,
         double diff = std::fabs(value - scale * d);
         sum += (p == 3 ? diff * diff * diff : p == 2 ? diff * diff : diff) / pdfSum;
     };
+    const ViewTerms vt = view_terms(lobe, V, alpha);
     for (size_t i = 0; i < n; i++) {
         // Above the horizon only: a direction under it adds nothing, so skip evaluating it.
         glm::dvec3 L = glm::normalize(ltc.M * es.cosine[i]);
         if (!horizon || L.z > 0.0) {
-            BrdfSample b = brdf_eval(lobe, V, glm::vec3(L), alpha);
+            BrdfSample b = brdf_eval(lobe, V, glm::vec3(L), alpha, &vt);
             accumulate(b.value, b.pdf, ltc.eval(L), L.z);
         }
         if (!horizon || es.brdfL[i].z > 0.0f)
@@ -531,9 +577,10 @@ PolygonRefs polygon_refs(Lobe lobe, const Moments &mom, glm::vec3 V, float alpha
     } else {
         const int n = s.polygonSamples * s.polygonSamples;
         const std::vector<glm::vec3> dirs = brdf_grid_samples(lobe, V, alpha, s.polygonSamples);
+        const ViewTerms vt = view_terms(lobe, V, alpha);
         for (int i = 0; i < n; i++) {
             const glm::vec3 L = dirs[size_t(i)];
-            BrdfSample b = brdf_eval(lobe, V, L, alpha);
+            BrdfSample b = brdf_eval(lobe, V, L, alpha, &vt);
             if (!(b.pdf > 0.0) || !(b.value > 0.0))
                 continue;
             double w = b.value / b.pdf;
