@@ -23,7 +23,8 @@
 // and of the near floor, 180) and writes signed error maps.
 //
 //   rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] [--quick] [--threads T]
-//                   [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction]
+//                   [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction |
+//                    --hybrid-correction]
 // The last four are the experiments of issue 19's second round (shaderlib/luts/ltc.md): the
 // LTC fitted at each case's exact (roughness, NoV) instead of the table's interpolation, and
 // the LTC corrected by the direction of the lit part of the light (ltc_floor.hpp).
@@ -63,7 +64,7 @@ int main(int argc, char **argv) {
     std::string tablesPath, png;
     bool quick = false, exactCells = false;
     int correctionAzimuths = 0;
-    bool residual = false;
+    bool residual = false, hybrid = false;
     int threads = 2;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--lobe") && i + 1 < argc) {
@@ -93,6 +94,9 @@ int main(int argc, char **argv) {
         else if (!strcmp(argv[i], "--residual-correction")) { // experiment, see ltc_floor.hpp
             correctionAzimuths = 12;
             residual = true;
+        } else if (!strcmp(argv[i], "--hybrid-correction")) { // experiment, see ltc_floor.hpp
+            correctionAzimuths = 12;
+            hybrid = true;
         }
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc) {
             threads = atoi(argv[++i]);
@@ -102,7 +106,7 @@ int main(int argc, char **argv) {
             }
         } else {
             fprintf(stderr, "usage: rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] "
-                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction]\n");
+                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction]\n");
             return 2;
         }
     }
@@ -166,6 +170,7 @@ int main(int argc, char **argv) {
     }
     tab.correctionAzimuths = correctionAzimuths;
     tab.residual = residual;
+    tab.hybrid = hybrid;
     std::vector<Case> cases;
     for (float v : novs)
         for (float r : rough)

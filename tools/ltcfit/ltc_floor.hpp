@@ -88,6 +88,7 @@ struct DirectionCorrection {
     int az = 1; // azimuth bins (1: elevation only)
     double c[kElev][kMaxAz];   // the ratio (--elevation-correction, --direction-correction)
     double add[kElev][kMaxAz]; // (ref - LTC) / the bin's cosine mass (--residual-correction)
+    double hc[kElev][kMaxAz], hadd[kElev][kMaxAz]; // --hybrid-correction (below)
     static int elev_bin(double z) { return std::min(int(std::sqrt(std::max(z, 0.0)) * kElev), kElev - 1); }
     int az_bin(double x, double y) const {
         return std::min(int(std::atan2(std::fabs(y), x) / 3.14159265358979 * az), az - 1);
@@ -138,8 +139,14 @@ inline DirectionCorrection direction_correction(Lobe lobe, float nov, float r, f
         }
     for (int k = 0; k < DirectionCorrection::kElev; k++)
         for (int a = 0; a < DirectionCorrection::kMaxAz; a++) {
-            e.c[k][a] = a < azBins && ltc[k][a] > 1e-4 * double(l2.x) ? ref[k][a] / ltc[k][a] : 1.0;
-            e.add[k][a] = a < azBins && cosMass[k][a] > 0.0 ? (ref[k][a] - ltc[k][a]) / cosMass[k][a] : 0.0;
+            const bool used = a < azBins, lit = ltc[k][a] > 1e-4 * double(l2.x);
+            e.c[k][a] = used && lit ? ref[k][a] / ltc[k][a] : 1.0;
+            e.add[k][a] = used && cosMass[k][a] > 0.0 ? (ref[k][a] - ltc[k][a]) / cosMass[k][a] : 0.0;
+            // hybrid: the ratio where the LTC holds at least 10% of the true light, the
+            // residual density where it holds less (its support cuts the bin off)
+            const bool ratioHolds = ltc[k][a] >= 0.1 * ref[k][a] && lit;
+            e.hc[k][a] = used && ratioHolds ? ref[k][a] / ltc[k][a] : 1.0;
+            e.hadd[k][a] = used && !ratioHolds && cosMass[k][a] > 0.0 ? (ref[k][a] - ltc[k][a]) / cosMass[k][a] : 0.0;
         }
     return e;
 }
@@ -152,6 +159,7 @@ struct Tables {
     std::function<void(const Case &, float4 &, float4 &)> exact;
     int correctionAzimuths = 0; // 0: none; else DirectionCorrection's azimuth bins (above)
     bool residual = false;      // additive (LTC + residual x F.z) instead of the ratio
+    bool hybrid = false;        // ratio where the LTC is lit, residual where it is not
 };
 
 inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub) {
@@ -184,7 +192,9 @@ inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub)
             double ltc = double(l2.x) * rtpbr::LTC_IntegrateLocal(local, l1);
             if (tab.correctionAzimuths > 0) {
                 const float3 F = rtpbr::LTC_FormFactorVector(local, rtpbr::LTC_Identity());
-                ltc = tab.residual ? std::max(ltc + corr.residual_at(F) * double(F.z), 0.0) : ltc * corr.at(F);
+                ltc = tab.hybrid     ? std::max(ltc * corr.lookup(F, corr.hc) + corr.lookup(F, corr.hadd) * double(F.z), 0.0)
+                      : tab.residual ? std::max(ltc + corr.residual_at(F) * double(F.z), 0.0)
+                                     : ltc * corr.at(F);
             }
             double ref = quadrature(brdf, V, p, centre, sub);
             double coarse = quadrature(brdf, V, p, centre, sub / 2);
