@@ -24,7 +24,7 @@
 //
 //   rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] [--quick] [--threads T]
 //                   [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction |
-//                    --hybrid-correction]
+//                    --hybrid-correction] [--correction-bins E A] [--correction-samples N]
 // The last four are the experiments of issue 19's second round (shaderlib/luts/ltc.md): the
 // LTC fitted at each case's exact (roughness, NoV) instead of the table's interpolation, and
 // the LTC corrected by the direction of the lit part of the light (ltc_floor.hpp).
@@ -65,6 +65,7 @@ int main(int argc, char **argv) {
     bool quick = false, exactCells = false;
     int correctionAzimuths = 0;
     bool residual = false, hybrid = false;
+    int correctionElevations = 16, correctionSamples = 512;
     int threads = 2;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--lobe") && i + 1 < argc) {
@@ -95,8 +96,24 @@ int main(int argc, char **argv) {
             correctionAzimuths = 12;
             residual = true;
         } else if (!strcmp(argv[i], "--hybrid-correction")) { // experiment, see ltc_floor.hpp
-            correctionAzimuths = 12;
+            if (!correctionAzimuths)
+                correctionAzimuths = 12;
             hybrid = true;
+        } else if (!strcmp(argv[i], "--correction-bins") && i + 2 < argc) { // elevation, azimuth bins
+            correctionElevations = atoi(argv[++i]);
+            correctionAzimuths = atoi(argv[++i]);
+            if (correctionElevations < 2 || correctionElevations > DirectionCorrection::kElev ||
+                correctionAzimuths < 1 || correctionAzimuths > DirectionCorrection::kMaxAz) {
+                fprintf(stderr, "rtpbr-ltc-floor: --correction-bins: 2..%d elevation, 1..%d azimuth bins\n",
+                        DirectionCorrection::kElev, DirectionCorrection::kMaxAz);
+                return 2;
+            }
+        } else if (!strcmp(argv[i], "--correction-samples") && i + 1 < argc) { // per side
+            correctionSamples = atoi(argv[++i]);
+            if (correctionSamples < 16 || correctionSamples > 4096) {
+                fprintf(stderr, "rtpbr-ltc-floor: --correction-samples must be 16..4096\n");
+                return 2;
+            }
         }
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc) {
             threads = atoi(argv[++i]);
@@ -106,7 +123,7 @@ int main(int argc, char **argv) {
             }
         } else {
             fprintf(stderr, "usage: rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] "
-                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction]\n");
+                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction] [--correction-bins E A] [--correction-samples N]\n");
             return 2;
         }
     }
@@ -171,6 +188,8 @@ int main(int argc, char **argv) {
     tab.correctionAzimuths = correctionAzimuths;
     tab.residual = residual;
     tab.hybrid = hybrid;
+    tab.correctionElevations = correctionElevations;
+    tab.correctionSamples = correctionSamples;
     std::vector<Case> cases;
     for (float v : novs)
         for (float r : rough)

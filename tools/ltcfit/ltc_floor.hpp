@@ -5,6 +5,9 @@
 
 #include <cmath>
 #include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "ltc_mc.hpp"
@@ -84,12 +87,12 @@ inline double quadrature(const ltcmc::Brdf &brdf, float3 V, float3 p, float3 cen
 // side at 2 degrees) it is < 1, too little > 1. Elevation bins uniform in sqrt(sin e) (dense
 // near the horizon), azimuth bins uniform in phi; bilinear between bin centres as a texture.
 struct DirectionCorrection {
-    static constexpr int kElev = 16, kMaxAz = 12;
-    int az = 1; // azimuth bins (1: elevation only)
+    static constexpr int kElev = 32, kMaxAz = 24; // at most
+    int elev = 16, az = 1; // elevation bins; azimuth bins (1: elevation only)
     double c[kElev][kMaxAz];   // the ratio (--elevation-correction, --direction-correction)
     double add[kElev][kMaxAz]; // (ref - LTC) / the bin's cosine mass (--residual-correction)
     double hc[kElev][kMaxAz], hadd[kElev][kMaxAz]; // --hybrid-correction (below)
-    static int elev_bin(double z) { return std::min(int(std::sqrt(std::max(z, 0.0)) * kElev), kElev - 1); }
+    int elev_bin(double z) const { return std::min(int(std::sqrt(std::max(z, 0.0)) * elev), elev - 1); }
     int az_bin(double x, double y) const {
         return std::min(int(std::atan2(std::fabs(y), x) / 3.14159265358979 * az), az - 1);
     }
@@ -104,7 +107,7 @@ struct DirectionCorrection {
             int i = std::min(int(x), std::max(n - 2, 0));
             return std::pair<int, double>(i, n > 1 ? x - i : 0.0);
         };
-        auto [i, fi] = coord(std::sqrt(std::clamp(double(F.z) / len, 0.0, 1.0)), kElev);
+        auto [i, fi] = coord(std::sqrt(std::clamp(double(F.z) / len, 0.0, 1.0)), elev);
         auto [j, fj] = coord(std::atan2(std::fabs(double(F.y)), double(F.x)) / 3.14159265358979, az);
         const int j1 = std::min(j + 1, az - 1);
         double lo = tab[i][j] + (tab[i][j1] - tab[i][j]) * fj, hi = tab[i + 1][j] + (tab[i + 1][j1] - tab[i + 1][j]) * fj;
@@ -112,9 +115,10 @@ struct DirectionCorrection {
     }
 };
 
-inline DirectionCorrection direction_correction(Lobe lobe, float nov, float r, float4 l1, float4 l2, int azBins,
-                                                int side) {
+inline DirectionCorrection direction_correction(Lobe lobe, float nov, float r, float4 l1, float4 l2, int elevBins,
+                                                int azBins, int side) {
     DirectionCorrection e;
+    e.elev = elevBins;
     e.az = azBins;
     const float3 V(std::sqrt(1.0f - nov * nov), 0.0f, nov);
     const ltcmc::Brdf brdf = ltcmc::Brdf::make(lobe, r);
@@ -158,6 +162,11 @@ struct Tables {
     // rtpbr-ltc-floor --exact-cells.
     std::function<void(const Case &, float4 &, float4 &)> exact;
     int correctionAzimuths = 0; // 0: none; else DirectionCorrection's azimuth bins (above)
+    int correctionElevations = 16, correctionSamples = 512; // its elevation bins, samples per side
+    // the corrections of each (roughness, NoV), computed once (shared by the threads)
+    std::shared_ptr<std::mutex> cacheMutex = std::make_shared<std::mutex>();
+    std::shared_ptr<std::map<std::pair<float, float>, DirectionCorrection>> cache =
+        std::make_shared<std::map<std::pair<float, float>, DirectionCorrection>>();
     bool residual = false;      // additive (LTC + residual x F.z) instead of the ratio
     bool hybrid = false;        // ratio where the LTC is lit, residual where it is not
 };
@@ -177,8 +186,23 @@ inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub)
         tab.exact(c, l1, l2);
     rtpbr::float3x3 frame = rtpbr::LTC_Frame(N, V);
     DirectionCorrection corr{};
-    if (tab.correctionAzimuths > 0)
-        corr = direction_correction(lobe, c.nov, c.roughness, l1, l2, tab.correctionAzimuths, 512);
+    if (tab.correctionAzimuths > 0) {
+        bool have = false;
+        {
+            std::lock_guard<std::mutex> lock(*tab.cacheMutex);
+            auto it = tab.cache->find({c.roughness, c.nov});
+            if (it != tab.cache->end()) {
+                corr = it->second;
+                have = true;
+            }
+        }
+        if (!have) {
+            corr = direction_correction(lobe, c.nov, c.roughness, l1, l2, tab.correctionElevations,
+                                        tab.correctionAzimuths, tab.correctionSamples);
+            std::lock_guard<std::mutex> lock(*tab.cacheMutex);
+            (*tab.cache)[{c.roughness, c.nov}] = corr;
+        }
+    }
     double sumAbs = 0, sumSigned = 0, sumRef = 0, maxRef = 0, maxDiff = 0;
     r.map.resize(size_t(P) * P);
     for (int j = 0; j < P; j++)
