@@ -23,10 +23,16 @@
 // and of the near floor, 180) and writes signed error maps.
 //
 //   rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] [--quick] [--threads T]
+//                   [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction |
+//                    --hybrid-correction] [--correction-bins E A] [--correction-samples N]
+// The last four are the experiments of issue 19's second round (shaderlib/luts/ltc.md): the
+// LTC fitted at each case's exact (roughness, NoV) instead of the table's interpolation, and
+// the LTC corrected by the direction of the lit part of the light (ltc_floor.hpp).
 #include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <mutex>
 #include <thread>
 
@@ -55,7 +61,10 @@ void diverging(float e, unsigned char rgb[3]) {
 int main(int argc, char **argv) {
     Lobe lobe = Lobe::GGX;
     std::string tablesPath, png;
-    bool quick = false;
+    bool quick = false, exactCells = false;
+    int correctionAzimuths = 0;
+    bool residual = false, hybrid = false;
+    int correctionElevations = 16, correctionSamples = 512;
     int threads = 2;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--lobe") && i + 1 < argc) {
@@ -76,6 +85,35 @@ int main(int argc, char **argv) {
             png = argv[++i];
         else if (!strcmp(argv[i], "--quick"))
             quick = true;
+        else if (!strcmp(argv[i], "--exact-cells")) // no table interpolation: each case's own fit
+            exactCells = true;
+        else if (!strcmp(argv[i], "--elevation-correction")) // experiment, see ltc_floor.hpp
+            correctionAzimuths = 1;
+        else if (!strcmp(argv[i], "--direction-correction")) // experiment, see ltc_floor.hpp
+            correctionAzimuths = 12;
+        else if (!strcmp(argv[i], "--residual-correction")) { // experiment, see ltc_floor.hpp
+            correctionAzimuths = 12;
+            residual = true;
+        } else if (!strcmp(argv[i], "--hybrid-correction")) { // experiment, see ltc_floor.hpp
+            if (!correctionAzimuths)
+                correctionAzimuths = 12;
+            hybrid = true;
+        } else if (!strcmp(argv[i], "--correction-bins") && i + 2 < argc) { // elevation, azimuth bins
+            correctionElevations = atoi(argv[++i]);
+            correctionAzimuths = atoi(argv[++i]);
+            if (correctionElevations < 2 || correctionElevations > DirectionCorrection::kElev ||
+                correctionAzimuths < 1 || correctionAzimuths > DirectionCorrection::kMaxAz) {
+                fprintf(stderr, "rtpbr-ltc-floor: --correction-bins: 2..%d elevation, 1..%d azimuth bins\n",
+                        DirectionCorrection::kElev, DirectionCorrection::kMaxAz);
+                return 2;
+            }
+        } else if (!strcmp(argv[i], "--correction-samples") && i + 1 < argc) { // per side
+            correctionSamples = atoi(argv[++i]);
+            if (correctionSamples < 16 || correctionSamples > 4096) {
+                fprintf(stderr, "rtpbr-ltc-floor: --correction-samples must be 16..4096\n");
+                return 2;
+            }
+        }
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc) {
             threads = atoi(argv[++i]);
             if (threads < 1 || threads > 64) {
@@ -84,7 +122,7 @@ int main(int argc, char **argv) {
             }
         } else {
             fprintf(stderr, "usage: rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] "
-                            "[--quick] [--threads T]\n");
+                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction] [--correction-bins E A] [--correction-samples N]\n");
             return 2;
         }
     }
@@ -108,6 +146,49 @@ int main(int argc, char **argv) {
     const std::vector<float> novs = quick ? std::vector<float>{0.1f, 0.3f} : std::vector<float>{0.1f, 0.2f, 0.3f, 0.5f};
     const std::vector<float> azims{0.0f, 30.0f, 60.0f, 90.0f, 120.0f, 150.0f, 180.0f};
     const int P = quick ? 6 : 8, sub = quick ? 6 : 8;
+    // --exact-cells: the LTC fitted at exactly each case's (roughness, NoV) with the table's
+    // settings, instead of the table's bilinear interpolation: how far any denser table
+    // parametrisation could go.
+    std::map<std::pair<float, float>, std::pair<float4, float4>> exact;
+    if (exactCells) {
+        if (lobe == Lobe::Sheen) {
+            fprintf(stderr, "rtpbr-ltc-floor: --exact-cells: no sheen\n");
+            return 2;
+        }
+        ltcfit::FitSettings fs;
+        fs.size = RTPBR_LTC_SIZE;
+        const ltcfit::Lobe fl = lobe == Lobe::GGX ? ltcfit::Lobe::GGX : lobe == Lobe::Beckmann ? ltcfit::Lobe::Beckmann
+                                                                                                : ltcfit::Lobe::DisneyDiffuse;
+        std::vector<std::pair<float, float>> keys;
+        for (float v : novs)
+            for (float r : rough)
+                keys.push_back({r, v});
+        std::vector<ltcfit::Cell> cells(keys.size());
+        std::atomic<size_t> nextKey{0};
+        std::vector<std::thread> fitters;
+        for (int t = 0; t < threads; t++)
+            fitters.emplace_back([&]() {
+                for (size_t k = nextKey++; k < keys.size(); k = nextKey++)
+                    cells[k] = ltcfit::fit_exact(fl, keys[k].first, keys[k].second, fs);
+            });
+        for (std::thread &t : fitters)
+            t.join();
+        for (size_t k = 0; k < keys.size(); k++) {
+            const glm::dmat3 &m = cells[k].invM;
+            exact[keys[k]] = {float4(float(m[0][0]), float(m[2][0]), float(m[0][2]), float(m[2][2])),
+                              float4(float(cells[k].norm), float(cells[k].fresnel), float(cells[k].f82), 0.0f)};
+        }
+        tab.exact = [&exact](const Case &c, float4 &l1, float4 &l2) {
+            const auto &e = exact.at({c.roughness, c.nov});
+            l1 = e.first;
+            l2 = e.second;
+        };
+    }
+    tab.correctionAzimuths = correctionAzimuths;
+    tab.residual = residual;
+    tab.hybrid = hybrid;
+    tab.correctionElevations = correctionElevations;
+    tab.correctionSamples = correctionSamples;
     std::vector<Case> cases;
     for (float v : novs)
         for (float r : rough)

@@ -5,8 +5,11 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <mutex>
 #include <thread>
@@ -40,8 +43,45 @@ rtpbr::DisneyMaterial diffuse_material(float r) {
     return m;
 }
 
+// The terms of a microfacet evaluation that depend only on the view (issue 19: a Beckmann
+// evaluation took Lambda(V) twice, in G1 and in V_SmithBeckmann, each an exp and an erfc, and
+// the fit evaluates the same view hundreds of thousands of times per cell).
+struct ViewTerms {
+    float G1 = 0.0f;      // G1(V)
+    float lambdaV = 0.0f; // Beckmann: Lambda(min(NoV, 1))
+};
+
+ViewTerms view_terms(Lobe lobe, glm::vec3 V, float alpha) {
+    ViewTerms t;
+    if (lobe == Lobe::GGX)
+        t.G1 = rtpbr::G1_GGX(V.z, alpha);
+    else if (lobe == Lobe::Beckmann) {
+        t.G1 = rtpbr::G1_Beckmann(V.z, alpha);
+        t.lambdaV = rtpbr::Lambda_Beckmann(std::min(V.z, 1.0f), alpha);
+    }
+    return t;
+}
+
+// V_SmithBeckmann(NoV, NoL, alpha) with Lambda(NoV) given: the same operations on the same
+// values, so the same float (a mismatch aborts the fit, see check_view_terms). The library's
+// default Smith (height-correlated, exact Lambda) only; other choices take V_SmithBeckmann.
+float vis_beckmann(float NoV, float NoL, float alpha, float lambdaV) {
+#if !RTPBR_SMITH_FAST && RTPBR_SMITH != RTPBR_SMITH_SEPARABLE
+    if (!(NoV > 0.0f) || !(NoL > 0.0f))
+        return 0.0f;
+    float v = std::min(NoV, 1.0f);
+    float l = std::min(NoL, 1.0f);
+    float G = rtpbr::G2_HeightCorrelated(lambdaV, rtpbr::Lambda_Beckmann(l, alpha));
+    return G / (4.0f * v * l);
+#else
+    (void)lambdaV;
+    return rtpbr::V_SmithBeckmann(NoV, NoL, alpha);
+#endif
+}
+
 // alpha: the microfacet lobes' alpha; for Lobe::DisneyDiffuse the perceptual roughness.
-BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha) {
+// vt: view_terms(lobe, V, alpha), or null to compute them here.
+BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha, const ViewTerms *vt = nullptr) {
     if (lobe == Lobe::Sheen) { // sampled by Sample_SheenLobe (its density counts below the horizon too)
         double pdf = double(rtpbr::PDF_SheenLobe(V, L, alpha));
         if (!(V.z > 0.0f) || !(L.z > 0.0f))
@@ -66,11 +106,11 @@ BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha) {
     if (lobe == Lobe::GGX) {
         D = rtpbr::D_GGX(H.z, alpha);
         Vis = rtpbr::V_SmithGGXCorrelated(V.z, L.z, alpha);
-        G1 = rtpbr::G1_GGX(V.z, alpha);
+        G1 = vt ? vt->G1 : rtpbr::G1_GGX(V.z, alpha);
     } else {
         D = rtpbr::D_Beckmann(H.z, alpha);
-        Vis = rtpbr::V_SmithBeckmann(V.z, L.z, alpha);
-        G1 = rtpbr::G1_Beckmann(V.z, alpha);
+        Vis = vt ? vis_beckmann(V.z, L.z, alpha, vt->lambdaV) : rtpbr::V_SmithBeckmann(V.z, L.z, alpha);
+        G1 = vt ? vt->G1 : rtpbr::G1_Beckmann(V.z, alpha);
     }
     // The density of the visible-normal sampler's reflected direction, D_V(h) / (4 VoH) =
     // G1(V) D(h) / (4 NoV) (Heitz & d'Eon 2014), written with the same D value as f: near the
@@ -194,9 +234,10 @@ Moments brdf_moments(Lobe lobe, glm::vec3 V, float alpha, int side, bool keep) {
     glm::dvec3 dir(0.0);
     int n = side * side;
     const std::vector<glm::vec3> dirs = brdf_grid_samples(lobe, V, alpha, side);
+    const ViewTerms vt = view_terms(lobe, V, alpha);
     for (int i = 0; i < n; i++) {
         glm::vec3 L = dirs[size_t(i)];
-        BrdfSample b = brdf_eval(lobe, V, L, alpha);
+        BrdfSample b = brdf_eval(lobe, V, L, alpha, &vt);
         if (!(b.pdf > 0.0))
             continue;
         double w = b.value / b.pdf;
@@ -234,12 +275,19 @@ ErrorSamples error_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
     ErrorSamples es;
     int n = side * side;
     const std::vector<glm::vec3> dirs = brdf_grid_samples(lobe, V, alpha, side);
+    const ViewTerms vt = view_terms(lobe, V, alpha);
     for (int i = 0; i < n; i++) {
         glm::vec2 u = grid_point(i, side);
         es.cosine.push_back(glm::dvec3(rtpbr::Sample_CosineHemisphere(u)));
         glm::vec3 L = dirs[size_t(i)];
         es.brdfL.push_back(L);
-        es.brdf.push_back(brdf_eval(lobe, V, L, alpha));
+        es.brdf.push_back(brdf_eval(lobe, V, L, alpha, &vt));
+        // the per-view terms must give the library's values (see vis_beckmann)
+        const BrdfSample ref = brdf_eval(lobe, V, L, alpha);
+        if (i < side && (ref.value != es.brdf.back().value || ref.pdf != es.brdf.back().pdf)) {
+            fprintf(stderr, "ltcfit: internal error: the per-view BRDF terms differ from the library's\n");
+            std::abort();
+        }
     }
     return es;
 }
@@ -261,11 +309,16 @@ double ltc_error(const Ltc &ltc, const ErrorSamples &es, Lobe lobe, glm::vec3 V,
         double diff = std::fabs(value - scale * d);
         sum += (p == 3 ? diff * diff * diff : p == 2 ? diff * diff : diff) / pdfSum;
     };
+    const ViewTerms vt = view_terms(lobe, V, alpha);
     for (size_t i = 0; i < n; i++) {
+        // Above the horizon only: a direction under it adds nothing, so skip evaluating it.
         glm::dvec3 L = glm::normalize(ltc.M * es.cosine[i]);
-        BrdfSample b = brdf_eval(lobe, V, glm::vec3(L), alpha);
-        accumulate(b.value, b.pdf, ltc.eval(L), L.z);
-        accumulate(es.brdf[i].value, es.brdf[i].pdf, ltc.eval(glm::dvec3(es.brdfL[i])), double(es.brdfL[i].z));
+        if (!horizon || L.z > 0.0) {
+            BrdfSample b = brdf_eval(lobe, V, glm::vec3(L), alpha, &vt);
+            accumulate(b.value, b.pdf, ltc.eval(L), L.z);
+        }
+        if (!horizon || es.brdfL[i].z > 0.0f)
+            accumulate(es.brdf[i].value, es.brdf[i].pdf, ltc.eval(glm::dvec3(es.brdfL[i])), double(es.brdfL[i].z));
     }
     return sum / double(n);
 }
@@ -414,6 +467,91 @@ double ltc_square_integral(const Ltc &l, const TestSquare &s) {
     return std::fabs(sum) / (2.0 * kPi);
 }
 
+// The squares a direction hits, for the references' 256^2 samples per cell (issue 19: testing
+// every sample against every square was 37% of the fit's CPU, then the exact tests of the
+// squares left 27%).
+//  - Squares that share their plane and axes (test_squares makes them consecutively: one
+//    position, several half-sizes) form a group: the direction's point in that plane is
+//    computed once per group, then compared with each half-size.
+//  - Directions above the horizon are binned by their (x, y); a bin keeps the groups whose
+//    widest cone can reach some direction of the bin: the largest dot(L, c) over the bin's box
+//    in (x, y, z) is at least the cone's cosine (with a margin for float directions that are
+//    not exactly unit).
+// Each square's test is in_square's, in its order (cone, facing, bounds), and each integral
+// still sums its samples in their order: the integrals are the same bits.
+class SquareHits {
+  public:
+    explicit SquareHits(const std::vector<TestSquare> &squares) : squares_(squares), bins_(size_t(kSide) * kSide) {
+        for (size_t k = 0; k < squares.size(); k++) {
+            const TestSquare &q = squares[k];
+            const bool same = !groups_.empty() && (q.ring < 0) == (squares[groups_.back().first].ring < 0) &&
+                              q.c == squares[groups_.back().first].c && q.d == squares[groups_.back().first].d &&
+                              q.e1 == squares[groups_.back().first].e1 && q.e2 == squares[groups_.back().first].e2;
+            if (same) {
+                groups_.back().count++;
+                groups_.back().cosCone = std::min(groups_.back().cosCone, q.cosCone);
+            } else {
+                groups_.push_back({k, 1, q.cosCone});
+            }
+        }
+        for (int by = 0; by < kSide; by++)
+            for (int bx = 0; bx < kSide; bx++) {
+                const double x0 = -1.0 + 2.0 * bx / kSide, x1 = -1.0 + 2.0 * (bx + 1) / kSide;
+                const double y0 = -1.0 + 2.0 * by / kSide, y1 = -1.0 + 2.0 * (by + 1) / kSide;
+                auto minSq = [](double lo, double hi) { return lo <= 0.0 && hi >= 0.0 ? 0.0 : std::min(lo * lo, hi * hi); };
+                const double r2min = minSq(x0, x1) + minSq(y0, y1);
+                const double r2max = std::max(x0 * x0, x1 * x1) + std::max(y0 * y0, y1 * y1);
+                if (r2min > 1.0 + 1e-3)
+                    continue; // outside the unit disk: no direction lands here
+                const double z0 = std::sqrt(std::max(0.0, 1.0 - r2max)), z1 = std::sqrt(std::max(0.0, 1.0 - r2min));
+                for (size_t g = 0; g < groups_.size(); g++) {
+                    const glm::dvec3 &c = squares[groups_[g].first].c;
+                    const double reach = std::max(c.x * x0, c.x * x1) + std::max(c.y * y0, c.y * y1) +
+                                         std::max(c.z * z0, c.z * z1);
+                    if (reach >= groups_[g].cosCone - 1e-3)
+                        bins_[size_t(by) * kSide + bx].push_back(uint16_t(g));
+                }
+            }
+    }
+    // Calls hit(k) for every square k that direction L passes through (in_square).
+    template <class F> void for_each_hit(glm::dvec3 L, F &&hit) const {
+        if (!(L.z > 0.0)) { // not binned: every square
+            for (size_t k = 0; k < squares_.size(); k++)
+                if (in_square(squares_[k], L))
+                    hit(k);
+            return;
+        }
+        const int bx = std::clamp(int((L.x + 1.0) * 0.5 * kSide), 0, kSide - 1);
+        const int by = std::clamp(int((L.y + 1.0) * 0.5 * kSide), 0, kSide - 1);
+        for (uint16_t g : bins_[size_t(by) * kSide + bx]) {
+            const Group &gr = groups_[g];
+            const TestSquare &first = squares_[gr.first];
+            const double cosL = glm::dot(L, first.c);
+            if (cosL < gr.cosCone)
+                continue;
+            const double den = glm::dot(L, first.d);
+            if (!(den > 0.0))
+                continue;
+            // as in_square
+            const glm::dvec3 q = first.ring < 0 ? L / den - first.c : L * (glm::dot(first.c, first.d) / den) - first.c;
+            const double u = std::fabs(glm::dot(q, first.e1)), v = std::fabs(glm::dot(q, first.e2));
+            for (size_t k = gr.first; k < gr.first + gr.count; k++)
+                if (!(cosL < squares_[k].cosCone) && u <= squares_[k].half && v <= squares_[k].half)
+                    hit(k);
+        }
+    }
+
+  private:
+    struct Group {
+        size_t first, count;
+        double cosCone; // the widest member's
+    };
+    static constexpr int kSide = 32;
+    const std::vector<TestSquare> &squares_;
+    std::vector<Group> groups_;
+    std::vector<std::vector<uint16_t>> bins_;
+};
+
 struct PolygonRefs {
     std::vector<TestSquare> squares;
     std::vector<double> integral; // of f NoL over each square
@@ -428,11 +566,8 @@ PolygonRefs polygon_refs(Lobe lobe, const Moments &mom, glm::vec3 V, float alpha
     PolygonRefs r;
     r.squares = test_squares(glm::dvec3(V), mom.avgDir, double(alpha), s);
     r.integral.assign(r.squares.size(), 0.0);
-    auto add = [&](glm::dvec3 L, double w) {
-        for (size_t k = 0; k < r.squares.size(); k++)
-            if (in_square(r.squares[k], L))
-                r.integral[k] += w;
-    };
+    const SquareHits hits(r.squares);
+    auto add = [&](glm::dvec3 L, double w) { hits.for_each_hit(L, [&](size_t k) { r.integral[k] += w; }); };
     if (s.fast) {
         for (const WeightedDir &wd : mom.samples)
             add(wd.L, wd.w);
@@ -442,9 +577,10 @@ PolygonRefs polygon_refs(Lobe lobe, const Moments &mom, glm::vec3 V, float alpha
     } else {
         const int n = s.polygonSamples * s.polygonSamples;
         const std::vector<glm::vec3> dirs = brdf_grid_samples(lobe, V, alpha, s.polygonSamples);
+        const ViewTerms vt = view_terms(lobe, V, alpha);
         for (int i = 0; i < n; i++) {
             const glm::vec3 L = dirs[size_t(i)];
-            BrdfSample b = brdf_eval(lobe, V, L, alpha);
+            BrdfSample b = brdf_eval(lobe, V, L, alpha, &vt);
             if (!(b.pdf > 0.0) || !(b.value > 0.0))
                 continue;
             double w = b.value / b.pdf;
@@ -708,6 +844,17 @@ Cell fit_cell(Lobe lobe, int col, int row, const FitSettings &s, const Cell *sta
 
 } // namespace
 
+Cell fit_exact(Lobe lobe, double r, double nov, const FitSettings &s) {
+    // As a row of the table, at this view: from the roughest end (a start of M = I) down to r
+    // in the table's steps, each fit starting from the previous one.
+    const double step = 1.0 / double(s.size - 1);
+    int steps = int(std::floor((1.0 - r) / step + 1e-9));
+    Cell c = fit_at(lobe, float(r + steps * step), nov, s, nullptr);
+    for (int k = steps - 1; k >= 0; k--)
+        c = fit_at(lobe, float(r + k * step), nov, s, &c);
+    return c;
+}
+
 double cell_roughness(int col, int size) { return double(col) / double(size - 1); }
 
 double cell_nov(int row, int size) {
@@ -715,31 +862,72 @@ double cell_nov(int row, int size) {
     return std::max(1.0 - x * x, kMinNoV);
 }
 
-Table fit_table(Lobe lobe, const FitSettings &s, const std::function<void(int, int)> &progress) {
-    auto t0 = std::chrono::steady_clock::now();
-    Table t;
-    t.lobe = lobe;
-    t.size = s.size;
-    t.cells.resize(size_t(s.size) * size_t(s.size));
-    const int last = s.size - 1;
-    // 1. The roughest column, down the view angles (each cell starts from the previous one;
-    //    the first from the clamped cosine itself, m11 = m22 = 1).
-    for (int row = 0; row < s.size; row++)
-        t.cells[size_t(row) * s.size + last] =
-            fit_cell(lobe, last, row, s, row > 0 ? &t.cells[size_t(row - 1) * s.size + last] : nullptr);
-    // 2. Each row from rough to smooth, each cell starting from its rougher neighbour; rows
-    //    are independent, shared among the threads.
-    std::atomic<int> nextRow{std::clamp(s.firstRow, 0, s.size)};
-    std::atomic<int> doneRows{0};
-    std::mutex progressMutex;
+namespace {
+
+double thread_cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+} // namespace
+
+std::vector<Table> fit_tables(const std::vector<Lobe> &lobes, const FitSettings &s,
+                              const std::function<void(int, int)> &progress) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int nLobes = int(lobes.size()), last = s.size - 1;
+    const int firstRow = std::clamp(s.firstRow, 0, s.size);
+    const int rowsPerLobe = s.size - firstRow, totalRows = nLobes * rowsPerLobe;
+    std::vector<Table> tables(lobes.size());
+    for (int l = 0; l < nLobes; l++) {
+        tables[size_t(l)].lobe = lobes[size_t(l)];
+        tables[size_t(l)].size = s.size;
+        tables[size_t(l)].cells.resize(size_t(s.size) * size_t(s.size));
+    }
+    // Tasks, taken in this order from one counter by every thread:
+    //  1. per lobe, its roughest column down the view angles (each cell starts from the previous
+    //     one, the first from the clamped cosine itself, m11 = m22 = 1);
+    //  2. per lobe, each row from rough to smooth, each cell starting from its rougher
+    //     neighbour. A row needs only its own cell of the first column: it waits for that cell,
+    //     not for the whole column, so the serial columns overlap each other and the rows.
+    // Every cell starts from the same neighbour whatever thread fits it: the tables do not
+    // depend on the thread count. No deadlock: every column task is taken before any row task,
+    // and column tasks never wait.
+    std::atomic<int> nextTask{0}, doneRows{0};
+    std::vector<int> columnDone(lobes.size(), 0);       // cells of the first column fitted
+    std::vector<double> cpu(lobes.size(), 0.0), end(lobes.size(), 0.0);
+    std::vector<int> rowsLeft(lobes.size(), rowsPerLobe);
+    std::mutex mutex;
+    std::condition_variable columnAdvanced;
     auto worker = [&]() {
-        for (int row = nextRow++; row < s.size; row = nextRow++) {
+        for (int task = nextTask++; task < nLobes + totalRows; task = nextTask++) {
+            const double c0 = thread_cpu_seconds();
+            const int l = task < nLobes ? task : (task - nLobes) / rowsPerLobe;
+            Table &t = tables[size_t(l)];
+            if (task < nLobes) {
+                for (int row = 0; row < s.size; row++) {
+                    t.cells[size_t(row) * s.size + last] =
+                        fit_cell(t.lobe, last, row, s, row > 0 ? &t.cells[size_t(row - 1) * s.size + last] : nullptr);
+                    std::lock_guard<std::mutex> lock(mutex);
+                    columnDone[size_t(l)] = row + 1;
+                    columnAdvanced.notify_all();
+                }
+                std::lock_guard<std::mutex> lock(mutex);
+                cpu[size_t(l)] += thread_cpu_seconds() - c0;
+                continue;
+            }
+            const int row = firstRow + (task - nLobes) % rowsPerLobe;
+            {
+                std::unique_lock<std::mutex> lock(mutex);
+                columnAdvanced.wait(lock, [&] { return columnDone[size_t(l)] > row; });
+            }
             for (int col = last - 1; col >= 0; col--)
-                t.cells[size_t(row) * s.size + col] =
-                    fit_cell(lobe, col, row, s, &t.cells[size_t(row) * s.size + col + 1]);
-            int done = ++doneRows;
-            std::lock_guard<std::mutex> lock(progressMutex);
-            progress(done, s.size);
+                t.cells[size_t(row) * s.size + col] = fit_cell(t.lobe, col, row, s, &t.cells[size_t(row) * s.size + col + 1]);
+            std::lock_guard<std::mutex> lock(mutex);
+            cpu[size_t(l)] += thread_cpu_seconds() - c0;
+            if (--rowsLeft[size_t(l)] == 0)
+                end[size_t(l)] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            progress(++doneRows, totalRows);
         }
     };
     std::vector<std::thread> pool;
@@ -747,9 +935,16 @@ Table fit_table(Lobe lobe, const FitSettings &s, const std::function<void(int, i
         pool.emplace_back(worker);
     for (std::thread &th : pool)
         th.join();
-    t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    for (int l = 0; l < nLobes; l++) {
+        tables[size_t(l)].seconds = rowsPerLobe > 0 ? end[size_t(l)]
+                                                    : std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        tables[size_t(l)].cpuSeconds = cpu[size_t(l)];
+    }
+    return tables;
+}
 
-    return t;
+Table fit_table(Lobe lobe, const FitSettings &s, const std::function<void(int, int)> &progress) {
+    return std::move(fit_tables({lobe}, s, progress)[0]);
 }
 
 double clipped_cap_form_factor(double omega, double sigma) {

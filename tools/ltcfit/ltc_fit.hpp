@@ -82,7 +82,8 @@ struct Table {
     Lobe lobe;
     int size;
     std::vector<Cell> cells; // row-major: cells[row * size + col], row = view, col = roughness
-    double seconds = 0;      // wall time of the fit
+    double seconds = 0;      // wall time from the start of the fit to this lobe's last row
+    double cpuSeconds = 0;   // CPU time spent on this lobe's cells (all threads)
 };
 
 // The cell parameters: column i <-> perceptual roughness i / (size - 1), row j <->
@@ -91,8 +92,17 @@ constexpr double kMinNoV = 1e-3;
 double cell_roughness(int col, int size);
 double cell_nov(int row, int size);
 
+// The fit of one cell at exactly (perceptual roughness r, NoV), as the table's row
+// continuation from r = 1 would reach it (for measuring the table's interpolation error).
+Cell fit_exact(Lobe lobe, double r, double nov, const FitSettings &s);
+
 // Fits one lobe. progress(done rows, total rows) is called from worker threads (serialised).
 Table fit_table(Lobe lobe, const FitSettings &s, const std::function<void(int, int)> &progress);
+// Fits several lobes at once on one pool of s.threads threads (each lobe's serial first column
+// overlaps the other lobes' work); the same tables as fit_table one lobe at a time.
+// progress(done rows, total rows of all lobes).
+std::vector<Table> fit_tables(const std::vector<Lobe> &lobes, const FitSettings &s,
+                              const std::function<void(int, int)> &progress);
 
 // The horizon-clipped sphere form factor table (ltc2.w): column i <-> z = 2 i / (size-1) - 1
 // (cosine of the elevation of the sphere's centre), row j <-> |F| = j / (size - 1) (= sin^2

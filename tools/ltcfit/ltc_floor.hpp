@@ -4,6 +4,10 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "ltc_mc.hpp"
@@ -72,8 +76,99 @@ inline double quadrature(const ltcmc::Brdf &brdf, float3 V, float3 p, float3 cen
     return sum;
 }
 
+// Experiments (issue 19, rtpbr-ltc-floor --elevation-correction / --direction-correction;
+// not in the engine): the LTC result scaled by a factor that depends on where the lit part of
+// the light is, seen from the surface: F = the vector form factor of the horizon-clipped
+// polygon in the shading frame (x toward V; what the engine's basic variant computes already
+// for Lambert), its elevation sin e = F.z / |F| and (with azimuth bins) its azimuth phi =
+// atan2(|F.y|, F.x) from the viewer's side. The factor of a bin is the ratio of the true
+// BRDF's integral over the bin's directions (a band of elevations, all azimuths or a range of
+// them) to the LTC's, for this (NoV, roughness): where the LTC puts too much light (the mirror
+// side at 2 degrees) it is < 1, too little > 1. Elevation bins uniform in sqrt(sin e) (dense
+// near the horizon), azimuth bins uniform in phi; bilinear between bin centres as a texture.
+struct DirectionCorrection {
+    static constexpr int kElev = 32, kMaxAz = 24; // at most
+    int elev = 16, az = 1; // elevation bins; azimuth bins (1: elevation only)
+    double c[kElev][kMaxAz];   // the ratio (--elevation-correction, --direction-correction)
+    double add[kElev][kMaxAz]; // (ref - LTC) / the bin's cosine mass (--residual-correction)
+    double hc[kElev][kMaxAz], hadd[kElev][kMaxAz]; // --hybrid-correction (below)
+    int elev_bin(double z) const { return std::min(int(std::sqrt(std::max(z, 0.0)) * elev), elev - 1); }
+    int az_bin(double x, double y) const {
+        return std::min(int(std::atan2(std::fabs(y), x) / 3.14159265358979 * az), az - 1);
+    }
+    double at(float3 F) const { return lookup(F, c); }
+    double residual_at(float3 F) const { return lookup(F, add); }
+    double lookup(float3 F, const double (&tab)[kElev][kMaxAz]) const {
+        const double len = glm::length(glm::dvec3(F));
+        if (!(len > 0.0))
+            return 1.0;
+        auto coord = [](double v, int n) {
+            double x = std::clamp(v * n - 0.5, 0.0, double(n - 1));
+            int i = std::min(int(x), std::max(n - 2, 0));
+            return std::pair<int, double>(i, n > 1 ? x - i : 0.0);
+        };
+        auto [i, fi] = coord(std::sqrt(std::clamp(double(F.z) / len, 0.0, 1.0)), elev);
+        auto [j, fj] = coord(std::atan2(std::fabs(double(F.y)), double(F.x)) / 3.14159265358979, az);
+        const int j1 = std::min(j + 1, az - 1);
+        double lo = tab[i][j] + (tab[i][j1] - tab[i][j]) * fj, hi = tab[i + 1][j] + (tab[i + 1][j1] - tab[i + 1][j]) * fj;
+        return lo + (hi - lo) * fi;
+    }
+};
+
+inline DirectionCorrection direction_correction(Lobe lobe, float nov, float r, float4 l1, float4 l2, int elevBins,
+                                                int azBins, int side) {
+    DirectionCorrection e;
+    e.elev = elevBins;
+    e.az = azBins;
+    const float3 V(std::sqrt(1.0f - nov * nov), 0.0f, nov);
+    const ltcmc::Brdf brdf = ltcmc::Brdf::make(lobe, r);
+    const glm::dmat3 M = glm::inverse(glm::dmat3(rtpbr::LTC_InverseMatrix(l1)));
+    double ref[DirectionCorrection::kElev][DirectionCorrection::kMaxAz] = {};
+    double ltc[DirectionCorrection::kElev][DirectionCorrection::kMaxAz] = {};
+    double cosMass[DirectionCorrection::kElev][DirectionCorrection::kMaxAz] = {};
+    const double n = double(side) * side;
+    for (int j = 0; j < side; j++)
+        for (int i = 0; i < side; i++) {
+            float2 u((i + 0.5f) / side, (j + 0.5f) / side);
+            float3 L = brdf.sample(V, u);
+            float pdf;
+            float f = brdf.value_cos(V, L, pdf);
+            if (L.z > 0.0f && pdf > 0.0f && f > 0.0f)
+                ref[e.elev_bin(double(L.z))][e.az_bin(double(L.x), double(L.y))] += double(f) / double(pdf) / n;
+            const glm::dvec3 cosL(rtpbr::Sample_CosineHemisphere(u));
+            cosMass[e.elev_bin(cosL.z)][e.az_bin(cosL.x, cosL.y)] += 1.0 / n;
+            glm::dvec3 Lt = glm::normalize(M * cosL);
+            if (Lt.z > 0.0)
+                ltc[e.elev_bin(Lt.z)][e.az_bin(Lt.x, Lt.y)] += double(l2.x) / n;
+        }
+    for (int k = 0; k < DirectionCorrection::kElev; k++)
+        for (int a = 0; a < DirectionCorrection::kMaxAz; a++) {
+            const bool used = a < azBins, lit = ltc[k][a] > 1e-4 * double(l2.x);
+            e.c[k][a] = used && lit ? ref[k][a] / ltc[k][a] : 1.0;
+            e.add[k][a] = used && cosMass[k][a] > 0.0 ? (ref[k][a] - ltc[k][a]) / cosMass[k][a] : 0.0;
+            // hybrid: the ratio where the LTC holds at least 10% of the true light, the
+            // residual density where it holds less (its support cuts the bin off)
+            const bool ratioHolds = ltc[k][a] >= 0.1 * ref[k][a] && lit;
+            e.hc[k][a] = used && ratioHolds ? ref[k][a] / ltc[k][a] : 1.0;
+            e.hadd[k][a] = used && !ratioHolds && cosMass[k][a] > 0.0 ? (ref[k][a] - ltc[k][a]) / cosMass[k][a] : 0.0;
+        }
+    return e;
+}
+
 struct Tables {
+    Tables(const float *a, const float *b) : t1(a), t2(b) {}
     const float *t1, *t2;
+    // If set: the LTC of this case without the table's interpolation (ltc1, ltc2 as fetched);
+    // rtpbr-ltc-floor --exact-cells.
+    std::function<void(const Case &, float4 &, float4 &)> exact;
+    int correctionAzimuths = 0; // 0: none; else DirectionCorrection's azimuth bins (above)
+    int correctionElevations = 16, correctionSamples = 512; // its elevation bins, samples per side
+    // the corrections of each (roughness, NoV), computed once (shared by the threads)
+    std::shared_ptr<std::mutex> cacheMutex = std::make_shared<std::mutex>();
+    std::shared_ptr<std::map<std::pair<float, float>, DirectionCorrection>> cache =
+        std::make_shared<std::map<std::pair<float, float>, DirectionCorrection>>();
+    bool residual = false;      // additive (LTC + residual x F.z) instead of the ratio
+    bool hybrid = false;        // ratio where the LTC is lit, residual where it is not
 };
 
 inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub) {
@@ -87,7 +182,27 @@ inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub)
     float3 N(0, 0, 1);
     float4 l1 = ltcmc::fetch(tab.t1, rtpbr::LTC_LutCoord(c.nov, c.roughness));
     float4 l2 = ltcmc::fetch(tab.t2, rtpbr::LTC_LutCoord(c.nov, c.roughness));
+    if (tab.exact)
+        tab.exact(c, l1, l2);
     rtpbr::float3x3 frame = rtpbr::LTC_Frame(N, V);
+    DirectionCorrection corr{};
+    if (tab.correctionAzimuths > 0) {
+        bool have = false;
+        {
+            std::lock_guard<std::mutex> lock(*tab.cacheMutex);
+            auto it = tab.cache->find({c.roughness, c.nov});
+            if (it != tab.cache->end()) {
+                corr = it->second;
+                have = true;
+            }
+        }
+        if (!have) {
+            corr = direction_correction(lobe, c.nov, c.roughness, l1, l2, tab.correctionElevations,
+                                        tab.correctionAzimuths, tab.correctionSamples);
+            std::lock_guard<std::mutex> lock(*tab.cacheMutex);
+            (*tab.cache)[{c.roughness, c.nov}] = corr;
+        }
+    }
     double sumAbs = 0, sumSigned = 0, sumRef = 0, maxRef = 0, maxDiff = 0;
     r.map.resize(size_t(P) * P);
     for (int j = 0; j < P; j++)
@@ -97,7 +212,14 @@ inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub)
             float3 q0 = centre + float3(-kHalf, -kHalf, 0), q1 = centre + float3(-kHalf, kHalf, 0),
                    q2 = centre + float3(kHalf, kHalf, 0), q3 = centre + float3(kHalf, -kHalf, 0);
             rtpbr::LtcPolygon poly = rtpbr::LTC_Quad(q0, q1, q2, q3);
-            double ltc = double(l2.x) * rtpbr::LTC_IntegrateLocal(rtpbr::LTC_PolygonToLocal(frame, p, poly, true), l1);
+            const rtpbr::LtcLocalPolygon local = rtpbr::LTC_PolygonToLocal(frame, p, poly, true);
+            double ltc = double(l2.x) * rtpbr::LTC_IntegrateLocal(local, l1);
+            if (tab.correctionAzimuths > 0) {
+                const float3 F = rtpbr::LTC_FormFactorVector(local, rtpbr::LTC_Identity());
+                ltc = tab.hybrid     ? std::max(ltc * corr.lookup(F, corr.hc) + corr.lookup(F, corr.hadd) * double(F.z), 0.0)
+                      : tab.residual ? std::max(ltc + corr.residual_at(F) * double(F.z), 0.0)
+                                     : ltc * corr.at(F);
+            }
             double ref = quadrature(brdf, V, p, centre, sub);
             double coarse = quadrature(brdf, V, p, centre, sub / 2);
             maxDiff = std::max(maxDiff, std::fabs(ref - coarse));

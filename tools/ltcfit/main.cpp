@@ -93,11 +93,11 @@ std::string diffuse_section(const Table &t, const FitSettings &s, bool quick) {
     Stats st = error_stats(t);
     char line[512];
     snprintf(line, sizeof line,
-             "| lobe | fit time (s) | mean | median | 95th pct | max |\n|---|---|---|---|---|---|\n"
+             "| lobe | fit CPU (s) | mean | median | 95th pct | max |\n|---|---|---|---|---|---|\n"
              "| disney_diffuse | %.1f | %.4f | %.4f | %.4f | %.4f |\n\n"
              "Fitted albedo (norm x the LTC's mass above the horizon) against Disney_DiffuseAlbedo: largest "
              "relative difference %.2e.\n\n",
-             t.seconds, st.mean, st.median, st.p95, st.max, diffuse_albedo_error(t));
+             t.cpuSeconds, st.mean, st.median, st.p95, st.max, diffuse_albedo_error(t));
     o << line;
     o << "Heat map: `ltc_fit_error_disney_diffuse.png` (as `ltc_fit_error.png`, one panel).\n";
     o << "<!-- ltcfit-diffuse:end -->\n";
@@ -111,7 +111,7 @@ std::string generated_section(const Table &ggx, const Table &beckmann, const Fit
     o << settings_line(s, quick);
     o << "Per-cell fit error = integral |f NoL - norm D_ltc| / albedo over the upper hemisphere (relative L1; 0 = "
          "perfect, 2 = disjoint):\n\n";
-    o << "| lobe | fit time (s) | mean | median | 95th pct | max | square lights: mean / max RMS relative error |\n"
+    o << "| lobe | fit CPU (s) | mean | median | 95th pct | max | square lights: mean / max RMS relative error |\n"
          "|---|---|---|---|---|---|---|\n";
     for (const Table *t : {&ggx, &beckmann}) {
         Stats st = error_stats(*t);
@@ -122,7 +122,7 @@ std::string generated_section(const Table &ggx, const Table &beckmann, const Fit
         }
         char line[256];
         snprintf(line, sizeof line, "| %s | %.1f | %.4f | %.4f | %.4f | %.4f | %.4f / %.4f |\n", lobe_name(t->lobe),
-                 t->seconds, st.mean, st.median, st.p95, st.max, polyMean, polyMax);
+                 t->cpuSeconds, st.mean, st.median, st.p95, st.max, polyMean, polyMax);
         o << line;
     }
     o << "\nHeat map: `ltc_fit_error.png` (GGX left, Beckmann right; x = roughness 0..1, y = sqrt(1 - NoV) "
@@ -234,33 +234,34 @@ int main(int argc, char **argv) {
         return 0;
     }
 
-    std::vector<Table> tables;
-    double total = 0;
+    const auto wallStart = std::chrono::steady_clock::now();
     const std::clock_t cpuStart = std::clock();
     std::vector<Lobe> lobes{Lobe::GGX, Lobe::Beckmann, Lobe::DisneyDiffuse};
     if (diffuseOnly)
         lobes = {Lobe::DisneyDiffuse};
-    for (Lobe lobe : lobes) {
-        fprintf(stderr, "ltcfit: fitting %s, %dx%d cells, %d threads\n", lobe_name(lobe), s.size, s.size, s.threads);
-        const auto start = std::chrono::steady_clock::now();
-        tables.push_back(fit_table(lobe, s, [&](int done, int rows) {
-            // elapsed, and the time left if the remaining rows cost what the done ones did
-            double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            fprintf(stderr, "\rltcfit: %s rows %d/%d, %.0f s, about %.0f s left ", lobe_name(lobe), done, rows, t,
-                    t / done * (rows - done));
-            fflush(stderr);
-        }));
-        Stats st = error_stats(tables.back());
-        total += tables.back().seconds;
-        fprintf(stderr, "\nltcfit: %s done in %.1f s; relative L1 error mean %.4f median %.4f p95 %.4f max %.4f\n",
-                lobe_name(lobe), tables.back().seconds, st.mean, st.median, st.p95, st.max);
+    std::string names;
+    for (Lobe lobe : lobes)
+        names += std::string(names.empty() ? "" : ", ") + lobe_name(lobe);
+    fprintf(stderr, "ltcfit: fitting %s, %dx%d cells each, %d threads\n", names.c_str(), s.size, s.size, s.threads);
+    std::vector<Table> tables = fit_tables(lobes, s, [&](int done, int rows) {
+        // elapsed, and the time left if the remaining rows cost what the done ones did
+        double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+        fprintf(stderr, "\rltcfit: rows %d/%d, %.0f s, about %.0f s left ", done, rows, t, t / done * (rows - done));
+        fflush(stderr);
+    });
+    fprintf(stderr, "\n");
+    for (const Table &t : tables) {
+        Stats st = error_stats(t);
+        fprintf(stderr, "ltcfit: %s done at %.1f s, %.1f s CPU; relative L1 error mean %.4f median %.4f p95 %.4f max %.4f\n",
+                lobe_name(t.lobe), t.seconds, t.cpuSeconds, st.mean, st.median, st.p95, st.max);
         size_t worst = 0;
-        for (size_t i = 0; i < tables.back().cells.size(); i++)
-            if (tables.back().cells[i].error > tables.back().cells[worst].error)
+        for (size_t i = 0; i < t.cells.size(); i++)
+            if (t.cells[i].error > t.cells[worst].error)
                 worst = i;
-        fprintf(stderr, "ltcfit: %s worst cell: roughness %.3f, NoV %.4f\n", lobe_name(lobe),
+        fprintf(stderr, "ltcfit: %s worst cell: roughness %.3f, NoV %.4f\n", lobe_name(t.lobe),
                 cell_roughness(int(worst % size_t(s.size)), s.size), cell_nov(int(worst / size_t(s.size)), s.size));
     }
+    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
     fprintf(stderr, "ltcfit: total fitting time %.1f s wall, %.1f s CPU (all threads)\n", total,
             double(std::clock() - cpuStart) / CLOCKS_PER_SEC);
     const Table &diffuse = tables.back();
