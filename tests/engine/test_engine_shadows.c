@@ -271,12 +271,147 @@ static void bad_shadow_settings(void **state)
     ps->log.errors = 0;
 }
 
+// Fresh pages are zero, so a texel the engine never writes usually reads 0 (here: a ratio of
+// 1, no shadow) and goes unnoticed. lavapipe allocates device memory with malloc, so heap
+// memory freed just before a renderer is created is what its images get: fill some first with
+// 0x38003c00, which as a packed pair of half floats (shadow.comp's estimates) reads as a
+// shadowed estimate of 1 over an unshadowed one of 0.5 (NaN would read as a ratio of 1). glibc serves requests over its mmap
+// threshold with fresh pages; freeing one such block raises the threshold past the sizes used.
+static void poison_freed_heap(void)
+{
+    enum { BLOCKS = 24, BLOCK = 256 << 10 };
+    free(malloc(8u << 20));
+    void *blocks[BLOCKS];
+    for (int i = 0; i < BLOCKS; ++i) {
+        blocks[i] = malloc(BLOCK);
+        assert_non_null(blocks[i]);
+        uint32_t *words = blocks[i];
+        for (size_t k = 0; k < BLOCK / sizeof *words; ++k) words[k] = 0x38003c00u;
+    }
+    for (int i = 0; i < BLOCKS; ++i) free(blocks[i]);
+}
+
+// Shadows only remove light: on the bundled khr_materials scene (two lights, 13k triangles
+// of spheres over a floor) every pixel rendered with shadows is finite and at most the
+// unshadowed render's (the ratio estimator's S <= U per pixel, filtered with the same
+// weights), with and without the denoiser. Fresh contexts and renderers each round: the
+// failure this guards against (shadow texels left unwritten: a BVH of 4583-triangle leaves
+// made the trace exceed lavapipe's 65535 loop iterations per invocation, which cut the loop
+// over lights short) showed whatever memory the new images got, so it changed per round.
+static void khr_materials_shadows_only_darken(void **state)
+{
+    (void)state;
+    enum { SW = 96, SH = 64, ROUNDS = 6 };
+    float *unshadowed = malloc(SW * SH * 16), *shadowed = malloc(SW * SH * 16);
+    for (int round = 0; round < ROUNDS; ++round) {
+        test_log log = {0};
+        rtpbr_context *ctx = test_context(&log);
+        rtpbr_gpu_scene *scene = NULL;
+        assert_int_equal(rtpbr_gpu_scene_load_gltf(ctx, RTPBR_TEST_SCENE_DIR "/khr_materials.gltf", &scene),
+                         RTPBR_SUCCESS);
+        poison_freed_heap();
+        rtpbr_renderer *r = NULL;
+        assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = SW, .height = SH}, &r),
+                         RTPBR_SUCCESS);
+        assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
+        assert_int_equal(test_read_radiance(r, unshadowed, SW * SH * 16), RTPBR_SUCCESS);
+        const rtpbr_shadow_denoiser denoisers[2] = {RTPBR_SHADOW_DENOISER_DEFAULT, RTPBR_SHADOW_DENOISER_OFF};
+        for (int d = 0; d < 2; ++d) {
+            assert_int_equal(rtpbr_render(r, scene,
+                                          &(rtpbr_render_desc){.shadows = RTPBR_SHADOWS_ON,
+                                                               .shadow_denoiser = denoisers[d]}),
+                             RTPBR_SUCCESS);
+            assert_int_equal(test_read_radiance(r, shadowed, SW * SH * 16), RTPBR_SUCCESS);
+            int bad = 0, darker = 0;
+            for (int i = 0; i < SW * SH; ++i)
+                for (int c = 0; c < 3; ++c) {
+                    float s = shadowed[4 * i + c], u = unshadowed[4 * i + c];
+                    bad += !isfinite(s) || !(s >= 0.0f) || !(s <= u * (1.0f + 1e-4f) + 1e-6f);
+                    darker += s < 0.99f * u;
+                }
+            printf("round %d, denoiser %s: %d channel values not in [0, unshadowed], %d darker by > 1%%\n", round,
+                   d == 0 ? "on" : "off", bad, darker);
+            assert_int_equal(bad, 0);
+            assert_true(darker > SW * SH / 20); // the spheres do cast shadows
+        }
+        rtpbr_renderer_destroy(r);
+        rtpbr_gpu_scene_destroy(scene);
+        rtpbr_context_destroy(ctx);
+        assert_int_equal(log.validation, 0);
+        assert_int_equal(log.errors, 0);
+    }
+    free(unshadowed);
+    free(shadowed);
+}
+
+// Light adds up, shadows included: on khr_materials's geometry with two lights of our own
+// over the spheres, the render with both equals the sum of the renders with each alone (less
+// the one with none: the scene's emitters are seen in every render), up to the Monte Carlo
+// noise of each light's own samples (64 per pixel, no denoiser). The shadow pass traces every
+// shadowed light of every pixel: it does not run out of work budget on the second light (as
+// it did on lavapipe when a BVH of 4583-triangle leaves made each ray cost thousands of loop
+// iterations: the rim of every sphere then missed the second light's shadow).
+static void khr_materials_lights_add_up(void **state)
+{
+    (void)state;
+    enum { SW = 96, SH = 64 };
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_load_gltf(ctx, RTPBR_TEST_SCENE_DIR "/khr_materials.gltf", &scene),
+                     RTPBR_SUCCESS);
+    rtpbr_renderer *r = NULL;
+    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = SW, .height = SH}, &r),
+                     RTPBR_SUCCESS);
+    // Two 1.2 x 1.2 two-sided squares at height 2.2, over the left and the right spheres.
+    rtpbr_light_desc lights[2];
+    for (int l = 0; l < 2; ++l) {
+        float cx = l == 0 ? -1.5f : 1.5f, h = 0.6f, y = 2.2f;
+        lights[l] = (rtpbr_light_desc){.vertices = {{cx - h, y, -h}, {cx + h, y, -h}, {cx + h, y, h}, {cx - h, y, h}},
+                                       .vertex_count = 4, .emission = {4.0f, 4.0f, 4.0f}, .two_sided = 1};
+    }
+    const rtpbr_render_desc desc = {.shadows = RTPBR_SHADOWS_ON, .shadow_samples = 64,
+                                    .shadow_denoiser = RTPBR_SHADOW_DENOISER_OFF};
+    // Renders: 0 both lights, 1 the first, 2 the second, 3 none.
+    const rtpbr_light_desc *first[4] = {&lights[0], &lights[0], &lights[1], NULL};
+    const uint32_t counts[4] = {2, 1, 1, 0};
+    float *px[4];
+    for (int i = 0; i < 4; ++i) {
+        px[i] = malloc(SW * SH * 16);
+        assert_int_equal(rtpbr_gpu_scene_set_lights(scene, first[i], counts[i]), RTPBR_SUCCESS);
+        assert_int_equal(rtpbr_render(r, scene, &desc), RTPBR_SUCCESS);
+        assert_int_equal(test_read_radiance(r, px[i], SW * SH * 16), RTPBR_SUCCESS);
+    }
+    double diff = 0.0, total = 0.0, worst = 0.0;
+    for (int i = 0; i < SW * SH; ++i)
+        for (int c = 0; c < 3; ++c) {
+            double both = px[0][4 * i + c] - px[3][4 * i + c];
+            double sum = (px[1][4 * i + c] - px[3][4 * i + c]) + (px[2][4 * i + c] - px[3][4 * i + c]);
+            assert_true(isfinite(both) && isfinite(sum));
+            diff += fabs(both - sum);
+            total += sum;
+            worst = fmax(worst, fabs(both - sum));
+        }
+    printf("both lights against the sum of each alone: mean |difference| %.3f%% of the mean, largest %.4f\n",
+           100.0 * diff / total, worst);
+    assert_true(total > 0.0);
+    assert_true(diff <= 0.01 * total);
+    for (int i = 0; i < 4; ++i) free(px[i]);
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+    assert_int_equal(log.errors, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(bad_shadow_settings),
         cmocka_unit_test(shadows_off_unchanged),
         cmocka_unit_test(penumbra_closed_form),
+        cmocka_unit_test(khr_materials_shadows_only_darken),
+        cmocka_unit_test(khr_materials_lights_add_up),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
