@@ -240,16 +240,16 @@
 #define RTPBR_BINDING_SHADOW_NORMAL 3         // G-buffer 1: world normal xyz, roughness
 #define RTPBR_BINDING_SHADOW_BVH_NODES 4      // storage: rtpbr_shader_bvh_node[]
 #define RTPBR_BINDING_SHADOW_BVH_TRIANGLES 5  // storage: rtpbr_shader_bvh_triangle[]
-#define RTPBR_BINDING_SHADOW_ESTIMATES 6      // r32ui storage image array: packHalf2x16(shadowed, unshadowed)
+#define RTPBR_BINDING_SHADOW_ESTIMATES 6      // r32f storage image array: layer 2k shadowed, 2k + 1 unshadowed sum
 #define RTPBR_BINDING_SHADOW_RATIO 7          // r32f storage image array: shadowed / unshadowed
 #define RTPBR_SHADOW_BINDING_COUNT 8
 #define RTPBR_SHADOW_GROUP_SIZE 8             // 8 x 8 pixels per workgroup
 // Push constants of both shadow passes (std430; rtpbr_shader_shadow).
 #define RTPBR_SHADOW_FIELDS(F, S)                                                                 \
-    F(S, UINT, samples, ) /* per pixel and shadowed light, >= 1 */                                 \
+    F(S, UINT, samples, )      /* of this trace dispatch, per pixel and shadowed light, >= 1 */    \
     F(S, UINT, seed, )                                                                             \
-    F(S, UINT, radius, )  /* of the denoiser's (2 radius + 1)^2 window; 0: no denoising */        \
-    F(S, UINT, pad0, )
+    F(S, UINT, radius, )       /* of the denoiser's (2 radius + 1)^2 window; 0: no denoising */   \
+    F(S, UINT, first_sample, ) /* index of the dispatch's first sample; 0: the sums start at 0 */
 // A BVH node, the std430 element of RTPBR_BINDING_SHADOW_BVH_NODES (rtpbr_shader_bvh_node,
 // bvh.glsl; engine/src/bvh.c documents the tree).
 #define RTPBR_BVH_NODE_FIELDS(F, S)                                                               \

@@ -13,7 +13,13 @@
 // light by a hash (Cranley-Patterson rotation): stratified, and independent between pixels.
 // V traces a ray from x (lifted off the surface by a few depth ulps) to y_j, shortened by
 // 1e-3 of its length so that the light's own emitting triangles do not occlude it.
-// shadow_denoise.comp filters S and U and writes S / U.
+// One invocation: one pixel and one light (z = k), samples first_sample .. first_sample +
+// samples - 1 of the n, added to the sums n S and n U (layers 2k and 2k + 1; the first
+// dispatch writes them): passes/shadow.c splits n over several dispatches, because lavapipe
+// stops every loop of a shader once its invocations together have taken 65535 loop
+// iterations (llvmpipe's LP_MAX_TGSI_LOOP_ITERATIONS, one budget for all the loops of a
+// shader run) and silently skips what follows them.
+// shadow_denoise.comp filters n S and n U and writes their ratio, S / U.
 #include "rtpbr_shared.h"
 #include "shadow_common.glsl"
 #include "bvh.glsl"
@@ -34,13 +40,16 @@ uint pcg_hash(uint v)
 void main()
 {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
-    float depth = texelFetch(gbuffer_depth, pixel, 0).r;
-    uint lightCount = min(frame.shadow_light_count, frame.light_count);
-    if (depth >= 1.0f) {
-        for (uint k = 0u; k < lightCount; ++k) imageStore(shadow_estimates, ivec3(pixel, int(k)), uvec4(0u));
+    uint k = gl_GlobalInvocationID.z;
+    if (any(greaterThanEqual(uvec2(pixel), frame.size)) || k >= min(frame.shadow_light_count, frame.light_count))
         return;
+    ivec3 shadowedTexel = ivec3(pixel, int(2u * k)), unshadowedTexel = ivec3(pixel, int(2u * k + 1u));
+    float shadowed = 0.0f, unshadowed = 0.0f;
+    if (params.first_sample > 0u) {
+        shadowed = imageLoad(shadow_estimates, shadowedTexel).r;
+        unshadowed = imageLoad(shadow_estimates, unshadowedTexel).r;
     }
+    float depth = texelFetch(gbuffer_depth, pixel, 0).r;
     vec3 P = shadow_world_point(pixel, depth);
     vec3 N = normalize(texelFetch(gbuffer_normal, pixel, 0).xyz);
     // Lift x off the surface by the world distance of 4 depth ulps (as lighting_common.glsl's
@@ -50,46 +59,43 @@ void main()
     float lift = length(further.xyz / further.w - P) + 1e-4f * length(frame.camera_position.xyz - P);
     vec3 origin = P + N * lift;
 
-    for (uint k = 0u; k < lightCount; ++k) {
-        Light light = lights[k];
-        bool twoSided = light.two_sided != 0.0f;
-        float shadowed = 0.0f, unshadowed = 0.0f;
-        // Behind a one-sided light, or the light below the horizon everywhere: both stay 0.
-        bool facing = twoSided || dot(light.plane.xyz, origin) + light.plane.w > 0.0f;
-        uint h = pcg_hash(uint(pixel.x) + pcg_hash(uint(pixel.y) + pcg_hash(k + pcg_hash(params.seed))));
-        vec2 shift = vec2(float(h & 0xffffu), float(h >> 16u)) / 65536.0f;
-        vec3 v0 = light.vertices[0].xyz;
-        for (uint j = 0u; facing && j < params.samples; ++j) {
-            // R2: the lattice of the plastic number (Roberts 2018).
-            vec2 u = fract(shift + float(j) * vec2(0.7548776662f, 0.5698402910f));
-            // The fan triangle (v0, v_i, v_i+1) holding u.x of the area, and u.x rescaled in it.
-            float target = u.x * light.area;
-            float below = 0.0f;
-            vec3 a = light.vertices[1].xyz, b = light.vertices[2].xyz;
-            float triArea = 0.5f * length(cross(a - v0, b - v0));
-            for (uint i = 1u; i + 2u < light.vertex_count && below + triArea < target; ++i) {
-                below += triArea;
-                a = b;
-                b = light.vertices[i + 2u].xyz;
-                triArea = 0.5f * length(cross(a - v0, b - v0));
-            }
-            float ux = clamp((target - below) / max(triArea, 1e-30f), 0.0f, 1.0f);
-            // Uniform on the triangle (Turk 1990): sqrt warps the first coordinate.
-            float su = sqrt(ux);
-            vec3 y = v0 * (1.0f - su) + a * (su * (1.0f - u.y)) + b * (su * u.y);
-            vec3 d = y - origin;
-            float dist2 = dot(d, d);
-            float dist = sqrt(dist2);
-            vec3 l = d / dist;
-            float cosX = dot(N, l);
-            float cosY = -dot(light.plane.xyz, l);
-            cosY = twoSided ? abs(cosY) : cosY;
-            float w = cosX > 0.0f && cosY > 0.0f ? light.area * cosX * cosY / dist2 : 0.0f;
-            unshadowed += w;
-            if (w > 0.0f && !bvh_occluded(origin, d, 1.0f - 1e-3f)) shadowed += w;
+    Light light = lights[k];
+    bool twoSided = light.two_sided != 0.0f;
+    // Background (both stay 0); behind a one-sided light, or the light below the horizon
+    // everywhere: both stay 0.
+    bool facing = depth < 1.0f && (twoSided || dot(light.plane.xyz, origin) + light.plane.w > 0.0f);
+    uint h = pcg_hash(uint(pixel.x) + pcg_hash(uint(pixel.y) + pcg_hash(k + pcg_hash(params.seed))));
+    vec2 shift = vec2(float(h & 0xffffu), float(h >> 16u)) / 65536.0f;
+    vec3 v0 = light.vertices[0].xyz;
+    for (uint j = params.first_sample; facing && j < params.first_sample + params.samples; ++j) {
+        // R2: the lattice of the plastic number (Roberts 2018).
+        vec2 u = fract(shift + float(j) * vec2(0.7548776662f, 0.5698402910f));
+        // The fan triangle (v0, v_i, v_i+1) holding u.x of the area, and u.x rescaled in it.
+        float target = u.x * light.area;
+        float below = 0.0f;
+        vec3 a = light.vertices[1].xyz, b = light.vertices[2].xyz;
+        float triArea = 0.5f * length(cross(a - v0, b - v0));
+        for (uint i = 1u; i + 2u < light.vertex_count && below + triArea < target; ++i) {
+            below += triArea;
+            a = b;
+            b = light.vertices[i + 2u].xyz;
+            triArea = 0.5f * length(cross(a - v0, b - v0));
         }
-        float n = float(max(params.samples, 1u));
-        imageStore(shadow_estimates, ivec3(pixel, int(k)),
-                   uvec4(packHalf2x16(min(vec2(shadowed, unshadowed) / n, vec2(65504.0f))), 0u, 0u, 0u));
+        float ux = clamp((target - below) / max(triArea, 1e-30f), 0.0f, 1.0f);
+        // Uniform on the triangle (Turk 1990): sqrt warps the first coordinate.
+        float su = sqrt(ux);
+        vec3 y = v0 * (1.0f - su) + a * (su * (1.0f - u.y)) + b * (su * u.y);
+        vec3 d = y - origin;
+        float dist2 = dot(d, d);
+        float dist = sqrt(dist2);
+        vec3 l = d / dist;
+        float cosX = dot(N, l);
+        float cosY = -dot(light.plane.xyz, l);
+        cosY = twoSided ? abs(cosY) : cosY;
+        float w = cosX > 0.0f && cosY > 0.0f ? light.area * cosX * cosY / dist2 : 0.0f;
+        unshadowed += w;
+        if (w > 0.0f && !bvh_occluded(origin, d, 1.0f - 1e-3f)) shadowed += w;
     }
+    imageStore(shadow_estimates, shadowedTexel, vec4(shadowed));
+    imageStore(shadow_estimates, unshadowedTexel, vec4(unshadowed));
 }

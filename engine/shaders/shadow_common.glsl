@@ -12,7 +12,7 @@ layout(push_constant, std430) uniform ShadowParams {
 
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_DEPTH) uniform sampler2D gbuffer_depth;
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_NORMAL) uniform sampler2D gbuffer_normal;
-layout(set = 0, binding = RTPBR_BINDING_SHADOW_ESTIMATES, r32ui) uniform uimage2DArray shadow_estimates;
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_ESTIMATES, r32f) uniform image2DArray shadow_estimates;
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_RATIO, r32f) writeonly uniform image2DArray shadow_ratio_out;
 
 // The world-space point of a pixel at a depth (as lighting.comp).

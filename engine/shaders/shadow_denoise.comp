@@ -39,7 +39,8 @@ void main()
                 float nq = max(dot(N, normalize(texelFetch(gbuffer_normal, q, 0).xyz)), 0.0f);
                 float n2 = nq * nq, n4 = n2 * n2, n8 = n4 * n4;
                 float w = exp(-plane * plane) * n8 * n8;
-                sum += w * unpackHalf2x16(imageLoad(shadow_estimates, ivec3(q, int(k))).r);
+                sum += w * vec2(imageLoad(shadow_estimates, ivec3(q, int(2u * k))).r,
+                                imageLoad(shadow_estimates, ivec3(q, int(2u * k + 1u))).r);
             }
         imageStore(shadow_ratio_out, ivec3(pixel, int(k)), vec4(sum.y > 0.0f ? sum.x / sum.y : 1.0f));
     }

@@ -44,8 +44,12 @@ static void aabb_grow(aabb *b, const float p[3])
     }
 }
 
+// Merging an empty box (min > max, as aabb_empty) changes nothing: growing by its corners
+// would stretch b to +-FLT_MAX, and every SAH plane with an empty bin on one side would cost
+// infinity (no split found: leaves of thousands of triangles).
 static void aabb_merge(aabb *b, const aabb *o)
 {
+    if (o->min[0] > o->max[0]) return;
     aabb_grow(b, o->min);
     aabb_grow(b, o->max);
 }

@@ -239,7 +239,7 @@ struct rtpbr_renderer {
     rtpbr_timing timing;       // GPU timestamps (rtpbr_renderer_desc.timings), else all zero
     bool has_radiance;         // rtpbr_render or rtpbr_record has filled radiance_readback
     // Shadows (passes/shadow.c), at the shading size, RTPBR_MAX_SHADOWED_LIGHTS layers, GENERAL layout:
-    rtpbr_image shadow_estimates; // R32_UINT: packHalf2x16(shadowed, unshadowed estimate)
+    rtpbr_image shadow_estimates; // R32_SFLOAT, 2 layers per light: shadowed, unshadowed sum
     rtpbr_image shadow_ratio;     // R32_SFLOAT: denoised shadowed / unshadowed (lighting binding)
 };
 

@@ -271,12 +271,150 @@ static void bad_shadow_settings(void **state)
     ps->log.errors = 0;
 }
 
+// Shadows only remove light: on the bundled khr_materials scene (two lights, 13k triangles
+// of spheres over a floor) every pixel rendered with shadows is finite and at most the
+// unshadowed render's (the ratio estimator's S <= U per pixel, filtered with the same
+// weights), with and without the denoiser, in fresh contexts and renderers (the rtpbr-render
+// runs that showed NaNs and ratios far above 1 read shadow texels the trace had left
+// unwritten, so whatever memory the images got; in this process that memory reads as zeros,
+// a ratio of 1, so khr_materials_lights_add_up is the test that catches that failure here).
+static void khr_materials_shadows_only_darken(void **state)
+{
+    (void)state;
+    enum { SW = 96, SH = 64, ROUNDS = 3 };
+    float *unshadowed = malloc(SW * SH * 16), *shadowed = malloc(SW * SH * 16);
+    for (int round = 0; round < ROUNDS; ++round) {
+        test_log log = {0};
+        rtpbr_context *ctx = test_context(&log);
+        rtpbr_gpu_scene *scene = NULL;
+        assert_int_equal(rtpbr_gpu_scene_load_gltf(ctx, RTPBR_TEST_SCENE_DIR "/khr_materials.gltf", &scene),
+                         RTPBR_SUCCESS);
+        rtpbr_renderer *r = NULL;
+        assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = SW, .height = SH}, &r),
+                         RTPBR_SUCCESS);
+        assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
+        assert_int_equal(test_read_radiance(r, unshadowed, SW * SH * 16), RTPBR_SUCCESS);
+        const rtpbr_shadow_denoiser denoisers[2] = {RTPBR_SHADOW_DENOISER_DEFAULT, RTPBR_SHADOW_DENOISER_OFF};
+        for (int d = 0; d < 2; ++d) {
+            assert_int_equal(rtpbr_render(r, scene,
+                                          &(rtpbr_render_desc){.shadows = RTPBR_SHADOWS_ON,
+                                                               .shadow_denoiser = denoisers[d]}),
+                             RTPBR_SUCCESS);
+            assert_int_equal(test_read_radiance(r, shadowed, SW * SH * 16), RTPBR_SUCCESS);
+            int bad = 0, darker = 0;
+            for (int i = 0; i < SW * SH; ++i)
+                for (int c = 0; c < 3; ++c) {
+                    float s = shadowed[4 * i + c], u = unshadowed[4 * i + c];
+                    bad += !isfinite(s) || !(s >= 0.0f) || !(s <= u * (1.0f + 1e-4f) + 1e-6f);
+                    darker += s < 0.99f * u;
+                }
+            printf("round %d, denoiser %s: %d channel values not in [0, unshadowed], %d darker by > 1%%\n", round,
+                   d == 0 ? "on" : "off", bad, darker);
+            assert_int_equal(bad, 0);
+            assert_true(darker > SW * SH / 20); // the spheres do cast shadows
+        }
+        rtpbr_renderer_destroy(r);
+        rtpbr_gpu_scene_destroy(scene);
+        rtpbr_context_destroy(ctx);
+        assert_int_equal(log.validation, 0);
+        assert_int_equal(log.errors, 0);
+    }
+    free(unshadowed);
+    free(shadowed);
+}
+
+// Light adds up, shadows included: on khr_materials's geometry with eight lights of our own
+// (RTPBR_MAX_SHADOWED_LIGHTS, all shadowed) over the spheres, the render with all of them
+// equals the sum of the renders with each alone (less the one without lights: the scene's
+// emitters are seen in every render), up to the Monte Carlo noise of each light's own samples
+// (no denoiser). So the shadow pass traces every sample of every light of every pixel: it does
+// not run out of lavapipe's loop budget (65535 iterations per shader run, after which every
+// loop stops and the later lights' texels go unwritten), as it did at 64 samples when a BVH of
+// 4583-triangle leaves made each ray cost thousands of iterations, and at 4096 samples with a
+// sound BVH when one dispatch traced all samples of all lights.
+enum { ADD_LIGHTS = 8 };
+_Static_assert(ADD_LIGHTS == RTPBR_MAX_SHADOWED_LIGHTS, "every light shadowed");
+
+// Mean |all - sum of each alone| over the mean of the sum (each less the render without
+// lights), per channel, at `samples` shadow samples without the denoiser.
+static double lights_add_up_error(rtpbr_renderer *r, rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
+                                  uint32_t samples, int w, int h)
+{
+    const rtpbr_render_desc desc = {.shadows = RTPBR_SHADOWS_ON, .shadow_samples = samples,
+                                    .shadow_denoiser = RTPBR_SHADOW_DENOISER_OFF};
+    const size_t n = (size_t)w * h * 4;
+    float *all = malloc(n * sizeof(float)), *none = malloc(n * sizeof(float)), *one = malloc(n * sizeof(float));
+    double *sum = calloc(n, sizeof(double));
+    assert_int_equal(rtpbr_gpu_scene_set_lights(scene, NULL, 0), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_render(r, scene, &desc), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, none, n * sizeof(float)), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_gpu_scene_set_lights(scene, lights, ADD_LIGHTS), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_render(r, scene, &desc), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, all, n * sizeof(float)), RTPBR_SUCCESS);
+    for (int l = 0; l < ADD_LIGHTS; ++l) {
+        assert_int_equal(rtpbr_gpu_scene_set_lights(scene, &lights[l], 1), RTPBR_SUCCESS);
+        assert_int_equal(rtpbr_render(r, scene, &desc), RTPBR_SUCCESS);
+        assert_int_equal(test_read_radiance(r, one, n * sizeof(float)), RTPBR_SUCCESS);
+        for (size_t i = 0; i < n; ++i) sum[i] += (double)one[i] - none[i];
+    }
+    double diff = 0.0, total = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        if (i % 4 == 3) continue; // alpha
+        assert_true(isfinite(all[i]) && isfinite(sum[i]));
+        diff += fabs(((double)all[i] - none[i]) - sum[i]);
+        total += sum[i];
+    }
+    free(all);
+    free(none);
+    free(one);
+    free(sum);
+    assert_true(total > 0.0);
+    return diff / total;
+}
+
+static void khr_materials_lights_add_up(void **state)
+{
+    (void)state;
+    enum { SW = 32, SH = 24 }; // the loop budget is per shader run: a small image suffices
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_load_gltf(ctx, RTPBR_TEST_SCENE_DIR "/khr_materials.gltf", &scene),
+                     RTPBR_SUCCESS);
+    // 0.8 x 0.8 two-sided squares at height 2.2 in a 4 x 2 grid over the spheres.
+    rtpbr_light_desc lights[ADD_LIGHTS];
+    for (int l = 0; l < ADD_LIGHTS; ++l) {
+        float cx = -3.0f + 2.0f * (float)(l % 4), cz = l < 4 ? -0.8f : 0.8f, h = 0.4f, y = 2.2f;
+        lights[l] = (rtpbr_light_desc){
+            .vertices = {{cx - h, y, cz - h}, {cx + h, y, cz - h}, {cx + h, y, cz + h}, {cx - h, y, cz + h}},
+            .vertex_count = 4, .emission = {2.0f, 2.0f, 2.0f}, .two_sided = 1};
+    }
+    for (uint32_t samples = 64; samples <= RTPBR_MAX_SHADOW_SAMPLES; samples *= 64) {
+        // A fresh renderer each time: texels a render leaves unwritten do not hold another
+        // sample count's valid estimates.
+        rtpbr_renderer *r = NULL;
+        assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = SW, .height = SH}, &r),
+                         RTPBR_SUCCESS);
+        double error = lights_add_up_error(r, scene, lights, samples, SW, SH);
+        rtpbr_renderer_destroy(r);
+        printf("%u samples: all %d lights against the sum of each alone: mean |difference| %.3f%% of the mean\n",
+               samples, ADD_LIGHTS, 100.0 * error);
+        assert_true(error <= 0.01);
+    }
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+    assert_int_equal(log.errors, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(bad_shadow_settings),
         cmocka_unit_test(shadows_off_unchanged),
         cmocka_unit_test(penumbra_closed_form),
+        cmocka_unit_test(khr_materials_shadows_only_darken),
+        cmocka_unit_test(khr_materials_lights_add_up),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

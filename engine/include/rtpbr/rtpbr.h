@@ -393,8 +393,8 @@ typedef struct rtpbr_renderer_desc {
     int timings;
 } rtpbr_renderer_desc;
 // A renderer holds, besides its G-buffer and radiance images, the shadow passes' estimates
-// and ratios: 2 x 4 bytes per shading pixel and shadowed light (RTPBR_MAX_SHADOWED_LIGHTS),
-// 64 bytes per shading pixel, allocated at creation whether or not shadows are used.
+// and ratios: 3 x 4 bytes per shading pixel and shadowed light (RTPBR_MAX_SHADOWED_LIGHTS),
+// 96 bytes per shading pixel, allocated at creation whether or not shadows are used.
 
 #define RTPBR_MAX_SUPERSAMPLE 4u
 

@@ -3,13 +3,18 @@
 // run between the G-buffer and the lighting pass:
 //   1. shadow.comp traces, per pixel and shadowed light, rtpbr_render_desc.shadow_samples
 //      rays to points on the light against the scene's BVH (../bvh.c) and writes the shadowed
-//      and unshadowed estimates of the light's cosine-weighted irradiance (layer = light);
+//      and unshadowed sums of the light's cosine-weighted irradiance samples (layers 2 light
+//      and 2 light + 1), in dispatches of at most RTPBR_SHADOW_SAMPLES_PER_DISPATCH samples
+//      (one light per z slice): lavapipe ends every loop of a shader run after 65535 loop
+//      iterations in all, so one dispatch tracing every sample of every light cut its loops
+//      short and left later lights' texels unwritten (16 samples x a few hundred BVH steps
+//      stays well inside);
 //   2. shadow_denoise.comp filters both estimates with the same depth- and normal-guided
 //      weights and writes their ratio (layer = light).
 // The lighting passes multiply light i's result by the ratio of layer i (shaders/
 // shadow_ratio.glsl, binding RTPBR_BINDING_LIGHT_SHADOW_RATIO) for i < shadow_light_count
 // of the frame block. Lights 0 .. RTPBR_MAX_SHADOWED_LIGHTS - 1 cast shadows.
-// Memory: 8 bytes per shading pixel and shadowed-light slot (64 bytes per pixel), allocated
+// Memory: 12 bytes per shading pixel and shadowed-light slot (96 bytes per pixel), allocated
 // with the renderer.
 #include "passes.h"
 
@@ -17,6 +22,8 @@
 #include "pipeline.h"
 #include "rtpbr_spirv_shadow_comp.h"
 #include "rtpbr_spirv_shadow_denoise_comp.h"
+
+enum { RTPBR_SHADOW_SAMPLES_PER_DISPATCH = 16 };
 
 #define COMPUTE(binding, type) {binding, VK_DESCRIPTOR_TYPE_##type, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL}
 static const VkDescriptorSetLayoutBinding bindings[] = {
@@ -73,6 +80,7 @@ static void record_initial_layouts(VkCommandBuffer cmd, void *user)
     const rtpbr_renderer *r = user;
     VkImageMemoryBarrier barriers[2];
     const VkImage images[2] = {r->shadow_estimates.image, r->shadow_ratio.image};
+    const uint32_t layers[2] = {2 * RTPBR_MAX_SHADOWED_LIGHTS, RTPBR_MAX_SHADOWED_LIGHTS};
     for (int i = 0; i < 2; ++i)
         barriers[i] = (VkImageMemoryBarrier){
             .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
@@ -82,7 +90,7 @@ static void record_initial_layouts(VkCommandBuffer cmd, void *user)
             .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
             .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
             .image = images[i],
-            .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, RTPBR_MAX_SHADOWED_LIGHTS},
+            .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers[i]},
         };
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, NULL, 0,
                          NULL, 2, barriers);
@@ -92,8 +100,8 @@ rtpbr_result rtpbr_shadow_renderer_init(rtpbr_renderer *r)
 {
     rtpbr_context *ctx = r->context;
     rtpbr_result result = RTPBR_SUCCESS;
-    RTPBR_TRY(rtpbr_image_create_layers(ctx, r->shade_width, r->shade_height, RTPBR_MAX_SHADOWED_LIGHTS,
-                                        VK_FORMAT_R32_UINT, VK_IMAGE_USAGE_STORAGE_BIT, &r->shadow_estimates));
+    RTPBR_TRY(rtpbr_image_create_layers(ctx, r->shade_width, r->shade_height, 2 * RTPBR_MAX_SHADOWED_LIGHTS,
+                                        VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, &r->shadow_estimates));
     RTPBR_TRY(rtpbr_image_create_layers(ctx, r->shade_width, r->shade_height, RTPBR_MAX_SHADOWED_LIGHTS,
                                         VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                                         &r->shadow_ratio));
@@ -134,8 +142,8 @@ void rtpbr_shadow_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
                                   scene->bvh_triangles.buffer, VK_WHOLE_SIZE);
 }
 
-// A memory barrier between compute dispatches on one of the shadow images (all layers).
-static void compute_barrier(VkCommandBuffer cmd, VkImage image, VkAccessFlags src, VkAccessFlags dst)
+// A memory barrier between compute dispatches on one of the shadow images (all its layers).
+static void compute_barrier(VkCommandBuffer cmd, VkImage image, uint32_t layers, VkAccessFlags src, VkAccessFlags dst)
 {
     VkImageMemoryBarrier barrier = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
@@ -146,7 +154,7 @@ static void compute_barrier(VkCommandBuffer cmd, VkImage image, VkAccessFlags sr
         .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
         .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
         .image = image,
-        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, RTPBR_MAX_SHADOWED_LIGHTS},
+        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers},
     };
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, NULL,
                          0, NULL, 1, &barrier);
@@ -155,22 +163,35 @@ static void compute_barrier(VkCommandBuffer cmd, VkImage image, VkAccessFlags sr
 void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCommandBuffer cmd)
 {
     const rtpbr_context *ctx = r->context;
+    const uint32_t samples = desc->shadow_samples ? desc->shadow_samples : RTPBR_DEFAULT_SHADOW_SAMPLES;
+    const uint32_t lights = ((const rtpbr_shader_frame *)r->frame.mapped)->shadow_light_count; // this frame's
+    const uint32_t estimate_layers = 2 * RTPBR_MAX_SHADOWED_LIGHTS;
     rtpbr_shader_shadow params = {
-        .samples = desc->shadow_samples ? desc->shadow_samples : RTPBR_DEFAULT_SHADOW_SAMPLES,
         .seed = desc->shadow_seed,
         .radius = desc->shadow_denoiser == RTPBR_SHADOW_DENOISER_OFF ? 0 : RTPBR_SHADOW_DENOISE_RADIUS,
     };
     uint32_t gx = (r->shade_width + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE;
     uint32_t gy = (r->shade_height + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE;
-    // The previous frame's denoise read the estimates, its lighting pass read the ratios.
-    compute_barrier(cmd, r->shadow_estimates.image, VK_ACCESS_SHADER_READ_BIT, VK_ACCESS_SHADER_WRITE_BIT);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.layout, 0, 1, &r->shadow_set.set, 0, NULL);
-    vkCmdPushConstants(cmd, ctx->shadow.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.trace);
-    vkCmdDispatch(cmd, gx, gy, 1);
-    compute_barrier(cmd, r->shadow_estimates.image, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
-    compute_barrier(cmd, r->shadow_ratio.image, VK_ACCESS_SHADER_READ_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+    // The previous frame's denoise read the sums; each dispatch adds to the previous one's.
+    for (uint32_t first = 0; first < samples; first += RTPBR_SHADOW_SAMPLES_PER_DISPATCH) {
+        compute_barrier(cmd, r->shadow_estimates.image, estimate_layers,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        params.first_sample = first;
+        params.samples = samples - first < RTPBR_SHADOW_SAMPLES_PER_DISPATCH ? samples - first
+                                                                            : RTPBR_SHADOW_SAMPLES_PER_DISPATCH;
+        vkCmdPushConstants(cmd, ctx->shadow.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
+        vkCmdDispatch(cmd, gx, gy, lights);
+    }
+    compute_barrier(cmd, r->shadow_estimates.image, estimate_layers, VK_ACCESS_SHADER_WRITE_BIT,
+                    VK_ACCESS_SHADER_READ_BIT);
+    // The previous frame's lighting pass read the ratios.
+    compute_barrier(cmd, r->shadow_ratio.image, RTPBR_MAX_SHADOWED_LIGHTS, VK_ACCESS_SHADER_READ_BIT,
+                    VK_ACCESS_SHADER_WRITE_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.denoise);
     vkCmdDispatch(cmd, gx, gy, 1);
-    compute_barrier(cmd, r->shadow_ratio.image, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
+    compute_barrier(cmd, r->shadow_ratio.image, RTPBR_MAX_SHADOWED_LIGHTS, VK_ACCESS_SHADER_WRITE_BIT,
+                    VK_ACCESS_SHADER_READ_BIT);
 }
