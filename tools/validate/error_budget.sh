@@ -22,7 +22,7 @@
 #   Mss + (O - Oss)      neither (the noise floor of these composites)
 #   Mss against Oss      the engine's single scattering without LTC (should be noise only)
 # Composites are built with oiiotool (negative values clamped to 0). Slow: the oracle twice
-# and the Monte Carlo pass twice (about 6 minutes on 2 idle cores at the defaults).
+# and the Monte Carlo pass twice (about 4 minutes on the 2 shared cores of 2026-12-01 at the defaults).
 set -euo pipefail
 BUILD=${1:-build}
 SCENE=${2:-quad_light}
