@@ -25,9 +25,14 @@
 //   rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] [--quick] [--threads T]
 //                   [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction |
 //                    --hybrid-correction] [--correction-bins E A] [--correction-samples N]
+//                   [--second-lobe | --second-lobe-joint]
 // The last four are the experiments of issue 19's second round (shaderlib/luts/ltc.md): the
 // LTC fitted at each case's exact (roughness, NoV) instead of the table's interpolation, and
 // the LTC corrected by the direction of the lit part of the light (ltc_floor.hpp).
+// --second-lobe, --second-lobe-joint (third round): a second LTC lobe per (roughness, NoV)
+// cell, fitted on other floors to the table LTC's residual, or together with a refitted first
+// lobe, and the sweep's floors of nine grazing cells with it (ltc_floor_lobe2.hpp); prints its
+// own table and nothing else.
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -38,6 +43,7 @@
 
 #include "ltc_fit.hpp"
 #include "ltc_floor.hpp"
+#include "ltc_floor_lobe2.hpp"
 #include "rtpbr_tools/image.hpp"
 
 using namespace ltcfloor;
@@ -61,7 +67,7 @@ void diverging(float e, unsigned char rgb[3]) {
 int main(int argc, char **argv) {
     Lobe lobe = Lobe::GGX;
     std::string tablesPath, png;
-    bool quick = false, exactCells = false;
+    bool quick = false, exactCells = false, secondLobe = false, secondLobeJoint = false;
     int correctionAzimuths = 0;
     bool residual = false, hybrid = false;
     int correctionElevations = 16, correctionSamples = 512;
@@ -85,6 +91,10 @@ int main(int argc, char **argv) {
             png = argv[++i];
         else if (!strcmp(argv[i], "--quick"))
             quick = true;
+        else if (!strcmp(argv[i], "--second-lobe")) // experiment, see ltc_floor_lobe2.hpp
+            secondLobe = true;
+        else if (!strcmp(argv[i], "--second-lobe-joint")) // the same, both lobes refitted together
+            secondLobe = secondLobeJoint = true;
         else if (!strcmp(argv[i], "--exact-cells")) // no table interpolation: each case's own fit
             exactCells = true;
         else if (!strcmp(argv[i], "--elevation-correction")) // experiment, see ltc_floor.hpp
@@ -122,7 +132,7 @@ int main(int argc, char **argv) {
             }
         } else {
             fprintf(stderr, "usage: rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] "
-                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction] [--correction-bins E A] [--correction-samples N]\n");
+                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction] [--correction-bins E A] [--correction-samples N] [--second-lobe | --second-lobe-joint]\n");
             return 2;
         }
     }
@@ -138,6 +148,42 @@ int main(int argc, char **argv) {
         tab = lobe == Lobe::GGX        ? Tables{packed.ggx1.data(), packed.ggx2.data()}
               : lobe == Lobe::Beckmann ? Tables{packed.beckmann1.data(), packed.beckmann2.data()}
                                        : Tables{packed.diffuse1.data(), packed.diffuse2.data()};
+    }
+    if (secondLobe) { // issue 19, round 3: a second lobe fitted to the residual (ltc_floor_lobe2.hpp)
+        std::vector<std::pair<float, float>> keys;
+        for (float v : {0.1f, 0.2f, 0.3f})
+            for (float r : quick ? std::vector<float>{0.5f} : std::vector<float>{0.3f, 0.5f, 0.8f})
+                keys.push_back({r, v});
+        std::vector<Lobe2Result> res(keys.size());
+        std::atomic<size_t> nextKey{0}, doneKeys{0};
+        std::mutex pm;
+        std::vector<std::thread> fitters;
+        for (int t = 0; t < threads; t++)
+            fitters.emplace_back([&]() {
+                for (size_t k = nextKey++; k < keys.size(); k = nextKey++) {
+                    const float r = keys[k].first, v = keys[k].second;
+                    res[k] = lobe2_cell(lobe, r, v, ltcmc::fetch(tab.t1, rtpbr::LTC_LutCoord(v, r)),
+                                        ltcmc::fetch(tab.t2, rtpbr::LTC_LutCoord(v, r)), quick ? 100 : 400, secondLobeJoint);
+                    std::lock_guard<std::mutex> lock(pm);
+                    fprintf(stderr, "\rrtpbr-ltc-floor: second lobe %zu/%zu", size_t(++doneKeys), keys.size());
+                }
+            });
+        for (std::thread &t : fitters)
+            t.join();
+        fprintf(stderr, "\n");
+        printf("%s floor error, table LTC -> %s fitted per cell on other floors (training: mean floor error "
+               "before -> after; lobe: m00 m02 m20 m22 a):\n\n",
+               ltcmc::lobe_name(lobe), secondLobeJoint ? "two lobes (the first refitted with the second)"
+                                                       : "table LTC + a second lobe fitted to the residual");
+        printf("| NoV | r | 2 deg | 5 deg | 10 deg | 20 deg | 40 deg | training | lobe |\n|---|---|---|---|---|---|---|---|---|\n");
+        for (const Lobe2Result &x : res) {
+            printf("| %.1f | %.1f |", double(x.nov), double(x.roughness));
+            for (size_t e = 0; e < x.elevs.size(); e++)
+                printf(" %.1f -> **%.1f** |", 100 * x.before[e], 100 * x.after[e]);
+            printf(" %.1f -> %.1f | %.3g %.3g %.3g %.3g %.3g |\n", 100 * x.trainBefore, 100 * x.trainAfter, x.m[0], x.m[1],
+                   x.m[2], x.m[3], x.m[4]);
+        }
+        return 0;
     }
     const std::vector<float> rough = quick ? std::vector<float>{0.3f, 0.5f, 0.8f}
                                            : std::vector<float>{0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.8f};

@@ -55,11 +55,12 @@ inline void gauss_legendre(double a, double b, int panels, std::vector<double> &
 // about dy / (V.z + L.z) for a lateral step dy of L): there y = p.y + w sinh(t) with w = 1e-3
 // puts the nodes densest at the plane of incidence (y = p.y) and still covers the whole
 // light; `sub` panels of 8 points along x, 2 sub along t.
-inline double quadrature(const ltcmc::Brdf &brdf, float3 V, float3 p, float3 centre, int sub) {
+// `half`: the light's half-size (kHalf unless given; rtpbr-ltc-floor --second-lobe trains on others).
+inline double quadrature(const ltcmc::Brdf &brdf, float3 V, float3 p, float3 centre, int sub, double half = kHalf) {
     std::vector<double> xs, wx, ts, wt;
-    gauss_legendre(centre.x - kHalf, centre.x + kHalf, sub, xs, wx);
+    gauss_legendre(centre.x - half, centre.x + half, sub, xs, wx);
     const double w = 1e-3;
-    gauss_legendre(std::asinh((centre.y - kHalf - p.y) / w), std::asinh((centre.y + kHalf - p.y) / w), 2 * sub, ts, wt);
+    gauss_legendre(std::asinh((centre.y - half - p.y) / w), std::asinh((centre.y + half - p.y) / w), 2 * sub, ts, wt);
     double sum = 0.0;
     for (size_t i = 0; i < xs.size(); i++)
         for (size_t j = 0; j < ts.size(); j++) {
