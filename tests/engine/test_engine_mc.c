@@ -367,6 +367,76 @@ static void mc_many_lights(void **state)
     assert_int_equal(log.validation, 0);
 }
 
+// The LTC pass under the same budget at its limits: RTPBR_MAX_LIGHTS identical octagons (the
+// largest polygons) covering every tile, on full-class materials (KHR clearcoat + sheen: three
+// LTC lobe passes per light; Disney + coat: specular, Burley and coat), against one octagon of
+// RTPBR_MAX_LIGHTS times the emission: the same image (a loop cut short would drop lights).
+static void ltc_max_lights(void **state)
+{
+    (void)state;
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    float plane[12];
+    square_positions(4.0f, 0.0f, plane);
+    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    const rtpbr_material_desc materials[2] = {
+        {.base_color = {0.8f, 0.3f, 0.2f}, .roughness = 0.5f, .clearcoat = 1.0f, .clearcoat_roughness = 0.3f,
+         .sheen_color = {0.5f, 0.5f, 0.5f}, .sheen_roughness = 0.5f},
+        {.base_color = {0.7f, 0.5f, 0.3f}, .roughness = 0.5f, .model = RTPBR_MATERIAL_DISNEY,
+         .disney = {.subsurface = 0.5f, .sheen = 1.0f, .clearcoat = 1.0f, .clearcoat_gloss = 0.5f}},
+    };
+    static rtpbr_light_desc lights[RTPBR_MAX_LIGHTS];
+    for (uint32_t i = 0; i < RTPBR_MAX_LIGHTS; ++i) {
+        lights[i] = (rtpbr_light_desc){.vertex_count = 8, .emission = {0.01f, 0.02f, 0.03f}};
+        for (int k = 0; k < 8; ++k) { // facing down
+            lights[i].vertices[k][0] = (float)(3.0 * cos(-k * M_PI / 4.0));
+            lights[i].vertices[k][1] = (float)(3.0 * sin(-k * M_PI / 4.0));
+            lights[i].vertices[k][2] = 1.0f;
+        }
+    }
+    rtpbr_light_desc one = lights[0];
+    for (int c = 0; c < 3; ++c) one.emission[c] *= (float)RTPBR_MAX_LIGHTS;
+    rtpbr_camera_desc camera = {.position = {0.0f, -0.3f, 0.9f}, .target = {0.0f, 0.0f, 0.0f}, .yfov = 1.0f,
+                                .znear = 0.1f, .zfar = 100.0f};
+    enum { W = 32, H = 32 };
+    rtpbr_renderer *r = NULL;
+    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    for (int m = 0; m < 2; ++m) {
+        float *px[2];
+        for (int many = 0; many < 2; ++many) {
+            rtpbr_gpu_scene *scene = NULL;
+            assert_int_equal(rtpbr_gpu_scene_create(
+                                 ctx,
+                                 &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1, .materials = &materials[m],
+                                                         .material_count = 1, .lights = many ? lights : &one,
+                                                         .light_count = many ? RTPBR_MAX_LIGHTS : 1,
+                                                         .cameras = &camera, .camera_count = 1},
+                                 &scene),
+                             RTPBR_SUCCESS);
+            px[many] = render_radiance(r, scene, &(rtpbr_render_desc){.light_cull_form_factor = -1.0f}, W, H);
+            rtpbr_gpu_scene_destroy(scene);
+        }
+        double worst = 0.0, mean = 0.0;
+        for (int p = 0; p < W * H; ++p)
+            for (int c = 0; c < 3; ++c) {
+                double a = px[1][4 * p + c], b = px[0][4 * p + c];
+                double rel = fabs(a - b) / fmax(b, 1e-6);
+                if (rel > worst) worst = rel;
+                mean += b / (3.0 * W * H);
+            }
+        printf("LTC, %s: %u identical octagons against one of %u times the emission: largest relative difference "
+               "%.2e (image mean %.4f)\n",
+               m == 0 ? "KHR clearcoat + sheen" : "Disney + coat", RTPBR_MAX_LIGHTS, RTPBR_MAX_LIGHTS, worst, mean);
+        assert_true(mean > 0.01);
+        assert_true(worst < 1e-3);
+        free(px[0]);
+        free(px[1]);
+    }
+    rtpbr_renderer_destroy(r);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -375,6 +445,7 @@ int main(void)
         cmocka_unit_test(mc_limits),
         cmocka_unit_test(mc_max_samples),
         cmocka_unit_test(mc_many_lights),
+        cmocka_unit_test(ltc_max_lights),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
