@@ -36,7 +36,11 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER1) uniform sampler2D gbuffe
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER2) uniform sampler2D gbuffer2;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER3) uniform sampler2D gbuffer3;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_DEPTH) uniform sampler2D gbuffer_depth;
-layout(set = 0, binding = RTPBR_BINDING_LIGHT_RADIANCE, rgba32f) writeonly uniform image2D radiance;
+// lighting_mc.comp adds to it across dispatches: it defines RTPBR_RADIANCE_ACCESS empty.
+#ifndef RTPBR_RADIANCE_ACCESS
+#define RTPBR_RADIANCE_ACCESS writeonly
+#endif
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_RADIANCE, rgba32f) RTPBR_RADIANCE_ACCESS uniform image2D radiance;
 
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_E) uniform sampler2D lut_kc_e;
 layout(set = 0, binding = RTPBR_BINDING_LUT_KC_EAVG) uniform sampler2D lut_kc_eavg;

@@ -21,9 +21,13 @@
 // (Fs + Fd), Fs, Fd the largest channel of the specular lobe's average Fresnel and of the
 // diffuse colour: 0 for a surface without specular (pure light sampling), 1/2 for a metal.
 // No per-tile culling: every light is summed at every pixel (lights behind a one-sided light's
-// plane are skipped per pixel, where the integrand is 0). Kept flat (no nested early returns:
+// plane are skipped per pixel, where the integrand is 0). The host splits the pass into
+// dispatches over ranges of lights and samples (lavapipe ends every loop of a shader run after
+// 65535 iterations in all; engine/src/passes/lighting_mc.c): each adds its partial sums,
+// already divided by the total sample count, to the radiance image. Kept flat (no nested early returns:
 // lavapipe's gallivm limits control-flow nesting, see tests/shaderlib/gpu/kernel.h).
 #include "rtpbr_shared.h"
+#define RTPBR_RADIANCE_ACCESS // read and written: the dispatches after the first add to it
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
 #include "rtpbr/fresnel.h"
@@ -61,8 +65,8 @@ float max3(vec3 v)
     return max(v.x, max(v.y, v.z));
 }
 
-// Reflected radiance from every polygonal light at P, estimated with mc.samples directions
-// per light.
+// Reflected radiance from this dispatch's lights at P: samples mc.first_sample ..
+// + mc.sample_count - 1 of the mc.samples directions per light of the estimate.
 vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
 {
     // The material terms of lighting_common.glsl (those of lighting.comp's shade_lights).
@@ -121,7 +125,8 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
 
     uint samples = max(mc.samples, 1u);
     vec3 sum = vec3(0.0f);
-    for (uint i = 0u; i < frame.light_count; ++i) {
+    uint lightEnd = min(mc.first_light + mc.light_count, frame.light_count);
+    for (uint i = mc.first_light; i < lightEnd; ++i) {
         // The light's fields are read from the buffer where they are used (no private copy).
         uint count = min(lights[i].vertex_count, uint(RTPBR_SHADER_MAX_POLYGON_VERTICES));
         bool twoSided = lights[i].two_sided != 0.0f;
@@ -133,9 +138,9 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
         for (uint k = 1u; k + 1u < count; ++k)
             area += mc_fan_area(v0, lights[i].vertices[k].xyz, lights[i].vertices[k + 1u].xyz);
         bool lit = count >= 3u && area > 0.0f && (twoSided ? side != 0.0f : side > 0.0f);
-        uint n = lit ? samples : 0u;
+        uint n = lit ? mc.sample_count : 0u;
 
-        uint rng = mc_seed(pixel, i, mc.seed);
+        uint rng = mc_seed(pixel, i, mc.seed) * mc.skip_mul + mc.skip_add; // at mc.first_sample
         vec3 lightSum = vec3(0.0f);
         for (uint s = 0u; s < n; ++s) {
             float uStrategy = mc_uniform(rng);
@@ -215,6 +220,7 @@ void main()
     vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
     vec3 P = world.xyz / world.w;
 
+    bool first = mc.first_light == 0u && mc.first_sample == 0u;
     vec4 result = vec4(frame.background.rgb, 0.0f);
     if (inside && surface) {
         vec4 g0 = texelFetch(gbuffer0, pixel, 0);
@@ -225,7 +231,8 @@ void main()
         // NoV clamped below as the LTC table lookup does.
         Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], clamp(dot(N, V), 1e-4f, 1.0f),
                                   texelFetch(gbuffer3, pixel, 0).xyz);
-        result = vec4(g2.rgb + shade_lights_mc(lifted_point(ndc, depth, P, N), N, V, s, uvec2(pixel)), 1.0f);
+        vec3 reflected = shade_lights_mc(lifted_point(ndc, depth, P, N), N, V, s, uvec2(pixel));
+        result = first ? vec4(g2.rgb + reflected, 1.0f) : imageLoad(radiance, pixel) + vec4(reflected, 0.0f);
     }
-    if (inside) imageStore(radiance, pixel, result);
+    if (inside && (first || surface)) imageStore(radiance, pixel, result);
 }

@@ -191,12 +191,21 @@
 #define RTPBR_TILE_CLASS_FULL 2  // any material
 #define RTPBR_TILE_CLASS_COUNT 3
 
-// Monte Carlo lighting pass push constants (std430; rtpbr_shader_mc, lighting_mc.comp).
+// Monte Carlo lighting pass push constants (std430; rtpbr_shader_mc, lighting_mc.comp). The
+// pass runs in dispatches over ranges of lights and of samples (lavapipe's loop budget, see
+// engine/src/passes/lighting_mc.c): the one with first_light = first_sample = 0 writes the
+// radiance image, the others add to it. Each light's random stream starts at its seed moved
+// on by 4 first_sample steps (state * skip_mul + skip_add), so the split draws the numbers
+// one dispatch would.
 #define RTPBR_MC_FIELDS(F, S)                                                                     \
-    F(S, UINT, samples, ) /* per pixel and light, >= 1 */                                         \
+    F(S, UINT, samples, )      /* in all, per pixel and light, >= 1 (the sums divide by it) */    \
     F(S, UINT, seed, )                                                                             \
-    F(S, UINT, pad0, )                                                                             \
-    F(S, UINT, pad1, )
+    F(S, UINT, first_sample, ) /* this dispatch's samples: first_sample .. + sample_count - 1 */  \
+    F(S, UINT, sample_count, )                                                                     \
+    F(S, UINT, first_light, )  /* this dispatch's lights: first_light .. + light_count - 1 */     \
+    F(S, UINT, light_count, )  /* (those past the frame's light count are skipped) */             \
+    F(S, UINT, skip_mul, )                                                                         \
+    F(S, UINT, skip_add, )
 
 // Supersampling resolve (resolve.comp), descriptor set 0.
 #define RTPBR_BINDING_RESOLVE_SOURCE 0    // rgba32f storage image, (factor W) x (factor H)

@@ -201,12 +201,12 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
 
 // The lighting pass the desc asks for: LTC, or the Monte Carlo reference (mc_samples > 0),
 // after the shadow passes when shadows are on.
-static void record_lighting(rtpbr_renderer *r, const rtpbr_render_desc *desc,
+static void record_lighting(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc,
                             const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd)
 {
     if (desc->shadows == RTPBR_SHADOWS_ON) rtpbr_shadow_record(r, desc, cmd); // the ratios lighting multiplies by
     if (desc->mc_samples == 0) rtpbr_lighting_record(r, pipelines, cmd);
-    else rtpbr_lighting_mc_record(r, pipelines[0], desc, cmd);
+    else rtpbr_lighting_mc_record(r, scene, pipelines[0], desc, cmd);
 }
 
 // The lighting pipelines the desc asks for, compiled on first use (before any recording).
@@ -266,7 +266,7 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_START);
     rtpbr_gbuffer_record(r, scene, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_GBUFFER);
-    record_lighting(r, desc, lighting, cmd);
+    record_lighting(r, scene, desc, lighting, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_LIGHTING);
     rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
@@ -323,7 +323,7 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_START);
     rtpbr_gbuffer_record(r, scene, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_GBUFFER);
-    record_lighting(r, desc, lighting, cmd);
+    record_lighting(r, scene, desc, lighting, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_LIGHTING);
     rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, target->old_layout,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,

@@ -476,7 +476,8 @@ typedef struct rtpbr_render_desc {
     // Carlo reference pass of the same direct-lighting integral and material model, N samples
     // per pixel per light (light-area and visible-normal sampling combined by MIS; no
     // per-tile culling); noisy, for benchmarks and tests. At most RTPBR_MAX_MC_SAMPLES
-    // (more: RTPBR_ERROR_LIMIT_EXCEEDED).
+    // (more: RTPBR_ERROR_LIMIT_EXCEEDED). Recorded as several dispatches when samples x
+    // lights is large (lavapipe's loop budget; engine/README.md): cost grows with it.
     uint32_t mc_samples;
     // Random seed of the Monte Carlo pass (each seed gives an independent image). Default 0.
     uint32_t mc_seed;

@@ -71,8 +71,8 @@ rtpbr_result rtpbr_lighting_mc_pass_init(rtpbr_context *ctx); // after rtpbr_lig
 void rtpbr_lighting_mc_pass_finish(rtpbr_context *ctx);
 // The pipeline of a model variant, compiled on first use.
 rtpbr_result rtpbr_lighting_mc_pipeline_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, VkPipeline *out);
-void rtpbr_lighting_mc_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_render_desc *desc,
-                              VkCommandBuffer cmd);
+void rtpbr_lighting_mc_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkPipeline pipeline,
+                              const rtpbr_render_desc *desc, VkCommandBuffer cmd);
 
 // ---- Supersampling resolve (passes/resolve.c): box filter from the shading size. ----------
 rtpbr_result rtpbr_resolve_pass_init(rtpbr_context *ctx);
