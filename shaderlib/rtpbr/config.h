@@ -18,6 +18,9 @@
 //                      | RTPBR_FRESNEL_CONDUCTOR
 //   RTPBR_MULTISCATTER 0 | 1 (default): Kulla-Conty energy compensation (kulla_conty.h).
 //   RTPBR_DIFFUSE      RTPBR_DIFFUSE_LAMBERT (default) | RTPBR_DIFFUSE_BURLEY
+//   RTPBR_LTC_POINT_CORRECTION 1 (default) | 0: callers of ltc.h's point correction
+//                      (LTC_PointFactor; the engine's lighting pass) apply it to the isotropic
+//                      microfacet lobe of polygonal lights.
 //
 // Roughness convention: materials carry perceptual roughness r in [0, 1]; the NDFs take
 // alpha = r * r (Burley 2012). alpha is clamped below at RTPBR_MIN_ALPHA so that every term
@@ -60,6 +63,9 @@
 #endif
 #ifndef RTPBR_DIFFUSE
 #define RTPBR_DIFFUSE RTPBR_DIFFUSE_LAMBERT
+#endif
+#ifndef RTPBR_LTC_POINT_CORRECTION
+#define RTPBR_LTC_POINT_CORRECTION 1
 #endif
 #ifndef RTPBR_MIN_ALPHA
 #define RTPBR_MIN_ALPHA 1e-3f

@@ -348,14 +348,14 @@ RTPBR_FN LtcSegment LTC_ClipClose(LtcClipper clip) {
 struct LtcLobe {
     rtpbr_float3x3 minv;
     LtcClipper clip;
-    float sum;
+    rtpbr_float3 vec; // the vector form factor of the part seen so far; .z: the form factor
 };
 
 RTPBR_FN LtcLobe LTC_LobeBegin(rtpbr_float3x3 minv) {
     LtcLobe lobe;
     lobe.minv = minv;
     lobe.clip = LTC_ClipperBegin();
-    lobe.sum = 0.0f;
+    lobe.vec = RTPBR_F3(0.0f);
     return lobe;
 }
 
@@ -363,17 +363,27 @@ RTPBR_FN LtcLobe LTC_LobeBegin(rtpbr_float3x3 minv) {
 // the surface's upper hemisphere) to the lobe.
 RTPBR_FN void LTC_LobeEdge(RTPBR_INOUT(LtcLobe) lobe, rtpbr_float3 a, rtpbr_float3 b) {
     LtcSegment s = LTC_ClipEdge(lobe.clip, rtpbr_mul(lobe.minv, a), rtpbr_mul(lobe.minv, b));
-    if (s.valid)
-        lobe.sum += LTC_EdgeIntegralZ(LTC_SafeNormalize(s.a), LTC_SafeNormalize(s.b));
+    if (s.valid) // the whole edge vector; callers that never read x, y let the compiler drop them
+        lobe.vec += LTC_EdgeIntegral(LTC_SafeNormalize(s.a), LTC_SafeNormalize(s.b));
 }
 
 // The lobe's form factor in [0, 1] after the last edge (closes its own clip). A convex
 // polygon in z >= 0 gives a sum of one sign (its orientation's).
 RTPBR_FN float LTC_LobeEnd(LtcLobe lobe) {
-    float sum = lobe.sum;
+    float sum = lobe.vec.z;
     if (lobe.clip.crossed)
         sum += LTC_EdgeIntegralZ(LTC_SafeNormalize(lobe.clip.exitPoint), LTC_SafeNormalize(lobe.clip.entryPoint));
     return min(abs(sum), 1.0f);
+}
+
+// The lobe's vector form factor in its own space (Arvo 1995) after the last edge, turned to
+// z >= 0: its direction is that of the solid-angle centroid of the part of the polygon the
+// lobe sees (the polygon clipped to the horizon and to the lobe's support, in the LTC's space).
+RTPBR_FN rtpbr_float3 LTC_LobeEndVector(LtcLobe lobe) {
+    rtpbr_float3 v = lobe.vec;
+    if (lobe.clip.crossed)
+        v += LTC_EdgeIntegral(LTC_SafeNormalize(lobe.clip.exitPoint), LTC_SafeNormalize(lobe.clip.entryPoint));
+    return v.z < 0.0f ? -v : v;
 }
 
 // Anisotropic lobes (ours, from the LTC construction of Heitz et al. 2016): an anisotropic
@@ -424,6 +434,72 @@ RTPBR_FN float LTC_IntegrateLocalMatrix(LtcLocalPolygon local, rtpbr_float3x3 mi
 
 RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, rtpbr_float4 ltc1) {
     return LTC_IntegrateLocalMatrix(local, LTC_InverseMatrix(ltc1));
+}
+
+// ---- the point correction (issue 19) --------------------------------------------------------
+// A single LTC cannot follow the true lobe everywhere: near the horizon and on the side of the
+// viewer (a light between the eye and a far floor) it puts light where the BRDF has almost
+// none. For a light that holds a small part of the lobe, the integral is about the lobe's
+// value at the light times the light's size, so the LTC's error there is the ratio of the two
+// lobes' values at the light. rtpbr scales the LTC result down by that ratio where the LTC
+// exceeds the true f NoL at the centre of the part of the light it sees (never up: where the
+// true lobe is narrower than the light, the grazing streak of a view and a light both near the
+// horizon, one point overstates it), faded out as the light holds more of the LTC's mass (the
+// LTC integral itself is then right by construction). Measured in shaderlib/luts/ltc.md
+// ("Fourth round"): the random lights of rtpbr-ltc-validate and the grazing floors of
+// rtpbr-ltc-floor.
+
+// The centre of the part of a light an isotropic LTC lobe (ltc1) sees: w = M F / |M F|, F its
+// vector form factor in the LTC's space (LTC_LobeEndVector, z >= 0), and the LTC's unit-mass
+// density there (Heitz et al. 2016, eq. 1 with the cosine D_o = z / pi):
+// D(w) = D_o(F / |F|) |det M^-1| / |M^-1 w|^3 = F.z |u|^3 / (pi |F|^4 det^2), u = det M F.
+// density 0 when F is (nearly) zero: nothing seen, no correction.
+struct LtcPoint {
+    rtpbr_float3 dir;
+    float density;
+};
+
+RTPBR_FN LtcPoint LTC_LobePoint(rtpbr_float3 F, rtpbr_float4 ltc1) {
+    // M^-1 = [[a, 0, b], [0, 1, 0], [c, 0, d]] (rows): det M F = (d Fx - b Fz, det Fy, a Fz - c Fx)
+    float det = ltc1.x * ltc1.w - ltc1.y * ltc1.z;
+    rtpbr_float3 u = rtpbr_float3(ltc1.w * F.x - ltc1.y * F.z, det * F.y, ltc1.x * F.z - ltc1.z * F.x);
+    float uu = dot(u, u), ff = dot(F, F);
+    LtcPoint p;
+    p.dir = u * ((det < 0.0f ? -1.0f : 1.0f) * rtpbr_rsqrt(max(uu, 1e-30f)));
+    float den = RTPBR_PI * ff * ff * det * det;
+    p.density = ff > 1e-16f && den > 0.0f ? max(F.z, 0.0f) * uu * sqrt(uu) / den : 0.0f;
+    return p;
+}
+
+// The factor on the LTC result: fCos = the true f NoL at LtcPoint.dir (F = 1, the lobe the
+// table was fitted to), ltcValue = norm x LtcPoint.density (the table's scale, ltc2.x, times
+// the density), ff = the LTC's form factor of the light (LTC_LobeEnd).
+// 1 - (1 - min(fCos / ltcValue, 1)) (1 - ff)^16: in [0, 1]; 1 where the LTC is not above f or
+// the light holds the lobe. The exponent was chosen among 1-64 on the two measurements above.
+RTPBR_FN float LTC_PointFactor(float fCos, float ltcValue, float ff) {
+    float k = fCos < ltcValue ? max(fCos / ltcValue, 0.0f) : 1.0f; // NaN: no correction
+    // k t + (1 - t), t = u^16, u = 1 - ff; 1 - t = ff (1 + u)(1 + u^2)(1 + u^4)(1 + u^8) without
+    // the cancellation of 1 - t (a factor near 0 keeps its relative precision)
+    float f = rtpbr_saturate(ff);
+    float u = 1.0f - f;
+    float u2 = u * u;
+    float u4 = u2 * u2;
+    float u8 = u4 * u4;
+    return k * (u8 * u8) + f * (1.0f + u) * (1.0f + u2) * (1.0f + u4) * (1.0f + u8);
+}
+
+// The vector of LTC_LobeEndVector for a stored local polygon (tools and tests).
+RTPBR_FN rtpbr_float3 LTC_IntegrateLocalVector(LtcLocalPolygon local, rtpbr_float4 ltc1) {
+    if (local.count < 3)
+        return RTPBR_F3(0.0f);
+    LtcLobe lobe = LTC_LobeBegin(LTC_InverseMatrix(ltc1));
+    for (int i = 0; i < RTPBR_LTC_CLIP_VERTICES; i++) {
+        if (i < local.count) {
+            rtpbr_float3 b = i + 1 < local.count ? local.v[i + 1] : local.v[0];
+            LTC_LobeEdge(lobe, local.v[i], b);
+        }
+    }
+    return LTC_LobeEndVector(lobe);
 }
 
 // The vector form factor (Arvo 1995) of an unclipped local polygon (from

@@ -25,7 +25,7 @@
 //   rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] [--quick] [--threads T]
 //                   [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction |
 //                    --hybrid-correction] [--correction-bins E A] [--correction-samples N]
-//                   [--second-lobe | --second-lobe-joint]
+//                   [--second-lobe | --second-lobe-joint] [--no-point | --point-raw | --point-ff]
 // The last four are the experiments of issue 19's second round (shaderlib/luts/ltc.md): the
 // LTC fitted at each case's exact (roughness, NoV) instead of the table's interpolation, and
 // the LTC corrected by the direction of the lit part of the light (ltc_floor.hpp).
@@ -33,6 +33,10 @@
 // cell, fitted on other floors to the table LTC's residual, or together with a refitted first
 // lobe, and the sweep's floors of nine grazing cells with it (ltc_floor_lobe2.hpp); prints its
 // own table and nothing else.
+// The LTC is evaluated as the engine does, with the point correction (ltc.h, LTC_PointFactor;
+// fourth round) unless --no-point (the second round's corrections and --exact-cells measure
+// the LTC alone); --point-raw: the uncorrected ratio at the lit part's centre (no clamp, no
+// fade); --point-ff: no LTC, the true f NoL / NoL at that centre x pi x the form factor.
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -68,7 +72,7 @@ int main(int argc, char **argv) {
     Lobe lobe = Lobe::GGX;
     std::string tablesPath, png;
     bool quick = false, exactCells = false, secondLobe = false, secondLobeJoint = false;
-    int correctionAzimuths = 0;
+    int correctionAzimuths = 0, point = 1;
     bool residual = false, hybrid = false;
     int correctionElevations = 16, correctionSamples = 512;
     int threads = 2;
@@ -95,6 +99,12 @@ int main(int argc, char **argv) {
             secondLobe = true;
         else if (!strcmp(argv[i], "--second-lobe-joint")) // the same, both lobes refitted together
             secondLobe = secondLobeJoint = true;
+        else if (!strcmp(argv[i], "--no-point")) // the LTC without the point correction (ltc_floor.hpp)
+            point = 0;
+        else if (!strcmp(argv[i], "--point-raw")) // experiment (round 4), see ltc_floor.hpp
+            point = 2;
+        else if (!strcmp(argv[i], "--point-ff")) // experiment (round 4), see ltc_floor.hpp
+            point = 3;
         else if (!strcmp(argv[i], "--exact-cells")) // no table interpolation: each case's own fit
             exactCells = true;
         else if (!strcmp(argv[i], "--elevation-correction")) // experiment, see ltc_floor.hpp
@@ -132,7 +142,7 @@ int main(int argc, char **argv) {
             }
         } else {
             fprintf(stderr, "usage: rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] "
-                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction] [--correction-bins E A] [--correction-samples N] [--second-lobe | --second-lobe-joint]\n");
+                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction] [--correction-bins E A] [--correction-samples N] [--second-lobe | --second-lobe-joint] [--no-point | --point-raw | --point-ff]\n");
             return 2;
         }
     }
@@ -233,6 +243,7 @@ int main(int argc, char **argv) {
     tab.correctionAzimuths = correctionAzimuths;
     tab.residual = residual;
     tab.hybrid = hybrid;
+    tab.point = correctionAzimuths > 0 || exactCells ? 0 : point; // the older experiments: on the LTC alone
     tab.correctionElevations = correctionElevations;
     tab.correctionSamples = correctionSamples;
     std::vector<Case> cases;

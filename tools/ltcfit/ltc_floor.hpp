@@ -170,6 +170,11 @@ struct Tables {
         std::make_shared<std::map<std::pair<float, float>, DirectionCorrection>>();
     bool residual = false;      // additive (LTC + residual x F.z) instead of the ratio
     bool hybrid = false;        // ratio where the LTC is lit, residual where it is not
+    // 0: the LTC alone (rtpbr-ltc-floor --no-point); 1: with the engine's point correction (ltc.h,
+    // LTC_PointFactor; the default); experiments of the fourth round: 2: the raw ratio (no
+    // clamp, no fade; --point-raw); 3: no LTC, the true f at the lit part's centroid x its
+    // cosine form factor (--point-ff)
+    int point = 1;
 };
 
 inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub) {
@@ -220,6 +225,23 @@ inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub)
                 ltc = tab.hybrid     ? std::max(ltc * corr.lookup(F, corr.hc) + corr.lookup(F, corr.hadd) * double(F.z), 0.0)
                       : tab.residual ? std::max(ltc + corr.residual_at(F) * double(F.z), 0.0)
                                      : ltc * corr.at(F);
+            }
+            if (tab.point == 1 || tab.point == 2) {
+                if (lobe == Lobe::GGX || lobe == Lobe::Beckmann) // as the engine: microfacet lobes only
+                    ltc *= ltcmc::point_ratio(brdf, V, local, l1, l2.x, tab.point == 2);
+            } else if (tab.point == 3) {
+                // true f at the lit part's centroid x its cosine form factor
+                const glm::dvec3 Fc = ltcmc::clipped_centroid(local, glm::dmat3(1.0));
+                const double lf = glm::length(Fc);
+                ltc = 0.0;
+                if (lf > 0.0) {
+                    const glm::dvec3 w = Fc / lf;
+                    float pdf;
+                    const double f = brdf.value_cos(V, float3(w), pdf);
+                    const double ff = rtpbr::LTC_IntegrateLocal(local, rtpbr::LTC_Identity());
+                    if (w.z > 0.0)
+                        ltc = f / w.z * 3.14159265358979 * ff;
+                }
             }
             double ref = quadrature(brdf, V, p, centre, sub);
             double coarse = quadrature(brdf, V, p, centre, sub / 2);

@@ -237,8 +237,55 @@ inline double albedo(const Brdf &brdf, float3 V) {
     return sum / (side * side);
 }
 
+// The solid-angle centroid direction (Arvo's vector form factor, normalised) of the part of a
+// local polygon (already above the horizon) that lies in z >= 0 after the linear map minv;
+// zero if none does. Double precision, written apart from ltc.h's streamed float path
+// (LTC_LobeEndVector): rtpbr-ltc-floor --point-ff uses it, and test_ltc_mc checks ltc.h's
+// point correction against it.
+inline glm::dvec3 clipped_centroid(const rtpbr::LtcLocalPolygon &local, const glm::dmat3 &minv) {
+    std::vector<glm::dvec3> in, out;
+    for (int i = 0; i < local.count; i++)
+        in.push_back(minv * glm::dvec3(local.v[i]));
+    for (size_t i = 0; i < in.size(); i++) { // Sutherland-Hodgman against z >= 0
+        const glm::dvec3 a = in[i], b = in[(i + 1) % in.size()];
+        if (a.z >= 0.0)
+            out.push_back(a);
+        if ((a.z >= 0.0) != (b.z >= 0.0))
+            out.push_back(a + (b - a) * (a.z / (a.z - b.z)));
+    }
+    glm::dvec3 F(0.0);
+    for (size_t i = 0; i < out.size(); i++) {
+        const glm::dvec3 a = glm::normalize(out[i]), b = glm::normalize(out[(i + 1) % out.size()]);
+        const glm::dvec3 c = glm::cross(a, b);
+        const double l = glm::length(c);
+        if (l > 1e-300)
+            F += std::atan2(l, glm::dot(a, b)) * c / l;
+    }
+    if (F.z < 0.0)
+        F = -F;
+    return F;
+}
+
+// The engine's point correction (ltc.h, LTC_PointFactor; issue 19, fourth round) of the LTC
+// result for a local polygon: the true f NoL at the centre of the part the LTC sees over the
+// LTC's value there (norm x density), faded by the LTC's form factor. `raw`: the ratio alone,
+// without the fade and without the clamp to <= 1 (the first experiment of that round).
+inline double point_ratio(const Brdf &brdf, float3 V, const rtpbr::LtcLocalPolygon &local, float4 l1, float norm,
+                          bool raw = false) {
+    const float3 Fl = rtpbr::LTC_IntegrateLocalVector(local, l1);
+    const rtpbr::LtcPoint pt = rtpbr::LTC_LobePoint(Fl, l1);
+    if (!(pt.density > 0.0f))
+        return 1.0;
+    float pdf;
+    const float fCos = brdf.value_cos(V, pt.dir, pdf);
+    if (raw)
+        return double(fCos) / (double(norm) * double(pt.density));
+    return double(rtpbr::LTC_PointFactor(fCos, norm * pt.density, rtpbr::LTC_IntegrateLocal(local, l1)));
+}
+
 struct LtcEval {
     double exact, clipless, clipless_table;
+    double point = 0.0; // exact x the point correction (ltc.h, LTC_PointFactor): what the engine computes
 };
 
 // The LTC answer with F = 1 (norm x form factor), as a renderer computes it.
@@ -270,7 +317,13 @@ inline LtcEval ltc_eval(Lobe lobe, float roughness, float3 V, const Square &sq, 
     float approx = rtpbr::LTC_SphereFormFactorApprox(F);
     float tableValue = fetch(t2, rtpbr::LTC_SphereLutCoord(F)).w;
     float tabled = rtpbr::LTC_SphereFormFactor(F, tableValue);
-    return {double(scale) * exact, double(scale) * approx, double(scale) * tabled};
+    LtcEval e{double(scale) * exact, double(scale) * approx, double(scale) * tabled};
+    // the engine corrects the microfacet lobes only (lighting.comp)
+    e.point = lobe == Lobe::GGX || lobe == Lobe::Beckmann
+                  ? e.exact * point_ratio(Brdf::make(lobe, roughness), V,
+                                          rtpbr::LTC_PolygonToLocal(frame, float3(0), poly, false), l1, l2.x)
+                  : e.exact;
+    return e;
 }
 
 // One configuration of the grid.
@@ -291,7 +344,7 @@ struct Outcome {
     bool significant; // the light receives at least kSignificant of the lobe's energy
     McResult ref;
     LtcEval ltc;
-    double relExact, relClipless, relClipTable;
+    double relExact, relClipless, relClipTable, relPoint;
 };
 
 inline float3 position_dir(int p, float3 V) {
@@ -321,6 +374,7 @@ inline Outcome run_config(const Config &c, FresnelChoice fr, double targetRelErr
     o.relExact = r > 0 ? std::fabs(o.ltc.exact - o.ref.mean) / r : 0.0;
     o.relClipless = r > 0 ? std::fabs(o.ltc.clipless - o.ref.mean) / r : 0.0;
     o.relClipTable = r > 0 ? std::fabs(o.ltc.clipless_table - o.ref.mean) / r : 0.0;
+    o.relPoint = r > 0 ? std::fabs(o.ltc.point - o.ref.mean) / r : 0.0;
     return o;
 }
 

@@ -139,19 +139,20 @@ int main(int argc, char **argv) {
     double worstRef = 0;
     long maxSamples = 0;
     for (Lobe l : lobes) {
-        std::vector<double> e[3], tail[3];
+        std::vector<double> e[4], tail[4];
         for (const Outcome &o : out) {
             if (o.cfg.lobe != l)
                 continue;
-            double v[3] = {o.relExact, o.relClipless, o.relClipTable};
-            for (int k = 0; k < 3; k++)
+            double v[4] = {o.relExact, o.relClipless, o.relClipTable, o.relPoint};
+            for (int k = 0; k < 4; k++)
                 (o.significant ? e[k] : tail[k]).push_back(v[k]);
             if (o.significant)
                 worstRef = std::max(worstRef, o.ref.relStdErr);
             maxSamples = std::max(maxSamples, o.ref.samples);
         }
-        const char *names[3] = {"exact clipping", "clipless, analytic sphere", "clipless, sphere table"};
-        for (int k = 0; k < 3; k++) {
+        const char *names[4] = {"exact clipping", "clipless, analytic sphere", "clipless, sphere table",
+                                "exact clipping + point correction"};
+        for (int k = 0; k < 4; k++) {
             Summary s = summarize(e[k]), t = summarize(tail[k]);
             printf("| %s | %s | %d | %.2f%% | %.2f%% | %.2f%% | %d | %.3f%% | %.3f%% |\n", lobe_name(l), names[k],
                    s.count, 100 * s.mean, 100 * s.p95, 100 * s.max, t.count, 100 * t.mean, 100 * t.max);
@@ -161,7 +162,7 @@ int main(int argc, char **argv) {
            maxSamples);
     // Breakdown of the exact method by roughness and view angle.
     for (Lobe l : lobes) {
-        printf("\n%s, exact clipping, mean relative error by roughness (rows) and view angle (columns):\n\n| r |",
+        printf("\n%s, exact clipping + point correction (the engine), mean relative error by roughness (rows) and view angle (columns):\n\n| r |",
                lobe_name(l));
         std::vector<float> rough = grid_roughness(reduced), views = grid_views(reduced);
         for (float v : views)
@@ -176,7 +177,7 @@ int main(int argc, char **argv) {
                 std::vector<double> e;
                 for (const Outcome &o : out)
                     if (o.cfg.lobe == l && o.cfg.roughness == r && o.cfg.viewDeg == v && o.significant)
-                        e.push_back(o.relExact);
+                        e.push_back(o.relPoint);
                 printf(" %.1f%% |", 100 * summarize(e).mean);
             }
             printf("\n");
@@ -184,7 +185,7 @@ int main(int argc, char **argv) {
     }
     // Breakdown by light position and size.
     for (Lobe l : back ? std::vector<Lobe>{} : lobes) {
-        printf("\n%s, exact clipping, mean relative error by position (rows) and light half-size (columns):\n\n| position |",
+        printf("\n%s, exact clipping + point correction (the engine), mean relative error by position (rows) and light half-size (columns):\n\n| position |",
                lobe_name(l));
         std::vector<float> halves = grid_halves(reduced);
         for (float h : halves)
@@ -199,7 +200,7 @@ int main(int argc, char **argv) {
                 std::vector<double> e;
                 for (const Outcome &o : out)
                     if (o.cfg.lobe == l && o.cfg.position == p && o.cfg.half == h && o.significant)
-                        e.push_back(o.relExact);
+                        e.push_back(o.relPoint);
                 printf(" %.1f%% (%d) |", 100 * summarize(e).mean, summarize(e).count);
             }
             printf("\n");

@@ -118,7 +118,9 @@ RTPBR_FN RtpbrTestArgs rtpbr_test_args(rtpbr_float4 a, rtpbr_float4 b) {
 // degrees, all derived from the arguments), through the horizon clip and one LTC lobe of
 // M^-1 rows (m00, 0, m02), (0, 1, 0), (m20, 0, m22), stretched (LTC_AnisotropicInverseMatrix,
 // about +z along +x by k) when `stretch`. Returns the lobe's form factor (which = 0), or the
-// component `which` - 1 of the clipped quad's vector form factor.
+// component `which` - 1 of the clipped quad's vector form factor (1-3); the lobe's own vector
+// (LTC_LobeEndVector, 4-6); the point correction's direction (LTC_LobePoint, 7-9), density
+// (10) and factor (LTC_PointFactor with fCos = t.c2 x density x 2 and the lobe's form factor, 11).
 RTPBR_FN float rtpbr_test_ltc_quad(RtpbrTestArgs t, bool stretch, int which) {
     RTPBR_TEST_PRECISE float h = 0.5f * t.sc;
     RTPBR_TEST_PRECISE float gx = t.c1 - 0.5f;
@@ -146,7 +148,17 @@ RTPBR_FN float rtpbr_test_ltc_quad(RtpbrTestArgs t, bool stretch, int which) {
             LTC_LobeEdge(lobe, seg.a, seg.b);
         }
     }
-    return which == 0 ? LTC_LobeEnd(lobe) : (which == 1 ? F.x : (which == 2 ? F.y : F.z));
+    if (which <= 3)
+        return which == 0 ? LTC_LobeEnd(lobe) : (which == 1 ? F.x : (which == 2 ? F.y : F.z));
+    rtpbr_float3 Fl = LTC_LobeEndVector(lobe);
+    if (which <= 6)
+        return which == 4 ? Fl.x : (which == 5 ? Fl.y : Fl.z);
+    LtcPoint pt = LTC_LobePoint(Fl, ltc1);
+    if (which <= 9)
+        return which == 7 ? pt.dir.x : (which == 8 ? pt.dir.y : pt.dir.z);
+    if (which == 10)
+        return pt.density;
+    return LTC_PointFactor(2.0f * t.c2 * pt.density, pt.density, LTC_LobeEnd(lobe));
 }
 
 // A scalar argument in the regimes of rtpbr_test_material, picked by b.w: x (b.w < 0.4), then
