@@ -57,11 +57,12 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_SHEEN_2) uniform sampler2D lut_l
 #endif
 
 // One pass over light i's edges (vectors from P in the LTC frame): the horizon clip, then the
-// LTC lobe minv; returns its form factor and the clipped polygon's vector form factor F (up to
-// its sign). The basic variant integrates its one LTC lobe in this pass; the full variant
+// LTC lobe minv; returns its form factor, the clipped polygon's vector form factor F (up to
+// its sign) and the lobe's own vector form factor Fl (LTC_LobeEndVector; callers that do not
+// read it leave its x, y to dead-code elimination). The basic variant integrates its one LTC lobe in this pass; the full variant
 // runs a pass per lobe the material has, so that one lobe's clip state is live at a time
 // (registers: the lobes' states together spilled on RDNA3).
-float light_lobe(uint i, vec3 P, mat3 ltcFrame, mat3 minv, out vec3 F)
+float light_lobe(uint i, vec3 P, mat3 ltcFrame, mat3 minv, out vec3 F, out vec3 Fl)
 {
     LtcClipper horizon = LTC_ClipperBegin();
     LtcLobe lobe = LTC_LobeBegin(minv);
@@ -88,7 +89,26 @@ float light_lobe(uint i, vec3 P, mat3 ltcFrame, mat3 minv, out vec3 F)
         }
         a = b;
     }
+    Fl = LTC_LobeEndVector(lobe);
     return LTC_LobeEnd(lobe);
+}
+
+// The point correction of the specular lobe (ltc.h, LTC_PointFactor): the true f NoL (F = 1,
+// the lobe the tables were fitted to) at the centre of the part of the light the LTC sees,
+// against the LTC's value there (the table's scale norm x its density).
+float specular_point_factor(vec3 Fl, vec4 ltc1, float norm, float NoV, float specR, float ff)
+{
+    // recomputed here rather than kept live through the light loop (registers of the full variant)
+    float alpha = Alpha_FromPerceptual(specR);
+    vec3 vLocal = vec3(sqrt(max(1.0f - NoV * NoV, 0.0f)), 0.0f, NoV);
+    LtcPoint pt = LTC_LobePoint(Fl, ltc1);
+    float NoL = pt.dir.z;
+    vec3 h = vLocal + pt.dir;
+    float hh = dot(h, h);
+    float fCos = NoL > 0.0f && hh > 1e-12f
+                     ? D_Microfacet(h.z * inversesqrt(hh), alpha) * V_Microfacet(NoV, NoL, alpha) * NoL
+                     : 0.0f;
+    return LTC_PointFactor(fCos, norm * pt.density, ff);
 }
 
 // Reflected radiance from the tile's polygonal lights, for the model of lighting_common.glsl
@@ -106,9 +126,15 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
 {
     vec2 uv = LTC_LutCoord(s.NoV, s.specR);
     vec4 ltc1 = textureLod(LUT_LTC_1, uv, 0.0f);
-    vec3 specularScale = LTC_FresnelScale(textureLod(LUT_LTC_2, uv, 0.0f), s.f0, s.f90);
+    vec4 ltc2 = textureLod(LUT_LTC_2, uv, 0.0f);
+    vec3 specularScale = LTC_FresnelScale(ltc2, s.f0, s.f90);
     mat3 ltcFrame = LTC_Frame(N, V);
     mat3 specularMinv = LTC_InverseMatrix(ltc1);
+    vec3 vLocal = vec3(sqrt(max(1.0f - s.NoV * s.NoV, 0.0f)), 0.0f, s.NoV);
+    // The point correction (specular_point_factor) on the isotropic specular lobe: its scale,
+    // the table's norm, and in the full variant whether the lobe is isotropic.
+    float pointNorm = ltc2.x;
+    bool pointOn = RTPBR_LTC_POINT_CORRECTION != 0;
 #if RTPBR_LIGHTING_FULL
     bool coated = s.coat > 0.0f;
     vec4 ltc1c = LTC_Identity();
@@ -139,13 +165,14 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
     }
     // The anisotropic stretch about the mirror direction (LTC_AnisotropicInverseMatrix): the
     // anisotropy direction made orthogonal to it; no stretch without one.
-    vec3 vLocal = vec3(sqrt(max(1.0f - s.NoV * s.NoV, 0.0f)), 0.0f, s.NoV);
     vec3 mirror = vec3(-vLocal.x, 0.0f, vLocal.z);
     vec3 anisoLocal = rtpbr_mul(ltcFrame, s.anisoDir);
     vec3 e1 = anisoLocal - mirror * dot(anisoLocal, mirror);
     float e1Length = length(e1);
-    if (s.anisoK > 1.0001f && e1Length > 1e-4f)
+    if (s.anisoK > 1.0001f && e1Length > 1e-4f) {
         specularMinv = LTC_AnisotropicInverseMatrix(ltc1, mirror, e1 / e1Length, s.anisoK);
+        pointOn = false; // no point correction for anisotropic lobes
+    }
 #endif
 
     vec3 sum = vec3(0.0f);
@@ -166,11 +193,30 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
         if (abs(side) <= 1e-7f * sphere.w || (!twoSided && side < 0.0f) || dot(N, sphere.xyz - P) < -sphere.w)
             continue;
 
-        vec3 F;
-        float specularFF = light_lobe(i, P, ltcFrame, specularMinv, F);
+        vec3 F, Fl;
+        float specularFF = light_lobe(i, P, ltcFrame, specularMinv, F, Fl);
         F = F.z < 0.0f ? -F : F;
         float ff = min(F.z, 1.0f);
         if (!(ff > 0.0f)) continue;
+#if RTPBR_LTC_POINT_CORRECTION
+        // (isotropic: specularMinv holds ltc1's four entries, LTC_InverseMatrix; read from there
+        // so that ltc1 need not stay live in the full variant, whose anisotropic lobes have none)
+        vec4 pointLtc1 = vec4(specularMinv[0][0], specularMinv[2][0], specularMinv[0][2], specularMinv[2][2]);
+#if RTPBR_LIGHTING_FULL
+        // The full variant's registers are at gfx1100's limit: the lobe's vector comes from a
+        // second pass over the edges (the same lobe, so the same value), taken only where the
+        // fade leaves anything to correct ((1 - 0.5)^16 < 2e-5), and the norm is fetched again
+        // (the same texel) rather than kept live through the loop.
+        if (pointOn && specularFF < 0.5f) {
+            vec3 unusedF2;
+            light_lobe(i, P, ltcFrame, specularMinv, unusedF2, Fl);
+            specularFF *= specular_point_factor(Fl, pointLtc1, textureLod(LUT_LTC_2, LTC_LutCoord(s.NoV, s.specR), 0.0f).x,
+                                                s.NoV, s.specR, specularFF);
+        }
+#else
+        specularFF *= specular_point_factor(Fl, pointLtc1, pointNorm, s.NoV, s.specR, specularFF);
+#endif
+#endif
         // The representative direction of the polygon: its vector form factor's.
         float lenF = length(F);
         vec3 lRep = F / lenF;
@@ -180,12 +226,12 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
         float Erep = KC_PolygonMeanE(eRep.x, s.Eavg, lenF);
 
         vec3 lo = specularScale * specularFF + s.msColor * KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff);
-        vec3 unusedF;
+        vec3 unusedF, unusedFl;
         vec3 base;
 #if RTPBR_LIGHTING_FULL
         if (s.disney) {
             float LoH = rtpbr_saturate(dot(lRep, normalize(lRep + vLocal)));
-            base = burleyScale * light_lobe(i, P, ltcFrame, LTC_InverseMatrix(ltc1d), unusedF) +
+            base = burleyScale * light_lobe(i, P, ltcFrame, LTC_InverseMatrix(ltc1d), unusedF, unusedFl) +
                    (s.dm.subsurface * Disney_DiffuseLobe(dss, s.NoV, muRep, LoH) + Disney_SheenLobe(s.dm, LoH)) *
                        (RTPBR_PI * ff);
         } else
@@ -199,10 +245,10 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
 #if RTPBR_LIGHTING_FULL
         if (s.sheen)
             lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, sheen_E(muRep, s.sheenR)) +
-                 sheenScale * light_lobe(i, P, ltcFrame, LTC_InverseMatrix(ltc1s), unusedF);
+                 sheenScale * light_lobe(i, P, ltcFrame, LTC_InverseMatrix(ltc1s), unusedF, unusedFl);
         lo *= s.baseAttenuation;
         if (coated)
-            lo += coatScale * light_lobe(i, P, ltcFrame, LTC_InverseMatrix(ltc1c), unusedF) +
+            lo += coatScale * light_lobe(i, P, ltcFrame, LTC_InverseMatrix(ltc1c), unusedF, unusedFl) +
                   s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(kc_E(muRep, s.coatR), s.Eavgc, lenF), s.Eavgc, ff);
 #endif
         sum += lights[i].radiance * lo * shadow_factor(i, pixel);
