@@ -109,7 +109,14 @@ BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha, const Vie
         G1 = vt ? vt->G1 : rtpbr::G1_GGX(V.z, alpha);
     } else {
         D = rtpbr::D_Beckmann(H.z, alpha);
-        Vis = vt ? vis_beckmann(V.z, L.z, alpha, vt->lambdaV) : rtpbr::V_SmithBeckmann(V.z, L.z, alpha);
+        // Where D is 0 (far from a sharp lobe's peak: D_Beckmann returns 0 for tan^2 / alpha^2
+        // > 80) the value below is 0 x Vis = +0 for any finite Vis, and Vis = G2 / (4 NoV NoL)
+        // with G2 in (0, 1] is finite once NoV NoL >= 1e-20: Lambda(L) (an exp and an erfc)
+        // is skipped there (issue 19; the same value and pdf bits).
+        if (vt && D == 0.0f && V.z * L.z >= 1e-20f)
+            Vis = 0.0f;
+        else
+            Vis = vt ? vis_beckmann(V.z, L.z, alpha, vt->lambdaV) : rtpbr::V_SmithBeckmann(V.z, L.z, alpha);
         G1 = vt ? vt->G1 : rtpbr::G1_Beckmann(V.z, alpha);
     }
     // The density of the visible-normal sampler's reflected direction, D_V(h) / (4 VoH) =
@@ -282,11 +289,14 @@ ErrorSamples error_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
         glm::vec3 L = dirs[size_t(i)];
         es.brdfL.push_back(L);
         es.brdf.push_back(brdf_eval(lobe, V, L, alpha, &vt));
-        // the per-view terms must give the library's values (see vis_beckmann)
-        const BrdfSample ref = brdf_eval(lobe, V, L, alpha);
-        if (i < side && (ref.value != es.brdf.back().value || ref.pdf != es.brdf.back().pdf)) {
-            fprintf(stderr, "ltcfit: internal error: the per-view BRDF terms differ from the library's\n");
-            std::abort();
+        // the per-view terms must give the library's values (see vis_beckmann), checked on the
+        // grid's first row
+        if (i < side) {
+            const BrdfSample ref = brdf_eval(lobe, V, L, alpha);
+            if (ref.value != es.brdf.back().value || ref.pdf != es.brdf.back().pdf) {
+                fprintf(stderr, "ltcfit: internal error: the per-view BRDF terms differ from the library's\n");
+                std::abort();
+            }
         }
     }
     return es;
@@ -396,19 +406,28 @@ TestSquare make_ceiling_square(glm::dvec3 c, double half, double weight, int rin
     return finish_square(s);
 }
 
+glm::dvec3 square_dir(double el, double az) {
+    const double deg = kPi / 180.0;
+    return glm::dvec3(std::cos(el * deg) * std::cos(az * deg), std::cos(el * deg) * std::sin(az * deg),
+                      std::sin(el * deg));
+}
+
+// The squares all over the hemisphere, the same for every cell (test_squares' first ones).
 // The lobe is symmetric about the plane of incidence (y = 0): azimuths 0 (the viewer's side)
 // to 180 degrees (the mirror side) suffice.
-std::vector<TestSquare> test_squares(glm::dvec3 V, glm::dvec3 avgDir, double alpha, const FitSettings &s) {
+std::vector<TestSquare> hemisphere_squares() {
     std::vector<TestSquare> v;
-    const double deg = kPi / 180.0;
-    auto dir = [&](double el, double az) {
-        return glm::dvec3(std::cos(el * deg) * std::cos(az * deg), std::cos(el * deg) * std::sin(az * deg),
-                          std::sin(el * deg));
-    };
     for (double el : {8.0, 20.0, 35.0, 50.0, 65.0, 80.0, 90.0})
         for (double az = 0.0; az <= 180.0 && (el < 90.0 || az == 0.0); az += 30.0)
             for (double h : {0.15, 0.4, 1.0})
-                v.push_back(make_square(dir(el, az), h, 1.0));
+                v.push_back(make_square(square_dir(el, az), h, 1.0));
+    return v;
+}
+
+// hemisphere_squares(), then the squares of this cell's lobe (and the floor squares).
+std::vector<TestSquare> test_squares(glm::dvec3 V, glm::dvec3 avgDir, double alpha, const FitSettings &s) {
+    std::vector<TestSquare> v = hemisphere_squares();
+    auto dir = square_dir;
     glm::dvec3 mirror(-V.x, 0.0, std::max(V.z, 0.1)); // not under the horizon
     // Sharp lobes (alpha below ~0.02) fit inside the smallest of these: squares of the lobe's
     // own width (alpha, 3 alpha) keep its shape measured.
@@ -467,6 +486,20 @@ double ltc_square_integral(const Ltc &l, const TestSquare &s) {
     return std::fabs(sum) / (2.0 * kPi);
 }
 
+// Calls hit(k) for every square k that direction L passes through, testing each.
+template <class F> void for_each_square_hit(const std::vector<TestSquare> &squares, glm::dvec3 L, F &&hit) {
+    for (size_t k = 0; k < squares.size(); k++)
+        if (in_square(squares[k], L))
+            hit(k);
+}
+
+// The bin of a direction's (x, y) on a side x side grid over [-1, 1]^2 (row-major).
+size_t direction_bin(glm::dvec3 L, int side) {
+    const int bx = std::clamp(int((L.x + 1.0) * 0.5 * side), 0, side - 1);
+    const int by = std::clamp(int((L.y + 1.0) * 0.5 * side), 0, side - 1);
+    return size_t(by) * size_t(side) + size_t(bx);
+}
+
 // The squares a direction hits, for the references' 256^2 samples per cell (issue 19: testing
 // every sample against every square was 37% of the fit's CPU, then the exact tests of the
 // squares left 27%).
@@ -515,15 +548,9 @@ class SquareHits {
     }
     // Calls hit(k) for every square k that direction L passes through (in_square).
     template <class F> void for_each_hit(glm::dvec3 L, F &&hit) const {
-        if (!(L.z > 0.0)) { // not binned: every square
-            for (size_t k = 0; k < squares_.size(); k++)
-                if (in_square(squares_[k], L))
-                    hit(k);
-            return;
-        }
-        const int bx = std::clamp(int((L.x + 1.0) * 0.5 * kSide), 0, kSide - 1);
-        const int by = std::clamp(int((L.y + 1.0) * 0.5 * kSide), 0, kSide - 1);
-        for (uint16_t g : bins_[size_t(by) * kSide + bx]) {
+        if (!(L.z > 0.0)) // not binned: every square
+            return for_each_square_hit(squares_, L, hit);
+        for (uint16_t g : bins_[direction_bin(L, kSide)]) {
             const Group &gr = groups_[g];
             const TestSquare &first = squares_[gr.first];
             const double cosL = glm::dot(L, first.c);
@@ -552,6 +579,89 @@ class SquareHits {
     std::vector<std::vector<uint16_t>> bins_;
 };
 
+// The squares of hemisphere_squares() (the same for every cell) that a direction hits, for the
+// references' 256^2 samples per cell (issue 19, second round: SquareHits over them was still 29%
+// of the fit's CPU). Directions above the horizon and of length 1 +- 1e-5 are binned by their
+// (x, y) on a fine grid, built once: per bin, the squares that every such direction of the bin
+// provably hits (no test) or may hit (in_square). A square is left out of a bin only if every
+// such direction provably misses it. "Provably": in_square's quantities dot(L, c) and
+// dot(L / dot(L, c) - c, e_i) are linear in L, or ratios of linear functions, so their bounds
+// over the box around the bin's directions are at its corners; a margin of 1e-9 covers the
+// rounding of in_square's few double operations (~1e-15). Every other direction (below the
+// horizon, or not unit) takes in_square for every square. Each integral still sums its samples
+// in their order: the integrals are the same bits.
+class HemisphereHits {
+  public:
+    HemisphereHits() : squares_(hemisphere_squares()), first_(size_t(kSide) * kSide + 1, 0) {
+        const double pad = 1e-9, margin = 1e-9;
+        for (int by = 0; by < kSide; by++)
+            for (int bx = 0; bx < kSide; bx++) {
+                const size_t bin = size_t(by) * kSide + size_t(bx);
+                first_[bin] = uint32_t(entries_.size());
+                const double x0 = -1.0 + 2.0 * bx / kSide - pad, x1 = -1.0 + 2.0 * (bx + 1) / kSide + pad;
+                const double y0 = -1.0 + 2.0 * by / kSide - pad, y1 = -1.0 + 2.0 * (by + 1) / kSide + pad;
+                auto minSq = [](double lo, double hi) { return lo <= 0.0 && hi >= 0.0 ? 0.0 : std::min(lo * lo, hi * hi); };
+                const double r2min = minSq(x0, x1) + minSq(y0, y1);
+                const double r2max = std::max(x0 * x0, x1 * x1) + std::max(y0 * y0, y1 * y1);
+                if (r2min > 1.0 + kLengthTolerance)
+                    continue; // no direction of length ~1 lands here
+                const double z0 = std::sqrt(std::max(0.0, 1.0 - kLengthTolerance - r2max));
+                const double z1 = std::sqrt(1.0 + kLengthTolerance - r2min);
+                glm::dvec3 corner[8];
+                for (int i = 0; i < 8; i++)
+                    corner[i] = glm::dvec3(i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0);
+                for (size_t k = 0; k < squares_.size(); k++) {
+                    const TestSquare &q = squares_[k];
+                    bool coneIn = true, coneOut = true, facing = true;
+                    bool in1 = true, in2 = true, outLo1 = true, outHi1 = true, outLo2 = true, outHi2 = true;
+                    for (const glm::dvec3 &p : corner) {
+                        const double a = glm::dot(p, q.c), b1 = glm::dot(p, q.e1), b2 = glm::dot(p, q.e2);
+                        coneIn = coneIn && a >= q.cosCone + margin;
+                        coneOut = coneOut && a <= q.cosCone - margin;
+                        facing = facing && a >= margin;
+                        in1 = in1 && std::fabs(b1) <= (q.half - margin) * a;
+                        in2 = in2 && std::fabs(b2) <= (q.half - margin) * a;
+                        outHi1 = outHi1 && b1 >= (q.half + margin) * a;
+                        outLo1 = outLo1 && -b1 >= (q.half + margin) * a;
+                        outHi2 = outHi2 && b2 >= (q.half + margin) * a;
+                        outLo2 = outLo2 && -b2 >= (q.half + margin) * a;
+                    }
+                    if (coneOut || (facing && (outHi1 || outLo1 || outHi2 || outLo2)))
+                        continue; // missed by every direction of the bin
+                    const bool all = coneIn && facing && in1 && in2;
+                    entries_.push_back(uint16_t(k) | (all ? kAll : uint16_t(0)));
+                }
+            }
+        first_.back() = uint32_t(entries_.size());
+    }
+    size_t size() const { return squares_.size(); }
+    const std::vector<TestSquare> &squares() const { return squares_; }
+    // Calls hit(k) for every square k that direction L passes through (in_square).
+    template <class F> void for_each_hit(glm::dvec3 L, F &&hit) const {
+        const double len2 = glm::dot(L, L);
+        if (!(L.z > 0.0) || !(std::fabs(len2 - 1.0) <= 0.5 * kLengthTolerance)) // not binned
+            return for_each_square_hit(squares_, L, hit);
+        const size_t bin = direction_bin(L, kSide);
+        for (uint32_t e = first_[bin]; e < first_[bin + 1]; e++) {
+            const size_t k = entries_[e] & uint16_t(~kAll);
+            if ((entries_[e] & kAll) || in_square(squares_[k], L))
+                hit(k);
+        }
+    }
+    static const HemisphereHits &get() {
+        static const HemisphereHits h; // built once (thread-safe), shared by every cell
+        return h;
+    }
+
+  private:
+    static constexpr int kSide = 128;
+    static constexpr double kLengthTolerance = 2e-5; // |L|^2 in [1 - t/2, 1 + t/2] is binned
+    static constexpr uint16_t kAll = 0x8000;
+    std::vector<TestSquare> squares_;
+    std::vector<uint32_t> first_;  // per bin, its first entry (and the end)
+    std::vector<uint16_t> entries_; // square index, | kAll if every direction of the bin hits it
+};
+
 struct PolygonRefs {
     std::vector<TestSquare> squares;
     std::vector<double> integral; // of f NoL over each square
@@ -566,8 +676,21 @@ PolygonRefs polygon_refs(Lobe lobe, const Moments &mom, glm::vec3 V, float alpha
     PolygonRefs r;
     r.squares = test_squares(glm::dvec3(V), mom.avgDir, double(alpha), s);
     r.integral.assign(r.squares.size(), 0.0);
-    const SquareHits hits(r.squares);
-    auto add = [&](glm::dvec3 L, double w) { hits.for_each_hit(L, [&](size_t k) { r.integral[k] += w; }); };
+    // test_squares: the hemisphere's squares first (binned once for all cells), then this cell's
+    const HemisphereHits &hemisphere = HemisphereHits::get();
+    const size_t nh = hemisphere.size();
+    for (size_t k = 0; k < nh; k++) // the same squares (a difference would be a programming error)
+        if (r.squares[k].c != hemisphere.squares()[k].c || r.squares[k].half != hemisphere.squares()[k].half ||
+            r.squares[k].ring >= 0 || r.squares[k].d != r.squares[k].c) {
+            fprintf(stderr, "ltcfit: internal error: test_squares does not start with hemisphere_squares\n");
+            std::abort();
+        }
+    const std::vector<TestSquare> cellSquares(r.squares.begin() + long(nh), r.squares.end());
+    const SquareHits hits(cellSquares);
+    auto add = [&](glm::dvec3 L, double w) {
+        hemisphere.for_each_hit(L, [&](size_t k) { r.integral[k] += w; });
+        hits.for_each_hit(L, [&](size_t k) { r.integral[nh + k] += w; });
+    };
     if (s.fast) {
         for (const WeightedDir &wd : mom.samples)
             add(wd.L, wd.w);
