@@ -187,7 +187,45 @@ glm::vec2 grid_point(int i, int side) {
 // mu) and on u.x, which takes `side` values on the grid: it is computed once per column and
 // composed as Sample_Beckmann_VNDF does (same operations, so the same bits; checked against
 // Sample_Beckmann_VNDF on the first row of every grid).
+// For GGX likewise (issue 19, second round): Sample_GGX_VNDF's cos and sin of phi depend only
+// on u.x (once per column), its sinTheta and hStd.z only on u.y (once per row); composed with
+// Sample_GGX_VNDF's operations (checked on the first row and the first column of every grid).
+std::vector<glm::vec3> ggx_grid_samples(glm::vec3 V, float alpha, int side) {
+    std::vector<glm::vec3> out(size_t(side) * size_t(side));
+    const float ax = rtpbr::Alpha_Clamp(alpha), ay = rtpbr::Alpha_Clamp(alpha);
+    const glm::vec3 wStd = glm::normalize(glm::vec3(V.x * ax, V.y * ay, V.z));
+    const float onePlusW = 1.0f + wStd.z;
+    const float oneMinusW = (wStd.x * wStd.x + wStd.y * wStd.y) / onePlusW;
+    std::vector<float> cosPhi(static_cast<size_t>(side)), sinPhi(static_cast<size_t>(side));
+    std::vector<float> sinTheta(static_cast<size_t>(side)), hz(static_cast<size_t>(side));
+    for (int k = 0; k < side; k++) {
+        const glm::vec2 u = grid_point(k * side + k, side); // column k, row k
+        const float phi = rtpbr::RTPBR_TWO_PI * u.x;
+        cosPhi[size_t(k)] = glm::cos(phi);
+        sinPhi[size_t(k)] = glm::sin(phi);
+        sinTheta[size_t(k)] = rtpbr::rtpbr_safe_sqrt(u.y * onePlusW * (oneMinusW + (1.0f - u.y) * onePlusW));
+        hz[size_t(k)] = (1.0f - u.y) * (1.0f + wStd.z);
+    }
+    for (int i = 0; i < side * side; i++) {
+        const size_t col = size_t(i % side), row = size_t(i / side);
+        const glm::vec3 hStd(sinTheta[row] * cosPhi[col] + wStd.x, sinTheta[row] * sinPhi[col] + wStd.y, hz[row]);
+        const glm::vec3 h(hStd.x * ax, hStd.y * ay, std::max(hStd.z, 0.0f));
+        const float l2 = glm::dot(h, h);
+        const glm::vec3 wm = l2 > 1e-20f ? h * rtpbr::rtpbr_rsqrt(l2) : glm::vec3(0.0f, 0.0f, 1.0f);
+        out[size_t(i)] = rtpbr::Reflect_About(V, wm);
+    }
+    for (int i = 0; i < side; i++) // the composition above must stay Sample_GGX_VNDF's
+        if (out[size_t(i)] != brdf_sample(Lobe::GGX, V, alpha, grid_point(i, side)) ||
+            out[size_t(i) * size_t(side)] != brdf_sample(Lobe::GGX, V, alpha, grid_point(i * side, side))) {
+            fprintf(stderr, "ltcfit: internal error: the GGX grid sampler differs from Sample_GGX_VNDF\n");
+            std::abort();
+        }
+    return out;
+}
+
 std::vector<glm::vec3> brdf_grid_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
+    if (lobe == Lobe::GGX && V.z > 0.0f)
+        return ggx_grid_samples(V, alpha, side);
     std::vector<glm::vec3> out(size_t(side) * size_t(side));
     if (lobe != Lobe::Beckmann || !(V.z > 0.0f)) {
         for (int i = 0; i < side * side; i++)
