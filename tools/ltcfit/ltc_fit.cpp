@@ -630,12 +630,13 @@ class SquareHits {
 // in their order: the integrals are the same bits.
 class HemisphereHits {
   public:
-    HemisphereHits() : squares_(hemisphere_squares()), first_(size_t(kSide) * kSide + 1, 0) {
+    HemisphereHits() : squares_(hemisphere_squares()), first_(size_t(kSide) * kSide + 1, 0), partial_(first_.size(), 0) {
         const double pad = 1e-9, margin = 1e-9;
         for (int by = 0; by < kSide; by++)
             for (int bx = 0; bx < kSide; bx++) {
                 const size_t bin = size_t(by) * kSide + size_t(bx);
                 first_[bin] = uint32_t(entries_.size());
+                std::vector<uint16_t> partial;
                 const double x0 = -1.0 + 2.0 * bx / kSide - pad, x1 = -1.0 + 2.0 * (bx + 1) / kSide + pad;
                 const double y0 = -1.0 + 2.0 * by / kSide - pad, y1 = -1.0 + 2.0 * (by + 1) / kSide + pad;
                 auto minSq = [](double lo, double hi) { return lo <= 0.0 && hi >= 0.0 ? 0.0 : std::min(lo * lo, hi * hi); };
@@ -667,8 +668,10 @@ class HemisphereHits {
                     if (coneOut || (facing && (outHi1 || outLo1 || outHi2 || outLo2)))
                         continue; // missed by every direction of the bin
                     const bool all = coneIn && facing && in1 && in2;
-                    entries_.push_back(uint16_t(k) | (all ? kAll : uint16_t(0)));
+                    (all ? entries_ : partial).push_back(uint16_t(k));
                 }
+                partial_[bin] = uint32_t(entries_.size());
+                entries_.insert(entries_.end(), partial.begin(), partial.end());
             }
         first_.back() = uint32_t(entries_.size());
     }
@@ -680,11 +683,11 @@ class HemisphereHits {
         if (!(L.z > 0.0) || !(std::fabs(len2 - 1.0) <= 0.5 * kLengthTolerance)) // not binned
             return for_each_square_hit(squares_, L, hit);
         const size_t bin = direction_bin(L, kSide);
-        for (uint32_t e = first_[bin]; e < first_[bin + 1]; e++) {
-            const size_t k = entries_[e] & uint16_t(~kAll);
-            if ((entries_[e] & kAll) || in_square(squares_[k], L))
-                hit(k);
-        }
+        for (uint32_t e = first_[bin]; e < partial_[bin]; e++)
+            hit(size_t(entries_[e]));
+        for (uint32_t e = partial_[bin]; e < first_[bin + 1]; e++)
+            if (in_square(squares_[entries_[e]], L))
+                hit(size_t(entries_[e]));
     }
     static const HemisphereHits &get() {
         static const HemisphereHits h; // built once (thread-safe), shared by every cell
@@ -694,10 +697,10 @@ class HemisphereHits {
   private:
     static constexpr int kSide = 128;
     static constexpr double kLengthTolerance = 2e-5; // |L|^2 in [1 - t/2, 1 + t/2] is binned
-    static constexpr uint16_t kAll = 0x8000;
     std::vector<TestSquare> squares_;
-    std::vector<uint32_t> first_;  // per bin, its first entry (and the end)
-    std::vector<uint16_t> entries_; // square index, | kAll if every direction of the bin hits it
+    std::vector<uint32_t> first_;   // per bin, its first entry (and the end): the squares that
+    std::vector<uint32_t> partial_; // every direction of the bin hits, then from partial_[bin]
+    std::vector<uint16_t> entries_; // those that some may hit (square indices)
 };
 
 struct PolygonRefs {
