@@ -81,7 +81,10 @@ float vis_beckmann(float NoV, float NoL, float alpha, float lambdaV) {
 
 // alpha: the microfacet lobes' alpha; for Lobe::DisneyDiffuse the perceptual roughness.
 // vt: view_terms(lobe, V, alpha), or null to compute them here.
-BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha, const ViewTerms *vt = nullptr) {
+// Inlined (issue 19, second round): with the lobe a constant (ltc_error_for), the lobe's branch
+// and the terms of alpha alone are resolved once per loop; the same operations on each sample.
+[[gnu::always_inline]] inline BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha,
+                                                   const ViewTerms *vt = nullptr) {
     if (lobe == Lobe::Sheen) { // sampled by Sample_SheenLobe (its density counts below the horizon too)
         double pdf = double(rtpbr::PDF_SheenLobe(V, L, alpha));
         if (!(V.z > 0.0f) || !(L.z > 0.0f))
@@ -345,8 +348,8 @@ ErrorSamples error_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
 // (the balance heuristic with one sample of each per grid point).
 // horizon: compare only above the horizon, with the LTC scaled by norm / (its mass above the
 // horizon) (the evaluation clips there, so mass below it is neither light nor error).
-double ltc_error(const Ltc &ltc, const ErrorSamples &es, Lobe lobe, glm::vec3 V, float alpha, double norm, int p,
-                 bool horizon) {
+template <Lobe lobe>
+double ltc_error_for(const Ltc &ltc, const ErrorSamples &es, glm::vec3 V, float alpha, double norm, int p, bool horizon) {
     double sum = 0.0;
     const size_t n = es.cosine.size();
     const double scale = horizon ? norm / ltc.mass_above_horizon() : norm;
@@ -369,6 +372,21 @@ double ltc_error(const Ltc &ltc, const ErrorSamples &es, Lobe lobe, glm::vec3 V,
             accumulate(es.brdf[i].value, es.brdf[i].pdf, ltc.eval(glm::dvec3(es.brdfL[i])), double(es.brdfL[i].z));
     }
     return sum / double(n);
+}
+
+double ltc_error(const Ltc &ltc, const ErrorSamples &es, Lobe lobe, glm::vec3 V, float alpha, double norm, int p,
+                 bool horizon) {
+    switch (lobe) {
+    case Lobe::GGX:
+        return ltc_error_for<Lobe::GGX>(ltc, es, V, alpha, norm, p, horizon);
+    case Lobe::Beckmann:
+        return ltc_error_for<Lobe::Beckmann>(ltc, es, V, alpha, norm, p, horizon);
+    case Lobe::DisneyDiffuse:
+        return ltc_error_for<Lobe::DisneyDiffuse>(ltc, es, V, alpha, norm, p, horizon);
+    case Lobe::Sheen:
+        break;
+    }
+    return ltc_error_for<Lobe::Sheen>(ltc, es, V, alpha, norm, p, horizon);
 }
 
 // ---- polygon refinement ---------------------------------------------------------------------
@@ -785,16 +803,17 @@ using Params = std::array<double, 4>;
 
 // Nelder & Mead 1965, "A Simplex Method for Function Minimization" (standard coefficients:
 // reflection 1, expansion 2, contraction 1/2, shrink 1/2). Minimises f over R^dim, dim <= 4.
+// startValue: f(start) if known (not evaluated again); bestValue: receives f(result).
 template <class F>
-Params nelder_mead(F &&f, Params start, Params step, int dim,
-                   int maxIterations, double tolerance) {
+Params nelder_mead(F &&f, Params start, Params step, int dim, int maxIterations, double tolerance,
+                   double *bestValue = nullptr, const double *startValue = nullptr) {
     std::array<Params, 5> x;
-    std::array<double, 5> fx;
+    std::array<double, 5> fx{};
     for (int i = 0; i <= dim; i++) {
         x[i] = start;
         if (i > 0)
             x[i][i - 1] += step[i - 1];
-        fx[i] = f(x[i]);
+        fx[i] = i == 0 && startValue ? *startValue : f(x[i]);
     }
     for (int it = 0; it < maxIterations; it++) {
         // order: x[0] best ... x[dim] worst
@@ -850,6 +869,8 @@ Params nelder_mead(F &&f, Params start, Params step, int dim,
     for (int i = 1; i <= dim; i++)
         if (fx[i] < fx[best])
             best = i;
+    if (bestValue)
+        *bestValue = fx[best];
     return x[best];
 }
 
@@ -908,30 +929,45 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     // cell keeps its rougher neighbour's shape.
     const bool emptyLobe = lobe == Lobe::Sheen && !(mom.norm >= 1e-6);
     // Heitz et al.'s 3 parameters (Z at the average direction) ...
+    // (issue 19: the costs the optimiser returns and the L1 errors of the candidates are kept,
+    // not evaluated again: the same values.)
+    double bestFit = HUGE_VAL;
     Params best = emptyLobe ? Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation}
                             : nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, 0.0}, step,
-                                          isotropic ? 1 : 3, l3Iterations, 1e-5);
+                                          isotropic ? 1 : 3, l3Iterations, 1e-5, &bestFit);
     // Candidates: Heitz et al.'s fit, the 4-parameter fit from the neighbour's rotation, and
     // the neighbour's shape itself. The lowest L3 cost wins among those that overlap the lobe
     // (relative L1 error < 1); if none does, the lowest L1 error. The L3 cost, dominated by
     // the peak values of sharp lobes, can prefer a wide LTC disjoint from the lobe to a
     // slightly misaligned narrow one (it happens for alpha ~ 1e-3 at grazing views, where
     // float directions barely resolve the lobe).
+    std::vector<std::pair<Params, double>> l1Known;
     auto l1 = [&](const Params &p) {
+        for (const auto &k : l1Known)
+            if (k.first == p)
+                return k.second;
         Ltc l = ltc;
         apply(p, l);
-        return ltc_error(l, fitSamples, lobe, V, alpha, mom.norm, 1, s.horizonNormalised) / mom.norm;
+        const double e = ltc_error(l, fitSamples, lobe, V, alpha, mom.norm, 1, s.horizonNormalised) / mom.norm;
+        l1Known.emplace_back(p, e);
+        return e;
     };
     std::vector<Params> candidates{best};
-    if (s.freeRotation && !isotropic && !emptyLobe)
+    std::vector<double> candidateCosts{emptyLobe ? cost(best) : bestFit};
+    if (s.freeRotation && !isotropic && !emptyLobe) {
         candidates.push_back(nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation}, step,
-                                         4, l3Iterations, 1e-5));
-    if (start && !emptyLobe)
+                                         4, l3Iterations, 1e-5, &bestFit));
+        candidateCosts.push_back(bestFit);
+    }
+    if (start && !emptyLobe) {
         candidates.push_back(Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation});
+        candidateCosts.push_back(cost(candidates.back()));
+    }
     double bestCost = HUGE_VAL, bestL1 = HUGE_VAL;
     bool overlapping = false;
-    for (const Params &c : candidates) {
-        double e1 = l1(c), e3 = cost(c);
+    for (size_t ci = 0; ci < candidates.size(); ci++) {
+        const Params &c = candidates[ci];
+        double e1 = l1(c), e3 = candidateCosts[ci];
         bool ok = e1 < 1.0;
         if ((ok && (!overlapping || e3 < bestCost)) || (!ok && !overlapping && e1 < bestL1)) {
             best = c;
@@ -963,10 +999,12 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
         }
         const int dim = isotropic ? 1 : 4;
         Params refined = from;
-        for (int pass = 0; pass < 2; pass++) // a restart: Nelder-Mead's simplex can collapse
+        double refinedCost = fromCost;
+        for (int pass = 0; pass < 2; pass++) { // a restart: Nelder-Mead's simplex can collapse
+            const double startCost = refinedCost;
             refined = nelder_mead(pcost, refined, Params{0.1, 0.1, 0.05 * std::max(std::exp(refined[0]), 1e-3), 0.05}, dim,
-                                  s.maxIterations, 1e-6);
-        double refinedCost = pcost(refined);
+                                  s.maxIterations, 1e-6, &refinedCost, &startCost);
+        }
         // Never trade an LTC that overlaps the lobe for one that hardly does (relative L1
         // distance >= 1, as in the candidates' choice above): the squares cannot see every
         // shape error of a sharp lobe.
