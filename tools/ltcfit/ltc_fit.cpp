@@ -49,6 +49,7 @@ rtpbr::DisneyMaterial diffuse_material(float r) {
 struct ViewTerms {
     float G1 = 0.0f;      // G1(V)
     float lambdaV = 0.0f; // Beckmann: Lambda(min(NoV, 1))
+    float FV = 0.0f;      // Burley's diffuse: Disney_SchlickWeight(NoV)
 };
 
 ViewTerms view_terms(Lobe lobe, glm::vec3 V, float alpha) {
@@ -58,8 +59,27 @@ ViewTerms view_terms(Lobe lobe, glm::vec3 V, float alpha) {
     else if (lobe == Lobe::Beckmann) {
         t.G1 = rtpbr::G1_Beckmann(V.z, alpha);
         t.lambdaV = rtpbr::Lambda_Beckmann(std::min(V.z, 1.0f), alpha);
-    }
+    } else if (lobe == Lobe::DisneyDiffuse)
+        t.FV = rtpbr::Disney_SchlickWeight(V.z);
     return t;
+}
+
+// BRDF_DisneyDiffuse(diffuse_material(r), V, L).x for V, L above the horizon and finite, with
+// Disney_SchlickWeight(NoV) given (issue 19, second round: the library function takes the whole
+// material, sanitises each of its parameters and computes three channels, per sample). The
+// library's operations on the same values; what it adds for this material changes no bit: the
+// subsurface blend is lerp(Fd, ss, 0) = Fd (ss finite), and metallic 0 and the white base colour
+// multiply by 1 (checked against the library on each grid's first row, see error_samples).
+float disney_diffuse(glm::vec3 V, glm::vec3 L, float r, float FV) {
+    const float roughness = r > 0.0f ? std::min(r, 1.0f) : 0.0f; // Disney_SanitizeMaterial's clamp
+    const glm::vec3 sum = V + L;
+    const glm::vec3 h = sum * rtpbr::rtpbr_rsqrt(std::max(glm::dot(sum, sum), 1e-30f)); // Disney_HalfVector
+    const float LoH = glm::dot(L, h);
+    const float FL = rtpbr::Disney_SchlickWeight(L.z);
+    const float LoH2 = LoH * LoH;
+    const float Fd90 = 0.5f + 2.0f * roughness * LoH2;
+    const float Fd = rtpbr::rtpbr_lerp(1.0f, Fd90, FL) * rtpbr::rtpbr_lerp(1.0f, Fd90, FV);
+    return rtpbr::Disney_Clamp(1.0f * rtpbr::RTPBR_INV_PI * Fd, rtpbr::RTPBR_FLT_MAX);
 }
 
 // V_SmithBeckmann(NoV, NoL, alpha) with Lambda(NoV) given: the same operations on the same
@@ -96,7 +116,9 @@ float vis_beckmann(float NoV, float NoL, float alpha, float lambdaV) {
     if (lobe == Lobe::DisneyDiffuse) { // sampled by the cosine: pdf = NoL / pi
         if (!(V.z > 0.0f) || !(L.z > 0.0f))
             return {0.0, 0.0};
-        double f = double(rtpbr::BRDF_DisneyDiffuse(diffuse_material(alpha), V, L).x);
+        const bool finite = glm::dot(V, V) < 1e30f && glm::dot(L, L) < 1e30f; // Disney_ValidPair
+        double f = vt && finite ? double(disney_diffuse(V, L, alpha, vt->FV))
+                                : double(rtpbr::BRDF_DisneyDiffuse(diffuse_material(alpha), V, L).x);
         return {f * double(L.z), double(L.z) / kPi};
     }
     glm::vec3 hs = V + L;
