@@ -50,18 +50,31 @@ struct ViewTerms {
     float G1 = 0.0f;      // G1(V)
     float lambdaV = 0.0f; // Beckmann: Lambda(min(NoV, 1))
     float FV = 0.0f;      // Burley's diffuse: Disney_SchlickWeight(NoV)
+    float ggxV = 0.0f;    // GGX: V_SmithGGXCorrelated's sqrt(NoV^2 (1 - a^2) + a^2)
 };
 
 ViewTerms view_terms(Lobe lobe, glm::vec3 V, float alpha) {
     ViewTerms t;
-    if (lobe == Lobe::GGX)
+    if (lobe == Lobe::GGX) {
         t.G1 = rtpbr::G1_GGX(V.z, alpha);
-    else if (lobe == Lobe::Beckmann) {
+        const float v = std::min(V.z, 1.0f), a2 = rtpbr::rtpbr_sq(rtpbr::Alpha_Clamp(alpha));
+        t.ggxV = std::sqrt(v * v * (1.0f - a2) + a2);
+    } else if (lobe == Lobe::Beckmann) {
         t.G1 = rtpbr::G1_Beckmann(V.z, alpha);
         t.lambdaV = rtpbr::Lambda_Beckmann(std::min(V.z, 1.0f), alpha);
     } else if (lobe == Lobe::DisneyDiffuse)
         t.FV = rtpbr::Disney_SchlickWeight(V.z);
     return t;
+}
+
+// V_SmithGGXCorrelated(NoV, NoL, alpha) with its view's square root given (issue 19, second
+// round): the library's operations on the same values.
+float vis_ggx(float NoV, float NoL, float alpha, float ggxV) {
+    if (!(NoV > 0.0f) || !(NoL > 0.0f))
+        return 0.0f;
+    const float v = std::min(NoV, 1.0f), l = std::min(NoL, 1.0f);
+    const float a2 = rtpbr::rtpbr_sq(rtpbr::Alpha_Clamp(alpha));
+    return 0.5f / (l * ggxV + v * std::sqrt(l * l * (1.0f - a2) + a2));
 }
 
 // BRDF_DisneyDiffuse(diffuse_material(r), V, L).x for V, L above the horizon and finite, with
@@ -130,7 +143,7 @@ float vis_beckmann(float NoV, float NoL, float alpha, float lambdaV) {
     float D, Vis, G1;
     if (lobe == Lobe::GGX) {
         D = rtpbr::D_GGX(H.z, alpha);
-        Vis = rtpbr::V_SmithGGXCorrelated(V.z, L.z, alpha);
+        Vis = vt ? vis_ggx(V.z, L.z, alpha, vt->ggxV) : rtpbr::V_SmithGGXCorrelated(V.z, L.z, alpha);
         G1 = vt ? vt->G1 : rtpbr::G1_GGX(V.z, alpha);
     } else {
         D = rtpbr::D_Beckmann(H.z, alpha);
