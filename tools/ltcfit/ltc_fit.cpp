@@ -447,12 +447,17 @@ struct TestSquare {
     int clippedCount = 0;
 };
 
-// Sutherland-Hodgman against the half-space dot(n, p) >= 0 (convex polygon, at most 10 vertices out).
+// Sutherland-Hodgman against the half-space dot(n, p) >= 0 (convex polygon, at most 8 vertices in,
+// at most 10 out).
+// (issue 19, second round: each vertex's distance once, not once per edge: the same values.)
 int clip_half_space(const glm::dvec3 *in, int n, glm::dvec3 nrm, glm::dvec3 *out) {
+    double dist[10];
+    for (int i = 0; i < n; i++)
+        dist[i] = glm::dot(nrm, in[i]);
     int m = 0;
     for (int i = 0; i < n; i++) {
         glm::dvec3 a = in[i], b = in[(i + 1) % n];
-        double da = glm::dot(nrm, a), db = glm::dot(nrm, b);
+        double da = dist[i], db = dist[(i + 1) % n];
         if (da >= 0.0)
             out[m++] = a;
         if ((da >= 0.0) != (db >= 0.0))
