@@ -693,7 +693,7 @@ class HemisphereHits {
         for (int by = 0; by < kSide; by++)
             for (int bx = 0; bx < kSide; bx++) {
                 const size_t bin = size_t(by) * kSide + size_t(bx);
-                first_[bin] = uint32_t(entries_.size());
+                first_[bin] = partial_[bin] = uint32_t(entries_.size());
                 std::vector<uint16_t> partial;
                 const double x0 = -1.0 + 2.0 * bx / kSide - pad, x1 = -1.0 + 2.0 * (bx + 1) / kSide + pad;
                 const double y0 = -1.0 + 2.0 * by / kSide - pad, y1 = -1.0 + 2.0 * (by + 1) / kSide + pad;
@@ -738,7 +738,10 @@ class HemisphereHits {
     // Calls hit(k) for every square k that direction L passes through (in_square).
     template <class F> void for_each_hit(glm::dvec3 L, F &&hit) const {
         const double len2 = glm::dot(L, L);
-        if (!(L.z > 0.0) || !(std::fabs(len2 - 1.0) <= 0.5 * kLengthTolerance)) // not binned
+        // not binned: below the horizon, not of length ~1, or outside the bins' square (|x| or
+        // |y| > 1 would be clamped into an edge bin whose box does not hold it)
+        if (!(L.z > 0.0) || !(std::fabs(len2 - 1.0) <= 0.5 * kLengthTolerance) || !(std::fabs(L.x) <= 1.0) ||
+            !(std::fabs(L.y) <= 1.0))
             return for_each_square_hit(squares_, L, hit);
         const size_t bin = direction_bin(L, kSide);
         for (uint32_t e = first_[bin]; e < partial_[bin]; e++)
