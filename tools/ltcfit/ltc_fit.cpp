@@ -49,17 +49,50 @@ rtpbr::DisneyMaterial diffuse_material(float r) {
 struct ViewTerms {
     float G1 = 0.0f;      // G1(V)
     float lambdaV = 0.0f; // Beckmann: Lambda(min(NoV, 1))
+    float FV = 0.0f;      // Burley's diffuse: Disney_SchlickWeight(NoV)
+    float ggxV = 0.0f;    // GGX: V_SmithGGXCorrelated's sqrt(NoV^2 (1 - a^2) + a^2)
 };
 
 ViewTerms view_terms(Lobe lobe, glm::vec3 V, float alpha) {
     ViewTerms t;
-    if (lobe == Lobe::GGX)
+    if (lobe == Lobe::GGX) {
         t.G1 = rtpbr::G1_GGX(V.z, alpha);
-    else if (lobe == Lobe::Beckmann) {
+        const float v = std::min(V.z, 1.0f), a2 = rtpbr::rtpbr_sq(rtpbr::Alpha_Clamp(alpha));
+        t.ggxV = std::sqrt(v * v * (1.0f - a2) + a2);
+    } else if (lobe == Lobe::Beckmann) {
         t.G1 = rtpbr::G1_Beckmann(V.z, alpha);
         t.lambdaV = rtpbr::Lambda_Beckmann(std::min(V.z, 1.0f), alpha);
-    }
+    } else if (lobe == Lobe::DisneyDiffuse)
+        t.FV = rtpbr::Disney_SchlickWeight(V.z);
     return t;
+}
+
+// V_SmithGGXCorrelated(NoV, NoL, alpha) with its view's square root given (issue 19, second
+// round): the library's operations on the same values.
+float vis_ggx(float NoV, float NoL, float alpha, float ggxV) {
+    if (!(NoV > 0.0f) || !(NoL > 0.0f))
+        return 0.0f;
+    const float v = std::min(NoV, 1.0f), l = std::min(NoL, 1.0f);
+    const float a2 = rtpbr::rtpbr_sq(rtpbr::Alpha_Clamp(alpha));
+    return 0.5f / (l * ggxV + v * std::sqrt(l * l * (1.0f - a2) + a2));
+}
+
+// BRDF_DisneyDiffuse(diffuse_material(r), V, L).x for V, L above the horizon and finite, with
+// Disney_SchlickWeight(NoV) given (issue 19, second round: the library function takes the whole
+// material, sanitises each of its parameters and computes three channels, per sample). The
+// library's operations on the same values; what it adds for this material changes no bit: the
+// subsurface blend is lerp(Fd, ss, 0) = Fd (ss finite), and metallic 0 and the white base colour
+// multiply by 1 (checked against the library on each grid's first row, see error_samples).
+float disney_diffuse(glm::vec3 V, glm::vec3 L, float r, float FV) {
+    const float roughness = r > 0.0f ? std::min(r, 1.0f) : 0.0f; // Disney_SanitizeMaterial's clamp
+    const glm::vec3 sum = V + L;
+    const glm::vec3 h = sum * rtpbr::rtpbr_rsqrt(std::max(glm::dot(sum, sum), 1e-30f)); // Disney_HalfVector
+    const float LoH = glm::dot(L, h);
+    const float FL = rtpbr::Disney_SchlickWeight(L.z);
+    const float LoH2 = LoH * LoH;
+    const float Fd90 = 0.5f + 2.0f * roughness * LoH2;
+    const float Fd = rtpbr::rtpbr_lerp(1.0f, Fd90, FL) * rtpbr::rtpbr_lerp(1.0f, Fd90, FV);
+    return rtpbr::Disney_Clamp(1.0f * rtpbr::RTPBR_INV_PI * Fd, rtpbr::RTPBR_FLT_MAX);
 }
 
 // V_SmithBeckmann(NoV, NoL, alpha) with Lambda(NoV) given: the same operations on the same
@@ -81,7 +114,10 @@ float vis_beckmann(float NoV, float NoL, float alpha, float lambdaV) {
 
 // alpha: the microfacet lobes' alpha; for Lobe::DisneyDiffuse the perceptual roughness.
 // vt: view_terms(lobe, V, alpha), or null to compute them here.
-BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha, const ViewTerms *vt = nullptr) {
+// Inlined (issue 19, second round): with the lobe a constant (ltc_error_for), the lobe's branch
+// and the terms of alpha alone are resolved once per loop; the same operations on each sample.
+[[gnu::always_inline]] inline BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha,
+                                                   const ViewTerms *vt = nullptr) {
     if (lobe == Lobe::Sheen) { // sampled by Sample_SheenLobe (its density counts below the horizon too)
         double pdf = double(rtpbr::PDF_SheenLobe(V, L, alpha));
         if (!(V.z > 0.0f) || !(L.z > 0.0f))
@@ -93,7 +129,9 @@ BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha, const Vie
     if (lobe == Lobe::DisneyDiffuse) { // sampled by the cosine: pdf = NoL / pi
         if (!(V.z > 0.0f) || !(L.z > 0.0f))
             return {0.0, 0.0};
-        double f = double(rtpbr::BRDF_DisneyDiffuse(diffuse_material(alpha), V, L).x);
+        const bool finite = glm::dot(V, V) < 1e30f && glm::dot(L, L) < 1e30f; // Disney_ValidPair
+        double f = vt && finite ? double(disney_diffuse(V, L, alpha, vt->FV))
+                                : double(rtpbr::BRDF_DisneyDiffuse(diffuse_material(alpha), V, L).x);
         return {f * double(L.z), double(L.z) / kPi};
     }
     glm::vec3 hs = V + L;
@@ -105,11 +143,18 @@ BrdfSample brdf_eval(Lobe lobe, glm::vec3 V, glm::vec3 L, float alpha, const Vie
     float D, Vis, G1;
     if (lobe == Lobe::GGX) {
         D = rtpbr::D_GGX(H.z, alpha);
-        Vis = rtpbr::V_SmithGGXCorrelated(V.z, L.z, alpha);
+        Vis = vt ? vis_ggx(V.z, L.z, alpha, vt->ggxV) : rtpbr::V_SmithGGXCorrelated(V.z, L.z, alpha);
         G1 = vt ? vt->G1 : rtpbr::G1_GGX(V.z, alpha);
     } else {
         D = rtpbr::D_Beckmann(H.z, alpha);
-        Vis = vt ? vis_beckmann(V.z, L.z, alpha, vt->lambdaV) : rtpbr::V_SmithBeckmann(V.z, L.z, alpha);
+        // Where D is 0 (far from a sharp lobe's peak: D_Beckmann returns 0 for tan^2 / alpha^2
+        // > 80) the value below is 0 x Vis = +0 for any finite Vis, and Vis = G2 / (4 NoV NoL)
+        // with G2 in (0, 1] is finite once NoV NoL >= 1e-20: Lambda(L) (an exp and an erfc)
+        // is skipped there (issue 19; the same value and pdf bits).
+        if (vt && D == 0.0f && V.z * L.z >= 1e-20f)
+            Vis = 0.0f;
+        else
+            Vis = vt ? vis_beckmann(V.z, L.z, alpha, vt->lambdaV) : rtpbr::V_SmithBeckmann(V.z, L.z, alpha);
         G1 = vt ? vt->G1 : rtpbr::G1_Beckmann(V.z, alpha);
     }
     // The density of the visible-normal sampler's reflected direction, D_V(h) / (4 VoH) =
@@ -180,7 +225,45 @@ glm::vec2 grid_point(int i, int side) {
 // mu) and on u.x, which takes `side` values on the grid: it is computed once per column and
 // composed as Sample_Beckmann_VNDF does (same operations, so the same bits; checked against
 // Sample_Beckmann_VNDF on the first row of every grid).
+// For GGX likewise (issue 19, second round): Sample_GGX_VNDF's cos and sin of phi depend only
+// on u.x (once per column), its sinTheta and hStd.z only on u.y (once per row); composed with
+// Sample_GGX_VNDF's operations (checked on the first row and the first column of every grid).
+std::vector<glm::vec3> ggx_grid_samples(glm::vec3 V, float alpha, int side) {
+    std::vector<glm::vec3> out(size_t(side) * size_t(side));
+    const float ax = rtpbr::Alpha_Clamp(alpha), ay = rtpbr::Alpha_Clamp(alpha);
+    const glm::vec3 wStd = glm::normalize(glm::vec3(V.x * ax, V.y * ay, V.z));
+    const float onePlusW = 1.0f + wStd.z;
+    const float oneMinusW = (wStd.x * wStd.x + wStd.y * wStd.y) / onePlusW;
+    std::vector<float> cosPhi(static_cast<size_t>(side)), sinPhi(static_cast<size_t>(side));
+    std::vector<float> sinTheta(static_cast<size_t>(side)), hz(static_cast<size_t>(side));
+    for (int k = 0; k < side; k++) {
+        const glm::vec2 u = grid_point(k * side + k, side); // column k, row k
+        const float phi = rtpbr::RTPBR_TWO_PI * u.x;
+        cosPhi[size_t(k)] = glm::cos(phi);
+        sinPhi[size_t(k)] = glm::sin(phi);
+        sinTheta[size_t(k)] = rtpbr::rtpbr_safe_sqrt(u.y * onePlusW * (oneMinusW + (1.0f - u.y) * onePlusW));
+        hz[size_t(k)] = (1.0f - u.y) * (1.0f + wStd.z);
+    }
+    for (int i = 0; i < side * side; i++) {
+        const size_t col = size_t(i % side), row = size_t(i / side);
+        const glm::vec3 hStd(sinTheta[row] * cosPhi[col] + wStd.x, sinTheta[row] * sinPhi[col] + wStd.y, hz[row]);
+        const glm::vec3 h(hStd.x * ax, hStd.y * ay, std::max(hStd.z, 0.0f));
+        const float l2 = glm::dot(h, h);
+        const glm::vec3 wm = l2 > 1e-20f ? h * rtpbr::rtpbr_rsqrt(l2) : glm::vec3(0.0f, 0.0f, 1.0f);
+        out[size_t(i)] = rtpbr::Reflect_About(V, wm);
+    }
+    for (int i = 0; i < side; i++) // the composition above must stay Sample_GGX_VNDF's
+        if (out[size_t(i)] != brdf_sample(Lobe::GGX, V, alpha, grid_point(i, side)) ||
+            out[size_t(i) * size_t(side)] != brdf_sample(Lobe::GGX, V, alpha, grid_point(i * side, side))) {
+            fprintf(stderr, "ltcfit: internal error: the GGX grid sampler differs from Sample_GGX_VNDF\n");
+            std::abort();
+        }
+    return out;
+}
+
 std::vector<glm::vec3> brdf_grid_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
+    if (lobe == Lobe::GGX && V.z > 0.0f)
+        return ggx_grid_samples(V, alpha, side);
     std::vector<glm::vec3> out(size_t(side) * size_t(side));
     if (lobe != Lobe::Beckmann || !(V.z > 0.0f)) {
         for (int i = 0; i < side * side; i++)
@@ -282,11 +365,14 @@ ErrorSamples error_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
         glm::vec3 L = dirs[size_t(i)];
         es.brdfL.push_back(L);
         es.brdf.push_back(brdf_eval(lobe, V, L, alpha, &vt));
-        // the per-view terms must give the library's values (see vis_beckmann)
-        const BrdfSample ref = brdf_eval(lobe, V, L, alpha);
-        if (i < side && (ref.value != es.brdf.back().value || ref.pdf != es.brdf.back().pdf)) {
-            fprintf(stderr, "ltcfit: internal error: the per-view BRDF terms differ from the library's\n");
-            std::abort();
+        // the per-view terms must give the library's values (see vis_beckmann), checked on the
+        // grid's first row
+        if (i < side) {
+            const BrdfSample ref = brdf_eval(lobe, V, L, alpha);
+            if (ref.value != es.brdf.back().value || ref.pdf != es.brdf.back().pdf) {
+                fprintf(stderr, "ltcfit: internal error: the per-view BRDF terms differ from the library's\n");
+                std::abort();
+            }
         }
     }
     return es;
@@ -297,8 +383,8 @@ ErrorSamples error_samples(Lobe lobe, glm::vec3 V, float alpha, int side) {
 // (the balance heuristic with one sample of each per grid point).
 // horizon: compare only above the horizon, with the LTC scaled by norm / (its mass above the
 // horizon) (the evaluation clips there, so mass below it is neither light nor error).
-double ltc_error(const Ltc &ltc, const ErrorSamples &es, Lobe lobe, glm::vec3 V, float alpha, double norm, int p,
-                 bool horizon) {
+template <Lobe lobe>
+double ltc_error_for(const Ltc &ltc, const ErrorSamples &es, glm::vec3 V, float alpha, double norm, int p, bool horizon) {
     double sum = 0.0;
     const size_t n = es.cosine.size();
     const double scale = horizon ? norm / ltc.mass_above_horizon() : norm;
@@ -321,6 +407,21 @@ double ltc_error(const Ltc &ltc, const ErrorSamples &es, Lobe lobe, glm::vec3 V,
             accumulate(es.brdf[i].value, es.brdf[i].pdf, ltc.eval(glm::dvec3(es.brdfL[i])), double(es.brdfL[i].z));
     }
     return sum / double(n);
+}
+
+double ltc_error(const Ltc &ltc, const ErrorSamples &es, Lobe lobe, glm::vec3 V, float alpha, double norm, int p,
+                 bool horizon) {
+    switch (lobe) {
+    case Lobe::GGX:
+        return ltc_error_for<Lobe::GGX>(ltc, es, V, alpha, norm, p, horizon);
+    case Lobe::Beckmann:
+        return ltc_error_for<Lobe::Beckmann>(ltc, es, V, alpha, norm, p, horizon);
+    case Lobe::DisneyDiffuse:
+        return ltc_error_for<Lobe::DisneyDiffuse>(ltc, es, V, alpha, norm, p, horizon);
+    case Lobe::Sheen:
+        break;
+    }
+    return ltc_error_for<Lobe::Sheen>(ltc, es, V, alpha, norm, p, horizon);
 }
 
 // ---- polygon refinement ---------------------------------------------------------------------
@@ -346,12 +447,17 @@ struct TestSquare {
     int clippedCount = 0;
 };
 
-// Sutherland-Hodgman against the half-space dot(n, p) >= 0 (convex polygon, at most 10 vertices out).
+// Sutherland-Hodgman against the half-space dot(n, p) >= 0 (convex polygon, at most 8 vertices in,
+// at most 10 out).
+// (issue 19, second round: each vertex's distance once, not once per edge: the same values.)
 int clip_half_space(const glm::dvec3 *in, int n, glm::dvec3 nrm, glm::dvec3 *out) {
+    double dist[10];
+    for (int i = 0; i < n; i++)
+        dist[i] = glm::dot(nrm, in[i]);
     int m = 0;
     for (int i = 0; i < n; i++) {
         glm::dvec3 a = in[i], b = in[(i + 1) % n];
-        double da = glm::dot(nrm, a), db = glm::dot(nrm, b);
+        double da = dist[i], db = dist[(i + 1) % n];
         if (da >= 0.0)
             out[m++] = a;
         if ((da >= 0.0) != (db >= 0.0))
@@ -396,19 +502,28 @@ TestSquare make_ceiling_square(glm::dvec3 c, double half, double weight, int rin
     return finish_square(s);
 }
 
+glm::dvec3 square_dir(double el, double az) {
+    const double deg = kPi / 180.0;
+    return glm::dvec3(std::cos(el * deg) * std::cos(az * deg), std::cos(el * deg) * std::sin(az * deg),
+                      std::sin(el * deg));
+}
+
+// The squares all over the hemisphere, the same for every cell (test_squares' first ones).
 // The lobe is symmetric about the plane of incidence (y = 0): azimuths 0 (the viewer's side)
 // to 180 degrees (the mirror side) suffice.
-std::vector<TestSquare> test_squares(glm::dvec3 V, glm::dvec3 avgDir, double alpha, const FitSettings &s) {
+std::vector<TestSquare> hemisphere_squares() {
     std::vector<TestSquare> v;
-    const double deg = kPi / 180.0;
-    auto dir = [&](double el, double az) {
-        return glm::dvec3(std::cos(el * deg) * std::cos(az * deg), std::cos(el * deg) * std::sin(az * deg),
-                          std::sin(el * deg));
-    };
     for (double el : {8.0, 20.0, 35.0, 50.0, 65.0, 80.0, 90.0})
         for (double az = 0.0; az <= 180.0 && (el < 90.0 || az == 0.0); az += 30.0)
             for (double h : {0.15, 0.4, 1.0})
-                v.push_back(make_square(dir(el, az), h, 1.0));
+                v.push_back(make_square(square_dir(el, az), h, 1.0));
+    return v;
+}
+
+// hemisphere_squares(), then the squares of this cell's lobe (and the floor squares).
+std::vector<TestSquare> test_squares(glm::dvec3 V, glm::dvec3 avgDir, double alpha, const FitSettings &s) {
+    std::vector<TestSquare> v = hemisphere_squares();
+    auto dir = square_dir;
     glm::dvec3 mirror(-V.x, 0.0, std::max(V.z, 0.1)); // not under the horizon
     // Sharp lobes (alpha below ~0.02) fit inside the smallest of these: squares of the lobe's
     // own width (alpha, 3 alpha) keep its shape measured.
@@ -467,6 +582,20 @@ double ltc_square_integral(const Ltc &l, const TestSquare &s) {
     return std::fabs(sum) / (2.0 * kPi);
 }
 
+// Calls hit(k) for every square k that direction L passes through, testing each.
+template <class F> void for_each_square_hit(const std::vector<TestSquare> &squares, glm::dvec3 L, F &&hit) {
+    for (size_t k = 0; k < squares.size(); k++)
+        if (in_square(squares[k], L))
+            hit(k);
+}
+
+// The bin of a direction's (x, y) on a side x side grid over [-1, 1]^2 (row-major).
+size_t direction_bin(glm::dvec3 L, int side) {
+    const int bx = std::clamp(int((L.x + 1.0) * 0.5 * side), 0, side - 1);
+    const int by = std::clamp(int((L.y + 1.0) * 0.5 * side), 0, side - 1);
+    return size_t(by) * size_t(side) + size_t(bx);
+}
+
 // The squares a direction hits, for the references' 256^2 samples per cell (issue 19: testing
 // every sample against every square was 37% of the fit's CPU, then the exact tests of the
 // squares left 27%).
@@ -515,15 +644,9 @@ class SquareHits {
     }
     // Calls hit(k) for every square k that direction L passes through (in_square).
     template <class F> void for_each_hit(glm::dvec3 L, F &&hit) const {
-        if (!(L.z > 0.0)) { // not binned: every square
-            for (size_t k = 0; k < squares_.size(); k++)
-                if (in_square(squares_[k], L))
-                    hit(k);
-            return;
-        }
-        const int bx = std::clamp(int((L.x + 1.0) * 0.5 * kSide), 0, kSide - 1);
-        const int by = std::clamp(int((L.y + 1.0) * 0.5 * kSide), 0, kSide - 1);
-        for (uint16_t g : bins_[size_t(by) * kSide + bx]) {
+        if (!(L.z > 0.0)) // not binned: every square
+            return for_each_square_hit(squares_, L, hit);
+        for (uint16_t g : bins_[direction_bin(L, kSide)]) {
             const Group &gr = groups_[g];
             const TestSquare &first = squares_[gr.first];
             const double cosL = glm::dot(L, first.c);
@@ -552,6 +675,95 @@ class SquareHits {
     std::vector<std::vector<uint16_t>> bins_;
 };
 
+// The squares of hemisphere_squares() (the same for every cell) that a direction hits, for the
+// references' 256^2 samples per cell (issue 19, second round: SquareHits over them was still 29%
+// of the fit's CPU). Directions above the horizon and of length 1 +- 1e-5 are binned by their
+// (x, y) on a fine grid, built once: per bin, the squares that every such direction of the bin
+// provably hits (no test) or may hit (in_square). A square is left out of a bin only if every
+// such direction provably misses it. "Provably": in_square's quantities dot(L, c) and
+// dot(L / dot(L, c) - c, e_i) are linear in L, or ratios of linear functions, so their bounds
+// over the box around the bin's directions are at its corners; a margin of 1e-9 covers the
+// rounding of in_square's few double operations (~1e-15). Every other direction (below the
+// horizon, or not unit) takes in_square for every square. Each integral still sums its samples
+// in their order: the integrals are the same bits.
+class HemisphereHits {
+  public:
+    HemisphereHits() : squares_(hemisphere_squares()), first_(size_t(kSide) * kSide + 1, 0), partial_(first_.size(), 0) {
+        const double pad = 1e-9, margin = 1e-9;
+        for (int by = 0; by < kSide; by++)
+            for (int bx = 0; bx < kSide; bx++) {
+                const size_t bin = size_t(by) * kSide + size_t(bx);
+                first_[bin] = partial_[bin] = uint32_t(entries_.size());
+                std::vector<uint16_t> partial;
+                const double x0 = -1.0 + 2.0 * bx / kSide - pad, x1 = -1.0 + 2.0 * (bx + 1) / kSide + pad;
+                const double y0 = -1.0 + 2.0 * by / kSide - pad, y1 = -1.0 + 2.0 * (by + 1) / kSide + pad;
+                auto minSq = [](double lo, double hi) { return lo <= 0.0 && hi >= 0.0 ? 0.0 : std::min(lo * lo, hi * hi); };
+                const double r2min = minSq(x0, x1) + minSq(y0, y1);
+                const double r2max = std::max(x0 * x0, x1 * x1) + std::max(y0 * y0, y1 * y1);
+                if (r2min > 1.0 + kLengthTolerance)
+                    continue; // no direction of length ~1 lands here
+                const double z0 = std::sqrt(std::max(0.0, 1.0 - kLengthTolerance - r2max));
+                const double z1 = std::sqrt(1.0 + kLengthTolerance - r2min);
+                glm::dvec3 corner[8];
+                for (int i = 0; i < 8; i++)
+                    corner[i] = glm::dvec3(i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0);
+                for (size_t k = 0; k < squares_.size(); k++) {
+                    const TestSquare &q = squares_[k];
+                    bool coneIn = true, coneOut = true, facing = true;
+                    bool in1 = true, in2 = true, outLo1 = true, outHi1 = true, outLo2 = true, outHi2 = true;
+                    for (const glm::dvec3 &p : corner) {
+                        const double a = glm::dot(p, q.c), b1 = glm::dot(p, q.e1), b2 = glm::dot(p, q.e2);
+                        coneIn = coneIn && a >= q.cosCone + margin;
+                        coneOut = coneOut && a <= q.cosCone - margin;
+                        facing = facing && a >= margin;
+                        in1 = in1 && std::fabs(b1) <= (q.half - margin) * a;
+                        in2 = in2 && std::fabs(b2) <= (q.half - margin) * a;
+                        outHi1 = outHi1 && b1 >= (q.half + margin) * a;
+                        outLo1 = outLo1 && -b1 >= (q.half + margin) * a;
+                        outHi2 = outHi2 && b2 >= (q.half + margin) * a;
+                        outLo2 = outLo2 && -b2 >= (q.half + margin) * a;
+                    }
+                    if (coneOut || (facing && (outHi1 || outLo1 || outHi2 || outLo2)))
+                        continue; // missed by every direction of the bin
+                    const bool all = coneIn && facing && in1 && in2;
+                    (all ? entries_ : partial).push_back(uint16_t(k));
+                }
+                partial_[bin] = uint32_t(entries_.size());
+                entries_.insert(entries_.end(), partial.begin(), partial.end());
+            }
+        first_.back() = uint32_t(entries_.size());
+    }
+    size_t size() const { return squares_.size(); }
+    const std::vector<TestSquare> &squares() const { return squares_; }
+    // Calls hit(k) for every square k that direction L passes through (in_square).
+    template <class F> void for_each_hit(glm::dvec3 L, F &&hit) const {
+        const double len2 = glm::dot(L, L);
+        // not binned: below the horizon, not of length ~1, or outside the bins' square (|x| or
+        // |y| > 1 would be clamped into an edge bin whose box does not hold it)
+        if (!(L.z > 0.0) || !(std::fabs(len2 - 1.0) <= 0.5 * kLengthTolerance) || !(std::fabs(L.x) <= 1.0) ||
+            !(std::fabs(L.y) <= 1.0))
+            return for_each_square_hit(squares_, L, hit);
+        const size_t bin = direction_bin(L, kSide);
+        for (uint32_t e = first_[bin]; e < partial_[bin]; e++)
+            hit(size_t(entries_[e]));
+        for (uint32_t e = partial_[bin]; e < first_[bin + 1]; e++)
+            if (in_square(squares_[entries_[e]], L))
+                hit(size_t(entries_[e]));
+    }
+    static const HemisphereHits &get() {
+        static const HemisphereHits h; // built once (thread-safe), shared by every cell
+        return h;
+    }
+
+  private:
+    static constexpr int kSide = 128;
+    static constexpr double kLengthTolerance = 2e-5; // |L|^2 in [1 - t/2, 1 + t/2] is binned
+    std::vector<TestSquare> squares_;
+    std::vector<uint32_t> first_;   // per bin, its first entry (and the end): the squares that
+    std::vector<uint32_t> partial_; // every direction of the bin hits, then from partial_[bin]
+    std::vector<uint16_t> entries_; // those that some may hit (square indices)
+};
+
 struct PolygonRefs {
     std::vector<TestSquare> squares;
     std::vector<double> integral; // of f NoL over each square
@@ -566,8 +778,21 @@ PolygonRefs polygon_refs(Lobe lobe, const Moments &mom, glm::vec3 V, float alpha
     PolygonRefs r;
     r.squares = test_squares(glm::dvec3(V), mom.avgDir, double(alpha), s);
     r.integral.assign(r.squares.size(), 0.0);
-    const SquareHits hits(r.squares);
-    auto add = [&](glm::dvec3 L, double w) { hits.for_each_hit(L, [&](size_t k) { r.integral[k] += w; }); };
+    // test_squares: the hemisphere's squares first (binned once for all cells), then this cell's
+    const HemisphereHits &hemisphere = HemisphereHits::get();
+    const size_t nh = hemisphere.size();
+    for (size_t k = 0; k < nh; k++) // the same squares (a difference would be a programming error)
+        if (r.squares[k].c != hemisphere.squares()[k].c || r.squares[k].half != hemisphere.squares()[k].half ||
+            r.squares[k].ring >= 0 || r.squares[k].d != r.squares[k].c) {
+            fprintf(stderr, "ltcfit: internal error: test_squares does not start with hemisphere_squares\n");
+            std::abort();
+        }
+    const std::vector<TestSquare> cellSquares(r.squares.begin() + long(nh), r.squares.end());
+    const SquareHits hits(cellSquares);
+    auto add = [&](glm::dvec3 L, double w) {
+        hemisphere.for_each_hit(L, [&](size_t k) { r.integral[k] += w; });
+        hits.for_each_hit(L, [&](size_t k) { r.integral[nh + k] += w; });
+    };
     if (s.fast) {
         for (const WeightedDir &wd : mom.samples)
             add(wd.L, wd.w);
@@ -621,16 +846,17 @@ using Params = std::array<double, 4>;
 
 // Nelder & Mead 1965, "A Simplex Method for Function Minimization" (standard coefficients:
 // reflection 1, expansion 2, contraction 1/2, shrink 1/2). Minimises f over R^dim, dim <= 4.
+// startValue: f(start) if known (not evaluated again); bestValue: receives f(result).
 template <class F>
-Params nelder_mead(F &&f, Params start, Params step, int dim,
-                   int maxIterations, double tolerance) {
+Params nelder_mead(F &&f, Params start, Params step, int dim, int maxIterations, double tolerance,
+                   double *bestValue = nullptr, const double *startValue = nullptr) {
     std::array<Params, 5> x;
-    std::array<double, 5> fx;
+    std::array<double, 5> fx{};
     for (int i = 0; i <= dim; i++) {
         x[i] = start;
         if (i > 0)
             x[i][i - 1] += step[i - 1];
-        fx[i] = f(x[i]);
+        fx[i] = i == 0 && startValue ? *startValue : f(x[i]);
     }
     for (int it = 0; it < maxIterations; it++) {
         // order: x[0] best ... x[dim] worst
@@ -686,6 +912,8 @@ Params nelder_mead(F &&f, Params start, Params step, int dim,
     for (int i = 1; i <= dim; i++)
         if (fx[i] < fx[best])
             best = i;
+    if (bestValue)
+        *bestValue = fx[best];
     return x[best];
 }
 
@@ -744,30 +972,45 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     // cell keeps its rougher neighbour's shape.
     const bool emptyLobe = lobe == Lobe::Sheen && !(mom.norm >= 1e-6);
     // Heitz et al.'s 3 parameters (Z at the average direction) ...
+    // (issue 19: the costs the optimiser returns and the L1 errors of the candidates are kept,
+    // not evaluated again: the same values.)
+    double bestFit = HUGE_VAL;
     Params best = emptyLobe ? Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation}
                             : nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, 0.0}, step,
-                                          isotropic ? 1 : 3, l3Iterations, 1e-5);
+                                          isotropic ? 1 : 3, l3Iterations, 1e-5, &bestFit);
     // Candidates: Heitz et al.'s fit, the 4-parameter fit from the neighbour's rotation, and
     // the neighbour's shape itself. The lowest L3 cost wins among those that overlap the lobe
     // (relative L1 error < 1); if none does, the lowest L1 error. The L3 cost, dominated by
     // the peak values of sharp lobes, can prefer a wide LTC disjoint from the lobe to a
     // slightly misaligned narrow one (it happens for alpha ~ 1e-3 at grazing views, where
     // float directions barely resolve the lobe).
+    std::vector<std::pair<Params, double>> l1Known;
     auto l1 = [&](const Params &p) {
+        for (const auto &k : l1Known)
+            if (k.first == p)
+                return k.second;
         Ltc l = ltc;
         apply(p, l);
-        return ltc_error(l, fitSamples, lobe, V, alpha, mom.norm, 1, s.horizonNormalised) / mom.norm;
+        const double e = ltc_error(l, fitSamples, lobe, V, alpha, mom.norm, 1, s.horizonNormalised) / mom.norm;
+        l1Known.emplace_back(p, e);
+        return e;
     };
     std::vector<Params> candidates{best};
-    if (s.freeRotation && !isotropic && !emptyLobe)
+    std::vector<double> candidateCosts{emptyLobe ? cost(best) : bestFit};
+    if (s.freeRotation && !isotropic && !emptyLobe) {
         candidates.push_back(nelder_mead(cost, Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation}, step,
-                                         4, l3Iterations, 1e-5));
-    if (start && !emptyLobe)
+                                         4, l3Iterations, 1e-5, &bestFit));
+        candidateCosts.push_back(bestFit);
+    }
+    if (start && !emptyLobe) {
         candidates.push_back(Params{std::log(ltc.m11), std::log(ltc.m22), ltc.m13, rotation});
+        candidateCosts.push_back(cost(candidates.back()));
+    }
     double bestCost = HUGE_VAL, bestL1 = HUGE_VAL;
     bool overlapping = false;
-    for (const Params &c : candidates) {
-        double e1 = l1(c), e3 = cost(c);
+    for (size_t ci = 0; ci < candidates.size(); ci++) {
+        const Params &c = candidates[ci];
+        double e1 = l1(c), e3 = candidateCosts[ci];
         bool ok = e1 < 1.0;
         if ((ok && (!overlapping || e3 < bestCost)) || (!ok && !overlapping && e1 < bestL1)) {
             best = c;
@@ -799,10 +1042,12 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
         }
         const int dim = isotropic ? 1 : 4;
         Params refined = from;
-        for (int pass = 0; pass < 2; pass++) // a restart: Nelder-Mead's simplex can collapse
+        double refinedCost = fromCost;
+        for (int pass = 0; pass < 2; pass++) { // a restart: Nelder-Mead's simplex can collapse
+            const double startCost = refinedCost;
             refined = nelder_mead(pcost, refined, Params{0.1, 0.1, 0.05 * std::max(std::exp(refined[0]), 1e-3), 0.05}, dim,
-                                  s.maxIterations, 1e-6);
-        double refinedCost = pcost(refined);
+                                  s.maxIterations, 1e-6, &refinedCost, &startCost);
+        }
         // Never trade an LTC that overlaps the lobe for one that hardly does (relative L1
         // distance >= 1, as in the candidates' choice above): the squares cannot see every
         // shape error of a sharp lobe.
