@@ -95,8 +95,9 @@ float light_lobe(uint i, vec3 P, mat3 ltcFrame, mat3 minv, out vec3 F, out vec3 
 
 // The point correction of the specular lobe (ltc.h, LTC_PointFactor): the true f NoL (F = 1,
 // the lobe the tables were fitted to) at the centre of the part of the light the LTC sees,
-// against the LTC's value there (the table's scale norm x its density).
-float specular_point_factor(vec3 Fl, vec4 ltc1, float norm, float NoV, float specR, float ff)
+// against the LTC's value there (the table's scale norm x its density); lenF = the length of
+// the light's horizon-clipped vector form factor (LTC_PointWidthRatio).
+float specular_point_factor(vec3 Fl, vec4 ltc1, float norm, float NoV, float specR, float ff, float lenF)
 {
     // recomputed here rather than kept live through the light loop (registers of the full variant)
     float alpha = Alpha_FromPerceptual(specR);
@@ -108,7 +109,7 @@ float specular_point_factor(vec3 Fl, vec4 ltc1, float norm, float NoV, float spe
     float fCos = NoL > 0.0f && hh > 1e-12f
                      ? D_Microfacet(h.z * inversesqrt(hh), alpha) * V_Microfacet(NoV, NoL, alpha) * NoL
                      : 0.0f;
-    return LTC_PointFactor(fCos, norm * pt.density, ff);
+    return LTC_PointFactor(fCos, norm * pt.density, ff, LTC_PointWidthRatio(alpha, sqrt(hh), lenF));
 }
 
 // Reflected radiance from the tile's polygonal lights, for the model of lighting_common.glsl
@@ -198,6 +199,7 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
         F = F.z < 0.0f ? -F : F;
         float ff = min(F.z, 1.0f);
         if (!(ff > 0.0f)) continue;
+        float lenF = length(F);
 #if RTPBR_LTC_POINT_CORRECTION
         // (isotropic: specularMinv holds ltc1's four entries, LTC_InverseMatrix; read from there
         // so that ltc1 need not stay live in the full variant, whose anisotropic lobes have none)
@@ -211,14 +213,13 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
             vec3 unusedF2;
             light_lobe(i, P, ltcFrame, specularMinv, unusedF2, Fl);
             specularFF *= specular_point_factor(Fl, pointLtc1, textureLod(LUT_LTC_2, LTC_LutCoord(s.NoV, s.specR), 0.0f).x,
-                                                s.NoV, s.specR, specularFF);
+                                                s.NoV, s.specR, specularFF, lenF);
         }
 #else
-        specularFF *= specular_point_factor(Fl, pointLtc1, pointNorm, s.NoV, s.specR, specularFF);
+        specularFF *= specular_point_factor(Fl, pointLtc1, pointNorm, s.NoV, s.specR, specularFF, lenF);
 #endif
 #endif
         // The representative direction of the polygon: its vector form factor's.
-        float lenF = length(F);
         vec3 lRep = F / lenF;
         float muRep = rtpbr_saturate(lRep.z);
         // The cosine-weighted mean of each albedo over the polygon (KC_PolygonMeanE).

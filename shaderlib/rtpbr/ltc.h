@@ -439,16 +439,17 @@ RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, rtpbr_float4 ltc1) {
 // ---- the point correction (issue 19) --------------------------------------------------------
 // A single LTC cannot follow the true lobe everywhere: near the horizon and on the side of the
 // viewer (a light between the eye and a far floor) it puts light where the BRDF has almost
-// none. For a light that holds a small part of the lobe, the integral is about the lobe's
-// value at the light times the light's size, so the LTC's error there is the ratio of the two
-// lobes' values at the light. rtpbr scales the LTC result down by that ratio where the LTC
-// exceeds the true f NoL at the centre of the part of the light it sees (never up: where the
-// true lobe is narrower than the light, the grazing streak of a view and a light both near the
-// horizon, one point overstates it), faded out as the light holds more of the LTC's mass (the
-// LTC integral itself is then right by construction). Measured in shaderlib/luts/ltc.md
-// ("Fourth round"): the random lights of rtpbr-ltc-validate and the grazing floors of
-// rtpbr-ltc-floor.
-
+// none, and for rough lobes near the horizon too little. For a light that holds a small part
+// of the lobe, the integral is about the lobe's value at the light times the light's size, so
+// the LTC's error there is the ratio k of the two lobes' values at the light: rtpbr multiplies
+// the LTC result by k, taken at the centre of the part of the light the LTC sees, faded out as
+// the light holds more of the LTC's mass (the LTC integral itself is then right by
+// construction). A k above 1 is trusted only where the true lobe is not much narrower than the
+// light: a view and a light both near the horizon on the mirror side make the lobe a streak
+// across the plane of incidence about alpha |V + L| wide (the half vector turns by dL / |V +
+// L|), and one point at the streak's centre overstates a light wider than that. Measured in
+// shaderlib/luts/ltc.md ("Fourth round"): the random lights of rtpbr-ltc-validate and the
+// grazing floors of rtpbr-ltc-floor.
 // The centre of the part of a light an isotropic LTC lobe (ltc1) sees: w = M F / |M F|, F its
 // vector form factor in the LTC's space (LTC_LobeEndVector, z >= 0), and the LTC's unit-mass
 // density there (Heitz et al. 2016, eq. 1 with the cosine D_o = z / pi):
@@ -471,13 +472,27 @@ RTPBR_FN LtcPoint LTC_LobePoint(rtpbr_float3 F, rtpbr_float4 ltc1) {
     return p;
 }
 
+// The lobe's width across the plane of incidence over the light's angular radius: alpha |V + w|
+// (vPlusW = the length of V + LtcPoint.dir, both unit) over sqrt(|F|), F the light's
+// (horizon-clipped) vector form factor, whose length is about the solid angle / pi of a small
+// light (so sqrt(|F|) about its angular radius). For LTC_PointFactor.
+RTPBR_FN float LTC_PointWidthRatio(float alpha, float vPlusW, float formFactorLength) {
+    return alpha * vPlusW * rtpbr_rsqrt(max(formFactorLength, 1e-12f));
+}
+
 // The factor on the LTC result: fCos = the true f NoL at LtcPoint.dir (F = 1, the lobe the
 // table was fitted to), ltcValue = norm x LtcPoint.density (the table's scale, ltc2.x, times
-// the density), ff = the LTC's form factor of the light (LTC_LobeEnd).
-// 1 - (1 - min(fCos / ltcValue, 1)) (1 - ff)^16: in [0, 1]; 1 where the LTC is not above f or
-// the light holds the lobe. The exponent was chosen among 1-64 on the two measurements above.
-RTPBR_FN float LTC_PointFactor(float fCos, float ltcValue, float ff) {
-    float k = fCos < ltcValue ? max(fCos / ltcValue, 0.0f) : 1.0f; // NaN: no correction
+// the density), ff = the LTC's form factor of the light (LTC_LobeEnd), widthRatio =
+// LTC_PointWidthRatio. With k = fCos / ltcValue: k below 1 as it is; above 1 (at most 16),
+// 1 + (k - 1) smoothstep(1, 1.5, widthRatio); then faded, k t + (1 - t) with t = (1 - ff)^16.
+// 1 for NaN or zero values. The constants were chosen among 1-64 (fade), 0.5-2 / 1-4 (the
+// width's smoothstep) on the two measurements above.
+RTPBR_FN float LTC_PointFactor(float fCos, float ltcValue, float ff, float widthRatio) {
+    float k = ltcValue > 0.0f && fCos >= 0.0f ? min(fCos / ltcValue, 16.0f) : 1.0f; // NaN: 1
+    if (k > 1.0f) {
+        float x = widthRatio > 1.0f ? min((widthRatio - 1.0f) * 2.0f, 1.0f) : 0.0f; // NaN: 0
+        k = 1.0f + (k - 1.0f) * (x * x * (3.0f - 2.0f * x));
+    }
     // k t + (1 - t), t = u^16, u = 1 - ff; 1 - t = ff (1 + u)(1 + u^2)(1 + u^4)(1 + u^8) without
     // the cancellation of 1 - t (a factor near 0 keeps its relative precision)
     float f = rtpbr_saturate(ff);

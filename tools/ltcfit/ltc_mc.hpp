@@ -268,8 +268,9 @@ inline glm::dvec3 clipped_centroid(const rtpbr::LtcLocalPolygon &local, const gl
 
 // The engine's point correction (ltc.h, LTC_PointFactor; issue 19, fourth round) of the LTC
 // result for a local polygon: the true f NoL at the centre of the part the LTC sees over the
-// LTC's value there (norm x density), faded by the LTC's form factor. `raw`: the ratio alone,
-// without the fade and without the clamp to <= 1 (the first experiment of that round).
+// LTC's value there (norm x density), above 1 only where the lobe is not much narrower than the
+// light, faded by the LTC's form factor. `raw`: the ratio alone, without the fade and the
+// width gate (the first experiment of that round).
 inline double point_ratio(const Brdf &brdf, float3 V, const rtpbr::LtcLocalPolygon &local, float4 l1, float norm,
                           bool raw = false) {
     const float3 Fl = rtpbr::LTC_IntegrateLocalVector(local, l1);
@@ -280,7 +281,11 @@ inline double point_ratio(const Brdf &brdf, float3 V, const rtpbr::LtcLocalPolyg
     const float fCos = brdf.value_cos(V, pt.dir, pdf);
     if (raw)
         return double(fCos) / (double(norm) * double(pt.density));
-    return double(rtpbr::LTC_PointFactor(fCos, norm * pt.density, rtpbr::LTC_IntegrateLocal(local, l1)));
+    // the light's horizon-clipped vector form factor (the local polygon is clipped already)
+    const float lenF = glm::length(rtpbr::LTC_FormFactorVector(local, rtpbr::LTC_Identity()));
+    const float vPlusW = glm::length(V + pt.dir);
+    return double(rtpbr::LTC_PointFactor(fCos, norm * pt.density, rtpbr::LTC_IntegrateLocal(local, l1),
+                                         rtpbr::LTC_PointWidthRatio(brdf.alpha, vPlusW, lenF)));
 }
 
 struct LtcEval {

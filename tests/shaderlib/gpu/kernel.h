@@ -120,7 +120,8 @@ RTPBR_FN RtpbrTestArgs rtpbr_test_args(rtpbr_float4 a, rtpbr_float4 b) {
 // about +z along +x by k) when `stretch`. Returns the lobe's form factor (which = 0), or the
 // component `which` - 1 of the clipped quad's vector form factor (1-3); the lobe's own vector
 // (LTC_LobeEndVector, 4-6); the point correction's direction (LTC_LobePoint, 7-9), density
-// (10) and factor (LTC_PointFactor with fCos = t.c2 x density x 2 and the lobe's form factor, 11).
+// (10) and factor (LTC_PointFactor with fCos = t.c2 x density x 2, the lobe's form factor and
+// a width ratio of 0.8 + t.aniso, 11).
 RTPBR_FN float rtpbr_test_ltc_quad(RtpbrTestArgs t, bool stretch, int which) {
     RTPBR_TEST_PRECISE float h = 0.5f * t.sc;
     RTPBR_TEST_PRECISE float gx = t.c1 - 0.5f;
@@ -158,7 +159,7 @@ RTPBR_FN float rtpbr_test_ltc_quad(RtpbrTestArgs t, bool stretch, int which) {
         return which == 7 ? pt.dir.x : (which == 8 ? pt.dir.y : pt.dir.z);
     if (which == 10)
         return pt.density;
-    return LTC_PointFactor(2.0f * t.c2 * pt.density, pt.density, LTC_LobeEnd(lobe));
+    return LTC_PointFactor(2.0f * t.c2 * pt.density, pt.density, LTC_LobeEnd(lobe), 0.8f + t.aniso);
 }
 
 // A scalar argument in the regimes of rtpbr_test_material, picked by b.w: x (b.w < 0.4), then
