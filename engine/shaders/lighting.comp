@@ -59,9 +59,9 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_SHEEN_2) uniform sampler2D lut_l
 // One pass over light i's edges (vectors from P in the LTC frame): the horizon clip, then the
 // LTC lobe minv; returns its form factor, the clipped polygon's vector form factor F (up to
 // its sign) and the lobe's own vector form factor Fl (LTC_LobeEndVector; callers that do not
-// read it leave its x, y to dead-code elimination). The basic variant integrates its one LTC lobe in this pass; the full variant
-// runs a pass per lobe the material has, so that one lobe's clip state is live at a time
-// (registers: the lobes' states together spilled on RDNA3).
+// read it leave its x, y to dead-code elimination). The basic variant integrates its one LTC
+// lobe in this pass; the full variant runs a pass per lobe the material has, so that one
+// lobe's clip state is live at a time (registers: the lobes' states together spilled on RDNA3).
 float light_lobe(uint i, vec3 P, mat3 ltcFrame, mat3 minv, out vec3 F, out vec3 Fl)
 {
     LtcClipper horizon = LTC_ClipperBegin();
@@ -207,8 +207,9 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
 #if RTPBR_LIGHTING_FULL
         // The full variant's registers are at gfx1100's limit: the lobe's vector comes from a
         // second pass over the edges (the same lobe, so the same value), taken only where the
-        // fade leaves anything to correct ((1 - 0.5)^16 < 2e-5), and the norm is fetched again
-        // (the same texel) rather than kept live through the loop.
+        // fade leaves anything to correct (at a form factor of 0.5 or more the factor is within
+        // (16 - 1) x 0.5^16 = 2.3e-4 of 1), and the norm is fetched again (the same texel)
+        // rather than kept live through the loop.
         if (pointOn && specularFF < 0.5f) {
             vec3 unusedF2;
             light_lobe(i, P, ltcFrame, specularMinv, unusedF2, Fl);

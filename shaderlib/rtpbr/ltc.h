@@ -450,6 +450,7 @@ RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, rtpbr_float4 ltc1) {
 // L|), and one point at the streak's centre overstates a light wider than that. Measured in
 // shaderlib/luts/ltc.md ("Fourth round"): the random lights of rtpbr-ltc-validate and the
 // grazing floors of rtpbr-ltc-floor.
+
 // The centre of the part of a light an isotropic LTC lobe (ltc1) sees: w = M F / |M F|, F its
 // vector form factor in the LTC's space (LTC_LobeEndVector, z >= 0), and the LTC's unit-mass
 // density there (Heitz et al. 2016, eq. 1 with the cosine D_o = z / pi):
@@ -464,11 +465,11 @@ RTPBR_FN LtcPoint LTC_LobePoint(rtpbr_float3 F, rtpbr_float4 ltc1) {
     // M^-1 = [[a, 0, b], [0, 1, 0], [c, 0, d]] (rows): det M F = (d Fx - b Fz, det Fy, a Fz - c Fx)
     float det = ltc1.x * ltc1.w - ltc1.y * ltc1.z;
     rtpbr_float3 u = rtpbr_float3(ltc1.w * F.x - ltc1.y * F.z, det * F.y, ltc1.x * F.z - ltc1.z * F.x);
-    float uu = dot(u, u), ff = dot(F, F);
+    float uu = dot(u, u), f2 = dot(F, F);
     LtcPoint p;
     p.dir = u * ((det < 0.0f ? -1.0f : 1.0f) * rtpbr_rsqrt(max(uu, 1e-30f)));
-    float den = RTPBR_PI * ff * ff * det * det;
-    p.density = ff > 1e-16f && den > 0.0f ? max(F.z, 0.0f) * uu * sqrt(uu) / den : 0.0f;
+    float den = RTPBR_PI * f2 * f2 * det * det;
+    p.density = f2 > 1e-16f && den > 0.0f ? max(F.z, 0.0f) * uu * sqrt(uu) / den : 0.0f;
     return p;
 }
 
