@@ -413,23 +413,28 @@ RTPBR_FN rtpbr_float3x3 LTC_AnisotropicInverseMatrix(rtpbr_float4 ltc1, rtpbr_fl
                            LTC_AnisotropicUnstretch(rtpbr_float3(ltc1.z, 0.0f, ltc1.w), c, e1, k));
 }
 
+// The streamed lobe integration (LTC_LobeBegin, LTC_LobeEdge) over a stored local polygon
+// (from LTC_PolygonToLocal), with fixed trip count: the compiler can unroll it and index the
+// array statically. Read with LTC_LobeEnd or LTC_LobeEndVector.
+RTPBR_FN LtcLobe LTC_LobeOverLocal(LtcLocalPolygon local, rtpbr_float3x3 minv) {
+    LtcLobe lobe = LTC_LobeBegin(minv);
+    if (local.count >= 3) { // fewer: nothing seen (form factor and vector 0)
+        for (int i = 0; i < RTPBR_LTC_CLIP_VERTICES; i++) {
+            if (i < local.count) {
+                rtpbr_float3 b = i + 1 < local.count ? local.v[i + 1] : local.v[0];
+                LTC_LobeEdge(lobe, local.v[i], b);
+            }
+        }
+    }
+    return lobe;
+}
+
 // The form factor (in [0, 1]) of a local polygon (from LTC_PolygonToLocal) under the LTC
 // given by ltc1: the integral of the LTC distribution over the part of the polygon above the
 // surface's horizon. With ltc1 = LTC_Identity() it is the polygon's Lambertian form factor.
-// The streamed lobe integration over the stored polygon (fixed trip count: the compiler can
-// unroll it and index the array statically). LTC_IntegrateLocalMatrix takes any M^-1 (e.g.
-// LTC_AnisotropicInverseMatrix's).
+// LTC_IntegrateLocalMatrix takes any M^-1 (e.g. LTC_AnisotropicInverseMatrix's).
 RTPBR_FN float LTC_IntegrateLocalMatrix(LtcLocalPolygon local, rtpbr_float3x3 minv) {
-    if (local.count < 3)
-        return 0.0f;
-    LtcLobe lobe = LTC_LobeBegin(minv);
-    for (int i = 0; i < RTPBR_LTC_CLIP_VERTICES; i++) {
-        if (i < local.count) {
-            rtpbr_float3 b = i + 1 < local.count ? local.v[i + 1] : local.v[0];
-            LTC_LobeEdge(lobe, local.v[i], b);
-        }
-    }
-    return LTC_LobeEnd(lobe);
+    return LTC_LobeEnd(LTC_LobeOverLocal(local, minv));
 }
 
 RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, rtpbr_float4 ltc1) {
@@ -506,16 +511,7 @@ RTPBR_FN float LTC_PointFactor(float fCos, float ltcValue, float ff, float width
 
 // The vector of LTC_LobeEndVector for a stored local polygon (tools and tests).
 RTPBR_FN rtpbr_float3 LTC_IntegrateLocalVector(LtcLocalPolygon local, rtpbr_float4 ltc1) {
-    if (local.count < 3)
-        return RTPBR_F3(0.0f);
-    LtcLobe lobe = LTC_LobeBegin(LTC_InverseMatrix(ltc1));
-    for (int i = 0; i < RTPBR_LTC_CLIP_VERTICES; i++) {
-        if (i < local.count) {
-            rtpbr_float3 b = i + 1 < local.count ? local.v[i + 1] : local.v[0];
-            LTC_LobeEdge(lobe, local.v[i], b);
-        }
-    }
-    return LTC_LobeEndVector(lobe);
+    return LTC_LobeEndVector(LTC_LobeOverLocal(local, LTC_InverseMatrix(ltc1)));
 }
 
 // The vector form factor (Arvo 1995) of an unclipped local polygon (from
