@@ -509,6 +509,52 @@ RTPBR_FN float LTC_PointFactor(float fCos, float ltcValue, float ff, float width
     return k * (u8 * u8) + f * (1.0f + u) * (1.0f + u2) * (1.0f + u4) * (1.0f + u8);
 }
 
+// ---- the tail estimate (issue 19, fifth round) -----------------------------------------------
+// An LTC is a transformed clamped cosine: it is exactly 0 beyond its own horizon, while the
+// GGX / Beckmann lobe has a long tail. A light far from the lobe's peak (beside it, or beyond
+// it on a grazing floor) gets little or nothing from the LTC, and the point correction cannot
+// scale nothing up. There the true lobe varies slowly across the light, so the midpoint rule
+// holds: the integral is about f (F = 1, without the cosine) at the direction c = F / |F| of
+// the light's (horizon-clipped) vector form factor F, times pi F.z (the light's cosine-weighted
+// solid angle). rtpbr takes the larger of that and the point-corrected LTC, where the light
+// lies in the LTC's own tail (the cosine of the lobe's vector form factor Fl, LTC_LobeEndVector,
+// in the LTC's original space: its mass's mean direction, below 0.2, fading out by 0.4) and
+// the LTC is thin over it (LTC_PointTailWeight). Measured in shaderlib/luts/ltc.md ("Fifth
+// round").
+
+// The tail estimate in units of the LTC result before the table's scale: f pi formFactor /
+// norm (norm = ltc2.x, as LTC_PointFactor's ltcValue), f = D V at c (the BRDF with F = 1),
+// formFactor = F.z. 0 for NaN, negative or zero inputs.
+RTPBR_FN float LTC_PointTail(float f, float formFactor, float norm) {
+    float t = norm > 0.0f && f > 0.0f && formFactor > 0.0f ? f * RTPBR_PI * formFactor / norm : 0.0f;
+    return t < 3.0e38f ? t : 0.0f; // +Inf (f overflowing) -> 0
+}
+
+// How much of the tail estimate to trust: where the light lies in the LTC's tail, and the LTC
+// is thin over it. From the lobe's vector form factor Fl: 1 where its cosine Fl.z / |Fl| is at
+// most 0.2 (and where the LTC sees nothing), 0 from 0.4 up, smoothstep between; times 1 where
+// the LTC's form factor ltcFF is at most half the light's cosine form factor formFactor (the
+// LTC's mean density over the light is below half the cosine's), 0 from twice, smoothstep
+// between (ratio ltcFF / formFactor): a light close below a narrow lobe's peak has a small
+// cosine there but a dense LTC, and the midpoint rule overstates it. (0.1-0.3, 0.3-0.5 and
+// ratios 0.1-0.5 to 1-4 measured too: the fifth round's table.)
+RTPBR_FN float LTC_PointTailWeight(rtpbr_float3 lobeVector, float ltcFF, float formFactor) {
+    float l2 = dot(lobeVector, lobeVector);
+    float c = l2 > 1e-30f ? lobeVector.z * rtpbr_rsqrt(l2) : 0.0f;
+    float x = c > 0.2f ? min((c - 0.2f) * 5.0f, 1.0f) : 0.0f; // NaN -> 0
+    float rho = formFactor > 0.0f ? ltcFF / formFactor : 0.0f; // NaN ltcFF -> 0 below
+    float y = rho > 0.5f ? min((rho - 0.5f) * (1.0f / 1.5f), 1.0f) : 0.0f;
+    return (1.0f - x * x * (3.0f - 2.0f * x)) * (1.0f - y * y * (3.0f - 2.0f * y));
+}
+
+// The corrected LTC result (before the table's scale): the larger of the point-corrected LTC
+// (LTC result x LTC_PointFactor) and the weighted tail estimate. NaN in either: the other.
+RTPBR_FN float LTC_PointCombine(float corrected, float tail, float weight) {
+    float a = corrected >= 0.0f ? corrected : 0.0f;
+    float b = tail * weight;
+    return b > a ? b : a;
+}
+
 // The vector of LTC_LobeEndVector for a stored local polygon (tools and tests).
 RTPBR_FN rtpbr_float3 LTC_IntegrateLocalVector(LtcLocalPolygon local, rtpbr_float4 ltc1) {
     return LTC_LobeEndVector(LTC_LobeOverLocal(local, LTC_InverseMatrix(ltc1)));

@@ -25,7 +25,7 @@
 //   rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] [--quick] [--threads T]
 //                   [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction |
 //                    --hybrid-correction] [--correction-bins E A] [--correction-samples N]
-//                   [--second-lobe | --second-lobe-joint] [--no-point | --point-raw | --point-ff]
+//                   [--second-lobe | --second-lobe-joint] [--no-point | --no-tail | --point-raw | --point-ff]
 // The last four are the experiments of issue 19's second round (shaderlib/luts/ltc.md): the
 // LTC fitted at each case's exact (roughness, NoV) instead of the table's interpolation, and
 // the LTC corrected by the direction of the lit part of the light (ltc_floor.hpp).
@@ -37,6 +37,8 @@
 // fourth round) unless --no-point (the second round's corrections and --exact-cells measure
 // the LTC alone); --point-raw: the uncorrected ratio at the lit part's centre (no clamp, no
 // fade); --point-ff: no LTC, the true f NoL / NoL at that centre x pi x the form factor.
+// The engine also takes the tail estimate (ltc.h, LTC_PointTail; fifth round) where the light
+// lies in the LTC's tail, and so does this tool unless --no-tail (the fourth round's engine).
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -73,6 +75,7 @@ int main(int argc, char **argv) {
     std::string tablesPath, png;
     bool quick = false, exactCells = false, secondLobe = false, secondLobeJoint = false;
     int correctionAzimuths = 0, point = 1;
+    bool tail = true;
     bool residual = false, hybrid = false;
     int correctionElevations = 16, correctionSamples = 512;
     int threads = 2;
@@ -101,6 +104,8 @@ int main(int argc, char **argv) {
             secondLobe = secondLobeJoint = true;
         else if (!strcmp(argv[i], "--no-point")) // the LTC without the point correction (ltc_floor.hpp)
             point = 0;
+        else if (!strcmp(argv[i], "--no-tail")) // the point correction without the tail estimate (round 4's engine)
+            tail = false;
         else if (!strcmp(argv[i], "--point-raw")) // experiment (round 4), see ltc_floor.hpp
             point = 2;
         else if (!strcmp(argv[i], "--point-ff")) // experiment (round 4), see ltc_floor.hpp
@@ -142,7 +147,7 @@ int main(int argc, char **argv) {
             }
         } else {
             fprintf(stderr, "usage: rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] "
-                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction] [--correction-bins E A] [--correction-samples N] [--second-lobe | --second-lobe-joint] [--no-point | --point-raw | --point-ff]\n");
+                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction] [--correction-bins E A] [--correction-samples N] [--second-lobe | --second-lobe-joint] [--no-point | --no-tail | --point-raw | --point-ff]\n");
             return 2;
         }
     }
@@ -244,6 +249,7 @@ int main(int argc, char **argv) {
     tab.residual = residual;
     tab.hybrid = hybrid;
     tab.point = correctionAzimuths > 0 || exactCells ? 0 : point; // the older experiments: on the LTC alone
+    tab.tail = tail;
     tab.correctionElevations = correctionElevations;
     tab.correctionSamples = correctionSamples;
     std::vector<Case> cases;

@@ -171,10 +171,13 @@ struct Tables {
     bool residual = false;      // additive (LTC + residual x F.z) instead of the ratio
     bool hybrid = false;        // ratio where the LTC is lit, residual where it is not
     // 0: the LTC alone (rtpbr-ltc-floor --no-point); 1: with the engine's point correction (ltc.h,
-    // LTC_PointFactor; the default); experiments of the fourth round: 2: the raw ratio (no
+    // LTC_PointFactor, and the tail estimate unless tail = false; the default); experiments of the fourth round: 2: the raw ratio (no
     // clamp, no fade; --point-raw); 3: no LTC, the true f at the lit part's centroid x its
     // cosine form factor (--point-ff)
     int point = 1;
+    // with point = 1: the tail estimate too (ltc.h, LTC_PointTail; the fifth round's engine and
+    // the default); false: the point correction alone (rtpbr-ltc-floor --no-tail)
+    bool tail = true;
 };
 
 inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub) {
@@ -228,7 +231,8 @@ inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub)
             }
             if (tab.point == 1 || tab.point == 2) {
                 if (lobe == Lobe::GGX || lobe == Lobe::Beckmann) // as the engine: microfacet lobes only
-                    ltc *= ltcmc::point_ratio(brdf, V, local, l1, l2.x, tab.point == 2);
+                    ltc = tab.point == 2 ? ltc * ltcmc::point_ratio(brdf, V, local, l1, l2.x, true)
+                                         : ltcmc::point_value(brdf, V, local, l1, l2.x, ltc, tab.tail);
             } else if (tab.point == 3) {
                 // true f at the lit part's centroid x its cosine form factor
                 const glm::dvec3 Fc = ltcmc::clipped_centroid(local, glm::dmat3(1.0));

@@ -288,8 +288,36 @@ inline double point_ratio(const Brdf &brdf, float3 V, const rtpbr::LtcLocalPolyg
                                          rtpbr::LTC_PointWidthRatio(brdf.alpha, vPlusW, lenF)));
 }
 
+// The engine's whole correction of the specular LTC (lighting.comp): the point-corrected LTC
+// or, for a light in the LTC's tail, the tail estimate (ltc.h, LTC_PointTail; fifth round),
+// whichever is larger. ltc = norm x the LTC integral (F = 1); V in the LTC's frame (the local
+// polygon's). tail = false: the point correction alone (the fourth round's engine).
+// parts (optional): the point-corrected LTC and the weighted tail estimate, in the same units.
+inline double point_value(const Brdf &brdf, float3 V, const rtpbr::LtcLocalPolygon &local, float4 l1, float norm,
+                          double ltc, bool tail = true, double parts[2] = nullptr) {
+    const double corrected = ltc > 0.0 ? ltc * point_ratio(brdf, V, local, l1, norm) : 0.0;
+    if (parts)
+        parts[0] = corrected, parts[1] = 0.0;
+    if (!tail || !(norm > 0.0f))
+        return corrected;
+    const float3 F = rtpbr::LTC_FormFactorVector(local, rtpbr::LTC_Identity());
+    const float lf = glm::length(F);
+    if (!(lf > 0.0f))
+        return corrected;
+    float pdf;
+    const float3 c = F / lf;
+    // f without the cosine (value_cos is f NoL)
+    const float f = c.z > 0.0f ? brdf.value_cos(V, c, pdf) / c.z : 0.0f;
+    const float weight = rtpbr::LTC_PointTailWeight(rtpbr::LTC_IntegrateLocalVector(local, l1), float(ltc / double(norm)), F.z);
+    if (parts)
+        parts[1] = double(norm) * double(rtpbr::LTC_PointTail(f, F.z, norm)) * double(weight);
+    return double(norm) * double(rtpbr::LTC_PointCombine(float(corrected / double(norm)),
+                                                         rtpbr::LTC_PointTail(f, F.z, norm), weight));
+}
+
 struct LtcEval {
     double exact, clipless, clipless_table;
+    double pointOnly = 0.0, tail = 0.0; // point's parts: exact x the point correction; the weighted tail estimate
     double point = 0.0; // exact x the point correction (ltc.h, LTC_PointFactor): what the engine computes
 };
 
@@ -324,10 +352,13 @@ inline LtcEval ltc_eval(Lobe lobe, float roughness, float3 V, const Square &sq, 
     float tabled = rtpbr::LTC_SphereFormFactor(F, tableValue);
     LtcEval e{double(scale) * exact, double(scale) * approx, double(scale) * tabled};
     // the engine corrects the microfacet lobes only (lighting.comp)
+    double parts[2] = {0.0, 0.0};
     e.point = lobe == Lobe::GGX || lobe == Lobe::Beckmann
-                  ? e.exact * point_ratio(Brdf::make(lobe, roughness), V,
-                                          rtpbr::LTC_PolygonToLocal(frame, float3(0), poly, false), l1, l2.x)
+                  ? point_value(Brdf::make(lobe, roughness), V, rtpbr::LTC_PolygonToLocal(frame, float3(0), poly, false),
+                                l1, l2.x, double(l2.x) * double(exact), true, parts) * double(scale) / double(l2.x)
                   : e.exact;
+    e.pointOnly = lobe == Lobe::GGX || lobe == Lobe::Beckmann ? parts[0] * double(scale) / double(l2.x) : e.exact;
+    e.tail = parts[1] * double(scale) / double(l2.x);
     return e;
 }
 

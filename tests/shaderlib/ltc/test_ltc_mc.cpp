@@ -46,10 +46,12 @@ extern "C" {
 
 // Floor errors of the committed GGX table on test_ggx_floor's sweep, measured: the LTC alone
 // mean 22.0%, worst 57.2% (r 0.8, elevation 5, NoV 0.1); with the engine's point correction
-// (ltc.h, LTC_PointFactor) mean 11.5%, worst 28.8% (r 0.5, elevation 5, NoV 0.3); bounds +
-// ~30% (see ltc.md, "Floors lit near their horizon").
+// (ltc.h, LTC_PointFactor) mean 11.5%, worst 28.8% (r 0.5, elevation 5, NoV 0.3); with the
+// tail estimate too (LTC_PointTail, the engine since the fifth round) mean 7.8%, worst 23.0%;
+// bounds + ~30% (see ltc.md, "Floors lit near their horizon").
 static const double FLOOR_MEAN_BOUND = 0.286, FLOOR_WORST_BOUND = 0.74;
 static const double FLOOR_POINT_MEAN_BOUND = 0.15, FLOOR_POINT_WORST_BOUND = 0.375;
+static const double FLOOR_TAIL_MEAN_BOUND = 0.101, FLOOR_TAIL_WORST_BOUND = 0.30;
 
 using namespace ltcmc;
 
@@ -75,8 +77,11 @@ static void run_lobe(Lobe lobe, Bounds b) {
         Outcome o = run_config(c, FresnelChoice{}, kTargetRelErr, kMaxPairs, seed++);
         assert_true(std::isfinite(o.ltc.exact) && std::isfinite(o.ltc.clipless) && std::isfinite(o.ltc.clipless_table) &&
                     std::isfinite(o.ltc.point));
-        // the point correction scales the LTC by a factor in [0, 16] (LTC_PointFactor)
-        assert_true(o.ltc.point >= 0.0 && o.ltc.point <= 16.0 * o.ltc.exact * (1.0 + 1e-6));
+        // the point correction scales the LTC by a factor in [0, 16] (LTC_PointFactor); the
+        // engine's value is the larger of that and the weighted tail estimate (LTC_PointCombine)
+        assert_true(o.ltc.pointOnly >= 0.0 && o.ltc.pointOnly <= 16.0 * o.ltc.exact * (1.0 + 1e-6));
+        assert_true(o.ltc.tail >= 0.0 && std::isfinite(o.ltc.tail));
+        assert_true(std::fabs(o.ltc.point - std::max(o.ltc.pointOnly, o.ltc.tail)) <= 1e-5 * o.ltc.point + 1e-12);
         if (o.significant) {
             worstRef = std::max(worstRef, o.ref.relStdErr);
             assert_true(o.ref.relStdErr <= kTargetRelErr * 1.01);
@@ -295,14 +300,18 @@ static void test_anisotropic_stretch_vs_mc(void **state) {
 // errors of the committed tables with ~30% margin (FLOOR_MEAN_BOUND above).
 static void test_ggx_floor(void **state) {
     (void)state;
-    double worst[2] = {0.0, 0.0}, sum[2] = {0.0, 0.0}, quad = 0.0;
+    // 0: the LTC alone; 1: with the point correction (the fourth round's engine); 2: with the
+    // point correction and the tail estimate (the engine since the fifth round)
+    double worst[3] = {0.0, 0.0, 0.0}, sum[3] = {0.0, 0.0, 0.0}, quad = 0.0;
+    static const char *label[3] = {"", ", point correction", ", point correction + tail"};
     int n = 0;
     for (float r : {0.3f, 0.5f, 0.8f})
         for (float e : {5.0f, 10.0f, 20.0f})
             for (float v : {0.1f, 0.3f}) {
-                for (int point = 0; point < 2; point++) { // the LTC alone, then with the point correction
+                for (int mode = 0; mode < 3; mode++) {
                     ltcfloor::Tables tab{rtpbr_ltc_ggx_1, rtpbr_ltc_ggx_2};
-                    tab.point = point;
+                    tab.point = mode > 0 ? 1 : 0;
+                    tab.tail = mode == 2;
                     std::vector<ltcfloor::CaseResult> az;
                     for (float a : {0.0f, 30.0f, 60.0f, 90.0f, 120.0f, 150.0f, 180.0f}) {
                         az.push_back(ltcfloor::run_case({r, e, v, a}, Lobe::GGX, tab, 4, 4));
@@ -311,21 +320,24 @@ static void test_ggx_floor(void **state) {
                     }
                     double f = ltcfloor::floor_error(az);
                     fprintf(stderr, "  floor r=%.1f elevation=%g NoV=%.1f%s: %.2f%%\n", double(r), double(e), double(v),
-                            point ? ", point correction" : "", 100 * f);
-                    worst[point] = std::max(worst[point], f);
-                    sum[point] += f;
+                            label[mode], 100 * f);
+                    worst[mode] = std::max(worst[mode], f);
+                    sum[mode] += f;
                 }
                 n++;
             }
     fprintf(stderr, "GGX floors: LTC alone mean %.2f%%, worst %.2f%%; with the point correction mean %.2f%%, worst %.2f%%; "
-                    "quadrature agreement %.1e\n",
-            100 * sum[0] / n, 100 * worst[0], 100 * sum[1] / n, 100 * worst[1], quad);
+                    "with the tail estimate too mean %.2f%%, worst %.2f%%; quadrature agreement %.1e\n",
+            100 * sum[0] / n, 100 * worst[0], 100 * sum[1] / n, 100 * worst[1], 100 * sum[2] / n, 100 * worst[2], quad);
     assert_true(quad < 1e-4);
     assert_true(sum[0] / n < FLOOR_MEAN_BOUND);
     assert_true(worst[0] < FLOOR_WORST_BOUND);
     assert_true(sum[1] / n < FLOOR_POINT_MEAN_BOUND);
     assert_true(worst[1] < FLOOR_POINT_WORST_BOUND);
+    assert_true(sum[2] / n < FLOOR_TAIL_MEAN_BOUND);
+    assert_true(worst[2] < FLOOR_TAIL_WORST_BOUND);
     assert_true(sum[1] < sum[0]);
+    assert_true(sum[2] < sum[1]);
 }
 
 // The point correction's pieces (ltc.h: LTC_LobeEndVector, LTC_LobePoint, LTC_PointFactor)
@@ -394,6 +406,27 @@ static void test_point_correction(void **state) {
     assert_true(rtpbr::LTC_PointFactor(0.0f, 1.0f, 0.0f, 3.0f) == 0.0f);
     // the width ratio: alpha |V + w| / sqrt(|F|)
     assert_true(near(rtpbr::LTC_PointWidthRatio(0.25f, 0.5f, 0.01f), 1.25));
+    // The tail estimate (fifth round): f pi formFactor / norm; its weight from the lobe vector's
+    // cosine c = z / |F|: 1 up to 0.2 (and for a zero vector), 0 from 0.4, 0.5 at 0.3; the larger
+    // of the corrected LTC and the weighted tail; 0 / the other for NaN, negative or infinite.
+    const double pi = 3.14159265358979;
+    assert_true(near(rtpbr::LTC_PointTail(0.5f, 0.2f, 0.8f), 0.5 * pi * 0.2 / 0.8));
+    assert_true(rtpbr::LTC_PointTail(std::nanf(""), 0.2f, 0.8f) == 0.0f && rtpbr::LTC_PointTail(0.5f, -0.2f, 0.8f) == 0.0f &&
+                rtpbr::LTC_PointTail(0.5f, 0.2f, 0.0f) == 0.0f && rtpbr::LTC_PointTail(INFINITY, 0.2f, 0.8f) == 0.0f);
+    // ... and times 1 - smoothstep(0.5, 2, ltcFF / formFactor)
+    auto dirAt = [](double c) { return float3(float(std::sqrt(1.0 - c * c)), 0.0f, float(c)) * 3.0f; };
+    auto tw = [](float3 d, float ratio) { return rtpbr::LTC_PointTailWeight(d, 0.1f * ratio, 0.1f); };
+    assert_true(tw(dirAt(0.1), 0.0f) == 1.0f && tw(float3(0.0f), 0.5f) == 1.0f);
+    assert_true(tw(dirAt(0.2), 0.3f) == 1.0f && tw(dirAt(0.45), 0.0f) == 0.0f);
+    assert_true(std::fabs(tw(dirAt(0.3), 0.0f) - 0.5) < 1e-5);
+    assert_true(std::fabs(tw(dirAt(0.1), 1.25f) - 0.5) < 1e-5 && tw(dirAt(0.1), 2.0f) == 0.0f);
+    assert_true(std::fabs(tw(dirAt(0.3), 1.25f) - 0.25) < 1e-5);
+    assert_true(rtpbr::LTC_PointTailWeight(float3(0.0f, 0.0f, std::nanf("")), 0.0f, 0.1f) == 1.0f);
+    assert_true(rtpbr::LTC_PointTailWeight(dirAt(0.1), std::nanf(""), 0.1f) == 1.0f &&
+                rtpbr::LTC_PointTailWeight(dirAt(0.1), 0.05f, std::nanf("")) == 1.0f);
+    assert_true(rtpbr::LTC_PointCombine(0.3f, 0.5f, 0.5f) == 0.3f && rtpbr::LTC_PointCombine(0.2f, 0.5f, 0.5f) == 0.25f);
+    assert_true(rtpbr::LTC_PointCombine(std::nanf(""), 0.5f, 1.0f) == 0.5f &&
+                rtpbr::LTC_PointCombine(0.3f, std::nanf(""), 1.0f) == 0.3f && rtpbr::LTC_PointCombine(-1.0f, 0.0f, 1.0f) == 0.0f);
 }
 
 int main(void) {
