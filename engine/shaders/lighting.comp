@@ -93,11 +93,14 @@ float light_lobe(uint i, vec3 P, mat3 ltcFrame, mat3 minv, out vec3 F, out vec3 
     return LTC_LobeEnd(lobe);
 }
 
-// The point correction of the specular lobe (ltc.h, LTC_PointFactor): the true f NoL (F = 1,
-// the lobe the tables were fitted to) at the centre of the part of the light the LTC sees,
-// against the LTC's value there (the table's scale norm x its density); lenF = the length of
-// the light's horizon-clipped vector form factor (LTC_PointWidthRatio).
-float specular_point_factor(vec3 Fl, vec4 ltc1, float norm, float NoV, float specR, float ff, float lenF)
+// The specular lobe's LTC result ltcFF corrected (ltc.h): the point correction (LTC_PointFactor:
+// the true f NoL (F = 1, the lobe the tables were fitted to) at the centre of the part of the
+// light the LTC sees, against the LTC's value there, the table's scale norm x its density) or,
+// for a light in the LTC's tail, the tail estimate (LTC_PointTail: f at the direction of the
+// light's vector form factor F x pi x its form factor ff), whichever is larger
+// (LTC_PointCombine); lenF = |F| (LTC_PointWidthRatio).
+float specular_corrected(vec3 Fl, vec4 ltc1, float norm, float NoV, float specR, float ltcFF, vec3 F, float ff,
+                         float lenF)
 {
     // recomputed here rather than kept live through the light loop (registers of the full variant)
     float alpha = Alpha_FromPerceptual(specR);
@@ -109,7 +112,17 @@ float specular_point_factor(vec3 Fl, vec4 ltc1, float norm, float NoV, float spe
     float fCos = NoL > 0.0f && hh > 1e-12f
                      ? D_Microfacet(h.z * inversesqrt(hh), alpha) * V_Microfacet(NoV, NoL, alpha) * NoL
                      : 0.0f;
-    return LTC_PointFactor(fCos, norm * pt.density, ff, LTC_PointWidthRatio(alpha, sqrt(hh), lenF));
+    float corrected = ltcFF * LTC_PointFactor(fCos, norm * pt.density, ltcFF, LTC_PointWidthRatio(alpha, sqrt(hh), lenF));
+    float weight = LTC_PointTailWeight(Fl, ltcFF, ff);
+    float tail = 0.0f;
+    if (weight > 0.0f) {
+        vec3 c = F / lenF;
+        vec3 hc = vLocal + c;
+        float hc2 = dot(hc, hc);
+        float f = c.z > 0.0f && hc2 > 1e-12f ? D_Microfacet(hc.z * inversesqrt(hc2), alpha) * V_Microfacet(NoV, c.z, alpha) : 0.0f;
+        tail = LTC_PointTail(f, ff, norm);
+    }
+    return LTC_PointCombine(corrected, tail, weight);
 }
 
 // Reflected radiance from the tile's polygonal lights, for the model of lighting_common.glsl
@@ -132,7 +145,7 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
     mat3 ltcFrame = LTC_Frame(N, V);
     mat3 specularMinv = LTC_InverseMatrix(ltc1);
     vec3 vLocal = vec3(sqrt(max(1.0f - s.NoV * s.NoV, 0.0f)), 0.0f, s.NoV);
-    // The point correction (specular_point_factor) on the isotropic specular lobe: its scale,
+    // The point correction and tail estimate (specular_corrected) on the isotropic specular lobe: its scale,
     // the table's norm, and in the full variant whether the lobe is isotropic.
     float pointNorm = ltc2.x;
     bool pointOn = RTPBR_LTC_POINT_CORRECTION != 0;
@@ -176,6 +189,17 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
     }
 #endif
 
+    // The multiple-scattering lobe: with RTPBR_KC_SHAPE the shaped lobe (kulla_conty.h,
+    // KC_PolygonLobeShaped): beta (1 - Eo) x the specular lobe's corrected form factor, which
+    // joins the specular term's scale, plus (1 - beta) x the separable lobe (no register is
+    // added to the loop: the full variant is at gfx1100's limit).
+#if RTPBR_KC_SHAPE
+    float kcBeta = KC_ShapeWeight(s.specR, s.NoV);
+    specularScale += s.msColor * (kcBeta * rtpbr_pos(1.0f - s.Eo));
+    vec3 msColor = s.msColor * (1.0f - kcBeta);
+#else
+    vec3 msColor = s.msColor;
+#endif
     vec3 sum = vec3(0.0f);
 #ifdef RTPBR_STATS_FIXED_LIGHTS
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i) {
@@ -213,11 +237,11 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
         if (pointOn && specularFF < 0.5f) {
             vec3 unusedF2;
             light_lobe(i, P, ltcFrame, specularMinv, unusedF2, Fl);
-            specularFF *= specular_point_factor(Fl, pointLtc1, textureLod(LUT_LTC_2, LTC_LutCoord(s.NoV, s.specR), 0.0f).x,
-                                                s.NoV, s.specR, specularFF, lenF);
+            specularFF = specular_corrected(Fl, pointLtc1, textureLod(LUT_LTC_2, LTC_LutCoord(s.NoV, s.specR), 0.0f).x,
+                                            s.NoV, s.specR, specularFF, F, ff, lenF);
         }
 #else
-        specularFF *= specular_point_factor(Fl, pointLtc1, pointNorm, s.NoV, s.specR, specularFF, lenF);
+        specularFF = specular_corrected(Fl, pointLtc1, pointNorm, s.NoV, s.specR, specularFF, F, ff, lenF);
 #endif
 #endif
         // The representative direction of the polygon: its vector form factor's.
@@ -227,7 +251,9 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
         vec2 eRep = kc_E_EF(muRep, s.specR, s.eta);
         float Erep = KC_PolygonMeanE(eRep.x, s.Eavg, lenF);
 
-        vec3 lo = specularScale * specularFF + s.msColor * KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff);
+        // (with RTPBR_KC_SHAPE: KC_PolygonLobeShaped, its two parts folded into specularScale and
+        // msColor before the loop)
+        vec3 lo = specularScale * specularFF + msColor * KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff);
         vec3 unusedF, unusedFl;
         vec3 base;
 #if RTPBR_LIGHTING_FULL

@@ -94,6 +94,10 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
     float woTangentLength = length(woTangent);
     woTangent = woTangentLength > 0.0f ? woTangent * (sqrt(1.0f - NoV * NoV) / woTangentLength) : vec2(0.0f);
     vec3 wo = vec3(woTangent, NoV);
+#if RTPBR_KC_SHAPE
+    float alphaIso = Alpha_FromPerceptual(specR);
+    float kcBeta = KC_ShapeWeight(specR, NoV);
+#endif
 
     // Kulla-Conty: the lobe colours and the layered base's albedos.
     float Eo = s.Eo, Eavg = s.Eavg, FmsDielectric = s.FmsDielectric;
@@ -186,7 +190,15 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
             float mu = max(NoL, 0.0f);
             vec2 ei = needEi ? kc_E_EF(mu, specR, eta) : vec2(1.0f, 0.0f);
             float Ei = ei.x;
+#if RTPBR_KC_SHAPE
+            // the shaped multiple-scattering lobe (kulla_conty.h), its single-scattering part
+            // from the isotropic lobe at the tables' roughness (as BRDF_SpecularMS)
+            float fss1 = NoL > 0.0f ? D_Microfacet(NoH, alphaIso) * V_Microfacet(NoV, NoL, alphaIso) : 0.0f;
+            vec3 f = BRDF_SpecularLocal(wo, wiLocal, alphaSample.x, alphaSample.y, fresnel) +
+                     msColor * KC_LobeShaped(Eo, Ei, Eavg, fss1, kcBeta);
+#else
             vec3 f = BRDF_SpecularLocal(wo, wiLocal, alphaSample.x, alphaSample.y, fresnel) + msColor * KC_Lobe(Eo, Ei, Eavg);
+#endif
             if (disney) {
                 f += BRDF_DisneyDiffuse(dm, wo, wiLocal) + BRDF_DisneySheen(dm, wo, wiLocal);
             } else {

@@ -18,6 +18,9 @@
 //                      | RTPBR_FRESNEL_CONDUCTOR
 //   RTPBR_MULTISCATTER 0 | 1 (default): Kulla-Conty energy compensation (kulla_conty.h).
 //   RTPBR_DIFFUSE      RTPBR_DIFFUSE_LAMBERT (default) | RTPBR_DIFFUSE_BURLEY
+//   RTPBR_KC_SHAPE     1 (default) | 0: the multiple-scattering lobe of BRDF_SpecularMS and of
+//                      the engine's lights: shaped toward the single-scattering lobe at low
+//                      roughness (KC_LobeShaped) or Kulla-Conty's separable lobe (KC_Lobe).
 //   RTPBR_LTC_POINT_CORRECTION 1 (default) | 0: callers of ltc.h's point correction
 //                      (LTC_PointFactor; the engine's lighting pass) apply it to the isotropic
 //                      microfacet lobe of polygonal lights.
@@ -66,6 +69,9 @@
 #endif
 #ifndef RTPBR_LTC_POINT_CORRECTION
 #define RTPBR_LTC_POINT_CORRECTION 1
+#endif
+#ifndef RTPBR_KC_SHAPE
+#define RTPBR_KC_SHAPE 1
 #endif
 #ifndef RTPBR_MIN_ALPHA
 #define RTPBR_MIN_ALPHA 1e-3f

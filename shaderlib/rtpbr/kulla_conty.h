@@ -156,8 +156,46 @@ RTPBR_FN float KC_Lobe(float Eo, float Ei, float Eavg) {
     return d > 1e-6f ? a * b / (RTPBR_PI * d) : 0.0f;
 }
 
+// ---- the shaped multiple-scattering lobe (issue 19, fifth round; RTPBR_KC_SHAPE) -------------
+//
+// The separable lobe above has the right energy for every view but not the right direction:
+// on the Smith microsurface (the random walk of Heitz et al. 2016, the oracle's) the light
+// scattered twice or more leaves close to the single-scattering lobe at low roughness and
+// spreads out only as the roughness grows; seen at grazing angles, the separable lobe sends
+// 3-7 times the walk's multiple scattering back toward a light on the viewer's side (r 0.35,
+// shaderlib/luts/kulla_conty.md). The shaped lobe blends the separable lobe with the
+// single-scattering lobe's own shape at the same energy (the latter is the shape of Turquin
+// 2019's compensation):
+//     f_ms = (1 - E(mu_o)) [beta f_ss(F = 1) / E(mu_o) + (1 - beta) (1 - E(mu_i)) / (pi (1 - E_avg))]
+// whose cosine-weighted integral over mu_i is 1 - E(mu_o) for every view, as the separable
+// lobe's, so white furnaces stay exact; it is not reciprocal. beta = KC_ShapeWeight(r, mu_o).
+
+// beta of the shaped lobe at perceptual roughness r and view cosine mu_o:
+// min(1, exp(-3 (r - 0.2))) (1 - mu_o^4), fitted by rtpbr-kc-shape to the walk's multiple
+// scattering of GGX (F = 1) over r 0.2-1 and mu_o 0.05-1 (the roughness term: the optimum
+// per roughness, 1 up to r 0.2, 0.73 at 0.3, 0.44 at 0.5, 0.22 at 0.7; the view term: near
+// normal incidence the walk's multiple scattering is broad, as the separable lobe). NaN -> 0
+// (the separable lobe).
+RTPBR_FN float KC_ShapeWeight(float perceptualRoughness, float NoV) {
+    float r = perceptualRoughness;
+    float b = r > 0.2f ? exp(-3.0f * min(r - 0.2f, 10.0f)) : (r <= 0.2f ? 1.0f : 0.0f);
+    float m = NoV > 0.0f ? min(NoV, 1.0f) : 0.0f; // NaN -> 0
+    float m2 = m * m;
+    return b * (1.0f - m2 * m2);
+}
+
+// The shaped lobe (F = 1) for one pair of directions: fss1 = f_ss(wo, wi) with F = 1 (D V),
+// Eo, Ei, Eavg as for KC_Lobe, beta = KC_ShapeWeight. Eo <= 0 or NaN inputs: the separable
+// part alone.
+RTPBR_FN float KC_LobeShaped(float Eo, float Ei, float Eavg, float fss1, float beta) {
+    float b = beta > 0.0f ? min(beta, 1.0f) : 0.0f; // NaN -> 0
+    float ss = Eo > 1e-4f && fss1 > 0.0f && fss1 < 3.0e38f ? rtpbr_pos(1.0f - Eo) * fss1 / Eo : 0.0f; // +Inf -> 0
+    return b * ss + (1.0f - b) * KC_Lobe(Eo, Ei, Eavg);
+}
+
 // The compensated specular BRDF f_ss + F_ms f_ms of the models picked by RTPBR_NDF,
-// RTPBR_SMITH, RTPBR_FRESNEL; without RTPBR_MULTISCATTER only f_ss. Eo, Ei, Eavg are the
+// RTPBR_SMITH, RTPBR_FRESNEL; without RTPBR_MULTISCATTER only f_ss. f_ms is the shaped lobe
+// (KC_LobeShaped, not reciprocal) unless RTPBR_KC_SHAPE is 0 (the separable KC_Lobe). Eo, Ei, Eavg are the
 // fetched E(NoV, r), E(NoL, r), E_avg(r) of the same NDF / Smith variant; Favg =
 // F_Avg_Microfacet(fresnel) (constant per material: hoist it).
 RTPBR_FN rtpbr_float3 BRDF_SpecularMS(float NoV, float NoL, float NoH, float VoH, float alpha,
@@ -173,7 +211,13 @@ RTPBR_FN rtpbr_float3 BRDF_SpecularMS(float NoV, float NoL, float NoH, float VoH
 #else
     float msOn = 0.0f;
 #endif
-    return fss + (msOn * KC_Lobe(Eo, Ei, Eavg)) * KC_FmsColor(Favg, Eavg);
+#if RTPBR_KC_SHAPE
+    float ms = KC_LobeShaped(Eo, Ei, Eavg, D_Microfacet(NoH, alpha) * V_Microfacet(NoV, NoL, alpha),
+                             KC_ShapeWeight(sqrt(max(alpha, 0.0f)), NoV));
+#else
+    float ms = KC_Lobe(Eo, Ei, Eavg);
+#endif
+    return fss + (msOn * ms) * KC_FmsColor(Favg, Eavg);
 }
 
 // ---- dielectric specular over a diffuse base -----------------------------------------------
@@ -251,6 +295,16 @@ RTPBR_FN float KC_PolygonLobe(float Eo, float Erep, float Eavg, float formFactor
     if (!(d > 1e-6f))
         return 0.0f;
     return rtpbr_pos(1.0f - Eo) * rtpbr_pos(1.0f - Erep) * rtpbr_pos(formFactor) / d;
+}
+
+// The shaped lobe over a polygon (unit radiance): beta (1 - Eo) ssFormFactor + (1 - beta)
+// KC_PolygonLobe, ssFormFactor = the polygon's form factor under the single-scattering lobe
+// normalised to 1 over the hemisphere (what the specular LTC integral gives: the integral of
+// f_ss(F = 1) cos / E(mu_o)).
+RTPBR_FN float KC_PolygonLobeShaped(float Eo, float Erep, float Eavg, float formFactor, float ssFormFactor, float beta) {
+    float b = beta > 0.0f ? min(beta, 1.0f) : 0.0f; // NaN -> 0
+    float ss = ssFormFactor > 0.0f && ssFormFactor < 3.0e38f ? rtpbr_pos(1.0f - Eo) * ssFormFactor : 0.0f; // +Inf -> 0
+    return b * ss + (1.0f - b) * KC_PolygonLobe(Eo, Erep, Eavg, formFactor);
 }
 
 RTPBR_NAMESPACE_END

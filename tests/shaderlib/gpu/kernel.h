@@ -23,6 +23,7 @@
 #include "rtpbr/sampling.h"
 #include "rtpbr/ltc.h"
 #include "rtpbr/material.h"
+#include "rtpbr/kulla_conty.h"
 
 #if defined(RTPBR_CPP)
 #define RTPBR_TEST_PRECISE
@@ -121,7 +122,9 @@ RTPBR_FN RtpbrTestArgs rtpbr_test_args(rtpbr_float4 a, rtpbr_float4 b) {
 // component `which` - 1 of the clipped quad's vector form factor (1-3); the lobe's own vector
 // (LTC_LobeEndVector, 4-6); the point correction's direction (LTC_LobePoint, 7-9), density
 // (10) and factor (LTC_PointFactor with fCos = t.c2 x density x 2, the lobe's form factor and
-// a width ratio of 0.8 + t.aniso, 11).
+// a width ratio of 0.8 + t.aniso, 11); the tail estimate's weight (LTC_PointTailWeight of the
+// lobe's vector, the lobe's form factor and 2 t.c3 F.z, 12) and the combination (LTC_PointCombine of the corrected form factor, a tail
+// LTC_PointTail(t.lambdaO, F.z, 0.2 + t.c3) and that weight, 13).
 RTPBR_FN float rtpbr_test_ltc_quad(RtpbrTestArgs t, bool stretch, int which) {
     RTPBR_TEST_PRECISE float h = 0.5f * t.sc;
     RTPBR_TEST_PRECISE float gx = t.c1 - 0.5f;
@@ -159,7 +162,13 @@ RTPBR_FN float rtpbr_test_ltc_quad(RtpbrTestArgs t, bool stretch, int which) {
         return which == 7 ? pt.dir.x : (which == 8 ? pt.dir.y : pt.dir.z);
     if (which == 10)
         return pt.density;
-    return LTC_PointFactor(2.0f * t.c2 * pt.density, pt.density, LTC_LobeEnd(lobe), 0.8f + t.aniso);
+    float corrected = LTC_LobeEnd(lobe) * LTC_PointFactor(2.0f * t.c2 * pt.density, pt.density, LTC_LobeEnd(lobe), 0.8f + t.aniso);
+    if (which == 11)
+        return corrected / max(LTC_LobeEnd(lobe), 1e-30f);
+    float weight = LTC_PointTailWeight(Fl, LTC_LobeEnd(lobe), 2.0f * t.c3 * F.z);
+    if (which == 12)
+        return weight;
+    return LTC_PointCombine(corrected, LTC_PointTail(t.lambdaO, F.z, 0.2f + t.c3), weight);
 }
 
 // A scalar argument in the regimes of rtpbr_test_material, picked by b.w: x (b.w < 0.4), then

@@ -19,3 +19,4 @@
 #include "cases/sampling.inc"
 #include "cases/ltc.inc"
 #include "cases/material.inc"
+#include "cases/kulla_conty.inc"

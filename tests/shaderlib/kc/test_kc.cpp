@@ -57,7 +57,10 @@ float lutEFavg(int v, float r, float eta) {
 // [0, pi] (the integrand is symmetric). The weight grows like 1 / sqrt(1 - u) near the horizon
 // at grazing mu (o.h / cos theta_h), so u = 1 - s^2 with a midpoint rule in s.
 // Fresnel: fresnelEta <= 0 means F = 1.
-double albedo_ss(const kc::Variant &v, float mu, float r, float fresnelEta, int nu = 320, int nphi = 48) {
+// int over the hemisphere of g(f_ss(F = 1), o.h) mu_i dw_i at view mu and roughness r, by
+// importance-sampled quadrature in the half vector (the variant's NDF); g = f_ss: E(mu).
+template <class G>
+double ss_quadrature(const kc::Variant &v, float mu, float r, G g, int nu = 320, int nphi = 48) {
     double alpha = rtpbr::Alpha_FromPerceptual(r);
     double a2 = alpha * alpha;
     double sinO = std::sqrt(std::max(0.0, 1.0 - double(mu) * mu));
@@ -79,15 +82,24 @@ double albedo_ss(const kc::Variant &v, float mu, float r, float fresnelEta, int 
             double iz = 2.0 * oh * hz - mu;
             if (iz <= 0.0)
                 continue;
-            double f = v.brdf(mu, static_cast<float>(iz), static_cast<float>(hz), static_cast<float>(oh),
-                              static_cast<float>(alpha));
-            if (fresnelEta > 0.0f)
-                f *= rtpbr::F_Dielectric(static_cast<float>(oh), fresnelEta);
+            double f = g(v.brdf(mu, static_cast<float>(iz), static_cast<float>(hz), static_cast<float>(oh),
+                                static_cast<float>(alpha)),
+                         oh);
             // dw_i = 4 (o.h) dw_h; the quadrature measure is D(h) cos(theta_h) dw_h.
             sum += du * f * iz * 4.0 * oh / (Dh * hz);
         }
     }
     return sum / (double(nu) * nphi);
+}
+
+// The single-scattering albedo (F = 1, or the exact dielectric Fresnel when fresnelEta > 0).
+double albedo_ss(const kc::Variant &v, float mu, float r, float fresnelEta, int nu = 320, int nphi = 48) {
+    return ss_quadrature(
+        v, mu, r,
+        [&](float f, double oh) {
+            return fresnelEta > 0.0f ? double(f) * rtpbr::F_Dielectric(static_cast<float>(oh), fresnelEta) : double(f);
+        },
+        nu, nphi);
 }
 
 // Gauss-Legendre on [0, 1].
@@ -217,7 +229,10 @@ void test_lobe_reciprocity_positivity(void **) {
     assert_true(std::fabs(msOne.x - 1.0f) < 1e-6f);
     assert_true(rtpbr::KC_PolygonLobe(NAN, 0.5f, 0.5f, 0.3f) == 0.0f &&
                 rtpbr::KC_PolygonLobe(0.5f, 0.5f, 0.5f, NAN) == 0.0f);
-    // The complete compensated BRDF with table values fetched at both cosines is reciprocal.
+    // The complete compensated BRDF with table values fetched at both cosines is f_ss + F_ms x
+    // the shaped lobe (RTPBR_KC_SHAPE, on by default; its weight depends on the view, so it is
+    // not reciprocal): taking that lobe out of both directions' values must leave the same,
+    // reciprocal f_ss. (With beta = 0 this is the separable lobe's reciprocity.)
     std::uniform_real_distribution<float> V(0.0f, 1.0f);
     rtpbr::FresnelParams fp = rtpbr::Fresnel_FromF0(float3(0.9f, 0.6f, 0.3f));
     float3 Favg = rtpbr::F_Avg_Microfacet(fp);
@@ -230,11 +245,16 @@ void test_lobe_reciprocity_positivity(void **) {
         float Eo = lutE(0, wo.z, r), Ei = lutE(0, wi.z, r), Ea = lutEavg(0, r);
         float3 f1 = rtpbr::BRDF_SpecularMS(wo.z, wi.z, h.z, rtpbr::dot(wo, h), alpha, fp, Eo, Ei, Ea, Favg);
         float3 f2 = rtpbr::BRDF_SpecularMS(wi.z, wo.z, h.z, rtpbr::dot(wi, h), alpha, fp, Ei, Eo, Ea, Favg);
+        float3 ms = rtpbr::KC_FmsColor(Favg, Ea);
+        float fss1 = rtpbr::D_Microfacet(h.z, alpha) * rtpbr::V_Microfacet(wo.z, wi.z, alpha);
+        float beta = RTPBR_KC_SHAPE ? rtpbr::KC_ShapeWeight(std::sqrt(alpha), wo.z) : 0.0f;
+        float betaI = RTPBR_KC_SHAPE ? rtpbr::KC_ShapeWeight(std::sqrt(alpha), wi.z) : 0.0f;
         for (int c = 0; c < 3; c++) {
             assert_true(f1[c] >= 0.0f);
-            assert_true(std::fabs(f1[c] - f2[c]) <= 1e-5f * std::max(1.0f, f1[c]));
+            float g1 = f1[c] - ms[c] * rtpbr::KC_LobeShaped(Eo, Ei, Ea, fss1, beta);
+            float g2 = f2[c] - ms[c] * rtpbr::KC_LobeShaped(Ei, Eo, Ea, fss1, betaI);
+            assert_true(std::fabs(g1 - g2) <= 2e-5f * std::max(1.0f, std::fabs(f1[c])));
         }
-        float3 ms = rtpbr::KC_FmsColor(Favg, Ea);
         for (int c = 0; c < 3; c++)
             assert_true(ms[c] >= 0.0f && ms[c] <= 1.0f);
     }
@@ -323,6 +343,23 @@ struct Walker {
             return INFINITY;
         return invC1(C1(h) / std::pow(1.0f - u, 1.0f / lambda(w)));
     }
+    // One walk started along -wi (white): returns the number of reflections before it left
+    // (0 if cut after 63) and the direction it left along.
+    int walk_exit(float3 wi, std::mt19937 &rng, float3 *exitDir) const {
+        std::uniform_real_distribution<float> U(0.0f, 1.0f);
+        float3 w = -wi;
+        float h = 1.0f + invC1(0.999f);
+        for (int order = 1; order < 64; order++) {
+            h = sample_height(w, h, U(rng));
+            if (std::isinf(h)) {
+                *exitDir = w;
+                return order - 1;
+            }
+            float3 wm = rtpbr::Sample_GGX_VNDF(-w, alpha, alpha, rtpbr::float2(U(rng), U(rng)));
+            w = w - 2.0f * rtpbr::dot(w, wm) * wm;
+        }
+        return 0;
+    }
     void walk(float3 wi, std::mt19937 &rng, WalkResult *acc) const {
         std::uniform_real_distribution<float> U(0.0f, 1.0f);
         float3 w = -wi;
@@ -397,6 +434,144 @@ void test_colour_term_random_walk(void **) {
     assert_true(worstWhiteSS < 0.01);
     assert_true(worstColour < 0.10);
     assert_true(worstColour < worstOneF);
+}
+
+// ---- the shaped multiple-scattering lobe (KC_LobeShaped, issue 19) --------------------------------
+
+// int over the hemisphere of the shaped lobe's single-scattering part (beta = 1) times mu_i
+// (f_ss(F = 1) of the variant as fss1; the separable part's Ei is irrelevant at beta = 1).
+double shaped_ss_integral(const kc::Variant &v, float mu, float r, float Eo, float Eavg) {
+    return ss_quadrature(v, mu, r, [&](float f, double) { return double(rtpbr::KC_LobeShaped(Eo, 0.5f, Eavg, f, 1.0f)); });
+}
+
+// The shaped lobe keeps the furnace: at every view its two parts each integrate to 1 - E(mu_o)
+// (single scattering by albedo_ss's quadrature, the separable part by Gauss-Legendre), so
+// E + the lobe = 1 for any beta; and it is linear in beta between the two.
+void test_shaped_lobe_furnace(void **) {
+    GL gl(64);
+    const auto &vs = kc::kc_variants();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> U(0.0f, 1.0f);
+    for (size_t v = 0; v < vs.size(); v++) {
+        double worst = 0.0;
+        for (float r : {0.05f, 0.15f, 0.3f, 0.45f, 0.6f, 0.75f, 0.9f, 1.0f}) {
+            float Eavg = lutEavg(static_cast<int>(v), r);
+            for (float mu : {0.03f, 0.1f, 0.2f, 0.35f, 0.5f, 0.7f, 0.85f, 1.0f}) {
+                float Eo = lutE(static_cast<int>(v), mu, r);
+                double ss = albedo_ss(vs[v], mu, r, -1.0f);
+                double part1 = shaped_ss_integral(vs[v], mu, r, Eo, Eavg);
+                double part0 = cos_integral(gl, [&](float mui) {
+                    return rtpbr::KC_LobeShaped(Eo, lutE(static_cast<int>(v), mui, r), Eavg, 1.0f, 0.0f);
+                });
+                float beta = rtpbr::KC_ShapeWeight(r, mu);
+                worst = std::max(worst, std::fabs(ss + beta * part1 + (1.0 - beta) * part0 - 1.0));
+                worst = std::max(worst, std::fabs(ss + part1 - 1.0));
+            }
+        }
+        print_message("shaped lobe furnace %-13s |E + lobe - 1| max %.4f (beta = KC_ShapeWeight and 1)\n", vs[v].name, worst);
+        assert_true(worst < 0.01);
+    }
+    // linear in beta; the weight's closed form and its ends
+    for (int i = 0; i < 1000; i++) {
+        float Eo = U(rng), Ei = U(rng), Ea = 0.3f + 0.6f * U(rng), f = 10.0f * U(rng), b = U(rng);
+        float mixed = rtpbr::KC_LobeShaped(Eo, Ei, Ea, f, b);
+        float ends = b * rtpbr::KC_LobeShaped(Eo, Ei, Ea, f, 1.0f) + (1.0f - b) * rtpbr::KC_LobeShaped(Eo, Ei, Ea, f, 0.0f);
+        assert_true(std::fabs(mixed - ends) <= 1e-5f * std::max(1.0f, mixed));
+        assert_true(rtpbr::KC_LobeShaped(Eo, Ei, Ea, f, 0.0f) == rtpbr::KC_Lobe(Eo, Ei, Ea));
+    }
+    assert_true(rtpbr::KC_ShapeWeight(0.1f, 0.0f) == 1.0f && rtpbr::KC_ShapeWeight(0.2f, 0.0f) == 1.0f);
+    assert_true(std::fabs(rtpbr::KC_ShapeWeight(0.5f, 0.5f) - std::exp(-0.9f) * (1.0f - 0.0625f)) < 1e-6f);
+    assert_true(rtpbr::KC_ShapeWeight(0.3f, 1.0f) == 0.0f && rtpbr::KC_ShapeWeight(0.3f, 2.0f) == 0.0f);
+    assert_true(rtpbr::KC_ShapeWeight(NAN, 0.5f) == 0.0f && rtpbr::KC_ShapeWeight(1e30f, 0.5f) < 1e-12f);
+    assert_true(rtpbr::KC_ShapeWeight(-1.0f, NAN) == 1.0f && rtpbr::KC_ShapeWeight(-1.0f, -1.0f) == 1.0f);
+    float bad[] = {NAN, -1.0f, 1e30f, INFINITY};
+    for (float x : bad) {
+        float a = rtpbr::KC_LobeShaped(x, 0.5f, 0.5f, 1.0f, 0.5f), b = rtpbr::KC_LobeShaped(0.5f, 0.5f, 0.5f, x, x);
+        float c = rtpbr::KC_PolygonLobeShaped(0.5f, 0.5f, 0.5f, x, x, x);
+        assert_true(std::isfinite(a) && a >= 0.0f && std::isfinite(b) && b >= 0.0f && !(c < 0.0f));
+    }
+    // the polygon form: the two parts, each as documented
+    assert_true(std::fabs(rtpbr::KC_PolygonLobeShaped(0.8f, 0.7f, 0.75f, 0.2f, 0.1f, 0.25f) -
+                          (0.25f * 0.2f * 0.1f + 0.75f * rtpbr::KC_PolygonLobe(0.8f, 0.7f, 0.75f, 0.2f))) < 1e-7f);
+}
+
+// The shaped lobe against the microsurface random walk (Walker above: an implementation of its
+// own, not the oracle's): where the walk's light leaves, binned over the hemisphere (12 bins
+// in mu^2 x 12 in |phi|), once scattered and twice or more, against the separable lobe and the
+// shaped lobe integrated over the same bins. Two distances: the L1 distance of the multiple
+// scattering over its energy; and the error of the whole BRDF a light in that bin would see,
+// |model - walk| / (walk single + multiple scattering there), averaged over the projected
+// solid angle (the measure KC_ShapeWeight was fitted on, rtpbr-kc-shape).
+void test_shaped_lobe_walk(void **) {
+    const int NU = 12, NP = 12, SUB = 16;
+    const long n = 400000;
+    double worstL1 = 0.0, worstRel = 0.0;
+    for (float r : {0.3f, 0.5f, 0.7f}) {
+        float alpha = rtpbr::Alpha_FromPerceptual(r);
+        float Eavg = lutEavg(0, r);
+        Walker white{alpha, float3(1.0f), float3(0.0f), true};
+        for (float mu : {0.15f, 0.4f, 0.8f}) {
+            float beta = rtpbr::KC_ShapeWeight(r, mu);
+            float3 wo(std::sqrt(1.0f - mu * mu), 0.0f, mu);
+            std::mt19937 rng(static_cast<unsigned>(1000 * r + 10 * mu));
+            std::vector<double> walk(NU * NP, 0.0), walkSs(NU * NP, 0.0);
+            double walkMs = 0.0;
+            for (long k = 0; k < n; k++) {
+                float3 d;
+                int b = white.walk_exit(wo, rng, &d);
+                if (b < 1)
+                    continue;
+                float u = std::min(d.z * d.z, 0.999999f);
+                int a = std::min(static_cast<int>(u * NU), NU - 1);
+                int p = std::min(static_cast<int>(std::fabs(std::atan2(d.y, d.x)) / kPi * NP), NP - 1);
+                (b == 1 ? walkSs : walk)[a * NP + p] += 1.0 / n;
+                if (b >= 2)
+                    walkMs += 1.0 / n;
+            }
+            float Eo = lutE(0, mu, r);
+            double l1Sep = 0.0, l1Shaped = 0.0, relSep = 0.0, relShaped = 0.0;
+            for (int a = 0; a < NU; a++)
+                for (int p = 0; p < NP; p++) {
+                    double sep = 0.0, shaped = 0.0;
+                    // projected solid angle of a sub-cell (both signs of phi): du dphi / 2 x 2
+                    double area = (1.0 / NU) * (kPi / NP) / (SUB * SUB);
+                    for (int sa = 0; sa < SUB; sa++)
+                        for (int sp = 0; sp < SUB; sp++) {
+                            float u = (a + (sa + 0.5f) / SUB) / NU, phi = static_cast<float>((p + (sp + 0.5) / SUB) / NP * kPi);
+                            float m = std::sqrt(u), st = std::sqrt(1.0f - u);
+                            float3 wi(st * std::cos(phi), st * std::sin(phi), m);
+                            float3 h = rtpbr::normalize(wo + wi);
+                            float fss1 = rtpbr::D_Microfacet(h.z, alpha) * rtpbr::V_Microfacet(mu, m, alpha);
+                            float Ei = lutE(0, m, r);
+                            sep += rtpbr::KC_LobeShaped(Eo, Ei, Eavg, fss1, 0.0f) * area;
+                            shaped += rtpbr::KC_LobeShaped(Eo, Ei, Eavg, fss1, beta) * area;
+                        }
+                    int q = a * NP + p;
+                    l1Sep += std::fabs(sep - walk[q]);
+                    l1Shaped += std::fabs(shaped - walk[q]);
+                    // a bin's share of the projected solid angle; the denominator floored at 2%
+                    // of the multiple scattering's uniform level (empty bins of the walk)
+                    double w = 1.0 / (NU * NP), floor = 0.02 * walkMs * w;
+                    relSep += w * std::fabs(sep - walk[q]) / (walkSs[q] + walk[q] + floor);
+                    relShaped += w * std::fabs(shaped - walk[q]) / (walkSs[q] + walk[q] + floor);
+                }
+            l1Sep /= walkMs;
+            l1Shaped /= walkMs;
+            print_message("walk r %.1f mu_o %.2f: multiple scattering %.4f (1 - E %.4f); separable / shaped (beta %.2f): "
+                          "L1 over it %.3f / %.3f, whole BRDF's error %.3f / %.3f\n",
+                          static_cast<double>(r), static_cast<double>(mu), walkMs, 1.0 - Eo, static_cast<double>(beta),
+                          l1Sep, l1Shaped, relSep, relShaped);
+            // the whole BRDF: closer at every view; the multiple scattering's own distribution:
+            // closer up to mu_o 0.4 (near normal incidence beta falls toward 0, where the
+            // separable lobe is the better shape)
+            assert_true(relShaped < relSep);
+            if (mu <= 0.4f)
+                assert_true(l1Shaped < l1Sep);
+            worstL1 = std::max(worstL1, l1Shaped / l1Sep);
+            worstRel = std::max(worstRel, relShaped / relSep);
+        }
+    }
+    print_message("shaped / separable against the walk, worst ratio: L1 %.3f, whole BRDF %.3f\n", worstL1, worstRel);
 }
 
 // ---- dielectric over diffuse -------------------------------------------------------------------
@@ -570,6 +745,8 @@ int main(void) {
         cmocka_unit_test(test_polygon_form),
         cmocka_unit_test(test_tables_regenerate),
         cmocka_unit_test(test_colour_term_random_walk),
+        cmocka_unit_test(test_shaped_lobe_furnace),
+        cmocka_unit_test(test_shaped_lobe_walk),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }
