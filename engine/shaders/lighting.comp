@@ -129,7 +129,8 @@ float specular_corrected(vec3 Fl, vec4 ltc1, float norm, float NoV, float specR,
 // (surface_terms). Every lobe's polygon integral comes from the shader library: LTC (Heitz et
 // al. 2016, ltc.h) for the specular lobes and Burley's diffuse, the clipped polygon's vector
 // form factor for Lambert, Kulla-Conty (kulla_conty.h) for the multiple-scattering lobes and
-// the dielectric-over-diffuse layering. Separable lobes (f_ms, the layered base) integrate as
+// the dielectric-over-diffuse layering (the specular lobe's f_ms shaped with RTPBR_KC_SHAPE:
+// KC_PolygonLobeShaped, below). Separable lobes (f_ms, the layered base) integrate as
 // (1 - E(mu_o)) / (1 - E_avg) times the form factor times 1 - (the cosine-weighted mean of E
 // over the polygon), from E at the representative direction (that of the vector form factor
 // of the polygon's part above the horizon) widened towards E_avg with the polygon's size
