@@ -450,9 +450,10 @@ RTPBR_FN float LTC_IntegrateLocal(LtcLocalPolygon local, rtpbr_float4 ltc1) {
 // the LTC result by k, taken at the centre of the part of the light the LTC sees, faded out as
 // the light holds more of the LTC's mass (the LTC integral itself is then right by
 // construction). A k above 1 is trusted only where the true lobe is not much narrower than the
-// light: a view and a light both near the horizon on the mirror side make the lobe a streak
-// across the plane of incidence about alpha |V + L| wide (the half vector turns by dL / |V +
-// L|), and one point at the streak's centre overstates a light wider than that. Measured in
+// light or is no streak: a view and a light both near the horizon on the mirror side make the
+// lobe a streak across the plane of incidence about alpha |V + L| wide (the half vector turns
+// by dL / |V + L|), and one point at the streak's centre overstates a light wider than that
+// (LTC_PointWidthRatio; the |V + L| test since the fifth round). Measured in
 // shaderlib/luts/ltc.md ("Fourth round"): the random lights of rtpbr-ltc-validate and the
 // grazing floors of rtpbr-ltc-floor.
 
@@ -481,9 +482,14 @@ RTPBR_FN LtcPoint LTC_LobePoint(rtpbr_float3 F, rtpbr_float4 ltc1) {
 // The lobe's width across the plane of incidence over the light's angular radius: alpha |V + w|
 // (vPlusW = the length of V + LtcPoint.dir, both unit) over sqrt(|F|), F the light's
 // (horizon-clipped) vector form factor, whose length is about the solid angle / pi of a small
-// light (so sqrt(|F|) about its angular radius). For LTC_PointFactor.
+// light (so sqrt(|F|) about its angular radius). For LTC_PointFactor. The streak it guards
+// against needs |V + w| small (both directions near the horizon on opposite sides: |V + w| =
+// 2 V.h): from |V + w| = 0.6 to 1 the ratio is raised to at least 1.5 (LTC_PointFactor's gate
+// wide open), so that a light beside or behind a lobe, however much wider than it, gets its
+// ratio (fifth round: `quad_light`'s sides, the random lights).
 RTPBR_FN float LTC_PointWidthRatio(float alpha, float vPlusW, float formFactorLength) {
-    return alpha * vPlusW * rtpbr_rsqrt(max(formFactorLength, 1e-12f));
+    float noStreak = vPlusW > 0.6f ? min((vPlusW - 0.6f) * 2.5f, 1.0f) * 1.5f : 0.0f; // NaN -> 0
+    return max(alpha * vPlusW * rtpbr_rsqrt(max(formFactorLength, 1e-12f)), noStreak);
 }
 
 // The factor on the LTC result: fCos = the true f NoL at LtcPoint.dir (F = 1, the lobe the
