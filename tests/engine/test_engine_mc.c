@@ -229,7 +229,9 @@ static void mc_glossy_mean(void **state)
 // many samples): the L1 error of the far floor's image (rows whose floor lies beyond the
 // light) and of the whole image, relative to the MC's sums. Measured with the correction:
 // far floor 0.089 (signed -0.065), whole image 0.051; without it (main before the
-// correction): 0.527 (signed +0.309) and 0.071. Bounds: 0.115 and 0.061.
+// correction): 0.527 (signed +0.309) and 0.071; with the fifth round's tail estimate and
+// streak test too (and the shaped multiple-scattering lobe in both passes): 0.040 (signed
+// +0.004) and 0.033. Bounds: 0.052 and 0.043.
 static void ltc_far_floor(void **state)
 {
     (void)state;
@@ -245,7 +247,7 @@ static void ltc_far_floor(void **state)
     rtpbr_material_desc copper = {.base_color = {0.95f, 0.64f, 0.54f}, .metallic = 1.0f, .roughness = 0.35f};
     // rows 0-31 are the sky beyond the floor's far edge; rows 33-51 the floor beyond the light
     enum { W = 96, H = 72, SAMPLES = 1024, FAR_FIRST = 33, FAR_LAST = 51 };
-    const double FAR_BOUND = 0.115, ALL_BOUND = 0.061;
+    const double FAR_BOUND = 0.052, ALL_BOUND = 0.043;
     rtpbr_renderer *r = NULL;
     assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
     rtpbr_gpu_scene *scene = one_light_scene(ctx, &mesh, &copper, &light, &camera);
