@@ -162,7 +162,7 @@ RTPBR_FN float KC_Lobe(float Eo, float Ei, float Eavg) {
 // on the Smith microsurface (the random walk of Heitz et al. 2016, the oracle's) the light
 // scattered twice or more leaves close to the single-scattering lobe at low roughness and
 // spreads out only as the roughness grows; seen at grazing angles, the separable lobe sends
-// 3-7 times the walk's multiple scattering back toward a light on the viewer's side (r 0.35,
+// 2.5-4.5 times the walk's multiple scattering back toward a light on the viewer's side (r 0.35,
 // shaderlib/luts/kulla_conty.md). The shaped lobe blends the separable lobe with the
 // single-scattering lobe's own shape at the same energy (the latter is the shape of Turquin
 // 2019's compensation):
