@@ -233,8 +233,9 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
         // The full variant's registers are at gfx1100's limit: the lobe's vector comes from a
         // second pass over the edges (the same lobe, so the same value), taken only where the
         // fade leaves anything to correct (at a form factor of 0.5 or more the factor is within
-        // (16 - 1) x 0.5^16 = 2.3e-4 of 1), and the norm is fetched again (the same texel)
-        // rather than kept live through the loop.
+        // (16 - 1) x 0.5^16 = 2.3e-4 of 1, and a light holding half of the LTC's mass lies
+        // mostly outside its tail: the tail estimate is skipped with it), and the norm is
+        // fetched again (the same texel) rather than kept live through the loop.
         if (pointOn && specularFF < 0.5f) {
             vec3 unusedF2;
             light_lobe(i, P, ltcFrame, specularMinv, unusedF2, Fl);

@@ -309,16 +309,16 @@ inline double point_value(const Brdf &brdf, float3 V, const rtpbr::LtcLocalPolyg
     // f without the cosine (value_cos is f NoL)
     const float f = c.z > 0.0f ? brdf.value_cos(V, c, pdf) / c.z : 0.0f;
     const float weight = rtpbr::LTC_PointTailWeight(rtpbr::LTC_IntegrateLocalVector(local, l1), float(ltc / double(norm)), F.z);
+    const float tailValue = rtpbr::LTC_PointTail(f, F.z, norm);
     if (parts)
-        parts[1] = double(norm) * double(rtpbr::LTC_PointTail(f, F.z, norm)) * double(weight);
-    return double(norm) * double(rtpbr::LTC_PointCombine(float(corrected / double(norm)),
-                                                         rtpbr::LTC_PointTail(f, F.z, norm), weight));
+        parts[1] = double(norm) * double(tailValue) * double(weight);
+    return double(norm) * double(rtpbr::LTC_PointCombine(float(corrected / double(norm)), tailValue, weight));
 }
 
 struct LtcEval {
     double exact, clipless, clipless_table;
     double pointOnly = 0.0, tail = 0.0; // point's parts: exact x the point correction; the weighted tail estimate
-    double point = 0.0; // exact x the point correction (ltc.h, LTC_PointFactor): what the engine computes
+    double point = 0.0; // the engine's value: the larger of pointOnly and tail (point_value)
 };
 
 // The LTC answer with F = 1 (norm x form factor), as a renderer computes it.
