@@ -24,6 +24,9 @@
 //   RTPBR_LTC_POINT_CORRECTION 1 (default) | 0: callers of ltc.h's point correction
 //                      (LTC_PointFactor; the engine's lighting pass) apply it to the isotropic
 //                      microfacet lobe of polygonal lights.
+//   RTPBR_LTC_STREAK   1 (default) | 0: callers of ltc.h's streak estimate (LTC_StreakEnd; the
+//                      engine's lighting pass) mix it into that lobe's result on the mirror
+//                      side near the horizon (GGX only; with the point correction).
 //
 // Roughness convention: materials carry perceptual roughness r in [0, 1]; the NDFs take
 // alpha = r * r (Burley 2012). alpha is clamped below at RTPBR_MIN_ALPHA so that every term
@@ -72,6 +75,9 @@
 #endif
 #ifndef RTPBR_KC_SHAPE
 #define RTPBR_KC_SHAPE 1
+#endif
+#ifndef RTPBR_LTC_STREAK
+#define RTPBR_LTC_STREAK 1
 #endif
 #ifndef RTPBR_MIN_ALPHA
 #define RTPBR_MIN_ALPHA 1e-3f

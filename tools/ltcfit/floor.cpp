@@ -22,10 +22,10 @@
 // tables (per NoV: roughness x elevation; with the signed error of the far floor, azimuth 0,
 // and of the near floor, 180) and writes signed error maps.
 //
-//   rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] [--quick] [--threads T]
+//   rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] [--quick] [--per-azimuth] [--threads T]
 //                   [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction |
 //                    --hybrid-correction] [--correction-bins E A] [--correction-samples N]
-//                   [--second-lobe | --second-lobe-joint] [--no-point | --no-tail | --point-raw | --point-ff]
+//                   [--second-lobe | --second-lobe-joint] [--no-point | --no-tail | --no-streak | --point-raw | --point-ff]
 // The last four are the experiments of issue 19's second round (shaderlib/luts/ltc.md): the
 // LTC fitted at each case's exact (roughness, NoV) instead of the table's interpolation, and
 // the LTC corrected by the direction of the lit part of the light (ltc_floor.hpp).
@@ -38,7 +38,9 @@
 // the LTC alone); --point-raw: the uncorrected ratio at the lit part's centre (no clamp, no
 // fade); --point-ff: no LTC, the true f NoL / NoL at that centre x pi x the form factor.
 // The engine also takes the tail estimate (ltc.h, LTC_PointTail; fifth round) where the light
-// lies in the LTC's tail, and so does this tool unless --no-tail (the fourth round's engine).
+// lies in the LTC's tail, and so does this tool unless --no-tail (the fourth round's engine);
+// and the streak estimate (ltc.h, LTC_StreakEnd; sixth round) on the mirror side near the
+// horizon, unless --no-streak (the fifth round's engine).
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -75,7 +77,7 @@ int main(int argc, char **argv) {
     std::string tablesPath, png;
     bool quick = false, exactCells = false, secondLobe = false, secondLobeJoint = false;
     int correctionAzimuths = 0, point = 1;
-    bool tail = true;
+    bool tail = true, streak = true, perAzimuth = false;
     bool residual = false, hybrid = false;
     int correctionElevations = 16, correctionSamples = 512;
     int threads = 2;
@@ -98,6 +100,8 @@ int main(int argc, char **argv) {
             png = argv[++i];
         else if (!strcmp(argv[i], "--quick"))
             quick = true;
+        else if (!strcmp(argv[i], "--per-azimuth")) // also a table per azimuth of the grazing floors
+            perAzimuth = true;
         else if (!strcmp(argv[i], "--second-lobe")) // experiment, see ltc_floor_lobe2.hpp
             secondLobe = true;
         else if (!strcmp(argv[i], "--second-lobe-joint")) // the same, both lobes refitted together
@@ -106,6 +110,8 @@ int main(int argc, char **argv) {
             point = 0;
         else if (!strcmp(argv[i], "--no-tail")) // the point correction without the tail estimate (round 4's engine)
             tail = false;
+        else if (!strcmp(argv[i], "--no-streak")) // without the streak estimate (round 5's engine)
+            streak = false;
         else if (!strcmp(argv[i], "--point-raw")) // experiment (round 4), see ltc_floor.hpp
             point = 2;
         else if (!strcmp(argv[i], "--point-ff")) // experiment (round 4), see ltc_floor.hpp
@@ -147,7 +153,7 @@ int main(int argc, char **argv) {
             }
         } else {
             fprintf(stderr, "usage: rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] "
-                            "[--quick] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction] [--correction-bins E A] [--correction-samples N] [--second-lobe | --second-lobe-joint] [--no-point | --no-tail | --point-raw | --point-ff]\n");
+                            "[--quick] [--per-azimuth] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction] [--correction-bins E A] [--correction-samples N] [--second-lobe | --second-lobe-joint] [--no-point | --no-tail | --no-streak | --point-raw | --point-ff]\n");
             return 2;
         }
     }
@@ -250,6 +256,7 @@ int main(int argc, char **argv) {
     tab.hybrid = hybrid;
     tab.point = correctionAzimuths > 0 || exactCells ? 0 : point; // the older experiments: on the LTC alone
     tab.tail = tail;
+    tab.streak = streak;
     tab.correctionElevations = correctionElevations;
     tab.correctionSamples = correctionSamples;
     std::vector<Case> cases;
@@ -326,6 +333,36 @@ int main(int argc, char **argv) {
             }
             printf("\n");
         }
+    }
+    if (perAzimuth) {
+        // Where a floor's error sits: per light azimuth, that patch's share of the floor's
+        // |error| (azimuths 30..150 counted twice, as in the floor error) and its signed error.
+        printf("\nGrazing floors per light azimuth (0 = far floor, 180 = near floor): share of the floor's "
+               "sum |LTC - ref| / its sum ref, and the patch's signed error:\n\n| NoV | r | elev |");
+        for (float a : azims)
+            printf(" %g |", double(a));
+        printf("\n|---|---|---|");
+        for (size_t i = 0; i < azims.size(); i++)
+            printf("---|");
+        printf("\n");
+        for (float v : novs)
+            for (float r : rough)
+                for (float e : elevs) {
+                    if (!(e <= 10.0f && v <= 0.3f && r >= 0.3f && r <= 0.8f))
+                        continue;
+                    double ref = 0.0;
+                    for (float a : azims) {
+                        const CaseResult &c = find(r, e, v, a);
+                        ref += (a == 0.0f || a == 180.0f ? 1.0 : 2.0) * c.sumRef;
+                    }
+                    printf("| %.1f | %.1f | %g |", double(v), double(r), double(e));
+                    for (float a : azims) {
+                        const CaseResult &c = find(r, e, v, a);
+                        const double w = a == 0.0f || a == 180.0f ? 1.0 : 2.0;
+                        printf(" %.1f%% (%+.0f%%) |", ref > 0 ? 100 * w * c.sumAbs / ref : 0.0, 100 * c.signedErr);
+                    }
+                    printf("\n");
+                }
     }
     printf("\nAll %d floors: mean floor error %.2f%%; grazing (elevation <= 10, NoV <= 0.3, r 0.3-0.8, %d floors): "
            "mean %.2f%%, worst %.2f%%. Quadrature: largest difference between %d x %d points and half as many per axis, relative to the "

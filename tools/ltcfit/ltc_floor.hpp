@@ -178,6 +178,9 @@ struct Tables {
     // with point = 1: the tail estimate too (ltc.h, LTC_PointTail; the fifth round's engine and
     // the default); false: the point correction alone (rtpbr-ltc-floor --no-tail)
     bool tail = true;
+    // with tail: the streak estimate too (ltc.h, LTC_StreakEnd; the sixth round's engine and the
+    // default); false: the fifth round's engine (rtpbr-ltc-floor --no-streak)
+    bool streak = true;
 };
 
 inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub) {
@@ -232,7 +235,7 @@ inline CaseResult run_case(const Case &c, Lobe lobe, Tables tab, int P, int sub)
             if (tab.point == 1 || tab.point == 2) {
                 if (lobe == Lobe::GGX || lobe == Lobe::Beckmann) // as the engine: microfacet lobes only
                     ltc = tab.point == 2 ? ltc * ltcmc::point_ratio(brdf, V, local, l1, l2.x, true)
-                                         : ltcmc::point_value(brdf, V, local, l1, l2.x, ltc, tab.tail);
+                                         : ltcmc::point_value(brdf, V, local, l1, l2.x, ltc, tab.tail, nullptr, tab.streak);
             } else if (tab.point == 3) {
                 // true f at the lit part's centroid x its cosine form factor
                 const glm::dvec3 Fc = ltcmc::clipped_centroid(local, glm::dmat3(1.0));

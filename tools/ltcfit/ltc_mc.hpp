@@ -292,12 +292,15 @@ inline double point_ratio(const Brdf &brdf, float3 V, const rtpbr::LtcLocalPolyg
 // or, for a light in the LTC's tail, the tail estimate (ltc.h, LTC_PointTail; fifth round),
 // whichever is larger. ltc = norm x the LTC integral (F = 1); V in the LTC's frame (the local
 // polygon's). tail = false: the point correction alone (the fourth round's engine).
-// parts (optional): the point-corrected LTC and the weighted tail estimate, in the same units.
+// parts (optional): the point-corrected LTC and the weighted tail estimate, in the same units;
+// the streak estimate (-1: none) and its weight (LTC_StreakWeight x its trust).
+// streak (with tail): the streak estimate mixed in (ltc.h, LTC_StreakEnd; GGX; the sixth
+// round's engine); false: the fifth round's engine.
 inline double point_value(const Brdf &brdf, float3 V, const rtpbr::LtcLocalPolygon &local, float4 l1, float norm,
-                          double ltc, bool tail = true, double parts[2] = nullptr) {
+                          double ltc, bool tail = true, double parts[4] = nullptr, bool streak = true) {
     const double corrected = ltc > 0.0 ? ltc * point_ratio(brdf, V, local, l1, norm) : 0.0;
     if (parts)
-        parts[0] = corrected, parts[1] = 0.0;
+        parts[0] = corrected, parts[1] = 0.0, parts[2] = -1.0, parts[3] = 0.0;
     if (!tail || !(norm > 0.0f))
         return corrected;
     const float3 F = rtpbr::LTC_FormFactorVector(local, rtpbr::LTC_Identity());
@@ -312,13 +315,24 @@ inline double point_value(const Brdf &brdf, float3 V, const rtpbr::LtcLocalPolyg
     const float tailValue = rtpbr::LTC_PointTail(f, F.z, norm);
     if (parts)
         parts[1] = double(norm) * double(tailValue) * double(weight);
-    return double(norm) * double(rtpbr::LTC_PointCombine(float(corrected / double(norm)), tailValue, weight));
+    double value = double(norm) * double(rtpbr::LTC_PointCombine(float(corrected / double(norm)), tailValue, weight));
+    // the streak estimate (ltc.h, LTC_StreakEnd; sixth round): GGX, mixed in by its weight
+    const float w = streak && brdf.lobe == Lobe::GGX ? rtpbr::LTC_StreakWeight(V, F) : 0.0f;
+    if (w > 0.0f) {
+        const float2 S = rtpbr::LTC_StreakLocal(local, F, V, brdf.alpha);
+        if (parts)
+            parts[2] = double(S.x), parts[3] = double(w * S.y);
+        if (S.x >= 0.0f)
+            value += (double(S.x) - value) * double(w * S.y);
+    }
+    return value;
 }
 
 struct LtcEval {
     double exact, clipless, clipless_table;
     double pointOnly = 0.0, tail = 0.0; // point's parts: exact x the point correction; the weighted tail estimate
-    double point = 0.0; // the engine's value: the larger of pointOnly and tail (point_value)
+    double point = 0.0; // the engine's value: the larger of pointOnly and tail (point_value), the streak estimate mixed in
+    double streak = -1.0, streakWeight = 0.0; // the streak estimate (-1: none), its weight
 };
 
 // The LTC answer with F = 1 (norm x form factor), as a renderer computes it.
@@ -352,13 +366,15 @@ inline LtcEval ltc_eval(Lobe lobe, float roughness, float3 V, const Square &sq, 
     float tabled = rtpbr::LTC_SphereFormFactor(F, tableValue);
     LtcEval e{double(scale) * exact, double(scale) * approx, double(scale) * tabled};
     // the engine corrects the microfacet lobes only (lighting.comp)
-    double parts[2] = {0.0, 0.0};
+    double parts[4] = {0.0, 0.0, -1.0, 0.0};
     e.point = lobe == Lobe::GGX || lobe == Lobe::Beckmann
                   ? point_value(Brdf::make(lobe, roughness), V, rtpbr::LTC_PolygonToLocal(frame, float3(0), poly, false),
                                 l1, l2.x, double(l2.x) * double(exact), true, parts) * double(scale) / double(l2.x)
                   : e.exact;
     e.pointOnly = lobe == Lobe::GGX || lobe == Lobe::Beckmann ? parts[0] * double(scale) / double(l2.x) : e.exact;
     e.tail = parts[1] * double(scale) / double(l2.x);
+    e.streak = parts[2] >= 0.0 ? parts[2] * double(scale) / double(l2.x) : -1.0;
+    e.streakWeight = parts[3];
     return e;
 }
 

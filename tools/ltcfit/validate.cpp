@@ -120,10 +120,10 @@ int main(int argc, char **argv) {
             ++done;
             if (verbose) {
                 const Outcome &o = out[i];
-                fprintf(stderr, "%-8s r=%.2f view=%2.0f half=%.2f %-6s ref=%.5f (+-%.2e, %ld) ltc=%.5f cl=%.5f ct=%.5f err=%.2f%%\n",
+                fprintf(stderr, "%-8s r=%.2f view=%2.0f half=%.2f %-6s ref=%.5f (+-%.2e, %ld) ltc=%.5f cl=%.5f ct=%.5f err=%.2f%% engine=%.5f err=%.2f%%\n",
                         lobe_name(o.cfg.lobe), o.cfg.roughness, o.cfg.viewDeg, o.cfg.half, position_name(o.cfg.position),
                         o.ref.mean, o.ref.relStdErr, o.ref.samples, o.ltc.exact, o.ltc.clipless, o.ltc.clipless_table,
-                        100 * o.relExact);
+                        100 * o.relExact, o.ltc.point, 100 * o.relPoint);
             } else {
                 fprintf(stderr, "\rrtpbr-ltc-validate: %zu/%zu", done, g.size());
             }

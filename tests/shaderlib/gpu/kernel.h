@@ -171,6 +171,57 @@ RTPBR_FN float rtpbr_test_ltc_quad(RtpbrTestArgs t, bool stretch, int which) {
     return LTC_PointCombine(corrected, LTC_PointTail(t.lambdaO, F.z, 0.2f + t.c3), weight);
 }
 
+// The streak estimate (ltc.h, sixth round) streamed as the engine does (two passes over a
+// horizon-clipped quad): a horizontal panel facing down at height h, on the mirror side of
+// V at a low view angle, seen edge-on. which: 0 the estimate, 1 its trust, 2 its weight.
+RTPBR_FN float rtpbr_test_ltc_streak(RtpbrTestArgs t, int which) {
+    RTPBR_TEST_PRECISE float nov = 0.05f + 0.4f * t.c0;
+    RTPBR_TEST_PRECISE float h = 0.02f + 0.2f * t.c1;
+    RTPBR_TEST_PRECISE float w = 0.15f + 0.3f * t.c2;
+    RTPBR_TEST_PRECISE float cx = -1.0f - 0.5f * t.c3;
+    RTPBR_TEST_PRECISE float cy = 0.8f * t.sc; // |cy| > w: off the plane of incidence (the second cut)
+    rtpbr_float3 vLocal = rtpbr_float3(sqrt(1.0f - nov * nov), 0.0f, nov);
+    rtpbr_float3 v0 = rtpbr_float3(cx - w, cy - w, h);
+    rtpbr_float3 v1 = rtpbr_float3(cx + w, cy - w, h);
+    rtpbr_float3 v2 = rtpbr_float3(cx + w, cy + w, h);
+    rtpbr_float3 v3 = rtpbr_float3(cx - w, cy + w, h);
+    rtpbr_float3 F = RTPBR_F3(0.0f);
+    LtcStreak st = LTC_StreakBegin();
+    for (int pass = 0; pass < 2; pass++) {
+        LtcClipper horizon = LTC_ClipperBegin();
+        for (int e = 0; e < 5; e++) {
+            rtpbr_float3 a = e == 0 ? v0 : (e == 1 ? v1 : (e == 2 ? v2 : v3));
+            rtpbr_float3 b = e == 0 ? v1 : (e == 1 ? v2 : (e == 2 ? v3 : v0));
+            LtcSegment seg = e < 4 ? LTC_ClipEdge(horizon, a, b) : LTC_ClipClose(horizon);
+            if (seg.valid) {
+                if (pass == 0) {
+                    F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+                    LTC_StreakEdge(st, seg.a, seg.b);
+                } else {
+                    LTC_StreakChordEdge(st, seg.a, seg.b);
+                }
+            }
+        }
+        if (pass == 0)
+            LTC_StreakNodes(st, F);
+    }
+    if (which == 2)
+        return LTC_StreakWeight(vLocal, F);
+    rtpbr_float2 r = LTC_StreakEnd(st, vLocal, 0.05f + 0.5f * t.perceptual);
+    return which == 0 ? r.x : r.y;
+}
+
+// LTC_StreakLateral over [s1, s1 + w] with every argument rounded once (no contraction: a
+// narrow range's width would otherwise differ between compilers by an ulp of s1).
+RTPBR_FN float rtpbr_test_streak_lateral(RtpbrTestArgs t) {
+    RTPBR_TEST_PRECISE float s1 = 4.0f * t.c1 - 2.0f;
+    RTPBR_TEST_PRECISE float w = 3.0f * t.c2;
+    RTPBR_TEST_PRECISE float s2 = s1 + w;
+    RTPBR_TEST_PRECISE float a2 = 0.01f + t.c3;
+    RTPBR_TEST_PRECISE float m = 1.0f - t.alpha * t.alpha;
+    return LTC_StreakLateral(s1, s2, a2, m);
+}
+
 // A scalar argument in the regimes of rtpbr_test_material, picked by b.w: x (b.w < 0.4), then
 // 0 (< 0.6), negative, huge (1e30), NaN, +infinity. NaN and infinity come from an overflow of
 // run-time values (no division by zero), so that no compiler folds them.

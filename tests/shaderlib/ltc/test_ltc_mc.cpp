@@ -53,6 +53,11 @@ extern "C" {
 static const double FLOOR_MEAN_BOUND = 0.286, FLOOR_WORST_BOUND = 0.74;
 static const double FLOOR_POINT_MEAN_BOUND = 0.15, FLOOR_POINT_WORST_BOUND = 0.375;
 static const double FLOOR_TAIL_MEAN_BOUND = 0.101, FLOOR_TAIL_WORST_BOUND = 0.30;
+// With the streak estimate too (LTC_StreakEnd, the engine since the sixth round): mean 1.51%,
+// worst 3.28%; at elevation 2 (the thin slivers; the tail estimate there: mean 31.9%, worst
+// 69.9%) mean 1.76%, worst 3.15%; bounds + ~30%.
+static const double FLOOR_STREAK_MEAN_BOUND = 0.020, FLOOR_STREAK_WORST_BOUND = 0.043;
+static const double FLOOR_SLIVER_MEAN_BOUND = 0.023, FLOOR_SLIVER_WORST_BOUND = 0.041;
 
 using namespace ltcmc;
 
@@ -82,7 +87,12 @@ static void run_lobe(Lobe lobe, Bounds b) {
         // engine's value is the larger of that and the weighted tail estimate (LTC_PointCombine)
         assert_true(o.ltc.pointOnly >= 0.0 && o.ltc.pointOnly <= 16.0 * o.ltc.exact * (1.0 + 1e-6));
         assert_true(o.ltc.tail >= 0.0 && std::isfinite(o.ltc.tail));
-        assert_true(std::fabs(o.ltc.point - std::max(o.ltc.pointOnly, o.ltc.tail)) <= 1e-5 * o.ltc.point + 1e-12);
+        // with the streak estimate (sixth round; GGX) mixed in by its weight in [0, 1]
+        assert_true(o.ltc.streakWeight >= 0.0 && o.ltc.streakWeight <= 1.0);
+        const double combined = std::max(o.ltc.pointOnly, o.ltc.tail);
+        const double expected = o.ltc.streak >= 0.0 ? combined + (o.ltc.streak - combined) * o.ltc.streakWeight : combined;
+        assert_true(lobe == Lobe::GGX || o.ltc.streakWeight == 0.0);
+        assert_true(std::fabs(o.ltc.point - expected) <= 1e-5 * o.ltc.point + 1e-12);
         if (o.significant) {
             worstRef = std::max(worstRef, o.ref.relStdErr);
             assert_true(o.ref.relStdErr <= kTargetRelErr * 1.01);
@@ -302,17 +312,22 @@ static void test_anisotropic_stretch_vs_mc(void **state) {
 static void test_ggx_floor(void **state) {
     (void)state;
     // 0: the LTC alone; 1: with the point correction (the fourth round's engine); 2: with the
-    // point correction and the tail estimate (the engine since the fifth round)
-    double worst[3] = {0.0, 0.0, 0.0}, sum[3] = {0.0, 0.0, 0.0}, quad = 0.0;
-    static const char *label[3] = {"", ", point correction", ", point correction + tail"};
+    // point correction and the tail estimate (the fifth round's); 3: with the streak estimate
+    // too (the engine since the sixth round). Elevation 2 (the thin sliver of the sixth round)
+    // counts apart: sliver[] (modes 2 and 3).
+    double worst[4] = {0.0, 0.0, 0.0, 0.0}, sum[4] = {0.0, 0.0, 0.0, 0.0}, quad = 0.0;
+    double sliverSum[4] = {0.0, 0.0, 0.0, 0.0}, sliverWorst[4] = {0.0, 0.0, 0.0, 0.0};
+    int nSliver = 0;
+    static const char *label[4] = {"", ", point correction", ", point correction + tail", ", + streak"};
     int n = 0;
     for (float r : {0.3f, 0.5f, 0.8f})
-        for (float e : {5.0f, 10.0f, 20.0f})
+        for (float e : {2.0f, 5.0f, 10.0f, 20.0f})
             for (float v : {0.1f, 0.3f}) {
-                for (int mode = 0; mode < 3; mode++) {
+                for (int mode = e == 2.0f ? 2 : 0; mode < 4; mode++) {
                     ltcfloor::Tables tab{rtpbr_ltc_ggx_1, rtpbr_ltc_ggx_2};
                     tab.point = mode > 0 ? 1 : 0;
-                    tab.tail = mode == 2;
+                    tab.tail = mode >= 2;
+                    tab.streak = mode == 3;
                     std::vector<ltcfloor::CaseResult> az;
                     for (float a : {0.0f, 30.0f, 60.0f, 90.0f, 120.0f, 150.0f, 180.0f}) {
                         az.push_back(ltcfloor::run_case({r, e, v, a}, Lobe::GGX, tab, 4, 4));
@@ -322,14 +337,19 @@ static void test_ggx_floor(void **state) {
                     double f = ltcfloor::floor_error(az);
                     fprintf(stderr, "  floor r=%.1f elevation=%g NoV=%.1f%s: %.2f%%\n", double(r), double(e), double(v),
                             label[mode], 100 * f);
-                    worst[mode] = std::max(worst[mode], f);
-                    sum[mode] += f;
+                    double *w = e == 2.0f ? sliverWorst : worst, *su = e == 2.0f ? sliverSum : sum;
+                    w[mode] = std::max(w[mode], f);
+                    su[mode] += f;
                 }
-                n++;
+                (e == 2.0f ? nSliver : n)++;
             }
     fprintf(stderr, "GGX floors: LTC alone mean %.2f%%, worst %.2f%%; with the point correction mean %.2f%%, worst %.2f%%; "
-                    "with the tail estimate too mean %.2f%%, worst %.2f%%; quadrature agreement %.1e\n",
-            100 * sum[0] / n, 100 * worst[0], 100 * sum[1] / n, 100 * worst[1], 100 * sum[2] / n, 100 * worst[2], quad);
+                    "with the tail estimate too mean %.2f%%, worst %.2f%%; with the streak estimate too mean %.2f%%, "
+                    "worst %.2f%%; at elevation 2, tail mean %.2f%%, worst %.2f%%, streak mean %.2f%%, worst %.2f%%; "
+                    "quadrature agreement %.1e\n",
+            100 * sum[0] / n, 100 * worst[0], 100 * sum[1] / n, 100 * worst[1], 100 * sum[2] / n, 100 * worst[2],
+            100 * sum[3] / n, 100 * worst[3], 100 * sliverSum[2] / nSliver, 100 * sliverWorst[2],
+            100 * sliverSum[3] / nSliver, 100 * sliverWorst[3], quad);
     assert_true(quad < 1e-4);
     assert_true(sum[0] / n < FLOOR_MEAN_BOUND);
     assert_true(worst[0] < FLOOR_WORST_BOUND);
@@ -337,8 +357,14 @@ static void test_ggx_floor(void **state) {
     assert_true(worst[1] < FLOOR_POINT_WORST_BOUND);
     assert_true(sum[2] / n < FLOOR_TAIL_MEAN_BOUND);
     assert_true(worst[2] < FLOOR_TAIL_WORST_BOUND);
+    assert_true(sum[3] / n < FLOOR_STREAK_MEAN_BOUND);
+    assert_true(worst[3] < FLOOR_STREAK_WORST_BOUND);
     assert_true(sum[1] < sum[0]);
     assert_true(sum[2] < sum[1]);
+    assert_true(sum[3] < sum[2]);
+    assert_true(sliverSum[3] / nSliver < FLOOR_SLIVER_MEAN_BOUND);
+    assert_true(sliverWorst[3] < FLOOR_SLIVER_WORST_BOUND);
+    assert_true(sliverSum[3] < sliverSum[2]);
 }
 
 // The point correction's pieces (ltc.h: LTC_LobeEndVector, LTC_LobePoint, LTC_PointFactor)
@@ -435,6 +461,95 @@ static void test_point_correction(void **state) {
     assert_true(rtpbr::LTC_PointCombine(0.3f, 0.5f, 0.5f) == 0.3f && rtpbr::LTC_PointCombine(0.2f, 0.5f, 0.5f) == 0.25f);
     assert_true(rtpbr::LTC_PointCombine(std::nanf(""), 0.5f, 1.0f) == 0.5f &&
                 rtpbr::LTC_PointCombine(0.3f, std::nanf(""), 1.0f) == 0.3f && rtpbr::LTC_PointCombine(-1.0f, 0.0f, 1.0f) == 0.0f);
+
+    // The streak estimate (sixth round). Its atan against the C library's: within 3e-7
+    // relative (fitted to 1.5e-8; float rounding), NaN -> 0, +-Inf -> +-pi / 2.
+    double worstAtan = 0.0;
+    for (int i = -200000; i <= 200000; i++) {
+        const float x = float(i) * 1e-4f * (i % 3 == 0 ? 100.0f : 1.0f);
+        const double ref = std::atan(double(x));
+        if (ref != 0.0)
+            worstAtan = std::max(worstAtan, std::fabs(double(rtpbr::LTC_Atan(x)) - ref) / std::fabs(ref));
+    }
+    fprintf(stderr, "LTC_Atan: largest relative error %.2g\n", worstAtan);
+    assert_true(worstAtan < 3e-7); // measured 1.7e-7 (~3 ulps)
+    assert_true(rtpbr::LTC_Atan(std::nanf("")) == 0.0f && rtpbr::LTC_Atan(INFINITY) == float(pi / 2) &&
+                rtpbr::LTC_Atan(-INFINITY) == -float(pi / 2) && rtpbr::LTC_Atan(0.0f) == 0.0f);
+    // Its lateral closed form against a composite midpoint
+    // sum of (c + s^2)^2 / (a^2 + s^2)^2 (c - a^2 = m), over limits on both sides and one side.
+    for (double a2 : {1e-4, 0.01, 0.3})
+        for (double m : {0.99, 0.5})
+            for (auto lim : {std::pair<double, double>{-2.0, 1.5}, {0.05, 0.4}, {-0.3, -0.01}}) {
+                const int N = 400000;
+                const double h = (lim.second - lim.first) / N;
+                double num = 0.0;
+                for (int i = 0; i < N; i++) {
+                    const double x = lim.first + (i + 0.5) * h, c = a2 + m;
+                    num += (c + x * x) * (c + x * x) / ((a2 + x * x) * (a2 + x * x)) * h;
+                }
+                const double cf = rtpbr::LTC_StreakLateral(float(lim.first), float(lim.second), float(a2), float(m));
+                assert_true(std::fabs(cf - num) <= 2e-4 * std::fabs(num) + 1e-6);
+            }
+    // its weight: 1 - smoothstep(0.35, 0.75, |V + c|), 0 for a zero or NaN F
+    const float3 vg(std::sqrt(1.0f - 0.01f), 0.0f, 0.1f);
+    auto sw = [&](float3 F) { return rtpbr::LTC_StreakWeight(vg, F); };
+    assert_true(sw(float3(-vg.x, 0.0f, vg.z * 0.2f)) == 1.0f); // mirror side near the horizon: |V + c| ~ 0.12
+    assert_true(sw(float3(vg.x, 0.0f, vg.z)) == 0.0f);          // the viewer's side: |V + c| = 2
+    assert_true(sw(float3(0.0f, 1.0f, 0.0f)) == 0.0f);          // beside: |V + c| = sqrt 2
+    assert_true(sw(float3(0.0f)) == 0.0f && sw(float3(std::nanf(""), 0.0f, 0.1f)) == 0.0f);
+    {
+        // |V + c| = 0.55 exactly: c = V reflected and turned (weight 0.5)
+        const float3 c = glm::normalize(float3(-vg.x, 0.0f, vg.z)) ;
+        const float3 u = glm::normalize(float3(0.0f, 1.0f, 0.0f));
+        // rotate c toward y until |V + c| = 0.55: |V + c|^2 = 2 + 2 V.c
+        const double target = (0.55 * 0.55 - 2.0) / 2.0, base = glm::dot(vg, c);
+        double lo = 0.0, hi = 1.5;
+        for (int i = 0; i < 60; i++) {
+            const double t = 0.5 * (lo + hi);
+            const float3 d = c * float(std::cos(t)) + u * float(std::sin(t));
+            (glm::dot(vg, d) < target ? lo : hi) = t;
+        }
+        (void)base;
+        const double t = 0.5 * (lo + hi);
+        assert_true(std::fabs(sw(c * float(std::cos(t)) + u * float(std::sin(t))) - 0.5) < 1e-3);
+    }
+    // a degenerate polygon: (-1, 0); NaN vertices: finite, weight 0 or no estimate
+    rtpbr::LtcLocalPolygon tri{};
+    tri.count = 3;
+    tri.v[0] = float3(-1.0f, -0.1f, 0.05f), tri.v[1] = float3(-1.0f, 0.1f, 0.05f), tri.v[2] = float3(-0.8f, 0.0f, 0.05f);
+    const float3 Ft = rtpbr::LTC_FormFactorVector(tri, rtpbr::LTC_Identity());
+    const float2 ok = rtpbr::LTC_StreakLocal(tri, Ft, vg, 0.1f);
+    assert_true(ok.x > 0.0f && std::isfinite(ok.x) && ok.y >= 0.0f && ok.y <= 1.0f);
+    // either orientation of F (this triangle's is z < 0): the same
+    const float2 flipped = rtpbr::LTC_StreakLocal(tri, -Ft, vg, 0.1f);
+    assert_true(flipped.x == ok.x && flipped.y == ok.y && sw(Ft) == sw(-Ft));
+    rtpbr::LtcLocalPolygon bad = tri;
+    bad.v[1] = float3(std::nanf(""), 0.1f, 0.05f);
+    const float2 nb = rtpbr::LTC_StreakLocal(bad, Ft, vg, 0.1f);
+    assert_true(nb.x == -1.0f || (std::isfinite(nb.x) && nb.x >= 0.0f && std::isfinite(nb.y)));
+    // the candidate test: the light's angular diameter 2 r / sqrt(d^2 - r^2) against alpha NoV
+    // (W0 = 1); inside the sphere or NaN: a candidate (the trust decides)
+    assert_true(rtpbr::LTC_StreakCandidate(0.1f, 1.0f, 0.2f, 0.5f));   // 0.201 >= 0.1
+    assert_true(!rtpbr::LTC_StreakCandidate(0.1f, 1.0f, 0.5f, 0.5f));  // 0.201 < 0.25
+    assert_true(rtpbr::LTC_StreakCandidate(0.1f, 1.0f, 0.402f, 0.5f) && !rtpbr::LTC_StreakCandidate(0.1f, 1.0f, 0.403f, 0.5f));
+    assert_true(rtpbr::LTC_StreakCandidate(1.0f, 0.5f, 0.5f, 0.5f) && rtpbr::LTC_StreakCandidate(0.1f, std::nanf(""), 0.5f, 0.5f));
+    // V.h at the middle of the range: a light straddling the mirror direction gives h = the
+    // normal, V.h = NoV
+    {
+        rtpbr::LtcLocalPolygon mir{};
+        mir.count = 4;
+        const float3 m(-vg.x, 0.0f, vg.z);
+        const float3 t1(0.0f, 0.1f, 0.0f), t2 = glm::normalize(glm::cross(m, t1)) * 0.1f;
+        mir.v[0] = m - t1 - t2, mir.v[1] = m + t1 - t2, mir.v[2] = m + t1 + t2, mir.v[3] = m - t1 + t2;
+        rtpbr::LtcStreak st = rtpbr::LTC_StreakBegin();
+        for (int i = 0; i < 4; i++)
+            rtpbr::LTC_StreakEdge(st, mir.v[i], mir.v[(i + 1) % 4]);
+        rtpbr::LTC_StreakNodes(st, rtpbr::LTC_FormFactorVector(mir, rtpbr::LTC_Identity()));
+        assert_true(std::fabs(rtpbr::LTC_StreakVoH(st, vg) - vg.z) < 2e-3);
+    }
+    rtpbr::LtcLocalPolygon two = tri;
+    two.count = 2;
+    assert_true(rtpbr::LTC_StreakLocal(two, Ft, vg, 0.1f).x == -1.0f);
 }
 
 int main(void) {
