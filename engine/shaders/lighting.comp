@@ -125,6 +125,54 @@ float specular_corrected(vec3 Fl, vec4 ltc1, float norm, float NoV, float specR,
     return LTC_PointCombine(corrected, tail, weight);
 }
 
+#if RTPBR_LTC_STREAK && RTPBR_NDF == RTPBR_NDF_GGX && !RTPBR_LIGHTING_FULL
+#define RTPBR_ENGINE_STREAK 1
+#define RTPBR_NO_STREAK 0xffffffffu
+// The streak estimate (ltc.h, LTC_StreakEnd) of light i's specular lobe, after the light loop
+// (shade_lights): two more passes over its horizon-clipped edges, one for its vector form
+// factor F and its elevations, one for the chords through the nodes. Returns the estimate
+// (F = 1) and its weight (LTC_StreakWeight x its trust), (-1, 0) for none.
+vec3 light_streak(uint i, vec3 P, mat3 ltcFrame, float NoV, float specR)
+{
+#ifdef RTPBR_STATS_FIXED_LIGHTS
+    const uint count = 4u;
+#else
+    uint count = lights[i].vertex_count;
+#endif
+    vec3 vLocal = vec3(sqrt(max(1.0f - NoV * NoV, 0.0f)), 0.0f, NoV);
+    vec3 F = vec3(0.0f);
+    LtcStreak st = LTC_StreakBegin();
+    [[dont_unroll]] for (int pass = 0; pass < 2; ++pass) {
+        LtcClipper horizon = LTC_ClipperBegin();
+        vec3 first = rtpbr_mul(ltcFrame, lights[i].vertices[0].xyz - P);
+        vec3 a = first;
+        for (uint k = 1u; k <= count + 1u; ++k) {
+            LtcSegment seg;
+            vec3 b = a;
+            if (k <= count) {
+                b = k < count ? rtpbr_mul(ltcFrame, lights[i].vertices[k].xyz - P) : first;
+                seg = LTC_ClipEdge(horizon, a, b);
+            } else {
+                seg = LTC_ClipClose(horizon);
+            }
+            if (seg.valid) {
+                if (pass == 0) {
+                    F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+                    LTC_StreakEdge(st, seg.a, seg.b);
+                } else {
+                    LTC_StreakChordEdge(st, seg.a, seg.b);
+                }
+            }
+            a = b;
+        }
+        if (pass == 0)
+            LTC_StreakNodes(st, F);
+    }
+    vec2 e = LTC_StreakEnd(st, vLocal, Alpha_FromPerceptual(specR));
+    return vec3(e.x, e.y * LTC_StreakWeight(vLocal, F), LTC_StreakVoH(st, vLocal));
+}
+#endif
+
 // Reflected radiance from the tile's polygonal lights, for the model of lighting_common.glsl
 // (surface_terms). Every lobe's polygon integral comes from the shader library: LTC (Heitz et
 // al. 2016, ltc.h) for the specular lobes and Burley's diffuse, the clipped polygon's vector
@@ -202,6 +250,10 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
     vec3 msColor = s.msColor;
 #endif
     vec3 sum = vec3(0.0f);
+#ifdef RTPBR_ENGINE_STREAK
+    uint streakLight = RTPBR_NO_STREAK;
+    float streakFF = 0.0f; // its specular result in the loop
+#endif
 #ifdef RTPBR_STATS_FIXED_LIGHTS
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i) {
 #else
@@ -219,6 +271,10 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
         if (abs(side) <= 1e-7f * sphere.w || (!twoSided && side < 0.0f) || dot(N, sphere.xyz - P) < -sphere.w)
             continue;
 
+#ifdef RTPBR_ENGINE_STREAK
+        // (while the bounding sphere is live: a lane mask rather than four registers kept)
+        bool streakSized = LTC_StreakCandidate(sphere.w, length(sphere.xyz - P), Alpha_FromPerceptual(s.specR), s.NoV);
+#endif
         vec3 F, Fl;
         float specularFF = light_lobe(i, P, ltcFrame, specularMinv, F, Fl);
         F = F.z < 0.0f ? -F : F;
@@ -239,11 +295,21 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
         if (pointOn && specularFF < 0.5f) {
             vec3 unusedF2;
             light_lobe(i, P, ltcFrame, specularMinv, unusedF2, Fl);
-            specularFF = specular_corrected(Fl, pointLtc1, textureLod(LUT_LTC_2, LTC_LutCoord(s.NoV, s.specR), 0.0f).x,
-                                            s.NoV, s.specR, specularFF, F, ff, lenF);
+            float norm = textureLod(LUT_LTC_2, LTC_LutCoord(s.NoV, s.specR), 0.0f).x;
+            specularFF = specular_corrected(Fl, pointLtc1, norm, s.NoV, s.specR, specularFF, F, ff, lenF);
+            // (no streak estimate here: its two passes spill this variant on gfx1100)
         }
 #else
         specularFF = specular_corrected(Fl, pointLtc1, pointNorm, s.NoV, s.specR, specularFF, F, ff, lenF);
+#ifdef RTPBR_ENGINE_STREAK
+        // the streak estimate's candidate (after the loop): the first light it applies to and
+        // whose size can give it any trust (LTC_StreakCandidate; the one of largest weight x form
+        // factor kept one more register live: 96 VGPRs on navi21)
+        if (pointOn && streakSized && streakLight == RTPBR_NO_STREAK && LTC_StreakWeight(vLocal, F) > 0.0f) {
+            streakLight = i;
+            streakFF = specularFF;
+        }
+#endif
 #endif
 #endif
         // The representative direction of the polygon: its vector form factor's.
@@ -283,6 +349,24 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
 #endif
         sum += lights[i].radiance * lo * shadow_factor(i, pixel);
     }
+#ifdef RTPBR_ENGINE_STREAK
+    // The streak estimate (light_streak) for one light per pixel, after the loop (where little
+    // else is live: its passes inside the loop raised the basic variant's VGPRs by 16 on
+    // navi21): the light's specular term moved toward it by its weight.
+    if (streakLight != RTPBR_NO_STREAK) {
+        vec3 e = light_streak(streakLight, P, ltcFrame, s.NoV, s.specR);
+        // the light's specular term moves from specularScale x streakFF toward F(V.h) x the
+        // estimate (Schlick's Fresnel at the streak, the tables' Fresnel model)
+        if (e.x >= 0.0f && e.y > 0.0f) {
+            // f0 from specularScale = f0 (ltc2.x - ltc2.y) + f90 ltc2.y (LTC_FresnelScale; the
+            // same texel again): s.f0 kept live through the loop cost 8 VGPRs on navi21
+            vec4 t2 = textureLod(LUT_LTC_2, LTC_LutCoord(s.NoV, s.specR), 0.0f);
+            vec3 f0 = (specularScale - s.f90 * t2.y) / max(t2.x - t2.y, 1e-6f);
+            sum += lights[streakLight].radiance * ((F_Schlick(f0, s.f90, e.z) * e.x - specularScale * streakFF) * e.y) *
+                   shadow_factor(streakLight, pixel);
+        }
+    }
+#endif
     return sum;
 }
 
