@@ -53,11 +53,11 @@ extern "C" {
 static const double FLOOR_MEAN_BOUND = 0.286, FLOOR_WORST_BOUND = 0.74;
 static const double FLOOR_POINT_MEAN_BOUND = 0.15, FLOOR_POINT_WORST_BOUND = 0.375;
 static const double FLOOR_TAIL_MEAN_BOUND = 0.101, FLOOR_TAIL_WORST_BOUND = 0.30;
-// With the streak estimate too (LTC_StreakEnd, the engine since the sixth round): mean 1.51%,
-// worst 3.28%; at elevation 2 (the thin slivers; the tail estimate there: mean 31.9%, worst
-// 69.9%) mean 1.76%, worst 3.15%; bounds + ~30%.
-static const double FLOOR_STREAK_MEAN_BOUND = 0.020, FLOOR_STREAK_WORST_BOUND = 0.043;
-static const double FLOOR_SLIVER_MEAN_BOUND = 0.023, FLOOR_SLIVER_WORST_BOUND = 0.041;
+// With the streak estimate too (LTC_StreakEnd, the engine since the sixth round): mean 1.32%,
+// worst 2.78%; at elevation 2 (the thin slivers; the tail estimate there: mean 31.9%, worst
+// 69.9%) mean 1.02%, worst 2.02%; bounds + ~30%.
+static const double FLOOR_STREAK_MEAN_BOUND = 0.0172, FLOOR_STREAK_WORST_BOUND = 0.0362;
+static const double FLOOR_SLIVER_MEAN_BOUND = 0.0133, FLOOR_SLIVER_WORST_BOUND = 0.0263;
 
 using namespace ltcmc;
 
