@@ -357,13 +357,28 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
         vec3 e = light_streak(streakLight, P, ltcFrame, s.NoV, s.specR);
         // the light's specular term moves from specularScale x streakFF toward F(V.h) x the
         // estimate (Schlick's Fresnel at the streak, the tables' Fresnel model)
-        if (e.x >= 0.0f && e.y > 0.0f) {
-            // f0 from specularScale = f0 (ltc2.x - ltc2.y) + f90 ltc2.y (LTC_FresnelScale; the
-            // same texel again): s.f0 kept live through the loop cost 8 VGPRs on navi21
-            vec4 t2 = textureLod(LUT_LTC_2, LTC_LutCoord(s.NoV, s.specR), 0.0f);
-            vec3 f0 = (specularScale - s.f90 * t2.y) / max(t2.x - t2.y, 1e-6f);
-            sum += lights[streakLight].radiance * ((F_Schlick(f0, s.f90, e.z) * e.x - specularScale * streakFF) * e.y) *
-                   shadow_factor(streakLight, pixel);
+        if (e.x >= 0.0f && e.y > 0.0f && pointNorm > 0.0f) {
+            // specularScale = the Fresnel scale f0 (ltc2.x - ltc2.y) + f90 ltc2.y
+            // (LTC_FresnelScale) + the shaped multiple-scattering lobe's part folded into it
+            // before the loop, msColor beta / (1 - beta) (1 - Eo) (msColor being s.msColor
+            // (1 - beta)); f0 from there and the table's texel fetched again (s.f0 kept live
+            // through the loop cost 8 VGPRs on navi21). Where 1 - beta is too small to split
+            // them, the tables' Fresnel scale as it is.
+            vec3 next = specularScale * (e.x / pointNorm);
+#if RTPBR_KC_SHAPE
+            float beta = KC_ShapeWeight(s.specR, s.NoV);
+            vec3 msShaped = msColor * (beta / max(1.0f - beta, 1e-3f) * rtpbr_pos(1.0f - s.Eo));
+            bool split = 1.0f - beta > 1e-3f;
+#else
+            vec3 msShaped = vec3(0.0f);
+            bool split = true;
+#endif
+            if (split) {
+                vec4 t2 = textureLod(LUT_LTC_2, LTC_LutCoord(s.NoV, s.specR), 0.0f);
+                vec3 f0 = (specularScale - msShaped - s.f90 * t2.y) / max(t2.x - t2.y, 1e-6f);
+                next = F_Schlick(f0, s.f90, e.z) * e.x + msShaped * (e.x / pointNorm);
+            }
+            sum += lights[streakLight].radiance * ((next - specularScale * streakFF) * e.y) * shadow_factor(streakLight, pixel);
         }
     }
 #endif

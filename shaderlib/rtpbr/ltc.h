@@ -574,17 +574,17 @@ RTPBR_FN float LTC_PointCombine(float corrected, float tail, float weight) {
 // sx^2), whose integral over sy has a closed form (LTC_StreakLateral), and the solid angle is
 // d omega = h.z dsy de / cos(phi) (phi the azimuth off the plane; 1 is taken). So the light's
 // integral of f NoL (F = 1) is one integral over elevation, taken with 2 Gauss points over the
-// light's elevations [e0, e1] in the plane of incidence (where it crosses that plane, else
-// those of its vertices projected on it, LTC_StreakEdge; over the segment between their directions d0, d1 with de = |d0 x d1|
-// ds / |p(s)|^2, so no trigonometry: a GPU's is off by ~1e-4):
+// light's elevations in the plane of incidence (where it crosses that plane, else those of its
+// vertices projected on it: LTC_StreakEdge), over the segment p(s) between the two extreme
+// directions d0, d1 with de = |d0 x d1| ds / |p(s)|^2 (no trigonometry: a GPU's is off by 1e-4):
 //   sum over nodes of |d0 x d1| / (2 |p|^2) Vis(NoV, sin e) sin e h.z (alpha^2 / pi) [H(s2) - H(s1)]
-// with sx that of the direction q at elevation e in the plane of incidence on the light's
-// side, and s1, s2 = y / h.z at the ends of the light's chord through q along y (the plane
-// spanned by q and y: the light's lateral extent there). Ours; measured on rtpbr-ltc-floor's floors
-// against the quadrature in shaderlib/luts/ltc.md ("Sixth round"). Streamed like LtcLobe over
-// the (horizon-clipped) edges: one pass for the elevations (LTC_StreakEdge; it can share
-// the pass that sums the light's vector form factor F), LTC_StreakNodes(F), one pass for the
-// chords (LTC_StreakChordEdge), then LTC_StreakEnd.
+// with sx that of the node's direction q in the plane of incidence, and s1, s2 = y / h.z at the
+// ends of the light's chord through q along y (in the plane spanned by q and y: the light's
+// lateral extent there). Ours; measured on rtpbr-ltc-floor's floors against the quadrature in
+// shaderlib/luts/ltc.md ("Sixth round"). Streamed like LtcLobe over the (horizon-clipped)
+// edges: one pass for the elevations (LTC_StreakEdge; it can share the pass that sums the
+// light's vector form factor F), LTC_StreakNodes(F), one pass for the chords
+// (LTC_StreakChordEdge), then LTC_StreakEnd.
 struct LtcStreak {
     rtpbr_float4 ends;  // the lowest and highest directions of the light in the plane of
                         // incidence: (x, z) and (x, z), unit (LTC_StreakEdge, LTC_StreakNodes)
@@ -718,7 +718,6 @@ RTPBR_FN float LTC_StreakLateral(float s1, float s2, float a2, float m) {
     return (s2 - s1) + (2.0f * m / a + m * m / (2.0f * a2 * a)) * at + m * m / (2.0f * a2) * r;
 }
 
-
 // The slope sx = h.x / h.z of the unit direction (x, z) in the plane of incidence.
 RTPBR_FN float LTC_StreakSlope(float x, float z, rtpbr_float3 vLocal) {
     return (vLocal.x + x) / max(vLocal.z + z, 1e-6f);
@@ -773,7 +772,7 @@ RTPBR_FN rtpbr_float2 LTC_StreakEnd(LtcStreak s, rtpbr_float3 vLocal, float alph
     float al2 = al * al, m = 1.0f - al2;
     float span = abs(s.ends.x * s.ends.w - s.ends.y * s.ends.z); // |d0 x d1|
     float term[2];
-    float widest = 0.0f; // the light's largest extent across the plane in lobe widths: (hi - lo) / (h.z alpha)
+    float widest = 0.0f; // the light's widest chord in lobe widths, (hi - lo) / (h.z alpha)
     for (int k = 0; k < 2; k++) {
         rtpbr_float2 p = LTC_StreakNodePoint(s, k);
         float pp = max(dot(p, p), 1e-30f);
@@ -812,8 +811,8 @@ RTPBR_FN float LTC_StreakVoH(LtcStreak s, rtpbr_float3 vLocal) {
 
 // How much of the streak estimate to take: 1 - smoothstep(0.35, 0.75, |V + c|), c = +-F / |F|
 // the direction of the light's vector form factor (turned to z >= 0; |V + c| = 2 V.h is small
-// only on the mirror side near the horizon). (0.6-1.0, 0.3-0.7, 0.4-0.8 measured too: the sixth round's
-// table.) 0 for NaN or zero F.
+// only on the mirror side near the horizon). (0.6-1.0, 0.3-0.7, 0.4-0.8 and others measured
+// too: the sixth round's table.) 0 for NaN or zero F.
 #ifndef RTPBR_LTC_STREAK_V0
 #define RTPBR_LTC_STREAK_V0 0.35f
 #endif
@@ -823,8 +822,7 @@ RTPBR_FN float LTC_StreakVoH(LtcStreak s, rtpbr_float3 vLocal) {
 RTPBR_FN float LTC_StreakWeight(rtpbr_float3 vLocal, rtpbr_float3 F) {
     float l2 = dot(F, F);
     float v = l2 > 1e-30f ? length(vLocal + F * ((F.z < 0.0f ? -1.0f : 1.0f) * rtpbr_rsqrt(l2))) : 1.0f;
-    float x = v < RTPBR_LTC_STREAK_V1 ? max((v - RTPBR_LTC_STREAK_V0) / (RTPBR_LTC_STREAK_V1 - RTPBR_LTC_STREAK_V0), 0.0f) : 1.0f; // NaN -> 1 -> weight 0
-    return 1.0f - x * x * (3.0f - 2.0f * x);
+    return 1.0f - LTC_StreakRamp(v, RTPBR_LTC_STREAK_V0, RTPBR_LTC_STREAK_V1); // NaN -> 1 -> weight 0
 }
 
 // Whether a light can get any trust (LTC_StreakEnd's third factor): its extent across the
@@ -836,7 +834,6 @@ RTPBR_FN bool LTC_StreakCandidate(float radius, float distance, float alpha, flo
     float d2 = distance * distance - radius * radius;
     return !(d2 > 0.0f) || 2.0f * radius >= RTPBR_LTC_STREAK_W0 * max(alpha, 1e-3f) * NoV * sqrt(d2);
 }
-
 
 // The streak estimate over a stored local polygon (from LTC_PolygonToLocal: already clipped
 // to the horizon); F its vector form factor (LTC_FormFactorVector). Tools and tests.
