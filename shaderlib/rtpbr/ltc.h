@@ -602,6 +602,14 @@ RTPBR_FN LtcStreak LTC_StreakBegin() {
     return s;
 }
 
+// The point where a -> b crosses the plane through the origin of normal n, if it does.
+RTPBR_FN bool LTC_StreakCross(rtpbr_float3 n, rtpbr_float3 a, rtpbr_float3 b, RTPBR_OUT(rtpbr_float3) x) {
+    float da = dot(a, n), db = dot(b, n);
+    bool crosses = (da <= 0.0f) != (db <= 0.0f); // NaN: no
+    x = a + (b - a) * (crosses ? da / (da - db) : 0.0f);
+    return crosses;
+}
+
 // The elevations pass: each segment a -> b of the horizon-clipped polygon (as handed to
 // LTC_LobeEdge, the clipper's closing segment included). The elevation that matters is that
 // of a direction's projection on the plane of incidence (the chords along y are there,
@@ -617,8 +625,8 @@ RTPBR_FN void LTC_StreakEdge(RTPBR_INOUT(LtcStreak) s, rtpbr_float3 a, rtpbr_flo
     float u = r2 > 1e-30f ? a.x * rtpbr_rsqrt(r2) : 0.0f;
     s.ends.x = min(s.ends.x, u);
     s.ends.y = max(s.ends.y, u);
-    if ((a.y <= 0.0f) != (b.y <= 0.0f)) { // NaN: no
-        rtpbr_float3 x = a + (b - a) * (a.y / (a.y - b.y));
+    rtpbr_float3 x;
+    if (LTC_StreakCross(rtpbr_float3(0.0f, 1.0f, 0.0f), a, b, x)) {
         float x2 = x.x * x.x + x.z * x.z;
         float ux = x2 > 1e-30f ? x.x * rtpbr_rsqrt(x2) : 0.0f;
         s.crossing.x = min(s.crossing.x, ux);
@@ -654,14 +662,6 @@ RTPBR_FN rtpbr_float3 LTC_StreakNode(LtcStreak s, int k) {
     rtpbr_float2 p = LTC_StreakNodePoint(s, k);
     float pp = dot(p, p);
     return pp > 1e-30f ? rtpbr_float3(p.x, 0.0f, p.y) * rtpbr_rsqrt(pp) : rtpbr_float3(0.0f, 0.0f, 1.0f);
-}
-
-// The point where a -> b crosses the plane through the origin of normal n, if it does.
-RTPBR_FN bool LTC_StreakCross(rtpbr_float3 n, rtpbr_float3 a, rtpbr_float3 b, RTPBR_OUT(rtpbr_float3) x) {
-    float da = dot(a, n), db = dot(b, n);
-    bool crosses = (da <= 0.0f) != (db <= 0.0f); // NaN: no
-    x = a + (b - a) * (crosses ? da / (da - db) : 0.0f);
-    return crosses;
 }
 
 // The chords pass: the same segments again. Widens each node's lateral limits by where the
