@@ -234,6 +234,7 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
     float e1Length = length(e1);
     if (s.anisoK > 1.0001f && e1Length > 1e-4f) {
         specularMinv = LTC_AnisotropicInverseMatrix(ltc1, mirror, e1 / e1Length, s.anisoK);
+        specularScale *= LTC_AnisotropicAlbedoScale(ltc1, specularMinv);
         pointOn = false; // no point correction for anisotropic lobes
     }
 #endif

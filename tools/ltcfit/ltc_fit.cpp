@@ -1070,13 +1070,16 @@ Cell fit_at(Lobe lobe, float r, double nov, const FitSettings &s, const Cell *st
     c.rotation = isotropic ? 0.0 : best[3];
     c.avgDir = ltc.Z;
     c.invM = ltc.invM / ltc.invM[1][1];
-    // With horizonNormalised the stored integrals are divided by the LTC's mass above the
-    // horizon: the clipped LTC integral times them gives the BRDF's integral.
-    const double massScale = s.horizonNormalised ? 1.0 / ltc.mass_above_horizon() : 1.0;
+    // The stored integrals are the BRDF's own (norm = the directional albedo): ltc.h divides
+    // the clipped LTC integral by the mass above the horizon of the LTC it evaluates (the
+    // bilinearly interpolated one, LTC_HorizonMass), so that norm x that fraction never exceeds
+    // the interpolated albedo. Dividing the table by each cell's own mass instead (before the
+    // energy-bound fix) made norm / mass pairs that interpolation does not keep together:
+    // cells of mass 1e-15 beside cells of mass 1 gave up to 1e8 x the albedo.
     c.albedo = mom.norm;
-    c.norm = mom.norm * massScale;
-    c.fresnel = mom.fresnel * massScale;
-    c.f82 = mom.f82 * massScale;
+    c.norm = mom.norm;
+    c.fresnel = mom.fresnel;
+    c.f82 = mom.f82;
     const ErrorSamples reportSamples = error_samples(lobe, V, alpha, s.errorSamples);
     c.error = mom.norm > 0.0 ? ltc_error(ltc, reportSamples, lobe, V, alpha, mom.norm, 1, s.horizonNormalised) / mom.norm
                              : 0.0;

@@ -125,6 +125,9 @@ bool write_header(const std::string &path, int size, const PackedTables &t, cons
 // write_header: floats printed with 9 significant digits read back to the same floats, so
 // rewriting them gives the same bytes.
 bool read_header(const std::string &path, int size, PackedTables &t, std::string &quality, std::string &err);
+// One array `name` (size x size x 4 floats) of a generated header's text (read from path).
+bool read_header_array(const std::string &text, const std::string &path, const char *name, int size,
+                       std::vector<float> &out, std::string &err);
 bool write_exr(const std::string &path, int size, const std::vector<float> &rgba, std::string &err);
 // One panel per table, side by side.
 bool write_error_png(const std::string &path, const std::vector<const Table *> &tables, std::string &err);
@@ -137,5 +140,6 @@ std::vector<float> pack_ltc2(const Table &t, const std::vector<float> &sphere);
 // (arrays rtpbr_ltc_sheen_1/_2), DIR/ltc_sheen_{1,2}.exr, DIR/ltc_fit_error_sheen.png and the
 // generated section of DIR/sheen.md. Returns the process exit code.
 int run_sheen(const std::string &outDir, const FitSettings &s, bool quick);
+int run_sheen_undivide(const std::string &outDir, int size);
 
 } // namespace ltcfit

@@ -61,16 +61,17 @@ bool write_header(const std::string &path, int n, const PackedTables &t, const s
             "//   rtpbr_ltc_<lobe>_1 = (m00, m02, m20, m22): M^-1 in the LTC frame divided by its middle\n"
             "//                        element (rows (m00 0 m02), (0 1 0), (m20 0 m22)).\n"
             "//   rtpbr_ltc_<lobe>_2 = (norm, fresnel, f82, sphere): integrals of f NoL, f NoL (1-VoH)^5,\n"
-            "//                        f NoL VoH (1-VoH)^6 (F = 1), each divided by the LTC's mass above\n"
-            "//                        the horizon (so norm x the clipped LTC integral of the whole\n"
-            "//                        hemisphere is the directional albedo); .w is the horizon-clipped sphere\n"
+            "//                        f NoL VoH (1-VoH)^6 (F = 1) over the hemisphere (norm = the\n"
+            "//                        directional albedo); ltc.h's LTC_LobeEnd divides the clipped LTC\n"
+            "//                        integral by the mass above the horizon of the LTC it evaluates, so\n"
+            "//                        norm x LTC_LobeEnd never exceeds norm; .w is the horizon-clipped sphere\n"
             "//                        form factor, indexed differently: at LTC_SphereLutCoord(F),\n"
             "//                        column = F.z/|F| * 0.5 + 0.5, row = |F|; the same in every table.\n"
             "// Lobes: ggx = D_GGX with V_SmithGGXCorrelated (height-correlated Smith, the library\n"
             "// default); beckmann = D_Beckmann with V_SmithBeckmann (height-correlated, exact Lambda).\n"
             "// disney_diffuse = Burley's diffuse (BRDF_DisneyDiffuse: white base colour, metallic 0,\n"
-            "// subsurface 0; columns = the material's perceptual roughness); norm x the LTC's mass above\n"
-            "// the horizon = Disney_DiffuseAlbedo(NoV, roughness); fresnel = f82 = 0 (no Fresnel split:\n"
+            "// subsurface 0; columns = the material's perceptual roughness); norm =\n"
+            "// Disney_DiffuseAlbedo(NoV, roughness) as fitted; fresnel = f82 = 0 (no Fresnel split:\n"
             "// multiply by the diffuse colour only).\n"
             "#ifndef RTPBR_LTC_TABLES_H\n#define RTPBR_LTC_TABLES_H\n\n"
             "#ifndef RTPBR_LTC_SIZE\n#define RTPBR_LTC_SIZE %d\n#endif\n"
@@ -86,6 +87,39 @@ bool write_header(const std::string &path, int n, const PackedTables &t, const s
     fputs("#endif // RTPBR_LTC_TABLES_H\n", f);
     if (fclose(f) != 0) {
         err = "error writing " + path;
+        return false;
+    }
+    return true;
+}
+
+bool read_header_array(const std::string &text, const std::string &path, const char *name, int size,
+                       std::vector<float> &out, std::string &err) {
+    std::string key = std::string("static const float ") + name + "[";
+    size_t p = text.find(key);
+    p = p == std::string::npos ? p : text.find('{', p);
+    if (p == std::string::npos) {
+        err = path + ": no array " + name;
+        return false;
+    }
+    const char *c = text.c_str() + p + 1;
+    out.clear();
+    const size_t count = size_t(size) * size_t(size) * 4;
+    while (out.size() < count) {
+        while (*c == ' ' || *c == '\n' || *c == ',')
+            c++;
+        char *end = nullptr;
+        float v = strtof(c, &end);
+        if (end == c || *end != 'f') {
+            err = path + ": malformed array " + name;
+            return false;
+        }
+        out.push_back(v);
+        c = end + 1;
+    }
+    while (*c == ' ' || *c == '\n' || *c == ',')
+        c++;
+    if (*c != '}') {
+        err = path + ": array " + name + " does not have " + std::to_string(count) + " values";
         return false;
     }
     return true;
@@ -107,37 +141,7 @@ bool read_header(const std::string &path, int size, PackedTables &t, std::string
         return false;
     }
     quality = text.substr(qa + q.size(), qb - qa - q.size());
-    auto array = [&](const char *name, std::vector<float> &out) {
-        std::string key = std::string("static const float ") + name + "[";
-        size_t p = text.find(key);
-        p = p == std::string::npos ? p : text.find('{', p);
-        if (p == std::string::npos) {
-            err = path + ": no array " + name;
-            return false;
-        }
-        const char *c = text.c_str() + p + 1;
-        out.clear();
-        const size_t count = size_t(size) * size_t(size) * 4;
-        while (out.size() < count) {
-            while (*c == ' ' || *c == '\n' || *c == ',')
-                c++;
-            char *end = nullptr;
-            float v = strtof(c, &end);
-            if (end == c || *end != 'f') {
-                err = path + ": malformed array " + name;
-                return false;
-            }
-            out.push_back(v);
-            c = end + 1;
-        }
-        while (*c == ' ' || *c == '\n' || *c == ',')
-            c++;
-        if (*c != '}') {
-            err = path + ": array " + name + " does not have " + std::to_string(count) + " values";
-            return false;
-        }
-        return true;
-    };
+    auto array = [&](const char *name, std::vector<float> &out) { return read_header_array(text, path, name, size, out, err); };
     return array("rtpbr_ltc_ggx_1", t.ggx1) && array("rtpbr_ltc_ggx_2", t.ggx2) &&
            array("rtpbr_ltc_beckmann_1", t.beckmann1) && array("rtpbr_ltc_beckmann_2", t.beckmann2) &&
            array("rtpbr_ltc_disney_diffuse_1", t.diffuse1) && array("rtpbr_ltc_disney_diffuse_2", t.diffuse2);

@@ -49,8 +49,8 @@ bool write_sheen_header(const std::string &path, int n, const std::vector<float>
             "// bilinearly (clamp-to-edge) at LTC_LutCoord(NoV, sheenRoughness): columns = sheen perceptual\n"
             "// roughness i / (SIZE - 1) (alpha = max(r^2, 1e-3)), rows = sqrt(1 - NoV) = j / (SIZE - 1).\n"
             "//   rtpbr_ltc_sheen_1 = (m00, m02, m20, m22) of M^-1, as every LTC table.\n"
-            "//   rtpbr_ltc_sheen_2 = (norm, 0, 0, sphere): norm x the LTC's mass above the horizon = the\n"
-            "//                       directional albedo of D_Charlie V_Charlie NoL (sheenColor 1); no\n"
+            "//   rtpbr_ltc_sheen_2 = (norm, 0, 0, sphere): norm = the directional albedo of\n"
+            "//                       D_Charlie V_Charlie NoL (sheenColor 1; ltc.h divides by the mass); no\n"
             "//                       Fresnel columns (KHR: F = 1): multiply by norm x sheenColor.\n"
             "//                       .w is the sphere form-factor table of every LTC table.\n"
             "#ifndef RTPBR_LTC_SHEEN_TABLES_H\n#define RTPBR_LTC_SHEEN_TABLES_H\n\n"
@@ -68,6 +68,45 @@ bool write_sheen_header(const std::string &path, int n, const std::vector<float>
 }
 
 } // namespace
+
+// --sheen-undivide: the committed sheen header (a fit from before issue 28, whose integrals
+// were divided by each cell's LTC mass above the horizon) rewritten in the present form: each
+// cell's _2.x multiplied back by that mass (the fitter's Ltc::mass_above_horizon of the stored
+// M^-1, in double), the matrices and the sphere column as they are. For the one conversion;
+// a refit (--sheen-only) writes the present form itself.
+int run_sheen_undivide(const std::string &outDir, int size) {
+    const std::string path = outDir + "/rtpbr_ltc_sheen_tables.h";
+    std::ifstream in(path);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string text = ss.str();
+    std::vector<float> t1, t2;
+    std::string err;
+    const std::string q = "// Fit: ";
+    size_t qa = text.find(q), qb = qa == std::string::npos ? qa : text.find(".\n", qa);
+    bool ok = in && qb != std::string::npos && read_header_array(text, path, "rtpbr_ltc_sheen_1", size, t1, err) &&
+              read_header_array(text, path, "rtpbr_ltc_sheen_2", size, t2, err);
+    if (!ok) {
+        fprintf(stderr, "ltcfit: error: %s\n", err.empty() ? ("cannot read " + path).c_str() : err.c_str());
+        return 1;
+    }
+    const std::string quality = text.substr(qa + q.size(), qb - qa - q.size());
+    for (size_t k = 0; k < t1.size() / 4; k++) {
+        // M^-1 = [[a, 0, b], [0, 1, 0], [c, 0, d]] (rows); row 2 of M = (-c, 0, a) / det
+        const double a = t1[4 * k], c = t1[4 * k + 2], d = t1[4 * k + 3], b = t1[4 * k + 1];
+        const double det = a * d - b * c;
+        const double mx = -c / det, mz = a / det;
+        const double mass = 0.5 * (1.0 + mz / std::sqrt(mx * mx + mz * mz));
+        t2[4 * k] = float(double(t2[4 * k]) * mass);
+    }
+    ok = write_sheen_header(path, size, t1, t2, quality, err) && write_exr(outDir + "/ltc_sheen_2.exr", size, t2, err);
+    if (!ok) {
+        fprintf(stderr, "ltcfit: error: %s\n", err.c_str());
+        return 1;
+    }
+    fprintf(stderr, "ltcfit: rewrote %s with undivided integrals\n", path.c_str());
+    return 0;
+}
 
 int run_sheen(const std::string &outDir, const FitSettings &s, bool quick) {
     fprintf(stderr, "ltcfit: fitting sheen, %dx%d cells, %d threads\n", s.size, s.size, s.threads);

@@ -73,8 +73,8 @@ std::string settings_line(const FitSettings &s, bool quick) {
     return o.str();
 }
 
-// The largest relative difference between the fitted albedo (norm x the LTC's mass above the
-// horizon) and the closed form Disney_DiffuseAlbedo.
+// The largest relative difference between the fitted albedo (norm, the stored integral) and the
+// closed form Disney_DiffuseAlbedo.
 double diffuse_albedo_error(const Table &t) {
     double worst = 0.0;
     for (int row = 0; row < t.size; row++)
@@ -95,7 +95,7 @@ std::string diffuse_section(const Table &t, const FitSettings &s, bool quick) {
     snprintf(line, sizeof line,
              "| lobe | fit CPU (s) | mean | median | 95th pct | max |\n|---|---|---|---|---|---|\n"
              "| disney_diffuse | %.1f | %.4f | %.4f | %.4f | %.4f |\n\n"
-             "Fitted albedo (norm x the LTC's mass above the horizon) against Disney_DiffuseAlbedo: largest "
+             "Fitted albedo (norm) against Disney_DiffuseAlbedo: largest "
              "relative difference %.2e.\n\n",
              t.cpuSeconds, st.mean, st.median, st.p95, st.max, diffuse_albedo_error(t));
     o << line;
@@ -132,7 +132,7 @@ std::string generated_section(const Table &ggx, const Table &beckmann, const Fit
 }
 
 int usage() {
-    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon] [--power P (1..3)] [--diffuse-only] [--sheen-only] [--no-polygon] [--peak-weight W] [--polygon-floor F] [--fast] [--horizon-weight W] [--horizon-floor F] [--horizon-albedo-floor] [--dev-ggx-from-row R]\n");
+    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon] [--power P (1..3)] [--diffuse-only] [--sheen-only] [--sheen-undivide] [--no-polygon] [--peak-weight W] [--polygon-floor F] [--fast] [--horizon-weight W] [--horizon-floor F] [--horizon-albedo-floor] [--dev-ggx-from-row R]\n");
     return 2;
 }
 
@@ -141,7 +141,7 @@ int usage() {
 int main(int argc, char **argv) {
     std::string outDir;
     FitSettings s;
-    bool quick = false, diffuseOnly = false, sheenOnly = false;
+    bool quick = false, diffuseOnly = false, sheenOnly = false, sheenUndivide = false;
     for (int i = 1; i < argc; i++) {
         auto value = [&](int lo, int hi, int &dst) {
             if (i + 1 >= argc)
@@ -189,6 +189,8 @@ int main(int argc, char **argv) {
             sheenOnly = true;
         else if (!strcmp(argv[i], "--quick"))
             quick = true;
+        else if (!strcmp(argv[i], "--sheen-undivide"))
+            sheenUndivide = true;
         else if (!strcmp(argv[i], "--no-horizon")) // Heitz et al.'s whole-sphere error, norm = albedo
             s.horizonNormalised = false;
         else if (!strcmp(argv[i], "--size")) {
@@ -208,6 +210,8 @@ int main(int argc, char **argv) {
         s.errorSamples = 32;
         s.maxIterations = 60;
     }
+    if (sheenUndivide)
+        return run_sheen_undivide(outDir, s.size);
     if (sheenOnly)
         return run_sheen(outDir, s, quick);
 
