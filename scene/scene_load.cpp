@@ -579,6 +579,10 @@ rtpbr_gltf_result load_model(Context& ctx, const unsigned char* data, size_t siz
             if (!lights_from_primitive(ctx, scene, i)) return ctx.result;
     }
     if (!lights_from_ext_area(ctx, model, scene, light_nodes)) return ctx.result;
+    if (scene.lights.empty())
+        ctx.warn("the scene has no lights (no EXT_lights_area light%s): only emission and the background "
+                 "will show; add lights (docs/materials.md)",
+                 ctx.desc.no_emissive_lights ? ", emissive lights turned off" : " and no emissive surface");
     ctx.info("loaded %zu primitives (%llu vertices, %llu indices), %zu materials, %zu textures, "
              "%zu lights, %zu cameras",
              scene.primitives.size(), static_cast<unsigned long long>(scene.total_vertices),

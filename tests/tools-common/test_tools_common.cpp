@@ -3,6 +3,7 @@
 // with and without the section, the image writer read back through OpenImageIO, the colour
 // maps at their ends.
 #include "rtpbr_tools/colormap.hpp"
+#include "rtpbr_tools/energy.hpp"
 #include "rtpbr_tools/image.hpp"
 #include "rtpbr_tools/markdown.hpp"
 #include "rtpbr_tools/rng.h"
@@ -156,6 +157,27 @@ void test_colormaps() {
     expect(a[0] == b[0] && a[1] == b[1] && a[2] == b[2], "magma_coarse(1) = magma(1)");
 }
 
+// The energy bound's figures on a 100 x 100 image whose values are known: 9,998 pixels of
+// (0.1, 0.2, 0.3), one of (4, 1, 0) at (7, 3), one NaN; bound 2 -> largest ratio 2 at (7, 3),
+// one pixel over 1.01; the brightest 0.01 % is one pixel: share 5 / (9998 x 0.6 + 5).
+void test_energy() {
+    const int w = 100, h = 100;
+    std::vector<float> px(size_t(w) * h * 3);
+    for (size_t p = 0; p < size_t(w) * h; ++p)
+        px[3 * p] = 0.1f, px[3 * p + 1] = 0.2f, px[3 * p + 2] = 0.3f;
+    px[3 * (3 * w + 7)] = 4.0f, px[3 * (3 * w + 7) + 1] = 1.0f, px[3 * (3 * w + 7) + 2] = 0.0f;
+    px[3 * (50 * w + 50) + 1] = std::nanf("");
+    rtpbr_tools::EnergyStats s = rtpbr_tools::energy_stats(px.data(), w, h, 3, 2.0);
+    expect(s.max_ratio == 2.0 && s.max_x == 7 && s.max_y == 3, "energy: largest ratio and where");
+    expect(s.over == 1 && s.non_finite == 1, "energy: pixels over 1.01 and not finite");
+    const double share = 5.0 / (9998.0 * double(0.1f + 0.2f + 0.3f) + 5.0);
+    expect(std::fabs(s.top_share - share) < 1e-6, "energy: share of the brightest 0.01 %");
+    const double mean = (9998.0 * double(0.3f) + 4.0) / 9999.0 / 2.0;
+    expect(std::fabs(s.mean_ratio - mean) < 1e-9, "energy: mean ratio over the finite pixels");
+    rtpbr_tools::EnergyStats none = rtpbr_tools::energy_stats(px.data(), w, h, 3, 0.0);
+    expect(none.max_ratio == 0.0 && none.over == 0, "energy: no bound, no ratios");
+}
+
 } // namespace
 
 int main(int argc, char **argv) {
@@ -169,6 +191,7 @@ int main(int argc, char **argv) {
     test_markdown(dir);
     test_image(dir);
     test_colormaps();
+    test_energy();
     std::printf("%d failure(s)\n", failures);
     return failures ? 1 : 0;
 }

@@ -3,17 +3,22 @@
 //                [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]
 //                [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]
 //                [--shadows] [--shadow-samples N] [--no-shadow-denoiser]
+//                [--max-ratio R] [--stats-json FILE]
 // OUT.exr holds linear scene radiance (RGB float; no exposure, no tone mapping: the quantity
 // the oracle writes); OUT.png the tone-mapped 8-bit sRGB image.
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "rtpbr_tools/energy.hpp"
 #include "rtpbr_tools/image.hpp"
 
 #include "rtpbr/rtpbr.h"
+#include "rtpbr/rtpbr_gltf.h"
 
 namespace {
 
@@ -24,12 +29,17 @@ void usage()
                  "                    [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]\n"
                  "                    [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]\n"
                  "                    [--shadows] [--shadow-samples N] [--no-shadow-denoiser]\n"
+                 "                    [--max-ratio R] [--stats-json FILE]\n"
                  "  --shadows        area-light shadows (ratio estimator; the first 8 lights cast shadows)\n"
                  "  --shadow-samples N  shadow rays per pixel and shadowed light (default 4; implies --shadows)\n"
                  "  --no-shadow-denoiser  each pixel's own shadow ratio, unfiltered\n"
                  "  --supersample S  anti-aliasing: shade S x S samples per pixel, box-filtered (1..4; default 1)\n"
                  "  --mc-samples N   brute-force Monte Carlo lighting pass, N samples per pixel and light\n"
-                 "                   (the reference the LTC pass is benchmarked against; default 0: LTC)\n");
+                 "                   (the reference the LTC pass is benchmarked against; default 0: LTC)\n"
+                 "  --max-ratio R    exit 1 when a pixel exceeds R x the brightest emitter's radiance (lights,\n"
+                 "                   emissive materials): no surface reflects more than reaches it. The\n"
+                 "                   figures are printed on every render (energy bound, docs/limits.md)\n"
+                 "  --stats-json FILE  writes those figures as JSON (rtpbr-validate reads them)\n");
 }
 
 void on_log(rtpbr_log_level level, const char *message, void *)
@@ -45,6 +55,24 @@ bool ends_with(const std::string &s, const char *suffix)
     for (size_t i = 0; i < n; ++i)
         if (std::tolower(static_cast<unsigned char>(s[s.size() - n + i])) != suffix[i]) return false;
     return true;
+}
+
+void on_loader_log(rtpbr_gltf_log_level level, const char *message, void *)
+{
+    if (level <= RTPBR_GLTF_LOG_WARNING)
+        std::fprintf(stderr, "rtpbr-render: %s: %s\n", level == RTPBR_GLTF_LOG_ERROR ? "error" : "warning", message);
+}
+
+// The brightest radiance any emitter of the scene has: its lights and its emissive materials
+// (an emission texture only scales the factor down). The background is black here.
+double brightest_emitter(const rtpbr_gltf_scene *scene)
+{
+    double b = 0.0;
+    for (uint32_t i = 0; i < scene->light_count; ++i)
+        for (int c = 0; c < 3; ++c) b = std::max(b, double(scene->lights[i].radiance[c]));
+    for (uint32_t i = 0; i < scene->material_count; ++i)
+        for (int c = 0; c < 3; ++c) b = std::max(b, double(scene->materials[i].emission[c]));
+    return b;
 }
 
 bool parse_uint(const char *text, uint32_t &out)
@@ -66,6 +94,8 @@ int main(int argc, char **argv)
     size.height = 480;
     rtpbr_render_desc render{};
     int validation = 0;
+    double max_ratio = 0.0; // 0: report only
+    std::string stats_path;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         bool has_value = i + 1 < argc;
@@ -100,6 +130,11 @@ int main(int argc, char **argv)
         else if (a == "--no-shadow-denoiser") render.shadow_denoiser = RTPBR_SHADOW_DENOISER_OFF;
         else if (a == "--no-multiscatter") render.multiscatter = RTPBR_MULTISCATTER_OFF;
         else if (a == "--validation") validation = 1;
+        else if (a == "--max-ratio" && has_value) {
+            char *end = nullptr;
+            max_ratio = std::strtod(argv[++i], &end);
+            if (!end || *end || !(max_ratio > 0.0)) return usage(), 2;
+        } else if (a == "--stats-json" && has_value) stats_path = argv[++i];
         else if (a == "-h" || a == "--help") return usage(), 0;
         else if (a[0] != '-' && scene_path.empty()) scene_path = a;
         else return usage(), 2;
@@ -114,8 +149,25 @@ int main(int argc, char **argv)
     rtpbr_gpu_scene *scene = nullptr;
     rtpbr_renderer *renderer = nullptr;
     int status = 1;
+    // Loaded here rather than by rtpbr_gpu_scene_load_gltf: the energy bound needs the scene's
+    // emitters.
+    char load_error[RTPBR_GLTF_ERROR_MESSAGE_SIZE] = "";
+    rtpbr_gltf_load_desc ld{};
+    ld.logger.func = on_loader_log;
+    ld.error_message = load_error;
+    ld.error_message_size = sizeof load_error;
+    ld.max_lights = RTPBR_MAX_LIGHTS;
+    rtpbr_gltf_scene *loaded = nullptr;
+    rtpbr_gltf_result lr = rtpbr_gltf_load(scene_path.c_str(), &ld, &loaded);
+    if (lr != RTPBR_GLTF_SUCCESS) {
+        std::fprintf(stderr, "rtpbr-render: cannot load %s: %s: %s\n", scene_path.c_str(), rtpbr_gltf_result_string(lr),
+                     load_error);
+        return 1;
+    }
+    const double bound = brightest_emitter(loaded);
     rtpbr_result r = rtpbr_context_create(&cd, &ctx);
-    if (r == RTPBR_SUCCESS) r = rtpbr_gpu_scene_load_gltf(ctx, scene_path.c_str(), &scene);
+    if (r == RTPBR_SUCCESS) r = rtpbr_gpu_scene_from_loaded(ctx, loaded, &scene);
+    rtpbr_gltf_destroy(loaded);
     if (r == RTPBR_SUCCESS) r = rtpbr_renderer_create(ctx, &size, &renderer);
     if (r == RTPBR_SUCCESS) r = rtpbr_render(renderer, scene, &render);
     std::string error;
@@ -123,20 +175,38 @@ int main(int argc, char **argv)
         if (!written) std::fprintf(stderr, "rtpbr-render: %s\n", error.c_str());
         return written;
     };
+    bool bound_held = true;
     if (r == RTPBR_SUCCESS) {
         int w = static_cast<int>(size.width), h = static_cast<int>(size.height);
-        if (exr) {
-            std::vector<float> rgba(size_t(w) * h * 4), rgb(size_t(w) * h * 3);
-            r = rtpbr_read_radiance(renderer, rgba.data(), rgba.size() * sizeof(float));
+        std::vector<float> rgba(size_t(w) * h * 4), rgb(size_t(w) * h * 3);
+        r = rtpbr_read_radiance(renderer, rgba.data(), rgba.size() * sizeof(float));
+        for (size_t p = 0; p < size_t(w) * h; ++p)
+            for (int c = 0; c < 3; ++c) rgb[3 * p + c] = rgba[4 * p + c];
+        if (r == RTPBR_SUCCESS) {
+            rtpbr_tools::EnergyStats es = rtpbr_tools::energy_stats(rgb.data(), w, h, 3, bound);
+            std::printf("rtpbr-render: energy bound: %s\n", rtpbr_tools::energy_summary(es).c_str());
+            bound_held = es.non_finite == 0 && (max_ratio <= 0.0 || es.max_ratio <= max_ratio);
+            if (!bound_held)
+                std::fprintf(stderr, "rtpbr-render: energy bound exceeded: largest pixel %.6g x the brightest emitter "
+                             "(limit %.6g), %zu pixels not finite\n", es.max_ratio, max_ratio, es.non_finite);
+            if (!stats_path.empty()) {
+                FILE *f = std::fopen(stats_path.c_str(), "w");
+                if (!f || std::fprintf(f, "%s\n", rtpbr_tools::energy_json(es).c_str()) < 0) {
+                    std::fprintf(stderr, "rtpbr-render: cannot write %s\n", stats_path.c_str());
+                    bound_held = false;
+                }
+                if (f) std::fclose(f);
+            }
+        }
+        if (r == RTPBR_SUCCESS && exr) {
+            if (write_out(rtpbr_tools::write_image_float(out_path, w, h, 3, rgb.data(), error))) status = 0;
+        } else if (r == RTPBR_SUCCESS) {
+            std::vector<uint8_t> display(size_t(w) * h * 4), display_rgb(size_t(w) * h * 3);
+            r = rtpbr_read_display(renderer, display.data(), display.size());
             for (size_t p = 0; p < size_t(w) * h; ++p)
-                for (int c = 0; c < 3; ++c) rgb[3 * p + c] = rgba[4 * p + c];
-            if (r == RTPBR_SUCCESS && write_out(rtpbr_tools::write_image_float(out_path, w, h, 3, rgb.data(), error))) status = 0;
-        } else {
-            std::vector<uint8_t> rgba(size_t(w) * h * 4), rgb(size_t(w) * h * 3);
-            r = rtpbr_read_display(renderer, rgba.data(), rgba.size());
-            for (size_t p = 0; p < size_t(w) * h; ++p)
-                for (int c = 0; c < 3; ++c) rgb[3 * p + c] = rgba[4 * p + c];
-            if (r == RTPBR_SUCCESS && write_out(rtpbr_tools::write_image_u8(out_path, w, h, 3, rgb.data(), error))) status = 0;
+                for (int c = 0; c < 3; ++c) display_rgb[3 * p + c] = display[4 * p + c];
+            if (r == RTPBR_SUCCESS && write_out(rtpbr_tools::write_image_u8(out_path, w, h, 3, display_rgb.data(), error)))
+                status = 0;
         }
     }
     if (r != RTPBR_SUCCESS) std::fprintf(stderr, "rtpbr-render: failed: %s\n", rtpbr_result_string(r));
@@ -144,6 +214,7 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "rtpbr-render: %u validation message(s)\n", rtpbr_context_validation_message_count(ctx));
         status = 1;
     }
+    if (!bound_held) status = 1;
     if (status == 0) std::printf("rtpbr-render: wrote %s (%ux%u) on %s\n", out_path.c_str(), size.width, size.height,
                                  rtpbr_context_device_name(ctx));
     rtpbr_renderer_destroy(renderer);
