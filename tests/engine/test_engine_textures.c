@@ -117,14 +117,14 @@ static void test_wrap_per_axis(void **state)
 static void test_texture_transform(void **state)
 {
     (void)state;
-    // A 4x4 texture of 16 distinct colours.
     uint8_t texels[64];
+    // 16 distinct colours: each channel one of 0, 128, 255 (the base-3 digits of i).
     for (int i = 0; i < 16; ++i) {
-        texels[4 * i] = (uint8_t)(i & 1 ? 255 : 0);
-        texels[4 * i + 1] = (uint8_t)(i & 2 ? 255 : 0);
-        texels[4 * i + 2] = (uint8_t)(i & 4 ? 255 : 0);
+        static const uint8_t levels[3] = {0, 128, 255};
+        texels[4 * i] = levels[i % 3];
+        texels[4 * i + 1] = levels[i / 3 % 3];
+        texels[4 * i + 2] = levels[i / 9 % 3];
         texels[4 * i + 3] = 255;
-        if (i & 8) texels[4 * i] = texels[4 * i] ? 255 : 128, texels[4 * i + 1] = texels[4 * i + 1] ? 255 : 128;
     }
     texture_scene s = {
         .texture_width = 4, .texture_height = 4, .rgba = texels, .wrap_s = 10497, .wrap_t = 10497,
