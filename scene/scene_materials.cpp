@@ -517,6 +517,8 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
                                false, &c.clearcoat_normal_texture, &c.clearcoat_normal_texture_transform,
                                &c.clearcoat_normal_scale))
             return false;
+        if (c.clearcoat_normal_texture >= 0)
+            ctx.warn("material %d: clearcoatNormalTexture ignored (the coat uses the base normal)", index);
         m.has_clearcoat = true;
     }
     // KHR_materials_sheen

@@ -202,7 +202,21 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
             .material = p->material,
         }; // positions are already in world space: identity transform
     }
-    for (uint32_t i = 0; i < loaded->material_count; ++i) rtpbr_material_desc_from_loaded(loaded, i, &materials[i]);
+    for (uint32_t i = 0; i < loaded->material_count; ++i) {
+        rtpbr_material_desc_from_loaded(loaded, i, &materials[i]);
+        // The G-buffer carries the extensions' factors only (the oracle reads these textures).
+        const rtpbr_gltf_material *m = &loaded->materials[i];
+        bool ignored = (m->has_clearcoat && (m->clearcoat.clearcoat_texture >= 0 ||
+                                             m->clearcoat.clearcoat_roughness_texture >= 0 ||
+                                             m->clearcoat.clearcoat_normal_texture >= 0)) ||
+                       (m->has_sheen && (m->sheen.sheen_color_texture >= 0 || m->sheen.sheen_roughness_texture >= 0)) ||
+                       (m->has_specular &&
+                        (m->specular.specular_texture >= 0 || m->specular.specular_color_texture >= 0));
+        if (ignored && !m->has_disney)
+            rtpbr_log(&ctx->host, RTPBR_LOG_WARNING,
+                      "material %u: clearcoat, sheen and specular textures are not read by the engine (their factors are)",
+                      i);
+    }
     for (uint32_t i = 0; i < loaded->light_count; ++i) {
         const rtpbr_gltf_light *l = &loaded->lights[i];
         rtpbr_light_desc *d = &lights[i];
