@@ -38,6 +38,42 @@ unsigned attachTriangles(RTCDevice device, RTCScene scene, const float *position
     return id;
 }
 
+// Embree filter (intersection and occlusion): rejects hits on the back face of a single-sided
+// surface, i.e. where the ray direction points along the front normal (counter-clockwise
+// winding, the loader's convention).
+void backFaceFilter(const RTCFilterFunctionNArguments *args) {
+    const auto *ss = static_cast<const SingleSided *>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; i++) {
+        if (args->valid[i] != -1)
+            continue;
+        float n[3];
+        if (ss->positions) {
+            const uint32_t *ix = ss->indices + 3 * size_t(RTCHitN_primID(args->hit, args->N, i));
+            const float *p0 = ss->positions + 3 * size_t(ix[0]), *p1 = ss->positions + 3 * size_t(ix[1]),
+                        *p2 = ss->positions + 3 * size_t(ix[2]);
+            const float e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+            const float e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+            n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+            n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+            n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        } else {
+            std::memcpy(n, ss->lightNormal, sizeof n);
+        }
+        const float d = n[0] * RTCRayN_dir_x(args->ray, args->N, i) + n[1] * RTCRayN_dir_y(args->ray, args->N, i) +
+                        n[2] * RTCRayN_dir_z(args->ray, args->N, i);
+        if (d > 0.0f)
+            args->valid[i] = 0;
+    }
+}
+
+void setBackFaceFilter(RTCScene scene, unsigned id, const SingleSided *ss) {
+    RTCGeometry g = rtcGetGeometry(scene, id);
+    rtcSetGeometryUserData(g, const_cast<SingleSided *>(ss));
+    rtcSetGeometryIntersectFilterFunction(g, backFaceFilter);
+    rtcSetGeometryOccludedFilterFunction(g, backFaceFilter);
+    rtcCommitGeometry(g);
+}
+
 unsigned attachLight(RTCDevice device, RTCScene scene, const rtpbr_gltf_light &L) {
     float pos[3 * RTPBR_GLTF_MAX_POLYGON_VERTICES];
     uint32_t idx[3 * RTPBR_GLTF_MAX_POLYGON_VERTICES];
@@ -85,6 +121,13 @@ Result buildEmbree(const rtpbr_gltf_scene &scene, EmbreeScene *es, std::string *
             break;
         es->fullGeoms.resize(std::max<size_t>(es->fullGeoms.size(), id + 1));
         es->fullGeoms[id] = {false, p};
+        if (prim.material < scene.material_count && !scene.materials[prim.material].double_sided) {
+            SingleSided ss;
+            ss.positions = prim.positions;
+            ss.indices = prim.indices;
+            es->singleSided.push_back(ss);
+            setBackFaceFilter(es->full, id, &es->singleSided.back());
+        }
     }
     for (uint32_t l = 0; l < scene.light_count; l++) {
         unsigned id = attachLight(es->device, es->full, scene.lights[l]);
@@ -93,6 +136,14 @@ Result buildEmbree(const rtpbr_gltf_scene &scene, EmbreeScene *es, std::string *
             break;
         es->fullGeoms.resize(std::max<size_t>(es->fullGeoms.size(), id + 1));
         es->fullGeoms[id] = {true, l};
+        const rtpbr_gltf_light &L = scene.lights[l];
+        if (L.material >= 0 && uint32_t(L.material) < scene.material_count &&
+            !scene.materials[L.material].double_sided) {
+            SingleSided ss;
+            std::memcpy(ss.lightNormal, L.normal, sizeof ss.lightNormal);
+            es->singleSided.push_back(ss);
+            setBackFaceFilter(es->full, id, &es->singleSided.back());
+        }
         es->lightOnlyGeoms.resize(std::max<size_t>(es->lightOnlyGeoms.size(), id2 + 1));
         es->lightOnlyGeoms[id2] = l;
     }

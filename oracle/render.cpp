@@ -108,7 +108,7 @@ struct SurfacePoint {
     float tangentSign = 1.0f;  // glTF TANGENT.w: the bitangent is tangentSign cross(ns, tangent)
     int32_t light = -1;
     int32_t material = -1;
-    float uv[2] = {0.0f, 0.0f};
+    glm::vec2 uv[2] = {glm::vec2(0.0f), glm::vec2(0.0f)}; // TEXCOORD_0, TEXCOORD_1
 };
 
 // Duff et al. 2017, "Building an Orthonormal Basis, Revisited".
@@ -317,10 +317,12 @@ private:
             sp.ns = b0 * glm::make_vec3(prim.normals + 3 * ix[0]) + h.u * glm::make_vec3(prim.normals + 3 * ix[1]) +
                     h.v * glm::make_vec3(prim.normals + 3 * ix[2]);
             sp.material = int32_t(prim.material);
-            if (prim.has_texcoords)
-                for (int c = 0; c < 2; c++)
-                    sp.uv[c] = b0 * prim.texcoords[2 * ix[0] + c] + h.u * prim.texcoords[2 * ix[1] + c] +
-                               h.v * prim.texcoords[2 * ix[2] + c];
+            const float *sets[2] = {prim.has_texcoords ? prim.texcoords : nullptr,
+                                    prim.has_texcoords1 ? prim.texcoords1 : nullptr};
+            for (int set = 0; set < 2; set++)
+                if (sets[set])
+                    sp.uv[set] = b0 * glm::make_vec2(sets[set] + 2 * ix[0]) + h.u * glm::make_vec2(sets[set] + 2 * ix[1]) +
+                                 h.v * glm::make_vec2(sets[set] + 2 * ix[2]);
             if (prim.has_tangents) {
                 vec3 t = b0 * glm::make_vec3(prim.tangents + 4 * ix[0]) + h.u * glm::make_vec3(prim.tangents + 4 * ix[1]) +
                          h.v * glm::make_vec3(prim.tangents + 4 * ix[2]);
@@ -349,12 +351,27 @@ private:
         return sp;
     }
 
+    // A material slot's texture at a surface point: the slot's texture coordinate set through its
+    // KHR_texture_transform (rtpbr_gltf.h states the matrix). White without a texture, so that
+    // the factor passes through.
+    glm::vec4 sampleSlot(int32_t texture, const rtpbr_gltf_texture_transform &t, const SurfacePoint &sp) const {
+        if (texture < 0 || uint32_t(texture) >= textures_.size())
+            return glm::vec4(1.0f);
+        glm::vec2 uv = sp.uv[t.texcoord == 1 ? 1 : 0];
+        if (t.has_transform) {
+            float c = std::cos(t.rotation), s = std::sin(t.rotation);
+            glm::vec2 scaled(t.scale[0] * uv.x, t.scale[1] * uv.y);
+            uv = glm::vec2(c * scaled.x + s * scaled.y + t.offset[0], -s * scaled.x + c * scaled.y + t.offset[1]);
+        }
+        return textures_[uint32_t(texture)].sample(uv.x, uv.y);
+    }
+
     // glTF normalTexture: tangent-space normal (2 rgb - 1) scaled in xy by normal_scale, with
     // the bitangent B = w cross(N, T) (glTF 2.0, meshes: TANGENT). Done in the primitive's
     // own orientation, before the normal is turned towards the viewer.
     void applyNormalMap(const rtpbr_gltf_primitive &prim, const uint32_t *ix, SurfacePoint *sp) const {
         const rtpbr_gltf_material &m = scene_.materials[prim.material];
-        if (m.normal_texture < 0 || uint32_t(m.normal_texture) >= textures_.size() || !prim.has_texcoords)
+        if (m.normal_texture < 0 || uint32_t(m.normal_texture) >= textures_.size())
             return;
         vec3 n = sp->ns;
         float nl = glm::length(n);
@@ -368,7 +385,7 @@ private:
         t /= tl;
         float w = prim.tangents[4 * ix[0] + 3] < 0.0f ? -1.0f : 1.0f;
         vec3 b = w * glm::cross(n, t);
-        glm::vec4 c = textures_[uint32_t(m.normal_texture)].sample(sp->uv[0], sp->uv[1]);
+        glm::vec4 c = sampleSlot(m.normal_texture, m.normal_texture_transform, *sp);
         vec3 ts(2.0f * c.x - 1.0f, 2.0f * c.y - 1.0f, 2.0f * c.z - 1.0f);
         ts.x *= m.normal_scale;
         ts.y *= m.normal_scale;
@@ -383,12 +400,25 @@ private:
     SurfaceMaterial material(SurfacePoint &sp) const {
         const rtpbr_gltf_material &m = scene_.materials[sp.material];
         rtpbr::MaterialInputs in = materialInputs(m);
-        if (m.base_color_texture >= 0 && uint32_t(m.base_color_texture) < textures_.size())
-            in.baseColor *= vec3(textures_[uint32_t(m.base_color_texture)].sample(sp.uv[0], sp.uv[1]));
-        if (m.metallic_roughness_texture >= 0 && uint32_t(m.metallic_roughness_texture) < textures_.size()) {
-            glm::vec4 mr = textures_[uint32_t(m.metallic_roughness_texture)].sample(sp.uv[0], sp.uv[1]);
-            in.roughness *= mr.y;
-            in.metallic *= mr.z;
+        // glTF: each texture multiplies its factor in the channels its slot names.
+        in.baseColor *= vec3(sampleSlot(m.base_color_texture, m.base_color_texture_transform, sp));
+        glm::vec4 mr = sampleSlot(m.metallic_roughness_texture, m.metallic_roughness_texture_transform, sp);
+        in.roughness *= mr.y;
+        in.metallic *= mr.z;
+        if (m.has_specular) {
+            in.specularFactor *= sampleSlot(m.specular.specular_texture, m.specular.specular_texture_transform, sp).a;
+            in.specularColor *= vec3(
+                sampleSlot(m.specular.specular_color_texture, m.specular.specular_color_texture_transform, sp));
+        }
+        if (m.has_clearcoat) {
+            in.clearcoat *= sampleSlot(m.clearcoat.clearcoat_texture, m.clearcoat.clearcoat_texture_transform, sp).r;
+            in.clearcoatRoughness *= sampleSlot(m.clearcoat.clearcoat_roughness_texture,
+                                                m.clearcoat.clearcoat_roughness_texture_transform, sp).g;
+        }
+        if (m.has_sheen) {
+            in.sheenColor *= vec3(sampleSlot(m.sheen.sheen_color_texture, m.sheen.sheen_color_texture_transform, sp));
+            in.sheenRoughness *=
+                sampleSlot(m.sheen.sheen_roughness_texture, m.sheen.sheen_roughness_texture_transform, sp).a;
         }
         rtpbr::MaterialParams p = rtpbr::Material_Resolve(in);
         SurfaceMaterial out;

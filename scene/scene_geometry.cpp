@@ -268,7 +268,7 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
                                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
     static const int kIndex[] = {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT};
-    AccessorView pos, nrm, uv, tan, idx;
+    AccessorView pos, nrm, uv, uv1, tan, idx;
     if (!validate_accessor(ctx, model, pos_it->second, "POSITION", TINYGLTF_TYPE_VEC3, kFloat, 1, &pos))
         return false;
     if (!pos.data) {  // glTF: no bufferView = zeros; all triangles degenerate, nothing allocated
@@ -292,9 +292,11 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     };
     if (!attribute("NORMAL", TINYGLTF_TYPE_VEC3, kFloat, 1, &nrm) ||
         !attribute("TEXCOORD_0", TINYGLTF_TYPE_VEC2, kTexcoord, 3, &uv) ||
+        !attribute("TEXCOORD_1", TINYGLTF_TYPE_VEC2, kTexcoord, 3, &uv1) ||
         !attribute("TANGENT", TINYGLTF_TYPE_VEC4, kFloat, 1, &tan))
         return false;
-    const bool has_normals = nrm.count != 0, has_uv = uv.count != 0, has_tangents = tan.count != 0;
+    const bool has_normals = nrm.count != 0, has_uv = uv.count != 0, has_uv1 = uv1.count != 0,
+               has_tangents = tan.count != 0;
 
     uint32_t material;
     if (src.material < 0) {
@@ -360,6 +362,7 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
     p.gltf_primitive = prim_index;
     p.gltf_node = node_index;
     p.has_texcoords = has_uv;
+    p.has_texcoords1 = has_uv1;
     double det = 0.0;
     const std::array<double, 9> cof = cofactor3(world, &det);
     const double det_sign = det < 0.0 ? -1.0 : 1.0;
@@ -449,6 +452,14 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
             if (!std::isfinite(v))
                 return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "%s: TEXCOORD_0 element %zu is not finite", usage, i);
             p.texcoords[2 * i + size_t(k)] = float(v);
+        }
+    p.texcoords1.assign(2 * n, 0.0f);
+    for (size_t i = 0; has_uv1 && i < n; ++i)
+        for (int k = 0; k < 2; ++k) {
+            double v = read_component(uv1, i, k);
+            if (!std::isfinite(v))
+                return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "%s: TEXCOORD_1 element %zu is not finite", usage, i);
+            p.texcoords1[2 * i + size_t(k)] = float(v);
         }
 
     // Tangents: from the file, else generated when a normal map or an anisotropic lobe needs

@@ -59,11 +59,11 @@ using Vec3 = std::array<double, 3>;
 
 // A primitive being built (world space).
 struct Primitive {
-    std::vector<float> positions, normals, texcoords, tangents;
+    std::vector<float> positions, normals, texcoords, texcoords1, tangents;
     std::vector<uint32_t> indices;
     uint32_t material = 0;
     int32_t gltf_mesh = -1, gltf_primitive = -1, gltf_node = -1;
-    bool has_texcoords = false, normals_generated = false;
+    bool has_texcoords = false, has_texcoords1 = false, normals_generated = false;
     bool tangents_generated = false, has_tangents = false;
 };
 

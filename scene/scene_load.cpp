@@ -325,7 +325,7 @@ std::string first_line(const std::string& text) {
 const char* const kSupportedRequiredExtensions[] = {
     "KHR_materials_emissive_strength", "KHR_materials_specular", "KHR_materials_ior",
     "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_anisotropy",
-    "EXT_lights_area",
+    "KHR_texture_transform", "EXT_lights_area",
 };
 
 bool check_required_extensions(Context& ctx, const tinygltf::Model& model) {
@@ -399,13 +399,15 @@ rtpbr_gltf_result build_output(Context& ctx, const Scene& in, rtpbr_gltf_scene**
         o.vertex_count = static_cast<uint32_t>(p.positions.size() / 3);
         o.index_count = static_cast<uint32_t>(p.indices.size());
         ok = copy_array(al, p.positions, &o.positions) && copy_array(al, p.normals, &o.normals) &&
-             copy_array(al, p.texcoords, &o.texcoords) && copy_array(al, p.tangents, &o.tangents) &&
+             copy_array(al, p.texcoords, &o.texcoords) && copy_array(al, p.texcoords1, &o.texcoords1) &&
+             copy_array(al, p.tangents, &o.tangents) &&
              copy_array(al, p.indices, &o.indices);
         o.material = p.material;
         o.gltf_mesh = p.gltf_mesh;
         o.gltf_primitive = p.gltf_primitive;
         o.gltf_node = p.gltf_node;
         o.has_texcoords = p.has_texcoords;
+        o.has_texcoords1 = p.has_texcoords1;
         o.normals_generated = p.normals_generated;
         o.tangents_generated = p.tangents_generated;
         o.has_tangents = p.has_tangents;
@@ -694,6 +696,7 @@ extern "C" void rtpbr_gltf_destroy(rtpbr_gltf_scene* scene) {
         al.release(p.positions);
         al.release(p.normals);
         al.release(p.texcoords);
+        al.release(p.texcoords1);
         al.release(p.tangents);
         al.release(p.indices);
     }

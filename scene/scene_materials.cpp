@@ -270,20 +270,67 @@ struct TextureTable {
         return RTPBR_GLTF_WRAP_REPEAT;
     }
 
-    // Returns false on failure; *out = -1 when the texture is unusable.
-    bool get(int material, const char* slot_name, const tinygltf::ExtensionMap& info_extensions,
-             int texture_index, int tex_coord, bool srgb, int32_t* out) {
+    static rtpbr_gltf_min_filter min_filter(int gl) {
+        switch (gl) {
+        case TINYGLTF_TEXTURE_FILTER_NEAREST: return RTPBR_GLTF_MIN_FILTER_NEAREST;
+        case TINYGLTF_TEXTURE_FILTER_LINEAR: return RTPBR_GLTF_MIN_FILTER_LINEAR;
+        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST: return RTPBR_GLTF_MIN_FILTER_NEAREST_MIPMAP_NEAREST;
+        case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: return RTPBR_GLTF_MIN_FILTER_LINEAR_MIPMAP_NEAREST;
+        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR: return RTPBR_GLTF_MIN_FILTER_NEAREST_MIPMAP_LINEAR;
+        case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR: return RTPBR_GLTF_MIN_FILTER_LINEAR_MIPMAP_LINEAR;
+        default: return RTPBR_GLTF_MIN_FILTER_DEFAULT;
+        }
+    }
+
+    // KHR_texture_transform of one textureInfo (`ext`: the extension's object, or null) and the
+    // texture coordinate set the slot reads (its texCoord, or the extension's override).
+    bool transform(int material, const char* slot_name, int tex_coord, const tinygltf::Value* ext,
+                   rtpbr_gltf_texture_transform* out) {
+        *out = rtpbr_gltf_texture_transform{};
+        out->scale[0] = out->scale[1] = 1.0f;
+        if (ext) {
+            if (!ext->IsObject())
+                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: %s.extensions.KHR_texture_transform must be an object",
+                                material, slot_name);
+            std::string block = std::string(slot_name) + ".KHR_texture_transform";
+            MaterialReader r{ctx, material, block.c_str()};
+            bool present;
+            double d;
+            if (!r.vector(*ext, "offset", 2, 0, out->offset, &present) ||
+                !r.vector(*ext, "scale", 2, 0, out->scale, &present) || !r.number(*ext, "rotation", 0.0, &d))
+                return false;
+            out->rotation = float(d);
+            if (ext->Has("texCoord")) {
+                const tinygltf::Value& tc = ext->Get("texCoord");
+                if (!tc.IsNumber() || tc.GetNumberAsDouble() < 0.0 || tc.GetNumberAsDouble() > 2147483647.0 ||
+                    tc.GetNumberAsDouble() != std::floor(tc.GetNumberAsDouble()))
+                    return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: %s.texCoord must be an integer >= 0",
+                                    material, block.c_str());
+                tex_coord = int(tc.GetNumberAsDouble());
+            }
+            out->has_transform = true;
+        }
+        if (tex_coord > 1) {
+            ctx.warn("material %d: %s uses TEXCOORD_%d; only TEXCOORD_0 and TEXCOORD_1 are read (TEXCOORD_0 used)",
+                     material, slot_name, tex_coord);
+            tex_coord = 0;
+        }
+        out->texcoord = uint32_t(tex_coord);
+        return true;
+    }
+
+    // Returns false on failure; *out = -1 when the texture is unusable. `ext_transform` is the
+    // textureInfo's KHR_texture_transform object or null.
+    bool get(int material, const char* slot_name, const tinygltf::Value* ext_transform, int texture_index,
+             int tex_coord, bool srgb, int32_t* out, rtpbr_gltf_texture_transform* out_transform) {
         *out = -1;
+        if (!transform(material, slot_name, texture_index < 0 ? 0 : tex_coord, ext_transform, out_transform))
+            return false;
         if (texture_index < 0) return true;
-        if (info_extensions.count("KHR_texture_transform"))
-            ctx.warn("material %d: %s: KHR_texture_transform ignored", material, slot_name);
         if (size_t(texture_index) >= model.textures.size())
             return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE,
                             "material %d: %s.index %d does not exist (%zu textures)", material,
                             slot_name, texture_index, model.textures.size());
-        if (tex_coord != 0)
-            ctx.warn("material %d: %s uses TEXCOORD_%d; only TEXCOORD_0 is read", material,
-                     slot_name, tex_coord);
         auto key = std::make_pair(texture_index, srgb);
         auto it = made.find(key);
         if (it != made.end()) {
@@ -322,6 +369,7 @@ struct TextureTable {
             t.info.wrap_s = wrap(s.wrapS);
             t.info.wrap_t = wrap(s.wrapT);
             t.info.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+            t.info.min_filter = min_filter(s.minFilter);
         }
         scene.textures.push_back(std::move(t));
         *out = int32_t(scene.textures.size() - 1);
@@ -329,6 +377,44 @@ struct TextureTable {
         return true;
     }
 };
+
+// A textureInfo inside a material extension's JSON (tinygltf leaves those as plain values):
+// index, texCoord, the normal textures' scale, and its KHR_texture_transform.
+bool extension_texture(Context& ctx, TextureTable& textures, int material, const tinygltf::Value& ext,
+                       const char* extension, const char* key, bool srgb, int32_t* out,
+                       rtpbr_gltf_texture_transform* out_transform, float* out_scale = nullptr) {
+    *out = -1;
+    const std::string slot = std::string(extension) + "." + key;
+    if (!ext.IsObject() || !ext.Has(key))
+        return textures.get(material, slot.c_str(), nullptr, -1, 0, srgb, out, out_transform);
+    const tinygltf::Value& info = ext.Get(key);
+    auto integer = [&](const char* name, int* v) {
+        if (!info.Has(name)) return true;
+        const tinygltf::Value& x = info.Get(name);
+        const double d = x.IsNumber() ? x.GetNumberAsDouble() : -1.0;
+        if (!(d >= 0.0 && d <= 2147483647.0 && d == std::floor(d)))
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: %s.%s must be an integer >= 0", material,
+                            slot.c_str(), name);
+        *v = int(d);
+        return true;
+    };
+    int texture = -1, tex_coord = 0;
+    if (!info.IsObject() || !info.Has("index"))
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: %s must be an object with an index", material,
+                        slot.c_str());
+    if (!integer("index", &texture) || !integer("texCoord", &tex_coord)) return false;
+    if (out_scale) {
+        MaterialReader r{ctx, material, slot.c_str()};
+        double d;
+        if (!r.number(info, "scale", 1.0, &d)) return false;
+        *out_scale = float(d);
+    }
+    const tinygltf::Value* transform = nullptr;
+    if (info.Has("extensions") && info.Get("extensions").IsObject() &&
+        info.Get("extensions").Has("KHR_texture_transform"))
+        transform = &info.Get("extensions").Get("KHR_texture_transform");
+    return textures.get(material, slot.c_str(), transform, texture, tex_coord, srgb, out, out_transform);
+}
 
 bool convert_material(Context& ctx, const tinygltf::Model& model, int index, TextureTable& textures,
                       rtpbr_gltf_material* out) {
@@ -358,15 +444,20 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
     m.alpha_cutoff = float(src.alphaCutoff);
     m.normal_scale = float(src.normalTexture.scale);
 
-    if (!textures.get(index, "baseColorTexture", pbr.baseColorTexture.extensions, pbr.baseColorTexture.index,
-                      pbr.baseColorTexture.texCoord, true, &m.base_color_texture) ||
-        !textures.get(index, "metallicRoughnessTexture", pbr.metallicRoughnessTexture.extensions,
+    auto transform_of = [](const tinygltf::ExtensionMap& extensions) {
+        return find_extension(extensions, "KHR_texture_transform");
+    };
+    if (!textures.get(index, "baseColorTexture", transform_of(pbr.baseColorTexture.extensions),
+                      pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true, &m.base_color_texture,
+                      &m.base_color_texture_transform) ||
+        !textures.get(index, "metallicRoughnessTexture", transform_of(pbr.metallicRoughnessTexture.extensions),
                       pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false,
-                      &m.metallic_roughness_texture) ||
-        !textures.get(index, "normalTexture", src.normalTexture.extensions, src.normalTexture.index,
-                      src.normalTexture.texCoord, false, &m.normal_texture) ||
-        !textures.get(index, "emissiveTexture", src.emissiveTexture.extensions, src.emissiveTexture.index,
-                      src.emissiveTexture.texCoord, true, &m.emission_texture))
+                      &m.metallic_roughness_texture, &m.metallic_roughness_texture_transform) ||
+        !textures.get(index, "normalTexture", transform_of(src.normalTexture.extensions), src.normalTexture.index,
+                      src.normalTexture.texCoord, false, &m.normal_texture, &m.normal_texture_transform) ||
+        !textures.get(index, "emissiveTexture", transform_of(src.emissiveTexture.extensions),
+                      src.emissiveTexture.index, src.emissiveTexture.texCoord, true, &m.emission_texture,
+                      &m.emission_texture_transform))
         return false;
     if (src.occlusionTexture.index >= 0)
         ctx.warn("material %d: occlusionTexture ignored", index);
@@ -403,6 +494,11 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         for (int k = 0; k < 3; ++k)
             if (m.specular.specular_color_factor[k] < 0.0f)
                 return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: specularColorFactor < 0", index);
+        if (!extension_texture(ctx, textures, index, *ext, "KHR_materials_specular", "specularTexture", false,
+                               &m.specular.specular_texture, &m.specular.specular_texture_transform) ||
+            !extension_texture(ctx, textures, index, *ext, "KHR_materials_specular", "specularColorTexture", true,
+                               &m.specular.specular_color_texture, &m.specular.specular_color_texture_transform))
+            return false;
         m.has_specular = true;
     }
     // KHR_materials_clearcoat
@@ -412,6 +508,17 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         m.clearcoat.clearcoat_factor = clamp01(ctx, float(d), index, "clearcoatFactor");
         if (!r.number(*ext, "clearcoatRoughnessFactor", 0.0, &d)) return false;
         m.clearcoat.clearcoat_roughness_factor = clamp01(ctx, float(d), index, "clearcoatRoughnessFactor");
+        rtpbr_gltf_clearcoat& c = m.clearcoat;
+        if (!extension_texture(ctx, textures, index, *ext, "KHR_materials_clearcoat", "clearcoatTexture", false,
+                               &c.clearcoat_texture, &c.clearcoat_texture_transform) ||
+            !extension_texture(ctx, textures, index, *ext, "KHR_materials_clearcoat", "clearcoatRoughnessTexture",
+                               false, &c.clearcoat_roughness_texture, &c.clearcoat_roughness_texture_transform) ||
+            !extension_texture(ctx, textures, index, *ext, "KHR_materials_clearcoat", "clearcoatNormalTexture",
+                               false, &c.clearcoat_normal_texture, &c.clearcoat_normal_texture_transform,
+                               &c.clearcoat_normal_scale))
+            return false;
+        if (c.clearcoat_normal_texture >= 0)
+            ctx.warn("material %d: clearcoatNormalTexture ignored (the coat uses the base normal)", index);
         m.has_clearcoat = true;
     }
     // KHR_materials_sheen
@@ -422,6 +529,11 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         for (int k = 0; k < 3; ++k) color[k] = clamp01(ctx, color[k], index, "sheenColorFactor");
         if (!r.number(*ext, "sheenRoughnessFactor", 0.0, &d)) return false;
         m.sheen.sheen_roughness_factor = clamp01(ctx, float(d), index, "sheenRoughnessFactor");
+        if (!extension_texture(ctx, textures, index, *ext, "KHR_materials_sheen", "sheenColorTexture", true,
+                               &m.sheen.sheen_color_texture, &m.sheen.sheen_color_texture_transform) ||
+            !extension_texture(ctx, textures, index, *ext, "KHR_materials_sheen", "sheenRoughnessTexture", false,
+                               &m.sheen.sheen_roughness_texture, &m.sheen.sheen_roughness_texture_transform))
+            return false;
         m.has_sheen = true;
     }
     // KHR_materials_anisotropy
@@ -431,6 +543,8 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         m.anisotropy.anisotropy_strength = clamp01(ctx, float(d), index, "anisotropyStrength");
         if (!r.number(*ext, "anisotropyRotation", 0.0, &d)) return false;
         m.anisotropy.anisotropy_rotation = float(d);
+        if (ext->IsObject() && ext->Has("anisotropyTexture"))
+            ctx.warn("material %d: KHR_materials_anisotropy.anisotropyTexture ignored", index);
         m.has_anisotropy = true;
     }
     for (const auto& e : src.extensions)
@@ -509,6 +623,17 @@ rtpbr_gltf_material make_default_material() {
     m.alpha_cutoff = 0.5f;
     m.alpha_mode = RTPBR_GLTF_ALPHA_OPAQUE;
     m.base_color_texture = m.metallic_roughness_texture = m.normal_texture = m.emission_texture = -1;
+    m.specular.specular_texture = m.specular.specular_color_texture = -1;
+    m.clearcoat.clearcoat_texture = m.clearcoat.clearcoat_roughness_texture = m.clearcoat.clearcoat_normal_texture = -1;
+    m.clearcoat.clearcoat_normal_scale = 1.0f;
+    m.sheen.sheen_color_texture = m.sheen.sheen_roughness_texture = -1;
+    rtpbr_gltf_texture_transform* transforms[] = {
+        &m.base_color_texture_transform, &m.metallic_roughness_texture_transform, &m.normal_texture_transform,
+        &m.emission_texture_transform, &m.specular.specular_texture_transform,
+        &m.specular.specular_color_texture_transform, &m.clearcoat.clearcoat_texture_transform,
+        &m.clearcoat.clearcoat_roughness_texture_transform, &m.clearcoat.clearcoat_normal_texture_transform,
+        &m.sheen.sheen_color_texture_transform, &m.sheen.sheen_roughness_texture_transform};
+    for (rtpbr_gltf_texture_transform* t : transforms) t->scale[0] = t->scale[1] = 1.0f;
     m.gltf_material = -1;
     return m;
 }

@@ -28,12 +28,13 @@ bool bvh_box_hit(vec3 boxMin, vec3 boxMax, vec3 o, vec3 invD, float tMax)
     return tNear <= tFar;
 }
 
-// Moeller & Trumbore 1997, "Fast, Minimum Storage Ray/Triangle Intersection"; both sides.
+// Moeller & Trumbore 1997, "Fast, Minimum Storage Ray/Triangle Intersection"; both sides of a
+// double-sided triangle, the front of a single-sided one (v0.w, rtpbr_shared.h).
 bool bvh_triangle_hit(BvhTriangle tri, vec3 o, vec3 d, float tMax)
 {
     vec3 p = cross(d, tri.e2.xyz);
-    float det = dot(tri.e1.xyz, p);
-    if (abs(det) < 1e-20f) return false;
+    float det = dot(tri.e1.xyz, p); // = -dot(d, e1 x e2): > 0 where the ray meets the counter-clockwise side
+    if (abs(det) < 1e-20f || det * tri.v0.w < 0.0f) return false;
     float invDet = 1.0f / det;
     vec3 s = o - tri.v0.xyz;
     float u = dot(s, p) * invDet;

@@ -100,7 +100,7 @@
     F(S, FLOAT, disney_clearcoat_gloss, )                                                         \
     F(S, FLOAT, disney_anisotropic, )
 // Bits of the material record's flags.
-#define RTPBR_MATERIAL_FLAG_DOUBLE_SIDED 1u  // emits from both sides
+#define RTPBR_MATERIAL_FLAG_DOUBLE_SIDED 1u  // drawn and emitting on both sides
 #define RTPBR_MATERIAL_FLAG_NORMAL_MAPPED 2u // has a normal texture
 #define RTPBR_MATERIAL_FLAG_DISNEY 4u        // Burley's model (else glTF metallic-roughness)
 #define RTPBR_MATERIAL_FLAG_CLEARCOAT 8u     // KHR clearcoat > 0
@@ -123,6 +123,18 @@
 // G-buffer pass, descriptor set 0.
 #define RTPBR_BINDING_GBUFFER_FRAME 0     // uniform: rtpbr_shader_frame
 #define RTPBR_BINDING_GBUFFER_MATERIALS 1 // storage: rtpbr_shader_material[]
+#define RTPBR_BINDING_GBUFFER_TEXTURE_TRANSFORMS 2 // storage: rtpbr_shader_texture_transforms[]
+
+// Per material, the G-buffer pass's texture coordinates of each texture slot
+// (rtpbr_shader_texture_transforms, gbuffer.vert; written by convert_texture_transforms in
+// engine/src/scene.c from the desc's *_texture_transform): the slot's KHR_texture_transform
+// as the two rows of its 2x3 matrix, uv' = (dot(row0.xyz, (uv, 1)), dot(row1.xyz, (uv, 1))),
+// with row0.w = the texture coordinate set (0 or 1).
+#define RTPBR_TEXTURE_TRANSFORMS_FIELDS(F, S)                                                     \
+    F(S, VEC4, base_color, [2])                                                                    \
+    F(S, VEC4, metallic_roughness, [2])                                                            \
+    F(S, VEC4, emission, [2])                                                                      \
+    F(S, VEC4, normal, [2])
 
 // G-buffer pass, descriptor set 1: one set per material.
 #define RTPBR_BINDING_TEXTURE_BASE_COLOR 0
@@ -267,7 +279,9 @@
     F(S, VEC3, box_max, )                                                                          \
     F(S, UINT, count, )         /* triangles of a leaf; 0: interior node */
 // A triangle, the std430 element of RTPBR_BINDING_SHADOW_BVH_TRIANGLES: vertex 0 and the two
-// edges from it (w unused), ready for the Moeller-Trumbore test.
+// edges from it, ready for the Moeller-Trumbore test. v0.w: which side lets rays through
+// (glTF doubleSided false): 0 none (double-sided), +1 rays along e1 x e2, -1 rays against it
+// (a mirroring transform turned the winding); e1.w, e2.w unused.
 #define RTPBR_BVH_TRIANGLE_FIELDS(F, S)                                                           \
     F(S, VEC4, v0, )                                                                               \
     F(S, VEC4, e1, )                                                                               \

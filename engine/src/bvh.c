@@ -171,9 +171,11 @@ rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
 
     build_state s = {0};
     float (*tri)[9] = NULL;
+    uint32_t *draw_of = NULL; // the draw of each triangle, in the order of s.tri
     uint32_t node_slots = tri_count ? 2 * tri_count - 1 : 1;
     if (tri_count) {
         RTPBR_ALLOC(&ctx->host, tri, tri_count * sizeof *tri);
+        RTPBR_ALLOC(&ctx->host, draw_of, tri_count * sizeof *draw_of);
         RTPBR_ALLOC(&ctx->host, s.centroid, tri_count * sizeof *s.centroid);
         RTPBR_ALLOC(&ctx->host, s.order, tri_count * sizeof *s.order);
     }
@@ -190,6 +192,7 @@ rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
                                 vertices + RTPBR_VERTEX_FLOATS * (size_t)indices[draw->first_index + k + v], tri[t] + 3 * v);
             for (int c = 0; c < 3; ++c) s.centroid[t][c] = (tri[t][c] + tri[t][3 + c] + tri[t][6 + c]) / 3.0f;
             s.order[t] = t;
+            draw_of[t] = d;
         }
     }
     s.tri = (const float (*)[9])tri;
@@ -217,16 +220,33 @@ rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
     }
     scene->bvh_node_count = s.node_count;
     scene->bvh_triangle_count = tri_count;
+    RTPBR_ALLOC(&ctx->host, scene->bvh_triangle_draws, (tri_count ? tri_count : 1) * sizeof *scene->bvh_triangle_draws);
+    for (uint32_t i = 0; i < tri_count; ++i) scene->bvh_triangle_draws[i] = draw_of[s.order[i]];
+    rtpbr_bvh_update_sidedness(scene);
 cleanup:
     rtpbr_free(&ctx->host, tri);
+    rtpbr_free(&ctx->host, draw_of);
     rtpbr_free(&ctx->host, s.centroid);
     rtpbr_free(&ctx->host, s.order);
     rtpbr_free(&ctx->host, s.nodes);
     return result;
 }
 
+void rtpbr_bvh_update_sidedness(rtpbr_gpu_scene *scene)
+{
+    rtpbr_shader_bvh_triangle *out = scene->bvh_triangles.mapped;
+    const rtpbr_shader_material *materials = scene->materials.mapped;
+    for (uint32_t i = 0; i < scene->bvh_triangle_count; ++i) {
+        const rtpbr_draw *d = &scene->draws[scene->bvh_triangle_draws[i]];
+        bool single_sided = !(materials[d->push.material].flags & RTPBR_MATERIAL_FLAG_DOUBLE_SIDED);
+        out[i].v0[3] = !single_sided ? 0.0f : rtpbr_mat4_mirrors(d->push.world_from_object) ? -1.0f : 1.0f;
+    }
+}
+
 void rtpbr_bvh_destroy(rtpbr_gpu_scene *scene)
 {
+    rtpbr_free(&scene->context->host, scene->bvh_triangle_draws);
+    scene->bvh_triangle_draws = NULL;
     rtpbr_buffer_destroy(scene->context, &scene->bvh_nodes);
     rtpbr_buffer_destroy(scene->context, &scene->bvh_triangles);
 }

@@ -56,9 +56,6 @@ rtpbr_result rtpbr_context_create(const rtpbr_context_desc *desc, rtpbr_context 
     RTPBR_VK(&ctx->host, vkCreateSampler(ctx->device, &sampler_info, NULL, &ctx->lut_sampler));
     sampler_info.magFilter = sampler_info.minFilter = VK_FILTER_NEAREST;
     RTPBR_VK(&ctx->host, vkCreateSampler(ctx->device, &sampler_info, NULL, &ctx->gbuffer_sampler));
-    sampler_info.magFilter = sampler_info.minFilter = VK_FILTER_LINEAR;
-    sampler_info.addressModeU = sampler_info.addressModeV = sampler_info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    RTPBR_VK(&ctx->host, vkCreateSampler(ctx->device, &sampler_info, NULL, &ctx->texture_sampler));
     RTPBR_TRY(rtpbr_luts_create(ctx));
     // The passes' layouts and pipelines (variants other than the defaults: on first use).
     RTPBR_TRY(rtpbr_gbuffer_pass_init(ctx));
@@ -103,7 +100,6 @@ void rtpbr_context_destroy(rtpbr_context *ctx)
         rtpbr_luts_destroy(ctx);
         vkDestroySampler(ctx->device, ctx->lut_sampler, NULL);
         vkDestroySampler(ctx->device, ctx->gbuffer_sampler, NULL);
-        vkDestroySampler(ctx->device, ctx->texture_sampler, NULL);
         vkDestroyFence(ctx->device, ctx->upload_fence, NULL);
         vkDestroyCommandPool(ctx->device, ctx->command_pool, NULL);
     }

@@ -74,6 +74,15 @@ static int type_rank(VkPhysicalDeviceType type)
     }
 }
 
+// Material textures' anisotropy: up to 16x where samplerAnisotropy is enabled on the device.
+static void set_max_anisotropy(rtpbr_context *ctx, bool enabled)
+{
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(ctx->physical_device, &props);
+    float limit = props.limits.maxSamplerAnisotropy;
+    ctx->max_anisotropy = enabled ? (limit < 16.0f ? limit : 16.0f) : 0.0f;
+}
+
 static void adopt_physical_device(rtpbr_context *ctx, VkPhysicalDevice pd)
 {
     VkPhysicalDeviceProperties props;
@@ -211,7 +220,13 @@ rtpbr_result rtpbr_device_init_standalone(rtpbr_context *ctx, const rtpbr_contex
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
         .dynamicRendering = VK_TRUE,
     };
-    VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f13};
+    VkPhysicalDeviceFeatures supported;
+    vkGetPhysicalDeviceFeatures(ctx->physical_device, &supported);
+    VkPhysicalDeviceFeatures2 features = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+        .pNext = &f13,
+        .features.samplerAnisotropy = supported.samplerAnisotropy,
+    };
     VkDeviceCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .pNext = &features,
@@ -220,6 +235,7 @@ rtpbr_result rtpbr_device_init_standalone(rtpbr_context *ctx, const rtpbr_contex
     };
     RTPBR_VK(&ctx->host, vkCreateDevice(ctx->physical_device, &info, NULL, &ctx->device));
     vkGetDeviceQueue(ctx->device, ctx->queue_family, 0, &ctx->queue);
+    set_max_anisotropy(ctx, supported.samplerAnisotropy);
     rtpbr_log(&ctx->host, RTPBR_LOG_INFO, "standalone device: %s", ctx->device_name);
 cleanup:
     return result;
@@ -277,6 +293,8 @@ rtpbr_result rtpbr_device_init_embedded(rtpbr_context *ctx, const rtpbr_vulkan_d
     ctx->queue = host->queue;
     ctx->queue_family = host->queue_family_index;
     adopt_physical_device(ctx, host->physical_device);
+    // Only what the host enabled may be used (enabled_features: what it passed to vkCreateDevice).
+    set_max_anisotropy(ctx, host->enabled_features->features.samplerAnisotropy);
     rtpbr_log(&ctx->host, RTPBR_LOG_INFO, "embedded in the host's device: %s", ctx->device_name);
     return RTPBR_SUCCESS;
 }

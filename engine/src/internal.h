@@ -29,6 +29,7 @@ RTPBR_DECLARE_SHARED(rtpbr_shader_mc, RTPBR_MC_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_bvh_node, RTPBR_BVH_NODE_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_bvh_triangle, RTPBR_BVH_TRIANGLE_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_shadow, RTPBR_SHADOW_FIELDS)
+RTPBR_DECLARE_SHARED(rtpbr_shader_texture_transforms, RTPBR_TEXTURE_TRANSFORMS_FIELDS)
 
 // The shaders' std140 / std430 sizes of the same structs.
 _Static_assert(sizeof(rtpbr_shader_frame) == 192, "Frame block layout");
@@ -142,7 +143,7 @@ struct rtpbr_context {
     VkFence upload_fence;
     VkSampler lut_sampler;        // linear, clamp to edge
     VkSampler gbuffer_sampler;    // nearest (the G-buffer is read with texelFetch)
-    VkSampler texture_sampler;    // material textures: linear, repeat
+    float max_anisotropy;         // material textures' sampler anisotropy; 0: samplerAnisotropy not enabled
     rtpbr_lut luts[RTPBR_LUT_COUNT]; // in binding order RTPBR_BINDING_LUT_LTC_GGX_1 ...
 
     rtpbr_gbuffer_pass gbuffer;
@@ -164,15 +165,22 @@ typedef struct rtpbr_draw {
     rtpbr_shader_draw push;
 } rtpbr_draw;
 
+// The samplers of material textures, one per combination of the rtpbr_texture_desc fields:
+// key = ((wrap_s * 3 + wrap_t) * 2 + mag_filter) * 2 + min_filter) * 3 + mipmap.
+enum { RTPBR_SAMPLER_KEY_COUNT = 3 * 3 * 2 * 2 * 3 };
+
 struct rtpbr_gpu_scene {
     rtpbr_context *context;
     rtpbr_gpu_scene *prev, *next; // in context->scenes
-    rtpbr_buffer vertices;     // RTPBR_VERTEX_FLOATS per vertex: position, normal, uv, tangent
+    rtpbr_buffer vertices;     // RTPBR_VERTEX_FLOATS per vertex: position, normal, uv, tangent, uv1
     rtpbr_buffer indices;      // uint32, vertex indices already offset per mesh
     rtpbr_buffer materials;    // rtpbr_shader_material[max(material_count, 1)]
     rtpbr_buffer lights;       // rtpbr_shader_light[RTPBR_MAX_LIGHTS], host visible
     rtpbr_image *textures;     // texture_count images, then a 1x1 white one
+    uint32_t *texture_samplers; // per image: its key into samplers (rtpbr_sampler_key)
     uint32_t texture_count;
+    VkSampler samplers[RTPBR_SAMPLER_KEY_COUNT]; // created on first use by a texture
+    rtpbr_buffer texture_transforms; // rtpbr_shader_texture_transforms[max(material_count, 1)]
     VkDescriptorPool material_pool;  // passes/gbuffer.c
     VkDescriptorSet *material_sets; // one per material slot: its RTPBR_MATERIAL_TEXTURE_COUNT textures
     rtpbr_draw *draws;
@@ -183,6 +191,7 @@ struct rtpbr_gpu_scene {
     uint32_t camera_count;
     rtpbr_buffer bvh_nodes;     // rtpbr_shader_bvh_node[bvh_node_count] (bvh.c)
     rtpbr_buffer bvh_triangles; // rtpbr_shader_bvh_triangle[max(bvh_triangle_count, 1)]
+    uint32_t *bvh_triangle_draws; // the draw of each BVH triangle (its sidedness follows the material)
     uint32_t bvh_node_count, bvh_triangle_count;
 };
 
@@ -190,7 +199,7 @@ struct rtpbr_gpu_scene {
 // Renderer (renderer.c and the passes)
 
 enum { RTPBR_GBUFFER_COUNT = 4 };
-enum { RTPBR_VERTEX_FLOATS = 12 }; // float3 position, float3 normal, float2 uv, float4 tangent
+enum { RTPBR_VERTEX_FLOATS = 14 }; // float3 position, float3 normal, float2 uv, float4 tangent, float2 uv1
 
 // GPU timestamps around the passes (timing.c): taken at the start and after each pass.
 typedef enum rtpbr_timestamp {
@@ -303,6 +312,10 @@ void rtpbr_luts_destroy(rtpbr_context *ctx);
 // Uploads tightly packed texels into a new sampled image (SHADER_READ_ONLY_OPTIMAL).
 rtpbr_result rtpbr_image_create_with_data(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
                                           const void *texels, size_t bytes, rtpbr_image *out);
+// A material texture: tightly packed texels into a new sampled image (SHADER_READ_ONLY_OPTIMAL),
+// with its full mip chain built by linear blits when `mipmaps` and the format allows them.
+rtpbr_result rtpbr_texture_create(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
+                                  const void *texels, size_t bytes, bool mipmaps, rtpbr_image *out);
 // An image memory barrier on a colour or depth image (one mip, one layer).
 void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
                          VkImageLayout old_layout, VkImageLayout new_layout,
@@ -315,5 +328,7 @@ void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags 
 // Builds the BVH of the scene's uploaded triangles (world space) into scene->bvh_*.
 rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene);
 void rtpbr_bvh_destroy(rtpbr_gpu_scene *scene); // accepts a half-built scene
+// Rewrites each triangle's sidedness (v0.w) from its material and its draw's transform.
+void rtpbr_bvh_update_sidedness(rtpbr_gpu_scene *scene);
 
 #endif // RTPBR_INTERNAL_H

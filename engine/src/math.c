@@ -22,6 +22,14 @@ void rtpbr_mat4_mul(float out[16], const float a[16], const float b[16])
     memcpy(out, r, sizeof r);
 }
 
+bool rtpbr_mat4_mirrors(const float m[16])
+{
+    double det = (double)m[0] * ((double)m[5] * m[10] - (double)m[9] * m[6]) -
+                 (double)m[4] * ((double)m[1] * m[10] - (double)m[9] * m[2]) +
+                 (double)m[8] * ((double)m[1] * m[6] - (double)m[5] * m[2]);
+    return det < 0.0;
+}
+
 // Gauss-Jordan elimination with partial pivoting, in double precision.
 bool rtpbr_mat4_invert(float out[16], const float m[16])
 {

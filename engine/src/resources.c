@@ -83,9 +83,11 @@ static VkImageAspectFlags aspect_of(VkFormat format)
                                                                           : VK_IMAGE_ASPECT_COLOR_BIT;
 }
 
-// A 2D image with a view: 3D when depth > 1, a 2D array of `layers` layers when layers > 0.
-static rtpbr_result image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t depth, uint32_t layers,
-                                 VkFormat format, VkImageUsageFlags usage, rtpbr_image *out)
+// A 2D image with a view: 3D when depth > 1, a 2D array of `layers` layers when layers > 0,
+// `levels` mip levels (2D only).
+static rtpbr_result image_create_levels(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t depth,
+                                        uint32_t layers, uint32_t levels, VkFormat format, VkImageUsageFlags usage,
+                                        rtpbr_image *out)
 {
     rtpbr_result result = RTPBR_SUCCESS;
     memset(out, 0, sizeof *out);
@@ -94,7 +96,7 @@ static rtpbr_result image_create(rtpbr_context *ctx, uint32_t width, uint32_t he
         .imageType = depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D,
         .format = format,
         .extent = {width, height, depth},
-        .mipLevels = 1,
+        .mipLevels = levels,
         .arrayLayers = layers ? layers : 1,
         .samples = VK_SAMPLE_COUNT_1_BIT,
         .tiling = VK_IMAGE_TILING_OPTIMAL,
@@ -112,7 +114,7 @@ static rtpbr_result image_create(rtpbr_context *ctx, uint32_t width, uint32_t he
         .image = out->image,
         .viewType = depth > 1 ? VK_IMAGE_VIEW_TYPE_3D : layers ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
         .format = format,
-        .subresourceRange = {aspect_of(format), 0, 1, 0, layers ? layers : 1},
+        .subresourceRange = {aspect_of(format), 0, levels, 0, layers ? layers : 1},
     };
     RTPBR_VK(&ctx->host, vkCreateImageView(ctx->device, &view_info, NULL, &out->view));
     out->format = format;
@@ -122,6 +124,12 @@ static rtpbr_result image_create(rtpbr_context *ctx, uint32_t width, uint32_t he
 cleanup:
     rtpbr_image_destroy(ctx, out);
     return result;
+}
+
+static rtpbr_result image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t depth, uint32_t layers,
+                                 VkFormat format, VkImageUsageFlags usage, rtpbr_image *out)
+{
+    return image_create_levels(ctx, width, height, depth, layers, 1, format, usage, out);
 }
 
 rtpbr_result rtpbr_image_create(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
@@ -225,6 +233,106 @@ rtpbr_result rtpbr_image_create_with_data(rtpbr_context *ctx, uint32_t width, ui
                                  out));
     lut_upload upload = {staging.buffer, out->image, width, height, 1};
     RTPBR_TRY(rtpbr_submit_once(ctx, record_lut_upload, &upload));
+cleanup:
+    if (result != RTPBR_SUCCESS) rtpbr_image_destroy(ctx, out); // accepts a zeroed or half-built image
+    rtpbr_buffer_destroy(ctx, &staging);
+    return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Material textures with mip chains
+
+typedef struct mip_upload {
+    VkBuffer staging;
+    VkImage image;
+    uint32_t width, height, levels;
+} mip_upload;
+
+static void mip_barrier(VkCommandBuffer cmd, VkImage image, uint32_t level, VkImageLayout old_layout,
+                        VkImageLayout new_layout, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                        VkPipelineStageFlags dst_stage, VkAccessFlags dst_access)
+{
+    VkImageMemoryBarrier barrier = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
+        .srcAccessMask = src_access,
+        .dstAccessMask = dst_access,
+        .oldLayout = old_layout,
+        .newLayout = new_layout,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .image = image,
+        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, 1},
+    };
+    vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, NULL, 0, NULL, 1, &barrier);
+}
+
+// Level 0 from the staging buffer, then each level blitted (linear filter) from the one above
+// it; every level ends in SHADER_READ_ONLY_OPTIMAL. Blits of sRGB formats filter linear values
+// (the Vulkan spec: sRGB texels are converted to linear before filtering and back after).
+static void record_mip_upload(VkCommandBuffer cmd, void *user)
+{
+    const mip_upload *u = user;
+    const VkPipelineStageFlags shaders = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    for (uint32_t level = 0; level < u->levels; ++level)
+        mip_barrier(cmd, u->image, level, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    VkBufferImageCopy region = {
+        .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+        .imageExtent = {u->width, u->height, 1},
+    };
+    vkCmdCopyBufferToImage(cmd, u->staging, u->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    int32_t w = (int32_t)u->width, h = (int32_t)u->height;
+    for (uint32_t level = 1; level < u->levels; ++level) {
+        mip_barrier(cmd, u->image, level - 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        int32_t nw = w > 1 ? w / 2 : 1, nh = h > 1 ? h / 2 : 1;
+        VkImageBlit blit = {
+            .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1, 0, 1},
+            .srcOffsets = {{0, 0, 0}, {w, h, 1}},
+            .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1},
+            .dstOffsets = {{0, 0, 0}, {nw, nh, 1}},
+        };
+        vkCmdBlitImage(cmd, u->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, u->image,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+        mip_barrier(cmd, u->image, level - 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_TRANSFER_READ_BIT, shaders, VK_ACCESS_SHADER_READ_BIT);
+        w = nw;
+        h = nh;
+    }
+    mip_barrier(cmd, u->image, u->levels - 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                shaders, VK_ACCESS_SHADER_READ_BIT);
+}
+
+rtpbr_result rtpbr_texture_create(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
+                                  const void *texels, size_t bytes, bool mipmaps, rtpbr_image *out)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    rtpbr_buffer staging = {0};
+    memset(out, 0, sizeof *out);
+    uint32_t levels = 1;
+    if (mipmaps) {
+        VkFormatProperties props;
+        vkGetPhysicalDeviceFormatProperties(ctx->physical_device, format, &props);
+        const VkFormatFeatureFlags need = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                          VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+        if ((props.optimalTilingFeatures & need) == need) {
+            for (uint32_t size = width > height ? width : height; size > 1; size /= 2) ++levels;
+        } else {
+            rtpbr_log(&ctx->host, RTPBR_LOG_INFO, "format %d cannot be blitted with linear filtering: texture "
+                      "without mipmaps", (int)format);
+        }
+    }
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &staging));
+    memcpy(staging.mapped, texels, bytes);
+    RTPBR_TRY(image_create_levels(ctx, width, height, 1, 0, levels, format,
+                                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                                      (levels > 1 ? VK_IMAGE_USAGE_TRANSFER_SRC_BIT : 0),
+                                  out));
+    mip_upload upload = {staging.buffer, out->image, width, height, levels};
+    RTPBR_TRY(rtpbr_submit_once(ctx, record_mip_upload, &upload));
 cleanup:
     if (result != RTPBR_SUCCESS) rtpbr_image_destroy(ctx, out); // accepts a zeroed or half-built image
     rtpbr_buffer_destroy(ctx, &staging);

@@ -141,7 +141,8 @@ static rtpbr_result validate_mesh(const rtpbr_context *ctx, const rtpbr_mesh_des
     if (!rtpbr_finite(m->positions, 3 * (size_t)m->vertex_count)) FAIL("mesh %u has a NaN or infinite position", index);
     if (m->normals && !rtpbr_finite(m->normals, 3 * (size_t)m->vertex_count))
         FAIL("mesh %u has a NaN or infinite normal", index);
-    if (m->texcoords && !rtpbr_finite(m->texcoords, 2 * (size_t)m->vertex_count))
+    if ((m->texcoords && !rtpbr_finite(m->texcoords, 2 * (size_t)m->vertex_count)) ||
+        (m->texcoords1 && !rtpbr_finite(m->texcoords1, 2 * (size_t)m->vertex_count)))
         FAIL("mesh %u has a NaN or infinite texture coordinate", index);
     if (m->tangents && !rtpbr_finite(m->tangents, 4 * (size_t)m->vertex_count))
         FAIL("mesh %u has a NaN or infinite tangent", index);
@@ -195,6 +196,27 @@ static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
     return g;
 }
 
+// KHR_texture_transform as the rows of its 2x3 matrix T R S (rtpbr.h states it; rtpbr_shared.h
+// how the G-buffer pass reads it).
+static void texture_transform_rows(const rtpbr_texture_transform *t, float rows[2][4])
+{
+    float sx = t->scale[0], sy = t->scale[1];
+    if (sx == 0.0f && sy == 0.0f) sx = sy = 1.0f;
+    float c = cosf(t->rotation), s = sinf(t->rotation);
+    float r[2][4] = {{c * sx, s * sy, t->offset[0], (float)t->texcoord}, {-s * sx, c * sy, t->offset[1], 0.0f}};
+    memcpy(rows, r, sizeof r);
+}
+
+static rtpbr_shader_texture_transforms convert_texture_transforms(const rtpbr_material_desc *m)
+{
+    rtpbr_shader_texture_transforms g;
+    texture_transform_rows(&m->base_color_texture_transform, g.base_color);
+    texture_transform_rows(&m->metallic_roughness_texture_transform, g.metallic_roughness);
+    texture_transform_rows(&m->emission_texture_transform, g.emission);
+    texture_transform_rows(&m->normal_texture_transform, g.normal);
+    return g;
+}
+
 static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_material_desc *m, uint32_t index)
 {
     if (!rtpbr_finite(m->base_color, 3) || !rtpbr_finite(&m->metallic, 1) || !rtpbr_finite(&m->roughness, 1) ||
@@ -205,6 +227,19 @@ static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_mate
         !rtpbr_finite((const float *)&m->disney, sizeof m->disney / sizeof(float))) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    const rtpbr_texture_transform *transforms[] = {&m->base_color_texture_transform,
+                                                   &m->metallic_roughness_texture_transform,
+                                                   &m->emission_texture_transform, &m->normal_texture_transform};
+    for (size_t i = 0; i < sizeof transforms / sizeof transforms[0]; ++i) {
+        const rtpbr_texture_transform *t = transforms[i];
+        if (!rtpbr_finite(t->offset, 2) || !rtpbr_finite(&t->rotation, 1) || !rtpbr_finite(t->scale, 2) ||
+            t->texcoord > 1) {
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                      "material %u has a texture transform with a NaN or infinite value or a texcoord other than 0, 1",
+                      index);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
     }
     if ((unsigned)m->model > RTPBR_MATERIAL_DISNEY) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has an unknown model %d", index, (int)m->model);
@@ -246,32 +281,77 @@ static void normal_matrix(const float m[16], float out[3][4])
         for (int r = 0; r < 3; ++r) out[c][r] = inv[r * 4 + c];
 }
 
+static uint32_t sampler_key(const rtpbr_texture_desc *t)
+{
+    return ((((uint32_t)t->wrap_s * 3u + (uint32_t)t->wrap_t) * 2u + (uint32_t)t->mag_filter) * 2u +
+            (uint32_t)t->min_filter) * 3u + (uint32_t)t->mipmap;
+}
+
+// The sampler of a key (sampler_key), created on first use.
+static rtpbr_result scene_sampler(rtpbr_gpu_scene *scene, uint32_t key)
+{
+    rtpbr_context *ctx = scene->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    if (scene->samplers[key]) return RTPBR_SUCCESS;
+    static const VkSamplerAddressMode wraps[] = {VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                                                 VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT};
+    uint32_t mipmap = key % 3u, min = key / 3u % 2u, mag = key / 6u % 2u, wrap_t = key / 12u % 3u, wrap_s = key / 36u;
+    bool linear = min == RTPBR_FILTER_LINEAR && mag == RTPBR_FILTER_LINEAR;
+    VkSamplerCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = mag == RTPBR_FILTER_NEAREST ? VK_FILTER_NEAREST : VK_FILTER_LINEAR,
+        .minFilter = min == RTPBR_FILTER_NEAREST ? VK_FILTER_NEAREST : VK_FILTER_LINEAR,
+        .mipmapMode = mipmap == RTPBR_MIPMAP_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST,
+        .addressModeU = wraps[wrap_s],
+        .addressModeV = wraps[wrap_t],
+        .addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT,
+        // Anisotropic only where the filtering is linear and mipmapped, and the device allows it.
+        .anisotropyEnable = linear && mipmap != RTPBR_MIPMAP_NONE && ctx->max_anisotropy > 1.0f,
+        .maxAnisotropy = linear && mipmap != RTPBR_MIPMAP_NONE && ctx->max_anisotropy > 1.0f ? ctx->max_anisotropy : 1.0f,
+        .minLod = 0.0f,
+        .maxLod = mipmap == RTPBR_MIPMAP_NONE ? 0.0f : VK_LOD_CLAMP_NONE,
+    };
+    RTPBR_VK(&ctx->host, vkCreateSampler(ctx->device, &info, NULL, &scene->samplers[key]));
+cleanup:
+    return result;
+}
+
+static void material_texture_indices(const rtpbr_material_desc *m, uint32_t index[RTPBR_MATERIAL_TEXTURE_COUNT])
+{
+    index[RTPBR_BINDING_TEXTURE_BASE_COLOR] = m->base_color_texture;
+    index[RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS] = m->metallic_roughness_texture;
+    index[RTPBR_BINDING_TEXTURE_EMISSION] = m->emission_texture;
+    index[RTPBR_BINDING_TEXTURE_NORMAL] = m->normal_texture;
+}
+
 // Uploads the textures (image 0 is a 1x1 white stand-in for "no texture", image i texture i)
-// and writes one descriptor set per material slot.
+// with their mip chains and samplers, and writes one descriptor set per material slot.
 static rtpbr_result create_textures(rtpbr_gpu_scene *scene, const rtpbr_gpu_scene_desc *desc, uint32_t material_slots)
 {
     rtpbr_context *ctx = scene->context;
     rtpbr_result result = RTPBR_SUCCESS;
     RTPBR_ALLOC(&ctx->host, scene->textures, (desc->texture_count + 1) * sizeof *scene->textures);
+    RTPBR_ALLOC(&ctx->host, scene->texture_samplers, (desc->texture_count + 1) * sizeof *scene->texture_samplers);
     static const uint8_t white[4] = {255, 255, 255, 255};
-    RTPBR_TRY(rtpbr_image_create_with_data(ctx, 1, 1, VK_FORMAT_R8G8B8A8_UNORM, white, 4, &scene->textures[0]));
+    static const rtpbr_texture_desc white_desc = {.width = 1, .height = 1, .rgba = white, .mipmap = RTPBR_MIPMAP_NONE};
+    RTPBR_TRY(rtpbr_texture_create(ctx, 1, 1, VK_FORMAT_R8G8B8A8_UNORM, white, 4, false, &scene->textures[0]));
+    scene->texture_samplers[0] = sampler_key(&white_desc);
+    RTPBR_TRY(scene_sampler(scene, scene->texture_samplers[0]));
     scene->texture_count = 1;
     for (uint32_t i = 0; i < desc->texture_count; ++i) {
         const rtpbr_texture_desc *t = &desc->textures[i];
-        RTPBR_TRY(rtpbr_image_create_with_data(ctx, t->width, t->height,
-                                               t->srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM, t->rgba,
-                                               (size_t)t->width * t->height * 4, &scene->textures[i + 1]));
+        RTPBR_TRY(rtpbr_texture_create(ctx, t->width, t->height,
+                                       t->srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM, t->rgba,
+                                       (size_t)t->width * t->height * 4, t->mipmap != RTPBR_MIPMAP_NONE,
+                                       &scene->textures[i + 1]));
+        scene->texture_samplers[i + 1] = sampler_key(t);
         scene->texture_count++;
+        RTPBR_TRY(scene_sampler(scene, scene->texture_samplers[i + 1]));
     }
     RTPBR_TRY(rtpbr_gbuffer_material_sets_create(scene, material_slots));
     for (uint32_t m = 0; m < material_slots; ++m) {
         uint32_t index[RTPBR_MATERIAL_TEXTURE_COUNT] = {0};
-        if (desc->material_count) {
-            index[RTPBR_BINDING_TEXTURE_BASE_COLOR] = desc->materials[m].base_color_texture;
-            index[RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS] = desc->materials[m].metallic_roughness_texture;
-            index[RTPBR_BINDING_TEXTURE_EMISSION] = desc->materials[m].emission_texture;
-            index[RTPBR_BINDING_TEXTURE_NORMAL] = desc->materials[m].normal_texture;
-        }
+        if (desc->material_count) material_texture_indices(&desc->materials[m], index);
         rtpbr_gbuffer_write_material_textures(scene, m, index);
     }
 cleanup:
@@ -332,6 +412,12 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
                       RTPBR_MAX_RENDER_SIZE);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
+        if ((unsigned)t->wrap_s > RTPBR_WRAP_MIRRORED_REPEAT || (unsigned)t->wrap_t > RTPBR_WRAP_MIRRORED_REPEAT ||
+            (unsigned)t->mag_filter > RTPBR_FILTER_NEAREST || (unsigned)t->min_filter > RTPBR_FILTER_NEAREST ||
+            (unsigned)t->mipmap > RTPBR_MIPMAP_NONE) {
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "texture %u: unknown wrap, filter or mipmap mode", i);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
     }
     for (uint32_t i = 0; i < desc->camera_count; ++i)
         if (!rtpbr_finite((const float *)&desc->cameras[i], sizeof desc->cameras[i] / sizeof(float))) {
@@ -367,6 +453,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
             memcpy(dst + RTPBR_VERTEX_FLOATS * v, m->positions + 3 * v, 3 * sizeof(float));
             if (m->texcoords) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 6, m->texcoords + 2 * v, 2 * sizeof(float));
             if (m->tangents) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 8, m->tangents + 4 * v, 4 * sizeof(float));
+            if (m->texcoords1) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 12, m->texcoords1 + 2 * v, 2 * sizeof(float));
         }
         for (uint32_t k = 0; k < count; ++k) indices[index_base + k] = vertex_base + (m->indices ? m->indices[k] : k);
 
@@ -381,8 +468,6 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         index_base += count;
     }
 
-    RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (passes/shadow.c)
-
     uint32_t material_slots = desc->material_count ? desc->material_count : 1;
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, material_slots * sizeof(rtpbr_shader_material),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->materials));
@@ -393,7 +478,13 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     }
     for (uint32_t i = 0; i < desc->material_count; ++i) materials[i] = convert_material(&desc->materials[i]);
     scene->material_count = desc->material_count;
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, material_slots * sizeof(rtpbr_shader_texture_transforms),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->texture_transforms));
+    rtpbr_shader_texture_transforms *transforms = scene->texture_transforms.mapped;
+    if (desc->material_count == 0) transforms[0] = convert_texture_transforms(&(rtpbr_material_desc){0});
+    for (uint32_t i = 0; i < desc->material_count; ++i) transforms[i] = convert_texture_transforms(&desc->materials[i]);
 
+    RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (passes/shadow.c); reads the materials' sidedness
     RTPBR_TRY(create_textures(scene, desc, material_slots));
 
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, RTPBR_MAX_LIGHTS * sizeof(rtpbr_shader_light),
@@ -419,11 +510,15 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_buffer_destroy(ctx, &scene->vertices);
     rtpbr_buffer_destroy(ctx, &scene->indices);
     rtpbr_buffer_destroy(ctx, &scene->materials);
+    rtpbr_buffer_destroy(ctx, &scene->texture_transforms);
     rtpbr_buffer_destroy(ctx, &scene->lights);
     rtpbr_bvh_destroy(scene);
     rtpbr_gbuffer_material_sets_destroy(scene);
     for (uint32_t i = 0; i < scene->texture_count; ++i) rtpbr_image_destroy(ctx, &scene->textures[i]);
+    for (uint32_t i = 0; i < RTPBR_SAMPLER_KEY_COUNT; ++i)
+        if (scene->samplers[i]) vkDestroySampler(ctx->device, scene->samplers[i], NULL);
     rtpbr_free(&ctx->host, scene->textures);
+    rtpbr_free(&ctx->host, scene->texture_samplers);
     rtpbr_free(&ctx->host, scene->draws);
     rtpbr_free(&ctx->host, scene->cameras);
     RTPBR_LIST_UNLINK(ctx->scenes, scene);
@@ -447,17 +542,19 @@ rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index
     if (result != RTPBR_SUCCESS) return result;
     uint32_t textures = scene->texture_count - 1; // the host's; image 0 is the white stand-in
     uint32_t index_of[RTPBR_MATERIAL_TEXTURE_COUNT] = {0};
-    index_of[RTPBR_BINDING_TEXTURE_BASE_COLOR] = material->base_color_texture;
-    index_of[RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS] = material->metallic_roughness_texture;
-    index_of[RTPBR_BINDING_TEXTURE_EMISSION] = material->emission_texture;
-    index_of[RTPBR_BINDING_TEXTURE_NORMAL] = material->normal_texture;
+    material_texture_indices(material, index_of);
     for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b)
         if (index_of[b] > textures) {
             rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u refers to a texture past the scene's %u", index, textures);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
-    ((rtpbr_shader_material *)scene->materials.mapped)[index] = convert_material(material);
+    rtpbr_shader_material *record = &((rtpbr_shader_material *)scene->materials.mapped)[index];
+    bool sidedness_changed = (record->flags ^ (material->double_sided ? RTPBR_MATERIAL_FLAG_DOUBLE_SIDED : 0u)) &
+                             RTPBR_MATERIAL_FLAG_DOUBLE_SIDED;
+    *record = convert_material(material);
+    ((rtpbr_shader_texture_transforms *)scene->texture_transforms.mapped)[index] = convert_texture_transforms(material);
     rtpbr_gbuffer_write_material_textures(scene, index, index_of);
+    if (sidedness_changed) rtpbr_bvh_update_sidedness(scene);
     return RTPBR_SUCCESS;
 }
 

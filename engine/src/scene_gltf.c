@@ -10,9 +10,10 @@
 //   specular.specular_factor  -> specular              (0 -> "none", i.e. -1 in the desc)
 //   specular.specular_color_factor -> specular_color   (black: no lobe, like specular = 0)
 //   double_sided              -> double_sided          (emission on both sides)
-//   base_color / metallic_roughness / emission textures -> the same (TEXCOORD_0, bilinear,
-//                                                         repeat; the file's sampler modes
-//                                                         and mipmaps are not used)
+//   base_color / metallic_roughness / emission textures -> the same, each with its
+//                               *_texture_transform (KHR_texture_transform, texCoord 0 or 1)
+//   texture wrap_s/t, nearest, min_filter -> the texture's sampler (minFilter absent:
+//                               trilinear; mipmaps built at upload)
 //   normal texture, normal_scale -> the same (tangents from the loader)
 //   clearcoat.*               -> clearcoat, clearcoat_roughness (KHR_materials_clearcoat)
 //   anisotropy.*              -> anisotropy, anisotropy_rotation (KHR_materials_anisotropy)
@@ -36,6 +37,110 @@ static uint32_t texture_ref(const rtpbr_gltf_scene *loaded, int32_t index)
 {
     if (index < 0 || (uint32_t)index >= loaded->texture_count || !loaded->textures[index].pixels) return 0;
     return (uint32_t)index + 1;
+}
+
+static rtpbr_texture_transform texture_transform(const rtpbr_gltf_texture_transform *t)
+{
+    rtpbr_texture_transform out = {.texcoord = t->texcoord};
+    if (t->has_transform) {
+        memcpy(out.offset, t->offset, sizeof out.offset);
+        out.rotation = t->rotation;
+        memcpy(out.scale, t->scale, sizeof out.scale);
+    }
+    return out;
+}
+
+void rtpbr_material_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint32_t material,
+                                     rtpbr_material_desc *d)
+{
+    if (!d) return;
+    *d = (rtpbr_material_desc){0};
+    if (!loaded || !loaded->materials || material >= loaded->material_count) return;
+    const rtpbr_gltf_material *m = &loaded->materials[material];
+    memcpy(d->base_color, m->base_color, sizeof d->base_color);
+    d->metallic = m->metallic;
+    d->roughness = m->roughness;
+    memcpy(d->emission, m->emission, sizeof d->emission);
+    d->ior = m->ior.ior == 0.0f ? RTPBR_IOR_FRESNEL_ONE : m->ior.ior;
+    d->specular = m->specular.specular_factor == 0.0f ? -1.0f : m->specular.specular_factor;
+    memcpy(d->specular_color, m->specular.specular_color_factor, sizeof d->specular_color);
+    d->double_sided = m->double_sided;
+    // Loader texture indices are 0-based with -1 for none; the engine's are 1-based.
+    d->base_color_texture = texture_ref(loaded, m->base_color_texture);
+    d->metallic_roughness_texture = texture_ref(loaded, m->metallic_roughness_texture);
+    d->emission_texture = texture_ref(loaded, m->emission_texture);
+    d->normal_texture = texture_ref(loaded, m->normal_texture);
+    d->base_color_texture_transform = texture_transform(&m->base_color_texture_transform);
+    d->metallic_roughness_texture_transform = texture_transform(&m->metallic_roughness_texture_transform);
+    d->emission_texture_transform = texture_transform(&m->emission_texture_transform);
+    d->normal_texture_transform = texture_transform(&m->normal_texture_transform);
+    d->normal_scale = m->normal_scale;
+    if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
+        d->specular = -1.0f; // a black specular colour removes the lobe, like specular = 0
+    if (!m->has_disney) {
+        d->clearcoat = m->clearcoat.clearcoat_factor;
+        d->clearcoat_roughness = m->clearcoat.clearcoat_roughness_factor;
+        d->anisotropy = m->anisotropy.anisotropy_strength;
+        d->anisotropy_rotation = m->anisotropy.anisotropy_rotation;
+        memcpy(d->sheen_color, m->sheen.sheen_color_factor, sizeof d->sheen_color);
+        d->sheen_roughness = m->sheen.sheen_roughness_factor;
+    } else {
+        const rtpbr_gltf_disney *dn = &m->disney;
+        d->model = RTPBR_MATERIAL_DISNEY;
+        d->disney = (rtpbr_disney_params){
+            .subsurface = dn->subsurface,
+            .specular = dn->specular == 0.0f ? -1.0f : dn->specular,
+            .specular_tint = dn->specular_tint,
+            .sheen = dn->sheen,
+            .sheen_tint = dn->sheen_tint,
+            .clearcoat = dn->clearcoat,
+            .clearcoat_gloss = dn->clearcoat_gloss,
+            .anisotropic = dn->anisotropic,
+        };
+    }
+}
+
+void rtpbr_texture_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint32_t texture, rtpbr_texture_desc *out)
+{
+    static const uint8_t white[4] = {255, 255, 255, 255};
+    if (!out) return;
+    *out = (rtpbr_texture_desc){0};
+    if (!loaded || !loaded->textures || texture >= loaded->texture_count) return;
+    const rtpbr_gltf_texture *t = &loaded->textures[texture];
+    if (!t->pixels) { // textures without texels are never referenced (texture_ref)
+        *out = (rtpbr_texture_desc){.width = 1, .height = 1, .rgba = white};
+        return;
+    }
+    static const rtpbr_wrap wraps[] = {
+        [RTPBR_GLTF_WRAP_REPEAT] = RTPBR_WRAP_REPEAT,
+        [RTPBR_GLTF_WRAP_CLAMP_TO_EDGE] = RTPBR_WRAP_CLAMP_TO_EDGE,
+        [RTPBR_GLTF_WRAP_MIRRORED_REPEAT] = RTPBR_WRAP_MIRRORED_REPEAT,
+    };
+    // glTF minFilter -> min filter and mipmap mode; absent: trilinear.
+    static const struct {
+        rtpbr_filter filter;
+        rtpbr_mipmap_mode mipmap;
+    } mins[] = {
+        [RTPBR_GLTF_MIN_FILTER_DEFAULT] = {RTPBR_FILTER_LINEAR, RTPBR_MIPMAP_LINEAR},
+        [RTPBR_GLTF_MIN_FILTER_NEAREST] = {RTPBR_FILTER_NEAREST, RTPBR_MIPMAP_NONE},
+        [RTPBR_GLTF_MIN_FILTER_LINEAR] = {RTPBR_FILTER_LINEAR, RTPBR_MIPMAP_NONE},
+        [RTPBR_GLTF_MIN_FILTER_NEAREST_MIPMAP_NEAREST] = {RTPBR_FILTER_NEAREST, RTPBR_MIPMAP_NEAREST},
+        [RTPBR_GLTF_MIN_FILTER_LINEAR_MIPMAP_NEAREST] = {RTPBR_FILTER_LINEAR, RTPBR_MIPMAP_NEAREST},
+        [RTPBR_GLTF_MIN_FILTER_NEAREST_MIPMAP_LINEAR] = {RTPBR_FILTER_NEAREST, RTPBR_MIPMAP_LINEAR},
+        [RTPBR_GLTF_MIN_FILTER_LINEAR_MIPMAP_LINEAR] = {RTPBR_FILTER_LINEAR, RTPBR_MIPMAP_LINEAR},
+    };
+    unsigned min = (unsigned)t->min_filter < sizeof mins / sizeof mins[0] ? (unsigned)t->min_filter : 0u;
+    *out = (rtpbr_texture_desc){
+        .width = t->width,
+        .height = t->height,
+        .rgba = t->pixels,
+        .srgb = t->srgb,
+        .wrap_s = (unsigned)t->wrap_s < 3u ? wraps[t->wrap_s] : RTPBR_WRAP_REPEAT,
+        .wrap_t = (unsigned)t->wrap_t < 3u ? wraps[t->wrap_t] : RTPBR_WRAP_REPEAT,
+        .mag_filter = t->nearest ? RTPBR_FILTER_NEAREST : RTPBR_FILTER_LINEAR,
+        .min_filter = mins[min].filter,
+        .mipmap = mins[min].mipmap,
+    };
 }
 
 rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_gltf_scene *loaded,
@@ -77,13 +182,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
     rtpbr_camera_desc *cameras = NULL;
     rtpbr_texture_desc *textures = NULL;
     if (loaded->texture_count) RTPBR_ALLOC(&ctx->host, textures, loaded->texture_count * sizeof *textures);
-    for (uint32_t i = 0; i < loaded->texture_count; ++i) {
-        const rtpbr_gltf_texture *t = &loaded->textures[i];
-        if (t->pixels) // textures without texels are never referenced (texture_ref)
-            textures[i] = (rtpbr_texture_desc){.width = t->width, .height = t->height, .rgba = t->pixels, .srgb = t->srgb};
-        else
-            textures[i] = (rtpbr_texture_desc){.width = 1, .height = 1, .rgba = (const uint8_t *)"\xff\xff\xff\xff"};
-    }
+    for (uint32_t i = 0; i < loaded->texture_count; ++i) rtpbr_texture_desc_from_loaded(loaded, i, &textures[i]);
     if (loaded->primitive_count) RTPBR_ALLOC(&ctx->host, meshes, loaded->primitive_count * sizeof *meshes);
     if (loaded->material_count) RTPBR_ALLOC(&ctx->host, materials, loaded->material_count * sizeof *materials);
     if (loaded->light_count) RTPBR_ALLOC(&ctx->host, lights, loaded->light_count * sizeof *lights);
@@ -95,6 +194,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
             .positions = p->positions,
             .normals = p->normals,
             .texcoords = p->texcoords,
+            .texcoords1 = p->has_texcoords1 ? p->texcoords1 : NULL,
             .tangents = p->has_tangents ? p->tangents : NULL,
             .indices = p->indices,
             .vertex_count = p->vertex_count,
@@ -103,45 +203,19 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         }; // positions are already in world space: identity transform
     }
     for (uint32_t i = 0; i < loaded->material_count; ++i) {
+        rtpbr_material_desc_from_loaded(loaded, i, &materials[i]);
+        // The G-buffer carries the extensions' factors only (the oracle reads these textures).
         const rtpbr_gltf_material *m = &loaded->materials[i];
-        rtpbr_material_desc *d = &materials[i];
-        memcpy(d->base_color, m->base_color, sizeof d->base_color);
-        d->metallic = m->metallic;
-        d->roughness = m->roughness;
-        memcpy(d->emission, m->emission, sizeof d->emission);
-        d->ior = m->ior.ior == 0.0f ? RTPBR_IOR_FRESNEL_ONE : m->ior.ior;
-        d->specular = m->specular.specular_factor == 0.0f ? -1.0f : m->specular.specular_factor;
-        memcpy(d->specular_color, m->specular.specular_color_factor, sizeof d->specular_color);
-        d->double_sided = m->double_sided;
-        // Loader texture indices are 0-based with -1 for none; the engine's are 1-based.
-        d->base_color_texture = texture_ref(loaded, m->base_color_texture);
-        d->metallic_roughness_texture = texture_ref(loaded, m->metallic_roughness_texture);
-        d->emission_texture = texture_ref(loaded, m->emission_texture);
-        d->normal_texture = texture_ref(loaded, m->normal_texture);
-        d->normal_scale = m->normal_scale;
-        if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
-            d->specular = -1.0f; // a black specular colour removes the lobe, like specular = 0
-        if (!m->has_disney) {
-            d->clearcoat = m->clearcoat.clearcoat_factor;
-            d->clearcoat_roughness = m->clearcoat.clearcoat_roughness_factor;
-            d->anisotropy = m->anisotropy.anisotropy_strength;
-            d->anisotropy_rotation = m->anisotropy.anisotropy_rotation;
-            memcpy(d->sheen_color, m->sheen.sheen_color_factor, sizeof d->sheen_color);
-            d->sheen_roughness = m->sheen.sheen_roughness_factor;
-        } else {
-            const rtpbr_gltf_disney *dn = &m->disney;
-            d->model = RTPBR_MATERIAL_DISNEY;
-            d->disney = (rtpbr_disney_params){
-                .subsurface = dn->subsurface,
-                .specular = dn->specular == 0.0f ? -1.0f : dn->specular,
-                .specular_tint = dn->specular_tint,
-                .sheen = dn->sheen,
-                .sheen_tint = dn->sheen_tint,
-                .clearcoat = dn->clearcoat,
-                .clearcoat_gloss = dn->clearcoat_gloss,
-                .anisotropic = dn->anisotropic,
-            };
-        }
+        bool ignored = (m->has_clearcoat && (m->clearcoat.clearcoat_texture >= 0 ||
+                                             m->clearcoat.clearcoat_roughness_texture >= 0 ||
+                                             m->clearcoat.clearcoat_normal_texture >= 0)) ||
+                       (m->has_sheen && (m->sheen.sheen_color_texture >= 0 || m->sheen.sheen_roughness_texture >= 0)) ||
+                       (m->has_specular &&
+                        (m->specular.specular_texture >= 0 || m->specular.specular_color_texture >= 0));
+        if (ignored && !m->has_disney)
+            rtpbr_log(&ctx->host, RTPBR_LOG_WARNING,
+                      "material %u: clearcoat, sheen and specular textures are not read by the engine (their factors are)",
+                      i);
     }
     for (uint32_t i = 0; i < loaded->light_count; ++i) {
         const rtpbr_gltf_light *l = &loaded->lights[i];

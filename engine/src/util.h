@@ -79,6 +79,8 @@ rtpbr_result rtpbr_null_object(const char *function, const char *object);
 void rtpbr_mat4_identity(float m[16]);
 void rtpbr_mat4_mul(float out[16], const float a[16], const float b[16]);
 bool rtpbr_mat4_invert(float out[16], const float m[16]);
+// Whether the upper 3x3 has a negative determinant (the transform mirrors: windings flip).
+bool rtpbr_mat4_mirrors(const float m[16]);
 // Vulkan clip space (y down, depth 0..1), right-handed view looking down -Z.
 void rtpbr_camera_matrices(const rtpbr_camera_desc *camera, float aspect, float view_proj[16]);
 bool rtpbr_finite(const float *v, size_t n);

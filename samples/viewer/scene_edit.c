@@ -25,13 +25,6 @@ static void mat4_premultiply(float m[16], const float a[16])
     memcpy(m, r, sizeof r);
 }
 
-// 1-based engine texture index of a loader texture index (0: none), as the engine maps it.
-static uint32_t texture_ref(const rtpbr_gltf_scene *loaded, int32_t index)
-{
-    if (index < 0 || (uint32_t)index >= loaded->texture_count || !loaded->textures[index].pixels) return 0;
-    return (uint32_t)index + 1;
-}
-
 bool viewer_scene_load(viewer_scene *s, const char *path)
 {
     memset(s, 0, sizeof *s);
@@ -53,41 +46,8 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         viewer_scene_destroy(s);
         return false;
     }
-    // The glTF mapping of docs/materials.md, as rtpbr_gpu_scene_from_loaded does it.
-    for (uint32_t i = 0; i < in->material_count; ++i) {
-        const rtpbr_gltf_material *m = &in->materials[i];
-        rtpbr_material_desc *d = &s->materials[i];
-        memcpy(d->base_color, m->base_color, sizeof d->base_color);
-        d->metallic = m->metallic;
-        d->roughness = m->roughness;
-        memcpy(d->emission, m->emission, sizeof d->emission);
-        d->ior = m->ior.ior == 0.0f ? RTPBR_IOR_FRESNEL_ONE : m->ior.ior;
-        d->specular = m->specular.specular_factor == 0.0f ? -1.0f : m->specular.specular_factor;
-        memcpy(d->specular_color, m->specular.specular_color_factor, sizeof d->specular_color);
-        d->double_sided = m->double_sided;
-        d->base_color_texture = texture_ref(in, m->base_color_texture);
-        d->metallic_roughness_texture = texture_ref(in, m->metallic_roughness_texture);
-        d->emission_texture = texture_ref(in, m->emission_texture);
-        d->normal_texture = texture_ref(in, m->normal_texture);
-        d->normal_scale = m->normal_scale;
-        if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
-            d->specular = -1.0f; // a black specular colour removes the lobe
-        if (m->has_disney) {
-            const rtpbr_gltf_disney *dn = &m->disney;
-            d->model = RTPBR_MATERIAL_DISNEY;
-            d->disney = (rtpbr_disney_params){.subsurface = dn->subsurface,
-                .specular = dn->specular == 0.0f ? -1.0f : dn->specular, .specular_tint = dn->specular_tint,
-                .sheen = dn->sheen, .sheen_tint = dn->sheen_tint, .clearcoat = dn->clearcoat,
-                .clearcoat_gloss = dn->clearcoat_gloss, .anisotropic = dn->anisotropic};
-        } else {
-            d->clearcoat = m->clearcoat.clearcoat_factor;
-            d->clearcoat_roughness = m->clearcoat.clearcoat_roughness_factor;
-            d->anisotropy = m->anisotropy.anisotropy_strength;
-            d->anisotropy_rotation = m->anisotropy.anisotropy_rotation;
-            memcpy(d->sheen_color, m->sheen.sheen_color_factor, sizeof d->sheen_color);
-            d->sheen_roughness = m->sheen.sheen_roughness_factor;
-        }
-    }
+    // The glTF mapping of docs/materials.md, rtpbr_gpu_scene_from_loaded's.
+    for (uint32_t i = 0; i < in->material_count; ++i) rtpbr_material_desc_from_loaded(in, i, &s->materials[i]);
     for (uint32_t i = 0; i < in->light_count; ++i) {
         const rtpbr_gltf_light *l = &in->lights[i];
         viewer_light *v = &s->lights[i];
@@ -149,20 +109,14 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
     rtpbr_result r = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
     if (!meshes || !materials || !lights || !light_positions || !light_normals || !light_indices || !textures)
         goto done;
-    for (uint32_t i = 0; i < in->texture_count; ++i) {
-        const rtpbr_gltf_texture *t = &in->textures[i];
-        static const uint8_t white[4] = {255, 255, 255, 255}; // never sampled (no material refers to it)
-        textures[i] = t->pixels ? (rtpbr_texture_desc){.width = t->width, .height = t->height, .rgba = t->pixels,
-                                                      .srgb = t->srgb}
-                                : (rtpbr_texture_desc){.width = 1, .height = 1, .rgba = white};
-    }
+    for (uint32_t i = 0; i < in->texture_count; ++i) rtpbr_texture_desc_from_loaded(in, i, &textures[i]);
     memcpy(materials, s->materials, s->material_count * sizeof *materials);
     uint32_t mesh_count = 0;
     for (uint32_t i = 0; i < in->primitive_count; ++i) {
         const rtpbr_gltf_primitive *p = &in->primitives[i];
         if (s->primitive_is_light[i] || p->vertex_count == 0 || p->index_count == 0) continue;
         meshes[mesh_count++] = (rtpbr_mesh_desc){.positions = p->positions, .normals = p->normals,
-            .texcoords = p->texcoords, .tangents = p->has_tangents ? p->tangents : NULL, .indices = p->indices,
+            .texcoords = p->texcoords, .texcoords1 = p->has_texcoords1 ? p->texcoords1 : NULL, .tangents = p->has_tangents ? p->tangents : NULL, .indices = p->indices,
             .vertex_count = p->vertex_count, .index_count = p->index_count, .material = p->material};
     }
     s->light_mesh_base = mesh_count;

@@ -24,8 +24,9 @@
  * - Triangles are counter-clockwise seen from the side their geometric normal
  *   points to (glTF front face). Nodes with a negative-determinant transform
  *   get their index winding flipped so this stays true in world space.
- * - Sparse accessors are applied. Only TEXCOORD_0 is read. Skins, morph
- *   targets, KHR_texture_transform, occlusion textures and non-triangle
+ * - Sparse accessors are applied. TEXCOORD_0 and TEXCOORD_1 are read.
+ *   KHR_texture_transform is read on every texture slot. Skins, morph
+ *   targets, occlusion textures and non-triangle
  *   primitive modes (points, lines) are ignored with a warning;
  *   TRIANGLE_STRIP and TRIANGLE_FAN are converted to triangle lists.
  * - Degenerate triangles (repeated index, or |e1×e2| <= 1e-7·|e1|·|e2| in
@@ -176,7 +177,10 @@ typedef struct rtpbr_gltf_primitive {
                               smooth normals over shared indices, i.e. flat
                               for unindexed geometry; also replaces zero or
                               non-finite normals of the file.              */
-    float* texcoords;      /* 2 × vertex_count; zeros if has_texcoords false */
+    float* texcoords;      /* 2 × vertex_count, TEXCOORD_0; zeros if
+                              has_texcoords false                          */
+    float* texcoords1;     /* 2 × vertex_count, TEXCOORD_1; zeros if
+                              has_texcoords1 false                         */
     float* tangents;       /* 4 × vertex_count, world space xyz unit, w = ±1
                               bitangent sign (B = w · cross(N, T)). From the
                               file, else generated per vertex from UVs when
@@ -191,6 +195,7 @@ typedef struct rtpbr_gltf_primitive {
     int32_t gltf_node;     /* source node (meshes instanced by several nodes
                               yield one primitive per node)                */
     bool has_texcoords;
+    bool has_texcoords1;
     bool normals_generated;
     bool tangents_generated;
     bool has_tangents;     /* tangents are meaningful (file or generated)   */
@@ -204,6 +209,24 @@ typedef enum rtpbr_gltf_alpha_mode {
     RTPBR_GLTF_ALPHA_BLEND = 2,
 } rtpbr_gltf_alpha_mode;
 
+/* KHR_texture_transform of one texture slot, and the texture coordinate set
+ * the slot reads. With has_transform false the slot reads TEXCOORD_texcoord
+ * unchanged (a zeroed struct: TEXCOORD_0, identity). Otherwise
+ *   uv' = T R S uv:  u' = cos(r) sx u + sin(r) sy v + ox,
+ *                    v' = -sin(r) sx u + cos(r) sy v + oy,
+ * the extension's translation × rotation × scale, r counter-clockwise in UV
+ * space (the spec's example: offset (0, 1), rotation pi/2, scale 0.5 shows
+ * the lower-left quadrant rotated clockwise). */
+typedef struct rtpbr_gltf_texture_transform {
+    float offset[2];          /* default 0, 0                               */
+    float rotation;           /* radians, default 0                         */
+    float scale[2];           /* default 1, 1                               */
+    uint32_t texcoord;        /* TEXCOORD_n: textureInfo.texCoord, or the
+                                 extension's texCoord override; 0 or 1 (a
+                                 set the primitive lacks reads zeros)      */
+    bool has_transform;       /* the extension is present                   */
+} rtpbr_gltf_texture_transform;
+
 /* The material extensions, each in its own struct with a has_ flag in
  * rtpbr_gltf_material (as cgltf does). Values as the file stores them;
  * when has_ is false the struct holds the extension's defaults. Scalars
@@ -212,18 +235,36 @@ typedef struct rtpbr_gltf_ior {              /* KHR_materials_ior          */
     float ior;                /* >= 1, default 1.5; 0: the spec's infinite
                                  IOR (Fresnel 1 at every angle)            */
 } rtpbr_gltf_ior;
+/* Extension textures: indices into scene->textures, -1 = none (the default;
+ * read them only when the extension's has_ flag is set). Each multiplies its
+ * factor, in the channels the extension names. */
 typedef struct rtpbr_gltf_specular {         /* KHR_materials_specular     */
     float specular_factor;          /* [0,1], default 1                     */
     float specular_color_factor[3]; /* linear RGB >= 0 (may exceed 1),
                                        default 1, 1, 1                     */
+    int32_t specular_texture;       /* A x specular_factor (linear)         */
+    int32_t specular_color_texture; /* RGB x specular_color_factor (sRGB)   */
+    rtpbr_gltf_texture_transform specular_texture_transform;
+    rtpbr_gltf_texture_transform specular_color_texture_transform;
 } rtpbr_gltf_specular;
 typedef struct rtpbr_gltf_clearcoat {        /* KHR_materials_clearcoat    */
     float clearcoat_factor;           /* [0,1], default 0                   */
     float clearcoat_roughness_factor; /* perceptual, [0,1], default 0       */
+    int32_t clearcoat_texture;        /* R x clearcoat_factor (linear)      */
+    int32_t clearcoat_roughness_texture; /* G x clearcoat_roughness_factor  */
+    int32_t clearcoat_normal_texture; /* tangent space, like normal_texture */
+    float clearcoat_normal_scale;     /* clearcoatNormalTexture.scale, 1    */
+    rtpbr_gltf_texture_transform clearcoat_texture_transform;
+    rtpbr_gltf_texture_transform clearcoat_roughness_texture_transform;
+    rtpbr_gltf_texture_transform clearcoat_normal_texture_transform;
 } rtpbr_gltf_clearcoat;
 typedef struct rtpbr_gltf_sheen {            /* KHR_materials_sheen        */
     float sheen_color_factor[3];      /* linear RGB, [0,1], default 0       */
     float sheen_roughness_factor;     /* perceptual, [0,1], default 0       */
+    int32_t sheen_color_texture;      /* RGB x sheen_color_factor (sRGB)    */
+    int32_t sheen_roughness_texture;  /* A x sheen_roughness_factor (linear) */
+    rtpbr_gltf_texture_transform sheen_color_texture_transform;
+    rtpbr_gltf_texture_transform sheen_roughness_texture_transform;
 } rtpbr_gltf_sheen;
 typedef struct rtpbr_gltf_anisotropy {       /* KHR_materials_anisotropy   */
     float anisotropy_strength;        /* [0,1], default 0                   */
@@ -279,6 +320,11 @@ typedef struct rtpbr_gltf_material {
     int32_t normal_texture;             /* tangent space, needs tangents   */
     int32_t emission_texture;           /* multiplies emission; NOT used for
                                            light radiance                  */
+    /* Each slot's KHR_texture_transform and texture coordinate set. */
+    rtpbr_gltf_texture_transform base_color_texture_transform;
+    rtpbr_gltf_texture_transform metallic_roughness_texture_transform;
+    rtpbr_gltf_texture_transform normal_texture_transform;
+    rtpbr_gltf_texture_transform emission_texture_transform;
     int32_t gltf_material;    /* source glTF material, -1 = default material */
 } rtpbr_gltf_material;
 
@@ -288,14 +334,27 @@ typedef enum rtpbr_gltf_wrap {
     RTPBR_GLTF_WRAP_MIRRORED_REPEAT = 2,
 } rtpbr_gltf_wrap;
 
+/* glTF sampler.minFilter. Absent (DEFAULT): the renderer's choice; the
+ * engine reads it as LINEAR_MIPMAP_LINEAR (trilinear). */
+typedef enum rtpbr_gltf_min_filter {
+    RTPBR_GLTF_MIN_FILTER_DEFAULT = 0,
+    RTPBR_GLTF_MIN_FILTER_NEAREST = 1,                /* 9728, no mipmaps */
+    RTPBR_GLTF_MIN_FILTER_LINEAR = 2,                 /* 9729, no mipmaps */
+    RTPBR_GLTF_MIN_FILTER_NEAREST_MIPMAP_NEAREST = 3, /* 9984 */
+    RTPBR_GLTF_MIN_FILTER_LINEAR_MIPMAP_NEAREST = 4,  /* 9985 */
+    RTPBR_GLTF_MIN_FILTER_NEAREST_MIPMAP_LINEAR = 5,  /* 9986 */
+    RTPBR_GLTF_MIN_FILTER_LINEAR_MIPMAP_LINEAR = 6,   /* 9987 */
+} rtpbr_gltf_min_filter;
+
 /* A decoded texture: always RGBA8, rows top to bottom, width × height × 4
  * bytes. A glTF texture used both as colour and as data appears twice. */
 typedef struct rtpbr_gltf_texture {
     uint32_t width, height;    /* 0 × 0 when desc.skip_images              */
     uint8_t* pixels;           /* NULL when desc.skip_images                */
     bool srgb;                 /* true: texels are sRGB-encoded colour      */
-    rtpbr_gltf_wrap wrap_s, wrap_t;
-    bool nearest;              /* magFilter NEAREST (else linear)           */
+    rtpbr_gltf_wrap wrap_s, wrap_t;       /* sampler.wrapS/T, default REPEAT */
+    bool nearest;              /* sampler.magFilter NEAREST (else linear)   */
+    rtpbr_gltf_min_filter min_filter;     /* sampler.minFilter            */
     int32_t gltf_texture;      /* source glTF texture index                 */
 } rtpbr_gltf_texture;
 

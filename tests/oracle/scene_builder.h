@@ -38,6 +38,9 @@ struct SceneBuilder {
         m.normal_scale = 1.0f;
         m.alpha_cutoff = 0.5f;
         m.base_color_texture = m.metallic_roughness_texture = m.normal_texture = m.emission_texture = -1;
+        m.specular.specular_texture = m.specular.specular_color_texture = -1;
+        m.clearcoat.clearcoat_texture = m.clearcoat.clearcoat_roughness_texture = m.clearcoat.clearcoat_normal_texture = -1;
+        m.sheen.sheen_color_texture = m.sheen.sheen_roughness_texture = -1;
         m.gltf_material = -1;
         materials.push_back(m);
         return uint32_t(materials.size() - 1);

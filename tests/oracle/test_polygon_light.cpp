@@ -42,6 +42,9 @@ struct Scene {
         if (occluder) {
             uint32_t black = b.material(glm::vec3(0.0f), 0.0f, 1.0f);
             b.materials[black].specular.specular_factor = 0.0f;
+            // Double-sided: its front faces the light, and a single-sided surface lets rays
+            // from behind through (glTF doubleSided false).
+            b.materials[black].double_sided = true;
             // Between the light and the plane, above the camera (which looks down): invisible.
             b.polygon({{-1, 1.0f, -1}, {-1, 1.0f, 1}, {1, 1.0f, 1}, {1, 1.0f, -1}}, black);
         }

@@ -233,6 +233,16 @@ typedef struct rtpbr_disney_params {
     float anisotropic;     // aspect sqrt(1 - 0.9 anisotropic)
 } rtpbr_disney_params;
 
+// KHR_texture_transform of one texture slot, and the texture coordinate set it reads:
+//   uv' = T R S uv:  u' = cos(r) sx u + sin(r) sy v + ox,  v' = -sin(r) sx u + cos(r) sy v + oy
+// (translation x rotation x scale, r counter-clockwise in UV space). All zero: TEXCOORD_0 as is.
+typedef struct rtpbr_texture_transform {
+    float offset[2];         // ox, oy
+    float rotation;          // r, radians
+    float scale[2];          // sx, sy; both zero: 1, 1
+    uint32_t texcoord;       // 0: the mesh's texcoords (TEXCOORD_0), 1: texcoords1 (TEXCOORD_1)
+} rtpbr_texture_transform;
+
 typedef struct rtpbr_material_desc {
     float base_color[3];     // linear albedo (glTF baseColorFactor.rgb); zero is black
     float metallic;          // [0, 1], taken literally (zero: dielectric)
@@ -242,15 +252,22 @@ typedef struct rtpbr_material_desc {
                              // RTPBR_IOR_FRESNEL_ONE: KHR's ior 0 (Fresnel 1 at every angle)
     float specular;          // KHR_materials_specular specularFactor; zero: 1 (set <0 for none, i.e. 0)
     float specular_color[3]; // KHR_materials_specular specularColorFactor; all zero: (1, 1, 1)
-    // Textures: 1-based indices into rtpbr_gpu_scene_desc.textures; 0: none. Sampled with
-    // TEXCOORD_0, bilinear, repeat, no mipmaps; they multiply the factors above (glTF):
+    // Textures: 1-based indices into rtpbr_gpu_scene_desc.textures; 0: none. Sampled with each
+    // texture's sampler (rtpbr_texture_desc) at the slot's *_transform of its texture
+    // coordinate set; they multiply the factors above (glTF):
     uint32_t base_color_texture;         // rgb: base colour (give it srgb = 1)
     uint32_t metallic_roughness_texture; // g: roughness, b: metallic (linear)
     uint32_t emission_texture;           // rgb: emission (give it srgb = 1)
     uint32_t normal_texture;             // rgb: tangent-space normal (linear); needs tangents
     float normal_scale;                  // glTF normalTexture.scale (scales x, y); zero: 1
-    // Non-zero: emits from both sides (glTF doubleSided). Default: emission only on the front
-    // side, the one the vertex normals point to. Reflection is two-sided either way.
+    rtpbr_texture_transform base_color_texture_transform;
+    rtpbr_texture_transform metallic_roughness_texture_transform;
+    rtpbr_texture_transform emission_texture_transform;
+    rtpbr_texture_transform normal_texture_transform;
+    // Non-zero: drawn and emitting on both sides (glTF doubleSided). Default (glTF's
+    // single-sided): back faces, where the mesh's winding is clockwise as seen (after its
+    // transform; counter-clockwise is front), are culled in the G-buffer and let shadow rays
+    // through; emission only on the front side.
     int double_sided;
     // KHR_materials_clearcoat: a GGX coat (F0 0.04, f90 1) of weight clearcoat in [0, 1] over
     // the whole material, which it attenuates by 1 - clearcoat F_coat(NoV). Zero: no coat.
@@ -280,16 +297,42 @@ typedef struct rtpbr_material_desc {
 // infinity and the Fresnel term must evaluate to 1" (the specular-glossiness mode).
 #define RTPBR_IOR_FRESNEL_ONE (-1.0f)
 
+// A texture's sampler (glTF sampler): wrap modes and filters.
+typedef enum rtpbr_wrap {
+    RTPBR_WRAP_REPEAT = 0,           // glTF 10497
+    RTPBR_WRAP_CLAMP_TO_EDGE = 1,    // glTF 33071
+    RTPBR_WRAP_MIRRORED_REPEAT = 2,  // glTF 33648
+} rtpbr_wrap;
+typedef enum rtpbr_filter {
+    RTPBR_FILTER_LINEAR = 0,
+    RTPBR_FILTER_NEAREST = 1,
+} rtpbr_filter;
+typedef enum rtpbr_mipmap_mode {
+    RTPBR_MIPMAP_LINEAR = 0,  // between the two nearest levels (with a linear min_filter: trilinear)
+    RTPBR_MIPMAP_NEAREST = 1, // the nearest level
+    RTPBR_MIPMAP_NONE = 2,    // level 0 only (glTF minFilter NEAREST or LINEAR)
+} rtpbr_mipmap_mode;
+
+// The mip chain is built at upload (linear blits; sRGB textures are filtered in linear space)
+// unless mipmap is RTPBR_MIPMAP_NONE or the device cannot blit the format with linear
+// filtering (then level 0 only, with an info message). Sampling is anisotropic (up to 16x)
+// with linear filters and mipmaps when the device has samplerAnisotropy enabled (standalone:
+// when supported; embedded: when the host enabled it).
 typedef struct rtpbr_texture_desc {
     uint32_t width, height;  // required, 1..RTPBR_MAX_RENDER_SIZE
     const uint8_t *rgba;     // required: width * height RGBA8 texels, rows top to bottom
     int srgb;                // non-zero: sRGB-encoded colour; default: linear data
+    rtpbr_wrap wrap_s, wrap_t;   // default: repeat
+    rtpbr_filter mag_filter;     // default: linear
+    rtpbr_filter min_filter;     // default: linear
+    rtpbr_mipmap_mode mipmap;    // default: linear (trilinear with the default min_filter)
 } rtpbr_texture_desc;
 
 typedef struct rtpbr_mesh_desc {
     const float *positions;   // 3 floats per vertex; required
     const float *normals;     // 3 floats per vertex; NULL: computed (area-weighted smooth)
     const float *texcoords;   // 2 floats per vertex (glTF TEXCOORD_0); NULL: all zero
+    const float *texcoords1;  // 2 floats per vertex (glTF TEXCOORD_1); NULL: all zero
     const float *tangents;    // 4 floats per vertex: xyz, w = bitangent sign (B = w N x T, glTF);
                               // NULL: zero, and normal textures have no effect
     const uint32_t *indices;  // 3 per triangle; NULL: vertices taken three at a time
@@ -352,6 +395,14 @@ RTPBR_API rtpbr_result rtpbr_gpu_scene_load_gltf(rtpbr_context *context, const c
 // A non-zero count with a NULL array: RTPBR_ERROR_INVALID_ARGUMENT.
 RTPBR_API rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *context, const struct rtpbr_gltf_scene *loaded,
                                                    rtpbr_gpu_scene **out_scene);
+// The glTF mapping of rtpbr_gpu_scene_from_loaded for one material and one texture, for hosts
+// that build their own rtpbr_gpu_scene_desc from a loaded scene (the viewer edits materials):
+// loader texture indices (0-based, -1 none) become 1-based desc indices, 0 for none or for a
+// texture without texels. Indices out of range: *out is zeroed.
+RTPBR_API void rtpbr_material_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint32_t material,
+                                               rtpbr_material_desc *out);
+RTPBR_API void rtpbr_texture_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint32_t texture,
+                                              rtpbr_texture_desc *out);
 RTPBR_API void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene);
 RTPBR_API uint32_t rtpbr_gpu_scene_camera_count(const rtpbr_gpu_scene *scene);
 RTPBR_API uint32_t rtpbr_gpu_scene_light_count(const rtpbr_gpu_scene *scene);

@@ -19,6 +19,7 @@ static const VkDescriptorSetLayoutBinding frame_bindings[] = {
     {RTPBR_BINDING_GBUFFER_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
      VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
     {RTPBR_BINDING_GBUFFER_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
+    {RTPBR_BINDING_GBUFFER_TEXTURE_TRANSFORMS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, NULL},
 };
 // Set 1, one per material slot of a scene.
 static const VkDescriptorSetLayoutBinding material_bindings[RTPBR_MATERIAL_TEXTURE_COUNT] = {
@@ -41,19 +42,20 @@ rtpbr_result rtpbr_gbuffer_pass_init(rtpbr_context *ctx)
                                            sizeof(rtpbr_shader_draw), &pass->layout));
     RTPBR_TRY(rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_gbuffer_vert), &vert));
     RTPBR_TRY(rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_gbuffer_frag), &frag));
-    // The scene's vertex layout (RTPBR_VERTEX_FLOATS): position, normal, uv, tangent.
+    // The scene's vertex layout (RTPBR_VERTEX_FLOATS): position, normal, uv, tangent, uv1.
     VkVertexInputBindingDescription binding = {0, RTPBR_VERTEX_FLOATS * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX};
-    VkVertexInputAttributeDescription attributes[4] = {
+    VkVertexInputAttributeDescription attributes[5] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
         {2, 0, VK_FORMAT_R32G32_SFLOAT, 6 * sizeof(float)},
         {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 8 * sizeof(float)},
+        {4, 0, VK_FORMAT_R32G32_SFLOAT, 12 * sizeof(float)},
     };
     VkPipelineVertexInputStateCreateInfo vertex_input = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
         .vertexBindingDescriptionCount = 1,
         .pVertexBindingDescriptions = &binding,
-        .vertexAttributeDescriptionCount = 4,
+        .vertexAttributeDescriptionCount = 5,
         .pVertexAttributeDescriptions = attributes,
     };
     rtpbr_graphics_desc d = {
@@ -64,6 +66,7 @@ rtpbr_result rtpbr_gbuffer_pass_init(rtpbr_context *ctx)
         .color_count = RTPBR_GBUFFER_COUNT,
         .depth_format = RTPBR_DEPTH_FORMAT,
         .vertex_input = &vertex_input,
+        .dynamic_cull = true, // back faces of single-sided materials (rtpbr_gbuffer_record)
     };
     RTPBR_TRY(rtpbr_graphics_pipeline_create(ctx, &d, &pass->pipeline));
 cleanup:
@@ -136,7 +139,8 @@ void rtpbr_gbuffer_write_material_textures(rtpbr_gpu_scene *scene, uint32_t m,
     rtpbr_context *ctx = scene->context;
     for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b)
         rtpbr_descriptor_write_image(ctx, RTPBR_BINDINGS(material_bindings), scene->material_sets[m],
-                                     material_bindings[b].binding, ctx->texture_sampler,
+                                     material_bindings[b].binding,
+                                     scene->samplers[scene->texture_samplers[texture[material_bindings[b].binding]]],
                                      scene->textures[texture[material_bindings[b].binding]].view,
                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
@@ -145,6 +149,9 @@ void rtpbr_gbuffer_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
 {
     rtpbr_descriptor_write_buffer(r->context, RTPBR_BINDINGS(frame_bindings), r->gbuffer_set.set,
                                   RTPBR_BINDING_GBUFFER_MATERIALS, scene->materials.buffer, VK_WHOLE_SIZE);
+    rtpbr_descriptor_write_buffer(r->context, RTPBR_BINDINGS(frame_bindings), r->gbuffer_set.set,
+                                  RTPBR_BINDING_GBUFFER_TEXTURE_TRANSFORMS, scene->texture_transforms.buffer,
+                                  VK_WHOLE_SIZE);
 }
 
 void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCommandBuffer cmd)
@@ -197,8 +204,15 @@ void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCom
         VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &scene->vertices.buffer, &offset);
         vkCmdBindIndexBuffer(cmd, scene->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+        const rtpbr_shader_material *materials = scene->materials.mapped;
         for (uint32_t i = 0; i < scene->draw_count; ++i) {
             const rtpbr_draw *d = &scene->draws[i];
+            // glTF doubleSided false: back faces are not drawn. Counter-clockwise is the front
+            // (the projection's y flip keeps it so), clockwise under a mirroring transform.
+            bool single_sided = !(materials[d->push.material].flags & RTPBR_MATERIAL_FLAG_DOUBLE_SIDED);
+            vkCmdSetCullMode(cmd, single_sided ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
+            vkCmdSetFrontFace(cmd, rtpbr_mat4_mirrors(d->push.world_from_object) ? VK_FRONT_FACE_CLOCKWISE
+                                                                                  : VK_FRONT_FACE_COUNTER_CLOCKWISE);
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->gbuffer.layout, 1, 1,
                                     &scene->material_sets[d->push.material], 0, NULL);
             vkCmdPushConstants(cmd, ctx->gbuffer.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,

@@ -114,10 +114,11 @@ rtpbr_result rtpbr_graphics_pipeline_create(rtpbr_context *ctx, const rtpbr_grap
         .attachmentCount = d->color_count,
         .pAttachments = blend,
     };
-    VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR, VK_DYNAMIC_STATE_CULL_MODE,
+                                       VK_DYNAMIC_STATE_FRONT_FACE};
     VkPipelineDynamicStateCreateInfo dynamic = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
-        .dynamicStateCount = 2,
+        .dynamicStateCount = d->dynamic_cull ? 4 : 2,
         .pDynamicStates = dynamic_states,
     };
     VkPipelineRenderingCreateInfo rendering = {

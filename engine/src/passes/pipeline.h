@@ -33,7 +33,8 @@ rtpbr_result rtpbr_pipeline_layout_create(rtpbr_context *ctx, const VkDescriptor
 rtpbr_result rtpbr_compute_pipeline_create(rtpbr_context *ctx, rtpbr_spirv spirv, VkPipelineLayout layout,
                                            VkPipeline *out);
 // A graphics pipeline with dynamic rendering, dynamic viewport and scissor, no blending,
-// no culling, triangle lists.
+// triangle lists; no culling, or with dynamic_cull the cull mode and front face set per draw
+// (vkCmdSetCullMode, vkCmdSetFrontFace: core in Vulkan 1.3).
 typedef struct rtpbr_graphics_desc {
     VkShaderModule vert, frag;
     VkPipelineLayout layout;
@@ -41,6 +42,7 @@ typedef struct rtpbr_graphics_desc {
     uint32_t color_count;       // at most 4
     VkFormat depth_format;      // VK_FORMAT_UNDEFINED: no depth
     const VkPipelineVertexInputStateCreateInfo *vertex_input; // NULL: no vertex input
+    bool dynamic_cull;
 } rtpbr_graphics_desc;
 rtpbr_result rtpbr_graphics_pipeline_create(rtpbr_context *ctx, const rtpbr_graphics_desc *desc, VkPipeline *out);
 

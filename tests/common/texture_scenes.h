@@ -1,0 +1,270 @@
+// Small glTF scenes for the texture tests of both renderers (tests/engine/test_engine_textures.c,
+// tests/oracle/test_texture_settings.cpp): one textured quad in a white furnace, written as a
+// self-contained .gltf (buffer and PNG as data: URIs) so that the loader reads it as any file.
+//
+// The scene: a Lambertian quad [-1, 1]^2 in the plane z = 0 facing +Z (or -Z when
+// `facing_away`), base colour = its texture (no specular: KHR_materials_specular 0), inside an
+// emissive box of radiance 1 (|x|, |y|, |z| <= 10, double-sided, so every face is a light of the
+// loader) that makes the quad's radiance equal its albedo. A camera at (0, 0, 3) looks down -Z
+// with a vertical field of view of 2 atan(1/3), so the quad fills a square image exactly.
+// TEXCOORD_0 runs from uv_min at the quad's top-left corner (x = -1, y = +1) to uv_max at its
+// bottom-right corner; TEXCOORD_1 holds the same values, and TEXCOORD_0 is all zero when the
+// texture transform overrides texCoord with 1 (so that only the right set shows the texture).
+// Header-only, C and C++.
+#ifndef RTPBR_TESTS_TEXTURE_SCENES_H
+#define RTPBR_TESTS_TEXTURE_SCENES_H
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct texture_scene {
+    uint32_t texture_width, texture_height;
+    const uint8_t *rgba;          // texture_width * texture_height texels, rows top to bottom
+    int wrap_s, wrap_t;           // glTF codes (10497 repeat, 33071 clamp, 33648 mirror)
+    int mag_filter, min_filter;   // glTF codes; 0: absent
+    float uv_min[2], uv_max[2];   // TEXCOORD_0 (and _1) at the top-left and bottom-right corners
+    int facing_away;              // the quad faces -Z (away from the camera)
+    int double_sided;
+    // KHR_texture_transform on baseColorTexture (when has_transform).
+    int has_transform;
+    float offset[2], rotation, scale[2];
+    int texcoord;                 // the transform's texCoord override (-1: none)
+} texture_scene;
+
+// The camera: at (0, 0, 3) looking down -Z, tan(yfov / 2) = 1/3.
+#define TEXTURE_SCENE_CAMERA_Z 3.0
+#define TEXTURE_SCENE_TAN_HALF_FOV (1.0 / 3.0)
+
+// The quad point seen through the centre of pixel (px, py) of a square image of n pixels:
+// plane z = 0, x, y in [-1, 1] (y up).
+static inline void texture_scene_pixel_point(uint32_t px, uint32_t py, uint32_t n, double *x, double *y)
+{
+    *x = (2.0 * (px + 0.5) / n - 1.0) * TEXTURE_SCENE_TAN_HALF_FOV * TEXTURE_SCENE_CAMERA_Z;
+    *y = (1.0 - 2.0 * (py + 0.5) / n) * TEXTURE_SCENE_TAN_HALF_FOV * TEXTURE_SCENE_CAMERA_Z;
+}
+
+// ---- writing ---------------------------------------------------------------------------------
+
+static inline uint32_t texture_scene_crc(const uint8_t *p, size_t n, uint32_t crc)
+{
+    crc = ~crc;
+    for (size_t i = 0; i < n; ++i) {
+        crc ^= p[i];
+        for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+}
+
+static inline void texture_scene_be32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)(v >> 24), p[1] = (uint8_t)(v >> 16), p[2] = (uint8_t)(v >> 8), p[3] = (uint8_t)v;
+}
+
+// An RGBA8 PNG with stored (uncompressed) deflate blocks; returns its size, *out malloc'ed.
+static inline size_t texture_scene_png(uint32_t w, uint32_t h, const uint8_t *rgba, uint8_t **out)
+{
+    size_t raw_size = (size_t)h * (1 + 4 * (size_t)w);
+    uint8_t *raw = (uint8_t *)malloc(raw_size);
+    for (uint32_t y = 0; y < h; ++y) {
+        raw[y * (1 + 4 * (size_t)w)] = 0; // filter: none
+        memcpy(raw + y * (1 + 4 * (size_t)w) + 1, rgba + 4 * (size_t)w * y, 4 * (size_t)w);
+    }
+    size_t blocks = raw_size / 65535 + 1;
+    size_t zsize = 2 + raw_size + 5 * blocks + 4;
+    size_t size = 8 + 25 + (12 + zsize) + 12;
+    uint8_t *p = (uint8_t *)malloc(size), *q = p;
+    static const uint8_t signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    memcpy(q, signature, 8), q += 8;
+    texture_scene_be32(q, 13), memcpy(q + 4, "IHDR", 4);
+    texture_scene_be32(q + 8, w), texture_scene_be32(q + 12, h);
+    q[16] = 8, q[17] = 6, q[18] = 0, q[19] = 0, q[20] = 0; // 8-bit RGBA
+    texture_scene_be32(q + 21, texture_scene_crc(q + 4, 17, 0)), q += 25;
+    texture_scene_be32(q, (uint32_t)zsize), memcpy(q + 4, "IDAT", 4);
+    uint8_t *z = q + 8;
+    z[0] = 0x78, z[1] = 0x01;
+    size_t at = 2;
+    uint32_t a = 1, b = 0;
+    for (size_t i = 0; i < raw_size; ++i) a = (a + raw[i]) % 65521u, b = (b + a) % 65521u;
+    for (size_t done = 0, k = 0; k < blocks; ++k) {
+        size_t n = raw_size - done < 65535 ? raw_size - done : 65535;
+        z[at] = k + 1 == blocks ? 1 : 0;
+        z[at + 1] = (uint8_t)n, z[at + 2] = (uint8_t)(n >> 8);
+        z[at + 3] = (uint8_t)~n, z[at + 4] = (uint8_t)(~n >> 8);
+        memcpy(z + at + 5, raw + done, n);
+        at += 5 + n, done += n;
+    }
+    texture_scene_be32(z + at, (b << 16) | a);
+    texture_scene_be32(q + 8 + zsize, texture_scene_crc(q + 4, 4 + zsize, 0)), q += 12 + zsize;
+    texture_scene_be32(q, 0), memcpy(q + 4, "IEND", 4), texture_scene_be32(q + 8, texture_scene_crc(q + 4, 4, 0));
+    free(raw);
+    *out = p;
+    return size;
+}
+
+static inline void texture_scene_base64(FILE *f, const uint8_t *p, size_t n)
+{
+    static const char table[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    for (size_t i = 0; i < n; i += 3) {
+        uint32_t v = (uint32_t)p[i] << 16 | (i + 1 < n ? (uint32_t)p[i + 1] << 8 : 0) | (i + 2 < n ? p[i + 2] : 0);
+        fputc(table[v >> 18 & 63], f), fputc(table[v >> 12 & 63], f);
+        fputc(i + 1 < n ? table[v >> 6 & 63] : '=', f), fputc(i + 2 < n ? table[v & 63] : '=', f);
+    }
+}
+
+// Writes the scene to `path`; returns 0 on success.
+static inline int texture_scene_write(const texture_scene *s, const char *path)
+{
+    // Buffer: quad positions (4 x vec3), normals, TEXCOORD_0, TEXCOORD_1, indices (6 x u16 + pad);
+    // box positions (8 x vec3), box indices (36 x u16), inward faces.
+    float quad_pos[12] = {-1, 1, 0, 1, 1, 0, 1, -1, 0, -1, -1, 0};
+    float nz = s->facing_away ? -1.0f : 1.0f;
+    float quad_nrm[12] = {0, 0, nz, 0, 0, nz, 0, 0, nz, 0, 0, nz};
+    float uv[8] = {s->uv_min[0], s->uv_min[1], s->uv_max[0], s->uv_min[1],
+                   s->uv_max[0], s->uv_max[1], s->uv_min[0], s->uv_max[1]};
+    // Counter-clockwise seen from +Z: 3 2 1, 3 1 0 (top-left 0, top-right 1, bottom-right 2, bottom-left 3).
+    uint16_t front[8] = {3, 2, 1, 3, 1, 0, 0, 0}, away[8] = {3, 1, 2, 3, 0, 1, 0, 0};
+    const float e = 10.0f;
+    float box_pos[24] = {-e, -e, -e, e, -e, -e, e, e, -e, -e, e, -e, -e, -e, e, e, -e, e, e, e, e, -e, e, e};
+    uint16_t box_idx[36] = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
+                            3, 2, 6, 3, 6, 7, 0, 3, 7, 0, 7, 4, 1, 5, 6, 1, 6, 2};
+    uint8_t buffer[48 + 48 + 32 + 32 + 16 + 96 + 72];
+    size_t at = 0;
+#define TEXTURE_SCENE_PUT(array) (memcpy(buffer + at, array, sizeof array), at += sizeof array)
+    TEXTURE_SCENE_PUT(quad_pos);
+    TEXTURE_SCENE_PUT(quad_nrm);
+    float zeros[8] = {0};
+    if (s->has_transform && s->texcoord == 1) TEXTURE_SCENE_PUT(zeros);
+    else TEXTURE_SCENE_PUT(uv);
+    TEXTURE_SCENE_PUT(uv);
+    if (s->facing_away) TEXTURE_SCENE_PUT(away);
+    else TEXTURE_SCENE_PUT(front);
+    TEXTURE_SCENE_PUT(box_pos);
+    TEXTURE_SCENE_PUT(box_idx);
+#undef TEXTURE_SCENE_PUT
+    uint8_t *png = NULL;
+    size_t png_size = texture_scene_png(s->texture_width, s->texture_height, s->rgba, &png);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        free(png);
+        return -1;
+    }
+    const int zero0 = s->has_transform && s->texcoord == 1;
+    float lo0 = fminf(s->uv_min[0], s->uv_max[0]), hi0 = fmaxf(s->uv_min[0], s->uv_max[0]);
+    float lo1 = fminf(s->uv_min[1], s->uv_max[1]), hi1 = fmaxf(s->uv_min[1], s->uv_max[1]);
+    fprintf(f, "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1,2]}],\n");
+    fprintf(f, "\"extensionsUsed\":[\"KHR_materials_specular\"%s],\n",
+            s->has_transform ? ",\"KHR_texture_transform\"" : "");
+    if (s->has_transform) fprintf(f, "\"extensionsRequired\":[\"KHR_texture_transform\"],\n");
+    fprintf(f, "\"nodes\":[{\"mesh\":0},{\"mesh\":1},{\"camera\":0,\"translation\":[0,0,%g]}],\n",
+            TEXTURE_SCENE_CAMERA_Z);
+    fprintf(f, "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":%.9g,\"aspectRatio\":1,"
+               "\"znear\":0.05,\"zfar\":100}}],\n",
+            2.0 * atan(TEXTURE_SCENE_TAN_HALF_FOV));
+    fprintf(f, "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"TEXCOORD_0\":2,"
+               "\"TEXCOORD_1\":3},\"indices\":4,\"material\":0}]},\n"
+               "{\"primitives\":[{\"attributes\":{\"POSITION\":5},\"indices\":6,\"material\":1}]}],\n");
+    fprintf(f, "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0");
+    if (s->has_transform) {
+        fprintf(f, ",\"extensions\":{\"KHR_texture_transform\":{\"offset\":[%.9g,%.9g],\"rotation\":%.9g,"
+                   "\"scale\":[%.9g,%.9g]",
+                s->offset[0], s->offset[1], s->rotation, s->scale[0], s->scale[1]);
+        if (s->texcoord >= 0) fprintf(f, ",\"texCoord\":%d", s->texcoord);
+        fprintf(f, "}}");
+    }
+    fprintf(f, "},\"metallicFactor\":0,\"roughnessFactor\":1},\"doubleSided\":%s,"
+               "\"extensions\":{\"KHR_materials_specular\":{\"specularFactor\":0}}},\n",
+            s->double_sided ? "true" : "false");
+    fprintf(f, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1],\"metallicFactor\":0},"
+               "\"emissiveFactor\":[1,1,1],\"doubleSided\":true}],\n");
+    fprintf(f, "\"textures\":[{\"source\":0,\"sampler\":0}],\n\"samplers\":[{\"wrapS\":%d,\"wrapT\":%d", s->wrap_s,
+            s->wrap_t);
+    if (s->mag_filter) fprintf(f, ",\"magFilter\":%d", s->mag_filter);
+    if (s->min_filter) fprintf(f, ",\"minFilter\":%d", s->min_filter);
+    fprintf(f, "}],\n\"images\":[{\"uri\":\"data:image/png;base64,");
+    texture_scene_base64(f, png, png_size);
+    fprintf(f, "\"}],\n");
+    fprintf(f, "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
+               "\"min\":[-1,-1,0],\"max\":[1,1,0]},\n"
+               "{\"bufferView\":1,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\"},\n"
+               "{\"bufferView\":2,\"componentType\":5126,\"count\":4,\"type\":\"VEC2\","
+               "\"min\":[%.9g,%.9g],\"max\":[%.9g,%.9g]},\n"
+               "{\"bufferView\":3,\"componentType\":5126,\"count\":4,\"type\":\"VEC2\","
+               "\"min\":[%.9g,%.9g],\"max\":[%.9g,%.9g]},\n"
+               "{\"bufferView\":4,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"},\n"
+               "{\"bufferView\":5,\"componentType\":5126,\"count\":8,\"type\":\"VEC3\",\"min\":[-10,-10,-10],"
+               "\"max\":[10,10,10]},\n"
+               "{\"bufferView\":6,\"componentType\":5123,\"count\":36,\"type\":\"SCALAR\"}],\n",
+            zero0 ? 0.0f : lo0, zero0 ? 0.0f : lo1, zero0 ? 0.0f : hi0, zero0 ? 0.0f : hi1, lo0, lo1, hi0, hi1);
+    fprintf(f, "\"bufferViews\":[{\"buffer\":0,\"byteLength\":48},{\"buffer\":0,\"byteOffset\":48,"
+               "\"byteLength\":48},{\"buffer\":0,\"byteOffset\":96,\"byteLength\":32},{\"buffer\":0,"
+               "\"byteOffset\":128,\"byteLength\":32},{\"buffer\":0,\"byteOffset\":160,\"byteLength\":12},"
+               "{\"buffer\":0,\"byteOffset\":176,\"byteLength\":96},{\"buffer\":0,\"byteOffset\":272,"
+               "\"byteLength\":72}],\n");
+    fprintf(f, "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,", at);
+    texture_scene_base64(f, buffer, at);
+    fprintf(f, "\"}]}\n");
+    free(png);
+    return fclose(f) == 0 ? 0 : -1;
+}
+
+// ---- expectations (closed form, independent of both renderers) ------------------------------
+
+// glTF wrap of a texture coordinate into [0, 1) (clamp: [0, 1]).
+static inline double texture_scene_wrap(double u, int mode)
+{
+    if (mode == 33071) return u < 0.0 ? 0.0 : u > 1.0 ? 1.0 : u;
+    if (mode == 33648) {
+        double m = u - 2.0 * floor(u / 2.0); // [0, 2)
+        return m < 1.0 ? m : 2.0 - m;
+    }
+    return u - floor(u);
+}
+
+// The texel (nearest) a wrapped coordinate falls in, and how far (in texels) it is from the
+// nearest texel edge across which the texel changes (clamped coordinates outside (0, 1) are
+// far from every edge).
+static inline int texture_scene_texel(double u, int mode, uint32_t n, double *edge_distance)
+{
+    double w = texture_scene_wrap(u, mode) * n;
+    int i = (int)floor(w);
+    if (i >= (int)n) i = (int)n - 1;
+    double f = w - i;
+    *edge_distance = fmin(f, 1.0 - f);
+    if (mode == 33071) { // no seam at 0 and 1: only the edges between texels count
+        if (u <= 0.0 || u >= 1.0) *edge_distance = 1.0;
+        else if (i == 0) *edge_distance = n > 1 ? 1.0 - f : 1.0;
+        else if (i == (int)n - 1) *edge_distance = f;
+    }
+    return i;
+}
+
+// TEXCOORD_0 at the quad point (x, y) (linear between the corners).
+static inline void texture_scene_uv(const texture_scene *s, double x, double y, double uv[2])
+{
+    double tx = (x + 1.0) / 2.0, ty = (1.0 - y) / 2.0;
+    uv[0] = s->uv_min[0] + tx * (s->uv_max[0] - s->uv_min[0]);
+    uv[1] = s->uv_min[1] + ty * (s->uv_max[1] - s->uv_min[1]);
+}
+
+// KHR_texture_transform, the spec's matrix T R S written out: its example (offset (0, 1),
+// rotation pi/2, scale 0.5: "the lower left quadrant of the source image, rotated clockwise
+// 90 degrees") fixes the signs: u' = sx u cos r + sy v sin r + ox, v' = -sx u sin r + sy v cos r + oy.
+static inline void texture_scene_transform(const texture_scene *s, const double uv[2], double out[2])
+{
+    double c = cos(s->rotation), n = sin(s->rotation);
+    double su = s->scale[0] * uv[0], sv = s->scale[1] * uv[1];
+    out[0] = c * su + n * sv + s->offset[0];
+    out[1] = -n * su + c * sv + s->offset[1];
+}
+
+// sRGB 8-bit to linear (IEC 61966-2-1), for expected base colours.
+static inline double texture_scene_srgb_to_linear(uint8_t v)
+{
+    double c = v / 255.0;
+    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+#endif // RTPBR_TESTS_TEXTURE_SCENES_H

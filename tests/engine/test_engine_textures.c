@@ -1,0 +1,224 @@
+// Textures as glTF means them (issue 28), read back from rendered pixels: sampler wrap modes
+// (repeat, clamp, mirror, per axis), KHR_texture_transform with a texCoord override, back faces
+// of single-sided materials, and mipmaps against aliasing. Scenes from
+// tests/common/texture_scenes.h (also rendered by the oracle in tests/oracle); expectations in
+// closed form. A textured Lambertian quad in a white furnace: radiance = base colour.
+#define _DEFAULT_SOURCE // mkstemps
+#include "engine_test.h"
+
+#include "texture_scenes.h"
+
+#include <stdlib.h>
+#include <unistd.h>
+
+enum { N = 48 }; // image side
+
+// Four distinct colours (sRGB texels; linear values: 1 or 0 in each channel).
+static const uint8_t palette_2x2[16] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 0, 255};
+
+typedef struct rendered {
+    float px[N * N * 4];
+} rendered;
+
+// Writes the scene to a temporary file, loads it through the glTF loader and renders it.
+static void render_scene(const texture_scene *s, rendered *out)
+{
+    char path[] = "/tmp/rtpbr-texture-scene-XXXXXX.gltf";
+    int fd = mkstemps(path, 5);
+    assert_true(fd >= 0);
+    close(fd);
+    assert_int_equal(texture_scene_write(s, path), 0);
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    rtpbr_gpu_scene *scene = NULL;
+    rtpbr_result r = rtpbr_gpu_scene_load_gltf(ctx, path, &scene);
+    unlink(path);
+    if (r != RTPBR_SUCCESS) fprintf(stderr, "load: %s\n", log.last_error);
+    assert_int_equal(r, RTPBR_SUCCESS);
+    rtpbr_renderer *renderer = NULL;
+    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = N, .height = N}, &renderer),
+                     RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_render(renderer, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(renderer, out->px, sizeof out->px), RTPBR_SUCCESS);
+    rtpbr_renderer_destroy(renderer);
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+}
+
+// The pixel's colour must be texel (tx, ty) of a 2x2 palette texture (linear 0/1 channels).
+static void expect_texel(const rendered *img, uint32_t px, uint32_t py, const uint8_t *texels, uint32_t w, int tx,
+                         int ty, const char *what)
+{
+    const float *p = img->px + 4 * (py * N + px);
+    const uint8_t *t = texels + 4 * ((size_t)ty * w + (size_t)tx);
+    for (int c = 0; c < 3; ++c) {
+        double expected = texture_scene_srgb_to_linear(t[c]);
+        if (fabs(p[c] - expected) > 0.05) {
+            fail_msg("%s: pixel (%u, %u) is (%g, %g, %g), expected texel (%d, %d) = (%g, %g, %g)", what, px, py, p[0],
+                     p[1], p[2], tx, ty, texture_scene_srgb_to_linear(t[0]), texture_scene_srgb_to_linear(t[1]),
+                     texture_scene_srgb_to_linear(t[2]));
+        }
+    }
+}
+
+// Every pixel away from texel edges shows the texel the wrap modes select, nearest filtering.
+static void check_wrap(int wrap_s, int wrap_t, const char *what)
+{
+    texture_scene s = {
+        .texture_width = 2, .texture_height = 2, .rgba = palette_2x2, .wrap_s = wrap_s, .wrap_t = wrap_t,
+        .mag_filter = 9728, .min_filter = 9728, .uv_min = {-1.0f, -1.0f}, .uv_max = {2.0f, 2.0f}, .texcoord = -1,
+    };
+    rendered *img = malloc(sizeof *img);
+    render_scene(&s, img);
+    int checked = 0;
+    for (uint32_t py = 0; py < N; ++py)
+        for (uint32_t px = 0; px < N; ++px) {
+            double x, y, uv[2], du, dv;
+            texture_scene_pixel_point(px, py, N, &x, &y);
+            texture_scene_uv(&s, x, y, uv);
+            int tx = texture_scene_texel(uv[0], wrap_s, 2, &du), ty = texture_scene_texel(uv[1], wrap_t, 2, &dv);
+            if (du < 0.15 || dv < 0.15) continue; // a pixel (1/8 texel) away from edges
+            expect_texel(img, px, py, palette_2x2, 2, tx, ty, what);
+            ++checked;
+        }
+    assert_true(checked > N * N / 2);
+    free(img);
+}
+
+static void test_wrap_repeat(void **state)
+{
+    (void)state;
+    check_wrap(10497, 10497, "repeat");
+}
+
+static void test_wrap_clamp(void **state)
+{
+    (void)state;
+    check_wrap(33071, 33071, "clamp");
+}
+
+static void test_wrap_mirror(void **state)
+{
+    (void)state;
+    check_wrap(33648, 33648, "mirror");
+}
+
+static void test_wrap_per_axis(void **state)
+{
+    (void)state;
+    check_wrap(33071, 33648, "clamp S, mirror T");
+    check_wrap(33648, 10497, "mirror S, repeat T");
+}
+
+// KHR_texture_transform with offset, rotation and scale, read through TEXCOORD_1 (the
+// transform's texCoord override; TEXCOORD_0 is all zero). Expected texel from the closed form
+// of texture_scenes.h.
+static void test_texture_transform(void **state)
+{
+    (void)state;
+    uint8_t texels[64];
+    // 16 distinct colours: each channel one of 0, 128, 255 (the base-3 digits of i).
+    for (int i = 0; i < 16; ++i) {
+        static const uint8_t levels[3] = {0, 128, 255};
+        texels[4 * i] = levels[i % 3];
+        texels[4 * i + 1] = levels[i / 3 % 3];
+        texels[4 * i + 2] = levels[i / 9 % 3];
+        texels[4 * i + 3] = 255;
+    }
+    texture_scene s = {
+        .texture_width = 4, .texture_height = 4, .rgba = texels, .wrap_s = 10497, .wrap_t = 10497,
+        .mag_filter = 9728, .min_filter = 9728, .uv_min = {0.0f, 0.0f}, .uv_max = {1.0f, 1.0f},
+        .has_transform = 1, .offset = {0.3f, -0.2f}, .rotation = 0.5f, .scale = {1.5f, 0.75f}, .texcoord = 1,
+    };
+    rendered *img = malloc(sizeof *img);
+    render_scene(&s, img);
+    int checked = 0;
+    for (uint32_t py = 0; py < N; ++py)
+        for (uint32_t px = 0; px < N; ++px) {
+            double x, y, uv[2], t[2], du, dv;
+            texture_scene_pixel_point(px, py, N, &x, &y);
+            texture_scene_uv(&s, x, y, uv);
+            texture_scene_transform(&s, uv, t);
+            int tx = texture_scene_texel(t[0], 10497, 4, &du), ty = texture_scene_texel(t[1], 10497, 4, &dv);
+            if (du < 0.2 || dv < 0.2) continue;
+            expect_texel(img, px, py, texels, 4, tx, ty, "texture transform");
+            ++checked;
+        }
+    assert_true(checked > N * N / 4);
+    free(img);
+}
+
+// doubleSided false: a quad seen from behind is not drawn (the white box behind it shows);
+// double-sided, the same quad is drawn.
+static void test_single_sided_back_face(void **state)
+{
+    (void)state;
+    static const uint8_t red[4] = {255, 0, 0, 255};
+    texture_scene s = {
+        .texture_width = 1, .texture_height = 1, .rgba = red, .wrap_s = 10497, .wrap_t = 10497,
+        .uv_min = {0.0f, 0.0f}, .uv_max = {1.0f, 1.0f}, .facing_away = 1, .texcoord = -1,
+    };
+    rendered *img = malloc(sizeof *img);
+    render_scene(&s, img);
+    // The emissive box (radiance 1, plus what its black dielectric faces reflect of each other).
+    for (uint32_t i = 0; i < N * N; ++i)
+        for (int c = 0; c < 3; ++c) assert_float_equal(img->px[4 * i + c], 1.0f, 0.05f);
+    s.double_sided = 1;
+    render_scene(&s, img);
+    const float *centre = img->px + 4 * (N / 2 * N + N / 2);
+    assert_true(centre[0] > 0.9f && centre[1] < 0.05f && centre[2] < 0.05f);
+    free(img);
+}
+
+// Mipmaps: a 1-texel checkerboard minified about 21x (16 repeats over 48 pixels) averages to
+// its mean, 0.5, with the default (trilinear) filter; without mipmaps (minFilter LINEAR) the
+// pixels alias (the control that shows the test can fail).
+static void checkerboard_stats(int min_filter, double *mean, double *max_deviation)
+{
+    enum { T = 64 };
+    uint8_t *texels = malloc(4 * T * T);
+    for (int y = 0; y < T; ++y)
+        for (int x = 0; x < T; ++x) {
+            uint8_t v = (x + y) & 1 ? 255 : 0;
+            uint8_t *t = texels + 4 * (y * T + x);
+            t[0] = t[1] = t[2] = v, t[3] = 255;
+        }
+    texture_scene s = {
+        .texture_width = T, .texture_height = T, .rgba = texels, .wrap_s = 10497, .wrap_t = 10497,
+        .min_filter = min_filter, .uv_min = {0.0f, 0.0f}, .uv_max = {16.0f, 16.0f}, .texcoord = -1,
+    };
+    rendered *img = malloc(sizeof *img);
+    render_scene(&s, img);
+    double sum = 0.0, dev = 0.0;
+    for (uint32_t i = 0; i < N * N; ++i) sum += img->px[4 * i];
+    *mean = sum / (N * N);
+    for (uint32_t i = 0; i < N * N; ++i) dev = fmax(dev, fabs(img->px[4 * i] - 0.5));
+    *max_deviation = dev;
+    free(img);
+    free(texels);
+}
+
+static void test_mipmaps_average(void **state)
+{
+    (void)state;
+    double mean, dev;
+    checkerboard_stats(0, &mean, &dev); // no minFilter: trilinear (anisotropic where available)
+    fprintf(stderr, "trilinear: mean %.4f, largest deviation from 0.5 %.4f\n", mean, dev);
+    assert_true(fabs(mean - 0.5) < 0.02);
+    assert_true(dev < 0.05);
+    checkerboard_stats(9729, &mean, &dev); // LINEAR, level 0 only
+    fprintf(stderr, "no mipmaps: mean %.4f, largest deviation from 0.5 %.4f\n", mean, dev);
+    assert_true(dev > 0.2);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_wrap_repeat),       cmocka_unit_test(test_wrap_clamp),
+        cmocka_unit_test(test_wrap_mirror),       cmocka_unit_test(test_wrap_per_axis),
+        cmocka_unit_test(test_texture_transform), cmocka_unit_test(test_single_sided_back_face),
+        cmocka_unit_test(test_mipmaps_average),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
