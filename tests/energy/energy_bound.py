@@ -7,10 +7,11 @@ pixels); this test renders each scene given
 
   - with the LTC lighting pass, with and without Kulla-Conty, at 1x and 2x supersampling:
     every pixel <= 1.01 x the brightest emitter;
-  - with the Monte Carlo lighting pass (--mc-samples), with and without Kulla-Conty: the bound
-    holds in expectation, so on its mean over the image (<= 1.01), and on every pixel where
-    the scene's pixels sit well below the bound (all but the furnace, whose pixels all sit on
-    it by design, where any estimator's noise crosses it).
+  - with the Monte Carlo lighting pass (--mc-samples 256), with and without Kulla-Conty: the
+    bound holds in expectation, so on the image's mean (<= 1.01); on single pixels a 256-sample
+    estimate crosses it where the expectation sits on it (a mirror reflection of a light:
+    NormalTangentTest 1.038, the furnace 1.2), so each pixel is held only against a blow-up
+    (<= 1.25, MC_PIXEL_GUARD; the furnace, whose every pixel is on the bound, by its mean alone).
 
 The furnace (white conductors, albedo 1 with Kulla-Conty, inside an emitting box) is the one
 scene whose every pixel is at the bound: its LTC pixels reach 1.04 with Kulla-Conty and 1.02
@@ -32,6 +33,8 @@ LIMIT = 1.01
 # Scene-specific limits of the LTC pass, with the reason (see above).
 LTC_LIMIT = {"furnace": 1.05}
 MC_SAMPLES = "256"
+# A single Monte Carlo pixel against a blow-up only (see above).
+MC_PIXEL_GUARD = 1.25
 
 
 def render(exe, scene, out_dir, tag, flags, width, height):
@@ -63,7 +66,7 @@ def main(argv):
                 cases.append(("ltc-%s-ss%s" % (ms_tag, ss), ms + ["--supersample", ss], 160, 120, "max", ltc_limit))
             cases.append(("mc-%s" % ms_tag, ms + ["--mc-samples", MC_SAMPLES], 64, 48, "mean", LIMIT))
             if name not in LTC_LIMIT:
-                cases.append(("mc-%s" % ms_tag, ms + ["--mc-samples", MC_SAMPLES], 64, 48, "max", LIMIT))
+                cases.append(("mc-%s" % ms_tag, ms + ["--mc-samples", MC_SAMPLES], 64, 48, "max", MC_PIXEL_GUARD))
         done = {}
         for tag, flags, w, h, what, limit in cases:
             if tag not in done:

@@ -3,6 +3,7 @@
 #include "flip.h"
 #include "image_read.h"
 #include "rtpbr_tools/colormap.hpp"
+#include "rtpbr_tools/energy.hpp"
 #include "rtpbr_tools/image.hpp"
 
 #include <algorithm>
@@ -20,7 +21,7 @@ enum ExitCode { kExitPass = 0, kExitThreshold = 1, kExitError = 2 };
 
 const char* const kUsage =
     "usage: rtpbr-diff REFERENCE TEST [--hdr] [--heatmap OUT.png] [--json]\n"
-    "                  [--max-mean X] [--max-p95 Y] [--ppd P]\n"
+    "                  [--max-mean X] [--max-p95 Y] [--ppd P] [--bound L [--max-ratio R]]\n"
     "\n"
     "Compares TEST with REFERENCE (any format OpenImageIO reads: EXR, PNG, HDR, ...).\n"
     "  Integer pixel formats (8/16-bit PNG, ...) are taken as sRGB-encoded and decoded to linear;\n"
@@ -34,6 +35,11 @@ const char* const kUsage =
     "  --heatmap OUT.png  writes the FLIP error map through the magma colour map.\n"
     "  --json   prints one JSON object instead of text.\n"
     "  --max-mean X, --max-p95 Y  exit 1 when the mean / 95th percentile FLIP error exceeds them.\n"
+    "  --bound L  the energy bound of both images against L, the brightest emitter's radiance (no\n"
+    "           pixel of a render may exceed it; rtpbr-render prints it): the largest pixel / L, the\n"
+    "           mean of that ratio, the energy share of the brightest 0.01 % of pixels, non-finite\n"
+    "           pixels (JSON: \"bound\": {\"reference\": {...}, \"test\": {...}}).\n"
+    "  --max-ratio R  with --bound: exit 1 when a TEST pixel exceeds R x L or is not finite.\n"
     "Also reported: rmse = sqrt(mean (t - r)^2) and relmse = mean (t - r)^2 / (r^2 + 0.01) over all\n"
     "RGB values as read (linear, unclamped); psnr = 10 log10(1 / mse) on the linear values clamped\n"
     "to [0, 1] (what LDR-FLIP sees), infinite (JSON null) for identical images.\n"
@@ -49,6 +55,8 @@ struct Options {
     bool has_max_p95 = false;
     double max_mean = 0.0;
     double max_p95 = 0.0;
+    double bound = 0.0;     // 0: no energy bound
+    double max_ratio = 0.0; // 0: report only
     float ppd = rtpbr::kFlipDefaultPpd;
 };
 
@@ -92,6 +100,13 @@ bool parse_args(int argc, char** argv, Options& opt, bool& show_help, std::strin
         } else if (arg == "--heatmap") {
             if (!value(v)) return false;
             opt.heatmap = v;
+        } else if (arg == "--bound" || arg == "--max-ratio") {
+            if (!value(v)) return false;
+            if (!parse_number(v, number) || !(number > 0.0)) {
+                error = "option " + arg + " needs a finite positive number, got '" + v + "'";
+                return false;
+            }
+            (arg == "--bound" ? opt.bound : opt.max_ratio) = number;
         } else if (arg == "--max-mean" || arg == "--max-p95" || arg == "--ppd") {
             if (!value(v)) return false;
             if (!parse_number(v, number) || number < 0.0) {
@@ -121,6 +136,10 @@ bool parse_args(int argc, char** argv, Options& opt, bool& show_help, std::strin
     if (positional.size() != 2) {
         error = "expected REFERENCE and TEST image paths, got " + std::to_string(positional.size()) +
                 " (see --help)";
+        return false;
+    }
+    if (opt.max_ratio > 0.0 && !(opt.bound > 0.0)) {
+        error = "--max-ratio needs --bound";
         return false;
     }
     opt.reference = positional[0];
@@ -229,6 +248,11 @@ int run(int argc, char** argv) {
         return kExitError;
     }
 
+    rtpbr_tools::EnergyStats ref_energy, test_energy;
+    if (opt.bound > 0.0) {
+        ref_energy = rtpbr_tools::energy_stats(ref.rgb.data(), ref.width, ref.height, 3, opt.bound);
+        test_energy = rtpbr_tools::energy_stats(test.rgb.data(), test.width, test.height, 3, opt.bound);
+    }
     if (opt.json) {
         std::string j = "{";
         j += "\"reference\": " + json_string(opt.reference);
@@ -250,6 +274,9 @@ int run(int argc, char** argv) {
             j += ", \"exposure_stop\": " + json_number(exposures.stop);
             j += ", \"exposure_count\": " + std::to_string(exposures.count);
         }
+        if (opt.bound > 0.0)
+            j += ", \"bound\": {\"reference\": " + rtpbr_tools::energy_json(ref_energy) +
+                 ", \"test\": " + rtpbr_tools::energy_json(test_energy) + "}";
         j += "}\n";
         std::fputs(j.c_str(), stdout);
     } else {
@@ -265,6 +292,10 @@ int run(int argc, char** argv) {
         std::printf("rmse      %.6g\n", pm.rmse);
         std::printf("relmse    %.6g\n", pm.relmse);
         std::printf("psnr      %.4f dB (linear, clamped to [0, 1])\n", pm.psnr);
+        if (opt.bound > 0.0) {
+            std::printf("bound     reference: %s\n", rtpbr_tools::energy_summary(ref_energy).c_str());
+            std::printf("          test: %s\n", rtpbr_tools::energy_summary(test_energy).c_str());
+        }
     }
 
     std::string exceeded;
@@ -273,6 +304,10 @@ int run(int argc, char** argv) {
     if (opt.has_max_p95 && stats.p95 > opt.max_p95)
         exceeded += std::string(exceeded.empty() ? "" : "; ") + "95th percentile FLIP " + json_number(stats.p95) +
                     " exceeds --max-p95 " + json_number(opt.max_p95);
+    if (opt.max_ratio > 0.0 && (test_energy.max_ratio > opt.max_ratio || test_energy.non_finite > 0))
+        exceeded += std::string(exceeded.empty() ? "" : "; ") + "largest test pixel " +
+                    json_number(test_energy.max_ratio) + " x the bound exceeds --max-ratio " + json_number(opt.max_ratio) +
+                    (test_energy.non_finite ? " (or pixels not finite)" : "");
     if (exceeded.empty()) return kExitPass;
     fail_message(exceeded);
     return kExitThreshold;
