@@ -54,6 +54,7 @@ double meanRelativeStderr(const Accumulator &acc) {
 int benchScene(const char *path, uint32_t width, uint32_t spp) {
     char err[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
     rtpbr_gltf_load_desc desc = {};
+    desc.emissive_mode = RTPBR_GLTF_EMISSIVE_EXACT; // as rtpbr-oracle loads
     desc.error_message = err;
     desc.error_message_size = sizeof err;
     rtpbr_gltf_scene *scene = nullptr;

@@ -280,6 +280,8 @@ static int run(int argc, char **argv) {
     desc.error_message = loadError;
     desc.error_message_size = sizeof loadError;
     desc.texture_memory_budget = textureBudget;
+    // every emissive triangle an emitter, textured ones each alone (emittedAt applies the texture)
+    desc.emissive_mode = RTPBR_GLTF_EMISSIVE_EXACT;
     desc.logger.func = logToStderr;
     desc.logger.user_data = &quiet;
     rtpbr_gltf_scene *scene = nullptr;

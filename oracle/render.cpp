@@ -142,7 +142,7 @@ public:
             // Emission: seen directly, or found by BSDF sampling (MIS against light sampling;
             // with noShadows the unoccluded light-only ray below did that already).
             if (sp.light >= 0 && (depth == 0 || !s_.noShadows)) {
-                vec3 Le = lights_.emitted(uint32_t(sp.light), dir);
+                vec3 Le = emittedAt(uint32_t(sp.light), dir, sp.p);
                 if (Le.x > 0.0f || Le.y > 0.0f || Le.z > 0.0f) {
                     float w = 1.0f;
                     if (depth > 0)
@@ -177,7 +177,8 @@ public:
                 if (f.x > 0.0f || f.y > 0.0f || f.z > 0.0f) {
                     bool visible = s_.noShadows || unoccluded(origin, origin + ls.wi * ls.distance);
                     if (visible)
-                        L += beta * f * ls.radiance * (misWeight(ls.pdf, bsdf.pdfMis(wiL)) / ls.pdf);
+                        L += beta * f * emittedAt(ls.light, ls.wi, origin + ls.wi * ls.distance) *
+                             (misWeight(ls.pdf, bsdf.pdfMis(wiL)) / ls.pdf);
                 }
             }
 
@@ -195,7 +196,7 @@ public:
                 Hit lh = intersect(es_.lightsOnly, origin, wi, std::numeric_limits<float>::infinity());
                 if (lh.found) {
                     uint32_t l = es_.lightOnlyGeoms[lh.geomID];
-                    vec3 Le = lights_.emitted(l, wi);
+                    vec3 Le = emittedAt(l, wi, origin + wi * lh.t);
                     L += beta * Le * misWeight(bs.pdfMis, lights_.pdf(sp.p, l, wi, lh.t));
                 }
                 if (depth + 1 >= maxDepth_)
@@ -291,11 +292,47 @@ private:
         return !occluded(origin, d / len, tfar);
     }
 
+    // Light l's radiance toward -wi at its point q: LightSet::emitted, times the emission
+    // texture there for the triangle lights of textured emitters (rtpbr_gltf_light.triangle,
+    // RTPBR_GLTF_EMISSIVE_EXACT), the triangle's texture coordinates at q's barycentrics.
+    vec3 emittedAt(uint32_t l, vec3 wi, vec3 q) const {
+        vec3 Le = lights_.emitted(l, wi);
+        const rtpbr_gltf_light &L = scene_.lights[l];
+        if (L.triangle < 0 || L.primitive < 0 || uint32_t(L.primitive) >= scene_.primitive_count ||
+            !(Le.x > 0.0f || Le.y > 0.0f || Le.z > 0.0f))
+            return Le;
+        const rtpbr_gltf_primitive &prim = scene_.primitives[L.primitive];
+        const rtpbr_gltf_material &m = scene_.materials[prim.material];
+        if (m.emission_texture < 0 || uint32_t(L.triangle) * 3 + 2 >= prim.index_count)
+            return Le;
+        const uint32_t *ix = prim.indices + 3 * uint32_t(L.triangle);
+        vec3 p0 = glm::make_vec3(prim.positions + 3 * ix[0]), p1 = glm::make_vec3(prim.positions + 3 * ix[1]),
+             p2 = glm::make_vec3(prim.positions + 3 * ix[2]);
+        vec3 n = glm::cross(p1 - p0, p2 - p0);
+        float nn = glm::dot(n, n);
+        if (!(nn > 0.0f))
+            return Le;
+        float b1 = glm::dot(glm::cross(q - p0, p2 - p0), n) / nn, b2 = glm::dot(glm::cross(p1 - p0, q - p0), n) / nn;
+        float b0 = 1.0f - b1 - b2;
+        SurfacePoint sp;
+        const float *sets[2] = {prim.has_texcoords ? prim.texcoords : nullptr, prim.has_texcoords1 ? prim.texcoords1 : nullptr};
+        for (int set = 0; set < 2; set++)
+            if (sets[set])
+                sp.uv[set] = b0 * glm::make_vec2(sets[set] + 2 * ix[0]) + b1 * glm::make_vec2(sets[set] + 2 * ix[1]) +
+                             b2 * glm::make_vec2(sets[set] + 2 * ix[2]);
+        return Le * vec3(sampleSlot(m.emission_texture, m.emission_texture_transform, sp));
+    }
+
     SurfacePoint surfacePoint(const Hit &h, vec3 dir) const {
         SurfacePoint sp;
         const GeometryRecord &g = es_.fullGeoms[h.geomID];
         vec3 p0, p1, p2;
-        if (g.isLight) {
+        // A textured emitter's triangle (rtpbr_gltf_light.triangle; its vertices in the
+        // primitive's order, so the hit's barycentrics are the triangle's): shaded as the
+        // primitive's own surface, with its texture coordinates, normals and tangents.
+        const bool lightTriangle = g.isLight && scene_.lights[g.index].triangle >= 0 &&
+                                   scene_.lights[g.index].primitive >= 0;
+        if (g.isLight && !lightTriangle) {
             const rtpbr_gltf_light &L = scene_.lights[g.index];
             p0 = glm::make_vec3(L.vertices[0]);
             p1 = glm::make_vec3(L.vertices[h.primID + 1]);
@@ -306,8 +343,11 @@ private:
             sp.ns = sp.ng;
             sp.p = (1.0f - h.u - h.v) * p0 + h.u * p1 + h.v * p2;
         } else {
-            const rtpbr_gltf_primitive &prim = scene_.primitives[g.index];
-            const uint32_t *ix = prim.indices + 3 * h.primID;
+            const rtpbr_gltf_light *light = lightTriangle ? &scene_.lights[g.index] : nullptr;
+            const rtpbr_gltf_primitive &prim = scene_.primitives[light ? uint32_t(light->primitive) : g.index];
+            const uint32_t *ix = prim.indices + 3 * (light ? uint32_t(light->triangle) : h.primID);
+            if (light)
+                sp.light = int32_t(g.index);
             p0 = glm::make_vec3(prim.positions + 3 * ix[0]);
             p1 = glm::make_vec3(prim.positions + 3 * ix[1]);
             p2 = glm::make_vec3(prim.positions + 3 * ix[2]);
@@ -357,13 +397,9 @@ private:
     glm::vec4 sampleSlot(int32_t texture, const rtpbr_gltf_texture_transform &t, const SurfacePoint &sp) const {
         if (texture < 0 || uint32_t(texture) >= textures_.size())
             return glm::vec4(1.0f);
-        glm::vec2 uv = sp.uv[t.texcoord == 1 ? 1 : 0];
-        if (t.has_transform) {
-            float c = std::cos(t.rotation), s = std::sin(t.rotation);
-            glm::vec2 scaled(t.scale[0] * uv.x, t.scale[1] * uv.y);
-            uv = glm::vec2(c * scaled.x + s * scaled.y + t.offset[0], -s * scaled.x + c * scaled.y + t.offset[1]);
-        }
-        return textures_[uint32_t(texture)].sample(uv.x, uv.y);
+        float uv[2] = {sp.uv[t.texcoord == 1 ? 1 : 0].x, sp.uv[t.texcoord == 1 ? 1 : 0].y};
+        rtpbr_gltf_texture_transform_apply(&t, uv);
+        return textures_[uint32_t(texture)].sample(uv[0], uv[1]);
     }
 
     // glTF normalTexture: tangent-space normal (2 rgb - 1) scaled in xy by normal_scale, with

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 
@@ -41,6 +42,10 @@ struct LightBuilder {
     // Directed edges (a << 32 | b, triangle), sorted: all triangles with edge a→b.
     std::vector<std::pair<uint64_t, uint32_t>> edges;
     double eps_dist = 0.0;
+    // BOUNDED mode: stop (over = true, no failure) past this many polygons.
+    size_t exact_limit = SIZE_MAX;
+    size_t first_light = 0;
+    bool over = false;
 
     static uint64_t key(uint32_t a, uint32_t b) { return uint64_t(a) << 32 | b; }
     // Triangles having the directed edge a→b: [first, last) in `edges`.
@@ -104,6 +109,10 @@ struct LightBuilder {
     }
 
     bool emit(const std::vector<uint32_t>& loop, const Vec3& n) {
+        if (scene.lights.size() - first_light >= exact_limit) {
+            over = true;
+            return false;
+        }
         if (scene.lights.size() >= ctx.max_lights)
             return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS,
                             "primitive %u (mesh %d): more than %u area lights", primitive_index,
@@ -140,6 +149,7 @@ struct LightBuilder {
         l.primitive = int32_t(primitive_index);
         l.material = int32_t(p.material);
         l.gltf_node = p.gltf_node;
+        l.triangle = -1;
         scene.lights.push_back(l);
         return true;
     }
@@ -307,6 +317,255 @@ struct LightBuilder {
     }
 };
 
+// ---- emissive surfaces as bounded light sets (issue 28) ------------------------------------
+
+// The emission texture of a material as the loader decoded it (nullptr: none, or images
+// skipped), with the slot's texture coordinate set and transform.
+struct EmissionTexture {
+    const Texture* texture = nullptr;
+    const rtpbr_gltf_texture_transform* transform = nullptr;
+};
+
+EmissionTexture emission_texture(const Scene& scene, const rtpbr_gltf_material& m) {
+    EmissionTexture e;
+    if (m.emission_texture >= 0 && size_t(m.emission_texture) < scene.textures.size()) {
+        const Texture& t = scene.textures[size_t(m.emission_texture)];
+        if (t.width > 0 && t.height > 0 && t.pixels.size() >= size_t(t.width) * t.height * 4) {
+            e.texture = &t;
+            e.transform = &m.emission_texture_transform;
+        }
+    }
+    return e;
+}
+
+double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+double wrap_coord(double x, rtpbr_gltf_wrap mode) {
+    if (mode == RTPBR_GLTF_WRAP_CLAMP_TO_EDGE) return std::min(std::max(x, 0.0), 1.0);
+    if (mode == RTPBR_GLTF_WRAP_MIRRORED_REPEAT) {
+        double f = x - 2.0 * std::floor(x * 0.5);  // [0, 2)
+        return f > 1.0 ? 2.0 - f : f;
+    }
+    return x - std::floor(x);
+}
+
+// The texel nearest to uv (linear RGB; the colour space the loader flagged).
+Vec3 texel(const Texture& t, double u, double v) {
+    if (!std::isfinite(u) || !std::isfinite(v)) return {0, 0, 0};
+    u = wrap_coord(u, t.info.wrap_s);
+    v = wrap_coord(v, t.info.wrap_t);
+    const uint32_t x = std::min(uint32_t(u * t.width), t.width - 1), y = std::min(uint32_t(v * t.height), t.height - 1);
+    const uint8_t* px = &t.pixels[(size_t(y) * t.width + x) * 4];
+    Vec3 c;
+    for (int k = 0; k < 3; ++k) c[size_t(k)] = t.info.srgb ? srgb_to_linear(px[k] / 255.0) : px[k] / 255.0;
+    return c;
+}
+
+struct EmissiveTriangle {
+    Vec3 centroid, normal;  // normal unit
+    double area;
+    Vec3 radiance;          // emission x the texture's mean over the triangle
+    double power;           // area x luminance of radiance
+    uint32_t index;         // the primitive's triangle (indices[3 index ..])
+};
+
+// The primitive's triangles with their emission: the emissive factor times the texture's mean
+// over the triangle, sampled at the 10 points of a 4 x 4 barycentric grid's cells (centres
+// and corners' insets); zero-area triangles are left out.
+std::vector<EmissiveTriangle> emissive_triangles(const Scene& scene, uint32_t primitive_index, const EmissionTexture& tex) {
+    const Primitive& p = scene.primitives[primitive_index];
+    const rtpbr_gltf_material& m = scene.materials[p.material];
+    const std::vector<float>& uvs = tex.transform && tex.transform->texcoord == 1 ? p.texcoords1 : p.texcoords;
+    std::vector<EmissiveTriangle> out;
+    out.reserve(p.indices.size() / 3);
+    for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+        Vec3 v[3];
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < 3; ++c) v[k][size_t(c)] = p.positions[3 * size_t(p.indices[t + size_t(k)]) + size_t(c)];
+        const Vec3 c = cross(sub(v[1], v[0]), sub(v[2], v[0]));
+        const double l = length(c);
+        if (!(l > 0.0) || !std::isfinite(l)) continue;
+        EmissiveTriangle e;
+        e.normal = scaled(c, 1.0 / l);
+        e.area = 0.5 * l;
+        for (int k = 0; k < 3; ++k) e.centroid[size_t(k)] = (v[0][size_t(k)] + v[1][size_t(k)] + v[2][size_t(k)]) / 3.0;
+        Vec3 mean{1, 1, 1};
+        if (tex.texture && uvs.size() >= 2 * (p.positions.size() / 3)) {
+            mean = {0, 0, 0};
+            int samples = 0;
+            for (int i = 0; i < 4; ++i)
+                for (int j = 0; i + j < 4; ++j) {
+                    const double b1 = (i + 1.0 / 3.0) / 4.0, b2 = (j + 1.0 / 3.0) / 4.0, b0 = 1.0 - b1 - b2;
+                    float uv[2] = {0.0f, 0.0f};
+                    for (int q = 0; q < 2; ++q) {
+                        const double w[3] = {b0, b1, b2};
+                        double x = 0.0;
+                        for (int k = 0; k < 3; ++k) x += w[k] * uvs[2 * size_t(p.indices[t + size_t(k)]) + size_t(q)];
+                        uv[q] = float(x);
+                    }
+                    rtpbr_gltf_texture_transform_apply(tex.transform, uv);
+                    const Vec3 c3 = texel(*tex.texture, uv[0], uv[1]);
+                    for (int k = 0; k < 3; ++k) mean[size_t(k)] += c3[size_t(k)];
+                    ++samples;
+                }
+            mean = scaled(mean, 1.0 / samples);
+        }
+        for (int k = 0; k < 3; ++k) e.radiance[size_t(k)] = double(m.emission[k]) * mean[size_t(k)];
+        e.power = e.area * (0.2126 * e.radiance[0] + 0.7152 * e.radiance[1] + 0.0722 * e.radiance[2]);
+        e.index = uint32_t(t / 3);
+        out.push_back(e);
+    }
+    return out;
+}
+
+rtpbr_gltf_light base_light(const Scene& scene, uint32_t primitive_index) {
+    const Primitive& p = scene.primitives[primitive_index];
+    rtpbr_gltf_light l;
+    std::memset(&l, 0, sizeof l);
+    l.shape = RTPBR_GLTF_LIGHT_POLYGON;
+    l.two_sided = scene.materials[p.material].double_sided;
+    l.primitive = int32_t(primitive_index);
+    l.material = int32_t(p.material);
+    l.gltf_node = p.gltf_node;
+    l.triangle = -1;
+    return l;
+}
+
+bool push_light(Context& ctx, Scene& scene, uint32_t primitive_index, const rtpbr_gltf_light& l) {
+    if (scene.lights.size() >= ctx.max_lights)
+        return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS, "primitive %u (mesh %d): more than %u area lights",
+                        primitive_index, scene.primitives[primitive_index].gltf_mesh, ctx.max_lights);
+    scene.lights.push_back(l);
+    return true;
+}
+
+// EXACT mode with an emission texture: each triangle its own light (rtpbr_gltf_light.triangle),
+// at the factor's radiance: the path tracer applies the texture at each point.
+bool triangle_lights(Context& ctx, Scene& scene, uint32_t primitive_index) {
+    const Primitive& p = scene.primitives[primitive_index];
+    const rtpbr_gltf_material& m = scene.materials[p.material];
+    for (const EmissiveTriangle& t : emissive_triangles(scene, primitive_index, EmissionTexture{})) {
+        rtpbr_gltf_light l = base_light(scene, primitive_index);
+        l.vertex_count = 3;
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < 3; ++c)
+                l.vertices[k][c] = p.positions[3 * size_t(p.indices[3 * size_t(t.index) + size_t(k)]) + size_t(c)];
+        for (int c = 0; c < 3; ++c) {
+            l.normal[c] = float(t.normal[size_t(c)]);
+            l.center[c] = float(t.centroid[size_t(c)]);
+            l.radiance[c] = m.emission[c];
+        }
+        l.area = float(t.area);
+        l.triangle = int32_t(t.index);
+        if (!(l.area > 0.0f) || !std::isfinite(l.area)) continue;
+        if (!push_light(ctx, scene, primitive_index, l)) return false;
+    }
+    return true;
+}
+
+// BOUNDED mode, a primitive that does not merge into a few polygons: its triangles in at most
+// RTPBR_GLTF_MAX_EMITTER_CLUSTERS clusters (Lloyd's k-means on position over the primitive's
+// extent and unit normal, weighted by power, seeded by farthest points from the most powerful
+// triangle; deterministic), each an equal-area regular octagon at the cluster's power-weighted
+// centroid, facing its power-weighted mean normal, at its area-weighted mean radiance.
+bool cluster_lights(Context& ctx, Scene& scene, uint32_t primitive_index, const EmissionTexture& tex) {
+    std::vector<EmissiveTriangle> tris = emissive_triangles(scene, primitive_index, tex);
+    tris.erase(std::remove_if(tris.begin(), tris.end(), [](const EmissiveTriangle& t) { return !(t.power > 0.0); }),
+               tris.end());
+    if (tris.empty()) return true;
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (const EmissiveTriangle& t : tris)
+        for (int k = 0; k < 3; ++k) {
+            lo[size_t(k)] = std::min(lo[size_t(k)], t.centroid[size_t(k)]);
+            hi[size_t(k)] = std::max(hi[size_t(k)], t.centroid[size_t(k)]);
+        }
+    const double extent = std::max(length(sub(hi, lo)), 1e-30);
+    auto distance2 = [extent](const EmissiveTriangle& t, const Vec3& c, const Vec3& n) {
+        const Vec3 d = scaled(sub(t.centroid, c), 1.0 / extent), dn = sub(t.normal, n);
+        return dot(d, d) + dot(dn, dn);
+    };
+    const size_t k = std::min<size_t>(RTPBR_GLTF_MAX_EMITTER_CLUSTERS, tris.size());
+    std::vector<Vec3> centres, normals;
+    size_t seed = 0;
+    for (size_t i = 1; i < tris.size(); ++i)
+        if (tris[i].power > tris[seed].power) seed = i;
+    centres.push_back(tris[seed].centroid);
+    normals.push_back(tris[seed].normal);
+    std::vector<double> nearest(tris.size(), 1e300);
+    while (centres.size() < k) {
+        size_t far = 0;
+        for (size_t i = 0; i < tris.size(); ++i) {
+            nearest[i] = std::min(nearest[i], distance2(tris[i], centres.back(), normals.back()));
+            if (nearest[i] > nearest[far]) far = i;
+        }
+        if (!(nearest[far] > 0.0)) break;  // fewer distinct triangles than clusters
+        centres.push_back(tris[far].centroid);
+        normals.push_back(tris[far].normal);
+    }
+    std::vector<size_t> cluster(tris.size(), 0);
+    for (int iteration = 0; iteration < 12; ++iteration) {
+        for (size_t i = 0; i < tris.size(); ++i) {
+            double best = 1e300;
+            for (size_t c = 0; c < centres.size(); ++c) {
+                const double d = distance2(tris[i], centres[c], normals[c]);
+                if (d < best) best = d, cluster[i] = c;
+            }
+        }
+        for (size_t c = 0; c < centres.size(); ++c) {
+            Vec3 sc{0, 0, 0}, sn{0, 0, 0};
+            double w = 0.0;
+            for (size_t i = 0; i < tris.size(); ++i)
+                if (cluster[i] == c) {
+                    for (int q = 0; q < 3; ++q) {
+                        sc[size_t(q)] += tris[i].power * tris[i].centroid[size_t(q)];
+                        sn[size_t(q)] += tris[i].power * tris[i].normal[size_t(q)];
+                    }
+                    w += tris[i].power;
+                }
+            if (!(w > 0.0)) continue;
+            centres[c] = scaled(sc, 1.0 / w);
+            const double ln = length(sn);
+            if (ln > 0.0) normals[c] = scaled(sn, 1.0 / ln);
+        }
+    }
+    for (size_t c = 0; c < centres.size(); ++c) {
+        double area = 0.0;
+        Vec3 power{0, 0, 0};
+        for (size_t i = 0; i < tris.size(); ++i)
+            if (cluster[i] == c) {
+                area += tris[i].area;
+                for (int q = 0; q < 3; ++q) power[size_t(q)] += tris[i].area * tris[i].radiance[size_t(q)];
+            }
+        if (!(area > 0.0)) continue;
+        const Vec3 n = normals[c];
+        // tangent frame of the octagon: t1 perpendicular to n, t2 = n x t1 (counter-clockwise about n)
+        const Vec3 axis = std::fabs(n[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+        Vec3 t1 = cross(axis, n);
+        t1 = scaled(t1, 1.0 / length(t1));
+        const Vec3 t2 = cross(n, t1);
+        const double r = std::sqrt(area / (2.0 * std::sqrt(2.0)));  // regular octagon: area 2 sqrt(2) r^2
+        rtpbr_gltf_light l = base_light(scene, primitive_index);
+        l.vertex_count = 8;
+        for (int v = 0; v < 8; ++v) {
+            const double a = kPi * 0.25 * v, ca = std::cos(a), sa = std::sin(a);
+            for (int q = 0; q < 3; ++q)
+                l.vertices[v][q] = float(centres[c][size_t(q)] + r * (ca * t1[size_t(q)] + sa * t2[size_t(q)]));
+        }
+        for (int q = 0; q < 3; ++q) {
+            l.normal[q] = float(n[size_t(q)]);
+            l.center[q] = float(centres[c][size_t(q)]);
+            l.radiance[q] = float(power[size_t(q)] / area);
+        }
+        l.area = float(area);
+        l.proxy = true;
+        if (!(l.area > 0.0f) || !std::isfinite(l.area) || !std::isfinite(l.center[0]) || !std::isfinite(l.center[1]) ||
+            !std::isfinite(l.center[2]))
+            continue;
+        if (!push_light(ctx, scene, primitive_index, l)) return false;
+    }
+    return true;
+}
+
 double number_or(const tinygltf::Value& obj, const char* key, double def, bool* bad) {
     if (!obj.IsObject() || !obj.Has(key)) return def;
     const tinygltf::Value& v = obj.Get(key);
@@ -323,8 +582,34 @@ bool lights_from_primitive(Context& ctx, Scene& scene, uint32_t primitive_index)
     const Primitive& p = scene.primitives[primitive_index];
     const rtpbr_gltf_material& m = scene.materials[p.material];
     if (!(std::max(m.emission[0], std::max(m.emission[1], m.emission[2])) > 0.0f)) return true;
+    const EmissionTexture tex = emission_texture(scene, m);
+    if (ctx.desc.emissive_mode == RTPBR_GLTF_EMISSIVE_EXACT) {
+        if (tex.texture) return triangle_lights(ctx, scene, primitive_index);
+        LightBuilder b{ctx, scene, primitive_index, {}, {}, {}, 0.0};
+        return b.run();
+    }
+    // BOUNDED: exact polygons where the primitive merges into a few, else clusters.
     LightBuilder b{ctx, scene, primitive_index, {}, {}, {}, 0.0};
-    return b.run();
+    b.exact_limit = RTPBR_GLTF_MAX_EXACT_EMITTER_POLYGONS;
+    b.first_light = scene.lights.size();
+    if (!b.run() && !b.over) return false;
+    if (!b.over) {
+        if (tex.texture) {  // the texture's mean over the primitive, on every polygon
+            const std::vector<EmissiveTriangle> tris = emissive_triangles(scene, primitive_index, tex);
+            double area = 0.0;
+            Vec3 power{0, 0, 0};
+            for (const EmissiveTriangle& t : tris) {
+                area += t.area;
+                for (int k = 0; k < 3; ++k) power[size_t(k)] += t.area * t.radiance[size_t(k)];
+            }
+            for (size_t i = b.first_light; i < scene.lights.size(); ++i)
+                for (int k = 0; k < 3; ++k)
+                    scene.lights[i].radiance[k] = area > 0.0 ? float(power[size_t(k)] / area) : 0.0f;
+        }
+        return true;
+    }
+    scene.lights.resize(b.first_light);
+    return cluster_lights(ctx, scene, primitive_index, tex);
 }
 
 bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& scene,
@@ -457,6 +742,7 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
         l.primitive = -1;
         l.material = -1;
         l.gltf_node = node;
+        l.triangle = -1;
         scene.lights.push_back(l);
     }
     return true;

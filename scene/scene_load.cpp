@@ -688,6 +688,14 @@ extern "C" rtpbr_gltf_result rtpbr_gltf_load_memory(const void* data, size_t siz
     return finish(ctx, ctx.result);
 }
 
+extern "C" void rtpbr_gltf_texture_transform_apply(const rtpbr_gltf_texture_transform* t, float uv[2]) {
+    if (!t || !uv || !t->has_transform) return;
+    const float c = std::cos(t->rotation), s = std::sin(t->rotation);
+    const float u = t->scale[0] * uv[0], v = t->scale[1] * uv[1];
+    uv[0] = c * u + s * v + t->offset[0];
+    uv[1] = -s * u + c * v + t->offset[1];
+}
+
 extern "C" void rtpbr_gltf_destroy(rtpbr_gltf_scene* scene) {
     if (!scene) return;
     Allocator al{scene->allocator};

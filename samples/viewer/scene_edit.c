@@ -25,11 +25,20 @@ static void mat4_premultiply(float m[16], const float a[16])
     memcpy(m, r, sizeof r);
 }
 
+// The loader's warnings (ignored extensions, a scene without lights, ...) on stderr.
+static void on_loader_log(rtpbr_gltf_log_level level, const char *message, void *user)
+{
+    (void)user;
+    if (level <= RTPBR_GLTF_LOG_WARNING)
+        fprintf(stderr, "rtpbr-viewer: %s: %s\n", level == RTPBR_GLTF_LOG_ERROR ? "error" : "warning", message);
+}
+
 bool viewer_scene_load(viewer_scene *s, const char *path)
 {
     memset(s, 0, sizeof *s);
     char error[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
-    rtpbr_gltf_load_desc desc = {.error_message = error, .error_message_size = sizeof error};
+    rtpbr_gltf_load_desc desc = {.error_message = error, .error_message_size = sizeof error,
+                                 .logger = {on_loader_log, NULL}};
     rtpbr_gltf_result r = rtpbr_gltf_load(path, &desc, &s->loaded);
     if (r != RTPBR_GLTF_SUCCESS) {
         fprintf(stderr, "rtpbr-viewer: %s: %s: %s\n", path, rtpbr_gltf_result_string(r), error);

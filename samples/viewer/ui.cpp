@@ -223,6 +223,9 @@ static void stats_panel(app *a)
     ImGui::Text("panels: %.2f ms CPU to build", a->ui_ms);
     ImGui::Text("%u lights, %u materials, %ux%u", a->scene.light_count, a->scene.material_count, a->renderer_w,
                 a->renderer_h);
+    if (a->scene.light_count == 0)
+        ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.2f, 1.0f), "No lights: only emission and the background show\n"
+                                                             "(add EXT_lights_area lights or emissive surfaces)");
     if (!a->flip) {
         ImGui::TextDisabled("HDR-FLIP: no --reference");
         return;

@@ -118,6 +118,28 @@ typedef struct rtpbr_gltf_logger {
     void* user_data;
 } rtpbr_gltf_logger;
 
+/* How emissive primitives become area lights.
+ * BOUNDED (default; real-time renderers): a primitive whose coplanar regions
+ *   merge into at most RTPBR_GLTF_MAX_EXACT_EMITTER_POLYGONS convex polygons
+ *   of at most 8 vertices (as EXACT merges them) becomes those polygons
+ *   exactly (with an emission texture: at the texture's mean radiance over
+ *   the primitive); any other emissive primitive becomes at most
+ *   RTPBR_GLTF_MAX_EMITTER_CLUSTERS proxy lights (rtpbr_gltf_light.proxy):
+ *   its triangles clustered by position and normal, each cluster an
+ *   equal-area regular octagon facing its mean normal at its centroid, at
+ *   the cluster's mean radiance (texture-averaged), so that each keeps the
+ *   cluster's power. The surface itself still draws its emission.
+ * EXACT (path tracers, the oracle): every emissive triangle is an emitter:
+ *   coplanar regions merged into convex polygons (greedy pieces where needed,
+ *   at worst one per triangle), each triangle alone where the material has an
+ *   emission texture (rtpbr_gltf_light.triangle says which). */
+typedef enum rtpbr_gltf_emissive_mode {
+    RTPBR_GLTF_EMISSIVE_BOUNDED = 0,
+    RTPBR_GLTF_EMISSIVE_EXACT = 1,
+} rtpbr_gltf_emissive_mode;
+#define RTPBR_GLTF_MAX_EXACT_EMITTER_POLYGONS 16u /* per primitive, BOUNDED  */
+#define RTPBR_GLTF_MAX_EMITTER_CLUSTERS 8u        /* per primitive, BOUNDED  */
+
 /* ---- load description (zero-initialise; zero = default) ------------------ */
 typedef struct rtpbr_gltf_load_desc {
     rtpbr_gltf_allocator allocator; /* default: malloc/free                 */
@@ -139,8 +161,12 @@ typedef struct rtpbr_gltf_load_desc {
      * (texture indices in materials stay valid). Default false = decode. */
     bool skip_images;
     /* true = no lights from emissive primitives (EXT_lights_area only).
-     * Default false: every primitive whose material emits becomes lights. */
+     * Default false: every primitive whose material emits becomes lights,
+     * as emissive_mode says. */
     bool no_emissive_lights;
+    /* How emissive primitives become lights (docs/materials.md, "Lights from
+     * materials"). Default BOUNDED. */
+    rtpbr_gltf_emissive_mode emissive_mode;
     /* EXT_lights_area gives luminance in nits (cd/m²). Radiance written to
      * rtpbr_gltf_light = color × intensity × area_light_radiance_scale;
      * 0 = 1 (nits used as the renderer's radiance unit, like emissive
@@ -382,6 +408,12 @@ typedef struct rtpbr_gltf_light {
     int32_t primitive;      /* index into scene->primitives, -1 for
                                EXT_lights_area lights                      */
     int32_t material;       /* emitting material, -1 for EXT_lights_area    */
+    bool proxy;             /* a cluster of an emissive mesh standing in for
+                               it (RTPBR_GLTF_EMISSIVE_BOUNDED): not its
+                               shape; path tracers emit from the mesh      */
+    int32_t triangle;       /* the primitive's triangle (indices[3 t ..])
+                               this light is, or -1 (RTPBR_GLTF_EMISSIVE_EXACT
+                               with an emission texture)                   */
     int32_t gltf_node;      /* node carrying an EXT_lights_area light, or the
                                primitive's node                            */
 } rtpbr_gltf_light;
@@ -432,6 +464,11 @@ rtpbr_gltf_result rtpbr_gltf_load_memory(const void* data, size_t size,
 
 /* Frees a scene returned by a load function. NULL is a no-op. */
 void rtpbr_gltf_destroy(rtpbr_gltf_scene* scene);
+
+/* A slot's texture coordinates through its KHR_texture_transform (the
+ * extension's matrix T R S: uv' = (c sx u + s sy v + ox, -s sx u + c sy v + oy),
+ * c, s = cos, sin of rotation); unchanged without one. */
+void rtpbr_gltf_texture_transform_apply(const rtpbr_gltf_texture_transform* t, float uv[2]);
 
 #ifdef __cplusplus
 } /* extern "C" */

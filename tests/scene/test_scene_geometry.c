@@ -556,6 +556,130 @@ static void test_sparse_positions(void** state) {
     free(uri);
 }
 
+/* A curved emitter (issue 28): a closed cylinder side of 24 x 6 quads (288 triangles, radius 1,
+ * height 2, outward, emission 1, 0.5, 0.25) is not a few polygons. BOUNDED (default): at most
+ * RTPBR_GLTF_MAX_EMITTER_CLUSTERS proxy octagons whose power (radiance x area, per channel)
+ * sums to the mesh's (the triangles' area x emission, computed here from the vertices), none
+ * brighter than the emission; EXACT: every triangle an emitter, each of the 24 coplanar columns
+ * of 6 quads merged into one rectangle, no proxy (24 > RTPBR_GLTF_MAX_EXACT_EMITTER_POLYGONS:
+ * why BOUNDED clusters it). */
+static void test_curved_emitter_bounded_and_exact(void** state) {
+    (void)state;
+    enum { SEG = 24, RINGS = 6 };
+    float pos[(SEG * (RINGS + 1)) * 3];
+    uint32_t idx[SEG * RINGS * 6];
+    for (int r = 0; r <= RINGS; ++r)
+        for (int k = 0; k < SEG; ++k) {
+            float* v = &pos[3 * (r * SEG + k)];
+            v[0] = (float)cos(2.0 * TS_PI * k / SEG), v[1] = (float)sin(2.0 * TS_PI * k / SEG), v[2] = -1.0f + 2.0f * r / RINGS;
+        }
+    size_t n = 0;
+    double mesh_area = 0.0;
+    for (int r = 0; r < RINGS; ++r)
+        for (int k = 0; k < SEG; ++k) {
+            uint32_t a = (uint32_t)(r * SEG + k), b = (uint32_t)(r * SEG + (k + 1) % SEG), c = a + SEG, d = b + SEG;
+            const uint32_t tri[6] = {a, b, d, a, d, c}; /* counter-clockwise seen from outside */
+            for (int q = 0; q < 6; ++q) idx[n++] = tri[q];
+        }
+    for (size_t t = 0; t < n; t += 3) {
+        const float *p0 = &pos[3 * idx[t]], *p1 = &pos[3 * idx[t + 1]], *p2 = &pos[3 * idx[t + 2]];
+        double e1[3], e2[3];
+        for (int k = 0; k < 3; ++k) e1[k] = p1[k] - p0[k], e2[k] = p2[k] - p0[k];
+        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
+        mesh_area += 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+    }
+    const double emission[3] = {1.0, 0.5, 0.25};
+    const char* dir = ts_dir("cylinder");
+    ts_scene s = {.positions = pos, .vertex_count = SEG * (RINGS + 1), .indices = idx, .index_count = n,
+                  .material = 0, .materials = "{\"emissiveFactor\":[1,0.5,0.25]}"};
+    char* json = ts_scene_json(&s);
+    char err[512];
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, "bounded.gltf", json, NULL, &scene, err, sizeof err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
+    assert_true(scene->light_count >= 1 && scene->light_count <= RTPBR_GLTF_MAX_EMITTER_CLUSTERS);
+    double power[3] = {0, 0, 0};
+    for (uint32_t i = 0; i < scene->light_count; ++i) {
+        const rtpbr_gltf_light* l = &scene->lights[i];
+        assert_true(l->proxy);
+        assert_int_equal(l->triangle, -1);
+        assert_int_equal(l->vertex_count, 8);
+        assert_convex_ccw(l);
+        for (int k = 0; k < 3; ++k) {
+            power[k] += (double)l->radiance[k] * l->area;
+            assert_true(l->radiance[k] <= emission[k] * (1.0 + 1e-6));
+        }
+    }
+    for (int k = 0; k < 3; ++k) assert_near(power[k], emission[k] * mesh_area, 1e-4 * mesh_area, "cluster power");
+    rtpbr_gltf_destroy(scene);
+
+    rtpbr_gltf_load_desc exact = {0};
+    exact.emissive_mode = RTPBR_GLTF_EMISSIVE_EXACT;
+    r = ts_load_text(dir, "exact.gltf", json, &exact, &scene, err, sizeof err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
+    assert_int_equal(scene->light_count, SEG);
+    assert_true(SEG > RTPBR_GLTF_MAX_EXACT_EMITTER_POLYGONS);
+    double area = 0.0;
+    for (uint32_t i = 0; i < scene->light_count; ++i) {
+        assert_false(scene->lights[i].proxy);
+        area += scene->lights[i].area;
+    }
+    assert_near(area, mesh_area, 1e-4 * mesh_area, "exact area");
+    rtpbr_gltf_destroy(scene);
+    free(json);
+}
+
+/* A textured emissive quad (issue 28): a 1 x 1 sRGB texture (128, 64, 255), emission 1, 1, 0.5.
+ * BOUNDED: one exact quad (not a proxy) at emission x the texel in linear (the sRGB transfer
+ * function, IEC 61966-2-1, computed here); EXACT: each triangle its own light with its triangle
+ * index, at the factor (the path tracer applies the texture). */
+static void test_textured_emitter(void** state) {
+    (void)state;
+    const unsigned char px[4] = {128, 64, 255, 255};
+    size_t png_size;
+    unsigned char* png = ts_png(px, 1, 1, &png_size);
+    char* uri = ts_data_uri("image/png", png, png_size);
+    char* extra = ts_format(",\"images\":[{\"uri\":\"%s\"}],\"textures\":[{\"source\":0}]", uri);
+    const float pos[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    const float uv[] = {0, 1, 1, 1, 1, 0, 0, 0};
+    const uint32_t idx[] = {0, 1, 2, 0, 2, 3};
+    ts_scene s = {.positions = pos, .vertex_count = 4, .indices = idx, .index_count = 6, .texcoords = uv,
+                  .material = 0, .extra = extra,
+                  .materials = "{\"emissiveFactor\":[1,1,0.5],\"emissiveTexture\":{\"index\":0}}"};
+    char* json = ts_scene_json(&s);
+    const char* dir = ts_dir("textured_emitter");
+    char err[512];
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, "bounded.gltf", json, NULL, &scene, err, sizeof err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
+    assert_int_equal(scene->light_count, 1);
+    assert_false(scene->lights[0].proxy);
+    assert_int_equal(scene->lights[0].vertex_count, 4);
+    const double factor[3] = {1.0, 1.0, 0.5};
+    for (int k = 0; k < 3; ++k) {
+        double c = px[k] / 255.0;
+        double lin = c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+        assert_near(scene->lights[0].radiance[k], factor[k] * lin, 1e-5, "texture-averaged radiance");
+    }
+    rtpbr_gltf_destroy(scene);
+
+    rtpbr_gltf_load_desc exact = {0};
+    exact.emissive_mode = RTPBR_GLTF_EMISSIVE_EXACT;
+    r = ts_load_text(dir, "exact.gltf", json, &exact, &scene, err, sizeof err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
+    assert_int_equal(scene->light_count, 2);
+    for (uint32_t i = 0; i < 2; ++i) {
+        assert_int_equal(scene->lights[i].triangle, (int)i);
+        assert_int_equal(scene->lights[i].vertex_count, 3);
+        for (int k = 0; k < 3; ++k) assert_near(scene->lights[i].radiance[k], factor[k], 0, "factor");
+    }
+    rtpbr_gltf_destroy(scene);
+    free(json);
+    free(extra);
+    free(uri);
+    free(png);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_quad_light_over_plane),
@@ -564,6 +688,8 @@ int main(void) {
         cmocka_unit_test(test_strip_and_fan_modes),
         cmocka_unit_test(test_non_coplanar_triangles_are_separate),
         cmocka_unit_test(test_concave_region_splits_into_convex_lights),
+        cmocka_unit_test(test_curved_emitter_bounded_and_exact),
+        cmocka_unit_test(test_textured_emitter),
         cmocka_unit_test(test_non_emissive_and_degenerate),
         cmocka_unit_test(test_mirrored_node_keeps_ccw_winding),
         cmocka_unit_test(test_ext_lights_area),

@@ -92,6 +92,7 @@ int main(int argc, char **argv)
     rtpbr_renderer_desc size{};
     size.width = 640;
     size.height = 480;
+    size.timings = 1; // the frame's GPU times, printed
     rtpbr_render_desc render{};
     int validation = 0;
     double max_ratio = 0.0; // 0: report only
@@ -165,10 +166,20 @@ int main(int argc, char **argv)
         return 1;
     }
     const double bound = brightest_emitter(loaded);
+    uint32_t proxies = 0;
+    for (uint32_t i = 0; i < loaded->light_count; ++i) proxies += loaded->lights[i].proxy ? 1u : 0u;
+    std::printf("rtpbr-render: %s: %u lights", scene_path.c_str(), loaded->light_count);
+    if (proxies)
+        std::printf(" (%u of them standing in for emissive meshes: docs/materials.md, \"Lights from materials\")", proxies);
+    std::printf("\n");
     rtpbr_result r = rtpbr_context_create(&cd, &ctx);
     if (r == RTPBR_SUCCESS) r = rtpbr_gpu_scene_from_loaded(ctx, loaded, &scene);
     rtpbr_gltf_destroy(loaded);
     if (r == RTPBR_SUCCESS) r = rtpbr_renderer_create(ctx, &size, &renderer);
+    if (r == RTPBR_ERROR_MISSING_FEATURE && size.timings) { // a queue without timestamps: no times
+        size.timings = 0;
+        r = rtpbr_renderer_create(ctx, &size, &renderer);
+    }
     if (r == RTPBR_SUCCESS) r = rtpbr_render(renderer, scene, &render);
     std::string error;
     auto write_out = [&error](bool written) {
@@ -176,6 +187,10 @@ int main(int argc, char **argv)
         return written;
     };
     bool bound_held = true;
+    rtpbr_timings times{};
+    if (r == RTPBR_SUCCESS && size.timings && rtpbr_renderer_timings(renderer, &times) == RTPBR_SUCCESS && times.valid)
+        std::printf("rtpbr-render: frame %.1f ms on the device (G-buffer %.1f, lighting %.1f, tone map %.1f)\n",
+                    times.total_ms, times.gbuffer_ms, times.lighting_ms, times.tonemap_ms);
     if (r == RTPBR_SUCCESS) {
         int w = static_cast<int>(size.width), h = static_cast<int>(size.height);
         std::vector<float> rgba(size_t(w) * h * 4), rgb(size_t(w) * h * 3);
