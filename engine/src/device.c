@@ -109,6 +109,9 @@ static rtpbr_result create_instance(rtpbr_context *ctx, bool validation)
         .apiVersion = VK_API_VERSION_1_3,
     };
     VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    // WARNING and ERROR of every type, never INFO (the layer's and loader's own state, e.g. a
+    // shader validation cache not yet in ~/.cache): the same rule as tests/common/vk_host.h
+    // and the samples' messengers.
     VkDebugUtilsMessengerCreateInfoEXT messenger_info = {
         .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
         .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |

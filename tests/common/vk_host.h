@@ -1,9 +1,15 @@
 /* rtpbr tests: the Vulkan host bootstrap of the tests (and of the shader-statistics bench).
  *
  * vk_host_init_instance: one instance with VK_LAYER_KHRONOS_validation (required unless the
- * desc says validation is off) and synchronization validation, and a VK_EXT_debug_utils
- * messenger that prints and counts every message that is not the loader's or the layer's own
- * info-level chatter; a test fails when vk_host.messages is not 0.
+ * desc says validation is off), synchronization validation on and the shader validation
+ * cache off (nothing read from or written to $HOME), and a VK_EXT_debug_utils
+ * messenger that prints and counts every WARNING and ERROR message of every type (general,
+ * validation, performance); a test fails when vk_host.messages is not 0. VERBOSE and INFO
+ * messages are not asked for and never fail a test: at INFO the loader and the layer report
+ * their own state (the layer's settings; "Cannot open shader validation cache ... (it may not
+ * exist yet)" on a machine where no test ran before, i.e. when $XDG_CACHE_HOME or ~/.cache
+ * has no shader_validation_cache-0.bin), which says nothing about the tests' Vulkan use. The
+ * engine (engine/src/device.c) and the samples' messengers use the same two severities.
  * vk_host_init_device: one device on lavapipe (a CPU device, or one named llvmpipe; any
  * other device only when there is no lavapipe) with one queue of the family the desc asks
  * for. vk_host_init does both.
