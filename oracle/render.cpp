@@ -357,12 +357,7 @@ private:
     glm::vec4 sampleSlot(int32_t texture, const rtpbr_gltf_texture_transform &t, const SurfacePoint &sp) const {
         if (texture < 0 || uint32_t(texture) >= textures_.size())
             return glm::vec4(1.0f);
-        glm::vec2 uv = sp.uv[t.texcoord == 1 ? 1 : 0];
-        if (t.has_transform) {
-            float c = std::cos(t.rotation), s = std::sin(t.rotation);
-            glm::vec2 scaled(t.scale[0] * uv.x, t.scale[1] * uv.y);
-            uv = glm::vec2(c * scaled.x + s * scaled.y + t.offset[0], -s * scaled.x + c * scaled.y + t.offset[1]);
-        }
+        glm::vec2 uv = slotUv(t, sp.uv[0], sp.uv[1]);
         return textures_[uint32_t(texture)].sample(uv.x, uv.y);
     }
 
@@ -534,7 +529,7 @@ Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Acc
     }
     LightSet lights(scene, s.lightSampling);
     EmbreeScene es;
-    r = buildEmbree(scene, &es, error);
+    r = buildEmbree(scene, textures, &es, error);
     if (r != Result::Success)
         return r;
 

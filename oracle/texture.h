@@ -11,6 +11,18 @@
 
 namespace rtpbr_oracle {
 
+// A texture slot's texture coordinates at a point whose TEXCOORD_0 and TEXCOORD_1 are uv0 and
+// uv1: the slot's set through its KHR_texture_transform (rtpbr_gltf.h states the matrix).
+inline glm::vec2 slotUv(const rtpbr_gltf_texture_transform &t, glm::vec2 uv0, glm::vec2 uv1) {
+    glm::vec2 uv = t.texcoord == 1 ? uv1 : uv0;
+    if (t.has_transform) {
+        float c = std::cos(t.rotation), s = std::sin(t.rotation);
+        glm::vec2 scaled(t.scale[0] * uv.x, t.scale[1] * uv.y);
+        uv = glm::vec2(c * scaled.x + s * scaled.y + t.offset[0], -s * scaled.x + c * scaled.y + t.offset[1]);
+    }
+    return uv;
+}
+
 // Texels decoded to linear float once (sRGB textures through the sRGB EOTF), then sampled
 // bilinearly (nearest when the texture asks for it) with the texture's wrap modes; no mipmaps:
 // the oracle averages many samples per pixel, which filters the texture over the footprint.

@@ -39,6 +39,9 @@ void main()
     vec4 metallic_roughness_texel = texture(metallic_roughness_texture, in_uv_base_color_metallic_roughness.zw);
     vec4 emission_texel = texture(emission_texture, in_uv_emission_normal.xy);
     vec4 normal_texel = texture(normal_texture, in_uv_emission_normal.zw);
+    // glTF alphaMode MASK: cut out where the coverage is below the cutoff. (BLEND materials are
+    // not drawn here: the forward pass shades them.)
+    if ((m.flags & RTPBR_MATERIAL_FLAG_ALPHA_MASK) != 0u && m.alpha * base_color_texel.a < m.alpha_cutoff) discard;
     vec3 n = normalize(in_normal);
     // Every surface reflects on the side the camera sees; it emits there only if that is its
     // front side or the material is double-sided.

@@ -28,15 +28,17 @@ RTPBR_DECLARE_SHARED(rtpbr_shader_tonemap, RTPBR_TONEMAP_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_mc, RTPBR_MC_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_bvh_node, RTPBR_BVH_NODE_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_bvh_triangle, RTPBR_BVH_TRIANGLE_FIELDS)
+RTPBR_DECLARE_SHARED(rtpbr_shader_alpha_texture, RTPBR_ALPHA_TEXTURE_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_shadow, RTPBR_SHADOW_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_texture_transforms, RTPBR_TEXTURE_TRANSFORMS_FIELDS)
 
 // The shaders' std140 / std430 sizes of the same structs.
 _Static_assert(sizeof(rtpbr_shader_frame) == 192, "Frame block layout");
 _Static_assert(sizeof(rtpbr_shader_bvh_node) == 32, "BVH node layout");
-_Static_assert(sizeof(rtpbr_shader_bvh_triangle) == 48, "BVH triangle layout");
+_Static_assert(sizeof(rtpbr_shader_bvh_triangle) == 64, "BVH triangle layout");
+_Static_assert(sizeof(rtpbr_shader_alpha_texture) == 16, "Alpha texture layout");
 _Static_assert(RTPBR_SHADER_MAX_SHADOWED_LIGHTS == RTPBR_MAX_SHADOWED_LIGHTS, "shadowed light limit shared by C and shaders");
-_Static_assert(sizeof(rtpbr_shader_material) == 128, "Material layout");
+_Static_assert(sizeof(rtpbr_shader_material) == 144, "Material layout");
 _Static_assert(sizeof(rtpbr_shader_light) == 192, "Light layout");
 _Static_assert(sizeof(rtpbr_shader_draw) == 128, "Draw push constants (128 bytes: the guaranteed minimum)");
 _Static_assert(RTPBR_SHADER_MAX_LIGHTS == RTPBR_MAX_LIGHTS, "light limit shared by C and shaders");
@@ -193,13 +195,14 @@ struct rtpbr_gpu_scene {
     rtpbr_buffer bvh_triangles; // rtpbr_shader_bvh_triangle[max(bvh_triangle_count, 1)]
     uint32_t *bvh_triangle_draws; // the draw of each BVH triangle (its sidedness follows the material)
     uint32_t bvh_node_count, bvh_triangle_count;
+    rtpbr_buffer alpha_textures; // rtpbr_shader_alpha_texture[texture_count] (scene.c), for the shadow rays
+    rtpbr_buffer alpha_texels;   // uint[]: the alpha bytes of the textures that have any below 255
 };
 
 // ---------------------------------------------------------------------------------------------
 // Renderer (renderer.c and the passes)
 
 enum { RTPBR_GBUFFER_COUNT = 4 };
-enum { RTPBR_VERTEX_FLOATS = 14 }; // float3 position, float3 normal, float2 uv, float4 tangent, float2 uv1
 
 // GPU timestamps around the passes (timing.c): taken at the start and after each pass.
 typedef enum rtpbr_timestamp {

@@ -207,6 +207,7 @@ void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCom
         const rtpbr_shader_material *materials = scene->materials.mapped;
         for (uint32_t i = 0; i < scene->draw_count; ++i) {
             const rtpbr_draw *d = &scene->draws[i];
+            if (materials[d->push.material].flags & RTPBR_MATERIAL_FLAG_ALPHA_BLEND) continue; // the forward pass's
             // glTF doubleSided false: back faces are not drawn. Counter-clockwise is the front
             // (the projection's y flip keeps it so), clockwise under a mirroring transform.
             bool single_sided = !(materials[d->push.material].flags & RTPBR_MATERIAL_FLAG_DOUBLE_SIDED);
