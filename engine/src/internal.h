@@ -102,6 +102,12 @@ typedef struct rtpbr_lighting_pass {             // passes/lighting.c, passes/li
     VkPipeline mc[RTPBR_LIGHTING_VARIANT_COUNT]; // compiled on first use
 } rtpbr_lighting_pass;
 
+typedef struct rtpbr_forward_pass {              // passes/forward.c
+    VkDescriptorSetLayout set_layout;            // set 0 (set 1: the G-buffer pass's material sets)
+    VkPipelineLayout layout;                     // + push constants rtpbr_shader_draw
+    VkPipeline pipelines[RTPBR_LIGHTING_VARIANT_COUNT]; // compiled on first use
+} rtpbr_forward_pass;
+
 typedef struct rtpbr_resolve_pass {              // passes/resolve.c
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout layout;                     // + push constants rtpbr_shader_resolve
@@ -153,6 +159,7 @@ struct rtpbr_context {
     rtpbr_resolve_pass resolve;
     rtpbr_tonemap_pass tonemap;
     rtpbr_shadow_pass shadow;
+    rtpbr_forward_pass forward;
     // Live children, so that rtpbr_context_destroy can destroy what the host left behind
     // (rtpbr.h: the context owns them). Linked through their own prev/next fields.
     rtpbr_gpu_scene *scenes;
@@ -165,7 +172,14 @@ struct rtpbr_context {
 typedef struct rtpbr_draw {
     uint32_t first_index, index_count;
     rtpbr_shader_draw push;
+    float center[3]; // of the mesh's bounding box, object space (the forward pass sorts by it)
 } rtpbr_draw;
+
+// A BLEND draw and its squared view distance (passes/forward.c sorts them).
+typedef struct rtpbr_draw_depth {
+    float distance2;
+    uint32_t draw;
+} rtpbr_draw_depth;
 
 // The samplers of material textures, one per combination of the rtpbr_texture_desc fields:
 // key = ((wrap_s * 3 + wrap_t) * 2 + mag_filter) * 2 + min_filter) * 3 + mipmap.
@@ -187,6 +201,7 @@ struct rtpbr_gpu_scene {
     VkDescriptorSet *material_sets; // one per material slot: its RTPBR_MATERIAL_TEXTURE_COUNT textures
     rtpbr_draw *draws;
     uint32_t draw_count;
+    rtpbr_draw_depth *blend_order; // draw_count entries: the forward pass's scratch
     uint32_t light_count;
     uint32_t material_count;   // of the desc (the buffer has max(material_count, 1) slots)
     rtpbr_camera_desc *cameras;
@@ -244,7 +259,7 @@ struct rtpbr_renderer {
     rtpbr_buffer tile_lists;   // per class: indirect dispatch arguments, then the tile queues
     rtpbr_buffer radiance_readback, display_readback;
     // Each pass's descriptor set (made and written by its file in passes/).
-    rtpbr_descriptor_set gbuffer_set, lighting_set, resolve_set, tonemap_set, shadow_set;
+    rtpbr_descriptor_set gbuffer_set, lighting_set, resolve_set, tonemap_set, shadow_set, forward_set;
     VkCommandBuffer cmd;
     VkFence fence;
     bool has_frame;            // rtpbr_render completed at least once
@@ -256,6 +271,7 @@ struct rtpbr_renderer {
 };
 
 extern const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT];
+extern const VkPipelineVertexInputStateCreateInfo rtpbr_scene_vertex_input; // passes/gbuffer.c
 #define RTPBR_DEPTH_FORMAT VK_FORMAT_D32_SFLOAT
 #define RTPBR_RADIANCE_FORMAT VK_FORMAT_R32G32B32A32_SFLOAT
 #define RTPBR_DISPLAY_FORMAT VK_FORMAT_R8G8B8A8_SRGB

@@ -494,6 +494,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, index_bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &scene->indices));
     if (desc->mesh_count) {
         RTPBR_ALLOC(&ctx->host, scene->draws, desc->mesh_count * sizeof *scene->draws);
+        RTPBR_ALLOC(&ctx->host, scene->blend_order, desc->mesh_count * sizeof *scene->blend_order);
     }
     float *vertices = scene->vertices.mapped;
     uint32_t *indices = scene->indices.mapped;
@@ -522,6 +523,14 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         else memcpy(draw->push.world_from_object, m->transform, sizeof m->transform);
         normal_matrix(draw->push.world_from_object, draw->push.normal_matrix);
         draw->push.material = m->material;
+        float lo[3], hi[3];
+        for (int k = 0; k < 3; ++k) lo[k] = hi[k] = m->positions[k];
+        for (uint32_t v = 1; v < m->vertex_count; ++v)
+            for (int k = 0; k < 3; ++k) {
+                lo[k] = fminf(lo[k], m->positions[3 * v + k]);
+                hi[k] = fmaxf(hi[k], m->positions[3 * v + k]);
+            }
+        for (int k = 0; k < 3; ++k) draw->center[k] = 0.5f * (lo[k] + hi[k]);
         vertex_base += m->vertex_count;
         index_base += count;
     }
@@ -581,6 +590,7 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_free(&ctx->host, scene->textures);
     rtpbr_free(&ctx->host, scene->texture_samplers);
     rtpbr_free(&ctx->host, scene->draws);
+    rtpbr_free(&ctx->host, scene->blend_order);
     rtpbr_free(&ctx->host, scene->cameras);
     RTPBR_LIST_UNLINK(ctx->scenes, scene);
     rtpbr_free(&ctx->host, scene);
@@ -641,6 +651,14 @@ rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh
     else memcpy(draw->push.world_from_object, transform, sizeof draw->push.world_from_object);
     normal_matrix(draw->push.world_from_object, draw->push.normal_matrix);
     return RTPBR_SUCCESS;
+}
+
+bool rtpbr_scene_has_blend(const rtpbr_gpu_scene *scene)
+{
+    const rtpbr_shader_material *materials = scene->materials.mapped;
+    for (uint32_t i = 0; i < scene->material_count; ++i)
+        if (materials[i].flags & RTPBR_MATERIAL_FLAG_ALPHA_BLEND) return true;
+    return false;
 }
 
 uint32_t rtpbr_gpu_scene_camera_count(const rtpbr_gpu_scene *scene)
