@@ -2,6 +2,9 @@
 #include "embree_scene.h"
 
 #include "internal.h"
+#include "rng.h"
+
+#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <cstring>
@@ -38,39 +41,80 @@ unsigned attachTriangles(RTCDevice device, RTCScene scene, const float *position
     return id;
 }
 
-// Embree filter (intersection and occlusion): rejects hits on the back face of a single-sided
-// surface, i.e. where the ray direction points along the front normal (counter-clockwise
-// winding, the loader's convention).
-void backFaceFilter(const RTCFilterFunctionNArguments *args) {
-    const auto *ss = static_cast<const SingleSided *>(args->geometryUserPtr);
+// The back face of a single-sided surface: the ray direction points along the front normal
+// (counter-clockwise winding, the loader's convention).
+bool hitsBackFace(const SurfaceFilter &f, const RTCFilterFunctionNArguments *args, unsigned i) {
+    float n[3];
+    if (f.positions) {
+        const uint32_t *ix = f.indices + 3 * size_t(RTCHitN_primID(args->hit, args->N, i));
+        const float *p0 = f.positions + 3 * size_t(ix[0]), *p1 = f.positions + 3 * size_t(ix[1]),
+                    *p2 = f.positions + 3 * size_t(ix[2]);
+        const float e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+        const float e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    } else {
+        std::memcpy(n, f.lightNormal, sizeof n);
+    }
+    const float d = n[0] * RTCRayN_dir_x(args->ray, args->N, i) + n[1] * RTCRayN_dir_y(args->ray, args->N, i) +
+                    n[2] * RTCRayN_dir_z(args->ray, args->N, i);
+    return d > 0.0f;
+}
+
+uint32_t floatBits(float x) {
+    uint32_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+}
+
+// glTF alpha at a hit (SurfaceFilter): MASK keeps coverage >= alphaCutoff; BLEND keeps a hit of
+// coverage a when a hash of the ray (origin, direction) and the triangle is below a.
+bool alphaKeeps(const SurfaceFilter &f, const RTCFilterFunctionNArguments *args, unsigned i) {
+    const rtpbr_gltf_material &m = *f.alphaMaterial;
+    float alpha = m.base_color[3];
+    const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+    if (f.alphaTexture) {
+        const rtpbr_gltf_primitive &p = *f.alphaPrimitive;
+        const uint32_t *ix = p.indices + 3 * size_t(prim);
+        const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+        glm::vec2 uv[2] = {glm::vec2(0.0f), glm::vec2(0.0f)};
+        const float *sets[2] = {p.has_texcoords ? p.texcoords : nullptr, p.has_texcoords1 ? p.texcoords1 : nullptr};
+        for (int set = 0; set < 2; set++)
+            if (sets[set])
+                uv[set] = (1.0f - u - v) * glm::make_vec2(sets[set] + 2 * ix[0]) +
+                          u * glm::make_vec2(sets[set] + 2 * ix[1]) + v * glm::make_vec2(sets[set] + 2 * ix[2]);
+        glm::vec2 st = slotUv(m.base_color_texture_transform, uv[0], uv[1]);
+        alpha *= f.alphaTexture->sample(st.x, st.y).a;
+    }
+    if (m.alpha_mode == RTPBR_GLTF_ALPHA_MASK)
+        return alpha >= m.alpha_cutoff;
+    uint64_t h = mix64((uint64_t(floatBits(RTCRayN_org_x(args->ray, args->N, i))) << 32) ^
+                       floatBits(RTCRayN_org_y(args->ray, args->N, i)));
+    h = mix64(h ^ (uint64_t(floatBits(RTCRayN_org_z(args->ray, args->N, i))) << 32) ^
+              floatBits(RTCRayN_dir_x(args->ray, args->N, i)));
+    h = mix64(h ^ (uint64_t(floatBits(RTCRayN_dir_y(args->ray, args->N, i))) << 32) ^
+              floatBits(RTCRayN_dir_z(args->ray, args->N, i)));
+    h = mix64(h ^ (uint64_t(RTCHitN_geomID(args->hit, args->N, i)) << 32) ^ prim);
+    return float(h >> 40) * (1.0f / 16777216.0f) < alpha;
+}
+
+// Embree filter (intersection and occlusion) of a SurfaceFilter.
+void surfaceFilter(const RTCFilterFunctionNArguments *args) {
+    const auto *f = static_cast<const SurfaceFilter *>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; i++) {
         if (args->valid[i] != -1)
             continue;
-        float n[3];
-        if (ss->positions) {
-            const uint32_t *ix = ss->indices + 3 * size_t(RTCHitN_primID(args->hit, args->N, i));
-            const float *p0 = ss->positions + 3 * size_t(ix[0]), *p1 = ss->positions + 3 * size_t(ix[1]),
-                        *p2 = ss->positions + 3 * size_t(ix[2]);
-            const float e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-            const float e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-            n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-            n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-            n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        } else {
-            std::memcpy(n, ss->lightNormal, sizeof n);
-        }
-        const float d = n[0] * RTCRayN_dir_x(args->ray, args->N, i) + n[1] * RTCRayN_dir_y(args->ray, args->N, i) +
-                        n[2] * RTCRayN_dir_z(args->ray, args->N, i);
-        if (d > 0.0f)
+        if ((f->cullBackFaces && hitsBackFace(*f, args, i)) || (f->alphaMaterial && !alphaKeeps(*f, args, i)))
             args->valid[i] = 0;
     }
 }
 
-void setBackFaceFilter(RTCScene scene, unsigned id, const SingleSided *ss) {
+void setSurfaceFilter(RTCScene scene, unsigned id, const SurfaceFilter *f) {
     RTCGeometry g = rtcGetGeometry(scene, id);
-    rtcSetGeometryUserData(g, const_cast<SingleSided *>(ss));
-    rtcSetGeometryIntersectFilterFunction(g, backFaceFilter);
-    rtcSetGeometryOccludedFilterFunction(g, backFaceFilter);
+    rtcSetGeometryUserData(g, const_cast<SurfaceFilter *>(f));
+    rtcSetGeometryIntersectFilterFunction(g, surfaceFilter);
+    rtcSetGeometryOccludedFilterFunction(g, surfaceFilter);
     rtcCommitGeometry(g);
 }
 
@@ -91,7 +135,8 @@ unsigned attachLight(RTCDevice device, RTCScene scene, const rtpbr_gltf_light &L
 
 } // namespace
 
-Result buildEmbree(const rtpbr_gltf_scene &scene, EmbreeScene *es, std::string *error) {
+Result buildEmbree(const rtpbr_gltf_scene &scene, const std::vector<Texture> &textures, EmbreeScene *es,
+                   std::string *error) {
     es->device = rtcNewDevice("threads=1,user_threads=0");
     if (!es->device) {
         *error = fmt("cannot create the Embree device (error %d)", int(rtcGetDeviceError(nullptr)));
@@ -121,12 +166,22 @@ Result buildEmbree(const rtpbr_gltf_scene &scene, EmbreeScene *es, std::string *
             break;
         es->fullGeoms.resize(std::max<size_t>(es->fullGeoms.size(), id + 1));
         es->fullGeoms[id] = {false, p};
-        if (prim.material < scene.material_count && !scene.materials[prim.material].double_sided) {
-            SingleSided ss;
-            ss.positions = prim.positions;
-            ss.indices = prim.indices;
-            es->singleSided.push_back(ss);
-            setBackFaceFilter(es->full, id, &es->singleSided.back());
+        if (prim.material < scene.material_count) {
+            const rtpbr_gltf_material &m = scene.materials[prim.material];
+            SurfaceFilter f;
+            f.cullBackFaces = !m.double_sided;
+            f.positions = prim.positions;
+            f.indices = prim.indices;
+            if (m.alpha_mode == RTPBR_GLTF_ALPHA_MASK || m.alpha_mode == RTPBR_GLTF_ALPHA_BLEND) {
+                f.alphaPrimitive = &prim;
+                f.alphaMaterial = &m;
+                if (m.base_color_texture >= 0 && uint32_t(m.base_color_texture) < textures.size())
+                    f.alphaTexture = &textures[uint32_t(m.base_color_texture)];
+            }
+            if (f.cullBackFaces || f.alphaMaterial) {
+                es->filters.push_back(f);
+                setSurfaceFilter(es->full, id, &es->filters.back());
+            }
         }
     }
     for (uint32_t l = 0; l < scene.light_count; l++) {
@@ -139,10 +194,11 @@ Result buildEmbree(const rtpbr_gltf_scene &scene, EmbreeScene *es, std::string *
         const rtpbr_gltf_light &L = scene.lights[l];
         if (L.material >= 0 && uint32_t(L.material) < scene.material_count &&
             !scene.materials[L.material].double_sided) {
-            SingleSided ss;
-            std::memcpy(ss.lightNormal, L.normal, sizeof ss.lightNormal);
-            es->singleSided.push_back(ss);
-            setBackFaceFilter(es->full, id, &es->singleSided.back());
+            SurfaceFilter f;
+            f.cullBackFaces = true;
+            std::memcpy(f.lightNormal, L.normal, sizeof f.lightNormal);
+            es->filters.push_back(f);
+            setSurfaceFilter(es->full, id, &es->filters.back());
         }
         es->lightOnlyGeoms.resize(std::max<size_t>(es->lightOnlyGeoms.size(), id2 + 1));
         es->lightOnlyGeoms[id2] = l;

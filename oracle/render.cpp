@@ -397,9 +397,8 @@ private:
     glm::vec4 sampleSlot(int32_t texture, const rtpbr_gltf_texture_transform &t, const SurfacePoint &sp) const {
         if (texture < 0 || uint32_t(texture) >= textures_.size())
             return glm::vec4(1.0f);
-        float uv[2] = {sp.uv[t.texcoord == 1 ? 1 : 0].x, sp.uv[t.texcoord == 1 ? 1 : 0].y};
-        rtpbr_gltf_texture_transform_apply(&t, uv);
-        return textures_[uint32_t(texture)].sample(uv[0], uv[1]);
+        glm::vec2 uv = slotUv(t, sp.uv[0], sp.uv[1]);
+        return textures_[uint32_t(texture)].sample(uv.x, uv.y);
     }
 
     // glTF normalTexture: tangent-space normal (2 rgb - 1) scaled in xy by normal_scale, with
@@ -570,7 +569,7 @@ Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Acc
     }
     LightSet lights(scene, s.lightSampling);
     EmbreeScene es;
-    r = buildEmbree(scene, &es, error);
+    r = buildEmbree(scene, textures, &es, error);
     if (r != Result::Success)
         return r;
 

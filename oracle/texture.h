@@ -11,6 +11,15 @@
 
 namespace rtpbr_oracle {
 
+// A texture slot's texture coordinates at a point whose TEXCOORD_0 and TEXCOORD_1 are uv0 and
+// uv1: the slot's set through its KHR_texture_transform (rtpbr_gltf.h states the matrix).
+inline glm::vec2 slotUv(const rtpbr_gltf_texture_transform &t, glm::vec2 uv0, glm::vec2 uv1) {
+    glm::vec2 chosen = t.texcoord == 1 ? uv1 : uv0;
+    float uv[2] = {chosen.x, chosen.y};
+    rtpbr_gltf_texture_transform_apply(&t, uv); // the loader's one formula
+    return glm::vec2(uv[0], uv[1]);
+}
+
 // Texels decoded to linear float once (sRGB textures through the sRGB EOTF), then sampled
 // bilinearly (nearest when the texture asks for it) with the texture's wrap modes; no mipmaps:
 // the oracle averages many samples per pixel, which filters the texture over the footprint.

@@ -1,7 +1,14 @@
 // Any-hit occlusion query against the scene's BVH (engine/src/bvh.c documents the layout):
 // a short fixed-size stack (RTPBR_BVH_MAX_DEPTH entries, the builder's depth bound) is the
 // only run-time-indexed private array; nodes and triangles are read from storage buffers.
-// Include after rtpbr_shared.h; define BVH_SET before including (the descriptor set).
+// Include after rtpbr_shared.h and material.glsl.
+//
+// Alpha (glTF alphaMode): a triangle of a MASK material lets the ray through where its coverage
+// (the material's alpha x the base colour texture's alpha at the slot's transformed texture
+// coordinates) is below the cutoff; one of a BLEND material blocks it with probability equal to
+// the coverage (stochastic opacity: a hash of the ray's key and the triangle decides). The
+// texture's alpha is read from the bytes the scene keeps for that (rtpbr_shared.h,
+// RTPBR_ALPHA_TEXTURE_FIELDS), bilinearly at level 0 with the texture's wrap modes.
 
 // Fields declared once, in rtpbr_shared.h (C: rtpbr_shader_bvh_node, rtpbr_shader_bvh_triangle).
 struct BvhNode {
@@ -16,6 +23,88 @@ layout(set = 0, binding = RTPBR_BINDING_SHADOW_BVH_NODES, std430) readonly buffe
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_BVH_TRIANGLES, std430) readonly buffer BvhTriangles {
     BvhTriangle bvh_triangles[];
 };
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_VERTICES, std430) readonly buffer BvhVertices {
+    float bvh_vertices[];
+};
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_MATERIALS, std430) readonly buffer BvhMaterials {
+    Material bvh_materials[];
+};
+struct BvhTextureTransforms {
+    RTPBR_TEXTURE_TRANSFORMS_FIELDS(RTPBR_SHARED_FIELD, BvhTextureTransforms)
+};
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_TEXTURE_TRANSFORMS, std430) readonly buffer BvhTransforms {
+    BvhTextureTransforms bvh_texture_transforms[];
+};
+struct AlphaTexture {
+    RTPBR_ALPHA_TEXTURE_FIELDS(RTPBR_SHARED_FIELD, AlphaTexture)
+};
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_ALPHA_TEXTURES, std430) readonly buffer AlphaTextures {
+    AlphaTexture alpha_textures[];
+};
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_ALPHA_TEXELS, std430) readonly buffer AlphaTexels {
+    uint alpha_texels[];
+};
+
+// A texel index along an axis of n texels under a glTF wrap mode (0 repeat, 1 clamp, 2 mirrored).
+int bvh_wrap(int i, int n, uint mode)
+{
+    if (mode == 1u) return clamp(i, 0, n - 1);
+    if (mode == 2u) {
+        int p = ((i % (2 * n)) + 2 * n) % (2 * n);
+        return p < n ? p : 2 * n - 1 - p;
+    }
+    return ((i % n) + n) % n;
+}
+
+float bvh_alpha_texel(AlphaTexture t, int x, int y)
+{
+    uint i = uint(bvh_wrap(y, int(t.height), t.wrap >> 2u)) * t.width + uint(bvh_wrap(x, int(t.width), t.wrap & 3u));
+    return float((alpha_texels[t.first + i / 4u] >> (8u * (i % 4u))) & 255u) / 255.0f;
+}
+
+// The alpha of a texture at uv, bilinear, level 0 (oracle/texture.h samples the same way).
+float bvh_texture_alpha(uint texture, vec2 uv)
+{
+    AlphaTexture t = alpha_textures[texture];
+    if (t.first == RTPBR_ALPHA_TEXTURE_OPAQUE) return 1.0f;
+    if (any(isnan(uv)) || any(greaterThan(abs(uv), vec2(1e6f)))) uv = vec2(0.0f);
+    vec2 xy = uv * vec2(t.width, t.height) - 0.5f;
+    vec2 f = floor(xy), a = xy - f;
+    int x = int(f.x), y = int(f.y);
+    return mix(mix(bvh_alpha_texel(t, x, y), bvh_alpha_texel(t, x + 1, y), a.x),
+               mix(bvh_alpha_texel(t, x, y + 1), bvh_alpha_texel(t, x + 1, y + 1), a.x), a.y);
+}
+
+// Jarzynski & Olano 2020, "Hash Functions for GPU Rendering": PCG.
+uint bvh_hash(uint v)
+{
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// Does the hit at barycentrics (u, v) on triangle i block the ray (its material's alpha)?
+bool bvh_alpha_blocks(uint i, float u, float v, uint rayKey)
+{
+    uvec4 source = bvh_triangles[i].source;
+    Material m = bvh_materials[source.w];
+    if ((m.flags & (RTPBR_MATERIAL_FLAG_ALPHA_MASK | RTPBR_MATERIAL_FLAG_ALPHA_BLEND)) == 0u) return true;
+    float alpha = m.alpha;
+    if (m.base_color_texture != 0u) {
+        vec4 rows[2] = bvh_texture_transforms[source.w].base_color;
+        uint offset = rows[0].w != 0.0f ? RTPBR_VERTEX_UV1_OFFSET : RTPBR_VERTEX_UV_OFFSET;
+        vec2 uv = vec2(0.0f);
+        for (uint k = 0u; k < 3u; ++k) {
+            float w = k == 0u ? 1.0f - u - v : k == 1u ? u : v;
+            uint base = source[k] * RTPBR_VERTEX_FLOATS + offset;
+            uv += w * vec2(bvh_vertices[base], bvh_vertices[base + 1u]);
+        }
+        vec3 uv1 = vec3(uv, 1.0f);
+        alpha *= bvh_texture_alpha(m.base_color_texture, vec2(dot(rows[0].xyz, uv1), dot(rows[1].xyz, uv1)));
+    }
+    if ((m.flags & RTPBR_MATERIAL_FLAG_ALPHA_MASK) != 0u) return alpha >= m.alpha_cutoff;
+    return float(bvh_hash(rayKey ^ bvh_hash(i)) >> 8u) * (1.0f / 16777216.0f) < alpha;
+}
 
 // Slab test: does the ray o + t d, t in [0, tMax], enter the box?
 bool bvh_box_hit(vec3 boxMin, vec3 boxMax, vec3 o, vec3 invD, float tMax)
@@ -29,9 +118,10 @@ bool bvh_box_hit(vec3 boxMin, vec3 boxMax, vec3 o, vec3 invD, float tMax)
 }
 
 // Moeller & Trumbore 1997, "Fast, Minimum Storage Ray/Triangle Intersection"; both sides of a
-// double-sided triangle, the front of a single-sided one (v0.w, rtpbr_shared.h).
-bool bvh_triangle_hit(BvhTriangle tri, vec3 o, vec3 d, float tMax)
+// double-sided triangle, the front of a single-sided one (v0.w, rtpbr_shared.h); then the alpha.
+bool bvh_triangle_hit(uint i, vec3 o, vec3 d, float tMax, uint rayKey)
 {
+    BvhTriangle tri = bvh_triangles[i];
     vec3 p = cross(d, tri.e2.xyz);
     float det = dot(tri.e1.xyz, p); // = -dot(d, e1 x e2): > 0 where the ray meets the counter-clockwise side
     if (abs(det) < 1e-20f || det * tri.v0.w < 0.0f) return false;
@@ -41,11 +131,12 @@ bool bvh_triangle_hit(BvhTriangle tri, vec3 o, vec3 d, float tMax)
     vec3 q = cross(s, tri.e1.xyz);
     float v = dot(d, q) * invDet;
     float t = dot(tri.e2.xyz, q) * invDet;
-    return u >= 0.0f && v >= 0.0f && u + v <= 1.0f && t > 0.0f && t < tMax;
+    return u >= 0.0f && v >= 0.0f && u + v <= 1.0f && t > 0.0f && t < tMax && bvh_alpha_blocks(i, u, v, rayKey);
 }
 
-// True if any triangle crosses the segment o + t d, 0 < t < tMax.
-bool bvh_occluded(vec3 o, vec3 d, float tMax)
+// True if any triangle crosses the segment o + t d, 0 < t < tMax. rayKey: a random number of
+// this ray, for the stochastic opacity of BLEND materials.
+bool bvh_occluded(vec3 o, vec3 d, float tMax, uint rayKey)
 {
     // Zero direction components become huge reciprocals of the right sign (no NaN in the slabs).
     vec3 invD = 1.0f / mix(d, vec3(1e-30f), lessThan(abs(d), vec3(1e-30f)));
@@ -58,7 +149,7 @@ bool bvh_occluded(vec3 o, vec3 d, float tMax)
         BvhNode n = bvh_nodes[node];
         if (n.count > 0u) {
             for (uint i = n.left_or_first; i < n.left_or_first + n.count; ++i)
-                if (bvh_triangle_hit(bvh_triangles[i], o, d, tMax)) return true;
+                if (bvh_triangle_hit(i, o, d, tMax, rayKey)) return true;
         } else {
             BvhNode left = bvh_nodes[n.left_or_first];
             BvhNode right = bvh_nodes[n.left_or_first + 1u];

@@ -14,16 +14,7 @@ layout(set = 0, binding = RTPBR_BINDING_GBUFFER_MATERIALS, std430) readonly buff
     Material materials[];
 };
 
-layout(location = 0) in vec3 in_normal;
-layout(location = 1) in vec3 in_world;
-layout(location = 2) in vec4 in_uv_base_color_metallic_roughness; // each slot's (gbuffer.vert)
-layout(location = 3) in vec4 in_tangent;
-layout(location = 4) in vec4 in_uv_emission_normal;
-
-layout(set = 1, binding = RTPBR_BINDING_TEXTURE_BASE_COLOR) uniform sampler2D base_color_texture;
-layout(set = 1, binding = RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS) uniform sampler2D metallic_roughness_texture;
-layout(set = 1, binding = RTPBR_BINDING_TEXTURE_EMISSION) uniform sampler2D emission_texture;
-layout(set = 1, binding = RTPBR_BINDING_TEXTURE_NORMAL) uniform sampler2D normal_texture;
+#include "fragment_material.glsl"
 
 layout(location = 0) out vec4 out_gbuffer0; // base colour rgb, metallic
 layout(location = 1) out vec4 out_gbuffer1; // world normal xyz, perceptual roughness
@@ -33,46 +24,12 @@ layout(location = 3) out vec4 out_gbuffer3; // anisotropy direction (world, unit
 void main()
 {
     Material m = materials[draw.material];
-    // Every texture is sampled here, in uniform control flow, where the implicit derivatives
-    // that pick the mip level are defined.
-    vec4 base_color_texel = texture(base_color_texture, in_uv_base_color_metallic_roughness.xy);
-    vec4 metallic_roughness_texel = texture(metallic_roughness_texture, in_uv_base_color_metallic_roughness.zw);
-    vec4 emission_texel = texture(emission_texture, in_uv_emission_normal.xy);
-    vec4 normal_texel = texture(normal_texture, in_uv_emission_normal.zw);
-    vec3 n = normalize(in_normal);
-    // Every surface reflects on the side the camera sees; it emits there only if that is its
-    // front side or the material is double-sided.
-    bool back = dot(n, frame.camera_position.xyz - in_world) < 0.0;
-    // glTF normal textures: tangent-space normal (x, y scaled by normalTexture.scale) in the
-    // frame (T, B = w N x T, N) of the interpolated vertex tangent.
-    if ((m.flags & RTPBR_MATERIAL_FLAG_NORMAL_MAPPED) != 0u && dot(in_tangent.xyz, in_tangent.xyz) > 0.0) {
-        vec3 t = normalize(in_tangent.xyz - n * dot(n, in_tangent.xyz));
-        vec3 b = (in_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);
-        vec3 ts = normal_texel.xyz * 2.0 - 1.0;
-        ts.xy *= m.normal_scale;
-        n = normalize(t * ts.x + b * ts.y + n * ts.z);
-    }
-    // The anisotropy direction (KHR_materials_anisotropy; Disney: the tangent): the tangent
-    // made orthogonal to the shading normal, rotated toward the bitangent. Zero without tangents.
-    vec3 anisotropyDirection = vec3(0.0);
-    if (dot(in_tangent.xyz, in_tangent.xyz) > 0.0) {
-        vec3 t = in_tangent.xyz - n * dot(n, in_tangent.xyz);
-        if (dot(t, t) > 1e-12) {
-            t = normalize(t);
-            vec3 b = (in_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);
-            float rotation = m.anisotropy_rotation;
-            anisotropyDirection = t * cos(rotation) + b * sin(rotation);
-        }
-    }
-    if (back) n = -n;
-    vec3 emission = back && (m.flags & RTPBR_MATERIAL_FLAG_DOUBLE_SIDED) == 0u ? vec3(0.0) : m.emission * emission_texel.rgb;
-    // glTF: textures multiply the factors; metallic-roughness holds roughness in g, metallic in b.
-    vec4 mr = metallic_roughness_texel;
-    // The roughness floor of the shader library's material resolve (material.h), applied here
-    // so that the lighting passes read the G-buffer's roughness as the resolve would.
-    float roughness = Material_PerceptualRoughness(m.roughness * mr.g);
-    out_gbuffer0 = vec4(m.base_color * base_color_texel.rgb, rtpbr_saturate(m.metallic * mr.b));
-    out_gbuffer1 = vec4(n, roughness);
-    out_gbuffer2 = vec4(emission, float(draw.material)); // exact: RTPBR_MAX_MATERIALS < 2^24
-    out_gbuffer3 = vec4(anisotropyDirection, 0.0);
+    FragmentMaterial f = fragment_material(m); // samples every texture first
+    // glTF alphaMode MASK: cut out where the coverage is below the cutoff. (BLEND materials are
+    // not drawn here: the forward pass shades them.)
+    if ((m.flags & RTPBR_MATERIAL_FLAG_ALPHA_MASK) != 0u && f.alpha < m.alpha_cutoff) discard;
+    out_gbuffer0 = vec4(f.baseColor, f.metallic);
+    out_gbuffer1 = vec4(f.normal, f.roughness);
+    out_gbuffer2 = vec4(f.emission, float(draw.material)); // exact: RTPBR_MAX_MATERIALS < 2^24
+    out_gbuffer3 = vec4(f.anisotropyDirection, 0.0);
 }

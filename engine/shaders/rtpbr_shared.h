@@ -90,7 +90,7 @@
     F(S, FLOAT, clearcoat, )          /* KHR_materials_clearcoat clearcoatFactor */               \
     F(S, FLOAT, clearcoat_roughness, ) /* KHR clearcoatRoughnessFactor, perceptual */             \
     F(S, UINT, flags, )               /* RTPBR_MATERIAL_FLAG_* */                                 \
-    F(S, UINT, pad0, )                                                                            \
+    F(S, FLOAT, alpha_cutoff, )       /* RTPBR_MATERIAL_FLAG_ALPHA_MASK: cut where alpha < this */ \
     F(S, FLOAT, disney_subsurface, )  /* Burley 2012 (RTPBR_MATERIAL_FLAG_DISNEY) */              \
     F(S, FLOAT, disney_specular, )                                                                \
     F(S, FLOAT, disney_specular_tint, )                                                           \
@@ -98,7 +98,11 @@
     F(S, FLOAT, disney_sheen_tint, )                                                              \
     F(S, FLOAT, disney_clearcoat, )                                                               \
     F(S, FLOAT, disney_clearcoat_gloss, )                                                         \
-    F(S, FLOAT, disney_anisotropic, )
+    F(S, FLOAT, disney_anisotropic, )                                                             \
+    F(S, FLOAT, alpha, )              /* glTF baseColorFactor.a (MASK and BLEND) */               \
+    F(S, UINT, base_color_texture, )  /* 1-based scene texture, 0: none (the shadow rays' alpha) */ \
+    F(S, UINT, pad0, )                                                                            \
+    F(S, UINT, pad1, )
 // Bits of the material record's flags.
 #define RTPBR_MATERIAL_FLAG_DOUBLE_SIDED 1u  // drawn and emitting on both sides
 #define RTPBR_MATERIAL_FLAG_NORMAL_MAPPED 2u // has a normal texture
@@ -106,6 +110,8 @@
 #define RTPBR_MATERIAL_FLAG_CLEARCOAT 8u     // KHR clearcoat > 0
 #define RTPBR_MATERIAL_FLAG_SHEEN 16u        // KHR sheen colour not black
 #define RTPBR_MATERIAL_FLAG_ANISOTROPY 32u   // KHR anisotropy strength > 0
+#define RTPBR_MATERIAL_FLAG_ALPHA_MASK 64u   // glTF alphaMode MASK: cut out below alpha_cutoff
+#define RTPBR_MATERIAL_FLAG_ALPHA_BLEND 128u // glTF alphaMode BLEND: the forward pass draws it
 // The features only the full lighting variant shades (material_tile_class).
 #define RTPBR_MATERIAL_FLAGS_FULL                                                                 \
     (RTPBR_MATERIAL_FLAG_DISNEY | RTPBR_MATERIAL_FLAG_CLEARCOAT | RTPBR_MATERIAL_FLAG_SHEEN |     \
@@ -263,7 +269,17 @@
 #define RTPBR_BINDING_SHADOW_BVH_TRIANGLES 5  // storage: rtpbr_shader_bvh_triangle[]
 #define RTPBR_BINDING_SHADOW_ESTIMATES 6      // r32f storage image array: layer 2k shadowed, 2k + 1 unshadowed sum
 #define RTPBR_BINDING_SHADOW_RATIO 7          // r32f storage image array: shadowed / unshadowed
-#define RTPBR_SHADOW_BINDING_COUNT 8
+// The alpha of MASK and BLEND occluders (bvh.glsl's bvh_alpha_blocks):
+#define RTPBR_BINDING_SHADOW_VERTICES 8       // storage: the scene's vertices (RTPBR_VERTEX_FLOATS floats each)
+#define RTPBR_BINDING_SHADOW_MATERIALS 9      // storage: rtpbr_shader_material[]
+#define RTPBR_BINDING_SHADOW_TEXTURE_TRANSFORMS 10 // storage: rtpbr_shader_texture_transforms[]
+#define RTPBR_BINDING_SHADOW_ALPHA_TEXTURES 11 // storage: rtpbr_shader_alpha_texture[], by scene texture (0: none)
+#define RTPBR_BINDING_SHADOW_ALPHA_TEXELS 12  // storage: uint[], the textures' alpha bytes, 4 per uint
+#define RTPBR_SHADOW_BINDING_COUNT 13
+// The scene's vertex layout, floats per vertex: position 3, normal 3, uv 2, tangent 4, uv1 2.
+#define RTPBR_VERTEX_FLOATS 14
+#define RTPBR_VERTEX_UV_OFFSET 6
+#define RTPBR_VERTEX_UV1_OFFSET 12
 #define RTPBR_SHADOW_GROUP_SIZE 8             // 8 x 8 pixels per workgroup
 // Push constants of both shadow passes (std430; rtpbr_shader_shadow).
 #define RTPBR_SHADOW_FIELDS(F, S)                                                                 \
@@ -282,9 +298,22 @@
 // edges from it, ready for the Moeller-Trumbore test. v0.w: which side lets rays through
 // (glTF doubleSided false): 0 none (double-sided), +1 rays along e1 x e2, -1 rays against it
 // (a mirroring transform turned the winding); e1.w, e2.w unused.
+// source: the triangle's three vertices in the scene's vertex buffer (RTPBR_BINDING_SHADOW_VERTICES)
+// and its material, for the alpha of MASK and BLEND materials.
 #define RTPBR_BVH_TRIANGLE_FIELDS(F, S)                                                           \
     F(S, VEC4, v0, )                                                                               \
     F(S, VEC4, e1, )                                                                               \
-    F(S, VEC4, e2, )
+    F(S, VEC4, e2, )                                                                               \
+    F(S, UVEC4, source, ) /* vertex indices xyz, material w */
+// The alpha channel of a scene texture for the shadow rays (rtpbr_shader_alpha_texture, written
+// by engine/src/scene.c): the texture's alpha bytes, rows top to bottom, 4 to a uint (the
+// first in the low byte), from uint `first` of RTPBR_BINDING_SHADOW_ALPHA_TEXELS. first =
+// RTPBR_ALPHA_TEXTURE_OPAQUE: every alpha is 1 (no texture, or all texels 255), no bytes stored.
+#define RTPBR_ALPHA_TEXTURE_FIELDS(F, S)                                                          \
+    F(S, UINT, first, )                                                                            \
+    F(S, UINT, width, )                                                                            \
+    F(S, UINT, height, )                                                                           \
+    F(S, UINT, wrap, ) /* wrap_s | wrap_t << 2 (RTPBR_WRAP_*: 0 repeat, 1 clamp, 2 mirrored) */
+#define RTPBR_ALPHA_TEXTURE_OPAQUE 0xffffffffu
 
 #endif // RTPBR_SHARED_H

@@ -22,20 +22,13 @@
 // shadow_denoise.comp filters n S and n U and writes their ratio, S / U.
 #include "rtpbr_shared.h"
 #include "shadow_common.glsl"
+#include "material.glsl"
 #include "bvh.glsl"
 
 #include "light.glsl"
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_LIGHTS, std430) readonly buffer Lights {
     Light lights[];
 };
-
-// Jarzynski & Olano 2020, "Hash Functions for GPU Rendering": PCG.
-uint pcg_hash(uint v)
-{
-    uint state = v * 747796405u + 2891336453u;
-    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
 
 void main()
 {
@@ -64,7 +57,8 @@ void main()
     // Background (both stay 0); behind a one-sided light, or the light below the horizon
     // everywhere: both stay 0.
     bool facing = depth < 1.0f && (twoSided || dot(light.plane.xyz, origin) + light.plane.w > 0.0f);
-    uint h = pcg_hash(uint(pixel.x) + pcg_hash(uint(pixel.y) + pcg_hash(k + pcg_hash(params.seed))));
+    uint h = bvh_hash( // PCG (Jarzynski & Olano 2020; bvh.glsl)
+        uint(pixel.x) + bvh_hash(uint(pixel.y) + bvh_hash(k + bvh_hash(params.seed))));
     vec2 shift = vec2(float(h & 0xffffu), float(h >> 16u)) / 65536.0f;
     vec3 v0 = light.vertices[0].xyz;
     for (uint j = params.first_sample; facing && j < params.first_sample + params.samples; ++j) {
@@ -94,7 +88,7 @@ void main()
         cosY = twoSided ? abs(cosY) : cosY;
         float w = cosX > 0.0f && cosY > 0.0f ? light.area * cosX * cosY / dist2 : 0.0f;
         unshadowed += w;
-        if (w > 0.0f && !bvh_occluded(origin, d, 1.0f - 1e-3f)) shadowed += w;
+        if (w > 0.0f && !bvh_occluded(origin, d, 1.0f - 1e-3f, bvh_hash(h + j))) shadowed += w;
     }
     imageStore(shadow_estimates, shadowedTexel, vec4(shadowed));
     imageStore(shadow_estimates, unshadowedTexel, vec4(unshadowed));

@@ -9,8 +9,9 @@
 //              left_or_first + 1 (siblings are adjacent); count > 0: a leaf holding triangles
 //              left_or_first .. left_or_first + count - 1. Node 0 is the root. No node is deeper
 //              than RTPBR_BVH_MAX_DEPTH, so a traversal stack of that many entries suffices.
-//   triangles: 48 bytes each: vertex 0, edge v1 - v0, edge v2 - v0 (vec4s, w unused), ready for
-//              the Moeller-Trumbore test; ordered by leaf.
+//   triangles: 64 bytes each: vertex 0, edge v1 - v0, edge v2 - v0 (vec4s), ready for the
+//              Moeller-Trumbore test, and the source vertices and material (for the alpha of MASK
+//              and BLEND materials); ordered by leaf.
 // A scene without triangles gets one empty leaf whose box (min > max) no ray enters.
 #include <float.h>
 #include <string.h>
@@ -172,10 +173,12 @@ rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
     build_state s = {0};
     float (*tri)[9] = NULL;
     uint32_t *draw_of = NULL; // the draw of each triangle, in the order of s.tri
+    uint32_t *first_index_of = NULL; // its first index in the scene's index buffer
     uint32_t node_slots = tri_count ? 2 * tri_count - 1 : 1;
     if (tri_count) {
         RTPBR_ALLOC(&ctx->host, tri, tri_count * sizeof *tri);
         RTPBR_ALLOC(&ctx->host, draw_of, tri_count * sizeof *draw_of);
+        RTPBR_ALLOC(&ctx->host, first_index_of, tri_count * sizeof *first_index_of);
         RTPBR_ALLOC(&ctx->host, s.centroid, tri_count * sizeof *s.centroid);
         RTPBR_ALLOC(&ctx->host, s.order, tri_count * sizeof *s.order);
     }
@@ -193,6 +196,7 @@ rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
             for (int c = 0; c < 3; ++c) s.centroid[t][c] = (tri[t][c] + tri[t][3 + c] + tri[t][6 + c]) / 3.0f;
             s.order[t] = t;
             draw_of[t] = d;
+            first_index_of[t] = draw->first_index + k;
         }
     }
     s.tri = (const float (*)[9])tri;
@@ -213,9 +217,11 @@ rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
     if (!tri_count) memset(out, 0, sizeof *out);
     for (uint32_t i = 0; i < tri_count; ++i) {
         const float *p = tri[s.order[i]];
+        const uint32_t *ix = indices + first_index_of[s.order[i]];
         rtpbr_shader_bvh_triangle g = {{p[0], p[1], p[2], 0.0f},
                                        {p[3] - p[0], p[4] - p[1], p[5] - p[2], 0.0f},
-                                       {p[6] - p[0], p[7] - p[1], p[8] - p[2], 0.0f}};
+                                       {p[6] - p[0], p[7] - p[1], p[8] - p[2], 0.0f},
+                                       {ix[0], ix[1], ix[2], scene->draws[draw_of[s.order[i]]].push.material}};
         out[i] = g;
     }
     scene->bvh_node_count = s.node_count;
@@ -226,6 +232,7 @@ rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
 cleanup:
     rtpbr_free(&ctx->host, tri);
     rtpbr_free(&ctx->host, draw_of);
+    rtpbr_free(&ctx->host, first_index_of);
     rtpbr_free(&ctx->host, s.centroid);
     rtpbr_free(&ctx->host, s.order);
     rtpbr_free(&ctx->host, s.nodes);

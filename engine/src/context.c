@@ -64,6 +64,7 @@ rtpbr_result rtpbr_context_create(const rtpbr_context_desc *desc, rtpbr_context 
     RTPBR_TRY(rtpbr_resolve_pass_init(ctx));
     RTPBR_TRY(rtpbr_tonemap_pass_init(ctx));
     RTPBR_TRY(rtpbr_shadow_pass_init(ctx));
+    RTPBR_TRY(rtpbr_forward_pass_init(ctx));
 
     *out_context = ctx;
     return RTPBR_SUCCESS;
@@ -91,6 +92,7 @@ void rtpbr_context_destroy(rtpbr_context *ctx)
             VkResult vr = vkWaitForFences(ctx->device, 1, &ctx->upload_fence, VK_TRUE, UINT64_MAX);
             if (vr != VK_SUCCESS) rtpbr_vk_fail(&ctx->host, vr, "vkWaitForFences (rtpbr_context_destroy)");
         }
+        rtpbr_forward_pass_finish(ctx);
         rtpbr_tonemap_pass_finish(ctx);
         rtpbr_resolve_pass_finish(ctx);
         rtpbr_lighting_mc_pass_finish(ctx);

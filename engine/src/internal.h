@@ -28,15 +28,17 @@ RTPBR_DECLARE_SHARED(rtpbr_shader_tonemap, RTPBR_TONEMAP_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_mc, RTPBR_MC_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_bvh_node, RTPBR_BVH_NODE_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_bvh_triangle, RTPBR_BVH_TRIANGLE_FIELDS)
+RTPBR_DECLARE_SHARED(rtpbr_shader_alpha_texture, RTPBR_ALPHA_TEXTURE_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_shadow, RTPBR_SHADOW_FIELDS)
 RTPBR_DECLARE_SHARED(rtpbr_shader_texture_transforms, RTPBR_TEXTURE_TRANSFORMS_FIELDS)
 
 // The shaders' std140 / std430 sizes of the same structs.
 _Static_assert(sizeof(rtpbr_shader_frame) == 192, "Frame block layout");
 _Static_assert(sizeof(rtpbr_shader_bvh_node) == 32, "BVH node layout");
-_Static_assert(sizeof(rtpbr_shader_bvh_triangle) == 48, "BVH triangle layout");
+_Static_assert(sizeof(rtpbr_shader_bvh_triangle) == 64, "BVH triangle layout");
+_Static_assert(sizeof(rtpbr_shader_alpha_texture) == 16, "Alpha texture layout");
 _Static_assert(RTPBR_SHADER_MAX_SHADOWED_LIGHTS == RTPBR_MAX_SHADOWED_LIGHTS, "shadowed light limit shared by C and shaders");
-_Static_assert(sizeof(rtpbr_shader_material) == 128, "Material layout");
+_Static_assert(sizeof(rtpbr_shader_material) == 144, "Material layout");
 _Static_assert(sizeof(rtpbr_shader_light) == 192, "Light layout");
 _Static_assert(sizeof(rtpbr_shader_draw) == 128, "Draw push constants (128 bytes: the guaranteed minimum)");
 _Static_assert(RTPBR_SHADER_MAX_LIGHTS == RTPBR_MAX_LIGHTS, "light limit shared by C and shaders");
@@ -100,6 +102,12 @@ typedef struct rtpbr_lighting_pass {             // passes/lighting.c, passes/li
     VkPipeline mc[RTPBR_LIGHTING_VARIANT_COUNT]; // compiled on first use
 } rtpbr_lighting_pass;
 
+typedef struct rtpbr_forward_pass {              // passes/forward.c
+    VkDescriptorSetLayout set_layout;            // set 0 (set 1: the G-buffer pass's material sets)
+    VkPipelineLayout layout;                     // + push constants rtpbr_shader_draw
+    VkPipeline pipelines[RTPBR_LIGHTING_VARIANT_COUNT]; // compiled on first use
+} rtpbr_forward_pass;
+
 typedef struct rtpbr_resolve_pass {              // passes/resolve.c
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout layout;                     // + push constants rtpbr_shader_resolve
@@ -151,6 +159,7 @@ struct rtpbr_context {
     rtpbr_resolve_pass resolve;
     rtpbr_tonemap_pass tonemap;
     rtpbr_shadow_pass shadow;
+    rtpbr_forward_pass forward;
     // Live children, so that rtpbr_context_destroy can destroy what the host left behind
     // (rtpbr.h: the context owns them). Linked through their own prev/next fields.
     rtpbr_gpu_scene *scenes;
@@ -163,7 +172,14 @@ struct rtpbr_context {
 typedef struct rtpbr_draw {
     uint32_t first_index, index_count;
     rtpbr_shader_draw push;
+    float center[3]; // of the mesh's bounding box, object space (the forward pass sorts by it)
 } rtpbr_draw;
+
+// A BLEND draw and its squared view distance (passes/forward.c sorts them).
+typedef struct rtpbr_draw_depth {
+    float distance2;
+    uint32_t draw;
+} rtpbr_draw_depth;
 
 // The samplers of material textures, one per combination of the rtpbr_texture_desc fields:
 // key = ((wrap_s * 3 + wrap_t) * 2 + mag_filter) * 2 + min_filter) * 3 + mipmap.
@@ -185,6 +201,7 @@ struct rtpbr_gpu_scene {
     VkDescriptorSet *material_sets; // one per material slot: its RTPBR_MATERIAL_TEXTURE_COUNT textures
     rtpbr_draw *draws;
     uint32_t draw_count;
+    rtpbr_draw_depth *blend_order; // draw_count entries: the forward pass's scratch
     uint32_t light_count;
     uint32_t material_count;   // of the desc (the buffer has max(material_count, 1) slots)
     rtpbr_camera_desc *cameras;
@@ -193,13 +210,14 @@ struct rtpbr_gpu_scene {
     rtpbr_buffer bvh_triangles; // rtpbr_shader_bvh_triangle[max(bvh_triangle_count, 1)]
     uint32_t *bvh_triangle_draws; // the draw of each BVH triangle (its sidedness follows the material)
     uint32_t bvh_node_count, bvh_triangle_count;
+    rtpbr_buffer alpha_textures; // rtpbr_shader_alpha_texture[texture_count] (scene.c), for the shadow rays
+    rtpbr_buffer alpha_texels;   // uint[]: the alpha bytes of the textures that have any below 255
 };
 
 // ---------------------------------------------------------------------------------------------
 // Renderer (renderer.c and the passes)
 
 enum { RTPBR_GBUFFER_COUNT = 4 };
-enum { RTPBR_VERTEX_FLOATS = 14 }; // float3 position, float3 normal, float2 uv, float4 tangent, float2 uv1
 
 // GPU timestamps around the passes (timing.c): taken at the start and after each pass.
 typedef enum rtpbr_timestamp {
@@ -241,7 +259,7 @@ struct rtpbr_renderer {
     rtpbr_buffer tile_lists;   // per class: indirect dispatch arguments, then the tile queues
     rtpbr_buffer radiance_readback, display_readback;
     // Each pass's descriptor set (made and written by its file in passes/).
-    rtpbr_descriptor_set gbuffer_set, lighting_set, resolve_set, tonemap_set, shadow_set;
+    rtpbr_descriptor_set gbuffer_set, lighting_set, resolve_set, tonemap_set, shadow_set, forward_set;
     VkCommandBuffer cmd;
     VkFence fence;
     bool has_frame;            // rtpbr_render completed at least once
@@ -253,6 +271,7 @@ struct rtpbr_renderer {
 };
 
 extern const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT];
+extern const VkPipelineVertexInputStateCreateInfo rtpbr_scene_vertex_input; // passes/gbuffer.c
 #define RTPBR_DEPTH_FORMAT VK_FORMAT_D32_SFLOAT
 #define RTPBR_RADIANCE_FORMAT VK_FORMAT_R32G32B32A32_SFLOAT
 #define RTPBR_DISPLAY_FORMAT VK_FORMAT_R8G8B8A8_SRGB

@@ -45,9 +45,12 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
     RTPBR_TRY(rtpbr_image_create(ctx, sw, sh, RTPBR_DEPTH_FORMAT,
                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, &r->depth));
     RTPBR_TRY(rtpbr_image_create(ctx, w, h, RTPBR_RADIANCE_FORMAT,
-                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &r->radiance));
+                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, // the forward pass blends into it
+                                 &r->radiance));
     if (ss > 1)
-        RTPBR_TRY(rtpbr_image_create(ctx, sw, sh, RTPBR_RADIANCE_FORMAT, VK_IMAGE_USAGE_STORAGE_BIT, &r->radiance_ss));
+        RTPBR_TRY(rtpbr_image_create(ctx, sw, sh, RTPBR_RADIANCE_FORMAT,
+                                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, &r->radiance_ss));
     RTPBR_TRY(rtpbr_image_create(ctx, w, h, RTPBR_DISPLAY_FORMAT,
                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &r->display));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, sizeof(rtpbr_shader_frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &r->frame));
@@ -70,6 +73,7 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
     RTPBR_TRY(rtpbr_gbuffer_renderer_init(r));
     RTPBR_TRY(rtpbr_shadow_renderer_init(r));
     RTPBR_TRY(rtpbr_lighting_renderer_init(r));
+    RTPBR_TRY(rtpbr_forward_renderer_init(r));
     RTPBR_TRY(rtpbr_resolve_renderer_init(r));
     RTPBR_TRY(rtpbr_tonemap_renderer_init(r));
 
@@ -103,6 +107,7 @@ void rtpbr_renderer_destroy(rtpbr_renderer *r)
     rtpbr_timing_destroy(r);
     rtpbr_tonemap_renderer_finish(r);
     rtpbr_resolve_renderer_finish(r);
+    rtpbr_forward_renderer_finish(r);
     rtpbr_lighting_renderer_finish(r);
     rtpbr_shadow_renderer_finish(r);
     rtpbr_gbuffer_renderer_finish(r);
@@ -195,26 +200,41 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
     memcpy(r->frame.mapped, &frame, sizeof frame);
     rtpbr_gbuffer_bind_scene(r, scene);
     rtpbr_lighting_bind_scene(r, scene);
+    rtpbr_forward_bind_scene(r, scene);
     if (shadows) rtpbr_shadow_bind_scene(r, scene);
     return RTPBR_SUCCESS;
 }
 
+// The pipelines of the lighting passes: the lighting variants and the forward pass's.
+typedef struct lighting_pipelines {
+    VkPipeline lighting[RTPBR_TILE_CLASS_COUNT];
+    VkPipeline forward; // VK_NULL_HANDLE when the scene has no BLEND material
+} lighting_pipelines;
+
 // The lighting pass the desc asks for: LTC, or the Monte Carlo reference (mc_samples > 0),
-// after the shadow passes when shadows are on.
+// after the shadow passes when shadows are on; then the forward pass of BLEND surfaces over
+// its image, and the resolve.
 static void record_lighting(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc,
-                            const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd)
+                            const lighting_pipelines *pipelines, VkCommandBuffer cmd)
 {
     if (desc->shadows == RTPBR_SHADOWS_ON) rtpbr_shadow_record(r, desc, cmd); // the ratios lighting multiplies by
-    if (desc->mc_samples == 0) rtpbr_lighting_record(r, pipelines, cmd);
-    else rtpbr_lighting_mc_record(r, scene, pipelines[0], desc, cmd);
+    if (desc->mc_samples == 0) rtpbr_lighting_record(r, pipelines->lighting, cmd);
+    else rtpbr_lighting_mc_record(r, scene, pipelines->lighting[0], desc, cmd);
+    if (pipelines->forward) rtpbr_forward_record(r, scene, pipelines->forward, cmd);
+    rtpbr_lighting_end(r, cmd);
 }
 
-// The lighting pipelines the desc asks for, compiled on first use (before any recording).
-static rtpbr_result get_lighting(rtpbr_context *ctx, const rtpbr_render_desc *desc,
-                                 VkPipeline out[RTPBR_TILE_CLASS_COUNT])
+// The pipelines the desc and the scene ask for, compiled on first use (before any recording).
+static rtpbr_result get_lighting(rtpbr_context *ctx, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc,
+                                 lighting_pipelines *out)
 {
-    if (desc->mc_samples == 0) return rtpbr_lighting_pipelines_get(ctx, desc->ndf, desc->multiscatter, out);
-    return rtpbr_lighting_mc_pipeline_get(ctx, desc->ndf, desc->multiscatter, &out[0]);
+    out->forward = VK_NULL_HANDLE;
+    rtpbr_result result = desc->mc_samples == 0
+                              ? rtpbr_lighting_pipelines_get(ctx, desc->ndf, desc->multiscatter, out->lighting)
+                              : rtpbr_lighting_mc_pipeline_get(ctx, desc->ndf, desc->multiscatter, &out->lighting[0]);
+    if (result == RTPBR_SUCCESS && rtpbr_scene_has_blend(scene))
+        result = rtpbr_forward_pipeline_get(ctx, desc->ndf, desc->multiscatter, &out->forward);
+    return result;
 }
 
 // Copies the radiance image into its readback buffer (and the display image, if given).
@@ -253,8 +273,8 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     RTPBR_TRY(prepare_frame(r, scene, desc));
     RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, RTPBR_DISPLAY_FORMAT, &tonemap));
     // Before any recording: a variant's first use compiles it, which may fail.
-    VkPipeline lighting[RTPBR_TILE_CLASS_COUNT];
-    RTPBR_TRY(get_lighting(ctx, desc, lighting));
+    lighting_pipelines lighting;
+    RTPBR_TRY(get_lighting(ctx, scene, desc, &lighting));
 
     VkCommandBuffer cmd = r->cmd;
     VkCommandBufferBeginInfo begin = {
@@ -266,7 +286,7 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_START);
     rtpbr_gbuffer_record(r, scene, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_GBUFFER);
-    record_lighting(r, scene, desc, lighting, cmd);
+    record_lighting(r, scene, desc, &lighting, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_LIGHTING);
     rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
@@ -311,8 +331,8 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     RTPBR_TRY(prepare_frame(r, scene, desc));
     RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, target->format, &tonemap));
     // Before recording into the host's command buffer: a variant's first use compiles it.
-    VkPipeline lighting[RTPBR_TILE_CLASS_COUNT];
-    RTPBR_TRY(get_lighting(ctx, desc, lighting));
+    lighting_pipelines lighting;
+    RTPBR_TRY(get_lighting(ctx, scene, desc, &lighting));
 
     // UNORM targets need the sRGB curve in the shader; sRGB targets encode in hardware.
     bool unorm = target->format == VK_FORMAT_R8G8B8A8_UNORM || target->format == VK_FORMAT_B8G8R8A8_UNORM ||
@@ -323,7 +343,7 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_START);
     rtpbr_gbuffer_record(r, scene, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_GBUFFER);
-    record_lighting(r, scene, desc, lighting, cmd);
+    record_lighting(r, scene, desc, &lighting, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_LIGHTING);
     rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, target->old_layout,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,

@@ -192,7 +192,12 @@ static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
               (!disney && m->clearcoat > 0.0f ? RTPBR_MATERIAL_FLAG_CLEARCOAT : 0u) |
               (!disney && !(m->sheen_color[0] <= 0.0f && m->sheen_color[1] <= 0.0f && m->sheen_color[2] <= 0.0f)
                    ? RTPBR_MATERIAL_FLAG_SHEEN : 0u) |
-              (!disney && m->anisotropy > 0.0f ? RTPBR_MATERIAL_FLAG_ANISOTROPY : 0u);
+              (!disney && m->anisotropy > 0.0f ? RTPBR_MATERIAL_FLAG_ANISOTROPY : 0u) |
+              (m->alpha_mode == RTPBR_ALPHA_MASK ? RTPBR_MATERIAL_FLAG_ALPHA_MASK : 0u) |
+              (m->alpha_mode == RTPBR_ALPHA_BLEND ? RTPBR_MATERIAL_FLAG_ALPHA_BLEND : 0u);
+    g.alpha = fminf(fmaxf(m->alpha, 0.0f), 1.0f);
+    g.alpha_cutoff = m->alpha_cutoff == 0.0f ? 0.5f : fmaxf(m->alpha_cutoff, 0.0f);
+    g.base_color_texture = m->base_color_texture;
     return g;
 }
 
@@ -224,7 +229,8 @@ static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_mate
         !rtpbr_finite(m->specular_color, 3) || !rtpbr_finite(&m->normal_scale, 1) ||
         !rtpbr_finite(&m->clearcoat, 1) || !rtpbr_finite(&m->clearcoat_roughness, 1) ||
         !rtpbr_finite(&m->anisotropy, 1) || !rtpbr_finite(&m->anisotropy_rotation, 1) || !rtpbr_finite(m->sheen_color, 3) || !rtpbr_finite(&m->sheen_roughness, 1) ||
-        !rtpbr_finite((const float *)&m->disney, sizeof m->disney / sizeof(float))) {
+        !rtpbr_finite((const float *)&m->disney, sizeof m->disney / sizeof(float)) || !rtpbr_finite(&m->alpha, 1) ||
+        !rtpbr_finite(&m->alpha_cutoff, 1)) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
@@ -240,6 +246,10 @@ static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_mate
                       index);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
+    }
+    if ((unsigned)m->alpha_mode > RTPBR_ALPHA_BLEND) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has an unknown alpha mode %d", index, (int)m->alpha_mode);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if ((unsigned)m->model > RTPBR_MATERIAL_DISNEY) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has an unknown model %d", index, (int)m->model);
@@ -322,6 +332,52 @@ static void material_texture_indices(const rtpbr_material_desc *m, uint32_t inde
     index[RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS] = m->metallic_roughness_texture;
     index[RTPBR_BINDING_TEXTURE_EMISSION] = m->emission_texture;
     index[RTPBR_BINDING_TEXTURE_NORMAL] = m->normal_texture;
+}
+
+// The textures' alpha channels for the shadow rays (rtpbr_shared.h, RTPBR_ALPHA_TEXTURE_FIELDS):
+// bytes only for the textures with an alpha below 255 somewhere. Which texture a material uses
+// may change (rtpbr_gpu_scene_set_material), so every such texture is kept, not only the
+// base colour textures of MASK and BLEND materials.
+static rtpbr_result create_alpha_textures(rtpbr_gpu_scene *scene, const rtpbr_gpu_scene_desc *desc)
+{
+    rtpbr_context *ctx = scene->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, (desc->texture_count + 1) * sizeof(rtpbr_shader_alpha_texture),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->alpha_textures));
+    rtpbr_shader_alpha_texture *records = scene->alpha_textures.mapped;
+    records[0] = (rtpbr_shader_alpha_texture){.first = RTPBR_ALPHA_TEXTURE_OPAQUE, .width = 1, .height = 1};
+    uint64_t words = 0;
+    for (uint32_t i = 0; i < desc->texture_count; ++i) {
+        const rtpbr_texture_desc *t = &desc->textures[i];
+        size_t texels = (size_t)t->width * t->height;
+        bool opaque = true;
+        for (size_t k = 0; k < texels && opaque; ++k) opaque = t->rgba[4 * k + 3] == 255;
+        records[i + 1] = (rtpbr_shader_alpha_texture){
+            .first = opaque ? RTPBR_ALPHA_TEXTURE_OPAQUE : (uint32_t)words,
+            .width = t->width,
+            .height = t->height,
+            .wrap = (uint32_t)t->wrap_s | (uint32_t)t->wrap_t << 2,
+        };
+        if (!opaque) words += (texels + 3) / 4;
+    }
+    if (words >= RTPBR_ALPHA_TEXTURE_OPAQUE) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "textures with alpha: %llu texels in all, too many for the shadow rays",
+                  (unsigned long long)words * 4);
+        return RTPBR_ERROR_LIMIT_EXCEEDED;
+    }
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, (words ? words : 1) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                       &scene->alpha_texels));
+    uint32_t *texels = scene->alpha_texels.mapped;
+    memset(texels, 0, (words ? words : 1) * sizeof(uint32_t));
+    for (uint32_t i = 0; i < desc->texture_count; ++i) {
+        const rtpbr_shader_alpha_texture *r = &records[i + 1];
+        if (r->first == RTPBR_ALPHA_TEXTURE_OPAQUE) continue;
+        const uint8_t *rgba = desc->textures[i].rgba;
+        for (size_t k = 0; k < (size_t)r->width * r->height; ++k)
+            texels[r->first + k / 4] |= (uint32_t)rgba[4 * k + 3] << (8 * (k % 4));
+    }
+cleanup:
+    return result; // rtpbr_gpu_scene_destroy frees a half-built state
 }
 
 // Uploads the textures (image 0 is a 1x1 white stand-in for "no texture", image i texture i)
@@ -432,10 +488,13 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     // Geometry: one interleaved vertex buffer and one index buffer for all meshes.
     VkDeviceSize vertex_bytes = (total_vertices ? total_vertices : 1) * RTPBR_VERTEX_FLOATS * sizeof(float);
     VkDeviceSize index_bytes = (total_indices ? total_indices : 3) * sizeof(uint32_t);
-    RTPBR_TRY(rtpbr_buffer_create_host(ctx, vertex_bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, &scene->vertices));
+    // Also a storage buffer: the shadow rays read texture coordinates for alpha (bvh.glsl).
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, vertex_bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                       &scene->vertices));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, index_bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &scene->indices));
     if (desc->mesh_count) {
         RTPBR_ALLOC(&ctx->host, scene->draws, desc->mesh_count * sizeof *scene->draws);
+        RTPBR_ALLOC(&ctx->host, scene->blend_order, desc->mesh_count * sizeof *scene->blend_order);
     }
     float *vertices = scene->vertices.mapped;
     uint32_t *indices = scene->indices.mapped;
@@ -451,9 +510,9 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         }
         for (uint32_t v = 0; v < m->vertex_count; ++v) {
             memcpy(dst + RTPBR_VERTEX_FLOATS * v, m->positions + 3 * v, 3 * sizeof(float));
-            if (m->texcoords) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 6, m->texcoords + 2 * v, 2 * sizeof(float));
+            if (m->texcoords) memcpy(dst + RTPBR_VERTEX_FLOATS * v + RTPBR_VERTEX_UV_OFFSET, m->texcoords + 2 * v, 2 * sizeof(float));
             if (m->tangents) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 8, m->tangents + 4 * v, 4 * sizeof(float));
-            if (m->texcoords1) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 12, m->texcoords1 + 2 * v, 2 * sizeof(float));
+            if (m->texcoords1) memcpy(dst + RTPBR_VERTEX_FLOATS * v + RTPBR_VERTEX_UV1_OFFSET, m->texcoords1 + 2 * v, 2 * sizeof(float));
         }
         for (uint32_t k = 0; k < count; ++k) indices[index_base + k] = vertex_base + (m->indices ? m->indices[k] : k);
 
@@ -464,6 +523,14 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         else memcpy(draw->push.world_from_object, m->transform, sizeof m->transform);
         normal_matrix(draw->push.world_from_object, draw->push.normal_matrix);
         draw->push.material = m->material;
+        float lo[3], hi[3];
+        for (int k = 0; k < 3; ++k) lo[k] = hi[k] = m->positions[k];
+        for (uint32_t v = 1; v < m->vertex_count; ++v)
+            for (int k = 0; k < 3; ++k) {
+                lo[k] = fminf(lo[k], m->positions[3 * v + k]);
+                hi[k] = fmaxf(hi[k], m->positions[3 * v + k]);
+            }
+        for (int k = 0; k < 3; ++k) draw->center[k] = 0.5f * (lo[k] + hi[k]);
         vertex_base += m->vertex_count;
         index_base += count;
     }
@@ -486,6 +553,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
 
     RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (passes/shadow.c); reads the materials' sidedness
     RTPBR_TRY(create_textures(scene, desc, material_slots));
+    RTPBR_TRY(create_alpha_textures(scene, desc));
 
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, RTPBR_MAX_LIGHTS * sizeof(rtpbr_shader_light),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->lights));
@@ -513,6 +581,8 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_buffer_destroy(ctx, &scene->texture_transforms);
     rtpbr_buffer_destroy(ctx, &scene->lights);
     rtpbr_bvh_destroy(scene);
+    rtpbr_buffer_destroy(ctx, &scene->alpha_textures);
+    rtpbr_buffer_destroy(ctx, &scene->alpha_texels);
     rtpbr_gbuffer_material_sets_destroy(scene);
     for (uint32_t i = 0; i < scene->texture_count; ++i) rtpbr_image_destroy(ctx, &scene->textures[i]);
     for (uint32_t i = 0; i < RTPBR_SAMPLER_KEY_COUNT; ++i)
@@ -520,6 +590,7 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_free(&ctx->host, scene->textures);
     rtpbr_free(&ctx->host, scene->texture_samplers);
     rtpbr_free(&ctx->host, scene->draws);
+    rtpbr_free(&ctx->host, scene->blend_order);
     rtpbr_free(&ctx->host, scene->cameras);
     RTPBR_LIST_UNLINK(ctx->scenes, scene);
     rtpbr_free(&ctx->host, scene);
@@ -580,6 +651,14 @@ rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh
     else memcpy(draw->push.world_from_object, transform, sizeof draw->push.world_from_object);
     normal_matrix(draw->push.world_from_object, draw->push.normal_matrix);
     return RTPBR_SUCCESS;
+}
+
+bool rtpbr_scene_has_blend(const rtpbr_gpu_scene *scene)
+{
+    const rtpbr_shader_material *materials = scene->materials.mapped;
+    for (uint32_t i = 0; i < scene->material_count; ++i)
+        if (materials[i].flags & RTPBR_MATERIAL_FLAG_ALPHA_BLEND) return true;
+    return false;
 }
 
 uint32_t rtpbr_gpu_scene_camera_count(const rtpbr_gpu_scene *scene)

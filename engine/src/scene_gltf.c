@@ -2,7 +2,9 @@
 // rtpbr_gpu_scene_desc.
 //
 // Material mapping (loader field -> engine), one table:
-//   base_color.rgb            -> base_color            (alpha ignored: everything is opaque)
+//   base_color.rgb            -> base_color
+//   alpha_mode, base_color[3], alpha_cutoff -> alpha_mode, alpha, alpha_cutoff (0 -> negative:
+//                               nothing is cut; MASK cuts out, BLEND is drawn forward)
 //   metallic, roughness       -> metallic, roughness   (perceptual; alpha = r^2)
 //   emission                  -> emission              (emissiveFactor x emissive_strength)
 //   ior.ior                   -> ior                   (0, Fresnel 1 in KHR_materials_ior, ->
@@ -65,6 +67,11 @@ void rtpbr_material_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint
     d->specular = m->specular.specular_factor == 0.0f ? -1.0f : m->specular.specular_factor;
     memcpy(d->specular_color, m->specular.specular_color_factor, sizeof d->specular_color);
     d->double_sided = m->double_sided;
+    d->alpha_mode = m->alpha_mode == RTPBR_GLTF_ALPHA_MASK    ? RTPBR_ALPHA_MASK
+                    : m->alpha_mode == RTPBR_GLTF_ALPHA_BLEND ? RTPBR_ALPHA_BLEND
+                                                              : RTPBR_ALPHA_OPAQUE;
+    d->alpha = m->base_color[3];
+    d->alpha_cutoff = m->alpha_cutoff > 0.0f ? m->alpha_cutoff : -1.0f;
     // Loader texture indices are 0-based with -1 for none; the engine's are 1-based.
     d->base_color_texture = texture_ref(loaded, m->base_color_texture);
     d->metallic_roughness_texture = texture_ref(loaded, m->metallic_roughness_texture);

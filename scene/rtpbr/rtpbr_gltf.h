@@ -230,8 +230,8 @@ typedef struct rtpbr_gltf_primitive {
 } rtpbr_gltf_primitive;
 
 typedef enum rtpbr_gltf_alpha_mode {
-    RTPBR_GLTF_ALPHA_OPAQUE = 0, /* recorded; rtpbr renders all materials */
-    RTPBR_GLTF_ALPHA_MASK = 1,   /* as opaque (base_color[3] is ignored)  */
+    RTPBR_GLTF_ALPHA_OPAQUE = 0, /* coverage (base_color[3] x the base     */
+    RTPBR_GLTF_ALPHA_MASK = 1,   /* colour texture's alpha): docs/materials.md, "Alpha" */
     RTPBR_GLTF_ALPHA_BLEND = 2,
 } rtpbr_gltf_alpha_mode;
 

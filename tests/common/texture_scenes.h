@@ -32,6 +32,10 @@ typedef struct texture_scene {
     int has_transform;
     float offset[2], rotation, scale[2];
     int texcoord;                 // the transform's texCoord override (-1: none)
+    // glTF alpha of the quad's material: 0 OPAQUE (alpha not written), 1 MASK, 2 BLEND, with
+    // baseColorFactor (1, 1, 1, base_alpha) and alphaCutoff (MASK; 0: absent, glTF's 0.5).
+    int alpha_mode;
+    float base_alpha, alpha_cutoff;
 } texture_scene;
 
 // The camera: at (0, 0, 3) looking down -Z, tan(yfov / 2) = 1/3.
@@ -174,9 +178,12 @@ static inline int texture_scene_write(const texture_scene *s, const char *path)
         if (s->texcoord >= 0) fprintf(f, ",\"texCoord\":%d", s->texcoord);
         fprintf(f, "}}");
     }
-    fprintf(f, "},\"metallicFactor\":0,\"roughnessFactor\":1},\"doubleSided\":%s,"
-               "\"extensions\":{\"KHR_materials_specular\":{\"specularFactor\":0}}},\n",
-            s->double_sided ? "true" : "false");
+    fprintf(f, "},\"metallicFactor\":0,\"roughnessFactor\":1");
+    if (s->alpha_mode) fprintf(f, ",\"baseColorFactor\":[1,1,1,%.9g]", s->base_alpha);
+    fprintf(f, "},\"doubleSided\":%s,", s->double_sided ? "true" : "false");
+    if (s->alpha_mode) fprintf(f, "\"alphaMode\":\"%s\",", s->alpha_mode == 1 ? "MASK" : "BLEND");
+    if (s->alpha_mode == 1 && s->alpha_cutoff > 0.0f) fprintf(f, "\"alphaCutoff\":%.9g,", s->alpha_cutoff);
+    fprintf(f, "\"extensions\":{\"KHR_materials_specular\":{\"specularFactor\":0}}},\n");
     fprintf(f, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1],\"metallicFactor\":0},"
                "\"emissiveFactor\":[1,1,1],\"doubleSided\":true}],\n");
     fprintf(f, "\"textures\":[{\"source\":0,\"sampler\":0}],\n\"samplers\":[{\"wrapS\":%d,\"wrapT\":%d", s->wrap_s,
@@ -203,6 +210,96 @@ static inline int texture_scene_write(const texture_scene *s, const char *path)
                "\"byteOffset\":128,\"byteLength\":32},{\"buffer\":0,\"byteOffset\":160,\"byteLength\":12},"
                "{\"buffer\":0,\"byteOffset\":176,\"byteLength\":96},{\"buffer\":0,\"byteOffset\":272,"
                "\"byteLength\":72}],\n");
+    fprintf(f, "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,", at);
+    texture_scene_base64(f, buffer, at);
+    fprintf(f, "\"}]}\n");
+    free(png);
+    return fclose(f) == 0 ? 0 : -1;
+}
+
+// ---- the alpha shadow scene ------------------------------------------------------------------
+//
+// A white Lambertian floor [-1, 1]^2 at z = 0 facing +Z (no specular), lit by a small square
+// light (side ALPHA_SHADOW_LIGHT_SIZE, radiance 50, facing -Z) at height 4 above its centre,
+// and between them, at z = 1, an occluder quad [-1, 1]^2 facing -Z (toward the floor), black,
+// single-sided, with alphaMode MASK (cutoff 0.5) and a base colour texture whose alpha is
+// `rgba`'s (rows top to bottom = +Y to -Y, as the texture_scene quad). The camera of
+// texture_scene (at (0, 0, 3), looking down -Z, square image = the floor) sees the occluder from
+// behind, so it is not drawn: the image is the floor, lit where the occluder is cut out.
+// `opaque`: alphaMode OPAQUE instead (the control: no light reaches the floor below it).
+#define ALPHA_SHADOW_LIGHT_SIZE 0.2
+static inline int alpha_shadow_scene_write(uint32_t w, uint32_t h, const uint8_t *rgba, int opaque, const char *path)
+{
+    // floor (4 vec3 positions, 4 normals, 4 uv), occluder (4 positions, 4 normals, 4 uv),
+    // light (4 positions), indices: floor, occluder, light (6 u16 each).
+    float floor_pos[12] = {-1, 1, 0, 1, 1, 0, 1, -1, 0, -1, -1, 0};
+    float up[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    float occ_pos[12] = {-1, 1, 1, 1, 1, 1, 1, -1, 1, -1, -1, 1};
+    float down[12] = {0, 0, -1, 0, 0, -1, 0, 0, -1, 0, 0, -1};
+    float uv[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+    const float l = (float)ALPHA_SHADOW_LIGHT_SIZE / 2;
+    float light_pos[12] = {-l, l, 4, l, l, 4, l, -l, 4, -l, -l, 4};
+    uint16_t ccw_up[6] = {3, 2, 1, 3, 1, 0}, ccw_down[6] = {3, 1, 2, 3, 0, 1};
+    uint8_t buffer[48 * 2 + 32 + 48 * 2 + 32 + 48 + 12 * 3];
+    size_t at = 0;
+#define ALPHA_SHADOW_PUT(array) (memcpy(buffer + at, array, sizeof array), at += sizeof array)
+    ALPHA_SHADOW_PUT(floor_pos), ALPHA_SHADOW_PUT(up), ALPHA_SHADOW_PUT(uv);          // 0, 48, 96
+    ALPHA_SHADOW_PUT(occ_pos), ALPHA_SHADOW_PUT(down), ALPHA_SHADOW_PUT(uv);          // 128, 176, 224
+    ALPHA_SHADOW_PUT(light_pos);                                                        // 256
+    ALPHA_SHADOW_PUT(ccw_up), ALPHA_SHADOW_PUT(ccw_down), ALPHA_SHADOW_PUT(ccw_down);  // 304, 316, 328
+#undef ALPHA_SHADOW_PUT
+    uint8_t *png = NULL;
+    size_t png_size = texture_scene_png(w, h, rgba, &png);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        free(png);
+        return -1;
+    }
+    fprintf(f, "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1,2,3]}],\n");
+    fprintf(f, "\"extensionsUsed\":[\"KHR_materials_specular\",\"KHR_materials_emissive_strength\"],\n");
+    fprintf(f, "\"nodes\":[{\"mesh\":0},{\"mesh\":1},{\"mesh\":2},{\"camera\":0,\"translation\":[0,0,%g]}],\n",
+            TEXTURE_SCENE_CAMERA_Z);
+    fprintf(f, "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":%.9g,\"aspectRatio\":1,"
+               "\"znear\":0.05,\"zfar\":100}}],\n",
+            2.0 * atan(TEXTURE_SCENE_TAN_HALF_FOV));
+    fprintf(f, "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"TEXCOORD_0\":2},"
+               "\"indices\":7,\"material\":0}]},\n"
+               "{\"primitives\":[{\"attributes\":{\"POSITION\":3,\"NORMAL\":4,\"TEXCOORD_0\":5},\"indices\":8,"
+               "\"material\":1}]},\n"
+               "{\"primitives\":[{\"attributes\":{\"POSITION\":6},\"indices\":9,\"material\":2}]}],\n");
+    fprintf(f, "\"materials\":[{\"pbrMetallicRoughness\":{\"metallicFactor\":0,\"roughnessFactor\":1},"
+               "\"extensions\":{\"KHR_materials_specular\":{\"specularFactor\":0}}},\n"
+               "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1],\"baseColorTexture\":{\"index\":0},"
+               "\"metallicFactor\":0,\"roughnessFactor\":1},%s"
+               "\"extensions\":{\"KHR_materials_specular\":{\"specularFactor\":0}}},\n"
+               "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1],\"metallicFactor\":0},"
+               "\"emissiveFactor\":[1,1,1],\"extensions\":{\"KHR_materials_emissive_strength\":"
+               "{\"emissiveStrength\":50}}}],\n",
+            opaque ? "" : "\"alphaMode\":\"MASK\",");
+    fprintf(f, "\"textures\":[{\"source\":0,\"sampler\":0}],\n\"samplers\":[{\"magFilter\":9728,"
+               "\"minFilter\":9728,\"wrapS\":33071,\"wrapT\":33071}],\n\"images\":[{\"uri\":\"data:image/png;base64,");
+    texture_scene_base64(f, png, png_size);
+    fprintf(f, "\"}],\n\"accessors\":[");
+    const char *vec3 = "{\"bufferView\":%d,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\"%s},\n";
+    char minmax[96];
+    for (int i = 0; i < 7; ++i) {
+        if (i == 2 || i == 5) {
+            fprintf(f, "{\"bufferView\":%d,\"componentType\":5126,\"count\":4,\"type\":\"VEC2\"},\n", i);
+            continue;
+        }
+        float z = i == 0 ? 0.0f : i == 3 ? 1.0f : 4.0f, e = i == 6 ? l : 1.0f;
+        if (i == 0 || i == 3 || i == 6) snprintf(minmax, sizeof minmax, ",\"min\":[%g,%g,%g],\"max\":[%g,%g,%g]", -e, -e, z, e, e, z);
+        else minmax[0] = 0;
+        fprintf(f, vec3, i, minmax);
+    }
+    for (int i = 7; i < 10; ++i)
+        fprintf(f, "{\"bufferView\":%d,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}%s\n", i,
+                i < 9 ? "," : "],");
+    static const int offsets[10] = {0, 48, 96, 128, 176, 224, 256, 304, 316, 328};
+    static const int lengths[10] = {48, 48, 32, 48, 48, 32, 48, 12, 12, 12};
+    fprintf(f, "\"bufferViews\":[");
+    for (int i = 0; i < 10; ++i)
+        fprintf(f, "{\"buffer\":0,\"byteOffset\":%d,\"byteLength\":%d}%s", offsets[i], lengths[i], i < 9 ? "," : "],\n");
     fprintf(f, "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,", at);
     texture_scene_base64(f, buffer, at);
     fprintf(f, "\"}]}\n");

@@ -243,6 +243,16 @@ typedef struct rtpbr_texture_transform {
     uint32_t texcoord;       // 0: the mesh's texcoords (TEXCOORD_0), 1: texcoords1 (TEXCOORD_1)
 } rtpbr_texture_transform;
 
+// glTF alphaMode (docs/materials.md, "Alpha"). A surface's coverage is the material's alpha
+// times the base colour texture's alpha (at the base colour slot's texture transform).
+typedef enum rtpbr_alpha_mode {
+    RTPBR_ALPHA_OPAQUE = 0, // coverage ignored
+    RTPBR_ALPHA_MASK = 1,   // cut out where coverage < alpha_cutoff: in the G-buffer and the shadow rays
+    RTPBR_ALPHA_BLEND = 2,  // not in the G-buffer: shaded by a forward pass after lighting, back to
+                            // front, premultiplied over the lit image (colour x a + below x (1 - a));
+                            // the shadow rays pass with probability 1 - a
+} rtpbr_alpha_mode;
+
 typedef struct rtpbr_material_desc {
     float base_color[3];     // linear albedo (glTF baseColorFactor.rgb); zero is black
     float metallic;          // [0, 1], taken literally (zero: dielectric)
@@ -287,6 +297,9 @@ typedef struct rtpbr_material_desc {
     float sheen_roughness;        // perceptual, [0, 1]
     rtpbr_material_model model;   // zero: glTF metallic-roughness
     rtpbr_disney_params disney;   // used when model = RTPBR_MATERIAL_DISNEY
+    rtpbr_alpha_mode alpha_mode;  // default: opaque
+    float alpha;                  // glTF baseColorFactor.a, [0, 1] (clamped), taken literally; MASK and BLEND only
+    float alpha_cutoff;           // MASK: zero: 0.5 (glTF's default); negative: 0 (nothing is cut)
 } rtpbr_material_desc;
 
 // Lower clamp of perceptual roughness (Filament's): RTPBR_MATERIAL_MIN_ROUGHNESS of

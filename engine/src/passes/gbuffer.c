@@ -14,6 +14,24 @@ const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT] = {
     VK_FORMAT_R16G16B16A16_SFLOAT, // anisotropy direction
 };
 
+// The scene's vertex layout (RTPBR_VERTEX_FLOATS): position, normal, uv, tangent, uv1.
+static const VkVertexInputBindingDescription vertex_binding = {0, RTPBR_VERTEX_FLOATS * sizeof(float),
+                                                               VK_VERTEX_INPUT_RATE_VERTEX};
+static const VkVertexInputAttributeDescription vertex_attributes[5] = {
+    {0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+    {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
+    {2, 0, VK_FORMAT_R32G32_SFLOAT, RTPBR_VERTEX_UV_OFFSET * sizeof(float)},
+    {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 8 * sizeof(float)},
+    {4, 0, VK_FORMAT_R32G32_SFLOAT, RTPBR_VERTEX_UV1_OFFSET * sizeof(float)},
+};
+const VkPipelineVertexInputStateCreateInfo rtpbr_scene_vertex_input = {
+    .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
+    .vertexBindingDescriptionCount = 1,
+    .pVertexBindingDescriptions = &vertex_binding,
+    .vertexAttributeDescriptionCount = 5,
+    .pVertexAttributeDescriptions = vertex_attributes,
+};
+
 // Set 0, one per renderer.
 static const VkDescriptorSetLayoutBinding frame_bindings[] = {
     {RTPBR_BINDING_GBUFFER_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
@@ -30,6 +48,11 @@ static const VkDescriptorSetLayoutBinding material_bindings[RTPBR_MATERIAL_TEXTU
     {RTPBR_BINDING_TEXTURE_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
 };
 
+rtpbr_result rtpbr_gbuffer_vertex_module(rtpbr_context *ctx, VkShaderModule *out)
+{
+    return rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_gbuffer_vert), out);
+}
+
 rtpbr_result rtpbr_gbuffer_pass_init(rtpbr_context *ctx)
 {
     rtpbr_gbuffer_pass *pass = &ctx->gbuffer;
@@ -40,24 +63,8 @@ rtpbr_result rtpbr_gbuffer_pass_init(rtpbr_context *ctx)
     VkDescriptorSetLayout sets[2] = {pass->set_layout, pass->material_set_layout};
     RTPBR_TRY(rtpbr_pipeline_layout_create(ctx, sets, 2, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                                            sizeof(rtpbr_shader_draw), &pass->layout));
-    RTPBR_TRY(rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_gbuffer_vert), &vert));
+    RTPBR_TRY(rtpbr_gbuffer_vertex_module(ctx, &vert));
     RTPBR_TRY(rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_gbuffer_frag), &frag));
-    // The scene's vertex layout (RTPBR_VERTEX_FLOATS): position, normal, uv, tangent, uv1.
-    VkVertexInputBindingDescription binding = {0, RTPBR_VERTEX_FLOATS * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX};
-    VkVertexInputAttributeDescription attributes[5] = {
-        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
-        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
-        {2, 0, VK_FORMAT_R32G32_SFLOAT, 6 * sizeof(float)},
-        {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 8 * sizeof(float)},
-        {4, 0, VK_FORMAT_R32G32_SFLOAT, 12 * sizeof(float)},
-    };
-    VkPipelineVertexInputStateCreateInfo vertex_input = {
-        .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
-        .vertexBindingDescriptionCount = 1,
-        .pVertexBindingDescriptions = &binding,
-        .vertexAttributeDescriptionCount = 5,
-        .pVertexAttributeDescriptions = attributes,
-    };
     rtpbr_graphics_desc d = {
         .vert = vert,
         .frag = frag,
@@ -65,7 +72,7 @@ rtpbr_result rtpbr_gbuffer_pass_init(rtpbr_context *ctx)
         .color_formats = rtpbr_gbuffer_formats,
         .color_count = RTPBR_GBUFFER_COUNT,
         .depth_format = RTPBR_DEPTH_FORMAT,
-        .vertex_input = &vertex_input,
+        .vertex_input = &rtpbr_scene_vertex_input,
         .dynamic_cull = true, // back faces of single-sided materials (rtpbr_gbuffer_record)
     };
     RTPBR_TRY(rtpbr_graphics_pipeline_create(ctx, &d, &pass->pipeline));
@@ -207,6 +214,7 @@ void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCom
         const rtpbr_shader_material *materials = scene->materials.mapped;
         for (uint32_t i = 0; i < scene->draw_count; ++i) {
             const rtpbr_draw *d = &scene->draws[i];
+            if (materials[d->push.material].flags & RTPBR_MATERIAL_FLAG_ALPHA_BLEND) continue; // the forward pass's
             // glTF doubleSided false: back faces are not drawn. Counter-clockwise is the front
             // (the projection's y flip keeps it so), clockwise under a mirroring transform.
             bool single_sided = !(materials[d->push.material].flags & RTPBR_MATERIAL_FLAG_DOUBLE_SIDED);

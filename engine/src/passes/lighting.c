@@ -229,5 +229,4 @@ void rtpbr_lighting_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_T
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[c]);
         vkCmdDispatchIndirect(cmd, r->tile_lists.buffer, c * 4 * sizeof(uint32_t));
     }
-    rtpbr_lighting_end(r, cmd);
 }

@@ -115,5 +115,4 @@ void rtpbr_lighting_mc_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, V
             vkCmdDispatch(cmd, r->tiles_x, r->tiles_y, 1);
         }
     }
-    rtpbr_lighting_end(r, cmd);
 }

@@ -23,6 +23,8 @@
 // ---- G-buffer (passes/gbuffer.c): rasterises every mesh into the G-buffer and depth. -----
 rtpbr_result rtpbr_gbuffer_pass_init(rtpbr_context *ctx);
 void rtpbr_gbuffer_pass_finish(rtpbr_context *ctx);
+// gbuffer.vert's module (the forward pass draws with it too); the caller destroys it.
+rtpbr_result rtpbr_gbuffer_vertex_module(rtpbr_context *ctx, VkShaderModule *out);
 rtpbr_result rtpbr_gbuffer_renderer_init(rtpbr_renderer *r);
 void rtpbr_gbuffer_renderer_finish(rtpbr_renderer *r);
 // A scene's per-material texture sets (set 1): scene->material_pool and material_sets, one
@@ -62,7 +64,8 @@ void rtpbr_lighting_renderer_finish(rtpbr_renderer *r);
 void rtpbr_lighting_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
 void rtpbr_lighting_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd);
 // Shared by both lighting passes: the barrier and binds before their dispatches, and after
-// them the resolve (supersampling) and the barrier before tone mapping and readback.
+// them (and the forward pass) the resolve (supersampling) and the barrier before tone mapping
+// and readback (renderer.c calls it).
 void rtpbr_lighting_begin(rtpbr_renderer *r, VkPipeline pipeline, VkPipelineLayout layout, VkCommandBuffer cmd);
 void rtpbr_lighting_end(rtpbr_renderer *r, VkCommandBuffer cmd);
 
@@ -73,6 +76,20 @@ void rtpbr_lighting_mc_pass_finish(rtpbr_context *ctx);
 rtpbr_result rtpbr_lighting_mc_pipeline_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, VkPipeline *out);
 void rtpbr_lighting_mc_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkPipeline pipeline,
                               const rtpbr_render_desc *desc, VkCommandBuffer cmd);
+
+// ---- Forward pass of BLEND surfaces (passes/forward.c), after the lighting pass. ----------
+rtpbr_result rtpbr_forward_pass_init(rtpbr_context *ctx); // after rtpbr_gbuffer_pass_init
+void rtpbr_forward_pass_finish(rtpbr_context *ctx);
+// The pipeline of a model variant, compiled on first use.
+rtpbr_result rtpbr_forward_pipeline_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, VkPipeline *out);
+rtpbr_result rtpbr_forward_renderer_init(rtpbr_renderer *r);
+void rtpbr_forward_renderer_finish(rtpbr_renderer *r);
+void rtpbr_forward_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
+// Draws the scene's BLEND meshes back to front over the lighting pass's image; nothing when
+// it has none (pipeline may then be VK_NULL_HANDLE).
+void rtpbr_forward_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkPipeline pipeline, VkCommandBuffer cmd);
+// Whether any material of the scene is BLEND (the forward pipeline is needed).
+bool rtpbr_scene_has_blend(const rtpbr_gpu_scene *scene);
 
 // ---- Supersampling resolve (passes/resolve.c): box filter from the shading size. ----------
 rtpbr_result rtpbr_resolve_pass_init(rtpbr_context *ctx);

@@ -100,12 +100,19 @@ rtpbr_result rtpbr_graphics_pipeline_create(rtpbr_context *ctx, const rtpbr_grap
     VkPipelineDepthStencilStateCreateInfo depth = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
         .depthTestEnable = d->depth_format != VK_FORMAT_UNDEFINED,
-        .depthWriteEnable = d->depth_format != VK_FORMAT_UNDEFINED,
-        .depthCompareOp = VK_COMPARE_OP_LESS,
+        .depthWriteEnable = d->depth_format != VK_FORMAT_UNDEFINED && !d->depth_read_only,
+        .depthCompareOp = d->depth_read_only ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_LESS,
     };
     VkPipelineColorBlendAttachmentState blend[RTPBR_MAX_COLOR_ATTACHMENTS];
     for (uint32_t i = 0; i < RTPBR_MAX_COLOR_ATTACHMENTS; ++i)
         blend[i] = (VkPipelineColorBlendAttachmentState){
+            .blendEnable = d->blend_premultiplied,
+            .srcColorBlendFactor = VK_BLEND_FACTOR_ONE,
+            .dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+            .colorBlendOp = VK_BLEND_OP_ADD,
+            .srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE,
+            .dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+            .alphaBlendOp = VK_BLEND_OP_ADD,
             .colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                               VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT,
         };

@@ -32,7 +32,8 @@ rtpbr_result rtpbr_pipeline_layout_create(rtpbr_context *ctx, const VkDescriptor
                                           VkShaderStageFlags push_stages, uint32_t push_size, VkPipelineLayout *out);
 rtpbr_result rtpbr_compute_pipeline_create(rtpbr_context *ctx, rtpbr_spirv spirv, VkPipelineLayout layout,
                                            VkPipeline *out);
-// A graphics pipeline with dynamic rendering, dynamic viewport and scissor, no blending,
+// A graphics pipeline with dynamic rendering, dynamic viewport and scissor, no blending (or
+// premultiplied alpha blending),
 // triangle lists; no culling, or with dynamic_cull the cull mode and front face set per draw
 // (vkCmdSetCullMode, vkCmdSetFrontFace: core in Vulkan 1.3).
 typedef struct rtpbr_graphics_desc {
@@ -43,6 +44,8 @@ typedef struct rtpbr_graphics_desc {
     VkFormat depth_format;      // VK_FORMAT_UNDEFINED: no depth
     const VkPipelineVertexInputStateCreateInfo *vertex_input; // NULL: no vertex input
     bool dynamic_cull;
+    bool blend_premultiplied; // colour = src + dst (1 - src alpha), alpha alike
+    bool depth_read_only;     // depth test (less or equal) without writes
 } rtpbr_graphics_desc;
 rtpbr_result rtpbr_graphics_pipeline_create(rtpbr_context *ctx, const rtpbr_graphics_desc *desc, VkPipeline *out);
 

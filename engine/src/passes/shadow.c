@@ -35,6 +35,11 @@ static const VkDescriptorSetLayoutBinding bindings[] = {
     COMPUTE(RTPBR_BINDING_SHADOW_BVH_TRIANGLES, STORAGE_BUFFER),
     COMPUTE(RTPBR_BINDING_SHADOW_ESTIMATES, STORAGE_IMAGE),
     COMPUTE(RTPBR_BINDING_SHADOW_RATIO, STORAGE_IMAGE),
+    COMPUTE(RTPBR_BINDING_SHADOW_VERTICES, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_SHADOW_MATERIALS, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_SHADOW_TEXTURE_TRANSFORMS, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_SHADOW_ALPHA_TEXTURES, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_SHADOW_ALPHA_TEXELS, STORAGE_BUFFER),
 };
 #undef COMPUTE
 _Static_assert(sizeof bindings / sizeof bindings[0] == RTPBR_SHADOW_BINDING_COUNT, "every shadow binding");
@@ -140,6 +145,20 @@ void rtpbr_shadow_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
                                   scene->bvh_nodes.buffer, VK_WHOLE_SIZE);
     rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_BVH_TRIANGLES,
                                   scene->bvh_triangles.buffer, VK_WHOLE_SIZE);
+    // The alpha of MASK and BLEND occluders (bvh.glsl).
+    const struct {
+        uint32_t binding;
+        VkBuffer buffer;
+    } alpha[] = {
+        {RTPBR_BINDING_SHADOW_VERTICES, scene->vertices.buffer},
+        {RTPBR_BINDING_SHADOW_MATERIALS, scene->materials.buffer},
+        {RTPBR_BINDING_SHADOW_TEXTURE_TRANSFORMS, scene->texture_transforms.buffer},
+        {RTPBR_BINDING_SHADOW_ALPHA_TEXTURES, scene->alpha_textures.buffer},
+        {RTPBR_BINDING_SHADOW_ALPHA_TEXELS, scene->alpha_texels.buffer},
+    };
+    for (size_t i = 0; i < sizeof alpha / sizeof alpha[0]; ++i)
+        rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, alpha[i].binding, alpha[i].buffer,
+                                      VK_WHOLE_SIZE);
 }
 
 // A memory barrier between compute dispatches on one of the shadow images (all its layers).

@@ -1,0 +1,184 @@
+// glTF alphaMode (issue 28), read back from rendered pixels against closed forms: MASK cuts
+// the quad out where baseColorFactor alpha x texture alpha < alphaCutoff (the white furnace
+// box shows through), BLEND draws it over what is behind as 0.5 quad + 0.5 background, and a
+// MASK occluder with holes lets the shadow rays through the holes. Scenes from
+// tests/common/texture_scenes.h (the oracle renders them in tests/oracle/test_alpha.cpp).
+#define _DEFAULT_SOURCE // mkstemps
+#include "engine_test.h"
+
+#include "texture_scenes.h"
+
+#include <stdlib.h>
+#include <unistd.h>
+
+enum { N = 48 }; // image side
+
+typedef struct rendered {
+    float px[N * N * 4];
+} rendered;
+
+typedef int (*scene_writer)(const void *user, const char *path);
+
+// Writes a scene to a temporary file, loads it through the glTF loader and renders it.
+static void render_file(scene_writer write, const void *user, uint32_t supersample, const rtpbr_render_desc *desc,
+                        rendered *out)
+{
+    char path[] = "/tmp/rtpbr-alpha-scene-XXXXXX.gltf";
+    int fd = mkstemps(path, 5);
+    assert_true(fd >= 0);
+    close(fd);
+    assert_int_equal(write(user, path), 0);
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    rtpbr_gpu_scene *scene = NULL;
+    rtpbr_result r = rtpbr_gpu_scene_load_gltf(ctx, path, &scene);
+    unlink(path);
+    if (r != RTPBR_SUCCESS) fprintf(stderr, "load: %s\n", log.last_error);
+    assert_int_equal(r, RTPBR_SUCCESS);
+    rtpbr_renderer *renderer = NULL;
+    assert_int_equal(
+        rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = N, .height = N, .supersample = supersample}, &renderer),
+        RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_render(renderer, scene, desc), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(renderer, out->px, sizeof out->px), RTPBR_SUCCESS);
+    rtpbr_renderer_destroy(renderer);
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log.validation, 0);
+}
+
+static int write_texture_scene(const void *user, const char *path)
+{
+    return texture_scene_write(user, path);
+}
+
+// MASK: a 4x4 red texture whose alpha is 255 and 128 in a checkerboard, baseColorFactor alpha
+// 0.8, cutoff 0.5: coverage 0.8 (kept: red, the furnace's albedo) or 0.8 x 128/255 = 0.40 (cut:
+// the box's emission 1 behind it).
+static const uint8_t *mask_texture(void)
+{
+    static uint8_t t[4 * 4 * 4];
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+            uint8_t *p = t + 4 * (4 * y + x);
+            p[0] = 255, p[1] = 0, p[2] = 0, p[3] = (x + y) % 2 ? 128 : 255;
+        }
+    return t;
+}
+
+static void test_mask_cutout(void **state)
+{
+    (void)state;
+    texture_scene s = {
+        .texture_width = 4, .texture_height = 4, .rgba = mask_texture(), .wrap_s = 33071, .wrap_t = 33071,
+        .mag_filter = 9728, .min_filter = 9728, .uv_min = {0.0f, 0.0f}, .uv_max = {1.0f, 1.0f}, .texcoord = -1,
+        .alpha_mode = 1, .base_alpha = 0.8f, .alpha_cutoff = 0.5f,
+    };
+    rendered *img = malloc(sizeof *img);
+    render_file(write_texture_scene, &s, 1, &(rtpbr_render_desc){0}, img);
+    int cut = 0, kept = 0;
+    for (uint32_t py = 0; py < N; ++py)
+        for (uint32_t px = 0; px < N; ++px) {
+            double x, y, uv[2], du, dv;
+            texture_scene_pixel_point(px, py, N, &x, &y);
+            texture_scene_uv(&s, x, y, uv);
+            int tx = texture_scene_texel(uv[0], s.wrap_s, 4, &du), ty = texture_scene_texel(uv[1], s.wrap_t, 4, &dv);
+            if (du < 0.1 || dv < 0.1) continue;
+            bool is_cut = (tx + ty) % 2 != 0;
+            const float *p = img->px + 4 * (py * N + px);
+            double expected[3] = {1.0, is_cut ? 1.0 : 0.0, is_cut ? 1.0 : 0.0};
+            for (int c = 0; c < 3; ++c)
+                if (fabs(p[c] - expected[c]) > 0.05)
+                    fail_msg("MASK: pixel (%u, %u) (texel %d, %d, %s) is (%g, %g, %g)", px, py, tx, ty,
+                             is_cut ? "cut" : "kept", p[0], p[1], p[2]);
+            is_cut ? ++cut : ++kept;
+        }
+    assert_true(cut > N * N / 4 && kept > N * N / 4);
+    free(img);
+}
+
+// BLEND: the red quad at alpha 0.5 over the box (emission 1): 0.5 (1, 0, 0) + 0.5 (1, 1, 1),
+// at 1x and 2x supersampling (the forward pass draws into the shading-size image).
+static void test_blend_half(void **state)
+{
+    (void)state;
+    static const uint8_t red[4] = {255, 0, 0, 255};
+    texture_scene s = {
+        .texture_width = 1, .texture_height = 1, .rgba = red, .wrap_s = 10497, .wrap_t = 10497,
+        .uv_min = {0.0f, 0.0f}, .uv_max = {1.0f, 1.0f}, .texcoord = -1, .alpha_mode = 2, .base_alpha = 0.5f,
+    };
+    rendered *img = malloc(sizeof *img);
+    for (uint32_t ss = 1; ss <= 2; ++ss) {
+        render_file(write_texture_scene, &s, ss, &(rtpbr_render_desc){0}, img);
+        for (uint32_t py = 0; py < N; ++py)
+            for (uint32_t px = 0; px < N; ++px) {
+                const float *p = img->px + 4 * (py * N + px);
+                const double expected[3] = {1.0, 0.5, 0.5};
+                for (int c = 0; c < 3; ++c)
+                    if (fabs(p[c] - expected[c]) > 0.03)
+                        fail_msg("BLEND (supersample %u): pixel (%u, %u) is (%g, %g, %g), expected (1, 0.5, 0.5)", ss,
+                                 px, py, p[0], p[1], p[2]);
+            }
+    }
+    free(img);
+}
+
+// Shadows: the occluder's texture is cut (alpha 0) in its left column and solid (255) in its
+// right one; the floor is lit below the left half and shadowed below the right half. With
+// alphaMode OPAQUE instead (the control), both halves are shadowed.
+typedef struct shadow_scene {
+    int opaque;
+} shadow_scene;
+
+static int write_shadow_scene(const void *user, const char *path)
+{
+    static const uint8_t t[16] = {255, 255, 255, 0, 255, 255, 255, 255, 255, 255, 255, 0, 255, 255, 255, 255};
+    return alpha_shadow_scene_write(2, 2, t, ((const shadow_scene *)user)->opaque, path);
+}
+
+// The mean red radiance of the floor's pixels with x in [x0, x1] (|y| < 0.8).
+static double floor_mean(const rendered *img, double x0, double x1)
+{
+    double sum = 0.0;
+    int n = 0;
+    for (uint32_t py = 0; py < N; ++py)
+        for (uint32_t px = 0; px < N; ++px) {
+            double x, y;
+            texture_scene_pixel_point(px, py, N, &x, &y);
+            if (x < x0 || x > x1 || fabs(y) > 0.8) continue;
+            sum += img->px[4 * (py * N + px)];
+            ++n;
+        }
+    assert_true(n > 0);
+    return sum / n;
+}
+
+static void test_mask_shadow(void **state)
+{
+    (void)state;
+    rendered *img = malloc(sizeof *img);
+    const rtpbr_render_desc shadows = {.shadows = RTPBR_SHADOWS_ON, .shadow_samples = 16};
+    render_file(write_shadow_scene, &(shadow_scene){0}, 1, &(rtpbr_render_desc){0}, img);
+    double unshadowed = floor_mean(img, -0.9, -0.25);
+    assert_true(unshadowed > 0.01);
+    render_file(write_shadow_scene, &(shadow_scene){0}, 1, &shadows, img);
+    double holes = floor_mean(img, -0.9, -0.25), solid = floor_mean(img, 0.25, 0.9);
+    render_file(write_shadow_scene, &(shadow_scene){1}, 1, &shadows, img);
+    double opaque = floor_mean(img, -0.9, -0.25);
+    fprintf(stderr, "floor: unshadowed %g, below the holes %g, below the solid half %g, below an opaque occluder %g\n",
+            unshadowed, holes, solid, opaque);
+    assert_true(holes > 0.9 * unshadowed);
+    assert_true(solid < 0.05 * unshadowed);
+    assert_true(opaque < 0.05 * unshadowed);
+    free(img);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_mask_cutout),
+        cmocka_unit_test(test_blend_half),
+        cmocka_unit_test(test_mask_shadow),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
