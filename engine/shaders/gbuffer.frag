@@ -19,16 +19,25 @@ layout(location = 1) in vec3 in_world;
 layout(location = 2) in vec4 in_uv_base_color_metallic_roughness; // each slot's (gbuffer.vert)
 layout(location = 3) in vec4 in_tangent;
 layout(location = 4) in vec4 in_uv_emission_normal;
+layout(location = 5) in vec4 in_uv_clearcoat; // clearcoat, clearcoat roughness
+layout(location = 6) in vec4 in_uv_sheen;     // sheen colour, sheen roughness
+layout(location = 7) in vec4 in_uv_specular;  // specular, specular colour
 
-layout(set = 1, binding = RTPBR_BINDING_TEXTURE_BASE_COLOR) uniform sampler2D base_color_texture;
-layout(set = 1, binding = RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS) uniform sampler2D metallic_roughness_texture;
-layout(set = 1, binding = RTPBR_BINDING_TEXTURE_EMISSION) uniform sampler2D emission_texture;
-layout(set = 1, binding = RTPBR_BINDING_TEXTURE_NORMAL) uniform sampler2D normal_texture;
+// The material's textures, name##_texture at its slot's binding (rtpbr_shared.h); a slot
+// without a texture holds a 1x1 white one.
+#define DECLARE_TEXTURE(unused_a, unused_b, name, slot) layout(set = 1, binding = slot) uniform sampler2D name##_texture;
+RTPBR_MATERIAL_TEXTURE_SLOTS(DECLARE_TEXTURE, 0, 0)
 
 layout(location = 0) out vec4 out_gbuffer0; // base colour rgb, metallic
 layout(location = 1) out vec4 out_gbuffer1; // world normal xyz, perceptual roughness
 layout(location = 2) out vec4 out_gbuffer2; // emitted radiance rgb, material index
 layout(location = 3) out vec4 out_gbuffer3; // anisotropy direction (world, unit; zero: none)
+// The extension textures' values (multipliers of the record's factors), written only in frames
+// whose scene has such textures (rtpbr_shared.h, RTPBR_EXTENSION_TEXTURES_*; otherwise these
+// attachments have no image view).
+layout(location = 4) out vec4 out_gbuffer4; // specular colour rgb, specular a
+layout(location = 5) out vec4 out_gbuffer5; // sheen colour rgb, sheen roughness a
+layout(location = 6) out vec2 out_gbuffer6; // clearcoat, clearcoat roughness
 
 void main()
 {
@@ -39,6 +48,16 @@ void main()
     vec4 metallic_roughness_texel = texture(metallic_roughness_texture, in_uv_base_color_metallic_roughness.zw);
     vec4 emission_texel = texture(emission_texture, in_uv_emission_normal.xy);
     vec4 normal_texel = texture(normal_texture, in_uv_emission_normal.zw);
+    // (a branch on the frame's uniform flags: control flow stays uniform)
+    if ((frame.extension_textures & RTPBR_EXTENSION_TEXTURES_SPECULAR) != 0u)
+        out_gbuffer4 = vec4(texture(specular_color_texture, in_uv_specular.zw).rgb,
+                            texture(specular_texture, in_uv_specular.xy).a);
+    if ((frame.extension_textures & RTPBR_EXTENSION_TEXTURES_COAT_SHEEN) != 0u) {
+        out_gbuffer5 = vec4(texture(sheen_color_texture, in_uv_sheen.xy).rgb,
+                            texture(sheen_roughness_texture, in_uv_sheen.zw).a);
+        out_gbuffer6 = vec2(texture(clearcoat_texture, in_uv_clearcoat.xy).r,
+                            texture(clearcoat_roughness_texture, in_uv_clearcoat.zw).g);
+    }
     vec3 n = normalize(in_normal);
     // Every surface reflects on the side the camera sees; it emits there only if that is its
     // front side or the material is double-sided.

@@ -36,6 +36,9 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER1) uniform sampler2D gbuffe
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER2) uniform sampler2D gbuffer2;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER3) uniform sampler2D gbuffer3;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_DEPTH) uniform sampler2D gbuffer_depth;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER4) uniform sampler2D gbuffer4;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER5) uniform sampler2D gbuffer5;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER6) uniform sampler2D gbuffer6;
 // lighting_mc.comp adds to it across dispatches: it defines RTPBR_RADIANCE_ACCESS empty.
 #ifndef RTPBR_RADIANCE_ACCESS
 #define RTPBR_RADIANCE_ACCESS writeonly
@@ -69,7 +72,8 @@ float kc_EFavg(float r, float eta) { return textureLod(lut_kc_efavg, KC_TableCoo
 // KHR sheen's directional albedo (Charlie lobe; shaderlib/luts/sheen.md).
 float sheen_E(float mu, float r) { return textureLod(lut_sheen_e, Sheen_TableCoord(mu, r), 0.0f).r; }
 
-// A surface point's material: the G-buffer's per-pixel values and its material record,
+// A surface point's material: the G-buffer's per-pixel values (extension textures included)
+// and its material record,
 // resolved into the terms both passes use. The model (oracle/bsdf.h):
 //   metallic-roughness: f = (1 - c Fc(NoV)) [metallic f_metal + (1 - metallic) f_dielectric]
 //                           + c f_coat,
@@ -126,10 +130,36 @@ struct Surface {
 #ifndef RTPBR_LIGHTING_FULL
 #define RTPBR_LIGHTING_FULL 1
 #endif
+
+// A pixel's extension-texture values (G-buffers 4 to 6): multipliers of the material record's
+// KHR factors, 1 where the material has no such texture. Fetched only when the frame's scene
+// has such textures (a uniform branch); the basic variant reads only the specular ones.
+struct ExtensionTexels {
+    vec4 specular; // specular colour rgb, specular a
+    vec4 sheen;    // sheen colour rgb, sheen roughness a
+    vec2 coat;     // clearcoat, clearcoat roughness
+};
+
+ExtensionTexels extension_texels(ivec2 pixel)
+{
+    ExtensionTexels e;
+    e.specular = vec4(1.0f);
+    e.sheen = vec4(1.0f);
+    e.coat = vec2(1.0f);
+    if ((frame.extension_textures & RTPBR_EXTENSION_TEXTURES_SPECULAR) != 0u)
+        e.specular = texelFetch(gbuffer4, pixel, 0);
+#if RTPBR_LIGHTING_FULL
+    if ((frame.extension_textures & RTPBR_EXTENSION_TEXTURES_COAT_SHEEN) != 0u) {
+        e.sheen = texelFetch(gbuffer5, pixel, 0);
+        e.coat = texelFetch(gbuffer6, pixel, 0).rg;
+    }
+#endif
+    return e;
+}
 // The material record and the G-buffer's per-pixel values as the inputs of the shader
-// library's material resolve (material.h). The basic variant's inputs have no coat, sheen,
-// anisotropy or Disney model.
-MaterialInputs material_inputs(vec4 g0, float roughness, Material m)
+// library's material resolve (material.h), the KHR factors times the pixel's extension
+// textures. The basic variant's inputs have no coat, sheen, anisotropy or Disney model.
+MaterialInputs material_inputs(vec4 g0, float roughness, Material m, ExtensionTexels e)
 {
     MaterialInputs in_;
     in_.model = (m.flags & RTPBR_MATERIAL_FLAG_DISNEY) != 0u ? RTPBR_MATERIAL_MODEL_DISNEY
@@ -138,12 +168,12 @@ MaterialInputs material_inputs(vec4 g0, float roughness, Material m)
     in_.metallic = g0.a;
     in_.roughness = roughness;
     in_.ior = m.ior;
-    in_.specularFactor = m.specular_factor;
-    in_.specularColor = m.specular_color;
-    in_.clearcoat = m.clearcoat;
-    in_.clearcoatRoughness = m.clearcoat_roughness;
-    in_.sheenColor = m.sheen_color;
-    in_.sheenRoughness = m.sheen_roughness;
+    in_.specularFactor = m.specular_factor * e.specular.a;
+    in_.specularColor = m.specular_color * e.specular.rgb;
+    in_.clearcoat = m.clearcoat * e.coat.x;
+    in_.clearcoatRoughness = m.clearcoat_roughness * e.coat.y;
+    in_.sheenColor = m.sheen_color * e.sheen.rgb;
+    in_.sheenRoughness = m.sheen_roughness * e.sheen.a;
     in_.anisotropyStrength = m.anisotropy_strength;
     in_.disney.baseColor = g0.rgb;
     in_.disney.metallic = g0.a;
@@ -165,12 +195,12 @@ MaterialInputs material_inputs(vec4 g0, float roughness, Material m)
     return in_;
 }
 
-Surface surface_terms(vec4 g0, float roughness, Material m, float NoV, vec3 anisoDir)
+Surface surface_terms(vec4 g0, float roughness, Material m, ExtensionTexels e, float NoV, vec3 anisoDir)
 {
 #if !RTPBR_LIGHTING_FULL
     anisoDir = vec3(0.0f);
 #endif
-    MaterialParams p = Material_Resolve(material_inputs(g0, roughness, m));
+    MaterialParams p = Material_Resolve(material_inputs(g0, roughness, m, e));
     Surface s;
     s.disney = p.disney;
     s.dm = p.dm;
