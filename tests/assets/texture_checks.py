@@ -38,7 +38,7 @@ least ARROW_LIMIT of the pixels, and better than with the "not supported" and "e
 transforms by ARROW_MARGIN: that is, the arrow points at the correct marker.
 
 Images: EXR (ZIP, NONE or ZIPS; HALF or FLOAT) and PNG are read here with the standard
-library only. The thresholds and the figures they were set from are in tests/assets/README.md
+library only. The thresholds and the figures they were set from are in samples/assets/README.md
 (measured on the engine and oracle of issue 28; e267e8f fails both assets).
 
 usage: texture_checks.py RTPBR_RENDER RTPBR_ORACLE ASSETS_DIR OUT_DIR [--spp N]
