@@ -344,8 +344,11 @@ typedef struct rtpbr_gltf_material {
     int32_t base_color_texture;
     int32_t metallic_roughness_texture; /* G = roughness, B = metallic     */
     int32_t normal_texture;             /* tangent space, needs tangents   */
-    int32_t emission_texture;           /* multiplies emission; NOT used for
-                                           light radiance                  */
+    int32_t emission_texture;           /* multiplies emission; lights from
+                                           the primitive take its mean
+                                           (emissive_mode BOUNDED) or leave
+                                           it to the renderer per point
+                                           (EXACT, rtpbr_gltf_light.triangle) */
     /* Each slot's KHR_texture_transform and texture coordinate set. */
     rtpbr_gltf_texture_transform base_color_texture_transform;
     rtpbr_gltf_texture_transform metallic_roughness_texture_transform;
