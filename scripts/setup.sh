@@ -2,7 +2,10 @@
 # Installs the Debian packages rtpbr builds and tests with, only those missing,
 # so a second run costs one dpkg-query. Root (or sudo) is needed only when
 # something is missing.
+#   setup.sh [main|test]   main: what the main job needs (the Debian packages); test (the
+#                          default): also the test-only tools from npm and PyPI into .deps/
 set -euo pipefail
+what=${1:-test}
 
 packages=(
   meson ninja-build pkg-config gcc g++ cmake
@@ -32,6 +35,9 @@ if ((${#missing[@]})); then
   "${sudo_cmd[@]}" apt-get update -qq
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+
+# The rest is for tests only (the bundled-scene check, the cluster suite, the Slang consumer).
+[[ $what == main ]] && exit 0
 
 # The Khronos glTF Validator (npm) for the bundled-scene test, into .deps/ (git-ignored).
 repo=$(cd "$(dirname "$0")/.." && pwd)
