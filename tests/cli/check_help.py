@@ -9,7 +9,7 @@ option and fails unless it exits 2 with nothing on stdout and, on stderr, a usag
 message that points at --help). Then reads
 the option strings the program compares its arguments with from each SOURCE (C/C++:
 strcmp(arg, "--foo") and arg == "--foo"; Python: the names given to add_argument and the
-strings compared on a line that reads sys.argv) and fails for each one the help text does not name. With
+strings compared on a line that reads sys.argv; shell: getopts letters and case patterns) and fails for each one the help text does not name. With
 --keys, every GLFW_KEY_* that FUNCTION of SOURCE handles must be named in the key column of
 the help (a line "  KEYS  what they do"), in the spelling of KEY_NAMES.
 """
@@ -27,6 +27,9 @@ C_COMPARISONS = [
 PY_ADD_ARGUMENT = re.compile(r"add_argument\(\s*((?:[\"']" + OPTION + r"[\"']\s*,?\s*)+)")
 PY_ARGV_TEST = re.compile(r"(?:==|\bin)\s*\(?\s*((?:[\"']" + OPTION + r"[\"']\s*,?\s*)+)")
 PY_STRING = re.compile(r"[\"'](" + OPTION + r")[\"']")
+SH_GETOPTS = re.compile(r"getopts\s+[\"']([^\"']+)[\"']")
+SH_CASE = re.compile(r"^\s*(" + OPTION + r"(?:\s*\|\s*" + OPTION + r")*)\s*\)", re.M)  # -h | --help)
+SH_TEST = re.compile(r"=\s*(" + OPTION + r")\s*\]")  # [ "$1" = --help ]
 
 # How the help names a GLFW key: letters and digits as themselves, the others spelled here.
 # A key missing from this table fails the test, so that a new kind of key gets a name.
@@ -40,7 +43,13 @@ KEY_NAMES = {
 def parsed_options(path):
     text = open(path, encoding="utf-8").read()
     found = set()
-    if path.endswith(".py"):
+    if path.endswith(".sh"):
+        for m in SH_GETOPTS.finditer(text):
+            found.update("-" + c for c in m.group(1) if c.isalpha())
+        for m in SH_CASE.finditer(text):
+            found.update(o.strip() for o in m.group(1).split("|"))
+        found.update(SH_TEST.findall(text))
+    elif path.endswith(".py"):
         for m in PY_ADD_ARGUMENT.finditer(text):
             found.update(PY_STRING.findall(m.group(1)))
         for line in text.splitlines():
