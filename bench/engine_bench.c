@@ -88,6 +88,16 @@ static rtpbr_result make_scene(rtpbr_context *ctx, int n, rtpbr_gpu_scene **out)
     return r;
 }
 
+static const char *const usage =
+    "usage: rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu]\n"
+    "Median frame time of rtpbr_render against light count and resolution; compare the ratios\n"
+    "printed in one run.\n"
+    "  --repeat N     frames per configuration (1..1000; default 5)\n"
+    "  --sizes LIST   resolutions, WxH or N for N x N (default 128,256,512)\n"
+    "  --lights LIST  light counts (default 0,1,4,16,64,256)\n"
+    "  --cpu          the process CPU time (lavapipe's threads included) instead of wall time\n"
+    "  -h, --help     this text\n";
+
 int main(int argc, char **argv)
 {
     int repeat = 5, sizes[8][2] = {{128, 128}, {256, 256}, {512, 512}}, lights[16] = {0, 1, 4, 16, 64, 256};
@@ -97,10 +107,8 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--sizes") && i + 1 < argc) size_count = parse_sizes(argv[++i], sizes, 8);
         else if (!strcmp(argv[i], "--lights") && i + 1 < argc) light_count = parse_list(argv[++i], lights, 16);
         else if (!strcmp(argv[i], "--cpu")) bench_clock = CLOCK_PROCESS_CPUTIME_ID;
-        else {
-            fprintf(stderr, "usage: %s [--repeat N] [--sizes 1280x720,256] [--lights 0,16,64] [--cpu]\n", argv[0]);
-            return 2;
-        }
+        else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) return fputs(usage, stdout), 0;
+        else return fputs(usage, stderr), 2;
     }
     if (repeat < 1 || repeat > 1000) repeat = 5;
     rtpbr_context *ctx = NULL;

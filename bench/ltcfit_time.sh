@@ -10,18 +10,25 @@
 # On a shared machine the wall time is inflated by other work; the CPU time is the number to
 # compare (wall on T free cores is about CPU / T plus the serial start of each lobe).
 set -euo pipefail
+usage="usage: $0 [-s SIZE] [-t THREADS] [-r REPEATS] BIN [BIN_BEFORE]
+  -s SIZE     table cells per side (default 24)
+  -t THREADS  threads of each fit (default 2)
+  -r REPEATS  runs of each binary (default 3)
+  -h, --help  this text"
+[ "${1:-}" = --help ] && { echo "$usage"; exit 0; }
 size=24 threads=2 repeats=3
-while getopts "s:t:r:" o; do
+while getopts "hs:t:r:" o; do
     case $o in
+        h) echo "$usage"; exit 0 ;;
         s) size=$OPTARG ;;
         t) threads=$OPTARG ;;
         r) repeats=$OPTARG ;;
-        *) echo "usage: $0 [-s SIZE] [-t THREADS] [-r REPEATS] BIN [BIN_BEFORE]" >&2; exit 2 ;;
+        *) echo "$usage" >&2; exit 2 ;;
     esac
 done
 shift $((OPTIND - 1))
 if [ $# -lt 1 ] || [ $# -gt 2 ]; then
-    echo "usage: $0 [-s SIZE] [-t THREADS] [-r REPEATS] BIN [BIN_BEFORE]" >&2
+    echo "$usage" >&2
     exit 2
 fi
 for b in "$@"; do

@@ -122,12 +122,22 @@ rtpbr_result timed_frame(rtpbr_renderer *r, Measure &m, uint32_t seed)
     return res;
 }
 
-int usage(const char *argv0)
+const char *const kUsage =
+    "usage: rtpbr-bench-mc SCENE.gltf REFERENCE.exr [--width W] [--height H] [--repeat N]\n"
+    "                      [--samples 1,2,4] [--out DIR]\n"
+    "The engine's LTC lighting pass against its brute-force Monte Carlo pass at equal HDR-FLIP\n"
+    "error against REFERENCE (rtpbr-oracle SCENE --no-shadows --direct-only); prints a Markdown\n"
+    "table of times and errors.\n"
+    "  --width W       image width (default 320)\n"
+    "  --height H      image height (default 240)\n"
+    "  --repeat N      interleaved rounds (1..1000; default 5)\n"
+    "  --samples LIST  Monte Carlo samples per pixel and light (default 1,2,4,...,128)\n"
+    "  --out DIR       write every image (linear EXR, tone-mapped PNG) to DIR\n"
+    "  -h, --help      this text\n";
+
+int usage()
 {
-    std::fprintf(stderr,
-                 "usage: %s SCENE.gltf REFERENCE.exr [--width W] [--height H] [--repeat N] "
-                 "[--samples 1,2,4] [--out DIR]\n",
-                 argv0);
+    std::fputs(kUsage, stderr);
     return 2;
 }
 
@@ -144,14 +154,15 @@ int main(int argc, char **argv)
         else if (a == "--height" && has) o.height = (uint32_t)std::atoi(argv[++i]);
         else if (a == "--repeat" && has) o.repeat = std::atoi(argv[++i]);
         else if (a == "--samples" && has) {
-            if (!parse_list(argv[++i], o.samples)) return usage(argv[0]);
+            if (!parse_list(argv[++i], o.samples)) return usage();
         } else if (a == "--out" && has) o.out = argv[++i];
+        else if (a == "-h" || a == "--help") return std::fputs(kUsage, stdout), 0;
         else if (a[0] != '-' && positional == 0) o.scene = argv[i], ++positional;
         else if (a[0] != '-' && positional == 1) o.reference = argv[i], ++positional;
-        else return usage(argv[0]);
+        else return usage();
     }
     if (!o.scene || !o.reference || o.width < 1 || o.height < 1 || o.repeat < 1 || o.repeat > 1000)
-        return usage(argv[0]);
+        return usage();
 
     rtpbr::Image ref;
     std::string err;

@@ -4,6 +4,13 @@ a rough gold sphere, a clear-coated Disney sphere and a smooth-ish copper plate.
 the file is a pure function of this script. Usage: oracle_scene.py OUT.gltf"""
 import base64, json, math, struct, sys
 
+if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
+    print(__doc__)
+    sys.exit(0)
+if len(sys.argv) != 2 or sys.argv[1].startswith("-"):
+    print(__doc__, file=sys.stderr)
+    sys.exit(2)
+
 meshes, accessors, views, blob = [], [], [], bytearray()
 
 def add_view(data, target):

@@ -25,6 +25,16 @@ static int compare_double(const void *a, const void *b)
 
 enum { MAX_CONFIGS = 8, MAX_REPEAT = 64 };
 
+static const char *const usage =
+    "usage: rtpbr-bench-shadows SCENE.gltf [--width W] [--height H] [--repeat N] [--samples 1,4,16]\n"
+    "Frame time of SCENE with area-light shadows at several samples per pixel and light against\n"
+    "the same frame without, interleaved; compare the ratios of one run.\n"
+    "  --width W       image width (default 960)\n"
+    "  --height H      image height (default 720)\n"
+    "  --repeat N      rounds (1..64; default 5)\n"
+    "  --samples LIST  shadow samples per pixel and light (default 4)\n"
+    "  -h, --help      this text\n";
+
 int main(int argc, char **argv)
 {
     const char *path = NULL;
@@ -41,17 +51,11 @@ int main(int argc, char **argv)
             for (char *t = strtok_r(copy, ",", &save); t && configs < MAX_CONFIGS; t = strtok_r(NULL, ",", &save))
                 samples[configs++] = atoi(t);
             free(copy);
-        } else if (argv[i][0] != '-' && !path) path = argv[i];
-        else {
-            fprintf(stderr, "usage: %s SCENE.gltf [--width W] [--height H] [--repeat N] [--samples 1,4,16]\n", argv[0]);
-            return 2;
-        }
+        } else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) return fputs(usage, stdout), 0;
+        else if (argv[i][0] != '-' && !path) path = argv[i];
+        else return fputs(usage, stderr), 2;
     }
-    if (!path || repeat < 1 || repeat > MAX_REPEAT) {
-        fprintf(stderr, "usage: %s SCENE.gltf [--width W] [--height H] [--repeat N (1..%d)] [--samples 1,4,16]\n",
-                argv[0], MAX_REPEAT);
-        return 2;
-    }
+    if (!path || repeat < 1 || repeat > MAX_REPEAT) return fputs(usage, stderr), 2;
     rtpbr_context *ctx = NULL;
     rtpbr_gpu_scene *scene = NULL;
     rtpbr_renderer *r = NULL;

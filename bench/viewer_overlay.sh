@@ -6,6 +6,14 @@
 # CPU time of building them and GPU time of their render pass (two timestamps around it).
 #   usage: bench/viewer_overlay.sh BUILD [REPEATS [FRAMES]]
 set -eu
+usage="usage: $0 BUILD [REPEATS [FRAMES]]
+The frame time of rtpbr-viewer (BUILD/samples/viewer) on the showcase scene with its panels
+and with --no-ui, REPEATS runs each (default 3) of FRAMES frames (default 4), under xvfb-run.
+  -h, --help  this text"
+case ${1:-} in
+-h | --help) echo "$usage"; exit 0 ;;
+'' | -*) echo "$usage" >&2; exit 2 ;;
+esac
 build=$1 repeats=${2:-3} frames=${3:-4}
 scene=$(dirname "$0")/../samples/scenes/showcase.gltf
 export VK_ICD_FILENAMES=${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json}

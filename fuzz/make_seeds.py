@@ -178,6 +178,12 @@ def image_seeds(out):
 
 
 def main():
+    if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        return
+    if len(sys.argv) != 4 or any(a.startswith("-") for a in sys.argv[1:]):
+        sys.stderr.write("usage:" + __doc__)
+        sys.exit(2)
     samples, assets, out = sys.argv[1:4]
     for sub in ("scene", "image"):
         os.makedirs(os.path.join(out, sub), exist_ok=True)

@@ -25,11 +25,13 @@ import sys
 import tempfile
 import time
 
-import numpy as np
-import mitsuba as mi
-import drjit as dr
-
-mi.set_variant('scalar_rgb')
+try:  # --help works without them; main() says they are missing
+    import numpy as np
+    import mitsuba as mi
+    import drjit as dr
+except ImportError as e:
+    np = mi = dr = None
+    missing = e
 
 
 def quat_rotate(q, v):
@@ -135,6 +137,9 @@ def main():
     ap.add_argument('--bsdf', choices=['principled', 'conductor'], default='principled')
     ap.add_argument('--outdir', default=tempfile.mkdtemp(prefix='rtpbr_mitsuba_'))
     a = ap.parse_args()
+    if mi is None:
+        sys.exit(f"compare.py: {missing} (pip install mitsuba numpy)")
+    mi.set_variant('scalar_rgb')
     os.makedirs(a.outdir, exist_ok=True)
 
     threads = [int(t) for t in a.threads.split(',')]

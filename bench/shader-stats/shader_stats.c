@@ -60,7 +60,8 @@ static void usage(FILE *to)
             "  --family NAME   RADV_FORCE_FAMILY chip, repeatable (default: navi21 and gfx1100)\n"
             "  --baseline NAME per-light pair to compare the others with (its latency = 1x)\n"
             "  --json          JSON instead of Markdown\n"
-            "  --no-validation do not enable VK_LAYER_KHRONOS_validation\n");
+            "  --no-validation do not enable VK_LAYER_KHRONOS_validation\n"
+            "  -h, --help      this text\n");
 }
 
 static const ss_executable *first_executable(const compiled *c)
@@ -314,13 +315,13 @@ static int parse_options(int argc, char **argv, const char **files, options *opt
     bool options_done = false;
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
-        if (options_done || strncmp(arg, "--", 2) != 0) {
+        if (!options_done && (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0)) {
+            usage(stdout);
+            return -1;
+        } else if (options_done || strncmp(arg, "--", 2) != 0) {
             opt->files[opt->file_count++] = arg;
         } else if (strcmp(arg, "--") == 0) {
             options_done = true;
-        } else if (strcmp(arg, "--help") == 0) {
-            usage(stdout);
-            return -1;
         } else if (strcmp(arg, "--json") == 0) {
             opt->json = true;
         } else if (strcmp(arg, "--no-validation") == 0) {
@@ -363,7 +364,7 @@ int main(int argc, char **argv)
     int status = parse_options(argc, argv, files, &opt);
     if (status) {
         free(files);
-        return status < 0 ? 0 : status; // -1: --help
+        return status < 0 ? 0 : status; // -1: -h, --help
     }
 
     char error[ERROR_SIZE];

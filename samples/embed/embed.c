@@ -113,8 +113,21 @@ static void host_destroy(host *h)
     if (h->instance) vkDestroyInstance(h->instance, NULL);
 }
 
+static const char *const usage =
+    "usage: rtpbr-embed [SCENE.gltf [OUT.png [--validation]]]\n"
+    "rtpbr embedded in a host's own Vulkan instance and device: loads SCENE.gltf (default: the\n"
+    "bundled quad_light scene), renders one 640 x 480 frame and writes it to OUT.png (default\n"
+    "embed.png).\n"
+    "  --validation  the host enables VK_LAYER_KHRONOS_validation; any message fails the run\n"
+    "  -h, --help    this text\n";
+
 int main(int argc, char **argv)
 {
+    for (int i = 1; i < argc; ++i) {
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) return fputs(usage, stdout), 0;
+        if (i == 3 ? strcmp(argv[i], "--validation") != 0 : i > 3 || argv[i][0] == '-')
+            return fputs(usage, stderr), 2;
+    }
     const char *scene_path = argc > 1 ? argv[1] : RTPBR_EMBED_DEFAULT_SCENE;
     const char *out_path = argc > 2 ? argv[2] : "embed.png";
     int validation = argc > 3 && strcmp(argv[3], "--validation") == 0;

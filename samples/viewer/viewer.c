@@ -18,17 +18,53 @@
 #include <stdlib.h>
 #include <string.h>
 
+// Every key handle_key() takes, named as it is in `--help` (tests/cli checks the two agree).
 static const char *const help_text =
     "rtpbr-viewer controls (the panels do the same with the mouse)\n"
     "  mouse: left drag orbit, right drag pan, wheel zoom, left click: select a light or surface\n"
-    "  Home: back to the scene's camera\n"
-    "  Tab: select the next light; 1 / 2 / 3: arrows and PgUp/PgDn move / rotate / scale it\n"
-    "  [ ]: light vertex count 3..8; C: light colour; - =: intensity; T: one-/two-sided\n"
-    "  M: select the next material; 7 8: roughness -/+; 9 0: metallic -/+\n"
-    "  K: Kulla-Conty on/off; N: NDF GGX/Beckmann; R: Monte Carlo pass on/off\n"
-    "  E / D: exposure +/-; O: next tone-mapping operator\n"
-    "  S: split view against --reference; F: live HDR-FLIP heat map; U: panels on/off\n"
-    "  P: screenshot; H: this help; Esc: quit\n";
+    "  Home            back to the scene's camera\n"
+    "  Tab             select the next light\n"
+    "  1 / 2 / 3       the keys below move / rotate / scale the light (mode 1 at start)\n"
+    "  Left / Right    along (about) world X -/+\n"
+    "  Up / Down       along (about) world Z -/+\n"
+    "  PgDn / PgUp     along (about) world Y -/+\n"
+    "  [ / ]           light vertex count -/+ (3..8)\n"
+    "  C               next light colour\n"
+    "  - / =           light intensity -/+ (x 1.25)\n"
+    "  T               light one-/two-sided\n"
+    "  M               select the next material\n"
+    "  7 / 8           material roughness -/+\n"
+    "  9 / 0           material metallic -/+\n"
+    "  K               Kulla-Conty energy compensation on/off\n"
+    "  N               NDF GGX / Beckmann\n"
+    "  R               lighting pass LTC / Monte Carlo\n"
+    "  L               says that the LTC sphere proxy is a build-time shaderlib flag only\n"
+    "  E / D           exposure +/- half a stop\n"
+    "  O               next tone-mapping operator\n"
+    "  S               split view against --reference\n"
+    "  F               live HDR-FLIP heat map (with --reference)\n"
+    "  U               panels on/off\n"
+    "  P               screenshot to rtpbr-viewer-NNN.png\n"
+    "  H               this help\n"
+    "  Esc             quit\n";
+
+static const char *const usage_text =
+    "usage: rtpbr-viewer [SCENE.gltf] [--reference REF.exr] [--width W] [--height H] [--no-ui]\n"
+    "                    [--frames N [--screenshot OUT.png] [--radiance OUT.exr]] [--keys KEYS]\n"
+    "                    [--validation]\n"
+    "An interactive area-light viewer (GLFW window, Vulkan). SCENE.gltf defaults to the bundled\n"
+    "showcase scene.\n"
+    "  --reference REF.exr  an oracle image of the same view and size: split view and live FLIP\n"
+    "  --width W            window width (1..16384; default 960)\n"
+    "  --height H           window height (1..16384; default 720)\n"
+    "  --no-ui              no panels (image tests compare the scene alone)\n"
+    "  --frames N           render N frames, then exit\n"
+    "  --screenshot OUT.png with --frames: the last frame as presented\n"
+    "  --radiance OUT.exr   with --frames: the last frame's linear radiance (float RGB)\n"
+    "  --keys KEYS          replay key presses before the first frame: upper-case letters, digits,\n"
+    "                       [ ] - = as themselves; l r u d arrows, p n PgUp/PgDn, t Tab, h Home\n"
+    "  --validation         Khronos validation layer; any warning or error makes the exit status 1\n"
+    "  -h, --help           this text\n";
 
 static void on_log(rtpbr_log_level level, const char *message, void *user)
 {
@@ -478,11 +514,12 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--keys") && has_value) keys = argv[++i];
         else if (!strcmp(argv[i], "--validation")) validation = true;
         else if (!strcmp(argv[i], "--no-ui")) no_ui = true;
-        else if (argv[i][0] != '-') scene_path = argv[i];
+        else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
+            printf("%s\n%s", usage_text, help_text);
+            return 0;
+        } else if (argv[i][0] != '-') scene_path = argv[i];
         else {
-            fprintf(stderr, "usage: rtpbr-viewer [SCENE.gltf] [--reference REF.exr] [--width W] [--height H] [--no-ui]\n"
-                            "                    [--frames N [--screenshot OUT.png] [--radiance OUT.exr]] [--keys KEYS]\n"
-                            "                    [--validation]\n");
+            fputs(usage_text, stderr);
             return 2;
         }
     }

@@ -28,10 +28,12 @@ static const struct {
 
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: rtpbr-lut-export OUTDIR\n");
-        return 2;
-    }
+    static const char usage[] = "usage: rtpbr-lut-export OUTDIR\n"
+                                "Writes every lookup table of the generated headers to OUTDIR/NAME.f32 (raw\n"
+                                "little-endian float32, the C array's order). Build-time only.\n"
+                                "  -h, --help  this text\n";
+    if (argc == 2 && (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help"))) return fputs(usage, stdout), 0;
+    if (argc != 2 || argv[1][0] == '-') return fputs(usage, stderr), 2;
     const unsigned probe = 1;
     if (*(const unsigned char *)&probe != 1) {
         fprintf(stderr, "rtpbr-lut-export: a big-endian host would need a byte swap here\n");

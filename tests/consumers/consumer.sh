@@ -2,7 +2,7 @@
 # One consumer of rtpbr, outside the source tree (suite 'consumers', tests/consumers/meson.build):
 #   consumer.sh KIND SRC BUILD PREFIX LIBDIR
 # KIND pkgconfig | cmake | shaders: a fresh DESTDIR install of BUILD into a temporary directory,
-#   then the README's "Install and use" snippets for KIND, run verbatim in a temporary
+#   then the "Install and use" snippets of docs/library.md for KIND, run verbatim in a temporary
 #   directory holding host.c / shade.cpp / host.frag / host.hlsl, with the environment pointing at the
 #   staged prefix (PKG_CONFIG_PATH + PKG_CONFIG_SYSROOT_DIR, CMAKE_PREFIX_PATH, LD_LIBRARY_PATH).
 # KIND meson: the same without an install; RTPBR_SRC = SRC (its committed HEAD is cloned).
@@ -73,11 +73,11 @@ if [[ $kind == slang ]]; then
 fi
 
 # The snippets: a fenced block right after "<!-- consumer KIND: file PATH -->" is written to
-# PATH, one after "<!-- consumer KIND: run -->" is run, in README order.
-python3 - "$src/README.md" "$kind" "$tmp/work" <<'PY'
+# PATH, one after "<!-- consumer KIND: run -->" is run, in the order of the page.
+python3 - "$src/docs/library.md" "$kind" "$tmp/work" <<'PY'
 import re, sys
-readme, kind, work = sys.argv[1:]
-text = open(readme).read()
+page, kind, work = sys.argv[1:]
+text = open(page).read()
 blocks = re.findall(r"<!-- consumer (\w+): (file (\S+)|run) -->\n```\w*\n(.*?)```", text, re.S)
 runs = []
 for k, what, path, body in blocks:
@@ -88,10 +88,10 @@ for k, what, path, body in blocks:
     else:
         open(work + "/" + path, "w").write(body)
 if not runs:
-    sys.exit("consumer %s: README.md has no '<!-- consumer %s: run -->' snippet" % (kind, kind))
+    sys.exit("consumer %s: %s has no '<!-- consumer %s: run -->' snippet" % (kind, page, kind))
 open(work + "/snippet.sh", "w").write("\n".join(runs))
 PY
-echo "consumer $kind: running the README snippet:"
+echo "consumer $kind: running the docs/library.md snippet:"
 sed 's/^/  | /' "$tmp/work/snippet.sh"
 cd "$tmp/work"
 RTPBR_SRC="$src" bash -euo pipefail snippet.sh

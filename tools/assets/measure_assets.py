@@ -31,7 +31,10 @@ import subprocess
 import sys
 import time
 
-import numpy as np
+try:
+    import numpy as np
+except ImportError:  # --help works without it; main() says it is missing
+    np = None
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ASSETS = os.path.normpath(os.path.join(HERE, "..", "..", "samples", "assets"))
@@ -101,6 +104,8 @@ def main(argv=None):
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--json", help="also write the figures here")
     args = ap.parse_args(argv)
+    if np is None:
+        sys.exit("measure_assets.py: needs numpy (python3-numpy)")
     render = os.path.join(args.build, "tools", "render", "rtpbr-render")
     oracle = os.path.join(args.build, "oracle", "rtpbr-oracle")
     diff = os.path.join(args.build, "tools", "imgdiff", "rtpbr-diff")

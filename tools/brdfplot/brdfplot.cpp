@@ -1,11 +1,13 @@
 // rtpbr-brdfplot: renders the shaderlib's microfacet BRDFs on a grid of spheres (rows: GGX
 // conductor, Beckmann conductor, GGX dielectric over a Lambertian base; columns: perceptual
-// roughness 0.05 .. 1) lit by one directional light plus a dim uniform sky, and writes a PNG.
+// roughness 0.05 .. 1) lit by one directional light plus a dim uniform sky, and writes a PNG
+// with the rows, columns and lighting written in its margins (stb_easy_font's glyphs).
 // A quick look at the shader library's C++ build; the engine and the oracle render scenes.
 #include <rtpbr/microfacet.h>
 
 #include "rtpbr_tools/image.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -13,11 +15,14 @@
 #include <string>
 #include <vector>
 
+#include <stb_easy_font.h>
+
 using namespace rtpbr;
 
 namespace {
 
 enum class Row { GgxGold, BeckmannGold, GgxPlastic };
+const char *const kRowNames[] = {"GGX\ngold conductor", "Beckmann\ngold conductor", "GGX dielectric\nIOR 1.5 over\nred Lambert"};
 
 float3 shade(Row row, float roughness, float3 n, float3 v, float3 l) {
     float NoV = dot(n, v), NoL = dot(n, l);
@@ -49,6 +54,42 @@ float to_srgb(float x) {
     return std::fmin(std::fmax(x, 0.0f), 1.0f);
 }
 
+// An RGB8 image that text is written into.
+struct Canvas {
+    int width, height;
+    std::vector<unsigned char> pixels;
+    // Draws text (lines split at '\n') with its top left corner at (x, y), each glyph pixel
+    // scale x scale image pixels: stb_easy_font's quads filled as rectangles.
+    void text(int x, int y, int scale, const std::string &s, unsigned char grey) {
+        std::vector<char> str(s.begin(), s.end());
+        str.push_back('\0');
+        std::vector<float> quads(s.size() * 300); // ~270 bytes per character, 16 per vertex
+        int n = stb_easy_font_print(0.0f, 0.0f, str.data(), nullptr, quads.data(), int(quads.size() * sizeof(float)));
+        for (int q = 0; q < n; q++) {
+            const float *v = &quads[size_t(q) * 16]; // 4 vertices of x, y, z, colour
+            int x0 = x + int(std::lround(v[0] * scale)), y0 = y + int(std::lround(v[1] * scale));
+            int x1 = x + int(std::lround(v[8] * scale)), y1 = y + int(std::lround(v[9] * scale));
+            for (int py = std::max(y0, 0); py < std::min(y1, height); py++)
+                for (int px = std::max(x0, 0); px < std::min(x1, width); px++)
+                    for (int k = 0; k < 3; k++)
+                        pixels[(size_t(py) * width + px) * 3 + k] = grey;
+        }
+    }
+    int text_width(const std::string &s, int scale) {
+        std::vector<char> str(s.begin(), s.end());
+        str.push_back('\0');
+        return stb_easy_font_width(str.data()) * scale;
+    }
+};
+
+const char *const kUsage =
+    "usage: rtpbr-brdfplot [-o OUT.png]\n"
+    "Renders the shader library's microfacet BRDFs on a labelled grid of spheres (rows: GGX and\n"
+    "Beckmann gold conductors, a GGX dielectric over a red Lambertian base; columns: perceptual\n"
+    "roughness 0.05 .. 1) under one directional light and a dim sky, and writes a PNG.\n"
+    "  -o OUT.png  the image (default brdf-spheres.png)\n"
+    "  -h, --help  this text\n";
+
 } // namespace
 
 int main(int argc, char **argv) {
@@ -56,14 +97,22 @@ int main(int argc, char **argv) {
     for (int i = 1; i < argc; i++) {
         if (!std::strcmp(argv[i], "-o") && i + 1 < argc) {
             out = argv[++i];
+        } else if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) {
+            std::fputs(kUsage, stdout);
+            return 0;
         } else {
-            std::fprintf(stderr, "usage: %s [-o OUT.png]\n", argv[0]);
+            std::fputs(kUsage, stderr);
             return 2;
         }
     }
     const int cols = 8, rows = 3, cell = 96;
+    // The spheres' grid, with margins for the labels: row names on the left, the title and the
+    // roughness of each column above, the lighting below.
+    const int left = 176, top = 64, bottom = 40;
     const int W = cols * cell, H = rows * cell;
-    std::vector<unsigned char> pixels(size_t(W) * H * 3, 0);
+    Canvas canvas{left + W + 8, top + H + bottom, {}};
+    const unsigned char background = (unsigned char)std::lround(255.0f * to_srgb(0.02f));
+    canvas.pixels.assign(size_t(canvas.width) * canvas.height * 3, background);
     const float3 v(0.0f, 0.0f, 1.0f);
     const float3 l = normalize(float3(-0.5f, 0.6f, 0.6f));
     for (int y = 0; y < H; y++) {
@@ -80,11 +129,28 @@ int main(int argc, char **argv) {
                         0.15f * shade(Row(r), roughness, n, v, normalize(float3(0.0f, 1.0f, 0.3f)));
             }
             for (int k = 0; k < 3; k++)
-                pixels[(size_t(y) * W + x) * 3 + k] = (unsigned char)std::lround(255.0f * to_srgb(color[k]));
+                canvas.pixels[(size_t(top + y) * canvas.width + left + x) * 3 + k] =
+                    (unsigned char)std::lround(255.0f * to_srgb(color[k]));
         }
     }
+    const unsigned char ink = 230, dim = 170;
+    canvas.text(8, 6, 2, "rtpbr shader library: microfacet BRDFs", ink);
+    canvas.text(8, 40, 2, "roughness", dim);
+    for (int c = 0; c < cols; c++) {
+        char label[16];
+        std::snprintf(label, sizeof label, "%.2f", 0.05f + 0.95f * c / (cols - 1));
+        canvas.text(left + c * cell + (cell - canvas.text_width(label, 2)) / 2, 40, 2, label, ink);
+    }
+    for (int r = 0; r < rows; r++) {
+        int lines = int(std::count(kRowNames[r], kRowNames[r] + std::strlen(kRowNames[r]), '\n')) + 1;
+        canvas.text(8, top + r * cell + (cell - 24 * lines) / 2, 2, kRowNames[r], ink);
+    }
+    canvas.text(8, top + H + 8, 1, "Perceptual roughness (alpha = r^2). Gold: complex IOR at 650/550/450 nm "
+                                   "(Johnson & Christy 1972).", dim);
+    canvas.text(8, top + H + 22, 1, "Lit by one directional light from the upper left and a dim light from above; "
+                                    "Reinhard tone mapping, sRGB.", dim);
     std::string error;
-    if (!rtpbr_tools::write_image_u8(out, W, H, 3, pixels.data(), error)) {
+    if (!rtpbr_tools::write_image_u8(out, canvas.width, canvas.height, 3, canvas.pixels.data(), error)) {
         std::fprintf(stderr, "rtpbr-brdfplot: %s\n", error.c_str());
         return 1;
     }

@@ -70,6 +70,36 @@ void diverging(float e, unsigned char rgb[3]) {
     }
 }
 
+const char *const kUsage =
+    "usage: rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] [--quick]\n"
+    "                       [--per-azimuth] [--threads T] [--exact-cells]\n"
+    "                       [--elevation-correction | --direction-correction | --residual-correction |\n"
+    "                        --hybrid-correction] [--correction-bins E A] [--correction-samples N]\n"
+    "                       [--second-lobe | --second-lobe-joint]\n"
+    "                       [--no-point | --no-tail | --no-streak | --point-raw | --point-ff]\n"
+    "The LTC against a converged quadrature on floors lit by lights near their horizon and seen\n"
+    "at low angles; prints markdown tables of the relative L1 floor error (see floor.cpp).\n"
+    "  --lobe L               ggx (default), beckmann or diffuse (Disney diffuse)\n"
+    "  --tables HEADER        LTC tables from this header instead of the compiled-in ones\n"
+    "  --png FILE             also write the signed error maps\n"
+    "  --quick                fewer cases and points\n"
+    "  --per-azimuth          also a table per light azimuth of the grazing floors\n"
+    "  --threads T            worker threads (1..64; default 2)\n"
+    "  --exact-cells          no table interpolation: each case's own fit (experiment)\n"
+    "  --elevation-correction, --direction-correction, --residual-correction,\n"
+    "  --hybrid-correction    the LTC corrected by the lit part's direction (experiments,\n"
+    "                         ltc_floor.hpp)\n"
+    "  --correction-bins E A  elevation and azimuth bins of those corrections\n"
+    "  --correction-samples N samples per side of the correction fit (16..4096; default 512)\n"
+    "  --second-lobe          a second LTC lobe per cell fitted to the residual (experiment)\n"
+    "  --second-lobe-joint    the same, both lobes refitted together\n"
+    "  --no-point             the LTC without the point correction (LTC_PointFactor)\n"
+    "  --no-tail              the point correction without the tail estimate\n"
+    "  --no-streak            without the streak estimate\n"
+    "  --point-raw            the uncorrected point ratio (experiment)\n"
+    "  --point-ff             the true BRDF at the lit part's centre x the form factor (experiment)\n"
+    "  -h, --help             this text\n";
+
 } // namespace
 
 int main(int argc, char **argv) {
@@ -151,9 +181,11 @@ int main(int argc, char **argv) {
                 fprintf(stderr, "rtpbr-ltc-floor: --threads must be 1..64\n");
                 return 2;
             }
+        } else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
+            fputs(kUsage, stdout);
+            return 0;
         } else {
-            fprintf(stderr, "usage: rtpbr-ltc-floor [--lobe ggx|beckmann|diffuse] [--tables HEADER] [--png FILE] "
-                            "[--quick] [--per-azimuth] [--threads T] [--exact-cells] [--elevation-correction | --direction-correction | --residual-correction | --hybrid-correction] [--correction-bins E A] [--correction-samples N] [--second-lobe | --second-lobe-joint] [--no-point | --no-tail | --no-streak | --point-raw | --point-ff]\n");
+            fputs(kUsage, stderr);
             return 2;
         }
     }

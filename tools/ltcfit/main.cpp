@@ -131,8 +131,36 @@ std::string generated_section(const Table &ggx, const Table &beckmann, const Fit
     return o.str();
 }
 
+const char *const kUsage =
+    "usage: rtpbr-ltcfit --out DIR [--quick] [--size N] [--threads T] [--no-horizon] [--power P]\n"
+    "                    [--diffuse-only] [--sheen-only] [--sheen-undivide] [--no-polygon] [--fast]\n"
+    "                    [--peak-weight W] [--polygon-floor F] [--horizon-weight W] [--horizon-floor F]\n"
+    "                    [--horizon-albedo-floor] [--dev-ggx-from-row R]\n"
+    "Fits the LTC tables of shaderlib/luts/ (ltc_fit.hpp, shaderlib/luts/ltc.md): writes\n"
+    "DIR/rtpbr_ltc_tables.h, the tables as EXR, the fit error plots and the generated sections\n"
+    "of DIR/ltc.md. Deterministic; the tables do not depend on the thread count.\n"
+    "  --out DIR              output directory (required)\n"
+    "  --quick                small sample grids and few iterations (a smoke test, not tables)\n"
+    "  --size N               table cells per side (8..256; default 64)\n"
+    "  --threads T            worker threads (1..64; default 2)\n"
+    "  --no-horizon           Heitz et al.'s whole-sphere error, norm = albedo\n"
+    "  --power P              the L^P error the fit minimises (1..3; default 3)\n"
+    "  --diffuse-only         fit the Disney diffuse lobe alone, keep the GGX and Beckmann arrays\n"
+    "  --sheen-only           fit the sheen lobe into DIR/rtpbr_ltc_sheen_tables.h\n"
+    "  --sheen-undivide       rewrite a pre-issue-28 sheen header in the present form (one-off)\n"
+    "  --no-polygon           the L3 fit alone, without the polygon refinement\n"
+    "  --fast                 coarser references and L3 start (not how the tables were fitted)\n"
+    "  --peak-weight W        weight of the squares centred on the lobe (0..1000; default 30)\n"
+    "  --polygon-floor F      relative error floor, x albedo (0..10; default 0.1)\n"
+    "  --horizon-weight W     weight of each floor square (0..1000; default 0: none)\n"
+    "  --horizon-floor F      floor squares' error floor, x the ring's brightest integral\n"
+    "                         (0..10; default 0.1)\n"
+    "  --horizon-albedo-floor floor squares' floor x albedo instead\n"
+    "  --dev-ggx-from-row R   development: refit the GGX rows >= R into DIR's existing header\n"
+    "  -h, --help             this text\n";
+
 int usage() {
-    fprintf(stderr, "usage: rtpbr-ltcfit --out DIR [--quick] [--size N (8..256)] [--threads T (1..64)] [--no-horizon] [--power P (1..3)] [--diffuse-only] [--sheen-only] [--sheen-undivide] [--no-polygon] [--peak-weight W] [--polygon-floor F] [--fast] [--horizon-weight W] [--horizon-floor F] [--horizon-albedo-floor] [--dev-ggx-from-row R]\n");
+    fputs(kUsage, stderr);
     return 2;
 }
 
@@ -153,6 +181,8 @@ int main(int argc, char **argv) {
             dst = int(v);
             return true;
         };
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help"))
+            return fputs(kUsage, stdout), 0;
         if (!strcmp(argv[i], "--out") && i + 1 < argc)
             outDir = argv[++i];
         else if (!strcmp(argv[i], "--power")) { // the L^p error the fit minimises (1, 2, 3)

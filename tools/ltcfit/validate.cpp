@@ -2,7 +2,7 @@
 // ltc_mc.hpp; prints the markdown error table for shaderlib/luts/ltc.md and writes the error
 // plot. Deterministic (fixed seeds); 2 threads.
 //
-//   rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse] [--back]
+//   rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse] [--sheen] [--back]
 //
 // --back: only lights at the "back" position (elevation 25 degrees on the viewer's side),
 // which the default grid does not hold; no plot, no breakdown by position.
@@ -80,6 +80,19 @@ bool write_plot(const std::string &path, const std::vector<Lobe> &lobes, const s
     return rtpbr_tools::write_image_u8(path, w, h, 3, img.data(), err);
 }
 
+const char *const kUsage =
+    "usage: rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse] [--sheen] [--back]\n"
+    "The LTC (committed tables) against Monte Carlo on the grid of ltc_mc.hpp: prints the markdown\n"
+    "error table of shaderlib/luts/ltc.md. Deterministic (fixed seeds); 2 threads.\n"
+    "  --reduced    the reduced grid the test suite uses (3 roughnesses, 3 views, 2 light sizes)\n"
+    "  --verbose    also print every case\n"
+    "  --png FILE   write the error plot\n"
+    "  --diffuse    the Disney diffuse table instead of GGX and Beckmann\n"
+    "  --sheen      the KHR_materials_sheen table instead\n"
+    "  --back       only lights at the back position (elevation 25 degrees on the viewer's side);\n"
+    "               no plot, no breakdown by position\n"
+    "  -h, --help   this text\n";
+
 } // namespace
 
 int main(int argc, char **argv) {
@@ -99,10 +112,10 @@ int main(int argc, char **argv) {
             verbose = true;
         else if (!strcmp(argv[i], "--png") && i + 1 < argc)
             png = argv[++i];
-        else {
-            fprintf(stderr, "usage: rtpbr-ltc-validate [--reduced] [--verbose] [--png FILE] [--diffuse] [--sheen] [--back]\n");
-            return 2;
-        }
+        else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help"))
+            return fputs(kUsage, stdout), 0;
+        else
+            return fputs(kUsage, stderr), 2;
     }
     if (back && !png.empty()) {
         fprintf(stderr, "rtpbr-ltc-validate: --back has no plot\n");

@@ -70,6 +70,20 @@ float lookup3(const kc::Tables &t, float mu, float r, float eta) {
     return a + (b - a) * fz;
 }
 
+const char *const kUsage =
+    "usage: lutgen-kc [--out DIR] [--csv FILE] [--strata N] [--replicas R] [--threads T] [--quick]\n"
+    "                 [--no-check]\n"
+    "Computes the Kulla-Conty tables of every NDF / Smith variant of the shader library and writes\n"
+    "DIR/rtpbr_kc_tables.h and DIR/kc_*.exr.\n"
+    "  --out DIR     output directory (default .)\n"
+    "  --csv FILE    also write the plot data (tools/lutgen/plot_kc.py reads it)\n"
+    "  --strata N    N x N stratified samples per replica and cell (default 32)\n"
+    "  --replicas R  independent replicas per cell, >= 2 (default 8)\n"
+    "  --threads T   worker threads (1..64; default 2)\n"
+    "  --quick       8 strata, 4 replicas\n"
+    "  --no-check    skip the interpolation error check against a finer reference\n"
+    "  -h, --help    this text\n";
+
 } // namespace
 
 int main(int argc, char **argv) {
@@ -103,8 +117,10 @@ int main(int argc, char **argv) {
             spec.replicas = 4;
         } else if (!std::strcmp(argv[i], "--no-check"))
             check = false;
+        else if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help"))
+            return std::fputs(kUsage, stdout), 0;
         else {
-            std::fprintf(stderr, "lutgen-kc: unknown argument %s\n", argv[i]);
+            std::fprintf(stderr, "lutgen-kc: unknown argument %s\n%s", argv[i], kUsage);
             return 2;
         }
     }

@@ -78,8 +78,18 @@ std::string float_literal(float x) {
     return s + "f";
 }
 
+const char *const kUsage =
+    "usage: lutgen-sheen [--out DIR] [--strata N] [--replicas R] [--threads T]\n"
+    "The directional albedo of the KHR_materials_sheen lobe: writes DIR/rtpbr_sheen_tables.h and\n"
+    "the generated section of DIR/sheen.md. Deterministic.\n"
+    "  --out DIR     output directory (default .)\n"
+    "  --strata N    N x N jittered-stratified samples per replica and cell (4..512; default 64)\n"
+    "  --replicas R  independent replicas per cell (2..64; default 8)\n"
+    "  --threads T   worker threads (1..64; default 2)\n"
+    "  -h, --help    this text\n";
+
 int usage() {
-    std::fprintf(stderr, "usage: lutgen-sheen [--out DIR] [--strata N (4..512)] [--replicas R (2..64)] [--threads T (1..64)]\n");
+    std::fputs(kUsage, stderr);
     return 2;
 }
 
@@ -99,6 +109,8 @@ int main(int argc, char **argv) {
             dst = int(v);
             return true;
         };
+        if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help"))
+            return std::fputs(kUsage, stdout), 0;
         if (!std::strcmp(argv[i], "--out") && i + 1 < argc)
             out = argv[++i];
         else if (!std::strcmp(argv[i], "--strata")) {

@@ -9,16 +9,24 @@ import csv
 import sys
 from collections import defaultdict
 
-import matplotlib
+try:  # --help works without it; main() says it is missing
+    import matplotlib
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt  # noqa: E402
+except ImportError:
+    plt = None
 
 
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        return 0
+    if len(sys.argv) != 3 or sys.argv[1].startswith("-"):
         print(__doc__, file=sys.stderr)
         return 2
+    if plt is None:
+        sys.exit("plot_kc.py: needs matplotlib (python3-matplotlib)")
     data = defaultdict(lambda: defaultdict(list))
     with open(sys.argv[1], newline="") as f:
         for row in csv.DictReader(f):

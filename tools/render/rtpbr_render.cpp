@@ -22,9 +22,9 @@
 
 namespace {
 
-void usage()
+void usage(FILE *out = stderr)
 {
-    std::fprintf(stderr,
+    std::fprintf(out,
                  "usage: rtpbr-render SCENE.gltf -o OUT.exr|OUT.png [--width W] [--height H] [--camera I]\n"
                  "                    [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]\n"
                  "                    [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]\n"
@@ -136,7 +136,7 @@ int main(int argc, char **argv)
             max_ratio = std::strtod(argv[++i], &end);
             if (!end || *end || !(max_ratio > 0.0)) return usage(), 2;
         } else if (a == "--stats-json" && has_value) stats_path = argv[++i];
-        else if (a == "-h" || a == "--help") return usage(), 0;
+        else if (a == "-h" || a == "--help") return usage(stdout), 0;
         else if (a[0] != '-' && scene_path.empty()) scene_path = a;
         else return usage(), 2;
     }

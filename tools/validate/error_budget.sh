@@ -24,6 +24,10 @@
 # Composites are built with oiiotool (negative values clamped to 0). Slow: the oracle twice
 # and the Monte Carlo pass twice (about 4 minutes on the 2 shared cores of 2026-12-01 at the defaults).
 set -euo pipefail
+case ${1:-} in
+-h | --help) sed -n '2,/^set -euo/p' "$0" | sed -e '$d' -e 's/^# \{0,1\}//'; echo "  -h, --help  this text"; exit 0 ;;
+-*) echo "usage: $0 [BUILD] [SCENE] [OUTDIR] (-h, --help: what it does)" >&2; exit 2 ;;
+esac
 BUILD=${1:-build}
 SCENE=${2:-quad_light}
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)

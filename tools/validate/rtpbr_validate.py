@@ -31,6 +31,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 
 
+# The page shows results; why each limit is what it is (the measurements behind it, their
+# history) stays beside the limit, in the scene's note.
+LIMITS_LINE = ("Limits: tools/validate/thresholds.json (each limit is at most 1.2 x the latest measurement; the scene's note there "
+               "records the measurements).")
+
+
 def log(msg):
     print("rtpbr-validate: " + msg, file=sys.stderr, flush=True)
 
@@ -53,6 +59,15 @@ def file_hash(paths):
             for chunk in iter(lambda: f.read(1 << 20), b""):
                 h.update(chunk)
     return h.hexdigest()
+
+
+def scene_descriptions():
+    """What each bundled scene shows (tools/make-scenes/scenes.json; absent when installed)."""
+    path = os.path.join(ROOT, "tools", "make-scenes", "scenes.json")
+    if not os.path.isfile(path):
+        return {}
+    with open(path) as f:
+        return {name: s.get("description", "") for name, s in json.load(f)["scenes"].items()}
 
 
 def scene_files(gltf):
@@ -151,6 +166,7 @@ def validate(args, on_cluster):
     entries = dict((n, ("scene", c)) for n, c in config["scenes"].items())
     entries.update((n, ("asset", c)) for n, c in config.get("assets", {}).items())
     names = args.scenes or list(entries.keys())
+    descriptions = scene_descriptions()
     results = []
     failed = False
     for k, name in enumerate(names):
@@ -246,7 +262,7 @@ def validate(args, on_cluster):
                         "max_ratio": max_ratio,
                         "width": sc["width"], "height": sc["height"], "spp": sc["spp"],
                         "oracle_flags": sc.get("oracle_flags", []), "engine_flags": sc.get("engine_flags", []),
-                        "note": sc.get("note", ""),
+                        "description": descriptions.get(name, "") if kind == "scene" else "",
                         "engine_seconds": round(t_engine, 2), "oracle_seconds": round(t_oracle, 2),
                         "oracle_args": oracle_args, "oracle_render": how, "metrics": metrics})
         bound = metrics.get("bound", {})
@@ -302,7 +318,7 @@ def write_report(out, results, mode):
                                         rendering["retries"], rendering["from_cache"]))
     cols = ["scene", "HDR-FLIP mean", "median", "p95", "p99", "max", "RMSE", "relMSE", "limits (mean / p95)",
             "largest / brightest emitter: engine, oracle (limit)", "brightest 0.01 % hold (engine)", "result"]
-    md = ["# rtpbr validation (%s)" % mode, "", how_line, "",
+    md = ["# rtpbr validation (%s)" % mode, "", how_line + " " + LIMITS_LINE, "",
           "Largest / brightest emitter: the largest pixel of the image over the brightest emitter's "
           "radiance; no surface reflects more than reaches it, so above 1.01 the engine fails (the "
           "oracle's noise may cross it: reported only).", "",
@@ -338,7 +354,7 @@ def write_report(out, results, mode):
                 "<p class='how'>oracle reference %s</p><div class='row'><figure><img src='%s/engine.png'><figcaption>engine "
                 "(LTC)</figcaption></figure><figure><img src='%s/oracle.png'><figcaption>oracle (path traced)</figcaption>"
                 "</figure><figure><img src='%s/flip.png'><figcaption>HDR-FLIP error (magma)</figcaption></figure></div>"
-                % (2 if kind == "scene" else 3, s, s, 2 if kind == "scene" else 3, html.escape(r["note"]), r["spp"],
+                % (2 if kind == "scene" else 3, s, s, 2 if kind == "scene" else 3, html.escape(r["description"]), r["spp"],
                    html.escape(" ".join(r["oracle_flags"])), r["width"], r["height"],
                    r["metrics"]["mean"], r["metrics"]["p95"], r["max_mean"], r["max_p95"],
                    ratio_text(bound.get("test")), ratio_text(bound.get("reference")), r["max_ratio"],
@@ -348,8 +364,9 @@ def write_report(out, results, mode):
 td,th{border:1px solid #ccc;padding:4px 8px;text-align:right}tr.bad td{background:#fdd}
 .row{display:flex;gap:12px}figure{margin:0}img{max-width:100%%;image-rendering:pixelated}</style>
 <h1>rtpbr validation: engine against oracle (%s)</h1>
-<p>%s</p>
-<table><tr>%s</tr>%s</table>%s""" % (mode, html.escape(how_line), "".join("<th>%s</th>" % c for c in cols), "".join(rows_html), "".join(sections))
+<p>%s %s</p>
+<table><tr>%s</tr>%s</table>%s""" % (mode, html.escape(how_line), html.escape(LIMITS_LINE), "".join("<th>%s</th>" % c for c in cols),
+                                     "".join(rows_html), "".join(sections))
     with open(os.path.join(out, "index.html"), "w") as f:
         f.write(page)
 
