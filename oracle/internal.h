@@ -16,11 +16,8 @@ std::string fmt(const char *f, ...) __attribute__((format(printf, 1, 2)));
 // room for the spans between points and for ray offsets.
 constexpr float kMaxSceneCoordinate = 1e15f;
 
-// Bytes the process can still allocate: the smaller of the system's MemAvailable and the
-// address-space limit (ulimit -v) less what is mapped already. UINT64_MAX if unknown.
-uint64_t availableMemory();
-// Checks that `need` bytes (for `what`) fit in availableMemory() and in `limit` (0: no
-// limit of its own); the error says both.
+// Checks that `need` bytes (for `what`) fit in the memory available and in `limit` (0: no
+// limit of its own); the error says both (rtpbr_tools/memory.hpp).
 bool checkMemory(uint64_t need, uint64_t limit, const std::string &what, std::string *error);
 
 inline bool finite(float x) { return std::isfinite(x); }

@@ -3,8 +3,7 @@
 
 #include "internal.h"
 
-#include <sys/resource.h>
-#include <unistd.h>
+#include "rtpbr_tools/memory.hpp"
 
 #include <algorithm>
 #include <cstdarg>
@@ -38,41 +37,11 @@ const char *resultString(Result r) {
 
 // ---- memory ----------------------------------------------------------------------------------
 
-uint64_t availableMemory() {
-    uint64_t avail = UINT64_MAX;
-    if (FILE *f = std::fopen("/proc/meminfo", "r")) {
-        char line[256];
-        unsigned long long kb;
-        while (std::fgets(line, sizeof line, f))
-            if (std::sscanf(line, "MemAvailable: %llu kB", &kb) == 1) {
-                avail = uint64_t(kb) * 1024;
-                break;
-            }
-        std::fclose(f);
-    }
-    struct rlimit lim;
-    if (getrlimit(RLIMIT_AS, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY) {
-        uint64_t mapped = 0;
-        if (FILE *f = std::fopen("/proc/self/statm", "r")) {
-            unsigned long long pages;
-            if (std::fscanf(f, "%llu", &pages) == 1)
-                mapped = uint64_t(pages) * uint64_t(sysconf(_SC_PAGESIZE));
-            std::fclose(f);
-        }
-        uint64_t room = uint64_t(lim.rlim_cur) > mapped ? uint64_t(lim.rlim_cur) - mapped : 0;
-        avail = std::min(avail, room);
-    }
-    return avail;
-}
-
 bool checkMemory(uint64_t need, uint64_t limit, const std::string &what, std::string *error) {
-    uint64_t avail = availableMemory();
-    if (limit)
-        avail = std::min(avail, limit);
-    if (need <= avail)
+    std::string shortfall = rtpbr_tools::memory_shortfall(need, limit, what);
+    if (shortfall.empty())
         return true;
-    *error = fmt("%s needs %.2f GiB of memory, %.2f GiB are available", what.c_str(), double(need) / 1073741824.0,
-                 double(avail) / 1073741824.0);
+    *error = shortfall;
     return false;
 }
 

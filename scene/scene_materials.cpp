@@ -1,8 +1,7 @@
 // glTF materials → rtpbr_gltf_material (the table in docs/materials.md) and
-// texture decoding (through tinygltf's stb_image based LoadImageData).
+// texture decoding (scene_image_decode.cpp).
+#include "scene_image_decode.hpp"
 #include "scene_internal.hpp"
-
-#include <stb_image.h>
 
 #include <algorithm>
 #include <cfloat>
@@ -221,46 +220,40 @@ struct TextureTable {
         if (jpeg && !jpeg_huffman_tables_ok(bytes, size))
             return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE,
                             "image %d: corrupt JPEG (a Huffman table with more than 256 codes)", image_index);
-        int w = 0, h = 0, comp = 0;
-        if (!stbi_info_from_memory(bytes, int(size), &w, &h, &comp))
-            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE,
-                            "image %d: not a decodable PNG/JPEG image (%s)", image_index,
-                            stbi_failure_reason() ? stbi_failure_reason() : "unknown");
+        ImageHeader header;
+        const char* why = nullptr;
+        if (!read_image_header(bytes, size, &header, &why))
+            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE, "image %d: not a decodable PNG/JPEG image (%s)",
+                            image_index, why);
+        const int w = header.width, h = header.height;
         if (w <= 0 || h <= 0 || uint32_t(w) > ctx.max_texture_dimension ||
             uint32_t(h) > ctx.max_texture_dimension)
             return ctx.fail(RTPBR_GLTF_ERROR_TEXTURE_TOO_LARGE,
                             "image %d: %dx%d exceeds the maximum texture dimension %u", image_index,
                             w, h, ctx.max_texture_dimension);
-        // The budget, from the header, before the decoder reserves anything.
-        const uint64_t bytes_per_texel = png && stbi_is_16_bit_from_memory(bytes, int(size)) ? 8 : 4;
+        // The budget, from the header, before the decoder reserves anything; the decoder itself
+        // is held to what such a header can need, so a stream that inflates past it stops there.
+        const uint64_t bytes_per_texel = header.sixteen_bit ? 8 : 4;
         if (!reserve_texels(image_index, uint64_t(w) * uint64_t(h) * bytes_per_texel, w, h)) return false;
-        tinygltf::Image image;
-        image.name = model.images[size_t(image_index)].name;
-        std::string err, warn;
-        // user_data NULL = tinygltf's default option: channels expanded to RGBA.
-        if (!tinygltf::LoadImageData(&image, image_index, &err, &warn, 0, 0, bytes, int(size), nullptr))
-            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE, "image %d: %s", image_index,
-                            err.substr(0, err.find('\n')).c_str());
-        if (image.width != w || image.height != h || image.component != 4 ||
-            (image.bits != 8 && image.bits != 16))
+        const uint64_t limit = image_decode_memory_limit(header, size);
+        DecodedImage image;
+        switch (decode_image_rgba8(bytes, size, limit, &image)) {
+        case ImageDecodeStatus::ok: break;
+        case ImageDecodeStatus::over_memory_limit:
             return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE,
-                            "image %d: decoder returned %dx%d with %d channels of %d bits",
-                            image_index, image.width, image.height, image.component, image.bits);
-        const size_t texels = size_t(w) * size_t(h) * 4;
-        if (image.image.size() != texels * size_t(image.bits / 8))
-            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE, "image %d: decoded size mismatch", image_index);
-        slot.first = {uint32_t(w), uint32_t(h)};
-        ctx.texture_bytes += texels;  // what stays; the 16-bit intermediate goes below
-        if (image.bits == 8) {
-            slot.second = std::move(image.image);
-        } else {
-            slot.second.resize(texels);
-            for (size_t i = 0; i < texels; ++i) {
-                uint16_t v;
-                std::memcpy(&v, &image.image[2 * i], 2);
-                slot.second[i] = uint8_t((uint32_t(v) * 255u + 32767u) / 65535u);
-            }
+                            "image %d (%dx%d): decoding took more than %.1f MiB, the most an image of that "
+                            "size needs: its compressed data expands past what its header declares "
+                            "(corrupt or hostile image)",
+                            image_index, w, h, double(limit) / 1048576.0);
+        case ImageDecodeStatus::corrupt:
+            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE, "image %d: %s", image_index, image.why);
         }
+        if (image.width != w || image.height != h)
+            return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE, "image %d: decoder returned %dx%d, the header says %dx%d",
+                            image_index, image.width, image.height, w, h);
+        slot.first = {uint32_t(w), uint32_t(h)};
+        ctx.texture_bytes += image.rgba.size();  // what stays; a 16-bit intermediate is gone
+        slot.second = std::move(image.rgba);
         return true;
     }
 

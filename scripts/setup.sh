@@ -13,7 +13,7 @@ packages=(
   glslang-tools spirv-tools
   libembree-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libimgui-dev
   libopenimageio-dev openimageio-tools
-  libcmocka-dev libglm-dev valgrind
+  libcmocka-dev libglm-dev zlib1g-dev valgrind
   clang-14 libfuzzer-14-dev libclang-rt-14-dev
   python3 python3-numpy python3-matplotlib python3-venv
   xvfb xauth

@@ -84,6 +84,21 @@ assert a["mean"] < b["mean"] and a["rmse"] < b["rmse"] and a["psnr"] > b["psnr"]
     expect 0 ref.exr test.exr --hdr --json
     json_check out.txt 'd["mode"] == "hdr-flip" and d["exposure_count"] >= 2 and 0 < d["mean"] < 1'
     ;;
+memory)
+    # PNGs whose IHDR claims 8000 x 8000 (within the pixel limit) over one tiny IDAT: the need,
+    # 7.63 GiB at 128 bytes a pixel, is counted from the headers and refused before any pixel
+    # is read; without the check rtpbr-diff reads both (and fails on the data, or runs).
+    "$python" -c 'import struct, sys, zlib
+def chunk(t, d): return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d))
+png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 8000, 8000, 8, 2, 0, 0, 0))
+open(sys.argv[1], "wb").write(png + chunk(b"IDAT", zlib.compress(b"\0" * 64)) + chunk(b"IEND", b""))' big.png ||
+        fail "cannot write big.png"
+    expect 2 big.png big.png --memory-limit 1024
+    grep -q "comparing two 8000x8000 images needs 7.63 GiB of memory" err.txt || fail "memory message: $(cat err.txt)"
+    expect 0 ref.png ref_copy.png --memory-limit 1  # 64 x 48 x 128 bytes fit in 1 MiB
+    expect 2 ref.png ref_copy.png --memory-limit 0
+    expect 2 ref.png ref_copy.png --memory-limit 1.5
+    ;;
 heatmap)
     expect 0 ref.png strong.png --heatmap heat.png
     [[ -s heat.png ]] || fail "heat map not written"

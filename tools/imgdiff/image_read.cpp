@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 
 namespace rtpbr {
 
@@ -127,40 +128,60 @@ bool container_sizes_fit(const std::string& path, long long max_pixels, std::str
     return true;
 }
 
-}  // namespace
-
-bool read_image(const std::string& path, Image& image, std::string& error, const ImageReadOptions& options) {
-    SilenceStderr quiet(options.quiet);
+// Opens `path` after the checks above and those of its spec (flat 2D image, pixel limit),
+// reading no pixel. Null with a message on failure.
+std::unique_ptr<OIIO::ImageInput> open_checked(const std::string& path, std::string& error,
+                                               const ImageReadOptions& options) {
     // Only regular files go to OpenImageIO: given a directory it tries every format plugin,
     // and libheif's reader spins forever on one (seen under ASan in the bad-input suite).
     struct stat st;
     if (::stat(path.c_str(), &st) != 0) {
         error = "cannot read '" + path + "': " + std::strerror(errno);
-        return false;
+        return nullptr;
     }
     if (!S_ISREG(st.st_mode)) {
         error = "cannot read '" + path + "': not a regular file";
-        return false;
+        return nullptr;
     }
     const long long max_pixels = options.max_pixels > 0 ? options.max_pixels : kMaxImagePixels;
-    if (!container_sizes_fit(path, max_pixels, error)) return false;
+    if (!container_sizes_fit(path, max_pixels, error)) return nullptr;
     auto in = OIIO::ImageInput::open(path);
     if (!in) {
         std::string why = OIIO::geterror();
         if (why.empty()) why = "cannot open";
         error = "cannot read '" + path + "': " + why;
-        return false;
+        return nullptr;
     }
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1 || spec.deep) {
         error = "'" + path + "' is not a flat 2D image with pixels";
-        return false;
+        return nullptr;
     }
     if (spec.width > max_pixels / spec.height) {
         error = "'" + path + "' is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                 ", more than the limit of " + std::to_string(max_pixels) + " pixels";
-        return false;
+        return nullptr;
     }
+    return in;
+}
+
+}  // namespace
+
+bool read_image_size(const std::string& path, int& width, int& height, std::string& error,
+                     const ImageReadOptions& options) {
+    SilenceStderr quiet(options.quiet);
+    const auto in = open_checked(path, error, options);
+    if (!in) return false;
+    width = in->spec().width;
+    height = in->spec().height;
+    return true;
+}
+
+bool read_image(const std::string& path, Image& image, std::string& error, const ImageReadOptions& options) {
+    SilenceStderr quiet(options.quiet);
+    const auto in = open_checked(path, error, options);
+    if (!in) return false;
+    const OIIO::ImageSpec& spec = in->spec();
     // Only the channels used: RGB, or grey (channel 0) when there are fewer than 3.
     const int nch = spec.nchannels >= 3 ? 3 : 1;
     std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * nch);

@@ -27,6 +27,12 @@ struct ImageReadOptions {
     long long max_pixels = kMaxImagePixels;
 };
 
+// The size read_image would return, from the header alone, after the same checks (regular
+// file, container sizes, pixel limit): no pixel is read, so a caller can count its memory
+// need first. On failure returns false with a one-sentence reason in error.
+bool read_image_size(const std::string& path, int& width, int& height, std::string& error,
+                     const ImageReadOptions& options = ImageReadOptions());
+
 // Reads any format OpenImageIO reads into linear RGB: integer formats are taken as sRGB and
 // decoded, float formats as linear, grey is replicated, alpha and extra channels ignored.
 // On failure returns false with a one-sentence reason in error.

@@ -3,7 +3,7 @@
 //                [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]
 //                [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]
 //                [--shadows] [--shadow-samples N] [--no-shadow-denoiser]
-//                [--max-ratio R] [--stats-json FILE]
+//                [--max-ratio R] [--stats-json FILE] [--memory-limit MIB]
 // OUT.exr holds linear scene radiance (RGB float; no exposure, no tone mapping: the quantity
 // the oracle writes); OUT.png the tone-mapped 8-bit sRGB image.
 #include <algorithm>
@@ -11,11 +11,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
 #include "rtpbr_tools/energy.hpp"
 #include "rtpbr_tools/image.hpp"
+#include "rtpbr_tools/memory.hpp"
 
 #include "rtpbr/rtpbr.h"
 #include "rtpbr/rtpbr_gltf.h"
@@ -29,7 +32,7 @@ void usage(FILE *out = stderr)
                  "                    [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]\n"
                  "                    [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]\n"
                  "                    [--shadows] [--shadow-samples N] [--no-shadow-denoiser]\n"
-                 "                    [--max-ratio R] [--stats-json FILE]\n"
+                 "                    [--max-ratio R] [--stats-json FILE] [--memory-limit MIB]\n"
                  "  --shadows        area-light shadows (ratio estimator; the first 8 lights cast shadows)\n"
                  "  --shadow-samples N  shadow rays per pixel and shadowed light (default 4; implies --shadows)\n"
                  "  --no-shadow-denoiser  each pixel's own shadow ratio, unfiltered\n"
@@ -39,7 +42,10 @@ void usage(FILE *out = stderr)
                  "  --max-ratio R    exit 1 when a pixel exceeds R x the brightest emitter's radiance (lights,\n"
                  "                   emissive materials): no surface reflects more than reaches it. The\n"
                  "                   figures are printed on every render (energy bound, docs/limits.md)\n"
-                 "  --stats-json FILE  writes those figures as JSON (rtpbr-validate reads them)\n");
+                 "  --stats-json FILE  writes those figures as JSON (rtpbr-validate reads them)\n"
+                 "  --memory-limit MIB  refuse a render that needs more memory than this (default: what the\n"
+                 "                   system has available; the need is counted before anything is allocated:\n"
+                 "                   docs/limits.md)\n");
 }
 
 void on_log(rtpbr_log_level level, const char *message, void *)
@@ -75,6 +81,21 @@ double brightest_emitter(const rtpbr_gltf_scene *scene)
     return b;
 }
 
+// Memory of a render, counted before anything is allocated (measured on lavapipe, where device
+// memory is host memory, as peak RSS over the program's own at 1024² and 2048²: 113-116 bytes
+// a pixel without supersampling, 298 with 2x2): the device's per-sample images (G-buffer,
+// lighting) and, per pixel, the resolved and tone-mapped images, the host's readback and output
+// buffers and the writer's copy. Rounded up.
+constexpr uint64_t kBytesPerSample = 64;
+constexpr uint64_t kBytesPerPixel = 64;
+
+uint64_t render_memory_need(const rtpbr_renderer_desc &size)
+{
+    const uint64_t pixels = uint64_t(size.width) * size.height;
+    const uint64_t ss = size.supersample ? size.supersample : 1;
+    return pixels * (ss * ss * kBytesPerSample + kBytesPerPixel);
+}
+
 bool parse_uint(const char *text, uint32_t &out)
 {
     char *end = nullptr;
@@ -86,7 +107,7 @@ bool parse_uint(const char *text, uint32_t &out)
 
 } // namespace
 
-int main(int argc, char **argv)
+int run(int argc, char **argv)
 {
     std::string scene_path, out_path;
     rtpbr_renderer_desc size{};
@@ -97,6 +118,7 @@ int main(int argc, char **argv)
     int validation = 0;
     double max_ratio = 0.0; // 0: report only
     std::string stats_path;
+    uint64_t memory_limit = 0; // 0: what the system has available
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         bool has_value = i + 1 < argc;
@@ -136,12 +158,25 @@ int main(int argc, char **argv)
             max_ratio = std::strtod(argv[++i], &end);
             if (!end || *end || !(max_ratio > 0.0)) return usage(), 2;
         } else if (a == "--stats-json" && has_value) stats_path = argv[++i];
+        else if (a == "--memory-limit" && has_value) {
+            uint32_t mib = 0;
+            if (!parse_uint(argv[++i], mib) || mib == 0) return usage(), 2;
+            memory_limit = uint64_t(mib) << 20;
+        }
         else if (a == "-h" || a == "--help") return usage(stdout), 0;
         else if (a[0] != '-' && scene_path.empty()) scene_path = a;
         else return usage(), 2;
     }
     bool exr = ends_with(out_path, ".exr"), png = ends_with(out_path, ".png");
     if (scene_path.empty() || (!exr && !png)) return usage(), 2;
+    char what[96];
+    std::snprintf(what, sizeof what, "rendering %ux%u with %ux%u supersampling", size.width, size.height,
+                  size.supersample ? size.supersample : 1, size.supersample ? size.supersample : 1);
+    const std::string shortfall = rtpbr_tools::memory_shortfall(render_memory_need(size), memory_limit, what);
+    if (!shortfall.empty()) {
+        std::fprintf(stderr, "rtpbr-render: %s (--memory-limit; docs/limits.md)\n", shortfall.c_str());
+        return 1;
+    }
 
     rtpbr_context_desc cd{};
     cd.logger.func = on_log;
@@ -236,4 +271,19 @@ int main(int argc, char **argv)
     rtpbr_gpu_scene_destroy(scene);
     rtpbr_context_destroy(ctx);
     return status;
+}
+
+// The need of the render is checked before its allocations (render_memory_need); what the
+// estimate misses (the loader's, Vulkan's and OpenImageIO's own buffers) ends here with a
+// message.
+int main(int argc, char **argv)
+{
+    try {
+        return run(argc, argv);
+    } catch (const std::bad_alloc &) {
+        std::fprintf(stderr, "rtpbr-render: out of memory (docs/limits.md: rtpbr-render's memory needs)\n");
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "rtpbr-render: unexpected error: %s\n", e.what());
+    }
+    return 1;
 }
