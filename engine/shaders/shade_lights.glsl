@@ -222,6 +222,11 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
     vec3 msColor = s.msColor;
 #endif
     vec3 sum = vec3(0.0f);
+#if RTPBR_LTC_POINT_CORRECTION && !RTPBR_LIGHTING_FULL
+    // The sum of the specular lobe's corrected results over the lights: the share of the lobe's
+    // mass they claim (see the end of the loop).
+    float specularMass = 0.0f;
+#endif
 #ifdef RTPBR_ENGINE_STREAK
     uint streakLight = RTPBR_NO_STREAK;
     float streakFF = 0.0f; // its specular result in the loop
@@ -322,7 +327,24 @@ vec3 shade_lights(vec3 P, vec3 N, vec3 V, Surface s, uint tile, ivec2 pixel)
                   s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(kc_E(muRep, s.coatR), s.Eavgc, lenF), s.Eavgc, ff);
 #endif
         sum += lights[i].radiance * lo * shadow_factor(i, pixel);
+#if RTPBR_LTC_POINT_CORRECTION && !RTPBR_LIGHTING_FULL
+        specularMass += specularFF;
+#endif
     }
+#if RTPBR_LTC_POINT_CORRECTION && !RTPBR_LIGHTING_FULL
+    // Energy conservation across lights. Each light's specular result is a share of the lobe's
+    // mass (LTC_LobeEnd divides by the horizon's), and over disjoint lights the shares of the
+    // true lobe sum to at most 1. The point correction and the tail estimate correct each light
+    // on its own, so over many lights that surround the point (the furnace: a box of emitters)
+    // their shares summed to 1.02-1.04 and the pixel reflected more than the brightest light.
+    // Where the shares sum past 1, the lights' sum is scaled back to a mass of 1. The whole sum,
+    // not its specular part alone: keeping that apart cost 8 VGPRs (104 on navi21, over the
+    // default variant's budget of 96), so the other lobes lose the same fraction 1 - 1 / mass
+    // at such pixels (up to 4 % in the furnace; they occur only where lights surround the
+    // point). Not in the full variant: one more register there spills on gfx1100, and its
+    // point correction runs only for lights holding under half the lobe's mass.
+    if (specularMass > 1.0f) sum *= 1.0f / specularMass;
+#endif
 #ifdef RTPBR_ENGINE_STREAK
     // The streak estimate (light_streak) for one light per pixel, after the loop (where little
     // else is live: its passes inside the loop raised the basic variant's VGPRs by 16 on
