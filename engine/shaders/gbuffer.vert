@@ -18,6 +18,11 @@ layout(location = 1) out vec3 out_world;
 layout(location = 2) out vec4 out_uv_base_color_metallic_roughness; // each slot's texture coordinates
 layout(location = 3) out vec4 out_tangent;
 layout(location = 4) out vec4 out_uv_emission_normal;
+// The extension textures' slots (two per location), set only in frames that sample them
+// (rtpbr_shader_frame.extension_textures).
+layout(location = 5) out vec4 out_uv_clearcoat;       // clearcoat, clearcoat roughness
+layout(location = 6) out vec4 out_uv_sheen;           // sheen colour, sheen roughness
+layout(location = 7) out vec4 out_uv_specular;        // specular, specular colour
 
 struct TextureTransforms {
     RTPBR_TEXTURE_TRANSFORMS_FIELDS(RTPBR_SHARED_FIELD, TextureTransforms)
@@ -44,6 +49,15 @@ void main()
     TextureTransforms t = texture_transforms[draw.material];
     out_uv_base_color_metallic_roughness = vec4(slot_uv(t.base_color), slot_uv(t.metallic_roughness));
     out_uv_emission_normal = vec4(slot_uv(t.emission), slot_uv(t.normal));
+    out_uv_clearcoat = vec4(0.0);
+    out_uv_sheen = vec4(0.0);
+    out_uv_specular = vec4(0.0);
+    if ((frame.extension_textures & RTPBR_EXTENSION_TEXTURES_COAT_SHEEN) != 0u) {
+        out_uv_clearcoat = vec4(slot_uv(t.clearcoat), slot_uv(t.clearcoat_roughness));
+        out_uv_sheen = vec4(slot_uv(t.sheen_color), slot_uv(t.sheen_roughness));
+    }
+    if ((frame.extension_textures & RTPBR_EXTENSION_TEXTURES_SPECULAR) != 0u)
+        out_uv_specular = vec4(slot_uv(t.specular), slot_uv(t.specular_color));
     out_tangent = vec4(mat3(draw.world_from_object) * in_tangent.xyz, in_tangent.w);
     gl_Position = frame.view_proj * world;
 }
