@@ -11,11 +11,14 @@ layout(location = 1) in vec3 in_world;
 layout(location = 2) in vec4 in_uv_base_color_metallic_roughness; // each slot's (gbuffer.vert)
 layout(location = 3) in vec4 in_tangent;
 layout(location = 4) in vec4 in_uv_emission_normal;
+layout(location = 5) in vec4 in_uv_clearcoat; // clearcoat, clearcoat roughness
+layout(location = 6) in vec4 in_uv_sheen;     // sheen colour, sheen roughness
+layout(location = 7) in vec4 in_uv_specular;  // specular, specular colour
 
-layout(set = 1, binding = RTPBR_BINDING_TEXTURE_BASE_COLOR) uniform sampler2D base_color_texture;
-layout(set = 1, binding = RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS) uniform sampler2D metallic_roughness_texture;
-layout(set = 1, binding = RTPBR_BINDING_TEXTURE_EMISSION) uniform sampler2D emission_texture;
-layout(set = 1, binding = RTPBR_BINDING_TEXTURE_NORMAL) uniform sampler2D normal_texture;
+// The material's textures, name##_texture at its slot's binding (rtpbr_shared.h); a slot
+// without a texture holds a 1x1 white one.
+#define DECLARE_TEXTURE(unused_a, unused_b, name, slot) layout(set = 1, binding = slot) uniform sampler2D name##_texture;
+RTPBR_MATERIAL_TEXTURE_SLOTS(DECLARE_TEXTURE, 0, 0)
 
 struct FragmentMaterial {
     vec3 baseColor;          // factor x texture

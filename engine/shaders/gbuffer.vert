@@ -18,6 +18,14 @@ layout(location = 1) out vec3 out_world;
 layout(location = 2) out vec4 out_uv_base_color_metallic_roughness; // each slot's texture coordinates
 layout(location = 3) out vec4 out_tangent;
 layout(location = 4) out vec4 out_uv_emission_normal;
+// The extension textures' slots (two per location). Written in every frame, unconditionally:
+// with the writes under a branch on rtpbr_shader_frame.extension_textures, lavapipe (Mesa
+// 22.3.6) leaked the JIT code of 9 shader variants per test process (a cycle of six llvmpipe
+// allocations each, LeakSanitizer and valgrind in CI; found by removing one change at a time).
+// Six 2x3 transforms per vertex cost nothing measurable.
+layout(location = 5) out vec4 out_uv_clearcoat;       // clearcoat, clearcoat roughness
+layout(location = 6) out vec4 out_uv_sheen;           // sheen colour, sheen roughness
+layout(location = 7) out vec4 out_uv_specular;        // specular, specular colour
 
 struct TextureTransforms {
     RTPBR_TEXTURE_TRANSFORMS_FIELDS(RTPBR_SHARED_FIELD, TextureTransforms)
@@ -44,6 +52,9 @@ void main()
     TextureTransforms t = texture_transforms[draw.material];
     out_uv_base_color_metallic_roughness = vec4(slot_uv(t.base_color), slot_uv(t.metallic_roughness));
     out_uv_emission_normal = vec4(slot_uv(t.emission), slot_uv(t.normal));
+    out_uv_clearcoat = vec4(slot_uv(t.clearcoat), slot_uv(t.clearcoat_roughness));
+    out_uv_sheen = vec4(slot_uv(t.sheen_color), slot_uv(t.sheen_roughness));
+    out_uv_specular = vec4(slot_uv(t.specular), slot_uv(t.specular_color));
     out_tangent = vec4(mat3(draw.world_from_object) * in_tangent.xyz, in_tangent.w);
     gl_Position = frame.view_proj * world;
 }

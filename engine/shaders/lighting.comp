@@ -65,7 +65,8 @@ void main()
 #else
     vec3 anisoDir = vec3(0.0f);
 #endif
-    Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], rtpbr_saturate(dot(N, V)), anisoDir);
+    Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], extension_texels(pixel), rtpbr_saturate(dot(N, V)),
+                              anisoDir);
     result += shade_lights(lifted_point(ndc, depth, P, N), N, V, s, tile, pixel);
 #endif
     imageStore(radiance, pixel, vec4(result, 1.0));

@@ -30,7 +30,27 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER0) uniform sampler2D gbuffe
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER1) uniform sampler2D gbuffer1;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER2) uniform sampler2D gbuffer2;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER3) uniform sampler2D gbuffer3;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER4) uniform sampler2D gbuffer4;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER5) uniform sampler2D gbuffer5;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER6) uniform sampler2D gbuffer6;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_DEPTH) uniform sampler2D gbuffer_depth;
+
+// A pixel's extension-texture values (G-buffers 4 to 6, shading.glsl's ExtensionTexels): 1
+// where the material has no such texture. Fetched only when the frame's scene has such
+// textures (a uniform branch); the basic variant reads only the specular ones.
+ExtensionTexels extension_texels(ivec2 pixel)
+{
+    ExtensionTexels e = extension_texels_none();
+    if ((frame.extension_textures & RTPBR_EXTENSION_TEXTURES_SPECULAR) != 0u)
+        e.specular = texelFetch(gbuffer4, pixel, 0);
+#if RTPBR_LIGHTING_FULL
+    if ((frame.extension_textures & RTPBR_EXTENSION_TEXTURES_COAT_SHEEN) != 0u) {
+        e.sheen = texelFetch(gbuffer5, pixel, 0);
+        e.coat = texelFetch(gbuffer6, pixel, 0).rg;
+    }
+#endif
+    return e;
+}
 // lighting_mc.comp adds to it across dispatches: it defines RTPBR_RADIANCE_ACCESS empty.
 #ifndef RTPBR_RADIANCE_ACCESS
 #define RTPBR_RADIANCE_ACCESS writeonly

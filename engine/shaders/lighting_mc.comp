@@ -241,8 +241,8 @@ void main()
         vec3 V = normalize(frame.camera_position.xyz - P);
         vec3 N = normalize(g1.xyz);
         // NoV clamped below as the LTC table lookup does.
-        Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], clamp(dot(N, V), 1e-4f, 1.0f),
-                                  texelFetch(gbuffer3, pixel, 0).xyz);
+        Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], extension_texels(pixel),
+                                  clamp(dot(N, V), 1e-4f, 1.0f), texelFetch(gbuffer3, pixel, 0).xyz);
         vec3 reflected = shade_lights_mc(lifted_point(ndc, depth, P, N), N, V, s, uvec2(pixel));
         result = first ? vec4(g2.rgb + reflected, 1.0f) : imageLoad(radiance, pixel) + vec4(reflected, 0.0f);
     }

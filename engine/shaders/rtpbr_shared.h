@@ -66,7 +66,7 @@
     F(S, UINT, tiles_x, )            /* lighting tiles per row */                                   \
     F(S, UINT, tile_capacity, )      /* tiles in the frame: the length of each class's queue */     \
     F(S, UINT, shadow_light_count, ) /* lights 0 .. this - 1 have a shadow ratio; 0: shadows off */ \
-    F(S, UINT, pad0, )
+    F(S, UINT, extension_textures, ) /* RTPBR_EXTENSION_TEXTURES_* of the scene's materials */
 
 // The material record (std430), an element of the materials buffer (binding
 // RTPBR_BINDING_GBUFFER_MATERIALS and RTPBR_BINDING_LIGHT_MATERIALS): written by
@@ -131,23 +131,49 @@
 #define RTPBR_BINDING_GBUFFER_MATERIALS 1 // storage: rtpbr_shader_material[]
 #define RTPBR_BINDING_GBUFFER_TEXTURE_TRANSFORMS 2 // storage: rtpbr_shader_texture_transforms[]
 
+// A material's texture slots, one list (X(a, b, name, binding) per slot): the slot's
+// descriptor binding in set 1 of the G-buffer pass (RTPBR_BINDING_TEXTURE_*, asserted equal in
+// passes/gbuffer.c), its entry in rtpbr_shader_texture_transforms, and the C desc's fields
+// name##_texture and name##_texture_transform (rtpbr_material_desc). a, b are passed to X.
+#define RTPBR_MATERIAL_TEXTURE_SLOTS(X, a, b)                                                      \
+    X(a, b, base_color, 0)                                                                         \
+    X(a, b, metallic_roughness, 1)                                                                 \
+    X(a, b, emission, 2)                                                                           \
+    X(a, b, normal, 3)                                                                             \
+    X(a, b, clearcoat, 4)           /* R: x clearcoat (KHR_materials_clearcoat) */                 \
+    X(a, b, clearcoat_roughness, 5) /* G: x clearcoat roughness */                                 \
+    X(a, b, sheen_color, 6)         /* RGB (sRGB): x sheen colour (KHR_materials_sheen) */         \
+    X(a, b, sheen_roughness, 7)     /* A: x sheen roughness */                                     \
+    X(a, b, specular, 8)            /* A: x specular (KHR_materials_specular) */                   \
+    X(a, b, specular_color, 9)      /* RGB (sRGB): x specular colour */
+// G-buffer pass, descriptor set 1: one set per material, one combined image sampler per slot.
+#define RTPBR_BINDING_TEXTURE_BASE_COLOR 0
+#define RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS 1
+#define RTPBR_BINDING_TEXTURE_EMISSION 2
+#define RTPBR_BINDING_TEXTURE_NORMAL 3
+#define RTPBR_BINDING_TEXTURE_CLEARCOAT 4
+#define RTPBR_BINDING_TEXTURE_CLEARCOAT_ROUGHNESS 5
+#define RTPBR_BINDING_TEXTURE_SHEEN_COLOR 6
+#define RTPBR_BINDING_TEXTURE_SHEEN_ROUGHNESS 7
+#define RTPBR_BINDING_TEXTURE_SPECULAR 8
+#define RTPBR_BINDING_TEXTURE_SPECULAR_COLOR 9
+#define RTPBR_MATERIAL_TEXTURE_COUNT 10
+
 // Per material, the G-buffer pass's texture coordinates of each texture slot
 // (rtpbr_shader_texture_transforms, gbuffer.vert; written by convert_texture_transforms in
 // engine/src/scene.c from the desc's *_texture_transform): the slot's KHR_texture_transform
 // as the two rows of its 2x3 matrix, uv' = (dot(row0.xyz, (uv, 1)), dot(row1.xyz, (uv, 1))),
 // with row0.w = the texture coordinate set (0 or 1).
-#define RTPBR_TEXTURE_TRANSFORMS_FIELDS(F, S)                                                     \
-    F(S, VEC4, base_color, [2])                                                                    \
-    F(S, VEC4, metallic_roughness, [2])                                                            \
-    F(S, VEC4, emission, [2])                                                                      \
-    F(S, VEC4, normal, [2])
+#define RTPBR_TEXTURE_TRANSFORM_FIELD(F, S, name, binding) F(S, VEC4, name, [2])
+#define RTPBR_TEXTURE_TRANSFORMS_FIELDS(F, S) RTPBR_MATERIAL_TEXTURE_SLOTS(RTPBR_TEXTURE_TRANSFORM_FIELD, F, S)
 
-// G-buffer pass, descriptor set 1: one set per material.
-#define RTPBR_BINDING_TEXTURE_BASE_COLOR 0
-#define RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS 1
-#define RTPBR_BINDING_TEXTURE_EMISSION 2
-#define RTPBR_BINDING_TEXTURE_NORMAL 3
-#define RTPBR_MATERIAL_TEXTURE_COUNT 4
+// The extension textures a scene's materials use (rtpbr_shader_frame.extension_textures, set
+// from the scene by renderer.c): the G-buffer pass samples them and writes the attachments
+// that carry them (RTPBR_BINDING_LIGHT_GBUFFER4..6) only when the frame says so, and the
+// lighting passes read those attachments only then; otherwise the attachments are not
+// rendered (no image view) and the factors of the material record apply alone.
+#define RTPBR_EXTENSION_TEXTURES_SPECULAR 1u   // specular / specular colour: G-buffer 4
+#define RTPBR_EXTENSION_TEXTURES_COAT_SHEEN 2u // clearcoat (+ roughness), sheen colour (+ roughness): 5, 6
 
 // G-buffer pass push constants (std430), one block per draw (rtpbr_shader_draw, gbuffer.vert).
 #define RTPBR_DRAW_FIELDS(F, S)                                                                   \
@@ -165,6 +191,7 @@
 #define RTPBR_BINDING_LIGHT_GBUFFER1 3    // world normal xyz, perceptual roughness
 #define RTPBR_BINDING_LIGHT_GBUFFER2 4    // emitted radiance rgb, material index
 #define RTPBR_BINDING_LIGHT_GBUFFER3 5    // anisotropy direction (world), 0
+// (G-buffers 4 to 6, the extension textures' per-pixel values, are bindings 25 to 27 below)
 #define RTPBR_BINDING_LIGHT_DEPTH 6       // depth (0 near .. 1 far)
 #define RTPBR_BINDING_LIGHT_RADIANCE 7    // output, rgba32f storage image
 // Lookup tables (combined image samplers, linear filtering, clamp to edge).
@@ -185,7 +212,7 @@
 #define RTPBR_BINDING_LIGHT_MATERIALS 21   // storage: rtpbr_shader_material[]
 #define RTPBR_BINDING_LIGHT_TILE_MASKS 22  // storage: per-tile light masks (cull.comp)
 #define RTPBR_BINDING_LIGHT_TILE_LISTS 23  // storage: per-class tile queues (cull.comp)
-#define RTPBR_LIGHTING_BINDING_COUNT 25 // with RTPBR_BINDING_LIGHT_SHADOW_RATIO (24, below)
+#define RTPBR_LIGHTING_BINDING_COUNT 28 // with RTPBR_BINDING_LIGHT_SHADOW_RATIO (24) and GBUFFER4..6 (below)
 
 // One polygonal light, the std430 element of the lights buffer (RTPBR_BINDING_LIGHT_LIGHTS,
 // RTPBR_BINDING_SHADOW_LIGHTS; rtpbr_shader_light, light.glsl): written by engine/src/scene.c.
@@ -260,6 +287,12 @@
 #define RTPBR_BVH_MAX_DEPTH 32
 // Lighting pass: the shadow ratios, a sampler2DArray (layer = light index), read with texelFetch.
 #define RTPBR_BINDING_LIGHT_SHADOW_RATIO 24
+// The extension textures' values per pixel (multipliers of the material record's factors, 1
+// where a material has no such texture), written and read only when the frame's
+// extension_textures has their bit (RTPBR_EXTENSION_TEXTURES_*; issue 28).
+#define RTPBR_BINDING_LIGHT_GBUFFER4 25   // RGBA8 sRGB: specular colour rgb, specular a
+#define RTPBR_BINDING_LIGHT_GBUFFER5 26   // RGBA8 sRGB: sheen colour rgb, sheen roughness a
+#define RTPBR_BINDING_LIGHT_GBUFFER6 27   // RG8: clearcoat, clearcoat roughness
 // Shadow passes, descriptor set 0 (shadow.comp traces, shadow_denoise.comp filters).
 #define RTPBR_BINDING_SHADOW_FRAME 0          // uniform: rtpbr_shader_frame
 #define RTPBR_BINDING_SHADOW_LIGHTS 1         // storage: rtpbr_shader_light[]

@@ -93,6 +93,24 @@ struct Surface {
     float EsheenO;        // E_sheen(NoV)
 };
 
+// A point's extension-texture values: multipliers of the material record's KHR factors (the
+// G-buffer's for the lighting passes, lighting_common.glsl; the textures' own in the forward
+// pass), 1 where the material has no such texture.
+struct ExtensionTexels {
+    vec4 specular; // specular colour rgb, specular a
+    vec4 sheen;    // sheen colour rgb, sheen roughness a
+    vec2 coat;     // clearcoat, clearcoat roughness
+};
+
+ExtensionTexels extension_texels_none()
+{
+    ExtensionTexels e;
+    e.specular = vec4(1.0f);
+    e.sheen = vec4(1.0f);
+    e.coat = vec2(1.0f);
+    return e;
+}
+
 // RTPBR_LIGHTING_FULL 0 (the basic lighting variant) resolves only what
 // material_tile_class calls basic: the Disney, clear-coat, sheen and anisotropy terms become
 // compile-time constants and drop out of the shader.
@@ -100,9 +118,10 @@ struct Surface {
 #define RTPBR_LIGHTING_FULL 1
 #endif
 // The material record and the G-buffer's per-pixel values as the inputs of the shader
-// library's material resolve (material.h). The basic variant's inputs have no coat, sheen,
+// library's material resolve (material.h), the KHR factors times the point's extension
+// textures. The basic variant's inputs have no coat, sheen,
 // anisotropy or Disney model.
-MaterialInputs material_inputs(vec4 g0, float roughness, Material m)
+MaterialInputs material_inputs(vec4 g0, float roughness, Material m, ExtensionTexels e)
 {
     MaterialInputs in_;
     in_.model = (m.flags & RTPBR_MATERIAL_FLAG_DISNEY) != 0u ? RTPBR_MATERIAL_MODEL_DISNEY
@@ -111,12 +130,12 @@ MaterialInputs material_inputs(vec4 g0, float roughness, Material m)
     in_.metallic = g0.a;
     in_.roughness = roughness;
     in_.ior = m.ior;
-    in_.specularFactor = m.specular_factor;
-    in_.specularColor = m.specular_color;
-    in_.clearcoat = m.clearcoat;
-    in_.clearcoatRoughness = m.clearcoat_roughness;
-    in_.sheenColor = m.sheen_color;
-    in_.sheenRoughness = m.sheen_roughness;
+    in_.specularFactor = m.specular_factor * e.specular.a;
+    in_.specularColor = m.specular_color * e.specular.rgb;
+    in_.clearcoat = m.clearcoat * e.coat.x;
+    in_.clearcoatRoughness = m.clearcoat_roughness * e.coat.y;
+    in_.sheenColor = m.sheen_color * e.sheen.rgb;
+    in_.sheenRoughness = m.sheen_roughness * e.sheen.a;
     in_.anisotropyStrength = m.anisotropy_strength;
     in_.disney.baseColor = g0.rgb;
     in_.disney.metallic = g0.a;
@@ -138,12 +157,12 @@ MaterialInputs material_inputs(vec4 g0, float roughness, Material m)
     return in_;
 }
 
-Surface surface_terms(vec4 g0, float roughness, Material m, float NoV, vec3 anisoDir)
+Surface surface_terms(vec4 g0, float roughness, Material m, ExtensionTexels e, float NoV, vec3 anisoDir)
 {
 #if !RTPBR_LIGHTING_FULL
     anisoDir = vec3(0.0f);
 #endif
-    MaterialParams p = Material_Resolve(material_inputs(g0, roughness, m));
+    MaterialParams p = Material_Resolve(material_inputs(g0, roughness, m, e));
     Surface s;
     s.disney = p.disney;
     s.dm = p.dm;

@@ -178,7 +178,7 @@ static rtpbr_result choose_physical_device(rtpbr_context *ctx, uint32_t device_i
         uint32_t family = UINT32_MAX;
         RTPBR_TRY(find_queue_family(ctx, devices[i], &family));
         bool ok = props.apiVersion >= VK_API_VERSION_1_3 && supports_dynamic_rendering(devices[i]) &&
-                  family != UINT32_MAX;
+                  family != UINT32_MAX && props.limits.maxColorAttachments >= RTPBR_GBUFFER_COUNT;
         rtpbr_log(&ctx->host, RTPBR_LOG_DEBUG, "device %u: %s (%s)", i, props.deviceName, ok ? "suitable" : "unsuitable");
         if (!ok) continue;
         ++suitable;
@@ -195,7 +195,9 @@ static rtpbr_result choose_physical_device(rtpbr_context *ctx, uint32_t device_i
                       device_index, suitable);
         else
             rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
-                      "no Vulkan device with Vulkan 1.3, dynamicRendering and a graphics+compute queue");
+                      "no Vulkan device with Vulkan 1.3, dynamicRendering, a graphics+compute queue and %d "
+                      "colour attachments (the G-buffer's)",
+                      RTPBR_GBUFFER_COUNT);
         result = RTPBR_ERROR_NO_DEVICE;
         goto cleanup;
     }
@@ -271,6 +273,11 @@ rtpbr_result rtpbr_device_init_embedded(rtpbr_context *ctx, const rtpbr_vulkan_d
     if (props.apiVersion < VK_API_VERSION_1_3) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "embedded device %s supports Vulkan %u.%u; 1.3 is required",
                   props.deviceName, VK_API_VERSION_MAJOR(props.apiVersion), VK_API_VERSION_MINOR(props.apiVersion));
+        return RTPBR_ERROR_MISSING_FEATURE;
+    }
+    if (props.limits.maxColorAttachments < RTPBR_GBUFFER_COUNT) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "embedded device %s has %u colour attachments; the G-buffer needs %d",
+                  props.deviceName, props.limits.maxColorAttachments, RTPBR_GBUFFER_COUNT);
         return RTPBR_ERROR_MISSING_FEATURE;
     }
     if (!host_enabled_dynamic_rendering(host->enabled_features)) {

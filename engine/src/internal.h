@@ -199,6 +199,7 @@ struct rtpbr_gpu_scene {
     rtpbr_buffer texture_transforms; // rtpbr_shader_texture_transforms[max(material_count, 1)]
     VkDescriptorPool material_pool;  // passes/gbuffer.c
     VkDescriptorSet *material_sets; // one per material slot: its RTPBR_MATERIAL_TEXTURE_COUNT textures
+    uint8_t *material_extension_textures; // per material slot: its RTPBR_EXTENSION_TEXTURES_* bits
     rtpbr_draw *draws;
     uint32_t draw_count;
     rtpbr_draw_depth *blend_order; // draw_count entries: the forward pass's scratch
@@ -214,10 +215,16 @@ struct rtpbr_gpu_scene {
     rtpbr_buffer alpha_texels;   // uint[]: the alpha bytes of the textures that have any below 255
 };
 
+// The RTPBR_EXTENSION_TEXTURES_* bits of the scene's materials together (scene.c): which of
+// G-buffers 4 to 6 its frames render and read.
+uint32_t rtpbr_gpu_scene_extension_textures(const rtpbr_gpu_scene *scene);
+
 // ---------------------------------------------------------------------------------------------
 // Renderer (renderer.c and the passes)
 
-enum { RTPBR_GBUFFER_COUNT = 4 };
+// G-buffers 0 to 3 (every frame), then 4 to 6: the extension textures' values, rendered only
+// when the scene's materials have such textures (rtpbr_gpu_scene_extension_textures).
+enum { RTPBR_GBUFFER_COUNT = 7, RTPBR_GBUFFER_FIRST_EXTENSION = 4 };
 
 // GPU timestamps around the passes (timing.c): taken at the start and after each pass.
 typedef enum rtpbr_timestamp {

@@ -197,6 +197,7 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
     frame.shadow_light_count = !shadows ? 0
                                : scene->light_count < RTPBR_MAX_SHADOWED_LIGHTS ? scene->light_count
                                                                                 : RTPBR_MAX_SHADOWED_LIGHTS;
+    frame.extension_textures = rtpbr_gpu_scene_extension_textures(scene);
     memcpy(r->frame.mapped, &frame, sizeof frame);
     rtpbr_gbuffer_bind_scene(r, scene);
     rtpbr_lighting_bind_scene(r, scene);

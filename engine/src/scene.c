@@ -215,11 +215,38 @@ static void texture_transform_rows(const rtpbr_texture_transform *t, float rows[
 static rtpbr_shader_texture_transforms convert_texture_transforms(const rtpbr_material_desc *m)
 {
     rtpbr_shader_texture_transforms g;
-    texture_transform_rows(&m->base_color_texture_transform, g.base_color);
-    texture_transform_rows(&m->metallic_roughness_texture_transform, g.metallic_roughness);
-    texture_transform_rows(&m->emission_texture_transform, g.emission);
-    texture_transform_rows(&m->normal_texture_transform, g.normal);
+#define SLOT_TRANSFORM(unused_a, unused_b, name, slot) texture_transform_rows(&m->name##_texture_transform, g.name);
+    RTPBR_MATERIAL_TEXTURE_SLOTS(SLOT_TRANSFORM, 0, 0)
+#undef SLOT_TRANSFORM
     return g;
+}
+
+// The material's texture index of each slot (rtpbr_shared.h's slot list), by binding.
+static void material_texture_indices(const rtpbr_material_desc *m, uint32_t index[RTPBR_MATERIAL_TEXTURE_COUNT])
+{
+#define SLOT_INDEX(unused_a, unused_b, name, slot) index[slot] = m->name##_texture;
+    RTPBR_MATERIAL_TEXTURE_SLOTS(SLOT_INDEX, 0, 0)
+#undef SLOT_INDEX
+}
+
+// Which G-buffers of extension textures a material needs (RTPBR_EXTENSION_TEXTURES_*): a
+// texture of a lobe the material has (metallic-roughness only: Disney reads no KHR field).
+static uint8_t material_extension_textures(const rtpbr_material_desc *m)
+{
+    if (m->model == RTPBR_MATERIAL_DISNEY) return 0;
+    bool sheen = !(m->sheen_color[0] <= 0.0f && m->sheen_color[1] <= 0.0f && m->sheen_color[2] <= 0.0f);
+    bool coat_sheen = (m->clearcoat > 0.0f && (m->clearcoat_texture || m->clearcoat_roughness_texture)) ||
+                      (sheen && (m->sheen_color_texture || m->sheen_roughness_texture));
+    bool specular = m->specular >= 0.0f && (m->specular_texture || m->specular_color_texture);
+    return (uint8_t)((specular ? RTPBR_EXTENSION_TEXTURES_SPECULAR : 0u) |
+                     (coat_sheen ? RTPBR_EXTENSION_TEXTURES_COAT_SHEEN : 0u));
+}
+
+uint32_t rtpbr_gpu_scene_extension_textures(const rtpbr_gpu_scene *scene)
+{
+    uint32_t bits = 0;
+    for (uint32_t i = 0; i < scene->material_count; ++i) bits |= scene->material_extension_textures[i];
+    return bits;
 }
 
 static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_material_desc *m, uint32_t index)
@@ -234,9 +261,9 @@ static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_mate
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
-    const rtpbr_texture_transform *transforms[] = {&m->base_color_texture_transform,
-                                                   &m->metallic_roughness_texture_transform,
-                                                   &m->emission_texture_transform, &m->normal_texture_transform};
+#define SLOT_TRANSFORM(unused_a, unused_b, name, slot) &m->name##_texture_transform,
+    const rtpbr_texture_transform *transforms[] = {RTPBR_MATERIAL_TEXTURE_SLOTS(SLOT_TRANSFORM, 0, 0)};
+#undef SLOT_TRANSFORM
     for (size_t i = 0; i < sizeof transforms / sizeof transforms[0]; ++i) {
         const rtpbr_texture_transform *t = transforms[i];
         if (!rtpbr_finite(t->offset, 2) || !rtpbr_finite(&t->rotation, 1) || !rtpbr_finite(t->scale, 2) ||
@@ -324,14 +351,6 @@ static rtpbr_result scene_sampler(rtpbr_gpu_scene *scene, uint32_t key)
     RTPBR_VK(&ctx->host, vkCreateSampler(ctx->device, &info, NULL, &scene->samplers[key]));
 cleanup:
     return result;
-}
-
-static void material_texture_indices(const rtpbr_material_desc *m, uint32_t index[RTPBR_MATERIAL_TEXTURE_COUNT])
-{
-    index[RTPBR_BINDING_TEXTURE_BASE_COLOR] = m->base_color_texture;
-    index[RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS] = m->metallic_roughness_texture;
-    index[RTPBR_BINDING_TEXTURE_EMISSION] = m->emission_texture;
-    index[RTPBR_BINDING_TEXTURE_NORMAL] = m->normal_texture;
 }
 
 // The textures' alpha channels for the shadow rays (rtpbr_shared.h, RTPBR_ALPHA_TEXTURE_FIELDS):
@@ -450,11 +469,14 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     for (uint32_t i = 0; i < desc->material_count; ++i) {
         const rtpbr_material_desc *m = &desc->materials[i];
         RTPBR_TRY(validate_material(ctx, m, i));
-        if (m->base_color_texture > desc->texture_count || m->metallic_roughness_texture > desc->texture_count ||
-            m->emission_texture > desc->texture_count || m->normal_texture > desc->texture_count) {
-            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u refers to a texture past the scene's %u", i, desc->texture_count);
-            return RTPBR_ERROR_INVALID_ARGUMENT;
-        }
+        uint32_t index_of[RTPBR_MATERIAL_TEXTURE_COUNT];
+        material_texture_indices(m, index_of);
+        for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b)
+            if (index_of[b] > desc->texture_count) {
+                rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u refers to a texture past the scene's %u", i,
+                          desc->texture_count);
+                return RTPBR_ERROR_INVALID_ARGUMENT;
+            }
     }
     if (desc->texture_count && !desc->textures) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "texture_count is %u but textures is NULL", desc->texture_count);
@@ -550,6 +572,9 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     rtpbr_shader_texture_transforms *transforms = scene->texture_transforms.mapped;
     if (desc->material_count == 0) transforms[0] = convert_texture_transforms(&(rtpbr_material_desc){0});
     for (uint32_t i = 0; i < desc->material_count; ++i) transforms[i] = convert_texture_transforms(&desc->materials[i]);
+    RTPBR_ALLOC(&ctx->host, scene->material_extension_textures, material_slots);
+    for (uint32_t i = 0; i < desc->material_count; ++i)
+        scene->material_extension_textures[i] = material_extension_textures(&desc->materials[i]);
 
     RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (passes/shadow.c); reads the materials' sidedness
     RTPBR_TRY(create_textures(scene, desc, material_slots));
@@ -589,6 +614,7 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
         if (scene->samplers[i]) vkDestroySampler(ctx->device, scene->samplers[i], NULL);
     rtpbr_free(&ctx->host, scene->textures);
     rtpbr_free(&ctx->host, scene->texture_samplers);
+    rtpbr_free(&ctx->host, scene->material_extension_textures);
     rtpbr_free(&ctx->host, scene->draws);
     rtpbr_free(&ctx->host, scene->blend_order);
     rtpbr_free(&ctx->host, scene->cameras);
@@ -624,6 +650,7 @@ rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index
                              RTPBR_MATERIAL_FLAG_DOUBLE_SIDED;
     *record = convert_material(material);
     ((rtpbr_shader_texture_transforms *)scene->texture_transforms.mapped)[index] = convert_texture_transforms(material);
+    scene->material_extension_textures[index] = material_extension_textures(material);
     rtpbr_gbuffer_write_material_textures(scene, index, index_of);
     if (sidedness_changed) rtpbr_bvh_update_sidedness(scene);
     return RTPBR_SUCCESS;

@@ -20,6 +20,10 @@
 //   clearcoat.*               -> clearcoat, clearcoat_roughness (KHR_materials_clearcoat)
 //   anisotropy.*              -> anisotropy, anisotropy_rotation (KHR_materials_anisotropy)
 //   sheen.*                   -> sheen_color, sheen_roughness (KHR_materials_sheen)
+//   clearcoat, clearcoat roughness, sheen colour and roughness, specular and specular colour
+//                             textures -> the *_texture of the same name, each with its
+//                               transform (metallic-roughness materials; clearcoatNormalTexture
+//                               is ignored, as the loader warns)
 //   has_disney, disney.*      -> model DISNEY, disney.* (Burley 2012)
 // The material rules (roughness floor, ior, coat and Disney mappings) are applied by the
 // shaders through shaderlib/rtpbr/material.h, as in the oracle. specular_color is applied to
@@ -91,6 +95,21 @@ void rtpbr_material_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint
         d->anisotropy_rotation = m->anisotropy.anisotropy_rotation;
         memcpy(d->sheen_color, m->sheen.sheen_color_factor, sizeof d->sheen_color);
         d->sheen_roughness = m->sheen.sheen_roughness_factor;
+        // The extensions' textures (the loader leaves them -1 where the extension is absent;
+        // clearcoatNormalTexture is ignored, with the loader's warning).
+        d->clearcoat_texture = texture_ref(loaded, m->clearcoat.clearcoat_texture);
+        d->clearcoat_roughness_texture = texture_ref(loaded, m->clearcoat.clearcoat_roughness_texture);
+        d->sheen_color_texture = texture_ref(loaded, m->sheen.sheen_color_texture);
+        d->sheen_roughness_texture = texture_ref(loaded, m->sheen.sheen_roughness_texture);
+        d->specular_texture = texture_ref(loaded, m->specular.specular_texture);
+        d->specular_color_texture = texture_ref(loaded, m->specular.specular_color_texture);
+        d->clearcoat_texture_transform = texture_transform(&m->clearcoat.clearcoat_texture_transform);
+        d->clearcoat_roughness_texture_transform =
+            texture_transform(&m->clearcoat.clearcoat_roughness_texture_transform);
+        d->sheen_color_texture_transform = texture_transform(&m->sheen.sheen_color_texture_transform);
+        d->sheen_roughness_texture_transform = texture_transform(&m->sheen.sheen_roughness_texture_transform);
+        d->specular_texture_transform = texture_transform(&m->specular.specular_texture_transform);
+        d->specular_color_texture_transform = texture_transform(&m->specular.specular_color_texture_transform);
     } else {
         const rtpbr_gltf_disney *dn = &m->disney;
         d->model = RTPBR_MATERIAL_DISNEY;
@@ -209,21 +228,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
             .material = p->material,
         }; // positions are already in world space: identity transform
     }
-    for (uint32_t i = 0; i < loaded->material_count; ++i) {
-        rtpbr_material_desc_from_loaded(loaded, i, &materials[i]);
-        // The G-buffer carries the extensions' factors only (the oracle reads these textures).
-        const rtpbr_gltf_material *m = &loaded->materials[i];
-        bool ignored = (m->has_clearcoat && (m->clearcoat.clearcoat_texture >= 0 ||
-                                             m->clearcoat.clearcoat_roughness_texture >= 0 ||
-                                             m->clearcoat.clearcoat_normal_texture >= 0)) ||
-                       (m->has_sheen && (m->sheen.sheen_color_texture >= 0 || m->sheen.sheen_roughness_texture >= 0)) ||
-                       (m->has_specular &&
-                        (m->specular.specular_texture >= 0 || m->specular.specular_color_texture >= 0));
-        if (ignored && !m->has_disney)
-            rtpbr_log(&ctx->host, RTPBR_LOG_WARNING,
-                      "material %u: clearcoat, sheen and specular textures are not read by the engine (their factors are)",
-                      i);
-    }
+    for (uint32_t i = 0; i < loaded->material_count; ++i) rtpbr_material_desc_from_loaded(loaded, i, &materials[i]);
     for (uint32_t i = 0; i < loaded->light_count; ++i) {
         const rtpbr_gltf_light *l = &loaded->lights[i];
         rtpbr_light_desc *d = &lights[i];

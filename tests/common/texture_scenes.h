@@ -5,7 +5,8 @@
 // The scene: a Lambertian quad [-1, 1]^2 in the plane z = 0 facing +Z (or -Z when
 // `facing_away`), base colour = its texture (no specular: KHR_materials_specular 0), inside an
 // emissive box of radiance 1 (|x|, |y|, |z| <= 10, double-sided, so every face is a light of the
-// loader) that makes the quad's radiance equal its albedo. A camera at (0, 0, 3) looks down -Z
+// loader) that makes the quad's radiance equal its albedo (or, with `material_extensions`, the
+// albedo of the extensions' lobes over a black base). A camera at (0, 0, 3) looks down -Z
 // with a vertical field of view of 2 atan(1/3), so the quad fills a square image exactly.
 // TEXCOORD_0 runs from uv_min at the quad's top-left corner (x = -1, y = +1) to uv_max at its
 // bottom-right corner; TEXCOORD_1 holds the same values, and TEXCOORD_0 is all zero when the
@@ -36,6 +37,12 @@ typedef struct texture_scene {
     // baseColorFactor (1, 1, 1, base_alpha) and alphaCutoff (MASK; 0: absent, glTF's 0.5).
     int alpha_mode;
     float base_alpha, alpha_cutoff;
+    // When given: the quad's material is black (baseColorFactor 0, no baseColorTexture,
+    // metallic 0) with these material extensions, the body of its "extensions" object (which
+    // may use the texture as {"index":0}); extensions_used: their names, the body of a JSON
+    // list. Default: the texture is the base colour of a Lambertian quad.
+    const char *material_extensions;
+    const char *extensions_used;
 } texture_scene;
 
 // The camera: at (0, 0, 3) looking down -Z, tan(yfov / 2) = 1/3.
@@ -159,7 +166,8 @@ static inline int texture_scene_write(const texture_scene *s, const char *path)
     float lo0 = fminf(s->uv_min[0], s->uv_max[0]), hi0 = fmaxf(s->uv_min[0], s->uv_max[0]);
     float lo1 = fminf(s->uv_min[1], s->uv_max[1]), hi1 = fmaxf(s->uv_min[1], s->uv_max[1]);
     fprintf(f, "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1,2]}],\n");
-    fprintf(f, "\"extensionsUsed\":[\"KHR_materials_specular\"%s],\n",
+    fprintf(f, "\"extensionsUsed\":[%s%s],\n",
+            s->material_extensions ? s->extensions_used : "\"KHR_materials_specular\"",
             s->has_transform ? ",\"KHR_texture_transform\"" : "");
     if (s->has_transform) fprintf(f, "\"extensionsRequired\":[\"KHR_texture_transform\"],\n");
     fprintf(f, "\"nodes\":[{\"mesh\":0},{\"mesh\":1},{\"camera\":0,\"translation\":[0,0,%g]}],\n",
@@ -170,20 +178,26 @@ static inline int texture_scene_write(const texture_scene *s, const char *path)
     fprintf(f, "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"TEXCOORD_0\":2,"
                "\"TEXCOORD_1\":3},\"indices\":4,\"material\":0}]},\n"
                "{\"primitives\":[{\"attributes\":{\"POSITION\":5},\"indices\":6,\"material\":1}]}],\n");
-    fprintf(f, "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0");
-    if (s->has_transform) {
-        fprintf(f, ",\"extensions\":{\"KHR_texture_transform\":{\"offset\":[%.9g,%.9g],\"rotation\":%.9g,"
-                   "\"scale\":[%.9g,%.9g]",
-                s->offset[0], s->offset[1], s->rotation, s->scale[0], s->scale[1]);
-        if (s->texcoord >= 0) fprintf(f, ",\"texCoord\":%d", s->texcoord);
-        fprintf(f, "}}");
+    if (s->material_extensions) {
+        fprintf(f, "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1],\"metallicFactor\":0},"
+                   "\"doubleSided\":%s,\"extensions\":{%s}},\n",
+                s->double_sided ? "true" : "false", s->material_extensions);
+    } else {
+        fprintf(f, "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0");
+        if (s->has_transform) {
+            fprintf(f, ",\"extensions\":{\"KHR_texture_transform\":{\"offset\":[%.9g,%.9g],\"rotation\":%.9g,"
+                       "\"scale\":[%.9g,%.9g]",
+                    s->offset[0], s->offset[1], s->rotation, s->scale[0], s->scale[1]);
+            if (s->texcoord >= 0) fprintf(f, ",\"texCoord\":%d", s->texcoord);
+            fprintf(f, "}}");
+        }
+        fprintf(f, "},\"metallicFactor\":0,\"roughnessFactor\":1");
+        if (s->alpha_mode) fprintf(f, ",\"baseColorFactor\":[1,1,1,%.9g]", s->base_alpha);
+        fprintf(f, "},\"doubleSided\":%s,", s->double_sided ? "true" : "false");
+        if (s->alpha_mode) fprintf(f, "\"alphaMode\":\"%s\",", s->alpha_mode == 1 ? "MASK" : "BLEND");
+        if (s->alpha_mode == 1 && s->alpha_cutoff > 0.0f) fprintf(f, "\"alphaCutoff\":%.9g,", s->alpha_cutoff);
+        fprintf(f, "\"extensions\":{\"KHR_materials_specular\":{\"specularFactor\":0}}},\n");
     }
-    fprintf(f, "},\"metallicFactor\":0,\"roughnessFactor\":1");
-    if (s->alpha_mode) fprintf(f, ",\"baseColorFactor\":[1,1,1,%.9g]", s->base_alpha);
-    fprintf(f, "},\"doubleSided\":%s,", s->double_sided ? "true" : "false");
-    if (s->alpha_mode) fprintf(f, "\"alphaMode\":\"%s\",", s->alpha_mode == 1 ? "MASK" : "BLEND");
-    if (s->alpha_mode == 1 && s->alpha_cutoff > 0.0f) fprintf(f, "\"alphaCutoff\":%.9g,", s->alpha_cutoff);
-    fprintf(f, "\"extensions\":{\"KHR_materials_specular\":{\"specularFactor\":0}}},\n");
     fprintf(f, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1],\"metallicFactor\":0},"
                "\"emissiveFactor\":[1,1,1],\"doubleSided\":true}],\n");
     fprintf(f, "\"textures\":[{\"source\":0,\"sampler\":0}],\n\"samplers\":[{\"wrapS\":%d,\"wrapT\":%d", s->wrap_s,

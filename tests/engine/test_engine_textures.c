@@ -1,6 +1,7 @@
 // Textures as glTF means them (issue 28), read back from rendered pixels: sampler wrap modes
 // (repeat, clamp, mirror, per axis), KHR_texture_transform with a texCoord override, back faces
-// of single-sided materials, and mipmaps against aliasing. Scenes from
+// of single-sided materials, mipmaps against aliasing, and the KHR clearcoat, sheen and
+// specular textures. Scenes from
 // tests/common/texture_scenes.h (also rendered by the oracle in tests/oracle); expectations in
 // closed form. A textured Lambertian quad in a white furnace: radiance = base colour.
 #define _DEFAULT_SOURCE // mkstemps
@@ -20,8 +21,9 @@ typedef struct rendered {
     float px[N * N * 4];
 } rendered;
 
-// Writes the scene to a temporary file, loads it through the glTF loader and renders it.
-static void render_scene(const texture_scene *s, rendered *out)
+// Writes the scene to a temporary file, loads it through the glTF loader and renders it with
+// the desc.
+static void render_scene_with(const texture_scene *s, const rtpbr_render_desc *desc, rendered *out)
 {
     char path[] = "/tmp/rtpbr-texture-scene-XXXXXX.gltf";
     int fd = mkstemps(path, 5);
@@ -38,12 +40,17 @@ static void render_scene(const texture_scene *s, rendered *out)
     rtpbr_renderer *renderer = NULL;
     assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = N, .height = N}, &renderer),
                      RTPBR_SUCCESS);
-    assert_int_equal(rtpbr_render(renderer, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_render(renderer, scene, desc), RTPBR_SUCCESS);
     assert_int_equal(test_read_radiance(renderer, out->px, sizeof out->px), RTPBR_SUCCESS);
     rtpbr_renderer_destroy(renderer);
     rtpbr_gpu_scene_destroy(scene);
     rtpbr_context_destroy(ctx);
     assert_int_equal(log.validation, 0);
+}
+
+static void render_scene(const texture_scene *s, rendered *out)
+{
+    render_scene_with(s, &(rtpbr_render_desc){0}, out);
 }
 
 // The pixel's colour must be texel (tx, ty) of a 2x2 palette texture (linear 0/1 channels).
@@ -212,13 +219,115 @@ static void test_mipmaps_average(void **state)
     assert_true(dev > 0.2);
 }
 
+// ---- Extension textures (issue 28) ----------------------------------------------------------
+// A 2x1 texture (nearest, clamped) over the quad: its left half reads texel 0, its right half
+// texel 1. The texture multiplies one factor of a KHR extension on a black base in the white
+// furnace; each half must render as the same scene without the texture and with the factor
+// set to factor x that half's texel (the factor path, which the validation scenes hold to the
+// oracle), in the LTC pass and in the Monte Carlo pass (same seed); and the two halves must
+// differ, or the texture was not read.
+typedef struct extension_case {
+    const char *name;
+    const char *extension;  // KHR_materials_*
+    const char *textured;   // the extension's object, with the texture as {"index":0}
+    const char *factor;     // the same without the texture, %1$g the factor (printf)
+    uint8_t texels[8];      // RGBA of texel 0 (left half), texel 1 (right half)
+    float values[2];        // the factor each half amounts to
+} extension_case;
+
+static const extension_case extension_cases[] = {
+    {"clearcoat", "KHR_materials_clearcoat",
+     "{\"clearcoatFactor\":0.8,\"clearcoatRoughnessFactor\":0.3,\"clearcoatTexture\":{\"index\":0}}",
+     "{\"clearcoatFactor\":%1$g,\"clearcoatRoughnessFactor\":0.3}", {0, 0, 0, 255, 255, 0, 0, 255}, {0.0f, 0.8f}},
+    {"clearcoat roughness", "KHR_materials_clearcoat",
+     "{\"clearcoatFactor\":1,\"clearcoatRoughnessFactor\":1,\"clearcoatRoughnessTexture\":{\"index\":0}}",
+     "{\"clearcoatFactor\":1,\"clearcoatRoughnessFactor\":%1$g}", {0, 51, 0, 255, 0, 255, 0, 255}, {0.2f, 1.0f}},
+    {"sheen colour", "KHR_materials_sheen",
+     "{\"sheenColorFactor\":[1,1,1],\"sheenRoughnessFactor\":0.5,\"sheenColorTexture\":{\"index\":0}}",
+     "{\"sheenColorFactor\":[%1$g,%1$g,%1$g],\"sheenRoughnessFactor\":0.5}", {0, 0, 0, 255, 255, 255, 255, 255},
+     {0.0f, 1.0f}},
+    {"sheen roughness", "KHR_materials_sheen",
+     "{\"sheenColorFactor\":[1,1,1],\"sheenRoughnessFactor\":1,\"sheenRoughnessTexture\":{\"index\":0}}",
+     "{\"sheenColorFactor\":[1,1,1],\"sheenRoughnessFactor\":%1$g}", {255, 255, 255, 51, 255, 255, 255, 255},
+     {0.2f, 1.0f}},
+    {"specular", "KHR_materials_specular", "{\"specularFactor\":1,\"specularTexture\":{\"index\":0}}",
+     "{\"specularFactor\":%1$g}", {255, 255, 255, 0, 255, 255, 255, 255}, {0.0f, 1.0f}},
+    // (texel 0 sRGB 128 = linear 0.2158605; a black colour factor would remove the lobe in the
+    // loader's mapping, where a black texel keeps F90)
+    {"specular colour", "KHR_materials_specular",
+     "{\"specularColorFactor\":[1,1,1],\"specularColorTexture\":{\"index\":0}}",
+     "{\"specularColorFactor\":[%1$g,%1$g,%1$g]}", {128, 128, 128, 255, 255, 255, 255, 255},
+     {0.2158605f, 1.0f}},
+};
+
+static void check_extension_case(const extension_case *c, const rtpbr_render_desc *desc, const char *pass)
+{
+    char textured[512], factor[2][512], used[64];
+    snprintf(used, sizeof used, "\"%s\"", c->extension);
+    snprintf(textured, sizeof textured, "\"%s\":%s", c->extension, c->textured);
+    texture_scene s = {
+        .texture_width = 2, .texture_height = 1, .rgba = c->texels, .wrap_s = 33071, .wrap_t = 33071,
+        .mag_filter = 9728, .min_filter = 9728, .uv_min = {0.0f, 0.0f}, .uv_max = {1.0f, 1.0f}, .texcoord = -1,
+        .material_extensions = textured, .extensions_used = used,
+    };
+    rendered *img = malloc(sizeof *img), *ref[2] = {malloc(sizeof *img), malloc(sizeof *img)};
+    render_scene_with(&s, desc, img);
+    for (int h = 0; h < 2; ++h) {
+        char object[384];
+        snprintf(object, sizeof object, c->factor, c->values[h]);
+        snprintf(factor[h], sizeof factor[h], "\"%s\":%s", c->extension, object);
+        s.material_extensions = factor[h];
+        render_scene_with(&s, desc, ref[h]);
+    }
+    double worst = 0.0, contrast = 0.0;
+    int contrast_count = 0;
+    for (uint32_t py = 0; py < N; ++py)
+        for (uint32_t px = 0; px < N; ++px) {
+            if (px + 2 > N / 2 && px < N / 2 + 2) continue; // the texel edge
+            int h = px >= N / 2;
+            const float *p = img->px + 4 * (py * N + px), *q = ref[h]->px + 4 * (py * N + px);
+            for (int k = 0; k < 3; ++k) {
+                double d = fabs(p[k] - q[k]);
+                if (d > worst) worst = d;
+            }
+            if (!h) {
+                contrast += fabs(ref[1]->px[4 * (py * N + px)] - q[0]);
+                ++contrast_count;
+            }
+        }
+    contrast /= contrast_count;
+    fprintf(stderr, "%s (%s): largest difference from the factor renders %.5f; the halves differ by %.4f\n", c->name,
+            pass, worst, contrast);
+    if (worst > 0.004)
+        fail_msg("%s (%s): a half differs from its factor render by %g (%s / %s)", c->name, pass, worst, factor[0],
+                 factor[1]);
+    if (contrast < 2 * 0.004) // (twice the tolerance above: a half cannot be within it of both)
+        fail_msg("%s (%s): the two references differ by only %g: the case cannot fail", c->name, pass, contrast);
+    free(img), free(ref[0]), free(ref[1]);
+}
+
+static void test_extension_textures(void **state)
+{
+    (void)state;
+    for (size_t i = 0; i < sizeof extension_cases / sizeof extension_cases[0]; ++i)
+        check_extension_case(&extension_cases[i], &(rtpbr_render_desc){0}, "LTC");
+}
+
+static void test_extension_textures_mc(void **state)
+{
+    (void)state;
+    for (size_t i = 0; i < sizeof extension_cases / sizeof extension_cases[0]; ++i)
+        check_extension_case(&extension_cases[i], &(rtpbr_render_desc){.mc_samples = 16, .mc_seed = 7}, "Monte Carlo");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_wrap_repeat),       cmocka_unit_test(test_wrap_clamp),
         cmocka_unit_test(test_wrap_mirror),       cmocka_unit_test(test_wrap_per_axis),
         cmocka_unit_test(test_texture_transform), cmocka_unit_test(test_single_sided_back_face),
-        cmocka_unit_test(test_mipmaps_average),
+        cmocka_unit_test(test_mipmaps_average),   cmocka_unit_test(test_extension_textures),
+        cmocka_unit_test(test_extension_textures_mc),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -295,6 +295,23 @@ typedef struct rtpbr_material_desc {
     // 1 - max(sheen_color) E_sheen. All zero: no sheen.
     float sheen_color[3];
     float sheen_roughness;        // perceptual, [0, 1]
+    // The extensions' textures (1-based indices into rtpbr_gpu_scene_desc.textures, 0: none),
+    // each multiplying its factor above per pixel in the channels glTF names, each with its
+    // KHR_texture_transform. A scene whose materials use them renders up to three more
+    // G-buffer attachments (engine/README.md); otherwise they cost nothing. Disney materials
+    // ignore them, as they ignore the factors.
+    uint32_t clearcoat_texture;           // r: x clearcoat (linear)
+    uint32_t clearcoat_roughness_texture; // g: x clearcoat_roughness (linear)
+    uint32_t sheen_color_texture;         // rgb: x sheen_color (give it srgb = 1)
+    uint32_t sheen_roughness_texture;     // a: x sheen_roughness (linear)
+    uint32_t specular_texture;            // a: x specular (linear)
+    uint32_t specular_color_texture;      // rgb: x specular_color (give it srgb = 1)
+    rtpbr_texture_transform clearcoat_texture_transform;
+    rtpbr_texture_transform clearcoat_roughness_texture_transform;
+    rtpbr_texture_transform sheen_color_texture_transform;
+    rtpbr_texture_transform sheen_roughness_texture_transform;
+    rtpbr_texture_transform specular_texture_transform;
+    rtpbr_texture_transform specular_color_texture_transform;
     rtpbr_material_model model;   // zero: glTF metallic-roughness
     rtpbr_disney_params disney;   // used when model = RTPBR_MATERIAL_DISNEY
     rtpbr_alpha_mode alpha_mode;  // default: opaque

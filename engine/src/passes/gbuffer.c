@@ -1,5 +1,6 @@
 // G-buffer pass: rasterises every mesh into base colour + metallic, world normal + perceptual
-// roughness, emission + material index, anisotropy direction, and depth.
+// roughness, emission + material index, anisotropy direction, and depth; and, for scenes whose
+// materials have them, the clearcoat, sheen and specular textures' values.
 #include "passes.h"
 
 #include "../internal.h"
@@ -12,7 +13,15 @@ const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT] = {
     VK_FORMAT_R16G16B16A16_SFLOAT, // normal, roughness
     VK_FORMAT_R32G32B32A32_SFLOAT, // emission, material index (exact as a float up to 2^24)
     VK_FORMAT_R16G16B16A16_SFLOAT, // anisotropy direction
+    // The extension textures' values (rendered only for scenes that have them):
+    VK_FORMAT_R8G8B8A8_SRGB,       // specular colour (sRGB, as its texture), specular (linear alpha)
+    VK_FORMAT_R8G8B8A8_SRGB,       // sheen colour (sRGB), sheen roughness (linear alpha)
+    VK_FORMAT_R8G8_UNORM,          // clearcoat, clearcoat roughness
 };
+// The extension bit (RTPBR_EXTENSION_TEXTURES_*) under which each G-buffer from
+// RTPBR_GBUFFER_FIRST_EXTENSION on is rendered (gbuffer.frag writes it under the same bit).
+static const uint32_t extension_gbuffer_bits[RTPBR_GBUFFER_COUNT - RTPBR_GBUFFER_FIRST_EXTENSION] = {
+    RTPBR_EXTENSION_TEXTURES_SPECULAR, RTPBR_EXTENSION_TEXTURES_COAT_SHEEN, RTPBR_EXTENSION_TEXTURES_COAT_SHEEN};
 
 // The scene's vertex layout (RTPBR_VERTEX_FLOATS): position, normal, uv, tangent, uv1.
 static const VkVertexInputBindingDescription vertex_binding = {0, RTPBR_VERTEX_FLOATS * sizeof(float),
@@ -39,14 +48,18 @@ static const VkDescriptorSetLayoutBinding frame_bindings[] = {
     {RTPBR_BINDING_GBUFFER_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
     {RTPBR_BINDING_GBUFFER_TEXTURE_TRANSFORMS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, NULL},
 };
-// Set 1, one per material slot of a scene.
+// Set 1, one per material slot of a scene: a combined image sampler per texture slot
+// (rtpbr_shared.h's slot list), binding = slot.
+#define SLOT_BINDING(unused_a, unused_b, name, slot)                                              \
+    {slot, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
 static const VkDescriptorSetLayoutBinding material_bindings[RTPBR_MATERIAL_TEXTURE_COUNT] = {
-    {RTPBR_BINDING_TEXTURE_BASE_COLOR, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
-    {RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
-     NULL},
-    {RTPBR_BINDING_TEXTURE_EMISSION, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
-    {RTPBR_BINDING_TEXTURE_NORMAL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
-};
+    RTPBR_MATERIAL_TEXTURE_SLOTS(SLOT_BINDING, 0, 0)};
+#undef SLOT_BINDING
+// Every slot once, at its place in the list (binding = its index).
+#define SLOT_CHECK(unused_a, unused_b, name, slot) +((slot) < RTPBR_MATERIAL_TEXTURE_COUNT ? 1 << (slot) : 0)
+_Static_assert((0 RTPBR_MATERIAL_TEXTURE_SLOTS(SLOT_CHECK, 0, 0)) == (1 << RTPBR_MATERIAL_TEXTURE_COUNT) - 1,
+               "texture slots: bindings 0 .. RTPBR_MATERIAL_TEXTURE_COUNT - 1, each once");
+#undef SLOT_CHECK
 
 rtpbr_result rtpbr_gbuffer_vertex_module(rtpbr_context *ctx, VkShaderModule *out)
 {
@@ -145,11 +158,9 @@ void rtpbr_gbuffer_write_material_textures(rtpbr_gpu_scene *scene, uint32_t m,
 {
     rtpbr_context *ctx = scene->context;
     for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b)
-        rtpbr_descriptor_write_image(ctx, RTPBR_BINDINGS(material_bindings), scene->material_sets[m],
-                                     material_bindings[b].binding,
-                                     scene->samplers[scene->texture_samplers[texture[material_bindings[b].binding]]],
-                                     scene->textures[texture[material_bindings[b].binding]].view,
-                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        rtpbr_descriptor_write_image(ctx, RTPBR_BINDINGS(material_bindings), scene->material_sets[m], b,
+                                     scene->samplers[scene->texture_samplers[texture[b]]],
+                                     scene->textures[texture[b]].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
 void rtpbr_gbuffer_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
@@ -174,11 +185,17 @@ void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCom
                         VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                         VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
 
+    // The extension textures' G-buffers only where the scene's materials have such textures
+    // (no image view: the shader's writes are discarded, and the lighting passes do not read them).
+    uint32_t extensions = rtpbr_gpu_scene_extension_textures(scene);
     VkRenderingAttachmentInfo colors[RTPBR_GBUFFER_COUNT];
     for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i)
         colors[i] = (VkRenderingAttachmentInfo){
             .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-            .imageView = r->gbuffer[i].view,
+            .imageView = i < RTPBR_GBUFFER_FIRST_EXTENSION ||
+                                 (extensions & extension_gbuffer_bits[i - RTPBR_GBUFFER_FIRST_EXTENSION])
+                             ? r->gbuffer[i].view
+                             : VK_NULL_HANDLE,
             .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
             .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
             .storeOp = VK_ATTACHMENT_STORE_OP_STORE,

@@ -45,7 +45,15 @@ static const VkDescriptorSetLayoutBinding bindings[] = {
     COMPUTE(RTPBR_BINDING_LIGHT_TILE_MASKS, STORAGE_BUFFER),
     COMPUTE(RTPBR_BINDING_LIGHT_TILE_LISTS, STORAGE_BUFFER),
     COMPUTE(RTPBR_BINDING_LIGHT_SHADOW_RATIO, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LIGHT_GBUFFER4, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LIGHT_GBUFFER5, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LIGHT_GBUFFER6, COMBINED_IMAGE_SAMPLER),
 };
+// The binding of each G-buffer image (renderer.gbuffer[i]).
+static const uint32_t gbuffer_bindings[RTPBR_GBUFFER_COUNT] = {
+    RTPBR_BINDING_LIGHT_GBUFFER0, RTPBR_BINDING_LIGHT_GBUFFER1, RTPBR_BINDING_LIGHT_GBUFFER2,
+    RTPBR_BINDING_LIGHT_GBUFFER3, RTPBR_BINDING_LIGHT_GBUFFER4, RTPBR_BINDING_LIGHT_GBUFFER5,
+    RTPBR_BINDING_LIGHT_GBUFFER6};
 #undef COMPUTE
 _Static_assert(sizeof bindings / sizeof bindings[0] == RTPBR_LIGHTING_BINDING_COUNT, "every lighting binding");
 _Static_assert(RTPBR_BINDING_LUT_LTC_SHEEN_2 + 1 == RTPBR_BINDING_LUT_LTC_GGX_1 + RTPBR_LUT_COUNT, "LUT bindings");
@@ -126,7 +134,7 @@ rtpbr_result rtpbr_lighting_renderer_init(rtpbr_renderer *r)
     rtpbr_descriptor_write_buffer(ctx, table, set, RTPBR_BINDING_LIGHT_TILE_MASKS, r->tile_masks.buffer, VK_WHOLE_SIZE);
     rtpbr_descriptor_write_buffer(ctx, table, set, RTPBR_BINDING_LIGHT_TILE_LISTS, r->tile_lists.buffer, VK_WHOLE_SIZE);
     for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i)
-        rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_LIGHT_GBUFFER0 + i, ctx->gbuffer_sampler,
+        rtpbr_descriptor_write_image(ctx, table, set, gbuffer_bindings[i], ctx->gbuffer_sampler,
                                      r->gbuffer[i].view, read);
     rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_LIGHT_DEPTH, ctx->gbuffer_sampler, r->depth.view, read);
     const rtpbr_image *shaded = r->supersample > 1 ? &r->radiance_ss : &r->radiance;

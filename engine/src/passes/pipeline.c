@@ -3,7 +3,7 @@
 
 #include "../internal.h"
 
-enum { RTPBR_MAX_COLOR_ATTACHMENTS = 4 };
+enum { RTPBR_MAX_COLOR_ATTACHMENTS = RTPBR_GBUFFER_COUNT }; // the G-buffer pass has the most
 
 rtpbr_result rtpbr_shader_module(rtpbr_context *ctx, rtpbr_spirv spirv, VkShaderModule *out)
 {

@@ -40,7 +40,7 @@ typedef struct rtpbr_graphics_desc {
     VkShaderModule vert, frag;
     VkPipelineLayout layout;
     const VkFormat *color_formats;
-    uint32_t color_count;       // at most 4
+    uint32_t color_count;       // at most RTPBR_GBUFFER_COUNT
     VkFormat depth_format;      // VK_FORMAT_UNDEFINED: no depth
     const VkPipelineVertexInputStateCreateInfo *vertex_input; // NULL: no vertex input
     bool dynamic_cull;
