@@ -23,10 +23,10 @@
 #include <string>
 #include <vector>
 
-#include "rtpbr_tools/image.hpp"
+#include "rtpbr_common/image.hpp"
+#include "rtpbr_common/image_read.hpp"
 
 #include "flip.h"
-#include "image_read.h"
 #include "rtpbr/rtpbr.h"
 
 namespace {

@@ -1,7 +1,8 @@
-// libFuzzer target: rtpbr-diff's image reading (tools/imgdiff/image_read.h, OpenImageIO).
+// libFuzzer target: the image reading of rtpbr-diff and the viewer
+// (common/rtpbr_common/image_read.hpp, OpenImageIO).
 // The reader takes a path, so each input is written to a file in a private temporary folder.
 // Checks beyond "no crash": a success yields width × height × 3 finite values.
-#include "image_read.h"
+#include "rtpbr_common/image_read.hpp"
 
 #include <OpenImageIO/imageio.h>
 

@@ -17,7 +17,7 @@ std::string fmt(const char *f, ...) __attribute__((format(printf, 1, 2)));
 constexpr float kMaxSceneCoordinate = 1e15f;
 
 // Checks that `need` bytes (for `what`) fit in the memory available and in `limit` (0: no
-// limit of its own); the error says both (rtpbr_tools/memory.hpp).
+// limit of its own); the error says both (rtpbr_common/memory.hpp).
 bool checkMemory(uint64_t need, uint64_t limit, const std::string &what, std::string *error);
 
 inline bool finite(float x) { return std::isfinite(x); }

@@ -7,7 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "rtpbr_tools/image.hpp"
+#include "rtpbr_common/image.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -8,14 +8,14 @@
 
 #include <cstdint>
 
-#include "rtpbr_tools/rng.h"
+#include "rtpbr_common/rng.h"
 
 namespace rtpbr_oracle {
 
-// SplitMix64's finaliser (tools/common), the hash of the seeds.
+// SplitMix64's finaliser (common/), the hash of the seeds.
 inline uint64_t mix64(uint64_t z) { return rtpbr_tools_mix64(z); }
 
-// PCG32 (tools/common) with the seeding of one pixel sample.
+// PCG32 (common/) with the seeding of one pixel sample.
 class Rng : public rtpbr_tools::Pcg32 {
 public:
     using Pcg32::Pcg32;

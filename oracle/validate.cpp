@@ -3,7 +3,7 @@
 
 #include "internal.h"
 
-#include "rtpbr_tools/memory.hpp"
+#include "rtpbr_common/memory.hpp"
 
 #include <algorithm>
 #include <cstdarg>

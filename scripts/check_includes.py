@@ -10,12 +10,15 @@ include lines) and checks three rules:
 
   1. Layers. Nothing includes from a layer above its own:
        0  shaderlib/                          the shader library (pure math)
-       1  scene/, tools/common/               the glTF loader; the helpers of the tools
+       1  scene/, common/                     the glTF loader; the shared runtime code of the
+                                              programs (images, generators, colour maps, ...)
        2  engine/, oracle/, tools/            peers: the renderer, the path tracer, the tools
        3  samples/, bench/, tests/, fuzz/     programs on top of everything
   2. Peers. engine/, oracle/ and tools/ do not include each other, with one exception: the
      public header of librtpbr (engine/include/) is an API, so tools/ may include it (rtpbr-
      render is a client of the engine); engine/src/ is nobody's business but the engine's.
+     On the ground floor scene/ and common/ do not include each other either (so common/
+     may include shaderlib/ only; today it includes nothing of rtpbr).
      On the top layer tests/ may include samples/ and bench/ (it tests them), bench/ may
      include tests/common/ (the Vulkan host bootstrap of the tests, which the shader-
      statistics bench uses too); samples/ and fuzz/ include nothing of their layer.
@@ -48,7 +51,7 @@ INCLUDE_RE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 COMPONENTS = [
     ('shaderlib/', 'shaderlib', 0),
     ('scene/', 'scene', 1),
-    ('tools/common/', 'tools/common', 1),
+    ('common/', 'common', 1),
     ('engine/include/', 'engine', 2),
     ('engine/', 'engine', 2),
     ('oracle/', 'oracle', 2),
@@ -58,7 +61,7 @@ COMPONENTS = [
     ('tests/', 'tests', 3),
     ('fuzz/', 'fuzz', 3),
 ]
-LAYER_NAMES = {0: 'bottom', 1: 'helpers', 2: 'peers', 3: 'top'}
+LAYER_NAMES = {0: 'bottom', 1: 'ground floor', 2: 'peers', 3: 'top'}
 
 # Includes across components of the same layer that the rules allow: (from, to, path prefix
 # of the included file that makes it allowed).

@@ -27,6 +27,7 @@
 #include "material.glsl"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
 #include "frame.glsl"
+#include "vertex_limit.glsl"
 
 #ifndef RTPBR_LIGHTING_CLASS
 #define RTPBR_LIGHTING_CLASS RTPBR_TILE_CLASS_FULL

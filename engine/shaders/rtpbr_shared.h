@@ -123,7 +123,9 @@
 // Most lights in a scene (also RTPBR_MAX_LIGHTS in rtpbr.h): the size of a tile's light mask.
 #define RTPBR_SHADER_MAX_LIGHTS 1024
 
-// Largest polygon a light may have (also RTPBR_MAX_POLYGON_VERTICES in rtpbr.h).
+// Largest polygon a light may have. Must equal RTPBR_MAX_POLYGON_VERTICES (rtpbr.h, the
+// source of truth; checked in engine/src/internal.h) and RTPBR_LTC_MAX_VERTICES
+// (shaderlib/rtpbr/ltc.h; checked in vertex_limit.glsl, included by lighting.comp).
 #define RTPBR_SHADER_MAX_POLYGON_VERTICES 8
 
 // G-buffer pass, descriptor set 0.

@@ -38,6 +38,10 @@ _Static_assert(sizeof(rtpbr_shader_bvh_node) == 32, "BVH node layout");
 _Static_assert(sizeof(rtpbr_shader_bvh_triangle) == 64, "BVH triangle layout");
 _Static_assert(sizeof(rtpbr_shader_alpha_texture) == 16, "Alpha texture layout");
 _Static_assert(RTPBR_SHADER_MAX_SHADOWED_LIGHTS == RTPBR_MAX_SHADOWED_LIGHTS, "shadowed light limit shared by C and shaders");
+// One vertex limit (rtpbr.h's is the source of truth; the shaders' against ltc.h's:
+// engine/shaders/vertex_limit.glsl).
+_Static_assert(RTPBR_SHADER_MAX_POLYGON_VERTICES == RTPBR_MAX_POLYGON_VERTICES,
+               "RTPBR_SHADER_MAX_POLYGON_VERTICES (rtpbr_shared.h) differs from RTPBR_MAX_POLYGON_VERTICES (rtpbr.h)");
 _Static_assert(sizeof(rtpbr_shader_material) == 144, "Material layout");
 _Static_assert(sizeof(rtpbr_shader_light) == 192, "Light layout");
 _Static_assert(sizeof(rtpbr_shader_draw) == 128, "Draw push constants (128 bytes: the guaranteed minimum)");

@@ -37,6 +37,10 @@
 #include "internal.h"
 #include "rtpbr/rtpbr_gltf.h"
 
+// The loader's vertex limit is the engine's (rtpbr.h's is the source of truth).
+_Static_assert(RTPBR_GLTF_MAX_POLYGON_VERTICES == RTPBR_MAX_POLYGON_VERTICES,
+               "RTPBR_GLTF_MAX_POLYGON_VERTICES (rtpbr_gltf.h) differs from RTPBR_MAX_POLYGON_VERTICES (rtpbr.h)");
+
 // 1-based engine texture index of a loader texture index; 0 (none) for -1, out-of-range
 // indices and textures without decoded texels.
 static uint32_t texture_ref(const rtpbr_gltf_scene *loaded, int32_t index)

@@ -2,9 +2,9 @@
 #include "flip_live.h"
 
 #include "flip.h"
-#include "image_read.h"
-#include "rtpbr_tools/colormap.hpp"
-#include "rtpbr_tools/image.hpp"
+#include "rtpbr_common/colormap.hpp"
+#include "rtpbr_common/image.hpp"
+#include "rtpbr_common/image_read.hpp"
 
 #include <algorithm>
 #include <cmath>

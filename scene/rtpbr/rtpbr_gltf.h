@@ -58,7 +58,9 @@ extern "C" {
 #define RTPBR_GLTF_MAX_FILE_SIZE ((uint64_t)1 << 30)/* any one file or data: URI */
 #define RTPBR_GLTF_MAX_NODE_DEPTH 256u              /* node hierarchy depth   */
 #define RTPBR_GLTF_MAX_JSON_DEPTH 256u              /* JSON array/object nesting */
-#define RTPBR_GLTF_MAX_POLYGON_VERTICES 8u          /* vertices of one light  */
+/* Vertices of one light. Must equal the engine's RTPBR_MAX_POLYGON_VERTICES
+ * (rtpbr/rtpbr.h, the source of truth); checked in engine/src/scene_gltf.c. */
+#define RTPBR_GLTF_MAX_POLYGON_VERTICES 8u
 #define RTPBR_GLTF_ERROR_MESSAGE_SIZE 512u          /* suggested buffer size  */
 /* Default budget of decoded texel memory (RGBA8, all textures of a scene,
  * desc.texture_memory_budget): 256 MiB, e.g. one 8192² or sixteen 2048²

@@ -68,6 +68,8 @@
 #ifndef RTPBR_LTC_SIZE
 #define RTPBR_LTC_SIZE 64
 #endif
+// Must equal the engine's RTPBR_MAX_POLYGON_VERTICES (rtpbr/rtpbr.h, the source of truth);
+// checked in engine/shaders/vertex_limit.glsl.
 #define RTPBR_LTC_MAX_VERTICES 8
 // Two half-space clips of a convex polygon add at most one vertex each.
 #define RTPBR_LTC_CLIP_VERTICES 10

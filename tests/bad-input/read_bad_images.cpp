@@ -1,9 +1,9 @@
 // Regression inputs for rtpbr-diff's image reading (tests/bad-input/images/):
 //   read_bad_images DIR
 // reads DIR/expected.txt, lines "FILE error" or "FILE ok" ('#' starts a comment), reads each
-// FILE with rtpbr::read_image (tools/imgdiff/image_read.h) and checks the outcome: an error
-// must come with a message, a success with width x height x 3 finite values.
-#include "image_read.h"
+// FILE with rtpbr::read_image (common/rtpbr_common/image_read.hpp) and checks the outcome: an
+// error must come with a message, a success with width x height x 3 finite values.
+#include "rtpbr_common/image_read.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,6 +1,6 @@
 // Writes the small images the rtpbr-diff command-line tests compare (into the directory given),
 // so no test image is committed. All content is deterministic.
-#include "rtpbr_tools/image.hpp"
+#include "rtpbr_common/image.hpp"
 
 #include <cmath>
 #include <cstdint>

@@ -5,7 +5,7 @@
 // A quick look at the shader library's C++ build; the engine and the oracle render scenes.
 #include <rtpbr/microfacet.h>
 
-#include "rtpbr_tools/image.hpp"
+#include "rtpbr_common/image.hpp"
 
 #include <algorithm>
 #include <cmath>

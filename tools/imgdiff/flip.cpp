@@ -354,14 +354,6 @@ const char* flip_result_string(FlipResult result) {
     return "unknown FLIP result";
 }
 
-float srgb_to_linear(float e) {
-    return e <= 0.04045f ? e / 12.92f : std::pow((e + 0.055f) / 1.055f, 2.4f);
-}
-
-float linear_to_srgb(float l) {
-    return l <= 0.0031308f ? 12.92f * l : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
-}
-
 float flip_tonemap_aces(float x) { return static_cast<float>(tonemap(x)); }
 
 FlipResult flip_color_difference(const float* ref_rgb, const float* test_rgb, int w, int h, float ppd,

@@ -6,13 +6,15 @@
 // Conventions of this library (all functions):
 // - Images are interleaved RGB float triplets, row-major, w*h*3 values, *linear* sRGB
 //   primaries (D65). Callers holding sRGB-encoded data (8-bit PNG) decode it first
-//   (srgb_to_linear below); the CLI does.
+//   (srgb_to_linear, rtpbr_common/srgb.hpp, included here); the CLI does.
 // - LDR functions clamp their inputs to [0, 1]; HDR functions clamp negatives to 0.
 //   Non-finite inputs (NaN, +-Inf) are rejected with FlipResult::non_finite_input.
 // - The error map holds w*h values in [0, 1]; 0 means no perceived difference.
 // - Borders are handled by clamp-to-edge, so a uniform image stays uniform under every filter.
 // - No global state; nothing throws except std::bad_alloc from std::vector.
 #pragma once
+
+#include "rtpbr_common/srgb.hpp" // srgb_to_linear, linear_to_srgb
 
 #include <cstddef>
 #include <vector>
@@ -83,9 +85,5 @@ struct FlipStats {
     double max = 0.0;
 };
 FlipStats flip_stats(const std::vector<float>& error_map);
-
-// IEC 61966-2-1 sRGB transfer functions.
-float srgb_to_linear(float encoded);
-float linear_to_srgb(float linear);
 
 } // namespace rtpbr

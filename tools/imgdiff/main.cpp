@@ -1,11 +1,11 @@
 // rtpbr-diff: compares a test image with a reference image using LDR-FLIP or HDR-FLIP
 // (flip.h), and reports RMSE, relative MSE and PSNR. See usage() for the exact definitions.
 #include "flip.h"
-#include "image_read.h"
-#include "rtpbr_tools/colormap.hpp"
-#include "rtpbr_tools/energy.hpp"
-#include "rtpbr_tools/image.hpp"
-#include "rtpbr_tools/memory.hpp"
+#include "rtpbr_common/colormap.hpp"
+#include "rtpbr_common/energy.hpp"
+#include "rtpbr_common/image.hpp"
+#include "rtpbr_common/image_read.hpp"
+#include "rtpbr_common/memory.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -52,7 +52,7 @@
 #include "ltc_fit.hpp"
 #include "ltc_floor.hpp"
 #include "ltc_floor_lobe2.hpp"
-#include "rtpbr_tools/image.hpp"
+#include "rtpbr_common/image.hpp"
 
 using namespace ltcfloor;
 

@@ -19,7 +19,7 @@
 #include "rtpbr/sheen.h"
 #include "luts/rtpbr_ltc_tables.h"
 #include "luts/rtpbr_ltc_sheen_tables.h"
-#include "rtpbr_tools/rng.h"
+#include "rtpbr_common/rng.h"
 
 namespace ltcmc {
 
@@ -51,7 +51,7 @@ inline float4 fetch(const float *tab, float2 uv) {
     return a + (b - a) * fy;
 }
 
-// Deterministic uniform floats in [0, 1): SplitMix64 (tools/common).
+// Deterministic uniform floats in [0, 1): SplitMix64 (common/).
 struct Rng : rtpbr_tools::SplitMix64 {
     using SplitMix64::SplitMix64;
     float uniform() { return uniform_float(); }

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string>
 
-#include "rtpbr_tools/colormap.hpp"
-#include "rtpbr_tools/image.hpp"
+#include "rtpbr_common/colormap.hpp"
+#include "rtpbr_common/image.hpp"
 
 namespace ltcfit {
 

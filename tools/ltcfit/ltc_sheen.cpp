@@ -1,7 +1,7 @@
 // rtpbr-ltcfit --sheen-only: the KHR_materials_sheen lobe's LTC table, written to its own
 // header (rtpbr_ltc_sheen_tables.h) so that rtpbr_ltc_tables.h is untouched.
 #include "ltc_fit.hpp"
-#include "rtpbr_tools/markdown.hpp"
+#include "rtpbr_common/markdown.hpp"
 
 #include <algorithm>
 #include <cmath>

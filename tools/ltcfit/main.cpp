@@ -22,7 +22,7 @@
 
 #include "ltc_fit.hpp"
 #include "rtpbr/disney.h"
-#include "rtpbr_tools/markdown.hpp"
+#include "rtpbr_common/markdown.hpp"
 
 using namespace ltcfit;
 

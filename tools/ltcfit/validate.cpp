@@ -14,8 +14,8 @@
 #include <thread>
 
 #include "ltc_mc.hpp"
-#include "rtpbr_tools/colormap.hpp"
-#include "rtpbr_tools/image.hpp"
+#include "rtpbr_common/colormap.hpp"
+#include "rtpbr_common/image.hpp"
 
 using namespace ltcmc;
 

@@ -6,7 +6,7 @@
 #include <rtpbr/microfacet.h>
 #include <rtpbr/sampling.h>
 
-#include "rtpbr_tools/rng.h"
+#include "rtpbr_common/rng.h"
 
 #include <cmath>
 

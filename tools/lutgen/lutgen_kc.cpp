@@ -6,7 +6,7 @@
 
 #include <rtpbr/kulla_conty.h>
 
-#include "rtpbr_tools/image.hpp"
+#include "rtpbr_common/image.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -8,8 +8,8 @@
 // cell: a rerun gives the same bytes.
 #include <rtpbr/sheen.h>
 
-#include "rtpbr_tools/markdown.hpp"
-#include "rtpbr_tools/rng.h"
+#include "rtpbr_common/markdown.hpp"
+#include "rtpbr_common/rng.h"
 
 #include <algorithm>
 #include <cmath>

@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "rtpbr_tools/energy.hpp"
-#include "rtpbr_tools/image.hpp"
-#include "rtpbr_tools/memory.hpp"
+#include "rtpbr_common/energy.hpp"
+#include "rtpbr_common/image.hpp"
+#include "rtpbr_common/memory.hpp"
 
 #include "rtpbr/rtpbr.h"
 #include "rtpbr/rtpbr_gltf.h"

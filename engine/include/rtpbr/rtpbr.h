@@ -208,7 +208,11 @@ RTPBR_API const char *rtpbr_context_device_name(const rtpbr_context *context);
 
 // Documented limits; exceeding any is RTPBR_ERROR_LIMIT_EXCEEDED.
 #define RTPBR_MAX_LIGHTS 1024u           // polygonal lights per scene
-#define RTPBR_MAX_POLYGON_VERTICES 8u    // vertices per polygonal light
+// Vertices per polygonal light: the one source of truth of the vertex limit. Equal to it
+// must be RTPBR_GLTF_MAX_POLYGON_VERTICES (rtpbr_gltf.h; checked in engine/src/scene_gltf.c),
+// the shaders' RTPBR_SHADER_MAX_POLYGON_VERTICES (checked in engine/src/internal.h) and
+// shaderlib's RTPBR_LTC_MAX_VERTICES (checked in engine/shaders/vertex_limit.glsl).
+#define RTPBR_MAX_POLYGON_VERTICES 8u
 #define RTPBR_MAX_MATERIALS 65536u
 #define RTPBR_MAX_RENDER_SIZE 16384u     // width and height of a renderer
 

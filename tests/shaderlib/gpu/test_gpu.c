@@ -37,7 +37,7 @@
 #include <cmocka.h>
 
 #include "kernel_cpu.h"
-#include "rtpbr_tools/rng.h"
+#include "rtpbr_common/rng.h"
 #include "vk_compute.h"
 
 #include "eval_glsl_ggx_hc_schlick.spv.h"

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "rtpbr_tools/rng.h"
+#include "rtpbr_common/rng.h"
 
 namespace ltcref {
 
@@ -21,7 +21,7 @@ inline d3 cross(d3 a, d3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b
 inline double len(d3 a) { return std::sqrt(dot(a, a)); }
 inline d3 unit(d3 a) { return a * (1.0 / len(a)); }
 
-// Deterministic generator (SplitMix64, tools/common), uniform doubles in [0, 1).
+// Deterministic generator (SplitMix64, common/), uniform doubles in [0, 1).
 struct Rng : rtpbr_tools::SplitMix64 {
     using SplitMix64::SplitMix64;
     double uniform() { return uniform_double(); }

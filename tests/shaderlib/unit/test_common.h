@@ -8,13 +8,13 @@
 #include <stdint.h>
 #include <stddef.h>
 #include "rtpbr_shim.h"
-#include "rtpbr_tools/rng.h"
+#include "rtpbr_common/rng.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
 
-/* PCG32 (tools/common), seeded as pcg-random.org's minimal example seeds stream `seed`. */
+/* PCG32 (common/), seeded as pcg-random.org's minimal example seeds stream `seed`. */
 typedef rtpbr_tools_pcg32 test_rng;
 static inline test_rng test_rng_make(uint64_t seed) { return rtpbr_tools_pcg32_make(0x853c49e6748fea9bULL + seed, seed); }
 /* uniform in [0, 1) with 24 random bits, exactly representable as float */

@@ -1,5 +1,5 @@
-// rtpbr tools: generated Markdown sections (see rtpbr_tools/markdown.hpp).
-#include "rtpbr_tools/markdown.hpp"
+// rtpbr common: generated Markdown sections (see rtpbr_common/markdown.hpp).
+#include "rtpbr_common/markdown.hpp"
 
 #include <fstream>
 #include <sstream>

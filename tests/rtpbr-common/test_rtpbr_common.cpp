@@ -1,12 +1,12 @@
-// tools/common against published values and round trips (suite 'tools-common'): the two
+// common/ against published values and round trips (suite 'rtpbr-common'): the two
 // generators against their authors' reference outputs, the Markdown section writer on pages
 // with and without the section, the image writer read back through OpenImageIO, the colour
 // maps at their ends.
-#include "rtpbr_tools/colormap.hpp"
-#include "rtpbr_tools/energy.hpp"
-#include "rtpbr_tools/image.hpp"
-#include "rtpbr_tools/markdown.hpp"
-#include "rtpbr_tools/rng.h"
+#include "rtpbr_common/colormap.hpp"
+#include "rtpbr_common/energy.hpp"
+#include "rtpbr_common/image.hpp"
+#include "rtpbr_common/markdown.hpp"
+#include "rtpbr_common/rng.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -182,7 +182,7 @@ void test_energy() {
 
 int main(int argc, char **argv) {
     if (argc != 2) {
-        std::fprintf(stderr, "usage: test_tools_common SCRATCH_DIR\n");
+        std::fprintf(stderr, "usage: test_rtpbr_common SCRATCH_DIR\n");
         return 2;
     }
     const std::string dir = argv[1];

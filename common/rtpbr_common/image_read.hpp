@@ -1,5 +1,5 @@
-// Image reading of rtpbr-diff (OpenImageIO), a function of its own so the fuzzer
-// (fuzz/fuzz_image.cpp) exercises exactly what the command-line tool runs.
+// Image reading (OpenImageIO) of rtpbr-diff, the viewer, the Monte Carlo bench, the bad-input
+// tests and the fuzzer (fuzz/fuzz_image.cpp): one function, so each exercises what the others run.
 #pragma once
 
 #include <string>

@@ -1,10 +1,10 @@
-// rtpbr tools: colour maps (see rtpbr_tools/colormap.hpp).
-#include "rtpbr_tools/colormap.hpp"
+// rtpbr common: colour maps (see rtpbr_common/colormap.hpp).
+#include "rtpbr_common/colormap.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "rtpbr_tools/magma_table.h"
+#include "rtpbr_common/magma_table.h"
 
 namespace rtpbr_tools {
 

@@ -1,5 +1,5 @@
-// rtpbr_tools/memory.hpp.
-#include "rtpbr_tools/memory.hpp"
+// rtpbr_common/memory.hpp.
+#include "rtpbr_common/memory.hpp"
 
 #include <sys/resource.h>
 #include <unistd.h>

@@ -1,5 +1,5 @@
-// The energy bound of a rendered image: rtpbr_tools/energy.hpp.
-#include "rtpbr_tools/energy.hpp"
+// The energy bound of a rendered image: rtpbr_common/energy.hpp.
+#include "rtpbr_common/energy.hpp"
 
 #include <algorithm>
 #include <cmath>

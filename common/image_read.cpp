@@ -1,7 +1,7 @@
-// OpenImageIO reading for rtpbr-diff (image_read.h).
-#include "image_read.h"
+// OpenImageIO image reading (rtpbr_common/image_read.hpp).
+#include "rtpbr_common/image_read.hpp"
 
-#include "flip.h"
+#include "rtpbr_common/srgb.hpp"
 
 #include <OpenImageIO/imageio.h>
 

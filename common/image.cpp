@@ -1,5 +1,5 @@
-// rtpbr tools: writing images through OpenImageIO (see rtpbr_tools/image.hpp).
-#include "rtpbr_tools/image.hpp"
+// rtpbr common: writing images through OpenImageIO (see rtpbr_common/image.hpp).
+#include "rtpbr_common/image.hpp"
 
 #include <OpenImageIO/imageio.h>
 
