@@ -101,9 +101,15 @@ const tinygltf::Value* find_extension(const tinygltf::ExtensionMap& map, const c
 // before stb_image sees the file, including those between the scans of a progressive JPEG,
 // and read the way stb_image reads it: table after table while the segment length says more
 // follow, each table's 17 header bytes read even past the segment's end (zeros past the end
-// of the data).
+// of the data). And it decodes a scan with whatever its Huffman table holds when no DHT
+// segment defined that table (memory it never initialised: an index of 1e9 into a 257-entry
+// array, found by fuzz_scene): each scan's components must name tables defined before it, the
+// ones stb_image decodes that scan with (baseline: DC and AC; progressive: DC in a first DC
+// scan, AC in an AC scan).
 bool jpeg_huffman_tables_ok(const unsigned char* p, size_t size) {
     auto byte = [&](size_t i) -> unsigned { return i < size ? p[i] : 0u; };
+    bool defined[2][4] = {};  // [class: 0 DC, 1 AC][index]
+    bool progressive = false;
     size_t at = 2;  // after SOI
     while (at + 1 < size) {
         if (p[at] != 0xff) {  // entropy-coded data: skip to the next marker
@@ -117,14 +123,27 @@ bool jpeg_huffman_tables_ok(const unsigned char* p, size_t size) {
         }
         if (marker == 0xd9) return true;  // EOI
         const long length = long(byte(at + 2) << 8 | byte(at + 3));
+        if (marker == 0xc2) progressive = true;  // SOF2
         if (marker == 0xc4) {
             size_t t = at + 4;
             for (long left = length - 2; left > 0;) {
                 unsigned codes = 0;
                 for (size_t i = 1; i <= 16; ++i) codes += byte(t + i);
                 if (codes > 256) return false;
+                const unsigned cls = byte(t) >> 4, index = byte(t) & 15u;
+                if (cls <= 1 && index <= 3) defined[cls][index] = true;  // else stb_image refuses it
                 t += 17 + codes;
                 left -= 17 + long(codes);
+            }
+        }
+        if (marker == 0xda) {  // SOS: Ns, then (component, DC table << 4 | AC table) each, Ss, Se, Ah/Al
+            const unsigned count = byte(at + 4);
+            const size_t spectral = at + 5 + 2 * size_t(count);
+            const unsigned ss = byte(spectral), se = byte(spectral + 1), ah = byte(spectral + 2) >> 4;
+            const bool dc = !progressive || (ss == 0 && ah == 0), ac = !progressive || se > 0;
+            for (unsigned c = 0; c < count; ++c) {
+                const unsigned tables = byte(at + 6 + 2 * size_t(c)), d = tables >> 4, a = tables & 15u;
+                if ((dc && d <= 3 && !defined[0][d]) || (ac && a <= 3 && !defined[1][a])) return false;
             }
         }
         if (length < 2) return true;  // stb_image stops at such a segment
@@ -219,7 +238,8 @@ struct TextureTable {
                             size > 3 ? bytes[3] : 0);
         if (jpeg && !jpeg_huffman_tables_ok(bytes, size))
             return ctx.fail(RTPBR_GLTF_ERROR_IMAGE_DECODE,
-                            "image %d: corrupt JPEG (a Huffman table with more than 256 codes)", image_index);
+                            "image %d: corrupt JPEG (a Huffman table with more than 256 codes, or a scan using one "
+                            "that was never defined)", image_index);
         ImageHeader header;
         const char* why = nullptr;
         if (!read_image_header(bytes, size, &header, &why))
