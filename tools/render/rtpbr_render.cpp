@@ -207,6 +207,10 @@ int run(int argc, char **argv)
     if (proxies)
         std::printf(" (%u of them standing in for emissive meshes: docs/materials.md, \"Lights from materials\")", proxies);
     std::printf("\n");
+    if (loaded->camera_count == 0)
+        std::fprintf(stderr, "rtpbr-render: warning: %s has no camera: rendering from a default one at (0, 0, 5) "
+                             "looking at the origin, which rarely frames a scene (add a camera to the file)\n",
+                     scene_path.c_str());
     rtpbr_result r = rtpbr_context_create(&cd, &ctx);
     if (r == RTPBR_SUCCESS) r = rtpbr_gpu_scene_from_loaded(ctx, loaded, &scene);
     rtpbr_gltf_destroy(loaded);
