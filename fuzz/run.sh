@@ -48,6 +48,11 @@ if [[ $name == image-leaks ]]; then
     "$out/corpus-image" 2>&1 | tee "$out/image-leaks.log"
   exit "${PIPESTATUS[0]}"
 fi
+# Kept regression inputs (fuzz/regressions/NAME/: past findings) join the seeds, so that every
+# run, .ci/run's included, replays them first.
+if [[ -d $here/regressions/$name ]]; then
+  mkdir -p "$out/seeds/$name" && cp "$here/regressions/$name"/* "$out/seeds/$name/"
+fi
 export ASAN_OPTIONS=${ASAN_OPTIONS:-$asan}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$repo/tests/imgdiff/lsan.supp:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}

@@ -71,6 +71,16 @@ static void make_leaf(build_state *s, uint32_t node, const aabb *box, uint32_t f
     n->count = count;
 }
 
+// The bin of a centroid coordinate c on an axis from lo with RTPBR_BVH_BINS / extent = scale,
+// clamped before the conversion: with coordinates near FLT_MAX a centroid or the extent is
+// infinite and the position NaN, which (int) may not convert (found by fuzz_scene_api, UBSan);
+// NaN goes to bin 0, the same in the binning and the partition.
+static int bin_of(float c, float lo, float scale)
+{
+    float f = (c - lo) * scale;
+    return f >= 0.0f ? (f < (float)RTPBR_BVH_BINS ? (int)f : RTPBR_BVH_BINS - 1) : 0;
+}
+
 // Builds the subtree of triangles order[first .. first + count) into nodes[node].
 static void build(build_state *s, uint32_t node, uint32_t first, uint32_t count, uint32_t depth)
 {
@@ -96,8 +106,7 @@ static void build(build_state *s, uint32_t node, uint32_t first, uint32_t count,
         float scale = RTPBR_BVH_BINS / extent;
         for (uint32_t i = first; i < first + count; ++i) {
             uint32_t t = s->order[i];
-            int b = (int)((s->centroid[t][axis] - lo) * scale);
-            b = b < 0 ? 0 : b >= RTPBR_BVH_BINS ? RTPBR_BVH_BINS - 1 : b;
+            int b = bin_of(s->centroid[t][axis], lo, scale);
             counts[b]++;
             for (int v = 0; v < 3; ++v) aabb_grow(&bins[b], s->tri[t] + 3 * v);
         }
@@ -136,8 +145,7 @@ static void build(build_state *s, uint32_t node, uint32_t first, uint32_t count,
     float lo = cbox.min[best_axis], scale = RTPBR_BVH_BINS / (cbox.max[best_axis] - lo);
     uint32_t i = first, j = first + count;
     while (i < j) {
-        int b = (int)((s->centroid[s->order[i]][best_axis] - lo) * scale);
-        b = b >= RTPBR_BVH_BINS ? RTPBR_BVH_BINS - 1 : b;
+        int b = bin_of(s->centroid[s->order[i]][best_axis], lo, scale);
         if (b < best_plane) {
             ++i;
         } else {

@@ -147,6 +147,28 @@ static void zero_sizes(void **state)
     }
 }
 
+// Finite coordinates near FLT_MAX: the shadow BVH's centroids and extents overflow to infinity
+// and its bin positions to NaN, which the builder converted to int (undefined; found by
+// fuzz_scene_api). The scene is made, or refused with a message. (GCC's -fsanitize=undefined
+// has no float-cast-overflow check, so the sanitizer build does not see the conversion itself:
+// the fuzz build's replay of fuzz/regressions/scene_api/bvh-nan-bin, in .ci/run, holds it.)
+static void huge_coordinates(void **state)
+{
+    rtpbr_context *ctx = CTX;
+    // unit triangles scaled by 3e38 into world space: sums of two coordinates overflow
+    float p[] = {1, 1, 1, 1, 1, -1, -1, 1, 1, -1, -1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 1, 0, 0, 0, 1, 0,
+                 1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1};
+    const float h = 3.0e38f;
+    rtpbr_mesh_desc mesh = {.positions = p, .vertex_count = sizeof p / sizeof p[0] / 3,
+                            .transform = {h, 0, 0, 0, 0, h, 0, 0, 0, 0, h, 0, 0, 0, 0, 1}};
+    rtpbr_gpu_scene *scene = NULL;
+    LOG->errors = 0;
+    rtpbr_result r = rtpbr_gpu_scene_create(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1}, &scene);
+    print_message("huge coordinates: %s\n", rtpbr_result_string(r));
+    assert_true(r == RTPBR_SUCCESS || (scene == NULL && LOG->errors >= 1));
+    rtpbr_gpu_scene_destroy(scene);
+}
+
 // Materials: NaN or infinite parameters (also in the extension and Disney fields) and an
 // unknown model are refused with INVALID_ARGUMENT; out-of-range values are clamped (accepted).
 static void bad_materials(void **state)
@@ -292,6 +314,7 @@ int main(void)
         cmocka_unit_test(result_strings),
         cmocka_unit_test(null_arguments),
         cmocka_unit_test(zero_sizes),
+        cmocka_unit_test(huge_coordinates),
         cmocka_unit_test(bad_lights),
         cmocka_unit_test(bad_materials),
         cmocka_unit_test(bad_render_arguments),
