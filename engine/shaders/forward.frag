@@ -53,7 +53,7 @@ void main()
     vec3 P = in_world;
     vec3 V = normalize(frame.camera_position.xyz - P);
     vec3 N = f.normal;
-    Surface s = surface_terms(vec4(f.baseColor, f.metallic), f.roughness, m, e, rtpbr_saturate(dot(N, V)),
+    ShadingSurface s = surface_terms(vec4(f.baseColor, f.metallic), f.roughness, m, e, rtpbr_saturate(dot(N, V)),
                               f.anisotropyDirection);
     vec3 radiance = f.emission + shade_lights(P, N, V, s, 0u, ivec2(0));
     float alpha = rtpbr_saturate(f.alpha);

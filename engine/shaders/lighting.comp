@@ -66,7 +66,7 @@ void main()
 #else
     vec3 anisoDir = vec3(0.0f);
 #endif
-    Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], extension_texels(pixel), rtpbr_saturate(dot(N, V)),
+    ShadingSurface s = surface_terms(g0, g1.w, materials[uint(g2.a)], extension_texels(pixel), rtpbr_saturate(dot(N, V)),
                               anisoDir);
     result += shade_lights(lifted_point(ndc, depth, P, N), N, V, s, tile, pixel);
 #endif

@@ -67,7 +67,7 @@ float max3(vec3 v)
 
 // Reflected radiance from this dispatch's lights at P: samples mc.first_sample ..
 // + mc.sample_count - 1 of the mc.samples directions per light of the estimate.
-vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, Surface s, uvec2 pixel)
+vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
 {
     // The material terms of lighting_common.glsl (those of lighting.comp's shade_lights).
     bool disney = s.disney;
@@ -241,7 +241,7 @@ void main()
         vec3 V = normalize(frame.camera_position.xyz - P);
         vec3 N = normalize(g1.xyz);
         // NoV clamped below as the LTC table lookup does.
-        Surface s = surface_terms(g0, g1.w, materials[uint(g2.a)], extension_texels(pixel),
+        ShadingSurface s = surface_terms(g0, g1.w, materials[uint(g2.a)], extension_texels(pixel),
                                   clamp(dot(N, V), 1e-4f, 1.0f), texelFetch(gbuffer3, pixel, 0).xyz);
         vec3 reflected = shade_lights_mc(lifted_point(ndc, depth, P, N), N, V, s, uvec2(pixel));
         result = first ? vec4(g2.rgb + reflected, 1.0f) : imageLoad(radiance, pixel) + vec4(reflected, 0.0f);

@@ -42,56 +42,14 @@ float kc_EFavg(float r, float eta) { return textureLod(lut_kc_efavg, KC_TableCoo
 // KHR sheen's directional albedo (Charlie lobe; shaderlib/luts/sheen.md).
 float sheen_E(float mu, float r) { return textureLod(lut_sheen_e, Sheen_TableCoord(mu, r), 0.0f).r; }
 
-// A surface point's material: the G-buffer's per-pixel values and its material record,
-// resolved into the terms both passes use. The model (oracle/bsdf.h):
-//   metallic-roughness: f = (1 - c Fc(NoV)) [metallic f_metal + (1 - metallic) f_dielectric]
-//                           + c f_coat,
-//     f_metal = GGX, Schlick(F0 = baseColor, 1) + its Kulla-Conty lobe,
-//     f_dielectric = w GGX Schlick(F0(ior) specularColor, 1) + w F_ms f_ms
-//                    + baseColor (1 - Es(mu_o)) (1 - Es(mu_i)) / (pi (1 - Es_avg)),
-//     Es = w (E_F + F_ms (1 - E)) (KC_SpecularAlbedoDielectric; E_F with exact Fresnel),
-//     f_coat = GGX(clearcoat roughness), Schlick(0.04, 1) + its Kulla-Conty lobe;
-//     with KHR sheen, the bracket is f_sheen + A [...], f_sheen = sheenColor D_Charlie V
-//     (sheen.h), A = min(1 - max(sheenColor) E_sheen(mu_o), 1 - max(sheenColor) E_sheen(mu_i));
-//   Disney (Burley 2012, disney.h): specular GGX Schlick(Disney_SpecularF0, 1) + its
-//     Kulla-Conty lobe, Burley diffuse + subsurface + sheen, GTR1 clearcoat 0.25 c.
-// Anisotropic lobes (alpha_t along the G-buffer's anisotropy direction, alpha_b across it):
-// the tables are looked up at sqrt(alpha_t alpha_b); the LTC pass stretches that isotropic
-// lobe by k = sqrt(alpha_t / alpha_b) along the direction (LTC_AnisotropicInverseMatrix).
-struct Surface {
-    bool disney;
-    DisneyMaterial dm;    // sanitised (Disney materials only); the material fields up to
-                          // baseAttenuation come from material.h's Material_Resolve (NoV and
-                          // the anisotropy direction from the G-buffer)
-    vec3 baseColor;
-    float metallic;
-    float roughness;      // perceptual, the G-buffer's
-    float NoV;
-    float specR;          // perceptual roughness of the specular lobe's tables, sqrt(sqrt(at ab))
-    vec3 anisoDir;        // anisotropy direction (world, unit) or 0
-    float anisoK;         // sqrt(alpha_t / alpha_b) >= 1; 1: isotropic
-    vec2 alphas;          // (alpha_t, alpha_b) of the specular lobe (isotropic: both sqrt(at ab))
-    float w;              // dielectric specular weight (KHR specularFactor)
-    float eta;            // dielectric IOR
-    vec3 f0;              // Schlick F0 and F90 of the specular lobe (metal and dielectric mixed)
-    float f90;
-    vec3 diffuseColor;    // (1 - metallic) baseColor
-    float coat;           // coat weight (Disney: 0.25 clearcoat), 0: none
-    float coatR;          // its perceptual roughness (Disney: sqrt of the GTR1 alpha)
-    float baseAttenuation; // 1 - c Fc(NoV) for KHR clearcoat; 1 for Disney's
-    // Kulla-Conty terms (zero without RTPBR_MULTISCATTER)
-    float Eo, Eavg;       // E(NoV), E_avg of the specular lobe
-    float FmsDielectric;  // F_ms of the dielectric layer
-    vec3 msColor;         // colour of the specular lobe's f_ms
-    float EFavg;          // E_F_avg of the dielectric layer
-    float Eso, EsAvg;     // the layer's albedo at NoV and on average (w included)
-    float Eoc, Eavgc;     // E(NoV), E_avg of the coat
-    vec3 msCoat;          // colour of the coat's f_ms (coat weight included)
-    bool sheen;           // KHR sheen layer present
-    vec3 sheenColor;
-    float sheenR;         // its perceptual roughness
-    float EsheenO;        // E_sheen(NoV)
-};
+// The surface terms (ShadingSurface, Surface_Resolve) are the shader library's
+// (shaderlib/rtpbr/surface.h), which reads its tables through these (its host bridge).
+vec2 Host_TableE_EF(float mu, float r, float eta) { return kc_E_EF(mu, r, eta); }
+float Host_TableE(float mu, float r) { return kc_E(mu, r); }
+float Host_TableEavg(float r) { return kc_Eavg(r); }
+float Host_TableEFavg(float r, float eta) { return kc_EFavg(r, eta); }
+float Host_TableSheenE(float mu, float r) { return sheen_E(mu, r); }
+#include "rtpbr/surface.h"
 
 // A point's extension-texture values: multipliers of the material record's KHR factors (the
 // G-buffer's for the lighting passes, lighting_common.glsl; the textures' own in the forward
@@ -157,65 +115,13 @@ MaterialInputs material_inputs(vec4 g0, float roughness, Material m, ExtensionTe
     return in_;
 }
 
-Surface surface_terms(vec4 g0, float roughness, Material m, ExtensionTexels e, float NoV, vec3 anisoDir)
+// The point's surface terms (surface.h): the material record and the G-buffer's values
+// resolved (material.h), seen at NoV.
+ShadingSurface surface_terms(vec4 g0, float roughness, Material m, ExtensionTexels e, float NoV, vec3 anisoDir)
 {
 #if !RTPBR_LIGHTING_FULL
     anisoDir = vec3(0.0f);
 #endif
-    MaterialParams p = Material_Resolve(material_inputs(g0, roughness, m, e));
-    Surface s;
-    s.disney = p.disney;
-    s.dm = p.dm;
-    s.baseColor = p.baseColor;
-    s.metallic = p.metallic;
-    s.roughness = p.roughness;
-    s.NoV = NoV;
-    s.specR = p.tableRoughness;
-    // Anisotropic lobes: alpha_t along the G-buffer's direction; without one, isotropic.
-    bool hasDirection = dot(anisoDir, anisoDir) > 0.25f;
-    s.anisoDir = hasDirection ? normalize(anisoDir) : vec3(0.0f);
-    s.anisoK = hasDirection && p.alphas.y > 0.0f ? sqrt(max(p.alphas.x / p.alphas.y, 1.0f)) : 1.0f;
-    float isotropicAlpha = Alpha_FromPerceptual(s.specR);
-    s.alphas = s.anisoK > 1.0f ? clamp(p.alphas, RTPBR_F2(RTPBR_MIN_ALPHA), RTPBR_F2(1.0f))
-                               : vec2(isotropicAlpha, isotropicAlpha);
-    s.w = p.specularWeight;
-    s.eta = p.eta;
-    s.f0 = p.f0;
-    s.f90 = p.f90;
-    s.diffuseColor = p.diffuseColor;
-    s.coat = p.coat;
-    s.coatR = p.coatRoughness;
-    s.baseAttenuation = Material_BaseAttenuation(p, NoV);
-
-    vec2 eo = kc_E_EF(NoV, s.specR, s.eta);
-    s.Eo = eo.x;
-    s.Eavg = kc_Eavg(s.specR);
-#if RTPBR_MULTISCATTER
-    s.FmsDielectric = KC_FmsColor(RTPBR_F3(F_Avg_Dielectric(s.eta)), s.Eavg).x;
-    s.msColor = s.disney ? KC_FmsColor(F_Avg_Schlick(s.f0, 1.0f), s.Eavg)
-                         : s.metallic * KC_FmsColor(F_Avg_Schlick(s.baseColor, 1.0f), s.Eavg) +
-                               RTPBR_F3((1.0f - s.metallic) * s.w * s.FmsDielectric);
-#else
-    s.FmsDielectric = 0.0f;
-    s.msColor = RTPBR_F3(0.0f);
-#endif
-    // The layered base (metallic-roughness): the specular layer's albedo at mu_o and on average.
-    bool layered = !s.disney && s.w > 0.0f;
-    s.EFavg = layered ? kc_EFavg(s.specR, s.eta) : 0.0f;
-    s.Eso = layered ? s.w * KC_SpecularAlbedoDielectric(eo.y, s.Eo, s.FmsDielectric) : 0.0f;
-    s.EsAvg = layered ? s.w * KC_SpecularAlbedoDielectric(s.EFavg, s.Eavg, s.FmsDielectric) : 0.0f;
-    bool coated = s.coat > 0.0f;
-    s.Eoc = coated ? kc_E(NoV, s.coatR) : 1.0f;
-    s.Eavgc = coated ? kc_Eavg(s.coatR) : 1.0f;
-#if RTPBR_MULTISCATTER
-    s.msCoat = s.coat * KC_FmsColor(F_Avg_Schlick(RTPBR_F3(RTPBR_MATERIAL_COAT_F0), 1.0f), s.Eavgc);
-#else
-    s.msCoat = RTPBR_F3(0.0f);
-#endif
-    s.sheenColor = p.sheenColor;
-    s.sheenR = p.sheenRoughness;
-    s.sheen = max(s.sheenColor.r, max(s.sheenColor.g, s.sheenColor.b)) > 0.0f;
-    s.EsheenO = s.sheen ? sheen_E(NoV, s.sheenR) : 0.0f;
-    return s;
+    return Surface_Resolve(Material_Resolve(material_inputs(g0, roughness, m, e)), NoV, anisoDir);
 }
 

@@ -83,4 +83,12 @@
 #define RTPBR_MIN_ALPHA 1e-3f
 #endif
 
+// The LTC tables a host's Host_TableLtc1 / Host_TableLtc2 hand to area_light.h (its host
+// bridge): the specular lobe's (rtpbr_ltc_ggx_*, or _beckmann_* with RTPBR_NDF_BECKMANN),
+// Burley's diffuse (rtpbr_ltc_disney_diffuse_*) and KHR sheen's (rtpbr_ltc_sheen_*). Defined
+// here, before the host's hooks that test them.
+#define RTPBR_TABLE_LTC_SPECULAR 0
+#define RTPBR_TABLE_LTC_DISNEY_DIFFUSE 1
+#define RTPBR_TABLE_LTC_SHEEN 2
+
 #endif // RTPBR_CONFIG_H

@@ -19,8 +19,10 @@
 //                abs min max clamp exp log pow sin cos acos asin atan floor)
 //   splats       RTPBR_F2(x) RTPBR_F3(x) RTPBR_F4(x): a vector with every component = x
 //   matrices     rtpbr_mat3_rows(r0, r1, r2) builds a matrix from rows;
-//                rtpbr_mul(M, v) is the matrix-vector product M v.
-//   parameters   RTPBR_INOUT(T) name, RTPBR_OUT(T) name
+//                rtpbr_mul(M, v) is the matrix-vector product M v;
+//                rtpbr_mat3_at(M, row, col) reads one element (constant indices).
+//   parameters   RTPBR_INOUT(T) name, RTPBR_OUT(T) name; RTPBR_UNUSED(name) marks a parameter
+//                a flag set leaves unused (C++ warns; nothing in GLSL and HLSL)
 //   constants    RTPBR_CONST float NAME = value;
 //   functions    RTPBR_FN marks every library function (inline in C++)
 // In C++ the unprefixed names (rtpbr::float3, rtpbr::lerp, rtpbr::saturate, rtpbr::sq, ...)
@@ -118,6 +120,8 @@ inline float3 saturate(float3 x) { return rtpbr_saturate(x); }
 inline float rsqrt(float x) { return rtpbr_rsqrt(x); }
 inline float3x3 rtpbr_mat3_rows(float3 r0, float3 r1, float3 r2) { return glm::transpose(float3x3(r0, r1, r2)); }
 inline float3 rtpbr_mul(const float3x3 &m, float3 v) { return m * v; }
+inline float rtpbr_mat3_at(const float3x3 &m, int row, int col) { return m[col][row]; }
+#define RTPBR_UNUSED(x) static_cast<void>(x)
 } // namespace rtpbr
 
 // ---------------------------------------------------------------------------------------------
@@ -142,6 +146,8 @@ inline float3 rtpbr_mul(const float3x3 &m, float3 v) { return m * v; }
 #define rtpbr_atan2 atan2
 #define rtpbr_mat3_rows(r0, r1, r2) float3x3(r0, r1, r2)
 #define rtpbr_mul(m, v) mul(m, v)
+#define rtpbr_mat3_at(m, row, col) (m)[row][col]
+#define RTPBR_UNUSED(x)
 
 // ---------------------------------------------------------------------------------------------
 #else // GLSL
@@ -164,6 +170,8 @@ inline float3 rtpbr_mul(const float3x3 &m, float3 v) { return m * v; }
 #define rtpbr_rsqrt inversesqrt
 #define rtpbr_mat3_rows(r0, r1, r2) transpose(mat3(r0, r1, r2))
 #define rtpbr_mul(m, v) ((m) * (v))
+#define rtpbr_mat3_at(m, row, col) (m)[col][row]
+#define RTPBR_UNUSED(x)
 float rtpbr_saturate(float x) { return clamp(x, 0.0f, 1.0f); }
 vec3 rtpbr_saturate(vec3 x) { return clamp(x, vec3(0.0f), vec3(1.0f)); }
 

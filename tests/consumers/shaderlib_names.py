@@ -104,8 +104,29 @@ def macros_of(cpp, shaderlib, prelude):
     return {("macro", m) for m in defined(prelude + includes) - defined(prelude)}
 
 
+# The host bridge of surface.h and area_light.h (functions the including shader defines, not
+# the library): stubs, so that the whole library compiles; their names are left out.
+HOST_BRIDGE = """#include "rtpbr/lang.h"
+#include "rtpbr/config.h"
+uint Host_LightVertexCount(uint light) { return 3u; }
+rtpbr_float3 Host_LightVertex(uint light, uint k) { return RTPBR_F3(0.0f); }
+rtpbr_float4 Host_LightPlane(uint light) { return RTPBR_F4(0.0f); }
+rtpbr_float4 Host_LightSphere(uint light) { return RTPBR_F4(0.0f); }
+bool Host_LightTwoSided(uint light) { return false; }
+rtpbr_float3 Host_LightRadiance(uint light) { return RTPBR_F3(0.0f); }
+rtpbr_float3 Host_LightVisibility(uint light) { return RTPBR_F3(1.0f); }
+rtpbr_float4 Host_TableLtc1(int table, rtpbr_float2 uv) { return RTPBR_F4(0.0f); }
+rtpbr_float4 Host_TableLtc2(int table, rtpbr_float2 uv) { return RTPBR_F4(0.0f); }
+rtpbr_float2 Host_TableE_EF(float mu, float r, float eta) { return RTPBR_F2(0.0f); }
+float Host_TableE(float mu, float r) { return 0.0f; }
+float Host_TableEavg(float r) { return 0.0f; }
+float Host_TableEFavg(float r, float eta) { return 0.0f; }
+float Host_TableSheenE(float mu, float r) { return 0.0f; }
+"""
+
+
 def names_for(lang, glslang, cpp, shaderlib):
-    includes = "".join('#include "rtpbr/%s"\n' % h for h in headers(shaderlib))
+    includes = HOST_BRIDGE + "".join('#include "rtpbr/%s"\n' % h for h in headers(shaderlib))
     if lang == "glsl":
         src = "#version 450\n#extension GL_GOOGLE_include_directive : require\n" + includes + "void main() {}\n"
         suffix, args, prelude = ".comp", [], ""
@@ -128,6 +149,7 @@ def names_for(lang, glslang, cpp, shaderlib):
         os.unlink(f.name)
     found = globals_of(pre.stdout) | macros_of(cpp, shaderlib, prelude)
     found.discard(("function", "main"))
+    found = {(k, n) for (k, n) in found if not n.startswith("Host_")}
     return found
 
 

@@ -1,0 +1,479 @@
+// rtpbr shader library: the per-light evaluation of polygonal area lights.
+//
+// What a renderer calls to light a surface point with polygonal lights: for one light, its
+// diffuse and specular contribution per unit of radiance, every lobe of the surface
+// (surface.h) integrated with Linearly Transformed Cosines (ltc.h) and every correction the
+// engine ships (ltc_corrections.h: the point correction, the tail and streak estimates; the
+// energy bound across lights). The engine's lighting and forward passes, the shader-include
+// sample and the README's snippet all call these functions, so that they shade alike.
+//
+//   AreaLightPixel px = AreaLight_Begin(s, N, V);    // once per point
+//   AreaLightSum acc = AreaLight_SumBegin();
+//   for each light i:
+//       AreaLight_Add(px, acc, s, P, N, i);           // per light
+//   rtpbr_float3 Lo = AreaLight_End(px, acc, s, P);   // after the loop
+//
+// Public functions
+//   AreaLight_Begin      per-point setup: the tables' values, the lobes' matrices and scales
+//   AreaLight_SumBegin   an empty sum over lights
+//   AreaLight_Add        one light's reflected radiance (x its radiance and visibility) added
+//   AreaLight_End        the sum, held to the energy bound across lights, with the streak
+//                        estimate (GGX, RTPBR_AREA_LIGHT_FULL 0)
+//   AreaLight_Evaluate   one light alone (the four above with one light)
+//   AreaLight_Lobe       one pass over a light's edges for one LTC lobe (the building block)
+//
+// Flags (before the include)
+//   RTPBR_AREA_LIGHT_FULL  1 (default): every lobe surface.h resolves (Disney, coat, sheen,
+//                          anisotropy); 0: metallic-roughness without them (the engine's
+//                          basic variant: fewer registers, the streak estimate on GGX).
+//   RTPBR_UNROLL, RTPBR_DONT_UNROLL  loop attributes (GLSL: [[unroll]], [[dont_unroll]] with
+//                          GL_EXT_control_flow_attributes; HLSL: [unroll], [loop]); empty by
+//                          default.
+//
+// The host bridge. The library never reads a buffer or samples a texture: the host defines,
+// before including this header, how a light and the tables are read (as RTXDI's bridge). Lights
+// are named by an index the host chooses (uint):
+//   uint         Host_LightVertexCount(uint light)  3 .. RTPBR_LTC_MAX_VERTICES
+//   rtpbr_float3 Host_LightVertex(uint light, uint k)  world space, counter-clockwise seen
+//                                     from the emitting side (ltc.h's conventions)
+//   rtpbr_float4 Host_LightPlane(uint light)   unit normal xyz (the emitting side), w = -n.v0
+//   rtpbr_float4 Host_LightSphere(uint light)  a bounding sphere: centre xyz, radius w
+//   bool         Host_LightTwoSided(uint light)
+//   rtpbr_float3 Host_LightRadiance(uint light)   emitted radiance
+//   rtpbr_float3 Host_LightVisibility(uint light) its visibility from the point being shaded
+//                                     (a shadow ratio; 1 without shadows), per channel
+//   rtpbr_float4 Host_TableLtc1(int table, rtpbr_float2 uv)  the LTC tables at uv
+//   rtpbr_float4 Host_TableLtc2(int table, rtpbr_float2 uv)  (LTC_LutCoord), table one of
+//                                     RTPBR_TABLE_LTC_SPECULAR (rtpbr_ltc_ggx_1/_2, or
+//                                     _beckmann_ with RTPBR_NDF_BECKMANN), _DISNEY_DIFFUSE
+//                                     (rtpbr_ltc_disney_diffuse_1/_2), _SHEEN (rtpbr_ltc_sheen_1/_2);
+//                                     the last two are read only with RTPBR_AREA_LIGHT_FULL
+// and surface.h's table reads (Host_TableE_EF, Host_TableE, Host_TableEavg, Host_TableEFavg,
+// Host_TableSheenE). A host with its lights in an array of LtcPolygon writes each hook in one
+// line (samples/shader-include).
+//
+// Registers: the evaluation is written for the GPU's register file (docs/performance.md,
+// "Registers of the lighting pass"): one lobe's clip state live at a time, values fetched again
+// rather than kept live through the light loop where the full variant is at its limit.
+#ifndef RTPBR_AREA_LIGHT_H
+#define RTPBR_AREA_LIGHT_H
+
+#include "lang.h"
+#include "config.h"
+#include "fresnel.h"
+#include "microfacet.h"
+#include "ltc.h"
+#include "kulla_conty.h"
+#include "disney.h"
+#include "sheen.h"
+#include "surface.h"
+
+#ifndef RTPBR_AREA_LIGHT_FULL
+#define RTPBR_AREA_LIGHT_FULL 1
+#endif
+#ifndef RTPBR_UNROLL
+#define RTPBR_UNROLL
+#endif
+#ifndef RTPBR_DONT_UNROLL
+#define RTPBR_DONT_UNROLL
+#endif
+// The streak estimate runs in the metallic-roughness evaluation on GGX (its registers do not
+// fit the full one's).
+#if RTPBR_LTC_STREAK && RTPBR_NDF == RTPBR_NDF_GGX && !RTPBR_AREA_LIGHT_FULL
+#define RTPBR_AREA_LIGHT_STREAK 1
+#else
+#define RTPBR_AREA_LIGHT_STREAK 0
+#endif
+
+RTPBR_NAMESPACE_BEGIN
+
+// No light (AreaLightPixel.streakLight).
+RTPBR_CONST uint RTPBR_AREA_LIGHT_NONE = 0xffffffffu;
+
+// A point's state across its lights (AreaLight_Begin).
+struct AreaLightPixel {
+    rtpbr_float3x3 frame;        // LTC_Frame(N, V)
+    rtpbr_float3 vLocal;         // V in that frame
+    rtpbr_float3x3 specularMinv; // the specular lobe's M^-1 (stretched when anisotropic)
+    rtpbr_float3 specularScale;  // its Fresnel scale, plus the shaped f_ms lobe's share
+    rtpbr_float3 msColor;        // the separable f_ms lobe's colour
+    float pointNorm;             // the specular table's norm (ltc2.x)
+    bool pointOn;                // the point correction applies (isotropic lobes)
+    // RTPBR_AREA_LIGHT_FULL: the coat, Burley diffuse and sheen lobes (unused otherwise)
+    bool coated;
+    rtpbr_float4 ltc1c;
+    rtpbr_float3 coatScale;
+    rtpbr_float4 ltc1d;
+    rtpbr_float3 burleyScale;
+    DisneyMaterial dss;          // the subsurface shape alone
+    rtpbr_float4 ltc1s;
+    rtpbr_float3 sheenScale;
+};
+
+// What the evaluation gathers across a point's lights (AreaLight_Evaluate).
+struct AreaLightSum {
+    rtpbr_float3 sum;            // the lights' reflected radiance
+    float specularMass;          // the sum of the specular lobe's corrected shares
+    uint streakLight;            // the streak estimate's light, RTPBR_AREA_LIGHT_NONE for none
+    float streakFF;              // its specular result in the loop
+};
+
+RTPBR_FN AreaLightSum AreaLight_SumBegin() {
+    AreaLightSum acc;
+    acc.sum = RTPBR_F3(0.0f);
+    acc.specularMass = 0.0f;
+    acc.streakLight = RTPBR_AREA_LIGHT_NONE;
+    acc.streakFF = 0.0f;
+    return acc;
+}
+
+// One pass over light i's edges (vectors from P in the LTC frame): the horizon clip, then the
+// LTC lobe minv; returns its form factor, the clipped polygon's vector form factor F (up to
+// its sign) and the lobe's own vector form factor Fl (LTC_LobeEndVector; callers that do not
+// read it leave its x, y to dead-code elimination). The full evaluation runs a pass per lobe
+// the material has, so that one lobe's clip state is live at a time.
+RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+                              RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl) {
+    LtcClipper horizon = LTC_ClipperBegin();
+    LtcLobe lobe = LTC_LobeBegin(minv);
+    F = RTPBR_F3(0.0f);
+    uint count = Host_LightVertexCount(i);
+    rtpbr_float3 first = rtpbr_mul(ltcFrame, Host_LightVertex(i, 0u) - P);
+    rtpbr_float3 a = first;
+    RTPBR_UNROLL for (uint k = 1u; k <= count + 1u; ++k) {
+        LtcSegment seg;
+        rtpbr_float3 b = a;
+        if (k <= count) {
+            b = k < count ? rtpbr_mul(ltcFrame, Host_LightVertex(i, k) - P) : first;
+            seg = LTC_ClipEdge(horizon, a, b);
+        } else {
+            seg = LTC_ClipClose(horizon);
+        }
+        if (seg.valid) {
+            F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+            LTC_LobeEdge(lobe, seg.a, seg.b);
+        }
+        a = b;
+    }
+    Fl = LTC_LobeEndVector(lobe);
+    return LTC_LobeEnd(lobe);
+}
+
+// The specular lobe's LTC result ltcFF corrected (ltc_corrections.h): the point correction
+// (LTC_PointFactor: the true f NoL (F = 1, the lobe the tables were fitted to) at the centre of
+// the part of the light the LTC sees, against the LTC's value there, the table's norm x its
+// density) or, for a light in the LTC's tail, the tail estimate (LTC_PointTail: f at the
+// direction of the light's vector form factor F x pi x its form factor ff), whichever is larger
+// (LTC_PointCombine); lenF = |F| (LTC_PointWidthRatio).
+RTPBR_FN float AreaLight_SpecularCorrected(rtpbr_float3 Fl, rtpbr_float4 ltc1, float norm, float NoV, float specR,
+                                           float ltcFF, rtpbr_float3 F, float ff, float lenF) {
+    // recomputed here rather than kept live through the light loop
+    float alpha = Alpha_FromPerceptual(specR);
+    rtpbr_float3 vLocal = rtpbr_float3(sqrt(max(1.0f - NoV * NoV, 0.0f)), 0.0f, NoV);
+    LtcPoint pt = LTC_LobePoint(Fl, ltc1);
+    float NoL = pt.dir.z;
+    rtpbr_float3 h = vLocal + pt.dir;
+    float hh = dot(h, h);
+    float fCos = NoL > 0.0f && hh > 1e-12f
+                     ? D_Microfacet(h.z * rtpbr_rsqrt(hh), alpha) * V_Microfacet(NoV, NoL, alpha) * NoL
+                     : 0.0f;
+    float corrected =
+        ltcFF * LTC_PointFactor(fCos, norm * pt.density, ltcFF, LTC_PointWidthRatio(alpha, sqrt(hh), lenF));
+    float weight = LTC_PointTailWeight(Fl, ltcFF, ff);
+    float tail = 0.0f;
+    if (weight > 0.0f) {
+        rtpbr_float3 c = F / lenF;
+        rtpbr_float3 hc = vLocal + c;
+        float hc2 = dot(hc, hc);
+        float f = c.z > 0.0f && hc2 > 1e-12f
+                      ? D_Microfacet(hc.z * rtpbr_rsqrt(hc2), alpha) * V_Microfacet(NoV, c.z, alpha)
+                      : 0.0f;
+        tail = LTC_PointTail(f, ff, norm);
+    }
+    return LTC_PointCombine(corrected, tail, weight);
+}
+
+// ltc1 = (m00, m02, m20, m22) of an isotropic lobe's M^-1 (LTC_InverseMatrix): read back from
+// the matrix, so that ltc1 need not stay live through the light loop.
+RTPBR_FN rtpbr_float4 AreaLight_IsotropicLtc1(rtpbr_float3x3 minv) {
+    return rtpbr_float4(rtpbr_mat3_at(minv, 0, 0), rtpbr_mat3_at(minv, 0, 2), rtpbr_mat3_at(minv, 2, 0),
+                        rtpbr_mat3_at(minv, 2, 2));
+}
+
+// Per-point setup for surface s seen from V with shading normal N (unit): the tables' values
+// at NoV (through the host's Host_TableLtc1/2), the specular lobe's matrix (stretched when
+// anisotropic) and Fresnel scale, the other lobes' (RTPBR_AREA_LIGHT_FULL).
+RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_float3 V) {
+    AreaLightPixel px;
+    rtpbr_float2 uv = LTC_LutCoord(s.NoV, s.specR);
+    rtpbr_float4 ltc1 = Host_TableLtc1(RTPBR_TABLE_LTC_SPECULAR, uv);
+    rtpbr_float4 ltc2 = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, uv);
+    px.specularScale = LTC_FresnelScale(ltc2, s.f0, s.f90);
+    px.frame = LTC_Frame(N, V);
+    px.specularMinv = LTC_InverseMatrix(ltc1);
+    px.vLocal = rtpbr_float3(sqrt(max(1.0f - s.NoV * s.NoV, 0.0f)), 0.0f, s.NoV);
+    // The point correction and tail estimate (AreaLight_SpecularCorrected) on the isotropic
+    // specular lobe: the table's norm, and whether the lobe is isotropic.
+    px.pointNorm = ltc2.x;
+    px.pointOn = RTPBR_LTC_POINT_CORRECTION != 0;
+    px.coated = false;
+    px.ltc1c = LTC_Identity();
+    px.coatScale = RTPBR_F3(0.0f);
+    px.ltc1d = LTC_Identity();
+    px.burleyScale = RTPBR_F3(0.0f);
+    px.dss = s.dm;
+    px.dss.subsurface = 1.0f;
+    px.ltc1s = LTC_Identity();
+    px.sheenScale = RTPBR_F3(0.0f);
+#if RTPBR_AREA_LIGHT_FULL
+    px.coated = s.coat > 0.0f;
+    if (px.coated) {
+        rtpbr_float2 uvc = LTC_LutCoord(s.NoV, s.coatR);
+        px.ltc1c = Host_TableLtc1(RTPBR_TABLE_LTC_SPECULAR, uvc);
+        px.coatScale = s.coat * LTC_FresnelScale(Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, uvc),
+                                                 RTPBR_F3(RTPBR_MATERIAL_COAT_F0), 1.0f);
+    }
+    // Burley's diffuse (Disney): its LTC fit, column = the material's roughness.
+    if (s.disney) {
+        rtpbr_float2 uvd = LTC_LutCoord(s.NoV, s.roughness);
+        px.ltc1d = Host_TableLtc1(RTPBR_TABLE_LTC_DISNEY_DIFFUSE, uvd);
+        px.burleyScale = ((1.0f - s.dm.subsurface) * Host_TableLtc2(RTPBR_TABLE_LTC_DISNEY_DIFFUSE, uvd).x) *
+                         s.diffuseColor;
+    }
+    // KHR sheen: its LTC fit (sheen.h); the layer below is scaled by the KHR albedo scaling
+    // with E_sheen at NoV and at the polygon's representative direction.
+    if (s.sheen) {
+        rtpbr_float2 uvs = LTC_LutCoord(s.NoV, s.sheenR);
+        px.ltc1s = Host_TableLtc1(RTPBR_TABLE_LTC_SHEEN, uvs);
+        px.sheenScale = Sheen_LtcScale(Host_TableLtc2(RTPBR_TABLE_LTC_SHEEN, uvs), s.sheenColor);
+    }
+    // The anisotropic stretch about the mirror direction (LTC_AnisotropicInverseMatrix): the
+    // anisotropy direction made orthogonal to it; no stretch without one.
+    rtpbr_float3 mirror = rtpbr_float3(-px.vLocal.x, 0.0f, px.vLocal.z);
+    rtpbr_float3 anisoLocal = rtpbr_mul(px.frame, s.anisoDir);
+    rtpbr_float3 e1 = anisoLocal - mirror * dot(anisoLocal, mirror);
+    float e1Length = length(e1);
+    if (s.anisoK > 1.0001f && e1Length > 1e-4f) {
+        px.specularMinv = LTC_AnisotropicInverseMatrix(ltc1, mirror, e1 / e1Length, s.anisoK);
+        px.specularScale *= LTC_AnisotropicAlbedoScale(ltc1, px.specularMinv);
+        px.pointOn = false; // no point correction for anisotropic lobes
+    }
+#endif
+    // The multiple-scattering lobe: with RTPBR_KC_SHAPE the shaped lobe (kulla_conty.h,
+    // KC_PolygonLobeShaped): beta (1 - Eo) x the specular lobe's corrected form factor, which
+    // joins the specular term's scale, plus (1 - beta) x the separable lobe.
+#if RTPBR_KC_SHAPE
+    float kcBeta = KC_ShapeWeight(s.specR, s.NoV);
+    px.specularScale += s.msColor * (kcBeta * rtpbr_pos(1.0f - s.Eo));
+    px.msColor = s.msColor * (1.0f - kcBeta);
+#else
+    px.msColor = s.msColor;
+#endif
+    return px;
+}
+
+// Light i's reflected radiance at P per unit of its radiance, in lo; false (lo unset) when
+// the light cannot contribute: P on its plane, behind a one-sided light, its bounding sphere
+// below the horizon, or nothing of it above the horizon. Every lobe's polygon integral: LTC
+// (ltc.h) for the specular lobes and Burley's diffuse, the clipped polygon's vector form
+// factor F for Lambert, Kulla-Conty (kulla_conty.h) for the multiple-scattering lobes and the
+// dielectric-over-diffuse layering: separable lobes (f_ms, the layered base) integrate as
+// (1 - E(mu_o)) / (1 - E_avg) x the form factor x (1 - the cosine-weighted mean of E over the
+// polygon), from E at the representative direction (F's) widened towards E_avg with the
+// polygon's size (KC_PolygonLobe, KC_PolygonMeanE). Disney's subsurface shape and sheen are
+// evaluated at the representative direction x pi x the form factor; its GTR1 coat is
+// integrated as GGX at the same alpha.
+RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
+                           rtpbr_float3 N, uint i) {
+    // P on the light's plane sees it edge-on; behind a one-sided light, nothing; a light
+    // whose bounding sphere is below the horizon, nothing.
+    rtpbr_float4 plane = Host_LightPlane(i);
+    rtpbr_float4 sphere = Host_LightSphere(i);
+    float side = dot(rtpbr_float3(plane.x, plane.y, plane.z), P) + plane.w; // > 0: the front (emitting) side
+    bool twoSided = Host_LightTwoSided(i);
+    if (abs(side) <= 1e-7f * sphere.w || (!twoSided && side < 0.0f) || dot(N, rtpbr_float3(sphere.x, sphere.y, sphere.z) - P) < -sphere.w)
+        return;
+#if RTPBR_AREA_LIGHT_STREAK
+    // (while the bounding sphere is live: a lane mask rather than four registers kept)
+    bool streakSized = LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), Alpha_FromPerceptual(s.specR), s.NoV);
+#endif
+    rtpbr_float3 F, Fl;
+    float specularFF = AreaLight_Lobe(i, P, px.frame, px.specularMinv, F, Fl);
+    F = F.z < 0.0f ? -F : F;
+    float ff = min(F.z, 1.0f);
+    if (!(ff > 0.0f)) return;
+    float lenF = length(F);
+#if RTPBR_LTC_POINT_CORRECTION
+    rtpbr_float4 pointLtc1 = AreaLight_IsotropicLtc1(px.specularMinv);
+#if RTPBR_AREA_LIGHT_FULL
+    // The full evaluation's registers are at gfx1100's limit: the lobe's vector comes from a
+    // second pass over the edges (the same lobe, so the same value), taken only where the
+    // fade leaves anything to correct (at a form factor of 0.5 or more the factor is within
+    // (16 - 1) x 0.5^16 = 2.3e-4 of 1, and a light holding half of the LTC's mass lies
+    // mostly outside its tail: the tail estimate is skipped with it), and the norm is
+    // fetched again (the same texel) rather than kept live through the loop.
+    if (px.pointOn && specularFF < 0.5f) {
+        rtpbr_float3 unusedF2;
+        AreaLight_Lobe(i, P, px.frame, px.specularMinv, unusedF2, Fl);
+        float norm = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.specR)).x;
+        specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, norm, s.NoV, s.specR, specularFF, F, ff, lenF);
+    }
+#else
+    specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, px.pointNorm, s.NoV, s.specR, specularFF, F, ff, lenF);
+#if RTPBR_AREA_LIGHT_STREAK
+    // the streak estimate's candidate (after the loop): the first light it applies to and
+    // whose size can give it any trust (LTC_StreakCandidate)
+    if (px.pointOn && streakSized && acc.streakLight == RTPBR_AREA_LIGHT_NONE && LTC_StreakWeight(px.vLocal, F) > 0.0f) {
+        acc.streakLight = i;
+        acc.streakFF = specularFF;
+    }
+#endif
+#endif
+#endif
+    // The representative direction of the polygon: its vector form factor's.
+    rtpbr_float3 lRep = F / lenF;
+    float muRep = rtpbr_saturate(lRep.z);
+    // The cosine-weighted mean of each albedo over the polygon (KC_PolygonMeanE).
+    rtpbr_float2 eRep = Host_TableE_EF(muRep, s.specR, s.eta);
+    float Erep = KC_PolygonMeanE(eRep.x, s.Eavg, lenF);
+
+    // (with RTPBR_KC_SHAPE: KC_PolygonLobeShaped, its two parts folded into specularScale and
+    // msColor by AreaLight_Begin)
+    rtpbr_float3 lo = px.specularScale * specularFF + px.msColor * KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff);
+    rtpbr_float3 unusedF, unusedFl;
+    rtpbr_float3 base;
+#if RTPBR_AREA_LIGHT_FULL
+    if (s.disney) {
+        float LoH = rtpbr_saturate(dot(lRep, normalize(lRep + px.vLocal)));
+        base = px.burleyScale * AreaLight_Lobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1d), unusedF, unusedFl) +
+               (s.dm.subsurface * Disney_DiffuseLobe(px.dss, s.NoV, muRep, LoH) + Disney_SheenLobe(s.dm, LoH)) *
+                   (RTPBR_PI * ff);
+    } else
+#endif
+    {
+        float EFrep = s.w > 0.0f ? KC_PolygonMeanE(eRep.y, s.EFavg, lenF) : 0.0f;
+        float Esrep = s.w * KC_SpecularAlbedoDielectric(EFrep, Erep, s.FmsDielectric);
+        base = s.diffuseColor * KC_PolygonLobe(s.Eso, Esrep, s.EsAvg, ff);
+    }
+    lo += base;
+#if RTPBR_AREA_LIGHT_FULL
+    if (s.sheen)
+        lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, Host_TableSheenE(muRep, s.sheenR)) +
+             px.sheenScale * AreaLight_Lobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl);
+    lo *= s.baseAttenuation;
+    if (px.coated)
+        lo += px.coatScale * AreaLight_Lobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, unusedFl) +
+              s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(Host_TableE(muRep, s.coatR), s.Eavgc, lenF), s.Eavgc, ff);
+#endif
+#if RTPBR_LTC_POINT_CORRECTION && !RTPBR_AREA_LIGHT_FULL
+    acc.specularMass += specularFF;
+#endif
+    acc.sum += Host_LightRadiance(i) * lo * Host_LightVisibility(i);
+}
+
+#if RTPBR_AREA_LIGHT_STREAK
+// The streak estimate (ltc_corrections.h, LTC_StreakEnd) of light i's specular lobe: two more
+// passes over its horizon-clipped edges, one for its vector form factor F and its elevations,
+// one for the chords through the nodes. Returns the estimate (F = 1), its weight
+// (LTC_StreakWeight x its trust) and V.h at the streak; (-1, 0, .) for none.
+RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, float NoV, float specR) {
+    uint count = Host_LightVertexCount(i);
+    rtpbr_float3 vLocal = rtpbr_float3(sqrt(max(1.0f - NoV * NoV, 0.0f)), 0.0f, NoV);
+    rtpbr_float3 F = RTPBR_F3(0.0f);
+    LtcStreak st = LTC_StreakBegin();
+    RTPBR_DONT_UNROLL for (int pass = 0; pass < 2; ++pass) {
+        LtcClipper horizon = LTC_ClipperBegin();
+        rtpbr_float3 first = rtpbr_mul(ltcFrame, Host_LightVertex(i, 0u) - P);
+        rtpbr_float3 a = first;
+        for (uint k = 1u; k <= count + 1u; ++k) {
+            LtcSegment seg;
+            rtpbr_float3 b = a;
+            if (k <= count) {
+                b = k < count ? rtpbr_mul(ltcFrame, Host_LightVertex(i, k) - P) : first;
+                seg = LTC_ClipEdge(horizon, a, b);
+            } else {
+                seg = LTC_ClipClose(horizon);
+            }
+            if (seg.valid) {
+                if (pass == 0) {
+                    F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+                    LTC_StreakEdge(st, seg.a, seg.b);
+                } else {
+                    LTC_StreakChordEdge(st, seg.a, seg.b);
+                }
+            }
+            a = b;
+        }
+        if (pass == 0)
+            LTC_StreakNodes(st, F);
+    }
+    rtpbr_float2 e = LTC_StreakEnd(st, vLocal, Alpha_FromPerceptual(specR));
+    return rtpbr_float3(e.x, e.y * LTC_StreakWeight(vLocal, F), LTC_StreakVoH(st, vLocal));
+}
+#endif
+
+// The point's reflected radiance after the last AreaLight_Add.
+// Energy conservation across lights: each light's specular result is a share of the lobe's
+// mass (LTC_LobeEnd divides by the horizon's), and over disjoint lights the shares of the true
+// lobe sum to at most 1; the point correction and the tail estimate correct each light on its
+// own, so over lights that surround the point their shares summed past 1 (1.02-1.04 in the
+// furnace). Where they do, the whole sum is scaled back to a mass of 1 (keeping the specular
+// part apart costs registers: the other lobes lose the same fraction 1 - 1 / mass at such
+// points, up to 4 % in the furnace). Not in the full evaluation (registers; its point
+// correction runs only for lights holding under half the lobe's mass).
+// Then the streak estimate for one light per point (where little else is live): the light's
+// specular term moved from specularScale x streakFF toward F(V.h) x the estimate by its weight
+// (Schlick's Fresnel at the streak, the tables' Fresnel model).
+RTPBR_FN rtpbr_float3 AreaLight_End(AreaLightPixel px, AreaLightSum acc, ShadingSurface s, rtpbr_float3 P) {
+    rtpbr_float3 sum = acc.sum;
+#if !RTPBR_AREA_LIGHT_STREAK
+    RTPBR_UNUSED(px);
+    RTPBR_UNUSED(s);
+    RTPBR_UNUSED(P);
+#endif
+#if RTPBR_LTC_POINT_CORRECTION && !RTPBR_AREA_LIGHT_FULL
+    if (acc.specularMass > 1.0f) sum *= 1.0f / acc.specularMass;
+#endif
+#if RTPBR_AREA_LIGHT_STREAK
+    if (acc.streakLight != RTPBR_AREA_LIGHT_NONE) {
+        rtpbr_float3 e = AreaLight_StreakEstimate(acc.streakLight, P, px.frame, s.NoV, s.specR);
+        if (e.x >= 0.0f && e.y > 0.0f && px.pointNorm > 0.0f) {
+            // specularScale = the Fresnel scale f0 (ltc2.x - ltc2.y) + f90 ltc2.y
+            // (LTC_FresnelScale) + the shaped multiple-scattering lobe's part folded into it by
+            // AreaLight_Begin, msColor beta / (1 - beta) (1 - Eo) (msColor being s.msColor
+            // (1 - beta)); f0 from there and the table's texel fetched again (s.f0 kept live
+            // through the loop cost 8 VGPRs on navi21). Where 1 - beta is too small to split
+            // them, the tables' Fresnel scale as it is.
+            rtpbr_float3 next = px.specularScale * (e.x / px.pointNorm);
+#if RTPBR_KC_SHAPE
+            float beta = KC_ShapeWeight(s.specR, s.NoV);
+            rtpbr_float3 msShaped = px.msColor * (beta / max(1.0f - beta, 1e-3f) * rtpbr_pos(1.0f - s.Eo));
+            bool split = 1.0f - beta > 1e-3f;
+#else
+            rtpbr_float3 msShaped = RTPBR_F3(0.0f);
+            bool split = true;
+#endif
+            if (split) {
+                rtpbr_float4 t2 = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.specR));
+                rtpbr_float3 f0 = (px.specularScale - msShaped - s.f90 * t2.y) / max(t2.x - t2.y, 1e-6f);
+                next = F_Schlick(f0, s.f90, e.z) * e.x + msShaped * (e.x / px.pointNorm);
+            }
+            sum += Host_LightRadiance(acc.streakLight) * ((next - px.specularScale * acc.streakFF) * e.y) *
+                   Host_LightVisibility(acc.streakLight);
+        }
+    }
+#endif
+    return sum;
+}
+
+// One light alone: its reflected radiance at P (AreaLight_Begin, _Add, _End with one light).
+RTPBR_FN rtpbr_float3 AreaLight_Evaluate(ShadingSurface s, rtpbr_float3 P, rtpbr_float3 N, rtpbr_float3 V, uint light) {
+    AreaLightPixel px = AreaLight_Begin(s, N, V);
+    AreaLightSum acc = AreaLight_SumBegin();
+    AreaLight_Add(px, acc, s, P, N, light);
+    return AreaLight_End(px, acc, s, P);
+}
+
+RTPBR_NAMESPACE_END
+
+#endif // RTPBR_AREA_LIGHT_H

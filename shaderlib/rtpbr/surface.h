@@ -1,0 +1,142 @@
+// rtpbr shader library: a surface point's material, resolved for shading.
+//
+// Surface_Resolve turns a material's resolved parameters (material.h, Material_Resolve) and the
+// view into every term the per-light evaluation (area_light.h) and a Monte Carlo estimator need:
+// the lobes' table roughness, Fresnel, anisotropy, layers, and the Kulla-Conty albedos at the
+// view direction. The model (oracle/bsdf.h is the path tracer's statement of it):
+//   metallic-roughness: f = (1 - c Fc(NoV)) [metallic f_metal + (1 - metallic) f_dielectric]
+//                           + c f_coat,
+//     f_metal = GGX, Schlick(F0 = baseColor, 1) + its Kulla-Conty lobe,
+//     f_dielectric = w GGX Schlick(F0(ior) specularColor, 1) + w F_ms f_ms
+//                    + baseColor (1 - Es(mu_o)) (1 - Es(mu_i)) / (pi (1 - Es_avg)),
+//     Es = w (E_F + F_ms (1 - E)) (KC_SpecularAlbedoDielectric; E_F with exact Fresnel),
+//     f_coat = GGX(clearcoat roughness), Schlick(0.04, 1) + its Kulla-Conty lobe;
+//     with KHR sheen, the bracket is f_sheen + A [...], f_sheen = sheenColor D_Charlie V
+//     (sheen.h), A = min(1 - max(sheenColor) E_sheen(mu_o), 1 - max(sheenColor) E_sheen(mu_i));
+//   Disney (Burley 2012, disney.h): specular GGX Schlick(Disney_SpecularF0, 1) + its
+//     Kulla-Conty lobe, Burley diffuse + subsurface + sheen, GTR1 clearcoat 0.25 c.
+// Anisotropic lobes (alpha_t along the anisotropy direction, alpha_b across it): the tables
+// are looked up at sqrt(alpha_t alpha_b); the LTC evaluation stretches that isotropic lobe by
+// k = sqrt(alpha_t / alpha_b) along the direction (LTC_AnisotropicInverseMatrix).
+//
+// The library never samples textures: the host defines, before including this header, the
+// table reads it needs (the host bridge; bilinear, clamp to edge, tables of the NDF in use):
+//   rtpbr_float2 Host_TableE_EF(float mu, float r, float eta)  Kulla-Conty E(mu, r) and
+//                                     E_F(mu, r, eta) (rtpbr_kc_tables.h; KC_TableCoord3D)
+//   float Host_TableE(float mu, float r)       E(mu, r)   (KC_TableCoord)
+//   float Host_TableEavg(float r)              E_avg(r)   (KC_TableCoordAvg)
+//   float Host_TableEFavg(float r, float eta)  E_F_avg    (KC_TableCoordAvg2D)
+//   float Host_TableSheenE(float mu, float r)  E_sheen    (rtpbr_sheen_tables.h; Sheen_TableCoord)
+// A host without multiple scattering may return 0 from the E_F and E_F_avg reads and build
+// with RTPBR_MULTISCATTER 0. Values that the model does not need (no coat, no sheen) are never
+// read.
+#ifndef RTPBR_SURFACE_H
+#define RTPBR_SURFACE_H
+
+#include "lang.h"
+#include "config.h"
+#include "fresnel.h"
+#include "ndf.h"
+#include "kulla_conty.h"
+#include "disney.h"
+#include "sheen.h"
+#include "material.h"
+
+RTPBR_NAMESPACE_BEGIN
+
+struct ShadingSurface {
+    bool disney;
+    DisneyMaterial dm;    // sanitised (Disney materials only)
+    rtpbr_float3 baseColor;
+    float metallic;
+    float roughness;      // perceptual
+    float NoV;
+    float specR;          // perceptual roughness of the specular lobe's tables, sqrt(sqrt(at ab))
+    rtpbr_float3 anisoDir; // anisotropy direction (world, unit) or 0
+    float anisoK;         // sqrt(alpha_t / alpha_b) >= 1; 1: isotropic
+    rtpbr_float2 alphas;  // (alpha_t, alpha_b) of the specular lobe (isotropic: both sqrt(at ab))
+    float w;              // dielectric specular weight (KHR specularFactor)
+    float eta;            // dielectric IOR
+    rtpbr_float3 f0;      // Schlick F0 and F90 of the specular lobe (metal and dielectric mixed)
+    float f90;
+    rtpbr_float3 diffuseColor; // (1 - metallic) baseColor
+    float coat;           // coat weight (Disney: 0.25 clearcoat), 0: none
+    float coatR;          // its perceptual roughness (Disney: sqrt of the GTR1 alpha)
+    float baseAttenuation; // 1 - c Fc(NoV) for KHR clearcoat; 1 for Disney's
+    // Kulla-Conty terms (zero without RTPBR_MULTISCATTER)
+    float Eo, Eavg;       // E(NoV), E_avg of the specular lobe
+    float FmsDielectric;  // F_ms of the dielectric layer
+    rtpbr_float3 msColor; // colour of the specular lobe's f_ms
+    float EFavg;          // E_F_avg of the dielectric layer
+    float Eso, EsAvg;     // the layer's albedo at NoV and on average (w included)
+    float Eoc, Eavgc;     // E(NoV), E_avg of the coat
+    rtpbr_float3 msCoat;  // colour of the coat's f_ms (coat weight included)
+    bool sheen;           // KHR sheen layer present
+    rtpbr_float3 sheenColor;
+    float sheenR;         // its perceptual roughness
+    float EsheenO;        // E_sheen(NoV)
+};
+
+// The shading terms of a material p (Material_Resolve) seen at NoV = saturate(N.V), with the
+// anisotropy direction anisoDir (world space; 0 for none: the lobe is then isotropic at
+// sqrt(alpha_t alpha_b)).
+RTPBR_FN ShadingSurface Surface_Resolve(MaterialParams p, float NoV, rtpbr_float3 anisoDir) {
+    ShadingSurface s;
+    s.disney = p.disney;
+    s.dm = p.dm;
+    s.baseColor = p.baseColor;
+    s.metallic = p.metallic;
+    s.roughness = p.roughness;
+    s.NoV = NoV;
+    s.specR = p.tableRoughness;
+    // Anisotropic lobes: alpha_t along the given direction; without one, isotropic.
+    bool hasDirection = dot(anisoDir, anisoDir) > 0.25f;
+    s.anisoDir = hasDirection ? normalize(anisoDir) : RTPBR_F3(0.0f);
+    s.anisoK = hasDirection && p.alphas.y > 0.0f ? sqrt(max(p.alphas.x / p.alphas.y, 1.0f)) : 1.0f;
+    float isotropicAlpha = Alpha_FromPerceptual(s.specR);
+    s.alphas = s.anisoK > 1.0f ? clamp(p.alphas, RTPBR_F2(RTPBR_MIN_ALPHA), RTPBR_F2(1.0f))
+                               : rtpbr_float2(isotropicAlpha, isotropicAlpha);
+    s.w = p.specularWeight;
+    s.eta = p.eta;
+    s.f0 = p.f0;
+    s.f90 = p.f90;
+    s.diffuseColor = p.diffuseColor;
+    s.coat = p.coat;
+    s.coatR = p.coatRoughness;
+    s.baseAttenuation = Material_BaseAttenuation(p, NoV);
+
+    rtpbr_float2 eo = Host_TableE_EF(NoV, s.specR, s.eta);
+    s.Eo = eo.x;
+    s.Eavg = Host_TableEavg(s.specR);
+#if RTPBR_MULTISCATTER
+    s.FmsDielectric = KC_FmsColor(RTPBR_F3(F_Avg_Dielectric(s.eta)), s.Eavg).x;
+    s.msColor = s.disney ? KC_FmsColor(F_Avg_Schlick(s.f0, 1.0f), s.Eavg)
+                         : s.metallic * KC_FmsColor(F_Avg_Schlick(s.baseColor, 1.0f), s.Eavg) +
+                               RTPBR_F3((1.0f - s.metallic) * s.w * s.FmsDielectric);
+#else
+    s.FmsDielectric = 0.0f;
+    s.msColor = RTPBR_F3(0.0f);
+#endif
+    // The layered base (metallic-roughness): the specular layer's albedo at mu_o and on average.
+    bool layered = !s.disney && s.w > 0.0f;
+    s.EFavg = layered ? Host_TableEFavg(s.specR, s.eta) : 0.0f;
+    s.Eso = layered ? s.w * KC_SpecularAlbedoDielectric(eo.y, s.Eo, s.FmsDielectric) : 0.0f;
+    s.EsAvg = layered ? s.w * KC_SpecularAlbedoDielectric(s.EFavg, s.Eavg, s.FmsDielectric) : 0.0f;
+    bool coated = s.coat > 0.0f;
+    s.Eoc = coated ? Host_TableE(NoV, s.coatR) : 1.0f;
+    s.Eavgc = coated ? Host_TableEavg(s.coatR) : 1.0f;
+#if RTPBR_MULTISCATTER
+    s.msCoat = s.coat * KC_FmsColor(F_Avg_Schlick(RTPBR_F3(RTPBR_MATERIAL_COAT_F0), 1.0f), s.Eavgc);
+#else
+    s.msCoat = RTPBR_F3(0.0f);
+#endif
+    s.sheenColor = p.sheenColor;
+    s.sheenR = p.sheenRoughness;
+    s.sheen = max(s.sheenColor.x, max(s.sheenColor.y, s.sheenColor.z)) > 0.0f;
+    s.EsheenO = s.sheen ? Host_TableSheenE(NoV, s.sheenR) : 0.0f;
+    return s;
+}
+
+RTPBR_NAMESPACE_END
+
+#endif // RTPBR_SURFACE_H
