@@ -26,7 +26,7 @@
 #include "rtpbr_common/image.hpp"
 #include "rtpbr_common/image_read.hpp"
 
-#include "flip.h"
+#include "rtpbr_common/flip.hpp"
 #include "rtpbr/rtpbr.h"
 
 namespace {

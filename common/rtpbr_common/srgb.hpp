@@ -1,5 +1,5 @@
 // IEC 61966-2-1 sRGB transfer functions (header-only): the image reader decodes integer
-// formats with them, and the FLIP library (tools/imgdiff/flip.h) offers them to its callers.
+// formats with them, and the FLIP library (rtpbr_common/flip.hpp) offers them to its callers.
 #pragma once
 
 #include <cmath>

@@ -1,7 +1,7 @@
 // The live HDR-FLIP (see flip_live.h): one worker thread, one job at a time.
 #include "flip_live.h"
 
-#include "flip.h"
+#include "rtpbr_common/flip.hpp"
 #include "rtpbr_common/colormap.hpp"
 #include "rtpbr_common/image.hpp"
 #include "rtpbr_common/image_read.hpp"

@@ -1,4 +1,4 @@
-// The live HDR-FLIP of the viewer's image against a reference (tools/imgdiff's FLIP code, the
+// The live HDR-FLIP of the viewer's image against a reference (common/'s FLIP code, the
 // same computation as `rtpbr-diff --hdr`), evaluated on a background thread so the window
 // stays interactive, plus the error map as a heat-map overlay.
 #ifndef RTPBR_VIEWER_FLIP_LIVE_H

@@ -371,6 +371,19 @@ static inline void texture_scene_transform(const texture_scene *s, const double 
     out[1] = -n * su + c * sv + s->offset[1];
 }
 
+// The 4 x 4 RGBA texture of the transform tests: 16 distinct colours, each channel one of 0,
+// 128, 255 (the base-3 digits of the texel's index), opaque.
+static inline void texture_scene_distinct_texels(uint8_t texels[64])
+{
+    static const uint8_t levels[3] = {0, 128, 255};
+    for (int i = 0; i < 16; ++i) {
+        texels[4 * i] = levels[i % 3];
+        texels[4 * i + 1] = levels[i / 3 % 3];
+        texels[4 * i + 2] = levels[i / 9 % 3];
+        texels[4 * i + 3] = 255;
+    }
+}
+
 // sRGB 8-bit to linear (IEC 61966-2-1), for expected base colours.
 static inline double texture_scene_srgb_to_linear(uint8_t v)
 {

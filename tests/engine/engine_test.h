@@ -10,6 +10,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -83,6 +84,39 @@ static inline rtpbr_context *test_context(test_log *log)
     return ctx;
 }
 
+// Teardown of a test's context: destroyed, and not one validation message in its life.
+static inline void test_context_done(rtpbr_context *ctx, const test_log *log)
+{
+    rtpbr_context_destroy(ctx);
+    assert_int_equal(log->validation, 0);
+}
+
+// rtpbr_gpu_scene_create and rtpbr_renderer_create, which must succeed.
+static inline rtpbr_gpu_scene *test_scene(rtpbr_context *ctx, const rtpbr_gpu_scene_desc *desc)
+{
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_create(ctx, desc, &scene), RTPBR_SUCCESS);
+    return scene;
+}
+static inline rtpbr_renderer *test_renderer(rtpbr_context *ctx, const rtpbr_renderer_desc *desc)
+{
+    rtpbr_renderer *r = NULL;
+    assert_int_equal(rtpbr_renderer_create(ctx, desc, &r), RTPBR_SUCCESS);
+    return r;
+}
+
+// rtpbr_render, which must succeed, and its radiance read back into a new w x h RGBA buffer
+// (the caller frees it).
+static inline float *test_render_radiance(rtpbr_renderer *r, const rtpbr_gpu_scene *scene,
+                                          const rtpbr_render_desc *desc, int w, int h)
+{
+    assert_int_equal(rtpbr_render(r, scene, desc), RTPBR_SUCCESS);
+    float *px = malloc((size_t)w * h * 16);
+    assert_non_null(px);
+    assert_int_equal(test_read_radiance(r, px, (size_t)w * h * 16), RTPBR_SUCCESS);
+    return px;
+}
+
 // The square [-h, h]^2 in the plane z = z0, facing +Z (counter-clockwise seen from +Z).
 static inline void square_positions(float h, float z0, float out[12])
 {
@@ -90,6 +124,27 @@ static inline void square_positions(float h, float z0, float out[12])
     memcpy(out, p, sizeof p);
 }
 static const uint32_t square_indices[6] = {0, 1, 2, 0, 2, 3};
+// That square as a mesh (two triangles, material 0); its positions are written to `positions`.
+static inline rtpbr_mesh_desc test_square_mesh(float h, float z0, float positions[12])
+{
+    square_positions(h, z0, positions);
+    return (rtpbr_mesh_desc){.positions = positions, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+}
+
+// A Lambertian material of albedo 0.8 (exact in 8 bits: 204 / 255) and no specular lobe.
+static const rtpbr_material_desc test_lambert_material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f,
+                                                          .specular = -1.0f};
+
+// A scene of one mesh, one material, `light_count` lights and one camera.
+static inline rtpbr_gpu_scene *test_mesh_scene(rtpbr_context *ctx, const rtpbr_mesh_desc *mesh,
+                                               const rtpbr_material_desc *material, const rtpbr_light_desc *lights,
+                                               uint32_t light_count, const rtpbr_camera_desc *camera)
+{
+    return test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = mesh, .mesh_count = 1,
+                                                   .materials = material, .material_count = 1,
+                                                   .lights = lights, .light_count = light_count,
+                                                   .cameras = camera, .camera_count = 1});
+}
 
 // Narkowicz 2015 ACES fit, and the sRGB encoding, written here independently of the shader.
 static inline double test_aces(double x)
@@ -144,6 +199,49 @@ static inline bool test_plane_point(const rtpbr_camera_desc *camera, int x, int 
     p[1] = camera->position[1] + hit * d[1];
     p[2] = 0.0;
     return hit > 0.0;
+}
+
+// The scene of lambertian_plane (test_engine_lambert.c) and mc_lambertian_plane
+// (test_engine_mc.c): the plane z = 0, [-4, 4]^2, of test_lambert_material, under a tilted quad
+// facing down, a two-sided triangle showing its back to the plane, and a one-sided hexagon
+// facing away from the plane (it must add nothing), seen from above at an angle.
+typedef struct test_lambert_scene {
+    float plane[12];
+    rtpbr_mesh_desc mesh;
+    rtpbr_light_desc lights[3];
+    rtpbr_camera_desc camera;
+} test_lambert_scene;
+
+static inline rtpbr_gpu_scene *test_lambert_scene_create(rtpbr_context *ctx, test_lambert_scene *s)
+{
+    s->mesh = test_square_mesh(4.0f, 0.0f, s->plane);
+    const rtpbr_light_desc lights[3] = {
+        {.vertices = {{-1.0f, -0.5f, 1.2f}, {-1.0f, 0.7f, 1.5f}, {0.6f, 0.7f, 1.5f}, {0.6f, -0.5f, 1.2f}},
+         .vertex_count = 4, .emission = {3.0f, 2.0f, 1.0f}},
+        {.vertices = {{1.0f, -1.0f, 0.8f}, {2.0f, -0.5f, 0.9f}, {1.2f, 0.2f, 1.0f}}, .vertex_count = 3,
+         .emission = {0.5f, 1.0f, 4.0f}, .two_sided = 1},
+        {.vertex_count = 6, .emission = {100.0f, 100.0f, 100.0f}},
+    };
+    memcpy(s->lights, lights, sizeof lights);
+    for (int k = 0; k < 6; ++k) { // counter-clockwise seen from +Z: faces up, away from the plane
+        s->lights[2].vertices[k][0] = -1.5f + 0.6f * (float)cos(k * 3.14159265358979323846 / 3.0);
+        s->lights[2].vertices[k][1] = 1.5f + 0.6f * (float)sin(k * 3.14159265358979323846 / 3.0);
+        s->lights[2].vertices[k][2] = 1.0f;
+    }
+    // Orientation of the triangle as given: (v1 - v0) x (v2 - v0) has z > 0, so it faces up.
+    s->camera = (rtpbr_camera_desc){.position = {0.3f, -0.2f, 3.0f}, .target = {0.2f, 0.0f, 0.0f}, .yfov = 1.2f,
+                                    .znear = 0.1f, .zfar = 100.0f};
+    return test_mesh_scene(ctx, &s->mesh, &test_lambert_material, s->lights, 3, &s->camera);
+}
+
+// The radiance of that scene's plane at its point p, by Lambert's formula: 0.8 times the
+// irradiance of the quad and of the triangle (the hexagon faces away).
+static inline void test_lambert_scene_radiance(const test_lambert_scene *s, const double p[3], double out[3])
+{
+    const double n[3] = {0.0, 0.0, 1.0};
+    double ff0 = test_form_factor(p, n, s->lights[0].vertices, 4);
+    double ff1 = test_form_factor(p, n, s->lights[1].vertices, 3);
+    for (int c = 0; c < 3; ++c) out[c] = 0.8 * (s->lights[0].emission[c] * ff0 + s->lights[1].emission[c] * ff1);
 }
 
 #endif

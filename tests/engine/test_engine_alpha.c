@@ -43,8 +43,7 @@ static void render_file(scene_writer write, const void *user, uint32_t supersamp
     assert_int_equal(test_read_radiance(renderer, out->px, sizeof out->px), RTPBR_SUCCESS);
     rtpbr_renderer_destroy(renderer);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 static int write_texture_scene(const void *user, const char *path)

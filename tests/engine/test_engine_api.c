@@ -45,8 +45,7 @@ static void from_loaded_null_arrays(void **state)
         assert_true(log.errors > errors);
         assert_non_null(strstr(log.last_error, "is NULL"));
     }
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 typedef struct warn_log {
@@ -121,8 +120,7 @@ static void read_radiance_before_render(void **state)
     (void)state;
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 4, .height = 4}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 4, .height = 4});
     float radiance[4 * 4 * 4];
     uint8_t display[4 * 4 * 4];
     int errors = log.errors;
@@ -130,16 +128,14 @@ static void read_radiance_before_render(void **state)
     assert_int_equal(log.errors, errors + 1);
     assert_int_equal(rtpbr_read_display(r, display, sizeof display), RTPBR_ERROR_INVALID_ARGUMENT);
     assert_int_equal(log.errors, errors + 2);
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx, &(rtpbr_gpu_scene_desc){0}, &scene), RTPBR_SUCCESS);
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){0});
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.background = {1, 2, 3}}), RTPBR_SUCCESS);
     assert_int_equal(test_read_radiance(r, radiance, sizeof radiance), RTPBR_SUCCESS);
     assert_float_equal(radiance[2], 3.0f, 0.0f);
     assert_int_equal(test_read_display(r, display, sizeof display), RTPBR_SUCCESS);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // A node scaled by 0 and a visible instance of the same triangle.

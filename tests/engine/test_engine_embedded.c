@@ -76,17 +76,11 @@ static void embedded_render_leaves_host_untouched(void **state)
     assert_ptr_equal(used.device, h.device);
     assert_ptr_equal(used.queue, h.queue);
     float positions[12];
-    square_positions(1.0f, 0.0f, positions);
     rtpbr_material_desc material = {.emission = {0.25f, 4.0f, 1.0f}};
-    rtpbr_mesh_desc mesh = {.positions = positions, .indices = square_indices, .vertex_count = 4, .index_count = 6};
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                    .materials = &material, .material_count = 1},
-                                            &scene),
-                     RTPBR_SUCCESS);
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 16, .height = 16}, &r), RTPBR_SUCCESS);
+    rtpbr_mesh_desc mesh = test_square_mesh(1.0f, 0.0f, positions);
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                     .materials = &material, .material_count = 1});
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 16, .height = 16});
     for (int i = 0; i < 3; ++i) assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     float px[16 * 16 * 4];
     assert_int_equal(test_read_radiance(r, px, sizeof px), RTPBR_SUCCESS);

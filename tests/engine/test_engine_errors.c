@@ -187,11 +187,8 @@ static void bad_materials(void **state)
     bad[4].model = RTPBR_MATERIAL_DISNEY;
     bad[4].disney.sheen_tint = NAN;
     bad[5].sheen_roughness = -INFINITY;
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                          .materials = &good, .material_count = 1},
-                                            &scene),
-                     RTPBR_SUCCESS);
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                     .materials = &good, .material_count = 1});
     rtpbr_gpu_scene_destroy(scene);
     for (int i = 0; i < 6; ++i) {
         scene = NULL;
@@ -245,9 +242,7 @@ static void bad_lights(void **state)
     assert_int_equal(try_lights(ctx, NULL, 3), RTPBR_ERROR_INVALID_ARGUMENT);
 
     // set_lights validates the same way and leaves the scene unchanged on failure.
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx, &(rtpbr_gpu_scene_desc){.lights = many, .light_count = 2}, &scene),
-                     RTPBR_SUCCESS);
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.lights = many, .light_count = 2});
     assert_int_equal(rtpbr_gpu_scene_light_count(scene), 2);
     assert_int_equal(rtpbr_gpu_scene_set_lights(scene, many, RTPBR_MAX_LIGHTS + 1), RTPBR_ERROR_LIMIT_EXCEEDED);
     l = good_light;
@@ -263,11 +258,9 @@ static void bad_lights(void **state)
 static void bad_render_arguments(void **state)
 {
     rtpbr_context *ctx = CTX;
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx, &(rtpbr_gpu_scene_desc){0}, &scene), RTPBR_SUCCESS);
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){0});
     assert_int_equal(rtpbr_gpu_scene_camera_count(scene), 1); // the default camera
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 8, .height = 8}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 8, .height = 8});
     assert_int_equal(rtpbr_render(r, NULL, &(rtpbr_render_desc){0}), RTPBR_ERROR_INVALID_ARGUMENT);
     assert_int_equal(rtpbr_render(r, scene, NULL), RTPBR_ERROR_INVALID_ARGUMENT);
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.camera_index = 1}), RTPBR_ERROR_INVALID_ARGUMENT);

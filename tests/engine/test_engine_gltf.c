@@ -24,8 +24,7 @@ static void polygon_lights_scene(void **state)
     assert_int_equal(rtpbr_gpu_scene_light_count(scene), 3);
     assert_int_equal(rtpbr_gpu_scene_camera_count(scene), 1);
     enum { W = 320, H = 240 };
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     float *px = malloc(W * H * 16);
     assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
@@ -47,8 +46,7 @@ static void polygon_lights_scene(void **state)
     free(px);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
     assert_int_equal(log.errors, 0);
 }
 
@@ -64,8 +62,7 @@ static void one_sided_light_from_behind(void **state)
     rtpbr_gpu_scene *scene = NULL;
     assert_int_equal(rtpbr_gpu_scene_load_gltf(ctx, scene_path("quad_light.gltf"), &scene), RTPBR_SUCCESS);
     enum { W = 320, H = 240 };
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     float *px = malloc(W * H * 16);
     assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
@@ -76,8 +73,7 @@ static void one_sided_light_from_behind(void **state)
     free(px);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // Every bundled scene loads and renders at a small size without a validation message.
@@ -87,8 +83,7 @@ static void every_bundled_scene(void **state)
     const char *names[] = {"quad_light.gltf", "polygon_lights.gltf", "disney_grid.gltf", "furnace.gltf", "room.gltf"};
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 64, .height = 48}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 64, .height = 48});
     for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
         rtpbr_gpu_scene *scene = NULL;
         rtpbr_result result = rtpbr_gpu_scene_load_gltf(ctx, scene_path(names[i]), &scene);
@@ -99,8 +94,7 @@ static void every_bundled_scene(void **state)
         rtpbr_gpu_scene_destroy(scene);
     }
     rtpbr_renderer_destroy(r);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 int main(int argc, char **argv)

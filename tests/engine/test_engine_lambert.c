@@ -12,61 +12,29 @@ static void lambertian_plane(void **state)
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
 
-    // The plane z = 0, [-4, 4]^2, albedo 0.8 (exact in 8 bits: 204 / 255), no specular lobe.
-    float plane[12];
-    square_positions(4.0f, 0.0f, plane);
-    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f};
-    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
-    // A tilted quad facing down, a two-sided triangle showing its back to the plane, and a
-    // one-sided hexagon facing away from the plane (it must add nothing).
-    rtpbr_light_desc lights[3] = {
-        {.vertices = {{-1.0f, -0.5f, 1.2f}, {-1.0f, 0.7f, 1.5f}, {0.6f, 0.7f, 1.5f}, {0.6f, -0.5f, 1.2f}},
-         .vertex_count = 4, .emission = {3.0f, 2.0f, 1.0f}},
-        {.vertices = {{1.0f, -1.0f, 0.8f}, {2.0f, -0.5f, 0.9f}, {1.2f, 0.2f, 1.0f}}, .vertex_count = 3,
-         .emission = {0.5f, 1.0f, 4.0f}, .two_sided = 1},
-        {.vertex_count = 6, .emission = {100.0f, 100.0f, 100.0f}},
-    };
-    for (int k = 0; k < 6; ++k) { // counter-clockwise seen from +Z: faces up, away from the plane
-        lights[2].vertices[k][0] = -1.5f + 0.6f * (float)cos(k * M_PI / 3.0);
-        lights[2].vertices[k][1] = 1.5f + 0.6f * (float)sin(k * M_PI / 3.0);
-        lights[2].vertices[k][2] = 1.0f;
-    }
-    // Orientation of the triangle as given: (v1 - v0) x (v2 - v0) has z > 0, so it faces up.
-    rtpbr_camera_desc camera = {.position = {0.3f, -0.2f, 3.0f}, .target = {0.2f, 0.0f, 0.0f}, .yfov = 1.2f,
-                                .znear = 0.1f, .zfar = 100.0f};
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                    .materials = &material, .material_count = 1,
-                                                                    .lights = lights, .light_count = 3,
-                                                                    .cameras = &camera, .camera_count = 1},
-                                            &scene),
-                     RTPBR_SUCCESS);
+    // The plane z = 0, [-4, 4]^2, albedo 0.8, no specular lobe, under a tilted quad facing down,
+    // a two-sided triangle showing its back to the plane, and a one-sided hexagon facing away
+    // from the plane (it must add nothing).
+    test_lambert_scene ls;
+    rtpbr_gpu_scene *scene = test_lambert_scene_create(ctx, &ls);
     enum { W = 120, H = 90 };
     // Supersampled, a pixel is the mean of 2 x 2 shading points around its centre: on this
     // smooth irradiance the same as its centre's within the 1% bound.
     for (uint32_t ss = 1; ss <= 2; ++ss)
     for (int ms = RTPBR_MULTISCATTER_ON; ms <= RTPBR_MULTISCATTER_OFF; ++ms) {
-        rtpbr_renderer *r = NULL;
-        assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H, .supersample = ss}, &r),
-                         RTPBR_SUCCESS);
-        assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.multiscatter = (rtpbr_multiscatter)ms}),
-                         RTPBR_SUCCESS);
-        float *px = malloc(W * H * 16);
-        assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
-
-        const double n[3] = {0.0, 0.0, 1.0};
+        rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H, .supersample = ss});
+        float *px = test_render_radiance(r, scene, &(rtpbr_render_desc){.multiscatter = (rtpbr_multiscatter)ms}, W, H);
         int checked = 0;
         double worst = 0.0;
         for (int y = 0; y < H; ++y)
             for (int x = 0; x < W; ++x) {
                 double p[3]; // the pixel's point of the plane (the documented pinhole camera)
-                if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
-                double ff0 = test_form_factor(p, n, lights[0].vertices, 4);
-                double ff1 = test_form_factor(p, n, lights[1].vertices, 3);
+                if (!test_plane_point(&ls.camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
+                double lambert[3];
+                test_lambert_scene_radiance(&ls, p, lambert);
                 const float *got = px + 4 * (y * W + x);
                 for (int c = 0; c < 3; ++c) {
-                    double expect = 0.8 * (lights[0].emission[c] * ff0 + lights[1].emission[c] * ff1);
+                    double expect = lambert[c];
                     double rel = fabs(got[c] - expect) / expect;
                     if (rel > worst) worst = rel;
                     if (rel > 0.01)
@@ -82,8 +50,7 @@ static void lambertian_plane(void **state)
         rtpbr_renderer_destroy(r);
     }
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // A constant normal texture tilts the shading normal: the plane then matches Lambert's formula
@@ -108,18 +75,13 @@ static void normal_mapped_plane(void **state)
                               .vertex_count = 4, .emission = {3.0f, 2.0f, 1.0f}};
     rtpbr_camera_desc camera = {.position = {0.0f, 0.0f, 3.0f}, .target = {0.0f, 0.0f, 0.0f}, .yfov = 1.2f,
                                 .znear = 0.1f, .zfar = 100.0f};
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                    .materials = &material, .material_count = 1,
-                                                                    .lights = &light, .light_count = 1,
-                                                                    .cameras = &camera, .camera_count = 1,
-                                                                    .textures = &texture, .texture_count = 1},
-                                            &scene),
-                     RTPBR_SUCCESS);
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                     .materials = &material, .material_count = 1,
+                                                                     .lights = &light, .light_count = 1,
+                                                                     .cameras = &camera, .camera_count = 1,
+                                                                     .textures = &texture, .texture_count = 1});
     enum { W = 80, H = 60 };
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     float *px = malloc(W * H * 16);
     assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
@@ -154,8 +116,7 @@ static void normal_mapped_plane(void **state)
     free(px);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // Per-tile culling keeps its documented bound: on a Lambertian plane (albedo 0.8) the image
@@ -167,9 +128,8 @@ static void culling_bound(void **state)
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     float plane[12];
-    square_positions(30.0f, 0.0f, plane);
-    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f};
-    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    rtpbr_material_desc material = test_lambert_material;
+    rtpbr_mesh_desc mesh = test_square_mesh(30.0f, 0.0f, plane);
     enum { N = 256 };
     rtpbr_light_desc *lights = calloc(N, sizeof *lights);
     double emission_sum = 0.0;
@@ -188,17 +148,9 @@ static void culling_bound(void **state)
         emission_sum += lights[i].emission[0];
     }
     rtpbr_camera_desc camera = {.position = {0.0f, -12.0f, 14.0f}, .yfov = 1.0f, .znear = 0.1f, .zfar = 200.0f};
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                    .materials = &material, .material_count = 1,
-                                                                    .lights = lights, .light_count = N,
-                                                                    .cameras = &camera, .camera_count = 1},
-                                            &scene),
-                     RTPBR_SUCCESS);
+    rtpbr_gpu_scene *scene = test_mesh_scene(ctx, &mesh, &material, lights, N, &camera);
     enum { W = 96, H = 64 };
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     float *culled = malloc(W * H * 16), *full = malloc(W * H * 16);
     const float threshold = 1e-3f;
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.light_cull_form_factor = threshold}), RTPBR_SUCCESS);
@@ -251,8 +203,7 @@ static void culling_bound(void **state)
     free(lights);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // Supersampling resolves coverage: a square seen straight on, its edges off the pixel grid.
@@ -266,26 +217,19 @@ static void supersampled_coverage(void **state)
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     float square[12];
-    square_positions(0.37f, 0.0f, square);
     rtpbr_material_desc material = {.base_color = {0.5f, 0.5f, 0.5f}, .roughness = 1.0f, .specular = -1.0f};
-    rtpbr_mesh_desc mesh = {.positions = square, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    rtpbr_mesh_desc mesh = test_square_mesh(0.37f, 0.0f, square);
     // An orthographic-like view: far away with a narrow field, the square 0.74 m wide.
     rtpbr_camera_desc camera = {.position = {0.013f, 0.021f, 100.0f}, .target = {0.013f, 0.021f, 0.0f},
                                 .yfov = 0.01f, .znear = 50.0f, .zfar = 200.0f};
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                    .materials = &material, .material_count = 1,
-                                                                    .cameras = &camera, .camera_count = 1},
-                                            &scene),
-                     RTPBR_SUCCESS);
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                     .materials = &material, .material_count = 1,
+                                                                     .cameras = &camera, .camera_count = 1});
     enum { W = 64, H = 64 };
     double pixel = 2.0 * 100.0 * tan(0.005) / H; // metres per pixel
     double area_px = (0.74 / pixel) * (0.74 / pixel);
     for (uint32_t ss = 1; ss <= 2; ++ss) {
-        rtpbr_renderer *r = NULL;
-        assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H, .supersample = ss}, &r),
-                         RTPBR_SUCCESS);
+        rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H, .supersample = ss});
         assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
         float *px = malloc(W * H * 16);
         assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
@@ -315,8 +259,7 @@ static void supersampled_coverage(void **state)
                      RTPBR_ERROR_LIMIT_EXCEEDED);
     assert_null(bad);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 int main(void)

@@ -50,8 +50,7 @@ static void render_centre(rtpbr_context *ctx, test_log *log, const rtpbr_materia
                           const rtpbr_light_desc *lights, uint32_t light_count, view v, float out[3])
 {
     float plane[12];
-    square_positions(20.0f, 0.0f, plane);
-    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    rtpbr_mesh_desc mesh = test_square_mesh(20.0f, 0.0f, plane);
     rtpbr_camera_desc camera = {.position = {0.0f, -v.height * tanf(v.theta), v.height},
                                 .target = {0.0f, 0.0f, 0.0f}, .yfov = 0.02f, .znear = 0.01f, .zfar = 50.0f};
     rtpbr_gpu_scene *scene = NULL;
@@ -64,8 +63,7 @@ static void render_centre(rtpbr_context *ctx, test_log *log, const rtpbr_materia
     if (res != RTPBR_SUCCESS) fprintf(stderr, "scene: %s\n", log->last_error);
     assert_int_equal(res, RTPBR_SUCCESS);
     enum { W = 16, H = 16 };
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     // Culling off: the test lights are meant to be seen whatever their size.
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.light_cull_form_factor = -1.0f}), RTPBR_SUCCESS);
     float px[W * H * 4];
@@ -125,8 +123,7 @@ static void disney_diffuse_albedo(void **state)
     assert_true(worst < 0.005);
     // The cases must tell Burley's diffuse from Lambert's (albedo 1).
     assert_true(farthest_from_lambert > 0.1);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 static void layered_dielectric_energy(void **state)
@@ -155,8 +152,7 @@ static void layered_dielectric_energy(void **state)
     // tables' own error (<= 0.4%, kulla_conty.md). Measured: 0.2% at 0.5 rad, 1.3% at 1.2 rad.
     // An additive model reads >= 1.04 here.
     assert_true(worst < 0.02);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 static void clearcoat_layer(void **state)
@@ -170,7 +166,7 @@ static void clearcoat_layer(void **state)
         .vertex_count = 4, .emission = {2.0f, 2.0f, 2.0f}};
     view v = {0.8f, 1.0f};
     double NoV = cos(0.8);
-    rtpbr_material_desc lambert = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f};
+    rtpbr_material_desc lambert = test_lambert_material;
     rtpbr_material_desc coated = lambert;
     coated.clearcoat = 1.0f;
     coated.clearcoat_roughness = 0.3f;
@@ -192,8 +188,7 @@ static void clearcoat_layer(void **state)
     // Same single-scattering lobe; the multiple-scattering colours differ by F_avg of Schlick
     // against the exact dielectric (a fraction of a per cent of the lobe).
     assert_true(fabs(coat[1] - spec[1]) < 0.01 * spec[1]);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // KHR_materials_ior's ior 0 (RTPBR_IOR_FRESNEL_ONE: infinite IOR, Fresnel 1 at every angle):
@@ -231,8 +226,7 @@ static void ior_fresnel_one(void **state)
                                             &scene),
                      RTPBR_ERROR_INVALID_ARGUMENT);
     assert_non_null(strstr(log.last_error, "ior"));
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // KHR sheen over a black base under the near-hemisphere light reads the lobe's directional
@@ -281,8 +275,7 @@ static void sheen_albedo_check(void **state)
                    (double)angles[j], got[0], albedo * ff);
         }
     assert_true(worst < 0.02);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 int main(void)

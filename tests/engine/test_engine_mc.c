@@ -20,90 +20,34 @@
 
 #include "engine_test.h"
 
-
-
-static float *render_radiance(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc,
-                              int w, int h)
-{
-    assert_int_equal(rtpbr_render(r, scene, desc), RTPBR_SUCCESS);
-    float *px = malloc((size_t)w * h * 16);
-    assert_non_null(px);
-    assert_int_equal(test_read_radiance(r, px, (size_t)w * h * 16), RTPBR_SUCCESS);
-    return px;
-}
-
-// A scene of one mesh, one material, one light and one camera.
-static rtpbr_gpu_scene *one_light_scene(rtpbr_context *ctx, const rtpbr_mesh_desc *mesh,
-                                        const rtpbr_material_desc *material, const rtpbr_light_desc *light,
-                                        const rtpbr_camera_desc *camera)
-{
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                            &(rtpbr_gpu_scene_desc){.meshes = mesh, .mesh_count = 1,
-                                                                    .materials = material, .material_count = 1,
-                                                                    .lights = light, .light_count = 1,
-                                                                    .cameras = camera, .camera_count = 1},
-                                            &scene),
-                     RTPBR_SUCCESS);
-    return scene;
-}
-
-// The scene of test_engine_lambert.c: the plane z = 0, [-4, 4]^2, albedo 0.8, no specular
-// lobe, under a tilted quad facing down, a two-sided triangle showing its back to the plane,
-// and a one-sided hexagon facing away from the plane (it must add nothing).
+// The scene of test_engine_lambert.c (test_lambert_scene).
 static void mc_lambertian_plane(void **state)
 {
     (void)state;
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
-    float plane[12];
-    square_positions(4.0f, 0.0f, plane);
-    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f};
-    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
-    rtpbr_light_desc lights[3] = {
-        {.vertices = {{-1.0f, -0.5f, 1.2f}, {-1.0f, 0.7f, 1.5f}, {0.6f, 0.7f, 1.5f}, {0.6f, -0.5f, 1.2f}},
-         .vertex_count = 4, .emission = {3.0f, 2.0f, 1.0f}},
-        {.vertices = {{1.0f, -1.0f, 0.8f}, {2.0f, -0.5f, 0.9f}, {1.2f, 0.2f, 1.0f}}, .vertex_count = 3,
-         .emission = {0.5f, 1.0f, 4.0f}, .two_sided = 1},
-        {.vertex_count = 6, .emission = {100.0f, 100.0f, 100.0f}},
-    };
-    for (int k = 0; k < 6; ++k) {
-        lights[2].vertices[k][0] = -1.5f + 0.6f * (float)cos(k * M_PI / 3.0);
-        lights[2].vertices[k][1] = 1.5f + 0.6f * (float)sin(k * M_PI / 3.0);
-        lights[2].vertices[k][2] = 1.0f;
-    }
-    rtpbr_camera_desc camera = {.position = {0.3f, -0.2f, 3.0f}, .target = {0.2f, 0.0f, 0.0f}, .yfov = 1.2f,
-                                .znear = 0.1f, .zfar = 100.0f};
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                    .materials = &material, .material_count = 1,
-                                                                    .lights = lights, .light_count = 3,
-                                                                    .cameras = &camera, .camera_count = 1},
-                                            &scene),
-                     RTPBR_SUCCESS);
+    test_lambert_scene ls;
+    rtpbr_gpu_scene *scene = test_lambert_scene_create(ctx, &ls);
     enum { W = 120, H = 90, SAMPLES = 256 };
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
-    float *a = render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = SAMPLES, .mc_seed = 1}, W, H);
-    float *b = render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = SAMPLES, .mc_seed = 2}, W, H);
-    float *a2 = render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = SAMPLES, .mc_seed = 1}, W, H);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
+    float *a = test_render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = SAMPLES, .mc_seed = 1}, W, H);
+    float *b = test_render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = SAMPLES, .mc_seed = 2}, W, H);
+    float *a2 = test_render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = SAMPLES, .mc_seed = 1}, W, H);
     assert_memory_equal(a, a2, (size_t)W * H * 16); // a seed gives one image
 
     // Per pixel: e = (a - exact) / exact on the sum of the channels (the pixels' samples are
     // independent, so the e are independent).
-    const double n[3] = {0.0, 0.0, 1.0};
     double sum_e = 0.0, sum_e2 = 0.0, sum_d2 = 0.0, worst = 0.0;
     int count = 0, differ = 0;
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             double p[3];
-            if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
-            double ff0 = test_form_factor(p, n, lights[0].vertices, 4);
-            double ff1 = test_form_factor(p, n, lights[1].vertices, 3);
+            if (!test_plane_point(&ls.camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
+            double lambert[3];
+            test_lambert_scene_radiance(&ls, p, lambert);
             double exact = 0.0, got = 0.0, other = 0.0;
             for (int c = 0; c < 3; ++c) {
-                exact += 0.8 * (lights[0].emission[c] * ff0 + lights[1].emission[c] * ff1);
+                exact += lambert[c];
                 got += a[4 * (y * W + x) + c];
                 other += b[4 * (y * W + x) + c];
             }
@@ -133,8 +77,7 @@ static void mc_lambertian_plane(void **state)
     free(b);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // Glossy planes under a square light, seen at about 40 degrees: the mean over the image of
@@ -149,8 +92,7 @@ static void mc_glossy_mean(void **state)
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     float plane[12];
-    square_positions(4.0f, 0.0f, plane);
-    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
     rtpbr_light_desc light = {.vertices = {{-0.6f, 0.2f, 1.5f}, {-0.6f, 1.2f, 1.5f}, {0.6f, 1.2f, 1.5f}, {0.6f, 0.2f, 1.5f}},
                               .vertex_count = 4, .emission = {4.0f, 4.0f, 4.0f}};
     rtpbr_camera_desc camera = {.position = {0.0f, -2.2f, 2.0f}, .target = {0.0f, 0.2f, 0.0f}, .yfov = 0.9f,
@@ -187,18 +129,17 @@ static void mc_glossy_mean(void **state)
         {"Disney", disney, 0.0f, RTPBR_NDF_GGX_MODEL, RTPBR_MULTISCATTER_ON, 0.0461f + 0.032f},
     };
     enum { W = 96, H = 72, SAMPLES = 256 };
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         rtpbr_material_desc material = cases[i].material;
         if (cases[i].roughness > 0.0f) material.roughness = cases[i].roughness;
-        rtpbr_gpu_scene *scene = one_light_scene(ctx, &mesh, &material, &light, &camera);
+        rtpbr_gpu_scene *scene = test_mesh_scene(ctx, &mesh, &material, &light, 1, &camera);
         rtpbr_render_desc desc = {.ndf = cases[i].ndf, .multiscatter = cases[i].ms,
                                   .light_cull_form_factor = -1.0f};
-        float *ltc = render_radiance(r, scene, &desc, W, H);
+        float *ltc = test_render_radiance(r, scene, &desc, W, H);
         desc.mc_samples = SAMPLES;
         desc.mc_seed = 7;
-        float *mc = render_radiance(r, scene, &desc, W, H);
+        float *mc = test_render_radiance(r, scene, &desc, W, H);
         for (int c = 0; c < 3; ++c) {
             double sum_ltc = 0.0, sum_mc = 0.0;
             for (int p = 0; p < W * H; ++p) {
@@ -218,8 +159,7 @@ static void mc_glossy_mean(void **state)
         rtpbr_gpu_scene_destroy(scene);
     }
     rtpbr_renderer_destroy(r);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // Errors: more samples than the documented limit are refused, and the renderer still works.
@@ -234,17 +174,14 @@ static void floor_ltc_and_mc(const rtpbr_light_desc *light, const rtpbr_camera_d
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     float plane[12];
-    square_positions(4.0f, 0.0f, plane);
-    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = FLOOR_W, .height = FLOOR_H}, &r),
-                     RTPBR_SUCCESS);
-    rtpbr_gpu_scene *scene = one_light_scene(ctx, &mesh, material, light, camera);
+    rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = FLOOR_W, .height = FLOOR_H});
+    rtpbr_gpu_scene *scene = test_mesh_scene(ctx, &mesh, material, light, 1, camera);
     rtpbr_render_desc desc = {.multiscatter = ms, .light_cull_form_factor = -1.0f};
-    *ltc = render_radiance(r, scene, &desc, FLOOR_W, FLOOR_H);
+    *ltc = test_render_radiance(r, scene, &desc, FLOOR_W, FLOOR_H);
     desc.mc_samples = FLOOR_SAMPLES;
     desc.mc_seed = seed;
-    *mc = render_radiance(r, scene, &desc, FLOOR_W, FLOOR_H);
+    *mc = test_render_radiance(r, scene, &desc, FLOOR_W, FLOOR_H);
     const char *dump = getenv("RTPBR_TEST_DUMP");
     if (dump) {
         FILE *f = fopen(dump, "wb");
@@ -256,8 +193,7 @@ static void floor_ltc_and_mc(const rtpbr_light_desc *light, const rtpbr_camera_d
     }
     rtpbr_gpu_scene_destroy(scene);
     rtpbr_renderer_destroy(r);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // The LTC pass's point correction (ltc.h, LTC_PointFactor; issue 19): a GGX copper floor seen
@@ -364,18 +300,15 @@ static void mc_limits(void **state)
     (void)state;
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx, &(rtpbr_gpu_scene_desc){0}, &scene), RTPBR_SUCCESS);
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 8, .height = 8}, &r), RTPBR_SUCCESS);
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){0});
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 8, .height = 8});
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.mc_samples = RTPBR_MAX_MC_SAMPLES + 1}),
                      RTPBR_ERROR_LIMIT_EXCEEDED);
     assert_true(log.errors > 0);
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.mc_samples = 1}), RTPBR_SUCCESS);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // The image means of the Lambertian plane z = 0 under `lights`: Lambert's closed form (albedo
@@ -420,8 +353,7 @@ static void mc_max_samples(void **state)
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     float plane[12];
-    square_positions(4.0f, 0.0f, plane);
-    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
     rtpbr_light_desc light = {.vertices = {{-0.6f, -0.5f, 1.2f}, {-0.6f, 0.7f, 1.5f}, {0.6f, 0.7f, 1.5f}, {0.6f, -0.5f, 1.2f}},
                               .vertex_count = 4, .emission = {3.0f, 2.0f, 1.0f}};
     rtpbr_camera_desc camera = {.position = {0.3f, -0.2f, 3.0f}, .target = {0.2f, 0.0f, 0.0f}, .yfov = 1.2f,
@@ -431,20 +363,12 @@ static void mc_max_samples(void **state)
         {.base_color = {0.2f, 0.5f, 0.8f}, .roughness = 0.4f, .ior = 1.5f},        // glossy: both strategies
     };
     enum { W = 24, H = 16 };
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     for (int m = 0; m < 2; ++m) {
-        rtpbr_gpu_scene *scene = NULL;
-        assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                                &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                        .materials = &materials[m], .material_count = 1,
-                                                                        .lights = &light, .light_count = 1,
-                                                                        .cameras = &camera, .camera_count = 1},
-                                                &scene),
-                         RTPBR_SUCCESS);
-        float *few = render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = 4096, .mc_seed = 3}, W, H);
-        float *many = render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = RTPBR_MAX_MC_SAMPLES, .mc_seed = 3},
-                                      W, H);
+        rtpbr_gpu_scene *scene = test_mesh_scene(ctx, &mesh, &materials[m], &light, 1, &camera);
+        float *few = test_render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = 4096, .mc_seed = 3}, W, H);
+        const rtpbr_render_desc most = {.mc_samples = RTPBR_MAX_MC_SAMPLES, .mc_seed = 3};
+        float *many = test_render_radiance(r, scene, &most, W, H);
         double mean_few = image_mean(few, W, H), mean_many = image_mean(many, W, H);
         double rel = (mean_many - mean_few) / mean_few;
         printf("quad light, %s plane: image mean at 4096 samples %.5f, at %u %.5f, relative %+.5f\n",
@@ -463,8 +387,7 @@ static void mc_max_samples(void **state)
         rtpbr_gpu_scene_destroy(scene);
     }
     rtpbr_renderer_destroy(r);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // 64 small octagons facing down over the Lambertian plane, 1024 samples: a few loop
@@ -477,9 +400,8 @@ static void mc_many_lights(void **state)
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     float plane[12];
-    square_positions(4.0f, 0.0f, plane);
-    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
-    const rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f};
+    rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
+    const rtpbr_material_desc material = test_lambert_material;
     enum { GRID = 8, LIGHTS = GRID * GRID };
     rtpbr_light_desc lights[LIGHTS];
     for (int i = 0; i < LIGHTS; ++i) {
@@ -493,26 +415,17 @@ static void mc_many_lights(void **state)
     }
     rtpbr_camera_desc camera = {.position = {0.0f, -0.5f, 5.0f}, .target = {0.0f, 0.0f, 0.0f}, .yfov = 1.2f,
                                 .znear = 0.1f, .zfar = 100.0f};
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                    .materials = &material, .material_count = 1,
-                                                                    .lights = lights, .light_count = LIGHTS,
-                                                                    .cameras = &camera, .camera_count = 1},
-                                            &scene),
-                     RTPBR_SUCCESS);
+    rtpbr_gpu_scene *scene = test_mesh_scene(ctx, &mesh, &material, lights, LIGHTS, &camera);
     enum { W = 32, H = 32 };
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
-    float *px = render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = 1024, .mc_seed = 5}, W, H);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
+    float *px = test_render_radiance(r, scene, &(rtpbr_render_desc){.mc_samples = 1024, .mc_seed = 5}, W, H);
     double e = lambert_mean_error(&camera, lights, LIGHTS, px, W, H);
     printf("%d octagonal lights, 1024 samples: image mean relative to the closed form %+.5f\n", LIGHTS, e);
     assert_true(fabs(e) < 0.01);
     free(px);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // The LTC pass under the same budget at its limits: RTPBR_MAX_LIGHTS identical octagons (the
@@ -525,8 +438,7 @@ static void ltc_max_lights(void **state)
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     float plane[12];
-    square_positions(4.0f, 0.0f, plane);
-    rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
     const rtpbr_material_desc materials[2] = {
         {.base_color = {0.8f, 0.3f, 0.2f}, .roughness = 0.5f, .clearcoat = 1.0f, .clearcoat_roughness = 0.3f,
          .sheen_color = {0.5f, 0.5f, 0.5f}, .sheen_roughness = 0.5f},
@@ -547,8 +459,7 @@ static void ltc_max_lights(void **state)
     rtpbr_camera_desc camera = {.position = {0.0f, -0.3f, 0.9f}, .target = {0.0f, 0.0f, 0.0f}, .yfov = 1.0f,
                                 .znear = 0.1f, .zfar = 100.0f};
     enum { W = 32, H = 32 };
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     for (int m = 0; m < 2; ++m) {
         float *px[2];
         for (int many = 0; many < 2; ++many) {
@@ -561,7 +472,7 @@ static void ltc_max_lights(void **state)
                                                          .cameras = &camera, .camera_count = 1},
                                  &scene),
                              RTPBR_SUCCESS);
-            px[many] = render_radiance(r, scene, &(rtpbr_render_desc){.light_cull_form_factor = -1.0f}, W, H);
+            px[many] = test_render_radiance(r, scene, &(rtpbr_render_desc){.light_cull_form_factor = -1.0f}, W, H);
             rtpbr_gpu_scene_destroy(scene);
         }
         double worst = 0.0, mean = 0.0;
@@ -581,8 +492,7 @@ static void ltc_max_lights(void **state)
         free(px[1]);
     }
     rtpbr_renderer_destroy(r);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 int main(void)

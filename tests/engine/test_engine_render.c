@@ -15,16 +15,14 @@ static void render_emissive_square(void **state)
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     float positions[12];
-    square_positions(1.0f, 0.0f, positions);
     rtpbr_material_desc material = {.emission = {2.0f, 1.0f, 0.5f}};
-    rtpbr_mesh_desc mesh = {.positions = positions, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    rtpbr_mesh_desc mesh = test_square_mesh(1.0f, 0.0f, positions);
     rtpbr_camera_desc camera = {.position = {0.0f, 0.0f, 3.0f}, .yfov = 0.6f};
     rtpbr_gpu_scene_desc sd = {.meshes = &mesh, .mesh_count = 1, .materials = &material, .material_count = 1,
                                .cameras = &camera, .camera_count = 1};
     rtpbr_gpu_scene *scene = NULL;
     assert_int_equal(rtpbr_gpu_scene_create(ctx, &sd, &scene), RTPBR_SUCCESS);
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     rtpbr_render_desc rd = {.background = {0.1f, 0.2f, 0.3f}, .exposure = -1.0f};
     assert_int_equal(rtpbr_render(r, scene, &rd), RTPBR_SUCCESS);
 
@@ -90,8 +88,7 @@ static void render_emissive_square(void **state)
     free(display);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
     assert_int_equal(log.errors, 0);
 }
 
@@ -109,14 +106,9 @@ static void depth_order(void **state)
         {.positions = near_square, .indices = square_indices, .vertex_count = 4, .index_count = 6, .material = 0},
         {.positions = far_square, .indices = square_indices, .vertex_count = 4, .index_count = 6, .material = 1},
     };
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                            &(rtpbr_gpu_scene_desc){.meshes = meshes, .mesh_count = 2,
-                                                                    .materials = materials, .material_count = 2},
-                                            &scene),
-                     RTPBR_SUCCESS);
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 32, .height = 32}, &r), RTPBR_SUCCESS);
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = meshes, .mesh_count = 2,
+                                                                     .materials = materials, .material_count = 2});
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 32, .height = 32});
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     float px[32 * 32 * 4];
     assert_int_equal(test_read_radiance(r, px, sizeof px), RTPBR_SUCCESS);
@@ -128,8 +120,7 @@ static void depth_order(void **state)
     assert_float_equal(corner[1], 1.0f, 0.0f);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // Emission is one-sided unless the material is double-sided; a single-sided surface seen from
@@ -141,8 +132,7 @@ static void emission_sides(void **state)
     rtpbr_context *ctx = test_context(&log);
     float positions[12];
     square_positions(1.0f, 0.0f, positions); // front faces +Z
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = 16, .height = 16}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 16, .height = 16});
     // In front; behind at a grazing angle (where depth reconstruction errors are largest).
     rtpbr_camera_desc cameras[2] = {{.position = {0, 0, 3}}, {.position = {0.0f, -3.0f, -1.0f}, .up = {0, 0, 1}}};
     for (int double_sided = 0; double_sided < 2; ++double_sided) {
@@ -153,14 +143,10 @@ static void emission_sides(void **state)
         // position reconstructed from depth must not land on its emitting side).
         rtpbr_light_desc light = {.vertex_count = 4, .emission = {1.5f, 1.5f, 1.5f}};
         memcpy(light.vertices, positions, sizeof positions);
-        rtpbr_gpu_scene *scene = NULL;
-        assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                                &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                        .materials = &material, .material_count = 1,
-                                                                        .lights = &light, .light_count = 1,
-                                                                        .cameras = cameras, .camera_count = 2},
-                                                &scene),
-                         RTPBR_SUCCESS);
+        rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                         .materials = &material, .material_count = 1,
+                                                                         .lights = &light, .light_count = 1,
+                                                                         .cameras = cameras, .camera_count = 2});
         for (uint32_t c = 0; c < 2; ++c) {
             assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.camera_index = c}), RTPBR_SUCCESS);
             float px[16 * 16 * 4];
@@ -176,8 +162,7 @@ static void emission_sides(void **state)
         rtpbr_gpu_scene_destroy(scene);
     }
     rtpbr_renderer_destroy(r);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // An sRGB emission texture on the square: at the centre of each quadrant (one colour each)
@@ -208,16 +193,11 @@ static void emission_texture(void **state)
     rtpbr_mesh_desc mesh = {.positions = positions, .texcoords = uv, .indices = square_indices, .vertex_count = 4,
                             .index_count = 6};
     rtpbr_camera_desc camera = {.position = {0.0f, 0.0f, 3.0f}, .yfov = 0.6f};
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                    .materials = &material, .material_count = 1,
-                                                                    .cameras = &camera, .camera_count = 1,
-                                                                    .textures = &texture, .texture_count = 1},
-                                            &scene),
-                     RTPBR_SUCCESS);
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                     .materials = &material, .material_count = 1,
+                                                                     .cameras = &camera, .camera_count = 1,
+                                                                     .textures = &texture, .texture_count = 1});
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     float *px = malloc(W * H * 16);
     assert_int_equal(test_read_radiance(r, px, W * H * 16), RTPBR_SUCCESS);
@@ -245,8 +225,7 @@ static void emission_texture(void **state)
     free(px);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 // A host allocator that counts the library's live blocks and bytes (a size header in front).
@@ -306,8 +285,7 @@ static void lifecycle(void **state)
     const long long context_bytes = counts.bytes;
     assert_true(context_blocks > 0); // the context itself comes from the allocator
     float positions[12];
-    square_positions(1.0f, 0.0f, positions);
-    rtpbr_mesh_desc mesh = {.positions = positions, .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    rtpbr_mesh_desc mesh = test_square_mesh(1.0f, 0.0f, positions);
     rtpbr_light_desc light = {.vertices = {{-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}}, .vertex_count = 4,
                               .emission = {1, 1, 1}};
     for (int i = 0; i < iterations; ++i) {
@@ -344,18 +322,12 @@ static void record_into_host_image(void **state)
     rtpbr_context *ctx = test_context(&log);
     rtpbr_vulkan_device vk = rtpbr_context_vulkan_device(ctx);
     float positions[12];
-    square_positions(1.0f, 0.0f, positions);
     rtpbr_material_desc material = {.emission = {0.2f, 0.6f, 3.0f}};
-    rtpbr_mesh_desc mesh = {.positions = positions, .indices = square_indices, .vertex_count = 4, .index_count = 6};
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                    .materials = &material, .material_count = 1},
-                                            &scene),
-                     RTPBR_SUCCESS);
+    rtpbr_mesh_desc mesh = test_square_mesh(1.0f, 0.0f, positions);
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                     .materials = &material, .material_count = 1});
     enum { S = 40 };
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = S, .height = S}, &r), RTPBR_SUCCESS);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = S, .height = S});
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     uint8_t expect[S * S * 4];
     assert_int_equal(test_read_display(r, expect, sizeof expect), RTPBR_SUCCESS);
@@ -437,8 +409,7 @@ static void record_into_host_image(void **state)
     vkFreeMemory(dev, image_memory, NULL);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 int main(void)

@@ -292,9 +292,7 @@ static void khr_materials_shadows_only_darken(void **state)
         rtpbr_gpu_scene *scene = NULL;
         assert_int_equal(rtpbr_gpu_scene_load_gltf(ctx, RTPBR_TEST_SCENE_DIR "/khr_materials.gltf", &scene),
                          RTPBR_SUCCESS);
-        rtpbr_renderer *r = NULL;
-        assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = SW, .height = SH}, &r),
-                         RTPBR_SUCCESS);
+        rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = SW, .height = SH});
         assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
         assert_int_equal(test_read_radiance(r, unshadowed, SW * SH * 16), RTPBR_SUCCESS);
         const rtpbr_shadow_denoiser denoisers[2] = {RTPBR_SHADOW_DENOISER_DEFAULT, RTPBR_SHADOW_DENOISER_OFF};
@@ -318,8 +316,7 @@ static void khr_materials_shadows_only_darken(void **state)
         }
         rtpbr_renderer_destroy(r);
         rtpbr_gpu_scene_destroy(scene);
-        rtpbr_context_destroy(ctx);
-        assert_int_equal(log.validation, 0);
+        test_context_done(ctx, &log);
         assert_int_equal(log.errors, 0);
     }
     free(unshadowed);
@@ -395,9 +392,7 @@ static void khr_materials_lights_add_up(void **state)
     for (uint32_t samples = 64; samples <= RTPBR_MAX_SHADOW_SAMPLES; samples *= 64) {
         // A fresh renderer each time: texels a render leaves unwritten do not hold another
         // sample count's valid estimates.
-        rtpbr_renderer *r = NULL;
-        assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = SW, .height = SH}, &r),
-                         RTPBR_SUCCESS);
+        rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = SW, .height = SH});
         double error = lights_add_up_error(r, scene, lights, samples, SW, SH);
         rtpbr_renderer_destroy(r);
         printf("%u samples: all %d lights against the sum of each alone: mean |difference| %.3f%% of the mean\n",
@@ -405,8 +400,7 @@ static void khr_materials_lights_add_up(void **state)
         assert_true(error <= 0.01);
     }
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
     assert_int_equal(log.errors, 0);
 }
 

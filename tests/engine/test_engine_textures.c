@@ -37,15 +37,12 @@ static void render_scene_with(const texture_scene *s, const rtpbr_render_desc *d
     unlink(path);
     if (r != RTPBR_SUCCESS) fprintf(stderr, "load: %s\n", log.last_error);
     assert_int_equal(r, RTPBR_SUCCESS);
-    rtpbr_renderer *renderer = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = N, .height = N}, &renderer),
-                     RTPBR_SUCCESS);
+    rtpbr_renderer *renderer = test_renderer(ctx, &(rtpbr_renderer_desc){.width = N, .height = N});
     assert_int_equal(rtpbr_render(renderer, scene, desc), RTPBR_SUCCESS);
     assert_int_equal(test_read_radiance(renderer, out->px, sizeof out->px), RTPBR_SUCCESS);
     rtpbr_renderer_destroy(renderer);
     rtpbr_gpu_scene_destroy(scene);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 static void render_scene(const texture_scene *s, rendered *out)
@@ -124,15 +121,8 @@ static void test_wrap_per_axis(void **state)
 static void test_texture_transform(void **state)
 {
     (void)state;
-    uint8_t texels[64];
-    // 16 distinct colours: each channel one of 0, 128, 255 (the base-3 digits of i).
-    for (int i = 0; i < 16; ++i) {
-        static const uint8_t levels[3] = {0, 128, 255};
-        texels[4 * i] = levels[i % 3];
-        texels[4 * i + 1] = levels[i / 3 % 3];
-        texels[4 * i + 2] = levels[i / 9 % 3];
-        texels[4 * i + 3] = 255;
-    }
+    uint8_t texels[64]; // 16 distinct colours
+    texture_scene_distinct_texels(texels);
     texture_scene s = {
         .texture_width = 4, .texture_height = 4, .rgba = texels, .wrap_s = 10497, .wrap_t = 10497,
         .mag_filter = 9728, .min_filter = 9728, .uv_min = {0.0f, 0.0f}, .uv_max = {1.0f, 1.0f},

@@ -35,16 +35,11 @@ static float *render(rtpbr_context *ctx, bool with_quad)
     rtpbr_light_desc light = {.vertices = {{-1.0f, -0.5f, 1.2f}, {-1.0f, 0.7f, 1.5f}, {0.6f, 0.7f, 1.5f}, {0.6f, -0.5f, 1.2f}},
                               .vertex_count = 4, .emission = {3.0f, 2.0f, 1.0f}};
     rtpbr_camera_desc camera = test_tiles_camera();
-    rtpbr_gpu_scene *scene = NULL;
-    assert_int_equal(rtpbr_gpu_scene_create(ctx,
-                                            &(rtpbr_gpu_scene_desc){.meshes = meshes, .mesh_count = with_quad ? 2 : 1,
-                                                                    .materials = materials, .material_count = 2,
-                                                                    .lights = &light, .light_count = 1,
-                                                                    .cameras = &camera, .camera_count = 1},
-                                            &scene),
-                     RTPBR_SUCCESS);
-    rtpbr_renderer *r = NULL;
-    assert_int_equal(rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = W, .height = H}, &r), RTPBR_SUCCESS);
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = meshes, .mesh_count = with_quad ? 2 : 1,
+                                                                     .materials = materials, .material_count = 2,
+                                                                     .lights = &light, .light_count = 1,
+                                                                     .cameras = &camera, .camera_count = 1});
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     float *px = malloc(W * H * 16);
     assert_non_null(px);
@@ -95,8 +90,7 @@ static void full_tiles_shade_basic_materials_alike(void **state)
     assert_true(worst < 1e-5);
     free(plain);
     free(mixed);
-    rtpbr_context_destroy(ctx);
-    assert_int_equal(log.validation, 0);
+    test_context_done(ctx, &log);
 }
 
 int main(void)

@@ -1,9 +1,9 @@
-// Unit tests of the FLIP library (tools/imgdiff/flip.h), with cmocka.
+// Unit tests of the FLIP library (common/rtpbr_common/flip.hpp), with cmocka.
 // References are computed here independently: colours through the IEC 61966-2-1 matrix rounded to
 // 4 digits, CIELAB, the Hunt adjustment, HyAB and the remap written out again from the paper;
 // feature detector responses derived by hand for a step edge and an impulse; the tone mapper's
 // inverse found by bisection rather than the quadratic formula.
-#include "flip.h"
+#include "rtpbr_common/flip.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -413,7 +413,7 @@ void test_hdr_is_max_over_exposures(void**) {
 
 // Mean errors of NVIDIA's published implementation (PyPI flip-evaluator 1.7, linear inputs,
 // float64 mean of its error map), computed once for the deterministic images below; an independent
-// check of the readings flip.h documents. Its HDR median convention differs slightly from ours,
+// check of the readings flip.hpp documents. Its HDR median convention differs slightly from ours,
 // hence the wider tolerance on the stop exposure.
 std::vector<float> gradient_scene(int w, int h, float gain, bool modulate) {
     std::vector<float> img(static_cast<std::size_t>(w) * h * 3);

@@ -3,17 +3,7 @@
 // baseColorFactor alpha x texture alpha < alphaCutoff (the white furnace box shows through),
 // BLEND is stochastic opacity (a hit of alpha 0.5 is kept half the time: the mean is
 // 0.5 quad + 0.5 background), and a MASK occluder with holes lets the shadow rays through.
-#include "test_common.h"
-
-#include "oracle.h"
-
-#include <rtpbr/rtpbr_gltf.h>
-
-#include "texture_scenes.h"
-
-#include <unistd.h>
-
-#include <functional>
+#include "texture_scene_render.h"
 
 using namespace rtpbr_oracle;
 
@@ -21,35 +11,9 @@ namespace {
 
 constexpr uint32_t kN = 48;
 
-// Writes a scene to a temporary file, loads it through the loader and renders it (direct light).
+// A scene written by `write`, rendered by the oracle at kN x kN (texture_scene_render.h).
 std::vector<float> renderFile(const std::function<int(const char *)> &write, uint32_t spp, bool noShadows) {
-    char path[] = "/tmp/rtpbr-oracle-alpha-XXXXXX.gltf";
-    int fd = mkstemps(path, 5);
-    assert_true(fd >= 0);
-    close(fd);
-    assert_int_equal(write(path), 0);
-    rtpbr_gltf_load_desc desc{};
-    char err[RTPBR_GLTF_ERROR_MESSAGE_SIZE] = "";
-    desc.error_message = err;
-    desc.error_message_size = sizeof err;
-    rtpbr_gltf_scene *scene = nullptr;
-    rtpbr_gltf_result r = rtpbr_gltf_load(path, &desc, &scene);
-    unlink(path);
-    if (r != RTPBR_GLTF_SUCCESS)
-        fail_msg("load: %s", err);
-    RenderSettings st;
-    st.width = st.height = kN;
-    st.spp = spp;
-    st.directOnly = true;
-    st.noShadows = noShadows;
-    Accumulator acc;
-    std::string error;
-    if (render(*scene, st, &acc, &error, nullptr) != Result::Success)
-        fail_msg("render: %s", error.c_str());
-    std::vector<float> rgb;
-    resolve(acc, &rgb, nullptr);
-    rtpbr_gltf_destroy(scene);
-    return rgb;
+    return renderWrittenScene(write, kN, spp, noShadows);
 }
 
 // MASK: a 4x4 red texture whose alpha is 255 and 128 in a checkerboard, baseColorFactor alpha

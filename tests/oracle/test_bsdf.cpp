@@ -1,10 +1,7 @@
 // The material BSDF (oracle/bsdf.h): for every lobe combination, sampling (mean sample weight)
 // and evaluation (integral of eval by an independent mixture density) give the same albedo,
 // in multi-bounce and single-scatter mode; the single-scatter mode is the closed form.
-#include "test_common.h"
-
-#include "bsdf.h"
-#include "rng.h"
+#include "bsdf_fixtures.h"
 
 #include <rtpbr/microfacet.h>
 #include <rtpbr/sampling.h>
@@ -12,28 +9,6 @@
 using namespace rtpbr_oracle;
 
 namespace {
-
-// Half uniform hemisphere, half GGX VNDF reflection of the given alpha: covers sharp and
-// broad lobes.
-struct Mixture {
-    float alpha;
-    vec3 wo;
-    vec3 sample(Rng &rng) const {
-        float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-        if (u0 < 0.5f)
-            return rtpbr::Reflect_About(wo, rtpbr::Sample_GGX_VNDF(wo, alpha, alpha, rtpbr::float2(u1, u2)));
-        float z = u1, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 6.2831853f * u2;
-        return vec3(r * std::cos(phi), r * std::sin(phi), z);
-    }
-    float pdf(vec3 wi) const {
-        return 0.5f * rtpbr::PDF_GGX_Reflection(wo, wi, alpha, alpha) + (wi.z > 0.0f ? 0.5f / 6.2831853f : 0.0f);
-    }
-};
-
-const LayerAlbedo &layer15() {
-    static const LayerAlbedo table(1.5f, 256);
-    return table;
-}
 
 SurfaceMaterial mat(vec3 base, float metallic, float alpha, float clearcoat, float clearcoatAlpha) {
     SurfaceMaterial m;

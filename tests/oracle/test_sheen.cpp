@@ -2,10 +2,7 @@
 // (sheen over a black base: the albedo is E_sheen, the committed table, at its nodes; over a
 // white Lambertian base the KHR albedo scaling keeps the albedo at or below 1), and sampling
 // agreeing with evaluation for sheen combined with every other lobe.
-#include "test_common.h"
-
-#include "bsdf.h"
-#include "rng.h"
+#include "bsdf_fixtures.h"
 
 #include <luts/rtpbr_sheen_tables.h>
 #include <rtpbr/sampling.h>
@@ -82,27 +79,6 @@ void test_white_base_conserves_energy(void **) {
             // The base must still show through (albedo scaling, not replacement).
             assert_true(albedo.mean() > 0.5);
         }
-}
-
-// Half uniform hemisphere, half GGX VNDF reflection: an independent density to integrate eval.
-struct Mixture {
-    float alpha;
-    vec3 wo;
-    vec3 sample(Rng &rng) const {
-        float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-        if (u0 < 0.5f)
-            return rtpbr::Reflect_About(wo, rtpbr::Sample_GGX_VNDF(wo, alpha, alpha, rtpbr::float2(u1, u2)));
-        float z = u1, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 6.2831853f * u2;
-        return vec3(r * std::cos(phi), r * std::sin(phi), z);
-    }
-    float pdf(vec3 wi) const {
-        return 0.5f * rtpbr::PDF_GGX_Reflection(wo, wi, alpha, alpha) + (wi.z > 0.0f ? 0.5f / 6.2831853f : 0.0f);
-    }
-};
-
-const LayerAlbedo &layer15() {
-    static const LayerAlbedo table(1.5f, 256);
-    return table;
 }
 
 void test_sampling_matches_evaluation(void **) {

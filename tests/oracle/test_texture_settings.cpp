@@ -3,15 +3,7 @@
 // test_engine_textures.c renders (tests/common/texture_scenes.h), loaded through the loader.
 // Each checked pixel must be nearest (of the texture's colours) to the texel the closed form
 // selects. The oracle samples level 0 (no mipmaps); its many samples per pixel filter it.
-#include "test_common.h"
-
-#include "oracle.h"
-
-#include <rtpbr/rtpbr_gltf.h>
-
-#include "texture_scenes.h"
-
-#include <unistd.h>
+#include "texture_scene_render.h"
 
 using namespace rtpbr_oracle;
 
@@ -23,32 +15,7 @@ const uint8_t kPalette2x2[16] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255,
 
 // Loads the scene through the loader (as a file) and renders it: a white furnace, direct light.
 std::vector<float> renderScene(const texture_scene &s) {
-    char path[] = "/tmp/rtpbr-oracle-texture-XXXXXX.gltf";
-    int fd = mkstemps(path, 5);
-    assert_true(fd >= 0);
-    close(fd);
-    assert_int_equal(texture_scene_write(&s, path), 0);
-    rtpbr_gltf_load_desc desc{};
-    char err[RTPBR_GLTF_ERROR_MESSAGE_SIZE] = "";
-    desc.error_message = err;
-    desc.error_message_size = sizeof err;
-    rtpbr_gltf_scene *scene = nullptr;
-    rtpbr_gltf_result r = rtpbr_gltf_load(path, &desc, &scene);
-    unlink(path);
-    if (r != RTPBR_GLTF_SUCCESS)
-        fail_msg("load: %s", err);
-    RenderSettings st;
-    st.width = st.height = kN;
-    st.spp = 64;
-    st.directOnly = true;
-    Accumulator acc;
-    std::string error;
-    if (render(*scene, st, &acc, &error, nullptr) != Result::Success)
-        fail_msg("render: %s", error.c_str());
-    std::vector<float> rgb;
-    resolve(acc, &rgb, nullptr);
-    rtpbr_gltf_destroy(scene);
-    return rgb;
+    return renderWrittenScene([&](const char *path) { return texture_scene_write(&s, path); }, kN, 64, false);
 }
 
 // The texel whose linear colour is nearest to the pixel's.
@@ -103,15 +70,8 @@ void test_wrap_modes(void **) {
 }
 
 void test_texture_transform(void **) {
-    uint8_t texels[64];
-    // 16 distinct colours: each channel one of 0, 128, 255 (the base-3 digits of i).
-    for (int i = 0; i < 16; ++i) {
-        static const uint8_t levels[3] = {0, 128, 255};
-        texels[4 * i] = levels[i % 3];
-        texels[4 * i + 1] = levels[i / 3 % 3];
-        texels[4 * i + 2] = levels[i / 9 % 3];
-        texels[4 * i + 3] = 255;
-    }
+    uint8_t texels[64]; // 16 distinct colours
+    texture_scene_distinct_texels(texels);
     texture_scene s{};
     s.texture_width = s.texture_height = 4;
     s.rgba = texels;

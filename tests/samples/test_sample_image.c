@@ -13,6 +13,8 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+
+#include "sample_test.h"
 #include <math.h>
 #include <stb_image.h>
 #include <stdbool.h>
@@ -58,16 +60,7 @@ static void test_run_and_check(void **state)
 {
     (void)state;
     remove(png_path);
-    pid_t pid = fork();
-    assert_true(pid >= 0);
-    if (pid == 0) {
-        execvp(command[0], command);
-        _exit(127);
-    }
-    int status = 0;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
-    assert_true(WIFEXITED(status));
-    assert_int_equal(WEXITSTATUS(status), 0);
+    sample_run_ok(command);
 
     int width = 0, height = 0, channels = 0;
     unsigned char *rgba = stbi_load(png_path, &width, &height, &channels, 4);

@@ -8,6 +8,8 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+
+#include "sample_test.h"
 #include <stb_image.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,30 +18,6 @@
 
 enum { W = 480, H = 360 };
 static char **args;
-
-static void run(char *const argv[])
-{
-    pid_t pid = fork();
-    assert_true(pid >= 0);
-    if (pid == 0) {
-        execvp(argv[0], argv);
-        _exit(127);
-    }
-    int status = 0;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
-    assert_true(WIFEXITED(status));
-    assert_int_equal(WEXITSTATUS(status), 0);
-}
-
-static unsigned char *load(const char *path)
-{
-    int w = 0, h = 0, c = 0;
-    unsigned char *p = stbi_load(path, &w, &h, &c, 4);
-    assert_non_null(p);
-    assert_int_equal(w, W);
-    assert_int_equal(h, H);
-    return p;
-}
 
 // Fraction of pixels in columns [x0, x1) whose channels differ by more than 3 / 255.
 static double differing(const unsigned char *a, const unsigned char *b, int x0, int x1)
@@ -67,13 +45,14 @@ static void test_split_view(void **state)
     snprintf(shot, sizeof shot, "%s/split_viewer.png", args[5]);
     snprintf(size_w, sizeof size_w, "%d", W);
     snprintf(size_h, sizeof size_h, "%d", H);
-    run((char *[]){args[1], args[4], "-o", ref_exr, "--width", size_w, "--height", size_h, "--ndf", "beckmann", NULL});
-    run((char *[]){args[1], args[4], "-o", beckmann_png, "--width", size_w, "--height", size_h, "--ndf", "beckmann", NULL});
-    run((char *[]){args[1], args[4], "-o", ggx_png, "--width", size_w, "--height", size_h, NULL});
-    run((char *[]){args[3], "-a", "-s", "-screen 0 1024x768x24", args[2], args[4], "--reference", ref_exr,
+    sample_run_ok((char *[]){args[1], args[4], "-o", ref_exr, "--width", size_w, "--height", size_h, "--ndf", "beckmann", NULL});
+    sample_run_ok((char *[]){args[1], args[4], "-o", beckmann_png, "--width", size_w, "--height", size_h, "--ndf", "beckmann", NULL});
+    sample_run_ok((char *[]){args[1], args[4], "-o", ggx_png, "--width", size_w, "--height", size_h, NULL});
+    sample_run_ok((char *[]){args[3], "-a", "-s", "-screen 0 1024x768x24", args[2], args[4], "--reference", ref_exr,
                    "--width", size_w, "--height", size_h, "--frames", "2", "--screenshot", shot, "--validation", "--no-ui",
                    NULL});
-    unsigned char *ggx = load(ggx_png), *beckmann = load(beckmann_png), *viewer = load(shot);
+    unsigned char *ggx = sample_load_rgba(ggx_png, W, H), *beckmann = sample_load_rgba(beckmann_png, W, H),
+                  *viewer = sample_load_rgba(shot, W, H);
     double left = differing(viewer, ggx, 0, W / 2), right = differing(viewer, beckmann, W / 2 + 1, W);
     double models = differing(ggx, beckmann, W / 2 + 1, W); // how much the check can see
     size_t line_white = 0;

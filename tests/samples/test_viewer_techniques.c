@@ -8,6 +8,8 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+
+#include "sample_test.h"
 #include <math.h>
 #include <stb_image.h>
 #include <stdbool.h>
@@ -27,22 +29,8 @@ static unsigned char *shoot(const char *name, const char *keys)
     char *argv[] = {args[2], "-a", "-s", "-screen 0 1024x768x24", args[1], args[3], "--width", "320", "--height",
                     "240", "--no-ui", "--frames", "2", "--keys", (char *)keys, "--screenshot", path, "--validation",
                     NULL};
-    pid_t pid = fork();
-    assert_true(pid >= 0);
-    if (pid == 0) {
-        execvp(argv[0], argv);
-        _exit(127);
-    }
-    int status = 0;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
-    assert_true(WIFEXITED(status));
-    assert_int_equal(WEXITSTATUS(status), 0);
-    int w = 0, h = 0, c = 0;
-    unsigned char *p = stbi_load(path, &w, &h, &c, 4);
-    assert_non_null(p);
-    assert_int_equal(w, W);
-    assert_int_equal(h, H);
-    return p;
+    sample_run_ok(argv);
+    return sample_load_rgba(path, W, H);
 }
 
 // Pixel of a world point through the scene's camera (the engine's look-at pinhole).

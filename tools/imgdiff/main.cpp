@@ -1,6 +1,6 @@
 // rtpbr-diff: compares a test image with a reference image using LDR-FLIP or HDR-FLIP
-// (flip.h), and reports RMSE, relative MSE and PSNR. See usage() for the exact definitions.
-#include "flip.h"
+// (rtpbr_common/flip.hpp), and reports RMSE, relative MSE and PSNR. See usage() for the exact definitions.
+#include "rtpbr_common/flip.hpp"
 #include "rtpbr_common/colormap.hpp"
 #include "rtpbr_common/energy.hpp"
 #include "rtpbr_common/image.hpp"

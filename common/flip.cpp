@@ -1,6 +1,6 @@
-// LDR-FLIP and HDR-FLIP, implemented from the papers (see flip.h for the citations).
+// LDR-FLIP and HDR-FLIP, implemented from the papers (see rtpbr_common/flip.hpp for the citations).
 // Section numbers below refer to the LDR-FLIP paper (HPG 2020) unless they say HDR-FLIP.
-#include "flip.h"
+#include "rtpbr_common/flip.hpp"
 
 #include <algorithm>
 #include <cmath>
