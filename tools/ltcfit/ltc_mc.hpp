@@ -14,6 +14,7 @@
 
 #include "rtpbr/disney.h"
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_corrections.h"
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"
 #include "rtpbr/sheen.h"
