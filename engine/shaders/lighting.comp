@@ -20,6 +20,7 @@
 #include "rtpbr/config.h"
 #include "rtpbr/fresnel.h"
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_corrections.h"
 #include "rtpbr/kulla_conty.h"
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"

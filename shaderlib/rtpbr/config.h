@@ -21,12 +21,13 @@
 //   RTPBR_KC_SHAPE     1 (default) | 0: the multiple-scattering lobe of BRDF_SpecularMS and of
 //                      the engine's lights: shaped toward the single-scattering lobe at low
 //                      roughness (KC_LobeShaped) or Kulla-Conty's separable lobe (KC_Lobe).
-//   RTPBR_LTC_POINT_CORRECTION 1 (default) | 0: callers of ltc.h's point correction
-//                      (LTC_PointFactor; the engine's lighting pass) apply it to the isotropic
-//                      microfacet lobe of polygonal lights.
-//   RTPBR_LTC_STREAK   1 (default) | 0: callers of ltc.h's streak estimate (LTC_StreakEnd; the
-//                      engine's lighting pass) mix it into that lobe's result on the mirror
-//                      side near the horizon (GGX only; with the point correction).
+//   RTPBR_LTC_POINT_CORRECTION 1 (default) | 0: callers of the point correction
+//                      (ltc_corrections.h, LTC_PointFactor; the engine's lighting pass) apply
+//                      it to the isotropic microfacet lobe of polygonal lights.
+//   RTPBR_LTC_STREAK   1 (default) | 0: callers of the streak estimate (ltc_corrections.h,
+//                      LTC_StreakEnd; the engine's lighting pass) mix it into that lobe's
+//                      result on the mirror side near the horizon (GGX only; with the point
+//                      correction).
 //
 // Roughness convention: materials carry perceptual roughness r in [0, 1]; the NDFs take
 // alpha = r * r (Burley 2012). alpha is clamped below at RTPBR_MIN_ALPHA so that every term

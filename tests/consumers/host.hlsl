@@ -16,6 +16,7 @@
 #include "rtpbr/sampling.h"
 #include "rtpbr/kulla_conty.h"
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_corrections.h"
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"
 #include "rtpbr/material.h"

@@ -15,7 +15,7 @@ pixels); this test renders each scene given
 
 The furnace (white conductors, albedo 1 with Kulla-Conty, inside an emitting box) is the scene
 whose every pixel is at the bound. Its LTC pixels reached 1.04 with Kulla-Conty and 1.02 without
-while the point correction of ltc.h corrected each light on its own (over the box's many lights
+while the point correction of ltc_corrections.h corrected each light on its own (over the box's many lights
 the corrected shares of the lobe summed past 1); shade_lights now scales the specular lobe back
 where they do (1.007 at 320x240), and the furnace is held to the same 1.01 as every scene.
 Before the fix of the tables' normalisation (ltc.md) this test failed on showcase (5.8e7),

@@ -196,7 +196,7 @@ static void floor_ltc_and_mc(const rtpbr_light_desc *light, const rtpbr_camera_d
     test_context_done(ctx, &log);
 }
 
-// The LTC pass's point correction (ltc.h, LTC_PointFactor; issue 19): a GGX copper floor seen
+// The LTC pass's point correction (ltc_corrections.h, LTC_PointFactor; issue 19): a GGX copper floor seen
 // at a low angle, with a small light between the eye and the floor, about 30 degrees above the
 // floor beyond it (the "far floor" of shaderlib/luts/ltc.md, where the LTC alone puts several
 // times the true BRDF's light). Against the Monte Carlo pass (the true single-scattering BRDF,
@@ -241,7 +241,7 @@ static void ltc_far_floor(void **state)
     free(mc);
 }
 
-// The LTC pass's streak estimate (ltc.h, LTC_StreakEnd; issue 19, sixth round): a GGX copper
+// The LTC pass's streak estimate (ltc_corrections.h, LTC_StreakEnd; issue 19, sixth round): a GGX copper
 // floor (r 0.45) seen at a low angle toward a wide panel (1.6 x 0.4) low above its far part,
 // facing down: a light near the horizon on the mirror side, whose glossy streak runs across the
 // floor toward the eye. Against the Monte Carlo pass (1024 samples): the L1 error of 4 x 4

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The coefficients of ltc.h's LTC_Atan (issue 19, sixth round): atan(x) = x P(x^2) on [0, 1],
+"""The coefficients of ltc_corrections.h's LTC_Atan (issue 19, sixth round): atan(x) = x P(x^2) on [0, 1],
 P of degree 8 fitted by iteratively reweighted least squares on Chebyshev nodes toward the
 smallest largest relative error (printed: 1.5e-8, below float's 6e-8). Run by hand (numpy):
     python3 tools/fits/fit_atan.py

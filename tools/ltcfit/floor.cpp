@@ -33,13 +33,13 @@
 // cell, fitted on other floors to the table LTC's residual, or together with a refitted first
 // lobe, and the sweep's floors of nine grazing cells with it (ltc_floor_lobe2.hpp); prints its
 // own table and nothing else.
-// The LTC is evaluated as the engine does, with the point correction (ltc.h, LTC_PointFactor;
+// The LTC is evaluated as the engine does, with the point correction (ltc_corrections.h, LTC_PointFactor;
 // fourth round) unless --no-point (the second round's corrections and --exact-cells measure
 // the LTC alone); --point-raw: the uncorrected ratio at the lit part's centre (no clamp, no
 // fade); --point-ff: no LTC, the true f NoL / NoL at that centre x pi x the form factor.
-// The engine also takes the tail estimate (ltc.h, LTC_PointTail; fifth round) where the light
+// The engine also takes the tail estimate (ltc_corrections.h, LTC_PointTail; fifth round) where the light
 // lies in the LTC's tail, and so does this tool unless --no-tail (the fourth round's engine);
-// and the streak estimate (ltc.h, LTC_StreakEnd; sixth round) on the mirror side near the
+// and the streak estimate (ltc_corrections.h, LTC_StreakEnd; sixth round) on the mirror side near the
 // horizon, unless --no-streak (the fifth round's engine).
 #include <atomic>
 #include <cmath>

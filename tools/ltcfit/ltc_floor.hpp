@@ -170,16 +170,16 @@ struct Tables {
         std::make_shared<std::map<std::pair<float, float>, DirectionCorrection>>();
     bool residual = false;      // additive (LTC + residual x F.z) instead of the ratio
     bool hybrid = false;        // ratio where the LTC is lit, residual where it is not
-    // 0: the LTC alone (rtpbr-ltc-floor --no-point); 1: with the engine's point correction (ltc.h,
-    // LTC_PointFactor, and the tail estimate unless tail = false; the default); experiments of
-    // the fourth round: 2: the raw ratio (no clamp, no fade; --point-raw); 3: no LTC, the true f
+    // 0: the LTC alone (rtpbr-ltc-floor --no-point); 1: with the engine's point correction
+    // (ltc_corrections.h, LTC_PointFactor, and the tail estimate unless tail = false; the
+    // default); experiments of the fourth round: 2: the raw ratio (no clamp, no fade; --point-raw); 3: no LTC, the true f
     // at the lit part's centroid x its cosine form factor (--point-ff)
     int point = 1;
-    // with point = 1: the tail estimate too (ltc.h, LTC_PointTail; the fifth round's engine and
-    // the default); false: the point correction alone (rtpbr-ltc-floor --no-tail)
+    // with point = 1: the tail estimate too (ltc_corrections.h, LTC_PointTail; the fifth
+    // round's engine and the default); false: the point correction alone (rtpbr-ltc-floor --no-tail)
     bool tail = true;
-    // with tail: the streak estimate too (ltc.h, LTC_StreakEnd; the sixth round's engine and the
-    // default); false: the fifth round's engine (rtpbr-ltc-floor --no-streak)
+    // with tail: the streak estimate too (ltc_corrections.h, LTC_StreakEnd; the sixth round's
+    // engine and the default); false: the fifth round's engine (rtpbr-ltc-floor --no-streak)
     bool streak = true;
 };
 

@@ -14,6 +14,7 @@
 
 #include "rtpbr/disney.h"
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_corrections.h"
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"
 #include "rtpbr/sheen.h"
@@ -240,8 +241,8 @@ inline double albedo(const Brdf &brdf, float3 V) {
 // The solid-angle centroid direction (Arvo's vector form factor, normalised) of the part of a
 // local polygon (already above the horizon) that lies in z >= 0 after the linear map minv;
 // zero if none does. Double precision, written apart from ltc.h's streamed float path
-// (LTC_LobeEndVector): rtpbr-ltc-floor --point-ff uses it, and test_ltc_mc checks ltc.h's
-// point correction against it.
+// (LTC_LobeEndVector): rtpbr-ltc-floor --point-ff uses it, and test_ltc_mc checks
+// ltc_corrections.h's point correction against it.
 inline glm::dvec3 clipped_centroid(const rtpbr::LtcLocalPolygon &local, const glm::dmat3 &minv) {
     std::vector<glm::dvec3> in, out;
     for (int i = 0; i < local.count; i++)
@@ -266,7 +267,7 @@ inline glm::dvec3 clipped_centroid(const rtpbr::LtcLocalPolygon &local, const gl
     return F;
 }
 
-// The engine's point correction (ltc.h, LTC_PointFactor; issue 19, fourth round) of the LTC
+// The engine's point correction (ltc_corrections.h, LTC_PointFactor; issue 19, fourth round) of the LTC
 // result for a local polygon: the true f NoL at the centre of the part the LTC sees over the
 // LTC's value there (norm x density), above 1 only where the lobe is not much narrower than the
 // light, faded by the LTC's form factor. `raw`: the ratio alone, without the fade and the
@@ -289,12 +290,12 @@ inline double point_ratio(const Brdf &brdf, float3 V, const rtpbr::LtcLocalPolyg
 }
 
 // The engine's whole correction of the specular LTC (lighting.comp): the point-corrected LTC
-// or, for a light in the LTC's tail, the tail estimate (ltc.h, LTC_PointTail; fifth round),
+// or, for a light in the LTC's tail, the tail estimate (ltc_corrections.h, LTC_PointTail; fifth round),
 // whichever is larger. ltc = norm x the LTC integral (F = 1); V in the LTC's frame (the local
 // polygon's). tail = false: the point correction alone (the fourth round's engine).
 // parts (optional): the point-corrected LTC and the weighted tail estimate, in the same units;
 // the streak estimate (-1: none) and its weight (LTC_StreakWeight x its trust).
-// streak (with tail): the streak estimate mixed in (ltc.h, LTC_StreakEnd; GGX; the sixth
+// streak (with tail): the streak estimate mixed in (ltc_corrections.h, LTC_StreakEnd; GGX; the sixth
 // round's engine); false: the fifth round's engine.
 inline double point_value(const Brdf &brdf, float3 V, const rtpbr::LtcLocalPolygon &local, float4 l1, float norm,
                           double ltc, bool tail = true, double parts[4] = nullptr, bool streak = true) {
@@ -316,7 +317,7 @@ inline double point_value(const Brdf &brdf, float3 V, const rtpbr::LtcLocalPolyg
     if (parts)
         parts[1] = double(norm) * double(tailValue) * double(weight);
     double value = double(norm) * double(rtpbr::LTC_PointCombine(float(corrected / double(norm)), tailValue, weight));
-    // the streak estimate (ltc.h, LTC_StreakEnd; sixth round): GGX, mixed in by its weight
+    // the streak estimate (ltc_corrections.h, LTC_StreakEnd; sixth round): GGX, mixed in by its weight
     const float w = streak && brdf.lobe == Lobe::GGX ? rtpbr::LTC_StreakWeight(V, F) : 0.0f;
     if (w > 0.0f) {
         const float2 S = rtpbr::LTC_StreakLocal(local, F, V, brdf.alpha);

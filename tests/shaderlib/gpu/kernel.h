@@ -22,6 +22,7 @@
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_corrections.h"
 #include "rtpbr/material.h"
 #include "rtpbr/kulla_conty.h"
 
@@ -171,7 +172,7 @@ RTPBR_FN float rtpbr_test_ltc_quad(RtpbrTestArgs t, bool stretch, int which) {
     return LTC_PointCombine(corrected, LTC_PointTail(t.lambdaO, F.z, 0.2f + t.c3), weight);
 }
 
-// The streak estimate (ltc.h, sixth round) streamed as the engine does (two passes over a
+// The streak estimate (ltc_corrections.h) streamed as the engine does (two passes over a
 // horizon-clipped quad): a horizontal panel facing down at height h, on the mirror side of
 // V at a low view angle, seen edge-on. which: 0 the estimate, 1 its trust, 2 its weight.
 RTPBR_FN float rtpbr_test_ltc_streak(RtpbrTestArgs t, int which) {

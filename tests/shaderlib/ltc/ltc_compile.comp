@@ -1,8 +1,10 @@
 #version 450
 // Compile check of shaderlib/rtpbr/ltc.h as GLSL (and, with RTPBR_HLSL, as HLSL: see
-// ltc_compile.hlsl). Calls every public function so that each is type-checked.
+// ltc_compile.hlsl). Calls every public function of ltc.h so that each is type-checked;
+// ltc_corrections.h is compiled beside it (glslang checks uncalled functions too).
 #extension GL_GOOGLE_include_directive : require
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_corrections.h"
 layout(local_size_x = 1) in;
 layout(std430, binding = 0) buffer Out { vec4 result[]; };
 void main() {

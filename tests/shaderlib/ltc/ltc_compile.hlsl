@@ -1,6 +1,7 @@
-// Compile check of shaderlib/rtpbr/ltc.h as HLSL (glslang's HLSL front end).
+// Compile check of shaderlib/rtpbr/ltc.h and ltc_corrections.h as HLSL (glslang's HLSL front end).
 #define RTPBR_HLSL 1
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_corrections.h"
 RWStructuredBuffer<float4> result : register(u0);
 [numthreads(1, 1, 1)]
 void main() {

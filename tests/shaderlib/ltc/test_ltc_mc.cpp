@@ -16,7 +16,7 @@
 //             (3.57%), max < 11.3% (8.7%); tail < 3% (2.27%). A clamped cosine transformed
 //             linearly has GGX's heavy (1 + t^2/m^2)^-2 tail; Beckmann's Gaussian tail is
 //             far lighter, so lights off the lobe's peak get too much (see ltc.md).
-//   With the point correction and the tail estimate (ltc.h, LTC_PointFactor, LTC_PointTail:
+//   With the point correction and the tail estimate (ltc_corrections.h, LTC_PointFactor, LTC_PointTail:
 //   what the engine computes; issue 19, fourth and fifth rounds): GGX mean < 2.7% (2.05%;
 //   fourth round 2.85%), 95th < 10.3% (7.86%; 12.2%), max < 26% (19.5%; 32.2%); Beckmann
 //   mean < 7.1% (5.48%), 95th < 15% (11.5%), max < 77% (59.4%); and its mean must be below
@@ -47,7 +47,7 @@ extern "C" {
 
 // Floor errors of the committed GGX table on test_ggx_floor's sweep, measured: the LTC alone
 // mean 22.0%, worst 57.2% (r 0.8, elevation 5, NoV 0.1); with the engine's point correction
-// (ltc.h, LTC_PointFactor) mean 11.5%, worst 28.8% (r 0.5, elevation 5, NoV 0.3); with the
+// (ltc_corrections.h, LTC_PointFactor) mean 11.5%, worst 28.8% (r 0.5, elevation 5, NoV 0.3); with the
 // tail estimate too (LTC_PointTail, the engine since the fifth round) mean 7.8%, worst 23.0%;
 // bounds + ~30% (see ltc.md, "Floors lit near their horizon").
 static const double FLOOR_MEAN_BOUND = 0.286, FLOOR_WORST_BOUND = 0.74;
@@ -360,7 +360,7 @@ static void test_ggx_floor(void **state) {
     assert_true(sliverSum[3] < sliverSum[2]);
 }
 
-// The point correction's pieces (ltc.h: LTC_LobeEndVector, LTC_LobePoint, LTC_PointFactor)
+// The point correction's pieces (ltc.h's LTC_LobeEndVector, ltc_corrections.h's LTC_LobePoint, LTC_PointFactor)
 // against an independent double-precision computation: the lobe's view of random quads (the
 // horizon-clipped local polygon mapped by M^-1, clipped to z >= 0 by Sutherland-Hodgman, its
 // vector form factor from exact atan2 edge angles: clipped_centroid in ltc_mc.hpp), its
