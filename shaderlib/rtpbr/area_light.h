@@ -63,6 +63,7 @@
 #include "fresnel.h"
 #include "microfacet.h"
 #include "ltc.h"
+#include "ltc_corrections.h"
 #include "kulla_conty.h"
 #include "disney.h"
 #include "sheen.h"
