@@ -442,6 +442,13 @@ struct MaterialInput {
                  rtpbr_gltf_texture_transform* transform, float* scale = nullptr) {
         return extension_texture(ctx, textures, index, ext, extension, key, srgb, out, transform, scale);
     }
+    // A factor documented in [0,1]: read (default def), then clamped with a warning.
+    bool factor01(MaterialReader& r, const tinygltf::Value& obj, const char* key, double def, float* out) {
+        double d;
+        if (!r.number(obj, key, def, &d)) return false;
+        *out = clamp01(ctx, float(d), index, key);
+        return true;
+    }
 };
 
 // Core metallic-roughness factors, alpha and sidedness; emissiveFactor into emissive (the
@@ -526,10 +533,8 @@ bool read_specular(MaterialInput& in, const tinygltf::Value& ext) {
     static const char* const name = "KHR_materials_specular";
     MaterialReader r{in.ctx, in.index, name};
     rtpbr_gltf_specular& s = in.m.specular;
-    double d;
     bool present;
-    if (!r.number(ext, "specularFactor", 1.0, &d)) return false;
-    s.specular_factor = clamp01(in.ctx, float(d), in.index, "specularFactor");
+    if (!in.factor01(r, ext, "specularFactor", 1.0, &s.specular_factor)) return false;
     if (!r.vector(ext, "specularColorFactor", 3, 0, s.specular_color_factor, &present)) return false;
     for (int k = 0; k < 3; ++k)
         if (s.specular_color_factor[k] < 0.0f)
@@ -546,11 +551,9 @@ bool read_clearcoat(MaterialInput& in, const tinygltf::Value& ext) {
     static const char* const name = "KHR_materials_clearcoat";
     MaterialReader r{in.ctx, in.index, name};
     rtpbr_gltf_clearcoat& c = in.m.clearcoat;
-    double d;
-    if (!r.number(ext, "clearcoatFactor", 0.0, &d)) return false;
-    c.clearcoat_factor = clamp01(in.ctx, float(d), in.index, "clearcoatFactor");
-    if (!r.number(ext, "clearcoatRoughnessFactor", 0.0, &d)) return false;
-    c.clearcoat_roughness_factor = clamp01(in.ctx, float(d), in.index, "clearcoatRoughnessFactor");
+    if (!in.factor01(r, ext, "clearcoatFactor", 0.0, &c.clearcoat_factor) ||
+        !in.factor01(r, ext, "clearcoatRoughnessFactor", 0.0, &c.clearcoat_roughness_factor))
+        return false;
     if (!in.texture(ext, name, "clearcoatTexture", false, &c.clearcoat_texture, &c.clearcoat_texture_transform) ||
         !in.texture(ext, name, "clearcoatRoughnessTexture", false, &c.clearcoat_roughness_texture,
                     &c.clearcoat_roughness_texture_transform) ||
@@ -567,13 +570,11 @@ bool read_sheen(MaterialInput& in, const tinygltf::Value& ext) {
     static const char* const name = "KHR_materials_sheen";
     MaterialReader r{in.ctx, in.index, name};
     rtpbr_gltf_sheen& s = in.m.sheen;
-    double d;
     bool present;
     if (!r.vector(ext, "sheenColorFactor", 3, 0, s.sheen_color_factor, &present)) return false;
     for (int k = 0; k < 3; ++k)
         s.sheen_color_factor[k] = clamp01(in.ctx, s.sheen_color_factor[k], in.index, "sheenColorFactor");
-    if (!r.number(ext, "sheenRoughnessFactor", 0.0, &d)) return false;
-    s.sheen_roughness_factor = clamp01(in.ctx, float(d), in.index, "sheenRoughnessFactor");
+    if (!in.factor01(r, ext, "sheenRoughnessFactor", 0.0, &s.sheen_roughness_factor)) return false;
     if (!in.texture(ext, name, "sheenColorTexture", true, &s.sheen_color_texture,
                     &s.sheen_color_texture_transform) ||
         !in.texture(ext, name, "sheenRoughnessTexture", false, &s.sheen_roughness_texture,
@@ -586,9 +587,9 @@ bool read_sheen(MaterialInput& in, const tinygltf::Value& ext) {
 bool read_anisotropy(MaterialInput& in, const tinygltf::Value& ext) {
     MaterialReader r{in.ctx, in.index, "KHR_materials_anisotropy"};
     double d;
-    if (!r.number(ext, "anisotropyStrength", 0.0, &d)) return false;
-    in.m.anisotropy.anisotropy_strength = clamp01(in.ctx, float(d), in.index, "anisotropyStrength");
-    if (!r.number(ext, "anisotropyRotation", 0.0, &d)) return false;
+    if (!in.factor01(r, ext, "anisotropyStrength", 0.0, &in.m.anisotropy.anisotropy_strength) ||
+        !r.number(ext, "anisotropyRotation", 0.0, &d))
+        return false;
     in.m.anisotropy.anisotropy_rotation = float(d);
     if (ext.IsObject() && ext.Has("anisotropyTexture"))
         in.ctx.warn("material %d: KHR_materials_anisotropy.anisotropyTexture ignored", in.index);
@@ -641,11 +642,8 @@ bool read_disney(MaterialInput& in, const tinygltf::Value& dis) {
         {"sheen", &dn.sheen},               {"sheenTint", &dn.sheen_tint},
         {"clearcoat", &dn.clearcoat},       {"clearcoatGloss", &dn.clearcoat_gloss},
     };
-    for (const Field& f : fields) {
-        if (!dis.Has(f.key)) continue;
-        if (!r.number(dis, f.key, 0.0, &d)) return false;
-        *f.dst = clamp01(ctx, float(d), index, f.key);
-    }
+    for (const Field& f : fields)
+        if (dis.Has(f.key) && !in.factor01(r, dis, f.key, 0.0, f.dst)) return false;
     float color[4] = {m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]};
     if (!r.vector(dis, "baseColor", 3, 4, color, &present)) return false;
     for (int k = 0; k < 4; ++k) m.base_color[k] = clamp01(ctx, color[k], index, "baseColor");
