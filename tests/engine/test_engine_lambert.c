@@ -15,7 +15,7 @@ static void lambertian_plane(void **state)
     // The plane z = 0, [-4, 4]^2, albedo 0.8 (exact in 8 bits: 204 / 255), no specular lobe.
     float plane[12];
     square_positions(4.0f, 0.0f, plane);
-    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f};
+    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR};
     rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
     // A tilted quad facing down, a two-sided triangle showing its back to the plane, and a
     // one-sided hexagon facing away from the plane (it must add nothing).
@@ -100,7 +100,7 @@ static void normal_mapped_plane(void **state)
     const float tangents[16] = {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1};
     const uint8_t texel[4] = {204, 128, 230, 255}; // about (0.6, 0, 0.8): tilted toward +X
     rtpbr_texture_desc texture = {.width = 1, .height = 1, .rgba = texel};
-    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f,
+    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR,
                                     .normal_texture = 1};
     rtpbr_mesh_desc mesh = {.positions = plane, .texcoords = uv, .tangents = tangents, .indices = square_indices,
                             .vertex_count = 4, .index_count = 6};
@@ -168,7 +168,7 @@ static void culling_bound(void **state)
     rtpbr_context *ctx = test_context(&log);
     float plane[12];
     square_positions(30.0f, 0.0f, plane);
-    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f};
+    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR};
     rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
     enum { N = 256 };
     rtpbr_light_desc *lights = calloc(N, sizeof *lights);
@@ -267,7 +267,7 @@ static void supersampled_coverage(void **state)
     rtpbr_context *ctx = test_context(&log);
     float square[12];
     square_positions(0.37f, 0.0f, square);
-    rtpbr_material_desc material = {.base_color = {0.5f, 0.5f, 0.5f}, .roughness = 1.0f, .specular = -1.0f};
+    rtpbr_material_desc material = {.base_color = {0.5f, 0.5f, 0.5f}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR};
     rtpbr_mesh_desc mesh = {.positions = square, .indices = square_indices, .vertex_count = 4, .index_count = 6};
     // An orthographic-like view: far away with a narrow field, the square 0.74 m wide.
     rtpbr_camera_desc camera = {.position = {0.013f, 0.021f, 100.0f}, .target = {0.013f, 0.021f, 0.0f},

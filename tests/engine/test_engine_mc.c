@@ -58,7 +58,7 @@ static void mc_lambertian_plane(void **state)
     rtpbr_context *ctx = test_context(&log);
     float plane[12];
     square_positions(4.0f, 0.0f, plane);
-    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f};
+    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR};
     rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
     rtpbr_light_desc lights[3] = {
         {.vertices = {{-1.0f, -0.5f, 1.2f}, {-1.0f, 0.7f, 1.5f}, {0.6f, 0.7f, 1.5f}, {0.6f, -0.5f, 1.2f}},
@@ -427,7 +427,7 @@ static void mc_max_samples(void **state)
     rtpbr_camera_desc camera = {.position = {0.3f, -0.2f, 3.0f}, .target = {0.2f, 0.0f, 0.0f}, .yfov = 1.2f,
                                 .znear = 0.1f, .zfar = 100.0f};
     const rtpbr_material_desc materials[2] = {
-        {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f}, // Lambertian
+        {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR}, // Lambertian
         {.base_color = {0.2f, 0.5f, 0.8f}, .roughness = 0.4f, .ior = 1.5f},        // glossy: both strategies
     };
     enum { W = 24, H = 16 };
@@ -479,7 +479,7 @@ static void mc_many_lights(void **state)
     float plane[12];
     square_positions(4.0f, 0.0f, plane);
     rtpbr_mesh_desc mesh = {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6};
-    const rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f};
+    const rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR};
     enum { GRID = 8, LIGHTS = GRID * GRID };
     rtpbr_light_desc lights[LIGHTS];
     for (int i = 0; i < LIGHTS; ++i) {
