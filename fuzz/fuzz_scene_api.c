@@ -161,6 +161,8 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             materials[m].emission_texture %= kMaxTextures + 2;
             materials[m].normal_texture %= kMaxTextures + 2;
             materials[m].model %= 3;
+            materials[m].flags &= RTPBR_MATERIAL_FRESNEL_ONE | RTPBR_MATERIAL_NO_SPECULAR |
+                                  RTPBR_MATERIAL_NO_ALPHA_CUTOFF | RTPBR_MATERIAL_DISNEY_NO_SPECULAR;
         }
     }
     for (uint32_t t = 0; t < desc.texture_count; ++t) {

@@ -149,7 +149,7 @@ Bsdf::Bsdf(const SurfaceMaterial &m, bool singleScatter, vec3 wo)
         probSheen_ = baseScale_ * std::max(sheenMax_ * std::min(sheenEo_, 1.0f), 0.02f);
     }
     float eo = layerE(wo.z);
-    float eavg = m_.layer ? m_.specularWeight * m_.layer->Eavg(m_.perceptualRoughness, single_) : 0.0f;
+    float eavg = m_.layer ? m_.specularWeight * m_.layer->Eavg(m_.tableRoughness, single_) : 0.0f;
     baseFactorO_ = eavg < 0.999f ? std::max(0.0f, 1.0f - eo) / (1.0f - eavg) : 0.0f;
     // Lobe selection by each lobe's albedo at wo (rough for the metal).
     probMetal_ = sheenScaleO * baseScale_ * m_.metallic * std::max(luminance(m_.baseColor), 0.02f);
@@ -175,7 +175,7 @@ Bsdf::Bsdf(const SurfaceMaterial &m, bool singleScatter, vec3 wo)
 float Bsdf::layerE(float mu) const {
     if (!m_.layer || m_.specularWeight <= 0.0f)
         return 0.0f;
-    return m_.specularWeight * m_.layer->E(mu, m_.perceptualRoughness, single_);
+    return m_.specularWeight * m_.layer->E(mu, m_.tableRoughness, single_);
 }
 
 float Bsdf::sheenScaling(vec3 wi) const {

@@ -58,7 +58,7 @@ struct SurfaceMaterial {
     vec3 baseColor = vec3(1.0f);
     float metallic = 0.0f;
     float alphaX = 0.25f, alphaY = 0.25f;
-    float perceptualRoughness = 0.5f; // sqrt(sqrt(alphaX alphaY)): the LayerAlbedo axis
+    float tableRoughness = 0.5f;      // MaterialParams.tableRoughness, sqrt(sqrt(alphaX alphaY)): the LayerAlbedo axis
     float specularWeight = 1.0f;      // w
     const LayerAlbedo *layer = nullptr; // dielectric layer albedo (its eta is the IOR); null = w 0
     float clearcoat = 0.0f;           // c

@@ -461,7 +461,7 @@ private:
         out.metallic = p.metallic;
         out.alphaX = p.alphas.x;
         out.alphaY = p.alphas.y;
-        out.perceptualRoughness = p.tableRoughness;
+        out.tableRoughness = p.tableRoughness;
         out.specularWeight = p.specularWeight;
         out.layer = layers_[uint32_t(sp.material)];
         float rotation = m.anisotropy.anisotropy_rotation;

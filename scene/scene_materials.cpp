@@ -429,14 +429,35 @@ bool extension_texture(Context& ctx, TextureTable& textures, int material, const
     return textures.get(material, slot.c_str(), transform, texture, tex_coord, srgb, out, out_transform);
 }
 
-bool convert_material(Context& ctx, const tinygltf::Model& model, int index, TextureTable& textures,
-                      rtpbr_gltf_material* out) {
-    const tinygltf::Material& src = model.materials[size_t(index)];
-    rtpbr_gltf_material m = make_default_material();
-    m.gltf_material = index;
-    const auto& pbr = src.pbrMetallicRoughness;
+// The material being read and what its readers share: each reader below fills the part of m
+// its glTF object or extension names, and fails (ctx.fail) or warns as the loader does.
+struct MaterialInput {
+    Context& ctx;
+    TextureTable& textures;
+    int index;  // the glTF material
+    rtpbr_gltf_material& m;
 
-    // Core metallic-roughness.
+    // A textureInfo inside one of the material's extensions (extension_texture).
+    bool texture(const tinygltf::Value& ext, const char* extension, const char* key, bool srgb, int32_t* out,
+                 rtpbr_gltf_texture_transform* transform, float* scale = nullptr) {
+        return extension_texture(ctx, textures, index, ext, extension, key, srgb, out, transform, scale);
+    }
+    // A factor documented in [0,1]: read (default def), then clamped with a warning.
+    bool factor01(MaterialReader& r, const tinygltf::Value& obj, const char* key, double def, float* out) {
+        double d;
+        if (!r.number(obj, key, def, &d)) return false;
+        *out = clamp01(ctx, float(d), index, key);
+        return true;
+    }
+};
+
+// Core metallic-roughness factors, alpha and sidedness; emissiveFactor into emissive (the
+// emission waits for KHR_materials_emissive_strength).
+bool read_core(MaterialInput& in, const tinygltf::Material& src, float emissive[3]) {
+    Context& ctx = in.ctx;
+    rtpbr_gltf_material& m = in.m;
+    const int index = in.index;
+    const auto& pbr = src.pbrMetallicRoughness;
     if (!finite_vector(ctx, pbr.baseColorFactor, 4, index, "baseColorFactor", m.base_color))
         return false;
     for (int k = 0; k < 4; ++k) m.base_color[k] = clamp01(ctx, m.base_color[k], index, "baseColorFactor");
@@ -444,7 +465,6 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "material %d: metallic/roughnessFactor not finite", index);
     m.metallic = clamp01(ctx, float(pbr.metallicFactor), index, "metallicFactor");
     m.roughness = clamp01(ctx, float(pbr.roughnessFactor), index, "roughnessFactor");
-    float emissive[3];
     if (!finite_vector(ctx, src.emissiveFactor, 3, index, "emissiveFactor", emissive)) return false;
     for (int k = 0; k < 3; ++k) emissive[k] = clamp01(ctx, emissive[k], index, "emissiveFactor");
     m.double_sided = src.doubleSided;
@@ -456,161 +476,215 @@ bool convert_material(Context& ctx, const tinygltf::Model& model, int index, Tex
         return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "material %d: alphaCutoff/normalTexture.scale not finite", index);
     m.alpha_cutoff = float(src.alphaCutoff);
     m.normal_scale = float(src.normalTexture.scale);
+    return true;
+}
 
+// The core textures (base colour, metallic-roughness, normal, emissive), each with its
+// KHR_texture_transform.
+bool read_core_textures(MaterialInput& in, const tinygltf::Material& src) {
+    rtpbr_gltf_material& m = in.m;
+    const int index = in.index;
+    const auto& pbr = src.pbrMetallicRoughness;
     auto transform_of = [](const tinygltf::ExtensionMap& extensions) {
         return find_extension(extensions, "KHR_texture_transform");
     };
-    if (!textures.get(index, "baseColorTexture", transform_of(pbr.baseColorTexture.extensions),
-                      pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true, &m.base_color_texture,
-                      &m.base_color_texture_transform) ||
-        !textures.get(index, "metallicRoughnessTexture", transform_of(pbr.metallicRoughnessTexture.extensions),
-                      pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false,
-                      &m.metallic_roughness_texture, &m.metallic_roughness_texture_transform) ||
-        !textures.get(index, "normalTexture", transform_of(src.normalTexture.extensions), src.normalTexture.index,
-                      src.normalTexture.texCoord, false, &m.normal_texture, &m.normal_texture_transform) ||
-        !textures.get(index, "emissiveTexture", transform_of(src.emissiveTexture.extensions),
-                      src.emissiveTexture.index, src.emissiveTexture.texCoord, true, &m.emission_texture,
-                      &m.emission_texture_transform))
+    if (!in.textures.get(index, "baseColorTexture", transform_of(pbr.baseColorTexture.extensions),
+                         pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true, &m.base_color_texture,
+                         &m.base_color_texture_transform) ||
+        !in.textures.get(index, "metallicRoughnessTexture", transform_of(pbr.metallicRoughnessTexture.extensions),
+                         pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false,
+                         &m.metallic_roughness_texture, &m.metallic_roughness_texture_transform) ||
+        !in.textures.get(index, "normalTexture", transform_of(src.normalTexture.extensions),
+                         src.normalTexture.index, src.normalTexture.texCoord, false, &m.normal_texture,
+                         &m.normal_texture_transform) ||
+        !in.textures.get(index, "emissiveTexture", transform_of(src.emissiveTexture.extensions),
+                         src.emissiveTexture.index, src.emissiveTexture.texCoord, true, &m.emission_texture,
+                         &m.emission_texture_transform))
         return false;
     if (src.occlusionTexture.index >= 0)
-        ctx.warn("material %d: occlusionTexture ignored", index);
+        in.ctx.warn("material %d: occlusionTexture ignored", index);
+    return true;
+}
 
+bool read_emissive_strength(MaterialInput& in, const tinygltf::Value& ext) {
+    MaterialReader r{in.ctx, in.index, "KHR_materials_emissive_strength"};
+    double d;
+    if (!r.number(ext, "emissiveStrength", 1.0, &d)) return false;
+    if (d < 0.0)
+        return in.ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: emissiveStrength %g < 0", in.index, d);
+    in.m.emissive_strength.emissive_strength = float(d);
+    in.m.has_emissive_strength = true;
+    return true;
+}
+
+bool read_ior(MaterialInput& in, const tinygltf::Value& ext) {
+    MaterialReader r{in.ctx, in.index, "KHR_materials_ior"};
+    double d;
+    if (!r.number(ext, "ior", 1.5, &d)) return false;
+    if (!(d == 0.0 || d >= 1.0))
+        return in.ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON,
+                           "material %d: KHR_materials_ior.ior %g is neither 0 nor >= 1", in.index, d);
+    in.m.ior.ior = float(d);
+    in.m.has_ior = true;
+    return true;
+}
+
+bool read_specular(MaterialInput& in, const tinygltf::Value& ext) {
+    static const char* const name = "KHR_materials_specular";
+    MaterialReader r{in.ctx, in.index, name};
+    rtpbr_gltf_specular& s = in.m.specular;
+    bool present;
+    if (!in.factor01(r, ext, "specularFactor", 1.0, &s.specular_factor)) return false;
+    if (!r.vector(ext, "specularColorFactor", 3, 0, s.specular_color_factor, &present)) return false;
+    for (int k = 0; k < 3; ++k)
+        if (s.specular_color_factor[k] < 0.0f)
+            return in.ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: specularColorFactor < 0", in.index);
+    if (!in.texture(ext, name, "specularTexture", false, &s.specular_texture, &s.specular_texture_transform) ||
+        !in.texture(ext, name, "specularColorTexture", true, &s.specular_color_texture,
+                    &s.specular_color_texture_transform))
+        return false;
+    in.m.has_specular = true;
+    return true;
+}
+
+bool read_clearcoat(MaterialInput& in, const tinygltf::Value& ext) {
+    static const char* const name = "KHR_materials_clearcoat";
+    MaterialReader r{in.ctx, in.index, name};
+    rtpbr_gltf_clearcoat& c = in.m.clearcoat;
+    if (!in.factor01(r, ext, "clearcoatFactor", 0.0, &c.clearcoat_factor) ||
+        !in.factor01(r, ext, "clearcoatRoughnessFactor", 0.0, &c.clearcoat_roughness_factor))
+        return false;
+    if (!in.texture(ext, name, "clearcoatTexture", false, &c.clearcoat_texture, &c.clearcoat_texture_transform) ||
+        !in.texture(ext, name, "clearcoatRoughnessTexture", false, &c.clearcoat_roughness_texture,
+                    &c.clearcoat_roughness_texture_transform) ||
+        !in.texture(ext, name, "clearcoatNormalTexture", false, &c.clearcoat_normal_texture,
+                    &c.clearcoat_normal_texture_transform, &c.clearcoat_normal_scale))
+        return false;
+    if (c.clearcoat_normal_texture >= 0)
+        in.ctx.warn("material %d: clearcoatNormalTexture ignored (the coat uses the base normal)", in.index);
+    in.m.has_clearcoat = true;
+    return true;
+}
+
+bool read_sheen(MaterialInput& in, const tinygltf::Value& ext) {
+    static const char* const name = "KHR_materials_sheen";
+    MaterialReader r{in.ctx, in.index, name};
+    rtpbr_gltf_sheen& s = in.m.sheen;
+    bool present;
+    if (!r.vector(ext, "sheenColorFactor", 3, 0, s.sheen_color_factor, &present)) return false;
+    for (int k = 0; k < 3; ++k)
+        s.sheen_color_factor[k] = clamp01(in.ctx, s.sheen_color_factor[k], in.index, "sheenColorFactor");
+    if (!in.factor01(r, ext, "sheenRoughnessFactor", 0.0, &s.sheen_roughness_factor)) return false;
+    if (!in.texture(ext, name, "sheenColorTexture", true, &s.sheen_color_texture,
+                    &s.sheen_color_texture_transform) ||
+        !in.texture(ext, name, "sheenRoughnessTexture", false, &s.sheen_roughness_texture,
+                    &s.sheen_roughness_texture_transform))
+        return false;
+    in.m.has_sheen = true;
+    return true;
+}
+
+bool read_anisotropy(MaterialInput& in, const tinygltf::Value& ext) {
+    MaterialReader r{in.ctx, in.index, "KHR_materials_anisotropy"};
+    double d;
+    if (!in.factor01(r, ext, "anisotropyStrength", 0.0, &in.m.anisotropy.anisotropy_strength) ||
+        !r.number(ext, "anisotropyRotation", 0.0, &d))
+        return false;
+    in.m.anisotropy.anisotropy_rotation = float(d);
+    if (ext.IsObject() && ext.Has("anisotropyTexture"))
+        in.ctx.warn("material %d: KHR_materials_anisotropy.anisotropyTexture ignored", in.index);
+    in.m.has_anisotropy = true;
+    return true;
+}
+
+// The material extensions the loader reads, in reading order (KHR_materials_specular before
+// extras.rtpbr_disney, whose default specular depends on it); other KHR_materials_* are
+// ignored with a warning.
+struct ExtensionReader {
+    const char* name;
+    bool (*read)(MaterialInput& in, const tinygltf::Value& ext);
+};
+const ExtensionReader kMaterialExtensions[] = {
+    {"KHR_materials_emissive_strength", read_emissive_strength},
+    {"KHR_materials_ior", read_ior},
+    {"KHR_materials_specular", read_specular},
+    {"KHR_materials_clearcoat", read_clearcoat},
+    {"KHR_materials_sheen", read_sheen},
+    {"KHR_materials_anisotropy", read_anisotropy},
+};
+
+void warn_unsupported_extensions(MaterialInput& in, const tinygltf::ExtensionMap& extensions) {
+    for (const auto& e : extensions) {
+        if (e.first.rfind("KHR_materials_", 0) != 0) continue;
+        bool known = false;
+        for (const ExtensionReader& x : kMaterialExtensions) known = known || e.first == x.name;
+        if (!known) in.ctx.warn("material %d: extension %s ignored", in.index, e.first.c_str());
+    }
+}
+
+// Disney parameters from extras.rtpbr_disney (Burley 2012 names).
+bool read_disney(MaterialInput& in, const tinygltf::Value& dis) {
+    Context& ctx = in.ctx;
+    rtpbr_gltf_material& m = in.m;
+    const int index = in.index;
+    if (!dis.IsObject())
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: extras.rtpbr_disney must be an object", index);
+    m.has_disney = true;
+    MaterialReader r{ctx, index, "extras.rtpbr_disney"};
+    rtpbr_gltf_disney& dn = m.disney;
     double d;
     bool present;
-    const tinygltf::Value* ext;
-    // KHR_materials_emissive_strength
-    if ((ext = find_extension(src.extensions, "KHR_materials_emissive_strength"))) {
-        MaterialReader r{ctx, index, "KHR_materials_emissive_strength"};
-        if (!r.number(*ext, "emissiveStrength", 1.0, &d)) return false;
-        if (d < 0.0)
-            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: emissiveStrength %g < 0", index, d);
-        m.emissive_strength.emissive_strength = float(d);
-        m.has_emissive_strength = true;
+    struct Field { const char* key; float* dst; };
+    const Field fields[] = {
+        {"metallic", &m.metallic},          {"roughness", &m.roughness},
+        {"subsurface", &dn.subsurface},     {"specular", &dn.specular},
+        {"specularTint", &dn.specular_tint}, {"anisotropic", &dn.anisotropic},
+        {"sheen", &dn.sheen},               {"sheenTint", &dn.sheen_tint},
+        {"clearcoat", &dn.clearcoat},       {"clearcoatGloss", &dn.clearcoat_gloss},
+    };
+    for (const Field& f : fields)
+        if (dis.Has(f.key) && !in.factor01(r, dis, f.key, 0.0, f.dst)) return false;
+    float color[4] = {m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]};
+    if (!r.vector(dis, "baseColor", 3, 4, color, &present)) return false;
+    for (int k = 0; k < 4; ++k) m.base_color[k] = clamp01(ctx, color[k], index, "baseColor");
+    // Burley's specular from an IOR when the file gives none: F0(ior) x specularFactor / 0.08.
+    float ior = m.ior.ior;
+    if (dis.Has("ior")) {
+        if (!r.number(dis, "ior", 1.5, &d)) return false;
+        if (d < 1.0)
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: extras.rtpbr_disney.ior %g < 1", index, d);
+        ior = float(d);
     }
-    for (int k = 0; k < 3; ++k) m.emission[k] = emissive[k] * m.emissive_strength.emissive_strength;
-    // KHR_materials_ior
-    if ((ext = find_extension(src.extensions, "KHR_materials_ior"))) {
-        MaterialReader r{ctx, index, "KHR_materials_ior"};
-        if (!r.number(*ext, "ior", 1.5, &d)) return false;
-        if (!(d == 0.0 || d >= 1.0))
-            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: KHR_materials_ior.ior %g is neither 0 nor >= 1",
-                            index, d);
-        m.ior.ior = float(d);
-        m.has_ior = true;
+    if (!dis.Has("specular"))
+        dn.specular = std::min(1.0f, f0_from_ior(ior) * m.specular.specular_factor / 0.08f);
+    static const char* const known[] = {"metallic", "roughness", "subsurface", "specular",
+                                        "specularTint", "anisotropic", "sheen", "sheenTint",
+                                        "clearcoat", "clearcoatGloss", "baseColor", "ior"};
+    for (const std::string& key : dis.Keys()) {
+        bool ok = false;
+        for (const char* k : known) ok = ok || key == k;
+        if (!ok) ctx.warn("material %d: extras.rtpbr_disney.%s unknown, ignored", index, key.c_str());
     }
-    // KHR_materials_specular
-    if ((ext = find_extension(src.extensions, "KHR_materials_specular"))) {
-        MaterialReader r{ctx, index, "KHR_materials_specular"};
-        if (!r.number(*ext, "specularFactor", 1.0, &d)) return false;
-        m.specular.specular_factor = clamp01(ctx, float(d), index, "specularFactor");
-        if (!r.vector(*ext, "specularColorFactor", 3, 0, m.specular.specular_color_factor, &present)) return false;
-        for (int k = 0; k < 3; ++k)
-            if (m.specular.specular_color_factor[k] < 0.0f)
-                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: specularColorFactor < 0", index);
-        if (!extension_texture(ctx, textures, index, *ext, "KHR_materials_specular", "specularTexture", false,
-                               &m.specular.specular_texture, &m.specular.specular_texture_transform) ||
-            !extension_texture(ctx, textures, index, *ext, "KHR_materials_specular", "specularColorTexture", true,
-                               &m.specular.specular_color_texture, &m.specular.specular_color_texture_transform))
-            return false;
-        m.has_specular = true;
-    }
-    // KHR_materials_clearcoat
-    if ((ext = find_extension(src.extensions, "KHR_materials_clearcoat"))) {
-        MaterialReader r{ctx, index, "KHR_materials_clearcoat"};
-        if (!r.number(*ext, "clearcoatFactor", 0.0, &d)) return false;
-        m.clearcoat.clearcoat_factor = clamp01(ctx, float(d), index, "clearcoatFactor");
-        if (!r.number(*ext, "clearcoatRoughnessFactor", 0.0, &d)) return false;
-        m.clearcoat.clearcoat_roughness_factor = clamp01(ctx, float(d), index, "clearcoatRoughnessFactor");
-        rtpbr_gltf_clearcoat& c = m.clearcoat;
-        if (!extension_texture(ctx, textures, index, *ext, "KHR_materials_clearcoat", "clearcoatTexture", false,
-                               &c.clearcoat_texture, &c.clearcoat_texture_transform) ||
-            !extension_texture(ctx, textures, index, *ext, "KHR_materials_clearcoat", "clearcoatRoughnessTexture",
-                               false, &c.clearcoat_roughness_texture, &c.clearcoat_roughness_texture_transform) ||
-            !extension_texture(ctx, textures, index, *ext, "KHR_materials_clearcoat", "clearcoatNormalTexture",
-                               false, &c.clearcoat_normal_texture, &c.clearcoat_normal_texture_transform,
-                               &c.clearcoat_normal_scale))
-            return false;
-        if (c.clearcoat_normal_texture >= 0)
-            ctx.warn("material %d: clearcoatNormalTexture ignored (the coat uses the base normal)", index);
-        m.has_clearcoat = true;
-    }
-    // KHR_materials_sheen
-    if ((ext = find_extension(src.extensions, "KHR_materials_sheen"))) {
-        MaterialReader r{ctx, index, "KHR_materials_sheen"};
-        float* color = m.sheen.sheen_color_factor;
-        if (!r.vector(*ext, "sheenColorFactor", 3, 0, color, &present)) return false;
-        for (int k = 0; k < 3; ++k) color[k] = clamp01(ctx, color[k], index, "sheenColorFactor");
-        if (!r.number(*ext, "sheenRoughnessFactor", 0.0, &d)) return false;
-        m.sheen.sheen_roughness_factor = clamp01(ctx, float(d), index, "sheenRoughnessFactor");
-        if (!extension_texture(ctx, textures, index, *ext, "KHR_materials_sheen", "sheenColorTexture", true,
-                               &m.sheen.sheen_color_texture, &m.sheen.sheen_color_texture_transform) ||
-            !extension_texture(ctx, textures, index, *ext, "KHR_materials_sheen", "sheenRoughnessTexture", false,
-                               &m.sheen.sheen_roughness_texture, &m.sheen.sheen_roughness_texture_transform))
-            return false;
-        m.has_sheen = true;
-    }
-    // KHR_materials_anisotropy
-    if ((ext = find_extension(src.extensions, "KHR_materials_anisotropy"))) {
-        MaterialReader r{ctx, index, "KHR_materials_anisotropy"};
-        if (!r.number(*ext, "anisotropyStrength", 0.0, &d)) return false;
-        m.anisotropy.anisotropy_strength = clamp01(ctx, float(d), index, "anisotropyStrength");
-        if (!r.number(*ext, "anisotropyRotation", 0.0, &d)) return false;
-        m.anisotropy.anisotropy_rotation = float(d);
-        if (ext->IsObject() && ext->Has("anisotropyTexture"))
-            ctx.warn("material %d: KHR_materials_anisotropy.anisotropyTexture ignored", index);
-        m.has_anisotropy = true;
-    }
-    for (const auto& e : src.extensions)
-        if (e.first.rfind("KHR_materials_", 0) == 0 && e.first != "KHR_materials_emissive_strength" &&
-            e.first != "KHR_materials_ior" && e.first != "KHR_materials_specular" &&
-            e.first != "KHR_materials_clearcoat" && e.first != "KHR_materials_sheen" &&
-            e.first != "KHR_materials_anisotropy")
-            ctx.warn("material %d: extension %s ignored", index, e.first.c_str());
+    return true;
+}
 
-    // Disney parameters from extras.rtpbr_disney (Burley 2012 names).
-    const tinygltf::Value& extras = src.extras;
-    if (extras.IsObject() && extras.Has("rtpbr_disney")) {
-        const tinygltf::Value& dis = extras.Get("rtpbr_disney");
-        if (!dis.IsObject())
-            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: extras.rtpbr_disney must be an object", index);
-        m.has_disney = true;
-        MaterialReader r{ctx, index, "extras.rtpbr_disney"};
-        rtpbr_gltf_disney& dn = m.disney;
-        struct Field { const char* key; float* dst; };
-        const Field fields[] = {
-            {"metallic", &m.metallic},          {"roughness", &m.roughness},
-            {"subsurface", &dn.subsurface},     {"specular", &dn.specular},
-            {"specularTint", &dn.specular_tint}, {"anisotropic", &dn.anisotropic},
-            {"sheen", &dn.sheen},               {"sheenTint", &dn.sheen_tint},
-            {"clearcoat", &dn.clearcoat},       {"clearcoatGloss", &dn.clearcoat_gloss},
-        };
-        for (const Field& f : fields) {
-            if (!dis.Has(f.key)) continue;
-            if (!r.number(dis, f.key, 0.0, &d)) return false;
-            *f.dst = clamp01(ctx, float(d), index, f.key);
-        }
-        float color[4] = {m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]};
-        if (!r.vector(dis, "baseColor", 3, 4, color, &present)) return false;
-        for (int k = 0; k < 4; ++k) m.base_color[k] = clamp01(ctx, color[k], index, "baseColor");
-        // Burley's specular from an IOR when the file gives none: F0(ior) x specularFactor / 0.08.
-        float ior = m.ior.ior;
-        if (dis.Has("ior")) {
-            if (!r.number(dis, "ior", 1.5, &d)) return false;
-            if (d < 1.0)
-                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "material %d: extras.rtpbr_disney.ior %g < 1", index, d);
-            ior = float(d);
-        }
-        if (!dis.Has("specular"))
-            dn.specular = std::min(1.0f, f0_from_ior(ior) * m.specular.specular_factor / 0.08f);
-        static const char* const known[] = {"metallic", "roughness", "subsurface", "specular",
-                                            "specularTint", "anisotropic", "sheen", "sheenTint",
-                                            "clearcoat", "clearcoatGloss", "baseColor", "ior"};
-        for (const std::string& key : dis.Keys()) {
-            bool ok = false;
-            for (const char* k : known) ok = ok || key == k;
-            if (!ok) ctx.warn("material %d: extras.rtpbr_disney.%s unknown, ignored", index, key.c_str());
-        }
+// One glTF material: the core, each supported extension (kMaterialExtensions), the Disney extras.
+bool convert_material(Context& ctx, const tinygltf::Model& model, int index, TextureTable& textures,
+                      rtpbr_gltf_material* out) {
+    const tinygltf::Material& src = model.materials[size_t(index)];
+    rtpbr_gltf_material m = make_default_material();
+    m.gltf_material = index;
+    MaterialInput in{ctx, textures, index, m};
+    float emissive[3];
+    if (!read_core(in, src, emissive) || !read_core_textures(in, src)) return false;
+    for (const ExtensionReader& x : kMaterialExtensions) {
+        const tinygltf::Value* ext = find_extension(src.extensions, x.name);
+        if (ext && !x.read(in, *ext)) return false;
     }
+    warn_unsupported_extensions(in, src.extensions);
+    for (int k = 0; k < 3; ++k) m.emission[k] = emissive[k] * m.emissive_strength.emissive_strength;
+    if (src.extras.IsObject() && src.extras.Has("rtpbr_disney") && !read_disney(in, src.extras.Get("rtpbr_disney")))
+        return false;
     *out = m;
     return true;
 }

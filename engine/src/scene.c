@@ -155,8 +155,10 @@ static rtpbr_result validate_mesh(const rtpbr_context *ctx, const rtpbr_mesh_des
 #undef FAIL
 }
 
-// The desc's defaults applied, the values stored as glTF factors; the material rules (roughness
-// floor, ior, clearcoat and Disney mappings) are applied by the shaders, in
+// The desc's defaults and flags applied, the values stored as glTF factors (KHR's own zeros:
+// ior 0 is Fresnel 1, specularFactor 0 no lobe, alphaCutoff 0 nothing cut), the values
+// validate_material checked taken as they are; the material rules (roughness floor, [0, 1]
+// ranges, ior, clearcoat and Disney mappings) are applied by the shaders, in
 // shaderlib/rtpbr/material.h's Material_Resolve, which the oracle calls as well.
 static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
 {
@@ -167,10 +169,10 @@ static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
     g.roughness = m->roughness;
     if (is_zero(m->specular_color, 3)) g.specular_color[0] = g.specular_color[1] = g.specular_color[2] = 1.0f;
     else memcpy(g.specular_color, m->specular_color, sizeof g.specular_color);
-    g.ior = m->ior == 0.0f ? 1.5f : m->ior == RTPBR_IOR_FRESNEL_ONE ? 0.0f : m->ior;
-    g.specular_factor = m->specular == 0.0f ? 1.0f : fmaxf(m->specular, 0.0f);
+    g.ior = m->flags & RTPBR_MATERIAL_FRESNEL_ONE ? 0.0f : m->ior == 0.0f ? 1.5f : m->ior;
+    g.specular_factor = m->flags & RTPBR_MATERIAL_NO_SPECULAR ? 0.0f : m->specular_factor == 0.0f ? 1.0f : m->specular_factor;
     g.normal_scale = m->normal_scale == 0.0f ? 1.0f : m->normal_scale;
-    g.anisotropy_strength = m->anisotropy;
+    g.anisotropy_strength = m->anisotropy_strength;
     g.anisotropy_rotation = m->anisotropy_rotation;
     memcpy(g.sheen_color, m->sheen_color, sizeof g.sheen_color);
     g.sheen_roughness = m->sheen_roughness;
@@ -178,7 +180,7 @@ static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
     g.clearcoat_roughness = m->clearcoat_roughness;
     const rtpbr_disney_params *d = &m->disney;
     g.disney_subsurface = d->subsurface;
-    g.disney_specular = d->specular == 0.0f ? 0.5f : d->specular;
+    g.disney_specular = m->flags & RTPBR_MATERIAL_DISNEY_NO_SPECULAR ? 0.0f : d->specular == 0.0f ? 0.5f : d->specular;
     g.disney_specular_tint = d->specular_tint;
     g.disney_sheen = d->sheen;
     g.disney_sheen_tint = d->sheen_tint;
@@ -192,11 +194,11 @@ static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
               (!disney && m->clearcoat > 0.0f ? RTPBR_MATERIAL_FLAG_CLEARCOAT : 0u) |
               (!disney && !(m->sheen_color[0] <= 0.0f && m->sheen_color[1] <= 0.0f && m->sheen_color[2] <= 0.0f)
                    ? RTPBR_MATERIAL_FLAG_SHEEN : 0u) |
-              (!disney && m->anisotropy > 0.0f ? RTPBR_MATERIAL_FLAG_ANISOTROPY : 0u) |
+              (!disney && m->anisotropy_strength > 0.0f ? RTPBR_MATERIAL_FLAG_ANISOTROPY : 0u) |
               (m->alpha_mode == RTPBR_ALPHA_MASK ? RTPBR_MATERIAL_FLAG_ALPHA_MASK : 0u) |
               (m->alpha_mode == RTPBR_ALPHA_BLEND ? RTPBR_MATERIAL_FLAG_ALPHA_BLEND : 0u);
     g.alpha = fminf(fmaxf(m->alpha, 0.0f), 1.0f);
-    g.alpha_cutoff = m->alpha_cutoff == 0.0f ? 0.5f : fmaxf(m->alpha_cutoff, 0.0f);
+    g.alpha_cutoff = m->flags & RTPBR_MATERIAL_NO_ALPHA_CUTOFF ? 0.0f : m->alpha_cutoff == 0.0f ? 0.5f : m->alpha_cutoff;
     g.base_color_texture = m->base_color_texture;
     return g;
 }
@@ -237,7 +239,7 @@ static uint8_t material_extension_textures(const rtpbr_material_desc *m)
     bool sheen = !(m->sheen_color[0] <= 0.0f && m->sheen_color[1] <= 0.0f && m->sheen_color[2] <= 0.0f);
     bool coat_sheen = (m->clearcoat > 0.0f && (m->clearcoat_texture || m->clearcoat_roughness_texture)) ||
                       (sheen && (m->sheen_color_texture || m->sheen_roughness_texture));
-    bool specular = m->specular >= 0.0f && (m->specular_texture || m->specular_color_texture);
+    bool specular = !(m->flags & RTPBR_MATERIAL_NO_SPECULAR) && (m->specular_texture || m->specular_color_texture);
     return (uint8_t)((specular ? RTPBR_EXTENSION_TEXTURES_SPECULAR : 0u) |
                      (coat_sheen ? RTPBR_EXTENSION_TEXTURES_COAT_SHEEN : 0u));
 }
@@ -252,10 +254,10 @@ uint32_t rtpbr_gpu_scene_extension_textures(const rtpbr_gpu_scene *scene)
 static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_material_desc *m, uint32_t index)
 {
     if (!rtpbr_finite(m->base_color, 3) || !rtpbr_finite(&m->metallic, 1) || !rtpbr_finite(&m->roughness, 1) ||
-        !rtpbr_finite(m->emission, 3) || !rtpbr_finite(&m->ior, 1) || !rtpbr_finite(&m->specular, 1) ||
+        !rtpbr_finite(m->emission, 3) || !rtpbr_finite(&m->ior, 1) || !rtpbr_finite(&m->specular_factor, 1) ||
         !rtpbr_finite(m->specular_color, 3) || !rtpbr_finite(&m->normal_scale, 1) ||
         !rtpbr_finite(&m->clearcoat, 1) || !rtpbr_finite(&m->clearcoat_roughness, 1) ||
-        !rtpbr_finite(&m->anisotropy, 1) || !rtpbr_finite(&m->anisotropy_rotation, 1) || !rtpbr_finite(m->sheen_color, 3) || !rtpbr_finite(&m->sheen_roughness, 1) ||
+        !rtpbr_finite(&m->anisotropy_strength, 1) || !rtpbr_finite(&m->anisotropy_rotation, 1) || !rtpbr_finite(m->sheen_color, 3) || !rtpbr_finite(&m->sheen_roughness, 1) ||
         !rtpbr_finite((const float *)&m->disney, sizeof m->disney / sizeof(float)) || !rtpbr_finite(&m->alpha, 1) ||
         !rtpbr_finite(&m->alpha_cutoff, 1)) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);
@@ -282,10 +284,30 @@ static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_mate
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has an unknown model %d", index, (int)m->model);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
-    if (m->ior != RTPBR_IOR_FRESNEL_ONE && (m->ior < 0.0f || (m->ior > 0.0f && m->ior < 1.0f))) {
+    if (m->ior < 0.0f || (m->ior > 0.0f && m->ior < 1.0f)) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
-                  "material %u has ior %g; it must be >= 1 (or 0 for the default, RTPBR_IOR_FRESNEL_ONE for Fresnel 1)",
-                  index, m->ior);
+                  "material %u has ior %g; it must be >= 1 (or 0 for the default 1.5; KHR's ior 0, Fresnel 1: "
+                  "flag RTPBR_MATERIAL_FRESNEL_ONE)", index, m->ior);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    // Absence is a flag, never a negative value (what was -1 before issue 29).
+    const struct {
+        float value;
+        const char *name, *flag;
+    } non_negative[] = {
+        {m->specular_factor, "specular_factor", "RTPBR_MATERIAL_NO_SPECULAR"},
+        {m->alpha_cutoff, "alpha_cutoff", "RTPBR_MATERIAL_NO_ALPHA_CUTOFF"},
+        {m->disney.specular, "disney.specular", "RTPBR_MATERIAL_DISNEY_NO_SPECULAR"},
+    };
+    for (size_t i = 0; i < sizeof non_negative / sizeof non_negative[0]; ++i)
+        if (non_negative[i].value < 0.0f) {
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has %s %g; it must be >= 0 (0: the default; none: flag %s)",
+                      index, non_negative[i].name, non_negative[i].value, non_negative[i].flag);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+    if (m->flags & ~(uint32_t)(RTPBR_MATERIAL_FRESNEL_ONE | RTPBR_MATERIAL_NO_SPECULAR | RTPBR_MATERIAL_NO_ALPHA_CUTOFF |
+                               RTPBR_MATERIAL_DISNEY_NO_SPECULAR)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has unknown flags 0x%x", index, m->flags);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     return RTPBR_SUCCESS;

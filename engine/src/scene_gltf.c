@@ -3,14 +3,15 @@
 //
 // Material mapping (loader field -> engine), one table:
 //   base_color.rgb            -> base_color
-//   alpha_mode, base_color[3], alpha_cutoff -> alpha_mode, alpha, alpha_cutoff (0 -> negative:
-//                               nothing is cut; MASK cuts out, BLEND is drawn forward)
+//   alpha_mode, base_color[3], alpha_cutoff -> alpha_mode, alpha, alpha_cutoff (0 -> flag
+//                               RTPBR_MATERIAL_NO_ALPHA_CUTOFF: nothing is cut; MASK cuts out,
+//                               BLEND is drawn forward)
 //   metallic, roughness       -> metallic, roughness   (perceptual; alpha = r^2)
 //   emission                  -> emission              (emissiveFactor x emissive_strength)
 //   ior.ior                   -> ior                   (0, Fresnel 1 in KHR_materials_ior, ->
-//                                                       RTPBR_IOR_FRESNEL_ONE)
-//   specular.specular_factor  -> specular              (0 -> "none", i.e. -1 in the desc)
-//   specular.specular_color_factor -> specular_color   (black: no lobe, like specular = 0)
+//                                                       flag RTPBR_MATERIAL_FRESNEL_ONE)
+//   specular.specular_factor  -> specular_factor       (0 -> flag RTPBR_MATERIAL_NO_SPECULAR)
+//   specular.specular_color_factor -> specular_color   (black: no lobe, the same flag)
 //   double_sided              -> double_sided          (emission on both sides)
 //   base_color / metallic_roughness / emission textures -> the same, each with its
 //                               *_texture_transform (KHR_texture_transform, texCoord 0 or 1)
@@ -18,13 +19,17 @@
 //                               trilinear; mipmaps built at upload)
 //   normal texture, normal_scale -> the same (tangents from the loader)
 //   clearcoat.*               -> clearcoat, clearcoat_roughness (KHR_materials_clearcoat)
-//   anisotropy.*              -> anisotropy, anisotropy_rotation (KHR_materials_anisotropy)
+//   anisotropy.*              -> anisotropy_strength, anisotropy_rotation (KHR_materials_anisotropy)
 //   sheen.*                   -> sheen_color, sheen_roughness (KHR_materials_sheen)
 //   clearcoat, clearcoat roughness, sheen colour and roughness, specular and specular colour
 //                             textures -> the *_texture of the same name, each with its
 //                               transform (metallic-roughness materials; clearcoatNormalTexture
 //                               is ignored, as the loader warns)
-//   has_disney, disney.*      -> model DISNEY, disney.* (Burley 2012)
+//   has_disney, disney.*      -> model DISNEY, disney.* (Burley 2012; specular 0 -> flag
+//                                                       RTPBR_MATERIAL_DISNEY_NO_SPECULAR)
+// Every value is copied as the loader holds it (the loader checked and clamped it, with a
+// warning; rtpbr_gltf.h): the desc's defaults never apply, and the loader's zeros that mean
+// something else than the desc's default become flags.
 // The material rules (roughness floor, ior, coat and Disney mappings) are applied by the
 // shaders through shaderlib/rtpbr/material.h, as in the oracle. specular_color is applied to
 // the Schlick F0 of the specular lobe; the oracle's exact dielectric Fresnel ignores it (a
@@ -71,15 +76,20 @@ void rtpbr_material_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint
     d->metallic = m->metallic;
     d->roughness = m->roughness;
     memcpy(d->emission, m->emission, sizeof d->emission);
-    d->ior = m->ior.ior == 0.0f ? RTPBR_IOR_FRESNEL_ONE : m->ior.ior;
-    d->specular = m->specular.specular_factor == 0.0f ? -1.0f : m->specular.specular_factor;
+    d->ior = m->ior.ior;
+    d->specular_factor = m->specular.specular_factor;
     memcpy(d->specular_color, m->specular.specular_color_factor, sizeof d->specular_color);
+    bool black_specular = d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f;
+    d->flags = (d->ior == 0.0f ? RTPBR_MATERIAL_FRESNEL_ONE : 0u) |
+               (d->specular_factor == 0.0f || black_specular ? RTPBR_MATERIAL_NO_SPECULAR : 0u) |
+               (m->alpha_cutoff == 0.0f ? RTPBR_MATERIAL_NO_ALPHA_CUTOFF : 0u) |
+               (m->has_disney && m->disney.specular == 0.0f ? RTPBR_MATERIAL_DISNEY_NO_SPECULAR : 0u);
     d->double_sided = m->double_sided;
     d->alpha_mode = m->alpha_mode == RTPBR_GLTF_ALPHA_MASK    ? RTPBR_ALPHA_MASK
                     : m->alpha_mode == RTPBR_GLTF_ALPHA_BLEND ? RTPBR_ALPHA_BLEND
                                                               : RTPBR_ALPHA_OPAQUE;
     d->alpha = m->base_color[3];
-    d->alpha_cutoff = m->alpha_cutoff > 0.0f ? m->alpha_cutoff : -1.0f;
+    d->alpha_cutoff = m->alpha_cutoff;
     // Loader texture indices are 0-based with -1 for none; the engine's are 1-based.
     d->base_color_texture = texture_ref(loaded, m->base_color_texture);
     d->metallic_roughness_texture = texture_ref(loaded, m->metallic_roughness_texture);
@@ -90,12 +100,10 @@ void rtpbr_material_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint
     d->emission_texture_transform = texture_transform(&m->emission_texture_transform);
     d->normal_texture_transform = texture_transform(&m->normal_texture_transform);
     d->normal_scale = m->normal_scale;
-    if (d->specular_color[0] == 0.0f && d->specular_color[1] == 0.0f && d->specular_color[2] == 0.0f)
-        d->specular = -1.0f; // a black specular colour removes the lobe, like specular = 0
     if (!m->has_disney) {
         d->clearcoat = m->clearcoat.clearcoat_factor;
         d->clearcoat_roughness = m->clearcoat.clearcoat_roughness_factor;
-        d->anisotropy = m->anisotropy.anisotropy_strength;
+        d->anisotropy_strength = m->anisotropy.anisotropy_strength;
         d->anisotropy_rotation = m->anisotropy.anisotropy_rotation;
         memcpy(d->sheen_color, m->sheen.sheen_color_factor, sizeof d->sheen_color);
         d->sheen_roughness = m->sheen.sheen_roughness_factor;
@@ -119,7 +127,7 @@ void rtpbr_material_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint
         d->model = RTPBR_MATERIAL_DISNEY;
         d->disney = (rtpbr_disney_params){
             .subsurface = dn->subsurface,
-            .specular = dn->specular == 0.0f ? -1.0f : dn->specular,
+            .specular = dn->specular,
             .specular_tint = dn->specular_tint,
             .sheen = dn->sheen,
             .sheen_tint = dn->sheen_tint,

@@ -333,6 +333,18 @@ static void light_panel(app *a)
     if (edited) app_light_edited(a);
 }
 
+// A slider over a material value whose glTF zero is a flag (rtpbr_material_flags; the viewer's
+// materials come from rtpbr_material_desc_from_loaded, which writes every value as the file
+// has it): it shows 0 while the flag is set, and an edit to 0 sets the flag.
+static bool flagged_slider(const char *label, float *value, float lo, float hi, uint32_t *flags, uint32_t flag)
+{
+    float shown = (*flags & flag) ? 0.0f : *value;
+    if (!ImGui::SliderFloat(label, &shown, lo, hi)) return false;
+    *value = shown;
+    *flags = shown == 0.0f ? (*flags | flag) : (*flags & ~flag);
+    return true;
+}
+
 static void material_panel(app *a)
 {
     viewer_scene *s = &a->scene;
@@ -351,7 +363,7 @@ static void material_panel(app *a)
         ImGui::TextDisabled("Disney principled BRDF (Burley 2012)");
         rtpbr_disney_params *d = &m->disney;
         e |= ImGui::SliderFloat("subsurface", &d->subsurface, 0.0f, 1.0f);
-        e |= ImGui::SliderFloat("specular", &d->specular, 0.0f, 1.0f);
+        e |= flagged_slider("specular", &d->specular, 0.0f, 1.0f, &m->flags, RTPBR_MATERIAL_DISNEY_NO_SPECULAR);
         e |= ImGui::SliderFloat("specular tint", &d->specular_tint, 0.0f, 1.0f);
         e |= ImGui::SliderFloat("sheen", &d->sheen, 0.0f, 1.0f);
         e |= ImGui::SliderFloat("sheen tint", &d->sheen_tint, 0.0f, 1.0f);
@@ -360,12 +372,12 @@ static void material_panel(app *a)
         e |= ImGui::SliderFloat("anisotropic", &d->anisotropic, 0.0f, 1.0f);
     } else {
         ImGui::TextDisabled("glTF metallic-roughness + KHR_materials_*");
-        e |= ImGui::SliderFloat("ior", &m->ior, 1.0f, 3.0f);
-        e |= ImGui::SliderFloat("specular", &m->specular, 0.0f, 1.0f);
+        e |= flagged_slider("ior", &m->ior, 1.0f, 3.0f, &m->flags, RTPBR_MATERIAL_FRESNEL_ONE);
+        e |= flagged_slider("specular", &m->specular_factor, 0.0f, 1.0f, &m->flags, RTPBR_MATERIAL_NO_SPECULAR);
         e |= ImGui::ColorEdit3("specular colour", m->specular_color, ImGuiColorEditFlags_Float);
         e |= ImGui::SliderFloat("clearcoat", &m->clearcoat, 0.0f, 1.0f);
         e |= ImGui::SliderFloat("clearcoat rough.", &m->clearcoat_roughness, 0.0f, 1.0f);
-        e |= ImGui::SliderFloat("anisotropy", &m->anisotropy, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("anisotropy", &m->anisotropy_strength, 0.0f, 1.0f);
         e |= ImGui::SliderAngle("aniso. rotation", &m->anisotropy_rotation, -180.0f, 180.0f);
         e |= ImGui::ColorEdit3("sheen colour", m->sheen_color, ImGuiColorEditFlags_Float);
         e |= ImGui::SliderFloat("sheen roughness", &m->sheen_roughness, 0.0f, 1.0f);

@@ -40,7 +40,7 @@ int main(int argc, char **argv)
     // z = 1, seen straight down from z = 3.
     const float plane[12] = {-4, -4, 0, 4, -4, 0, 4, 4, 0, -4, 4, 0};
     const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
-    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f};
+    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR};
     rtpbr_mesh_desc mesh = {.positions = plane, .indices = indices, .vertex_count = 4, .index_count = 6};
     rtpbr_light_desc light = {.vertices = {{-0.5f, -0.5f, 1.0f}, {0.5f, -0.5f, 1.0f}, {0.5f, 0.5f, 1.0f}, {-0.5f, 0.5f, 1.0f}},
                               .vertex_count = 4, .emission = {3.0f, 2.0f, 1.0f}, .two_sided = 1};

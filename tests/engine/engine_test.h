@@ -133,7 +133,7 @@ static inline rtpbr_mesh_desc test_square_mesh(float h, float z0, float position
 
 // A Lambertian material of albedo 0.8 (exact in 8 bits: 204 / 255) and no specular lobe.
 static const rtpbr_material_desc test_lambert_material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f,
-                                                          .specular = -1.0f};
+                                                          .flags = RTPBR_MATERIAL_NO_SPECULAR};
 
 // A scene of one mesh, one material, `light_count` lights and one camera.
 static inline rtpbr_gpu_scene *test_mesh_scene(rtpbr_context *ctx, const rtpbr_mesh_desc *mesh,

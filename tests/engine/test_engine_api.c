@@ -48,6 +48,35 @@ static void from_loaded_null_arrays(void **state)
     test_context_done(ctx, &log);
 }
 
+// rtpbr_material_desc_from_loaded: the loader's values copied as they are; its zeros that are
+// not the desc's defaults (KHR ior 0, specularFactor 0 or a black specularColorFactor,
+// alphaCutoff 0, Burley's specular 0) become flags, never negative values (issue 29).
+static void material_desc_from_loaded_flags(void **state)
+{
+    (void)state;
+    rtpbr_gltf_material m[3] = {
+        {.roughness = 0.5f, .alpha_cutoff = 0.5f, .ior = {1.5f}, .specular = {.specular_factor = 1.0f,
+         .specular_color_factor = {1, 1, 1}}, .base_color_texture = -1, .metallic_roughness_texture = -1,
+         .normal_texture = -1, .emission_texture = -1},
+        {.roughness = 0.5f, .alpha_cutoff = 0.0f, .ior = {0.0f}, .specular = {.specular_factor = 0.0f,
+         .specular_color_factor = {1, 1, 1}}, .has_disney = true, .disney = {.specular = 0.0f},
+         .base_color_texture = -1, .metallic_roughness_texture = -1, .normal_texture = -1, .emission_texture = -1},
+        {.roughness = 0.5f, .alpha_cutoff = 0.5f, .ior = {1.5f}, .specular = {.specular_factor = 1.0f},
+         .base_color_texture = -1, .metallic_roughness_texture = -1, .normal_texture = -1, .emission_texture = -1},
+    };
+    rtpbr_gltf_scene loaded = {.materials = m, .material_count = 3};
+    rtpbr_material_desc d[3];
+    for (uint32_t i = 0; i < 3; ++i) rtpbr_material_desc_from_loaded(&loaded, i, &d[i]);
+    assert_int_equal(d[0].flags, 0);
+    assert_true(d[0].ior == 1.5f && d[0].specular_factor == 1.0f && d[0].alpha_cutoff == 0.5f);
+    assert_int_equal(d[1].flags, RTPBR_MATERIAL_FRESNEL_ONE | RTPBR_MATERIAL_NO_SPECULAR |
+                                     RTPBR_MATERIAL_NO_ALPHA_CUTOFF | RTPBR_MATERIAL_DISNEY_NO_SPECULAR);
+    assert_int_equal(d[1].model, RTPBR_MATERIAL_DISNEY);
+    assert_int_equal(d[2].flags, RTPBR_MATERIAL_NO_SPECULAR); // black specular colour: no lobe
+    for (uint32_t i = 0; i < 3; ++i)
+        assert_true(d[i].ior >= 0.0f && d[i].specular_factor >= 0.0f && d[i].alpha_cutoff >= 0.0f && d[i].disney.specular >= 0.0f);
+}
+
 typedef struct warn_log {
     test_log base;
     int warnings;
@@ -275,6 +304,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(from_loaded_null_arrays),
+        cmocka_unit_test(material_desc_from_loaded_flags),
         cmocka_unit_test(context_destroys_children),
         cmocka_unit_test(read_radiance_before_render),
         cmocka_unit_test(hidden_node_does_not_hide_the_scene),

@@ -177,7 +177,7 @@ static void bad_materials(void **state)
     float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     rtpbr_mesh_desc mesh = {.positions = p, .vertex_count = 3};
     rtpbr_material_desc good = {.base_color = {0.5f, 0.5f, 0.5f}, .roughness = 0.5f, .clearcoat = 2.0f,
-                                .sheen_color = {1.5f, 0.0f, 0.0f}, .anisotropy = -1.0f};
+                                .sheen_color = {1.5f, 0.0f, 0.0f}, .anisotropy_strength = -1.0f};
     rtpbr_material_desc bad[6];
     for (int i = 0; i < 6; ++i) bad[i] = good;
     bad[0].clearcoat_roughness = NAN;

@@ -67,7 +67,7 @@ static void normal_mapped_plane(void **state)
     const float tangents[16] = {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1};
     const uint8_t texel[4] = {204, 128, 230, 255}; // about (0.6, 0, 0.8): tilted toward +X
     rtpbr_texture_desc texture = {.width = 1, .height = 1, .rgba = texel};
-    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f,
+    rtpbr_material_desc material = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR,
                                     .normal_texture = 1};
     rtpbr_mesh_desc mesh = {.positions = plane, .texcoords = uv, .tangents = tangents, .indices = square_indices,
                             .vertex_count = 4, .index_count = 6};
@@ -217,7 +217,7 @@ static void supersampled_coverage(void **state)
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     float square[12];
-    rtpbr_material_desc material = {.base_color = {0.5f, 0.5f, 0.5f}, .roughness = 1.0f, .specular = -1.0f};
+    rtpbr_material_desc material = {.base_color = {0.5f, 0.5f, 0.5f}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR};
     rtpbr_mesh_desc mesh = test_square_mesh(0.37f, 0.0f, square);
     // An orthographic-like view: far away with a narrow field, the square 0.74 m wide.
     rtpbr_camera_desc camera = {.position = {0.013f, 0.021f, 100.0f}, .target = {0.013f, 0.021f, 0.0f},

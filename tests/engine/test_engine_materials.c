@@ -102,7 +102,7 @@ static void disney_diffuse_albedo(void **state)
             // The specular lobe (F0 = 0 still reflects at grazing, Schlick) does not depend on
             // the base colour: the difference of two base colours is the diffuse lobe alone.
             rtpbr_material_desc m = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = roughness[i],
-                                     .model = RTPBR_MATERIAL_DISNEY, .disney = {.specular = -1.0f}};
+                                     .model = RTPBR_MATERIAL_DISNEY, .flags = RTPBR_MATERIAL_DISNEY_NO_SPECULAR};
             rtpbr_material_desc black = m;
             black.base_color[0] = black.base_color[1] = black.base_color[2] = 0.0f;
             float lit[3], spec[3];
@@ -191,7 +191,7 @@ static void clearcoat_layer(void **state)
     test_context_done(ctx, &log);
 }
 
-// KHR_materials_ior's ior 0 (RTPBR_IOR_FRESNEL_ONE: infinite IOR, Fresnel 1 at every angle):
+// KHR_materials_ior's ior 0 (RTPBR_MATERIAL_FRESNEL_ONE: infinite IOR, Fresnel 1 at every angle):
 // a black dielectric then reflects exactly as a white metal (F0 = F90 = 1) of the same
 // roughness, and nothing shows through the layer but what its albedo tables leave (black base).
 static void ior_fresnel_one(void **state)
@@ -205,7 +205,7 @@ static void ior_fresnel_one(void **state)
     const float angles[2] = {0.3f, 0.8f};
     for (int j = 0; j < 2; ++j) {
         view v = {angles[j], 1.0f};
-        rtpbr_material_desc mirror = {.roughness = 0.4f, .ior = RTPBR_IOR_FRESNEL_ONE};
+        rtpbr_material_desc mirror = {.roughness = 0.4f, .flags = RTPBR_MATERIAL_FRESNEL_ONE};
         rtpbr_material_desc metal = {.base_color = {1.0f, 1.0f, 1.0f}, .metallic = 1.0f, .roughness = 0.4f};
         rtpbr_material_desc glass = {.roughness = 0.4f, .ior = 1.5f};
         float a[3], b[3], c[3];
@@ -261,7 +261,7 @@ static void sheen_albedo_check(void **state)
     double worst = 0.0;
     for (int i = 0; i < 2; ++i)
         for (int j = 0; j < 2; ++j) {
-            rtpbr_material_desc m = {.roughness = 1.0f, .specular = -1.0f, .sheen_color = {1.0f, 0.5f, 0.25f},
+            rtpbr_material_desc m = {.roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR, .sheen_color = {1.0f, 0.5f, 0.25f},
                                      .sheen_roughness = roughness[i]};
             float got[3];
             render_centre(ctx, &log, &m, &sky, 1, (view){angles[j], 0.3f}, got);

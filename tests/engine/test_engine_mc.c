@@ -359,7 +359,7 @@ static void mc_max_samples(void **state)
     rtpbr_camera_desc camera = {.position = {0.3f, -0.2f, 3.0f}, .target = {0.2f, 0.0f, 0.0f}, .yfov = 1.2f,
                                 .znear = 0.1f, .zfar = 100.0f};
     const rtpbr_material_desc materials[2] = {
-        {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .specular = -1.0f}, // Lambertian
+        {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR}, // Lambertian
         {.base_color = {0.2f, 0.5f, 0.8f}, .roughness = 0.4f, .ior = 1.5f},        // glossy: both strategies
     };
     enum { W = 24, H = 16 };

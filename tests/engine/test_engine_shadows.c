@@ -92,7 +92,7 @@ static int setup(void **state)
     grid_mesh(BLOCKER_HALF, Z_BLOCKER, ps->blocker_pos, ps->blocker_idx);
     // Double-sided: the blocker faces the light (+Z) and must stop the floor's shadow rays,
     // which meet its back (a single-sided surface lets them through, glTF doubleSided false).
-    rtpbr_material_desc material = {.base_color = {ALBEDO, ALBEDO, ALBEDO}, .roughness = 1.0f, .specular = -1.0f,
+    rtpbr_material_desc material = {.base_color = {ALBEDO, ALBEDO, ALBEDO}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR,
                                     .double_sided = 1};
     rtpbr_mesh_desc meshes[2] = {
         {.positions = ps->floor_pos, .indices = ps->floor_idx, .vertex_count = (GRID + 1) * (GRID + 1),

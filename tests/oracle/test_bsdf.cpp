@@ -15,7 +15,7 @@ SurfaceMaterial mat(vec3 base, float metallic, float alpha, float clearcoat, flo
     m.baseColor = base;
     m.metallic = metallic;
     m.alphaX = m.alphaY = alpha;
-    m.perceptualRoughness = std::sqrt(alpha);
+    m.tableRoughness = std::sqrt(alpha);
     m.specularWeight = 1.0f;
     m.layer = &layer15();
     m.clearcoat = clearcoat;

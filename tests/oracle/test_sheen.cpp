@@ -17,7 +17,7 @@ SurfaceMaterial sheenOnly(float r, vec3 base) {
     m.baseColor = base;
     m.metallic = 0.0f;
     m.alphaX = m.alphaY = 0.25f;
-    m.perceptualRoughness = 0.5f;
+    m.tableRoughness = 0.5f;
     m.specularWeight = 0.0f;
     m.layer = nullptr; // no dielectric specular: the base is Lambertian (black or white)
     m.sheenColor = vec3(1.0f);
@@ -103,7 +103,7 @@ void test_sampling_matches_evaluation(void **) {
                 m.baseColor = c.base;
                 m.metallic = c.metallic;
                 m.alphaX = m.alphaY = c.alpha;
-                m.perceptualRoughness = std::sqrt(c.alpha);
+                m.tableRoughness = std::sqrt(c.alpha);
                 m.specularWeight = 1.0f;
                 m.layer = &layer15();
                 m.clearcoat = c.clearcoat;
@@ -142,7 +142,7 @@ void test_zero_sheen_is_unchanged(void **) {
     m.baseColor = vec3(0.5f);
     m.metallic = 0.0f;
     m.alphaX = m.alphaY = 0.3f;
-    m.perceptualRoughness = std::sqrt(0.3f);
+    m.tableRoughness = std::sqrt(0.3f);
     m.specularWeight = 1.0f;
     m.layer = &layer15();
     vec3 wo = glm::normalize(vec3(0.6f, 0.0f, 0.8f)), wi = glm::normalize(vec3(-0.3f, 0.2f, 0.9f));

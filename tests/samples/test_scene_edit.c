@@ -142,7 +142,7 @@ static void test_showcase(void **state)
     assert_float_equal(layered->ior, 1.5f, 1e-6f);
     assert_float_equal(velvet->sheen_color[1], 0.6f, 1e-6f);
     assert_float_equal(velvet->sheen_roughness, 0.35f, 1e-6f);
-    assert_float_equal(steel->anisotropy, 0.8f, 1e-6f);
+    assert_float_equal(steel->anisotropy_strength, 0.8f, 1e-6f);
     const float eye[3] = {0.0f, 1.5f, 6.5f};
     const float to_copper[3] = {-1.725f - eye[0], 0.45f - eye[1], 0.0f - eye[2]}; // sphere 1 of 6, spacing 1.15
     int32_t light, material;

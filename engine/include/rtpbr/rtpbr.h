@@ -225,10 +225,10 @@ typedef enum rtpbr_material_model {
 // Burley 2012, "Physically-Based Shading at Disney", sec. 5.2: used with RTPBR_MATERIAL_DISNEY
 // together with base_color, metallic and roughness of the material. Values are clamped to
 // [0, 1] (specular to [0, 12.5]) and taken literally, except specular: zero means Burley's
-// default 0.5 (F0 = 0.04), negative means 0.
+// default 0.5 (F0 = 0.04); RTPBR_MATERIAL_DISNEY_NO_SPECULAR in the material's flags means 0.
 typedef struct rtpbr_disney_params {
     float subsurface;      // blend of Burley diffuse towards the Hanrahan-Krueger shape
-    float specular;        // dielectric F0 = 0.08 specular
+    float specular;        // dielectric F0 = 0.08 specular, >= 0; zero: 0.5
     float specular_tint;   // tints the dielectric F0 towards the base hue
     float sheen;           // grazing retro-reflective lobe
     float sheen_tint;      // tints the sheen towards the base hue (Burley's default 0.5)
@@ -257,14 +257,36 @@ typedef enum rtpbr_alpha_mode {
                             // the shadow rays pass with probability 1 - a
 } rtpbr_alpha_mode;
 
+// What a zero field of rtpbr_material_desc cannot say, because zero means the default there
+// (rtpbr_material_desc.flags): the glTF values 0 of ior, specular and alphaCutoff, and Burley's
+// specular 0. rtpbr_material_desc_from_loaded sets them from the file's zeros.
+typedef enum rtpbr_material_flags {
+    RTPBR_MATERIAL_FRESNEL_ONE = 1,        // KHR_materials_ior's ior 0: "the effective IOR becomes
+                                           // positive infinity and the Fresnel term must evaluate to
+                                           // 1" (the specular-glossiness mode); ior is ignored
+    RTPBR_MATERIAL_NO_SPECULAR = 2,        // KHR_materials_specular specularFactor 0 (or a black
+                                           // specularColorFactor): no dielectric specular lobe;
+                                           // specular_factor is ignored
+    RTPBR_MATERIAL_NO_ALPHA_CUTOFF = 4,    // glTF alphaCutoff 0: MASK cuts nothing out;
+                                           // alpha_cutoff is ignored
+    RTPBR_MATERIAL_DISNEY_NO_SPECULAR = 8, // Burley's specular 0; disney.specular is ignored
+} rtpbr_material_flags;
+
+// A material. Every field's zero is its default (so {0} is an opaque black dielectric of ior
+// 1.5, specular_factor 1 and roughness RTPBR_MIN_ROUGHNESS); the values a zero cannot say are flags.
+// Values are checked once, by rtpbr_gpu_scene_create and rtpbr_gpu_scene_set_material (NaN or
+// infinite values, a negative ior, specular_factor, alpha_cutoff or disney.specular, an ior in (0, 1):
+// RTPBR_ERROR_INVALID_ARGUMENT); the shaders' material resolve (shaderlib/rtpbr/material.h)
+// applies the material rules (roughness floor, [0, 1] ranges) to the factors times the textures.
 typedef struct rtpbr_material_desc {
     float base_color[3];     // linear albedo (glTF baseColorFactor.rgb); zero is black
     float metallic;          // [0, 1], taken literally (zero: dielectric)
     float roughness;         // perceptual roughness r in [0, 1] (alpha = r^2); zero: RTPBR_MIN_ROUGHNESS
     float emission[3];       // emitted radiance (glTF emissiveFactor * emissive_strength)
-    float ior;               // dielectric index of refraction >= 1 (KHR_materials_ior); zero: 1.5;
-                             // RTPBR_IOR_FRESNEL_ONE: KHR's ior 0 (Fresnel 1 at every angle)
-    float specular;          // KHR_materials_specular specularFactor; zero: 1 (set <0 for none, i.e. 0)
+    float ior;               // dielectric index of refraction >= 1 (KHR_materials_ior); zero: 1.5
+                             // (KHR's ior 0: RTPBR_MATERIAL_FRESNEL_ONE)
+    float specular_factor;   // KHR_materials_specular specularFactor >= 0; zero: 1 (KHR's 0:
+                             // RTPBR_MATERIAL_NO_SPECULAR)
     float specular_color[3]; // KHR_materials_specular specularColorFactor; all zero: (1, 1, 1)
     // Textures: 1-based indices into rtpbr_gpu_scene_desc.textures; 0: none. Sampled with each
     // texture's sampler (rtpbr_texture_desc) at the slot's *_transform of its texture
@@ -292,7 +314,7 @@ typedef struct rtpbr_material_desc {
     // tangent rotated by anisotropy_rotation (radians) toward the bitangent; a mesh without
     // tangents is shaded isotropically at sqrt(alpha_t alpha_b). The LTC pass stretches the
     // isotropic lobe of that alpha along the direction (engine/README.md).
-    float anisotropy;
+    float anisotropy_strength;
     float anisotropy_rotation;
     // KHR_materials_sheen: a Charlie sheen layer (Estevez & Kulla 2017) of this colour in
     // [0, 1] over the material below the coat, which it scales by the KHR albedo scaling
@@ -320,16 +342,15 @@ typedef struct rtpbr_material_desc {
     rtpbr_disney_params disney;   // used when model = RTPBR_MATERIAL_DISNEY
     rtpbr_alpha_mode alpha_mode;  // default: opaque
     float alpha;                  // glTF baseColorFactor.a, [0, 1] (clamped), taken literally; MASK and BLEND only
-    float alpha_cutoff;           // MASK: zero: 0.5 (glTF's default); negative: 0 (nothing is cut)
+    float alpha_cutoff;           // MASK: >= 0; zero: 0.5 (glTF's default; glTF's 0, nothing is
+                                  // cut: RTPBR_MATERIAL_NO_ALPHA_CUTOFF)
+    uint32_t flags;               // rtpbr_material_flags bits; zero: none
 } rtpbr_material_desc;
 
 // Lower clamp of perceptual roughness (Filament's): RTPBR_MATERIAL_MIN_ROUGHNESS of
 // shaderlib/rtpbr/material.h, which applies it (tests/shaderlib/material/test_material.cpp asserts
 // that the two are equal).
 #define RTPBR_MIN_ROUGHNESS 0.045f
-// rtpbr_material_desc.ior of KHR_materials_ior's ior 0: "the effective IOR becomes positive
-// infinity and the Fresnel term must evaluate to 1" (the specular-glossiness mode).
-#define RTPBR_IOR_FRESNEL_ONE (-1.0f)
 
 // A texture's sampler (glTF sampler): wrap modes and filters.
 typedef enum rtpbr_wrap {
