@@ -339,7 +339,7 @@ private:
             p2 = glm::make_vec3(L.vertices[h.primID + 2]);
             sp.light = int32_t(g.index);
             sp.material = L.material;
-            sp.ng = glm::make_vec3(L.normal);
+            sp.ng = glm::make_vec3(L.facts.normal);
             sp.ns = sp.ng;
             sp.p = (1.0f - h.u - h.v) * p0 + h.u * p1 + h.v * p2;
         } else {
