@@ -171,9 +171,9 @@ static void check_scene(const rtpbr_gltf_scene* s) {
     for (uint32_t i = 0; i < s->light_count; ++i) {
         const rtpbr_gltf_light* l = &s->lights[i];
         check(l->vertex_count >= 3 && l->vertex_count <= RTPBR_GLTF_MAX_POLYGON_VERTICES, "light vertex count");
-        check(finite3(l->normal) && finite3(l->center) && finite3(l->radiance) && isfinite(l->radius), "finite light");
+        check(finite3(l->facts.normal) && finite3(l->facts.center) && finite3(l->radiance) && isfinite(l->radius), "finite light");
         for (uint32_t v = 0; v < l->vertex_count; ++v) check(finite3(l->vertices[v]), "finite light vertices");
-        check(isfinite(l->area) && l->area > 0.0f, "light area > 0");
+        check(isfinite(l->facts.area) && l->facts.area > 0.0f, "light area > 0");
         check(l->primitive < 0 || (uint32_t)l->primitive < s->primitive_count, "light primitive in range");
         check(l->material < 0 || (uint32_t)l->material < s->material_count, "light material in range");
     }

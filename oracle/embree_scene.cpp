@@ -196,7 +196,7 @@ Result buildEmbree(const rtpbr_gltf_scene &scene, const std::vector<Texture> &te
             !scene.materials[L.material].double_sided) {
             SurfaceFilter f;
             f.cullBackFaces = true;
-            std::memcpy(f.lightNormal, L.normal, sizeof f.lightNormal);
+            std::memcpy(f.lightNormal, L.facts.normal, sizeof f.lightNormal);
             es->filters.push_back(f);
             setSurfaceFilter(es->full, id, &es->filters.back());
         }

@@ -67,15 +67,13 @@ LightSet::LightSet(const rtpbr_gltf_scene &scene, LightSampling mode) : mode_(mo
         Light L;
         for (uint32_t k = 0; k < s.vertex_count && k < RTPBR_GLTF_MAX_POLYGON_VERTICES; k++)
             L.v.push_back(dvec3(s.vertices[k][0], s.vertices[k][1], s.vertices[k][2]));
-        L.n = glm::normalize(dvec3(s.normal[0], s.normal[1], s.normal[2]));
+        // The loader's derived facts (rtpbr_gltf_polygon_facts), read, not derived again.
+        L.n = glm::normalize(dvec3(s.facts.normal[0], s.facts.normal[1], s.facts.normal[2]));
         L.radiance = glm::vec3(s.radiance[0], s.radiance[1], s.radiance[2]);
         L.twoSided = s.two_sided;
-        L.area = 0.0;
-        for (size_t k = 1; k + 1 < L.v.size(); k++) {
-            double a = 0.5 * glm::length(glm::cross(L.v[k] - L.v[0], L.v[k + 1] - L.v[0]));
-            L.triArea.push_back(a);
-            L.area += a;
-        }
+        L.area = double(s.facts.area);
+        for (size_t k = 1; k + 1 < L.v.size(); k++)
+            L.triArea.push_back(double(s.facts.fan_area[k - 1]));
         double power = double(std::max(luminance(L.radiance), 0.0f)) * L.area * (L.twoSided ? 2.0 : 1.0);
         if (!(power > 0.0) || !std::isfinite(power))
             power = 0.0;

@@ -127,182 +127,233 @@ int writeOutputs(const rtpbr_oracle::Accumulator &acc, const std::string &out, c
     return 0;
 }
 
-} // namespace
-
-static int run(int argc, char **argv) {
+// The command line, parsed.
+struct Options {
     rtpbr_oracle::RenderSettings s;
     std::string scenePath, outPath, stderrPath, previewPath;
     std::vector<std::string> mergeInputs;
     bool merging = false, quiet = false;
     uint64_t textureBudget = 0; // 0: the loader's default
     float exposure = 1.0f;
-    for (int i = 1; i < argc; i++) {
-        std::string a = argv[i];
-        auto value = [&](const char *name) -> const char * {
-            if (i + 1 >= argc) {
-                std::fprintf(stderr, "rtpbr-oracle: %s needs a value\n", name);
-                return nullptr;
-            }
-            return argv[++i];
-        };
-        auto u32 = [&](const char *name, uint32_t *dst) {
-            const char *v = value(name);
-            if (!v || !parseU32(v, dst)) {
-                std::fprintf(stderr, "rtpbr-oracle: %s: expected a non-negative integer\n", name);
-                return false;
-            }
-            return true;
-        };
-        const char *v = nullptr;
-        if (a == "-h" || a == "--help") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        } else if (a == "-o") {
-            if (!(v = value("-o")))
-                return 2;
-            outPath = v;
-        } else if (a == "--width") {
-            if (!u32("--width", &s.width))
-                return 2;
-        } else if (a == "--height") {
-            if (!u32("--height", &s.height))
-                return 2;
-        } else if (a == "--camera") {
-            if (!u32("--camera", &s.camera))
-                return 2;
-        } else if (a == "--spp") {
-            if (!u32("--spp", &s.spp))
-                return 2;
-        } else if (a == "--seed") {
-            uint32_t seed;
-            if (!u32("--seed", &seed))
-                return 2;
-            s.seed = seed;
-        } else if (a == "--threads") {
-            if (!u32("--threads", &s.threads))
-                return 2;
-        } else if (a == "--max-depth") {
-            if (!u32("--max-depth", &s.maxDepth))
-                return 2;
-        } else if (a == "--direct-only") {
-            s.directOnly = true;
-        } else if (a == "--no-shadows") {
-            s.noShadows = true;
-        } else if (a == "--single-scatter") {
-            s.singleScatter = true;
-        } else if (a == "--light-sampling") {
-            if (!(v = value("--light-sampling")))
-                return 2;
-            if (std::strcmp(v, "solid-angle") == 0)
-                s.lightSampling = rtpbr_oracle::LightSampling::SolidAngle;
-            else if (std::strcmp(v, "area") == 0)
-                s.lightSampling = rtpbr_oracle::LightSampling::Area;
-            else
-                return fail("--light-sampling: expected solid-angle or area");
-        } else if (a == "--sample-range") {
-            uint32_t r[2];
-            if (!(v = value("--sample-range")) || !parseList(v, r, 2))
-                return fail("--sample-range: expected A:B");
-            s.sampleBegin = r[0];
-            s.sampleEnd = r[1];
-            if (s.sampleEnd == 0)
-                return fail("--sample-range: B must be > A");
-        } else if (a == "--region") {
-            uint32_t r[4];
-            if (!(v = value("--region")) || !parseList(v, r, 4))
-                return fail("--region: expected X0:Y0:X1:Y1");
-            s.region = {r[0], r[1], r[2], r[3]};
-            if (r[0] >= r[2] || r[1] >= r[3])
-                return fail("--region: empty region");
-        } else if (a == "--stderr-image") {
-            if (!(v = value("--stderr-image")))
-                return 2;
-            stderrPath = v;
-        } else if (a == "--preview") {
-            if (!(v = value("--preview")))
-                return 2;
-            previewPath = v;
-        } else if (a == "--exposure") {
-            if (!(v = value("--exposure")))
-                return 2;
-            char *end = nullptr;
-            exposure = std::strtof(v, &end);
-            if (end == v || *end || !(exposure > 0.0f))
-                return fail("--exposure: expected a positive number");
-        } else if (a == "--quiet") {
-            quiet = true;
-        } else if (a == "--memory-limit" || a == "--texture-memory") {
-            uint32_t mib = 0;
-            if (!u32(a.c_str(), &mib) || mib == 0)
-                return 2;
-            (a == "--memory-limit" ? s.memoryLimit : textureBudget) = uint64_t(mib) << 20;
-        } else if (a == "--merge") {
-            merging = true;
-        } else if (!a.empty() && a[0] == '-') {
-            std::fprintf(stderr, "rtpbr-oracle: unknown option %s\n%s", a.c_str(), kUsage);
-            return 2;
-        } else if (merging) {
-            mergeInputs.push_back(a);
-        } else if (scenePath.empty()) {
-            scenePath = a;
-        } else {
-            return fail("more than one scene given");
+};
+
+// What an option parser returns besides an exit status: go on, or not an option of its own.
+constexpr int kGo = -1, kNotMine = -2;
+
+// The arguments, read one after the other; an option's value is the next argument.
+struct Args {
+    int argc;
+    char **argv;
+    int i = 1;
+
+    const char *value(const char *name) {
+        if (i + 1 >= argc) {
+            std::fprintf(stderr, "rtpbr-oracle: %s needs a value\n", name);
+            return nullptr;
         }
+        return argv[++i];
     }
-    if (outPath.empty()) {
+    bool u32(const char *name, uint32_t *dst) {
+        const char *v = value(name);
+        if (!v || !parseU32(v, dst)) {
+            std::fprintf(stderr, "rtpbr-oracle: %s: expected a non-negative integer\n", name);
+            return false;
+        }
+        return true;
+    }
+};
+
+// The options of the render itself (rtpbr_oracle::RenderSettings).
+int settingOption(const std::string &a, Args &args, rtpbr_oracle::RenderSettings &s) {
+    const char *v = nullptr;
+    if (a == "--width") {
+        if (!args.u32("--width", &s.width))
+            return 2;
+    } else if (a == "--height") {
+        if (!args.u32("--height", &s.height))
+            return 2;
+    } else if (a == "--camera") {
+        if (!args.u32("--camera", &s.camera))
+            return 2;
+    } else if (a == "--spp") {
+        if (!args.u32("--spp", &s.spp))
+            return 2;
+    } else if (a == "--seed") {
+        uint32_t seed;
+        if (!args.u32("--seed", &seed))
+            return 2;
+        s.seed = seed;
+    } else if (a == "--threads") {
+        if (!args.u32("--threads", &s.threads))
+            return 2;
+    } else if (a == "--max-depth") {
+        if (!args.u32("--max-depth", &s.maxDepth))
+            return 2;
+    } else if (a == "--direct-only") {
+        s.directOnly = true;
+    } else if (a == "--no-shadows") {
+        s.noShadows = true;
+    } else if (a == "--single-scatter") {
+        s.singleScatter = true;
+    } else if (a == "--light-sampling") {
+        if (!(v = args.value("--light-sampling")))
+            return 2;
+        if (std::strcmp(v, "solid-angle") == 0)
+            s.lightSampling = rtpbr_oracle::LightSampling::SolidAngle;
+        else if (std::strcmp(v, "area") == 0)
+            s.lightSampling = rtpbr_oracle::LightSampling::Area;
+        else
+            return fail("--light-sampling: expected solid-angle or area");
+    } else if (a == "--sample-range") {
+        uint32_t r[2];
+        if (!(v = args.value("--sample-range")) || !parseList(v, r, 2))
+            return fail("--sample-range: expected A:B");
+        s.sampleBegin = r[0];
+        s.sampleEnd = r[1];
+        if (s.sampleEnd == 0)
+            return fail("--sample-range: B must be > A");
+    } else if (a == "--region") {
+        uint32_t r[4];
+        if (!(v = args.value("--region")) || !parseList(v, r, 4))
+            return fail("--region: expected X0:Y0:X1:Y1");
+        s.region = {r[0], r[1], r[2], r[3]};
+        if (r[0] >= r[2] || r[1] >= r[3])
+            return fail("--region: empty region");
+    } else {
+        return kNotMine;
+    }
+    return kGo;
+}
+
+// The other options and the positional arguments (scene, or accumulators after --merge).
+int otherOption(const std::string &a, Args &args, Options *o) {
+    const char *v = nullptr;
+    if (a == "-h" || a == "--help") {
+        std::fputs(kUsage, stdout);
+        return 0;
+    } else if (a == "-o") {
+        if (!(v = args.value("-o")))
+            return 2;
+        o->outPath = v;
+    } else if (a == "--stderr-image") {
+        if (!(v = args.value("--stderr-image")))
+            return 2;
+        o->stderrPath = v;
+    } else if (a == "--preview") {
+        if (!(v = args.value("--preview")))
+            return 2;
+        o->previewPath = v;
+    } else if (a == "--exposure") {
+        if (!(v = args.value("--exposure")))
+            return 2;
+        char *end = nullptr;
+        o->exposure = std::strtof(v, &end);
+        if (end == v || *end || !(o->exposure > 0.0f))
+            return fail("--exposure: expected a positive number");
+    } else if (a == "--quiet") {
+        o->quiet = true;
+    } else if (a == "--memory-limit" || a == "--texture-memory") {
+        uint32_t mib = 0;
+        if (!args.u32(a.c_str(), &mib) || mib == 0)
+            return 2;
+        (a == "--memory-limit" ? o->s.memoryLimit : o->textureBudget) = uint64_t(mib) << 20;
+    } else if (a == "--merge") {
+        o->merging = true;
+    } else if (!a.empty() && a[0] == '-') {
+        std::fprintf(stderr, "rtpbr-oracle: unknown option %s\n%s", a.c_str(), kUsage);
+        return 2;
+    } else if (o->merging) {
+        o->mergeInputs.push_back(a);
+    } else if (o->scenePath.empty()) {
+        o->scenePath = a;
+    } else {
+        return fail("more than one scene given");
+    }
+    return kGo;
+}
+
+// kGo, or the exit status (0 after --help).
+int parseOptions(int argc, char **argv, Options *o) {
+    for (Args args{argc, argv}; args.i < argc; args.i++) {
+        const std::string a = argv[args.i];
+        int r = settingOption(a, args, o->s);
+        if (r == kNotMine)
+            r = otherOption(a, args, o);
+        if (r != kGo)
+            return r;
+    }
+    if (o->outPath.empty()) {
         std::fputs(kUsage, stderr);
         return 2;
     }
+    return kGo;
+}
 
+// --merge: the accumulators summed, then written as a render's would be.
+int mergeAccumulators(const Options &o) {
+    if (o.mergeInputs.empty() || !o.scenePath.empty())
+        return fail("--merge takes accumulator files only");
     std::string error;
     rtpbr_oracle::Accumulator acc;
-    if (merging) {
-        if (mergeInputs.empty() || !scenePath.empty())
-            return fail("--merge takes accumulator files only");
-        for (size_t i = 0; i < mergeInputs.size(); i++) {
-            rtpbr_oracle::Accumulator part;
-            if (rtpbr_oracle::readAccumulator(mergeInputs[i], &part, &error, s.memoryLimit) != rtpbr_oracle::Result::Success)
-                return fail(error);
-            if (i == 0)
-                acc = std::move(part);
-            else if (rtpbr_oracle::merge(&acc, part, &error) != rtpbr_oracle::Result::Success)
-                return fail(mergeInputs[i] + ": " + error);
-        }
-        return writeOutputs(acc, outPath, stderrPath, previewPath, exposure);
+    for (size_t i = 0; i < o.mergeInputs.size(); i++) {
+        rtpbr_oracle::Accumulator part;
+        if (rtpbr_oracle::readAccumulator(o.mergeInputs[i], &part, &error, o.s.memoryLimit) !=
+            rtpbr_oracle::Result::Success)
+            return fail(error);
+        if (i == 0)
+            acc = std::move(part);
+        else if (rtpbr_oracle::merge(&acc, part, &error) != rtpbr_oracle::Result::Success)
+            return fail(o.mergeInputs[i] + ": " + error);
     }
-    if (scenePath.empty()) {
+    return writeOutputs(acc, o.outPath, o.stderrPath, o.previewPath, o.exposure);
+}
+
+// The scene loaded, rendered (with a progress bar on a terminal) and written.
+int renderScene(Options &o) {
+    if (o.scenePath.empty()) {
         std::fputs(kUsage, stderr);
         return 2;
     }
-
     char loadError[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
     rtpbr_gltf_load_desc desc = {};
     desc.error_message = loadError;
     desc.error_message_size = sizeof loadError;
-    desc.texture_memory_budget = textureBudget;
+    desc.texture_memory_budget = o.textureBudget;
     // every emissive triangle an emitter, textured ones each alone (emittedAt applies the texture)
     desc.emissive_mode = RTPBR_GLTF_EMISSIVE_EXACT;
     desc.logger.func = logToStderr;
-    desc.logger.user_data = &quiet;
+    desc.logger.user_data = &o.quiet;
     rtpbr_gltf_scene *scene = nullptr;
-    rtpbr_gltf_result lr = rtpbr_gltf_load(scenePath.c_str(), &desc, &scene);
+    rtpbr_gltf_result lr = rtpbr_gltf_load(o.scenePath.c_str(), &desc, &scene);
     if (lr != RTPBR_GLTF_SUCCESS)
-        return fail(scenePath + ": " + rtpbr_gltf_result_string(lr) + ": " + loadError);
+        return fail(o.scenePath + ": " + rtpbr_gltf_result_string(lr) + ": " + loadError);
 
-    ProgressBar bar{!quiet && isatty(STDERR_FILENO)};
+    std::string error;
+    rtpbr_oracle::Accumulator acc;
+    ProgressBar bar{!o.quiet && isatty(STDERR_FILENO)};
     rtpbr_oracle::RenderStats stats;
     rtpbr_oracle::Result r =
-        rtpbr_oracle::render(*scene, s, &acc, &error, [&bar](uint64_t d, uint64_t t) { bar(d, t); }, &stats);
+        rtpbr_oracle::render(*scene, o.s, &acc, &error, [&bar](uint64_t d, uint64_t t) { bar(d, t); }, &stats);
     rtpbr_gltf_destroy(scene);
     if (r != rtpbr_oracle::Result::Success)
-        return fail(scenePath + ": " + rtpbr_oracle::resultString(r) + ": " + error);
-    if (!quiet)
+        return fail(o.scenePath + ": " + rtpbr_oracle::resultString(r) + ": " + error);
+    if (!o.quiet)
         std::fprintf(stderr,
                      "rtpbr-oracle: %ux%u, %" PRIu64 " samples in %.2fs (%.0f samples/s, %.2f Mrays/s)%s\n",
                      acc.width, acc.height, stats.samples, stats.seconds, double(stats.samples) / stats.seconds,
                      double(stats.rays) / stats.seconds * 1e-6,
                      acc.nonFinite ? ", non-finite samples were zeroed" : "");
-    return writeOutputs(acc, outPath, stderrPath, previewPath, exposure);
+    return writeOutputs(acc, o.outPath, o.stderrPath, o.previewPath, o.exposure);
+}
+
+} // namespace
+
+static int run(int argc, char **argv) {
+    Options o;
+    const int status = parseOptions(argc, argv, &o);
+    if (status != kGo)
+        return status;
+    return o.merging ? mergeAccumulators(o) : renderScene(o);
 }
 
 // Memory needs are checked before the large allocations (rtpbr_oracle::checkMemory); what the

@@ -339,7 +339,7 @@ private:
             p2 = glm::make_vec3(L.vertices[h.primID + 2]);
             sp.light = int32_t(g.index);
             sp.material = L.material;
-            sp.ng = glm::make_vec3(L.normal);
+            sp.ng = glm::make_vec3(L.facts.normal);
             sp.ns = sp.ng;
             sp.p = (1.0f - h.u - h.v) * p0 + h.u * p1 + h.v * p2;
         } else {
@@ -494,19 +494,9 @@ private:
 
 __int128 toFixed(double v) { return __int128(std::ldexp(v, 64)); }
 
-} // namespace
-
-
-// ---- render ----------------------------------------------------------------------------------
-
-Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Accumulator *out, std::string *error,
-              const ProgressCallback &progress, RenderStats *stats) {
-    std::string localError;
-    if (!error)
-        error = &localError;
-    Result r = validateScene(scene, settings, error);
-    if (r != Result::Success)
-        return r;
+// The settings with their defaults resolved (size, sample range, region), checked.
+Result resolveSettings(const rtpbr_gltf_scene &scene, const RenderSettings &settings, RenderSettings *out,
+                       uint32_t *sampleEnd, Region *region, std::string *error) {
     RenderSettings s = settings;
     s.width = s.width ? s.width : 512;
     s.height = imageHeight(scene, s, s.width);
@@ -531,27 +521,32 @@ Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Acc
                      s.height);
         return Result::InvalidArgument;
     }
+    *out = s;
+    *sampleEnd = sEnd;
+    *region = reg;
+    return Result::Success;
+}
 
-    // The memory need, stated and checked before anything large is allocated: the accumulator
-    // (76 bytes per pixel) and the resolved image with its standard error (24), the textures as
-    // linear float RGBA (16 per texel), Embree's copy of the triangles and its BVH (about 64
-    // bytes per triangle, measured as an upper bound on the bundled scenes).
+// The memory need, stated and checked before anything large is allocated: the accumulator
+// (76 bytes per pixel) and the resolved image with its standard error (24), the textures as
+// linear float RGBA (16 per texel), Embree's copy of the triangles and its BVH (about 64
+// bytes per triangle, measured as an upper bound on the bundled scenes).
+bool checkRenderMemory(const rtpbr_gltf_scene &scene, const RenderSettings &s, std::string *error) {
     uint64_t texels = 0, triangles = 0;
     for (uint32_t t = 0; t < scene.texture_count; t++)
         texels += uint64_t(scene.textures[t].width) * scene.textures[t].height;
     for (uint32_t p = 0; p < scene.primitive_count; p++)
         triangles += scene.primitives[p].index_count / 3;
     const uint64_t need = uint64_t(s.width) * s.height * kBytesPerPixel + texels * 16 + triangles * 64;
-    if (!checkMemory(need, s.memoryLimit, fmt("rendering %ux%u with %llu texels and %llu triangles", s.width, s.height,
-                               (unsigned long long)texels, (unsigned long long)triangles),
-                     error))
-        return Result::InvalidArgument;
+    return checkMemory(need, s.memoryLimit, fmt("rendering %ux%u with %llu texels and %llu triangles", s.width, s.height,
+                                                (unsigned long long)texels, (unsigned long long)triangles),
+                       error);
+}
 
-    std::vector<Texture> textures;
-    for (uint32_t t = 0; t < scene.texture_count; t++)
-        textures.emplace_back(scene.textures[t]);
-    // The albedo tables of the dielectric layers, one per distinct IOR.
-    std::vector<std::unique_ptr<LayerAlbedo>> layerTables;
+// The albedo tables of the dielectric layers, one per distinct IOR (in *tables); per material,
+// its table or nullptr.
+std::vector<const LayerAlbedo *> layerAlbedoTables(const rtpbr_gltf_scene &scene,
+                                                   std::vector<std::unique_ptr<LayerAlbedo>> *tables) {
     std::vector<const LayerAlbedo *> layers(scene.material_count, nullptr);
     for (uint32_t m = 0; m < scene.material_count; m++) {
         const rtpbr_gltf_material &mat = scene.materials[m];
@@ -559,14 +554,103 @@ Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Acc
         if (!mayBeDielectric || !(mat.specular.specular_factor > 0.0f))
             continue;
         float eta = rtpbr::Material_DielectricEta(mat.ior.ior); // KHR_materials_ior (material.h)
-        for (const auto &t : layerTables)
+        for (const auto &t : *tables)
             if (t->eta() == eta)
                 layers[m] = t.get();
         if (!layers[m]) {
-            layerTables.push_back(std::make_unique<LayerAlbedo>(eta, kLayerAlbedoWalks));
-            layers[m] = layerTables.back().get();
+            tables->push_back(std::make_unique<LayerAlbedo>(eta, kLayerAlbedoWalks));
+            layers[m] = tables->back().get();
         }
     }
+    return layers;
+}
+
+// The camera's primary rays: through a jittered point of pixel (x, y).
+struct CameraRays {
+    vec3 pos, f, u, r;
+    float tanHalf, aspect;
+    uint32_t width, height;
+
+    CameraRays(const rtpbr_gltf_camera &cam, uint32_t w, uint32_t h)
+        : pos(glm::make_vec3(cam.position)), f(glm::normalize(glm::make_vec3(cam.forward))),
+          u(glm::normalize(glm::make_vec3(cam.up))), r(glm::normalize(glm::make_vec3(cam.right))),
+          tanHalf(std::tan(0.5f * cam.yfov)), aspect(float(w) / float(h)), width(w), height(h) {}
+
+    vec3 direction(uint32_t x, uint32_t y, float jx, float jy) const {
+        float ndcX = (2.0f * (float(x) + jx) / float(width) - 1.0f) * tanHalf * aspect;
+        float ndcY = (1.0f - 2.0f * (float(y) + jy) / float(height)) * tanHalf;
+        return glm::normalize(f + ndcX * r + ndcY * u);
+    }
+};
+
+// Per worker: samples [begin, end) of a pixel, their sums (fixed point, so that merged ranges
+// add up exactly) and sums of squares into the accumulator; non-finite samples count as 0,
+// samples above kMaxSampleValue are clamped (both counted).
+struct PixelSampler {
+    Integrator &integ;
+    const CameraRays &cam;
+    uint64_t seed;
+    uint32_t begin, end;
+    Accumulator *out;
+    uint64_t nonFinite = 0, clamped = 0;
+
+    void pixel(uint32_t x, uint32_t y) {
+        size_t pix = size_t(y) * cam.width + x;
+        __int128 sum[3] = {0, 0, 0};
+        double sq[3] = {0.0, 0.0, 0.0};
+        for (uint32_t k = begin; k < end; k++) {
+            Rng rng = Rng::forSample(x, y, k, seed);
+            float jx = rng.uniform(), jy = rng.uniform();
+            vec3 L = integ.radiance(cam.pos, cam.direction(x, y, jx, jy), rng);
+            if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z)) {
+                nonFinite++;
+                L = vec3(0.0f);
+            }
+            for (int c = 0; c < 3; c++) {
+                double v = std::max(double(L[c]), 0.0);
+                if (v > kMaxSampleValue) {
+                    v = kMaxSampleValue;
+                    clamped++;
+                }
+                sum[c] += toFixed(v);
+                sq[c] += v * v;
+            }
+        }
+        out->samples[pix] = end - begin;
+        for (int c = 0; c < 3; c++) {
+            out->sum[3 * pix + c] = sum[c];
+            out->sumSquares[3 * pix + c] = sq[c];
+        }
+    }
+};
+
+} // namespace
+
+
+// ---- render ----------------------------------------------------------------------------------
+
+Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Accumulator *out, std::string *error,
+              const ProgressCallback &progress, RenderStats *stats) {
+    std::string localError;
+    if (!error)
+        error = &localError;
+    Result r = validateScene(scene, settings, error);
+    if (r != Result::Success)
+        return r;
+    RenderSettings s;
+    uint32_t sEnd = 0;
+    Region reg;
+    r = resolveSettings(scene, settings, &s, &sEnd, &reg, error);
+    if (r != Result::Success)
+        return r;
+    if (!checkRenderMemory(scene, s, error))
+        return Result::InvalidArgument;
+
+    std::vector<Texture> textures;
+    for (uint32_t t = 0; t < scene.texture_count; t++)
+        textures.emplace_back(scene.textures[t]);
+    std::vector<std::unique_ptr<LayerAlbedo>> layerTables;
+    const std::vector<const LayerAlbedo *> layers = layerAlbedoTables(scene, &layerTables);
     LightSet lights(scene, s.lightSampling);
     EmbreeScene es;
     r = buildEmbree(scene, textures, &es, error);
@@ -584,14 +668,7 @@ Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Acc
     out->nonFinite = 0;
     out->clamped = 0;
 
-    const rtpbr_gltf_camera &cam = scene.cameras[s.camera];
-    const vec3 camPos = glm::make_vec3(cam.position);
-    const vec3 camF = glm::normalize(glm::make_vec3(cam.forward));
-    const vec3 camU = glm::normalize(glm::make_vec3(cam.up));
-    const vec3 camR = glm::normalize(glm::make_vec3(cam.right));
-    const float tanHalf = std::tan(0.5f * cam.yfov);
-    const float aspect = float(s.width) / float(s.height);
-
+    const CameraRays cam(scene.cameras[s.camera], s.width, s.height);
     uint32_t tilesX = (reg.x1 - reg.x0 + kTileSize - 1) / kTileSize;
     uint32_t tilesY = (reg.y1 - reg.y0 + kTileSize - 1) / kTileSize;
     uint32_t tileCount = tilesX * tilesY;
@@ -601,9 +678,10 @@ Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Acc
     uint64_t pixelsDone = 0;
     const uint64_t pixelsTotal = uint64_t(reg.x1 - reg.x0) * (reg.y1 - reg.y0);
 
+    // Each thread takes the next tile until none is left.
     auto worker = [&]() {
         Integrator integ(scene, es, lights, s, textures, layers);
-        uint64_t localNonFinite = 0, localClamped = 0;
+        PixelSampler sampler{integ, cam, s.seed, s.sampleBegin, sEnd, out};
         for (;;) {
             uint32_t tile = nextTile.fetch_add(1);
             if (tile >= tileCount)
@@ -613,45 +691,16 @@ Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Acc
             uint32_t tx1 = std::min(tx0 + kTileSize, reg.x1);
             uint32_t ty1 = std::min(ty0 + kTileSize, reg.y1);
             for (uint32_t y = ty0; y < ty1; y++)
-                for (uint32_t x = tx0; x < tx1; x++) {
-                    size_t pix = size_t(y) * s.width + x;
-                    __int128 sum[3] = {0, 0, 0};
-                    double sq[3] = {0.0, 0.0, 0.0};
-                    for (uint32_t k = s.sampleBegin; k < sEnd; k++) {
-                        Rng rng = Rng::forSample(x, y, k, s.seed);
-                        float jx = rng.uniform(), jy = rng.uniform();
-                        float ndcX = (2.0f * (float(x) + jx) / float(s.width) - 1.0f) * tanHalf * aspect;
-                        float ndcY = (1.0f - 2.0f * (float(y) + jy) / float(s.height)) * tanHalf;
-                        vec3 dir = glm::normalize(camF + ndcX * camR + ndcY * camU);
-                        vec3 L = integ.radiance(camPos, dir, rng);
-                        if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z)) {
-                            localNonFinite++;
-                            L = vec3(0.0f);
-                        }
-                        for (int c = 0; c < 3; c++) {
-                            double v = std::max(double(L[c]), 0.0);
-                            if (v > kMaxSampleValue) {
-                                v = kMaxSampleValue;
-                                localClamped++;
-                            }
-                            sum[c] += toFixed(v);
-                            sq[c] += v * v;
-                        }
-                    }
-                    out->samples[pix] = sEnd - s.sampleBegin;
-                    for (int c = 0; c < 3; c++) {
-                        out->sum[3 * pix + c] = sum[c];
-                        out->sumSquares[3 * pix + c] = sq[c];
-                    }
-                }
+                for (uint32_t x = tx0; x < tx1; x++)
+                    sampler.pixel(x, y);
             if (progress) {
                 std::lock_guard<std::mutex> lock(progressMutex);
                 pixelsDone += uint64_t(tx1 - tx0) * (ty1 - ty0);
                 progress(pixelsDone, pixelsTotal);
             }
         }
-        nonFinite += localNonFinite;
-        clamped += localClamped;
+        nonFinite += sampler.nonFinite;
+        clamped += sampler.clamped;
         totalRays += integ.rays;
     };
 

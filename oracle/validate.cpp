@@ -151,7 +151,7 @@ Result validateScene(const rtpbr_gltf_scene &scene, const RenderSettings &s, std
                              double(kMaxSceneCoordinate));
                 return Result::InvalidScene;
             }
-        if (!finite3(L.normal) || !finite3(L.radiance) || L.radiance[0] < 0.0f || L.radiance[1] < 0.0f ||
+        if (!finite3(L.facts.normal) || !finite3(L.radiance) || L.radiance[0] < 0.0f || L.radiance[1] < 0.0f ||
             L.radiance[2] < 0.0f) {
             *error = fmt("light %u: non-finite normal or negative/non-finite radiance", l);
             return Result::InvalidScene;

@@ -246,172 +246,203 @@ struct Builder {
     bool node(int index, const Mat4& parent, unsigned depth);
 };
 
-bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int prim_index) {
-    const tinygltf::Primitive& src = model.meshes[size_t(mesh_index)].primitives[size_t(prim_index)];
+// One primitive's way into the scene, in the order a reader follows it: its attributes, its
+// triangles, its world-space vertices, then the normals, texture coordinates and tangents
+// every vertex carries. Each step that can end early says whether the primitive goes on,
+// is skipped (a warning: valid glTF with nothing to draw) or the load fails.
+enum class Step { Go, Skip, Fail };
+
+struct PrimitiveReader {
+    Context& ctx;
+    const tinygltf::Model& model;
+    Scene& scene;
+    const tinygltf::Primitive& src;
+    int node_index;
+    const Mat4& world;
     char usage[96];
-    std::snprintf(usage, sizeof usage, "mesh %d primitive %d", mesh_index, prim_index);
-    if (src.mode >= 0 && src.mode < TINYGLTF_MODE_TRIANGLES) {
-        ctx.warn("%s: points/lines (mode %d) ignored", usage, src.mode);
-        return true;
-    }
-    if (src.mode > TINYGLTF_MODE_TRIANGLE_FAN)
-        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "%s: invalid mode %d", usage, src.mode);
-    if (!src.targets.empty()) ctx.warn("%s: morph targets ignored", usage);
-    auto pos_it = src.attributes.find("POSITION");
-    if (pos_it == src.attributes.end()) {  // valid glTF (the validator warns): nothing to draw
-        ctx.warn("%s: no POSITION attribute; primitive skipped", usage);
-        return true;
+    AccessorView pos, nrm, uv, uv1, tan;
+    size_t n = 0;                // vertices
+    std::vector<uint32_t> tris;  // triangle list of the file's indices (strips and fans unrolled)
+    std::vector<Vec3> world_pos;
+    std::array<double, 9> cof{};  // the world matrix's cofactors (normals)
+    double det = 0.0, det_sign = 1.0;
+    Primitive p;
+
+    PrimitiveReader(Context& c, const tinygltf::Model& m, Scene& s, int mesh_index, int prim_index, int node,
+                    const Mat4& w)
+        : ctx(c), model(m), scene(s), src(m.meshes[size_t(mesh_index)].primitives[size_t(prim_index)]),
+          node_index(node), world(w) {
+        std::snprintf(usage, sizeof usage, "mesh %d primitive %d", mesh_index, prim_index);
     }
 
-    static const int kFloat[] = {TINYGLTF_COMPONENT_TYPE_FLOAT};
-    static const int kTexcoord[] = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
-    static const int kIndex[] = {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT};
-    AccessorView pos, nrm, uv, uv1, tan, idx;
-    if (!validate_accessor(ctx, model, pos_it->second, "POSITION", TINYGLTF_TYPE_VEC3, kFloat, 1, &pos))
-        return false;
-    if (!pos.data) {  // glTF: no bufferView = zeros; all triangles degenerate, nothing allocated
-        ctx.warn("%s: POSITION accessor %d has no bufferView (all zeros); primitive skipped", usage, pos_it->second);
-        return true;
-    }
-    const size_t n = pos.count;
-    if (scene.total_vertices + n > ctx.max_vertices)
-        return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_VERTICES,
-                        "%s (node %d): %llu + %zu vertices exceed the limit of %u", usage, node_index,
-                        static_cast<unsigned long long>(scene.total_vertices), n, ctx.max_vertices);
-    auto attribute = [&](const char* name, int type, const int* comps, size_t n_comps, AccessorView* v) {
-        auto it = src.attributes.find(name);
-        if (it == src.attributes.end()) return true;
-        if (!validate_accessor(ctx, model, it->second, name, type, comps, n_comps, v)) return false;
-        if (v->count != n)
-            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR,
-                            "%s: %s accessor %d has %zu elements, POSITION has %zu", usage, name,
-                            it->second, v->count, n);
-        return true;
-    };
-    if (!attribute("NORMAL", TINYGLTF_TYPE_VEC3, kFloat, 1, &nrm) ||
-        !attribute("TEXCOORD_0", TINYGLTF_TYPE_VEC2, kTexcoord, 3, &uv) ||
-        !attribute("TEXCOORD_1", TINYGLTF_TYPE_VEC2, kTexcoord, 3, &uv1) ||
-        !attribute("TANGENT", TINYGLTF_TYPE_VEC4, kFloat, 1, &tan))
-        return false;
-    const bool has_normals = nrm.count != 0, has_uv = uv.count != 0, has_uv1 = uv1.count != 0,
-               has_tangents = tan.count != 0;
+    static Step fail(bool) { return Step::Fail; }
 
-    uint32_t material;
-    if (src.material < 0) {
-        material = default_material(scene);
-    } else if (size_t(src.material) >= model.materials.size()) {
-        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "%s: material %d does not exist (%zu materials)",
-                        usage, src.material, model.materials.size());
-    } else {
-        material = uint32_t(src.material);
-    }
-
-    // Indices (or the implicit 0..n-1), then triangulation of strips/fans.
-    std::vector<uint32_t> raw;
-    if (src.indices >= 0) {
-        if (!validate_accessor(ctx, model, src.indices, "indices", TINYGLTF_TYPE_SCALAR, kIndex, 3, &idx))
-            return false;
-        if (!idx.data) {  // all indices 0: every triangle degenerate
-            ctx.warn("%s: index accessor %d has no bufferView (all zeros); primitive skipped", usage, src.indices);
+    // The mode, POSITION and the other attributes, each validated and as long as POSITION.
+    Step attributes() {
+        if (src.mode >= 0 && src.mode < TINYGLTF_MODE_TRIANGLES) {
+            ctx.warn("%s: points/lines (mode %d) ignored", usage, src.mode);
+            return Step::Skip;
+        }
+        if (src.mode > TINYGLTF_MODE_TRIANGLE_FAN)
+            return fail(ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "%s: invalid mode %d", usage, src.mode));
+        if (!src.targets.empty()) ctx.warn("%s: morph targets ignored", usage);
+        auto pos_it = src.attributes.find("POSITION");
+        if (pos_it == src.attributes.end()) {  // valid glTF (the validator warns): nothing to draw
+            ctx.warn("%s: no POSITION attribute; primitive skipped", usage);
+            return Step::Skip;
+        }
+        static const int kFloat[] = {TINYGLTF_COMPONENT_TYPE_FLOAT};
+        static const int kTexcoord[] = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+        if (!validate_accessor(ctx, model, pos_it->second, "POSITION", TINYGLTF_TYPE_VEC3, kFloat, 1, &pos))
+            return Step::Fail;
+        if (!pos.data) {  // glTF: no bufferView = zeros; all triangles degenerate, nothing allocated
+            ctx.warn("%s: POSITION accessor %d has no bufferView (all zeros); primitive skipped", usage,
+                     pos_it->second);
+            return Step::Skip;
+        }
+        n = pos.count;
+        if (scene.total_vertices + n > ctx.max_vertices)
+            return fail(ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_VERTICES,
+                                 "%s (node %d): %llu + %zu vertices exceed the limit of %u", usage, node_index,
+                                 static_cast<unsigned long long>(scene.total_vertices), n, ctx.max_vertices));
+        auto attribute = [&](const char* name, int type, const int* comps, size_t n_comps, AccessorView* v) {
+            auto it = src.attributes.find(name);
+            if (it == src.attributes.end()) return true;
+            if (!validate_accessor(ctx, model, it->second, name, type, comps, n_comps, v)) return false;
+            if (v->count != n)
+                return ctx.fail(RTPBR_GLTF_ERROR_INVALID_ACCESSOR,
+                                "%s: %s accessor %d has %zu elements, POSITION has %zu", usage, name,
+                                it->second, v->count, n);
             return true;
-        }
-        if (idx.count > RTPBR_GLTF_MAX_INDICES)
-            return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_VERTICES, "%s: %zu indices exceed the limit", usage,
-                            idx.count);
-        raw.resize(idx.count);
-        for (size_t i = 0; i < idx.count; ++i) {
-            double v = read_component(idx, i, 0);
-            if (v >= double(n))
-                return ctx.fail(RTPBR_GLTF_ERROR_INDEX_OUT_OF_RANGE,
-                                "%s: index %.0f at position %zu (accessor %d) >= vertex count %zu",
-                                usage, v, i, src.indices, n);
-            raw[i] = uint32_t(v);
-        }
-    } else {
-        raw.resize(n);
-        for (size_t i = 0; i < n; ++i) raw[i] = uint32_t(i);
+        };
+        if (!attribute("NORMAL", TINYGLTF_TYPE_VEC3, kFloat, 1, &nrm) ||
+            !attribute("TEXCOORD_0", TINYGLTF_TYPE_VEC2, kTexcoord, 3, &uv) ||
+            !attribute("TEXCOORD_1", TINYGLTF_TYPE_VEC2, kTexcoord, 3, &uv1) ||
+            !attribute("TANGENT", TINYGLTF_TYPE_VEC4, kFloat, 1, &tan))
+            return Step::Fail;
+        return Step::Go;
     }
-    std::vector<uint32_t> tris;
-    const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
-    const uint64_t tri_indices = mode == TINYGLTF_MODE_TRIANGLES ? raw.size() / 3 * 3
-                                 : raw.size() >= 3             ? 3 * uint64_t(raw.size() - 2)
-                                                               : 0;
-    if (scene.total_indices + tri_indices > RTPBR_GLTF_MAX_INDICES)
-        return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_VERTICES, "%s: index count exceeds RTPBR_GLTF_MAX_INDICES",
-                        usage);
-    tris.reserve(size_t(tri_indices));
-    if (mode == TINYGLTF_MODE_TRIANGLES) {
-        if (raw.size() % 3 != 0) ctx.warn("%s: %zu indices is not a multiple of 3; tail dropped", usage, raw.size());
-        tris.assign(raw.begin(), raw.begin() + long(raw.size() / 3 * 3));
-    } else if (raw.size() >= 3) {
-        for (size_t i = 2; i < raw.size(); ++i) {
-            if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {  // glTF §3.7.2.1 strip winding
-                bool even = (i % 2) == 0;
-                tris.insert(tris.end(), {raw[i - 2], even ? raw[i - 1] : raw[i], even ? raw[i] : raw[i - 1]});
-            } else {
-                tris.insert(tris.end(), {raw[0], raw[i - 1], raw[i]});
+
+    Step material() {
+        if (src.material < 0) {
+            p.material = default_material(scene);
+        } else if (size_t(src.material) >= model.materials.size()) {
+            return fail(ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "%s: material %d does not exist (%zu materials)",
+                                 usage, src.material, model.materials.size()));
+        } else {
+            p.material = uint32_t(src.material);
+        }
+        return Step::Go;
+    }
+
+    // Indices (or the implicit 0..n-1), then triangulation of strips/fans, into tris.
+    Step triangles() {
+        static const int kIndex[] = {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT};
+        std::vector<uint32_t> raw;
+        if (src.indices >= 0) {
+            AccessorView idx;
+            if (!validate_accessor(ctx, model, src.indices, "indices", TINYGLTF_TYPE_SCALAR, kIndex, 3, &idx))
+                return Step::Fail;
+            if (!idx.data) {  // all indices 0: every triangle degenerate
+                ctx.warn("%s: index accessor %d has no bufferView (all zeros); primitive skipped", usage,
+                         src.indices);
+                return Step::Skip;
+            }
+            if (idx.count > RTPBR_GLTF_MAX_INDICES)
+                return fail(ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_VERTICES, "%s: %zu indices exceed the limit", usage,
+                                     idx.count));
+            raw.resize(idx.count);
+            for (size_t i = 0; i < idx.count; ++i) {
+                double v = read_component(idx, i, 0);
+                if (v >= double(n))
+                    return fail(ctx.fail(RTPBR_GLTF_ERROR_INDEX_OUT_OF_RANGE,
+                                         "%s: index %.0f at position %zu (accessor %d) >= vertex count %zu", usage,
+                                         v, i, src.indices, n));
+                raw[i] = uint32_t(v);
+            }
+        } else {
+            raw.resize(n);
+            for (size_t i = 0; i < n; ++i) raw[i] = uint32_t(i);
+        }
+        const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
+        const uint64_t tri_indices = mode == TINYGLTF_MODE_TRIANGLES ? raw.size() / 3 * 3
+                                     : raw.size() >= 3             ? 3 * uint64_t(raw.size() - 2)
+                                                                   : 0;
+        if (scene.total_indices + tri_indices > RTPBR_GLTF_MAX_INDICES)
+            return fail(ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_VERTICES,
+                                 "%s: index count exceeds RTPBR_GLTF_MAX_INDICES", usage));
+        tris.reserve(size_t(tri_indices));
+        if (mode == TINYGLTF_MODE_TRIANGLES) {
+            if (raw.size() % 3 != 0)
+                ctx.warn("%s: %zu indices is not a multiple of 3; tail dropped", usage, raw.size());
+            tris.assign(raw.begin(), raw.begin() + long(raw.size() / 3 * 3));
+        } else if (raw.size() >= 3) {
+            for (size_t i = 2; i < raw.size(); ++i) {
+                if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {  // glTF §3.7.2.1 strip winding
+                    bool even = (i % 2) == 0;
+                    tris.insert(tris.end(), {raw[i - 2], even ? raw[i - 1] : raw[i], even ? raw[i] : raw[i - 1]});
+                } else {
+                    tris.insert(tris.end(), {raw[0], raw[i - 1], raw[i]});
+                }
             }
         }
+        return Step::Go;
     }
 
-    Primitive p;
-    p.material = material;
-    p.gltf_mesh = mesh_index;
-    p.gltf_primitive = prim_index;
-    p.gltf_node = node_index;
-    p.has_texcoords = has_uv;
-    p.has_texcoords1 = has_uv1;
-    double det = 0.0;
-    const std::array<double, 9> cof = cofactor3(world, &det);
-    const double det_sign = det < 0.0 ? -1.0 : 1.0;
-    if (det == 0.0) ctx.warn("node %d: singular transform, %s collapses", node_index, usage);
-
-    std::vector<Vec3> world_pos(n);
-    p.positions.resize(3 * n);
-    for (size_t i = 0; i < n; ++i) {
-        Vec3 local = {read_component(pos, i, 0), read_component(pos, i, 1), read_component(pos, i, 2)};
-        if (!std::isfinite(local[0]) || !std::isfinite(local[1]) || !std::isfinite(local[2]))
-            return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE,
-                            "%s: POSITION accessor %d element %zu is not finite", usage, pos_it->second, i);
-        Vec3 w = transform_point(world, local);
-        for (int k = 0; k < 3; ++k) {
-            if (!std::isfinite(float(w[size_t(k)])))
-                return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE,
-                                "%s (node %d): world position of vertex %zu overflows", usage, node_index, i);
-            p.positions[3 * i + size_t(k)] = float(w[size_t(k)]);
+    // World-space positions (p.positions, and world_pos as the floats read back).
+    Step positions() {
+        cof = cofactor3(world, &det);
+        det_sign = det < 0.0 ? -1.0 : 1.0;
+        if (det == 0.0) ctx.warn("node %d: singular transform, %s collapses", node_index, usage);
+        world_pos.resize(n);
+        p.positions.resize(3 * n);
+        for (size_t i = 0; i < n; ++i) {
+            Vec3 local = {read_component(pos, i, 0), read_component(pos, i, 1), read_component(pos, i, 2)};
+            if (!std::isfinite(local[0]) || !std::isfinite(local[1]) || !std::isfinite(local[2]))
+                return fail(ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "%s: POSITION accessor %d element %zu is not finite",
+                                     usage, src.attributes.at("POSITION"), i));
+            Vec3 w = transform_point(world, local);
+            for (int k = 0; k < 3; ++k) {
+                if (!std::isfinite(float(w[size_t(k)])))
+                    return fail(ctx.fail(RTPBR_GLTF_ERROR_NONFINITE,
+                                         "%s (node %d): world position of vertex %zu overflows", usage, node_index, i));
+                p.positions[3 * i + size_t(k)] = float(w[size_t(k)]);
+            }
+            world_pos[i] = {p.positions[3 * i], p.positions[3 * i + 1], p.positions[3 * i + 2]};
         }
-        world_pos[i] = {p.positions[3 * i], p.positions[3 * i + 1], p.positions[3 * i + 2]};
+        return Step::Go;
     }
 
-    // Winding follows the world determinant; degenerate triangles are dropped.
-    size_t dropped = 0;
-    p.indices.reserve(tris.size());
-    for (size_t t = 0; t + 2 < tris.size(); t += 3) {
-        uint32_t a = tris[t], b = tris[t + 1], c = tris[t + 2];
-        if (det < 0.0) std::swap(b, c);
-        const Vec3 e1 = sub(world_pos[b], world_pos[a]), e2 = sub(world_pos[c], world_pos[a]);
-        const double area2 = length(cross(e1, e2));
-        if (a == b || b == c || a == c || !(area2 > 1e-7 * length(e1) * length(e2))) {
-            ++dropped;
-            continue;
+    // p.indices: winding follows the world determinant; degenerate triangles are dropped.
+    Step kept_triangles() {
+        size_t dropped = 0;
+        p.indices.reserve(tris.size());
+        for (size_t t = 0; t + 2 < tris.size(); t += 3) {
+            uint32_t a = tris[t], b = tris[t + 1], c = tris[t + 2];
+            if (det < 0.0) std::swap(b, c);
+            const Vec3 e1 = sub(world_pos[b], world_pos[a]), e2 = sub(world_pos[c], world_pos[a]);
+            const double area2 = length(cross(e1, e2));
+            if (a == b || b == c || a == c || !(area2 > 1e-7 * length(e1) * length(e2))) {
+                ++dropped;
+                continue;
+            }
+            p.indices.insert(p.indices.end(), {a, b, c});
         }
-        p.indices.insert(p.indices.end(), {a, b, c});
-    }
-    if (dropped) ctx.warn("%s (node %d): %zu degenerate triangles dropped", usage, node_index, dropped);
-    // Nothing left (a node scaled by 0 is the usual way to hide an object): the primitive is
-    // left out, so that neither renderer meets a mesh without triangles.
-    if (p.indices.empty()) {
-        ctx.warn("%s (node %d): no non-degenerate triangle; primitive skipped", usage, node_index);
-        return true;
+        if (dropped) ctx.warn("%s (node %d): %zu degenerate triangles dropped", usage, node_index, dropped);
+        // Nothing left (a node scaled by 0 is the usual way to hide an object): the primitive is
+        // left out, so that neither renderer meets a mesh without triangles.
+        if (p.indices.empty()) {
+            ctx.warn("%s (node %d): no non-degenerate triangle; primitive skipped", usage, node_index);
+            return Step::Skip;
+        }
+        return Step::Go;
     }
 
-    // Normals: file normals through the cofactor matrix, else area-weighted.
-    std::vector<Vec3> smooth;
-    auto smooth_normals = [&]() {
-        if (!smooth.empty()) return;
-        smooth.assign(n, Vec3{0, 0, 0});
+    // Area-weighted vertex normals of the kept triangles.
+    std::vector<Vec3> smooth_normals() const {
+        std::vector<Vec3> smooth(n, Vec3{0, 0, 0});
         for (size_t t = 0; t < p.indices.size(); t += 3) {
             const uint32_t a = p.indices[t], b = p.indices[t + 1], c = p.indices[t + 2];
             const Vec3 f = cross(sub(world_pos[b], world_pos[a]), sub(world_pos[c], world_pos[a]));
@@ -420,56 +451,53 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
         }
         for (Vec3& s : smooth)
             if (!normalize(&s)) s = {0, 0, 1};
-    };
-    p.normals.resize(3 * n);
-    bool repaired = false;
-    for (size_t i = 0; i < n; ++i) {
-        Vec3 nw;
-        bool ok = false;
-        if (has_normals) {
-            const Vec3 l = {read_component(nrm, i, 0), read_component(nrm, i, 1), read_component(nrm, i, 2)};
-            if (std::isfinite(l[0]) && std::isfinite(l[1]) && std::isfinite(l[2])) {
-                nw = {cof[0] * l[0] + cof[3] * l[1] + cof[6] * l[2], cof[1] * l[0] + cof[4] * l[1] + cof[7] * l[2],
-                      cof[2] * l[0] + cof[5] * l[1] + cof[8] * l[2]};
-                for (double& x : nw) x *= det_sign;
-                ok = normalize(&nw);
-            }
-            repaired = repaired || !ok;
-        }
-        if (!ok) {
-            smooth_normals();
-            nw = smooth[i];
-        }
-        for (int k = 0; k < 3; ++k) p.normals[3 * i + size_t(k)] = float(nw[size_t(k)]);
+        return smooth;
     }
-    p.normals_generated = !has_normals;
-    if (repaired) ctx.warn("%s: zero or non-finite normals replaced by generated ones", usage);
 
-    p.texcoords.assign(2 * n, 0.0f);
-    for (size_t i = 0; has_uv && i < n; ++i)
-        for (int k = 0; k < 2; ++k) {
-            double v = read_component(uv, i, k);
-            if (!std::isfinite(v))
-                return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "%s: TEXCOORD_0 element %zu is not finite", usage, i);
-            p.texcoords[2 * i + size_t(k)] = float(v);
+    // Normals: file normals through the cofactor matrix, else area-weighted.
+    void normals() {
+        const bool has_normals = nrm.count != 0;
+        std::vector<Vec3> smooth;
+        p.normals.resize(3 * n);
+        bool repaired = false;
+        for (size_t i = 0; i < n; ++i) {
+            Vec3 nw;
+            bool ok = false;
+            if (has_normals) {
+                const Vec3 l = {read_component(nrm, i, 0), read_component(nrm, i, 1), read_component(nrm, i, 2)};
+                if (std::isfinite(l[0]) && std::isfinite(l[1]) && std::isfinite(l[2])) {
+                    nw = {cof[0] * l[0] + cof[3] * l[1] + cof[6] * l[2], cof[1] * l[0] + cof[4] * l[1] + cof[7] * l[2],
+                          cof[2] * l[0] + cof[5] * l[1] + cof[8] * l[2]};
+                    for (double& x : nw) x *= det_sign;
+                    ok = normalize(&nw);
+                }
+                repaired = repaired || !ok;
+            }
+            if (!ok) {
+                if (smooth.empty()) smooth = smooth_normals();
+                nw = smooth[i];
+            }
+            for (int k = 0; k < 3; ++k) p.normals[3 * i + size_t(k)] = float(nw[size_t(k)]);
         }
-    p.texcoords1.assign(2 * n, 0.0f);
-    for (size_t i = 0; has_uv1 && i < n; ++i)
-        for (int k = 0; k < 2; ++k) {
-            double v = read_component(uv1, i, k);
-            if (!std::isfinite(v))
-                return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "%s: TEXCOORD_1 element %zu is not finite", usage, i);
-            p.texcoords1[2 * i + size_t(k)] = float(v);
-        }
+        p.normals_generated = !has_normals;
+        if (repaired) ctx.warn("%s: zero or non-finite normals replaced by generated ones", usage);
+    }
 
-    // Tangents: from the file, else generated when a normal map or an anisotropic lobe needs
-    // them (KHR_materials_anisotropy: "when tangents are not specified, client implementations
-    // should calculate tangents"; Disney's anisotropy follows the tangent too).
-    p.tangents.assign(4 * n, 0.0f);
-    const rtpbr_gltf_material& mat = scene.materials[material];
-    const bool wants_tangents = mat.normal_texture >= 0 || mat.anisotropy.anisotropy_strength > 0.0f ||
-                                (mat.has_disney && mat.disney.anisotropic > 0.0f);
-    if (has_tangents) {
+    // One TEXCOORD_n set into out (zeros without the attribute).
+    Step texcoords(const AccessorView& v, const char* name, std::vector<float>* out) {
+        out->assign(2 * n, 0.0f);
+        for (size_t i = 0; v.count != 0 && i < n; ++i)
+            for (int k = 0; k < 2; ++k) {
+                double x = read_component(v, i, k);
+                if (!std::isfinite(x))
+                    return fail(ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "%s: %s element %zu is not finite", usage, name, i));
+                (*out)[2 * i + size_t(k)] = float(x);
+            }
+        return Step::Go;
+    }
+
+    // The file's tangents, to world space (w: the bitangent's sign, flipped by a mirroring node).
+    void file_tangents() {
         for (size_t i = 0; i < n; ++i) {
             Vec3 t = {read_component(tan, i, 0), read_component(tan, i, 1), read_component(tan, i, 2)};
             double w = read_component(tan, i, 3);
@@ -479,10 +507,11 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
             for (int k = 0; k < 3; ++k) p.tangents[4 * i + size_t(k)] = float(t[size_t(k)]);
             p.tangents[4 * i + 3] = float((w < 0.0 ? -1.0 : 1.0) * det_sign);
         }
-        p.has_tangents = true;
-    } else if (wants_tangents && has_uv) {
-        // Per-triangle tangent frames from UV gradients (Lengyel 2001,
-        // "Computing Tangent Space Basis Vectors"), accumulated per vertex.
+    }
+
+    // Per-triangle tangent frames from UV gradients (Lengyel 2001, "Computing Tangent Space
+    // Basis Vectors"), accumulated per vertex, orthogonalised against the normal.
+    void generated_tangents() {
         std::vector<Vec3> ts(n, Vec3{0, 0, 0}), bs(n, Vec3{0, 0, 0});
         for (size_t t = 0; t < p.indices.size(); t += 3) {
             const uint32_t v[3] = {p.indices[t], p.indices[t + 1], p.indices[t + 2]};
@@ -512,15 +541,50 @@ bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int p
             for (int k = 0; k < 3; ++k) p.tangents[4 * i + size_t(k)] = float(t[size_t(k)]);
             p.tangents[4 * i + 3] = dot(cross(nn, t), bs[i]) < 0.0 ? -1.0f : 1.0f;
         }
-        p.has_tangents = true;
-        p.tangents_generated = true;
-    } else if (wants_tangents) {
-        ctx.warn("%s: normal texture without TEXCOORD_0; tangents left zero", usage);
     }
 
-    scene.total_vertices += n;
-    scene.total_indices += p.indices.size();
-    scene.primitives.push_back(std::move(p));
+    // Tangents: from the file, else generated when a normal map or an anisotropic lobe needs
+    // them (KHR_materials_anisotropy: "when tangents are not specified, client implementations
+    // should calculate tangents"; Disney's anisotropy follows the tangent too).
+    void tangents() {
+        p.tangents.assign(4 * n, 0.0f);
+        const rtpbr_gltf_material& mat = scene.materials[p.material];
+        const bool wants_tangents = mat.normal_texture >= 0 || mat.anisotropy.anisotropy_strength > 0.0f ||
+                                    (mat.has_disney && mat.disney.anisotropic > 0.0f);
+        if (tan.count != 0) {
+            file_tangents();
+            p.has_tangents = true;
+        } else if (wants_tangents && uv.count != 0) {
+            generated_tangents();
+            p.has_tangents = true;
+            p.tangents_generated = true;
+        } else if (wants_tangents) {
+            ctx.warn("%s: normal texture without TEXCOORD_0; tangents left zero", usage);
+        }
+    }
+};
+
+bool Builder::primitive(int node_index, const Mat4& world, int mesh_index, int prim_index) {
+    PrimitiveReader r(ctx, model, scene, mesh_index, prim_index, node_index, world);
+    for (Step (PrimitiveReader::*step)() : {&PrimitiveReader::attributes, &PrimitiveReader::material,
+                                            &PrimitiveReader::triangles, &PrimitiveReader::positions,
+                                            &PrimitiveReader::kept_triangles}) {
+        const Step s = (r.*step)();
+        if (s != Step::Go) return s == Step::Skip;
+    }
+    r.p.gltf_mesh = mesh_index;
+    r.p.gltf_primitive = prim_index;
+    r.p.gltf_node = node_index;
+    r.p.has_texcoords = r.uv.count != 0;
+    r.p.has_texcoords1 = r.uv1.count != 0;
+    r.normals();
+    if (r.texcoords(r.uv, "TEXCOORD_0", &r.p.texcoords) != Step::Go ||
+        r.texcoords(r.uv1, "TEXCOORD_1", &r.p.texcoords1) != Step::Go)
+        return false;
+    r.tangents();
+    scene.total_vertices += r.n;
+    scene.total_indices += r.p.indices.size();
+    scene.primitives.push_back(std::move(r.p));
     return true;
 }
 

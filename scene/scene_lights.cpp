@@ -27,6 +27,13 @@ double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[
 double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
 Vec3 scaled(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
 
+// Huge coordinates can make a finite polygon's area or centre overflow a float.
+bool facts_finite(const rtpbr_gltf_polygon_facts& f) {
+    bool finite = std::isfinite(f.area) && std::isfinite(f.bound_radius);
+    for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(f.center[k]) && std::isfinite(f.normal[k]);
+    return finite;
+}
+
 struct Triangle {
     uint32_t v[3];  // welded vertex ids, counter-clockwise about n
     Vec3 n;         // unit normal
@@ -108,7 +115,7 @@ struct LightBuilder {
         return 0.5 * dot(s, n);
     }
 
-    bool emit(const std::vector<uint32_t>& loop, const Vec3& n) {
+    bool emit(const std::vector<uint32_t>& loop) {
         if (scene.lights.size() - first_light >= exact_limit) {
             over = true;
             return false;
@@ -123,25 +130,15 @@ struct LightBuilder {
         std::memset(&l, 0, sizeof l);
         l.shape = RTPBR_GLTF_LIGHT_POLYGON;
         l.vertex_count = uint32_t(loop.size());
-        Vec3 center{0, 0, 0};
-        for (size_t i = 0; i < loop.size(); ++i) {
-            for (int k = 0; k < 3; ++k) {
-                l.vertices[i][k] = float(verts[loop[i]][size_t(k)]);
-                center[size_t(k)] += verts[loop[i]][size_t(k)] / double(loop.size());
-            }
-        }
-        for (int k = 0; k < 3; ++k) {
-            l.normal[k] = float(n[size_t(k)]);
-            l.center[k] = float(center[size_t(k)]);
-            l.radiance[k] = m.emission[k];
-        }
-        l.area = float(area(loop, n));
+        for (size_t i = 0; i < loop.size(); ++i)
+            for (int k = 0; k < 3; ++k) l.vertices[i][k] = float(verts[loop[i]][size_t(k)]);
+        for (int k = 0; k < 3; ++k) l.radiance[k] = m.emission[k];
+        rtpbr_gltf_polygon_facts_of(l.vertices, l.vertex_count, &l.facts);
         // Huge coordinates can make a finite polygon's area overflow a float.
-        if (!std::isfinite(l.area) || !std::isfinite(l.center[0]) || !std::isfinite(l.center[1]) ||
-            !std::isfinite(l.center[2]))
+        if (!facts_finite(l.facts))
             return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "primitive %u (mesh %d): light polygon area overflows",
                             primitive_index, p.gltf_mesh);
-        if (!(l.area > 0.0f)) {  // underflows to 0: emits nothing
+        if (!(l.facts.area > 0.0f)) {  // underflows to 0: emits nothing
             ctx.warn("primitive %u (mesh %d): light of zero area (as a float) dropped", primitive_index, p.gltf_mesh);
             return true;
         }
@@ -243,7 +240,7 @@ struct LightBuilder {
             }
             std::vector<uint32_t> simple;
             if (!simplify(loop, &simple)) simple = loop;
-            if (!emit(simple, n)) return false;
+            if (!emit(simple)) return false;
         }
         return true;
     }
@@ -308,7 +305,7 @@ struct LightBuilder {
             n = scaled(n, 1.0 / length(n));
             std::vector<uint32_t> loop;
             if (comp.size() > 1 && single_loop(comp, n, &loop)) {
-                if (!emit(loop, n)) return false;
+                if (!emit(loop)) return false;
             } else if (!greedy(comp, n)) {
                 return false;
             }
@@ -450,14 +447,10 @@ bool triangle_lights(Context& ctx, Scene& scene, uint32_t primitive_index) {
         for (int k = 0; k < 3; ++k)
             for (int c = 0; c < 3; ++c)
                 l.vertices[k][c] = p.positions[3 * size_t(p.indices[3 * size_t(t.index) + size_t(k)]) + size_t(c)];
-        for (int c = 0; c < 3; ++c) {
-            l.normal[c] = float(t.normal[size_t(c)]);
-            l.center[c] = float(t.centroid[size_t(c)]);
-            l.radiance[c] = m.emission[c];
-        }
-        l.area = float(t.area);
+        for (int c = 0; c < 3; ++c) l.radiance[c] = m.emission[c];
+        rtpbr_gltf_polygon_facts_of(l.vertices, l.vertex_count, &l.facts);
         l.triangle = int32_t(t.index);
-        if (!(l.area > 0.0f) || !std::isfinite(l.area)) continue;
+        if (!(l.facts.area > 0.0f) || !facts_finite(l.facts)) continue;
         if (!push_light(ctx, scene, primitive_index, l)) return false;
     }
     return true;
@@ -551,16 +544,10 @@ bool cluster_lights(Context& ctx, Scene& scene, uint32_t primitive_index, const 
             for (int q = 0; q < 3; ++q)
                 l.vertices[v][q] = float(centres[c][size_t(q)] + r * (ca * t1[size_t(q)] + sa * t2[size_t(q)]));
         }
-        for (int q = 0; q < 3; ++q) {
-            l.normal[q] = float(n[size_t(q)]);
-            l.center[q] = float(centres[c][size_t(q)]);
-            l.radiance[q] = float(power[size_t(q)] / area);
-        }
-        l.area = float(area);
+        for (int q = 0; q < 3; ++q) l.radiance[q] = float(power[size_t(q)] / area);
+        rtpbr_gltf_polygon_facts_of(l.vertices, l.vertex_count, &l.facts);
         l.proxy = true;
-        if (!(l.area > 0.0f) || !std::isfinite(l.area) || !std::isfinite(l.center[0]) || !std::isfinite(l.center[1]) ||
-            !std::isfinite(l.center[2]))
-            continue;
+        if (!(l.facts.area > 0.0f) || !facts_finite(l.facts)) continue;
         if (!push_light(ctx, scene, primitive_index, l)) return false;
     }
     return true;
@@ -694,20 +681,18 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
         if (!(ly > 0.0))
             return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: degenerate transform for an area light", node);
         y = scaled(y, 1.0 / ly);
-        const Vec3 z = cross(x, y);
-        const Vec3 n = scaled(z, -1.0);  // emits towards local -Z
 
         if (scene.lights.size() >= ctx.max_lights)
             return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS, "node %d: more than %u area lights", node,
                             ctx.max_lights);
         rtpbr_gltf_light l;
         std::memset(&l, 0, sizeof l);
-        std::vector<std::array<double, 2>> local;  // (x, y) in the light plane, clockwise about +Z
+        // (x, y) in the light plane, clockwise about +Z: the light emits towards local -Z
+        std::vector<std::array<double, 2>> local;
         if (type == "rect") {
             const double hw = 0.5 * width * scale, hh = 0.5 * height * scale;
             l.shape = RTPBR_GLTF_LIGHT_POLYGON;
             local = {{-hw, -hh}, {-hw, hh}, {hw, hh}, {hw, -hh}};
-            l.area = float(4.0 * hw * hh);
         } else {
             const double r = radius * scale;
             // Regular octagon with the disk's area: 2·sqrt(2)·R² = π r².
@@ -718,23 +703,19 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
                 local.push_back({R * std::cos(a), R * std::sin(a)});
             }
             l.radius = float(r);
-            l.area = float(kPi * r * r);
         }
         l.vertex_count = uint32_t(local.size());
         for (size_t i = 0; i < local.size(); ++i)
             for (int k = 0; k < 3; ++k)
                 l.vertices[i][k] = float(center[size_t(k)] + x[size_t(k)] * local[i][0] + y[size_t(k)] * local[i][1]);
-        for (int k = 0; k < 3; ++k) {
-            l.normal[k] = float(n[size_t(k)]);
-            l.center[k] = float(center[size_t(k)]);
-            l.radiance[k] = float(color[k] * intensity * ctx.area_light_radiance_scale);
-        }
-        bool finite = std::isfinite(l.area) && std::isfinite(l.radius);
+        for (int k = 0; k < 3; ++k) l.radiance[k] = float(color[k] * intensity * ctx.area_light_radiance_scale);
+        bool finite = std::isfinite(l.radius);
         for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(l.radiance[k]);
         for (const auto& v : l.vertices)
             for (float f : v) finite = finite && std::isfinite(f);
-        for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(l.center[k]);
-        finite = finite && l.area > 0.0f;  // finite doubles can underflow the float area
+        rtpbr_gltf_polygon_facts_of(l.vertices, l.vertex_count, &l.facts);
+        finite = finite && facts_finite(l.facts);
+        finite = finite && l.facts.area > 0.0f;  // finite doubles can underflow the float area
         if (!finite)
             return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: area light %d: radiance or area not representable as a float",
                             node, index);
@@ -749,3 +730,43 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
 }
 
 }  // namespace rtpbr_gltf_detail
+
+extern "C" void rtpbr_gltf_polygon_facts_of(const float (*v)[3], uint32_t count, rtpbr_gltf_polygon_facts* out) {
+    if (!out) return;
+    std::memset(out, 0, sizeof *out);
+    if (!v || count < 3 || count > RTPBR_GLTF_MAX_POLYGON_VERTICES) return;
+    // Newell's method: a normal whose length is twice the polygon's area.
+    double n[3] = {0.0, 0.0, 0.0};
+    for (uint32_t i = 0; i < count; ++i) {
+        const float *a = v[i], *b = v[(i + 1) % count];
+        n[0] += (double(a[1]) - b[1]) * (double(a[2]) + b[2]);
+        n[1] += (double(a[2]) - b[2]) * (double(a[0]) + b[0]);
+        n[2] += (double(a[0]) - b[0]) * (double(a[1]) + b[1]);
+    }
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (len > 0.0)
+        for (int k = 0; k < 3; ++k) out->normal[k] = float(n[k] / len);
+    out->area = float(0.5 * len);
+    // Bounding sphere: centred on the vertex mean (not minimal, but bounding).
+    double c[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
+    for (uint32_t i = 0; i < count; ++i)
+        for (int k = 0; k < 3; ++k) c[k] += v[i][k] / double(count);
+    for (uint32_t i = 0; i < count; ++i) {
+        double d2 = 0.0;
+        for (int k = 0; k < 3; ++k) d2 += (v[i][k] - c[k]) * (v[i][k] - c[k]);
+        if (d2 > r2) r2 = d2;
+    }
+    for (int k = 0; k < 3; ++k) out->center[k] = float(c[k]);
+    out->bound_radius = float(std::sqrt(r2) * (1.0 + 1e-6)) + 1e-6f;  // rounding must not shrink it
+    // The fan (v0, v[k+1], v[k+2]).
+    for (uint32_t k = 0; k + 2 < count; ++k) {
+        double e1[3], e2[3];
+        for (int q = 0; q < 3; ++q) {
+            e1[q] = double(v[k + 1][q]) - v[0][q];
+            e2[q] = double(v[k + 2][q]) - v[0][q];
+        }
+        using namespace rtpbr_gltf_detail;
+        out->fan_area[k] = float(0.5 * length(cross({e1[0], e1[1], e1[2]}, {e2[0], e2[1], e2[2]})));
+    }
+}
+

@@ -445,9 +445,9 @@ rtpbr_gltf_result build_output(Context& ctx, const Scene& in, rtpbr_gltf_scene**
         if (l.shape == RTPBR_GLTF_LIGHT_DISK) {
             // The disk itself: centre ± r·sqrt(1 - n_k²) along each axis.
             for (int k = 0; k < 3; ++k) {
-                float e = l.radius * std::sqrt(std::max(0.0f, 1.0f - l.normal[k] * l.normal[k]));
-                lo[k] = std::min(lo[k], l.center[k] - e);
-                hi[k] = std::max(hi[k], l.center[k] + e);
+                float e = l.radius * std::sqrt(std::max(0.0f, 1.0f - l.facts.normal[k] * l.facts.normal[k]));
+                lo[k] = std::min(lo[k], l.facts.center[k] - e);
+                hi[k] = std::max(hi[k], l.facts.center[k] + e);
             }
         }
     }

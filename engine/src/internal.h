@@ -219,6 +219,14 @@ struct rtpbr_gpu_scene {
     rtpbr_buffer alpha_texels;   // uint[]: the alpha bytes of the textures that have any below 255
 };
 
+// rtpbr_gpu_scene_create with the lights' derived facts (normal, centre, area, bounding sphere,
+// fan; scene/rtpbr/rtpbr_gltf.h) given, one per light, as the loader computed them
+// (rtpbr_gpu_scene_from_loaded); NULL: derived here from the vertices (rtpbr_gpu_scene_create).
+struct rtpbr_gltf_polygon_facts;
+rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const rtpbr_gpu_scene_desc *desc,
+                                                     const struct rtpbr_gltf_polygon_facts *light_facts,
+                                                     rtpbr_gpu_scene **out_scene);
+
 // The RTPBR_EXTENSION_TEXTURES_* bits of the scene's materials together (scene.c): which of
 // G-buffers 4 to 6 its frames render and read.
 uint32_t rtpbr_gpu_scene_extension_textures(const rtpbr_gpu_scene *scene);

@@ -4,23 +4,31 @@
 
 #include "internal.h"
 #include "passes/passes.h"
+#include "rtpbr/rtpbr_gltf.h"
 
 // ---------------------------------------------------------------------------------------------
 // Lights
 
-// Newell's method: a polygon normal whose length is twice the polygon's area.
-static void polygon_normal(const float (*v)[3], uint32_t n, double out[3])
+// A light's derived facts (normal, centre, area, bounding sphere, fan;
+// rtpbr_gltf_polygon_facts_of) are computed once where it is made: by the loader for the
+// lights of rtpbr_gpu_scene_from_loaded, here for the lights given through the API. The checks
+// and the light record read them.
+
+// The facts of lights given through the API; NULL (and *result set) without memory.
+static rtpbr_gltf_polygon_facts *derive_light_facts(const rtpbr_context *ctx, const rtpbr_light_desc *lights,
+                                                    uint32_t count, rtpbr_result *result)
 {
-    out[0] = out[1] = out[2] = 0.0;
-    for (uint32_t i = 0; i < n; ++i) {
-        const float *a = v[i], *b = v[(i + 1) % n];
-        out[0] += ((double)a[1] - b[1]) * ((double)a[2] + b[2]);
-        out[1] += ((double)a[2] - b[2]) * ((double)a[0] + b[0]);
-        out[2] += ((double)a[0] - b[0]) * ((double)a[1] + b[1]);
+    rtpbr_gltf_polygon_facts *facts = rtpbr_alloc(&ctx->host, (count ? count : 1) * sizeof *facts);
+    if (!facts) {
+        *result = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+        return NULL;
     }
+    for (uint32_t i = 0; i < count; ++i) rtpbr_gltf_polygon_facts_of(lights[i].vertices, lights[i].vertex_count, &facts[i]);
+    return facts;
 }
 
-static rtpbr_result validate_light(const rtpbr_context *ctx, const rtpbr_light_desc *l, uint32_t index)
+static rtpbr_result validate_light(const rtpbr_context *ctx, const rtpbr_light_desc *l,
+                                   const rtpbr_gltf_polygon_facts *f, uint32_t index)
 {
     if (l->vertex_count < 3 || l->vertex_count > RTPBR_MAX_POLYGON_VERTICES) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has %u vertices; 3 to %u are allowed", index, l->vertex_count,
@@ -36,9 +44,6 @@ static rtpbr_result validate_light(const rtpbr_context *ctx, const rtpbr_light_d
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has negative emission", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
-    double n[3];
-    polygon_normal(l->vertices, l->vertex_count, n);
-    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     // Size of the polygon: its largest vertex distance from vertex 0.
     double extent = 0.0;
     for (uint32_t i = 1; i < l->vertex_count; ++i) {
@@ -47,13 +52,13 @@ static rtpbr_result validate_light(const rtpbr_context *ctx, const rtpbr_light_d
         if (d > extent) extent = d;
     }
     extent = sqrt(extent);
-    if (!(len > 1e-12 * extent * extent) || extent == 0.0) {
+    if (!(2.0 * (double)f->area > 1e-12 * extent * extent) || extent == 0.0) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u is degenerate (zero area)", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     for (uint32_t i = 1; i < l->vertex_count; ++i) {
         double d = 0.0;
-        for (int k = 0; k < 3; ++k) d += n[k] / len * ((double)l->vertices[i][k] - l->vertices[0][k]);
+        for (int k = 0; k < 3; ++k) d += (double)f->normal[k] * ((double)l->vertices[i][k] - l->vertices[0][k]);
         if (fabs(d) > 1e-3 * extent) {
             rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u is not planar (vertex %u is %g off the plane)", index, i, d);
             return RTPBR_ERROR_INVALID_ARGUMENT;
@@ -62,7 +67,8 @@ static rtpbr_result validate_light(const rtpbr_context *ctx, const rtpbr_light_d
     return RTPBR_SUCCESS;
 }
 
-static rtpbr_result validate_lights(const rtpbr_context *ctx, const rtpbr_light_desc *lights, uint32_t count)
+// The count and the array; each light is checked with its facts (validate_lights).
+static rtpbr_result validate_light_array(const rtpbr_context *ctx, const rtpbr_light_desc *lights, uint32_t count)
 {
     if (count > RTPBR_MAX_LIGHTS) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "%u lights; at most RTPBR_MAX_LIGHTS = %u are allowed", count, RTPBR_MAX_LIGHTS);
@@ -72,39 +78,35 @@ static rtpbr_result validate_lights(const rtpbr_context *ctx, const rtpbr_light_
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light_count is %u but lights is NULL", count);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
+    return RTPBR_SUCCESS;
+}
+
+static rtpbr_result validate_lights(const rtpbr_context *ctx, const rtpbr_light_desc *lights,
+                                    const rtpbr_gltf_polygon_facts *facts, uint32_t count)
+{
     for (uint32_t i = 0; i < count; ++i) {
-        rtpbr_result result = validate_light(ctx, &lights[i], i);
+        rtpbr_result result = validate_light(ctx, &lights[i], &facts[i], i);
         if (result != RTPBR_SUCCESS) return result;
     }
     return RTPBR_SUCCESS;
 }
 
-static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights, uint32_t count)
+static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights, const rtpbr_gltf_polygon_facts *facts,
+                         uint32_t count)
 {
     rtpbr_shader_light *gpu = scene->lights.mapped;
     for (uint32_t i = 0; i < count; ++i) {
         const rtpbr_light_desc *l = &lights[i];
+        const rtpbr_gltf_polygon_facts *f = &facts[i];
         rtpbr_shader_light g = {0};
         for (uint32_t v = 0; v < l->vertex_count; ++v) memcpy(g.vertices[v], l->vertices[v], 3 * sizeof(float));
         memcpy(g.radiance, l->emission, sizeof g.radiance);
         g.two_sided = l->two_sided ? 1.0f : 0.0f;
-        double n[3];
-        polygon_normal(l->vertices, l->vertex_count, n);
-        double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        for (int k = 0; k < 3; ++k) g.plane[k] = (float)(n[k] / len);
+        memcpy(g.plane, f->normal, sizeof f->normal);
         g.plane[3] = -(g.plane[0] * l->vertices[0][0] + g.plane[1] * l->vertices[0][1] + g.plane[2] * l->vertices[0][2]);
-        g.area = (float)(0.5 * len);
-        // Bounding sphere: centred on the vertex mean (not minimal, but bounding).
-        double c[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
-        for (uint32_t v = 0; v < l->vertex_count; ++v)
-            for (int k = 0; k < 3; ++k) c[k] += l->vertices[v][k] / (double)l->vertex_count;
-        for (uint32_t v = 0; v < l->vertex_count; ++v) {
-            double d2 = 0.0;
-            for (int k = 0; k < 3; ++k) d2 += (l->vertices[v][k] - c[k]) * (l->vertices[v][k] - c[k]);
-            if (d2 > r2) r2 = d2;
-        }
-        for (int k = 0; k < 3; ++k) g.sphere[k] = (float)c[k];
-        g.sphere[3] = (float)(sqrt(r2) * (1.0 + 1e-6)) + 1e-6f; // rounding must not shrink it
+        g.area = f->area;
+        memcpy(g.sphere, f->center, sizeof f->center);
+        g.sphere[3] = f->bound_radius;
         g.vertex_count = l->vertex_count;
         gpu[i] = g;
     }
@@ -114,8 +116,12 @@ static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
 rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights, uint32_t light_count)
 {
     if (!scene) return rtpbr_null_object(__func__, "scene");
-    rtpbr_result result = validate_lights(scene->context, lights, light_count);
-    if (result == RTPBR_SUCCESS) write_lights(scene, lights, light_count);
+    rtpbr_result result = validate_light_array(scene->context, lights, light_count);
+    if (result != RTPBR_SUCCESS) return result;
+    rtpbr_gltf_polygon_facts *facts = derive_light_facts(scene->context, lights, light_count, &result);
+    if (facts) result = validate_lights(scene->context, lights, facts, light_count);
+    if (result == RTPBR_SUCCESS) write_lights(scene, lights, facts, light_count);
+    rtpbr_free(&scene->context->host, facts);
     return result;
 }
 
@@ -459,6 +465,13 @@ cleanup:
 
 rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_desc *desc, rtpbr_gpu_scene **out_scene)
 {
+    return rtpbr_gpu_scene_create_with_light_facts(ctx, desc, NULL, out_scene);
+}
+
+rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const rtpbr_gpu_scene_desc *desc,
+                                                     const rtpbr_gltf_polygon_facts *light_facts,
+                                                     rtpbr_gpu_scene **out_scene)
+{
     if (!ctx) return rtpbr_null_object(__func__, "context");
     if (!desc || !out_scene) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_create: desc or out_scene is NULL");
@@ -467,6 +480,8 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     *out_scene = NULL;
     rtpbr_result result = RTPBR_SUCCESS;
     rtpbr_gpu_scene *scene = NULL;
+    rtpbr_gltf_polygon_facts *derived_facts = NULL;
+    const rtpbr_gltf_polygon_facts *facts = light_facts;
     if ((desc->mesh_count && !desc->meshes) || (desc->material_count && !desc->materials) ||
         (desc->camera_count && !desc->cameras)) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_create: a non-zero count with a NULL array");
@@ -476,7 +491,10 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "%u materials; at most %u are allowed", desc->material_count, RTPBR_MAX_MATERIALS);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
-    RTPBR_TRY(validate_lights(ctx, desc->lights, desc->light_count));
+    RTPBR_TRY(validate_light_array(ctx, desc->lights, desc->light_count));
+    if (!facts && !(facts = derived_facts = derive_light_facts(ctx, desc->lights, desc->light_count, &result)))
+        goto cleanup;
+    RTPBR_TRY(validate_lights(ctx, desc->lights, facts, desc->light_count));
     uint64_t total_vertices = 0, total_indices = 0;
     for (uint32_t i = 0; i < desc->mesh_count; ++i) {
         const rtpbr_mesh_desc *m = &desc->meshes[i];
@@ -604,7 +622,7 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
 
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, RTPBR_MAX_LIGHTS * sizeof(rtpbr_shader_light),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->lights));
-    write_lights(scene, desc->lights, desc->light_count);
+    write_lights(scene, desc->lights, facts, desc->light_count);
 
     scene->camera_count = desc->camera_count ? desc->camera_count : 1;
     RTPBR_ALLOC(&ctx->host, scene->cameras, scene->camera_count * sizeof *scene->cameras);
@@ -612,9 +630,10 @@ rtpbr_result rtpbr_gpu_scene_create(rtpbr_context *ctx, const rtpbr_gpu_scene_de
     else scene->cameras[0] = (rtpbr_camera_desc){.position = {0.0f, 0.0f, 5.0f}};
 
     *out_scene = scene;
-    return RTPBR_SUCCESS;
+    scene = NULL;
 cleanup:
     rtpbr_gpu_scene_destroy(scene);
+    rtpbr_free(&ctx->host, derived_facts);
     return result;
 }
 

@@ -35,7 +35,8 @@
 // the Schlick F0 of the specular lobe; the oracle's exact dielectric Fresnel ignores it (a
 // difference only for coloured specular).
 // Lights: every loader light (emissive primitives, EXT_lights_area rectangles and disks as
-// their equal-area octagons) becomes a polygonal light with its radiance and sidedness.
+// their equal-area octagons) becomes a polygonal light with its radiance and sidedness, and
+// its derived facts (normal, centre, area, bounding sphere) as the loader computed them.
 #include <math.h>
 #include <string.h>
 
@@ -217,6 +218,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
     rtpbr_mesh_desc *meshes = NULL;
     rtpbr_material_desc *materials = NULL;
     rtpbr_light_desc *lights = NULL;
+    rtpbr_gltf_polygon_facts *light_facts = NULL; // the loader's, passed on (not derived again)
     rtpbr_camera_desc *cameras = NULL;
     rtpbr_texture_desc *textures = NULL;
     if (loaded->texture_count) RTPBR_ALLOC(&ctx->host, textures, loaded->texture_count * sizeof *textures);
@@ -224,6 +226,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
     if (loaded->primitive_count) RTPBR_ALLOC(&ctx->host, meshes, loaded->primitive_count * sizeof *meshes);
     if (loaded->material_count) RTPBR_ALLOC(&ctx->host, materials, loaded->material_count * sizeof *materials);
     if (loaded->light_count) RTPBR_ALLOC(&ctx->host, lights, loaded->light_count * sizeof *lights);
+    if (loaded->light_count) RTPBR_ALLOC(&ctx->host, light_facts, loaded->light_count * sizeof *light_facts);
     if (loaded->camera_count) RTPBR_ALLOC(&ctx->host, cameras, loaded->camera_count * sizeof *cameras);
 
     for (uint32_t i = 0; i < loaded->primitive_count; ++i) {
@@ -249,6 +252,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         memcpy(d->vertices, l->vertices, n * sizeof d->vertices[0]);
         memcpy(d->emission, l->radiance, sizeof d->emission);
         d->two_sided = l->two_sided;
+        light_facts[i] = l->facts;
     }
     for (uint32_t i = 0; i < loaded->camera_count; ++i) {
         const rtpbr_gltf_camera *c = &loaded->cameras[i];
@@ -272,11 +276,12 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         .textures = textures,
         .texture_count = loaded->texture_count,
     };
-    result = rtpbr_gpu_scene_create(ctx, &desc, out_scene);
+    result = rtpbr_gpu_scene_create_with_light_facts(ctx, &desc, light_facts, out_scene);
 cleanup:
     rtpbr_free(&ctx->host, meshes);
     rtpbr_free(&ctx->host, materials);
     rtpbr_free(&ctx->host, lights);
+    rtpbr_free(&ctx->host, light_facts);
     rtpbr_free(&ctx->host, cameras);
     rtpbr_free(&ctx->host, textures);
     return result;

@@ -243,25 +243,20 @@ bool viewer_scene_pick(const viewer_scene *s, const float origin[3], const float
     return best < INFINITY;
 }
 
+// The edited polygon's derived facts, by the loader's one function (rtpbr_gltf_polygon_facts).
 void viewer_light_center(const viewer_light *l, float out[3])
 {
-    out[0] = out[1] = out[2] = 0.0f;
-    for (uint32_t v = 0; v < l->vertex_count; ++v)
-        for (int c = 0; c < 3; ++c) out[c] += l->vertices[v][c] / (float)l->vertex_count;
+    rtpbr_gltf_polygon_facts f;
+    rtpbr_gltf_polygon_facts_of(l->vertices, l->vertex_count, &f);
+    memcpy(out, f.center, sizeof f.center);
 }
 
 void viewer_light_normal(const viewer_light *l, float out[3])
 {
-    // Newell's normal: the right-hand rule over the whole polygon.
-    float n[3] = {0.0f, 0.0f, 0.0f};
-    for (uint32_t i = 0; i < l->vertex_count; ++i) {
-        const float *a = l->vertices[i], *b = l->vertices[(i + 1) % l->vertex_count];
-        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-    }
-    float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (int c = 0; c < 3; ++c) out[c] = len > 0.0f ? n[c] / len : (c == 1 ? 1.0f : 0.0f);
+    rtpbr_gltf_polygon_facts f;
+    rtpbr_gltf_polygon_facts_of(l->vertices, l->vertex_count, &f);
+    memcpy(out, f.normal, sizeof f.normal);
+    if (!(f.area > 0.0f)) out[0] = out[2] = 0.0f, out[1] = 1.0f; // no area: +Y
 }
 
 void viewer_light_translate(viewer_light *l, const float d[3])

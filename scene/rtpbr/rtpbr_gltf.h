@@ -396,6 +396,31 @@ typedef enum rtpbr_gltf_light_shape {
                                       for polygon-only consumers            */
 } rtpbr_gltf_light_shape;
 
+/* The facts about a light polygon that its users need besides its vertices,
+ * derived from the (float) vertices once, where the light is made, by
+ * rtpbr_gltf_polygon_facts: the loader for its lights (stored in
+ * rtpbr_gltf_light), the engine for lights given through its API. Everyone
+ * else reads them: the engine's light record (plane, area, bounding sphere),
+ * the path tracer's light sampling (area, fan), the hit side (normal). */
+typedef struct rtpbr_gltf_polygon_facts {
+    float normal[3];       /* unit, Newell's: the side about which the
+                              vertices turn counter-clockwise; 0 when the
+                              polygon has no area                          */
+    float center[3];       /* vertex mean, the bounding sphere's centre     */
+    float bound_radius;    /* bounding sphere radius about center, rounded
+                              up (never smaller than the farthest vertex)  */
+    float area;            /* half the length of Newell's normal            */
+    float fan_area[RTPBR_GLTF_MAX_POLYGON_VERTICES - 2];
+                           /* triangles (v0, v[k+1], v[k+2]) of the fan,
+                              k < vertex_count - 2; 0 beyond                */
+} rtpbr_gltf_polygon_facts;
+
+/* The facts of the polygon vertices[0 .. vertex_count) (3 to
+ * RTPBR_GLTF_MAX_POLYGON_VERTICES; outside that range, all zero), computed in
+ * double precision and rounded to float. */
+void rtpbr_gltf_polygon_facts_of(const float (*vertices)[3], uint32_t vertex_count,
+                                 rtpbr_gltf_polygon_facts* out);
+
 /* One planar area light in world space, emitting radiance uniformly
  * (Lambertian emitter) from its front side (and back if two_sided). */
 typedef struct rtpbr_gltf_light {
@@ -404,10 +429,13 @@ typedef struct rtpbr_gltf_light {
     float vertices[RTPBR_GLTF_MAX_POLYGON_VERTICES][3];
                             /* convex, counter-clockwise seen from the side
                                normal points to: normal ∝ (v1-v0)×(v2-v0)   */
-    float normal[3];        /* unit, emitting side                          */
-    float center[3];        /* polygon: vertex mean; disk: centre           */
+    rtpbr_gltf_polygon_facts facts;
+                            /* normal (unit, emitting side), centre (vertex
+                               mean; a disk's: its centre to rounding),
+                               area (a disk's: π r² to rounding), bounding
+                               sphere, fan: rtpbr_gltf_polygon_facts_of the
+                               vertices, computed by the loader            */
     float radius;           /* disk radius, 0 for polygons                  */
-    float area;             /* polygon area (disk: π r²)                    */
     float radiance[3];      /* W/(sr·m²), linear RGB                        */
     bool two_sided;         /* emits from both faces (material doubleSided) */
     int32_t primitive;      /* index into scene->primitives, -1 for

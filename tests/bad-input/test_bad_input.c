@@ -417,11 +417,11 @@ static void test_bad_lights(void** state) {
     for (uint32_t i = 0; i < 2; ++i) {
         const rtpbr_gltf_light* L = &l.scene->lights[i];
         assert_int_equal(L->vertex_count, 3);
-        assert_float_equal(L->area, 0.5f, 1e-6f);
+        assert_float_equal(L->facts.area, 0.5f, 1e-6f);
         /* planar: every vertex on the plane through the centre with the light's normal */
         for (uint32_t v = 0; v < 3; ++v) {
             float d = 0;
-            for (int k = 0; k < 3; ++k) d += (L->vertices[v][k] - L->center[k]) * L->normal[k];
+            for (int k = 0; k < 3; ++k) d += (L->vertices[v][k] - L->facts.center[k]) * L->facts.normal[k];
             assert_float_equal(d, 0.0f, 1e-6f);
         }
     }

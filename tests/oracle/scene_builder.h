@@ -80,24 +80,12 @@ struct SceneBuilder {
         rtpbr_gltf_light L{};
         L.shape = RTPBR_GLTF_LIGHT_POLYGON;
         L.vertex_count = uint32_t(v.size());
-        glm::vec3 c(0.0f);
-        for (size_t k = 0; k < v.size(); k++) {
+        for (size_t k = 0; k < v.size(); k++)
             for (int i = 0; i < 3; i++)
                 L.vertices[k][i] = v[k][i];
-            c += v[k];
-        }
-        glm::vec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
-        float area = 0.0f;
-        for (size_t k = 1; k + 1 < v.size(); k++)
-            area += 0.5f * glm::length(glm::cross(v[k] - v[0], v[k + 1] - v[0]));
-        n = glm::normalize(n);
-        c /= float(v.size());
-        for (int i = 0; i < 3; i++) {
-            L.normal[i] = n[i];
-            L.center[i] = c[i];
+        for (int i = 0; i < 3; i++)
             L.radiance[i] = radiance[i];
-        }
-        L.area = area;
+        rtpbr_gltf_polygon_facts_of(L.vertices, L.vertex_count, &L.facts); // as the loader does
         L.two_sided = twoSided;
         L.primitive = -1;
         L.material = mat;

@@ -38,7 +38,7 @@ struct Scene {
         b.materials[white].specular.specular_factor = 0.0f; // no specular layer: pure Lambert
         b.polygon({{-40, 0, 40}, {40, 0, 40}, {40, 0, -40}, {-40, 0, -40}}, white);
         b.light(kLight, glm::vec3(kRadiance), false);
-        assert_true(b.lights.back().normal[1] < -0.99f);
+        assert_true(b.lights.back().facts.normal[1] < -0.99f);
         if (occluder) {
             uint32_t black = b.material(glm::vec3(0.0f), 0.0f, 1.0f);
             b.materials[black].specular.specular_factor = 0.0f;

@@ -38,10 +38,10 @@ static void assert_convex_ccw(const rtpbr_gltf_light* l) {
         sub3(l->vertices[i], l->vertices[(i + l->vertex_count - 1) % l->vertex_count], e1);
         sub3(l->vertices[(i + 1) % l->vertex_count], l->vertices[i], e2);
         cross3(e1, e2, c);
-        double d = c[0] * l->normal[0] + c[1] * l->normal[1] + c[2] * l->normal[2];
+        double d = c[0] * l->facts.normal[0] + c[1] * l->facts.normal[1] + c[2] * l->facts.normal[2];
         if (!(d > 0.0)) fail_msg("light corner %u does not turn about the normal (%g)", i, d);
     }
-    assert_near(sqrt(l->normal[0] * l->normal[0] + l->normal[1] * l->normal[1] + l->normal[2] * l->normal[2]),
+    assert_near(sqrt(l->facts.normal[0] * l->facts.normal[0] + l->facts.normal[1] * l->facts.normal[1] + l->facts.normal[2] * l->facts.normal[2]),
                 1.0, EPS, "|normal|");
 }
 
@@ -118,19 +118,19 @@ static void test_quad_light_over_plane(void** state) {
     assert_int_equal(l->shape, RTPBR_GLTF_LIGHT_POLYGON);
     assert_int_equal(l->vertex_count, 4);
     assert_convex_ccw(l);
-    assert_near(l->normal[0], 0.0, EPS, "nx");
-    assert_near(l->normal[1], -1.0, EPS, "ny");
-    assert_near(l->normal[2], 0.0, EPS, "nz");
+    assert_near(l->facts.normal[0], 0.0, EPS, "nx");
+    assert_near(l->facts.normal[1], -1.0, EPS, "ny");
+    assert_near(l->facts.normal[2], 0.0, EPS, "nz");
     assert_true(has_vertex(l, -0.5, 2, -0.5) && has_vertex(l, 0.5, 2, -0.5) &&
                 has_vertex(l, 0.5, 2, 0.5) && has_vertex(l, -0.5, 2, 0.5));
-    assert_near(l->area, 1.0, EPS, "area");
+    assert_near(l->facts.area, 1.0, EPS, "area");
     assert_near(l->radiance[0], 4.0, EPS, "L_r");
     assert_near(l->radiance[1], 2.0, EPS, "L_g");
     assert_near(l->radiance[2], 1.0, EPS, "L_b");
     assert_false(l->two_sided);
     assert_int_equal(l->primitive, 1);
     assert_int_equal(l->material, 1);
-    assert_near(l->center[1], 2.0, EPS, "center y");
+    assert_near(l->facts.center[1], 2.0, EPS, "center y");
 
     const rtpbr_gltf_camera* c = &scene->cameras[0];
     const double cam[4][3] = {{1, 1, 5}, {-1, 0, 0}, {0, 1, 0}, {0, 0, -1}};
@@ -186,8 +186,8 @@ static void test_hexagon_fan_is_one_light(void** state) {
     const rtpbr_gltf_light* l = &scene->lights[0];
     assert_int_equal(l->vertex_count, 6);
     assert_convex_ccw(l);
-    assert_near(l->normal[2], 1.0, EPS, "normal z");
-    assert_near(l->area, 3.0 * sqrt(3.0) / 2.0, 1e-5, "hexagon area");
+    assert_near(l->facts.normal[2], 1.0, EPS, "normal z");
+    assert_near(l->facts.area, 3.0 * sqrt(3.0) / 2.0, 1e-5, "hexagon area");
     for (int k = 0; k < 6; ++k) assert_true(has_vertex(l, pos[3 * (k + 1)], pos[3 * (k + 1) + 1], 0.0));
     assert_true(l->two_sided);
     rtpbr_gltf_destroy(scene);
@@ -204,7 +204,7 @@ static void test_unindexed_quad_is_one_light(void** state) {
     assert_int_equal(scene->light_count, 1);
     assert_int_equal(scene->lights[0].vertex_count, 4);
     assert_convex_ccw(&scene->lights[0]);
-    assert_near(scene->lights[0].area, 2.0, EPS, "2×1 quad area");
+    assert_near(scene->lights[0].facts.area, 2.0, EPS, "2×1 quad area");
     rtpbr_gltf_destroy(scene);
 }
 
@@ -231,8 +231,8 @@ static void test_strip_and_fan_modes(void** state) {
     assert_int_equal(scene->light_count, 1);
     assert_int_equal(scene->lights[0].vertex_count, 4);
     assert_convex_ccw(&scene->lights[0]);
-    assert_near(scene->lights[0].normal[2], 1.0, EPS, "strip normal");
-    assert_near(scene->lights[0].area, 1.0, EPS, "strip area");
+    assert_near(scene->lights[0].facts.normal[2], 1.0, EPS, "strip normal");
+    assert_near(scene->lights[0].facts.area, 1.0, EPS, "strip area");
     rtpbr_gltf_destroy(scene);
 
     float hex[7 * 3] = {0};
@@ -253,7 +253,7 @@ static void test_strip_and_fan_modes(void** state) {
     assert_int_equal(scene->primitives[0].index_count, 18);
     assert_int_equal(scene->light_count, 1);
     assert_int_equal(scene->lights[0].vertex_count, 6);
-    assert_near(scene->lights[0].area, 3.0 * sqrt(3.0) / 2.0, 1e-5, "fan hexagon area");
+    assert_near(scene->lights[0].facts.area, 3.0 * sqrt(3.0) / 2.0, 1e-5, "fan hexagon area");
     rtpbr_gltf_destroy(scene);
 }
 
@@ -271,9 +271,9 @@ static void test_non_coplanar_triangles_are_separate(void** state) {
         const rtpbr_gltf_light* l = &scene->lights[i];
         assert_int_equal(l->vertex_count, 3);
         assert_convex_ccw(l);
-        assert_near(l->area, 0.5, EPS, "triangle area");
-        seen_z += fabs(l->normal[2] - 1.0) < EPS;
-        seen_x += fabs(l->normal[0] - 1.0) < EPS;
+        assert_near(l->facts.area, 0.5, EPS, "triangle area");
+        seen_z += fabs(l->facts.normal[2] - 1.0) < EPS;
+        seen_x += fabs(l->facts.normal[0] - 1.0) < EPS;
     }
     assert_int_equal(seen_z, 1);
     assert_int_equal(seen_x, 1);
@@ -302,7 +302,7 @@ static void test_concave_region_splits_into_convex_lights(void** state) {
     double area = 0.0;
     for (uint32_t i = 0; i < scene->light_count; ++i) {
         assert_convex_ccw(&scene->lights[i]);
-        area += scene->lights[i].area;
+        area += scene->lights[i].facts.area;
     }
     assert_near(area, 3.0, 1e-5, "total light area");
     rtpbr_gltf_destroy(scene);
@@ -350,7 +350,7 @@ static void test_mirrored_node_keeps_ccw_winding(void** state) {
     if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
     assert_int_equal(scene->light_count, 1);
     assert_convex_ccw(&scene->lights[0]);
-    assert_near(scene->lights[0].normal[1], 1.0, EPS, "mirrored light normal");
+    assert_near(scene->lights[0].facts.normal[1], 1.0, EPS, "mirrored light normal");
     const rtpbr_gltf_primitive* p = &scene->primitives[0];
     for (uint32_t t = 0; t < p->index_count; t += 3) {
         double e1[3], e2[3], c[3];
@@ -395,10 +395,10 @@ static void test_ext_lights_area(void** state) {
     assert_int_equal(rect->shape, RTPBR_GLTF_LIGHT_POLYGON);
     assert_int_equal(rect->vertex_count, 4);
     assert_convex_ccw(rect);
-    assert_near(rect->normal[1], -1.0, EPS, "rect normal");
+    assert_near(rect->facts.normal[1], -1.0, EPS, "rect normal");
     assert_true(has_vertex(rect, -1.5, 3, -1) && has_vertex(rect, 1.5, 3, -1) && has_vertex(rect, 1.5, 3, 1) &&
                 has_vertex(rect, -1.5, 3, 1));
-    assert_near(rect->area, 6.0, EPS, "rect area");
+    assert_near(rect->facts.area, 6.0, EPS, "rect area");
     assert_near(rect->radiance[0], 100.0, 1e-4, "rect L_r");
     assert_near(rect->radiance[1], 50.0, 1e-4, "rect L_g");
     assert_near(rect->radiance[2], 25.0, 1e-4, "rect L_b");
@@ -411,17 +411,17 @@ static void test_ext_lights_area(void** state) {
     assert_int_equal(disk->vertex_count, 8);
     assert_convex_ccw(disk);
     assert_near(disk->radius, 1.0, EPS, "disk radius");
-    assert_near(disk->normal[2], -1.0, EPS, "disk normal");
-    for (int k = 0; k < 3; ++k) assert_near(disk->center[k], 1.0, EPS, "disk centre");
-    assert_near(disk->area, TS_PI, 1e-5, "disk area");
+    assert_near(disk->facts.normal[2], -1.0, EPS, "disk normal");
+    for (int k = 0; k < 3; ++k) assert_near(disk->facts.center[k], 1.0, EPS, "disk centre");
+    assert_near(disk->facts.area, TS_PI, 1e-5, "disk area");
     const double R = sqrt(TS_PI / (2.0 * sqrt(2.0)));
     double octagon = 0.0;
     for (uint32_t i = 0; i < 8; ++i) {
         double d[3], e[3], c[3];
-        sub3(disk->vertices[i], disk->center, d);
+        sub3(disk->vertices[i], disk->facts.center, d);
         assert_near(sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), R, 1e-5, "octagon circumradius");
         assert_near(disk->vertices[i][2], 1.0, EPS, "octagon plane");
-        sub3(disk->vertices[(i + 1) % 8], disk->center, e);
+        sub3(disk->vertices[(i + 1) % 8], disk->facts.center, e);
         cross3(d, e, c);
         octagon += 0.5 * -c[2];
     }
@@ -429,9 +429,9 @@ static void test_ext_lights_area(void** state) {
     assert_near(disk->radiance[0], 50.0, 1e-4, "disk radiance");
 
     const rtpbr_gltf_light* legacy = &scene->lights[2];
-    assert_near(legacy->area, 3.0, EPS, "legacy rect area");
+    assert_near(legacy->facts.area, 3.0, EPS, "legacy rect area");
     assert_near(legacy->radiance[1], 10.0, EPS, "legacy luminance");
-    assert_near(legacy->normal[2], -1.0, EPS, "legacy normal");
+    assert_near(legacy->facts.normal[2], -1.0, EPS, "legacy normal");
 
     /* Bounds include the lights (no meshes): x from the rect ±1.5; the
      * disk's octagon has a vertex at angle 0, x = 1 + R. */
@@ -606,7 +606,7 @@ static void test_curved_emitter_bounded_and_exact(void** state) {
         assert_int_equal(l->vertex_count, 8);
         assert_convex_ccw(l);
         for (int k = 0; k < 3; ++k) {
-            power[k] += (double)l->radiance[k] * l->area;
+            power[k] += (double)l->radiance[k] * l->facts.area;
             assert_true(l->radiance[k] <= emission[k] * (1.0 + 1e-6));
         }
     }
@@ -622,7 +622,7 @@ static void test_curved_emitter_bounded_and_exact(void** state) {
     double area = 0.0;
     for (uint32_t i = 0; i < scene->light_count; ++i) {
         assert_false(scene->lights[i].proxy);
-        area += scene->lights[i].area;
+        area += scene->lights[i].facts.area;
     }
     assert_near(area, mesh_area, 1e-4 * mesh_area, "exact area");
     rtpbr_gltf_destroy(scene);

@@ -49,7 +49,7 @@ static void check_scene(const rtpbr_gltf_scene* s) {
         const rtpbr_gltf_light* l = &s->lights[i];
         assert_true(l->vertex_count >= 3 && l->vertex_count <= RTPBR_GLTF_MAX_POLYGON_VERTICES);
         assert_true(l->primitive >= -1 && l->primitive < (int32_t)s->primitive_count);
-        for (int k = 0; k < 3; ++k) assert_true(isfinite(l->normal[k]) && isfinite(l->radiance[k]));
+        for (int k = 0; k < 3; ++k) assert_true(isfinite(l->facts.normal[k]) && isfinite(l->radiance[k]));
     }
 }
 
