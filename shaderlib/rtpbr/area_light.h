@@ -128,6 +128,25 @@ RTPBR_FN AreaLightSum AreaLight_SumBegin() {
     return acc;
 }
 
+// Step k (1 .. count + 1) of a streamed walk over light i's count edges (vectors from P in the
+// LTC frame ltcFrame; first = vertex 0's, a = the previous vertex's, advanced here): edge
+// k - 1 -> k (vertex count is vertex 0) clipped to the horizon, then (k = count + 1) the
+// segment that closes the clipped polygon along it (LTC_ClipClose).
+RTPBR_FN LtcSegment AreaLight_EdgeStep(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, uint k, uint count,
+                                       rtpbr_float3 first, RTPBR_INOUT(LtcClipper) horizon,
+                                       RTPBR_INOUT(rtpbr_float3) a) {
+    LtcSegment seg;
+    rtpbr_float3 b = a;
+    if (k <= count) {
+        b = k < count ? rtpbr_mul(ltcFrame, Host_LightVertex(i, k) - P) : first;
+        seg = LTC_ClipEdge(horizon, a, b);
+    } else {
+        seg = LTC_ClipClose(horizon);
+    }
+    a = b;
+    return seg;
+}
+
 // One pass over light i's edges (vectors from P in the LTC frame): the horizon clip, then the
 // LTC lobe minv; returns its form factor, the clipped polygon's vector form factor F (up to
 // its sign) and the lobe's own vector form factor Fl (LTC_LobeEndVector; callers that do not
@@ -142,19 +161,11 @@ RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, r
     rtpbr_float3 first = rtpbr_mul(ltcFrame, Host_LightVertex(i, 0u) - P);
     rtpbr_float3 a = first;
     RTPBR_UNROLL for (uint k = 1u; k <= count + 1u; ++k) {
-        LtcSegment seg;
-        rtpbr_float3 b = a;
-        if (k <= count) {
-            b = k < count ? rtpbr_mul(ltcFrame, Host_LightVertex(i, k) - P) : first;
-            seg = LTC_ClipEdge(horizon, a, b);
-        } else {
-            seg = LTC_ClipClose(horizon);
-        }
+        LtcSegment seg = AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a);
         if (seg.valid) {
             F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
             LTC_LobeEdge(lobe, seg.a, seg.b);
         }
-        a = b;
     }
     Fl = LTC_LobeEndVector(lobe);
     return LTC_LobeEnd(lobe);
@@ -387,14 +398,7 @@ RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_flo
         rtpbr_float3 first = rtpbr_mul(ltcFrame, Host_LightVertex(i, 0u) - P);
         rtpbr_float3 a = first;
         for (uint k = 1u; k <= count + 1u; ++k) {
-            LtcSegment seg;
-            rtpbr_float3 b = a;
-            if (k <= count) {
-                b = k < count ? rtpbr_mul(ltcFrame, Host_LightVertex(i, k) - P) : first;
-                seg = LTC_ClipEdge(horizon, a, b);
-            } else {
-                seg = LTC_ClipClose(horizon);
-            }
+            LtcSegment seg = AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a);
             if (seg.valid) {
                 if (pass == 0) {
                     F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
@@ -403,7 +407,6 @@ RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_flo
                     LTC_StreakChordEdge(st, seg.a, seg.b);
                 }
             }
-            a = b;
         }
         if (pass == 0)
             LTC_StreakNodes(st, F);
