@@ -49,8 +49,7 @@
 //                                     (rtpbr_ltc_disney_diffuse_1/_2), _SHEEN (rtpbr_ltc_sheen_1/_2);
 //                                     the last two are read only with RTPBR_AREA_LIGHT_FULL
 // and surface.h's table reads (Host_TableE_EF, Host_TableE, Host_TableEavg, Host_TableEFavg,
-// Host_TableSheenE). A host with its lights in an array of LtcPolygon writes each hook in one
-// line (samples/shader-include).
+// Host_TableSheenE). A complete bridge over one quad: samples/shader-include/quad_light.frag.
 //
 // Registers: the evaluation is written for the GPU's register file (docs/performance.md,
 // "Registers of the lighting pass"): one lobe's clip state live at a time, values fetched again
@@ -306,7 +305,7 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
     if (abs(side) <= 1e-7f * sphere.w || (!twoSided && side < 0.0f) || dot(N, rtpbr_float3(sphere.x, sphere.y, sphere.z) - P) < -sphere.w)
         return;
 #if RTPBR_AREA_LIGHT_STREAK
-    // (while the bounding sphere is live: a lane mask rather than four registers kept)
+    // (registers: docs/performance.md, 3)
     bool streakSized = LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), Alpha_FromPerceptual(s.specR), s.NoV);
 #endif
     rtpbr_float3 F, Fl;
@@ -318,12 +317,11 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 #if RTPBR_LTC_POINT_CORRECTION
     rtpbr_float4 pointLtc1 = AreaLight_IsotropicLtc1(px.specularMinv);
 #if RTPBR_AREA_LIGHT_FULL
-    // The full evaluation's registers are at gfx1100's limit: the lobe's vector comes from a
-    // second pass over the edges (the same lobe, so the same value), taken only where the
-    // fade leaves anything to correct (at a form factor of 0.5 or more the factor is within
-    // (16 - 1) x 0.5^16 = 2.3e-4 of 1, and a light holding half of the LTC's mass lies
-    // mostly outside its tail: the tail estimate is skipped with it), and the norm is
-    // fetched again (the same texel) rather than kept live through the loop.
+    // (registers: docs/performance.md, 2) The lobe's vector from a second pass over the edges
+    // (the same lobe, so the same value), only where the fade leaves anything to correct (at a
+    // form factor of 0.5 or more the factor is within (16 - 1) x 0.5^16 = 2.3e-4 of 1, and a
+    // light holding half of the LTC's mass lies mostly outside its tail: the tail estimate is
+    // skipped with it); the norm fetched again (the same texel).
     if (px.pointOn && specularFF < 0.5f) {
         rtpbr_float3 unusedF2;
         AreaLight_Lobe(i, P, px.frame, px.specularMinv, unusedF2, Fl);
@@ -421,10 +419,10 @@ RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_flo
 // mass (LTC_LobeEnd divides by the horizon's), and over disjoint lights the shares of the true
 // lobe sum to at most 1; the point correction and the tail estimate correct each light on its
 // own, so over lights that surround the point their shares summed past 1 (1.02-1.04 in the
-// furnace). Where they do, the whole sum is scaled back to a mass of 1 (keeping the specular
-// part apart costs registers: the other lobes lose the same fraction 1 - 1 / mass at such
-// points, up to 4 % in the furnace). Not in the full evaluation (registers; its point
-// correction runs only for lights holding under half the lobe's mass).
+// furnace). Where they do, the whole sum is scaled back to a mass of 1: the other lobes lose
+// the same fraction 1 - 1 / mass at such points, up to 4 % in the furnace. Not in the full
+// evaluation, whose point correction runs only for lights holding under half the lobe's mass
+// (registers: docs/performance.md, 5).
 // Then the streak estimate for one light per point (where little else is live): the light's
 // specular term moved from specularScale x streakFF toward F(V.h) x the estimate by its weight
 // (Schlick's Fresnel at the streak, the tables' Fresnel model).
@@ -445,9 +443,9 @@ RTPBR_FN rtpbr_float3 AreaLight_End(AreaLightPixel px, AreaLightSum acc, Shading
             // specularScale = the Fresnel scale f0 (ltc2.x - ltc2.y) + f90 ltc2.y
             // (LTC_FresnelScale) + the shaped multiple-scattering lobe's part folded into it by
             // AreaLight_Begin, msColor beta / (1 - beta) (1 - Eo) (msColor being s.msColor
-            // (1 - beta)); f0 from there and the table's texel fetched again (s.f0 kept live
-            // through the loop cost 8 VGPRs on navi21). Where 1 - beta is too small to split
-            // them, the tables' Fresnel scale as it is.
+            // (1 - beta)); f0 from there and the table's texel fetched again (registers:
+            // docs/performance.md, 4). Where 1 - beta is too small to split them, the tables'
+            // Fresnel scale as it is.
             rtpbr_float3 next = px.specularScale * (e.x / px.pointNorm);
 #if RTPBR_KC_SHAPE
             float beta = KC_ShapeWeight(s.specR, s.NoV);
