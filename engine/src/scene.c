@@ -504,7 +504,8 @@ rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const r
     }
     if (total_vertices > UINT32_MAX / 2 || total_indices > UINT32_MAX / 2) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "scene too large (%llu vertices)", (unsigned long long)total_vertices);
-        return RTPBR_ERROR_LIMIT_EXCEEDED;
+        result = RTPBR_ERROR_LIMIT_EXCEEDED;
+        goto cleanup; // frees the derived facts
     }
     for (uint32_t i = 0; i < desc->material_count; ++i) {
         const rtpbr_material_desc *m = &desc->materials[i];
@@ -515,12 +516,14 @@ rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const r
             if (index_of[b] > desc->texture_count) {
                 rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u refers to a texture past the scene's %u", i,
                           desc->texture_count);
-                return RTPBR_ERROR_INVALID_ARGUMENT;
+                result = RTPBR_ERROR_INVALID_ARGUMENT;
+        goto cleanup; // frees the derived facts
             }
     }
     if (desc->texture_count && !desc->textures) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "texture_count is %u but textures is NULL", desc->texture_count);
-        return RTPBR_ERROR_INVALID_ARGUMENT;
+        result = RTPBR_ERROR_INVALID_ARGUMENT;
+        goto cleanup; // frees the derived facts
     }
     for (uint32_t i = 0; i < desc->texture_count; ++i) {
         const rtpbr_texture_desc *t = &desc->textures[i];
@@ -528,19 +531,22 @@ rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const r
             t->height > RTPBR_MAX_RENDER_SIZE) {
             rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "texture %u: no texels or size %ux%u outside 1..%u", i, t->width, t->height,
                       RTPBR_MAX_RENDER_SIZE);
-            return RTPBR_ERROR_INVALID_ARGUMENT;
+            result = RTPBR_ERROR_INVALID_ARGUMENT;
+        goto cleanup; // frees the derived facts
         }
         if ((unsigned)t->wrap_s > RTPBR_WRAP_MIRRORED_REPEAT || (unsigned)t->wrap_t > RTPBR_WRAP_MIRRORED_REPEAT ||
             (unsigned)t->mag_filter > RTPBR_FILTER_NEAREST || (unsigned)t->min_filter > RTPBR_FILTER_NEAREST ||
             (unsigned)t->mipmap > RTPBR_MIPMAP_NONE) {
             rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "texture %u: unknown wrap, filter or mipmap mode", i);
-            return RTPBR_ERROR_INVALID_ARGUMENT;
+            result = RTPBR_ERROR_INVALID_ARGUMENT;
+        goto cleanup; // frees the derived facts
         }
     }
     for (uint32_t i = 0; i < desc->camera_count; ++i)
         if (!rtpbr_finite((const float *)&desc->cameras[i], sizeof desc->cameras[i] / sizeof(float))) {
             rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "camera %u has a NaN or infinite parameter", i);
-            return RTPBR_ERROR_INVALID_ARGUMENT;
+            result = RTPBR_ERROR_INVALID_ARGUMENT;
+        goto cleanup; // frees the derived facts
         }
 
     RTPBR_ALLOC(&ctx->host, scene, sizeof *scene);
