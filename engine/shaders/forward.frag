@@ -44,18 +44,22 @@ void main()
     FragmentMaterial f = fragment_material(m); // samples every texture first
     // the extension textures' own values, in the same uniform control flow (the G-buffer pass
     // writes the same into G-buffers 4 to 6 for the lighting passes)
-    ExtensionTexels e = extension_texels_none();
+    GBufferSurface g = GBuffer_DefaultSurface();
     if ((frame.extension_textures & RTPBR_EXTENSION_TEXTURES_SPECULAR) != 0u)
-        e.specular = vec4(texture(specular_color_texture, in_uv_specular.zw).rgb, texture(specular_texture, in_uv_specular.xy).a);
+        g.specular = vec4(texture(specular_color_texture, in_uv_specular.zw).rgb, texture(specular_texture, in_uv_specular.xy).a);
     if ((frame.extension_textures & RTPBR_EXTENSION_TEXTURES_COAT_SHEEN) != 0u) {
-        e.sheen = vec4(texture(sheen_color_texture, in_uv_sheen.xy).rgb, texture(sheen_roughness_texture, in_uv_sheen.zw).a);
-        e.coat = vec2(texture(clearcoat_texture, in_uv_clearcoat.xy).r, texture(clearcoat_roughness_texture, in_uv_clearcoat.zw).g);
+        g.sheen = vec4(texture(sheen_color_texture, in_uv_sheen.xy).rgb, texture(sheen_roughness_texture, in_uv_sheen.zw).a);
+        g.coat = vec2(texture(clearcoat_texture, in_uv_clearcoat.xy).r, texture(clearcoat_roughness_texture, in_uv_clearcoat.zw).g);
     }
     vec3 P = in_world;
     vec3 V = normalize(frame.camera_position.xyz - P);
     vec3 N = f.normal;
-    ShadingSurface s = surface_terms(vec4(f.baseColor, f.metallic), f.roughness, m, e, rtpbr_saturate(dot(N, V)),
-                              f.anisotropyDirection);
+    // the point's values as the G-buffer pass would encode them (unquantised: nothing is stored)
+    g.baseColor = f.baseColor;
+    g.metallic = f.metallic;
+    g.roughness = f.roughness;
+    g.anisotropyDirection = f.anisotropyDirection;
+    ShadingSurface s = surface_terms(g, m, rtpbr_saturate(dot(N, V)));
     vec3 radiance = f.emission + shade_lights(P, N, V, s, 0u, ivec2(0));
     float alpha = rtpbr_saturate(f.alpha);
     out_radiance = vec4(radiance * alpha, alpha);

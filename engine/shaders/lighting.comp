@@ -53,22 +53,15 @@ void main()
         return;
     }
     vec4 g2 = texelFetch(gbuffer2, pixel, 0);
-    vec3 result = g2.rgb; // emitted radiance
+    vec3 result = GBuffer_DecodeEmission(g2); // emitted radiance
 #if RTPBR_LIGHTING_CLASS != RTPBR_TILE_CLASS_EMPTY
     vec2 ndc = (vec2(pixel) + 0.5f) / vec2(frame.size) * 2.0f - 1.0f;
     vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
     vec3 P = world.xyz / world.w;
-    vec4 g0 = texelFetch(gbuffer0, pixel, 0);
-    vec4 g1 = texelFetch(gbuffer1, pixel, 0);
+    GBufferSurface g = gbuffer_surface(pixel, g2);
     vec3 V = normalize(frame.camera_position.xyz - P);
-    vec3 N = normalize(g1.xyz);
-#if RTPBR_LIGHTING_FULL
-    vec3 anisoDir = texelFetch(gbuffer3, pixel, 0).xyz;
-#else
-    vec3 anisoDir = vec3(0.0f);
-#endif
-    ShadingSurface s = surface_terms(g0, g1.w, materials[uint(g2.a)], extension_texels(pixel), rtpbr_saturate(dot(N, V)),
-                              anisoDir);
+    vec3 N = g.normal;
+    ShadingSurface s = surface_terms(g, materials[g.materialIndex], rtpbr_saturate(dot(N, V)));
     result += shade_lights(lifted_point(ndc, depth, P, N), N, V, s, tile, pixel);
 #endif
     imageStore(radiance, pixel, vec4(result, 1.0));

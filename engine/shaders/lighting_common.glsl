@@ -35,21 +35,25 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER5) uniform sampler2D gbuffe
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_GBUFFER6) uniform sampler2D gbuffer6;
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_DEPTH) uniform sampler2D gbuffer_depth;
 
-// A pixel's extension-texture values (G-buffers 4 to 6, shading.glsl's ExtensionTexels): 1
-// where the material has no such texture. Fetched only when the frame's scene has such
-// textures (a uniform branch); the basic variant reads only the specular ones.
-ExtensionTexels extension_texels(ivec2 pixel)
+// A pixel's G-buffer values (gbuffer.h's GBufferSurface; g2 already fetched by the caller):
+// g0 and g1 always; the anisotropy direction (g3) only in the full variant; the extension
+// texels (g4 to g6, 1 where absent) only when the frame's scene has such textures (a uniform
+// branch), and the basic variant reads only the specular ones.
+GBufferSurface gbuffer_surface(ivec2 pixel, vec4 g2)
 {
-    ExtensionTexels e = extension_texels_none();
+    GBufferSurface g = GBuffer_DecodeBase(texelFetch(gbuffer0, pixel, 0), texelFetch(gbuffer1, pixel, 0), g2);
+#if RTPBR_LIGHTING_FULL
+    g.anisotropyDirection = GBuffer_DecodeAnisotropy(texelFetch(gbuffer3, pixel, 0));
+#endif
     if ((frame.extension_textures & RTPBR_EXTENSION_TEXTURES_SPECULAR) != 0u)
-        e.specular = texelFetch(gbuffer4, pixel, 0);
+        g.specular = texelFetch(gbuffer4, pixel, 0);
 #if RTPBR_LIGHTING_FULL
     if ((frame.extension_textures & RTPBR_EXTENSION_TEXTURES_COAT_SHEEN) != 0u) {
-        e.sheen = texelFetch(gbuffer5, pixel, 0);
-        e.coat = texelFetch(gbuffer6, pixel, 0).rg;
+        g.sheen = texelFetch(gbuffer5, pixel, 0);
+        g.coat = texelFetch(gbuffer6, pixel, 0).rg;
     }
 #endif
-    return e;
+    return g;
 }
 // lighting_mc.comp adds to it across dispatches: it defines RTPBR_RADIANCE_ACCESS empty.
 #ifndef RTPBR_RADIANCE_ACCESS

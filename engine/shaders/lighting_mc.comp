@@ -235,16 +235,13 @@ void main()
     bool first = mc.first_light == 0u && mc.first_sample == 0u;
     vec4 result = vec4(frame.background.rgb, 0.0f);
     if (inside && surface) {
-        vec4 g0 = texelFetch(gbuffer0, pixel, 0);
-        vec4 g1 = texelFetch(gbuffer1, pixel, 0);
-        vec4 g2 = texelFetch(gbuffer2, pixel, 0);
+        GBufferSurface g = gbuffer_surface(pixel, texelFetch(gbuffer2, pixel, 0));
         vec3 V = normalize(frame.camera_position.xyz - P);
-        vec3 N = normalize(g1.xyz);
+        vec3 N = g.normal;
         // NoV clamped below as the LTC table lookup does.
-        ShadingSurface s = surface_terms(g0, g1.w, materials[uint(g2.a)], extension_texels(pixel),
-                                  clamp(dot(N, V), 1e-4f, 1.0f), texelFetch(gbuffer3, pixel, 0).xyz);
+        ShadingSurface s = surface_terms(g, materials[g.materialIndex], clamp(dot(N, V), 1e-4f, 1.0f));
         vec3 reflected = shade_lights_mc(lifted_point(ndc, depth, P, N), N, V, s, uvec2(pixel));
-        result = first ? vec4(g2.rgb + reflected, 1.0f) : imageLoad(radiance, pixel) + vec4(reflected, 0.0f);
+        result = first ? vec4(g.emission + reflected, 1.0f) : imageLoad(radiance, pixel) + vec4(reflected, 0.0f);
     }
     if (inside && (first || surface)) imageStore(radiance, pixel, result);
 }

@@ -50,24 +50,7 @@ float Host_TableEavg(float r) { return kc_Eavg(r); }
 float Host_TableEFavg(float r, float eta) { return kc_EFavg(r, eta); }
 float Host_TableSheenE(float mu, float r) { return sheen_E(mu, r); }
 #include "rtpbr/surface.h"
-
-// A point's extension-texture values: multipliers of the material record's KHR factors (the
-// G-buffer's for the lighting passes, lighting_common.glsl; the textures' own in the forward
-// pass), 1 where the material has no such texture.
-struct ExtensionTexels {
-    vec4 specular; // specular colour rgb, specular a
-    vec4 sheen;    // sheen colour rgb, sheen roughness a
-    vec2 coat;     // clearcoat, clearcoat roughness
-};
-
-ExtensionTexels extension_texels_none()
-{
-    ExtensionTexels e;
-    e.specular = vec4(1.0f);
-    e.sheen = vec4(1.0f);
-    e.coat = vec2(1.0f);
-    return e;
-}
+#include "rtpbr/gbuffer.h" // the G-buffer contract: GBufferSurface
 
 // RTPBR_LIGHTING_FULL 0 (the basic lighting variant) resolves only what
 // material_tile_class calls basic: the Disney, clear-coat, sheen and anisotropy terms become
@@ -75,29 +58,29 @@ ExtensionTexels extension_texels_none()
 #ifndef RTPBR_LIGHTING_FULL
 #define RTPBR_LIGHTING_FULL 1
 #endif
-// The material record and the G-buffer's per-pixel values as the inputs of the shader
-// library's material resolve (material.h), the KHR factors times the point's extension
-// textures. The basic variant's inputs have no coat, sheen,
-// anisotropy or Disney model.
-MaterialInputs material_inputs(vec4 g0, float roughness, Material m, ExtensionTexels e)
+// The material record and a point's values (the G-buffer's, gbuffer.h's GBufferSurface; the
+// forward pass's own) as the inputs of the shader library's material resolve (material.h), the
+// KHR factors times the point's extension texels. The basic variant's inputs have no coat,
+// sheen, anisotropy or Disney model.
+MaterialInputs material_inputs(GBufferSurface g, Material m)
 {
     MaterialInputs in_;
     in_.model = (m.flags & RTPBR_MATERIAL_FLAG_DISNEY) != 0u ? RTPBR_MATERIAL_MODEL_DISNEY
                                                              : RTPBR_MATERIAL_MODEL_METALLIC_ROUGHNESS;
-    in_.baseColor = g0.rgb;
-    in_.metallic = g0.a;
-    in_.roughness = roughness;
+    in_.baseColor = g.baseColor;
+    in_.metallic = g.metallic;
+    in_.roughness = g.roughness;
     in_.ior = m.ior;
-    in_.specularFactor = m.specular_factor * e.specular.a;
-    in_.specularColor = m.specular_color * e.specular.rgb;
-    in_.clearcoat = m.clearcoat * e.coat.x;
-    in_.clearcoatRoughness = m.clearcoat_roughness * e.coat.y;
-    in_.sheenColor = m.sheen_color * e.sheen.rgb;
-    in_.sheenRoughness = m.sheen_roughness * e.sheen.a;
+    in_.specularFactor = m.specular_factor * g.specular.a;
+    in_.specularColor = m.specular_color * g.specular.rgb;
+    in_.clearcoat = m.clearcoat * g.coat.x;
+    in_.clearcoatRoughness = m.clearcoat_roughness * g.coat.y;
+    in_.sheenColor = m.sheen_color * g.sheen.rgb;
+    in_.sheenRoughness = m.sheen_roughness * g.sheen.a;
     in_.anisotropyStrength = m.anisotropy_strength;
-    in_.disney.baseColor = g0.rgb;
-    in_.disney.metallic = g0.a;
-    in_.disney.roughness = roughness;
+    in_.disney.baseColor = g.baseColor;
+    in_.disney.metallic = g.metallic;
+    in_.disney.roughness = g.roughness;
     in_.disney.subsurface = m.disney_subsurface;
     in_.disney.specular = m.disney_specular;
     in_.disney.specularTint = m.disney_specular_tint;
@@ -115,13 +98,12 @@ MaterialInputs material_inputs(vec4 g0, float roughness, Material m, ExtensionTe
     return in_;
 }
 
-// The point's surface terms (surface.h): the material record and the G-buffer's values
-// resolved (material.h), seen at NoV.
-ShadingSurface surface_terms(vec4 g0, float roughness, Material m, ExtensionTexels e, float NoV, vec3 anisoDir)
+// The point's surface terms (surface.h): the material record and the point's values resolved
+// (material.h), seen at NoV.
+ShadingSurface surface_terms(GBufferSurface g, Material m, float NoV)
 {
 #if !RTPBR_LIGHTING_FULL
-    anisoDir = vec3(0.0f);
+    g.anisotropyDirection = vec3(0.0f);
 #endif
-    return Surface_Resolve(Material_Resolve(material_inputs(g0, roughness, m, e)), NoV, anisoDir);
+    return Surface_Resolve(Material_Resolve(material_inputs(g, m)), NoV, g.anisotropyDirection);
 }
-

@@ -22,6 +22,7 @@
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"
 #include "rtpbr/material.h"
+#include "rtpbr/gbuffer.h"
 
 // ... and after it, as types and functions of its own.
 struct float2 { float x, y; };

@@ -20,6 +20,7 @@
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"
 #include "rtpbr/material.h"
+#include "rtpbr/gbuffer.h"
 
 // ... and after it, as functions of its own.
 float safe_sqrt(float x) { return sqrt(max(x, 0.0f)); }
