@@ -5,6 +5,7 @@
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/material.h"
+#define RTPBR_GBUFFER_TRUSTED 1 // values from validated materials (gbuffer.h)
 #include "rtpbr/gbuffer.h"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_GBUFFER_FRAME
 #include "frame.glsl"
