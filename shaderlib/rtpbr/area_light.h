@@ -5,7 +5,7 @@
 // (surface.h) integrated with Linearly Transformed Cosines (ltc.h) and every correction the
 // engine ships (ltc_corrections.h: the point correction, the tail and streak estimates; the
 // energy bound across lights). The engine's lighting and forward passes, the shader-include
-// sample and the README's snippet all call these functions, so that they shade alike.
+// sample and docs/library.md's snippet all call these functions, so that they shade alike.
 //
 //   AreaLightPixel px = AreaLight_Begin(s, N, V);    // once per point
 //   AreaLightSum acc = AreaLight_SumBegin();
