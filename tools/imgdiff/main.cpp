@@ -27,7 +27,7 @@ const char* const kUsage =
     "                  [--max-mean X] [--max-p95 Y] [--ppd P] [--bound L [--max-ratio R]]\n"
     "                  [--memory-limit MIB]\n"
     "\n"
-    "Compares TEST with REFERENCE (any format OpenImageIO reads: EXR, PNG, HDR, ...).\n"
+    "Compares TEST with REFERENCE (EXR, PNG, HDR, JPEG, TIFF, BMP, PNM/PFM or TGA).\n"
     "  Integer pixel formats (8/16-bit PNG, ...) are taken as sRGB-encoded and decoded to linear;\n"
     "  float formats (EXR, HDR) are taken as linear. Grey images are replicated to RGB, alpha\n"
     "  and extra channels are ignored.\n"
