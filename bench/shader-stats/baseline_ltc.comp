@@ -9,6 +9,14 @@
 // scaled by the second table (norm and Fresnel, one fetch). No Kulla-Conty, no culling, no
 // other material. Compiled for statistics only (never dispatched), with
 // -DRTPBR_STATS_FIXED_LIGHTS=N: exactly N lights, a compile-time count.
+// -DRTPBR_YARDSTICK_DEMO_CLIP=1 replaces the select-based clip by a port of the demo's own
+// clip path (selfshadow/ltc_code, webgl/shaders/ltc/ltc_quad.fs: LTC_Evaluate without
+// "clipless", ClipQuadToHorizon's 16 cases, a 5-vertex polygon) written here from its
+// algorithm: issue 32's yardstick, per light.
+// Both kernels start like the engine's lighting pass (lighting.comp): the same two per-pixel
+// early exits (outside the frame; background depth) before the light loop, since ACO weights
+// the code after an exit by its probability and a kernel without them looks cheaper per
+// light than it is (issue 32: the select-based baseline read 0.87x of the engine without them).
 layout(local_size_x = 8, local_size_y = 8) in;
 
 struct QuadLight {
@@ -24,8 +32,11 @@ layout(set = 0, binding = 3) uniform sampler2D gbuffer_base_color;       // rgb 
 layout(set = 0, binding = 4) uniform sampler2D ltc_inverse;              // M^-1 of the GGX fit
 layout(set = 0, binding = 5) uniform sampler2D ltc_terms;                // x: norm, y: Fresnel term
 layout(set = 0, binding = 6, rgba32f) writeonly uniform image2D radiance;
+layout(set = 0, binding = 7) uniform sampler2D gbuffer_depth;             // 1: background
 layout(push_constant) uniform Params {
     vec4 camera_position;
+    vec4 background;
+    uvec2 size;
     uint light_count;
 } params;
 
@@ -58,6 +69,64 @@ float clipped_edge(vec3 a, vec3 b, inout vec3 leave, inout vec3 enter)
     return aAbove || bAbove ? edge_integral(aAbove ? a : h, bAbove ? b : h) : 0.0f;
 }
 
+#if RTPBR_YARDSTICK_DEMO_CLIP
+// The point where the edge from `above` (z > 0) to `below` (z <= 0) meets the horizon z = 0,
+// up to a positive scale (the integral normalises every vertex).
+vec3 horizon_point(vec3 above, vec3 below)
+{
+    return above.z * below - below.z * above;
+}
+
+// The demo's clip: the quad L[0..3] (LTC space, not normalised) clipped to z > 0 into L[0..n-1]
+// (n = 0, 3, 4 or 5) in the same winding, L[n] = L[0] closing it; a case per set of vertices
+// above the horizon (5 and 10, two opposite vertices only, cannot happen for a planar quad).
+void clip_quad_to_horizon(inout vec3 L[5], out int n)
+{
+    int config = (L[0].z > 0.0f ? 1 : 0) + (L[1].z > 0.0f ? 2 : 0) + (L[2].z > 0.0f ? 4 : 0) + (L[3].z > 0.0f ? 8 : 0);
+    vec3 a = L[0], b = L[1], c = L[2], d = L[3];
+    n = 0;
+    if (config == 1) { L[1] = horizon_point(a, b); L[2] = horizon_point(a, d); n = 3; }
+    else if (config == 2) { L[0] = horizon_point(b, a); L[2] = horizon_point(b, c); n = 3; }
+    else if (config == 3) { L[2] = horizon_point(b, c); L[3] = horizon_point(a, d); n = 4; }
+    else if (config == 4) { L[0] = horizon_point(c, d); L[1] = horizon_point(c, b); n = 3; }
+    else if (config == 6) { L[0] = horizon_point(b, a); L[3] = horizon_point(c, d); n = 4; }
+    else if (config == 7) { L[4] = horizon_point(a, d); L[3] = horizon_point(c, d); n = 5; }
+    else if (config == 8) { L[0] = horizon_point(d, a); L[1] = horizon_point(d, c); L[2] = d; n = 3; }
+    else if (config == 9) { L[1] = horizon_point(a, b); L[2] = horizon_point(d, c); n = 4; }
+    else if (config == 11) { L[4] = d; L[3] = horizon_point(d, c); L[2] = horizon_point(b, c); n = 5; }
+    else if (config == 12) { L[1] = horizon_point(c, b); L[0] = horizon_point(d, a); n = 4; }
+    else if (config == 13) { L[4] = d; L[3] = c; L[2] = horizon_point(c, b); L[1] = horizon_point(a, b); n = 5; }
+    else if (config == 14) { L[4] = horizon_point(d, a); L[0] = horizon_point(b, a); n = 5; }
+    else if (config == 15) { n = 4; }
+    if (n == 3) L[3] = L[0];
+    if (n == 4) L[4] = L[0];
+}
+
+// The demo's LTC_Evaluate (clip path): the frame built from N and V and folded into Minv per
+// call, as the demo does; the polygon clipped, projected to the sphere and integrated.
+float ltc_quad_demo(vec3 N, vec3 V, vec3 P, mat3 Minv, vec3 q0, vec3 q1, vec3 q2, vec3 q3, bool twoSided)
+{
+    vec3 T1 = normalize(V - N * dot(V, N));
+    vec3 T2 = cross(N, T1);
+    Minv = Minv * transpose(mat3(T1, T2, N));
+    vec3 L[5];
+    L[0] = Minv * (q0 - P);
+    L[1] = Minv * (q1 - P);
+    L[2] = Minv * (q2 - P);
+    L[3] = Minv * (q3 - P);
+    L[4] = L[3];
+    int n;
+    clip_quad_to_horizon(L, n);
+    if (n == 0) return 0.0f;
+    for (int i = 0; i < 5; ++i) L[i] = normalize(L[i]);
+    float sum = edge_integral(L[0], L[1]) + edge_integral(L[1], L[2]) + edge_integral(L[2], L[3]);
+    if (n >= 4) sum += edge_integral(L[3], L[4]);
+    if (n == 5) sum += edge_integral(L[4], L[0]);
+    sum = twoSided ? abs(sum) : max(0.0f, sum);
+    return sum / (2.0f * PI);
+}
+
+#else
 // The form factor of the quad q0..q3 (positions relative to the shading point in the
 // shading frame) under the cosine lobe transformed by Minv.
 float ltc_quad(mat3 Minv, vec3 q0, vec3 q1, vec3 q2, vec3 q3, bool twoSided)
@@ -74,9 +143,16 @@ float ltc_quad(mat3 Minv, vec3 q0, vec3 q1, vec3 q2, vec3 q3, bool twoSided)
     return sum / (2.0f * PI);
 }
 
+#endif
+
 void main()
 {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(uvec2(pixel), params.size))) return;
+    if (texelFetch(gbuffer_depth, pixel, 0).r == 1.0f) {
+        imageStore(radiance, pixel, params.background);
+        return;
+    }
     vec3 P = texelFetch(gbuffer_position, pixel, 0).xyz;
     vec4 nr = texelFetch(gbuffer_normal_roughness, pixel, 0);
     vec4 baseMetal = texelFetch(gbuffer_base_color, pixel, 0);
@@ -107,11 +183,17 @@ void main()
     for (uint i = 0u; i < params.light_count; ++i) {
 #endif
         QuadLight light = lights[i];
+        bool twoSided = light.emission.w != 0.0f;
+#if RTPBR_YARDSTICK_DEMO_CLIP
+        vec3 q0 = light.vertices[0].xyz, q1 = light.vertices[1].xyz, q2 = light.vertices[2].xyz, q3 = light.vertices[3].xyz;
+        float specular = ltc_quad_demo(N, V, P, Minv, q0, q1, q2, q3, twoSided);
+        float diffuse = ltc_quad_demo(N, V, P, mat3(1.0f), q0, q1, q2, q3, twoSided);
+#else
         vec3 q0 = light.vertices[0].xyz - P, q1 = light.vertices[1].xyz - P;
         vec3 q2 = light.vertices[2].xyz - P, q3 = light.vertices[3].xyz - P;
-        bool twoSided = light.emission.w != 0.0f;
         float specular = ltc_quad(toSpecular, q0, q1, q2, q3, twoSided);
         float diffuse = ltc_quad(toLocal, q0, q1, q2, q3, twoSided);
+#endif
         sum += light.emission.rgb * (specularScale * specular + diffuseColor * diffuse);
     }
     imageStore(radiance, pixel, vec4(sum, 1.0f));
