@@ -57,30 +57,62 @@ static int parse_sizes(const char *text, int (*out)[2], int max)
     return n;
 }
 
-// A 60 m floor (rough dielectric) under n small square lights at 0.5 to 3 m, scattered by a
-// fixed linear congruential sequence; one light in four faces up (away from the floor).
-static rtpbr_result make_scene(rtpbr_context *ctx, int n, rtpbr_gpu_scene **out)
+// The scenes (--scene), each a 60 m floor under n small square lights:
+//   benchmark  a rough dielectric floor seen from 12 m back and 14 m up, lights at 0.5 to 3 m
+//              scattered by a fixed linear congruential sequence, one in four facing up;
+//   floor      a rough metal floor seen at 45 degrees from above, the lights in a grid over
+//              the view, 2 to 3 m up, all facing down: every pixel sees every light and
+//              culling keeps them all (issue 32's "scene unlike the benchmark's");
+//   full       the benchmark's layout with a material that needs the full lighting variant
+//              (clear coat, sheen and anisotropy on metallic-roughness).
+typedef enum bench_scene { SCENE_BENCHMARK, SCENE_FLOOR, SCENE_FULL, SCENE_COUNT } bench_scene;
+static const char *const scene_names[SCENE_COUNT] = {"benchmark", "floor", "full"};
+
+static void square_light(rtpbr_light_desc *light, float x, float y, float z, float s, int up)
+{
+    float v[4][3] = {{x - s, y - s, z}, {x - s, y + s, z}, {x + s, y + s, z}, {x + s, y - s, z}};
+    for (int k = 0; k < 4; ++k) memcpy(light->vertices[up ? 3 - k : k], v[k], sizeof v[k]);
+    light->vertex_count = 4;
+    light->emission[0] = light->emission[1] = light->emission[2] = 20.0f;
+}
+
+static rtpbr_result make_scene(rtpbr_context *ctx, bench_scene kind, int n, rtpbr_gpu_scene **out)
 {
     static const float h = 30.0f;
     float plane[12] = {-h, -h, 0, h, -h, 0, h, h, 0, -h, h, 0};
     static const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
     rtpbr_material_desc material = {.base_color = {0.7f, 0.7f, 0.7f}, .roughness = 0.4f};
+    rtpbr_camera_desc camera = {.position = {0.0f, -12.0f, 14.0f}, .yfov = 1.0f, .znear = 0.1f, .zfar = 200.0f};
+    if (kind == SCENE_FLOOR) {
+        material = (rtpbr_material_desc){.base_color = {0.95f, 0.64f, 0.54f}, .metallic = 1.0f, .roughness = 0.5f};
+        camera = (rtpbr_camera_desc){.position = {0.0f, -6.0f, 6.0f}, .target = {0.0f, 0.0f, 0.0f}, .yfov = 1.0f,
+                                     .znear = 0.1f, .zfar = 200.0f};
+    } else if (kind == SCENE_FULL) {
+        material.clearcoat = 1.0f;
+        material.clearcoat_roughness = 0.1f;
+        material.sheen_color[0] = material.sheen_color[1] = material.sheen_color[2] = 0.5f;
+        material.sheen_roughness = 0.5f;
+        material.anisotropy_strength = 0.6f;
+    }
     rtpbr_mesh_desc mesh = {.positions = plane, .indices = indices, .vertex_count = 4, .index_count = 6};
-    rtpbr_light_desc *lights = calloc((size_t)n, sizeof *lights);
+    rtpbr_light_desc *lights = calloc((size_t)(n > 0 ? n : 1), sizeof *lights);
+    if (!lights) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
     uint32_t seed = 12345u;
+    int side = 1;
+    while (side * side < n) ++side;
     for (int i = 0; i < n; ++i) {
+        if (kind == SCENE_FLOOR) { // a side x side grid over the 8 m x 8 m around the view's centre
+            float x = -4.0f + 8.0f * ((float)(i % side) + 0.5f) / (float)side;
+            float y = -4.0f + 8.0f * ((float)(i / side) + 0.5f) / (float)side;
+            square_light(&lights[i], x, y, 2.0f + (float)(i % 3) * 0.5f, 0.1f, 0);
+            continue;
+        }
         seed = seed * 1664525u + 1013904223u;
         float x = -28.0f + 56.0f * (float)(seed >> 8) / 16777216.0f;
         seed = seed * 1664525u + 1013904223u;
         float y = -28.0f + 56.0f * (float)(seed >> 8) / 16777216.0f;
-        float z = 0.5f + 2.5f * (float)(i % 7) / 6.0f, s = 0.1f + 0.05f * (float)(i % 5);
-        int up = i % 4 == 3;
-        float v[4][3] = {{x - s, y - s, z}, {x - s, y + s, z}, {x + s, y + s, z}, {x + s, y - s, z}};
-        for (int k = 0; k < 4; ++k) memcpy(lights[i].vertices[up ? 3 - k : k], v[k], sizeof v[k]);
-        lights[i].vertex_count = 4;
-        lights[i].emission[0] = lights[i].emission[1] = lights[i].emission[2] = 20.0f;
+        square_light(&lights[i], x, y, 0.5f + 2.5f * (float)(i % 7) / 6.0f, 0.1f + 0.05f * (float)(i % 5), i % 4 == 3);
     }
-    rtpbr_camera_desc camera = {.position = {0.0f, -12.0f, 14.0f}, .yfov = 1.0f, .znear = 0.1f, .zfar = 200.0f};
     rtpbr_gpu_scene_desc desc = {.meshes = &mesh, .mesh_count = 1, .materials = &material, .material_count = 1,
                                  .lights = lights, .light_count = (uint32_t)n, .cameras = &camera, .camera_count = 1};
     rtpbr_result r = rtpbr_gpu_scene_create(ctx, &desc, out);
@@ -88,41 +120,14 @@ static rtpbr_result make_scene(rtpbr_context *ctx, int n, rtpbr_gpu_scene **out)
     return r;
 }
 
-static const char *const usage =
-    "usage: rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu]\n"
-    "Median frame time of rtpbr_render against light count and resolution; compare the ratios\n"
-    "printed in one run.\n"
-    "  --repeat N     frames per configuration (1..1000; default 5)\n"
-    "  --sizes LIST   resolutions, WxH or N for N x N (default 128,256,512)\n"
-    "  --lights LIST  light counts (default 0,1,4,16,64,256)\n"
-    "  --cpu          the process CPU time (lavapipe's threads included) instead of wall time\n"
-    "  -h, --help     this text\n";
-
-int main(int argc, char **argv)
+// One scene's table: for each size and light count, the median frame time with culling and with
+// every light, and the costs per pixel and per pixel-light. t: scratch for `repeat` times.
+static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const int (*sizes)[2], int size_count,
+                              const int *lights, int light_count, int repeat, double *t)
 {
-    int repeat = 5, sizes[8][2] = {{128, 128}, {256, 256}, {512, 512}}, lights[16] = {0, 1, 4, 16, 64, 256};
-    int size_count = 3, light_count = 6;
-    for (int i = 1; i < argc; ++i) {
-        if (!strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = atoi(argv[++i]);
-        else if (!strcmp(argv[i], "--sizes") && i + 1 < argc) size_count = parse_sizes(argv[++i], sizes, 8);
-        else if (!strcmp(argv[i], "--lights") && i + 1 < argc) light_count = parse_list(argv[++i], lights, 16);
-        else if (!strcmp(argv[i], "--cpu")) bench_clock = CLOCK_PROCESS_CPUTIME_ID;
-        else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) return fputs(usage, stdout), 0;
-        else return fputs(usage, stderr), 2;
-    }
-    if (repeat < 1 || repeat > 1000) repeat = 5;
-    rtpbr_context *ctx = NULL;
-    rtpbr_result r = rtpbr_context_create(&(rtpbr_context_desc){0}, &ctx);
-    if (r != RTPBR_SUCCESS) {
-        fprintf(stderr, "rtpbr-bench-engine: %s\n", rtpbr_result_string(r));
-        return 1;
-    }
-    printf("# device: %s; median of %d frames (%s time); ns per pixel-light = frame time / (pixels x lights)\n",
-           rtpbr_context_device_name(ctx), repeat, bench_clock == CLOCK_MONOTONIC ? "wall" : "process CPU");
-    printf("%10s %6s %12s %12s %16s %16s\n", "size", "lights", "culled_ms", "all_ms", "culled_ns/px/l",
-           "all_ns/px/l");
-    double *t = calloc((size_t)repeat, sizeof *t);
-    for (int si = 0; si < size_count; ++si) {
+    rtpbr_result r = RTPBR_SUCCESS;
+    printf("# scene: %s\n", scene_names[scene_kind]);
+    for (int si = 0; si < size_count && r == RTPBR_SUCCESS; ++si) {
         rtpbr_renderer *renderer = NULL;
         int w = sizes[si][0], h = sizes[si][1];
         double base[2] = {0.0, 0.0}; // the frame with no lights, when measured
@@ -131,7 +136,7 @@ int main(int argc, char **argv)
         r = rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = (uint32_t)w, .height = (uint32_t)h}, &renderer);
         for (int li = 0; li < light_count && r == RTPBR_SUCCESS; ++li) {
             rtpbr_gpu_scene *scene = NULL;
-            r = make_scene(ctx, lights[li], &scene);
+            r = make_scene(ctx, scene_kind, lights[li], &scene);
             double ms[2] = {0.0, 0.0};
             for (int mode = 0; mode < 2 && r == RTPBR_SUCCESS; ++mode) {
                 rtpbr_render_desc rd = {.light_cull_form_factor = mode == 0 ? 0.0f : -1.0f};
@@ -160,6 +165,56 @@ int main(int argc, char **argv)
         }
         rtpbr_renderer_destroy(renderer);
     }
+    return r;
+}
+
+static const char *const usage =
+    "usage: rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu]\n"
+    "                          [--scene benchmark|floor|full|all]\n"
+    "Median frame time of rtpbr_render against light count and resolution; compare the ratios\n"
+    "printed in one run.\n"
+    "  --repeat N     frames per configuration (1..1000; default 5)\n"
+    "  --sizes LIST   resolutions, WxH or N for N x N (default 128,256,512)\n"
+    "  --lights LIST  light counts (default 0,1,4,16,64,256)\n"
+    "  --cpu          the process CPU time (lavapipe's threads included) instead of wall time\n"
+    "  --scene NAME   benchmark, floor (metal floor at 45 degrees, every light seen by\n"
+    "                 every pixel), full (materials of the full lighting variant), all (default)\n"
+    "  -h, --help     this text\n";
+
+int main(int argc, char **argv)
+{
+    int repeat = 5, sizes[8][2] = {{128, 128}, {256, 256}, {512, 512}}, lights[16] = {0, 1, 4, 16, 64, 256};
+    int size_count = 3, light_count = 6, scene_first = 0, scene_last = SCENE_COUNT - 1;
+    for (int i = 1; i < argc; ++i) {
+        if (!strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--sizes") && i + 1 < argc) size_count = parse_sizes(argv[++i], sizes, 8);
+        else if (!strcmp(argv[i], "--lights") && i + 1 < argc) light_count = parse_list(argv[++i], lights, 16);
+        else if (!strcmp(argv[i], "--cpu")) bench_clock = CLOCK_PROCESS_CPUTIME_ID;
+        else if (!strcmp(argv[i], "--scene") && i + 1 < argc) {
+            const char *name = argv[++i];
+            scene_first = strcmp(name, "all") == 0 ? 0 : -1;
+            scene_last = scene_first == 0 ? SCENE_COUNT - 1 : -1;
+            for (int k = 0; k < SCENE_COUNT && scene_first < 0; ++k)
+                if (!strcmp(name, scene_names[k])) scene_first = scene_last = k;
+            if (scene_first < 0) return fprintf(stderr, "rtpbr-bench-engine: unknown scene '%s'\n%s", name, usage), 2;
+        }
+        else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) return fputs(usage, stdout), 0;
+        else return fputs(usage, stderr), 2;
+    }
+    if (repeat < 1 || repeat > 1000) repeat = 5;
+    rtpbr_context *ctx = NULL;
+    rtpbr_result r = rtpbr_context_create(&(rtpbr_context_desc){0}, &ctx);
+    if (r != RTPBR_SUCCESS) {
+        fprintf(stderr, "rtpbr-bench-engine: %s\n", rtpbr_result_string(r));
+        return 1;
+    }
+    printf("# device: %s; median of %d frames (%s time); ns per pixel-light = frame time / (pixels x lights)\n",
+           rtpbr_context_device_name(ctx), repeat, bench_clock == CLOCK_MONOTONIC ? "wall" : "process CPU");
+    printf("%10s %6s %12s %12s %16s %16s\n", "size", "lights", "culled_ms", "all_ms", "culled_ns/px/l",
+           "all_ns/px/l");
+    double *t = calloc((size_t)repeat, sizeof *t);
+    for (int k = scene_first; k <= scene_last && r == RTPBR_SUCCESS && t; ++k)
+        r = run_scene(ctx, (bench_scene)k, (const int (*)[2])sizes, size_count, lights, light_count, repeat, t);
     free(t);
     if (r != RTPBR_SUCCESS) fprintf(stderr, "rtpbr-bench-engine: %s\n", rtpbr_result_string(r));
     rtpbr_context_destroy(ctx);
