@@ -19,6 +19,7 @@
 #include "rtpbr/kulla_conty.h"
 #include "rtpbr/ltc.h"
 #include "rtpbr/ltc_corrections.h"
+#include "rtpbr/ltc_shapes.h"
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"
 #include "rtpbr/material.h"

@@ -1,10 +1,12 @@
 #version 450
 // Compile check of shaderlib/rtpbr/ltc.h as GLSL (and, with RTPBR_HLSL, as HLSL: see
 // ltc_compile.hlsl). Calls every public function of ltc.h so that each is type-checked;
-// ltc_corrections.h is compiled beside it (glslang checks uncalled functions too).
+// ltc_corrections.h is compiled beside it (glslang checks uncalled functions too), and
+// ltc_shapes.h is called at the end.
 #extension GL_GOOGLE_include_directive : require
 #include "rtpbr/ltc.h"
 #include "rtpbr/ltc_corrections.h"
+#include "rtpbr/ltc_shapes.h"
 layout(local_size_x = 1) in;
 layout(std430, binding = 0) buffer Out { vec4 result[]; };
 void main() {
@@ -45,4 +47,12 @@ void main() {
                      LTC_IntegrateLocalMatrix(local, LTC_InverseMatrix(ltc1));
     result[3] = RTPBR_F4(streamed);
     result[2] = vec4(fs + fc + fsel, e);
+    // ltc_shapes.h: disk, ellipse and sphere lights.
+    vec3 C, U, W;
+    bool outside = LTC_SphereAsDisk(P, vec3(0.5f, 0.0f, 2.0f), 0.3f, C, U, W);
+    vec3 Fe = LTC_EllipseVector(LTC_InverseMatrix(ltc1), C, U, W, true);
+    LtcPolygon disk = LTC_EllipsePolygon(C, U, W);
+    result[4] = vec4(Fe, LTC_SphereCapFormFactor(Fe));
+    result[5] = vec4(LTC_EvaluateEllipse(N, V, P, vec3(0.0f, 0.0f, 1.0f), vec3(0.3f, 0.0f, 0.0f), vec3(0.0f, -0.3f, 0.0f), ltc1, false),
+                     LTC_EvaluateSphere(N, V, P, vec3(0.5f, 0.0f, 2.0f), 0.3f, ltc1), outside ? 1.0f : 0.0f, disk.v[3].x);
 }

@@ -1,7 +1,8 @@
-// Compile check of shaderlib/rtpbr/ltc.h and ltc_corrections.h as HLSL (glslang's HLSL front end).
+// Compile check of shaderlib/rtpbr/ltc.h, ltc_corrections.h and ltc_shapes.h as HLSL (glslang's HLSL front end).
 #define RTPBR_HLSL 1
 #include "rtpbr/ltc.h"
 #include "rtpbr/ltc_corrections.h"
+#include "rtpbr/ltc_shapes.h"
 RWStructuredBuffer<float4> result : register(u0);
 [numthreads(1, 1, 1)]
 void main() {
@@ -42,4 +43,12 @@ void main() {
                      LTC_IntegrateLocalMatrix(local, LTC_InverseMatrix(ltc1));
     result[3] = RTPBR_F4(streamed);
     result[2] = float4(fs + fc + fsel, e);
+    // ltc_shapes.h: disk, ellipse and sphere lights.
+    float3 C, U, W;
+    bool outside = LTC_SphereAsDisk(P, float3(0.5f, 0.0f, 2.0f), 0.3f, C, U, W);
+    float3 Fe = LTC_EllipseVector(LTC_InverseMatrix(ltc1), C, U, W, true);
+    LtcPolygon disk = LTC_EllipsePolygon(C, U, W);
+    result[4] = float4(Fe, LTC_SphereCapFormFactor(Fe));
+    result[5] = float4(LTC_EvaluateEllipse(N, V, P, float3(0.0f, 0.0f, 1.0f), float3(0.3f, 0.0f, 0.0f), float3(0.0f, -0.3f, 0.0f), ltc1, false),
+                     LTC_EvaluateSphere(N, V, P, float3(0.5f, 0.0f, 2.0f), 0.3f, ltc1), outside ? 1.0f : 0.0f, disk.v[3].x);
 }
