@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <cmocka.h>
+#include "test_main.h"
 
 #include "rtpbr/rtpbr.h"
 

@@ -172,12 +172,6 @@ static void test_mask_shadow(void **state)
     free(img);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_mask_cutout),
-        cmocka_unit_test(test_blend_half),
-        cmocka_unit_test(test_mask_shadow),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_mask_cutout),
+                cmocka_unit_test(test_blend_half),
+                cmocka_unit_test(test_mask_shadow))

@@ -300,15 +300,9 @@ static void allocation_failures_are_logged(void **state)
     remove(path);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(from_loaded_null_arrays),
-        cmocka_unit_test(material_desc_from_loaded_flags),
-        cmocka_unit_test(context_destroys_children),
-        cmocka_unit_test(read_radiance_before_render),
-        cmocka_unit_test(hidden_node_does_not_hide_the_scene),
-        cmocka_unit_test(allocation_failures_are_logged),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(from_loaded_null_arrays),
+                cmocka_unit_test(material_desc_from_loaded_flags),
+                cmocka_unit_test(context_destroys_children),
+                cmocka_unit_test(read_radiance_before_render),
+                cmocka_unit_test(hidden_node_does_not_hide_the_scene),
+                cmocka_unit_test(allocation_failures_are_logged))

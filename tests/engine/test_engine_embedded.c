@@ -143,11 +143,5 @@ static void embedded_missing_feature(void **state)
     assert_int_equal(h.messages, 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(embedded_render_leaves_host_untouched),
-        cmocka_unit_test(embedded_missing_feature),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(embedded_render_leaves_host_untouched),
+                cmocka_unit_test(embedded_missing_feature))

@@ -104,10 +104,8 @@ int main(int argc, char **argv)
         return 2;
     }
     scene_dir = argv[1];
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(polygon_lights_scene),
-        cmocka_unit_test(one_sided_light_from_behind),
-        cmocka_unit_test(every_bundled_scene),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    RTPBR_RUN_TESTS(NULL, NULL,
+                    cmocka_unit_test(polygon_lights_scene),
+                    cmocka_unit_test(one_sided_light_from_behind),
+                    cmocka_unit_test(every_bundled_scene));
 }

@@ -262,13 +262,7 @@ static void supersampled_coverage(void **state)
     test_context_done(ctx, &log);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(supersampled_coverage),
-        cmocka_unit_test(lambertian_plane),
-        cmocka_unit_test(normal_mapped_plane),
-        cmocka_unit_test(culling_bound),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(supersampled_coverage),
+                cmocka_unit_test(lambertian_plane),
+                cmocka_unit_test(normal_mapped_plane),
+                cmocka_unit_test(culling_bound))

@@ -278,14 +278,8 @@ static void sheen_albedo_check(void **state)
     test_context_done(ctx, &log);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(disney_diffuse_albedo),
-        cmocka_unit_test(layered_dielectric_energy),
-        cmocka_unit_test(clearcoat_layer),
-        cmocka_unit_test(sheen_albedo_check),
-        cmocka_unit_test(ior_fresnel_one),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(disney_diffuse_albedo),
+                cmocka_unit_test(layered_dielectric_energy),
+                cmocka_unit_test(clearcoat_layer),
+                cmocka_unit_test(sheen_albedo_check),
+                cmocka_unit_test(ior_fresnel_one))

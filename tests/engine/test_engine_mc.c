@@ -495,17 +495,11 @@ static void ltc_max_lights(void **state)
     test_context_done(ctx, &log);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(mc_lambertian_plane),
-        cmocka_unit_test(mc_glossy_mean),
-        cmocka_unit_test(mc_limits),
-        cmocka_unit_test(mc_max_samples),
-        cmocka_unit_test(mc_many_lights),
-        cmocka_unit_test(ltc_max_lights),
-        cmocka_unit_test(ltc_far_floor),
-        cmocka_unit_test(ltc_streak_floor),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(mc_lambertian_plane),
+                cmocka_unit_test(mc_glossy_mean),
+                cmocka_unit_test(mc_limits),
+                cmocka_unit_test(mc_max_samples),
+                cmocka_unit_test(mc_many_lights),
+                cmocka_unit_test(ltc_max_lights),
+                cmocka_unit_test(ltc_far_floor),
+                cmocka_unit_test(ltc_streak_floor))

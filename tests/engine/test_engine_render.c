@@ -414,16 +414,14 @@ static void record_into_host_image(void **state)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(render_emissive_square),
-        cmocka_unit_test(depth_order),
-        cmocka_unit_test(emission_sides),
-        cmocka_unit_test(emission_texture),
-        cmocka_unit_test(record_into_host_image),
-        cmocka_unit_test(lifecycle),
-    };
     // RTPBR_TEST_FILTER="depth_order" runs only the tests whose names match (cmocka pattern).
     const char *filter = getenv("RTPBR_TEST_FILTER");
     if (filter && *filter) cmocka_set_test_filter(filter);
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    RTPBR_RUN_TESTS(NULL, NULL,
+                    cmocka_unit_test(render_emissive_square),
+                    cmocka_unit_test(depth_order),
+                    cmocka_unit_test(emission_sides),
+                    cmocka_unit_test(emission_texture),
+                    cmocka_unit_test(record_into_host_image),
+                    cmocka_unit_test(lifecycle));
 }

@@ -93,10 +93,4 @@ static void full_tiles_shade_basic_materials_alike(void **state)
     test_context_done(ctx, &log);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(full_tiles_shade_basic_materials_alike),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(full_tiles_shade_basic_materials_alike))

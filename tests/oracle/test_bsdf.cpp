@@ -149,12 +149,7 @@ void test_disney(void **) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sampling_matches_evaluation),
-        cmocka_unit_test(test_single_scatter_is_closed_form),
-        cmocka_unit_test(test_white_dielectric_over_diffuse_furnace),
-        cmocka_unit_test(test_disney),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_sampling_matches_evaluation),
+                cmocka_unit_test(test_single_scatter_is_closed_form),
+                cmocka_unit_test(test_white_dielectric_over_diffuse_furnace),
+                cmocka_unit_test(test_disney))

@@ -158,12 +158,7 @@ void test_zero_sheen_is_unchanged(void **) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_black_base_albedo_is_table),
-        cmocka_unit_test(test_white_base_conserves_energy),
-        cmocka_unit_test(test_sampling_matches_evaluation),
-        cmocka_unit_test(test_zero_sheen_is_unchanged),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_black_base_albedo_is_table),
+                cmocka_unit_test(test_white_base_conserves_energy),
+                cmocka_unit_test(test_sampling_matches_evaluation),
+                cmocka_unit_test(test_zero_sheen_is_unchanged))

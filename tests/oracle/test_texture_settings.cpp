@@ -130,11 +130,6 @@ void test_single_sided_back_face(void **) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_wrap_modes),
-        cmocka_unit_test(test_texture_transform),
-        cmocka_unit_test(test_single_sided_back_face),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_wrap_modes),
+                cmocka_unit_test(test_texture_transform),
+                cmocka_unit_test(test_single_sided_back_face))

@@ -7,7 +7,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
-#include <cmocka.h>
+#include "test_main.h"
 
 #include "sample_test.h"
 #include <stb_image.h>
@@ -76,6 +76,5 @@ int main(int argc, char **argv)
         return 2;
     }
     args = argv;
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_split_view)};
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    RTPBR_RUN_TESTS(NULL, NULL, cmocka_unit_test(test_split_view));
 }

@@ -5,7 +5,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <cmocka.h>
+#include "test_main.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -680,21 +680,16 @@ static void test_textured_emitter(void** state) {
     free(png);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_quad_light_over_plane),
-        cmocka_unit_test(test_hexagon_fan_is_one_light),
-        cmocka_unit_test(test_unindexed_quad_is_one_light),
-        cmocka_unit_test(test_strip_and_fan_modes),
-        cmocka_unit_test(test_non_coplanar_triangles_are_separate),
-        cmocka_unit_test(test_concave_region_splits_into_convex_lights),
-        cmocka_unit_test(test_curved_emitter_bounded_and_exact),
-        cmocka_unit_test(test_textured_emitter),
-        cmocka_unit_test(test_non_emissive_and_degenerate),
-        cmocka_unit_test(test_mirrored_node_keeps_ccw_winding),
-        cmocka_unit_test(test_ext_lights_area),
-        cmocka_unit_test(test_glb_and_memory),
-        cmocka_unit_test(test_sparse_positions),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_quad_light_over_plane),
+                cmocka_unit_test(test_hexagon_fan_is_one_light),
+                cmocka_unit_test(test_unindexed_quad_is_one_light),
+                cmocka_unit_test(test_strip_and_fan_modes),
+                cmocka_unit_test(test_non_coplanar_triangles_are_separate),
+                cmocka_unit_test(test_concave_region_splits_into_convex_lights),
+                cmocka_unit_test(test_curved_emitter_bounded_and_exact),
+                cmocka_unit_test(test_textured_emitter),
+                cmocka_unit_test(test_non_emissive_and_degenerate),
+                cmocka_unit_test(test_mirrored_node_keeps_ccw_winding),
+                cmocka_unit_test(test_ext_lights_area),
+                cmocka_unit_test(test_glb_and_memory),
+                cmocka_unit_test(test_sparse_positions))

@@ -5,7 +5,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <cmocka.h>
+#include "test_main.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -314,12 +314,7 @@ static void test_glb_buffer_view_image(void** state) {
     free(png);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_khr_extensions),
-        cmocka_unit_test(test_defaults_and_disney_extras),
-        cmocka_unit_test(test_textures_and_tangents),
-        cmocka_unit_test(test_glb_buffer_view_image),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_khr_extensions),
+                cmocka_unit_test(test_defaults_and_disney_extras),
+                cmocka_unit_test(test_textures_and_tangents),
+                cmocka_unit_test(test_glb_buffer_view_image))

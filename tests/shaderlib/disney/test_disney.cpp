@@ -7,7 +7,7 @@
 #include <csetjmp>
 #include <cstdint>
 extern "C" {
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 #include <rtpbr/disney.h>
@@ -1142,19 +1142,14 @@ void test_model_flag(void **) {
 
 } // namespace
 
-int main() {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_defaults_and_ranges),
-        cmocka_unit_test(test_matches_burley_reference),
-        cmocka_unit_test(test_reciprocity_and_nonnegativity),
-        cmocka_unit_test(test_lobe_sums),
-        cmocka_unit_test(test_limits),
-        cmocka_unit_test(test_albedo_bounds),
-        cmocka_unit_test(test_incomplete_gamma),
-        cmocka_unit_test(test_sampling_chi2),
-        cmocka_unit_test(test_model_flag),
-        cmocka_unit_test(test_albedo_grid),
-        cmocka_unit_test(test_kulla_conty_tables),
-    };
-    return cmocka_run_group_tests(tests, nullptr, nullptr);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_defaults_and_ranges),
+                cmocka_unit_test(test_matches_burley_reference),
+                cmocka_unit_test(test_reciprocity_and_nonnegativity),
+                cmocka_unit_test(test_lobe_sums),
+                cmocka_unit_test(test_limits),
+                cmocka_unit_test(test_albedo_bounds),
+                cmocka_unit_test(test_incomplete_gamma),
+                cmocka_unit_test(test_sampling_chi2),
+                cmocka_unit_test(test_model_flag),
+                cmocka_unit_test(test_albedo_grid),
+                cmocka_unit_test(test_kulla_conty_tables))
