@@ -69,12 +69,4 @@ static void test_split_view(void **state)
     stbi_image_free(viewer);
 }
 
-int main(int argc, char **argv)
-{
-    if (argc != 6) {
-        fprintf(stderr, "usage: test_split_view RTPBR_RENDER RTPBR_VIEWER XVFB_RUN SCENE OUTDIR\n");
-        return 2;
-    }
-    args = argv;
-    RTPBR_RUN_TESTS(NULL, NULL, cmocka_unit_test(test_split_view));
-}
+SAMPLE_TEST_MAIN(args, 5, "RTPBR_RENDER RTPBR_VIEWER XVFB_RUN SCENE OUTDIR", test_split_view)

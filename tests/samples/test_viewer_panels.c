@@ -56,12 +56,4 @@ static void test_panels(void **state)
     free(scene), free(panels);
 }
 
-int main(int argc, char **argv)
-{
-    if (argc != 5) {
-        fprintf(stderr, "usage: test_viewer_panels RTPBR_VIEWER XVFB_RUN SCENE OUTDIR\n");
-        return 2;
-    }
-    args = argv;
-    RTPBR_RUN_TESTS(NULL, NULL, cmocka_unit_test(test_panels));
-}
+SAMPLE_TEST_MAIN(args, 4, "RTPBR_VIEWER XVFB_RUN SCENE OUTDIR", test_panels)

@@ -161,12 +161,4 @@ static void test_techniques(void **state)
     free(base), free(kc_off), free(beckmann), free(monte_carlo), free(exposure);
 }
 
-int main(int argc, char **argv)
-{
-    if (argc != 5) {
-        fprintf(stderr, "usage: test_viewer_techniques RTPBR_VIEWER XVFB_RUN SHOWCASE.gltf OUTDIR\n");
-        return 2;
-    }
-    args = argv;
-    RTPBR_RUN_TESTS(NULL, NULL, cmocka_unit_test(test_techniques));
-}
+SAMPLE_TEST_MAIN(args, 4, "RTPBR_VIEWER XVFB_RUN SHOWCASE.gltf OUTDIR", test_techniques)

@@ -29,12 +29,7 @@ static rtpbr_gltf_scene* load_materials(const char* name, const char* materials,
     const char* dir = ts_dir(name);
     ts_scene s = {.positions = kQuad, .vertex_count = 4, .indices = kQuadIdx, .index_count = 6,
                   .texcoords = kQuadUv, .material = 0, .materials = materials, .extra = extra};
-    char* json = ts_scene_json(&s);
-    char err[512];
-    rtpbr_gltf_scene* scene = NULL;
-    rtpbr_gltf_result r = ts_load_text(dir, "m.gltf", json, NULL, &scene, err, sizeof err);
-    free(json);
-    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s", rtpbr_gltf_result_string(r), err);
+    rtpbr_gltf_scene* scene = ts_load_scene(dir, "m.gltf", &s, NULL);
     return scene;
 }
 
