@@ -8,7 +8,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <cmocka.h>
+#include "test_main.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -966,17 +966,19 @@ static void test_hidden_node(void** state) {
     free(json);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_truncated),         cmocka_unit_test(test_wrong_magic),
-        cmocka_unit_test(test_accessors_out_of_range), cmocka_unit_test(test_indices_past_vertices),
-        cmocka_unit_test(test_nonfinite),         cmocka_unit_test(test_degenerate),
-        cmocka_unit_test(test_bad_lights),        cmocka_unit_test(test_too_many_lights),
-        cmocka_unit_test(test_textures),          cmocka_unit_test(test_paths),
-        cmocka_unit_test(test_uri_confinement),
-        cmocka_unit_test(test_schema_types),      cmocka_unit_test(test_node_forest),
-        cmocka_unit_test(test_glb_unknown_chunks), cmocka_unit_test(test_image_formats_and_budget),
-        cmocka_unit_test(test_hidden_node),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_truncated),
+                cmocka_unit_test(test_wrong_magic),
+                cmocka_unit_test(test_accessors_out_of_range),
+                cmocka_unit_test(test_indices_past_vertices),
+                cmocka_unit_test(test_nonfinite),
+                cmocka_unit_test(test_degenerate),
+                cmocka_unit_test(test_bad_lights),
+                cmocka_unit_test(test_too_many_lights),
+                cmocka_unit_test(test_textures),
+                cmocka_unit_test(test_paths),
+                cmocka_unit_test(test_uri_confinement),
+                cmocka_unit_test(test_schema_types),
+                cmocka_unit_test(test_node_forest),
+                cmocka_unit_test(test_glb_unknown_chunks),
+                cmocka_unit_test(test_image_formats_and_budget),
+                cmocka_unit_test(test_hidden_node))

@@ -3,7 +3,6 @@
  * ERROR count whatever their type; a real validation error counts too. And a fresh instance
  * and device count nothing, even with no shader validation cache in $HOME (CI runs the tests
  * with an empty HOME). */
-#include <dlfcn.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -13,15 +12,18 @@
 
 #include "vk_host.h"
 
-static int skip_without_driver(vk_host_result r, const char *error) {
+/* vk_host_init, which must succeed; the test is skipped where there is no Vulkan driver. */
+static void init_or_skip(vk_host *h) {
+    char error[256] = "";
+    vk_host_result r = vk_host_init(h, NULL, error, sizeof error);
     if (r == VK_HOST_NO_DRIVER) {
         print_message("skipped: %s\n", error);
-        return 1;
+        vk_host_finish(h);
+        skip();
     }
     if (r != VK_HOST_OK)
         print_error("vk_host_init: %s: %s\n", vk_host_result_string(r), error);
     assert_int_equal(r, VK_HOST_OK);
-    return 0;
 }
 
 static void submit(vk_host *h, VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT type) {
@@ -39,11 +41,7 @@ static void submit(vk_host *h, VkDebugUtilsMessageSeverityFlagBitsEXT severity, 
 static void severities(void **state) {
     (void)state;
     vk_host h = {0};
-    char error[256] = "";
-    if (skip_without_driver(vk_host_init(&h, NULL, error, sizeof error), error)) {
-        vk_host_finish(&h);
-        skip();
-    }
+    init_or_skip(&h);
     assert_int_equal(h.messages, 0); /* instance and device: nothing at WARNING or above */
     const VkDebugUtilsMessageTypeFlagsEXT types[] = {VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT,
                                                       VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT,
@@ -66,11 +64,7 @@ static void severities(void **state) {
 static void real_error_counts(void **state) {
     (void)state;
     vk_host h = {0};
-    char error[256] = "";
-    if (skip_without_driver(vk_host_init(&h, NULL, error, sizeof error), error)) {
-        vk_host_finish(&h);
-        skip();
-    }
+    init_or_skip(&h);
     VkBufferCreateInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = 0,
                                .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
     VkBuffer buffer = VK_NULL_HANDLE;
@@ -82,16 +76,8 @@ static void real_error_counts(void **state) {
     vk_host_finish(&h);
 }
 
-/* As in tests/shaderlib/gpu/test_gpu.c: keep lavapipe and the layer mapped to the end so that
- * LeakSanitizer (the sanitizer build) can name the layer's own leaks (lsan.supp there). */
-static void keep_driver_libraries_loaded(void) {
-    static const char *const libs[] = {"libvulkan_lvp.so", "libVkLayer_khronos_validation.so"};
-    for (size_t i = 0; i < sizeof(libs) / sizeof(libs[0]); i++)
-        (void)dlopen(libs[i], RTLD_NOW | RTLD_LOCAL); /* absent: nothing to keep */
-}
-
 int main(void) {
-    keep_driver_libraries_loaded();
+    vk_host_keep_driver_libraries_loaded();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(severities),
         cmocka_unit_test(real_error_counts),

@@ -57,6 +57,46 @@ static inline void texture_scene_pixel_point(uint32_t px, uint32_t py, uint32_t 
     *y = (1.0 - 2.0 * (py + 0.5) / n) * TEXTURE_SCENE_TAN_HALF_FOV * TEXTURE_SCENE_CAMERA_Z;
 }
 
+// The quad of a w x h texture, uv 0 to 1 across it, no texture transform; wrap: both axes' glTF
+// wrap mode, filter: both filters' glTF code (0: absent).
+static inline texture_scene texture_scene_quad(uint32_t w, uint32_t h, const uint8_t *rgba, int wrap, int filter)
+{
+    texture_scene s;
+    memset(&s, 0, sizeof s);
+    s.texture_width = w;
+    s.texture_height = h;
+    s.rgba = rgba;
+    s.wrap_s = s.wrap_t = wrap;
+    s.mag_filter = s.min_filter = filter;
+    s.uv_max[0] = s.uv_max[1] = 1.0f;
+    s.texcoord = -1;
+    return s;
+}
+
+// The quad of one red texel (repeat): the starting point of the alpha and back-face tests of
+// both renderers.
+static inline texture_scene texture_scene_red_quad(void)
+{
+    static const uint8_t red[4] = {255, 0, 0, 255};
+    return texture_scene_quad(1, 1, red, 10497, 0);
+}
+
+// The quad of a 4 x 4 texture (nearest, repeat) through KHR_texture_transform (offset
+// (0.3, -0.2), rotation 0.5, scale (1.5, 0.75)) read through TEXCOORD_1 (the transform's texCoord
+// override; TEXCOORD_0 is all zero): the transform test of both renderers.
+static inline texture_scene texture_scene_transformed_quad(const uint8_t *rgba)
+{
+    texture_scene s = texture_scene_quad(4, 4, rgba, 10497, 9728);
+    s.has_transform = 1;
+    s.offset[0] = 0.3f;
+    s.offset[1] = -0.2f;
+    s.rotation = 0.5f;
+    s.scale[0] = 1.5f;
+    s.scale[1] = 0.75f;
+    s.texcoord = 1;
+    return s;
+}
+
 // ---- writing ---------------------------------------------------------------------------------
 
 static inline uint32_t texture_scene_crc(const uint8_t *p, size_t n, uint32_t crc)

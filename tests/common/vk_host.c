@@ -1,6 +1,7 @@
 /* rtpbr tests: the Vulkan host bootstrap (see vk_host.h). */
 #include "vk_host.h"
 
+#include <dlfcn.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -290,4 +291,10 @@ void vk_host_finish(vk_host *h) {
     h->messenger = VK_NULL_HANDLE;
     h->instance = VK_NULL_HANDLE;
     h->physical_device = VK_NULL_HANDLE;
+}
+
+void vk_host_keep_driver_libraries_loaded(void) {
+    static const char *const libs[] = {"libvulkan_lvp.so", "libVkLayer_khronos_validation.so"};
+    for (size_t i = 0; i < sizeof(libs) / sizeof(libs[0]); i++)
+        (void)dlopen(libs[i], RTLD_NOW | RTLD_LOCAL); /* absent: nothing to keep */
 }

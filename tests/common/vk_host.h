@@ -69,4 +69,12 @@ vk_host_result vk_host_init(vk_host *h, const vk_host_desc *desc, char *error, s
  * Leaves every handle VK_NULL_HANDLE and h->messages as counted. */
 void vk_host_finish(vk_host *h);
 
+/* The Vulkan loader dlcloses the driver and the layer when the instance goes; LeakSanitizer
+ * runs at exit and would then report their internal allocations from "<unknown module>",
+ * which no suppression can name without also matching anything else. Holding one more
+ * reference keeps lavapipe (and its LLVM) and the validation layer mapped to the end, so a
+ * test's lsan.supp can name exactly those libraries. Call first in main(); the handles are
+ * deliberately never closed. */
+void vk_host_keep_driver_libraries_loaded(void);
+
 #endif /* RTPBR_TEST_VK_HOST_H */

@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <cmocka.h>
+#include "test_main.h"
 
 #include "rtpbr/rtpbr.h"
 
@@ -48,6 +48,19 @@ static inline rtpbr_result test_read_display(rtpbr_renderer *r, uint8_t *out, si
     rtpbr_result result = rtpbr_read_display(r, out, size);
     test_device_output(out, size);
     return result;
+}
+
+// Ends `cmd` with a barrier that makes its transfer writes visible to the host, submits it to
+// `queue` and waits for `fence` (the tests that record into a host's own command buffer).
+static inline void test_submit_for_host(VkDevice device, VkQueue queue, VkCommandBuffer cmd, VkFence fence)
+{
+    VkMemoryBarrier to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER, .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+                               .dstAccessMask = VK_ACCESS_HOST_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, NULL, 0, NULL);
+    assert_int_equal(vkEndCommandBuffer(cmd), VK_SUCCESS);
+    VkSubmitInfo submit = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
+    assert_int_equal(vkQueueSubmit(queue, 1, &submit, fence), VK_SUCCESS);
+    assert_int_equal(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), VK_SUCCESS);
 }
 
 typedef struct test_log {
@@ -90,6 +103,39 @@ static inline void test_context_done(rtpbr_context *ctx, const test_log *log)
     rtpbr_context_destroy(ctx);
     assert_int_equal(log->validation, 0);
 }
+
+// The fixture of most engine tests (cmocka setup and teardown; test_env_case(name) in the
+// runner's list): a context of the test's own, made by test_context before it and destroyed by
+// test_context_done after it (not one validation message in its life). The test reads it from
+// *state; one that sets no_errors must also see no error-level message of the library.
+typedef struct test_env {
+    test_log log;
+    rtpbr_context *ctx;
+    bool no_errors;
+} test_env;
+
+static inline int test_env_setup(void **state)
+{
+    test_env *env = calloc(1, sizeof *env);
+    assert_non_null(env);
+    env->ctx = test_context(&env->log);
+    *state = env;
+    return 0;
+}
+static inline int test_env_teardown(void **state)
+{
+    test_env *env = *state;
+    test_context_done(env->ctx, &env->log);
+    if (env->no_errors) assert_int_equal(env->log.errors, 0);
+    free(env);
+    return 0;
+}
+// The context of the test's fixture (a test that needs no more of it: reads only this).
+static inline rtpbr_context *test_env_context(void **state)
+{
+    return ((test_env *)*state)->ctx;
+}
+#define test_env_case(test) cmocka_unit_test_setup_teardown(test, test_env_setup, test_env_teardown)
 
 // rtpbr_gpu_scene_create and rtpbr_renderer_create, which must succeed.
 static inline rtpbr_gpu_scene *test_scene(rtpbr_context *ctx, const rtpbr_gpu_scene_desc *desc)

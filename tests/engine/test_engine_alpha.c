@@ -4,12 +4,11 @@
 // MASK occluder with holes lets the shadow rays through the holes. Scenes from
 // tests/common/texture_scenes.h (the oracle renders them in tests/oracle/test_alpha.cpp).
 #define _DEFAULT_SOURCE // mkstemps
-#include "engine_test.h"
+#include "engine_gltf_file.h"
 
 #include "texture_scenes.h"
 
 #include <stdlib.h>
-#include <unistd.h>
 
 enum { N = 48 }; // image side
 
@@ -17,33 +16,12 @@ typedef struct rendered {
     float px[N * N * 4];
 } rendered;
 
-typedef int (*scene_writer)(const void *user, const char *path);
-
 // Writes a scene to a temporary file, loads it through the glTF loader and renders it.
-static void render_file(scene_writer write, const void *user, uint32_t supersample, const rtpbr_render_desc *desc,
+static void render_file(test_gltf_writer write, const void *user, uint32_t supersample, const rtpbr_render_desc *desc,
                         rendered *out)
 {
-    char path[] = "/tmp/rtpbr-alpha-scene-XXXXXX.gltf";
-    int fd = mkstemps(path, 5);
-    assert_true(fd >= 0);
-    close(fd);
-    assert_int_equal(write(user, path), 0);
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
-    rtpbr_gpu_scene *scene = NULL;
-    rtpbr_result r = rtpbr_gpu_scene_load_gltf(ctx, path, &scene);
-    unlink(path);
-    if (r != RTPBR_SUCCESS) fprintf(stderr, "load: %s\n", log.last_error);
-    assert_int_equal(r, RTPBR_SUCCESS);
-    rtpbr_renderer *renderer = NULL;
-    assert_int_equal(
-        rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = N, .height = N, .supersample = supersample}, &renderer),
-        RTPBR_SUCCESS);
-    assert_int_equal(rtpbr_render(renderer, scene, desc), RTPBR_SUCCESS);
-    assert_int_equal(test_read_radiance(renderer, out->px, sizeof out->px), RTPBR_SUCCESS);
-    rtpbr_renderer_destroy(renderer);
-    rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
+    test_render_gltf(write, user, &(rtpbr_renderer_desc){.width = N, .height = N, .supersample = supersample}, desc,
+                     out->px, sizeof out->px);
 }
 
 static int write_texture_scene(const void *user, const char *path)
@@ -68,11 +46,10 @@ static const uint8_t *mask_texture(void)
 static void test_mask_cutout(void **state)
 {
     (void)state;
-    texture_scene s = {
-        .texture_width = 4, .texture_height = 4, .rgba = mask_texture(), .wrap_s = 33071, .wrap_t = 33071,
-        .mag_filter = 9728, .min_filter = 9728, .uv_min = {0.0f, 0.0f}, .uv_max = {1.0f, 1.0f}, .texcoord = -1,
-        .alpha_mode = 1, .base_alpha = 0.8f, .alpha_cutoff = 0.5f,
-    };
+    texture_scene s = texture_scene_quad(4, 4, mask_texture(), 33071, 9728);
+    s.alpha_mode = 1;
+    s.base_alpha = 0.8f;
+    s.alpha_cutoff = 0.5f;
     rendered *img = malloc(sizeof *img);
     render_file(write_texture_scene, &s, 1, &(rtpbr_render_desc){0}, img);
     int cut = 0, kept = 0;
@@ -101,11 +78,9 @@ static void test_mask_cutout(void **state)
 static void test_blend_half(void **state)
 {
     (void)state;
-    static const uint8_t red[4] = {255, 0, 0, 255};
-    texture_scene s = {
-        .texture_width = 1, .texture_height = 1, .rgba = red, .wrap_s = 10497, .wrap_t = 10497,
-        .uv_min = {0.0f, 0.0f}, .uv_max = {1.0f, 1.0f}, .texcoord = -1, .alpha_mode = 2, .base_alpha = 0.5f,
-    };
+    texture_scene s = texture_scene_red_quad();
+    s.alpha_mode = 2;
+    s.base_alpha = 0.5f;
     rendered *img = malloc(sizeof *img);
     for (uint32_t ss = 1; ss <= 2; ++ss) {
         render_file(write_texture_scene, &s, ss, &(rtpbr_render_desc){0}, img);
@@ -172,12 +147,6 @@ static void test_mask_shadow(void **state)
     free(img);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_mask_cutout),
-        cmocka_unit_test(test_blend_half),
-        cmocka_unit_test(test_mask_shadow),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_mask_cutout),
+                cmocka_unit_test(test_blend_half),
+                cmocka_unit_test(test_mask_shadow))

@@ -12,7 +12,7 @@
 
 #include <rtpbr/rtpbr_gltf.h>
 
-#include "engine_test.h"
+#include "engine_gltf_file.h"
 
 static const rtpbr_light_desc kLight = {
     .vertices = {{-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}},
@@ -22,9 +22,8 @@ static const rtpbr_light_desc kLight = {
 
 static void from_loaded_null_arrays(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    test_env *env = *state;
+    rtpbr_context *ctx = env->ctx;
     rtpbr_gltf_material material = {.base_color = {1, 1, 1, 1}, .roughness = 0.5f};
     // Each count non-zero with its array NULL, the other arrays valid or empty.
     for (int which = 0; which < 5; ++which) {
@@ -39,13 +38,12 @@ static void from_loaded_null_arrays(void **state)
         case 4: loaded.camera_count = 1; break;
         }
         rtpbr_gpu_scene *scene = (rtpbr_gpu_scene *)(uintptr_t)1;
-        int errors = log.errors;
+        int errors = env->log.errors;
         assert_int_equal(rtpbr_gpu_scene_from_loaded(ctx, &loaded, &scene), RTPBR_ERROR_INVALID_ARGUMENT);
         assert_null(scene);
-        assert_true(log.errors > errors);
-        assert_non_null(strstr(log.last_error, "is NULL"));
+        assert_true(env->log.errors > errors);
+        assert_non_null(strstr(env->log.last_error, "is NULL"));
     }
-    test_context_done(ctx, &log);
 }
 
 // rtpbr_material_desc_from_loaded: the loader's values copied as they are; its zeros that are
@@ -146,17 +144,16 @@ static void context_destroys_children(void **state)
 
 static void read_radiance_before_render(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    test_env *env = *state;
+    rtpbr_context *ctx = env->ctx;
     rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 4, .height = 4});
     float radiance[4 * 4 * 4];
     uint8_t display[4 * 4 * 4];
-    int errors = log.errors;
+    int errors = env->log.errors;
     assert_int_equal(rtpbr_read_radiance(r, radiance, sizeof radiance), RTPBR_ERROR_INVALID_ARGUMENT);
-    assert_int_equal(log.errors, errors + 1);
+    assert_int_equal(env->log.errors, errors + 1);
     assert_int_equal(rtpbr_read_display(r, display, sizeof display), RTPBR_ERROR_INVALID_ARGUMENT);
-    assert_int_equal(log.errors, errors + 2);
+    assert_int_equal(env->log.errors, errors + 2);
     rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){0});
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.background = {1, 2, 3}}), RTPBR_SUCCESS);
     assert_int_equal(test_read_radiance(r, radiance, sizeof radiance), RTPBR_SUCCESS);
@@ -164,7 +161,6 @@ static void read_radiance_before_render(void **state)
     assert_int_equal(test_read_display(r, display, sizeof display), RTPBR_SUCCESS);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
 }
 
 // A node scaled by 0 and a visible instance of the same triangle.
@@ -185,11 +181,7 @@ static void hidden_node_does_not_hide_the_scene(void **state)
 {
     (void)state;
     char path[] = "/tmp/rtpbr-engine-hidden-XXXXXX.gltf";
-    int fd = mkstemps(path, 5);
-    assert_true(fd >= 0);
-    FILE *f = fdopen(fd, "w");
-    fputs(kHiddenNodeGltf, f);
-    fclose(f);
+    test_gltf_file(path, test_gltf_text, kHiddenNodeGltf);
     warn_log log = {0};
     rtpbr_context *ctx = NULL;
     assert_int_equal(rtpbr_context_create(&(rtpbr_context_desc){.logger = {warn_log_func, &log}, .validation = 1}, &ctx),
@@ -273,11 +265,7 @@ static void allocation_failures_are_logged(void **state)
 {
     (void)state;
     char path[] = "/tmp/rtpbr-engine-alloc-XXXXXX.gltf";
-    int fd = mkstemps(path, 5);
-    assert_true(fd >= 0);
-    FILE *f = fdopen(fd, "w");
-    fputs(kHiddenNodeGltf, f);
-    fclose(f);
+    test_gltf_file(path, test_gltf_text, kHiddenNodeGltf);
     g_gltf_path = path;
     failing_allocator a = {.fail_at = -1};
     test_log log = {0};
@@ -300,15 +288,9 @@ static void allocation_failures_are_logged(void **state)
     remove(path);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(from_loaded_null_arrays),
-        cmocka_unit_test(material_desc_from_loaded_flags),
-        cmocka_unit_test(context_destroys_children),
-        cmocka_unit_test(read_radiance_before_render),
-        cmocka_unit_test(hidden_node_does_not_hide_the_scene),
-        cmocka_unit_test(allocation_failures_are_logged),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(test_env_case(from_loaded_null_arrays),
+                cmocka_unit_test(material_desc_from_loaded_flags),
+                cmocka_unit_test(context_destroys_children),
+                test_env_case(read_radiance_before_render),
+                cmocka_unit_test(hidden_node_does_not_hide_the_scene),
+                cmocka_unit_test(allocation_failures_are_logged))

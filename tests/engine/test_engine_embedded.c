@@ -98,13 +98,7 @@ static void embedded_render_leaves_host_untouched(void **state)
     assert_int_equal(vkBeginCommandBuffer(cmd, &(VkCommandBufferBeginInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO}),
                      VK_SUCCESS);
     vkCmdFillBuffer(cmd, buffer, 0, 256, 0x2a2a2a2au);
-    VkMemoryBarrier to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER, .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
-                               .dstAccessMask = VK_ACCESS_HOST_READ_BIT};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, NULL, 0, NULL);
-    assert_int_equal(vkEndCommandBuffer(cmd), VK_SUCCESS);
-    VkSubmitInfo submit = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
-    assert_int_equal(vkQueueSubmit(h.queue, 1, &submit, fence), VK_SUCCESS);
-    assert_int_equal(vkWaitForFences(h.device, 1, &fence, VK_TRUE, UINT64_MAX), VK_SUCCESS);
+    test_submit_for_host(h.device, h.queue, cmd, fence);
     void *mapped;
     assert_int_equal(vkMapMemory(h.device, memory, 0, VK_WHOLE_SIZE, 0, &mapped), VK_SUCCESS);
     for (int i = 0; i < 256; ++i) assert_int_equal(((const uint8_t *)mapped)[i], 0x2a);
@@ -143,11 +137,5 @@ static void embedded_missing_feature(void **state)
     assert_int_equal(h.messages, 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(embedded_render_leaves_host_untouched),
-        cmocka_unit_test(embedded_missing_feature),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(embedded_render_leaves_host_untouched),
+                cmocka_unit_test(embedded_missing_feature))

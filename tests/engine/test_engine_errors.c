@@ -303,15 +303,13 @@ static void missing_and_malformed_gltf(void **state)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(result_strings),
-        cmocka_unit_test(null_arguments),
-        cmocka_unit_test(zero_sizes),
-        cmocka_unit_test(huge_coordinates),
-        cmocka_unit_test(bad_lights),
-        cmocka_unit_test(bad_materials),
-        cmocka_unit_test(bad_render_arguments),
-        cmocka_unit_test(missing_and_malformed_gltf),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    RTPBR_RUN_TESTS(setup, teardown,
+                    cmocka_unit_test(result_strings),
+                    cmocka_unit_test(null_arguments),
+                    cmocka_unit_test(zero_sizes),
+                    cmocka_unit_test(huge_coordinates),
+                    cmocka_unit_test(bad_lights),
+                    cmocka_unit_test(bad_materials),
+                    cmocka_unit_test(bad_render_arguments),
+                    cmocka_unit_test(missing_and_malformed_gltf));
 }

@@ -16,9 +16,8 @@ static char *scene_path(const char *name)
 // polygon_lights: three lights (triangle, quad, hexagon) with radiance emissive x strength.
 static void polygon_lights_scene(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    test_env *env = *state;
+    rtpbr_context *ctx = env->ctx;
     rtpbr_gpu_scene *scene = NULL;
     assert_int_equal(rtpbr_gpu_scene_load_gltf(ctx, scene_path("polygon_lights.gltf"), &scene), RTPBR_SUCCESS);
     assert_int_equal(rtpbr_gpu_scene_light_count(scene), 3);
@@ -46,8 +45,7 @@ static void polygon_lights_scene(void **state)
     free(px);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
-    assert_int_equal(log.errors, 0);
+    env->no_errors = true;
 }
 
 // quad_light: the camera looks at the one-sided light (radiance 8 x (1, 0.95, 0.9)) from
@@ -56,9 +54,7 @@ static void polygon_lights_scene(void **state)
 // reconstructed from depth lands on its emitting side.
 static void one_sided_light_from_behind(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     rtpbr_gpu_scene *scene = NULL;
     assert_int_equal(rtpbr_gpu_scene_load_gltf(ctx, scene_path("quad_light.gltf"), &scene), RTPBR_SUCCESS);
     enum { W = 320, H = 240 };
@@ -73,28 +69,25 @@ static void one_sided_light_from_behind(void **state)
     free(px);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
 }
 
 // Every bundled scene loads and renders at a small size without a validation message.
 static void every_bundled_scene(void **state)
 {
-    (void)state;
+    test_env *env = *state;
+    rtpbr_context *ctx = env->ctx;
     const char *names[] = {"quad_light.gltf", "polygon_lights.gltf", "disney_grid.gltf", "furnace.gltf", "room.gltf"};
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
     rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 64, .height = 48});
     for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
         rtpbr_gpu_scene *scene = NULL;
         rtpbr_result result = rtpbr_gpu_scene_load_gltf(ctx, scene_path(names[i]), &scene);
-        if (result != RTPBR_SUCCESS) fprintf(stderr, "%s: %s\n", names[i], log.last_error);
+        if (result != RTPBR_SUCCESS) fprintf(stderr, "%s: %s\n", names[i], env->log.last_error);
         assert_int_equal(result, RTPBR_SUCCESS);
         for (uint32_t c = 0; c < rtpbr_gpu_scene_camera_count(scene); ++c)
             assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.camera_index = c}), RTPBR_SUCCESS);
         rtpbr_gpu_scene_destroy(scene);
     }
     rtpbr_renderer_destroy(r);
-    test_context_done(ctx, &log);
 }
 
 int main(int argc, char **argv)
@@ -104,10 +97,8 @@ int main(int argc, char **argv)
         return 2;
     }
     scene_dir = argv[1];
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(polygon_lights_scene),
-        cmocka_unit_test(one_sided_light_from_behind),
-        cmocka_unit_test(every_bundled_scene),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    RTPBR_RUN_TESTS(NULL, NULL,
+                    test_env_case(polygon_lights_scene),
+                    test_env_case(one_sided_light_from_behind),
+                    test_env_case(every_bundled_scene));
 }

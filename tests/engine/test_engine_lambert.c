@@ -8,9 +8,7 @@
 
 static void lambertian_plane(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
 
     // The plane z = 0, [-4, 4]^2, albedo 0.8, no specular lobe, under a tilted quad facing down,
     // a two-sided triangle showing its back to the plane, and a one-sided hexagon facing away
@@ -50,7 +48,6 @@ static void lambertian_plane(void **state)
         rtpbr_renderer_destroy(r);
     }
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
 }
 
 // A constant normal texture tilts the shading normal: the plane then matches Lambert's formula
@@ -58,9 +55,7 @@ static void lambertian_plane(void **state)
 // tangent frame T = +X, B = N x T = +Y, N = +Z), wherever the light is above the tilted horizon.
 static void normal_mapped_plane(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     float plane[12];
     square_positions(4.0f, 0.0f, plane);
     const float uv[8] = {0, 1, 1, 1, 1, 0, 0, 0};
@@ -116,7 +111,6 @@ static void normal_mapped_plane(void **state)
     free(px);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
 }
 
 // Per-tile culling keeps its documented bound: on a Lambertian plane (albedo 0.8) the image
@@ -124,9 +118,7 @@ static void normal_mapped_plane(void **state)
 // the emissions of all lights (each culled light's form factor is below the threshold).
 static void culling_bound(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     float plane[12];
     rtpbr_material_desc material = test_lambert_material;
     rtpbr_mesh_desc mesh = test_square_mesh(30.0f, 0.0f, plane);
@@ -203,7 +195,6 @@ static void culling_bound(void **state)
     free(lights);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
 }
 
 // Supersampling resolves coverage: a square seen straight on, its edges off the pixel grid.
@@ -213,9 +204,7 @@ static void culling_bound(void **state)
 // geometric area. Past the documented limits the renderer is refused.
 static void supersampled_coverage(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     float square[12];
     rtpbr_material_desc material = {.base_color = {0.5f, 0.5f, 0.5f}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR};
     rtpbr_mesh_desc mesh = test_square_mesh(0.37f, 0.0f, square);
@@ -259,16 +248,9 @@ static void supersampled_coverage(void **state)
                      RTPBR_ERROR_LIMIT_EXCEEDED);
     assert_null(bad);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(supersampled_coverage),
-        cmocka_unit_test(lambertian_plane),
-        cmocka_unit_test(normal_mapped_plane),
-        cmocka_unit_test(culling_bound),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(test_env_case(supersampled_coverage),
+                test_env_case(lambertian_plane),
+                test_env_case(normal_mapped_plane),
+                test_env_case(culling_bound))

@@ -163,11 +163,5 @@ static void destroyed_sampler_is_not_reported(void **state)
     assert_int_equal(log.validation, 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(leaked_sampler_is_reported),
-        cmocka_unit_test(destroyed_sampler_is_not_reported),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(leaked_sampler_is_reported),
+                cmocka_unit_test(destroyed_sampler_is_not_reported))

@@ -46,24 +46,24 @@ typedef struct view {
 // Renders the plane z = 0 with one material under the given lights, the camera looking at
 // the origin from the angle v.theta, and returns the radiance at the image centre (mean of the
 // 2 x 2 central pixels, which see the plane within ~1e-3 of the origin).
-static void render_centre(rtpbr_context *ctx, test_log *log, const rtpbr_material_desc *material,
-                          const rtpbr_light_desc *lights, uint32_t light_count, view v, float out[3])
+static void render_centre(test_env *env, const rtpbr_material_desc *material, const rtpbr_light_desc *lights,
+                          uint32_t light_count, view v, float out[3])
 {
     float plane[12];
     rtpbr_mesh_desc mesh = test_square_mesh(20.0f, 0.0f, plane);
     rtpbr_camera_desc camera = {.position = {0.0f, -v.height * tanf(v.theta), v.height},
                                 .target = {0.0f, 0.0f, 0.0f}, .yfov = 0.02f, .znear = 0.01f, .zfar = 50.0f};
     rtpbr_gpu_scene *scene = NULL;
-    rtpbr_result res = rtpbr_gpu_scene_create(ctx,
+    rtpbr_result res = rtpbr_gpu_scene_create(env->ctx,
                                               &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
                                                                       .materials = material, .material_count = 1,
                                                                       .lights = lights, .light_count = light_count,
                                                                       .cameras = &camera, .camera_count = 1},
                                               &scene);
-    if (res != RTPBR_SUCCESS) fprintf(stderr, "scene: %s\n", log->last_error);
+    if (res != RTPBR_SUCCESS) fprintf(stderr, "scene: %s\n", env->log.last_error);
     assert_int_equal(res, RTPBR_SUCCESS);
     enum { W = 16, H = 16 };
-    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
+    rtpbr_renderer *r = test_renderer(env->ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     // Culling off: the test lights are meant to be seen whatever their size.
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.light_cull_form_factor = -1.0f}), RTPBR_SUCCESS);
     float px[W * H * 4];
@@ -77,22 +77,23 @@ static void render_centre(rtpbr_context *ctx, test_log *log, const rtpbr_materia
     rtpbr_gpu_scene_destroy(scene);
 }
 
-// A 2000 x 2000 quad at height 0.5 facing down: nearly the whole hemisphere of the origin.
-static rtpbr_light_desc sky_light(void)
+// A 2000 x 2000 quad at height 0.5 facing down: nearly the whole hemisphere of the origin;
+// *ff: its form factor at the origin (Lambert's formula, test_form_factor).
+static rtpbr_light_desc sky_light(double *ff)
 {
-    return (rtpbr_light_desc){
+    rtpbr_light_desc sky = {
         .vertices = {{-1000.0f, -1000.0f, 0.5f}, {-1000.0f, 1000.0f, 0.5f}, {1000.0f, 1000.0f, 0.5f}, {1000.0f, -1000.0f, 0.5f}},
         .vertex_count = 4, .emission = {1.0f, 1.0f, 1.0f}};
+    const double origin[3] = {0.0, 0.0, 0.0}, up[3] = {0.0, 0.0, 1.0};
+    *ff = test_form_factor(origin, up, sky.vertices, 4);
+    return sky;
 }
 
 static void disney_diffuse_albedo(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
-    rtpbr_light_desc sky = sky_light();
-    const double origin[3] = {0.0, 0.0, 0.0}, up[3] = {0.0, 0.0, 1.0};
-    double ff = test_form_factor(origin, up, sky.vertices, 4);
+    test_env *env = *state;
+    double ff;
+    rtpbr_light_desc sky = sky_light(&ff);
     assert_true(ff > 0.999);
     const float roughness[2] = {0.2f, 1.0f};
     const float angles[3] = {0.2f, 1.05f, 1.3f};
@@ -107,8 +108,8 @@ static void disney_diffuse_albedo(void **state)
             black.base_color[0] = black.base_color[1] = black.base_color[2] = 0.0f;
             float lit[3], spec[3];
             view v = {angles[j], 0.3f};
-            render_centre(ctx, &log, &m, &sky, 1, v, lit);
-            render_centre(ctx, &log, &black, &sky, 1, v, spec);
+            render_centre(env, &m, &sky, 1, v, lit);
+            render_centre(env, &black, &sky, 1, v, spec);
             double albedo = burley_albedo(cos(angles[j]), roughness[i]);
             double expect = 0.8 * albedo * ff;
             double got = lit[1] - spec[1];
@@ -123,17 +124,13 @@ static void disney_diffuse_albedo(void **state)
     assert_true(worst < 0.005);
     // The cases must tell Burley's diffuse from Lambert's (albedo 1).
     assert_true(farthest_from_lambert > 0.1);
-    test_context_done(ctx, &log);
 }
 
 static void layered_dielectric_energy(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
-    rtpbr_light_desc sky = sky_light();
-    const double origin[3] = {0.0, 0.0, 0.0}, up[3] = {0.0, 0.0, 1.0};
-    double ff = test_form_factor(origin, up, sky.vertices, 4);
+    test_env *env = *state;
+    double ff;
+    rtpbr_light_desc sky = sky_light(&ff);
     const float roughness[2] = {0.3f, 0.7f};
     const float angles[2] = {0.5f, 1.2f};
     double worst = 0.0;
@@ -141,7 +138,7 @@ static void layered_dielectric_energy(void **state)
         for (int j = 0; j < 2; ++j) {
             rtpbr_material_desc white = {.base_color = {1.0f, 1.0f, 1.0f}, .roughness = roughness[i], .ior = 1.5f};
             float got[3];
-            render_centre(ctx, &log, &white, &sky, 1, (view){angles[j], 0.3f}, got);
+            render_centre(env, &white, &sky, 1, (view){angles[j], 0.3f}, got);
             double rel = fabs(got[1] / ff - 1.0);
             printf("white dielectric over white base, r %.1f view %.2f rad: %.5f (energy 1)\n", (double)roughness[i],
                    (double)angles[j], got[1] / ff);
@@ -152,14 +149,11 @@ static void layered_dielectric_energy(void **state)
     // tables' own error (<= 0.4%, kulla_conty.md). Measured: 0.2% at 0.5 rad, 1.3% at 1.2 rad.
     // An additive model reads >= 1.04 here.
     assert_true(worst < 0.02);
-    test_context_done(ctx, &log);
 }
 
 static void clearcoat_layer(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    test_env *env = *state;
     // A 1 x 1 quad facing down around the mirror direction of the view (y = 1.5 tan 0.8 = 1.55).
     rtpbr_light_desc light = {
         .vertices = {{-0.5f, 1.2f, 1.5f}, {-0.5f, 2.2f, 1.5f}, {0.5f, 2.2f, 1.5f}, {0.5f, 1.2f, 1.5f}},
@@ -175,10 +169,10 @@ static void clearcoat_layer(void **state)
     // A black dielectric of IOR 1.5 (F0 = 0.04) with the coat's roughness: the same lobe.
     rtpbr_material_desc dielectric = {.roughness = 0.3f, .ior = 1.5f};
     float base[3], both[3], coat[3], spec[3];
-    render_centre(ctx, &log, &lambert, &light, 1, v, base);
-    render_centre(ctx, &log, &coated, &light, 1, v, both);
-    render_centre(ctx, &log, &coat_only, &light, 1, v, coat);
-    render_centre(ctx, &log, &dielectric, &light, 1, v, spec);
+    render_centre(env, &lambert, &light, 1, v, base);
+    render_centre(env, &coated, &light, 1, v, both);
+    render_centre(env, &coat_only, &light, 1, v, coat);
+    render_centre(env, &dielectric, &light, 1, v, spec);
     double fc = 0.04 + 0.96 * pow(1.0 - NoV, 5.0); // Schlick 1994
     double expect = (1.0 - fc) * base[1] + coat[1];
     printf("clearcoat: base %.5f, coat %.5f, coated %.5f (expected %.5f), dielectric F0 0.04 %.5f\n", base[1],
@@ -188,7 +182,6 @@ static void clearcoat_layer(void **state)
     // Same single-scattering lobe; the multiple-scattering colours differ by F_avg of Schlick
     // against the exact dielectric (a fraction of a per cent of the lobe).
     assert_true(fabs(coat[1] - spec[1]) < 0.01 * spec[1]);
-    test_context_done(ctx, &log);
 }
 
 // KHR_materials_ior's ior 0 (RTPBR_MATERIAL_FRESNEL_ONE: infinite IOR, Fresnel 1 at every angle):
@@ -196,9 +189,7 @@ static void clearcoat_layer(void **state)
 // roughness, and nothing shows through the layer but what its albedo tables leave (black base).
 static void ior_fresnel_one(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    test_env *env = *state;
     rtpbr_light_desc light = {
         .vertices = {{-0.5f, 1.2f, 1.5f}, {-0.5f, 2.2f, 1.5f}, {0.5f, 2.2f, 1.5f}, {0.5f, 1.2f, 1.5f}},
         .vertex_count = 4, .emission = {2.0f, 2.0f, 2.0f}};
@@ -209,9 +200,9 @@ static void ior_fresnel_one(void **state)
         rtpbr_material_desc metal = {.base_color = {1.0f, 1.0f, 1.0f}, .metallic = 1.0f, .roughness = 0.4f};
         rtpbr_material_desc glass = {.roughness = 0.4f, .ior = 1.5f};
         float a[3], b[3], c[3];
-        render_centre(ctx, &log, &mirror, &light, 1, v, a);
-        render_centre(ctx, &log, &metal, &light, 1, v, b);
-        render_centre(ctx, &log, &glass, &light, 1, v, c);
+        render_centre(env, &mirror, &light, 1, v, a);
+        render_centre(env, &metal, &light, 1, v, b);
+        render_centre(env, &glass, &light, 1, v, c);
         printf("ior 0 (Fresnel 1) %.5f, white metal %.5f, ior 1.5 %.5f at %.2f rad\n", a[1], b[1], c[1],
                (double)angles[j]);
         assert_true(b[1] > 0.05f);
@@ -221,12 +212,11 @@ static void ior_fresnel_one(void **state)
     rtpbr_material_desc invalid = {.roughness = 0.4f, .ior = -2.0f};
     rtpbr_gpu_scene *scene = NULL;
     rtpbr_mesh_desc mesh = {.positions = (const float[9]){0, 0, 0, 1, 0, 0, 0, 1, 0}, .vertex_count = 3};
-    assert_int_equal(rtpbr_gpu_scene_create(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
-                                                                         .materials = &invalid, .material_count = 1},
+    assert_int_equal(rtpbr_gpu_scene_create(env->ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+                                                                              .materials = &invalid, .material_count = 1},
                                             &scene),
                      RTPBR_ERROR_INVALID_ARGUMENT);
-    assert_non_null(strstr(log.last_error, "ior"));
-    test_context_done(ctx, &log);
+    assert_non_null(strstr(env->log.last_error, "ior"));
 }
 
 // KHR sheen over a black base under the near-hemisphere light reads the lobe's directional
@@ -250,12 +240,9 @@ static double sheen_albedo(double mu, double r)
 
 static void sheen_albedo_check(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
-    rtpbr_light_desc sky = sky_light();
-    const double origin[3] = {0.0, 0.0, 0.0}, up[3] = {0.0, 0.0, 1.0};
-    double ff = test_form_factor(origin, up, sky.vertices, 4);
+    test_env *env = *state;
+    double ff;
+    rtpbr_light_desc sky = sky_light(&ff);
     const float roughness[2] = {0.5f, 1.0f};
     const float angles[2] = {0.3f, 1.1f};
     double worst = 0.0;
@@ -264,7 +251,7 @@ static void sheen_albedo_check(void **state)
             rtpbr_material_desc m = {.roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR, .sheen_color = {1.0f, 0.5f, 0.25f},
                                      .sheen_roughness = roughness[i]};
             float got[3];
-            render_centre(ctx, &log, &m, &sky, 1, (view){angles[j], 0.3f}, got);
+            render_centre(env, &m, &sky, 1, (view){angles[j], 0.3f}, got);
             double albedo = sheen_albedo(cos(angles[j]), roughness[i]);
             for (int c = 0; c < 3; ++c) {
                 double expect = m.sheen_color[c] * albedo * ff;
@@ -275,17 +262,10 @@ static void sheen_albedo_check(void **state)
                    (double)angles[j], got[0], albedo * ff);
         }
     assert_true(worst < 0.02);
-    test_context_done(ctx, &log);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(disney_diffuse_albedo),
-        cmocka_unit_test(layered_dielectric_energy),
-        cmocka_unit_test(clearcoat_layer),
-        cmocka_unit_test(sheen_albedo_check),
-        cmocka_unit_test(ior_fresnel_one),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(test_env_case(disney_diffuse_albedo),
+                test_env_case(layered_dielectric_energy),
+                test_env_case(clearcoat_layer),
+                test_env_case(sheen_albedo_check),
+                test_env_case(ior_fresnel_one))

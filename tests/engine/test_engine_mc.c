@@ -23,9 +23,7 @@
 // The scene of test_engine_lambert.c (test_lambert_scene).
 static void mc_lambertian_plane(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     test_lambert_scene ls;
     rtpbr_gpu_scene *scene = test_lambert_scene_create(ctx, &ls);
     enum { W = 120, H = 90, SAMPLES = 256 };
@@ -77,7 +75,6 @@ static void mc_lambertian_plane(void **state)
     free(b);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
 }
 
 // Glossy planes under a square light, seen at about 40 degrees: the mean over the image of
@@ -88,9 +85,7 @@ static void mc_lambertian_plane(void **state)
 // engine's other lobes (Kulla-Conty, the layered dielectric, clearcoat, Disney).
 static void mc_glossy_mean(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     float plane[12];
     rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
     rtpbr_light_desc light = {.vertices = {{-0.6f, 0.2f, 1.5f}, {-0.6f, 1.2f, 1.5f}, {0.6f, 1.2f, 1.5f}, {0.6f, 0.2f, 1.5f}},
@@ -159,7 +154,6 @@ static void mc_glossy_mean(void **state)
         rtpbr_gpu_scene_destroy(scene);
     }
     rtpbr_renderer_destroy(r);
-    test_context_done(ctx, &log);
 }
 
 // Errors: more samples than the documented limit are refused, and the renderer still works.
@@ -297,18 +291,16 @@ static void ltc_streak_floor(void **state)
 
 static void mc_limits(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    test_env *env = *state;
+    rtpbr_context *ctx = env->ctx;
     rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){0});
     rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 8, .height = 8});
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.mc_samples = RTPBR_MAX_MC_SAMPLES + 1}),
                      RTPBR_ERROR_LIMIT_EXCEEDED);
-    assert_true(log.errors > 0);
+    assert_true(env->log.errors > 0);
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.mc_samples = 1}), RTPBR_SUCCESS);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
 }
 
 // The image means of the Lambertian plane z = 0 under `lights`: Lambert's closed form (albedo
@@ -349,9 +341,7 @@ static double image_mean(const float *px, int w, int h)
 // samples, and, Lambertian, as the closed form.
 static void mc_max_samples(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     float plane[12];
     rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
     rtpbr_light_desc light = {.vertices = {{-0.6f, -0.5f, 1.2f}, {-0.6f, 0.7f, 1.5f}, {0.6f, 0.7f, 1.5f}, {0.6f, -0.5f, 1.2f}},
@@ -387,7 +377,6 @@ static void mc_max_samples(void **state)
         rtpbr_gpu_scene_destroy(scene);
     }
     rtpbr_renderer_destroy(r);
-    test_context_done(ctx, &log);
 }
 
 // 64 small octagons facing down over the Lambertian plane, 1024 samples: a few loop
@@ -396,9 +385,7 @@ static void mc_max_samples(void **state)
 // The image mean is the closed form's.
 static void mc_many_lights(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     float plane[12];
     rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
     const rtpbr_material_desc material = test_lambert_material;
@@ -425,7 +412,6 @@ static void mc_many_lights(void **state)
     free(px);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
 }
 
 // The LTC pass under the same budget at its limits: RTPBR_MAX_LIGHTS identical octagons (the
@@ -434,9 +420,7 @@ static void mc_many_lights(void **state)
 // RTPBR_MAX_LIGHTS times the emission: the same image (a loop cut short would drop lights).
 static void ltc_max_lights(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     float plane[12];
     rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
     const rtpbr_material_desc materials[2] = {
@@ -492,20 +476,13 @@ static void ltc_max_lights(void **state)
         free(px[1]);
     }
     rtpbr_renderer_destroy(r);
-    test_context_done(ctx, &log);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(mc_lambertian_plane),
-        cmocka_unit_test(mc_glossy_mean),
-        cmocka_unit_test(mc_limits),
-        cmocka_unit_test(mc_max_samples),
-        cmocka_unit_test(mc_many_lights),
-        cmocka_unit_test(ltc_max_lights),
-        cmocka_unit_test(ltc_far_floor),
-        cmocka_unit_test(ltc_streak_floor),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(test_env_case(mc_lambertian_plane),
+                test_env_case(mc_glossy_mean),
+                test_env_case(mc_limits),
+                test_env_case(mc_max_samples),
+                test_env_case(mc_many_lights),
+                test_env_case(ltc_max_lights),
+                cmocka_unit_test(ltc_far_floor),
+                cmocka_unit_test(ltc_streak_floor))

@@ -11,9 +11,8 @@
 // the square's image, the background outside. Also checks the camera geometry pixel by pixel.
 static void render_emissive_square(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    test_env *env = *state;
+    rtpbr_context *ctx = env->ctx;
     float positions[12];
     rtpbr_material_desc material = {.emission = {2.0f, 1.0f, 0.5f}};
     rtpbr_mesh_desc mesh = test_square_mesh(1.0f, 0.0f, positions);
@@ -88,16 +87,13 @@ static void render_emissive_square(void **state)
     free(display);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
-    assert_int_equal(log.errors, 0);
+    env->no_errors = true;
 }
 
 // A nearer opaque surface hides a farther one (depth test), whatever the draw order.
 static void depth_order(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     float near_square[12], far_square[12];
     square_positions(0.5f, 0.5f, near_square);
     square_positions(3.0f, -0.5f, far_square);
@@ -120,16 +116,13 @@ static void depth_order(void **state)
     assert_float_equal(corner[1], 1.0f, 0.0f);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
 }
 
 // Emission is one-sided unless the material is double-sided; a single-sided surface seen from
 // behind is not drawn (glTF doubleSided false), a double-sided one reflects on both sides.
 static void emission_sides(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     float positions[12];
     square_positions(1.0f, 0.0f, positions); // front faces +Z
     rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 16, .height = 16});
@@ -162,7 +155,6 @@ static void emission_sides(void **state)
         rtpbr_gpu_scene_destroy(scene);
     }
     rtpbr_renderer_destroy(r);
-    test_context_done(ctx, &log);
 }
 
 // An sRGB emission texture on the square: at the centre of each quadrant (one colour each)
@@ -175,9 +167,7 @@ static double srgb_decode(int v)
 
 static void emission_texture(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     float positions[12];
     square_positions(1.0f, 0.0f, positions);
     // uv = ((x + 1) / 2, (1 - y) / 2): texel row 0 is the top (+Y) of the square.
@@ -225,7 +215,6 @@ static void emission_texture(void **state)
     free(px);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
 }
 
 // A host allocator that counts the library's live blocks and bytes (a size header in front).
@@ -317,9 +306,7 @@ static void lifecycle(void **state)
 // rtpbr_record into the host's own UNORM image gives the display image of rtpbr_render.
 static void record_into_host_image(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     rtpbr_vulkan_device vk = rtpbr_context_vulkan_device(ctx);
     float positions[12];
     rtpbr_material_desc material = {.emission = {0.2f, 0.6f, 3.0f}};
@@ -386,13 +373,7 @@ static void record_into_host_image(void **state)
     assert_int_equal(rtpbr_record(r, scene, &(rtpbr_render_desc){0}, &target), RTPBR_SUCCESS);
     VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {S, S, 1}};
     vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
-    VkMemoryBarrier to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER, .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
-                               .dstAccessMask = VK_ACCESS_HOST_READ_BIT};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, NULL, 0, NULL);
-    assert_int_equal(vkEndCommandBuffer(cmd), VK_SUCCESS);
-    VkSubmitInfo submit = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
-    assert_int_equal(vkQueueSubmit(vk.queue, 1, &submit, fence), VK_SUCCESS);
-    assert_int_equal(vkWaitForFences(dev, 1, &fence, VK_TRUE, UINT64_MAX), VK_SUCCESS);
+    test_submit_for_host(dev, vk.queue, cmd, fence);
     void *mapped;
     assert_int_equal(vkMapMemory(dev, buffer_memory, 0, VK_WHOLE_SIZE, 0, &mapped), VK_SUCCESS);
     test_device_output(mapped, S * S * 4);
@@ -409,21 +390,18 @@ static void record_into_host_image(void **state)
     vkFreeMemory(dev, image_memory, NULL);
     rtpbr_renderer_destroy(r);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
 }
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(render_emissive_square),
-        cmocka_unit_test(depth_order),
-        cmocka_unit_test(emission_sides),
-        cmocka_unit_test(emission_texture),
-        cmocka_unit_test(record_into_host_image),
-        cmocka_unit_test(lifecycle),
-    };
     // RTPBR_TEST_FILTER="depth_order" runs only the tests whose names match (cmocka pattern).
     const char *filter = getenv("RTPBR_TEST_FILTER");
     if (filter && *filter) cmocka_set_test_filter(filter);
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    RTPBR_RUN_TESTS(NULL, NULL,
+                    test_env_case(render_emissive_square),
+                    test_env_case(depth_order),
+                    test_env_case(emission_sides),
+                    test_env_case(emission_texture),
+                    test_env_case(record_into_host_image),
+                    cmocka_unit_test(lifecycle));
 }

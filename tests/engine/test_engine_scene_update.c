@@ -205,13 +205,7 @@ static void renderer_timings(void **state)
     fixture_finish(&f);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(set_material_matches_create),
-        cmocka_unit_test(set_transform_matches_create),
-        cmocka_unit_test(bad_edits_are_refused),
-        cmocka_unit_test(renderer_timings),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(set_material_matches_create),
+                cmocka_unit_test(set_transform_matches_create),
+                cmocka_unit_test(bad_edits_are_refused),
+                cmocka_unit_test(renderer_timings))

@@ -406,12 +406,10 @@ static void khr_materials_lights_add_up(void **state)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(bad_shadow_settings),
-        cmocka_unit_test(shadows_off_unchanged),
-        cmocka_unit_test(penumbra_closed_form),
-        cmocka_unit_test(khr_materials_shadows_only_darken),
-        cmocka_unit_test(khr_materials_lights_add_up),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    RTPBR_RUN_TESTS(setup, teardown,
+                    cmocka_unit_test(bad_shadow_settings),
+                    cmocka_unit_test(shadows_off_unchanged),
+                    cmocka_unit_test(penumbra_closed_form),
+                    cmocka_unit_test(khr_materials_shadows_only_darken),
+                    cmocka_unit_test(khr_materials_lights_add_up));
 }

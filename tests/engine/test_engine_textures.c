@@ -5,12 +5,11 @@
 // tests/common/texture_scenes.h (also rendered by the oracle in tests/oracle); expectations in
 // closed form. A textured Lambertian quad in a white furnace: radiance = base colour.
 #define _DEFAULT_SOURCE // mkstemps
-#include "engine_test.h"
+#include "engine_gltf_file.h"
 
 #include "texture_scenes.h"
 
 #include <stdlib.h>
-#include <unistd.h>
 
 enum { N = 48 }; // image side
 
@@ -21,28 +20,17 @@ typedef struct rendered {
     float px[N * N * 4];
 } rendered;
 
+static int write_texture_scene(const void *user, const char *path)
+{
+    return texture_scene_write(user, path);
+}
+
 // Writes the scene to a temporary file, loads it through the glTF loader and renders it with
 // the desc.
 static void render_scene_with(const texture_scene *s, const rtpbr_render_desc *desc, rendered *out)
 {
-    char path[] = "/tmp/rtpbr-texture-scene-XXXXXX.gltf";
-    int fd = mkstemps(path, 5);
-    assert_true(fd >= 0);
-    close(fd);
-    assert_int_equal(texture_scene_write(s, path), 0);
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
-    rtpbr_gpu_scene *scene = NULL;
-    rtpbr_result r = rtpbr_gpu_scene_load_gltf(ctx, path, &scene);
-    unlink(path);
-    if (r != RTPBR_SUCCESS) fprintf(stderr, "load: %s\n", log.last_error);
-    assert_int_equal(r, RTPBR_SUCCESS);
-    rtpbr_renderer *renderer = test_renderer(ctx, &(rtpbr_renderer_desc){.width = N, .height = N});
-    assert_int_equal(rtpbr_render(renderer, scene, desc), RTPBR_SUCCESS);
-    assert_int_equal(test_read_radiance(renderer, out->px, sizeof out->px), RTPBR_SUCCESS);
-    rtpbr_renderer_destroy(renderer);
-    rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
+    test_render_gltf(write_texture_scene, s, &(rtpbr_renderer_desc){.width = N, .height = N}, desc, out->px,
+                     sizeof out->px);
 }
 
 static void render_scene(const texture_scene *s, rendered *out)
@@ -123,11 +111,7 @@ static void test_texture_transform(void **state)
     (void)state;
     uint8_t texels[64]; // 16 distinct colours
     texture_scene_distinct_texels(texels);
-    texture_scene s = {
-        .texture_width = 4, .texture_height = 4, .rgba = texels, .wrap_s = 10497, .wrap_t = 10497,
-        .mag_filter = 9728, .min_filter = 9728, .uv_min = {0.0f, 0.0f}, .uv_max = {1.0f, 1.0f},
-        .has_transform = 1, .offset = {0.3f, -0.2f}, .rotation = 0.5f, .scale = {1.5f, 0.75f}, .texcoord = 1,
-    };
+    texture_scene s = texture_scene_transformed_quad(texels);
     rendered *img = malloc(sizeof *img);
     render_scene(&s, img);
     int checked = 0;
@@ -151,11 +135,8 @@ static void test_texture_transform(void **state)
 static void test_single_sided_back_face(void **state)
 {
     (void)state;
-    static const uint8_t red[4] = {255, 0, 0, 255};
-    texture_scene s = {
-        .texture_width = 1, .texture_height = 1, .rgba = red, .wrap_s = 10497, .wrap_t = 10497,
-        .uv_min = {0.0f, 0.0f}, .uv_max = {1.0f, 1.0f}, .facing_away = 1, .texcoord = -1,
-    };
+    texture_scene s = texture_scene_red_quad();
+    s.facing_away = 1;
     rendered *img = malloc(sizeof *img);
     render_scene(&s, img);
     // The emissive box (radiance 1, plus what its black dielectric faces reflect of each other).
@@ -310,14 +291,12 @@ static void test_extension_textures_mc(void **state)
         check_extension_case(&extension_cases[i], &(rtpbr_render_desc){.mc_samples = 16, .mc_seed = 7}, "Monte Carlo");
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_wrap_repeat),       cmocka_unit_test(test_wrap_clamp),
-        cmocka_unit_test(test_wrap_mirror),       cmocka_unit_test(test_wrap_per_axis),
-        cmocka_unit_test(test_texture_transform), cmocka_unit_test(test_single_sided_back_face),
-        cmocka_unit_test(test_mipmaps_average),   cmocka_unit_test(test_extension_textures),
-        cmocka_unit_test(test_extension_textures_mc),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_wrap_repeat),
+                cmocka_unit_test(test_wrap_clamp),
+                cmocka_unit_test(test_wrap_mirror),
+                cmocka_unit_test(test_wrap_per_axis),
+                cmocka_unit_test(test_texture_transform),
+                cmocka_unit_test(test_single_sided_back_face),
+                cmocka_unit_test(test_mipmaps_average),
+                cmocka_unit_test(test_extension_textures),
+                cmocka_unit_test(test_extension_textures_mc))

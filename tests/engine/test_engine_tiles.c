@@ -51,9 +51,7 @@ static float *render(rtpbr_context *ctx, bool with_quad)
 
 static void full_tiles_shade_basic_materials_alike(void **state)
 {
-    (void)state;
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    rtpbr_context *ctx = test_env_context(state);
     float *plain = render(ctx, false), *mixed = render(ctx, true);
 
     // Where the quad is, from the camera (test_plane_point, independent of the engine): its
@@ -90,13 +88,6 @@ static void full_tiles_shade_basic_materials_alike(void **state)
     assert_true(worst < 1e-5);
     free(plain);
     free(mixed);
-    test_context_done(ctx, &log);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(full_tiles_shade_basic_materials_alike),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(test_env_case(full_tiles_shade_basic_materials_alike))

@@ -15,7 +15,7 @@
 #include <cstdarg>
 #include <cstddef>
 extern "C" {
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 using namespace rtpbr;
@@ -518,24 +518,19 @@ void test_srgb_transfer(void**) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_identical_is_zero),
-        cmocka_unit_test(test_uniform_colour_pipeline_by_hand),
-        cmocka_unit_test(test_feature_step_edge_by_hand),
-        cmocka_unit_test(test_feature_point_by_hand),
-        cmocka_unit_test(test_features_amplify_colour_error),
-        cmocka_unit_test(test_monotonic_in_offset),
-        cmocka_unit_test(test_monotonic_in_noise_amplitude),
-        cmocka_unit_test(test_uniform_difference_size_independent),
-        cmocka_unit_test(test_centred_feature_scaling),
-        cmocka_unit_test(test_hdr_exposures),
-        cmocka_unit_test(test_hdr_uniform_by_hand),
-        cmocka_unit_test(test_hdr_is_max_over_exposures),
-        cmocka_unit_test(test_matches_published_implementation),
-        cmocka_unit_test(test_bad_input),
-        cmocka_unit_test(test_stats),
-        cmocka_unit_test(test_srgb_transfer),
-    };
-    return cmocka_run_group_tests(tests, nullptr, nullptr);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_identical_is_zero),
+                cmocka_unit_test(test_uniform_colour_pipeline_by_hand),
+                cmocka_unit_test(test_feature_step_edge_by_hand),
+                cmocka_unit_test(test_feature_point_by_hand),
+                cmocka_unit_test(test_features_amplify_colour_error),
+                cmocka_unit_test(test_monotonic_in_offset),
+                cmocka_unit_test(test_monotonic_in_noise_amplitude),
+                cmocka_unit_test(test_uniform_difference_size_independent),
+                cmocka_unit_test(test_centred_feature_scaling),
+                cmocka_unit_test(test_hdr_exposures),
+                cmocka_unit_test(test_hdr_uniform_by_hand),
+                cmocka_unit_test(test_hdr_is_max_over_exposures),
+                cmocka_unit_test(test_matches_published_implementation),
+                cmocka_unit_test(test_bad_input),
+                cmocka_unit_test(test_stats),
+                cmocka_unit_test(test_srgb_transfer))

@@ -25,13 +25,7 @@ void test_mask_cutout(void **) {
             uint8_t *p = t + 4 * (4 * y + x);
             p[0] = 255, p[1] = 0, p[2] = 0, p[3] = (x + y) % 2 ? 128 : 255;
         }
-    texture_scene s{};
-    s.texture_width = s.texture_height = 4;
-    s.rgba = t;
-    s.wrap_s = s.wrap_t = 33071;
-    s.mag_filter = s.min_filter = 9728;
-    s.uv_max[0] = s.uv_max[1] = 1.0f;
-    s.texcoord = -1;
+    texture_scene s = texture_scene_quad(4, 4, t, 33071, 9728);
     s.alpha_mode = 1;
     s.base_alpha = 0.8f;
     s.alpha_cutoff = 0.5f;
@@ -68,13 +62,7 @@ void test_mask_cutout(void **) {
 // BLEND: the red quad at alpha 0.5 over the box (emission 1): the image's mean is
 // 0.5 (1, 0, 0) + 0.5 (1, 1, 1); each pixel within its noise.
 void test_blend_half(void **) {
-    static const uint8_t red[4] = {255, 0, 0, 255};
-    texture_scene s{};
-    s.texture_width = s.texture_height = 1;
-    s.rgba = red;
-    s.wrap_s = s.wrap_t = 10497;
-    s.uv_max[0] = s.uv_max[1] = 1.0f;
-    s.texcoord = -1;
+    texture_scene s = texture_scene_red_quad();
     s.alpha_mode = 2;
     s.base_alpha = 0.5f;
     std::vector<float> rgb = renderFile([&](const char *path) { return texture_scene_write(&s, path); }, 256, false);
@@ -130,11 +118,6 @@ void test_mask_shadow(void **) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_mask_cutout),
-        cmocka_unit_test(test_blend_half),
-        cmocka_unit_test(test_mask_shadow),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_mask_cutout),
+                cmocka_unit_test(test_blend_half),
+                cmocka_unit_test(test_mask_shadow))

@@ -23,30 +23,6 @@ SurfaceMaterial mat(vec3 base, float metallic, float alpha, float clearcoat, flo
     return m;
 }
 
-void checkAlbedo(const SurfaceMaterial &m, bool single, vec3 wo, uint64_t seed) {
-    Bsdf bsdf(m, single, wo);
-    Rng rng(seed, 1);
-    MeanEstimator bySampling[3], byEval[3];
-    for (int i = 0; i < 100000; i++) {
-        BsdfSample s;
-        vec3 w = bsdf.sample(rng, &s) ? s.weight : vec3(0.0f);
-        for (int c = 0; c < 3; c++)
-            bySampling[c].add(w[c]);
-    }
-    float lobeAlpha = m.clearcoat > 0.0f ? m.clearcoatAlpha : m.alphaX;
-    Mixture mix{std::max(lobeAlpha, 0.05f), wo};
-    for (int i = 0; i < 100000; i++) {
-        vec3 wi = mix.sample(rng);
-        float p = mix.pdf(wi);
-        vec3 f = p > 0.0f ? bsdf.eval(wi, rng) / p : vec3(0.0f);
-        for (int c = 0; c < 3; c++)
-            byEval[c].add(f[c]);
-    }
-    for (int c = 0; c < 3; c++)
-        EXPECT_AGREE(bySampling[c].mean(), bySampling[c].stderror(), byEval[c].mean(), byEval[c].stderror(), 4.0,
-                     2e-3);
-}
-
 void test_sampling_matches_evaluation(void **) {
     const SurfaceMaterial mats[] = {
         mat(vec3(0.9f, 0.6f, 0.3f), 1.0f, 0.3f, 0.0f, 0.01f),  // metal
@@ -149,12 +125,7 @@ void test_disney(void **) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sampling_matches_evaluation),
-        cmocka_unit_test(test_single_scatter_is_closed_form),
-        cmocka_unit_test(test_white_dielectric_over_diffuse_furnace),
-        cmocka_unit_test(test_disney),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_sampling_matches_evaluation),
+                cmocka_unit_test(test_single_scatter_is_closed_form),
+                cmocka_unit_test(test_white_dielectric_over_diffuse_furnace),
+                cmocka_unit_test(test_disney))

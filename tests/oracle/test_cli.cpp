@@ -342,14 +342,17 @@ int main(int argc, char **argv) {
         return 2;
     }
     gOracleExe = argv[1];
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_good_scene_renders), cmocka_unit_test(test_cli_split_and_merge),
-        cmocka_unit_test(test_missing_buffer),
-        cmocka_unit_test(test_short_buffer),       cmocka_unit_test(test_nan_vertex),
-        cmocka_unit_test(test_no_camera),          cmocka_unit_test(test_no_lights),
-        cmocka_unit_test(test_not_gltf),           cmocka_unit_test(test_hand_built_bad_scenes),
-        cmocka_unit_test(test_absurd_extent),      cmocka_unit_test(test_hidden_node),
-        cmocka_unit_test(test_merge_and_memory),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    RTPBR_RUN_TESTS(NULL, NULL,
+                    cmocka_unit_test(test_good_scene_renders),
+                    cmocka_unit_test(test_cli_split_and_merge),
+                    cmocka_unit_test(test_missing_buffer),
+                    cmocka_unit_test(test_short_buffer),
+                    cmocka_unit_test(test_nan_vertex),
+                    cmocka_unit_test(test_no_camera),
+                    cmocka_unit_test(test_no_lights),
+                    cmocka_unit_test(test_not_gltf),
+                    cmocka_unit_test(test_hand_built_bad_scenes),
+                    cmocka_unit_test(test_absurd_extent),
+                    cmocka_unit_test(test_hidden_node),
+                    cmocka_unit_test(test_merge_and_memory));
 }

@@ -13,7 +13,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 extern "C" {
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 #include <cmath>

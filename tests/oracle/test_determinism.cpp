@@ -198,12 +198,7 @@ void test_bad_settings_are_refused(void **) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_threads_do_not_change_the_image),
-        cmocka_unit_test(test_sample_ranges_and_regions_merge_exactly),
-        cmocka_unit_test(test_incompatible_accumulators_are_refused),
-        cmocka_unit_test(test_bad_settings_are_refused),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_threads_do_not_change_the_image),
+                cmocka_unit_test(test_sample_ranges_and_regions_merge_exactly),
+                cmocka_unit_test(test_incompatible_accumulators_are_refused),
+                cmocka_unit_test(test_bad_settings_are_refused))

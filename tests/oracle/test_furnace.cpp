@@ -138,12 +138,10 @@ void test_furnace_single_10(void **) { run(1.0f, true); }
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_furnace_multi_01),  cmocka_unit_test(test_furnace_multi_05),
-        cmocka_unit_test(test_furnace_multi_10),  cmocka_unit_test(test_furnace_multi_anisotropic),
-        cmocka_unit_test(test_furnace_single_01),
-        cmocka_unit_test(test_furnace_single_05), cmocka_unit_test(test_furnace_single_10),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_furnace_multi_01),
+                cmocka_unit_test(test_furnace_multi_05),
+                cmocka_unit_test(test_furnace_multi_10),
+                cmocka_unit_test(test_furnace_multi_anisotropic),
+                cmocka_unit_test(test_furnace_single_01),
+                cmocka_unit_test(test_furnace_single_05),
+                cmocka_unit_test(test_furnace_single_10))

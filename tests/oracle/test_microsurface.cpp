@@ -288,16 +288,11 @@ void test_dielectric_reciprocity(void **) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_first_order_is_single_scattering),
-        cmocka_unit_test(test_conductor_white_furnace),
-        cmocka_unit_test(test_conductor_sampling_matches_evaluation_albedo),
-        cmocka_unit_test(test_conductor_sampling_histogram),
-        cmocka_unit_test(test_conductor_reciprocity),
-        cmocka_unit_test(test_visible_normals_from_below),
-        cmocka_unit_test(test_dielectric_energy_and_sampling),
-        cmocka_unit_test(test_dielectric_reciprocity),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_first_order_is_single_scattering),
+                cmocka_unit_test(test_conductor_white_furnace),
+                cmocka_unit_test(test_conductor_sampling_matches_evaluation_albedo),
+                cmocka_unit_test(test_conductor_sampling_histogram),
+                cmocka_unit_test(test_conductor_reciprocity),
+                cmocka_unit_test(test_visible_normals_from_below),
+                cmocka_unit_test(test_dielectric_energy_and_sampling),
+                cmocka_unit_test(test_dielectric_reciprocity))

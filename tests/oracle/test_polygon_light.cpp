@@ -153,12 +153,7 @@ void test_polygon_light_occluder_casts_shadow(void **) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_polygon_light_solid_angle_sampling),
-        cmocka_unit_test(test_polygon_light_direct_only),
-        cmocka_unit_test(test_polygon_light_no_shadows_ignores_occluder),
-        cmocka_unit_test(test_polygon_light_occluder_casts_shadow),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_polygon_light_solid_angle_sampling),
+                cmocka_unit_test(test_polygon_light_direct_only),
+                cmocka_unit_test(test_polygon_light_no_shadows_ignores_occluder),
+                cmocka_unit_test(test_polygon_light_occluder_casts_shadow))

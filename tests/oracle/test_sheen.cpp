@@ -110,28 +110,7 @@ void test_sampling_matches_evaluation(void **) {
                 m.clearcoatAlpha = 0.05f;
                 m.sheenColor = c.sheen;
                 m.sheenRoughness = c.sheenRoughness;
-                Bsdf bsdf(m, single, wo);
-                Rng rng(seed++, 1);
-                MeanEstimator bySampling[3], byEval[3];
-                for (int i = 0; i < 100000; i++) {
-                    BsdfSample s;
-                    vec3 w = bsdf.sample(rng, &s) ? s.weight : vec3(0.0f);
-                    for (int k = 0; k < 3; k++)
-                        bySampling[k].add(w[k]);
-                    if (bsdf.sample(rng, &s))
-                        assert_true(s.pdfMis > 0.0f && std::isfinite(s.pdfMis));
-                }
-                Mixture mix{std::max(c.clearcoat > 0.0f ? 0.05f : c.alpha, 0.05f), wo};
-                for (int i = 0; i < 100000; i++) {
-                    vec3 wi = mix.sample(rng);
-                    float p = mix.pdf(wi);
-                    vec3 f = p > 0.0f ? bsdf.eval(wi, rng) / p : vec3(0.0f);
-                    for (int k = 0; k < 3; k++)
-                        byEval[k].add(f[k]);
-                }
-                for (int k = 0; k < 3; k++)
-                    EXPECT_AGREE(bySampling[k].mean(), bySampling[k].stderror(), byEval[k].mean(), byEval[k].stderror(),
-                                 4.0, 2e-3);
+                checkAlbedo(m, single, wo, seed++, true);
             }
 }
 
@@ -158,12 +137,7 @@ void test_zero_sheen_is_unchanged(void **) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_black_base_albedo_is_table),
-        cmocka_unit_test(test_white_base_conserves_energy),
-        cmocka_unit_test(test_sampling_matches_evaluation),
-        cmocka_unit_test(test_zero_sheen_is_unchanged),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_black_base_albedo_is_table),
+                cmocka_unit_test(test_white_base_conserves_energy),
+                cmocka_unit_test(test_sampling_matches_evaluation),
+                cmocka_unit_test(test_zero_sheen_is_unchanged))

@@ -72,19 +72,7 @@ void test_wrap_modes(void **) {
 void test_texture_transform(void **) {
     uint8_t texels[64]; // 16 distinct colours
     texture_scene_distinct_texels(texels);
-    texture_scene s{};
-    s.texture_width = s.texture_height = 4;
-    s.rgba = texels;
-    s.wrap_s = s.wrap_t = 10497;
-    s.mag_filter = s.min_filter = 9728;
-    s.uv_max[0] = s.uv_max[1] = 1.0f;
-    s.has_transform = 1;
-    s.offset[0] = 0.3f;
-    s.offset[1] = -0.2f;
-    s.rotation = 0.5f;
-    s.scale[0] = 1.5f;
-    s.scale[1] = 0.75f;
-    s.texcoord = 1; // TEXCOORD_0 is all zero
+    texture_scene s = texture_scene_transformed_quad(texels);
     std::vector<float> rgb = renderScene(s);
     int checked = 0;
     for (uint32_t py = 0; py < kN; py++)
@@ -107,14 +95,8 @@ void test_texture_transform(void **) {
 // A single-sided quad seen from behind is not hit: the white box (radiance 1) shows through;
 // double-sided, the red quad is seen.
 void test_single_sided_back_face(void **) {
-    static const uint8_t red[4] = {255, 0, 0, 255};
-    texture_scene s{};
-    s.texture_width = s.texture_height = 1;
-    s.rgba = red;
-    s.wrap_s = s.wrap_t = 10497;
-    s.uv_max[0] = s.uv_max[1] = 1.0f;
+    texture_scene s = texture_scene_red_quad();
     s.facing_away = 1;
-    s.texcoord = -1;
     std::vector<float> rgb = renderScene(s);
     for (uint32_t i = 0; i < kN * kN; i++) // radiance 1 plus what the black dielectric box reflects
         for (int c = 0; c < 3; c++)
@@ -130,11 +112,6 @@ void test_single_sided_back_face(void **) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_wrap_modes),
-        cmocka_unit_test(test_texture_transform),
-        cmocka_unit_test(test_single_sided_back_face),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_wrap_modes),
+                cmocka_unit_test(test_texture_transform),
+                cmocka_unit_test(test_single_sided_back_face))

@@ -65,7 +65,4 @@ void test_base_color_texture(void **) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_base_color_texture)};
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_base_color_texture))

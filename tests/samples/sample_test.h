@@ -1,5 +1,5 @@
 // Shared helpers of the sample tests that run a program (rtpbr-embed, rtpbr-render, the viewer
-// under xvfb-run) and read back the PNG it wrote. Include after <cmocka.h>.
+// under xvfb-run) and read back the PNG it wrote. Include after test_main.h.
 #ifndef RTPBR_SAMPLE_TEST_H
 #define RTPBR_SAMPLE_TEST_H
 
@@ -34,5 +34,18 @@ static inline unsigned char *sample_load_rgba(const char *path, int w, int h)
     assert_int_equal(height, h);
     return p;
 }
+
+// main() of a sample test whose one test reads `count` arguments (programs, scene, output
+// folder) from `args` (args[1] to args[count]); another count prints the usage line and exits 2.
+#define SAMPLE_TEST_MAIN(args, count, usage, test)                                                 \
+    int main(int argc, char **argv)                                                                \
+    {                                                                                              \
+        if (argc != (count) + 1) {                                                                 \
+            fprintf(stderr, "usage: %s %s\n", argv[0], usage);                                     \
+            return 2;                                                                              \
+        }                                                                                          \
+        args = argv;                                                                               \
+        RTPBR_RUN_TESTS(NULL, NULL, cmocka_unit_test(test));                                       \
+    }
 
 #endif

@@ -12,7 +12,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
-#include <cmocka.h>
+#include "test_main.h"
 
 #include "sample_test.h"
 #include <math.h>
@@ -103,6 +103,5 @@ int main(int argc, char **argv)
     }
     png_path = argv[1];
     command = argv + 2;
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_run_and_check)};
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    RTPBR_RUN_TESTS(NULL, NULL, cmocka_unit_test(test_run_and_check));
 }

@@ -5,7 +5,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
-#include <cmocka.h>
+#include "test_main.h"
 #include <math.h>
 
 #include "scene_edit.h"
@@ -158,14 +158,8 @@ static void test_showcase(void **state)
     viewer_scene_destroy(&s);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_vertex_count),
-        cmocka_unit_test(test_rotate_scale_translate),
-        cmocka_unit_test(test_tracked_transform),
-        cmocka_unit_test(test_load_quad_light),
-        cmocka_unit_test(test_showcase),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_vertex_count),
+                cmocka_unit_test(test_rotate_scale_translate),
+                cmocka_unit_test(test_tracked_transform),
+                cmocka_unit_test(test_load_quad_light),
+                cmocka_unit_test(test_showcase))

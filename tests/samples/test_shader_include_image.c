@@ -561,6 +561,5 @@ static void sample_equals_engine(void **state)
 int main(int argc, char **argv)
 {
     output_dir = argc > 1 ? argv[1] : ".";
-    const struct CMUnitTest tests[] = {cmocka_unit_test(sample_equals_engine)};
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    RTPBR_RUN_TESTS(NULL, NULL, cmocka_unit_test(sample_equals_engine));
 }

@@ -7,7 +7,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
-#include <cmocka.h>
+#include "test_main.h"
 
 #include "sample_test.h"
 #include <stb_image.h>
@@ -69,13 +69,4 @@ static void test_split_view(void **state)
     stbi_image_free(viewer);
 }
 
-int main(int argc, char **argv)
-{
-    if (argc != 6) {
-        fprintf(stderr, "usage: test_split_view RTPBR_RENDER RTPBR_VIEWER XVFB_RUN SCENE OUTDIR\n");
-        return 2;
-    }
-    args = argv;
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_split_view)};
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SAMPLE_TEST_MAIN(args, 5, "RTPBR_RENDER RTPBR_VIEWER XVFB_RUN SCENE OUTDIR", test_split_view)

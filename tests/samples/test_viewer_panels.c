@@ -7,7 +7,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
-#include <cmocka.h>
+#include "test_main.h"
 
 #include "sample_test.h"
 #include <stb_image.h>
@@ -56,13 +56,4 @@ static void test_panels(void **state)
     free(scene), free(panels);
 }
 
-int main(int argc, char **argv)
-{
-    if (argc != 5) {
-        fprintf(stderr, "usage: test_viewer_panels RTPBR_VIEWER XVFB_RUN SCENE OUTDIR\n");
-        return 2;
-    }
-    args = argv;
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_panels)};
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SAMPLE_TEST_MAIN(args, 4, "RTPBR_VIEWER XVFB_RUN SCENE OUTDIR", test_panels)

@@ -7,7 +7,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
-#include <cmocka.h>
+#include "test_main.h"
 
 #include "sample_test.h"
 #include <math.h>
@@ -161,13 +161,4 @@ static void test_techniques(void **state)
     free(base), free(kc_off), free(beckmann), free(monte_carlo), free(exposure);
 }
 
-int main(int argc, char **argv)
-{
-    if (argc != 5) {
-        fprintf(stderr, "usage: test_viewer_techniques RTPBR_VIEWER XVFB_RUN SHOWCASE.gltf OUTDIR\n");
-        return 2;
-    }
-    args = argv;
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_techniques)};
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SAMPLE_TEST_MAIN(args, 4, "RTPBR_VIEWER XVFB_RUN SHOWCASE.gltf OUTDIR", test_techniques)

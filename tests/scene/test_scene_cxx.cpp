@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <csetjmp>
 extern "C" {  // this cmocka.h has no C++ guards
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 #include <cstring>
@@ -39,7 +39,4 @@ static void test_load_from_cxx(void**) {
     rtpbr_gltf_destroy(scene);
 }
 
-int main() {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_load_from_cxx)};
-    return cmocka_run_group_tests(tests, nullptr, nullptr);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_load_from_cxx))

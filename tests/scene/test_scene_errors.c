@@ -5,7 +5,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <cmocka.h>
+#include "test_main.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -370,10 +370,9 @@ static void test_callbacks(void** state) {
     assert_non_null(strstr(rtpbr_gltf_result_string(RTPBR_GLTF_RESULT_COUNT), "UNKNOWN"));
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_files),      cmocka_unit_test(test_accessors), cmocka_unit_test(test_indices_and_values),
-        cmocka_unit_test(test_uris),       cmocka_unit_test(test_limits),    cmocka_unit_test(test_callbacks),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_files),
+                cmocka_unit_test(test_accessors),
+                cmocka_unit_test(test_indices_and_values),
+                cmocka_unit_test(test_uris),
+                cmocka_unit_test(test_limits),
+                cmocka_unit_test(test_callbacks))

@@ -5,7 +5,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <cmocka.h>
+#include "test_main.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -81,12 +81,7 @@ static void test_quad_light_over_plane(void** state) {
         .extra = ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,\"aspectRatio\":1.5,"
                  "\"znear\":0.1,\"zfar\":100}}]",
     };
-    char* json = ts_scene_json(&s);
-    char err[512];
-    rtpbr_gltf_scene* scene = NULL;
-    rtpbr_gltf_result r = ts_load_text(dir, "scene.gltf", json, NULL, &scene, err, sizeof err);
-    free(json);
-    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s", rtpbr_gltf_result_string(r), err);
+    rtpbr_gltf_scene* scene = ts_load_scene(dir, "scene.gltf", &s, NULL);
     assert_int_equal(scene->primitive_count, 2);
     assert_int_equal(scene->material_count, 2);
     assert_int_equal(scene->camera_count, 1);
@@ -221,12 +216,7 @@ static void test_strip_and_fan_modes(void** state) {
                   .materials = "{\"emissiveFactor\":[1,1,1]}",
                   .meshes = "{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"mode\":5,"
                             "\"material\":0}]}"};
-    char* json = ts_scene_json(&s);
-    char err[512];
-    rtpbr_gltf_scene* scene = NULL;
-    rtpbr_gltf_result r = ts_load_text(dir, "strip.gltf", json, NULL, &scene, err, sizeof err);
-    free(json);
-    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
+    rtpbr_gltf_scene* scene = ts_load_scene(dir, "strip.gltf", &s, NULL);
     assert_int_equal(scene->primitives[0].index_count, 6);
     assert_int_equal(scene->light_count, 1);
     assert_int_equal(scene->lights[0].vertex_count, 4);
@@ -246,10 +236,7 @@ static void test_strip_and_fan_modes(void** state) {
     s.indices = fan;
     s.index_count = 8;
     s.meshes = "{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"mode\":6,\"material\":0}]}";
-    json = ts_scene_json(&s);
-    r = ts_load_text(dir, "fan.gltf", json, NULL, &scene, err, sizeof err);
-    free(json);
-    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
+    scene = ts_load_scene(dir, "fan.gltf", &s, NULL);
     assert_int_equal(scene->primitives[0].index_count, 18);
     assert_int_equal(scene->light_count, 1);
     assert_int_equal(scene->lights[0].vertex_count, 6);
@@ -315,12 +302,7 @@ static void test_non_emissive_and_degenerate(void** state) {
     const uint32_t idx[] = {0, 1, 2, 0, 0, 1, 0, 1, 3};
     const char* dir = ts_dir("degenerate");
     ts_scene s = {.positions = pos, .vertex_count = 4, .indices = idx, .index_count = 9, .material = -1};
-    char* json = ts_scene_json(&s);
-    char err[512];
-    rtpbr_gltf_scene* scene = NULL;
-    rtpbr_gltf_result r = ts_load_text(dir, "scene.gltf", json, NULL, &scene, err, sizeof err);
-    free(json);
-    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
+    rtpbr_gltf_scene* scene = ts_load_scene(dir, "scene.gltf", &s, NULL);
     assert_int_equal(scene->light_count, 0);
     assert_int_equal(scene->primitives[0].index_count, 3);
     /* No material: a default one (glTF defaults) is appended. */
@@ -342,12 +324,7 @@ static void test_mirrored_node_keeps_ccw_winding(void** state) {
     ts_scene s = {.positions = kQuad, .vertex_count = 4, .indices = kQuadIdx, .index_count = 6, .material = 0,
                   .materials = "{\"emissiveFactor\":[1,1,1]}",
                   .nodes = "{\"mesh\":0,\"scale\":[-1,1,1]}"};
-    char* json = ts_scene_json(&s);
-    char err[512];
-    rtpbr_gltf_scene* scene = NULL;
-    rtpbr_gltf_result r = ts_load_text(dir, "scene.gltf", json, NULL, &scene, err, sizeof err);
-    free(json);
-    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s", err);
+    rtpbr_gltf_scene* scene = ts_load_scene(dir, "scene.gltf", &s, NULL);
     assert_int_equal(scene->light_count, 1);
     assert_convex_ccw(&scene->lights[0]);
     assert_near(scene->lights[0].facts.normal[1], 1.0, EPS, "mirrored light normal");
@@ -463,16 +440,8 @@ static void test_glb_and_memory(void** state) {
         "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
         "\"nodes\":[{\"mesh\":0,\"translation\":[0,0,-3]}],\"scenes\":[{\"nodes\":[0]}]}",
         bin->size);
-    size_t jlen = (strlen(json) + 3) / 4 * 4, blen = (bin->size + 3) / 4 * 4;
-    size_t total = 12 + 8 + jlen + 8 + blen;
-    unsigned char* glb = calloc(1, total);
-    uint32_t h[5] = {0x46546C67u, 2, (uint32_t)total, (uint32_t)jlen, 0x4E4F534Au};
-    memcpy(glb, h, 20);
-    memset(glb + 20, ' ', jlen);
-    memcpy(glb + 20, json, strlen(json));
-    uint32_t bh[2] = {(uint32_t)blen, 0x004E4942u};
-    memcpy(glb + 20 + jlen, bh, 8);
-    memcpy(glb + 28 + jlen, bin->bytes, bin->size);
+    size_t total;
+    unsigned char* glb = ts_glb(json, bin->bytes, bin->size, &total);
 
     const char* dir = ts_dir("glb");
     ts_write(dir, "quad.glb", glb, total);
@@ -680,21 +649,16 @@ static void test_textured_emitter(void** state) {
     free(png);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_quad_light_over_plane),
-        cmocka_unit_test(test_hexagon_fan_is_one_light),
-        cmocka_unit_test(test_unindexed_quad_is_one_light),
-        cmocka_unit_test(test_strip_and_fan_modes),
-        cmocka_unit_test(test_non_coplanar_triangles_are_separate),
-        cmocka_unit_test(test_concave_region_splits_into_convex_lights),
-        cmocka_unit_test(test_curved_emitter_bounded_and_exact),
-        cmocka_unit_test(test_textured_emitter),
-        cmocka_unit_test(test_non_emissive_and_degenerate),
-        cmocka_unit_test(test_mirrored_node_keeps_ccw_winding),
-        cmocka_unit_test(test_ext_lights_area),
-        cmocka_unit_test(test_glb_and_memory),
-        cmocka_unit_test(test_sparse_positions),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_quad_light_over_plane),
+                cmocka_unit_test(test_hexagon_fan_is_one_light),
+                cmocka_unit_test(test_unindexed_quad_is_one_light),
+                cmocka_unit_test(test_strip_and_fan_modes),
+                cmocka_unit_test(test_non_coplanar_triangles_are_separate),
+                cmocka_unit_test(test_concave_region_splits_into_convex_lights),
+                cmocka_unit_test(test_curved_emitter_bounded_and_exact),
+                cmocka_unit_test(test_textured_emitter),
+                cmocka_unit_test(test_non_emissive_and_degenerate),
+                cmocka_unit_test(test_mirrored_node_keeps_ccw_winding),
+                cmocka_unit_test(test_ext_lights_area),
+                cmocka_unit_test(test_glb_and_memory),
+                cmocka_unit_test(test_sparse_positions))

@@ -5,7 +5,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <cmocka.h>
+#include "test_main.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -29,12 +29,7 @@ static rtpbr_gltf_scene* load_materials(const char* name, const char* materials,
     const char* dir = ts_dir(name);
     ts_scene s = {.positions = kQuad, .vertex_count = 4, .indices = kQuadIdx, .index_count = 6,
                   .texcoords = kQuadUv, .material = 0, .materials = materials, .extra = extra};
-    char* json = ts_scene_json(&s);
-    char err[512];
-    rtpbr_gltf_scene* scene = NULL;
-    rtpbr_gltf_result r = ts_load_text(dir, "m.gltf", json, NULL, &scene, err, sizeof err);
-    free(json);
-    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s", rtpbr_gltf_result_string(r), err);
+    rtpbr_gltf_scene* scene = ts_load_scene(dir, "m.gltf", &s, NULL);
     return scene;
 }
 
@@ -314,12 +309,7 @@ static void test_glb_buffer_view_image(void** state) {
     free(png);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_khr_extensions),
-        cmocka_unit_test(test_defaults_and_disney_extras),
-        cmocka_unit_test(test_textures_and_tangents),
-        cmocka_unit_test(test_glb_buffer_view_image),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_khr_extensions),
+                cmocka_unit_test(test_defaults_and_disney_extras),
+                cmocka_unit_test(test_textures_and_tangents),
+                cmocka_unit_test(test_glb_buffer_view_image))

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <cmocka.h>
+#include "test_main.h"
 #include <sys/resource.h>
 #include <zlib.h>
 
@@ -214,11 +214,6 @@ static void test_interlaced_16bit_loads(void** state) {
     rtpbr_gltf_destroy(scene);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_inflation_bomb_refused),
-        cmocka_unit_test(test_slack_still_loads),
-        cmocka_unit_test(test_interlaced_16bit_loads),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_inflation_bomb_refused),
+                cmocka_unit_test(test_slack_still_loads),
+                cmocka_unit_test(test_interlaced_16bit_loads))

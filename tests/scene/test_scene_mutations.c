@@ -7,7 +7,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <cmocka.h>
+#include "test_main.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -191,16 +191,8 @@ static void test_mutated_glb(void** state) {
         "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":2},\"indices\":1,\"material\":0}]}],"
         "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]}",
         bin.size);
-    size_t jlen = (strlen(json) + 3) / 4 * 4, blen = (bin.size + 3) / 4 * 4;
-    size_t total = 28 + jlen + blen;
-    unsigned char* glb = calloc(1, total);
-    uint32_t h[5] = {0x46546C67u, 2, (uint32_t)total, (uint32_t)jlen, 0x4E4F534Au};
-    memcpy(glb, h, 20);
-    memset(glb + 20, ' ', jlen);
-    memcpy(glb + 20, json, strlen(json));
-    uint32_t bh[2] = {(uint32_t)blen, 0x004E4942u};
-    memcpy(glb + 20 + jlen, bh, 8);
-    memcpy(glb + 28 + jlen, bin.bytes, bin.size);
+    size_t total;
+    unsigned char* glb = ts_glb(json, bin.bytes, bin.size, &total);
     rtpbr_gltf_scene* scene = NULL;
     assert_int_equal(rtpbr_gltf_load_memory(glb, total, NULL, &scene), RTPBR_GLTF_SUCCESS);
     assert_int_equal(scene->light_count, 1);
@@ -215,10 +207,5 @@ static void test_mutated_glb(void** state) {
     free(json);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_mutated_json),
-        cmocka_unit_test(test_mutated_glb),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_mutated_json),
+                cmocka_unit_test(test_mutated_glb))

@@ -1,5 +1,6 @@
 #define _POSIX_C_SOURCE 200809L
 #include "test_scene_util.h"
+#include "test_main.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -233,4 +234,15 @@ rtpbr_gltf_result ts_load_text(const char* dir, const char* name, const char* te
     rtpbr_gltf_result r = rtpbr_gltf_load(p, &d, out);
     free(p);
     return r;
+}
+
+rtpbr_gltf_scene* ts_load_scene(const char* dir, const char* name, const ts_scene* s,
+                                const rtpbr_gltf_load_desc* desc) {
+    char* json = ts_scene_json(s);
+    char err[512];
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, name, json, desc, &scene, err, sizeof err);
+    free(json);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s: %s", name, rtpbr_gltf_result_string(r), err);
+    return scene;
 }

@@ -69,4 +69,9 @@ rtpbr_gltf_result ts_load_text(const char* dir, const char* name, const char* te
                                 const rtpbr_gltf_load_desc* desc, rtpbr_gltf_scene** out,
                                 char* err, size_t err_size);
 
+/* ts_scene_json(s) loaded as a file `name` in dir with desc (NULL: defaults): it must load,
+ * else the test fails with the loader's result and message. */
+rtpbr_gltf_scene* ts_load_scene(const char* dir, const char* name, const ts_scene* s,
+                                const rtpbr_gltf_load_desc* desc);
+
 #endif

@@ -3,6 +3,7 @@
 // boundary as plain floats: material = {r, g, b, metallic, subsurface, specular, specularTint,
 // roughness, anisotropic, sheen, sheenTint, clearcoat, clearcoatGloss}.
 #include <rtpbr/disney.h>
+#include "disney_flat.h"
 #include "disney_variants.h"
 
 #ifndef DISNEY_VARIANT_PREFIX
@@ -13,21 +14,6 @@
 #define DV_NAME(fn) DV_CAT(DISNEY_VARIANT_PREFIX, fn)
 
 namespace {
-rtpbr::DisneyMaterial material(const float *p) {
-    rtpbr::DisneyMaterial m;
-    m.baseColor = rtpbr::float3(p[0], p[1], p[2]);
-    m.metallic = p[3];
-    m.subsurface = p[4];
-    m.specular = p[5];
-    m.specularTint = p[6];
-    m.roughness = p[7];
-    m.anisotropic = p[8];
-    m.sheen = p[9];
-    m.sheenTint = p[10];
-    m.clearcoat = p[11];
-    m.clearcoatGloss = p[12];
-    return m;
-}
 rtpbr::float3 v(const float *w) { return rtpbr::float3(w[0], w[1], w[2]); }
 void put(rtpbr::float3 f, float *out) {
     out[0] = f.x;
@@ -44,17 +30,17 @@ rtpbr::DisneyEnergyTerms terms(const float *t) {
 } // namespace
 
 void DV_NAME(brdf)(const float *params, const float *wo, const float *wi, float *out) {
-    put(rtpbr::BRDF_Disney(material(params), v(wo), v(wi)), out);
+    put(rtpbr::BRDF_Disney(unflatten(params), v(wo), v(wi)), out);
 }
 void DV_NAME(model)(const float *params, const float *wo, const float *wi, const float *t, float *out) {
-    put(rtpbr::BRDF_DisneyModel(material(params), v(wo), v(wi), terms(t)), out);
+    put(rtpbr::BRDF_DisneyModel(unflatten(params), v(wo), v(wi), terms(t)), out);
 }
 void DV_NAME(ec)(const float *params, const float *wo, const float *wi, const float *t, float *out) {
-    put(rtpbr::BRDF_DisneyEnergyConserving(material(params), v(wo), v(wi), terms(t)), out);
+    put(rtpbr::BRDF_DisneyEnergyConserving(unflatten(params), v(wo), v(wi), terms(t)), out);
 }
 float DV_NAME(pdf)(const float *params, const float *wo, const float *wi) {
-    return rtpbr::Disney_PDF(material(params), v(wo), v(wi));
+    return rtpbr::Disney_PDF(unflatten(params), v(wo), v(wi));
 }
 float DV_NAME(pdf_ex)(const float *params, const float *wo, const float *wi, int ec) {
-    return rtpbr::Disney_PDFEx(material(params), v(wo), v(wi), ec != 0);
+    return rtpbr::Disney_PDFEx(unflatten(params), v(wo), v(wi), ec != 0);
 }

@@ -7,7 +7,7 @@
 #include <csetjmp>
 #include <cstdint>
 extern "C" {
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 #include <rtpbr/disney.h>
@@ -23,6 +23,7 @@ extern "C" {
 #include <tuple>
 #include <vector>
 
+#include "disney_flat.h"
 #include "disney_variants.h"
 #include <luts/rtpbr_kc_tables.h>
 
@@ -40,38 +41,6 @@ constexpr double kPi = 3.14159265358979323846;
 float3 dir(double theta, double phi) {
     return float3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)),
                   float(std::cos(theta)));
-}
-
-// Material <-> the flat float layout of disney_variants.h.
-void flatten(const DisneyMaterial &m, float *p) {
-    p[0] = m.baseColor.x;
-    p[1] = m.baseColor.y;
-    p[2] = m.baseColor.z;
-    p[3] = m.metallic;
-    p[4] = m.subsurface;
-    p[5] = m.specular;
-    p[6] = m.specularTint;
-    p[7] = m.roughness;
-    p[8] = m.anisotropic;
-    p[9] = m.sheen;
-    p[10] = m.sheenTint;
-    p[11] = m.clearcoat;
-    p[12] = m.clearcoatGloss;
-}
-DisneyMaterial unflatten(const float *p) {
-    DisneyMaterial m;
-    m.baseColor = float3(p[0], p[1], p[2]);
-    m.metallic = p[3];
-    m.subsurface = p[4];
-    m.specular = p[5];
-    m.specularTint = p[6];
-    m.roughness = p[7];
-    m.anisotropic = p[8];
-    m.sheen = p[9];
-    m.sheenTint = p[10];
-    m.clearcoat = p[11];
-    m.clearcoatGloss = p[12];
-    return m;
 }
 
 DisneyMaterial random_material(std::mt19937 &rng, bool wild) {
@@ -1142,19 +1111,14 @@ void test_model_flag(void **) {
 
 } // namespace
 
-int main() {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_defaults_and_ranges),
-        cmocka_unit_test(test_matches_burley_reference),
-        cmocka_unit_test(test_reciprocity_and_nonnegativity),
-        cmocka_unit_test(test_lobe_sums),
-        cmocka_unit_test(test_limits),
-        cmocka_unit_test(test_albedo_bounds),
-        cmocka_unit_test(test_incomplete_gamma),
-        cmocka_unit_test(test_sampling_chi2),
-        cmocka_unit_test(test_model_flag),
-        cmocka_unit_test(test_albedo_grid),
-        cmocka_unit_test(test_kulla_conty_tables),
-    };
-    return cmocka_run_group_tests(tests, nullptr, nullptr);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_defaults_and_ranges),
+                cmocka_unit_test(test_matches_burley_reference),
+                cmocka_unit_test(test_reciprocity_and_nonnegativity),
+                cmocka_unit_test(test_lobe_sums),
+                cmocka_unit_test(test_limits),
+                cmocka_unit_test(test_albedo_bounds),
+                cmocka_unit_test(test_incomplete_gamma),
+                cmocka_unit_test(test_sampling_chi2),
+                cmocka_unit_test(test_model_flag),
+                cmocka_unit_test(test_albedo_grid),
+                cmocka_unit_test(test_kulla_conty_tables))

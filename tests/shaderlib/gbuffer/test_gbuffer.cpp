@@ -14,7 +14,7 @@
 #include <cstdint>
 
 extern "C" {
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 #include <rtpbr/gbuffer.h>
@@ -289,12 +289,7 @@ void test_in_range_identity(void **) {
 
 } // namespace
 
-int main() {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_random_in_range),
-        cmocka_unit_test(test_random_hostile),
-        cmocka_unit_test(test_edges),
-        cmocka_unit_test(test_in_range_identity),
-    };
-    return cmocka_run_group_tests(tests, nullptr, nullptr);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_random_in_range),
+                cmocka_unit_test(test_random_hostile),
+                cmocka_unit_test(test_edges),
+                cmocka_unit_test(test_in_range_identity))

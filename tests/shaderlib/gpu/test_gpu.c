@@ -24,7 +24,6 @@
  */
 #define _POSIX_C_SOURCE 200809L /* dlopen */
 
-#include <dlfcn.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -39,6 +38,7 @@
 #include "kernel_cpu.h"
 #include "rtpbr_common/rng.h"
 #include "vk_compute.h"
+#include "vk_host.h"
 
 #include "eval_glsl_ggx_hc_schlick.spv.h"
 #include "eval_hlsl_ggx_hc_schlick.spv.h"
@@ -398,19 +398,8 @@ static void state_free(test_state *st) {
     free(st);
 }
 
-/* The Vulkan loader dlcloses the driver and the layer when the instance goes; LeakSanitizer
- * runs at exit and would then report their internal allocations from "<unknown module>",
- * which no suppression can name without also matching anything else. Holding one more
- * reference keeps lavapipe (and its LLVM) and the validation layer mapped to the end, so
- * lsan.supp can name exactly those libraries. The handles are deliberately never closed. */
-static void keep_driver_libraries_loaded(void) {
-    static const char *const libs[] = {"libvulkan_lvp.so", "libVkLayer_khronos_validation.so"};
-    for (size_t i = 0; i < sizeof(libs) / sizeof(libs[0]); i++)
-        (void)dlopen(libs[i], RTLD_NOW | RTLD_LOCAL); /* absent: nothing to keep */
-}
-
 int main(void) {
-    keep_driver_libraries_loaded();
+    vk_host_keep_driver_libraries_loaded();
     test_state *st = calloc(1, sizeof(*st));
     if (!st) {
         fprintf(stderr, "test_gpu: out of memory\n");

@@ -19,7 +19,7 @@ extern "C" {
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 using rtpbr::float3;
@@ -733,20 +733,15 @@ void test_coordinates(void **) {
 
 } // namespace
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_coordinates),
-        cmocka_unit_test(test_multiscatter_off),
-        cmocka_unit_test(test_favg_schlick),
-        cmocka_unit_test(test_favg_conductor),
-        cmocka_unit_test(test_lobe_reciprocity_positivity),
-        cmocka_unit_test(test_white_furnace),
-        cmocka_unit_test(test_dielectric_over_diffuse),
-        cmocka_unit_test(test_polygon_form),
-        cmocka_unit_test(test_tables_regenerate),
-        cmocka_unit_test(test_colour_term_random_walk),
-        cmocka_unit_test(test_shaped_lobe_furnace),
-        cmocka_unit_test(test_shaped_lobe_walk),
-    };
-    return cmocka_run_group_tests(tests, nullptr, nullptr);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_coordinates),
+                cmocka_unit_test(test_multiscatter_off),
+                cmocka_unit_test(test_favg_schlick),
+                cmocka_unit_test(test_favg_conductor),
+                cmocka_unit_test(test_lobe_reciprocity_positivity),
+                cmocka_unit_test(test_white_furnace),
+                cmocka_unit_test(test_dielectric_over_diffuse),
+                cmocka_unit_test(test_polygon_form),
+                cmocka_unit_test(test_tables_regenerate),
+                cmocka_unit_test(test_colour_term_random_walk),
+                cmocka_unit_test(test_shaped_lobe_furnace),
+                cmocka_unit_test(test_shaped_lobe_walk))

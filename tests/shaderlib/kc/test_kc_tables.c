@@ -6,7 +6,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 
-#include <cmocka.h>
+#include "test_main.h"
 
 #include <luts/rtpbr_kc_tables.h>
 
@@ -81,11 +81,6 @@ static void test_roughness_loses_energy(void **state) {
                 rtpbr_kc_Eavg[RTPBR_KC_VARIANT_ggx_hc][KC_N - 1] < 0.45f);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_ranges),
-        cmocka_unit_test(test_mirror_limit),
-        cmocka_unit_test(test_roughness_loses_energy),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_ranges),
+                cmocka_unit_test(test_mirror_limit),
+                cmocka_unit_test(test_roughness_loses_energy))

@@ -45,7 +45,7 @@ float Host_TableSheenE(float, float) { return 0.0f; }
 #include <cstddef>
 #include <csetjmp>
 extern "C" {
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 namespace {
@@ -100,10 +100,5 @@ void test_no_light_where_it_cannot_reach(void **) {
 }
 } // namespace
 
-int main() {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_lambert_closed_form),
-        cmocka_unit_test(test_no_light_where_it_cannot_reach),
-    };
-    return cmocka_run_group_tests(tests, nullptr, nullptr);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_lambert_closed_form),
+                cmocka_unit_test(test_no_light_where_it_cannot_reach))

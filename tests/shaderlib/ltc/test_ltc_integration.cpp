@@ -11,7 +11,7 @@
 #include <stdint.h>
 #include <setjmp.h>
 extern "C" {
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 #include <cmath>
@@ -232,14 +232,9 @@ static void test_edge_precision(void **state) {
     assert_true(fitWorst < 1e-5);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_identity_matches_lambert),
-        cmocka_unit_test(test_rectangle_closed_form),
-        cmocka_unit_test(test_no_light_from_below),
-        cmocka_unit_test(test_degenerate_cases),
-        cmocka_unit_test(test_one_sided),
-        cmocka_unit_test(test_edge_precision),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_identity_matches_lambert),
+                cmocka_unit_test(test_rectangle_closed_form),
+                cmocka_unit_test(test_no_light_from_below),
+                cmocka_unit_test(test_degenerate_cases),
+                cmocka_unit_test(test_one_sided),
+                cmocka_unit_test(test_edge_precision))

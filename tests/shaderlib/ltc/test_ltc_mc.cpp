@@ -39,7 +39,7 @@
 #include <stdint.h>
 #include <setjmp.h>
 extern "C" {
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 #include "ltc_floor.hpp"
@@ -550,16 +550,11 @@ static void test_point_correction(void **state) {
     assert_true(rtpbr::LTC_StreakLocal(two, Ft, vg, 0.1f).x == -1.0f);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_ggx_vs_mc),
-        cmocka_unit_test(test_beckmann_vs_mc),
-        cmocka_unit_test(test_fresnel_scales),
-        cmocka_unit_test(test_disney_diffuse_albedo),
-        cmocka_unit_test(test_disney_diffuse_vs_mc),
-        cmocka_unit_test(test_anisotropic_stretch_vs_mc),
-        cmocka_unit_test(test_ggx_floor),
-        cmocka_unit_test(test_point_correction),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_ggx_vs_mc),
+                cmocka_unit_test(test_beckmann_vs_mc),
+                cmocka_unit_test(test_fresnel_scales),
+                cmocka_unit_test(test_disney_diffuse_albedo),
+                cmocka_unit_test(test_disney_diffuse_vs_mc),
+                cmocka_unit_test(test_anisotropic_stretch_vs_mc),
+                cmocka_unit_test(test_ggx_floor),
+                cmocka_unit_test(test_point_correction))

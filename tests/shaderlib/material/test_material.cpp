@@ -9,7 +9,7 @@
 #include <cstdint>
 
 extern "C" {
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 #include <rtpbr/material.h>
@@ -239,13 +239,12 @@ void test_hostile(void **) {
 
 } // namespace
 
-int main() {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_f0_from_ior),    cmocka_unit_test(test_ior_zero),
-        cmocka_unit_test(test_khr_specular),   cmocka_unit_test(test_roughness_floor),
-        cmocka_unit_test(test_khr_anisotropy), cmocka_unit_test(test_khr_clearcoat),
-        cmocka_unit_test(test_khr_sheen),      cmocka_unit_test(test_disney),
-        cmocka_unit_test(test_hostile),
-    };
-    return cmocka_run_group_tests(tests, nullptr, nullptr);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_f0_from_ior),
+                cmocka_unit_test(test_ior_zero),
+                cmocka_unit_test(test_khr_specular),
+                cmocka_unit_test(test_roughness_floor),
+                cmocka_unit_test(test_khr_anisotropy),
+                cmocka_unit_test(test_khr_clearcoat),
+                cmocka_unit_test(test_khr_sheen),
+                cmocka_unit_test(test_disney),
+                cmocka_unit_test(test_hostile))

@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 extern "C" {
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 #include <algorithm>
@@ -238,13 +238,11 @@ void test_albedo_table(void **) {
 
 } // namespace
 
-int main() {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_d_normalisation),  cmocka_unit_test(test_sample_charlie_cdf),
-        cmocka_unit_test(test_visibility_formulas), cmocka_unit_test(test_visibility_flag),
-        cmocka_unit_test(test_reciprocity),
-        cmocka_unit_test(test_edge_inputs),      cmocka_unit_test(test_sampling_density),
-        cmocka_unit_test(test_albedo_table),
-    };
-    return cmocka_run_group_tests(tests, nullptr, nullptr);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_d_normalisation),
+                cmocka_unit_test(test_sample_charlie_cdf),
+                cmocka_unit_test(test_visibility_formulas),
+                cmocka_unit_test(test_visibility_flag),
+                cmocka_unit_test(test_reciprocity),
+                cmocka_unit_test(test_edge_inputs),
+                cmocka_unit_test(test_sampling_density),
+                cmocka_unit_test(test_albedo_table))

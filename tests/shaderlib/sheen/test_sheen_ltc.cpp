@@ -13,7 +13,7 @@
 #include <stdint.h>
 #include <setjmp.h>
 extern "C" {
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 #include "ltc_mc.hpp"
@@ -76,10 +76,5 @@ static void test_sheen_ltc_albedo(void **state) {
     assert_true(worst < 0.005);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sheen_ltc_albedo),
-        cmocka_unit_test(test_sheen_vs_mc),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_sheen_ltc_albedo),
+                cmocka_unit_test(test_sheen_vs_mc))

@@ -6,7 +6,7 @@
 #include <stddef.h>
 #include <setjmp.h>
 #include <stdio.h>
-#include <cmocka.h>
+#include "test_main.h"
 #include "test_common.h"
 
 static rtpbr_v3 random_dir(test_rng *r) {
@@ -132,12 +132,7 @@ static void test_horizon_and_fast(void **state) {
     assert_true(sum_rel / n < 0.075);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_reciprocity_and_positivity),
-        cmocka_unit_test(test_forms_agree),
-        cmocka_unit_test(test_against_independent_ggx),
-        cmocka_unit_test(test_horizon_and_fast),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_reciprocity_and_positivity),
+                cmocka_unit_test(test_forms_agree),
+                cmocka_unit_test(test_against_independent_ggx),
+                cmocka_unit_test(test_horizon_and_fast))

@@ -8,7 +8,7 @@
 #include <stddef.h>
 #include <setjmp.h>
 #include <stdio.h>
-#include <cmocka.h>
+#include "test_main.h"
 #include "test_common.h"
 
 static const float kCos[] = {0.0f, 1.0f, 1e-7f, 1e-4f, 0.5f, 0.9999999f, -1e-7f, -0.5f, -1.0f};
@@ -143,11 +143,6 @@ static void test_nan_report(void **state) {
     assert_true(rtpbr_BRDF_Specular(RTPBR_SHIM_GGX_HEIGHT_CORRELATED, nan, 0.5f, 0.9f, 0.9f, 0.5f, fr).x == 0.0f);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_scalar_functions_finite),
-        cmocka_unit_test(test_vector_functions_finite),
-        cmocka_unit_test(test_nan_report),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_scalar_functions_finite),
+                cmocka_unit_test(test_vector_functions_finite),
+                cmocka_unit_test(test_nan_report))

@@ -9,7 +9,7 @@
 #include <setjmp.h>
 #include <stdio.h>
 #include <complex.h>
-#include <cmocka.h>
+#include "test_main.h"
 #include "test_common.h"
 
 static double ref_fresnel(double cos_i, double complex n) {
@@ -116,11 +116,6 @@ static void test_schlick_error(void **state) {
     assert_float_equal(s.y, rtpbr_F_Schlick1(0.5f, 1.0f, 0.3f), 0.0f);
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_dielectric_known_values),
-        cmocka_unit_test(test_conductor),
-        cmocka_unit_test(test_schlick_error),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_dielectric_known_values),
+                cmocka_unit_test(test_conductor),
+                cmocka_unit_test(test_schlick_error))

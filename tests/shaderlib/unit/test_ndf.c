@@ -8,7 +8,7 @@
 #include <stddef.h>
 #include <setjmp.h>
 #include <stdio.h>
-#include <cmocka.h>
+#include "test_main.h"
 #include "test_common.h"
 
 typedef enum { NDF_GGX, NDF_BECKMANN, NDF_GTR } ndf_kind;
@@ -123,13 +123,8 @@ static void test_lambda_closed_forms(void **state) {
     }
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_ggx_normalised),
-        cmocka_unit_test(test_beckmann_normalised),
-        cmocka_unit_test(test_gtr_normalised),
-        cmocka_unit_test(test_weak_furnace),
-        cmocka_unit_test(test_lambda_closed_forms),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_ggx_normalised),
+                cmocka_unit_test(test_beckmann_normalised),
+                cmocka_unit_test(test_gtr_normalised),
+                cmocka_unit_test(test_weak_furnace),
+                cmocka_unit_test(test_lambda_closed_forms))

@@ -9,7 +9,7 @@
 #include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <cmocka.h>
+#include "test_main.h"
 #include "test_common.h"
 
 enum { THETA_BINS = 16, PHI_BINS = 32, SAMPLES = 200000, SUB = 4 };
@@ -175,12 +175,7 @@ static void test_reflection_pdf(void **state) {
         }
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_ggx_vndf),
-        cmocka_unit_test(test_beckmann_vndf),
-        cmocka_unit_test(test_cosine),
-        cmocka_unit_test(test_reflection_pdf),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_ggx_vndf),
+                cmocka_unit_test(test_beckmann_vndf),
+                cmocka_unit_test(test_cosine),
+                cmocka_unit_test(test_reflection_pdf))
