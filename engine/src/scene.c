@@ -99,7 +99,12 @@ static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
         const rtpbr_light_desc *l = &lights[i];
         const rtpbr_gltf_polygon_facts *f = &facts[i];
         rtpbr_shader_light g = {0};
-        for (uint32_t v = 0; v < l->vertex_count; ++v) memcpy(g.vertices[v], l->vertices[v], 3 * sizeof(float));
+        double fan = 0.0; // w of vertex v: the area of the fan polygon v0 .. v (RTPBR_LIGHT_FIELDS)
+        for (uint32_t v = 0; v < l->vertex_count; ++v) {
+            memcpy(g.vertices[v], l->vertices[v], 3 * sizeof(float));
+            g.vertices[v][3] = (float)fan;
+            if (v >= 1 && v + 1 < l->vertex_count) fan += f->fan_area[v - 1];
+        }
         memcpy(g.radiance, l->emission, sizeof g.radiance);
         g.two_sided = l->two_sided ? 1.0f : 0.0f;
         memcpy(g.plane, f->normal, sizeof f->normal);
