@@ -359,6 +359,11 @@ void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags 
                          VkImageLayout old_layout, VkImageLayout new_layout,
                          VkPipelineStageFlags src_stage, VkAccessFlags src_access,
                          VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
+// The same on a range of mips and layers.
+void rtpbr_image_range_barrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range,
+                               VkImageLayout old_layout, VkImageLayout new_layout,
+                               VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                               VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
 
 // ---------------------------------------------------------------------------------------------
 // The scene's BVH for the shadow rays (bvh.c)
