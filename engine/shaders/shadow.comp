@@ -69,9 +69,11 @@ void main()
         float target = u.x * light.area;
         uint i = 1u;
         while (i + 2u < light.vertex_count && light.vertices[i + 1u].w < target) ++i;
-        vec3 a = light.vertices[i].xyz, b = light.vertices[i + 1u].xyz;
-        float below = light.vertices[i].w;
-        float triArea = light.vertices[i + 1u].w - below;
+        // The picked vertices from the buffer, not the private copy: indexed by a per-pixel i,
+        // the copy's whole fan stays in scalar registers (4 SGPRs spilled on navi21 and gfx1100).
+        vec4 a4 = lights[k].vertices[i], b4 = lights[k].vertices[i + 1u];
+        vec3 a = a4.xyz, b = b4.xyz;
+        float below = a4.w, triArea = b4.w - a4.w;
         float ux = clamp((target - below) / max(triArea, 1e-30f), 0.0f, 1.0f);
         // Uniform on the triangle (Turk 1990): sqrt warps the first coordinate.
         float su = sqrt(ux);
