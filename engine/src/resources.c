@@ -180,6 +180,22 @@ void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags 
                               src_stage, src_access, dst_stage, dst_access);
 }
 
+rtpbr_result rtpbr_command_buffer_create(rtpbr_context *ctx, VkCommandBuffer *cmd, VkFence *fence)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkCommandBufferAllocateInfo cmd_info = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+        .commandPool = ctx->command_pool,
+        .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+        .commandBufferCount = 1,
+    };
+    RTPBR_VK(&ctx->host, vkAllocateCommandBuffers(ctx->device, &cmd_info, cmd));
+    VkFenceCreateInfo fence_info = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    RTPBR_VK(&ctx->host, vkCreateFence(ctx->device, &fence_info, NULL, fence));
+cleanup:
+    return result; // the caller frees what was made
+}
+
 rtpbr_result rtpbr_submit_once(rtpbr_context *ctx, void (*record)(VkCommandBuffer cmd, void *user), void *user)
 {
     rtpbr_result result = RTPBR_SUCCESS;
