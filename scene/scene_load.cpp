@@ -45,21 +45,17 @@ bool Context::fail(rtpbr_gltf_result r, const char* fmt, ...) {
 }
 
 void Context::warn(const char* fmt, ...) {
-    if (!desc.logger.func) return;
     va_list args;
     va_start(args, fmt);
-    std::string text = vformat(fmt, args);
+    if (desc.logger.func) log(RTPBR_GLTF_LOG_WARNING, vformat(fmt, args));
     va_end(args);
-    log(RTPBR_GLTF_LOG_WARNING, text);
 }
 
 void Context::info(const char* fmt, ...) {
-    if (!desc.logger.func) return;
     va_list args;
     va_start(args, fmt);
-    std::string text = vformat(fmt, args);
+    if (desc.logger.func) log(RTPBR_GLTF_LOG_INFO, vformat(fmt, args));
     va_end(args);
-    log(RTPBR_GLTF_LOG_INFO, text);
 }
 
 void Context::log(rtpbr_gltf_log_level level, const std::string& text) const {
