@@ -127,13 +127,13 @@ void rtpbr_forward_renderer_finish(rtpbr_renderer *r)
 
 void rtpbr_forward_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
 {
-    const rtpbr_bindings table = RTPBR_BINDINGS(bindings);
-    rtpbr_descriptor_write_buffer(r->context, table, r->forward_set.set, RTPBR_BINDING_LIGHT_LIGHTS,
-                                  scene->lights.buffer, VK_WHOLE_SIZE);
-    rtpbr_descriptor_write_buffer(r->context, table, r->forward_set.set, RTPBR_BINDING_LIGHT_MATERIALS,
-                                  scene->materials.buffer, VK_WHOLE_SIZE);
-    rtpbr_descriptor_write_buffer(r->context, table, r->forward_set.set, RTPBR_BINDING_GBUFFER_TEXTURE_TRANSFORMS,
-                                  scene->texture_transforms.buffer, VK_WHOLE_SIZE);
+    const rtpbr_buffer_write writes[] = {
+        {RTPBR_BINDING_LIGHT_LIGHTS, scene->lights.buffer},
+        {RTPBR_BINDING_LIGHT_MATERIALS, scene->materials.buffer},
+        {RTPBR_BINDING_GBUFFER_TEXTURE_TRANSFORMS, scene->texture_transforms.buffer},
+    };
+    rtpbr_descriptor_write_buffers(r->context, RTPBR_BINDINGS(bindings), r->forward_set.set, writes,
+                                   sizeof writes / sizeof writes[0]);
 }
 
 static int farther_first(const void *a, const void *b)

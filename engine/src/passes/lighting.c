@@ -154,11 +154,11 @@ void rtpbr_lighting_renderer_finish(rtpbr_renderer *r)
 
 void rtpbr_lighting_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
 {
-    const rtpbr_bindings table = RTPBR_BINDINGS(bindings);
-    rtpbr_descriptor_write_buffer(r->context, table, r->lighting_set.set, RTPBR_BINDING_LIGHT_MATERIALS,
-                                  scene->materials.buffer, VK_WHOLE_SIZE);
-    rtpbr_descriptor_write_buffer(r->context, table, r->lighting_set.set, RTPBR_BINDING_LIGHT_LIGHTS,
-                                  scene->lights.buffer, VK_WHOLE_SIZE);
+    const rtpbr_buffer_write writes[] = {
+        {RTPBR_BINDING_LIGHT_MATERIALS, scene->materials.buffer},
+        {RTPBR_BINDING_LIGHT_LIGHTS, scene->lights.buffer},
+    };
+    rtpbr_descriptor_write_buffers(r->context, RTPBR_BINDINGS(bindings), r->lighting_set.set, writes, 2);
 }
 
 // The image the lighting pass writes: the output, or its supersampled version.

@@ -234,6 +234,13 @@ void rtpbr_descriptor_write_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, 
     vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
 }
 
+void rtpbr_descriptor_write_buffers(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
+                                    const rtpbr_buffer_write *writes, uint32_t count)
+{
+    for (uint32_t i = 0; i < count; ++i)
+        rtpbr_descriptor_write_buffer(ctx, bindings, set, writes[i].binding, writes[i].buffer, VK_WHOLE_SIZE);
+}
+
 void rtpbr_descriptor_write_image(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                   VkSampler sampler, VkImageView view, VkImageLayout layout)
 {

@@ -61,6 +61,13 @@ void rtpbr_descriptor_set_destroy(rtpbr_context *ctx, rtpbr_descriptor_set *set)
 // descriptor type from the binding table).
 void rtpbr_descriptor_write_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                    VkBuffer buffer, VkDeviceSize range);
+// Points buffer bindings of a set made from `bindings` at whole buffers, writes[0 .. count).
+typedef struct rtpbr_buffer_write {
+    uint32_t binding;
+    VkBuffer buffer;
+} rtpbr_buffer_write;
+void rtpbr_descriptor_write_buffers(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
+                                    const rtpbr_buffer_write *writes, uint32_t count);
 void rtpbr_descriptor_write_image(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                   VkSampler sampler, VkImageView view, VkImageLayout layout);
 

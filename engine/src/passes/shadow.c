@@ -127,27 +127,19 @@ void rtpbr_shadow_renderer_finish(rtpbr_renderer *r)
 
 void rtpbr_shadow_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
 {
-    const rtpbr_bindings table = RTPBR_BINDINGS(bindings);
-    rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_LIGHTS,
-                                  scene->lights.buffer, VK_WHOLE_SIZE);
-    rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_BVH_NODES,
-                                  scene->bvh_nodes.buffer, VK_WHOLE_SIZE);
-    rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_BVH_TRIANGLES,
-                                  scene->bvh_triangles.buffer, VK_WHOLE_SIZE);
-    // The alpha of MASK and BLEND occluders (bvh.glsl).
-    const struct {
-        uint32_t binding;
-        VkBuffer buffer;
-    } alpha[] = {
+    const rtpbr_buffer_write writes[] = {
+        {RTPBR_BINDING_SHADOW_LIGHTS, scene->lights.buffer},
+        {RTPBR_BINDING_SHADOW_BVH_NODES, scene->bvh_nodes.buffer},
+        {RTPBR_BINDING_SHADOW_BVH_TRIANGLES, scene->bvh_triangles.buffer},
+        // The alpha of MASK and BLEND occluders (bvh.glsl).
         {RTPBR_BINDING_SHADOW_VERTICES, scene->vertices.buffer},
         {RTPBR_BINDING_SHADOW_MATERIALS, scene->materials.buffer},
         {RTPBR_BINDING_SHADOW_TEXTURE_TRANSFORMS, scene->texture_transforms.buffer},
         {RTPBR_BINDING_SHADOW_ALPHA_TEXTURES, scene->alpha_textures.buffer},
         {RTPBR_BINDING_SHADOW_ALPHA_TEXELS, scene->alpha_texels.buffer},
     };
-    for (size_t i = 0; i < sizeof alpha / sizeof alpha[0]; ++i)
-        rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, alpha[i].binding, alpha[i].buffer,
-                                      VK_WHOLE_SIZE);
+    rtpbr_descriptor_write_buffers(r->context, RTPBR_BINDINGS(bindings), r->shadow_set.set, writes,
+                                   sizeof writes / sizeof writes[0]);
 }
 
 // A memory barrier between compute dispatches on one of the shadow images (all its layers).
