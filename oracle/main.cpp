@@ -222,22 +222,22 @@ int settingOption(const std::string &a, Args &args, rtpbr_oracle::RenderSettings
 
 // The other options and the positional arguments (scene, or accumulators after --merge).
 int otherOption(const std::string &a, Args &args, Options *o) {
+    // The options that name a file to write.
+    static const struct {
+        const char *name;
+        std::string Options::*path;
+    } paths[] = {{"-o", &Options::outPath}, {"--stderr-image", &Options::stderrPath}, {"--preview", &Options::previewPath}};
     const char *v = nullptr;
+    for (const auto &p : paths)
+        if (a == p.name) {
+            if (!(v = args.value(p.name)))
+                return 2;
+            o->*p.path = v;
+            return kGo;
+        }
     if (a == "-h" || a == "--help") {
         std::fputs(kUsage, stdout);
         return 0;
-    } else if (a == "-o") {
-        if (!(v = args.value("-o")))
-            return 2;
-        o->outPath = v;
-    } else if (a == "--stderr-image") {
-        if (!(v = args.value("--stderr-image")))
-            return 2;
-        o->stderrPath = v;
-    } else if (a == "--preview") {
-        if (!(v = args.value("--preview")))
-            return 2;
-        o->previewPath = v;
     } else if (a == "--exposure") {
         if (!(v = args.value("--exposure")))
             return 2;
