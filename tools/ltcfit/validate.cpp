@@ -16,6 +16,7 @@
 #include "ltc_mc.hpp"
 #include "rtpbr_common/colormap.hpp"
 #include "rtpbr_common/image.hpp"
+#include "rtpbr_common/markdown.hpp"
 
 using namespace ltcmc;
 
@@ -178,12 +179,7 @@ int main(int argc, char **argv) {
         printf("\n%s, exact clipping + point correction (the engine), mean relative error by roughness (rows) and view angle (columns):\n\n| r |",
                lobe_name(l));
         std::vector<float> rough = grid_roughness(reduced), views = grid_views(reduced);
-        for (float v : views)
-            printf(" %g deg |", double(v));
-        printf("\n|---|");
-        for (size_t i = 0; i < views.size(); i++)
-            printf("---|");
-        printf("\n");
+        rtpbr_tools::print_markdown_head(views, " %g deg |", 1);
         for (float r : rough) {
             printf("| %.2f |", double(r));
             for (float v : views) {
@@ -201,12 +197,7 @@ int main(int argc, char **argv) {
         printf("\n%s, exact clipping + point correction (the engine), mean relative error by position (rows) and light half-size (columns):\n\n| position |",
                lobe_name(l));
         std::vector<float> halves = grid_halves(reduced);
-        for (float h : halves)
-            printf(" %g |", double(h));
-        printf("\n|---|");
-        for (size_t i = 0; i < halves.size(); i++)
-            printf("---|");
-        printf("\n");
+        rtpbr_tools::print_markdown_head(halves, " %g |", 1);
         for (int p = 0; p < 4; p++) {
             printf("| %s |", position_name(p));
             for (float h : halves) {
