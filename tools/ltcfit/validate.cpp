@@ -174,6 +174,14 @@ int main(int argc, char **argv) {
     }
     printf("\nReference: largest relative standard error %.3f%% where the light matters (at most %ld sample pairs).\n", 100 * worstRef,
            maxSamples);
+    // The exact method's errors over the significant cases that `keep` selects.
+    auto point_errors = [&](auto keep) {
+        std::vector<double> e;
+        for (const Outcome &o : out)
+            if (o.significant && keep(o.cfg))
+                e.push_back(o.relPoint);
+        return summarize(e);
+    };
     // Breakdown of the exact method by roughness and view angle.
     for (Lobe l : lobes) {
         printf("\n%s, exact clipping + point correction (the engine), mean relative error by roughness (rows) and view angle (columns):\n\n| r |",
@@ -183,11 +191,8 @@ int main(int argc, char **argv) {
         for (float r : rough) {
             printf("| %.2f |", double(r));
             for (float v : views) {
-                std::vector<double> e;
-                for (const Outcome &o : out)
-                    if (o.cfg.lobe == l && o.cfg.roughness == r && o.cfg.viewDeg == v && o.significant)
-                        e.push_back(o.relPoint);
-                printf(" %.1f%% |", 100 * summarize(e).mean);
+                Summary s = point_errors([&](const Config &c) { return c.lobe == l && c.roughness == r && c.viewDeg == v; });
+                printf(" %.1f%% |", 100 * s.mean);
             }
             printf("\n");
         }
@@ -201,11 +206,8 @@ int main(int argc, char **argv) {
         for (int p = 0; p < 4; p++) {
             printf("| %s |", position_name(p));
             for (float h : halves) {
-                std::vector<double> e;
-                for (const Outcome &o : out)
-                    if (o.cfg.lobe == l && o.cfg.position == p && o.cfg.half == h && o.significant)
-                        e.push_back(o.relPoint);
-                printf(" %.1f%% (%d) |", 100 * summarize(e).mean, summarize(e).count);
+                Summary s = point_errors([&](const Config &c) { return c.lobe == l && c.position == p && c.half == h; });
+                printf(" %.1f%% (%d) |", 100 * s.mean, s.count);
             }
             printf("\n");
         }

@@ -219,19 +219,26 @@ static VkDescriptorType binding_type(rtpbr_bindings bindings, uint32_t binding)
     return VK_DESCRIPTOR_TYPE_MAX_ENUM; // a binding the layout lacks: the validation layer says so
 }
 
-void rtpbr_descriptor_write_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
-                                   VkBuffer buffer, VkDeviceSize range)
+// One descriptor of `binding` (its type from the table): a buffer or an image.
+static void write_descriptor(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
+                             const VkDescriptorBufferInfo *buffer, const VkDescriptorImageInfo *image)
 {
-    VkDescriptorBufferInfo info = {buffer, 0, range};
     VkWriteDescriptorSet write = {
         .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
         .dstSet = set,
         .dstBinding = binding,
         .descriptorCount = 1,
         .descriptorType = binding_type(bindings, binding),
-        .pBufferInfo = &info,
+        .pImageInfo = image,
+        .pBufferInfo = buffer,
     };
     vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
+}
+
+void rtpbr_descriptor_write_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
+                                   VkBuffer buffer, VkDeviceSize range)
+{
+    write_descriptor(ctx, bindings, set, binding, &(VkDescriptorBufferInfo){buffer, 0, range}, NULL);
 }
 
 void rtpbr_descriptor_write_buffers(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
@@ -244,16 +251,7 @@ void rtpbr_descriptor_write_buffers(rtpbr_context *ctx, rtpbr_bindings bindings,
 void rtpbr_descriptor_write_image(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                   VkSampler sampler, VkImageView view, VkImageLayout layout)
 {
-    VkDescriptorImageInfo info = {sampler, view, layout};
-    VkWriteDescriptorSet write = {
-        .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-        .dstSet = set,
-        .dstBinding = binding,
-        .descriptorCount = 1,
-        .descriptorType = binding_type(bindings, binding),
-        .pImageInfo = &info,
-    };
-    vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
+    write_descriptor(ctx, bindings, set, binding, NULL, &(VkDescriptorImageInfo){sampler, view, layout});
 }
 
 rtpbr_result rtpbr_pass_layouts_create(rtpbr_context *ctx, rtpbr_bindings bindings, VkShaderStageFlags push_stages,
