@@ -14,6 +14,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_time.h"
 #include "rtpbr/rtpbr.h"
 
 // Wall-clock time, or with --cpu the CPU time of the whole process (lavapipe's worker threads
@@ -22,15 +23,7 @@ static clockid_t bench_clock = CLOCK_MONOTONIC;
 
 static double now(void)
 {
-    struct timespec t;
-    clock_gettime(bench_clock, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
+    return bench_seconds(bench_clock);
 }
 
 static int parse_list(const char *text, int *out, int max)
@@ -146,7 +139,7 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
                     r = rtpbr_render(renderer, scene, &rd);
                     t[k] = now() - t0;
                 }
-                qsort(t, (size_t)repeat, sizeof *t, compare_double);
+                qsort(t, (size_t)repeat, sizeof *t, bench_compare_double);
                 ms[mode] = 1e3 * t[repeat / 2];
             }
             double px = (double)w * h;

@@ -8,20 +8,9 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_time.h"
 #include "rtpbr/rtpbr.h"
 
-static double now(clockid_t clock)
-{
-    struct timespec t;
-    clock_gettime(clock, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 enum { MAX_CONFIGS = 8, MAX_REPEAT = 64 };
 
@@ -71,14 +60,14 @@ int main(int argc, char **argv)
         for (int c = 0; c < configs; ++c) {
             rtpbr_render_desc desc = {.shadows = samples[c] ? RTPBR_SHADOWS_ON : RTPBR_SHADOWS_OFF,
                                       .shadow_samples = (uint32_t)samples[c]};
-            double w0 = now(CLOCK_MONOTONIC), c0 = now(CLOCK_PROCESS_CPUTIME_ID);
+            double w0 = bench_seconds(CLOCK_MONOTONIC), c0 = bench_seconds(CLOCK_PROCESS_CPUTIME_ID);
             if (rtpbr_render(r, scene, &desc) != RTPBR_SUCCESS) {
                 fprintf(stderr, "shadow bench: render failed\n");
                 goto done;
             }
             if (rep >= 0) {
-                wall[c][rep] = now(CLOCK_MONOTONIC) - w0;
-                cpu[c][rep] = now(CLOCK_PROCESS_CPUTIME_ID) - c0;
+                wall[c][rep] = bench_seconds(CLOCK_MONOTONIC) - w0;
+                cpu[c][rep] = bench_seconds(CLOCK_PROCESS_CPUTIME_ID) - c0;
             }
         }
     printf("%s, %ux%u, %u lights, median of %d frames\n\n", path, width, height, rtpbr_gpu_scene_light_count(scene),
@@ -86,8 +75,8 @@ int main(int argc, char **argv)
     printf("| shadows | wall ms | CPU ms | wall / unshadowed | CPU / unshadowed |\n|---|---|---|---|---|\n");
     double base_wall = 0.0, base_cpu = 0.0;
     for (int c = 0; c < configs; ++c) {
-        qsort(wall[c], (size_t)repeat, sizeof(double), compare_double);
-        qsort(cpu[c], (size_t)repeat, sizeof(double), compare_double);
+        qsort(wall[c], (size_t)repeat, sizeof(double), bench_compare_double);
+        qsort(cpu[c], (size_t)repeat, sizeof(double), bench_compare_double);
         double mw = wall[c][repeat / 2], mc = cpu[c][repeat / 2];
         if (c == 0) base_wall = mw, base_cpu = mc;
         char label[32];

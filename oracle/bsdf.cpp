@@ -23,11 +23,9 @@ float muOfNode(int i, int n) {
     return i == 0 ? 1e-4f : x * x;
 }
 
-// Single-scattering albedo E(mu, r) of GGX with F = 1 (the Kulla-Conty table, height-correlated
-// Smith), bilinear on the table's nodes. Used only to shape MIS weights.
-float singleScatterAlbedo(float mu, float r) {
-    const int n = RTPBR_KC_SIZE;
-    const auto &E = rtpbr_kc_E[RTPBR_KC_VARIANT_ggx_hc];
+// An albedo table E[r][x] of n x n nodes (x = sqrt(mu), r at i / (n - 1)), bilinear at (mu, r).
+template <int n>
+float albedoBilinear(const float (&E)[n][n], float mu, float r) {
     float fx = std::sqrt(glm::clamp(mu, 0.0f, 1.0f)) * float(n - 1), fr = glm::clamp(r, 0.0f, 1.0f) * float(n - 1);
     int x0 = std::min(n - 2, int(fx)), r0 = std::min(n - 2, int(fr));
     float ax = fx - float(x0), ar = fr - float(r0);
@@ -35,16 +33,16 @@ float singleScatterAlbedo(float mu, float r) {
            ar * ((1.0f - ax) * E[r0 + 1][x0] + ax * E[r0 + 1][x0 + 1]);
 }
 
+// Single-scattering albedo E(mu, r) of GGX with F = 1 (the Kulla-Conty table, height-correlated
+// Smith), bilinear on the table's nodes. Used only to shape MIS weights.
+float singleScatterAlbedo(float mu, float r) {
+    return albedoBilinear<RTPBR_KC_SIZE>(rtpbr_kc_E[RTPBR_KC_VARIANT_ggx_hc], mu, r);
+}
+
 // E_sheen(mu, r) of the charlie lobe (V_Charlie, sheen.h's default), bilinear on the nodes of
-// the committed table (x = sqrt(mu), r at i / (n - 1)).
+// the committed table.
 float sheenAlbedo(float mu, float r) {
-    const int n = RTPBR_SHEEN_SIZE;
-    const auto &E = rtpbr_sheen_E[RTPBR_SHEEN_VARIANT_charlie];
-    float fx = std::sqrt(glm::clamp(mu, 0.0f, 1.0f)) * float(n - 1), fr = glm::clamp(r, 0.0f, 1.0f) * float(n - 1);
-    int x0 = std::min(n - 2, int(fx)), r0 = std::min(n - 2, int(fr));
-    float ax = fx - float(x0), ar = fr - float(r0);
-    return (1.0f - ar) * ((1.0f - ax) * E[r0][x0] + ax * E[r0][x0 + 1]) +
-           ar * ((1.0f - ax) * E[r0 + 1][x0] + ax * E[r0 + 1][x0 + 1]);
+    return albedoBilinear<RTPBR_SHEEN_SIZE>(rtpbr_sheen_E[RTPBR_SHEEN_VARIANT_charlie], mu, r);
 }
 
 } // namespace

@@ -165,30 +165,25 @@ struct Args {
 
 // The options of the render itself (rtpbr_oracle::RenderSettings).
 int settingOption(const std::string &a, Args &args, rtpbr_oracle::RenderSettings &s) {
+    using rtpbr_oracle::RenderSettings;
+    // The options that set one whole-number field.
+    static const struct {
+        const char *name;
+        uint32_t RenderSettings::*field;
+    } counts[] = {
+        {"--width", &RenderSettings::width},     {"--height", &RenderSettings::height},
+        {"--camera", &RenderSettings::camera},   {"--spp", &RenderSettings::spp},
+        {"--threads", &RenderSettings::threads}, {"--max-depth", &RenderSettings::maxDepth},
+    };
+    for (const auto &c : counts)
+        if (a == c.name)
+            return args.u32(c.name, &(s.*c.field)) ? kGo : 2;
     const char *v = nullptr;
-    if (a == "--width") {
-        if (!args.u32("--width", &s.width))
-            return 2;
-    } else if (a == "--height") {
-        if (!args.u32("--height", &s.height))
-            return 2;
-    } else if (a == "--camera") {
-        if (!args.u32("--camera", &s.camera))
-            return 2;
-    } else if (a == "--spp") {
-        if (!args.u32("--spp", &s.spp))
-            return 2;
-    } else if (a == "--seed") {
+    if (a == "--seed") {
         uint32_t seed;
         if (!args.u32("--seed", &seed))
             return 2;
         s.seed = seed;
-    } else if (a == "--threads") {
-        if (!args.u32("--threads", &s.threads))
-            return 2;
-    } else if (a == "--max-depth") {
-        if (!args.u32("--max-depth", &s.maxDepth))
-            return 2;
     } else if (a == "--direct-only") {
         s.directOnly = true;
     } else if (a == "--no-shadows") {
@@ -227,22 +222,22 @@ int settingOption(const std::string &a, Args &args, rtpbr_oracle::RenderSettings
 
 // The other options and the positional arguments (scene, or accumulators after --merge).
 int otherOption(const std::string &a, Args &args, Options *o) {
+    // The options that name a file to write.
+    static const struct {
+        const char *name;
+        std::string Options::*path;
+    } paths[] = {{"-o", &Options::outPath}, {"--stderr-image", &Options::stderrPath}, {"--preview", &Options::previewPath}};
     const char *v = nullptr;
+    for (const auto &p : paths)
+        if (a == p.name) {
+            if (!(v = args.value(p.name)))
+                return 2;
+            o->*p.path = v;
+            return kGo;
+        }
     if (a == "-h" || a == "--help") {
         std::fputs(kUsage, stdout);
         return 0;
-    } else if (a == "-o") {
-        if (!(v = args.value("-o")))
-            return 2;
-        o->outPath = v;
-    } else if (a == "--stderr-image") {
-        if (!(v = args.value("--stderr-image")))
-            return 2;
-        o->stderrPath = v;
-    } else if (a == "--preview") {
-        if (!(v = args.value("--preview")))
-            return 2;
-        o->previewPath = v;
     } else if (a == "--exposure") {
         if (!(v = args.value("--exposure")))
             return 2;

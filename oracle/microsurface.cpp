@@ -125,6 +125,23 @@ float MicrosurfaceGGX::sampleHeight(vec3 wr, float h, float u) const {
 
 // ---- conductor --------------------------------------------------------------------------------
 
+namespace {
+
+// One step of the conductor's random walk at height hr: reflect the ray *wr off a visible
+// microfacet (Heitz et al. 2016, sec. 5) and weight *energy by its Fresnel term; false once
+// the walk is no longer finite.
+bool conductorBounce(const MicrosurfaceGGX &ms, const ConductorFresnel &F, Rng &rng, float hr, vec3 *wr,
+                     vec3 *energy) {
+    float u1 = rng.uniform();
+    float u2 = rng.uniform();
+    vec3 wm = ms.sampleVisibleNormal(-*wr, u1, u2);
+    *energy *= F.eval(glm::dot(-*wr, wm));
+    *wr = reflectAbout(-*wr, wm);
+    return finite3(*wr) && std::isfinite(hr);
+}
+
+} // namespace
+
 vec3 conductorEval(const MicrosurfaceGGX &ms, const ConductorFresnel &F, vec3 wi, vec3 wo, Rng &rng,
                    int order) {
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f))
@@ -155,12 +172,7 @@ vec3 conductorEval(const MicrosurfaceGGX &ms, const ConductorFresnel &F, vec3 wi
                 break;
         }
         // Continue the walk: reflect off a visible microfacet.
-        float u1 = rng.uniform();
-        float u2 = rng.uniform();
-        vec3 wm = ms.sampleVisibleNormal(-wr, u1, u2);
-        energy *= F.eval(glm::dot(-wr, wm));
-        wr = reflectAbout(-wr, wm);
-        if (!finite3(wr) || !std::isfinite(hr))
+        if (!conductorBounce(ms, F, rng, hr, &wr, &energy))
             return vec3(0.0f);
     }
     return sum;
@@ -182,12 +194,7 @@ bool conductorSample(const MicrosurfaceGGX &ms, const ConductorFresnel &F, vec3 
             *weight = energy;
             return wr.z > 0.0f;
         }
-        float u1 = rng.uniform();
-        float u2 = rng.uniform();
-        vec3 wm = ms.sampleVisibleNormal(-wr, u1, u2);
-        energy *= F.eval(glm::dot(-wr, wm));
-        wr = reflectAbout(-wr, wm);
-        if (!finite3(wr) || !std::isfinite(hr))
+        if (!conductorBounce(ms, F, rng, hr, &wr, &energy))
             return false;
     }
     return false;

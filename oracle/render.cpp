@@ -222,23 +222,30 @@ private:
         return a > 0.0f ? a / (a + b) : 0.0f;
     }
 
+    // The Embree ray org + t dir, 0 <= t <= tfar, every mask bit set.
+    static RTCRay makeRay(vec3 org, vec3 dir, float tfar) {
+        RTCRay r;
+        r.org_x = org.x;
+        r.org_y = org.y;
+        r.org_z = org.z;
+        r.dir_x = dir.x;
+        r.dir_y = dir.y;
+        r.dir_z = dir.z;
+        r.tnear = 0.0f;
+        r.tfar = tfar;
+        r.time = 0.0f;
+        r.mask = 0xffffffffu;
+        r.id = 0;
+        r.flags = 0;
+        return r;
+    }
+
     Hit intersect(RTCScene scene, vec3 org, vec3 dir, float tfar) {
         rays++;
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         RTCRayHit rh;
-        rh.ray.org_x = org.x;
-        rh.ray.org_y = org.y;
-        rh.ray.org_z = org.z;
-        rh.ray.dir_x = dir.x;
-        rh.ray.dir_y = dir.y;
-        rh.ray.dir_z = dir.z;
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = tfar;
-        rh.ray.time = 0.0f;
-        rh.ray.mask = 0xffffffffu;
-        rh.ray.id = 0;
-        rh.ray.flags = 0;
+        rh.ray = makeRay(org, dir, tfar);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(scene, &ctx, &rh);
@@ -258,19 +265,7 @@ private:
         rays++;
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
-        RTCRay r;
-        r.org_x = org.x;
-        r.org_y = org.y;
-        r.org_z = org.z;
-        r.dir_x = dir.x;
-        r.dir_y = dir.y;
-        r.dir_z = dir.z;
-        r.tnear = 0.0f;
-        r.tfar = tfar;
-        r.time = 0.0f;
-        r.mask = 0xffffffffu;
-        r.id = 0;
-        r.flags = 0;
+        RTCRay r = makeRay(org, dir, tfar);
         rtcOccluded1(es_.full, &ctx, &r);
         return r.tfar < 0.0f;
     }

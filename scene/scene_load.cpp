@@ -45,21 +45,17 @@ bool Context::fail(rtpbr_gltf_result r, const char* fmt, ...) {
 }
 
 void Context::warn(const char* fmt, ...) {
-    if (!desc.logger.func) return;
     va_list args;
     va_start(args, fmt);
-    std::string text = vformat(fmt, args);
+    if (desc.logger.func) log(RTPBR_GLTF_LOG_WARNING, vformat(fmt, args));
     va_end(args);
-    log(RTPBR_GLTF_LOG_WARNING, text);
 }
 
 void Context::info(const char* fmt, ...) {
-    if (!desc.logger.func) return;
     va_list args;
     va_start(args, fmt);
-    std::string text = vformat(fmt, args);
+    if (desc.logger.func) log(RTPBR_GLTF_LOG_INFO, vformat(fmt, args));
     va_end(args);
-    log(RTPBR_GLTF_LOG_INFO, text);
 }
 
 void Context::log(rtpbr_gltf_log_level level, const std::string& text) const {
@@ -631,22 +627,42 @@ extern "C" const char* rtpbr_gltf_result_string(rtpbr_gltf_result result) {
     return "RTPBR_GLTF_RESULT_UNKNOWN";
 }
 
-extern "C" rtpbr_gltf_result rtpbr_gltf_load(const char* path, const rtpbr_gltf_load_desc* desc,
-                                               rtpbr_gltf_scene** out) {
+namespace {
+
+// The frame of both load entry points: the context from desc, *out cleared, the arguments
+// checked (args_ok, else the error null_message), then load(ctx); what it throws becomes the
+// result.
+template <class Load>
+rtpbr_gltf_result guarded_load(const rtpbr_gltf_load_desc* desc, rtpbr_gltf_scene** out, bool args_ok,
+                               const char* null_message, Load load) {
     Context ctx;
     try {
         if (out) *out = nullptr;
         if (!setup_context(ctx, desc)) return finish(ctx, ctx.result);
-        if (!path || !out) {
-            ctx.fail(RTPBR_GLTF_ERROR_INVALID_ARGUMENT, "rtpbr_gltf_load: path and out must not be NULL");
+        if (!args_ok) {
+            ctx.fail(RTPBR_GLTF_ERROR_INVALID_ARGUMENT, "%s", null_message);
             return finish(ctx, ctx.result);
         }
+        return finish(ctx, load(ctx));
+    } catch (const std::bad_alloc&) {
+        ctx.fail(RTPBR_GLTF_ERROR_OUT_OF_MEMORY, "out of memory");
+    } catch (const std::exception& e) {
+        ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "%s", e.what());
+    }
+    return finish(ctx, ctx.result);
+}
+
+}  // namespace
+
+extern "C" rtpbr_gltf_result rtpbr_gltf_load(const char* path, const rtpbr_gltf_load_desc* desc,
+                                               rtpbr_gltf_scene** out) {
+    return guarded_load(desc, out, path && out, "rtpbr_gltf_load: path and out must not be NULL", [&](Context& ctx) {
         std::vector<unsigned char> data;
         std::string why;
         rtpbr_gltf_result r = read_file(path, &data, &why);
         if (r != RTPBR_GLTF_SUCCESS) {
             ctx.fail(r, "cannot read scene '%s': %s", path, why.c_str());
-            return finish(ctx, r);
+            return r;
         }
         std::string dir;
         if (ctx.desc.base_dir) {
@@ -656,36 +672,19 @@ extern "C" rtpbr_gltf_result rtpbr_gltf_load(const char* path, const rtpbr_gltf_
             size_t slash = p.find_last_of('/');
             dir = slash == std::string::npos ? std::string(".") : slash == 0 ? std::string("/") : p.substr(0, slash);
         }
-        if (!set_base_dir(ctx, dir)) return finish(ctx, ctx.result);
-        return finish(ctx, load_model(ctx, data.data(), data.size(), ends_with_glb(path), out));
-    } catch (const std::bad_alloc&) {
-        ctx.fail(RTPBR_GLTF_ERROR_OUT_OF_MEMORY, "out of memory");
-    } catch (const std::exception& e) {
-        ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "%s", e.what());
-    }
-    return finish(ctx, ctx.result);
+        if (!set_base_dir(ctx, dir)) return ctx.result;
+        return load_model(ctx, data.data(), data.size(), ends_with_glb(path), out);
+    });
 }
 
 extern "C" rtpbr_gltf_result rtpbr_gltf_load_memory(const void* data, size_t size,
                                                       const rtpbr_gltf_load_desc* desc,
                                                       rtpbr_gltf_scene** out) {
-    Context ctx;
-    try {
-        if (out) *out = nullptr;
-        if (!setup_context(ctx, desc)) return finish(ctx, ctx.result);
-        if (!data || !out) {
-            ctx.fail(RTPBR_GLTF_ERROR_INVALID_ARGUMENT,
-                     "rtpbr_gltf_load_memory: data and out must not be NULL");
-            return finish(ctx, ctx.result);
-        }
-        if (ctx.desc.base_dir && !set_base_dir(ctx, ctx.desc.base_dir)) return finish(ctx, ctx.result);
-        return finish(ctx, load_model(ctx, static_cast<const unsigned char*>(data), size, false, out));
-    } catch (const std::bad_alloc&) {
-        ctx.fail(RTPBR_GLTF_ERROR_OUT_OF_MEMORY, "out of memory");
-    } catch (const std::exception& e) {
-        ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "%s", e.what());
-    }
-    return finish(ctx, ctx.result);
+    return guarded_load(desc, out, data && out, "rtpbr_gltf_load_memory: data and out must not be NULL",
+                        [&](Context& ctx) {
+                            if (ctx.desc.base_dir && !set_base_dir(ctx, ctx.desc.base_dir)) return ctx.result;
+                            return load_model(ctx, static_cast<const unsigned char*>(data), size, false, out);
+                        });
 }
 
 extern "C" void rtpbr_gltf_texture_transform_apply(const rtpbr_gltf_texture_transform* t, float uv[2]) {

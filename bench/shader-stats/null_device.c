@@ -43,6 +43,13 @@ static void set_error(char *error, size_t error_size, const char *format, ...)
     va_end(args);
 }
 
+// Whether a Vulkan call (named `call`) succeeded; if not, the error says so.
+static bool succeeded(VkResult vr, const char *call, char *error, size_t error_size)
+{
+    if (vr != VK_SUCCESS) set_error(error, error_size, "%s failed (VkResult %d)", call, (int)vr);
+    return vr == VK_SUCCESS;
+}
+
 // The chip names RADV_FORCE_FAMILY accepts (Mesa 22.3, ac_gpu_info.c's family names, in any
 // case); RADV abort()s on any other, so the name is checked before it reaches the driver.
 static const char *const known_families[] = {
@@ -313,11 +320,9 @@ static bool create_layout(ss_device *d, const ss_reflection *refl, uint32_t coun
             .bindingCount = binding_counts[set],
             .pBindings = bindings[set],
         };
-        VkResult vr = vkCreateDescriptorSetLayout(d->device, &info, NULL, &o->set_layouts[set]);
-        if (vr != VK_SUCCESS) {
-            set_error(error, error_size, "vkCreateDescriptorSetLayout failed (VkResult %d)", (int)vr);
+        if (!succeeded(vkCreateDescriptorSetLayout(d->device, &info, NULL, &o->set_layouts[set]),
+                       "vkCreateDescriptorSetLayout", error, error_size))
             return false;
-        }
     }
     VkPushConstantRange push = {push_stages, 0, push_size};
     VkPipelineLayoutCreateInfo info = {
@@ -327,12 +332,8 @@ static bool create_layout(ss_device *d, const ss_reflection *refl, uint32_t coun
         .pushConstantRangeCount = push_size ? 1 : 0,
         .pPushConstantRanges = &push,
     };
-    VkResult vr = vkCreatePipelineLayout(d->device, &info, NULL, &o->layout);
-    if (vr != VK_SUCCESS) {
-        set_error(error, error_size, "vkCreatePipelineLayout failed (VkResult %d)", (int)vr);
-        return false;
-    }
-    return true;
+    return succeeded(vkCreatePipelineLayout(d->device, &info, NULL, &o->layout), "vkCreatePipelineLayout", error,
+                     error_size);
 }
 
 static VkFormat vertex_format(const ss_location *loc)
@@ -456,12 +457,8 @@ static bool create_graphics(ss_device *d, const ss_reflection *vs, const ss_refl
         .pDynamicState = &dynamic,
         .layout = o->layout,
     };
-    VkResult vr = vkCreateGraphicsPipelines(d->device, VK_NULL_HANDLE, 1, &info, NULL, &o->pipeline);
-    if (vr != VK_SUCCESS) {
-        set_error(error, error_size, "vkCreateGraphicsPipelines failed (VkResult %d)", (int)vr);
-        return false;
-    }
-    return true;
+    return succeeded(vkCreateGraphicsPipelines(d->device, VK_NULL_HANDLE, 1, &info, NULL, &o->pipeline),
+                     "vkCreateGraphicsPipelines", error, error_size);
 }
 
 static bool create_compute(ss_device *d, const ss_reflection *cs, VkShaderModule module, pipeline_objects *o,
@@ -474,12 +471,8 @@ static bool create_compute(ss_device *d, const ss_reflection *cs, VkShaderModule
                   .module = module, .pName = cs->entry_point},
         .layout = o->layout,
     };
-    VkResult vr = vkCreateComputePipelines(d->device, VK_NULL_HANDLE, 1, &info, NULL, &o->pipeline);
-    if (vr != VK_SUCCESS) {
-        set_error(error, error_size, "vkCreateComputePipelines failed (VkResult %d)", (int)vr);
-        return false;
-    }
-    return true;
+    return succeeded(vkCreateComputePipelines(d->device, VK_NULL_HANDLE, 1, &info, NULL, &o->pipeline),
+                     "vkCreateComputePipelines", error, error_size);
 }
 
 static bool read_statistics(ss_device *d, VkPipeline pipeline, ss_pipeline_stats *out, char *error, size_t error_size)

@@ -136,11 +136,10 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
         bool twoSided = lights[i].two_sided != 0.0f;
         vec4 plane = lights[i].plane;
         float side = dot(plane.xyz, P) + plane.w;
-        // Fan triangles (v0, vk, vk+1), k = 1..count-2, and their total area.
+        // Fan triangles (v0, vk, vk+1), k = 1..count-2: vertices[k].w is the area of those below
+        // vk (rtpbr_shared.h, RTPBR_LIGHT_FIELDS); area is the polygon's.
         vec3 v0 = lights[i].vertices[0].xyz;
-        float area = 0.0f;
-        for (uint k = 1u; k + 1u < count; ++k)
-            area += mc_fan_area(v0, lights[i].vertices[k].xyz, lights[i].vertices[k + 1u].xyz);
+        float area = lights[i].area;
         bool lit = count >= 3u && area > 0.0f && (twoSided ? side != 0.0f : side > 0.0f);
         uint n = lit ? mc.sample_count : 0u;
 
@@ -163,12 +162,9 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
             } else {
                 // Strategy 1: a uniform point on the polygon (fan triangle chosen by area).
                 float target = uPick * area;
-                float acc = 0.0f;
                 uint pick = 1u;
-                for (uint k = 1u; k + 1u < count; ++k) {
-                    acc += mc_fan_area(v0, lights[i].vertices[k].xyz, lights[i].vertices[k + 1u].xyz);
-                    if (target >= acc && k + 2u < count) pick = k + 1u;
-                }
+                for (uint k = 2u; k + 1u < count; ++k)
+                    if (target >= lights[i].vertices[k].w) pick = k;
                 vec3 toLight = mc_triangle_point(v0, lights[i].vertices[pick].xyz, lights[i].vertices[pick + 1u].xyz, u) - P;
                 t = length(toLight);
                 wi = toLight / max(t, 1e-30f);

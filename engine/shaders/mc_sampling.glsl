@@ -36,12 +36,6 @@ uint mc_seed(uvec2 pixel, uint light, uint seed)
     return mc_pcg_hash(pixel.x + mc_pcg_hash(pixel.y + mc_pcg_hash(light + mc_pcg_hash(seed))));
 }
 
-// Area of triangle k (1..count-2) of the fan (v0, vk, vk+1) of a polygon.
-float mc_fan_area(vec3 v0, vec3 a, vec3 b)
-{
-    return 0.5f * length(cross(a - v0, b - v0));
-}
-
 // Uniform point on triangle (a, b, c) from two uniform numbers (Osada et al. 2002, "Shape
 // Distributions", sec. 4.2): (1 - sqrt u1) a + sqrt u1 (1 - u2) b + sqrt u1 u2 c.
 vec3 mc_triangle_point(vec3 a, vec3 b, vec3 c, vec2 u)

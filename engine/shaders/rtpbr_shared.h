@@ -218,8 +218,12 @@
 
 // One polygonal light, the std430 element of the lights buffer (RTPBR_BINDING_LIGHT_LIGHTS,
 // RTPBR_BINDING_SHADOW_LIGHTS; rtpbr_shader_light, light.glsl): written by engine/src/scene.c.
+// vertices[k].w is the area of the fan polygon v0 .. vk, the triangles (v0, vj, vj+1) for
+// 1 <= j < k (0 for k <= 1; the sum of every fan triangle at k = vertex_count - 1), summed from
+// the light's facts (rtpbr_gltf_polygon_facts.fan_area): the Monte Carlo and shadow passes
+// pick a fan triangle by area from it. area is the polygon's (Newell's normal, the facts').
 #define RTPBR_LIGHT_FIELDS(F, S)                                                                  \
-    F(S, VEC4, vertices, [RTPBR_SHADER_MAX_POLYGON_VERTICES]) /* xyz; w unused */                 \
+    F(S, VEC4, vertices, [RTPBR_SHADER_MAX_POLYGON_VERTICES]) /* xyz; w: fan area below vertex k */ \
     F(S, VEC3, radiance, )     /* emitted radiance, rgb */                                         \
     F(S, FLOAT, two_sided, )   /* 1: emits on both sides; 0: on the front side (plane normal) */  \
     F(S, VEC4, plane, )        /* unit normal xyz, w = -dot(normal, vertex 0) */                  \

@@ -64,17 +64,16 @@ void main()
     for (uint j = params.first_sample; facing && j < params.first_sample + params.samples; ++j) {
         // R2: the lattice of the plastic number (Roberts 2018).
         vec2 u = fract(shift + float(j) * vec2(0.7548776662f, 0.5698402910f));
-        // The fan triangle (v0, v_i, v_i+1) holding u.x of the area, and u.x rescaled in it.
+        // The fan triangle (v0, v_i, v_i+1) holding u.x of the area, and u.x rescaled in it;
+        // vertices[i].w is the area of the fan below v_i (rtpbr_shared.h, RTPBR_LIGHT_FIELDS).
         float target = u.x * light.area;
-        float below = 0.0f;
-        vec3 a = light.vertices[1].xyz, b = light.vertices[2].xyz;
-        float triArea = 0.5f * length(cross(a - v0, b - v0));
-        for (uint i = 1u; i + 2u < light.vertex_count && below + triArea < target; ++i) {
-            below += triArea;
-            a = b;
-            b = light.vertices[i + 2u].xyz;
-            triArea = 0.5f * length(cross(a - v0, b - v0));
-        }
+        uint i = 1u;
+        while (i + 2u < light.vertex_count && light.vertices[i + 1u].w < target) ++i;
+        // The picked vertices from the buffer, not the private copy: indexed by a per-pixel i,
+        // the copy's whole fan stays in scalar registers (4 SGPRs spilled on navi21 and gfx1100).
+        vec4 a4 = lights[k].vertices[i], b4 = lights[k].vertices[i + 1u];
+        vec3 a = a4.xyz, b = b4.xyz;
+        float below = a4.w, triArea = b4.w - a4.w;
         float ux = clamp((target - below) / max(triArea, 1e-30f), 0.0f, 1.0f);
         // Uniform on the triangle (Turk 1990): sqrt warps the first coordinate.
         float su = sqrt(ux);

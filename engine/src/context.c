@@ -33,15 +33,7 @@ rtpbr_result rtpbr_context_create(const rtpbr_context_desc *desc, rtpbr_context 
         .queueFamilyIndex = ctx->queue_family,
     };
     RTPBR_VK(&ctx->host, vkCreateCommandPool(ctx->device, &pool_info, NULL, &ctx->command_pool));
-    VkCommandBufferAllocateInfo cmd_info = {
-        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
-        .commandPool = ctx->command_pool,
-        .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
-        .commandBufferCount = 1,
-    };
-    RTPBR_VK(&ctx->host, vkAllocateCommandBuffers(ctx->device, &cmd_info, &ctx->upload_cmd));
-    VkFenceCreateInfo fence_info = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    RTPBR_VK(&ctx->host, vkCreateFence(ctx->device, &fence_info, NULL, &ctx->upload_fence));
+    RTPBR_TRY(rtpbr_command_buffer_create(ctx, &ctx->upload_cmd, &ctx->upload_fence));
 
     VkSamplerCreateInfo sampler_info = {
         .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,

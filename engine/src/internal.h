@@ -335,6 +335,9 @@ void rtpbr_image_destroy(rtpbr_context *ctx, rtpbr_image *image);
 // The same with `layers` array layers and a 2D-array view (layers 0: rtpbr_image_create's).
 rtpbr_result rtpbr_image_create_layers(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t layers,
                                        VkFormat format, VkImageUsageFlags usage, rtpbr_image *out);
+// A primary command buffer from ctx->command_pool and an unsignalled fence for its submissions
+// (the caller frees both, also after a failure).
+rtpbr_result rtpbr_command_buffer_create(rtpbr_context *ctx, VkCommandBuffer *cmd, VkFence *fence);
 // Records into ctx->upload_cmd, submits, waits. record(cmd, user) records the work.
 rtpbr_result rtpbr_submit_once(rtpbr_context *ctx, void (*record)(VkCommandBuffer cmd, void *user),
                                void *user);
@@ -359,6 +362,11 @@ void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags 
                          VkImageLayout old_layout, VkImageLayout new_layout,
                          VkPipelineStageFlags src_stage, VkAccessFlags src_access,
                          VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
+// The same on a range of mips and layers.
+void rtpbr_image_range_barrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range,
+                               VkImageLayout old_layout, VkImageLayout new_layout,
+                               VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                               VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
 
 // ---------------------------------------------------------------------------------------------
 // The scene's BVH for the shadow rays (bvh.c)

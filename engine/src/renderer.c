@@ -77,15 +77,7 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
     RTPBR_TRY(rtpbr_resolve_renderer_init(r));
     RTPBR_TRY(rtpbr_tonemap_renderer_init(r));
 
-    VkCommandBufferAllocateInfo cmd_info = {
-        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
-        .commandPool = ctx->command_pool,
-        .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
-        .commandBufferCount = 1,
-    };
-    RTPBR_VK(&ctx->host, vkAllocateCommandBuffers(ctx->device, &cmd_info, &r->cmd));
-    VkFenceCreateInfo fence_info = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    RTPBR_VK(&ctx->host, vkCreateFence(ctx->device, &fence_info, NULL, &r->fence));
+    RTPBR_TRY(rtpbr_command_buffer_create(ctx, &r->cmd, &r->fence));
     if (desc->timings) RTPBR_TRY(rtpbr_timing_create(r));
     *out = r;
     return RTPBR_SUCCESS;
@@ -363,36 +355,34 @@ cleanup:
     return result;
 }
 
+// rtpbr_read_radiance and rtpbr_read_display (named by `who`): copies a readback buffer of
+// bytes_per_pixel per output pixel into dst once `ready`, else says what has not been rendered.
+static rtpbr_result read_back(rtpbr_renderer *r, const char *who, const rtpbr_buffer *readback, size_t bytes_per_pixel,
+                              bool ready, const char *not_ready, void *dst, size_t size_bytes)
+{
+    size_t need = (size_t)r->width * r->height * bytes_per_pixel;
+    if (!dst || size_bytes < need) {
+        rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "%s: need a buffer of %zu bytes, got %zu%s", who, need,
+                  size_bytes, dst ? "" : " (NULL)");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (!ready) {
+        rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "%s: nothing rendered with %s yet", who, not_ready);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    memcpy(dst, readback->mapped, need);
+    return RTPBR_SUCCESS;
+}
+
 rtpbr_result rtpbr_read_radiance(rtpbr_renderer *r, float *rgba, size_t size_bytes)
 {
     if (!r) return rtpbr_null_object(__func__, "renderer");
-    size_t need = (size_t)r->width * r->height * 16;
-    if (!rgba || size_bytes < need) {
-        rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_read_radiance: need a buffer of %zu bytes, got %zu%s", need,
-                  size_bytes, rgba ? "" : " (NULL)");
-        return RTPBR_ERROR_INVALID_ARGUMENT;
-    }
-    if (!r->has_radiance) {
-        rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_read_radiance: nothing rendered with rtpbr_render or rtpbr_record yet");
-        return RTPBR_ERROR_INVALID_ARGUMENT;
-    }
-    memcpy(rgba, r->radiance_readback.mapped, need);
-    return RTPBR_SUCCESS;
+    return read_back(r, __func__, &r->radiance_readback, 16, r->has_radiance, "rtpbr_render or rtpbr_record", rgba,
+                     size_bytes);
 }
 
 rtpbr_result rtpbr_read_display(rtpbr_renderer *r, uint8_t *rgba, size_t size_bytes)
 {
     if (!r) return rtpbr_null_object(__func__, "renderer");
-    size_t need = (size_t)r->width * r->height * 4;
-    if (!rgba || size_bytes < need) {
-        rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_read_display: need a buffer of %zu bytes, got %zu%s", need,
-                  size_bytes, rgba ? "" : " (NULL)");
-        return RTPBR_ERROR_INVALID_ARGUMENT;
-    }
-    if (!r->has_frame) {
-        rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "rtpbr_read_display: nothing rendered with rtpbr_render yet");
-        return RTPBR_ERROR_INVALID_ARGUMENT;
-    }
-    memcpy(rgba, r->display_readback.mapped, need);
-    return RTPBR_SUCCESS;
+    return read_back(r, __func__, &r->display_readback, 4, r->has_frame, "rtpbr_render", rgba, size_bytes);
 }

@@ -152,10 +152,10 @@ void rtpbr_image_destroy(rtpbr_context *ctx, rtpbr_image *image)
     memset(image, 0, sizeof *image);
 }
 
-void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
-                         VkImageLayout old_layout, VkImageLayout new_layout,
-                         VkPipelineStageFlags src_stage, VkAccessFlags src_access,
-                         VkPipelineStageFlags dst_stage, VkAccessFlags dst_access)
+void rtpbr_image_range_barrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range,
+                               VkImageLayout old_layout, VkImageLayout new_layout,
+                               VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                               VkPipelineStageFlags dst_stage, VkAccessFlags dst_access)
 {
     VkImageMemoryBarrier barrier = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
@@ -166,9 +166,34 @@ void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags 
         .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
         .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
         .image = image,
-        .subresourceRange = {aspect, 0, 1, 0, 1},
+        .subresourceRange = range,
     };
     vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, NULL, 0, NULL, 1, &barrier);
+}
+
+void rtpbr_image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
+                         VkImageLayout old_layout, VkImageLayout new_layout,
+                         VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                         VkPipelineStageFlags dst_stage, VkAccessFlags dst_access)
+{
+    rtpbr_image_range_barrier(cmd, image, (VkImageSubresourceRange){aspect, 0, 1, 0, 1}, old_layout, new_layout,
+                              src_stage, src_access, dst_stage, dst_access);
+}
+
+rtpbr_result rtpbr_command_buffer_create(rtpbr_context *ctx, VkCommandBuffer *cmd, VkFence *fence)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkCommandBufferAllocateInfo cmd_info = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+        .commandPool = ctx->command_pool,
+        .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+        .commandBufferCount = 1,
+    };
+    RTPBR_VK(&ctx->host, vkAllocateCommandBuffers(ctx->device, &cmd_info, cmd));
+    VkFenceCreateInfo fence_info = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    RTPBR_VK(&ctx->host, vkCreateFence(ctx->device, &fence_info, NULL, fence));
+cleanup:
+    return result; // the caller frees what was made
 }
 
 rtpbr_result rtpbr_submit_once(rtpbr_context *ctx, void (*record)(VkCommandBuffer cmd, void *user), void *user)
@@ -252,18 +277,8 @@ static void mip_barrier(VkCommandBuffer cmd, VkImage image, uint32_t level, VkIm
                         VkImageLayout new_layout, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
                         VkPipelineStageFlags dst_stage, VkAccessFlags dst_access)
 {
-    VkImageMemoryBarrier barrier = {
-        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
-        .srcAccessMask = src_access,
-        .dstAccessMask = dst_access,
-        .oldLayout = old_layout,
-        .newLayout = new_layout,
-        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .image = image,
-        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, 1},
-    };
-    vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, NULL, 0, NULL, 1, &barrier);
+    rtpbr_image_range_barrier(cmd, image, (VkImageSubresourceRange){VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, 1},
+                              old_layout, new_layout, src_stage, src_access, dst_stage, dst_access);
 }
 
 // Level 0 from the staging buffer, then each level blitted (linear filter) from the one above

@@ -99,7 +99,12 @@ static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights,
         const rtpbr_light_desc *l = &lights[i];
         const rtpbr_gltf_polygon_facts *f = &facts[i];
         rtpbr_shader_light g = {0};
-        for (uint32_t v = 0; v < l->vertex_count; ++v) memcpy(g.vertices[v], l->vertices[v], 3 * sizeof(float));
+        double fan = 0.0; // w of vertex v: the area of the fan polygon v0 .. v (RTPBR_LIGHT_FIELDS)
+        for (uint32_t v = 0; v < l->vertex_count; ++v) {
+            memcpy(g.vertices[v], l->vertices[v], 3 * sizeof(float));
+            g.vertices[v][3] = (float)fan;
+            if (v >= 1 && v + 1 < l->vertex_count) fan += f->fan_area[v - 1];
+        }
         memcpy(g.radiance, l->emission, sizeof g.radiance);
         g.two_sided = l->two_sided ? 1.0f : 0.0f;
         memcpy(g.plane, f->normal, sizeof f->normal);
@@ -669,20 +674,28 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_free(&ctx->host, scene);
 }
 
+// The checks of a setter of one element of a scene (`function`): its argument `arg` (named
+// arg_name) is not NULL, and `index` is below the scene's `count` of `what`.
+static rtpbr_result check_set(const rtpbr_gpu_scene *scene, const char *function, const void *arg,
+                              const char *arg_name, const char *what, uint32_t index, uint32_t count)
+{
+    if (!arg) {
+        rtpbr_log(&scene->context->host, RTPBR_LOG_ERROR, "%s: %s is NULL", function, arg_name);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (index >= count) {
+        rtpbr_log(&scene->context->host, RTPBR_LOG_ERROR, "%s: %s %u, the scene has %u", function, what, index, count);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    return RTPBR_SUCCESS;
+}
+
 rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index, const rtpbr_material_desc *material)
 {
     if (!scene) return rtpbr_null_object(__func__, "scene");
     rtpbr_context *ctx = scene->context;
-    if (!material) {
-        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_material: material is NULL");
-        return RTPBR_ERROR_INVALID_ARGUMENT;
-    }
-    if (index >= scene->material_count) {
-        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_material: material %u, the scene has %u", index,
-                  scene->material_count);
-        return RTPBR_ERROR_INVALID_ARGUMENT;
-    }
-    rtpbr_result result = validate_material(ctx, material, index);
+    rtpbr_result result = check_set(scene, __func__, material, "material", "material", index, scene->material_count);
+    if (result == RTPBR_SUCCESS) result = validate_material(ctx, material, index);
     if (result != RTPBR_SUCCESS) return result;
     uint32_t textures = scene->texture_count - 1; // the host's; image 0 is the white stand-in
     uint32_t index_of[RTPBR_MATERIAL_TEXTURE_COUNT] = {0};
@@ -706,18 +719,10 @@ rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index
 rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh, const float transform[16])
 {
     if (!scene) return rtpbr_null_object(__func__, "scene");
-    rtpbr_context *ctx = scene->context;
-    if (!transform) {
-        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: transform is NULL");
-        return RTPBR_ERROR_INVALID_ARGUMENT;
-    }
-    if (mesh >= scene->draw_count) {
-        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: mesh %u, the scene has %u", mesh,
-                  scene->draw_count);
-        return RTPBR_ERROR_INVALID_ARGUMENT;
-    }
+    rtpbr_result result = check_set(scene, __func__, transform, "transform", "mesh", mesh, scene->draw_count);
+    if (result != RTPBR_SUCCESS) return result;
     if (!rtpbr_finite(transform, 16)) {
-        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: mesh %u: NaN or infinite transform", mesh);
+        rtpbr_log(&scene->context->host, RTPBR_LOG_ERROR, "rtpbr_gpu_scene_set_transform: mesh %u: NaN or infinite transform", mesh);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     rtpbr_draw *draw = &scene->draws[mesh];

@@ -53,6 +53,7 @@
 #include "ltc_floor.hpp"
 #include "ltc_floor_lobe2.hpp"
 #include "rtpbr_common/image.hpp"
+#include "rtpbr_common/markdown.hpp"
 
 using namespace ltcfloor;
 
@@ -344,12 +345,7 @@ int main(int argc, char **argv) {
            ltcmc::lobe_name(lobe), tablesPath.empty() ? "compiled-in" : tablesPath.c_str());
     for (float v : novs) {
         printf("\nNoV = %.1f\n\n| r |", double(v));
-        for (float e : elevs)
-            printf(" %g deg |", double(e));
-        printf("\n|---|");
-        for (size_t i = 0; i < elevs.size(); i++)
-            printf("---|");
-        printf("\n");
+        rtpbr_tools::print_markdown_head(elevs, " %g deg |", 1);
         for (float r : rough) {
             printf("| %.1f |", double(r));
             for (float e : elevs) {
@@ -371,12 +367,7 @@ int main(int argc, char **argv) {
         // |error| (azimuths 30..150 counted twice, as in the floor error) and its signed error.
         printf("\nGrazing floors per light azimuth (0 = far floor, 180 = near floor): share of the floor's "
                "sum |LTC - ref| / its sum ref, and the patch's signed error:\n\n| NoV | r | elev |");
-        for (float a : azims)
-            printf(" %g |", double(a));
-        printf("\n|---|---|---|");
-        for (size_t i = 0; i < azims.size(); i++)
-            printf("---|");
-        printf("\n");
+        rtpbr_tools::print_markdown_head(azims, " %g |", 3);
         for (float v : novs)
             for (float r : rough)
                 for (float e : elevs) {

@@ -14,11 +14,14 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "error_stats.hpp"
 
 namespace ltcfit {
 
@@ -112,7 +115,12 @@ std::vector<float> sphere_table(int size);
 // omega from the normal: (1/pi) * integral over the cap above the horizon of cos(theta).
 double clipped_cap_form_factor(double omega, double sigma);
 
+// The statistics (error_stats.hpp) of a table's per-cell errors.
+ErrorStats error_stats(const Table &t);
+
 // Writers (return false and fill err on failure).
+// fopen(path, "w"); nullptr, and err set, when it fails.
+FILE *open_for_writing(const std::string &path, std::string &err);
 // The packed arrays (pack_ltc1 / pack_ltc2) of the three lobes, as written to the header.
 struct PackedTables {
     std::vector<float> ggx1, ggx2, beckmann1, beckmann2, diffuse1, diffuse2;

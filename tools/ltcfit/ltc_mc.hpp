@@ -22,6 +22,8 @@
 #include "luts/rtpbr_ltc_sheen_tables.h"
 #include "rtpbr_common/rng.h"
 
+#include "error_stats.hpp"
+
 namespace ltcmc {
 
 using rtpbr::float2;
@@ -437,14 +439,9 @@ struct Summary {
 };
 
 inline Summary summarize(std::vector<double> v) {
-    if (v.empty())
-        return {0, 0, 0, 0};
-    std::sort(v.begin(), v.end());
-    double s = 0;
-    for (double x : v)
-        s += x;
-    size_t i95 = std::min(v.size() - 1, size_t(0.95 * double(v.size() - 1) + 0.5));
-    return {s / double(v.size()), v[i95], v.back(), int(v.size())};
+    const int count = int(v.size());
+    const ltcfit::ErrorStats s = ltcfit::error_stats(std::move(v));
+    return {s.mean, s.p95, s.max, count};
 }
 
 // The grid: roughness between table cells on purpose (bilinear filtering is part of what

@@ -16,6 +16,7 @@
 #include "ltc_mc.hpp"
 #include "rtpbr_common/colormap.hpp"
 #include "rtpbr_common/image.hpp"
+#include "rtpbr_common/markdown.hpp"
 
 using namespace ltcmc;
 
@@ -173,25 +174,25 @@ int main(int argc, char **argv) {
     }
     printf("\nReference: largest relative standard error %.3f%% where the light matters (at most %ld sample pairs).\n", 100 * worstRef,
            maxSamples);
+    // The exact method's errors over the significant cases that `keep` selects.
+    auto point_errors = [&](auto keep) {
+        std::vector<double> e;
+        for (const Outcome &o : out)
+            if (o.significant && keep(o.cfg))
+                e.push_back(o.relPoint);
+        return summarize(e);
+    };
     // Breakdown of the exact method by roughness and view angle.
     for (Lobe l : lobes) {
         printf("\n%s, exact clipping + point correction (the engine), mean relative error by roughness (rows) and view angle (columns):\n\n| r |",
                lobe_name(l));
         std::vector<float> rough = grid_roughness(reduced), views = grid_views(reduced);
-        for (float v : views)
-            printf(" %g deg |", double(v));
-        printf("\n|---|");
-        for (size_t i = 0; i < views.size(); i++)
-            printf("---|");
-        printf("\n");
+        rtpbr_tools::print_markdown_head(views, " %g deg |", 1);
         for (float r : rough) {
             printf("| %.2f |", double(r));
             for (float v : views) {
-                std::vector<double> e;
-                for (const Outcome &o : out)
-                    if (o.cfg.lobe == l && o.cfg.roughness == r && o.cfg.viewDeg == v && o.significant)
-                        e.push_back(o.relPoint);
-                printf(" %.1f%% |", 100 * summarize(e).mean);
+                Summary s = point_errors([&](const Config &c) { return c.lobe == l && c.roughness == r && c.viewDeg == v; });
+                printf(" %.1f%% |", 100 * s.mean);
             }
             printf("\n");
         }
@@ -201,20 +202,12 @@ int main(int argc, char **argv) {
         printf("\n%s, exact clipping + point correction (the engine), mean relative error by position (rows) and light half-size (columns):\n\n| position |",
                lobe_name(l));
         std::vector<float> halves = grid_halves(reduced);
-        for (float h : halves)
-            printf(" %g |", double(h));
-        printf("\n|---|");
-        for (size_t i = 0; i < halves.size(); i++)
-            printf("---|");
-        printf("\n");
+        rtpbr_tools::print_markdown_head(halves, " %g |", 1);
         for (int p = 0; p < 4; p++) {
             printf("| %s |", position_name(p));
             for (float h : halves) {
-                std::vector<double> e;
-                for (const Outcome &o : out)
-                    if (o.cfg.lobe == l && o.cfg.position == p && o.cfg.half == h && o.significant)
-                        e.push_back(o.relPoint);
-                printf(" %.1f%% (%d) |", 100 * summarize(e).mean, summarize(e).count);
+                Summary s = point_errors([&](const Config &c) { return c.lobe == l && c.position == p && c.half == h; });
+                printf(" %.1f%% (%d) |", 100 * s.mean, s.count);
             }
             printf("\n");
         }

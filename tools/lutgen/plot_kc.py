@@ -18,6 +18,18 @@ except ImportError:
     plt = None
 
 
+def finish(fig, axes, ylabel, path):
+    """The axes both figures share (mu from 0 to 1, a grid), the y label and legend, saved."""
+    for ax in axes:
+        ax.set_xlabel("mu = cos theta_o")
+        ax.set_xlim(0, 1)
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel(ylabel)
+    axes[0].legend(fontsize=7, loc="lower right")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
 def main():
     if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
         print(__doc__)
@@ -43,14 +55,8 @@ def main():
             ax.plot([p[0] for p in pts], [p[1] for p in pts], color=cmap(i / max(1, len(rs) - 1)),
                     label=f"r={r:g} (alpha={r * r:.3g})")
         ax.set_title(f"E(mu), {v}")
-        ax.set_xlabel("mu = cos theta_o")
-        ax.set_xlim(0, 1)
         ax.set_ylim(0, 1.05)
-        ax.grid(alpha=0.3)
-    axes[0].set_ylabel("single-scattering albedo, F = 1")
-    axes[0].legend(fontsize=7, loc="lower right")
-    fig.tight_layout()
-    fig.savefig(f"{sys.argv[2]}/kc_E.png", dpi=110)
+    finish(fig, axes, "single-scattering albedo, F = 1", f"{sys.argv[2]}/kc_E.png")
 
     fig, axes = plt.subplots(1, len(shown), figsize=(4.2 * len(shown), 3.8), sharey=True)
     for ax, v in zip(axes, shown):
@@ -61,14 +67,8 @@ def main():
             ax.plot([p[0] for p in pts], [p[1] for p in pts], color=col, ls="--", lw=1)
             ax.plot([p[0] for p in pts], [p[2] for p in pts], color=col, lw=1.5, label=f"r={r:g}")
         ax.set_title(f"white furnace, {v}")
-        ax.set_xlabel("mu = cos theta_o")
-        ax.set_xlim(0, 1)
         ax.set_ylim(0.3, 1.05)
-        ax.grid(alpha=0.3)
-    axes[0].set_ylabel("albedo: dashed f_ss, solid f_ss + f_ms")
-    axes[0].legend(fontsize=7, loc="lower right")
-    fig.tight_layout()
-    fig.savefig(f"{sys.argv[2]}/kc_furnace.png", dpi=110)
+    finish(fig, axes, "albedo: dashed f_ss, solid f_ss + f_ms", f"{sys.argv[2]}/kc_furnace.png")
     return 0
 
 

@@ -64,9 +64,7 @@ cleanup:
 void rtpbr_forward_pass_finish(rtpbr_context *ctx)
 {
     rtpbr_forward_pass *pass = &ctx->forward;
-    for (uint32_t v = 0; v < RTPBR_LIGHTING_VARIANT_COUNT; ++v) vkDestroyPipeline(ctx->device, pass->pipelines[v], NULL);
-    vkDestroyPipelineLayout(ctx->device, pass->layout, NULL);
-    vkDestroyDescriptorSetLayout(ctx->device, pass->set_layout, NULL);
+    rtpbr_pass_objects_destroy(ctx, pass->pipelines, RTPBR_LIGHTING_VARIANT_COUNT, pass->layout, pass->set_layout);
     *pass = (rtpbr_forward_pass){0};
 }
 
@@ -129,13 +127,13 @@ void rtpbr_forward_renderer_finish(rtpbr_renderer *r)
 
 void rtpbr_forward_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
 {
-    const rtpbr_bindings table = RTPBR_BINDINGS(bindings);
-    rtpbr_descriptor_write_buffer(r->context, table, r->forward_set.set, RTPBR_BINDING_LIGHT_LIGHTS,
-                                  scene->lights.buffer, VK_WHOLE_SIZE);
-    rtpbr_descriptor_write_buffer(r->context, table, r->forward_set.set, RTPBR_BINDING_LIGHT_MATERIALS,
-                                  scene->materials.buffer, VK_WHOLE_SIZE);
-    rtpbr_descriptor_write_buffer(r->context, table, r->forward_set.set, RTPBR_BINDING_GBUFFER_TEXTURE_TRANSFORMS,
-                                  scene->texture_transforms.buffer, VK_WHOLE_SIZE);
+    const rtpbr_buffer_write writes[] = {
+        {RTPBR_BINDING_LIGHT_LIGHTS, scene->lights.buffer},
+        {RTPBR_BINDING_LIGHT_MATERIALS, scene->materials.buffer},
+        {RTPBR_BINDING_GBUFFER_TEXTURE_TRANSFORMS, scene->texture_transforms.buffer},
+    };
+    rtpbr_descriptor_write_buffers(r->context, RTPBR_BINDINGS(bindings), r->forward_set.set, writes,
+                                   sizeof writes / sizeof writes[0]);
 }
 
 static int farther_first(const void *a, const void *b)
@@ -183,53 +181,19 @@ void rtpbr_forward_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkPip
                         VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
                         VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                         VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
-    VkRenderingAttachmentInfo color = {
-        .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-        .imageView = target_view,
-        .imageLayout = VK_IMAGE_LAYOUT_GENERAL,
-        .loadOp = VK_ATTACHMENT_LOAD_OP_LOAD,
-        .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
-    };
-    VkRenderingAttachmentInfo depth = {
-        .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-        .imageView = r->depth.view,
-        .imageLayout = VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL,
-        .loadOp = VK_ATTACHMENT_LOAD_OP_LOAD,
-        .storeOp = VK_ATTACHMENT_STORE_OP_NONE,
-    };
-    VkRenderingInfo rendering = {
-        .sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
-        .renderArea = {{0, 0}, {r->shade_width, r->shade_height}},
-        .layerCount = 1,
-        .colorAttachmentCount = 1,
-        .pColorAttachments = &color,
-        .pDepthAttachment = &depth,
-    };
-    vkCmdBeginRendering(cmd, &rendering);
-    VkViewport viewport = {0.0f, 0.0f, (float)r->shade_width, (float)r->shade_height, 0.0f, 1.0f};
-    VkRect2D scissor = {{0, 0}, {r->shade_width, r->shade_height}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    VkRenderingAttachmentInfo color = rtpbr_attachment(target_view, VK_IMAGE_LAYOUT_GENERAL, VK_ATTACHMENT_LOAD_OP_LOAD,
+                                                       VK_ATTACHMENT_STORE_OP_STORE);
+    VkRenderingAttachmentInfo depth = rtpbr_attachment(r->depth.view, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL,
+                                                       VK_ATTACHMENT_LOAD_OP_LOAD, VK_ATTACHMENT_STORE_OP_NONE);
+    rtpbr_begin_rendering(cmd, r->shade_width, r->shade_height, &color, 1, &depth);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->forward.layout, 0, 1, &r->forward_set.set, 0,
                             NULL);
     VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &scene->vertices.buffer, &offset);
     vkCmdBindIndexBuffer(cmd, scene->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-    const rtpbr_shader_material *materials = scene->materials.mapped;
-    for (uint32_t k = 0; k < count; ++k) {
-        const rtpbr_draw *d = &scene->draws[scene->blend_order[k].draw];
-        // Sidedness as in the G-buffer pass (rtpbr_gbuffer_record).
-        bool single_sided = !(materials[d->push.material].flags & RTPBR_MATERIAL_FLAG_DOUBLE_SIDED);
-        vkCmdSetCullMode(cmd, single_sided ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
-        vkCmdSetFrontFace(cmd, rtpbr_mat4_mirrors(d->push.world_from_object) ? VK_FRONT_FACE_CLOCKWISE
-                                                                              : VK_FRONT_FACE_COUNTER_CLOCKWISE);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->forward.layout, 1, 1,
-                                &scene->material_sets[d->push.material], 0, NULL);
-        vkCmdPushConstants(cmd, ctx->forward.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof d->push, &d->push);
-        vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, 0, 0);
-    }
+    for (uint32_t k = 0; k < count; ++k) // sidedness as in the G-buffer pass
+        rtpbr_draw_mesh(cmd, ctx->forward.layout, scene, &scene->draws[scene->blend_order[k].draw]);
     vkCmdEndRendering(cmd);
     // Before the resolve, the tone mapping and the readback (rtpbr_lighting_end's barrier
     // covers the compute writes only).

@@ -98,9 +98,7 @@ cleanup:
 void rtpbr_gbuffer_pass_finish(rtpbr_context *ctx)
 {
     rtpbr_gbuffer_pass *pass = &ctx->gbuffer;
-    vkDestroyPipeline(ctx->device, pass->pipeline, NULL);
-    vkDestroyPipelineLayout(ctx->device, pass->layout, NULL);
-    vkDestroyDescriptorSetLayout(ctx->device, pass->set_layout, NULL);
+    rtpbr_pass_objects_destroy(ctx, &pass->pipeline, 1, pass->layout, pass->set_layout);
     vkDestroyDescriptorSetLayout(ctx->device, pass->material_set_layout, NULL);
     *pass = (rtpbr_gbuffer_pass){0};
 }
@@ -189,38 +187,17 @@ void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCom
     // (no image view: the shader's writes are discarded, and the lighting passes do not read them).
     uint32_t extensions = rtpbr_gpu_scene_extension_textures(scene);
     VkRenderingAttachmentInfo colors[RTPBR_GBUFFER_COUNT];
-    for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i)
-        colors[i] = (VkRenderingAttachmentInfo){
-            .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-            .imageView = i < RTPBR_GBUFFER_FIRST_EXTENSION ||
-                                 (extensions & extension_gbuffer_bits[i - RTPBR_GBUFFER_FIRST_EXTENSION])
-                             ? r->gbuffer[i].view
-                             : VK_NULL_HANDLE,
-            .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-            .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
-            .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
-        };
-    VkRenderingAttachmentInfo depth = {
-        .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-        .imageView = r->depth.view,
-        .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-        .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
-        .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
-        .clearValue.depthStencil = {1.0f, 0},
-    };
-    VkRenderingInfo rendering = {
-        .sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
-        .renderArea = {{0, 0}, {r->shade_width, r->shade_height}},
-        .layerCount = 1,
-        .colorAttachmentCount = RTPBR_GBUFFER_COUNT,
-        .pColorAttachments = colors,
-        .pDepthAttachment = &depth,
-    };
-    vkCmdBeginRendering(cmd, &rendering);
-    VkViewport viewport = {0.0f, 0.0f, (float)r->shade_width, (float)r->shade_height, 0.0f, 1.0f};
-    VkRect2D scissor = {{0, 0}, {r->shade_width, r->shade_height}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    for (uint32_t i = 0; i < RTPBR_GBUFFER_COUNT; ++i) {
+        bool rendered = i < RTPBR_GBUFFER_FIRST_EXTENSION ||
+                        (extensions & extension_gbuffer_bits[i - RTPBR_GBUFFER_FIRST_EXTENSION]);
+        colors[i] = rtpbr_attachment(rendered ? r->gbuffer[i].view : VK_NULL_HANDLE,
+                                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                     VK_ATTACHMENT_STORE_OP_STORE);
+    }
+    VkRenderingAttachmentInfo depth = rtpbr_attachment(r->depth.view, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                                                       VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE);
+    depth.clearValue.depthStencil = (VkClearDepthStencilValue){1.0f, 0};
+    rtpbr_begin_rendering(cmd, r->shade_width, r->shade_height, colors, RTPBR_GBUFFER_COUNT, &depth);
     if (scene->draw_count) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->gbuffer.pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->gbuffer.layout, 0, 1, &r->gbuffer_set.set,
@@ -232,17 +209,7 @@ void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCom
         for (uint32_t i = 0; i < scene->draw_count; ++i) {
             const rtpbr_draw *d = &scene->draws[i];
             if (materials[d->push.material].flags & RTPBR_MATERIAL_FLAG_ALPHA_BLEND) continue; // the forward pass's
-            // glTF doubleSided false: back faces are not drawn. Counter-clockwise is the front
-            // (the projection's y flip keeps it so), clockwise under a mirroring transform.
-            bool single_sided = !(materials[d->push.material].flags & RTPBR_MATERIAL_FLAG_DOUBLE_SIDED);
-            vkCmdSetCullMode(cmd, single_sided ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
-            vkCmdSetFrontFace(cmd, rtpbr_mat4_mirrors(d->push.world_from_object) ? VK_FRONT_FACE_CLOCKWISE
-                                                                                  : VK_FRONT_FACE_COUNTER_CLOCKWISE);
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->gbuffer.layout, 1, 1,
-                                    &scene->material_sets[d->push.material], 0, NULL);
-            vkCmdPushConstants(cmd, ctx->gbuffer.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                               0, sizeof d->push, &d->push);
-            vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, 0, 0);
+            rtpbr_draw_mesh(cmd, ctx->gbuffer.layout, scene, d);
         }
     }
     vkCmdEndRendering(cmd);

@@ -69,8 +69,7 @@ rtpbr_result rtpbr_lighting_pass_init(rtpbr_context *ctx)
 {
     rtpbr_lighting_pass *pass = &ctx->lighting;
     rtpbr_result result = RTPBR_SUCCESS;
-    RTPBR_TRY(rtpbr_set_layout_create(ctx, RTPBR_BINDINGS(bindings), &pass->set_layout));
-    RTPBR_TRY(rtpbr_pipeline_layout_create(ctx, &pass->set_layout, 1, 0, 0, &pass->layout));
+    RTPBR_TRY(rtpbr_pass_layouts_create(ctx, RTPBR_BINDINGS(bindings), 0, 0, &pass->set_layout, &pass->layout));
     RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_cull_comp), pass->layout, &pass->cull));
     RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_lighting_empty), pass->layout, &pass->empty));
     // The default variant (GGX, multiple scattering on) now, so that a bad driver fails early;
@@ -86,10 +85,8 @@ void rtpbr_lighting_pass_finish(rtpbr_context *ctx)
     rtpbr_lighting_pass *pass = &ctx->lighting;
     for (uint32_t v = 0; v < RTPBR_LIGHTING_VARIANT_COUNT; ++v)
         for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) vkDestroyPipeline(ctx->device, pass->ltc[v][c], NULL);
-    vkDestroyPipeline(ctx->device, pass->empty, NULL);
-    vkDestroyPipeline(ctx->device, pass->cull, NULL);
-    vkDestroyPipelineLayout(ctx->device, pass->layout, NULL);
-    vkDestroyDescriptorSetLayout(ctx->device, pass->set_layout, NULL);
+    const VkPipeline fixed[2] = {pass->empty, pass->cull};
+    rtpbr_pass_objects_destroy(ctx, fixed, 2, pass->layout, pass->set_layout);
     // (the Monte Carlo pipelines and layout are lighting_mc.c's)
     for (uint32_t v = 0; v < RTPBR_LIGHTING_VARIANT_COUNT; ++v)
         for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) pass->ltc[v][c] = VK_NULL_HANDLE;
@@ -157,11 +154,11 @@ void rtpbr_lighting_renderer_finish(rtpbr_renderer *r)
 
 void rtpbr_lighting_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
 {
-    const rtpbr_bindings table = RTPBR_BINDINGS(bindings);
-    rtpbr_descriptor_write_buffer(r->context, table, r->lighting_set.set, RTPBR_BINDING_LIGHT_MATERIALS,
-                                  scene->materials.buffer, VK_WHOLE_SIZE);
-    rtpbr_descriptor_write_buffer(r->context, table, r->lighting_set.set, RTPBR_BINDING_LIGHT_LIGHTS,
-                                  scene->lights.buffer, VK_WHOLE_SIZE);
+    const rtpbr_buffer_write writes[] = {
+        {RTPBR_BINDING_LIGHT_MATERIALS, scene->materials.buffer},
+        {RTPBR_BINDING_LIGHT_LIGHTS, scene->lights.buffer},
+    };
+    rtpbr_descriptor_write_buffers(r->context, RTPBR_BINDINGS(bindings), r->lighting_set.set, writes, 2);
 }
 
 // The image the lighting pass writes: the output, or its supersampled version.

@@ -50,9 +50,11 @@ cleanup:
 // samples came out a third as bright). The pass is therefore split into dispatches over a
 // range of lights and a range of samples whose loop iterations per invocation stay within
 // RTPBR_MC_LOOP_BUDGET, a quarter of that limit. Counted per light of a polygon of c vertices
-// (a SIMD batch runs both sides of a divergent branch): the light loop and the fan-area loop,
-// c - 1; per sample, the sample loop, the fan-triangle pick (c - 2) and the ray-polygon test
-// (c), 2 c - 1.
+// (a SIMD batch runs both sides of a divergent branch): the light loop, 1; per sample, the
+// sample loop, the fan-triangle pick (c - 3) and the ray-polygon test (c), 2 c - 2. The split
+// below counts c - 1 and 2 c - 1, the loops before the light record carried the fan's areas
+// (a fan-area loop per light, one more pick step): an upper bound, kept so that the dispatches,
+// and so the rounding of the sums, stay as they were.
 enum { RTPBR_MC_LOOP_BUDGET = 16384 };
 
 // The LCG step of mc_next (mc_sampling.glsl) taken n times: state * *mul + *add (Brown 1994,

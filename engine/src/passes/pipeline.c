@@ -219,32 +219,99 @@ static VkDescriptorType binding_type(rtpbr_bindings bindings, uint32_t binding)
     return VK_DESCRIPTOR_TYPE_MAX_ENUM; // a binding the layout lacks: the validation layer says so
 }
 
-void rtpbr_descriptor_write_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
-                                   VkBuffer buffer, VkDeviceSize range)
+// One descriptor of `binding` (its type from the table): a buffer or an image.
+static void write_descriptor(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
+                             const VkDescriptorBufferInfo *buffer, const VkDescriptorImageInfo *image)
 {
-    VkDescriptorBufferInfo info = {buffer, 0, range};
     VkWriteDescriptorSet write = {
         .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
         .dstSet = set,
         .dstBinding = binding,
         .descriptorCount = 1,
         .descriptorType = binding_type(bindings, binding),
-        .pBufferInfo = &info,
+        .pImageInfo = image,
+        .pBufferInfo = buffer,
     };
     vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
+}
+
+void rtpbr_descriptor_write_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
+                                   VkBuffer buffer, VkDeviceSize range)
+{
+    write_descriptor(ctx, bindings, set, binding, &(VkDescriptorBufferInfo){buffer, 0, range}, NULL);
+}
+
+void rtpbr_descriptor_write_buffers(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
+                                    const rtpbr_buffer_write *writes, uint32_t count)
+{
+    for (uint32_t i = 0; i < count; ++i)
+        rtpbr_descriptor_write_buffer(ctx, bindings, set, writes[i].binding, writes[i].buffer, VK_WHOLE_SIZE);
 }
 
 void rtpbr_descriptor_write_image(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                   VkSampler sampler, VkImageView view, VkImageLayout layout)
 {
-    VkDescriptorImageInfo info = {sampler, view, layout};
-    VkWriteDescriptorSet write = {
-        .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-        .dstSet = set,
-        .dstBinding = binding,
-        .descriptorCount = 1,
-        .descriptorType = binding_type(bindings, binding),
-        .pImageInfo = &info,
+    write_descriptor(ctx, bindings, set, binding, NULL, &(VkDescriptorImageInfo){sampler, view, layout});
+}
+
+rtpbr_result rtpbr_pass_layouts_create(rtpbr_context *ctx, rtpbr_bindings bindings, VkShaderStageFlags push_stages,
+                                       uint32_t push_size, VkDescriptorSetLayout *set_layout, VkPipelineLayout *layout)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    RTPBR_TRY(rtpbr_set_layout_create(ctx, bindings, set_layout));
+    RTPBR_TRY(rtpbr_pipeline_layout_create(ctx, set_layout, 1, push_stages, push_size, layout));
+cleanup:
+    return result; // the caller destroys what was made (rtpbr_pass_objects_destroy)
+}
+
+void rtpbr_pass_objects_destroy(rtpbr_context *ctx, const VkPipeline *pipelines, uint32_t pipeline_count,
+                                VkPipelineLayout layout, VkDescriptorSetLayout set_layout)
+{
+    for (uint32_t i = 0; i < pipeline_count; ++i) vkDestroyPipeline(ctx->device, pipelines[i], NULL);
+    vkDestroyPipelineLayout(ctx->device, layout, NULL);
+    vkDestroyDescriptorSetLayout(ctx->device, set_layout, NULL);
+}
+
+VkRenderingAttachmentInfo rtpbr_attachment(VkImageView view, VkImageLayout layout, VkAttachmentLoadOp load,
+                                           VkAttachmentStoreOp store)
+{
+    return (VkRenderingAttachmentInfo){
+        .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+        .imageView = view,
+        .imageLayout = layout,
+        .loadOp = load,
+        .storeOp = store,
     };
-    vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
+}
+
+void rtpbr_begin_rendering(VkCommandBuffer cmd, uint32_t width, uint32_t height, const VkRenderingAttachmentInfo *colors,
+                           uint32_t color_count, const VkRenderingAttachmentInfo *depth)
+{
+    VkRenderingInfo rendering = {
+        .sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
+        .renderArea = {{0, 0}, {width, height}},
+        .layerCount = 1,
+        .colorAttachmentCount = color_count,
+        .pColorAttachments = colors,
+        .pDepthAttachment = depth,
+    };
+    vkCmdBeginRendering(cmd, &rendering);
+    VkViewport viewport = {0.0f, 0.0f, (float)width, (float)height, 0.0f, 1.0f};
+    VkRect2D scissor = {{0, 0}, {width, height}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+void rtpbr_draw_mesh(VkCommandBuffer cmd, VkPipelineLayout layout, const rtpbr_gpu_scene *scene, const rtpbr_draw *d)
+{
+    const rtpbr_shader_material *materials = scene->materials.mapped;
+    bool single_sided = !(materials[d->push.material].flags & RTPBR_MATERIAL_FLAG_DOUBLE_SIDED);
+    vkCmdSetCullMode(cmd, single_sided ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
+    vkCmdSetFrontFace(cmd, rtpbr_mat4_mirrors(d->push.world_from_object) ? VK_FRONT_FACE_CLOCKWISE
+                                                                          : VK_FRONT_FACE_COUNTER_CLOCKWISE);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &scene->material_sets[d->push.material],
+                            0, NULL);
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof d->push,
+                       &d->push);
+    vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, 0, 0);
 }

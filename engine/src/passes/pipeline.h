@@ -61,7 +61,37 @@ void rtpbr_descriptor_set_destroy(rtpbr_context *ctx, rtpbr_descriptor_set *set)
 // descriptor type from the binding table).
 void rtpbr_descriptor_write_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                    VkBuffer buffer, VkDeviceSize range);
+// Points buffer bindings of a set made from `bindings` at whole buffers, writes[0 .. count).
+typedef struct rtpbr_buffer_write {
+    uint32_t binding;
+    VkBuffer buffer;
+} rtpbr_buffer_write;
+void rtpbr_descriptor_write_buffers(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
+                                    const rtpbr_buffer_write *writes, uint32_t count);
 void rtpbr_descriptor_write_image(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                   VkSampler sampler, VkImageView view, VkImageLayout layout);
+
+
+// A pass with one set layout (from its binding table) and a pipeline layout of that set and,
+// if push_size > 0, one push-constant range.
+rtpbr_result rtpbr_pass_layouts_create(rtpbr_context *ctx, rtpbr_bindings bindings, VkShaderStageFlags push_stages,
+                                       uint32_t push_size, VkDescriptorSetLayout *set_layout, VkPipelineLayout *layout);
+// Destroys a pass's pipelines[0 .. pipeline_count), pipeline layout and set layout (any of them
+// VK_NULL_HANDLE: a half-built pass).
+void rtpbr_pass_objects_destroy(rtpbr_context *ctx, const VkPipeline *pipelines, uint32_t pipeline_count,
+                                VkPipelineLayout layout, VkDescriptorSetLayout set_layout);
+
+// A dynamic-rendering attachment: `view` in `layout`, loaded and stored as said (clear value 0).
+VkRenderingAttachmentInfo rtpbr_attachment(VkImageView view, VkImageLayout layout, VkAttachmentLoadOp load,
+                                           VkAttachmentStoreOp store);
+// Begins dynamic rendering into colors[0 .. color_count) and depth (NULL: none) over width x
+// height, one layer, and sets the viewport (depth 0 to 1) and scissor to the same area.
+void rtpbr_begin_rendering(VkCommandBuffer cmd, uint32_t width, uint32_t height, const VkRenderingAttachmentInfo *colors,
+                           uint32_t color_count, const VkRenderingAttachmentInfo *depth);
+// Draws one mesh of the scene with a pipeline of the G-buffer pass's layout shape (set 1: the
+// material's textures; push constants: rtpbr_shader_draw) bound: back faces culled for a
+// single-sided material (glTF doubleSided false), counter-clockwise the front face (the
+// projection's y flip keeps it so), clockwise under a mirroring transform.
+void rtpbr_draw_mesh(VkCommandBuffer cmd, VkPipelineLayout layout, const rtpbr_gpu_scene *scene, const rtpbr_draw *d);
 
 #endif // RTPBR_PASSES_PIPELINE_H

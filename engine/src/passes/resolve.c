@@ -15,9 +15,8 @@ rtpbr_result rtpbr_resolve_pass_init(rtpbr_context *ctx)
 {
     rtpbr_resolve_pass *pass = &ctx->resolve;
     rtpbr_result result = RTPBR_SUCCESS;
-    RTPBR_TRY(rtpbr_set_layout_create(ctx, RTPBR_BINDINGS(bindings), &pass->set_layout));
-    RTPBR_TRY(rtpbr_pipeline_layout_create(ctx, &pass->set_layout, 1, VK_SHADER_STAGE_COMPUTE_BIT,
-                                           sizeof(rtpbr_shader_resolve), &pass->layout));
+    RTPBR_TRY(rtpbr_pass_layouts_create(ctx, RTPBR_BINDINGS(bindings), VK_SHADER_STAGE_COMPUTE_BIT,
+                                        sizeof(rtpbr_shader_resolve), &pass->set_layout, &pass->layout));
     RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_resolve_comp), pass->layout, &pass->pipeline));
 cleanup:
     return result; // the caller finishes a half-built pass
@@ -26,9 +25,7 @@ cleanup:
 void rtpbr_resolve_pass_finish(rtpbr_context *ctx)
 {
     rtpbr_resolve_pass *pass = &ctx->resolve;
-    vkDestroyPipeline(ctx->device, pass->pipeline, NULL);
-    vkDestroyPipelineLayout(ctx->device, pass->layout, NULL);
-    vkDestroyDescriptorSetLayout(ctx->device, pass->set_layout, NULL);
+    rtpbr_pass_objects_destroy(ctx, &pass->pipeline, 1, pass->layout, pass->set_layout);
     *pass = (rtpbr_resolve_pass){0};
 }
 

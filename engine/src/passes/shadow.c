@@ -48,9 +48,8 @@ rtpbr_result rtpbr_shadow_pass_init(rtpbr_context *ctx)
 {
     rtpbr_shadow_pass *pass = &ctx->shadow;
     rtpbr_result result = RTPBR_SUCCESS;
-    RTPBR_TRY(rtpbr_set_layout_create(ctx, RTPBR_BINDINGS(bindings), &pass->set_layout));
-    RTPBR_TRY(rtpbr_pipeline_layout_create(ctx, &pass->set_layout, 1, VK_SHADER_STAGE_COMPUTE_BIT,
-                                           sizeof(rtpbr_shader_shadow), &pass->layout));
+    RTPBR_TRY(rtpbr_pass_layouts_create(ctx, RTPBR_BINDINGS(bindings), VK_SHADER_STAGE_COMPUTE_BIT,
+                                        sizeof(rtpbr_shader_shadow), &pass->set_layout, &pass->layout));
 cleanup:
     return result; // the caller finishes a half-built pass; the pipelines are made on first use
 }
@@ -58,10 +57,8 @@ cleanup:
 void rtpbr_shadow_pass_finish(rtpbr_context *ctx)
 {
     rtpbr_shadow_pass *pass = &ctx->shadow;
-    vkDestroyPipeline(ctx->device, pass->trace, NULL);
-    vkDestroyPipeline(ctx->device, pass->denoise, NULL);
-    vkDestroyPipelineLayout(ctx->device, pass->layout, NULL);
-    vkDestroyDescriptorSetLayout(ctx->device, pass->set_layout, NULL);
+    const VkPipeline pipelines[2] = {pass->trace, pass->denoise};
+    rtpbr_pass_objects_destroy(ctx, pipelines, 2, pass->layout, pass->set_layout);
     *pass = (rtpbr_shadow_pass){0};
 }
 
@@ -83,22 +80,14 @@ cleanup:
 static void record_initial_layouts(VkCommandBuffer cmd, void *user)
 {
     const rtpbr_renderer *r = user;
-    VkImageMemoryBarrier barriers[2];
     const VkImage images[2] = {r->shadow_estimates.image, r->shadow_ratio.image};
     const uint32_t layers[2] = {2 * RTPBR_MAX_SHADOWED_LIGHTS, RTPBR_MAX_SHADOWED_LIGHTS};
     for (int i = 0; i < 2; ++i)
-        barriers[i] = (VkImageMemoryBarrier){
-            .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
-            .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
-            .oldLayout = VK_IMAGE_LAYOUT_UNDEFINED,
-            .newLayout = VK_IMAGE_LAYOUT_GENERAL,
-            .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-            .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-            .image = images[i],
-            .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers[i]},
-        };
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, NULL, 0,
-                         NULL, 2, barriers);
+        rtpbr_image_range_barrier(cmd, images[i],
+                                  (VkImageSubresourceRange){VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers[i]},
+                                  VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                                  0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 }
 
 rtpbr_result rtpbr_shadow_renderer_init(rtpbr_renderer *r)
@@ -138,45 +127,27 @@ void rtpbr_shadow_renderer_finish(rtpbr_renderer *r)
 
 void rtpbr_shadow_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
 {
-    const rtpbr_bindings table = RTPBR_BINDINGS(bindings);
-    rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_LIGHTS,
-                                  scene->lights.buffer, VK_WHOLE_SIZE);
-    rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_BVH_NODES,
-                                  scene->bvh_nodes.buffer, VK_WHOLE_SIZE);
-    rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_BVH_TRIANGLES,
-                                  scene->bvh_triangles.buffer, VK_WHOLE_SIZE);
-    // The alpha of MASK and BLEND occluders (bvh.glsl).
-    const struct {
-        uint32_t binding;
-        VkBuffer buffer;
-    } alpha[] = {
+    const rtpbr_buffer_write writes[] = {
+        {RTPBR_BINDING_SHADOW_LIGHTS, scene->lights.buffer},
+        {RTPBR_BINDING_SHADOW_BVH_NODES, scene->bvh_nodes.buffer},
+        {RTPBR_BINDING_SHADOW_BVH_TRIANGLES, scene->bvh_triangles.buffer},
+        // The alpha of MASK and BLEND occluders (bvh.glsl).
         {RTPBR_BINDING_SHADOW_VERTICES, scene->vertices.buffer},
         {RTPBR_BINDING_SHADOW_MATERIALS, scene->materials.buffer},
         {RTPBR_BINDING_SHADOW_TEXTURE_TRANSFORMS, scene->texture_transforms.buffer},
         {RTPBR_BINDING_SHADOW_ALPHA_TEXTURES, scene->alpha_textures.buffer},
         {RTPBR_BINDING_SHADOW_ALPHA_TEXELS, scene->alpha_texels.buffer},
     };
-    for (size_t i = 0; i < sizeof alpha / sizeof alpha[0]; ++i)
-        rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, alpha[i].binding, alpha[i].buffer,
-                                      VK_WHOLE_SIZE);
+    rtpbr_descriptor_write_buffers(r->context, RTPBR_BINDINGS(bindings), r->shadow_set.set, writes,
+                                   sizeof writes / sizeof writes[0]);
 }
 
 // A memory barrier between compute dispatches on one of the shadow images (all its layers).
 static void compute_barrier(VkCommandBuffer cmd, VkImage image, uint32_t layers, VkAccessFlags src, VkAccessFlags dst)
 {
-    VkImageMemoryBarrier barrier = {
-        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
-        .srcAccessMask = src,
-        .dstAccessMask = dst,
-        .oldLayout = VK_IMAGE_LAYOUT_GENERAL,
-        .newLayout = VK_IMAGE_LAYOUT_GENERAL,
-        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .image = image,
-        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers},
-    };
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, NULL,
-                         0, NULL, 1, &barrier);
+    rtpbr_image_range_barrier(cmd, image, (VkImageSubresourceRange){VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers},
+                              VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, src,
+                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, dst);
 }
 
 void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCommandBuffer cmd)

@@ -18,9 +18,8 @@ rtpbr_result rtpbr_tonemap_pass_init(rtpbr_context *ctx)
 {
     rtpbr_tonemap_pass *pass = &ctx->tonemap;
     rtpbr_result result = RTPBR_SUCCESS;
-    RTPBR_TRY(rtpbr_set_layout_create(ctx, RTPBR_BINDINGS(bindings), &pass->set_layout));
-    RTPBR_TRY(rtpbr_pipeline_layout_create(ctx, &pass->set_layout, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
-                                           sizeof(rtpbr_shader_tonemap), &pass->layout));
+    RTPBR_TRY(rtpbr_pass_layouts_create(ctx, RTPBR_BINDINGS(bindings), VK_SHADER_STAGE_FRAGMENT_BIT,
+                                        sizeof(rtpbr_shader_tonemap), &pass->set_layout, &pass->layout));
     RTPBR_TRY(rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_tonemap_vert), &pass->vert));
     RTPBR_TRY(rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_tonemap_frag), &pass->frag));
     // The renderer's own display target now, so that a bad driver fails early.
@@ -37,8 +36,7 @@ void rtpbr_tonemap_pass_finish(rtpbr_context *ctx)
         vkDestroyPipeline(ctx->device, pass->pipelines[i].pipeline, NULL);
     vkDestroyShaderModule(ctx->device, pass->vert, NULL);
     vkDestroyShaderModule(ctx->device, pass->frag, NULL);
-    vkDestroyPipelineLayout(ctx->device, pass->layout, NULL);
-    vkDestroyDescriptorSetLayout(ctx->device, pass->set_layout, NULL);
+    rtpbr_pass_objects_destroy(ctx, NULL, 0, pass->layout, pass->set_layout);
     *pass = (rtpbr_tonemap_pass){0};
 }
 
@@ -99,25 +97,9 @@ void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_re
     const rtpbr_context *ctx = r->context;
     uint32_t op = desc->tonemap == RTPBR_TONEMAP_DEFAULT ? RTPBR_TONEMAP_OP_ACES : (uint32_t)desc->tonemap;
     rtpbr_shader_tonemap params = {.scale = exp2f(desc->exposure), .op = op, .encode = encode};
-    VkRenderingAttachmentInfo color = {
-        .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-        .imageView = target,
-        .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-        .loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE,
-        .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
-    };
-    VkRenderingInfo rendering = {
-        .sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
-        .renderArea = {{0, 0}, {r->width, r->height}},
-        .layerCount = 1,
-        .colorAttachmentCount = 1,
-        .pColorAttachments = &color,
-    };
-    vkCmdBeginRendering(cmd, &rendering);
-    VkViewport viewport = {0.0f, 0.0f, (float)r->width, (float)r->height, 0.0f, 1.0f};
-    VkRect2D scissor = {{0, 0}, {r->width, r->height}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    VkRenderingAttachmentInfo color = rtpbr_attachment(target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                                       VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_STORE);
+    rtpbr_begin_rendering(cmd, r->width, r->height, &color, 1, NULL);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->tonemap.layout, 0, 1, &r->tonemap_set.set, 0,
                             NULL);
