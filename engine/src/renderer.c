@@ -219,7 +219,7 @@ static void record_lighting(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, con
                             const lighting_pipelines *pipelines, VkCommandBuffer cmd)
 {
     if (desc->shadows == RTPBR_SHADOWS_ON) rtpbr_shadow_record(r, desc, cmd); // the ratios lighting multiplies by
-    if (desc->mc_samples == 0) rtpbr_lighting_record(r, pipelines->lighting, cmd);
+    if (desc->mc_samples == 0) rtpbr_lighting_ltc_record(r, pipelines->lighting, cmd);
     else rtpbr_lighting_mc_record(r, scene, pipelines->lighting[0], desc, cmd);
     if (pipelines->forward) rtpbr_forward_record(r, scene, pipelines->forward, cmd);
     rtpbr_lighting_end(r, cmd);

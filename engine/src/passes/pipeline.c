@@ -222,7 +222,13 @@ static VkDescriptorType binding_type(rtpbr_bindings bindings, uint32_t binding)
 void rtpbr_descriptor_write_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                    VkBuffer buffer, VkDeviceSize range)
 {
-    VkDescriptorBufferInfo info = {buffer, 0, range};
+    rtpbr_descriptor_write_buffer_range(ctx, bindings, set, binding, buffer, 0, range);
+}
+
+void rtpbr_descriptor_write_buffer_range(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
+                                         uint32_t binding, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range)
+{
+    VkDescriptorBufferInfo info = {buffer, offset, range};
     VkWriteDescriptorSet write = {
         .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
         .dstSet = set,

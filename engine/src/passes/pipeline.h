@@ -61,6 +61,9 @@ void rtpbr_descriptor_set_destroy(rtpbr_context *ctx, rtpbr_descriptor_set *set)
 // descriptor type from the binding table).
 void rtpbr_descriptor_write_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                    VkBuffer buffer, VkDeviceSize range);
+// The same for the range [offset, offset + range) of the buffer.
+void rtpbr_descriptor_write_buffer_range(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
+                                         uint32_t binding, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range);
 void rtpbr_descriptor_write_image(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                   VkSampler sampler, VkImageView view, VkImageLayout layout);
 
