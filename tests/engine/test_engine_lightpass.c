@@ -11,7 +11,7 @@
 // sets over capacity, bad lights, bad recordings: clear error codes, a message, no crash.
 #include "engine_test.h"
 #include "util.h" // rtpbr_camera_matrices (engine/src/math.c, compiled into this test)
-#include "vk_host.h"
+#include "vk_draw.h"
 
 #include "lightpass_host_frag.spv.h"
 #include "lightpass_host_vert.spv.h"
@@ -79,180 +79,69 @@ static const rtpbr_camera_desc camera = {.position = {0.3f, 1.6f, 3.2f}, .target
 
 typedef struct host {
     vk_host h;
-    VkImage images[8];            // g0 .. g3, depth, output
-    VkImageView views[8];
-    VkDeviceMemory memory[16];
-    VkBuffer buffers[4];          // vertices, host materials, readback
-    uint32_t nimg, nmem, nbuf;
-    void *readback_mapped;
-    VkDescriptorSetLayout set_layout;
-    VkDescriptorPool pool;
-    VkDescriptorSet set;
-    VkPipelineLayout layout;
-    VkPipeline pipeline;
+    vk_draw_image images[6];      // g0 .. g3, depth, output
+    vk_draw_buffer buffers[3];    // vertices, host materials, readback
+    vk_draw_pass pass;             // its own descriptor set, layouts and pipeline
     VkCommandPool cmd_pool;
     VkFence fence;
+    VkPhysicalDeviceVulkan13Features f13; // what the device enabled (handed to rtpbr)
+    VkPhysicalDeviceFeatures2 features;
 } host;
 
-enum { G0 = 0, DEPTH = 4, OUTPUT = 5 };
+enum { G0 = 0, DEPTH = 4, OUTPUT = 5, VERTICES = 0, MATERIALS = 1, READBACK = 2 };
 static const VkFormat gbuffer_formats[4] = {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R16G16B16A16_SFLOAT,
                                             VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT};
 
-static VkDeviceMemory bind_memory(host *g, VkMemoryRequirements req, VkMemoryPropertyFlags want)
-{
-    VkPhysicalDeviceMemoryProperties p;
-    vkGetPhysicalDeviceMemoryProperties(g->h.physical_device, &p);
-    uint32_t type = 0;
-    while (type < p.memoryTypeCount &&
-           (!(req.memoryTypeBits & (1u << type)) || (p.memoryTypes[type].propertyFlags & want) != want)) ++type;
-    assert_true(type < p.memoryTypeCount);
-    VkMemoryAllocateInfo info = {VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, NULL, req.size, type};
-    VK(vkAllocateMemory(g->h.device, &info, NULL, &g->memory[g->nmem]));
-    return g->memory[g->nmem++];
-}
-
-static VkBuffer make_buffer(host *g, VkDeviceSize size, VkBufferUsageFlags usage, const void *data, void **mapped)
-{
-    VkBufferCreateInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = usage};
-    VkBuffer b;
-    VK(vkCreateBuffer(g->h.device, &info, NULL, &b));
-    g->buffers[g->nbuf++] = b;
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(g->h.device, b, &req);
-    VkDeviceMemory m = bind_memory(g, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    VK(vkBindBufferMemory(g->h.device, b, m, 0));
-    void *p;
-    VK(vkMapMemory(g->h.device, m, 0, size, 0, &p));
-    if (data) memcpy(p, data, size);
-    if (mapped) *mapped = p;
-    else vkUnmapMemory(g->h.device, m);
-    return b;
-}
-
-static void make_image(host *g, VkFormat format, VkImageUsageFlags usage)
-{
-    VkImageCreateInfo info = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
-        .format = format, .extent = {W, H, 1}, .mipLevels = 1, .arrayLayers = 1, .samples = VK_SAMPLE_COUNT_1_BIT,
-        .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage, .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
-    VkImage image;
-    VK(vkCreateImage(g->h.device, &info, NULL, &image));
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(g->h.device, image, &req);
-    VK(vkBindImageMemory(g->h.device, image, bind_memory(g, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT), 0));
-    VkImageViewCreateInfo view = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = image,
-        .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
-        .subresourceRange = {format == VK_FORMAT_D32_SFLOAT ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT,
-                             0, 1, 0, 1}};
-    VK(vkCreateImageView(g->h.device, &view, NULL, &g->views[g->nimg]));
-    g->images[g->nimg++] = image;
-}
-
-static VkShaderModule module(host *g, const uint32_t *code, size_t size)
-{
-    VkShaderModuleCreateInfo info = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = size,
-                                     .pCode = code};
-    VkShaderModule m;
-    VK(vkCreateShaderModule(g->h.device, &info, NULL, &m));
-    return m;
-}
-
-// The host's G-buffer pipeline: four colour targets of the contract's formats, D32 depth.
-static void make_pipeline(host *g, VkBuffer host_materials)
+// The host's G-buffer pipeline: four colour targets of the contract's formats, D32 depth; its
+// one descriptor, its material table.
+static void make_pipeline(host *g)
 {
     VkDescriptorSetLayoutBinding binding = {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL};
     VK(vkCreateDescriptorSetLayout(g->h.device, &(VkDescriptorSetLayoutCreateInfo){
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = 1, .pBindings = &binding},
-        NULL, &g->set_layout));
+        NULL, &g->pass.set_layout));
     VkDescriptorPoolSize size = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
     VK(vkCreateDescriptorPool(g->h.device, &(VkDescriptorPoolCreateInfo){
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1, .poolSizeCount = 1, .pPoolSizes = &size},
-        NULL, &g->pool));
+        NULL, &g->pass.pool));
     VK(vkAllocateDescriptorSets(g->h.device, &(VkDescriptorSetAllocateInfo){
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, .descriptorPool = g->pool,
-        .descriptorSetCount = 1, .pSetLayouts = &g->set_layout}, &g->set));
-    VkDescriptorBufferInfo info = {host_materials, 0, VK_WHOLE_SIZE};
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, .descriptorPool = g->pass.pool,
+        .descriptorSetCount = 1, .pSetLayouts = &g->pass.set_layout}, &g->pass.set));
+    VkDescriptorBufferInfo info = {g->buffers[MATERIALS].buffer, 0, VK_WHOLE_SIZE};
     vkUpdateDescriptorSets(g->h.device, 1, &(VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-        .dstSet = g->set, .descriptorCount = 1, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+        .dstSet = g->pass.set, .descriptorCount = 1, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
         .pBufferInfo = &info}, 0, NULL);
     VkPushConstantRange push = {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, 84};
     VK(vkCreatePipelineLayout(g->h.device, &(VkPipelineLayoutCreateInfo){
-        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1, .pSetLayouts = &g->set_layout,
-        .pushConstantRangeCount = 1, .pPushConstantRanges = &push}, NULL, &g->layout));
-    VkShaderModule vs = module(g, lightpass_host_vert, sizeof lightpass_host_vert);
-    VkShaderModule fs = module(g, lightpass_host_frag, sizeof lightpass_host_frag);
-    VkPipelineShaderStageCreateInfo stages[2] = {
-        {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_VERTEX_BIT,
-         .module = vs, .pName = "main"},
-        {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
-         .module = fs, .pName = "main"}};
-    VkVertexInputBindingDescription vb = {0, 6 * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX};
-    VkVertexInputAttributeDescription attributes[2] = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
-                                                       {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)}};
-    VkPipelineColorBlendAttachmentState blend[4];
-    for (int i = 0; i < 4; ++i) blend[i] = (VkPipelineColorBlendAttachmentState){.colorWriteMask = 0xf};
-    VkDynamicState dynamic[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-    VkGraphicsPipelineCreateInfo info_p = {.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
-        .pNext = &(VkPipelineRenderingCreateInfo){.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO,
-            .colorAttachmentCount = 4, .pColorAttachmentFormats = gbuffer_formats,
-            .depthAttachmentFormat = VK_FORMAT_D32_SFLOAT},
-        .stageCount = 2, .pStages = stages,
-        .pVertexInputState = &(VkPipelineVertexInputStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO, .vertexBindingDescriptionCount = 1,
-            .pVertexBindingDescriptions = &vb, .vertexAttributeDescriptionCount = 2,
-            .pVertexAttributeDescriptions = attributes},
-        .pInputAssemblyState = &(VkPipelineInputAssemblyStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
-            .topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST},
-        .pViewportState = &(VkPipelineViewportStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO, .viewportCount = 1, .scissorCount = 1},
-        .pRasterizationState = &(VkPipelineRasterizationStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO, .lineWidth = 1.0f},
-        .pMultisampleState = &(VkPipelineMultisampleStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
-            .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT},
-        .pDepthStencilState = &(VkPipelineDepthStencilStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO, .depthTestEnable = VK_TRUE,
-            .depthWriteEnable = VK_TRUE, .depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL},
-        .pColorBlendState = &(VkPipelineColorBlendStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO, .attachmentCount = 4,
-            .pAttachments = blend},
-        .pDynamicState = &(VkPipelineDynamicStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO, .dynamicStateCount = 2,
-            .pDynamicStates = dynamic},
-        .layout = g->layout};
-    VK(vkCreateGraphicsPipelines(g->h.device, VK_NULL_HANDLE, 1, &info_p, NULL, &g->pipeline));
-    vkDestroyShaderModule(g->h.device, vs, NULL);
-    vkDestroyShaderModule(g->h.device, fs, NULL);
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1, .pSetLayouts = &g->pass.set_layout,
+        .pushConstantRangeCount = 1, .pPushConstantRanges = &push}, NULL, &g->pass.layout));
+    VK(vk_draw_pipeline_create(&g->h, &(vk_draw_pipeline_desc){
+        .vert = lightpass_host_vert, .vert_size = sizeof lightpass_host_vert,
+        .frag = lightpass_host_frag, .frag_size = sizeof lightpass_host_frag, .attribute_count = 2,
+        .color_formats = gbuffer_formats, .color_count = 4, .depth_format = VK_FORMAT_D32_SFLOAT,
+        .depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL, .layout = g->pass.layout}, &g->pass.pipeline));
 }
 
-static void barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
-                    VkImageLayout to, VkPipelineStageFlags src_stage, VkAccessFlags src,
-                    VkPipelineStageFlags dst_stage, VkAccessFlags dst)
+static VkCommandBuffer begin_commands(host *g)
 {
-    VkImageMemoryBarrier b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER, .srcAccessMask = src,
-        .dstAccessMask = dst, .oldLayout = from, .newLayout = to, .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .image = image, .subresourceRange = {aspect, 0, 1, 0, 1}};
-    vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, NULL, 0, NULL, 1, &b);
+    VkCommandBuffer cmd;
+    VK(vk_draw_begin(&g->h, g->cmd_pool, &cmd));
+    return cmd;
 }
 
 // One frame of the host: its geometry pass into its G-buffer (after the previous frame's
 // lighting read it: an execution dependency on rtpbr's compute stage, as rtpbr.h says), then
 // rtpbr's lighting, then a copy of the output into the host's readback buffer.
 static void host_frame(host *g, rtpbr_lighting_targets *targets, rtpbr_light_set *lights, uint32_t frame,
-                       VkBuffer vertices, uint32_t vertex_count, const float view_proj[16], bool first, float *out)
+                       const float view_proj[16], bool first, float *out)
 {
-    VkCommandBuffer cmd;
-    VK(vkAllocateCommandBuffers(g->h.device, &(VkCommandBufferAllocateInfo){
-        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = g->cmd_pool,
-        .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1}, &cmd));
-    VK(vkBeginCommandBuffer(cmd, &(VkCommandBufferBeginInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
-                                                             .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT}));
+    VkCommandBuffer cmd = begin_commands(g);
     for (int i = 0; i < 4; ++i)
-        barrier(cmd, g->images[G0 + i], VK_IMAGE_ASPECT_COLOR_BIT,
+        vk_draw_barrier(cmd, g->images[G0 + i].image, VK_IMAGE_ASPECT_COLOR_BIT,
                 first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
                 VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    barrier(cmd, g->images[DEPTH], VK_IMAGE_ASPECT_DEPTH_BIT,
+    vk_draw_barrier(cmd, g->images[DEPTH].image, VK_IMAGE_ASPECT_DEPTH_BIT,
             first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
             VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
             VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
@@ -260,31 +149,30 @@ static void host_frame(host *g, rtpbr_lighting_targets *targets, rtpbr_light_set
     VkRenderingAttachmentInfo colour[4];
     for (int i = 0; i < 4; ++i)
         colour[i] = (VkRenderingAttachmentInfo){.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-            .imageView = g->views[G0 + i], .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+            .imageView = g->images[G0 + i].view, .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
             .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, .storeOp = VK_ATTACHMENT_STORE_OP_STORE};
     VkRenderingAttachmentInfo depth = {.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-        .imageView = g->views[DEPTH], .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+        .imageView = g->images[DEPTH].view, .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
         .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
         .clearValue.depthStencil = {1.0f, 0}};
     vkCmdBeginRendering(cmd, &(VkRenderingInfo){.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
         .renderArea = {{0, 0}, {W, H}}, .layerCount = 1, .colorAttachmentCount = 4,
         .pColorAttachments = colour, .pDepthAttachment = &depth});
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->layout, 0, 1, &g->set, 0, NULL);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->pass.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->pass.layout, 0, 1, &g->pass.set, 0, NULL);
     vkCmdSetViewport(cmd, 0, 1, &(VkViewport){0.0f, 0.0f, W, H, 0.0f, 1.0f});
     vkCmdSetScissor(cmd, 0, 1, &(VkRect2D){{0, 0}, {W, H}});
     VkDeviceSize offset = 0;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+    vkCmdBindVertexBuffers(cmd, 0, 1, &g->buffers[VERTICES].buffer, &offset);
     struct { float view_proj[16], camera[4]; uint32_t material; } push;
     memcpy(push.view_proj, view_proj, sizeof push.view_proj);
     memcpy(push.camera, camera.position, 3 * sizeof(float));
     push.camera[3] = 1.0f;
     for (uint32_t q = 0; q < QUADS; ++q) { // six vertices per quad, in material order
         push.material = q;
-        vkCmdPushConstants(cmd, g->layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, 84, &push);
+        vkCmdPushConstants(cmd, g->pass.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, 84, &push);
         vkCmdDraw(cmd, 6, 1, 6 * q, 0);
     }
-    assert_int_equal(vertex_count, 6 * QUADS);
     vkCmdEndRendering(cmd);
 
     // rtpbr's lighting: the G-buffer as the geometry pass left it; the output to be copied.
@@ -297,7 +185,8 @@ static void host_frame(host *g, rtpbr_lighting_targets *targets, rtpbr_light_set
     assert_int_equal(rtpbr_lighting_record(targets, &rec), RTPBR_SUCCESS);
 
     VkBufferImageCopy copy = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {W, H, 1}};
-    vkCmdCopyImageToBuffer(cmd, g->images[OUTPUT], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, g->buffers[2], 1, &copy);
+    vkCmdCopyImageToBuffer(cmd, g->images[OUTPUT].image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           g->buffers[READBACK].buffer, 1, &copy);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
         &(VkMemoryBarrier){VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL, VK_ACCESS_TRANSFER_WRITE_BIT,
                            VK_ACCESS_HOST_READ_BIT}, 0, NULL, 0, NULL);
@@ -306,66 +195,62 @@ static void host_frame(host *g, rtpbr_lighting_targets *targets, rtpbr_light_set
     VK(vkQueueSubmit(g->h.queue, 1, &(VkSubmitInfo){.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
         .commandBufferCount = 1, .pCommandBuffers = &cmd}, g->fence));
     VK(vkWaitForFences(g->h.device, 1, &g->fence, VK_TRUE, UINT64_MAX));
-    memcpy(out, g->readback_mapped, (size_t)W * H * 16);
+    memcpy(out, g->buffers[READBACK].mapped, (size_t)W * H * 16);
     test_device_output(out, (size_t)W * H * 16);
     vkFreeCommandBuffers(g->h.device, g->cmd_pool, 1, &cmd);
 }
 
-static void host_create(host *g, VkPhysicalDeviceVulkan13Features *f13)
+// The host (its device: Vulkan 1.3, dynamic rendering, one graphics + compute queue; its
+// images) and rtpbr's context embedded in it, logging into *log.
+static rtpbr_context *host_create(host *g, test_log *log)
 {
     memset(g, 0, sizeof *g);
-    *f13 = (VkPhysicalDeviceVulkan13Features){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+    g->f13 = (VkPhysicalDeviceVulkan13Features){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
                                               .dynamicRendering = VK_TRUE};
-    VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = f13};
+    g->features = (VkPhysicalDeviceFeatures2){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &g->f13};
     char error[512] = "";
     vk_host_result r = vk_host_init(&g->h, &(vk_host_desc){.app_name = "rtpbr-test-engine-lightpass",
         .api_version = VK_API_VERSION_1_3, .queue_flags = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT,
-        .device_next = &features}, error, sizeof error);
+        .device_next = &g->features}, error, sizeof error);
     if (r != VK_HOST_OK) fail_msg("vk_host_init: %s: %s", vk_host_result_string(r), error);
     VK(vkCreateCommandPool(g->h.device, &(VkCommandPoolCreateInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
         .queueFamilyIndex = g->h.queue_family}, NULL, &g->cmd_pool));
     VK(vkCreateFence(g->h.device, &(VkFenceCreateInfo){.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO}, NULL, &g->fence));
     for (int i = 0; i < 4; ++i)
-        make_image(g, gbuffer_formats[i], VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-    make_image(g, VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-    make_image(g, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        VK(vk_draw_image_create(&g->h, gbuffer_formats[i], W, H, 1,
+                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, &g->images[G0 + i]));
+    VK(vk_draw_image_create(&g->h, VK_FORMAT_D32_SFLOAT, W, H, 1,
+                            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, &g->images[DEPTH]));
+    VK(vk_draw_image_create(&g->h, VK_FORMAT_R32G32B32A32_SFLOAT, W, H, 1,
+                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &g->images[OUTPUT]));
+    rtpbr_context_desc desc = {.logger = {test_log_func, log},
+        .embedded = {g->h.instance, g->h.physical_device, g->h.device, g->h.queue, g->h.queue_family, &g->features}};
+    rtpbr_context *ctx = NULL;
+    assert_int_equal(rtpbr_context_create(&desc, &ctx), RTPBR_SUCCESS);
+    return ctx;
 }
 
 static void host_destroy(host *g)
 {
     VkDevice d = g->h.device;
     if (d) {
-        vkDestroyPipeline(d, g->pipeline, NULL);
-        vkDestroyPipelineLayout(d, g->layout, NULL);
-        vkDestroyDescriptorPool(d, g->pool, NULL);
-        vkDestroyDescriptorSetLayout(d, g->set_layout, NULL);
+        vk_draw_pass_destroy(&g->h, &g->pass);
         vkDestroyFence(d, g->fence, NULL);
         vkDestroyCommandPool(d, g->cmd_pool, NULL);
-        for (uint32_t i = 0; i < g->nimg; ++i) vkDestroyImageView(d, g->views[i], NULL), vkDestroyImage(d, g->images[i], NULL);
-        for (uint32_t i = 0; i < g->nbuf; ++i) vkDestroyBuffer(d, g->buffers[i], NULL);
-        for (uint32_t i = 0; i < g->nmem; ++i) vkFreeMemory(d, g->memory[i], NULL);
+        for (int i = 0; i < 6; ++i) vk_draw_image_destroy(&g->h, &g->images[i]);
+        for (int i = 0; i < 3; ++i) vk_draw_buffer_destroy(&g->h, &g->buffers[i]);
     }
     vk_host_finish(&g->h);
-}
-
-static rtpbr_context *embed(const host *g, const VkPhysicalDeviceVulkan13Features *f13,
-                            VkPhysicalDeviceFeatures2 *features, test_log *log)
-{
-    *features = (VkPhysicalDeviceFeatures2){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = (void *)f13};
-    rtpbr_context_desc desc = {.logger = {test_log_func, log},
-        .embedded = {g->h.instance, g->h.physical_device, g->h.device, g->h.queue, g->h.queue_family, features}};
-    rtpbr_context *ctx = NULL;
-    assert_int_equal(rtpbr_context_create(&desc, &ctx), RTPBR_SUCCESS);
-    return ctx;
 }
 
 // The targets of the host's images (g0 .. g3, depth, output).
 static rtpbr_lighting_targets_desc targets_desc(const host *g)
 {
     rtpbr_lighting_targets_desc d = {.width = W, .height = H, .materials = materials, .material_count = QUADS,
-        .depth = {g->images[DEPTH], g->views[DEPTH], VK_FORMAT_D32_SFLOAT},
-        .output = {g->images[OUTPUT], g->views[OUTPUT], VK_FORMAT_R32G32B32A32_SFLOAT}};
-    for (int i = 0; i < 4; ++i) d.gbuffer[i] = (rtpbr_host_image){g->images[G0 + i], g->views[G0 + i], gbuffer_formats[i]};
+        .depth = {g->images[DEPTH].image, g->images[DEPTH].view, VK_FORMAT_D32_SFLOAT},
+        .output = {g->images[OUTPUT].image, g->images[OUTPUT].view, VK_FORMAT_R32G32B32A32_SFLOAT}};
+    for (int i = 0; i < 4; ++i)
+        d.gbuffer[i] = (rtpbr_host_image){g->images[G0 + i].image, g->images[G0 + i].view, gbuffer_formats[i]};
     return d;
 }
 
@@ -393,11 +278,8 @@ static void host_lighting_equals_engine(void **state)
 {
     (void)state;
     host g;
-    VkPhysicalDeviceVulkan13Features f13;
-    host_create(&g, &f13);
     test_log log = {0};
-    VkPhysicalDeviceFeatures2 features;
-    rtpbr_context *ctx = embed(&g, &f13, &features, &log);
+    rtpbr_context *ctx = host_create(&g, &log);
 
     // The scene, as the host holds it: six vertices (position, normal) per quad.
     float vertices[QUADS * 6 * 6];
@@ -419,11 +301,12 @@ static void host_lighting_equals_engine(void **state)
         memcpy(host_materials[q].emission_roughness, materials[q].emission, 3 * sizeof(float));
         host_materials[q].emission_roughness[3] = materials[q].roughness;
     }
-    VkBuffer vertex_buffer = make_buffer(&g, sizeof vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertices, NULL);
-    VkBuffer material_buffer = make_buffer(&g, sizeof host_materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                           host_materials, NULL);
-    make_buffer(&g, (VkDeviceSize)W * H * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, NULL, &g.readback_mapped);
-    make_pipeline(&g, material_buffer);
+    VK(vk_draw_buffer_create(&g.h, sizeof vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertices, &g.buffers[VERTICES]));
+    VK(vk_draw_buffer_create(&g.h, sizeof host_materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, host_materials,
+                             &g.buffers[MATERIALS]));
+    VK(vk_draw_buffer_create(&g.h, (VkDeviceSize)W * H * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, NULL,
+                             &g.buffers[READBACK]));
+    make_pipeline(&g);
 
     rtpbr_light_desc lights[2][LIGHTS];
     for (int f = 0; f < 2; ++f)
@@ -453,7 +336,7 @@ static void host_lighting_equals_engine(void **state)
         float *engine = test_render_radiance(renderer, scene, &rd, W, H);
         assert_int_equal(rtpbr_light_set_update(set, f, lights[f], LIGHTS), RTPBR_SUCCESS);
         assert_int_equal(rtpbr_light_set_count(set, f), LIGHTS);
-        host_frame(&g, targets, set, f, vertex_buffer, QUADS * 6, view_proj, f == 0, host_out);
+        host_frame(&g, targets, set, f, view_proj, f == 0, host_out);
         stats s = compare(host_out, engine);
         printf("frame %u: %d surface pixels of %d; relative difference to rtpbr_render: max %.3g, mean %.3g\n", f,
                s.count, W * H, s.max, s.mean);
@@ -492,11 +375,8 @@ static void lighting_api_refuses_bad_input(void **state)
 {
     (void)state;
     host g;
-    VkPhysicalDeviceVulkan13Features f13;
-    host_create(&g, &f13);
     test_log log = {0};
-    VkPhysicalDeviceFeatures2 features;
-    rtpbr_context *ctx = embed(&g, &f13, &features, &log);
+    rtpbr_context *ctx = host_create(&g, &log);
     rtpbr_lighting_targets *t = (rtpbr_lighting_targets *)(uintptr_t)1;
 
     // Targets.
@@ -528,7 +408,7 @@ static void lighting_api_refuses_bad_input(void **state)
     bad.depth.image = VK_NULL_HANDLE;
     EXPECT(rtpbr_lighting_targets_create(ctx, &bad, &t), RTPBR_ERROR_INVALID_ARGUMENT);
     bad = d;
-    bad.gbuffer[5] = (rtpbr_host_image){g.images[G0], g.views[G0 + 0], VK_FORMAT_R8G8B8A8_SRGB}; // g5 alone
+    bad.gbuffer[5] = (rtpbr_host_image){g.images[OUTPUT].image, g.images[OUTPUT].view, VK_FORMAT_R8G8B8A8_SRGB}; // g5 alone
     EXPECT(rtpbr_lighting_targets_create(ctx, &bad, &t), RTPBR_ERROR_INVALID_ARGUMENT);
     bad = d;
     bad.width = 0;
@@ -581,11 +461,7 @@ static void lighting_api_refuses_bad_input(void **state)
     assert_int_equal(rtpbr_light_set_count(NULL, 0), 0);
 
     // Recordings: nothing recorded on error (the command buffer stays empty and valid).
-    VkCommandBuffer cmd;
-    VK(vkAllocateCommandBuffers(g.h.device, &(VkCommandBufferAllocateInfo){
-        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = g.cmd_pool,
-        .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1}, &cmd));
-    VK(vkBeginCommandBuffer(cmd, &(VkCommandBufferBeginInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO}));
+    VkCommandBuffer cmd = begin_commands(&g);
     rtpbr_lighting_record_desc rec = {.command_buffer = cmd, .lights = set, .camera = &camera};
     rtpbr_lighting_record_desc r2 = rec;
     r2.lights = NULL;
