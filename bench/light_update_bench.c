@@ -14,17 +14,23 @@
 
 #include "rtpbr/rtpbr.h"
 
-static double now(void)
+// Nanoseconds of CLOCK_MONOTONIC.
+static double now_ns(void)
 {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+    return 1e9 * (double)t.tv_sec + (double)t.tv_nsec;
 }
 
-static int compare_double(const void *a, const void *b)
+// The median of v[0 .. n) (sorted in place, by insertion: n is small).
+static double median(double *v, uint32_t n)
 {
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
+    for (uint32_t i = 1; i < n; ++i)
+        for (uint32_t j = i; j > 0 && v[j - 1] > v[j]; --j) {
+            double x = v[j];
+            v[j] = v[j - 1], v[j - 1] = x;
+        }
+    return v[n / 2];
 }
 
 // Frame `frame`'s lights: quads facing down on a circle that turns, colours that cycle.
@@ -78,29 +84,26 @@ int main(int argc, char **argv)
     uint32_t frame = 0;
     for (uint32_t b = 0; b < blocks; ++b) {
         // The animation alone (what both columns include), then each update path.
-        double t0 = now();
+        double t0 = now_ns();
         for (uint32_t u = 0; u < updates; ++u) animate(lights, count, ++frame);
-        double t1 = now();
+        double t1 = now_ns();
         for (uint32_t u = 0; u < updates; ++u) {
             animate(lights, count, ++frame);
             if (rtpbr_light_set_update(set, frame % 2, lights, count)) goto done;
         }
-        double t2 = now();
+        double t2 = now_ns();
         for (uint32_t u = 0; u < updates; ++u) {
             animate(lights, count, ++frame);
             if (rtpbr_gpu_scene_set_lights(scene, lights, count)) goto done;
         }
-        double t3 = now();
-        animate_ns[b] = 1e9 * (t1 - t0) / updates;
-        set_ns[b] = 1e9 * (t2 - t1) / updates - animate_ns[b];
-        scene_ns[b] = 1e9 * (t3 - t2) / updates - animate_ns[b];
+        double t3 = now_ns();
+        animate_ns[b] = (t1 - t0) / updates;
+        set_ns[b] = (t2 - t1) / updates - animate_ns[b];
+        scene_ns[b] = (t3 - t2) / updates - animate_ns[b];
     }
-    qsort(set_ns, blocks, sizeof(double), compare_double);
-    qsort(scene_ns, blocks, sizeof(double), compare_double);
-    qsort(animate_ns, blocks, sizeof(double), compare_double);
-    double a = set_ns[blocks / 2], s = scene_ns[blocks / 2];
+    double a = median(set_ns, blocks), s = median(scene_ns, blocks);
     printf("%u lights, %u blocks of %u updates (medians; the host's animation, %.0f ns, subtracted)\n", count, blocks,
-           updates, animate_ns[blocks / 2]);
+           updates, median(animate_ns, blocks));
     printf("rtpbr_light_set_update      %9.0f ns per update  %6.1f ns per light\n", a, a / count);
     printf("rtpbr_gpu_scene_set_lights  %9.0f ns per update  %6.1f ns per light\n", s, s / count);
     printf("ratio light_set / scene     %9.2f\n", a / s);

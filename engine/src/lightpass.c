@@ -48,6 +48,16 @@ static VkDeviceSize align_up(VkDeviceSize x, VkDeviceSize a)
 // ---------------------------------------------------------------------------------------------
 // Light sets
 
+void rtpbr_light_set_destroy(rtpbr_light_set *set)
+{
+    if (!set) return;
+    rtpbr_context *ctx = set->context;
+    rtpbr_buffer_destroy(ctx, &set->buffer);
+    rtpbr_free(&ctx->host, set->facts);
+    RTPBR_LIST_UNLINK(ctx->light_sets, set);
+    rtpbr_free(&ctx->host, set);
+}
+
 rtpbr_result rtpbr_light_set_create(rtpbr_context *ctx, const rtpbr_light_set_desc *desc, rtpbr_light_set **out)
 {
     if (out) *out = NULL;
@@ -64,6 +74,8 @@ rtpbr_result rtpbr_light_set_create(rtpbr_context *ctx, const rtpbr_light_set_de
                   RTPBR_MAX_LIGHTS, RTPBR_MAX_FRAMES_IN_FLIGHT);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(ctx->physical_device, &props);
     rtpbr_result result = RTPBR_SUCCESS;
     rtpbr_light_set *set = NULL;
     RTPBR_ALLOC(&ctx->host, set, sizeof *set);
@@ -72,8 +84,6 @@ rtpbr_result rtpbr_light_set_create(rtpbr_context *ctx, const rtpbr_light_set_de
     set->serial = ++ctx->serial;
     set->capacity = capacity;
     set->frames = frames;
-    VkPhysicalDeviceProperties props;
-    vkGetPhysicalDeviceProperties(ctx->physical_device, &props);
     set->stride = align_up((VkDeviceSize)capacity * sizeof(rtpbr_shader_light),
                            props.limits.minStorageBufferOffsetAlignment);
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, set->stride * frames, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &set->buffer));
@@ -83,16 +93,6 @@ rtpbr_result rtpbr_light_set_create(rtpbr_context *ctx, const rtpbr_light_set_de
 cleanup:
     rtpbr_light_set_destroy(set);
     return result;
-}
-
-void rtpbr_light_set_destroy(rtpbr_light_set *set)
-{
-    if (!set) return;
-    rtpbr_context *ctx = set->context;
-    rtpbr_buffer_destroy(ctx, &set->buffer);
-    rtpbr_free(&ctx->host, set->facts);
-    RTPBR_LIST_UNLINK(ctx->light_sets, set);
-    rtpbr_free(&ctx->host, set);
 }
 
 rtpbr_result rtpbr_light_set_update(rtpbr_light_set *set, uint32_t frame, const rtpbr_light_desc *lights,
@@ -138,6 +138,7 @@ uint32_t rtpbr_light_set_count(const rtpbr_light_set *set, uint32_t frame)
 // ---------------------------------------------------------------------------------------------
 // Targets
 
+_Static_assert(RTPBR_GBUFFER_TARGETS == RTPBR_GBUFFER_COUNT, "the contract's targets are the engine's G-buffers");
 static const char *const target_names[RTPBR_GBUFFER_TARGETS] = {"g0", "g1", "g2", "g3", "g4", "g5", "g6"};
 // gbuffer.h's formats (RTPBR_GBUFFER_FORMAT_G*; the engine's own, internal.h).
 static VkFormat contract_format(uint32_t i)
@@ -225,6 +226,18 @@ static void record_stand_in_layout(VkCommandBuffer cmd, void *user)
                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 }
 
+void rtpbr_lighting_targets_destroy(rtpbr_lighting_targets *t)
+{
+    if (!t) return;
+    rtpbr_context *ctx = t->context;
+    RTPBR_LIST_UNLINK(ctx->lighting_targets, t);
+    if (t->pool) vkDestroyDescriptorPool(ctx->device, t->pool, NULL); // frees the sets
+    rtpbr_buffer *buffers[] = {&t->frame, &t->materials, &t->tile_masks, &t->tile_lists};
+    for (size_t i = 0; i < sizeof buffers / sizeof buffers[0]; ++i) rtpbr_buffer_destroy(ctx, buffers[i]);
+    rtpbr_image_destroy(ctx, &t->shadow_stand_in);
+    rtpbr_free(&ctx->host, t);
+}
+
 rtpbr_result rtpbr_lighting_targets_create(rtpbr_context *ctx, const rtpbr_lighting_targets_desc *desc,
                                            rtpbr_lighting_targets **out)
 {
@@ -240,9 +253,9 @@ rtpbr_result rtpbr_lighting_targets_create(rtpbr_context *ctx, const rtpbr_light
     RTPBR_ALLOC(&ctx->host, t, sizeof *t);
     t->context = ctx;
     RTPBR_LIST_LINK(ctx->lighting_targets, t);
+    t->frames = desc->frames_in_flight ? desc->frames_in_flight : RTPBR_DEFAULT_FRAMES_IN_FLIGHT;
     t->width = desc->width;
     t->height = desc->height;
-    t->frames = desc->frames_in_flight ? desc->frames_in_flight : RTPBR_DEFAULT_FRAMES_IN_FLIGHT;
     t->tiles_x = (desc->width + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE;
     t->tiles_y = (desc->height + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE;
     t->depth = desc->depth.image;
@@ -266,14 +279,7 @@ rtpbr_result rtpbr_lighting_targets_create(rtpbr_context *ctx, const rtpbr_light
         records[0] = rtpbr_material_record(&grey);
     }
     for (uint32_t i = 0; i < desc->material_count; ++i) records[i] = rtpbr_material_record(&desc->materials[i]);
-    // The culling pass's outputs, as a renderer's (renderer.c).
-    VkDeviceSize tiles = (VkDeviceSize)t->tiles_x * t->tiles_y;
-    RTPBR_TRY(rtpbr_buffer_create_device(ctx, tiles * RTPBR_TILE_MASK_WORDS * sizeof(uint32_t),
-                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &t->tile_masks));
-    RTPBR_TRY(rtpbr_buffer_create_device(ctx, RTPBR_TILE_CLASS_COUNT * (4 + tiles) * sizeof(uint32_t),
-                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                                             VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                         &t->tile_lists));
+    RTPBR_TRY(rtpbr_lighting_tile_buffers_create(ctx, t->tiles_x, t->tiles_y, &t->tile_masks, &t->tile_lists));
     RTPBR_TRY(rtpbr_image_create_layers(ctx, 1, 1, 1, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT,
                                         &t->shadow_stand_in));
     RTPBR_TRY(rtpbr_submit_once(ctx, record_stand_in_layout, t));
@@ -303,20 +309,6 @@ rtpbr_result rtpbr_lighting_targets_create(rtpbr_context *ctx, const rtpbr_light
 cleanup:
     rtpbr_lighting_targets_destroy(t);
     return result;
-}
-
-void rtpbr_lighting_targets_destroy(rtpbr_lighting_targets *t)
-{
-    if (!t) return;
-    rtpbr_context *ctx = t->context;
-    if (t->pool) vkDestroyDescriptorPool(ctx->device, t->pool, NULL);
-    rtpbr_image_destroy(ctx, &t->shadow_stand_in);
-    rtpbr_buffer_destroy(ctx, &t->frame);
-    rtpbr_buffer_destroy(ctx, &t->materials);
-    rtpbr_buffer_destroy(ctx, &t->tile_masks);
-    rtpbr_buffer_destroy(ctx, &t->tile_lists);
-    RTPBR_LIST_UNLINK(ctx->lighting_targets, t);
-    rtpbr_free(&ctx->host, t);
 }
 
 // ---------------------------------------------------------------------------------------------

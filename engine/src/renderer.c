@@ -58,13 +58,7 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
     // tile class its indirect dispatch arguments (a uvec4) and a queue as long as the tile count.
     r->tiles_x = (sw + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE;
     r->tiles_y = (sh + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE;
-    VkDeviceSize tiles = (VkDeviceSize)r->tiles_x * r->tiles_y;
-    RTPBR_TRY(rtpbr_buffer_create_device(ctx, tiles * RTPBR_TILE_MASK_WORDS * sizeof(uint32_t),
-                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &r->tile_masks));
-    RTPBR_TRY(rtpbr_buffer_create_device(ctx, RTPBR_TILE_CLASS_COUNT * (4 + tiles) * sizeof(uint32_t),
-                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                                             VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                         &r->tile_lists));
+    RTPBR_TRY(rtpbr_lighting_tile_buffers_create(ctx, r->tiles_x, r->tiles_y, &r->tile_masks, &r->tile_lists));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                        &r->radiance_readback));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,

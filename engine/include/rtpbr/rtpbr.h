@@ -26,6 +26,10 @@
 //                    display image, readback buffers.
 //   A scene may be rendered by any renderer of its context, and a renderer may render any
 //   scene of its context.
+//   rtpbr_light_set, rtpbr_lighting_targets
+//                    the lighting-only path (a host's own G-buffer lit in its command buffer:
+//                    "The lighting pass inside the host's frame" below); also owned by the
+//                    context, which destroys those still alive.
 //
 // The frame (rtpbr_render / rtpbr_record):
 //   1. G-buffer pass: base colour + metallic, world normal + perceptual roughness, emitted

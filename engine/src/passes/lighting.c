@@ -126,6 +126,21 @@ cleanup:
     return result;
 }
 
+rtpbr_result rtpbr_lighting_tile_buffers_create(rtpbr_context *ctx, uint32_t tiles_x, uint32_t tiles_y,
+                                                rtpbr_buffer *masks, rtpbr_buffer *lists)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkDeviceSize tiles = (VkDeviceSize)tiles_x * tiles_y;
+    RTPBR_TRY(rtpbr_buffer_create_device(ctx, tiles * RTPBR_TILE_MASK_WORDS * sizeof(uint32_t),
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, masks));
+    RTPBR_TRY(rtpbr_buffer_create_device(ctx, RTPBR_TILE_CLASS_COUNT * (4 + tiles) * sizeof(uint32_t),
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                             VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                         lists));
+cleanup:
+    return result; // the caller destroys both (rtpbr_buffer_destroy accepts a zeroed buffer)
+}
+
 // Everything but the scene's buffers is fixed for the renderer's lifetime.
 rtpbr_result rtpbr_lighting_renderer_init(rtpbr_renderer *r)
 {
