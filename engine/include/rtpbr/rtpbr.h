@@ -711,9 +711,8 @@ RTPBR_API void rtpbr_light_set_destroy(rtpbr_light_set *set);
 // Replaces the lights of region `frame` (< frames_in_flight) by lights[0 .. count): moving,
 // recolouring, adding and removing lights up to the capacity. Each light is validated as by
 // rtpbr_gpu_scene_set_lights (vertex count, finite values, non-negative emission, planar,
-// non-zero area) and its
-// derived facts (plane, area, bounding sphere) computed; then its record is written into the
-// region's mapped memory. Nothing else: no allocation, no Vulkan call. count > capacity:
+// non-zero area) and its derived facts (plane, area, bounding sphere) computed; then its
+// record is written into the region's mapped memory. Nothing else: no allocation, no Vulkan call. count > capacity:
 // RTPBR_ERROR_LIMIT_EXCEEDED; a bad light: RTPBR_ERROR_INVALID_ARGUMENT (the log names it);
 // on any error the region keeps its previous lights. Must not be called while a recording of
 // frame `frame` is pending (see "Frames in flight" above).
@@ -738,8 +737,9 @@ typedef struct rtpbr_host_image {
 typedef struct rtpbr_lighting_targets_desc {
     uint32_t width, height; // of every image; required, 1..RTPBR_MAX_RENDER_SIZE
     // Depth: D32_SFLOAT, X8_D24_UNORM_PACK32 or D16_UNORM (depth-only formats; a host with a
-    // stencil copies depth out or uses its own depth-only image), created with SAMPLED usage. Vulkan's depth range, 0 near .. 1 far, cleared to 1 where no
-    // surface is (those pixels get the background): not reversed-Z. Positions are
+    // stencil copies depth out or uses its own depth-only image), created with SAMPLED usage.
+    // Vulkan's depth range, 0 near .. 1 far, cleared to 1 where no surface is (those pixels
+    // get the background): not reversed-Z. Positions are
     // reconstructed from it with the record's camera, so the host's geometry pass must have
     // drawn with the same view-projection.
     rtpbr_host_image depth;
