@@ -6,7 +6,8 @@
 // reads its own HDR output back. The engine (the same context, embedded in the host's device)
 // renders the same scene with rtpbr_render (same camera, materials, lights); the two radiance
 // images are compared pixel by pixel. Two frames in flight: frame 1 moves and recolours the
-// lights (rtpbr_light_set_update; the engine: rtpbr_gpu_scene_set_lights).
+// lights (rtpbr_light_set_update; the engine: rtpbr_gpu_scene_set_lights); the frames are
+// submitted one at a time, then both in one submission (pending together).
 // Then the API's refusals: bad targets (NULL or shared views, wrong formats, sizes), light
 // sets over capacity, bad lights, bad recordings: clear error codes, a message, no crash.
 #include "engine_test.h"
@@ -24,6 +25,8 @@ enum { W = 96, H = 72, QUADS = 4, LIGHTS = 6 };
 // the issue) so that a host path that diverged (another camera matrix, a reconstruction of its
 // own, a different light record) fails.
 #define MAX_REL 1e-5
+
+typedef struct stats { double max, mean; int count; } stats;
 
 #define VK(call) do { VkResult vr_ = (call); if (vr_) fail_msg("%s: %s", #call, vk_host_vk_result_name(vr_)); } while (0)
 
@@ -80,7 +83,7 @@ static const rtpbr_camera_desc camera = {.position = {0.3f, 1.6f, 3.2f}, .target
 typedef struct host {
     vk_host h;
     vk_draw_image images[6];      // g0 .. g3, depth, output
-    vk_draw_buffer buffers[3];    // vertices, host materials, readback
+    vk_draw_buffer buffers[4];    // vertices, host materials, readback of frames 0 and 1
     vk_draw_pass pass;             // its own descriptor set, layouts and pipeline
     VkCommandPool cmd_pool;
     VkFence fence;
@@ -88,7 +91,7 @@ typedef struct host {
     VkPhysicalDeviceFeatures2 features;
 } host;
 
-enum { G0 = 0, DEPTH = 4, OUTPUT = 5, VERTICES = 0, MATERIALS = 1, READBACK = 2 };
+enum { G0 = 0, DEPTH = 4, OUTPUT = 5, VERTICES = 0, MATERIALS = 1, READBACK = 2 }; // READBACK + frame
 static const VkFormat gbuffer_formats[4] = {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R16G16B16A16_SFLOAT,
                                             VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT};
 
@@ -129,11 +132,11 @@ static VkCommandBuffer begin_commands(host *g)
     return cmd;
 }
 
-// One frame of the host: its geometry pass into its G-buffer (after the previous frame's
-// lighting read it: an execution dependency on rtpbr's compute stage, as rtpbr.h says), then
-// rtpbr's lighting, then a copy of the output into the host's readback buffer.
-static void host_frame(host *g, rtpbr_lighting_targets *targets, rtpbr_light_set *lights, uint32_t frame,
-                       const float view_proj[16], bool first, float *out)
+// One frame of the host, recorded: its geometry pass into its G-buffer (after the previous
+// frame's lighting read it: an execution dependency on rtpbr's compute stage, as rtpbr.h says),
+// then rtpbr's lighting, then a copy of the output into the frame's readback buffer.
+static VkCommandBuffer host_frame(host *g, rtpbr_lighting_targets *targets, rtpbr_light_set *lights, uint32_t frame,
+                                  const float view_proj[16], bool first)
 {
     VkCommandBuffer cmd = begin_commands(g);
     for (int i = 0; i < 4; ++i)
@@ -186,18 +189,53 @@ static void host_frame(host *g, rtpbr_lighting_targets *targets, rtpbr_light_set
 
     VkBufferImageCopy copy = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {W, H, 1}};
     vkCmdCopyImageToBuffer(cmd, g->images[OUTPUT].image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                           g->buffers[READBACK].buffer, 1, &copy);
+                           g->buffers[READBACK + frame].buffer, 1, &copy);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
         &(VkMemoryBarrier){VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL, VK_ACCESS_TRANSFER_WRITE_BIT,
                            VK_ACCESS_HOST_READ_BIT}, 0, NULL, 0, NULL);
     VK(vkEndCommandBuffer(cmd));
+    return cmd;
+}
+
+// Submits the frames' command buffers in one submission, waits for them, frees them.
+static void host_submit(host *g, const VkCommandBuffer *cmds, uint32_t count)
+{
     VK(vkResetFences(g->h.device, 1, &g->fence));
     VK(vkQueueSubmit(g->h.queue, 1, &(VkSubmitInfo){.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
-        .commandBufferCount = 1, .pCommandBuffers = &cmd}, g->fence));
+        .commandBufferCount = count, .pCommandBuffers = cmds}, g->fence));
     VK(vkWaitForFences(g->h.device, 1, &g->fence, VK_TRUE, UINT64_MAX));
-    memcpy(out, g->buffers[READBACK].mapped, (size_t)W * H * 16);
+    vkFreeCommandBuffers(g->h.device, g->cmd_pool, count, cmds);
+}
+
+// Relative difference (per pixel the largest of r, g, b, |a - b| / max(|b|, 1e-3)) over every
+// pixel; alpha must agree exactly (surface or background).
+static stats compare(const float *a, const float *b)
+{
+    stats s = {0};
+    double sum = 0.0;
+    for (int i = 0; i < W * H; ++i) {
+        assert_float_equal(a[4 * i + 3], b[4 * i + 3], 0.0f);
+        double r = 0.0;
+        for (int c = 0; c < 3; ++c) r = fmax(r, fabs(a[4 * i + c] - b[4 * i + c]) / fmax(fabs(b[4 * i + c]), 1e-3));
+        s.max = fmax(s.max, r);
+        sum += r;
+        s.count += b[4 * i + 3] == 1.0f;
+    }
+    s.mean = sum / (W * H);
+    return s;
+}
+
+// Frame f's output (as read back) against the engine's radiance.
+static stats check_frame(host *g, uint32_t f, const float *engine, float *out)
+{
+    memcpy(out, g->buffers[READBACK + f].mapped, (size_t)W * H * 16);
     test_device_output(out, (size_t)W * H * 16);
-    vkFreeCommandBuffers(g->h.device, g->cmd_pool, 1, &cmd);
+    stats s = compare(out, engine);
+    printf("frame %u: %d surface pixels of %d; relative difference to rtpbr_render: max %.3g, mean %.3g\n", f,
+           s.count, W * H, s.max, s.mean);
+    assert_true(s.count > W * H / 2);
+    assert_true(s.max <= MAX_REL);
+    return s;
 }
 
 // The host (its device: Vulkan 1.3, dynamic rendering, one graphics + compute queue; its
@@ -234,7 +272,7 @@ static void host_destroy(host *g)
 {
     if (g->h.device) { // the host's objects, then its device
         for (int i = 0; i < 6; ++i) vk_draw_image_destroy(&g->h, &g->images[i]);
-        for (int i = 0; i < 3; ++i) vk_draw_buffer_destroy(&g->h, &g->buffers[i]);
+        for (int i = 0; i < 4; ++i) vk_draw_buffer_destroy(&g->h, &g->buffers[i]);
         vk_draw_pass_destroy(&g->h, &g->pass);
         vkDestroyFence(g->h.device, g->fence, NULL);
         vkDestroyCommandPool(g->h.device, g->cmd_pool, NULL);
@@ -251,26 +289,6 @@ static rtpbr_lighting_targets_desc targets_desc(const host *g)
     for (int i = 0; i < 4; ++i)
         d.gbuffer[i] = (rtpbr_host_image){g->images[G0 + i].image, g->images[G0 + i].view, gbuffer_formats[i]};
     return d;
-}
-
-typedef struct stats { double max, mean; int count; } stats;
-
-// Relative difference (per pixel the largest of r, g, b, |a - b| / max(|b|, 1e-3)) over every
-// pixel; alpha must agree exactly (surface or background).
-static stats compare(const float *a, const float *b)
-{
-    stats s = {0};
-    double sum = 0.0;
-    for (int i = 0; i < W * H; ++i) {
-        assert_float_equal(a[4 * i + 3], b[4 * i + 3], 0.0f);
-        double r = 0.0;
-        for (int c = 0; c < 3; ++c) r = fmax(r, fabs(a[4 * i + c] - b[4 * i + c]) / fmax(fabs(b[4 * i + c]), 1e-3));
-        s.max = fmax(s.max, r);
-        sum += r;
-        s.count += b[4 * i + 3] == 1.0f;
-    }
-    s.mean = sum / (W * H);
-    return s;
 }
 
 static void host_lighting_equals_engine(void **state)
@@ -303,8 +321,9 @@ static void host_lighting_equals_engine(void **state)
     VK(vk_draw_buffer_create(&g.h, sizeof vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertices, &g.buffers[VERTICES]));
     VK(vk_draw_buffer_create(&g.h, sizeof host_materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, host_materials,
                              &g.buffers[MATERIALS]));
-    VK(vk_draw_buffer_create(&g.h, (VkDeviceSize)W * H * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, NULL,
-                             &g.buffers[READBACK]));
+    for (int f = 0; f < 2; ++f)
+        VK(vk_draw_buffer_create(&g.h, (VkDeviceSize)W * H * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, NULL,
+                                 &g.buffers[READBACK + f]));
     make_pipeline(&g);
 
     rtpbr_light_desc lights[2][LIGHTS];
@@ -328,22 +347,28 @@ static void host_lighting_equals_engine(void **state)
 
     float view_proj[16];
     rtpbr_camera_matrices(&camera, (float)W / H, view_proj);
-    float *host_out = malloc((size_t)W * H * 16), *frame0 = malloc((size_t)W * H * 16);
+    float *host_out = malloc((size_t)W * H * 16), *frame0 = malloc((size_t)W * H * 16), *engine[2];
     assert_true(host_out && frame0);
-    for (uint32_t f = 0; f < 2; ++f) {
+    for (uint32_t f = 0; f < 2; ++f) { // the engine's frames, and the lights of both regions
         assert_int_equal(rtpbr_gpu_scene_set_lights(scene, lights[f], LIGHTS), RTPBR_SUCCESS);
-        float *engine = test_render_radiance(renderer, scene, &rd, W, H);
+        engine[f] = test_render_radiance(renderer, scene, &rd, W, H);
         assert_int_equal(rtpbr_light_set_update(set, f, lights[f], LIGHTS), RTPBR_SUCCESS);
         assert_int_equal(rtpbr_light_set_count(set, f), LIGHTS);
-        host_frame(&g, targets, set, f, view_proj, f == 0, host_out);
-        stats s = compare(host_out, engine);
-        printf("frame %u: %d surface pixels of %d; relative difference to rtpbr_render: max %.3g, mean %.3g\n", f,
-               s.count, W * H, s.max, s.mean);
-        assert_true(s.count > W * H / 2);
-        assert_true(s.max <= MAX_REL);
-        free(engine);
-        if (f == 0) memcpy(frame0, host_out, (size_t)W * H * 16);
     }
+    // One frame at a time, then both frames in flight at once (one submission: each frame its
+    // own light region, frame constants and descriptor set; rtpbr's tile buffers and the host's
+    // images shared, ordered by the barriers).
+    for (uint32_t f = 0; f < 2; ++f) {
+        VkCommandBuffer cmd = host_frame(&g, targets, set, f, view_proj, f == 0);
+        host_submit(&g, &cmd, 1);
+        check_frame(&g, f, engine[f], f == 0 ? frame0 : host_out);
+    }
+    VkCommandBuffer both[2];
+    for (uint32_t f = 0; f < 2; ++f) both[f] = host_frame(&g, targets, set, f, view_proj, false);
+    host_submit(&g, both, 2);
+    for (uint32_t f = 0; f < 2; ++f) check_frame(&g, f, engine[f], host_out);
+    free(engine[0]);
+    free(engine[1]);
     // The equality is not a trivial one: the surfaces are lit (frame 1's lights, moved and
     // recoloured, change most surface pixels by more than 1 %).
     int changed = 0;
