@@ -79,6 +79,12 @@ void rtpbr_context_destroy(rtpbr_context *ctx)
         while (ctx->renderers) rtpbr_renderer_destroy(ctx->renderers);
         while (ctx->scenes) rtpbr_gpu_scene_destroy(ctx->scenes);
     }
+    if (ctx->light_sets || ctx->lighting_targets) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_WARNING,
+                  "rtpbr_context_destroy: destroying light sets or lighting targets the host did not destroy");
+        while (ctx->lighting_targets) rtpbr_lighting_targets_destroy(ctx->lighting_targets);
+        while (ctx->light_sets) rtpbr_light_set_destroy(ctx->light_sets);
+    }
     if (ctx->device) {
         if (ctx->upload_fence) {
             VkResult vr = vkWaitForFences(ctx->device, 1, &ctx->upload_fence, VK_TRUE, UINT64_MAX);

@@ -168,6 +168,9 @@ struct rtpbr_context {
     // (rtpbr.h: the context owns them). Linked through their own prev/next fields.
     rtpbr_gpu_scene *scenes;
     rtpbr_renderer *renderers;
+    rtpbr_light_set *light_sets;               // lightpass.c
+    rtpbr_lighting_targets *lighting_targets;  // lightpass.c
+    uint64_t serial;                           // the last light set's serial (lightpass.c)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -226,6 +229,15 @@ struct rtpbr_gltf_polygon_facts;
 rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const rtpbr_gpu_scene_desc *desc,
                                                      const struct rtpbr_gltf_polygon_facts *light_facts,
                                                      rtpbr_gpu_scene **out_scene);
+
+// What scenes and the lighting-only path (lightpass.c) share (scene.c): a material's record
+// (the desc's defaults and flags applied) and its checks; a light's checks against its derived
+// facts (index: for the message) and its record.
+rtpbr_shader_material rtpbr_material_record(const rtpbr_material_desc *m);
+rtpbr_result rtpbr_material_validate(const rtpbr_context *ctx, const rtpbr_material_desc *m, uint32_t index);
+rtpbr_result rtpbr_light_validate(const rtpbr_context *ctx, const rtpbr_light_desc *l,
+                                  const struct rtpbr_gltf_polygon_facts *f, uint32_t index);
+void rtpbr_light_record(const rtpbr_light_desc *l, const struct rtpbr_gltf_polygon_facts *f, rtpbr_shader_light *out);
 
 // The RTPBR_EXTENSION_TEXTURES_* bits of the scene's materials together (scene.c): which of
 // G-buffers 4 to 6 its frames render and read.

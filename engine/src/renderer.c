@@ -58,13 +58,7 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
     // tile class its indirect dispatch arguments (a uvec4) and a queue as long as the tile count.
     r->tiles_x = (sw + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE;
     r->tiles_y = (sh + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE;
-    VkDeviceSize tiles = (VkDeviceSize)r->tiles_x * r->tiles_y;
-    RTPBR_TRY(rtpbr_buffer_create_device(ctx, tiles * RTPBR_TILE_MASK_WORDS * sizeof(uint32_t),
-                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &r->tile_masks));
-    RTPBR_TRY(rtpbr_buffer_create_device(ctx, RTPBR_TILE_CLASS_COUNT * (4 + tiles) * sizeof(uint32_t),
-                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                                             VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                         &r->tile_lists));
+    RTPBR_TRY(rtpbr_lighting_tile_buffers_create(ctx, r->tiles_x, r->tiles_y, &r->tile_masks, &r->tile_lists));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                        &r->radiance_readback));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -211,7 +205,7 @@ static void record_lighting(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, con
                             const lighting_pipelines *pipelines, VkCommandBuffer cmd)
 {
     if (desc->shadows == RTPBR_SHADOWS_ON) rtpbr_shadow_record(r, desc, cmd); // the ratios lighting multiplies by
-    if (desc->mc_samples == 0) rtpbr_lighting_record(r, pipelines->lighting, cmd);
+    if (desc->mc_samples == 0) rtpbr_lighting_ltc_record(r, pipelines->lighting, cmd);
     else rtpbr_lighting_mc_record(r, scene, pipelines->lighting[0], desc, cmd);
     if (pipelines->forward) rtpbr_forward_record(r, scene, pipelines->forward, cmd);
     rtpbr_lighting_end(r, cmd);

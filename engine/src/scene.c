@@ -27,7 +27,7 @@ static rtpbr_gltf_polygon_facts *derive_light_facts(const rtpbr_context *ctx, co
     return facts;
 }
 
-static rtpbr_result validate_light(const rtpbr_context *ctx, const rtpbr_light_desc *l,
+rtpbr_result rtpbr_light_validate(const rtpbr_context *ctx, const rtpbr_light_desc *l,
                                    const rtpbr_gltf_polygon_facts *f, uint32_t index)
 {
     if (l->vertex_count < 3 || l->vertex_count > RTPBR_MAX_POLYGON_VERTICES) {
@@ -85,36 +85,37 @@ static rtpbr_result validate_lights(const rtpbr_context *ctx, const rtpbr_light_
                                     const rtpbr_gltf_polygon_facts *facts, uint32_t count)
 {
     for (uint32_t i = 0; i < count; ++i) {
-        rtpbr_result result = validate_light(ctx, &lights[i], &facts[i], i);
+        rtpbr_result result = rtpbr_light_validate(ctx, &lights[i], &facts[i], i);
         if (result != RTPBR_SUCCESS) return result;
     }
     return RTPBR_SUCCESS;
+}
+
+void rtpbr_light_record(const rtpbr_light_desc *l, const rtpbr_gltf_polygon_facts *f, rtpbr_shader_light *out)
+{
+    rtpbr_shader_light g = {0};
+    double fan = 0.0; // w of vertex v: the area of the fan polygon v0 .. v (RTPBR_LIGHT_FIELDS)
+    for (uint32_t v = 0; v < l->vertex_count; ++v) {
+        memcpy(g.vertices[v], l->vertices[v], 3 * sizeof(float));
+        g.vertices[v][3] = (float)fan;
+        if (v >= 1 && v + 1 < l->vertex_count) fan += f->fan_area[v - 1];
+    }
+    memcpy(g.radiance, l->emission, sizeof g.radiance);
+    g.two_sided = l->two_sided ? 1.0f : 0.0f;
+    memcpy(g.plane, f->normal, sizeof f->normal);
+    g.plane[3] = -(g.plane[0] * l->vertices[0][0] + g.plane[1] * l->vertices[0][1] + g.plane[2] * l->vertices[0][2]);
+    g.area = f->area;
+    memcpy(g.sphere, f->center, sizeof f->center);
+    g.sphere[3] = f->bound_radius;
+    g.vertex_count = l->vertex_count;
+    *out = g;
 }
 
 static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights, const rtpbr_gltf_polygon_facts *facts,
                          uint32_t count)
 {
     rtpbr_shader_light *gpu = scene->lights.mapped;
-    for (uint32_t i = 0; i < count; ++i) {
-        const rtpbr_light_desc *l = &lights[i];
-        const rtpbr_gltf_polygon_facts *f = &facts[i];
-        rtpbr_shader_light g = {0};
-        double fan = 0.0; // w of vertex v: the area of the fan polygon v0 .. v (RTPBR_LIGHT_FIELDS)
-        for (uint32_t v = 0; v < l->vertex_count; ++v) {
-            memcpy(g.vertices[v], l->vertices[v], 3 * sizeof(float));
-            g.vertices[v][3] = (float)fan;
-            if (v >= 1 && v + 1 < l->vertex_count) fan += f->fan_area[v - 1];
-        }
-        memcpy(g.radiance, l->emission, sizeof g.radiance);
-        g.two_sided = l->two_sided ? 1.0f : 0.0f;
-        memcpy(g.plane, f->normal, sizeof f->normal);
-        g.plane[3] = -(g.plane[0] * l->vertices[0][0] + g.plane[1] * l->vertices[0][1] + g.plane[2] * l->vertices[0][2]);
-        g.area = f->area;
-        memcpy(g.sphere, f->center, sizeof f->center);
-        g.sphere[3] = f->bound_radius;
-        g.vertex_count = l->vertex_count;
-        gpu[i] = g;
-    }
+    for (uint32_t i = 0; i < count; ++i) rtpbr_light_record(&lights[i], &facts[i], &gpu[i]);
     scene->light_count = count;
 }
 
@@ -168,10 +169,10 @@ static rtpbr_result validate_mesh(const rtpbr_context *ctx, const rtpbr_mesh_des
 
 // The desc's defaults and flags applied, the values stored as glTF factors (KHR's own zeros:
 // ior 0 is Fresnel 1, specularFactor 0 no lobe, alphaCutoff 0 nothing cut), the values
-// validate_material checked taken as they are; the material rules (roughness floor, [0, 1]
+// rtpbr_material_validate checked taken as they are; the material rules (roughness floor, [0, 1]
 // ranges, ior, clearcoat and Disney mappings) are applied by the shaders, in
 // shaderlib/rtpbr/material.h's Material_Resolve, which the oracle calls as well.
-static rtpbr_shader_material convert_material(const rtpbr_material_desc *m)
+rtpbr_shader_material rtpbr_material_record(const rtpbr_material_desc *m)
 {
     rtpbr_shader_material g = {0};
     memcpy(g.base_color, m->base_color, sizeof g.base_color);
@@ -262,7 +263,7 @@ uint32_t rtpbr_gpu_scene_extension_textures(const rtpbr_gpu_scene *scene)
     return bits;
 }
 
-static rtpbr_result validate_material(const rtpbr_context *ctx, const rtpbr_material_desc *m, uint32_t index)
+rtpbr_result rtpbr_material_validate(const rtpbr_context *ctx, const rtpbr_material_desc *m, uint32_t index)
 {
     if (!rtpbr_finite(m->base_color, 3) || !rtpbr_finite(&m->metallic, 1) || !rtpbr_finite(&m->roughness, 1) ||
         !rtpbr_finite(m->emission, 3) || !rtpbr_finite(&m->ior, 1) || !rtpbr_finite(&m->specular_factor, 1) ||
@@ -514,7 +515,7 @@ rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const r
     }
     for (uint32_t i = 0; i < desc->material_count; ++i) {
         const rtpbr_material_desc *m = &desc->materials[i];
-        RTPBR_TRY(validate_material(ctx, m, i));
+        RTPBR_TRY(rtpbr_material_validate(ctx, m, i));
         uint32_t index_of[RTPBR_MATERIAL_TEXTURE_COUNT];
         material_texture_indices(m, index_of);
         for (uint32_t b = 0; b < RTPBR_MATERIAL_TEXTURE_COUNT; ++b)
@@ -614,9 +615,9 @@ rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const r
     rtpbr_shader_material *materials = scene->materials.mapped;
     if (desc->material_count == 0) {
         rtpbr_material_desc grey = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 0.5f};
-        materials[0] = convert_material(&grey);
+        materials[0] = rtpbr_material_record(&grey);
     }
-    for (uint32_t i = 0; i < desc->material_count; ++i) materials[i] = convert_material(&desc->materials[i]);
+    for (uint32_t i = 0; i < desc->material_count; ++i) materials[i] = rtpbr_material_record(&desc->materials[i]);
     scene->material_count = desc->material_count;
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, material_slots * sizeof(rtpbr_shader_texture_transforms),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->texture_transforms));
@@ -695,7 +696,7 @@ rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index
     if (!scene) return rtpbr_null_object(__func__, "scene");
     rtpbr_context *ctx = scene->context;
     rtpbr_result result = check_set(scene, __func__, material, "material", "material", index, scene->material_count);
-    if (result == RTPBR_SUCCESS) result = validate_material(ctx, material, index);
+    if (result == RTPBR_SUCCESS) result = rtpbr_material_validate(ctx, material, index);
     if (result != RTPBR_SUCCESS) return result;
     uint32_t textures = scene->texture_count - 1; // the host's; image 0 is the white stand-in
     uint32_t index_of[RTPBR_MATERIAL_TEXTURE_COUNT] = {0};
@@ -708,7 +709,7 @@ rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index
     rtpbr_shader_material *record = &((rtpbr_shader_material *)scene->materials.mapped)[index];
     bool sidedness_changed = (record->flags ^ (material->double_sided ? RTPBR_MATERIAL_FLAG_DOUBLE_SIDED : 0u)) &
                              RTPBR_MATERIAL_FLAG_DOUBLE_SIDED;
-    *record = convert_material(material);
+    *record = rtpbr_material_record(material);
     ((rtpbr_shader_texture_transforms *)scene->texture_transforms.mapped)[index] = convert_texture_transforms(material);
     scene->material_extension_textures[index] = material_extension_textures(material);
     rtpbr_gbuffer_write_material_textures(scene, index, index_of);

@@ -16,7 +16,7 @@
 
 #include "rtpbr/rtpbr_gltf.h"
 #include "util.h" // rtpbr_camera_matrices (engine/src/math.c, compiled into this test)
-#include "vk_host.h"
+#include "vk_draw.h"
 
 #include "luts/rtpbr_ltc_tables.h"
 #pragma GCC diagnostic push
@@ -58,94 +58,29 @@ typedef struct shading { // the sample's uniform block (std140: eight vec4)
 
 typedef struct gpu { // everything made, destroyed by gpu_finish (images[0, 1]: colour, depth)
     vk_host h;
-    VkBuffer buffers[16];
-    VkDeviceMemory memory[32];
-    VkImage images[8];
-    VkImageView views[8];
-    uint32_t nbuf, nmem, nimg;
+    vk_draw_buffer buffers[16];
+    vk_draw_image images[8];
+    uint32_t nbuf, nimg;
     VkSampler sampler;
-    VkDescriptorSetLayout set_layout;
-    VkDescriptorPool pool;
-    VkDescriptorSet set;
-    VkPipelineLayout layout;
-    VkPipeline pipeline;
+    vk_draw_pass pass;             // its own descriptor set, layouts and pipeline
     VkCommandPool cmd_pool;
 } gpu;
 
 #define VK(call) do { VkResult vr_ = (call); if (vr_) fail_msg("%s: %s", #call, vk_host_vk_result_name(vr_)); } while (0)
 
-static VkDeviceMemory bind_memory(gpu *g, VkMemoryRequirements req, VkMemoryPropertyFlags want)
+// A host-visible buffer holding `data` (if not NULL), mapped.
+static vk_draw_buffer *make_buffer(gpu *g, VkDeviceSize size, VkBufferUsageFlags usage, const void *data)
 {
-    VkPhysicalDeviceMemoryProperties p;
-    vkGetPhysicalDeviceMemoryProperties(g->h.physical_device, &p);
-    uint32_t type = 0;
-    while (type < p.memoryTypeCount &&
-           (!(req.memoryTypeBits & (1u << type)) || (p.memoryTypes[type].propertyFlags & want) != want)) ++type;
-    assert_true(type < p.memoryTypeCount);
-    VkMemoryAllocateInfo info = {VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, NULL, req.size, type};
-    VK(vkAllocateMemory(g->h.device, &info, NULL, &g->memory[g->nmem]));
-    return g->memory[g->nmem++];
-}
-
-// A host-visible buffer holding `data` (if not NULL); its memory in *memory.
-static VkBuffer make_buffer(gpu *g, VkDeviceSize size, VkBufferUsageFlags usage, const void *data,
-                            VkDeviceMemory *memory)
-{
-    VkBufferCreateInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = usage};
-    VkBuffer b;
-    VK(vkCreateBuffer(g->h.device, &info, NULL, &b));
-    g->buffers[g->nbuf++] = b;
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(g->h.device, b, &req);
-    VkDeviceMemory m = bind_memory(g, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    VK(vkBindBufferMemory(g->h.device, b, m, 0));
-    if (data) {
-        void *p;
-        VK(vkMapMemory(g->h.device, m, 0, size, 0, &p));
-        memcpy(p, data, size);
-        vkUnmapMemory(g->h.device, m);
-    }
-    if (memory) *memory = m;
+    vk_draw_buffer *b = &g->buffers[g->nbuf++];
+    VK(vk_draw_buffer_create(&g->h, size, usage, data, b));
     return b;
 }
 
-static VkImage make_image(gpu *g, VkFormat format, uint32_t w, uint32_t h, uint32_t d, VkImageUsageFlags usage)
+static vk_draw_image *make_image(gpu *g, VkFormat format, uint32_t w, uint32_t h, uint32_t d, VkImageUsageFlags usage)
 {
-    VkImageCreateInfo info = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
-        .imageType = d > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D, .format = format, .extent = {w, h, d},
-        .mipLevels = 1, .arrayLayers = 1, .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL,
-        .usage = usage, .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
-    VkImage image;
-    VK(vkCreateImage(g->h.device, &info, NULL, &image));
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(g->h.device, image, &req);
-    VK(vkBindImageMemory(g->h.device, image, bind_memory(g, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT), 0));
-    VkImageViewCreateInfo view = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = image,
-        .viewType = d > 1 ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D, .format = format,
-        .subresourceRange = {format == VK_FORMAT_D32_SFLOAT ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT,
-                             0, 1, 0, 1}};
-    VK(vkCreateImageView(g->h.device, &view, NULL, &g->views[g->nimg]));
-    g->images[g->nimg++] = image;
+    vk_draw_image *image = &g->images[g->nimg++];
+    VK(vk_draw_image_create(&g->h, format, w, h, d, usage, image));
     return image;
-}
-
-static void barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
-                    VkImageLayout to, VkPipelineStageFlags src_stage, VkAccessFlags src,
-                    VkPipelineStageFlags dst_stage, VkAccessFlags dst)
-{
-    VkImageMemoryBarrier b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER, .srcAccessMask = src,
-        .dstAccessMask = dst, .oldLayout = from, .newLayout = to, .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .image = image, .subresourceRange = {aspect, 0, 1, 0, 1}};
-    vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, NULL, 0, NULL, 1, &b);
-}
-
-static VkShaderModule module(gpu *g, const uint32_t *code, size_t size)
-{
-    VkShaderModuleCreateInfo info = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = size,
-                                     .pCode = code};
-    VkShaderModule m;
-    VK(vkCreateShaderModule(g->h.device, &info, NULL, &m));
-    return m;
 }
 
 // The six tables (the GGX variant, laid out as quad_light.frag's comments say: every one is
@@ -163,15 +98,15 @@ static void upload_tables(gpu *g, VkCommandBuffer cmd)
     };
     for (int i = 0; i < 6; ++i) {
         VkDeviceSize size = (VkDeviceSize)t[i].w * t[i].h * t[i].d * t[i].channels * sizeof(float);
-        VkBuffer staging = make_buffer(g, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, t[i].data, NULL);
+        VkBuffer staging = make_buffer(g, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, t[i].data)->buffer;
         VkImage image = make_image(g, t[i].channels == 4 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R32_SFLOAT,
-                                   t[i].w, t[i].h, t[i].d, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-        barrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                   t[i].w, t[i].h, t[i].d, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT)->image;
+        vk_draw_barrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                 VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
         VkBufferImageCopy copy = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                   .imageExtent = {t[i].w, t[i].h, t[i].d}};
         vkCmdCopyBufferToImage(cmd, staging, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-        barrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+        vk_draw_barrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     }
@@ -188,89 +123,47 @@ static void make_pipeline(gpu *g, VkBuffer uniform)
                                                      1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL};
     VK(vkCreateDescriptorSetLayout(g->h.device, &(VkDescriptorSetLayoutCreateInfo){
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = 7, .pBindings = bindings},
-        NULL, &g->set_layout));
+        NULL, &g->pass.set_layout));
     VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6}};
     VK(vkCreateDescriptorPool(g->h.device, &(VkDescriptorPoolCreateInfo){
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1, .poolSizeCount = 2, .pPoolSizes = sizes},
-        NULL, &g->pool));
+        NULL, &g->pass.pool));
     VK(vkAllocateDescriptorSets(g->h.device, &(VkDescriptorSetAllocateInfo){
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, .descriptorPool = g->pool,
-        .descriptorSetCount = 1, .pSetLayouts = &g->set_layout}, &g->set));
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, .descriptorPool = g->pass.pool,
+        .descriptorSetCount = 1, .pSetLayouts = &g->pass.set_layout}, &g->pass.set));
     VK(vkCreateSampler(g->h.device, &(VkSamplerCreateInfo){.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
         .magFilter = VK_FILTER_LINEAR, .minFilter = VK_FILTER_LINEAR, .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
         .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
         .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE}, NULL, &g->sampler));
     VkDescriptorBufferInfo ubo = {uniform, 0, sizeof(shading)};
     VkDescriptorImageInfo tables[6];
-    VkWriteDescriptorSet writes[7] = {{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = g->set,
+    VkWriteDescriptorSet writes[7] = {{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = g->pass.set,
         .descriptorCount = 1, .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &ubo}};
     for (uint32_t i = 0; i < 6; ++i) {
-        tables[i] = (VkDescriptorImageInfo){g->sampler, g->views[2 + i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        writes[1 + i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = g->set,
+        tables[i] = (VkDescriptorImageInfo){g->sampler, g->images[2 + i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        writes[1 + i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = g->pass.set,
             .dstBinding = 1 + i, .descriptorCount = 1, .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
             .pImageInfo = &tables[i]};
     }
     vkUpdateDescriptorSets(g->h.device, 7, writes, 0, NULL);
     VkPushConstantRange push = {VK_SHADER_STAGE_VERTEX_BIT, 0, 64};
     VK(vkCreatePipelineLayout(g->h.device, &(VkPipelineLayoutCreateInfo){
-        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1, .pSetLayouts = &g->set_layout,
-        .pushConstantRangeCount = 1, .pPushConstantRanges = &push}, NULL, &g->layout));
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1, .pSetLayouts = &g->pass.set_layout,
+        .pushConstantRangeCount = 1, .pPushConstantRanges = &push}, NULL, &g->pass.layout));
 
-    VkShaderModule vs = module(g, rtpbr_test_spv_shader_include_vert, sizeof rtpbr_test_spv_shader_include_vert);
-    VkShaderModule fs = module(g, rtpbr_test_spv_quad_light_frag, sizeof rtpbr_test_spv_quad_light_frag);
-    VkPipelineShaderStageCreateInfo stages[2] = {
-        {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_VERTEX_BIT,
-         .module = vs, .pName = "main"},
-        {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
-         .module = fs, .pName = "main"}};
-    VkVertexInputBindingDescription binding = {0, 6 * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX};
-    VkVertexInputAttributeDescription attributes[2] = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
-                                                       {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)}};
     VkFormat color = VK_FORMAT_R32G32B32A32_SFLOAT;
-    VkPipelineColorBlendAttachmentState blend = {.colorWriteMask = 0xf};
-    VkDynamicState dynamic[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-    VkGraphicsPipelineCreateInfo info = {.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
-        .pNext = &(VkPipelineRenderingCreateInfo){.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO,
-            .colorAttachmentCount = 1, .pColorAttachmentFormats = &color, .depthAttachmentFormat = VK_FORMAT_D32_SFLOAT},
-        .stageCount = 2, .pStages = stages,
-        .pVertexInputState = &(VkPipelineVertexInputStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO, .vertexBindingDescriptionCount = 1,
-            .pVertexBindingDescriptions = &binding, .vertexAttributeDescriptionCount = 2,
-            .pVertexAttributeDescriptions = attributes},
-        .pInputAssemblyState = &(VkPipelineInputAssemblyStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
-            .topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST},
-        .pViewportState = &(VkPipelineViewportStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO, .viewportCount = 1, .scissorCount = 1},
-        .pRasterizationState = &(VkPipelineRasterizationStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO, .lineWidth = 1.0f},
-        .pMultisampleState = &(VkPipelineMultisampleStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
-            .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT},
-        .pDepthStencilState = &(VkPipelineDepthStencilStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO, .depthTestEnable = VK_TRUE,
-            .depthWriteEnable = VK_TRUE, .depthCompareOp = VK_COMPARE_OP_LESS},
-        .pColorBlendState = &(VkPipelineColorBlendStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO, .attachmentCount = 1,
-            .pAttachments = &blend},
-        .pDynamicState = &(VkPipelineDynamicStateCreateInfo){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO, .dynamicStateCount = 2,
-            .pDynamicStates = dynamic},
-        .layout = g->layout};
-    VK(vkCreateGraphicsPipelines(g->h.device, VK_NULL_HANDLE, 1, &info, NULL, &g->pipeline));
-    vkDestroyShaderModule(g->h.device, vs, NULL);
-    vkDestroyShaderModule(g->h.device, fs, NULL);
+    VK(vk_draw_pipeline_create(&g->h, &(vk_draw_pipeline_desc){
+        .vert = rtpbr_test_spv_shader_include_vert, .vert_size = sizeof rtpbr_test_spv_shader_include_vert,
+        .frag = rtpbr_test_spv_quad_light_frag, .frag_size = sizeof rtpbr_test_spv_quad_light_frag,
+        .attribute_count = 2, .color_formats = &color, .color_count = 1, .depth_format = VK_FORMAT_D32_SFLOAT,
+        .depth_compare = VK_COMPARE_OP_LESS, .layout = g->pass.layout}, &g->pass.pipeline));
 }
 
 static VkCommandBuffer begin_commands(gpu *g)
 {
     VkCommandBuffer cmd;
-    VK(vkAllocateCommandBuffers(g->h.device, &(VkCommandBufferAllocateInfo){
-        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = g->cmd_pool,
-        .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1}, &cmd));
-    VK(vkBeginCommandBuffer(cmd, &(VkCommandBufferBeginInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
-        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT}));
+    VK(vk_draw_begin(&g->h, g->cmd_pool, &cmd));
     return cmd;
 }
 
@@ -284,50 +177,47 @@ static void submit_and_wait(gpu *g, VkCommandBuffer cmd)
 }
 
 // One frame of the sample over `vertex_count` vertices (6 floats each), read back into out.
-static void draw(gpu *g, VkBuffer vertices, uint32_t vertex_count, const float view_proj[16], VkBuffer readback,
-                 VkDeviceMemory readback_memory, float *out)
+static void draw(gpu *g, VkBuffer vertices, uint32_t vertex_count, const float view_proj[16],
+                 const vk_draw_buffer *readback, float *out)
 {
     VkCommandBuffer cmd = begin_commands(g);
-    VkImage color = g->images[0], depth = g->images[1];
-    barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+    VkImage color = g->images[0].image, depth = g->images[1].image;
+    vk_draw_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
             VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
             VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    barrier(cmd, depth, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+    vk_draw_barrier(cmd, depth, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
             VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, 0,
             VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
             VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
     VkRenderingAttachmentInfo color_att = {.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-        .imageView = g->views[0], .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+        .imageView = g->images[0].view, .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
         .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, .storeOp = VK_ATTACHMENT_STORE_OP_STORE};
     VkRenderingAttachmentInfo depth_att = {.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-        .imageView = g->views[1], .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+        .imageView = g->images[1].view, .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
         .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, .storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE,
         .clearValue.depthStencil = {1.0f, 0}};
     vkCmdBeginRendering(cmd, &(VkRenderingInfo){.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
         .renderArea = {{0, 0}, {W, H}}, .layerCount = 1, .colorAttachmentCount = 1,
         .pColorAttachments = &color_att, .pDepthAttachment = &depth_att});
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->layout, 0, 1, &g->set, 0, NULL);
-    vkCmdPushConstants(cmd, g->layout, VK_SHADER_STAGE_VERTEX_BIT, 0, 64, view_proj);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->pass.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->pass.layout, 0, 1, &g->pass.set, 0, NULL);
+    vkCmdPushConstants(cmd, g->pass.layout, VK_SHADER_STAGE_VERTEX_BIT, 0, 64, view_proj);
     vkCmdSetViewport(cmd, 0, 1, &(VkViewport){0.0f, 0.0f, W, H, 0.0f, 1.0f});
     vkCmdSetScissor(cmd, 0, 1, &(VkRect2D){{0, 0}, {W, H}});
     VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
     vkCmdDraw(cmd, vertex_count, 1, 0, 0);
     vkCmdEndRendering(cmd);
-    barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+    vk_draw_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
             VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    vkCmdCopyImageToBuffer(cmd, color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback, 1, &(VkBufferImageCopy){
+    vkCmdCopyImageToBuffer(cmd, color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback->buffer, 1, &(VkBufferImageCopy){
         .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {W, H, 1}});
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
         &(VkMemoryBarrier){VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL, VK_ACCESS_TRANSFER_WRITE_BIT,
                            VK_ACCESS_HOST_READ_BIT}, 0, NULL, 0, NULL);
     submit_and_wait(g, cmd);
-    void *p;
-    VK(vkMapMemory(g->h.device, readback_memory, 0, VK_WHOLE_SIZE, 0, &p));
-    memcpy(out, p, (size_t)W * H * 16);
-    vkUnmapMemory(g->h.device, readback_memory);
+    memcpy(out, readback->mapped, (size_t)W * H * 16);
     test_device_output(out, (size_t)W * H * 16);
 }
 
@@ -335,15 +225,11 @@ static void gpu_finish(gpu *g)
 {
     VkDevice d = g->h.device;
     if (d) {
-        vkDestroyPipeline(d, g->pipeline, NULL);
-        vkDestroyPipelineLayout(d, g->layout, NULL);
-        vkDestroyDescriptorPool(d, g->pool, NULL);
-        vkDestroyDescriptorSetLayout(d, g->set_layout, NULL);
+        vk_draw_pass_destroy(&g->h, &g->pass);
         vkDestroySampler(d, g->sampler, NULL);
         vkDestroyCommandPool(d, g->cmd_pool, NULL);
-        for (uint32_t i = 0; i < g->nimg; ++i) vkDestroyImageView(d, g->views[i], NULL), vkDestroyImage(d, g->images[i], NULL);
-        for (uint32_t i = 0; i < g->nbuf; ++i) vkDestroyBuffer(d, g->buffers[i], NULL);
-        for (uint32_t i = 0; i < g->nmem; ++i) vkFreeMemory(d, g->memory[i], NULL);
+        for (uint32_t i = 0; i < g->nimg; ++i) vk_draw_image_destroy(&g->h, &g->images[i]);
+        for (uint32_t i = 0; i < g->nbuf; ++i) vk_draw_buffer_destroy(&g->h, &g->buffers[i]);
     }
     vk_host_finish(&g->h);
 }
@@ -452,19 +338,14 @@ static void render_sample(const float *vertices, uint32_t vertex_count, const fl
     VkCommandBuffer cmd = begin_commands(&g);
     upload_tables(&g, cmd);
     submit_and_wait(&g, cmd);
-    VkDeviceMemory uniform_memory, readback_memory;
-    VkBuffer uniform = make_buffer(&g, sizeof(shading), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, NULL, &uniform_memory);
+    vk_draw_buffer *uniform = make_buffer(&g, sizeof(shading), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, NULL);
     VkBuffer vertex_buffer = make_buffer(&g, sizeof(float) * 6 * vertex_count,
-                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertices, NULL);
-    VkBuffer readback = make_buffer(&g, (VkDeviceSize)W * H * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, NULL,
-                                    &readback_memory);
-    make_pipeline(&g, uniform);
+                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertices)->buffer;
+    const vk_draw_buffer *readback = make_buffer(&g, (VkDeviceSize)W * H * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, NULL);
+    make_pipeline(&g, uniform->buffer);
     for (int k = 0; k < 2; ++k) {
-        void *p;
-        VK(vkMapMemory(g.h.device, uniform_memory, 0, sizeof inputs[k], 0, &p));
-        memcpy(p, &inputs[k], sizeof inputs[k]);
-        vkUnmapMemory(g.h.device, uniform_memory);
-        draw(&g, vertex_buffer, vertex_count, view_proj, readback, readback_memory, out[k]);
+        memcpy(uniform->mapped, &inputs[k], sizeof inputs[k]); // the previous draw has completed
+        draw(&g, vertex_buffer, vertex_count, view_proj, readback, out[k]);
     }
     gpu_finish(&g);
     assert_int_equal(g.h.messages, 0);

@@ -26,6 +26,10 @@
 //                    display image, readback buffers.
 //   A scene may be rendered by any renderer of its context, and a renderer may render any
 //   scene of its context.
+//   rtpbr_light_set, rtpbr_lighting_targets
+//                    the lighting-only path (a host's own G-buffer lit in its command buffer:
+//                    "The lighting pass inside the host's frame" below); also owned by the
+//                    context, which destroys those still alive.
 //
 // The frame (rtpbr_render / rtpbr_record):
 //   1. G-buffer pass: base colour + metallic, world normal + perceptual roughness, emitted
@@ -653,6 +657,190 @@ typedef struct rtpbr_record_desc {
 // needs that execution to complete first).
 RTPBR_API rtpbr_result rtpbr_record(rtpbr_renderer *renderer, const rtpbr_gpu_scene *scene,
                           const rtpbr_render_desc *desc, const rtpbr_record_desc *target);
+
+
+// ---------------------------------------------------------------------------------------------
+// The lighting pass inside the host's frame (issue 33)
+//
+// A host with its own geometry pass (its meshes, skinning, culling) writes the G-buffer
+// contract, shaderlib/rtpbr/gbuffer.h (version RTPBR_GBUFFER_VERSION; docs/gbuffer.md), into
+// its own images with its own GLSL or HLSL fragment shader (GBuffer_Encode); rtpbr then records
+// its light culling and LTC lighting of that G-buffer into the host's command buffer, writing
+// linear radiance into the host's HDR image. The shading is the engine's own (the same
+// pipelines as rtpbr_render's lighting pass), so a host G-buffer equal to the engine's gives
+// the engine's radiance. engine/README.md, "The lighting pass inside your frame", shows a
+// whole frame.
+//
+//   rtpbr_light_set         the lights, in persistently mapped memory: one region per frame in
+//                           flight, each of a capacity the host chose. Updating them writes
+//                           that memory only (no Vulkan object, descriptor or allocation).
+//   rtpbr_lighting_targets  the host's depth, G-buffer and output images (views and formats),
+//                           its material records, and per frame in flight a descriptor set and
+//                           the frame's constants; everything rtpbr_lighting_record uses is
+//                           made here, once.
+//   rtpbr_lighting_record   records the commands: no allocation, no descriptor-set creation,
+//                           no queue submission or wait.
+//
+// Frames in flight: the host numbers its frames in flight 0 .. N-1 (rtpbr_lighting_record_desc
+// .frame, rtpbr_light_set_update's frame). Before it updates lights or records for frame f,
+// the host must know that its previous submission that used frame f has completed (it waits
+// on its own fence of frame f, as for any per-frame host memory). Recordings of different
+// frames may be pending at the same time, on the context's queue.
+// Not on this path (left for later): shadows (rtpbr knows no host geometry: the frame has no
+// shadowed lights; rtpbr_render_desc.shadows has no counterpart), supersampling, the Monte
+// Carlo pass, BLEND surfaces, reversed-Z depth.
+
+#define RTPBR_MAX_FRAMES_IN_FLIGHT 8u
+#define RTPBR_DEFAULT_LIGHT_SET_CAPACITY 64u
+#define RTPBR_DEFAULT_FRAMES_IN_FLIGHT 2u
+
+typedef struct rtpbr_light_set_desc {
+    uint32_t capacity;         // lights per frame, 1..RTPBR_MAX_LIGHTS; zero: 64
+    uint32_t frames_in_flight; // regions, 1..RTPBR_MAX_FRAMES_IN_FLIGHT; zero: 2
+} rtpbr_light_set_desc;
+
+typedef struct rtpbr_light_set rtpbr_light_set;
+
+// One host-visible buffer of frames_in_flight x capacity light records (192 bytes each), mapped
+// for the set's lifetime, and the host-side scratch its updates use. Every region starts
+// with no lights. Capacity or frames out of range: RTPBR_ERROR_LIMIT_EXCEEDED.
+RTPBR_API rtpbr_result rtpbr_light_set_create(rtpbr_context *context, const rtpbr_light_set_desc *desc,
+                                              rtpbr_light_set **out_set);
+// The host keeps the set alive while a recording that uses it is pending.
+RTPBR_API void rtpbr_light_set_destroy(rtpbr_light_set *set);
+// Replaces the lights of region `frame` (< frames_in_flight) by lights[0 .. count): moving,
+// recolouring, adding and removing lights up to the capacity. Each light is validated as by
+// rtpbr_gpu_scene_set_lights (vertex count, finite values, non-negative emission, planar,
+// non-zero area) and its derived facts (plane, area, bounding sphere) computed; then its
+// record is written into the region's mapped memory. Nothing else: no allocation, no Vulkan call. count > capacity:
+// RTPBR_ERROR_LIMIT_EXCEEDED; a bad light: RTPBR_ERROR_INVALID_ARGUMENT (the log names it);
+// on any error the region keeps its previous lights. Must not be called while a recording of
+// frame `frame` is pending (see "Frames in flight" above).
+RTPBR_API rtpbr_result rtpbr_light_set_update(rtpbr_light_set *set, uint32_t frame, const rtpbr_light_desc *lights,
+                                              uint32_t count);
+RTPBR_API uint32_t rtpbr_light_set_capacity(const rtpbr_light_set *set);
+// The number of lights in region `frame` (0 for a frame out of range).
+RTPBR_API uint32_t rtpbr_light_set_count(const rtpbr_light_set *set, uint32_t frame);
+
+// An image of the host's: the image (for barriers) and a view of it. The view is 2D, of one
+// mip level and one array layer, of the format stated here, covering the targets' width x
+// height; colour views have the colour aspect, the depth view the depth aspect only.
+typedef struct rtpbr_host_image {
+    VkImage image;
+    VkImageView view;
+    VkFormat format; // the view's format
+} rtpbr_host_image;
+
+// The G-buffer targets g0 .. g6 of the contract, in gbuffer.h's order.
+#define RTPBR_GBUFFER_TARGETS 7u
+
+typedef struct rtpbr_lighting_targets_desc {
+    uint32_t width, height; // of every image; required, 1..RTPBR_MAX_RENDER_SIZE
+    // Depth: D32_SFLOAT, X8_D24_UNORM_PACK32 or D16_UNORM (depth-only formats; a host with a
+    // stencil copies depth out or uses its own depth-only image), created with SAMPLED usage.
+    // Vulkan's depth range, 0 near .. 1 far, cleared to 1 where no surface is (those pixels
+    // get the background): not reversed-Z. Positions are
+    // reconstructed from it with the record's camera, so the host's geometry pass must have
+    // drawn with the same view-projection.
+    rtpbr_host_image depth;
+    // g0 .. g3: required, every frame; g4 .. g6 (the KHR extension texels): optional (image,
+    // view zero: not read; the materials' factors are used alone, as with texels of 1). Each
+    // of the format gbuffer.h states (RTPBR_GBUFFER_FORMAT_G*), created with SAMPLED usage.
+    // g5 and g6 go together (both or neither).
+    rtpbr_host_image gbuffer[RTPBR_GBUFFER_TARGETS];
+    // The HDR output: R32G32B32A32_SFLOAT (gbuffer.h's emission is FP32; the lighting pass
+    // writes through an rgba32f storage image), created with STORAGE usage. Every pixel is
+    // written: linear radiance, alpha 1 on surfaces and 0 on background.
+    rtpbr_host_image output;
+    // The layouts rtpbr reads the G-buffer and depth images in (written into the descriptor
+    // sets). G-buffer: SHADER_READ_ONLY_OPTIMAL (zero), READ_ONLY_OPTIMAL or GENERAL. Depth:
+    // DEPTH_STENCIL_READ_ONLY_OPTIMAL (zero), DEPTH_READ_ONLY_OPTIMAL, SHADER_READ_ONLY_OPTIMAL,
+    // READ_ONLY_OPTIMAL or GENERAL.
+    VkImageLayout gbuffer_layout;
+    VkImageLayout depth_layout;
+    // The material records the G-buffer's material index (g2.a) selects: every field but the
+    // textures, texture transforms, normal_scale, alpha mode, alpha and alpha_cutoff (the host's
+    // geometry pass applied those: base colour, metallic, roughness and emission come from
+    // the G-buffer; the record gives the model, ior, KHR specular, clear-coat, sheen,
+    // anisotropy strength and Disney factors). Validated as by rtpbr_gpu_scene_create and
+    // copied. Zero: one record, rtpbr_gpu_scene_create's default grey. An index past
+    // material_count reads past the records: the host's error.
+    const rtpbr_material_desc *materials;
+    uint32_t material_count;       // <= RTPBR_MAX_MATERIALS
+    uint32_t frames_in_flight;     // 1..RTPBR_MAX_FRAMES_IN_FLIGHT; zero: 2
+} rtpbr_lighting_targets_desc;
+
+typedef struct rtpbr_lighting_targets rtpbr_lighting_targets;
+
+// Checks the desc (formats against gbuffer.h's, layouts, sizes; a NULL view or image of a
+// required target, or g5 without g6: RTPBR_ERROR_INVALID_ARGUMENT, with the target's name in
+// the log), then makes what the recordings use: per frame in flight a descriptor set and a
+// region of the frame-constant buffer; the tile-culling buffers; the material buffer; a 1x1
+// stand-in for the shadow ratios (this path has none). Submits one small command buffer of
+// its own and waits for it (the stand-in's layout), like rtpbr_renderer_create. The host's
+// images and views are not kept alive by rtpbr: the host destroys the targets first (after
+// the recordings that use them completed), then its images. Re-create the targets when the
+// host's images change (a resize).
+RTPBR_API rtpbr_result rtpbr_lighting_targets_create(rtpbr_context *context, const rtpbr_lighting_targets_desc *desc,
+                                                     rtpbr_lighting_targets **out_targets);
+// The host keeps the targets alive while a recording that uses them is pending.
+RTPBR_API void rtpbr_lighting_targets_destroy(rtpbr_lighting_targets *targets);
+
+typedef struct rtpbr_lighting_record_desc {
+    // Required: in the recording state, outside a render pass, on the context's queue family.
+    VkCommandBuffer command_buffer;
+    uint32_t frame;                 // frame in flight, < the targets' and the light set's frames_in_flight
+    const rtpbr_light_set *lights;  // required; its region `frame` is lit (update it first)
+    // The camera the host's geometry pass drew with. camera set: rtpbr's camera (its matrices,
+    // rtpbr_render's, with the targets' aspect ratio). NULL: view and projection below.
+    const rtpbr_camera_desc *camera;
+    // Used when camera is NULL: column-major world-to-view and view-to-clip matrices, clip
+    // space Vulkan's (x right, y down, depth 0 near .. 1 far), the product invertible.
+    float view[16];
+    float projection[16];
+    float background[3];           // radiance where depth is 1; default black
+    rtpbr_ndf ndf;                 // as rtpbr_render_desc
+    rtpbr_multiscatter multiscatter;
+    float light_cull_form_factor;  // as rtpbr_render_desc (zero: 1e-4, negative: exact test only)
+    // The layouts the images are in when the recorded commands start (the host's last use):
+    // zero means the read layout of the targets (gbuffer_layout, depth_layout). rtpbr moves
+    // them into the read layouts.
+    VkImageLayout gbuffer_old_layout;
+    VkImageLayout depth_old_layout;
+    // The output's layout on entry; zero: UNDEFINED (contents discarded: every pixel is
+    // written). And the layout to leave it in; zero: GENERAL.
+    VkImageLayout output_old_layout;
+    VkImageLayout output_new_layout;
+} rtpbr_lighting_record_desc;
+
+// Records, into the host's command buffer, culling and lighting of the targets' G-buffer by
+// the light set's region `frame`; writes the frame's constants (camera, light count) into the
+// targets' region `frame` (host memory, read when the commands execute). Allocates nothing,
+// creates and writes no descriptor set (except, the first time a frame is recorded with a
+// light set other than the one it last used, one vkUpdateDescriptorSets pointing that frame's
+// set at it), submits nothing and waits for nothing. The first recording with a given ndf /
+// multiscatter pair other than the default may compile that variant's pipelines (before
+// anything is recorded); record each pair once at start-up to keep compilation out of frames.
+//
+// Synchronisation (what the commands expect and leave; all on the queue the host submits to):
+//   on entry  G-buffer images (g0 .. g6 given) in gbuffer_old_layout and depth in
+//             depth_old_layout, their contents written by earlier commands (colour or depth
+//             attachment writes, shader writes or transfer writes): rtpbr's first barrier waits
+//             for COLOR_ATTACHMENT_OUTPUT, EARLY/LATE_FRAGMENT_TESTS, COMPUTE_SHADER and
+//             TRANSFER, makes those writes visible to its compute shaders and moves the images
+//             to their read layouts. The output in output_old_layout; rtpbr's barrier waits for
+//             ALL_COMMANDS (earlier reads and writes of it) and moves it to GENERAL.
+//   inside    compute dispatches only (a transfer update of rtpbr's own tile queues).
+//   on exit   G-buffer and depth in their read layouts (gbuffer_layout, depth_layout), last
+//             read by COMPUTE_SHADER: a later write to them (the next frame's geometry pass)
+//             needs an execution dependency on VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT (render
+//             pass external dependency or barrier with that source stage). The output in
+//             output_new_layout, its writes made available and visible to every later command
+//             (barrier to ALL_COMMANDS, MEMORY_READ | MEMORY_WRITE): the host reads it directly.
+// Errors (nothing is recorded): NULL targets, command buffer or light set, a frame out of
+// range, a set of another context, an unknown ndf / multiscatter, NaN or infinite values, a
+// degenerate camera: RTPBR_ERROR_INVALID_ARGUMENT.
+RTPBR_API rtpbr_result rtpbr_lighting_record(rtpbr_lighting_targets *targets, const rtpbr_lighting_record_desc *desc);
 
 #ifdef __cplusplus
 }

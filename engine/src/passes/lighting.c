@@ -58,6 +58,11 @@ static const uint32_t gbuffer_bindings[RTPBR_GBUFFER_COUNT] = {
 _Static_assert(sizeof bindings / sizeof bindings[0] == RTPBR_LIGHTING_BINDING_COUNT, "every lighting binding");
 _Static_assert(RTPBR_BINDING_LUT_LTC_SHEEN_2 + 1 == RTPBR_BINDING_LUT_LTC_GGX_1 + RTPBR_LUT_COUNT, "LUT bindings");
 
+uint32_t rtpbr_lighting_gbuffer_binding(uint32_t i)
+{
+    return gbuffer_bindings[i];
+}
+
 uint32_t rtpbr_lighting_variant(rtpbr_ndf ndf, rtpbr_multiscatter ms)
 {
     uint32_t n = ndf == RTPBR_NDF_BECKMANN_MODEL ? 1 : 0;
@@ -118,6 +123,21 @@ cleanup:
     return result;
 }
 
+rtpbr_result rtpbr_lighting_tile_buffers_create(rtpbr_context *ctx, uint32_t tiles_x, uint32_t tiles_y,
+                                                rtpbr_buffer *masks, rtpbr_buffer *lists)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkDeviceSize tiles = (VkDeviceSize)tiles_x * tiles_y;
+    RTPBR_TRY(rtpbr_buffer_create_device(ctx, tiles * RTPBR_TILE_MASK_WORDS * sizeof(uint32_t),
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, masks));
+    RTPBR_TRY(rtpbr_buffer_create_device(ctx, RTPBR_TILE_CLASS_COUNT * (4 + tiles) * sizeof(uint32_t),
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                             VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                         lists));
+cleanup:
+    return result; // the caller destroys both (rtpbr_buffer_destroy accepts a zeroed buffer)
+}
+
 // Everything but the scene's buffers is fixed for the renderer's lifetime.
 rtpbr_result rtpbr_lighting_renderer_init(rtpbr_renderer *r)
 {
@@ -147,6 +167,44 @@ cleanup:
     return result;
 }
 
+rtpbr_result rtpbr_lighting_sets_create(rtpbr_context *ctx, uint32_t count, VkDescriptorPool *pool,
+                                        VkDescriptorSet *sets)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkDescriptorSetLayout layouts[RTPBR_MAX_FRAMES_IN_FLIGHT];
+    for (uint32_t i = 0; i < count; ++i) layouts[i] = ctx->lighting.set_layout;
+    RTPBR_TRY(rtpbr_descriptor_pool_create(ctx, RTPBR_BINDINGS(bindings), count, pool));
+    VkDescriptorSetAllocateInfo alloc = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+        .descriptorPool = *pool,
+        .descriptorSetCount = count,
+        .pSetLayouts = layouts,
+    };
+    RTPBR_VK(&ctx->host, vkAllocateDescriptorSets(ctx->device, &alloc, sets));
+cleanup:
+    return result;
+}
+
+void rtpbr_lighting_write_buffer(rtpbr_context *ctx, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
+                                 VkDeviceSize offset, VkDeviceSize range)
+{
+    rtpbr_descriptor_write_buffer_range(ctx, RTPBR_BINDINGS(bindings), set, binding, buffer, offset, range);
+}
+
+void rtpbr_lighting_write_image(rtpbr_context *ctx, VkDescriptorSet set, uint32_t binding, VkImageView view,
+                                VkImageLayout layout)
+{
+    VkSampler sampler = binding == RTPBR_BINDING_LIGHT_RADIANCE ? VK_NULL_HANDLE : ctx->gbuffer_sampler;
+    rtpbr_descriptor_write_image(ctx, RTPBR_BINDINGS(bindings), set, binding, sampler, view, layout);
+}
+
+void rtpbr_lighting_write_luts(rtpbr_context *ctx, VkDescriptorSet set)
+{
+    for (uint32_t i = 0; i < RTPBR_LUT_COUNT; ++i)
+        rtpbr_descriptor_write_image(ctx, RTPBR_BINDINGS(bindings), set, RTPBR_BINDING_LUT_LTC_GGX_1 + i,
+                                     ctx->lut_sampler, ctx->luts[i].image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
 void rtpbr_lighting_renderer_finish(rtpbr_renderer *r)
 {
     rtpbr_descriptor_set_destroy(r->context, &r->lighting_set);
@@ -167,16 +225,39 @@ static VkImage shade_target(const rtpbr_renderer *r)
     return r->supersample > 1 ? r->radiance_ss.image : r->radiance.image;
 }
 
+// The barrier before a lighting pass writes its target (its previous readers: tone mapping,
+// readback, resolve, or the host's), then the binds.
+static void begin_target(const rtpbr_lighting_target *t, VkPipeline pipeline, VkPipelineLayout layout,
+                         VkCommandBuffer cmd)
+{
+    rtpbr_image_barrier(cmd, t->output, VK_IMAGE_ASPECT_COLOR_BIT, t->output_old_layout, VK_IMAGE_LAYOUT_GENERAL,
+                        t->output_src_stages, t->output_src_access, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_SHADER_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &t->set, 0, NULL);
+}
+
+// The renderer's lighting target: its own set, tile buffers and shading image.
+static rtpbr_lighting_target renderer_target(const rtpbr_renderer *r)
+{
+    return (rtpbr_lighting_target){
+        .set = r->lighting_set.set,
+        .tile_lists = r->tile_lists.buffer,
+        .tiles_x = r->tiles_x,
+        .tiles_y = r->tiles_y,
+        .output = shade_target(r),
+        // The previous frame's tone mapping, readback or resolve read the image.
+        .output_old_layout = VK_IMAGE_LAYOUT_UNDEFINED,
+        .output_src_stages = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+        .output_src_access = 0,
+    };
+}
+
 void rtpbr_lighting_begin(rtpbr_renderer *r, VkPipeline pipeline, VkPipelineLayout layout, VkCommandBuffer cmd)
 {
-    // The previous frame's tone mapping, readback or resolve read the image.
-    rtpbr_image_barrier(cmd, shade_target(r), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                        VK_IMAGE_LAYOUT_GENERAL,
-                        VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
-                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                        0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &r->lighting_set.set, 0, NULL);
+    rtpbr_lighting_target t = renderer_target(r);
+    begin_target(&t, pipeline, layout, cmd);
 }
 
 void rtpbr_lighting_end(rtpbr_renderer *r, VkCommandBuffer cmd)
@@ -190,9 +271,9 @@ void rtpbr_lighting_end(rtpbr_renderer *r, VkCommandBuffer cmd)
 // The LTC pass: the culling pass (cull.comp) writes each tile's light mask and queues the tile
 // for its class; then one indirect dispatch per class runs that class's lighting variant over
 // its queue (no barrier inside either kernel).
-void rtpbr_lighting_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd)
+void rtpbr_lighting_record_target(const rtpbr_context *ctx, const rtpbr_lighting_target *t,
+                                  const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd)
 {
-    const rtpbr_context *ctx = r->context;
     // Empty queues: VkDispatchIndirectCommand (0, 1, 1) per class (the previous frame's lighting
     // read them as indirect arguments and as storage).
     uint32_t empty[RTPBR_TILE_CLASS_COUNT][4];
@@ -207,21 +288,21 @@ void rtpbr_lighting_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_T
         .dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
         .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
         .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .buffer = r->tile_lists.buffer,
+        .buffer = t->tile_lists,
         .size = VK_WHOLE_SIZE,
     };
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                          VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, NULL, 1, &before, 0, NULL);
-    vkCmdUpdateBuffer(cmd, r->tile_lists.buffer, 0, sizeof empty, empty);
+    vkCmdUpdateBuffer(cmd, t->tile_lists, 0, sizeof empty, empty);
     VkBufferMemoryBarrier cleared = before;
     cleared.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
     cleared.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, NULL, 1,
                          &cleared, 0, NULL);
 
-    rtpbr_lighting_begin(r, ctx->lighting.cull, ctx->lighting.layout, cmd);
-    vkCmdDispatch(cmd, (r->tiles_x + RTPBR_CULL_GROUP - 1) / RTPBR_CULL_GROUP,
-                  (r->tiles_y + RTPBR_CULL_GROUP - 1) / RTPBR_CULL_GROUP, 1);
+    begin_target(t, ctx->lighting.cull, ctx->lighting.layout, cmd);
+    vkCmdDispatch(cmd, (t->tiles_x + RTPBR_CULL_GROUP - 1) / RTPBR_CULL_GROUP,
+                  (t->tiles_y + RTPBR_CULL_GROUP - 1) / RTPBR_CULL_GROUP, 1);
     VkMemoryBarrier culled = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
         .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
@@ -232,6 +313,12 @@ void rtpbr_lighting_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_T
                          NULL, 0, NULL);
     for (uint32_t c = 0; c < RTPBR_TILE_CLASS_COUNT; ++c) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[c]);
-        vkCmdDispatchIndirect(cmd, r->tile_lists.buffer, c * 4 * sizeof(uint32_t));
+        vkCmdDispatchIndirect(cmd, t->tile_lists, c * 4 * sizeof(uint32_t));
     }
+}
+
+void rtpbr_lighting_ltc_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd)
+{
+    rtpbr_lighting_target t = renderer_target(r);
+    rtpbr_lighting_record_target(r->context, &t, pipelines, cmd);
 }

@@ -58,11 +58,43 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
                                           VkPipeline out[RTPBR_TILE_CLASS_COUNT]);
 // Index of a model variant in rtpbr_lighting_pass's arrays.
 uint32_t rtpbr_lighting_variant(rtpbr_ndf ndf, rtpbr_multiscatter ms);
+struct rtpbr_buffer; // internal.h
+// The culling pass's outputs for tiles_x x tiles_y tiles (a renderer's, the host path's
+// targets'): a light mask per tile (RTPBR_TILE_MASK_WORDS uints: 128 bytes per 256 pixels), and
+// per tile class its indirect dispatch arguments (a uvec4) and a queue as long as the tile count.
+rtpbr_result rtpbr_lighting_tile_buffers_create(rtpbr_context *ctx, uint32_t tiles_x, uint32_t tiles_y,
+                                                struct rtpbr_buffer *masks, struct rtpbr_buffer *lists);
 // After rtpbr_shadow_renderer_init (the set binds the shadow ratios).
 rtpbr_result rtpbr_lighting_renderer_init(rtpbr_renderer *r);
 void rtpbr_lighting_renderer_finish(rtpbr_renderer *r);
 void rtpbr_lighting_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
-void rtpbr_lighting_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd);
+void rtpbr_lighting_ltc_record(rtpbr_renderer *r, const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd);
+// What the cull and LTC dispatches need of their target: a renderer's (rtpbr_lighting_ltc_record),
+// or the host's G-buffer and output (lightpass.c, rtpbr_lighting_record). The output is
+// moved from output_old_layout to GENERAL after output_src_stages / output_src_access.
+typedef struct rtpbr_lighting_target {
+    VkDescriptorSet set;          // of ctx->lighting.set_layout
+    VkBuffer tile_lists;          // the class queues (VkDispatchIndirectCommand each, then tiles)
+    uint32_t tiles_x, tiles_y;
+    VkImage output;
+    VkImageLayout output_old_layout;
+    VkPipelineStageFlags output_src_stages;
+    VkAccessFlags output_src_access;
+} rtpbr_lighting_target;
+void rtpbr_lighting_record_target(const rtpbr_context *ctx, const rtpbr_lighting_target *t,
+                                  const VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT], VkCommandBuffer cmd);
+// The host path's sets (lightpass.c): `count` sets of the lighting layout in one pool (the
+// caller destroys the pool), and their writes: a buffer range; an image view read through the
+// G-buffer sampler (or, for RTPBR_BINDING_LIGHT_RADIANCE, as a storage image); the tables.
+rtpbr_result rtpbr_lighting_sets_create(rtpbr_context *ctx, uint32_t count, VkDescriptorPool *pool,
+                                        VkDescriptorSet *sets);
+void rtpbr_lighting_write_buffer(rtpbr_context *ctx, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
+                                 VkDeviceSize offset, VkDeviceSize range);
+void rtpbr_lighting_write_image(rtpbr_context *ctx, VkDescriptorSet set, uint32_t binding, VkImageView view,
+                                VkImageLayout layout);
+void rtpbr_lighting_write_luts(rtpbr_context *ctx, VkDescriptorSet set);
+// The binding of G-buffer target i (g0 .. g6).
+uint32_t rtpbr_lighting_gbuffer_binding(uint32_t i);
 // Shared by both lighting passes: the barrier and binds before their dispatches, and after
 // them (and the forward pass) the resolve (supersampling) and the barrier before tone mapping
 // and readback (renderer.c calls it).

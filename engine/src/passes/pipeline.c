@@ -241,6 +241,12 @@ void rtpbr_descriptor_write_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, 
     write_descriptor(ctx, bindings, set, binding, &(VkDescriptorBufferInfo){buffer, 0, range}, NULL);
 }
 
+void rtpbr_descriptor_write_buffer_range(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
+                                         uint32_t binding, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range)
+{
+    write_descriptor(ctx, bindings, set, binding, &(VkDescriptorBufferInfo){buffer, offset, range}, NULL);
+}
+
 void rtpbr_descriptor_write_buffers(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
                                     const rtpbr_buffer_write *writes, uint32_t count)
 {

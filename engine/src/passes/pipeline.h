@@ -68,6 +68,9 @@ typedef struct rtpbr_buffer_write {
 } rtpbr_buffer_write;
 void rtpbr_descriptor_write_buffers(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
                                     const rtpbr_buffer_write *writes, uint32_t count);
+// The same for the range [offset, offset + range) of the buffer.
+void rtpbr_descriptor_write_buffer_range(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
+                                         uint32_t binding, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range);
 void rtpbr_descriptor_write_image(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                   VkSampler sampler, VkImageView view, VkImageLayout layout);
 

@@ -9,11 +9,8 @@
 // it the sphere proxy's error is measured per case and held at the bound printed.
 #include "rtpbr/ltc_shapes.h"
 
-#include <cstdarg>
-#include <cstddef>
-#include <csetjmp>
 extern "C" {
-#include <cmocka.h>
+#include "test_main.h"
 }
 
 #include <cmath>
@@ -269,12 +266,5 @@ void test_one_sided_and_invariance(void **) {
 
 } // namespace
 
-int main() {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_disk_on_axis_closed_form),
-        cmocka_unit_test(test_sphere_above_horizon_closed_form),
-        cmocka_unit_test(test_against_quadrature),
-        cmocka_unit_test(test_one_sided_and_invariance),
-    };
-    return cmocka_run_group_tests(tests, nullptr, nullptr);
-}
+RTPBR_TEST_MAIN(cmocka_unit_test(test_disk_on_axis_closed_form), cmocka_unit_test(test_sphere_above_horizon_closed_form),
+                cmocka_unit_test(test_against_quadrature), cmocka_unit_test(test_one_sided_and_invariance))
