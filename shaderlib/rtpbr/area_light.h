@@ -62,6 +62,7 @@
 #include "fresnel.h"
 #include "microfacet.h"
 #include "ltc.h"
+#include "ltc_anisotropy.h"
 #include "ltc_corrections.h"
 #include "kulla_conty.h"
 #include "disney.h"

@@ -22,6 +22,7 @@
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_anisotropy.h"
 #include "rtpbr/ltc_corrections.h"
 #include "rtpbr/material.h"
 #include "rtpbr/kulla_conty.h"

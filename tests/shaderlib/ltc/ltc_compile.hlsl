@@ -1,6 +1,9 @@
-// Compile check of shaderlib/rtpbr/ltc.h and ltc_corrections.h as HLSL (glslang's HLSL front end).
+// Compile check of shaderlib/rtpbr/ltc.h, ltc_anisotropy.h, ltc_clipless.h and ltc_corrections.h
+// as HLSL (glslang's HLSL front end).
 #define RTPBR_HLSL 1
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_anisotropy.h"
+#include "rtpbr/ltc_clipless.h"
 #include "rtpbr/ltc_corrections.h"
 RWStructuredBuffer<float4> result : register(u0);
 [numthreads(1, 1, 1)]
