@@ -73,9 +73,9 @@ MaterialInputs material_inputs(GBufferSurface g, Material m)
     in_.ior = m.ior;
     in_.specularFactor = m.specular_factor * g.specular.a;
     in_.specularColor = m.specular_color * g.specular.rgb;
-    in_.clearcoat = m.clearcoat * g.coat.x;
+    in_.clearcoat = m.clearcoat_factor * g.coat.x;
     in_.clearcoatRoughness = m.clearcoat_roughness * g.coat.y;
-    in_.sheenColor = m.sheen_color * g.sheen.rgb;
+    in_.sheenColor = m.sheen_color_factor * g.sheen.rgb;
     in_.sheenRoughness = m.sheen_roughness * g.sheen.a;
     in_.anisotropyStrength = m.anisotropy_strength;
     in_.disney.baseColor = g.baseColor;
