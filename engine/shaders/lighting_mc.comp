@@ -95,7 +95,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
     woTangent = woTangentLength > 0.0f ? woTangent * (sqrt(1.0f - NoV * NoV) / woTangentLength) : vec2(0.0f);
     vec3 wo = vec3(woTangent, NoV);
 #if RTPBR_KC_SHAPE
-    float alphaIso = Alpha_FromPerceptual(tableRoughness);
+    float alphaIso = tableRoughness * tableRoughness; // resolved (Material_Resolve): no second clamp
     float kcBeta = KC_ShapeWeight(tableRoughness, NoV);
 #endif
 
@@ -114,7 +114,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
     coatFresnel.f90 = 1.0f;
     coatFresnel.eta = RTPBR_F3(1.5f);
     coatFresnel.k = RTPBR_F3(0.0f);
-    float coatAlpha = Alpha_FromPerceptual(coatRoughness);
+    float coatAlpha = coatRoughness * coatRoughness; // resolved (Material_Resolve): no second clamp
     float Eoc = s.Eoc, Eavgc = s.Eavgc;
     vec3 msCoat = s.msCoat;
     bool sheen = s.sheen;

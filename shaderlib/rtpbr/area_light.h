@@ -177,10 +177,11 @@ RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, r
 // density) or, for a light in the LTC's tail, the tail estimate (LTC_PointTail: f at the
 // direction of the light's vector form factor F x pi x its form factor ff), whichever is larger
 // (LTC_PointCombine); lenF = |F| (LTC_PointWidthRatio).
+// tableRoughness: ShadingSurface's, resolved (in [RTPBR_MATERIAL_MIN_ROUGHNESS, 1]: squared as is).
 RTPBR_FN float AreaLight_SpecularCorrected(rtpbr_float3 Fl, rtpbr_float4 ltc1, float norm, float NoV, float tableRoughness,
                                            float ltcFF, rtpbr_float3 F, float ff, float lenF) {
     // recomputed here rather than kept live through the light loop
-    float alpha = Alpha_FromPerceptual(tableRoughness);
+    float alpha = tableRoughness * tableRoughness;
     rtpbr_float3 vLocal = rtpbr_float3(sqrt(max(1.0f - NoV * NoV, 0.0f)), 0.0f, NoV);
     LtcPoint pt = LTC_LobePoint(Fl, ltc1);
     float NoL = pt.dir.z;
@@ -307,7 +308,7 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
         return;
 #if RTPBR_AREA_LIGHT_STREAK
     // (registers: docs/performance.md, 3)
-    bool streakSized = LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), Alpha_FromPerceptual(s.tableRoughness), s.NoV);
+    bool streakSized = LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
 #endif
     rtpbr_float3 F, Fl;
     float specularFF = AreaLight_Lobe(i, P, px.frame, px.specularMinv, F, Fl);
@@ -386,7 +387,8 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 // The streak estimate (ltc_corrections.h, LTC_StreakEnd) of light i's specular lobe: two more
 // passes over its horizon-clipped edges, one for its vector form factor F and its elevations,
 // one for the chords through the nodes. Returns the estimate (F = 1), its weight
-// (LTC_StreakWeight x its trust) and V.h at the streak; (-1, 0, .) for none.
+// (LTC_StreakWeight x its trust) and V.h at the streak; (-1, 0, .) for none. tableRoughness:
+// ShadingSurface's (resolved: squared as is).
 RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, float NoV, float tableRoughness) {
     uint count = Host_LightVertexCount(i);
     rtpbr_float3 vLocal = rtpbr_float3(sqrt(max(1.0f - NoV * NoV, 0.0f)), 0.0f, NoV);
@@ -410,7 +412,7 @@ RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_flo
         if (pass == 0)
             LTC_StreakNodes(st, F);
     }
-    rtpbr_float2 e = LTC_StreakEnd(st, vLocal, Alpha_FromPerceptual(tableRoughness));
+    rtpbr_float2 e = LTC_StreakEnd(st, vLocal, tableRoughness * tableRoughness);
     return rtpbr_float3(e.x, e.y * LTC_StreakWeight(vLocal, F), LTC_StreakVoH(st, vLocal));
 }
 #endif

@@ -93,7 +93,8 @@ RTPBR_FN ShadingSurface Surface_Resolve(MaterialParams p, float NoV, rtpbr_float
     bool hasDirection = dot(anisoDir, anisoDir) > 0.25f;
     s.anisoDir = hasDirection ? normalize(anisoDir) : RTPBR_F3(0.0f);
     s.anisoK = hasDirection && p.alphas.y > 0.0f ? sqrt(max(p.alphas.x / p.alphas.y, 1.0f)) : 1.0f;
-    float isotropicAlpha = Alpha_FromPerceptual(s.tableRoughness);
+    // In [RTPBR_MATERIAL_MIN_ROUGHNESS, 1] (Material_Resolve): alpha = r^2 without a second clamp.
+    float isotropicAlpha = s.tableRoughness * s.tableRoughness;
     s.alphas = s.anisoK > 1.0f ? clamp(p.alphas, RTPBR_F2(RTPBR_MIN_ALPHA), RTPBR_F2(1.0f))
                                : rtpbr_float2(isotropicAlpha, isotropicAlpha);
     s.specularWeight = p.specularWeight;
