@@ -4,8 +4,8 @@
 // of clipping the polygon to the horizon (ltc.h), integrate the unclipped polygon's vector form
 // factor F (Arvo 1995) and replace the polygon by the sphere with the same F, whose
 // horizon-clipped form factor is tabled (ltc2.w, at LTC_SphereLutCoord(F)) or approximated.
-// Cheaper than clipping, exact for a light entirely above the horizon, approximate below it
-// (measured in shaderlib/luts/ltc.md). Under RTPBR_LTC_CLIPLESS 1 this header, not ltc.h,
+// Cheaper than clipping, but blind to which part of a polygon is under the horizon (errors
+// measured in shaderlib/luts/ltc.md). Under RTPBR_LTC_CLIPLESS 1 this header, not ltc.h,
 // defines LTC_EvaluatePolygon, through the proxy.
 //
 // Public functions
