@@ -475,8 +475,8 @@ private:
             out.disney = true;
             out.disneyParams = p.dm;
         } else {
-            out.clearcoat = p.coat;
-            out.clearcoatAlpha = p.coatAlpha;
+            out.coat = p.coat;
+            out.coatAlpha = p.coatAlpha;
             out.sheenColor = p.sheenColor; // KHR_materials_sheen (bsdf.h)
             out.sheenRoughness = p.sheenRoughness;
         }

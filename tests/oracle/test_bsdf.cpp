@@ -10,7 +10,7 @@ using namespace rtpbr_oracle;
 
 namespace {
 
-SurfaceMaterial mat(vec3 base, float metallic, float alpha, float clearcoat, float clearcoatAlpha) {
+SurfaceMaterial mat(vec3 base, float metallic, float alpha, float coat, float coatAlpha) {
     SurfaceMaterial m;
     m.baseColor = base;
     m.metallic = metallic;
@@ -18,8 +18,8 @@ SurfaceMaterial mat(vec3 base, float metallic, float alpha, float clearcoat, flo
     m.tableRoughness = std::sqrt(alpha);
     m.specularWeight = 1.0f;
     m.layer = &layer15();
-    m.clearcoat = clearcoat;
-    m.clearcoatAlpha = clearcoatAlpha;
+    m.coat = coat;
+    m.coatAlpha = coatAlpha;
     return m;
 }
 
@@ -33,7 +33,7 @@ void checkAlbedo(const SurfaceMaterial &m, bool single, vec3 wo, uint64_t seed) 
         for (int c = 0; c < 3; c++)
             bySampling[c].add(w[c]);
     }
-    float lobeAlpha = m.clearcoat > 0.0f ? m.clearcoatAlpha : m.alphaX;
+    float lobeAlpha = m.coat > 0.0f ? m.coatAlpha : m.alphaX;
     Mixture mix{std::max(lobeAlpha, 0.05f), wo};
     for (int i = 0; i < 100000; i++) {
         vec3 wi = mix.sample(rng);
