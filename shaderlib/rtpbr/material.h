@@ -69,9 +69,9 @@ struct MaterialInputs {
     float ior;                  // KHR_materials_ior (0: F = 1 everywhere)
     float specularFactor;       // KHR_materials_specular
     rtpbr_float3 specularColor; // KHR_materials_specular (may exceed 1)
-    float clearcoat;            // KHR_materials_clearcoat clearcoatFactor
+    float clearcoatFactor;      // KHR_materials_clearcoat clearcoatFactor
     float clearcoatRoughness;   // KHR_materials_clearcoat clearcoatRoughnessFactor (perceptual)
-    rtpbr_float3 sheenColor;    // KHR_materials_sheen sheenColorFactor
+    rtpbr_float3 sheenColorFactor; // KHR_materials_sheen sheenColorFactor
     float sheenRoughness;       // KHR_materials_sheen sheenRoughnessFactor (perceptual)
     float anisotropyStrength;   // KHR_materials_anisotropy
     // Disney (model RTPBR_MATERIAL_MODEL_DISNEY): its baseColor, metallic and roughness are
@@ -173,13 +173,13 @@ RTPBR_FN MaterialParams Material_Resolve(MaterialInputs m) {
     // The coat: KHR_materials_clearcoat, or Disney's GTR1 coat (Burley 2012, sec. 5.4).
     float khrCoatRoughness = Material_PerceptualRoughness(m.clearcoatRoughness);
     float disneyCoatAlpha = Disney_ClearcoatAlpha(p.dm);
-    p.coat = p.disney ? RTPBR_DISNEY_CLEARCOAT_SCALE * p.dm.clearcoat : Material_Clamp(m.clearcoat, 0.0f, 1.0f);
+    p.coat = p.disney ? RTPBR_DISNEY_CLEARCOAT_SCALE * p.dm.clearcoat : Material_Clamp(m.clearcoatFactor, 0.0f, 1.0f);
     p.coatAlpha = p.disney ? disneyCoatAlpha : khrCoatRoughness * khrCoatRoughness;
     p.coatRoughness = p.disney ? Material_PerceptualRoughness(sqrt(disneyCoatAlpha)) : khrCoatRoughness;
     p.coatAttenuates = !p.disney;
 
     // KHR_materials_sheen (Disney's sheen is part of dm).
-    p.sheenColor = p.disney ? RTPBR_F3(0.0f) : Material_Clamp3(m.sheenColor, 0.0f, 1.0f);
+    p.sheenColor = p.disney ? RTPBR_F3(0.0f) : Material_Clamp3(m.sheenColorFactor, 0.0f, 1.0f);
     p.sheenRoughness = Material_Clamp(m.sheenRoughness, 0.0f, 1.0f);
     return p;
 }
