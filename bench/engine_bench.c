@@ -81,9 +81,9 @@ static rtpbr_result make_scene(rtpbr_context *ctx, bench_scene kind, int n, rtpb
         camera = (rtpbr_camera_desc){.position = {0.0f, -6.0f, 6.0f}, .target = {0.0f, 0.0f, 0.0f}, .yfov = 1.0f,
                                      .znear = 0.1f, .zfar = 200.0f};
     } else if (kind == SCENE_FULL) {
-        material.clearcoat = 1.0f;
+        material.clearcoat_factor = 1.0f;
         material.clearcoat_roughness = 0.1f;
-        material.sheen_color[0] = material.sheen_color[1] = material.sheen_color[2] = 0.5f;
+        material.sheen_color_factor[0] = material.sheen_color_factor[1] = material.sheen_color_factor[2] = 0.5f;
         material.sheen_roughness = 0.5f;
         material.anisotropy_strength = 0.6f;
     }

@@ -117,7 +117,7 @@ float LayerAlbedo::Eavg(float r, bool single) const {
 // ---- Bsdf -------------------------------------------------------------------------------------
 
 Bsdf::Bsdf(const SurfaceMaterial &m, bool singleScatter, vec3 wo)
-    : m_(m), single_(singleScatter), wo_(wo), ms_(m.alphaX, m.alphaY), msClear_(m.clearcoatAlpha, m.clearcoatAlpha) {
+    : m_(m), single_(singleScatter), wo_(wo), ms_(m.alphaX, m.alphaY), msClear_(m.coatAlpha, m.coatAlpha) {
     if (!m_.layer)
         m_.specularWeight = 0.0f;
     metalF_.f0 = m.baseColor;
@@ -135,7 +135,7 @@ Bsdf::Bsdf(const SurfaceMaterial &m, bool singleScatter, vec3 wo)
         return;
     }
     float fc = rtpbr::F_Schlick1(kClearcoatF0, 1.0f, wo.z);
-    baseScale_ = 1.0f - m_.clearcoat * fc;
+    baseScale_ = 1.0f - m_.coat * fc;
     m_.sheenColor = rtpbr::Sheen_SanitizeColor(m_.sheenColor);
     sheenMax_ = rtpbr::Sheen_Max3(m_.sheenColor);
     sheen_ = sheenMax_ > 0.0f;
@@ -153,12 +153,12 @@ Bsdf::Bsdf(const SurfaceMaterial &m, bool singleScatter, vec3 wo)
     probMetal_ = sheenScaleO * baseScale_ * m_.metallic * std::max(luminance(m_.baseColor), 0.02f);
     probCoat_ = sheenScaleO * baseScale_ * (1.0f - m_.metallic) * std::max(eo, 0.02f);
     probDiffuse_ = sheenScaleO * baseScale_ * (1.0f - m_.metallic) * luminance(m_.baseColor) * std::max(0.0f, 1.0f - eo);
-    probClear_ = m_.clearcoat * std::max(fc, 0.02f);
+    probClear_ = m_.coat * std::max(fc, 0.02f);
     if (m_.metallic <= 0.0f)
         probMetal_ = 0.0f;
     if (m_.specularWeight <= 0.0f)
         probCoat_ = 0.0f;
-    if (m_.clearcoat <= 0.0f)
+    if (m_.coat <= 0.0f)
         probClear_ = 0.0f;
     probSum_ = probMetal_ + probCoat_ + probDiffuse_ + probClear_ + probSheen_;
     if (probSum_ > 0.0f) {
@@ -311,8 +311,8 @@ vec3 Bsdf::eval(vec3 wi, Rng &rng) const {
     if (sheen_)
         f = f * sheenScaling(wi) + sheenEval(wi);
     f *= baseScale_;
-    if (m_.clearcoat > 0.0f)
-        f += m_.clearcoat * specularEvalOn(msClear_, clearF_, wi, rng);
+    if (m_.coat > 0.0f)
+        f += m_.coat * specularEvalOn(msClear_, clearF_, wi, rng);
     return f;
 }
 
@@ -350,7 +350,7 @@ bool Bsdf::sample(Rng &rng, BsdfSample *s) const {
     if (u < probClear_) {
         if (!specularSampleOn(msClear_, clearF_, rng, &s->wi, &weight))
             return false;
-        s->weight = weight * (m_.clearcoat / probClear_);
+        s->weight = weight * (m_.coat / probClear_);
     } else if (u < probClear_ + probMetal_) {
         if (!specularSampleOn(ms_, metalF_, rng, &s->wi, &weight))
             return false;

@@ -59,10 +59,10 @@ struct SurfaceMaterial {
     float metallic = 0.0f;
     float alphaX = 0.25f, alphaY = 0.25f;
     float tableRoughness = 0.5f;      // MaterialParams.tableRoughness, sqrt(sqrt(alphaX alphaY)): the LayerAlbedo axis
-    float specularWeight = 1.0f;      // w
+    float specularWeight = 1.0f;      // w: MaterialParams.specularWeight
     const LayerAlbedo *layer = nullptr; // dielectric layer albedo (its eta is the IOR); null = w 0
-    float clearcoat = 0.0f;           // c
-    float clearcoatAlpha = 0.001f;    // ac
+    float coat = 0.0f;                // c: MaterialParams.coat (KHR clearcoat weight)
+    float coatAlpha = 0.001f;         // ac: MaterialParams.coatAlpha
     vec3 sheenColor = vec3(0.0f);     // KHR sheenColor (0: no sheen layer)
     float sheenRoughness = 0.0f;      // KHR sheenRoughness (perceptual)
     bool disney = false;              // Burley's model with disneyParams (alphas from it)

@@ -46,9 +46,9 @@ rtpbr::MaterialInputs materialInputs(const rtpbr_gltf_material &m) {
     in.ior = m.ior.ior;
     in.specularFactor = m.specular.specular_factor;
     in.specularColor = glm::make_vec3(m.specular.specular_color_factor);
-    in.clearcoat = m.clearcoat.clearcoat_factor;
+    in.clearcoatFactor = m.clearcoat.clearcoat_factor;
     in.clearcoatRoughness = m.clearcoat.clearcoat_roughness_factor;
-    in.sheenColor = glm::make_vec3(m.sheen.sheen_color_factor);
+    in.sheenColorFactor = glm::make_vec3(m.sheen.sheen_color_factor);
     in.sheenRoughness = m.sheen.sheen_roughness_factor;
     in.anisotropyStrength = m.anisotropy.anisotropy_strength;
     in.disney = rtpbr::Disney_DefaultMaterial();
@@ -441,12 +441,12 @@ private:
                 sampleSlot(m.specular.specular_color_texture, m.specular.specular_color_texture_transform, sp));
         }
         if (m.has_clearcoat) {
-            in.clearcoat *= sampleSlot(m.clearcoat.clearcoat_texture, m.clearcoat.clearcoat_texture_transform, sp).r;
+            in.clearcoatFactor *= sampleSlot(m.clearcoat.clearcoat_texture, m.clearcoat.clearcoat_texture_transform, sp).r;
             in.clearcoatRoughness *= sampleSlot(m.clearcoat.clearcoat_roughness_texture,
                                                 m.clearcoat.clearcoat_roughness_texture_transform, sp).g;
         }
         if (m.has_sheen) {
-            in.sheenColor *= vec3(sampleSlot(m.sheen.sheen_color_texture, m.sheen.sheen_color_texture_transform, sp));
+            in.sheenColorFactor *= vec3(sampleSlot(m.sheen.sheen_color_texture, m.sheen.sheen_color_texture_transform, sp));
             in.sheenRoughness *=
                 sampleSlot(m.sheen.sheen_roughness_texture, m.sheen.sheen_roughness_texture_transform, sp).a;
         }
@@ -470,8 +470,8 @@ private:
             out.disney = true;
             out.disneyParams = p.dm;
         } else {
-            out.clearcoat = p.coat;
-            out.clearcoatAlpha = p.coatAlpha;
+            out.coat = p.coat;
+            out.coatAlpha = p.coatAlpha;
             out.sheenColor = p.sheenColor; // KHR_materials_sheen (bsdf.h)
             out.sheenRoughness = p.sheenRoughness;
         }

@@ -72,8 +72,8 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
     // The material terms of lighting_common.glsl (those of lighting.comp's shade_lights).
     bool disney = s.disney;
     DisneyMaterial dm = s.dm;
-    float specR = s.specR;
-    float w = s.w;
+    float tableRoughness = s.tableRoughness;
+    float specularWeight = s.specularWeight;
     float eta = s.eta;
     FresnelParams fresnel;
     fresnel.f0 = s.f0;
@@ -95,31 +95,31 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
     woTangent = woTangentLength > 0.0f ? woTangent * (sqrt(1.0f - NoV * NoV) / woTangentLength) : vec2(0.0f);
     vec3 wo = vec3(woTangent, NoV);
 #if RTPBR_KC_SHAPE
-    float alphaIso = Alpha_FromPerceptual(specR);
-    float kcBeta = KC_ShapeWeight(specR, NoV);
+    float alphaIso = tableRoughness * tableRoughness; // resolved (Material_Resolve): no second clamp
+    float kcBeta = KC_ShapeWeight(tableRoughness, NoV);
 #endif
 
     // Kulla-Conty: the lobe colours and the layered base's albedos.
     float Eo = s.Eo, Eavg = s.Eavg, FmsDielectric = s.FmsDielectric;
     vec3 msColor = s.msColor;
     vec3 diffuseColor = s.diffuseColor;
-    bool layered = !disney && w > 0.0f && max3(diffuseColor) > 0.0f; // E_s(mu_i) needed per sample
+    bool layered = !disney && specularWeight > 0.0f && max3(diffuseColor) > 0.0f; // E_s(mu_i) needed per sample
     float Eso = s.Eso, EsAvg = s.EsAvg;
     bool needEi = layered || max3(msColor) > 0.0f;
 
     // The coat: KHR clearcoat (attenuates the rest by 1 - c Fc(NoV)) or Disney's (does not).
-    float coat = s.coat, coatR = s.coatR, baseAttenuation = s.baseAttenuation;
+    float coat = s.coat, coatRoughness = s.coatRoughness, baseAttenuation = s.baseAttenuation;
     FresnelParams coatFresnel;
     coatFresnel.f0 = RTPBR_F3(RTPBR_MATERIAL_COAT_F0);
     coatFresnel.f90 = 1.0f;
     coatFresnel.eta = RTPBR_F3(1.5f);
     coatFresnel.k = RTPBR_F3(0.0f);
-    float coatAlpha = Alpha_FromPerceptual(coatR);
+    float coatAlpha = coatRoughness * coatRoughness; // resolved (Material_Resolve): no second clamp
     float Eoc = s.Eoc, Eavgc = s.Eavgc;
     vec3 msCoat = s.msCoat;
     bool sheen = s.sheen;
     vec3 sheenColor = s.sheenColor;
-    float sheenR = s.sheenR, EsheenO = s.EsheenO;
+    float sheenRoughness = s.sheenRoughness, EsheenO = s.EsheenO;
 
     // Strategy weights: Schlick's average Fresnel f0 + (f90 - f0) / 21 (Kulla & Conty 2017).
     float fs = max3(F_Avg_Schlick(fresnel.f0, fresnel.f90));
@@ -184,7 +184,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
             float NoH = h.z;
             float VoH = dot(wo, h);
             float mu = max(NoL, 0.0f);
-            vec2 ei = needEi ? kc_E_EF(mu, specR, eta) : vec2(1.0f, 0.0f);
+            vec2 ei = needEi ? kc_E_EF(mu, tableRoughness, eta) : vec2(1.0f, 0.0f);
             float Ei = ei.x;
 #if RTPBR_KC_SHAPE
             // the shaped multiple-scattering lobe (kulla_conty.h), its single-scattering part
@@ -198,17 +198,17 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
             if (disney) {
                 f += BRDF_DisneyDiffuse(dm, wo, wiLocal) + BRDF_DisneySheen(dm, wo, wiLocal);
             } else {
-                float Esi = layered ? w * KC_SpecularAlbedoDielectric(ei.y, Ei, FmsDielectric) : 0.0f;
+                float Esi = layered ? specularWeight * KC_SpecularAlbedoDielectric(ei.y, Ei, FmsDielectric) : 0.0f;
                 f += diffuseColor * KC_Lobe(Eso, Esi, EsAvg);
             }
             if (sheen)
-                f = f * Sheen_AlbedoScaling(sheenColor, EsheenO, sheen_E(mu, sheenR)) +
-                    BRDF_Sheen(sheenColor, sheenR, NoV, NoL, NoH);
+                f = f * Sheen_AlbedoScaling(sheenColor, EsheenO, sheen_E(mu, sheenRoughness)) +
+                    BRDF_Sheen(sheenColor, sheenRoughness, NoV, NoL, NoH);
             f *= baseAttenuation;
             if (coat > 0.0f) {
                 float coatLobe = disney ? BRDF_DisneyClearcoat(dm, wo, wiLocal)
                                         : coat * BRDF_Specular(NoV, NoL, NoH, VoH, coatAlpha, coatFresnel).x;
-                f += RTPBR_F3(coatLobe) + msCoat * KC_Lobe(Eoc, kc_E(mu, coatR), Eavgc);
+                f += RTPBR_F3(coatLobe) + msCoat * KC_Lobe(Eoc, kc_E(mu, coatRoughness), Eavgc);
             }
             bool valid = hit && NoL > 0.0f && pdf > 0.0f;
             lightSum += valid ? f * (NoL / pdf) : vec3(0.0f);

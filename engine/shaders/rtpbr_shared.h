@@ -85,9 +85,9 @@
     F(S, FLOAT, normal_scale, )       /* glTF normalTexture.scale */                              \
     F(S, FLOAT, anisotropy_strength, ) /* KHR_materials_anisotropy */                             \
     F(S, FLOAT, anisotropy_rotation, ) /* radians, from the tangent toward the bitangent */       \
-    F(S, VEC3, sheen_color, )         /* KHR_materials_sheen sheenColorFactor */                  \
+    F(S, VEC3, sheen_color_factor, )  /* KHR_materials_sheen sheenColorFactor */                  \
     F(S, FLOAT, sheen_roughness, )    /* KHR_materials_sheen, perceptual */                       \
-    F(S, FLOAT, clearcoat, )          /* KHR_materials_clearcoat clearcoatFactor */               \
+    F(S, FLOAT, clearcoat_factor, )   /* KHR_materials_clearcoat clearcoatFactor */               \
     F(S, FLOAT, clearcoat_roughness, ) /* KHR clearcoatRoughnessFactor, perceptual */             \
     F(S, UINT, flags, )               /* RTPBR_MATERIAL_FLAG_* */                                 \
     F(S, FLOAT, alpha_cutoff, )       /* RTPBR_MATERIAL_FLAG_ALPHA_MASK: cut where alpha < this */ \
@@ -107,7 +107,7 @@
 #define RTPBR_MATERIAL_FLAG_DOUBLE_SIDED 1u  // drawn and emitting on both sides
 #define RTPBR_MATERIAL_FLAG_NORMAL_MAPPED 2u // has a normal texture
 #define RTPBR_MATERIAL_FLAG_DISNEY 4u        // Burley's model (else glTF metallic-roughness)
-#define RTPBR_MATERIAL_FLAG_CLEARCOAT 8u     // KHR clearcoat > 0
+#define RTPBR_MATERIAL_FLAG_CLEARCOAT 8u     // KHR clearcoat_factor > 0
 #define RTPBR_MATERIAL_FLAG_SHEEN 16u        // KHR sheen colour not black
 #define RTPBR_MATERIAL_FLAG_ANISOTROPY 32u   // KHR anisotropy strength > 0
 #define RTPBR_MATERIAL_FLAG_ALPHA_MASK 64u   // glTF alphaMode MASK: cut out below alpha_cutoff

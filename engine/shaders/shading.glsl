@@ -73,9 +73,9 @@ MaterialInputs material_inputs(GBufferSurface g, Material m)
     in_.ior = m.ior;
     in_.specularFactor = m.specular_factor * g.specular.a;
     in_.specularColor = m.specular_color * g.specular.rgb;
-    in_.clearcoat = m.clearcoat * g.coat.x;
+    in_.clearcoatFactor = m.clearcoat_factor * g.coat.x;
     in_.clearcoatRoughness = m.clearcoat_roughness * g.coat.y;
-    in_.sheenColor = m.sheen_color * g.sheen.rgb;
+    in_.sheenColorFactor = m.sheen_color_factor * g.sheen.rgb;
     in_.sheenRoughness = m.sheen_roughness * g.sheen.a;
     in_.anisotropyStrength = m.anisotropy_strength;
     in_.disney.baseColor = g.baseColor;
@@ -91,8 +91,8 @@ MaterialInputs material_inputs(GBufferSurface g, Material m)
     in_.disney.clearcoatGloss = m.disney_clearcoat_gloss;
 #if !RTPBR_LIGHTING_FULL
     in_.model = RTPBR_MATERIAL_MODEL_METALLIC_ROUGHNESS;
-    in_.clearcoat = 0.0f;
-    in_.sheenColor = vec3(0.0f);
+    in_.clearcoatFactor = 0.0f;
+    in_.sheenColorFactor = vec3(0.0f);
     in_.anisotropyStrength = 0.0f;
 #endif
     return in_;

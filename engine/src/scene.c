@@ -186,9 +186,9 @@ rtpbr_shader_material rtpbr_material_record(const rtpbr_material_desc *m)
     g.normal_scale = m->normal_scale == 0.0f ? 1.0f : m->normal_scale;
     g.anisotropy_strength = m->anisotropy_strength;
     g.anisotropy_rotation = m->anisotropy_rotation;
-    memcpy(g.sheen_color, m->sheen_color, sizeof g.sheen_color);
+    memcpy(g.sheen_color_factor, m->sheen_color_factor, sizeof g.sheen_color_factor);
     g.sheen_roughness = m->sheen_roughness;
-    g.clearcoat = m->clearcoat;
+    g.clearcoat_factor = m->clearcoat_factor;
     g.clearcoat_roughness = m->clearcoat_roughness;
     const rtpbr_disney_params *d = &m->disney;
     g.disney_subsurface = d->subsurface;
@@ -203,8 +203,8 @@ rtpbr_shader_material rtpbr_material_record(const rtpbr_material_desc *m)
     g.flags = (m->double_sided ? RTPBR_MATERIAL_FLAG_DOUBLE_SIDED : 0u) |
               (m->normal_texture ? RTPBR_MATERIAL_FLAG_NORMAL_MAPPED : 0u) |
               (disney ? RTPBR_MATERIAL_FLAG_DISNEY : 0u) |
-              (!disney && m->clearcoat > 0.0f ? RTPBR_MATERIAL_FLAG_CLEARCOAT : 0u) |
-              (!disney && !(m->sheen_color[0] <= 0.0f && m->sheen_color[1] <= 0.0f && m->sheen_color[2] <= 0.0f)
+              (!disney && m->clearcoat_factor > 0.0f ? RTPBR_MATERIAL_FLAG_CLEARCOAT : 0u) |
+              (!disney && !(m->sheen_color_factor[0] <= 0.0f && m->sheen_color_factor[1] <= 0.0f && m->sheen_color_factor[2] <= 0.0f)
                    ? RTPBR_MATERIAL_FLAG_SHEEN : 0u) |
               (!disney && m->anisotropy_strength > 0.0f ? RTPBR_MATERIAL_FLAG_ANISOTROPY : 0u) |
               (m->alpha_mode == RTPBR_ALPHA_MASK ? RTPBR_MATERIAL_FLAG_ALPHA_MASK : 0u) |
@@ -248,8 +248,8 @@ static void material_texture_indices(const rtpbr_material_desc *m, uint32_t inde
 static uint8_t material_extension_textures(const rtpbr_material_desc *m)
 {
     if (m->model == RTPBR_MATERIAL_DISNEY) return 0;
-    bool sheen = !(m->sheen_color[0] <= 0.0f && m->sheen_color[1] <= 0.0f && m->sheen_color[2] <= 0.0f);
-    bool coat_sheen = (m->clearcoat > 0.0f && (m->clearcoat_texture || m->clearcoat_roughness_texture)) ||
+    bool sheen = !(m->sheen_color_factor[0] <= 0.0f && m->sheen_color_factor[1] <= 0.0f && m->sheen_color_factor[2] <= 0.0f);
+    bool coat_sheen = (m->clearcoat_factor > 0.0f && (m->clearcoat_texture || m->clearcoat_roughness_texture)) ||
                       (sheen && (m->sheen_color_texture || m->sheen_roughness_texture));
     bool specular = !(m->flags & RTPBR_MATERIAL_NO_SPECULAR) && (m->specular_texture || m->specular_color_texture);
     return (uint8_t)((specular ? RTPBR_EXTENSION_TEXTURES_SPECULAR : 0u) |
@@ -268,8 +268,8 @@ rtpbr_result rtpbr_material_validate(const rtpbr_context *ctx, const rtpbr_mater
     if (!rtpbr_finite(m->base_color, 3) || !rtpbr_finite(&m->metallic, 1) || !rtpbr_finite(&m->roughness, 1) ||
         !rtpbr_finite(m->emission, 3) || !rtpbr_finite(&m->ior, 1) || !rtpbr_finite(&m->specular_factor, 1) ||
         !rtpbr_finite(m->specular_color, 3) || !rtpbr_finite(&m->normal_scale, 1) ||
-        !rtpbr_finite(&m->clearcoat, 1) || !rtpbr_finite(&m->clearcoat_roughness, 1) ||
-        !rtpbr_finite(&m->anisotropy_strength, 1) || !rtpbr_finite(&m->anisotropy_rotation, 1) || !rtpbr_finite(m->sheen_color, 3) || !rtpbr_finite(&m->sheen_roughness, 1) ||
+        !rtpbr_finite(&m->clearcoat_factor, 1) || !rtpbr_finite(&m->clearcoat_roughness, 1) ||
+        !rtpbr_finite(&m->anisotropy_strength, 1) || !rtpbr_finite(&m->anisotropy_rotation, 1) || !rtpbr_finite(m->sheen_color_factor, 3) || !rtpbr_finite(&m->sheen_roughness, 1) ||
         !rtpbr_finite((const float *)&m->disney, sizeof m->disney / sizeof(float)) || !rtpbr_finite(&m->alpha, 1) ||
         !rtpbr_finite(&m->alpha_cutoff, 1)) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);

@@ -96,9 +96,9 @@ void main()
     m.ior = shading.surface.y;
     m.specularFactor = 1.0f;
     m.specularColor = vec3(1.0f);
-    m.clearcoat = 0.0f;
+    m.clearcoatFactor = 0.0f;
     m.clearcoatRoughness = 0.0f;
-    m.sheenColor = vec3(0.0f);
+    m.sheenColorFactor = vec3(0.0f);
     m.sheenRoughness = 0.0f;
     m.anisotropyStrength = 0.0f;
     m.disney = Disney_DefaultMaterial();

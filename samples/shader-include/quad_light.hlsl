@@ -85,9 +85,9 @@ float4 main(PixelInput input) : SV_Target
     m.ior = surface.y;
     m.specularFactor = 1.0f;
     m.specularColor = RTPBR_F3(1.0f);
-    m.clearcoat = 0.0f;
+    m.clearcoatFactor = 0.0f;
     m.clearcoatRoughness = 0.0f;
-    m.sheenColor = RTPBR_F3(0.0f);
+    m.sheenColorFactor = RTPBR_F3(0.0f);
     m.sheenRoughness = 0.0f;
     m.anisotropyStrength = 0.0f;
     m.disney = Disney_DefaultMaterial();

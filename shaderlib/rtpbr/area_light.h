@@ -62,6 +62,7 @@
 #include "fresnel.h"
 #include "microfacet.h"
 #include "ltc.h"
+#include "ltc_anisotropy.h"
 #include "ltc_corrections.h"
 #include "kulla_conty.h"
 #include "disney.h"
@@ -176,10 +177,11 @@ RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, r
 // density) or, for a light in the LTC's tail, the tail estimate (LTC_PointTail: f at the
 // direction of the light's vector form factor F x pi x its form factor ff), whichever is larger
 // (LTC_PointCombine); lenF = |F| (LTC_PointWidthRatio).
-RTPBR_FN float AreaLight_SpecularCorrected(rtpbr_float3 Fl, rtpbr_float4 ltc1, float norm, float NoV, float specR,
+// tableRoughness: ShadingSurface's, resolved (in [RTPBR_MATERIAL_MIN_ROUGHNESS, 1]: squared as is).
+RTPBR_FN float AreaLight_SpecularCorrected(rtpbr_float3 Fl, rtpbr_float4 ltc1, float norm, float NoV, float tableRoughness,
                                            float ltcFF, rtpbr_float3 F, float ff, float lenF) {
     // recomputed here rather than kept live through the light loop
-    float alpha = Alpha_FromPerceptual(specR);
+    float alpha = tableRoughness * tableRoughness;
     rtpbr_float3 vLocal = rtpbr_float3(sqrt(max(1.0f - NoV * NoV, 0.0f)), 0.0f, NoV);
     LtcPoint pt = LTC_LobePoint(Fl, ltc1);
     float NoL = pt.dir.z;
@@ -216,7 +218,7 @@ RTPBR_FN rtpbr_float4 AreaLight_IsotropicLtc1(rtpbr_float3x3 minv) {
 // anisotropic) and Fresnel scale, the other lobes' (RTPBR_AREA_LIGHT_FULL).
 RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_float3 V) {
     AreaLightPixel px;
-    rtpbr_float2 uv = LTC_LutCoord(s.NoV, s.specR);
+    rtpbr_float2 uv = LTC_LutCoord(s.NoV, s.tableRoughness);
     rtpbr_float4 ltc1 = Host_TableLtc1(RTPBR_TABLE_LTC_SPECULAR, uv);
     rtpbr_float4 ltc2 = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, uv);
     px.specularScale = LTC_FresnelScale(ltc2, s.f0, s.f90);
@@ -239,7 +241,7 @@ RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_
 #if RTPBR_AREA_LIGHT_FULL
     px.coated = s.coat > 0.0f;
     if (px.coated) {
-        rtpbr_float2 uvc = LTC_LutCoord(s.NoV, s.coatR);
+        rtpbr_float2 uvc = LTC_LutCoord(s.NoV, s.coatRoughness);
         px.ltc1c = Host_TableLtc1(RTPBR_TABLE_LTC_SPECULAR, uvc);
         px.coatScale = s.coat * LTC_FresnelScale(Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, uvc),
                                                  RTPBR_F3(RTPBR_MATERIAL_COAT_F0), 1.0f);
@@ -254,7 +256,7 @@ RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_
     // KHR sheen: its LTC fit (sheen.h); the layer below is scaled by the KHR albedo scaling
     // with E_sheen at NoV and at the polygon's representative direction.
     if (s.sheen) {
-        rtpbr_float2 uvs = LTC_LutCoord(s.NoV, s.sheenR);
+        rtpbr_float2 uvs = LTC_LutCoord(s.NoV, s.sheenRoughness);
         px.ltc1s = Host_TableLtc1(RTPBR_TABLE_LTC_SHEEN, uvs);
         px.sheenScale = Sheen_LtcScale(Host_TableLtc2(RTPBR_TABLE_LTC_SHEEN, uvs), s.sheenColor);
     }
@@ -274,7 +276,7 @@ RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_
     // KC_PolygonLobeShaped): beta (1 - Eo) x the specular lobe's corrected form factor, which
     // joins the specular term's scale, plus (1 - beta) x the separable lobe.
 #if RTPBR_KC_SHAPE
-    float kcBeta = KC_ShapeWeight(s.specR, s.NoV);
+    float kcBeta = KC_ShapeWeight(s.tableRoughness, s.NoV);
     px.specularScale += s.msColor * (kcBeta * rtpbr_pos(1.0f - s.Eo));
     px.msColor = s.msColor * (1.0f - kcBeta);
 #else
@@ -306,7 +308,7 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
         return;
 #if RTPBR_AREA_LIGHT_STREAK
     // (registers: docs/performance.md, 3)
-    bool streakSized = LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), Alpha_FromPerceptual(s.specR), s.NoV);
+    bool streakSized = LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
 #endif
     rtpbr_float3 F, Fl;
     float specularFF = AreaLight_Lobe(i, P, px.frame, px.specularMinv, F, Fl);
@@ -325,11 +327,11 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
     if (px.pointOn && specularFF < 0.5f) {
         rtpbr_float3 unusedF2;
         AreaLight_Lobe(i, P, px.frame, px.specularMinv, unusedF2, Fl);
-        float norm = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.specR)).x;
-        specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, norm, s.NoV, s.specR, specularFF, F, ff, lenF);
+        float norm = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.tableRoughness)).x;
+        specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, norm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
     }
 #else
-    specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, px.pointNorm, s.NoV, s.specR, specularFF, F, ff, lenF);
+    specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, px.pointNorm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
 #if RTPBR_AREA_LIGHT_STREAK
     // the streak estimate's candidate (after the loop): the first light it applies to and
     // whose size can give it any trust (LTC_StreakCandidate)
@@ -344,7 +346,7 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
     rtpbr_float3 lRep = F / lenF;
     float muRep = rtpbr_saturate(lRep.z);
     // The cosine-weighted mean of each albedo over the polygon (KC_PolygonMeanE).
-    rtpbr_float2 eRep = Host_TableE_EF(muRep, s.specR, s.eta);
+    rtpbr_float2 eRep = Host_TableE_EF(muRep, s.tableRoughness, s.eta);
     float Erep = KC_PolygonMeanE(eRep.x, s.Eavg, lenF);
 
     // (with RTPBR_KC_SHAPE: KC_PolygonLobeShaped, its two parts folded into specularScale and
@@ -361,19 +363,19 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
     } else
 #endif
     {
-        float EFrep = s.w > 0.0f ? KC_PolygonMeanE(eRep.y, s.EFavg, lenF) : 0.0f;
-        float Esrep = s.w * KC_SpecularAlbedoDielectric(EFrep, Erep, s.FmsDielectric);
+        float EFrep = s.specularWeight > 0.0f ? KC_PolygonMeanE(eRep.y, s.EFavg, lenF) : 0.0f;
+        float Esrep = s.specularWeight * KC_SpecularAlbedoDielectric(EFrep, Erep, s.FmsDielectric);
         base = s.diffuseColor * KC_PolygonLobe(s.Eso, Esrep, s.EsAvg, ff);
     }
     lo += base;
 #if RTPBR_AREA_LIGHT_FULL
     if (s.sheen)
-        lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, Host_TableSheenE(muRep, s.sheenR)) +
+        lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, Host_TableSheenE(muRep, s.sheenRoughness)) +
              px.sheenScale * AreaLight_Lobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl);
     lo *= s.baseAttenuation;
     if (px.coated)
         lo += px.coatScale * AreaLight_Lobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, unusedFl) +
-              s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(Host_TableE(muRep, s.coatR), s.Eavgc, lenF), s.Eavgc, ff);
+              s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(Host_TableE(muRep, s.coatRoughness), s.Eavgc, lenF), s.Eavgc, ff);
 #endif
 #if RTPBR_LTC_POINT_CORRECTION && !RTPBR_AREA_LIGHT_FULL
     acc.specularMass += specularFF;
@@ -385,8 +387,9 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 // The streak estimate (ltc_corrections.h, LTC_StreakEnd) of light i's specular lobe: two more
 // passes over its horizon-clipped edges, one for its vector form factor F and its elevations,
 // one for the chords through the nodes. Returns the estimate (F = 1), its weight
-// (LTC_StreakWeight x its trust) and V.h at the streak; (-1, 0, .) for none.
-RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, float NoV, float specR) {
+// (LTC_StreakWeight x its trust) and V.h at the streak; (-1, 0, .) for none. tableRoughness:
+// ShadingSurface's (resolved: squared as is).
+RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, float NoV, float tableRoughness) {
     uint count = Host_LightVertexCount(i);
     rtpbr_float3 vLocal = rtpbr_float3(sqrt(max(1.0f - NoV * NoV, 0.0f)), 0.0f, NoV);
     rtpbr_float3 F = RTPBR_F3(0.0f);
@@ -409,7 +412,7 @@ RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_flo
         if (pass == 0)
             LTC_StreakNodes(st, F);
     }
-    rtpbr_float2 e = LTC_StreakEnd(st, vLocal, Alpha_FromPerceptual(specR));
+    rtpbr_float2 e = LTC_StreakEnd(st, vLocal, tableRoughness * tableRoughness);
     return rtpbr_float3(e.x, e.y * LTC_StreakWeight(vLocal, F), LTC_StreakVoH(st, vLocal));
 }
 #endif
@@ -438,7 +441,7 @@ RTPBR_FN rtpbr_float3 AreaLight_End(AreaLightPixel px, AreaLightSum acc, Shading
 #endif
 #if RTPBR_AREA_LIGHT_STREAK
     if (acc.streakLight != RTPBR_AREA_LIGHT_NONE) {
-        rtpbr_float3 e = AreaLight_StreakEstimate(acc.streakLight, P, px.frame, s.NoV, s.specR);
+        rtpbr_float3 e = AreaLight_StreakEstimate(acc.streakLight, P, px.frame, s.NoV, s.tableRoughness);
         if (e.x >= 0.0f && e.y > 0.0f && px.pointNorm > 0.0f) {
             // specularScale = the Fresnel scale f0 (ltc2.x - ltc2.y) + f90 ltc2.y
             // (LTC_FresnelScale) + the shaped multiple-scattering lobe's part folded into it by
@@ -448,7 +451,7 @@ RTPBR_FN rtpbr_float3 AreaLight_End(AreaLightPixel px, AreaLightSum acc, Shading
             // Fresnel scale as it is.
             rtpbr_float3 next = px.specularScale * (e.x / px.pointNorm);
 #if RTPBR_KC_SHAPE
-            float beta = KC_ShapeWeight(s.specR, s.NoV);
+            float beta = KC_ShapeWeight(s.tableRoughness, s.NoV);
             rtpbr_float3 msShaped = px.msColor * (beta / max(1.0f - beta, 1e-3f) * rtpbr_pos(1.0f - s.Eo));
             bool split = 1.0f - beta > 1e-3f;
 #else
@@ -456,7 +459,7 @@ RTPBR_FN rtpbr_float3 AreaLight_End(AreaLightPixel px, AreaLightSum acc, Shading
             bool split = true;
 #endif
             if (split) {
-                rtpbr_float4 t2 = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.specR));
+                rtpbr_float4 t2 = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.tableRoughness));
                 rtpbr_float3 f0 = (px.specularScale - msShaped - s.f90 * t2.y) / max(t2.x - t2.y, 1e-6f);
                 next = F_Schlick(f0, s.f90, e.z) * e.x + msShaped * (e.x / px.pointNorm);
             }

@@ -1,69 +1,53 @@
 // rtpbr shader library: polygonal area lights with Linearly Transformed Cosines (LTC).
 //
 // Heitz, Dupuy, Hill & Neubelt 2016, "Real-Time Polygonal-Light Shading with Linearly
-// Transformed Cosines". A BRDF lobe (times the cosine) for one view direction and roughness is
-// approximated by D(w) = D_o(M^-1 w / |M^-1 w|) |det M^-1| / |M^-1 w|^3 with D_o = max(z,0)/pi;
-// the integral of D over a polygon is the integral of D_o over the polygon transformed by
-// M^-1, which has a closed form (Lambert 1760; Arvo 1995, "Applications of Irradiance Tensors").
-// This header is the stable core; the experimental corrections of a microfacet lobe's result
-// are in ltc_corrections.h. Usage, tables and measured accuracy: shaderlib/luts/ltc.md.
+// Transformed Cosines": a BRDF lobe (times the cosine) for one view direction and roughness is
+// D(w) = D_o(M^-1 w / |M^-1 w|) |det M^-1| / |M^-1 w|^3, D_o = max(z, 0) / pi; its integral over
+// a polygon is D_o's over the polygon transformed by M^-1, in closed form (Lambert 1760; Arvo
+// 1995, "Applications of Irradiance Tensors"). This header is the stable core; beside it are
+// ltc_anisotropy.h (stretched lobes), ltc_clipless.h (the sphere proxy) and ltc_corrections.h
+// (EXPERIMENTAL). Usage, tables and measured accuracy: shaderlib/luts/ltc.md.
 //
 // Conventions
 //   - Local LTC frame: z = N, x = normalize(V - N NoV), y = cross(N, x). Polygons: world-space
 //     vertices, convex and planar, 3 to RTPBR_LTC_MAX_VERTICES (8); the front face is the side
 //     they appear counter-clockwise from. One-sided lights emit from the front only.
-//   - Every integral returned is a form factor in [0, 1]: the fraction of the LTC's mass above
-//     the horizon that falls on the polygon, so times ltc2's integrals it never exceeds the
-//     interpolated albedo. For a light of radiance Le:
+//   - Every integral returned is a form factor in [0, 1], the fraction of the LTC's mass above
+//     the horizon that falls on the polygon (so times ltc2's integrals it never exceeds the
+//     interpolated albedo). For a light of radiance Le:
 //       specular  Lo = Le * LTC_FresnelScale(ltc2, f0, f90) * LTC_EvaluatePolygon(.., ltc1, ..)
 //       Lambert   Lo = Le * diffuseColor * LTC_EvaluatePolygon(.., LTC_Identity(), ..)
 //   - The caller fetches (bilinear, clamp-to-edge) ltc1 = rtpbr_ltc_*_1 = (m00, m02, m20, m22)
 //     of M^-1 (rows (m00 0 m02), (0 1 0), (m20 0 m22)) and ltc2 = rtpbr_ltc_*_2 = (albedo,
-//     Fresnel moment, f82 moment, sphere form factor) at LTC_LutCoord (.w at LTC_SphereLutCoord).
+//     Fresnel moment, f82 moment, sphere form factor) at LTC_LutCoord (.w: ltc_clipless.h).
 //   - The polygon is clipped to the upper hemisphere before the transform (as O3DE does: no
 //     light from behind the surface where the lobe dips under the horizon), then to the LTC's
 //     support (M^-1 w).z >= 0 (Heitz et al.'s clip).
-//   - RTPBR_LTC_CLIPLESS 1 (default 0): LTC_EvaluatePolygon does not clip but uses the sphere
-//     proxy of Hill & Heitz 2016 ("Real-Time Area Lighting: a Journey from Research to
-//     Production"): the sphere with the unclipped polygon's vector form factor F.
 //
 // Public functions
 //   polygons and tables
 //     LTC_Triangle, LTC_Quad          an LtcPolygon of 3 or 4 world-space vertices
 //     LTC_Identity                    ltc1 of the clamped cosine itself (Lambertian diffuse)
 //     LTC_LutCoord                    the tables' coordinate for (NoV, perceptual roughness)
-//     LTC_SphereLutCoord              the coordinate of ltc2.w for a vector form factor F
 //     LTC_InverseMatrix               M^-1 from ltc1
 //   frame and clipping (stored polygon)
 //     LTC_Frame                       the world-to-local rotation for (N, V)
 //     LTC_PolygonToLocal              a polygon relative to P, local, clipped to the horizon
-//     LTC_PolygonToLocalUnclipped     the same unclipped (clipless path)
-//     LTC_PolygonRelative             their shared part: relative, local, oriented, or empty
+//     LTC_PolygonRelative             the same unclipped: relative, local, oriented, or empty
 //     LTC_ClipToHalfSpace             a stored polygon clipped to dot(p, n) >= 0
 //   edge integral and horizon
 //     LTC_EdgeFactor                  theta / (2 pi sin theta), fitted (Heitz et al. 2017)
 //     LTC_EdgeIntegral, LTC_EdgeIntegralZ  one edge's vector form factor (Arvo 1995), its z
 //     LTC_SafeNormalize               v / |v|, 0 for 0
-//     LTC_HorizonMass                 an LTC's mass above the horizon
-//     LTC_HorizonFraction             a clipped integral over that mass, in [0, 1]
+//     LTC_HorizonMass, LTC_HorizonFraction  an LTC's mass above the horizon; a part of it
 //   streamed evaluation (edge by edge, nothing stored)
 //     LTC_ClipperBegin, LTC_ClipEdge, LTC_ClipClose  the horizon clip of one light
 //     LTC_LobeBegin, LTC_LobeEdge     one lobe: its M^-1, then each clipped segment
-//     LTC_LobeEnd                     the lobe's form factor
-//     LTC_LobeEndVector               the lobe's vector form factor (its centroid direction)
+//     LTC_LobeEnd, LTC_LobeEndVector  the lobe's form factor; its vector form factor
 //   stored and one-call evaluation
 //     LTC_LobeOverLocal               the streamed lobe over a stored local polygon
-//     LTC_IntegrateLocal, LTC_IntegrateLocalMatrix  its form factor for ltc1 or any M^-1
-//     LTC_IntegrateLocalVector        its vector form factor
+//     LTC_IntegrateLocal, _Matrix, _Vector  its form factor for ltc1, for any M^-1; its vector
 //     LTC_EvaluatePolygon             one call: a polygon's form factor at P for ltc1
-//   anisotropic stretch
-//     LTC_AnisotropicUnstretch        A^-1 v for the stretch A
-//     LTC_AnisotropicInverseMatrix    M^-1 A^-1, the stretched lobe's matrix
-//     LTC_AnisotropicAlbedoScale      the stretched lobe's albedo over the isotropic one's
-//   clipless sphere proxy (Hill & Heitz 2016)
-//     LTC_FormFactorVector            an unclipped polygon's vector form factor under M^-1
-//     LTC_SphereFormFactor            the horizon-clipped sphere form factor, from ltc2.w
-//     LTC_SphereFormFactorApprox      the same without a table
 //   Fresnel
 //     LTC_FresnelScale                Schlick (f0, f90) times the lobe's integrals
 //     LTC_FresnelScaleF82             the F82 model (Kutz et al. 2021)
@@ -76,6 +60,7 @@
 #include "config.h"
 #include "fresnel.h"
 
+// RTPBR_LTC_CLIPLESS 1: LTC_EvaluatePolygon is ltc_clipless.h's (the sphere proxy; include it).
 #ifndef RTPBR_LTC_CLIPLESS
 #define RTPBR_LTC_CLIPLESS 0
 #endif
@@ -99,8 +84,7 @@ struct LtcPolygon {
     int count;
 };
 
-// A polygon relative to the shading point, in the local LTC frame; count = 0 when the light
-// cannot contribute.
+// A polygon relative to the shading point in the LTC frame; count 0: the light cannot contribute.
 struct LtcLocalPolygon {
     rtpbr_float3 v[RTPBR_LTC_CLIP_VERTICES];
     int count;
@@ -124,7 +108,6 @@ RTPBR_FN LtcPolygon LTC_Quad(rtpbr_float3 p0, rtpbr_float3 p1, rtpbr_float3 p2, 
 }
 
 // ---- table coordinates ---------------------------------------------------------------------
-
 // Texel (i, j) holds roughness i / (SIZE - 1) and sqrt(1 - NoV) = j / (SIZE - 1): mapped to
 // texel centres, so bilinear filtering never extrapolates (Heitz et al. 2016, LUT_SCALE/BIAS).
 RTPBR_FN rtpbr_float2 LTC_LutCoord(float NoV, float perceptualRoughness) {
@@ -135,18 +118,7 @@ RTPBR_FN rtpbr_float2 LTC_LutCoord(float NoV, float perceptualRoughness) {
     return rtpbr_float2(u * scale + bias, v * scale + bias);
 }
 
-// Column = cos of F's elevation mapped to [0, 1], row = |F| (= sin^2 of the sphere's angular
-// radius), texel centres as above.
-RTPBR_FN rtpbr_float2 LTC_SphereLutCoord(rtpbr_float3 F) {
-    float len = length(F);
-    float z = len > 0.0f ? F.z / len : 0.0f;
-    float scale = (float(RTPBR_LTC_SIZE) - 1.0f) / float(RTPBR_LTC_SIZE);
-    float bias = 0.5f / float(RTPBR_LTC_SIZE);
-    return rtpbr_float2(rtpbr_saturate(z * 0.5f + 0.5f) * scale + bias, rtpbr_saturate(len) * scale + bias);
-}
-
 // ---- geometry ------------------------------------------------------------------------------
-
 // Rows x, y, z of the LTC frame. When V is along N any tangent will do (isotropic lobes).
 RTPBR_FN rtpbr_float3x3 LTC_Frame(rtpbr_float3 N, rtpbr_float3 V) {
     rtpbr_float3 t = V - N * dot(N, V);
@@ -240,22 +212,16 @@ RTPBR_FN LtcLocalPolygon LTC_PolygonToLocal(rtpbr_float3x3 frame, rtpbr_float3 P
     return r;
 }
 
-RTPBR_FN LtcLocalPolygon LTC_PolygonToLocalUnclipped(rtpbr_float3x3 frame, rtpbr_float3 P, LtcPolygon poly, bool twoSided) {
-    return LTC_PolygonRelative(frame, P, poly, twoSided);
-}
-
 // ---- integration ---------------------------------------------------------------------------
-
 RTPBR_FN rtpbr_float3x3 LTC_InverseMatrix(rtpbr_float4 ltc1) {
     return rtpbr_mat3_rows(rtpbr_float3(ltc1.x, 0.0f, ltc1.y), rtpbr_float3(0.0f, 1.0f, 0.0f),
                            rtpbr_float3(ltc1.z, 0.0f, ltc1.w));
 }
 
-// The directions w.z >= 0 are, in the cosine's space (w_o = M^-1 w), the half-space
-// n . w_o >= 0 with n = M^-1 x x M^-1 y (oriented toward M^-1 z), which holds (1 + n.z / |n|) / 2
-// of the clamped cosine (the sky view factor of a tilted plane); for n.z < 0 written as
-// (n.x^2 + n.y^2) / (2 |n| (|n| - n.z)), without cancellation for a lobe almost all below the
-// horizon (fitted cells reach 1e-15). Any M^-1; 0 for a singular or NaN matrix.
+// w.z >= 0 is, in the cosine's space (w_o = M^-1 w), n . w_o >= 0 for n = M^-1 x x M^-1 y
+// (toward M^-1 z), holding (1 + n.z / |n|) / 2 of the clamped cosine (a tilted plane's sky view
+// factor); for n.z < 0 (n.x^2 + n.y^2) / (2 |n| (|n| - n.z)), without cancellation for a lobe
+// almost all below the horizon (fitted cells reach 1e-15). Any M^-1; 0 if singular or NaN.
 RTPBR_FN float LTC_HorizonMass(rtpbr_float3x3 minv) {
     rtpbr_float3 cx = rtpbr_mul(minv, rtpbr_float3(1.0f, 0.0f, 0.0f));
     rtpbr_float3 cy = rtpbr_mul(minv, rtpbr_float3(0.0f, 1.0f, 0.0f));
@@ -276,18 +242,15 @@ RTPBR_FN float LTC_HorizonFraction(float ff, float mass) {
 }
 
 // ---- streamed integration (the real-time path) ----------------------------------------------
-// A light is integrated edge by edge, never storing the clipped polygon (GPU compilers turn
-// run-time-indexed private arrays into select chains or scratch memory). The caller walks the
-// light's edges a -> b as vectors from the shading point in the LTC frame, clips each to the
-// upper hemisphere with LTC_ClipEdge (one clip per light) and hands every surviving segment to
-// each lobe: LTC_LobeEdge (which clips it again to the lobe's support, in the lobe's space) or
-// LTC_EdgeIntegral (the Lambertian vector). After the last edge LTC_ClipClose gives the segment
-// closing the polygon along the horizon, and LTC_LobeEnd the form factor. Convex polygons.
+// Edge by edge, never storing the clipped polygon (GPU compilers turn run-time-indexed private
+// arrays into select chains or scratch memory): the caller walks a convex light's edges a -> b
+// (from the shading point, LTC frame), clips each to the horizon once (LTC_ClipEdge), hands each
+// surviving segment to every lobe (LTC_LobeEdge clips it to the lobe's support in its own space;
+// or LTC_EdgeIntegral), then LTC_ClipClose's segment; LTC_LobeEnd gives the form factor.
 
-// Heitz, Dupuy, Hill & Neubelt 2017, "IntegrateEdgeVec" of their ltc_code: theta / sin(theta)
-// / (2 pi) for unit vectors with x = cos(theta), a rational fit in |x| (relative error below
-// 2e-6 on [-1, 1]); for x < 0, theta / sin = pi / sin - (pi - theta) / sin folds it onto |x|.
-// sinT = |a x b|, so that opposite vectors (sin -> 0) stay consistent with the cross product.
+// Heitz et al. 2017, ltc_code's "IntegrateEdgeVec": theta / (2 pi sin theta) for unit vectors,
+// x = cos theta, fitted in |x| (relative error < 2e-6); x < 0 folds onto |x| by theta / sin =
+// pi / sin - (pi - theta) / sin, sinT = |a x b| (consistent with the cross product near pi).
 RTPBR_FN float LTC_EdgeFactor(float x, float sinT) {
     float y = abs(x);
     float a = 0.8543985f + (0.4965155f + 0.0145206f * y) * y;
@@ -366,7 +329,7 @@ RTPBR_FN LtcSegment LTC_ClipClose(LtcClipper clip) {
 }
 
 // One LTC lobe over a streamed polygon: its M^-1 (LTC_InverseMatrix or any, such as
-// LTC_AnisotropicInverseMatrix's), the clip to its support (M^-1 w).z >= 0 done in its own
+// ltc_anisotropy.h's), the clip to its support (M^-1 w).z >= 0 done in its own
 // space (a linear map keeps segments straight), and the sum of the edge integrals.
 struct LtcLobe {
     rtpbr_float3x3 minv;
@@ -389,8 +352,7 @@ RTPBR_FN void LTC_LobeEdge(RTPBR_INOUT(LtcLobe) lobe, rtpbr_float3 a, rtpbr_floa
         lobe.vec += LTC_EdgeIntegral(LTC_SafeNormalize(s.a), LTC_SafeNormalize(s.b));
 }
 
-// In [0, 1] (LTC_HorizonFraction); closes the lobe's own clip. A convex polygon in z >= 0
-// gives a sum of one sign (its orientation's).
+// In [0, 1] (LTC_HorizonFraction); closes the lobe's clip. Convex: the sum has one sign.
 RTPBR_FN float LTC_LobeEnd(LtcLobe lobe) {
     float sum = lobe.vec.z;
     if (lobe.clip.crossed)
@@ -398,8 +360,7 @@ RTPBR_FN float LTC_LobeEnd(LtcLobe lobe) {
     return LTC_HorizonFraction(abs(sum), LTC_HorizonMass(lobe.minv));
 }
 
-// In the lobe's own space (Arvo 1995), turned to z >= 0: its direction is that of the
-// solid-angle centroid of the part of the polygon the lobe sees.
+// In the lobe's space (Arvo 1995), turned to z >= 0: toward the seen part's solid-angle centroid.
 RTPBR_FN rtpbr_float3 LTC_LobeEndVector(LtcLobe lobe) {
     rtpbr_float3 v = lobe.vec;
     if (lobe.clip.crossed)
@@ -407,38 +368,7 @@ RTPBR_FN rtpbr_float3 LTC_LobeEndVector(LtcLobe lobe) {
     return v.z < 0.0f ? -v : v;
 }
 
-// ---- anisotropic stretch ---------------------------------------------------------------------
-// Ours, from the LTC construction of Heitz et al. 2016: an anisotropic GGX lobe (at, ab) is the
-// isotropic lobe of alpha = sqrt(at ab) stretched about its centre c (the mirror direction) by
-// k = sqrt(at / ab) along the anisotropy direction e1 (made orthogonal to c) and by 1 / k
-// across it (GGX and Beckmann are stretch invariant; near c directions follow slopes
-// linearly): M_aniso = A M_iso, A = k e1 e1^T + (1 / k) e2 e2^T + c c^T, e2 = c x e1, det A = 1.
-// The lobe's inverse matrix is M^-1 A^-1, applied to polygons already clipped to the horizon.
-// c, e1 unit and orthogonal; k >= 1 when at >= ab (NaN or <= 0: no stretch).
-RTPBR_FN rtpbr_float3 LTC_AnisotropicUnstretch(rtpbr_float3 v, rtpbr_float3 c, rtpbr_float3 e1, float k) {
-    float kk = k > 0.0f ? k : 1.0f;
-    rtpbr_float3 e2 = cross(c, e1);
-    return e1 * (dot(e1, v) / kk) + e2 * (dot(e2, v) * kk) + c * dot(c, v);
-}
-
-// Rows of M^-1 times the symmetric A^-1, for LTC_LobeBegin.
-RTPBR_FN rtpbr_float3x3 LTC_AnisotropicInverseMatrix(rtpbr_float4 ltc1, rtpbr_float3 c, rtpbr_float3 e1, float k) {
-    return rtpbr_mat3_rows(LTC_AnisotropicUnstretch(rtpbr_float3(ltc1.x, 0.0f, ltc1.y), c, e1, k),
-                           LTC_AnisotropicUnstretch(rtpbr_float3(0.0f, 1.0f, 0.0f), c, e1, k),
-                           LTC_AnisotropicUnstretch(rtpbr_float3(ltc1.z, 0.0f, ltc1.w), c, e1, k));
-}
-
-// The stretched LTC's mass above the horizon over the isotropic LTC's, capped at 1: LTC_LobeEnd
-// normalises each lobe to its own mass, but a stretch that leans the lobe under the horizon
-// loses that part of the BRDF's albedo too (masking). Capped, the energy bound stays.
-RTPBR_FN float LTC_AnisotropicAlbedoScale(rtpbr_float4 ltc1, rtpbr_float3x3 stretchedMinv) {
-    float iso = LTC_HorizonMass(LTC_InverseMatrix(ltc1));
-    float stretched = LTC_HorizonMass(stretchedMinv);
-    return iso > 0.0f ? min(stretched / iso, 1.0f) : 0.0f;
-}
-
 // ---- stored polygons and the one-call form -------------------------------------------------
-
 // From LTC_PolygonToLocal; fixed trip count, so the compiler can unroll it and index the array
 // statically. Read with LTC_LobeEnd or LTC_LobeEndVector.
 RTPBR_FN LtcLobe LTC_LobeOverLocal(LtcLocalPolygon local, rtpbr_float3x3 minv) {
@@ -468,52 +398,14 @@ RTPBR_FN rtpbr_float3 LTC_IntegrateLocalVector(LtcLocalPolygon local, rtpbr_floa
     return LTC_LobeEndVector(LTC_LobeOverLocal(local, LTC_InverseMatrix(ltc1)));
 }
 
-// F = (1 / 2pi) sum of the edge vectors of M^-1 P for P from LTC_PolygonToLocalUnclipped,
-// pointing toward the polygon: |F| is its form factor seen head-on, F.z its (signed,
-// unclipped) form factor against the LTC's cosine (Arvo 1995).
-RTPBR_FN rtpbr_float3 LTC_FormFactorVector(LtcLocalPolygon local, rtpbr_float4 ltc1) {
-    rtpbr_float3 F = RTPBR_F3(0.0f);
-    if (local.count < 3)
-        return F;
-    rtpbr_float3x3 minv = LTC_InverseMatrix(ltc1);
-    for (int i = 0; i < RTPBR_LTC_CLIP_VERTICES; i++) {
-        if (i < local.count) {
-            rtpbr_float3 b = i + 1 < local.count ? local.v[i + 1] : local.v[0];
-            F += LTC_EdgeIntegral(LTC_SafeNormalize(rtpbr_mul(minv, local.v[i])), LTC_SafeNormalize(rtpbr_mul(minv, b)));
-        }
-    }
-    // Local polygons appear clockwise from P, which makes F point toward them; a transform
-    // with a negative determinant mirrors the orientation.
-    float det = ltc1.x * ltc1.w - ltc1.y * ltc1.z;
-    return det < 0.0f ? -F : F;
-}
-
-// Hill & Heitz 2016: the horizon-clipped form factor of the sphere whose vector form factor
-// is F, from sphereLut = ltc2.w fetched at LTC_SphereLutCoord(F).
-RTPBR_FN float LTC_SphereFormFactor(rtpbr_float3 F, float sphereLut) {
-    return min(rtpbr_pos(length(F) * sphereLut), 1.0f);
-}
-
-// Hill & Heitz 2016 (the cheap form of their course code): max((|F|^2 + F.z) / (|F| + 1), 0).
-// Exact for a sphere entirely above the horizon.
-RTPBR_FN float LTC_SphereFormFactorApprox(rtpbr_float3 F) {
-    float l = length(F);
-    return min(rtpbr_pos((l * l + F.z) / (l + 1.0f)), 1.0f);
-}
-
-// LTC_Identity() for Lambertian diffuse. Exact clipping unless RTPBR_LTC_CLIPLESS.
+// LTC_Identity() for Lambertian diffuse. With RTPBR_LTC_CLIPLESS 1 ltc_clipless.h defines it.
+#if !RTPBR_LTC_CLIPLESS
 RTPBR_FN float LTC_EvaluatePolygon(rtpbr_float3 N, rtpbr_float3 V, rtpbr_float3 P, LtcPolygon poly, rtpbr_float4 ltc1, bool twoSided) {
-    rtpbr_float3x3 frame = LTC_Frame(N, V);
-#if RTPBR_LTC_CLIPLESS
-    return LTC_HorizonFraction(LTC_SphereFormFactorApprox(LTC_FormFactorVector(LTC_PolygonToLocalUnclipped(frame, P, poly, twoSided), ltc1)),
-                               LTC_HorizonMass(LTC_InverseMatrix(ltc1)));
-#else
-    return LTC_IntegrateLocal(LTC_PolygonToLocal(frame, P, poly, twoSided), ltc1);
-#endif
+    return LTC_IntegrateLocal(LTC_PolygonToLocal(LTC_Frame(N, V), P, poly, twoSided), ltc1);
 }
+#endif
 
 // ---- Fresnel -------------------------------------------------------------------------------
-
 // Hill & Heitz 2016: with Schlick's F = f0 + (f90 - f0)(1 - VoH)^5, the integral of f F cos is
 // f0 * norm + (f90 - f0) * fresnel exactly (norm, fresnel = ltc2.xy).
 RTPBR_FN rtpbr_float3 LTC_FresnelScale(rtpbr_float4 ltc2, rtpbr_float3 f0, float f90) {

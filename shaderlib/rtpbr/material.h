@@ -7,7 +7,10 @@
 //
 // The rules (each one, once):
 //   roughness   perceptual roughness r is clamped to [RTPBR_MATERIAL_MIN_ROUGHNESS, 1] (NaN:
-//               the floor), alpha = r^2, for the base lobe and the KHR coat alike. The floor is
+//               the floor), alpha = r^2, for the base lobe and the KHR coat alike: once, here
+//               (the roughnesses derived from alphas, tableRoughness and Disney's coat, are
+//               floored once where derived); surface.h and area_light.h square them as they
+//               are. docs/materials.md lists the clamps hop by hop. The floor is
 //               Filament's (0.045, alpha ~0.002: alpha^2 stays a normal float, and the LTC and
 //               Kulla-Conty tables start there). RTPBR_MIN_ALPHA (config.h) is the NDFs' own
 //               numerical guard below it, not a material rule.
@@ -66,9 +69,9 @@ struct MaterialInputs {
     float ior;                  // KHR_materials_ior (0: F = 1 everywhere)
     float specularFactor;       // KHR_materials_specular
     rtpbr_float3 specularColor; // KHR_materials_specular (may exceed 1)
-    float clearcoat;            // KHR_materials_clearcoat clearcoatFactor
+    float clearcoatFactor;      // KHR_materials_clearcoat clearcoatFactor
     float clearcoatRoughness;   // KHR_materials_clearcoat clearcoatRoughnessFactor (perceptual)
-    rtpbr_float3 sheenColor;    // KHR_materials_sheen sheenColorFactor
+    rtpbr_float3 sheenColorFactor; // KHR_materials_sheen sheenColorFactor
     float sheenRoughness;       // KHR_materials_sheen sheenRoughnessFactor (perceptual)
     float anisotropyStrength;   // KHR_materials_anisotropy
     // Disney (model RTPBR_MATERIAL_MODEL_DISNEY): its baseColor, metallic and roughness are
@@ -84,7 +87,8 @@ struct MaterialParams {
     float metallic;             // [0, 1]
     float roughness;            // perceptual, [RTPBR_MATERIAL_MIN_ROUGHNESS, 1]
     rtpbr_float2 alphas;        // (alpha_t along the anisotropy direction, alpha_b across it)
-    float tableRoughness;       // sqrt(sqrt(alpha_t alpha_b)) floored: isotropic table lookups
+    float tableRoughness;       // sqrt(sqrt(alpha_t alpha_b)), floored again (rounding; Disney's
+                                //   alpha split): isotropic table lookups, alpha = its square
     float specularWeight;       // KHR specularFactor in [0, 1] (Disney: 1)
     float eta;                  // dielectric IOR >= 1 (exact Fresnel, the E_F tables)
     rtpbr_float3 f0;            // Schlick F0 and F90 of the specular lobe (metal and dielectric
@@ -123,7 +127,8 @@ RTPBR_FN float Material_DielectricF0(float ior) {
 }
 
 // Burley 2012 (disney.h): the inputs' Disney parameters with the shared base colour, metallic
-// and roughness (floored), sanitised.
+// and roughness (floored), sanitised. Any input; Material_Resolve builds the same from its
+// already clamped base colour, metallic and roughness (each clamped once there).
 RTPBR_FN DisneyMaterial Material_DisneyParams(MaterialInputs m) {
     DisneyMaterial d = m.disney;
     d.baseColor = m.baseColor;
@@ -135,10 +140,16 @@ RTPBR_FN DisneyMaterial Material_DisneyParams(MaterialInputs m) {
 RTPBR_FN MaterialParams Material_Resolve(MaterialInputs m) {
     MaterialParams p;
     p.disney = m.model == RTPBR_MATERIAL_MODEL_DISNEY;
-    p.dm = Material_DisneyParams(m);
+    // The library's one roughness clamp (and base colour's, metallic's) on the way in.
     p.baseColor = Material_Clamp3(m.baseColor, 0.0f, 1.0f);
     p.metallic = Material_Clamp(m.metallic, 0.0f, 1.0f);
     p.roughness = Material_PerceptualRoughness(m.roughness);
+    // Material_DisneyParams without clamping the shared three again: Burley's own parameters
+    // sanitised (Disney_SanitizeMaterial's clamps of the three are overwritten, so dropped).
+    p.dm = Disney_SanitizeMaterial(m.disney);
+    p.dm.baseColor = p.baseColor;
+    p.dm.metallic = p.metallic;
+    p.dm.roughness = p.roughness;
     float alpha = p.roughness * p.roughness;
 
     // KHR_materials_anisotropy: alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha.
@@ -162,13 +173,13 @@ RTPBR_FN MaterialParams Material_Resolve(MaterialInputs m) {
     // The coat: KHR_materials_clearcoat, or Disney's GTR1 coat (Burley 2012, sec. 5.4).
     float khrCoatRoughness = Material_PerceptualRoughness(m.clearcoatRoughness);
     float disneyCoatAlpha = Disney_ClearcoatAlpha(p.dm);
-    p.coat = p.disney ? RTPBR_DISNEY_CLEARCOAT_SCALE * p.dm.clearcoat : Material_Clamp(m.clearcoat, 0.0f, 1.0f);
+    p.coat = p.disney ? RTPBR_DISNEY_CLEARCOAT_SCALE * p.dm.clearcoat : Material_Clamp(m.clearcoatFactor, 0.0f, 1.0f);
     p.coatAlpha = p.disney ? disneyCoatAlpha : khrCoatRoughness * khrCoatRoughness;
     p.coatRoughness = p.disney ? Material_PerceptualRoughness(sqrt(disneyCoatAlpha)) : khrCoatRoughness;
     p.coatAttenuates = !p.disney;
 
     // KHR_materials_sheen (Disney's sheen is part of dm).
-    p.sheenColor = p.disney ? RTPBR_F3(0.0f) : Material_Clamp3(m.sheenColor, 0.0f, 1.0f);
+    p.sheenColor = p.disney ? RTPBR_F3(0.0f) : Material_Clamp3(m.sheenColorFactor, 0.0f, 1.0f);
     p.sheenRoughness = Material_Clamp(m.sheenRoughness, 0.0f, 1.0f);
     return p;
 }

@@ -21,6 +21,8 @@ RTPBR_FN float Alpha_Clamp(float alpha) {
 }
 
 // Burley 2012, "Physically-Based Shading at Disney": alpha = perceptual roughness squared.
+// Any input: r clamped to [0, 1] (NaN, negatives: 0), alpha to [RTPBR_MIN_ALPHA, 1]. The
+// library squares a roughness Material_Resolve has clamped directly, without this.
 RTPBR_FN float Alpha_FromPerceptual(float perceptualRoughness) {
     float r = rtpbr_saturate(perceptualRoughness > 0.0f ? perceptualRoughness : 0.0f);
     return Alpha_Clamp(r * r);

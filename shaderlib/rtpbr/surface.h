@@ -7,7 +7,7 @@
 //   metallic-roughness: f = (1 - c Fc(NoV)) [metallic f_metal + (1 - metallic) f_dielectric]
 //                           + c f_coat,
 //     f_metal = GGX, Schlick(F0 = baseColor, 1) + its Kulla-Conty lobe,
-//     f_dielectric = w GGX Schlick(F0(ior) specularColor, 1) + w F_ms f_ms
+//     f_dielectric = w GGX Schlick(F0(ior) specularColor, 1) + w F_ms f_ms (w: specularWeight)
 //                    + baseColor (1 - Es(mu_o)) (1 - Es(mu_i)) / (pi (1 - Es_avg)),
 //     Es = w (E_F + F_ms (1 - E)) (KC_SpecularAlbedoDielectric; E_F with exact Fresnel),
 //     f_coat = GGX(clearcoat roughness), Schlick(0.04, 1) + its Kulla-Conty lobe;
@@ -51,29 +51,29 @@ struct ShadingSurface {
     float metallic;
     float roughness;      // perceptual
     float NoV;
-    float specR;          // perceptual roughness of the specular lobe's tables, sqrt(sqrt(at ab))
+    float tableRoughness; // MaterialParams.tableRoughness: the specular lobe's tables' axis
     rtpbr_float3 anisoDir; // anisotropy direction (world, unit) or 0
     float anisoK;         // sqrt(alpha_t / alpha_b) >= 1; 1: isotropic
     rtpbr_float2 alphas;  // (alpha_t, alpha_b) of the specular lobe (isotropic: both sqrt(at ab))
-    float w;              // dielectric specular weight (KHR specularFactor)
+    float specularWeight; // dielectric specular weight (KHR specularFactor)
     float eta;            // dielectric IOR
     rtpbr_float3 f0;      // Schlick F0 and F90 of the specular lobe (metal and dielectric mixed)
     float f90;
     rtpbr_float3 diffuseColor; // (1 - metallic) baseColor
     float coat;           // coat weight (Disney: 0.25 clearcoat), 0: none
-    float coatR;          // its perceptual roughness (Disney: sqrt of the GTR1 alpha)
+    float coatRoughness;  // its perceptual roughness (Disney: sqrt of the GTR1 alpha)
     float baseAttenuation; // 1 - c Fc(NoV) for KHR clearcoat; 1 for Disney's
     // Kulla-Conty terms (zero without RTPBR_MULTISCATTER)
     float Eo, Eavg;       // E(NoV), E_avg of the specular lobe
     float FmsDielectric;  // F_ms of the dielectric layer
     rtpbr_float3 msColor; // colour of the specular lobe's f_ms
     float EFavg;          // E_F_avg of the dielectric layer
-    float Eso, EsAvg;     // the layer's albedo at NoV and on average (w included)
+    float Eso, EsAvg;     // the layer's albedo at NoV and on average (specularWeight included)
     float Eoc, Eavgc;     // E(NoV), E_avg of the coat
     rtpbr_float3 msCoat;  // colour of the coat's f_ms (coat weight included)
     bool sheen;           // KHR sheen layer present
     rtpbr_float3 sheenColor;
-    float sheenR;         // its perceptual roughness
+    float sheenRoughness; // its perceptual roughness
     float EsheenO;        // E_sheen(NoV)
 };
 
@@ -88,52 +88,53 @@ RTPBR_FN ShadingSurface Surface_Resolve(MaterialParams p, float NoV, rtpbr_float
     s.metallic = p.metallic;
     s.roughness = p.roughness;
     s.NoV = NoV;
-    s.specR = p.tableRoughness;
+    s.tableRoughness = p.tableRoughness;
     // Anisotropic lobes: alpha_t along the given direction; without one, isotropic.
     bool hasDirection = dot(anisoDir, anisoDir) > 0.25f;
     s.anisoDir = hasDirection ? normalize(anisoDir) : RTPBR_F3(0.0f);
     s.anisoK = hasDirection && p.alphas.y > 0.0f ? sqrt(max(p.alphas.x / p.alphas.y, 1.0f)) : 1.0f;
-    float isotropicAlpha = Alpha_FromPerceptual(s.specR);
+    // In [RTPBR_MATERIAL_MIN_ROUGHNESS, 1] (Material_Resolve): alpha = r^2 without a second clamp.
+    float isotropicAlpha = s.tableRoughness * s.tableRoughness;
     s.alphas = s.anisoK > 1.0f ? clamp(p.alphas, RTPBR_F2(RTPBR_MIN_ALPHA), RTPBR_F2(1.0f))
                                : rtpbr_float2(isotropicAlpha, isotropicAlpha);
-    s.w = p.specularWeight;
+    s.specularWeight = p.specularWeight;
     s.eta = p.eta;
     s.f0 = p.f0;
     s.f90 = p.f90;
     s.diffuseColor = p.diffuseColor;
     s.coat = p.coat;
-    s.coatR = p.coatRoughness;
+    s.coatRoughness = p.coatRoughness;
     s.baseAttenuation = Material_BaseAttenuation(p, NoV);
 
-    rtpbr_float2 eo = Host_TableE_EF(NoV, s.specR, s.eta);
+    rtpbr_float2 eo = Host_TableE_EF(NoV, s.tableRoughness, s.eta);
     s.Eo = eo.x;
-    s.Eavg = Host_TableEavg(s.specR);
+    s.Eavg = Host_TableEavg(s.tableRoughness);
 #if RTPBR_MULTISCATTER
     s.FmsDielectric = KC_FmsColor(RTPBR_F3(F_Avg_Dielectric(s.eta)), s.Eavg).x;
     s.msColor = s.disney ? KC_FmsColor(F_Avg_Schlick(s.f0, 1.0f), s.Eavg)
                          : s.metallic * KC_FmsColor(F_Avg_Schlick(s.baseColor, 1.0f), s.Eavg) +
-                               RTPBR_F3((1.0f - s.metallic) * s.w * s.FmsDielectric);
+                               RTPBR_F3((1.0f - s.metallic) * s.specularWeight * s.FmsDielectric);
 #else
     s.FmsDielectric = 0.0f;
     s.msColor = RTPBR_F3(0.0f);
 #endif
     // The layered base (metallic-roughness): the specular layer's albedo at mu_o and on average.
-    bool layered = !s.disney && s.w > 0.0f;
-    s.EFavg = layered ? Host_TableEFavg(s.specR, s.eta) : 0.0f;
-    s.Eso = layered ? s.w * KC_SpecularAlbedoDielectric(eo.y, s.Eo, s.FmsDielectric) : 0.0f;
-    s.EsAvg = layered ? s.w * KC_SpecularAlbedoDielectric(s.EFavg, s.Eavg, s.FmsDielectric) : 0.0f;
+    bool layered = !s.disney && s.specularWeight > 0.0f;
+    s.EFavg = layered ? Host_TableEFavg(s.tableRoughness, s.eta) : 0.0f;
+    s.Eso = layered ? s.specularWeight * KC_SpecularAlbedoDielectric(eo.y, s.Eo, s.FmsDielectric) : 0.0f;
+    s.EsAvg = layered ? s.specularWeight * KC_SpecularAlbedoDielectric(s.EFavg, s.Eavg, s.FmsDielectric) : 0.0f;
     bool coated = s.coat > 0.0f;
-    s.Eoc = coated ? Host_TableE(NoV, s.coatR) : 1.0f;
-    s.Eavgc = coated ? Host_TableEavg(s.coatR) : 1.0f;
+    s.Eoc = coated ? Host_TableE(NoV, s.coatRoughness) : 1.0f;
+    s.Eavgc = coated ? Host_TableEavg(s.coatRoughness) : 1.0f;
 #if RTPBR_MULTISCATTER
     s.msCoat = s.coat * KC_FmsColor(F_Avg_Schlick(RTPBR_F3(RTPBR_MATERIAL_COAT_F0), 1.0f), s.Eavgc);
 #else
     s.msCoat = RTPBR_F3(0.0f);
 #endif
     s.sheenColor = p.sheenColor;
-    s.sheenR = p.sheenRoughness;
+    s.sheenRoughness = p.sheenRoughness;
     s.sheen = max(s.sheenColor.x, max(s.sheenColor.y, s.sheenColor.z)) > 0.0f;
-    s.EsheenO = s.sheen ? Host_TableSheenE(NoV, s.sheenR) : 0.0f;
+    s.EsheenO = s.sheen ? Host_TableSheenE(NoV, s.sheenRoughness) : 0.0f;
     return s;
 }
 

@@ -18,6 +18,8 @@
 #include "rtpbr/sampling.h"
 #include "rtpbr/kulla_conty.h"
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_anisotropy.h"
+#include "rtpbr/ltc_clipless.h"
 #include "rtpbr/ltc_corrections.h"
 #include "rtpbr/ltc_shapes.h"
 #include "rtpbr/disney.h"

@@ -176,13 +176,13 @@ static void bad_materials(void **state)
     rtpbr_context *ctx = CTX;
     float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     rtpbr_mesh_desc mesh = {.positions = p, .vertex_count = 3};
-    rtpbr_material_desc good = {.base_color = {0.5f, 0.5f, 0.5f}, .roughness = 0.5f, .clearcoat = 2.0f,
-                                .sheen_color = {1.5f, 0.0f, 0.0f}, .anisotropy_strength = -1.0f};
+    rtpbr_material_desc good = {.base_color = {0.5f, 0.5f, 0.5f}, .roughness = 0.5f, .clearcoat_factor = 2.0f,
+                                .sheen_color_factor = {1.5f, 0.0f, 0.0f}, .anisotropy_strength = -1.0f};
     rtpbr_material_desc bad[6];
     for (int i = 0; i < 6; ++i) bad[i] = good;
     bad[0].clearcoat_roughness = NAN;
     bad[1].anisotropy_rotation = INFINITY;
-    bad[2].sheen_color[2] = NAN;
+    bad[2].sheen_color_factor[2] = NAN;
     bad[3].model = (rtpbr_material_model)7;
     bad[4].model = RTPBR_MATERIAL_DISNEY;
     bad[4].disney.sheen_tint = NAN;

@@ -162,7 +162,7 @@ static void clearcoat_layer(void **state)
     double NoV = cos(0.8);
     rtpbr_material_desc lambert = test_lambert_material;
     rtpbr_material_desc coated = lambert;
-    coated.clearcoat = 1.0f;
+    coated.clearcoat_factor = 1.0f;
     coated.clearcoat_roughness = 0.3f;
     rtpbr_material_desc coat_only = coated;
     coat_only.base_color[0] = coat_only.base_color[1] = coat_only.base_color[2] = 0.0f;
@@ -248,13 +248,13 @@ static void sheen_albedo_check(void **state)
     double worst = 0.0;
     for (int i = 0; i < 2; ++i)
         for (int j = 0; j < 2; ++j) {
-            rtpbr_material_desc m = {.roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR, .sheen_color = {1.0f, 0.5f, 0.25f},
+            rtpbr_material_desc m = {.roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR, .sheen_color_factor = {1.0f, 0.5f, 0.25f},
                                      .sheen_roughness = roughness[i]};
             float got[3];
             render_centre(env, &m, &sky, 1, (view){angles[j], 0.3f}, got);
             double albedo = sheen_albedo(cos(angles[j]), roughness[i]);
             for (int c = 0; c < 3; ++c) {
-                double expect = m.sheen_color[c] * albedo * ff;
+                double expect = m.sheen_color_factor[c] * albedo * ff;
                 double rel = fabs(got[c] - expect) / expect;
                 if (rel > worst) worst = rel;
             }

@@ -48,7 +48,7 @@ inline void checkAlbedo(const rtpbr_oracle::SurfaceMaterial &m, bool single, rtp
         if (checkPdfMis && bsdf.sample(rng, &s))
             assert_true(s.pdfMis > 0.0f && std::isfinite(s.pdfMis));
     }
-    float lobeAlpha = m.clearcoat > 0.0f ? m.clearcoatAlpha : m.alphaX;
+    float lobeAlpha = m.coat > 0.0f ? m.coatAlpha : m.alphaX;
     Mixture mix{std::max(lobeAlpha, 0.05f), wo};
     for (int i = 0; i < 100000; i++) {
         vec3 wi = mix.sample(rng);

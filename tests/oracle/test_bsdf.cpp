@@ -10,7 +10,7 @@ using namespace rtpbr_oracle;
 
 namespace {
 
-SurfaceMaterial mat(vec3 base, float metallic, float alpha, float clearcoat, float clearcoatAlpha) {
+SurfaceMaterial mat(vec3 base, float metallic, float alpha, float coat, float coatAlpha) {
     SurfaceMaterial m;
     m.baseColor = base;
     m.metallic = metallic;
@@ -18,8 +18,8 @@ SurfaceMaterial mat(vec3 base, float metallic, float alpha, float clearcoat, flo
     m.tableRoughness = std::sqrt(alpha);
     m.specularWeight = 1.0f;
     m.layer = &layer15();
-    m.clearcoat = clearcoat;
-    m.clearcoatAlpha = clearcoatAlpha;
+    m.coat = coat;
+    m.coatAlpha = coatAlpha;
     return m;
 }
 

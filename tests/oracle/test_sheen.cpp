@@ -106,8 +106,8 @@ void test_sampling_matches_evaluation(void **) {
                 m.tableRoughness = std::sqrt(c.alpha);
                 m.specularWeight = 1.0f;
                 m.layer = &layer15();
-                m.clearcoat = c.clearcoat;
-                m.clearcoatAlpha = 0.05f;
+                m.coat = c.clearcoat;
+                m.coatAlpha = 0.05f;
                 m.sheenColor = c.sheen;
                 m.sheenRoughness = c.sheenRoughness;
                 checkAlbedo(m, single, wo, seed++, true);

@@ -14,6 +14,8 @@
 
 #include "rtpbr/disney.h"
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_anisotropy.h"
+#include "rtpbr/ltc_clipless.h"
 #include "rtpbr/ltc_corrections.h"
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"

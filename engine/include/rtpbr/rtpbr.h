@@ -286,7 +286,8 @@ typedef struct rtpbr_material_desc {
     float base_color[3];     // linear albedo (glTF baseColorFactor.rgb); zero is black
     float metallic;          // [0, 1], taken literally (zero: dielectric)
     float roughness;         // perceptual roughness r in [0, 1] (alpha = r^2); zero: RTPBR_MIN_ROUGHNESS
-    float emission[3];       // emitted radiance (glTF emissiveFactor * emissive_strength)
+    float emission[3];       // emitted radiance: glTF emissiveFactor x KHR_materials_emissive_strength
+                             // (a product, so not named after either factor; the loader's name)
     float ior;               // dielectric index of refraction >= 1 (KHR_materials_ior); zero: 1.5
                              // (KHR's ior 0: RTPBR_MATERIAL_FRESNEL_ONE)
     float specular_factor;   // KHR_materials_specular specularFactor >= 0; zero: 1 (KHR's 0:
@@ -309,9 +310,10 @@ typedef struct rtpbr_material_desc {
     // transform; counter-clockwise is front), are culled in the G-buffer and let shadow rays
     // through; emission only on the front side.
     int double_sided;
-    // KHR_materials_clearcoat: a GGX coat (F0 0.04, f90 1) of weight clearcoat in [0, 1] over
-    // the whole material, which it attenuates by 1 - clearcoat F_coat(NoV). Zero: no coat.
-    float clearcoat;
+    // KHR_materials_clearcoat clearcoatFactor: a GGX coat (F0 0.04, f90 1) of weight
+    // clearcoat_factor in [0, 1] over the whole material, which it attenuates by
+    // 1 - clearcoat_factor F_coat(NoV). Zero: no coat.
+    float clearcoat_factor;
     float clearcoat_roughness; // perceptual; zero: RTPBR_MIN_ROUGHNESS
     // KHR_materials_anisotropy anisotropyStrength in [0, 1]: alpha_t = mix(alpha, 1, s^2)
     // along the anisotropy direction, alpha_b = alpha across it. The direction is the mesh's
@@ -320,21 +322,21 @@ typedef struct rtpbr_material_desc {
     // isotropic lobe of that alpha along the direction (engine/README.md).
     float anisotropy_strength;
     float anisotropy_rotation;
-    // KHR_materials_sheen: a Charlie sheen layer (Estevez & Kulla 2017) of this colour in
-    // [0, 1] over the material below the coat, which it scales by the KHR albedo scaling
-    // 1 - max(sheen_color) E_sheen. All zero: no sheen.
-    float sheen_color[3];
+    // KHR_materials_sheen sheenColorFactor: a Charlie sheen layer (Estevez & Kulla 2017) of this
+    // colour in [0, 1] over the material below the coat, which it scales by the KHR albedo
+    // scaling 1 - max(sheen_color_factor) E_sheen. All zero: no sheen.
+    float sheen_color_factor[3];
     float sheen_roughness;        // perceptual, [0, 1]
     // The extensions' textures (1-based indices into rtpbr_gpu_scene_desc.textures, 0: none),
     // each multiplying its factor above per pixel in the channels glTF names, each with its
     // KHR_texture_transform. A scene whose materials use them renders up to three more
     // G-buffer attachments (engine/README.md); otherwise they cost nothing. Disney materials
     // ignore them, as they ignore the factors.
-    uint32_t clearcoat_texture;           // r: x clearcoat (linear)
+    uint32_t clearcoat_texture;           // r: x clearcoat_factor (linear)
     uint32_t clearcoat_roughness_texture; // g: x clearcoat_roughness (linear)
-    uint32_t sheen_color_texture;         // rgb: x sheen_color (give it srgb = 1)
+    uint32_t sheen_color_texture;         // rgb: x sheen_color_factor (give it srgb = 1)
     uint32_t sheen_roughness_texture;     // a: x sheen_roughness (linear)
-    uint32_t specular_texture;            // a: x specular (linear)
+    uint32_t specular_texture;            // a: x specular_factor (linear)
     uint32_t specular_color_texture;      // rgb: x specular_color (give it srgb = 1)
     rtpbr_texture_transform clearcoat_texture_transform;
     rtpbr_texture_transform clearcoat_roughness_texture_transform;

@@ -22,6 +22,7 @@
 #include "rtpbr/microfacet.h"
 #include "rtpbr/sampling.h"
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_anisotropy.h"
 #include "rtpbr/ltc_corrections.h"
 #include "rtpbr/material.h"
 #include "rtpbr/kulla_conty.h"
@@ -246,9 +247,9 @@ RTPBR_FN MaterialInputs rtpbr_test_material(rtpbr_float4 a, rtpbr_float4 b, int 
     m.ior = b.w < 0.4f ? rtpbr_test_lerp(1.0f, 3.0f, b.z) : 0.0f;
     m.specularFactor = a.w;
     m.specularColor = rtpbr_float3(2.0f * b.z, b.x, a.y);
-    m.clearcoat = a.x;
+    m.clearcoatFactor = a.x;
     m.clearcoatRoughness = a.w;
-    m.sheenColor = rtpbr_float3(b.y, a.z, a.x);
+    m.sheenColorFactor = rtpbr_float3(b.y, a.z, a.x);
     m.sheenRoughness = b.x;
     m.anisotropyStrength = a.w;
     m.disney.baseColor = RTPBR_F3(0.0f); // ignored by the resolve: the fields above are used
@@ -271,9 +272,9 @@ RTPBR_FN MaterialInputs rtpbr_test_material(rtpbr_float4 a, rtpbr_float4 b, int 
         m.ior = h;
         m.specularFactor = h;
         m.specularColor = h3;
-        m.clearcoat = h;
+        m.clearcoatFactor = h;
         m.clearcoatRoughness = h;
-        m.sheenColor = h3;
+        m.sheenColorFactor = h3;
         m.sheenRoughness = h;
         m.anisotropyStrength = h;
         m.disney.subsurface = h;

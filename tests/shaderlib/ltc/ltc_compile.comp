@@ -1,10 +1,12 @@
 #version 450
 // Compile check of shaderlib/rtpbr/ltc.h as GLSL (and, with RTPBR_HLSL, as HLSL: see
-// ltc_compile.hlsl). Calls every public function of ltc.h so that each is type-checked;
-// ltc_corrections.h is compiled beside it (glslang checks uncalled functions too), and
-// ltc_shapes.h is called at the end.
+// ltc_compile.hlsl). Calls every public function of ltc.h, ltc_anisotropy.h, ltc_clipless.h
+// and ltc_shapes.h so that each is type-checked; ltc_corrections.h is compiled beside them
+// (glslang checks uncalled functions too).
 #extension GL_GOOGLE_include_directive : require
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_anisotropy.h"
+#include "rtpbr/ltc_clipless.h"
 #include "rtpbr/ltc_corrections.h"
 #include "rtpbr/ltc_shapes.h"
 layout(local_size_x = 1) in;

@@ -1,6 +1,9 @@
-// Compile check of shaderlib/rtpbr/ltc.h, ltc_corrections.h and ltc_shapes.h as HLSL (glslang's HLSL front end).
+// Compile check of shaderlib/rtpbr/ltc.h, ltc_anisotropy.h, ltc_clipless.h, ltc_corrections.h
+// and ltc_shapes.h as HLSL (glslang's HLSL front end).
 #define RTPBR_HLSL 1
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_anisotropy.h"
+#include "rtpbr/ltc_clipless.h"
 #include "rtpbr/ltc_corrections.h"
 #include "rtpbr/ltc_shapes.h"
 RWStructuredBuffer<float4> result : register(u0);

@@ -19,6 +19,7 @@ extern "C" {
 #include <limits>
 
 #include "rtpbr/ltc.h"
+#include "rtpbr/ltc_clipless.h"
 #include "ltc_reference.hpp"
 
 using namespace ltcref;

@@ -44,9 +44,9 @@ MaterialInputs plastic() {
     m.ior = 1.5f;
     m.specularFactor = 1.0f;
     m.specularColor = float3(1.0f);
-    m.clearcoat = 0.0f;
+    m.clearcoatFactor = 0.0f;
     m.clearcoatRoughness = 0.0f;
-    m.sheenColor = float3(0.0f);
+    m.sheenColorFactor = float3(0.0f);
     m.sheenRoughness = 0.0f;
     m.anisotropyStrength = 0.0f;
     m.disney = Disney_DefaultMaterial();
@@ -126,7 +126,7 @@ void test_roughness_floor(void **) {
     near(Material_PerceptualRoughness(0.3f), 0.3, 1e-7, "roughness kept");
     MaterialInputs m = plastic();
     m.roughness = 0.0f;
-    m.clearcoat = 1.0f;
+    m.clearcoatFactor = 1.0f;
     m.clearcoatRoughness = 0.0f;
     MaterialParams p = Material_Resolve(m);
     near(p.alphas.x, 0.045 * 0.045, 1e-8, "alpha at the floor");
@@ -152,7 +152,7 @@ void test_khr_anisotropy(void **) {
 // by 1 - c Schlick(0.04, 1, NoV).
 void test_khr_clearcoat(void **) {
     MaterialInputs m = plastic();
-    m.clearcoat = 0.6f;
+    m.clearcoatFactor = 0.6f;
     m.clearcoatRoughness = 0.3f;
     MaterialParams p = Material_Resolve(m);
     near(p.coat, 0.6, 1e-7, "coat weight");
@@ -167,7 +167,7 @@ void test_khr_clearcoat(void **) {
 // KHR_materials_sheen: colour and roughness clamped to [0, 1].
 void test_khr_sheen(void **) {
     MaterialInputs m = plastic();
-    m.sheenColor = float3(0.5f, 2.0f, -1.0f);
+    m.sheenColorFactor = float3(0.5f, 2.0f, -1.0f);
     m.sheenRoughness = 0.7f;
     MaterialParams p = Material_Resolve(m);
     near(p.sheenColor.x, 0.5, 1e-7, "sheen colour");
@@ -203,8 +203,8 @@ void test_disney(void **) {
     p = Material_Resolve(m);
     near(p.f0.y, 0.4, 1e-7, "Disney metal F0 = base colour");
     // KHR fields are ignored by the Disney model and vice versa.
-    m.clearcoat = 1.0f;
-    m.sheenColor = float3(1.0f);
+    m.clearcoatFactor = 1.0f;
+    m.sheenColorFactor = float3(1.0f);
     near(Material_Resolve(m).coat, 0.1, 1e-7, "KHR clearcoat ignored by Disney");
     MaterialInputs k = plastic();
     k.disney.clearcoat = 1.0f;
@@ -219,9 +219,9 @@ void test_hostile(void **) {
             MaterialInputs m;
             m.model = model;
             m.baseColor = float3(h);
-            m.metallic = m.roughness = m.ior = m.specularFactor = m.clearcoat = m.clearcoatRoughness = h;
+            m.metallic = m.roughness = m.ior = m.specularFactor = m.clearcoatFactor = m.clearcoatRoughness = h;
             m.sheenRoughness = m.anisotropyStrength = h;
-            m.specularColor = m.sheenColor = float3(h);
+            m.specularColor = m.sheenColorFactor = float3(h);
             m.disney = Disney_DefaultMaterial();
             m.disney.subsurface = m.disney.specular = m.disney.specularTint = m.disney.anisotropic = h;
             m.disney.sheen = m.disney.sheenTint = m.disney.clearcoat = m.disney.clearcoatGloss = h;
