@@ -8,6 +8,7 @@
 // return (ltc.h's conventions). Above the horizon the shapes are exact (closed forms); across
 // it the sphere proxy's error is measured per case and held at the bound printed.
 #include "rtpbr/ltc_shapes.h"
+#include "rtpbr/ltc_clipless.h"
 
 extern "C" {
 #include "test_main.h"
@@ -266,5 +267,17 @@ void test_one_sided_and_invariance(void **) {
 
 } // namespace
 
+void test_sphere_cap_against_the_approximation(void **) {
+    // The cap's exact form factor against the cheap proxy (ltc_clipless.h) as its comment says:
+    // both exact on the normal; off it, above the horizon, the proxy reads high.
+    float3 onAxis(0.0f, 0.0f, 0.25f); // sin^2 sigma = 0.25, centre on the normal
+    assert_float_equal(rtpbr::LTC_SphereCapFormFactor(onAxis), 0.25f, 1e-6f);
+    assert_float_equal(rtpbr::LTC_SphereFormFactorApprox(onAxis), 0.25f, 1e-6f);
+    float3 off(0.25f * std::sin(1.0471976f), 0.0f, 0.25f * std::cos(1.0471976f)); // 60 degrees off
+    assert_float_equal(rtpbr::LTC_SphereCapFormFactor(off), 0.125f, 1e-6f);
+    assert_float_equal(rtpbr::LTC_SphereFormFactorApprox(off), 0.15f, 1e-6f);
+}
+
 RTPBR_TEST_MAIN(cmocka_unit_test(test_disk_on_axis_closed_form), cmocka_unit_test(test_sphere_above_horizon_closed_form),
-                cmocka_unit_test(test_against_quadrature), cmocka_unit_test(test_one_sided_and_invariance))
+                cmocka_unit_test(test_against_quadrature), cmocka_unit_test(test_one_sided_and_invariance),
+                cmocka_unit_test(test_sphere_cap_against_the_approximation))
