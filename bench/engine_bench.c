@@ -82,9 +82,9 @@ static rtpbr_result make_scene(rtpbr_context *ctx, bench_scene kind, int n, rtpb
                                      .znear = 0.1f, .zfar = 200.0f};
     } else if (kind == SCENE_FULL) {
         material.clearcoat_factor = 1.0f;
-        material.clearcoat_roughness = 0.1f;
+        material.clearcoat_roughness_factor = 0.1f;
         material.sheen_color_factor[0] = material.sheen_color_factor[1] = material.sheen_color_factor[2] = 0.5f;
-        material.sheen_roughness = 0.5f;
+        material.sheen_roughness_factor = 0.5f;
         material.anisotropy_strength = 0.6f;
     }
     rtpbr_mesh_desc mesh = {.positions = plane, .indices = indices, .vertex_count = 4, .index_count = 6};

@@ -74,9 +74,9 @@ MaterialInputs material_inputs(GBufferSurface g, Material m)
     in_.specularFactor = m.specular_factor * g.specular.a;
     in_.specularColor = m.specular_color * g.specular.rgb;
     in_.clearcoatFactor = m.clearcoat_factor * g.coat.x;
-    in_.clearcoatRoughness = m.clearcoat_roughness * g.coat.y;
+    in_.clearcoatRoughness = m.clearcoat_roughness_factor * g.coat.y;
     in_.sheenColorFactor = m.sheen_color_factor * g.sheen.rgb;
-    in_.sheenRoughness = m.sheen_roughness * g.sheen.a;
+    in_.sheenRoughness = m.sheen_roughness_factor * g.sheen.a;
     in_.anisotropyStrength = m.anisotropy_strength;
     in_.disney.baseColor = g.baseColor;
     in_.disney.metallic = g.metallic;

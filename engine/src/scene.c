@@ -187,9 +187,9 @@ rtpbr_shader_material rtpbr_material_record(const rtpbr_material_desc *m)
     g.anisotropy_strength = m->anisotropy_strength;
     g.anisotropy_rotation = m->anisotropy_rotation;
     memcpy(g.sheen_color_factor, m->sheen_color_factor, sizeof g.sheen_color_factor);
-    g.sheen_roughness = m->sheen_roughness;
+    g.sheen_roughness_factor = m->sheen_roughness_factor;
     g.clearcoat_factor = m->clearcoat_factor;
-    g.clearcoat_roughness = m->clearcoat_roughness;
+    g.clearcoat_roughness_factor = m->clearcoat_roughness_factor;
     const rtpbr_disney_params *d = &m->disney;
     g.disney_subsurface = d->subsurface;
     g.disney_specular = m->flags & RTPBR_MATERIAL_DISNEY_NO_SPECULAR ? 0.0f : d->specular == 0.0f ? 0.5f : d->specular;
@@ -268,8 +268,8 @@ rtpbr_result rtpbr_material_validate(const rtpbr_context *ctx, const rtpbr_mater
     if (!rtpbr_finite(m->base_color, 3) || !rtpbr_finite(&m->metallic, 1) || !rtpbr_finite(&m->roughness, 1) ||
         !rtpbr_finite(m->emission, 3) || !rtpbr_finite(&m->ior, 1) || !rtpbr_finite(&m->specular_factor, 1) ||
         !rtpbr_finite(m->specular_color, 3) || !rtpbr_finite(&m->normal_scale, 1) ||
-        !rtpbr_finite(&m->clearcoat_factor, 1) || !rtpbr_finite(&m->clearcoat_roughness, 1) ||
-        !rtpbr_finite(&m->anisotropy_strength, 1) || !rtpbr_finite(&m->anisotropy_rotation, 1) || !rtpbr_finite(m->sheen_color_factor, 3) || !rtpbr_finite(&m->sheen_roughness, 1) ||
+        !rtpbr_finite(&m->clearcoat_factor, 1) || !rtpbr_finite(&m->clearcoat_roughness_factor, 1) ||
+        !rtpbr_finite(&m->anisotropy_strength, 1) || !rtpbr_finite(&m->anisotropy_rotation, 1) || !rtpbr_finite(m->sheen_color_factor, 3) || !rtpbr_finite(&m->sheen_roughness_factor, 1) ||
         !rtpbr_finite((const float *)&m->disney, sizeof m->disney / sizeof(float)) || !rtpbr_finite(&m->alpha, 1) ||
         !rtpbr_finite(&m->alpha_cutoff, 1)) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "material %u has a NaN or infinite parameter", index);

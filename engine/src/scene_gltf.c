@@ -19,9 +19,9 @@
 //   texture wrap_s/t, nearest, min_filter -> the texture's sampler (minFilter absent:
 //                               trilinear; mipmaps built at upload)
 //   normal texture, normal_scale -> the same (tangents from the loader)
-//   clearcoat.*               -> clearcoat_factor, clearcoat_roughness (KHR_materials_clearcoat)
+//   clearcoat.*               -> clearcoat_factor, clearcoat_roughness_factor (KHR_materials_clearcoat)
 //   anisotropy.*              -> anisotropy_strength, anisotropy_rotation (KHR_materials_anisotropy)
-//   sheen.*                   -> sheen_color_factor, sheen_roughness (KHR_materials_sheen)
+//   sheen.*                   -> sheen_color_factor, sheen_roughness_factor (KHR_materials_sheen)
 //   clearcoat, clearcoat roughness, sheen colour and roughness, specular and specular colour
 //                             textures -> the *_texture of the same name, each with its
 //                               transform (metallic-roughness materials; clearcoatNormalTexture
@@ -104,11 +104,11 @@ void rtpbr_material_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint
     d->normal_scale = m->normal_scale;
     if (!m->has_disney) {
         d->clearcoat_factor = m->clearcoat.clearcoat_factor;
-        d->clearcoat_roughness = m->clearcoat.clearcoat_roughness_factor;
+        d->clearcoat_roughness_factor = m->clearcoat.clearcoat_roughness_factor;
         d->anisotropy_strength = m->anisotropy.anisotropy_strength;
         d->anisotropy_rotation = m->anisotropy.anisotropy_rotation;
         memcpy(d->sheen_color_factor, m->sheen.sheen_color_factor, sizeof d->sheen_color_factor);
-        d->sheen_roughness = m->sheen.sheen_roughness_factor;
+        d->sheen_roughness_factor = m->sheen.sheen_roughness_factor;
         // The extensions' textures (the loader leaves them -1 where the extension is absent;
         // clearcoatNormalTexture is ignored, with the loader's warning).
         d->clearcoat_texture = texture_ref(loaded, m->clearcoat.clearcoat_texture);

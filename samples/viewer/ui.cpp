@@ -376,11 +376,11 @@ static void material_panel(app *a)
         e |= flagged_slider("specular", &m->specular_factor, 0.0f, 1.0f, &m->flags, RTPBR_MATERIAL_NO_SPECULAR);
         e |= ImGui::ColorEdit3("specular colour", m->specular_color, ImGuiColorEditFlags_Float);
         e |= ImGui::SliderFloat("clearcoat", &m->clearcoat_factor, 0.0f, 1.0f);
-        e |= ImGui::SliderFloat("clearcoat rough.", &m->clearcoat_roughness, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("clearcoat rough.", &m->clearcoat_roughness_factor, 0.0f, 1.0f);
         e |= ImGui::SliderFloat("anisotropy", &m->anisotropy_strength, 0.0f, 1.0f);
         e |= ImGui::SliderAngle("aniso. rotation", &m->anisotropy_rotation, -180.0f, 180.0f);
         e |= ImGui::ColorEdit3("sheen colour", m->sheen_color_factor, ImGuiColorEditFlags_Float);
-        e |= ImGui::SliderFloat("sheen roughness", &m->sheen_roughness, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("sheen roughness", &m->sheen_roughness_factor, 0.0f, 1.0f);
     }
     if (ImGui::ColorEdit3("emission", m->emission, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) e = true;
     if (e) app_material_edited(a);

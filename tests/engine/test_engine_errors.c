@@ -180,13 +180,13 @@ static void bad_materials(void **state)
                                 .sheen_color_factor = {1.5f, 0.0f, 0.0f}, .anisotropy_strength = -1.0f};
     rtpbr_material_desc bad[6];
     for (int i = 0; i < 6; ++i) bad[i] = good;
-    bad[0].clearcoat_roughness = NAN;
+    bad[0].clearcoat_roughness_factor = NAN;
     bad[1].anisotropy_rotation = INFINITY;
     bad[2].sheen_color_factor[2] = NAN;
     bad[3].model = (rtpbr_material_model)7;
     bad[4].model = RTPBR_MATERIAL_DISNEY;
     bad[4].disney.sheen_tint = NAN;
-    bad[5].sheen_roughness = -INFINITY;
+    bad[5].sheen_roughness_factor = -INFINITY;
     rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
                                                                      .materials = &good, .material_count = 1});
     rtpbr_gpu_scene_destroy(scene);

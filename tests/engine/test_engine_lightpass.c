@@ -38,8 +38,8 @@ typedef struct host_material { float base_metallic[4], emission_roughness[4]; } 
 static const rtpbr_material_desc materials[QUADS] = {
     {.base_color = {0.7f, 0.7f, 0.65f}, .roughness = 0.6f, .double_sided = 1},
     {.base_color = {0.955f, 0.638f, 0.538f}, .metallic = 1.0f, .roughness = 0.3f, .double_sided = 1},
-    {.base_color = {0.2f, 0.3f, 0.6f}, .roughness = 0.5f, .clearcoat_factor = 0.8f, .clearcoat_roughness = 0.1f,
-     .sheen_color_factor = {0.6f, 0.5f, 0.4f}, .sheen_roughness = 0.4f, .double_sided = 1},
+    {.base_color = {0.2f, 0.3f, 0.6f}, .roughness = 0.5f, .clearcoat_factor = 0.8f, .clearcoat_roughness_factor = 0.1f,
+     .sheen_color_factor = {0.6f, 0.5f, 0.4f}, .sheen_roughness_factor = 0.4f, .double_sided = 1},
     {.base_color = {0.8f, 0.4f, 0.2f}, .roughness = 0.4f, .metallic = 0.2f, .model = RTPBR_MATERIAL_DISNEY,
      .disney = {.subsurface = 0.3f, .sheen = 0.5f, .clearcoat = 0.5f, .clearcoat_gloss = 0.8f}, .double_sided = 1},
 };

@@ -163,7 +163,7 @@ static void clearcoat_layer(void **state)
     rtpbr_material_desc lambert = test_lambert_material;
     rtpbr_material_desc coated = lambert;
     coated.clearcoat_factor = 1.0f;
-    coated.clearcoat_roughness = 0.3f;
+    coated.clearcoat_roughness_factor = 0.3f;
     rtpbr_material_desc coat_only = coated;
     coat_only.base_color[0] = coat_only.base_color[1] = coat_only.base_color[2] = 0.0f;
     // A black dielectric of IOR 1.5 (F0 = 0.04) with the coat's roughness: the same lobe.
@@ -249,7 +249,7 @@ static void sheen_albedo_check(void **state)
     for (int i = 0; i < 2; ++i)
         for (int j = 0; j < 2; ++j) {
             rtpbr_material_desc m = {.roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR, .sheen_color_factor = {1.0f, 0.5f, 0.25f},
-                                     .sheen_roughness = roughness[i]};
+                                     .sheen_roughness_factor = roughness[i]};
             float got[3];
             render_centre(env, &m, &sky, 1, (view){angles[j], 0.3f}, got);
             double albedo = sheen_albedo(cos(angles[j]), roughness[i]);

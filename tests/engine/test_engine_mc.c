@@ -95,7 +95,7 @@ static void mc_glossy_mean(void **state)
     const rtpbr_material_desc copper = {.base_color = {0.95f, 0.64f, 0.54f}, .metallic = 1.0f};
     const rtpbr_material_desc plastic = {.base_color = {0.2f, 0.5f, 0.8f}, .roughness = 0.4f, .ior = 1.5f};
     const rtpbr_material_desc coated = {.base_color = {0.8f, 0.3f, 0.2f}, .roughness = 0.6f, .clearcoat_factor = 1.0f,
-                                        .clearcoat_roughness = 0.3f};
+                                        .clearcoat_roughness_factor = 0.3f};
     const rtpbr_material_desc disney = {.base_color = {0.7f, 0.5f, 0.3f}, .roughness = 0.5f,
                                         .model = RTPBR_MATERIAL_DISNEY,
                                         .disney = {.subsurface = 0.5f, .sheen = 1.0f, .clearcoat = 1.0f,
@@ -424,8 +424,8 @@ static void ltc_max_lights(void **state)
     float plane[12];
     rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
     const rtpbr_material_desc materials[2] = {
-        {.base_color = {0.8f, 0.3f, 0.2f}, .roughness = 0.5f, .clearcoat_factor = 1.0f, .clearcoat_roughness = 0.3f,
-         .sheen_color_factor = {0.5f, 0.5f, 0.5f}, .sheen_roughness = 0.5f},
+        {.base_color = {0.8f, 0.3f, 0.2f}, .roughness = 0.5f, .clearcoat_factor = 1.0f, .clearcoat_roughness_factor = 0.3f,
+         .sheen_color_factor = {0.5f, 0.5f, 0.5f}, .sheen_roughness_factor = 0.5f},
         {.base_color = {0.7f, 0.5f, 0.3f}, .roughness = 0.5f, .model = RTPBR_MATERIAL_DISNEY,
          .disney = {.subsurface = 0.5f, .sheen = 1.0f, .clearcoat = 1.0f, .clearcoat_gloss = 0.5f}},
     };

@@ -83,7 +83,7 @@ static void set_material_matches_create(void **state)
     rtpbr_gpu_scene *edited = create_scene(&f);
     float *before = render(&f, edited);
     rtpbr_material_desc copper = {.base_color = {0.95f, 0.64f, 0.54f}, .metallic = 1.0f, .roughness = 0.2f,
-                                  .clearcoat_factor = 0.5f, .sheen_color_factor = {0.2f, 0.1f, 0.1f}, .sheen_roughness = 0.4f};
+                                  .clearcoat_factor = 0.5f, .sheen_color_factor = {0.2f, 0.1f, 0.1f}, .sheen_roughness_factor = 0.4f};
     assert_int_equal(rtpbr_gpu_scene_set_material(edited, 0, &copper), RTPBR_SUCCESS);
     float *after = render(&f, edited);
     f.materials[0] = copper;

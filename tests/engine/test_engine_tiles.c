@@ -26,7 +26,7 @@ static float *render(rtpbr_context *ctx, bool with_quad)
     for (int k = 0; k < 4; ++k) quad[3 * k] += 0.4f;
     rtpbr_material_desc materials[2] = {
         {.base_color = {0.6f, 0.5f, 0.4f}, .roughness = 0.45f},
-        {.base_color = {0.2f, 0.3f, 0.8f}, .roughness = 0.6f, .clearcoat_factor = 1.0f, .clearcoat_roughness = 0.1f},
+        {.base_color = {0.2f, 0.3f, 0.8f}, .roughness = 0.6f, .clearcoat_factor = 1.0f, .clearcoat_roughness_factor = 0.1f},
     };
     rtpbr_mesh_desc meshes[2] = {
         {.positions = plane, .indices = square_indices, .vertex_count = 4, .index_count = 6, .material = 0},

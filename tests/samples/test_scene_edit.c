@@ -138,10 +138,10 @@ static void test_showcase(void **state)
     assert_int_equal(s.material_count, 12);
     const rtpbr_material_desc *layered = &s.materials[3], *velvet = &s.materials[5], *steel = &s.materials[6];
     assert_float_equal(layered->clearcoat_factor, 1.0f, 1e-6f);
-    assert_float_equal(layered->clearcoat_roughness, 0.05f, 1e-6f);
+    assert_float_equal(layered->clearcoat_roughness_factor, 0.05f, 1e-6f);
     assert_float_equal(layered->ior, 1.5f, 1e-6f);
     assert_float_equal(velvet->sheen_color_factor[1], 0.6f, 1e-6f);
-    assert_float_equal(velvet->sheen_roughness, 0.35f, 1e-6f);
+    assert_float_equal(velvet->sheen_roughness_factor, 0.35f, 1e-6f);
     assert_float_equal(steel->anisotropy_strength, 0.8f, 1e-6f);
     const float eye[3] = {0.0f, 1.5f, 6.5f};
     const float to_copper[3] = {-1.725f - eye[0], 0.45f - eye[1], 0.0f - eye[2]}; // sphere 1 of 6, spacing 1.15

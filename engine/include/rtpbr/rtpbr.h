@@ -314,7 +314,7 @@ typedef struct rtpbr_material_desc {
     // clearcoat_factor in [0, 1] over the whole material, which it attenuates by
     // 1 - clearcoat_factor F_coat(NoV). Zero: no coat.
     float clearcoat_factor;
-    float clearcoat_roughness; // perceptual; zero: RTPBR_MIN_ROUGHNESS
+    float clearcoat_roughness_factor; // perceptual; zero: RTPBR_MIN_ROUGHNESS
     // KHR_materials_anisotropy anisotropyStrength in [0, 1]: alpha_t = mix(alpha, 1, s^2)
     // along the anisotropy direction, alpha_b = alpha across it. The direction is the mesh's
     // tangent rotated by anisotropy_rotation (radians) toward the bitangent; a mesh without
@@ -326,16 +326,16 @@ typedef struct rtpbr_material_desc {
     // colour in [0, 1] over the material below the coat, which it scales by the KHR albedo
     // scaling 1 - max(sheen_color_factor) E_sheen. All zero: no sheen.
     float sheen_color_factor[3];
-    float sheen_roughness;        // perceptual, [0, 1]
+    float sheen_roughness_factor;     // perceptual, [0, 1]
     // The extensions' textures (1-based indices into rtpbr_gpu_scene_desc.textures, 0: none),
     // each multiplying its factor above per pixel in the channels glTF names, each with its
     // KHR_texture_transform. A scene whose materials use them renders up to three more
     // G-buffer attachments (engine/README.md); otherwise they cost nothing. Disney materials
     // ignore them, as they ignore the factors.
     uint32_t clearcoat_texture;           // r: x clearcoat_factor (linear)
-    uint32_t clearcoat_roughness_texture; // g: x clearcoat_roughness (linear)
+    uint32_t clearcoat_roughness_texture; // g: x clearcoat_roughness_factor (linear)
     uint32_t sheen_color_texture;         // rgb: x sheen_color_factor (give it srgb = 1)
-    uint32_t sheen_roughness_texture;     // a: x sheen_roughness (linear)
+    uint32_t sheen_roughness_texture;     // a: x sheen_roughness_factor (linear)
     uint32_t specular_texture;            // a: x specular_factor (linear)
     uint32_t specular_color_texture;      // rgb: x specular_color (give it srgb = 1)
     rtpbr_texture_transform clearcoat_texture_transform;
