@@ -220,33 +220,71 @@ bool read_image(const std::string& path, Image& image, std::string& error, const
     SilenceStderr quiet(options.quiet);
     const auto in = open_checked(path, error, options);
     if (!in) return false;
-    const OIIO::ImageSpec& spec = in->spec();
-    // Only the channels used: RGB, or grey (channel 0) when there are fewer than 3.
-    const int nch = spec.nchannels >= 3 ? 3 : 1;
-    std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * nch);
-    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, pixels.data())) {
-        error = "cannot decode '" + path + "': " + in->geterror();
-        return false;
-    }
-    in->close();
+    const OIIO::ImageSpec spec = in->spec();
     const bool encoded = spec.format.basetype != OIIO::TypeDesc::FLOAT &&
                          spec.format.basetype != OIIO::TypeDesc::HALF &&
                          spec.format.basetype != OIIO::TypeDesc::DOUBLE;
+    const std::size_t width = static_cast<std::size_t>(spec.width);
+    const std::size_t n = width * static_cast<std::size_t>(spec.height);
     image.width = spec.width;
     image.height = spec.height;
-    const std::size_t n = static_cast<std::size_t>(spec.width) * spec.height;
-    image.rgb.resize(n * 3);
-    for (std::size_t i = 0; i < n; ++i) {
-        for (int c = 0; c < 3; ++c) {
-            const int src = nch >= 3 ? c : 0;  // 1 or 2 channels: grey (+ alpha)
-            float v = pixels[i * nch + src];
-            if (!std::isfinite(v)) {
-                error = "'" + path + "' holds NaN or infinite values";
+    image.rgb.assign(n * 3, 0.0f);
+    // Stores count pixels of `channels` floats each from pixel `first` on: RGB, or grey
+    // (channel 0) when there are fewer than 3 channels; alpha and the rest are ignored.
+    auto store = [&](const float* values, int channels, std::size_t first, std::size_t count) {
+        for (std::size_t i = 0; i < count; ++i) {
+            for (int c = 0; c < 3; ++c) {
+                const float v = values[i * channels + (channels >= 3 ? c : 0)];
+                if (!std::isfinite(v)) {
+                    error = "'" + path + "' holds NaN or infinite values";
+                    return false;
+                }
+                image.rgb[(first + i) * 3 + c] = encoded ? srgb_to_linear(v) : v;
+            }
+        }
+        return true;
+    };
+    auto fail = [&]() {
+        error = "cannot decode '" + path + "': " + in->geterror();
+        image = Image();
+        return false;
+    };
+    if (spec.tile_width == 0 && spec.channelformats.empty()) {
+        // Scanline images: rows in their own format, 4 MiB at a time (and at most 16 MiB of their
+        // floats), converted here.
+        // (Asked for floats, OpenImageIO's read_image converts through a 64 MiB buffer it
+        // allocates on every call, whatever the image's size: imageinput.cpp, read_scanlines.)
+        const std::size_t row_bytes = std::max<std::size_t>(1, spec.scanline_bytes(true));
+        const std::size_t rows =
+            std::min<std::size_t>(static_cast<std::size_t>(spec.height), std::max<std::size_t>(1, (4u << 20) / row_bytes));
+        const std::size_t row_values = width * static_cast<std::size_t>(spec.nchannels);
+        std::vector<unsigned char> native(rows * row_bytes);
+        std::vector<float> values(rows * row_values);
+        for (std::size_t y = 0; y < static_cast<std::size_t>(spec.height); y += rows) {
+            const std::size_t count = std::min(rows, static_cast<std::size_t>(spec.height) - y);
+            const int y0 = spec.y + static_cast<int>(y);
+            if (!in->read_scanlines(0, 0, y0, y0 + static_cast<int>(count), 0, 0, spec.nchannels,
+                                    OIIO::TypeDesc::UNKNOWN, native.data()))
+                return fail();
+            if (!OIIO::convert_pixel_values(spec.format, native.data(), OIIO::TypeDesc::FLOAT, values.data(),
+                                            static_cast<int>(count * row_values)))
+                return fail();
+            if (!store(values.data(), spec.nchannels, y * width, count * width)) {
+                image = Image();
                 return false;
             }
-            image.rgb[i * 3 + c] = encoded ? srgb_to_linear(v) : v;
+        }
+    } else {
+        // Tiled images and per-channel formats (OpenEXR): OpenImageIO converts tile by tile.
+        const int nch = spec.nchannels >= 3 ? 3 : 1;
+        std::vector<float> pixels(n * static_cast<std::size_t>(nch));
+        if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, pixels.data())) return fail();
+        if (!store(pixels.data(), nch, 0, n)) {
+            image = Image();
+            return false;
         }
     }
+    in->close();
     return true;
 }
 

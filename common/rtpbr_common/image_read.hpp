@@ -36,8 +36,9 @@ bool read_image_size(const std::string& path, int& width, int& height, std::stri
 // Reads PNG, JPEG, OpenEXR, Radiance HDR, TIFF, BMP, PNM/PFM (recognised by their signatures, so a
 // misnamed file reads) and TGA (by its .tga extension) into linear RGB; other formats are refused
 // with a message (OpenImageIO's other readers never run). Integer formats are taken as sRGB and
-// decoded, float formats as linear, grey is replicated, alpha and extra channels ignored. integer formats are taken as sRGB and
 // decoded, float formats as linear, grey is replicated, alpha and extra channels ignored.
+// Memory: the image's floats plus at most 20 MiB of rows in flight (scanline files), or one
+// tile's (tiled files).
 // On failure returns false with a one-sentence reason in error.
 bool read_image(const std::string& path, Image& image, std::string& error,
                 const ImageReadOptions& options = ImageReadOptions());
