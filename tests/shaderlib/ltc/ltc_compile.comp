@@ -1,7 +1,7 @@
 #version 450
 // Compile check of shaderlib/rtpbr/ltc.h as GLSL (and, with RTPBR_HLSL, as HLSL: see
 // ltc_compile.hlsl). Calls every public function of ltc.h, ltc_anisotropy.h, ltc_clipless.h
-// and ltc_shapes.h so that each is type-checked; ltc_corrections.h is compiled beside them
+// ltc_shapes.h and ltc_textured.h so that each is type-checked; ltc_corrections.h is compiled beside them
 // (glslang checks uncalled functions too).
 #extension GL_GOOGLE_include_directive : require
 #include "rtpbr/ltc.h"
@@ -9,6 +9,7 @@
 #include "rtpbr/ltc_clipless.h"
 #include "rtpbr/ltc_corrections.h"
 #include "rtpbr/ltc_shapes.h"
+#include "rtpbr/ltc_textured.h"
 layout(local_size_x = 1) in;
 layout(std430, binding = 0) buffer Out { vec4 result[]; };
 void main() {
@@ -57,4 +58,9 @@ void main() {
     result[4] = vec4(Fe, LTC_SphereCapFormFactor(Fe));
     result[5] = vec4(LTC_EvaluateEllipse(N, V, P, vec3(0.0f, 0.0f, 1.0f), vec3(0.3f, 0.0f, 0.0f), vec3(0.0f, -0.3f, 0.0f), ltc1, false),
                      LTC_EvaluateSphere(N, V, P, vec3(0.5f, 0.0f, 2.0f), 0.3f, ltc1), outside ? 1.0f : 0.0f, disk.v[3].x);
+    // ltc_textured.h: where to read a textured quad light.
+    vec3 uvf = LTC_TextureLookup(LTC_Frame(N, V), P, vec3(-0.5f, 0.5f, 1.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, -1.0f, 0.0f),
+                                   LTC_InverseMatrix(ltc1), Fe);
+    result[5].xyz += uvf + LTC_TextureLookupProjected(LTC_Frame(N, V), P, vec3(-0.5f, 0.5f, 1.0f), vec3(1.0f, 0.0f, 0.0f),
+                                                      vec3(0.0f, -1.0f, 0.0f), LTC_InverseMatrix(ltc1));
 }

@@ -1,11 +1,12 @@
-// Compile check of shaderlib/rtpbr/ltc.h, ltc_anisotropy.h, ltc_clipless.h, ltc_corrections.h
-// and ltc_shapes.h as HLSL (glslang's HLSL front end).
+// Compile check of shaderlib/rtpbr/ltc.h, ltc_anisotropy.h, ltc_clipless.h, ltc_corrections.h,
+// ltc_shapes.h and ltc_textured.h as HLSL (glslang's HLSL front end).
 #define RTPBR_HLSL 1
 #include "rtpbr/ltc.h"
 #include "rtpbr/ltc_anisotropy.h"
 #include "rtpbr/ltc_clipless.h"
 #include "rtpbr/ltc_corrections.h"
 #include "rtpbr/ltc_shapes.h"
+#include "rtpbr/ltc_textured.h"
 RWStructuredBuffer<float4> result : register(u0);
 [numthreads(1, 1, 1)]
 void main() {
@@ -54,4 +55,9 @@ void main() {
     result[4] = float4(Fe, LTC_SphereCapFormFactor(Fe));
     result[5] = float4(LTC_EvaluateEllipse(N, V, P, float3(0.0f, 0.0f, 1.0f), float3(0.3f, 0.0f, 0.0f), float3(0.0f, -0.3f, 0.0f), ltc1, false),
                      LTC_EvaluateSphere(N, V, P, float3(0.5f, 0.0f, 2.0f), 0.3f, ltc1), outside ? 1.0f : 0.0f, disk.v[3].x);
+    // ltc_textured.h: where to read a textured quad light.
+    float3 uvf = LTC_TextureLookup(LTC_Frame(N, V), P, float3(-0.5f, 0.5f, 1.0f), float3(1.0f, 0.0f, 0.0f), float3(0.0f, -1.0f, 0.0f),
+                                   LTC_InverseMatrix(ltc1), Fe);
+    result[5].xyz += uvf + LTC_TextureLookupProjected(LTC_Frame(N, V), P, float3(-0.5f, 0.5f, 1.0f), float3(1.0f, 0.0f, 0.0f),
+                                                      float3(0.0f, -1.0f, 0.0f), LTC_InverseMatrix(ltc1));
 }
