@@ -328,18 +328,25 @@ const TexCase kTexCases[] = {
     {"tilted screen, sharp", &kSharp, {-1.0, 1.0, 0.6}, {2, 0, 0.8}, {0, -2, 0}, false, 5e-3},
 };
 
+// LTC_TextureLookup for the case's quad (F from the clipped quad, as a host computes it), or
+// the demo's projected point.
+float3 texture_lookup(const TexCase &c, bool projected) {
+    const rtpbr::float3x3 frame = rtpbr::LTC_Frame(kN, kV);
+    rtpbr::float3x3 minv = rtpbr::LTC_InverseMatrix(c.lobe->ltc1());
+    if (projected) return rtpbr::LTC_TextureLookupProjected(frame, kP, f3(c.C), f3(c.E1), f3(c.E2), minv);
+    D3 v1 = c.C + c.E1, v2 = c.C + c.E1 + c.E2, v3 = c.C + c.E2;
+    rtpbr::LtcLocalPolygon local =
+        rtpbr::LTC_PolygonToLocal(frame, kP, rtpbr::LTC_Quad(f3(c.C), f3(v1), f3(v2), f3(v3)), c.twoSided);
+    float3 F = rtpbr::LTC_LobeEndVector(rtpbr::LTC_LobeOverLocal(local, minv));
+    return rtpbr::LTC_TextureLookup(frame, kP, f3(c.C), f3(c.E1), f3(c.E2), minv, F);
+}
+
 void test_textured_quad_lookup(void **) {
     bool ok = true;
     const rtpbr::float3x3 frame = rtpbr::LTC_Frame(kN, kV);
     for (const TexCase &c : kTexCases) {
         Moments m = quad_moments(*c.lobe, c.C, c.E1, c.E2, c.twoSided);
-        rtpbr::float3x3 minv = rtpbr::LTC_InverseMatrix(c.lobe->ltc1());
-        D3 v1 = c.C + c.E1, v2 = c.C + c.E1 + c.E2, v3 = c.C + c.E2;
-        rtpbr::LtcLocalPolygon local =
-            rtpbr::LTC_PolygonToLocal(frame, kP, rtpbr::LTC_Quad(f3(c.C), f3(v1), f3(v2), f3(v3)), c.twoSided);
-        float3 F = rtpbr::LTC_LobeEndVector(rtpbr::LTC_LobeOverLocal(local, minv));
-        float3 got = rtpbr::LTC_TextureLookup(frame, kP, f3(c.C), f3(c.E1), f3(c.E2), minv, F);
-        float3 proj = rtpbr::LTC_TextureLookupProjected(frame, kP, f3(c.C), f3(c.E1), f3(c.E2), minv);
+        float3 got = texture_lookup(c, false), proj = texture_lookup(c, true);
         double err = std::max(std::fabs(got.x - m.s), std::fabs(got.y - m.t));
         double errProj = std::max(std::fabs(proj.x - m.s), std::fabs(proj.y - m.t));
         // F's point must be at least as near as the demo's (equal only where symmetry puts both
@@ -369,17 +376,11 @@ void test_textured_quad_lookup(void **) {
 // texture's detail that the lobe averages away; the footprint must do better than that where
 // the detail is fine (k = 4).
 void test_textured_quad_emission(void **) {
-    const rtpbr::float3x3 frame = rtpbr::LTC_Frame(kN, kV);
     double worst[3] = {0, 0, 0}, worstSharp[3] = {0, 0, 0};
     bool blurHelps = true; // on the sharp lobe's screens, at every frequency
     const int ks[3] = {1, 2, 4};
     for (const TexCase &c : kTexCases) {
-        rtpbr::float3x3 minv = rtpbr::LTC_InverseMatrix(c.lobe->ltc1());
-        D3 v1 = c.C + c.E1, v2 = c.C + c.E1 + c.E2, v3 = c.C + c.E2;
-        rtpbr::LtcLocalPolygon local =
-            rtpbr::LTC_PolygonToLocal(frame, kP, rtpbr::LTC_Quad(f3(c.C), f3(v1), f3(v2), f3(v3)), c.twoSided);
-        float3 F = rtpbr::LTC_LobeEndVector(rtpbr::LTC_LobeOverLocal(local, minv));
-        float3 look = rtpbr::LTC_TextureLookup(frame, kP, f3(c.C), f3(c.E1), f3(c.E2), minv, F);
+        float3 look = texture_lookup(c, false);
         std::printf("%-36s", c.name);
         for (int i = 0; i < 3; ++i) {
             double k = ks[i];
