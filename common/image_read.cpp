@@ -201,6 +201,20 @@ std::unique_ptr<OIIO::ImageInput> open_checked(const std::string& path, std::str
                 ", more than the limit of " + std::to_string(max_pixels) + " pixels";
         return nullptr;
     }
+    // Tiles are decoded whole: a 5 x 3 OpenEXR file declaring 4 x 33554436 tiles made OpenEXR
+    // allocate 1.7 GB (found by fuzz_image). A tile may exceed a small image (64 x 64 tiles
+    // over a 5 x 3 image are legitimate), but not both the image and 256 x 256 pixels.
+    if (spec.tile_width > 0) {
+        const long long tile_pixels = static_cast<long long>(spec.tile_width) * std::max(spec.tile_height, 1) *
+                                      std::max(spec.tile_depth, 1);
+        const long long image_pixels = static_cast<long long>(spec.width) * spec.height;
+        if (tile_pixels > std::max(image_pixels, 65536LL)) {
+            error = "'" + path + "' declares " + std::to_string(spec.tile_width) + "x" +
+                    std::to_string(spec.tile_height) + " tiles for a " + std::to_string(spec.width) + "x" +
+                    std::to_string(spec.height) + " image";
+            return nullptr;
+        }
+    }
     return in;
 }
 

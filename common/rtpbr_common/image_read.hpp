@@ -38,7 +38,7 @@ bool read_image_size(const std::string& path, int& width, int& height, std::stri
 // with a message (OpenImageIO's other readers never run). Integer formats are taken as sRGB and
 // decoded, float formats as linear, grey is replicated, alpha and extra channels ignored.
 // Memory: the image's floats plus at most 20 MiB of rows in flight (scanline files), or one
-// tile's (tiled files).
+// tile's (tiled files; a tile larger than both the image and 256 x 256 pixels is refused).
 // On failure returns false with a one-sentence reason in error.
 bool read_image(const std::string& path, Image& image, std::string& error,
                 const ImageReadOptions& options = ImageReadOptions());

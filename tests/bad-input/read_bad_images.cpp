@@ -1,8 +1,9 @@
 // Regression inputs for rtpbr-diff's image reading (tests/bad-input/images/):
 //   read_bad_images DIR
-// reads DIR/expected.txt, lines "FILE error" or "FILE ok" ('#' starts a comment), reads each
-// FILE with rtpbr::read_image (common/rtpbr_common/image_read.hpp) and checks the outcome: an
-// error must come with a message, a success with width x height x 3 finite values.
+// reads DIR/expected.txt, lines "FILE error [WORD]" or "FILE ok" ('#' starts a comment), reads
+// each FILE with rtpbr::read_image (common/rtpbr_common/image_read.hpp) and checks the outcome:
+// an error must come with a message (containing WORD when given: the reason, not just any
+// failure), a success with width x height x 3 finite values.
 #include "rtpbr_common/image_read.hpp"
 
 #include <cmath>
@@ -26,8 +27,9 @@ int main(int argc, char** argv) {
     int failures = 0, cases = 0;
     while (std::getline(list, line)) {
         std::istringstream fields(line);
-        std::string file, want;
+        std::string file, want, word;
         if (line.empty() || line[0] == '#' || !(fields >> file >> want)) continue;
+        fields >> word;
         ++cases;
         rtpbr::Image image;
         std::string error;
@@ -38,7 +40,7 @@ int main(int argc, char** argv) {
                  image.rgb.size() == static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 3;
             for (float v : image.rgb) ok = ok && std::isfinite(v);
         } else {
-            ok = ok && !error.empty();
+            ok = ok && !error.empty() && error.find(word) != std::string::npos;
         }
         std::printf("%s %s: %s\n", ok ? "ok  " : "FAIL", file.c_str(),
                     read ? ("read " + std::to_string(image.width) + "x" + std::to_string(image.height)).c_str()
