@@ -1,6 +1,6 @@
 // Issue 33: the lighting-only API inside a host's frame. The test is the host: on the tests'
 // Vulkan host (lavapipe, validation with synchronization validation on: any message fails)
-// it draws a scene with ITS OWN geometry pass (lightpass_host.vert / .frag, whose fragment
+// it draws a scene with ITS OWN geometry pass (samples/host/geometry.vert / .frag, whose fragment
 // shader includes shaderlib/rtpbr/gbuffer.h and calls GBuffer_Encode) into its own G-buffer
 // and depth images, then records rtpbr_lighting_record into the same command buffer, and
 // reads its own HDR output back. The engine (the same context, embedded in the host's device)
@@ -14,8 +14,8 @@
 #include "util.h" // rtpbr_camera_matrices (engine/src/math.c, compiled into this test)
 #include "vk_draw.h"
 
-#include "lightpass_host_frag.spv.h"
-#include "lightpass_host_vert.spv.h"
+#include "host_geometry_frag.spv.h" // samples/host/geometry.frag
+#include "host_geometry_vert.spv.h"
 
 enum { W = 96, H = 72, QUADS = 4, LIGHTS = 6 };
 
@@ -30,7 +30,7 @@ typedef struct stats { double max, mean; int count; } stats;
 
 #define VK(call) do { VkResult vr_ = (call); if (vr_) fail_msg("%s: %s", #call, vk_host_vk_result_name(vr_)); } while (0)
 
-// The host's material table (lightpass_host.frag's HostMaterial) and rtpbr's records of the
+// The host's material table (samples/host/geometry.frag's HostMaterial) and rtpbr's records of the
 // same materials: a rough dielectric floor, a copper metal, a clear-coated sheen fabric (the
 // full lighting variant) and a Disney material.
 typedef struct host_material { float base_metallic[4], emission_roughness[4]; } host_material;
@@ -119,8 +119,8 @@ static void make_pipeline(host *g)
         .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1, .pSetLayouts = &g->pass.set_layout,
         .pushConstantRangeCount = 1, .pPushConstantRanges = &push}, NULL, &g->pass.layout));
     VK(vk_draw_pipeline_create(&g->h, &(vk_draw_pipeline_desc){
-        .vert = lightpass_host_vert, .vert_size = sizeof lightpass_host_vert,
-        .frag = lightpass_host_frag, .frag_size = sizeof lightpass_host_frag, .attribute_count = 2,
+        .vert = host_geometry_vert, .vert_size = sizeof host_geometry_vert,
+        .frag = host_geometry_frag, .frag_size = sizeof host_geometry_frag, .attribute_count = 2,
         .color_formats = gbuffer_formats, .color_count = 4, .depth_format = VK_FORMAT_D32_SFLOAT,
         .depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL, .layout = g->pass.layout}, &g->pass.pipeline));
 }
