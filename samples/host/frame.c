@@ -1,4 +1,4 @@
-// rtpbr-sample-host's Vulkan side: its device, its images and passes, one frame.
+// rtpbr-sample-host's Vulkan side: its images and passes on its device (sample_vk.h), one frame.
 // The frame, in one command buffer of the host's:
 //   1. its geometry pass (geometry.vert / .frag): the G-buffer contract g0 .. g3 and D32 depth
 //   2. rtpbr_lighting_record: rtpbr's culling and lighting of that G-buffer into the HDR image
@@ -7,7 +7,6 @@
 #include "host.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +14,8 @@
 #include "host_geometry_frag.spv.h"
 #include "host_geometry_vert.spv.h"
 #include "host_tonemap_comp.spv.h"
+
+const size_t sh_geometry_vert_size = sizeof host_geometry_vert, sh_geometry_frag_size = sizeof host_geometry_frag;
 
 static const VkFormat gbuffer_formats[4] = { // gbuffer.h's RTPBR_GBUFFER_FORMAT_G0 .. G3
     VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT,
@@ -28,176 +29,79 @@ enum { GEOMETRY_PUSH_SIZE = 84 };
 // tonemap.comp's push constants.
 typedef struct tonemap_push { float scale; uint32_t width, height; } tonemap_push;
 
-static int fail(char *error, size_t size, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(error, size, fmt, ap);
-    va_end(ap);
-    return 1;
-}
-
-#define VK(call) do { VkResult vr_ = (call); if (vr_ != VK_SUCCESS) return fail(error, error_size, "%s failed (VkResult %d)", #call, (int)vr_); } while (0)
-
-// ---------------------------------------------------------------------------------------------
-// Device
-
-static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-    VkDebugUtilsMessageTypeFlagsEXT type, const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
-{
-    (void)type;
-    if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
-        ((sh_device *)user)->validation_messages++;
-        fprintf(stderr, "validation: %s\n", data->pMessage);
-    }
-    return VK_FALSE;
-}
-
-int sh_device_create(sh_device *d, int validation, char *error, size_t error_size)
-{
-    memset(d, 0, sizeof *d);
-    const char *layer = "VK_LAYER_KHRONOS_validation";
-    const char *extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME};
-    VkDebugUtilsMessengerCreateInfoEXT messenger_info = {
-        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
-        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
-        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
-        .pfnUserCallback = on_validation, .pUserData = d};
-    const VkValidationFeatureEnableEXT sync = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
-    VkValidationFeaturesEXT features = {.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT, .pNext = &messenger_info,
-                                        .enabledValidationFeatureCount = 1, .pEnabledValidationFeatures = &sync};
-    VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO, .pApplicationName = "rtpbr-sample-host",
-                             .apiVersion = VK_API_VERSION_1_3};
-    VkInstanceCreateInfo instance_info = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pApplicationInfo = &app,
-        .pNext = validation ? &features : NULL, .enabledLayerCount = validation ? 1 : 0, .ppEnabledLayerNames = &layer,
-        .enabledExtensionCount = validation ? 2 : 0, .ppEnabledExtensionNames = extensions};
-    if (vkCreateInstance(&instance_info, NULL, &d->instance) != VK_SUCCESS) {
-        d->instance = VK_NULL_HANDLE;
-        return fail(error, error_size, "no Vulkan 1.3 instance%s", validation ? " with the validation layer" : "");
-    }
-    if (validation) {
-        PFN_vkCreateDebugUtilsMessengerEXT create =
-            (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(d->instance, "vkCreateDebugUtilsMessengerEXT");
-        if (!create) return fail(error, error_size, "vkCreateDebugUtilsMessengerEXT missing");
-        VK(create(d->instance, &messenger_info, NULL, &d->messenger));
-    }
-    VkPhysicalDevice devices[16];
-    uint32_t count = 16;
-    if (vkEnumeratePhysicalDevices(d->instance, &count, devices) < 0) count = 0;
-    for (uint32_t i = 0; i < count && !d->physical_device; ++i) {
-        VkPhysicalDeviceProperties props;
-        vkGetPhysicalDeviceProperties(devices[i], &props);
-        if (props.apiVersion < VK_API_VERSION_1_3) continue;
-        VkQueueFamilyProperties families[16];
-        uint32_t family_count = 16;
-        vkGetPhysicalDeviceQueueFamilyProperties(devices[i], &family_count, families);
-        for (uint32_t f = 0; f < family_count; ++f)
-            if ((families[f].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
-                (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) {
-                d->physical_device = devices[i];
-                d->queue_family = f;
-                break;
-            }
-    }
-    if (!d->physical_device) return fail(error, error_size, "no Vulkan 1.3 device with a graphics + compute queue");
-    float priority = 1.0f;
-    VkDeviceQueueCreateInfo queue_info = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
-        .queueFamilyIndex = d->queue_family, .queueCount = 1, .pQueuePriorities = &priority};
-    d->features13 = (VkPhysicalDeviceVulkan13Features){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
-                                                      .dynamicRendering = VK_TRUE};
-    d->features = (VkPhysicalDeviceFeatures2){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &d->features13};
-    VK(vkCreateDevice(d->physical_device, &(VkDeviceCreateInfo){.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
-        .pNext = &d->features, .queueCreateInfoCount = 1, .pQueueCreateInfos = &queue_info}, NULL, &d->device));
-    vkGetDeviceQueue(d->device, d->queue_family, 0, &d->queue);
-    return 0;
-}
-
-void sh_device_destroy(sh_device *d)
-{
-    if (d->device) vkDestroyDevice(d->device, NULL);
-    if (d->messenger) {
-        PFN_vkDestroyDebugUtilsMessengerEXT destroy =
-            (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(d->instance, "vkDestroyDebugUtilsMessengerEXT");
-        if (destroy) destroy(d->instance, d->messenger, NULL);
-    }
-    if (d->instance) vkDestroyInstance(d->instance, NULL);
-    d->device = VK_NULL_HANDLE, d->messenger = VK_NULL_HANDLE, d->instance = VK_NULL_HANDLE;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Images and buffers
 
-static int memory_type(const sh_device *d, uint32_t bits, VkMemoryPropertyFlags flags, uint32_t *out)
+static int memory_type(const sample_device *d, uint32_t bits, VkMemoryPropertyFlags flags, uint32_t *out)
 {
     VkPhysicalDeviceMemoryProperties props;
-    vkGetPhysicalDeviceMemoryProperties(d->physical_device, &props);
+    vkGetPhysicalDeviceMemoryProperties(d->vk.physical_device, &props);
     for (uint32_t i = 0; i < props.memoryTypeCount; ++i)
         if ((bits & (1u << i)) && (props.memoryTypes[i].propertyFlags & flags) == flags) return *out = i, 0;
     return 1;
 }
 
-static int image_create(sh_device *d, VkFormat format, uint32_t w, uint32_t h, VkImageUsageFlags usage, sh_image *img,
+static int image_create(sample_device *d, VkFormat format, uint32_t w, uint32_t h, VkImageUsageFlags usage, sh_image *img,
                         char *error, size_t error_size)
 {
     VkImageCreateInfo info = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D, .format = format,
         .extent = {w, h, 1}, .mipLevels = 1, .arrayLayers = 1, .samples = VK_SAMPLE_COUNT_1_BIT,
         .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage, .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
-    VK(vkCreateImage(d->device, &info, NULL, &img->image));
+    SAMPLE_VK(vkCreateImage(d->vk.device, &info, NULL, &img->image));
     VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(d->device, img->image, &req);
+    vkGetImageMemoryRequirements(d->vk.device, img->image, &req);
     uint32_t type;
     if (memory_type(d, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, &type) &&
         memory_type(d, req.memoryTypeBits, 0, &type))
-        return fail(error, error_size, "no memory type for an image");
-    VK(vkAllocateMemory(d->device, &(VkMemoryAllocateInfo){.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+        return sample_vk_fail(error, error_size, "no memory type for an image");
+    SAMPLE_VK(vkAllocateMemory(d->vk.device, &(VkMemoryAllocateInfo){.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
         .allocationSize = req.size, .memoryTypeIndex = type}, NULL, &img->memory));
-    VK(vkBindImageMemory(d->device, img->image, img->memory, 0));
+    SAMPLE_VK(vkBindImageMemory(d->vk.device, img->image, img->memory, 0));
     VkImageAspectFlags aspect = format == VK_FORMAT_D32_SFLOAT ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
-    VK(vkCreateImageView(d->device, &(VkImageViewCreateInfo){.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+    SAMPLE_VK(vkCreateImageView(d->vk.device, &(VkImageViewCreateInfo){.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
         .image = img->image, .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
         .subresourceRange = {aspect, 0, 1, 0, 1}}, NULL, &img->view));
     return 0;
 }
 
-static void image_destroy(sh_device *d, sh_image *img)
+static void image_destroy(sample_device *d, sh_image *img)
 {
-    if (img->view) vkDestroyImageView(d->device, img->view, NULL);
-    if (img->image) vkDestroyImage(d->device, img->image, NULL);
-    if (img->memory) vkFreeMemory(d->device, img->memory, NULL);
+    if (img->view) vkDestroyImageView(d->vk.device, img->view, NULL);
+    if (img->image) vkDestroyImage(d->vk.device, img->image, NULL);
+    if (img->memory) vkFreeMemory(d->vk.device, img->memory, NULL);
     memset(img, 0, sizeof *img);
 }
 
 // A host-visible, coherent, persistently mapped buffer, filled from data if given.
-static int buffer_create(sh_device *d, VkDeviceSize size, VkBufferUsageFlags usage, const void *data, sh_buffer *b,
+static int buffer_create(sample_device *d, VkDeviceSize size, VkBufferUsageFlags usage, const void *data, sh_buffer *b,
                          char *error, size_t error_size)
 {
-    VK(vkCreateBuffer(d->device, &(VkBufferCreateInfo){.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size,
+    SAMPLE_VK(vkCreateBuffer(d->vk.device, &(VkBufferCreateInfo){.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size,
         .usage = usage}, NULL, &b->buffer));
     VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(d->device, b->buffer, &req);
+    vkGetBufferMemoryRequirements(d->vk.device, b->buffer, &req);
     uint32_t type;
     if (memory_type(d, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, &type))
-        return fail(error, error_size, "no host-visible coherent memory");
-    VK(vkAllocateMemory(d->device, &(VkMemoryAllocateInfo){.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+        return sample_vk_fail(error, error_size, "no host-visible coherent memory");
+    SAMPLE_VK(vkAllocateMemory(d->vk.device, &(VkMemoryAllocateInfo){.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
         .allocationSize = req.size, .memoryTypeIndex = type}, NULL, &b->memory));
-    VK(vkBindBufferMemory(d->device, b->buffer, b->memory, 0));
-    VK(vkMapMemory(d->device, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped));
+    SAMPLE_VK(vkBindBufferMemory(d->vk.device, b->buffer, b->memory, 0));
+    SAMPLE_VK(vkMapMemory(d->vk.device, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped));
     if (data) memcpy(b->mapped, data, (size_t)size);
     return 0;
 }
 
-static void buffer_destroy(sh_device *d, sh_buffer *b)
+static void buffer_destroy(sample_device *d, sh_buffer *b)
 {
-    if (b->buffer) vkDestroyBuffer(d->device, b->buffer, NULL);
-    if (b->memory) vkFreeMemory(d->device, b->memory, NULL); // unmaps
+    if (b->buffer) vkDestroyBuffer(d->vk.device, b->buffer, NULL);
+    if (b->memory) vkFreeMemory(d->vk.device, b->memory, NULL); // unmaps
     memset(b, 0, sizeof *b);
 }
 
-static VkShaderModule shader(sh_device *d, const uint32_t *code, size_t size)
+static VkShaderModule shader(sample_device *d, const uint32_t *code, size_t size)
 {
     VkShaderModule m = VK_NULL_HANDLE;
-    vkCreateShaderModule(d->device, &(VkShaderModuleCreateInfo){.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+    vkCreateShaderModule(d->vk.device, &(VkShaderModuleCreateInfo){.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
         .codeSize = size, .pCode = code}, NULL, &m);
     return m;
 }
@@ -207,22 +111,22 @@ static VkShaderModule shader(sh_device *d, const uint32_t *code, size_t size)
 
 static int descriptors_create(sh_renderer *r, char *error, size_t error_size)
 {
-    VkDevice dev = r->device->device;
+    VkDevice dev = r->device->vk.device;
     VkDescriptorSetLayoutBinding material = {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, NULL};
-    VK(vkCreateDescriptorSetLayout(dev, &(VkDescriptorSetLayoutCreateInfo){
+    SAMPLE_VK(vkCreateDescriptorSetLayout(dev, &(VkDescriptorSetLayoutCreateInfo){
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = 1, .pBindings = &material},
         NULL, &r->geometry_set_layout));
     VkDescriptorSetLayoutBinding images[2] = {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL},
                                               {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL}};
-    VK(vkCreateDescriptorSetLayout(dev, &(VkDescriptorSetLayoutCreateInfo){
+    SAMPLE_VK(vkCreateDescriptorSetLayout(dev, &(VkDescriptorSetLayoutCreateInfo){
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = 2, .pBindings = images},
         NULL, &r->tonemap_set_layout));
     VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}};
-    VK(vkCreateDescriptorPool(dev, &(VkDescriptorPoolCreateInfo){.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+    SAMPLE_VK(vkCreateDescriptorPool(dev, &(VkDescriptorPoolCreateInfo){.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
         .maxSets = 2, .poolSizeCount = 2, .pPoolSizes = sizes}, NULL, &r->pool));
     VkDescriptorSetLayout layouts[2] = {r->geometry_set_layout, r->tonemap_set_layout};
     VkDescriptorSet sets[2];
-    VK(vkAllocateDescriptorSets(dev, &(VkDescriptorSetAllocateInfo){.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+    SAMPLE_VK(vkAllocateDescriptorSets(dev, &(VkDescriptorSetAllocateInfo){.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
         .descriptorPool = r->pool, .descriptorSetCount = 2, .pSetLayouts = layouts}, sets));
     r->geometry_set = sets[0], r->tonemap_set = sets[1];
     VkDescriptorBufferInfo buffer = {r->materials.buffer, 0, VK_WHOLE_SIZE};
@@ -241,9 +145,9 @@ static int descriptors_create(sh_renderer *r, char *error, size_t error_size)
 
 static int geometry_pipeline_create(sh_renderer *r, char *error, size_t error_size)
 {
-    VkDevice dev = r->device->device;
+    VkDevice dev = r->device->vk.device;
     VkPushConstantRange push = {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, GEOMETRY_PUSH_SIZE};
-    VK(vkCreatePipelineLayout(dev, &(VkPipelineLayoutCreateInfo){.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+    SAMPLE_VK(vkCreatePipelineLayout(dev, &(VkPipelineLayoutCreateInfo){.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
         .setLayoutCount = 1, .pSetLayouts = &r->geometry_set_layout, .pushConstantRangeCount = 1,
         .pPushConstantRanges = &push}, NULL, &r->geometry_layout));
     VkShaderModule vert = shader(r->device, host_geometry_vert, sizeof host_geometry_vert);
@@ -284,15 +188,15 @@ static int geometry_pipeline_create(sh_renderer *r, char *error, size_t error_si
         : VK_ERROR_INITIALIZATION_FAILED;
     if (vert) vkDestroyShaderModule(dev, vert, NULL);
     if (frag) vkDestroyShaderModule(dev, frag, NULL);
-    if (vr != VK_SUCCESS) return fail(error, error_size, "geometry pipeline: VkResult %d", (int)vr);
+    if (vr != VK_SUCCESS) return sample_vk_fail(error, error_size, "geometry pipeline: VkResult %d", (int)vr);
     return 0;
 }
 
 static int tonemap_pipeline_create(sh_renderer *r, char *error, size_t error_size)
 {
-    VkDevice dev = r->device->device;
+    VkDevice dev = r->device->vk.device;
     VkPushConstantRange push = {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(tonemap_push)};
-    VK(vkCreatePipelineLayout(dev, &(VkPipelineLayoutCreateInfo){.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+    SAMPLE_VK(vkCreatePipelineLayout(dev, &(VkPipelineLayoutCreateInfo){.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
         .setLayoutCount = 1, .pSetLayouts = &r->tonemap_set_layout, .pushConstantRangeCount = 1,
         .pPushConstantRanges = &push}, NULL, &r->tonemap_layout));
     VkShaderModule comp = shader(r->device, host_tonemap_comp, sizeof host_tonemap_comp);
@@ -302,7 +206,7 @@ static int tonemap_pipeline_create(sh_renderer *r, char *error, size_t error_siz
                   .module = comp, .pName = "main"},
         .layout = r->tonemap_layout}, NULL, &r->tonemap_pipeline) : VK_ERROR_INITIALIZATION_FAILED;
     if (comp) vkDestroyShaderModule(dev, comp, NULL);
-    if (vr != VK_SUCCESS) return fail(error, error_size, "tone-mapping pipeline: VkResult %d", (int)vr);
+    if (vr != VK_SUCCESS) return sample_vk_fail(error, error_size, "tone-mapping pipeline: VkResult %d", (int)vr);
     return 0;
 }
 
@@ -311,7 +215,7 @@ static int tonemap_pipeline_create(sh_renderer *r, char *error, size_t error_siz
 
 static int renderer_make(sh_renderer *r, const sh_scene *s, char *error, size_t error_size)
 {
-    sh_device *d = r->device;
+    sample_device *d = r->device;
     uint32_t w = s->width, h = s->height;
     for (int i = 0; i < 4; ++i)
         if (image_create(d, gbuffer_formats[i], w, h, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
@@ -342,15 +246,15 @@ static int renderer_make(sh_renderer *r, const sh_scene *s, char *error, size_t 
     if (descriptors_create(r, error, error_size) || geometry_pipeline_create(r, error, error_size) ||
         tonemap_pipeline_create(r, error, error_size))
         return 1;
-    VK(vkCreateCommandPool(d->device, &(VkCommandPoolCreateInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
-        .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT, .queueFamilyIndex = d->queue_family}, NULL, &r->command_pool));
-    VK(vkCreateFence(d->device, &(VkFenceCreateInfo){.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO}, NULL, &r->fence));
+    SAMPLE_VK(vkCreateCommandPool(d->vk.device, &(VkCommandPoolCreateInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+        .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT, .queueFamilyIndex = d->vk.queue_family_index}, NULL, &r->command_pool));
+    SAMPLE_VK(vkCreateFence(d->vk.device, &(VkFenceCreateInfo){.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO}, NULL, &r->fence));
 
     // rtpbr's side, made once: a light set of the host's capacity (one frame in flight: this
     // host waits for each frame) and the targets: the host's images and material records.
     rtpbr_result rr = rtpbr_light_set_create(r->rtpbr, &(rtpbr_light_set_desc){.capacity = SH_MAX_LIGHTS,
                                                                               .frames_in_flight = 1}, &r->lights);
-    if (rr != RTPBR_SUCCESS) return fail(error, error_size, "rtpbr_light_set_create: %s", rtpbr_result_string(rr));
+    if (rr != RTPBR_SUCCESS) return sample_vk_fail(error, error_size, "rtpbr_light_set_create: %s", rtpbr_result_string(rr));
     rtpbr_material_desc records[SH_MAX_MATERIALS];
     for (uint32_t m = 0; m < s->material_count; ++m) records[m] = sh_material_record(&s->materials[m]);
     rtpbr_lighting_targets_desc td = {.width = w, .height = h, .frames_in_flight = 1,
@@ -359,11 +263,11 @@ static int renderer_make(sh_renderer *r, const sh_scene *s, char *error, size_t 
         .materials = records, .material_count = s->material_count};
     for (int i = 0; i < 4; ++i) td.gbuffer[i] = (rtpbr_host_image){r->gbuffer[i].image, r->gbuffer[i].view, gbuffer_formats[i]};
     rr = rtpbr_lighting_targets_create(r->rtpbr, &td, &r->targets);
-    if (rr != RTPBR_SUCCESS) return fail(error, error_size, "rtpbr_lighting_targets_create: %s", rtpbr_result_string(rr));
+    if (rr != RTPBR_SUCCESS) return sample_vk_fail(error, error_size, "rtpbr_lighting_targets_create: %s", rtpbr_result_string(rr));
     return 0;
 }
 
-int sh_renderer_create(sh_renderer *r, sh_device *device, rtpbr_context *rtpbr, const sh_scene *s, char *error,
+int sh_renderer_create(sh_renderer *r, sample_device *device, rtpbr_context *rtpbr, const sh_scene *s, char *error,
                        size_t error_size)
 {
     memset(r, 0, sizeof *r);
@@ -377,11 +281,11 @@ int sh_renderer_create(sh_renderer *r, sh_device *device, rtpbr_context *rtpbr, 
 
 void sh_renderer_destroy(sh_renderer *r)
 {
-    sh_device *d = r->device;
+    sample_device *d = r->device;
     if (!d) return;
     rtpbr_lighting_targets_destroy(r->targets); // rtpbr's objects first, then the host's images
     rtpbr_light_set_destroy(r->lights);
-    VkDevice dev = d->device;
+    VkDevice dev = d->vk.device;
     if (r->fence) vkDestroyFence(dev, r->fence, NULL);
     if (r->command_pool) vkDestroyCommandPool(dev, r->command_pool, NULL);
     if (r->geometry_pipeline) vkDestroyPipeline(dev, r->geometry_pipeline, NULL);
@@ -412,30 +316,36 @@ static void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags
     vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, NULL, 0, NULL, 1, &b);
 }
 
-// The host's geometry pass: every material's triangles into g0 .. g3 and depth (cleared).
-// The images' previous contents are discarded (UNDEFINED); a host with frames in flight waits
-// instead on VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, where rtpbr last read them (rtpbr.h).
+void sh_begin_gbuffer_pass(VkCommandBuffer cmd, const VkImage images[5], const VkImageView views[5], uint32_t width,
+                           uint32_t height)
+{
+    for (int i = 0; i < 5; ++i) // after rtpbr's compute reads of the previous frame; contents discarded
+        image_barrier(cmd, images[i], i < 4 ? VK_IMAGE_ASPECT_COLOR_BIT : VK_IMAGE_ASPECT_DEPTH_BIT,
+                      VK_IMAGE_LAYOUT_UNDEFINED,
+                      i < 4 ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
+                      i < 4 ? VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT
+                            : VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                      i < 4 ? VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT
+                            : VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+    VkRenderingAttachmentInfo attachments[5];
+    for (int i = 0; i < 5; ++i)
+        attachments[i] = (VkRenderingAttachmentInfo){.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+            .imageView = views[i],
+            .imageLayout = i < 4 ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+            .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, .storeOp = VK_ATTACHMENT_STORE_OP_STORE};
+    attachments[4].clearValue.depthStencil = (VkClearDepthStencilValue){1.0f, 0}; // 1: background (rtpbr.h)
+    vkCmdBeginRendering(cmd, &(VkRenderingInfo){.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
+        .renderArea = {{0, 0}, {width, height}}, .layerCount = 1, .colorAttachmentCount = 4,
+        .pColorAttachments = attachments, .pDepthAttachment = &attachments[4]});
+}
+
+// The host's geometry pass: every material's triangles into g0 .. g3 and depth.
 static void record_geometry(sh_renderer *r, VkCommandBuffer cmd, const sh_scene *s, const float view_proj[16])
 {
-    for (int i = 0; i < 4; ++i)
-        image_barrier(cmd, r->gbuffer[i].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
-                      VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    image_barrier(cmd, r->depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                  VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
-                  VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-                  VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-    VkRenderingAttachmentInfo colour[4];
-    for (int i = 0; i < 4; ++i)
-        colour[i] = (VkRenderingAttachmentInfo){.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-            .imageView = r->gbuffer[i].view, .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-            .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, .storeOp = VK_ATTACHMENT_STORE_OP_STORE};
-    VkRenderingAttachmentInfo depth = {.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO, .imageView = r->depth.view,
-        .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
-        .storeOp = VK_ATTACHMENT_STORE_OP_STORE, .clearValue.depthStencil = {1.0f, 0}}; // 1: background (rtpbr.h)
-    vkCmdBeginRendering(cmd, &(VkRenderingInfo){.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
-        .renderArea = {{0, 0}, {r->width, r->height}}, .layerCount = 1, .colorAttachmentCount = 4,
-        .pColorAttachments = colour, .pDepthAttachment = &depth});
+    VkImage images[5] = {r->gbuffer[0].image, r->gbuffer[1].image, r->gbuffer[2].image, r->gbuffer[3].image, r->depth.image};
+    VkImageView views[5] = {r->gbuffer[0].view, r->gbuffer[1].view, r->gbuffer[2].view, r->gbuffer[3].view, r->depth.view};
+    sh_begin_gbuffer_pass(cmd, images, views, r->width, r->height);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->geometry_pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->geometry_layout, 0, 1, &r->geometry_set, 0, NULL);
     vkCmdSetViewport(cmd, 0, 1, &(VkViewport){0.0f, 0.0f, (float)r->width, (float)r->height, 0.0f, 1.0f});
@@ -489,14 +399,14 @@ int sh_render_frame(sh_renderer *r, const sh_scene *s, float exposure, float *hd
     rtpbr_light_desc lights[SH_MAX_LIGHTS];
     for (uint32_t i = 0; i < s->light_count; ++i) lights[i] = sh_light_record(&s->lights[i]);
     rtpbr_result rr = rtpbr_light_set_update(r->lights, 0, lights, s->light_count);
-    if (rr != RTPBR_SUCCESS) return fail(error, error_size, "rtpbr_light_set_update: %s", rtpbr_result_string(rr));
+    if (rr != RTPBR_SUCCESS) return sample_vk_fail(error, error_size, "rtpbr_light_set_update: %s", rtpbr_result_string(rr));
 
     float view[16], projection[16], view_proj[16];
     sh_camera_matrices(&s->camera, (float)r->width / (float)r->height, view, projection, view_proj);
 
-    VkDevice dev = r->device->device;
+    VkDevice dev = r->device->vk.device;
     VkCommandBuffer cmd;
-    VK(vkAllocateCommandBuffers(dev, &(VkCommandBufferAllocateInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+    SAMPLE_VK(vkAllocateCommandBuffers(dev, &(VkCommandBufferAllocateInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
         .commandPool = r->command_pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1}, &cmd));
     VkResult vr = vkBeginCommandBuffer(cmd, &(VkCommandBufferBeginInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
         .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT});
@@ -524,13 +434,13 @@ int sh_render_frame(sh_renderer *r, const sh_scene *s, float exposure, float *hd
     if (vr == VK_SUCCESS && rr == RTPBR_SUCCESS) {
         vr = vkResetFences(dev, 1, &r->fence);
         if (vr == VK_SUCCESS)
-            vr = vkQueueSubmit(r->device->queue, 1, &(VkSubmitInfo){.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
+            vr = vkQueueSubmit(r->device->vk.queue, 1, &(VkSubmitInfo){.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
                 .commandBufferCount = 1, .pCommandBuffers = &cmd}, r->fence);
         if (vr == VK_SUCCESS) vr = vkWaitForFences(dev, 1, &r->fence, VK_TRUE, UINT64_MAX);
     }
     vkFreeCommandBuffers(dev, r->command_pool, 1, &cmd);
-    if (rr != RTPBR_SUCCESS) return fail(error, error_size, "rtpbr_lighting_record: %s", rtpbr_result_string(rr));
-    if (vr != VK_SUCCESS) return fail(error, error_size, "frame submission failed (VkResult %d)", (int)vr);
+    if (rr != RTPBR_SUCCESS) return sample_vk_fail(error, error_size, "rtpbr_lighting_record: %s", rtpbr_result_string(rr));
+    if (vr != VK_SUCCESS) return sample_vk_fail(error, error_size, "frame submission failed (VkResult %d)", (int)vr);
     if (hdr) memcpy(hdr, r->hdr_readback.mapped, (size_t)r->width * r->height * 16);
     if (ldr) memcpy(ldr, r->ldr_readback.mapped, (size_t)r->width * r->height * 4);
     return 0;

@@ -1,11 +1,13 @@
 // rtpbr-sample-host: a C engine's frame with rtpbr as its lighting pass (issue 33).
 // The host has its own mesh format (scene.c, documented in samples/README.md), its own Vulkan
-// device and geometry pass writing the G-buffer contract (geometry.frag calls GBuffer_Encode),
+// device (sample_vk.h) and geometry pass writing the G-buffer contract (geometry.frag calls GBuffer_Encode),
 // then rtpbr_lighting_record in its command buffer, then its own tone mapping (tonemap.comp).
 // main.c is the program; tests/samples/test_sample_host.c runs the same code against
 // rtpbr_render. Only rtpbr's public API is used.
 #ifndef RTPBR_SAMPLE_HOST_H
 #define RTPBR_SAMPLE_HOST_H
+
+#include "sample_vk.h" // the host's device (samples/common, shared with rtpbr-embed)
 
 #include <rtpbr/rtpbr.h>
 #include <stddef.h>
@@ -71,34 +73,13 @@ rtpbr_light_desc sh_light_record(const sh_light *l);
 void sh_camera_matrices(const sh_camera *c, float aspect, float view[16], float projection[16], float view_proj[16]);
 
 // ---------------------------------------------------------------------------------------------
-// The host's Vulkan device (frame.c)
-
-typedef struct sh_device {
-    VkInstance instance;
-    VkDebugUtilsMessengerEXT messenger;
-    VkPhysicalDevice physical_device;
-    VkDevice device;
-    VkQueue queue;
-    uint32_t queue_family;
-    VkPhysicalDeviceVulkan13Features features13; // what the host enabled (rtpbr reads it)
-    VkPhysicalDeviceFeatures2 features;
-    unsigned validation_messages;                // warnings and errors of the validation layer
-} sh_device;
-
-// Instance, first Vulkan 1.3 device with a graphics + compute queue, device with dynamic
-// rendering. validation: VK_LAYER_KHRONOS_validation with synchronization validation, its
-// messages printed and counted. Non-zero on failure (message in error).
-int sh_device_create(sh_device *d, int validation, char *error, size_t error_size);
-void sh_device_destroy(sh_device *d);
-
-// ---------------------------------------------------------------------------------------------
 // The host's frame (frame.c): its images and passes, and rtpbr's light set and targets
 
 typedef struct sh_image { VkImage image; VkDeviceMemory memory; VkImageView view; } sh_image;
 typedef struct sh_buffer { VkBuffer buffer; VkDeviceMemory memory; void *mapped; } sh_buffer;
 
 typedef struct sh_renderer {
-    sh_device *device;
+    sample_device *device;
     rtpbr_context *rtpbr;
     uint32_t width, height;
     sh_image gbuffer[4], depth, hdr, ldr;
@@ -115,9 +96,24 @@ typedef struct sh_renderer {
 } sh_renderer;
 
 // Everything the frames use, made once for the scene's size, materials and light capacity.
-int sh_renderer_create(sh_renderer *r, sh_device *device, rtpbr_context *rtpbr, const sh_scene *scene,
+int sh_renderer_create(sh_renderer *r, sample_device *device, rtpbr_context *rtpbr, const sh_scene *scene,
                        char *error, size_t error_size);
 void sh_renderer_destroy(sh_renderer *r);
+
+// The SPIR-V of the host's geometry pass (geometry.vert / .frag) and its sizes in bytes; the
+// push constants: mat4 view_proj, vec4 camera (xyz), uint material (84 bytes); the fragment
+// shader's set 0 binding 0: the material table (two vec4 per material: base colour and
+// metallic, emission and roughness).
+extern const uint32_t host_geometry_vert[], host_geometry_frag[];
+extern const size_t sh_geometry_vert_size, sh_geometry_frag_size;
+
+// The start of the host's G-buffer pass, recorded: images and views g0 .. g3 (gbuffer.h's
+// formats) and D32 depth move from any layout (contents discarded) to the attachment layouts,
+// after an execution dependency on VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT (where rtpbr's lighting
+// of a previous frame last read them, rtpbr.h); then vkCmdBeginRendering with the four colour
+// targets and depth cleared (depth to 1: background). The caller draws and ends the rendering.
+void sh_begin_gbuffer_pass(VkCommandBuffer cmd, const VkImage images[5], const VkImageView views[5], uint32_t width,
+                           uint32_t height);
 
 // One frame: the scene's lights into the light set, then one command buffer (geometry pass,
 // rtpbr_lighting_record, tone mapping, copies to the readback buffers), submitted and waited

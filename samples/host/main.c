@@ -68,7 +68,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "rtpbr-sample-host: %s\n", error);
         return 1;
     }
-    sh_device device = {0};
+    sample_device device = {0};
     rtpbr_context *ctx = NULL;
     sh_renderer renderer = {0};
     size_t pixels = (size_t)scene.width * scene.height;
@@ -79,11 +79,9 @@ int main(int argc, char **argv)
         snprintf(error, sizeof error, "out of memory");
         goto done;
     }
-    if (sh_device_create(&device, validation, error, sizeof error)) goto done;
+    if (sample_device_create(&device, "rtpbr-sample-host", validation, validation, error, sizeof error)) goto done;
     // rtpbr on the host's device and queue (embedded mode): it creates only its own objects.
-    rtpbr_result rr = rtpbr_context_create(&(rtpbr_context_desc){.embedded = {.instance = device.instance,
-        .physical_device = device.physical_device, .device = device.device, .queue = device.queue,
-        .queue_family_index = device.queue_family, .enabled_features = &device.features}}, &ctx);
+    rtpbr_result rr = rtpbr_context_create(&(rtpbr_context_desc){.embedded = device.vk}, &ctx);
     if (rr != RTPBR_SUCCESS) {
         snprintf(error, sizeof error, "rtpbr_context_create: %s", rtpbr_result_string(rr));
         goto done;
@@ -107,8 +105,8 @@ done:
     if (status && error[0]) fprintf(stderr, "rtpbr-sample-host: %s\n", error);
     sh_renderer_destroy(&renderer);
     rtpbr_context_destroy(ctx);
-    if (device.instance || device.device) {
-        sh_device_destroy(&device);
+    if (device.vk.instance) {
+        sample_device_destroy(&device);
         if (device.validation_messages) {
             fprintf(stderr, "rtpbr-sample-host: %u validation message(s)\n", device.validation_messages);
             status = 1;

@@ -14,8 +14,8 @@
 #include "util.h" // rtpbr_camera_matrices (engine/src/math.c, compiled into this test)
 #include "vk_draw.h"
 
-#include "host_geometry_frag.spv.h" // samples/host/geometry.frag
-#include "host_geometry_vert.spv.h"
+#include "host.h" // samples/host: its geometry shaders, sh_begin_gbuffer_pass
+
 
 enum { W = 96, H = 72, QUADS = 4, LIGHTS = 6 };
 
@@ -119,8 +119,8 @@ static void make_pipeline(host *g)
         .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1, .pSetLayouts = &g->pass.set_layout,
         .pushConstantRangeCount = 1, .pPushConstantRanges = &push}, NULL, &g->pass.layout));
     VK(vk_draw_pipeline_create(&g->h, &(vk_draw_pipeline_desc){
-        .vert = host_geometry_vert, .vert_size = sizeof host_geometry_vert,
-        .frag = host_geometry_frag, .frag_size = sizeof host_geometry_frag, .attribute_count = 2,
+        .vert = host_geometry_vert, .vert_size = sh_geometry_vert_size,
+        .frag = host_geometry_frag, .frag_size = sh_geometry_frag_size, .attribute_count = 2,
         .color_formats = gbuffer_formats, .color_count = 4, .depth_format = VK_FORMAT_D32_SFLOAT,
         .depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL, .layout = g->pass.layout}, &g->pass.pipeline));
 }
@@ -139,28 +139,10 @@ static VkCommandBuffer host_frame(host *g, rtpbr_lighting_targets *targets, rtpb
                                   const float view_proj[16], bool first)
 {
     VkCommandBuffer cmd = begin_commands(g);
-    for (int i = 0; i < 4; ++i)
-        vk_draw_barrier(cmd, g->images[G0 + i].image, VK_IMAGE_ASPECT_COLOR_BIT,
-                first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
-                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    vk_draw_barrier(cmd, g->images[DEPTH].image, VK_IMAGE_ASPECT_DEPTH_BIT,
-            first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
-            VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
-            VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-            VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-    VkRenderingAttachmentInfo colour[4];
-    for (int i = 0; i < 4; ++i)
-        colour[i] = (VkRenderingAttachmentInfo){.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-            .imageView = g->images[G0 + i].view, .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-            .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, .storeOp = VK_ATTACHMENT_STORE_OP_STORE};
-    VkRenderingAttachmentInfo depth = {.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-        .imageView = g->images[DEPTH].view, .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-        .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
-        .clearValue.depthStencil = {1.0f, 0}};
-    vkCmdBeginRendering(cmd, &(VkRenderingInfo){.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
-        .renderArea = {{0, 0}, {W, H}}, .layerCount = 1, .colorAttachmentCount = 4,
-        .pColorAttachments = colour, .pDepthAttachment = &depth});
+    VkImage images[5];
+    VkImageView views[5];
+    for (int i = 0; i < 5; ++i) images[i] = g->images[G0 + i].image, views[i] = g->images[G0 + i].view; // g0 .. g3, depth
+    sh_begin_gbuffer_pass(cmd, images, views, W, H); // the sample host's (samples/host/frame.c)
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->pass.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->pass.layout, 0, 1, &g->pass.set, 0, NULL);
     vkCmdSetViewport(cmd, 0, 1, &(VkViewport){0.0f, 0.0f, W, H, 0.0f, 1.0f});

@@ -98,12 +98,10 @@ static void sample_host_equals_engine(void **state)
     sh_scene s;
     if (sh_scene_load(RTPBR_SAMPLE_HOST_MESH, &s, error, sizeof error)) fail_msg("%s", error);
     assert_true(s.light_count >= 2);
-    sh_device device;
-    if (sh_device_create(&device, 1, error, sizeof error)) fail_msg("sh_device_create: %s", error);
+    sample_device device;
+    if (sample_device_create(&device, "test-sample-host", 1, 1, error, sizeof error)) fail_msg("sample_device_create: %s", error);
     rtpbr_context *ctx = NULL;
-    assert_int_equal(rtpbr_context_create(&(rtpbr_context_desc){.embedded = {.instance = device.instance,
-        .physical_device = device.physical_device, .device = device.device, .queue = device.queue,
-        .queue_family_index = device.queue_family, .enabled_features = &device.features}}, &ctx), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_context_create(&(rtpbr_context_desc){.embedded = device.vk}, &ctx), RTPBR_SUCCESS);
 
     // The sample's frame, as rtpbr-sample-host renders it (two frames: the second reuses
     // everything made once).
@@ -169,7 +167,7 @@ static void sample_host_equals_engine(void **state)
     free(ldr);
     sh_renderer_destroy(&r);
     rtpbr_context_destroy(ctx);
-    sh_device_destroy(&device);
+    sample_device_destroy(&device);
     assert_int_equal(device.validation_messages, 0);
     sh_scene_free(&s);
 }
