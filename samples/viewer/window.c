@@ -1,5 +1,6 @@
 // The viewer's Vulkan host (see window.h). Every failing call prints what failed.
 #include "window.h"
+#include "sample_vk.h" // the samples' instance, device choice and validation callback
 
 #include <stb_image_write.h>
 #include <stdio.h>
@@ -15,17 +16,6 @@
         }                                                                                  \
     } while (0)
 
-static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-    VkDebugUtilsMessageTypeFlagsEXT type, const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
-{
-    (void)type;
-    if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
-        ((viewer_window *)user)->validation_messages++;
-        fprintf(stderr, "validation: %s\n", data->pMessage);
-    }
-    return VK_FALSE;
-}
-
 static bool create_instance(viewer_window *w, bool validation)
 {
     uint32_t glfw_count = 0;
@@ -34,28 +24,11 @@ static bool create_instance(viewer_window *w, bool validation)
         fprintf(stderr, "rtpbr-viewer: GLFW found no Vulkan surface support\n");
         return false;
     }
-    const char *exts[16];
-    uint32_t ext_count = 0;
-    for (uint32_t i = 0; i < glfw_count && ext_count < 15; ++i) exts[ext_count++] = glfw_exts[i];
-    if (validation) exts[ext_count++] = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
-    const char *layer = "VK_LAYER_KHRONOS_validation";
-    VkDebugUtilsMessengerCreateInfoEXT messenger_info = {
-        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
-        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
-        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
-        .pfnUserCallback = on_validation, .pUserData = w};
-    VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO, .pApplicationName = "rtpbr-viewer",
-                             .apiVersion = VK_API_VERSION_1_3};
-    VkInstanceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pApplicationInfo = &app,
-        .pNext = validation ? &messenger_info : NULL, .enabledLayerCount = validation ? 1 : 0,
-        .ppEnabledLayerNames = &layer, .enabledExtensionCount = ext_count, .ppEnabledExtensionNames = exts};
-    CHECK(vkCreateInstance(&info, NULL, &w->instance));
-    if (validation) {
-        PFN_vkCreateDebugUtilsMessengerEXT create = (PFN_vkCreateDebugUtilsMessengerEXT)
-            vkGetInstanceProcAddr(w->instance, "vkCreateDebugUtilsMessengerEXT");
-        if (!create) return false;
-        CHECK(create(w->instance, &messenger_info, NULL, &w->messenger));
+    char error[256];
+    if (sample_vk_create_instance("rtpbr-viewer", glfw_exts, glfw_count, validation, 0, &w->validation_messages,
+                                  &w->instance, &w->messenger, error, sizeof error)) {
+        fprintf(stderr, "rtpbr-viewer: %s\n", error);
+        return false;
     }
     return true;
 }
@@ -63,27 +36,7 @@ static bool create_instance(viewer_window *w, bool validation)
 // The first Vulkan 1.3 device with a graphics + compute queue family that can present.
 static bool create_device(viewer_window *w)
 {
-    VkPhysicalDevice devices[16];
-    uint32_t count = 16;
-    vkEnumeratePhysicalDevices(w->instance, &count, devices);
-    for (uint32_t i = 0; i < count && !w->physical_device; ++i) {
-        VkPhysicalDeviceProperties props;
-        vkGetPhysicalDeviceProperties(devices[i], &props);
-        if (props.apiVersion < VK_API_VERSION_1_3) continue;
-        VkQueueFamilyProperties families[16];
-        uint32_t family_count = 16;
-        vkGetPhysicalDeviceQueueFamilyProperties(devices[i], &family_count, families);
-        for (uint32_t f = 0; f < family_count; ++f) {
-            VkBool32 present = VK_FALSE;
-            vkGetPhysicalDeviceSurfaceSupportKHR(devices[i], f, w->surface, &present);
-            if (present && (families[f].queueFlags & VK_QUEUE_GRAPHICS_BIT) &&
-                (families[f].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
-                w->physical_device = devices[i];
-                w->queue_family = f;
-                break;
-            }
-        }
-    }
+    sample_vk_pick_device(w->instance, w->surface, &w->physical_device, &w->queue_family);
     if (!w->physical_device) {
         fprintf(stderr, "rtpbr-viewer: no Vulkan 1.3 device that can present to the window\n");
         return false;
@@ -262,12 +215,7 @@ void viewer_window_destroy(viewer_window *w)
         vkDestroyDevice(w->device, NULL);
     }
     if (w->surface) vkDestroySurfaceKHR(w->instance, w->surface, NULL);
-    if (w->messenger) {
-        PFN_vkDestroyDebugUtilsMessengerEXT destroy = (PFN_vkDestroyDebugUtilsMessengerEXT)
-            vkGetInstanceProcAddr(w->instance, "vkDestroyDebugUtilsMessengerEXT");
-        if (destroy) destroy(w->instance, w->messenger, NULL);
-    }
-    if (w->instance) vkDestroyInstance(w->instance, NULL);
+    sample_vk_destroy_instance(w->instance, w->messenger);
     if (w->glfw) glfwDestroyWindow(w->glfw);
     glfwTerminate();
     uint32_t messages = w->validation_messages;

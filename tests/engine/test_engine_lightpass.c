@@ -1,6 +1,6 @@
 // Issue 33: the lighting-only API inside a host's frame. The test is the host: on the tests'
 // Vulkan host (lavapipe, validation with synchronization validation on: any message fails)
-// it draws a scene with ITS OWN geometry pass (lightpass_host.vert / .frag, whose fragment
+// it draws a scene with ITS OWN geometry pass (samples/host/geometry.vert / .frag, whose fragment
 // shader includes shaderlib/rtpbr/gbuffer.h and calls GBuffer_Encode) into its own G-buffer
 // and depth images, then records rtpbr_lighting_record into the same command buffer, and
 // reads its own HDR output back. The engine (the same context, embedded in the host's device)
@@ -14,8 +14,8 @@
 #include "util.h" // rtpbr_camera_matrices (engine/src/math.c, compiled into this test)
 #include "vk_draw.h"
 
-#include "lightpass_host_frag.spv.h"
-#include "lightpass_host_vert.spv.h"
+#include "host.h" // samples/host: its geometry shaders, sh_begin_gbuffer_pass
+
 
 enum { W = 96, H = 72, QUADS = 4, LIGHTS = 6 };
 
@@ -30,7 +30,7 @@ typedef struct stats { double max, mean; int count; } stats;
 
 #define VK(call) do { VkResult vr_ = (call); if (vr_) fail_msg("%s: %s", #call, vk_host_vk_result_name(vr_)); } while (0)
 
-// The host's material table (lightpass_host.frag's HostMaterial) and rtpbr's records of the
+// The host's material table (samples/host/geometry.frag's HostMaterial) and rtpbr's records of the
 // same materials: a rough dielectric floor, a copper metal, a clear-coated sheen fabric (the
 // full lighting variant) and a Disney material.
 typedef struct host_material { float base_metallic[4], emission_roughness[4]; } host_material;
@@ -119,8 +119,8 @@ static void make_pipeline(host *g)
         .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1, .pSetLayouts = &g->pass.set_layout,
         .pushConstantRangeCount = 1, .pPushConstantRanges = &push}, NULL, &g->pass.layout));
     VK(vk_draw_pipeline_create(&g->h, &(vk_draw_pipeline_desc){
-        .vert = lightpass_host_vert, .vert_size = sizeof lightpass_host_vert,
-        .frag = lightpass_host_frag, .frag_size = sizeof lightpass_host_frag, .attribute_count = 2,
+        .vert = host_geometry_vert, .vert_size = sh_geometry_vert_size,
+        .frag = host_geometry_frag, .frag_size = sh_geometry_frag_size, .attribute_count = 2,
         .color_formats = gbuffer_formats, .color_count = 4, .depth_format = VK_FORMAT_D32_SFLOAT,
         .depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL, .layout = g->pass.layout}, &g->pass.pipeline));
 }
@@ -139,28 +139,10 @@ static VkCommandBuffer host_frame(host *g, rtpbr_lighting_targets *targets, rtpb
                                   const float view_proj[16], bool first)
 {
     VkCommandBuffer cmd = begin_commands(g);
-    for (int i = 0; i < 4; ++i)
-        vk_draw_barrier(cmd, g->images[G0 + i].image, VK_IMAGE_ASPECT_COLOR_BIT,
-                first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
-                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    vk_draw_barrier(cmd, g->images[DEPTH].image, VK_IMAGE_ASPECT_DEPTH_BIT,
-            first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
-            VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
-            VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-            VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-    VkRenderingAttachmentInfo colour[4];
-    for (int i = 0; i < 4; ++i)
-        colour[i] = (VkRenderingAttachmentInfo){.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-            .imageView = g->images[G0 + i].view, .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-            .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, .storeOp = VK_ATTACHMENT_STORE_OP_STORE};
-    VkRenderingAttachmentInfo depth = {.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-        .imageView = g->images[DEPTH].view, .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-        .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
-        .clearValue.depthStencil = {1.0f, 0}};
-    vkCmdBeginRendering(cmd, &(VkRenderingInfo){.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
-        .renderArea = {{0, 0}, {W, H}}, .layerCount = 1, .colorAttachmentCount = 4,
-        .pColorAttachments = colour, .pDepthAttachment = &depth});
+    VkImage images[5];
+    VkImageView views[5];
+    for (int i = 0; i < 5; ++i) images[i] = g->images[G0 + i].image, views[i] = g->images[G0 + i].view; // g0 .. g3, depth
+    sh_begin_gbuffer_pass(cmd, images, views, W, H); // the sample host's (samples/host/frame.c)
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->pass.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->pass.layout, 0, 1, &g->pass.set, 0, NULL);
     vkCmdSetViewport(cmd, 0, 1, &(VkViewport){0.0f, 0.0f, W, H, 0.0f, 1.0f});

@@ -1,8 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// test_engine_lightpass's own G-buffer shader (the "host"): its material table (its own
-// layout), written through the shader library's G-buffer contract (gbuffer.h) as a host would:
-// GBuffer_DefaultSurface, the fields it knows, GBuffer_Encode (with its clean-up: not trusted).
+// rtpbr-sample-host's G-buffer shader (samples/host; tests/engine/test_engine_lightpass uses
+// it too): the host's material table (its own layout), written through the shader library's
+// G-buffer contract (gbuffer.h) as a host would: GBuffer_DefaultSurface, the fields it knows,
+// GBuffer_Encode (with its clean-up: not trusted).
 #include "rtpbr/lang.h"
 #include "rtpbr/gbuffer.h"
 #if RTPBR_GBUFFER_VERSION != 1

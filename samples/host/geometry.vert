@@ -1,6 +1,7 @@
 #version 450
-// test_engine_lightpass's own geometry pass (the "host"): world-space triangles through the
-// host's view-projection (a push constant), the world position and normal as varyings.
+// rtpbr-sample-host's geometry pass (samples/host; tests/engine/test_engine_lightpass uses it
+// too): world-space triangles through the host's view-projection (a push constant), the world
+// position and normal as varyings.
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 0) out vec3 out_world;
