@@ -91,10 +91,22 @@ bool container_sizes_fit(const std::string& path, long long max_pixels, std::str
     };
     if (head.size() < 8 || u32(0) != 20000630u || file_size < 0) return true;  // not EXR
     const bool multipart = (u32(4) & 0x1000u) != 0;
+    // Tiles larger than both the data window and 256 x 256 pixels: OpenEXR allocates a tile's
+    // buffers when it opens the file (a 64 x 64 image declaring 1069 x 262179 tiles: 1.7 GB),
+    // before OpenImageIO's spec can be checked (open_checked checks it again, for TIFF too).
+    long long window_pixels = 0, tile_pixels = 0;
+    const auto tiles_fit = [&]() {
+        if (tile_pixels <= std::max(window_pixels, 65536LL)) return true;
+        error = "'" + path + "': EXR tiles of " + std::to_string(tile_pixels) + " pixels for a data window of " +
+                std::to_string(window_pixels);
+        return false;
+    };
     std::size_t at = 8;
     while (at < head.size()) {
         if (head[at] == 0) {  // end of a header; a multi-part file ends with an empty one
             ++at;
+            if (!tiles_fit()) return false;
+            window_pixels = tile_pixels = 0;
             if (!multipart || (at < head.size() && head[at] == 0)) break;
             continue;
         }
@@ -123,10 +135,13 @@ bool container_sizes_fit(const std::string& path, long long max_pixels, std::str
                         (w <= 0 || h <= 0 ? " is empty" : " exceeds the limit of " + std::to_string(max_pixels) + " pixels");
                 return false;
             }
+            window_pixels = w * h;
         }
+        if (name == "tiles" && size == 9)  // tiledesc: x size, y size (uint32), mode
+            tile_pixels = static_cast<long long>(u32(value)) * static_cast<long long>(u32(value + 4));
         at = value + static_cast<std::size_t>(size);
     }
-    return true;
+    return tiles_fit();
 }
 
 // The formats rtpbr reads, each recognised by its signature, or (TGA, which has none) by its
@@ -202,7 +217,8 @@ std::unique_ptr<OIIO::ImageInput> open_checked(const std::string& path, std::str
         return nullptr;
     }
     // Tiles are decoded whole: a 5 x 3 OpenEXR file declaring 4 x 33554436 tiles made OpenEXR
-    // allocate 1.7 GB (found by fuzz_image). A tile may exceed a small image (64 x 64 tiles
+    // allocate 1.7 GB (found by fuzz_image; container_sizes_fit refuses such EXR files before
+    // OpenEXR opens them, this covers TIFF). A tile may exceed a small image (64 x 64 tiles
     // over a 5 x 3 image are legitimate), but not both the image and 256 x 256 pixels.
     if (spec.tile_width > 0) {
         const long long tile_pixels = static_cast<long long>(spec.tile_width) * std::max(spec.tile_height, 1) *
