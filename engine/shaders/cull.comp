@@ -71,7 +71,7 @@ void main()
     for (uint y = origin.y; y < end.y; ++y)
         for (uint x = origin.x; x < end.x; ++x) {
             float depth = texelFetch(gbuffer_depth, ivec2(x, y), 0).r;
-            if (depth < 1.0f) {
+            if (depth != frame.camera_position.w) { // not the background (1, or 0: reversed-Z)
                 vec2 ndc = (vec2(x, y) + 0.5f) / vec2(frame.size) * 2.0f - 1.0f;
                 vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
                 vec3 P = world.xyz / world.w;

@@ -48,7 +48,7 @@ void main()
     ivec2 pixel = ivec2(uvec2(tile % frame.tiles_x, tile / frame.tiles_x) * uint(RTPBR_TILE_SIZE) + gl_LocalInvocationID.xy);
     if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
     float depth = texelFetch(gbuffer_depth, pixel, 0).r;
-    if (depth == 1.0f) {
+    if (depth == frame.camera_position.w) { // the background (1, or 0: reversed-Z)
         imageStore(radiance, pixel, vec4(frame.background.rgb, 0.0));
         return;
     }

@@ -58,7 +58,7 @@
 #define RTPBR_FRAME_FIELDS(F, S)                                                                  \
     F(S, MAT4, view_proj, )          /* clip from world, column-major */                            \
     F(S, MAT4, inv_view_proj, )      /* world from clip */                                          \
-    F(S, VEC4, camera_position, )    /* xyz; w unused */                                            \
+    F(S, VEC4, camera_position, )    /* xyz; w: the background's depth (1; 0: reversed-Z) */        \
     F(S, VEC4, background, )         /* rgb radiance; w unused */                                   \
     F(S, UVEC2, size, )              /* render width, height */                                     \
     F(S, UINT, light_count, )                                                                       \
@@ -86,9 +86,9 @@
     F(S, FLOAT, anisotropy_strength, ) /* KHR_materials_anisotropy */                             \
     F(S, FLOAT, anisotropy_rotation, ) /* radians, from the tangent toward the bitangent */       \
     F(S, VEC3, sheen_color_factor, )  /* KHR_materials_sheen sheenColorFactor */                  \
-    F(S, FLOAT, sheen_roughness_factor, )    /* KHR_materials_sheen, perceptual */                       \
+    F(S, FLOAT, sheen_roughness_factor, ) /* KHR_materials_sheen, perceptual */                   \
     F(S, FLOAT, clearcoat_factor, )   /* KHR_materials_clearcoat clearcoatFactor */               \
-    F(S, FLOAT, clearcoat_roughness_factor, ) /* KHR clearcoatRoughnessFactor, perceptual */             \
+    F(S, FLOAT, clearcoat_roughness_factor, ) /* KHR clearcoatRoughnessFactor, perceptual */      \
     F(S, UINT, flags, )               /* RTPBR_MATERIAL_FLAG_* */                                 \
     F(S, FLOAT, alpha_cutoff, )       /* RTPBR_MATERIAL_FLAG_ALPHA_MASK: cut where alpha < this */ \
     F(S, FLOAT, disney_subsurface, )  /* Burley 2012 (RTPBR_MATERIAL_FLAG_DISNEY) */              \

@@ -334,6 +334,7 @@ static bool frame_constants(const rtpbr_lighting_targets *t, const rtpbr_lightin
     if (!rtpbr_mat4_invert(frame->inv_view_proj, frame->view_proj) ||
         !rtpbr_finite(frame->inv_view_proj, 16))
         return false;
+    frame->camera_position[3] = d->reversed_z ? 0.0f : 1.0f; // the background's depth
     memcpy(frame->background, d->background, 3 * sizeof(float));
     frame->size[0] = t->width;
     frame->size[1] = t->height;
@@ -395,6 +396,7 @@ rtpbr_result rtpbr_lighting_record(rtpbr_lighting_targets *t, const rtpbr_lighti
     if (!rtpbr_finite(d->background, 3) || !isfinite(d->light_cull_form_factor))
         FAIL("NaN or infinite background or light_cull_form_factor");
     rtpbr_shader_frame frame = {0};
+    if (d->reversed_z && d->camera) FAIL("reversed_z needs the host's view and projection (camera NULL)");
     if (!frame_constants(t, d, lights->count[d->frame], &frame)) FAIL("NaN, infinite or degenerate camera");
     // Before anything is recorded: a variant's first use compiles it, which may fail.
     VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT];

@@ -172,6 +172,7 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     memcpy(frame.camera_position, camera->position, 3 * sizeof(float));
+    frame.camera_position[3] = 1.0f; // the background's depth (rtpbr's own passes: 0 near .. 1 far)
     memcpy(frame.background, desc->background, 3 * sizeof(float));
     frame.size[0] = r->shade_width;
     frame.size[1] = r->shade_height;

@@ -175,9 +175,11 @@ static int geometry_pipeline_create(sh_renderer *r, char *error, size_t error_si
     for (int i = 0; i < 4; ++i) blend[i] = (VkPipelineColorBlendAttachmentState){.colorWriteMask = 0xf};
     VkPipelineColorBlendStateCreateInfo colour = {.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
         .attachmentCount = 4, .pAttachments = blend};
-    VkDynamicState dynamic_states[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    // The depth test's direction is set per frame (Vulkan 1.3 core): reversed-Z or not.
+    VkDynamicState dynamic_states[3] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR,
+                                        VK_DYNAMIC_STATE_DEPTH_COMPARE_OP};
     VkPipelineDynamicStateCreateInfo dynamic = {.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
-        .dynamicStateCount = 2, .pDynamicStates = dynamic_states};
+        .dynamicStateCount = 3, .pDynamicStates = dynamic_states};
     VkPipelineRenderingCreateInfo rendering = {.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO,
         .colorAttachmentCount = 4, .pColorAttachmentFormats = gbuffer_formats, .depthAttachmentFormat = VK_FORMAT_D32_SFLOAT};
     VkResult vr = vert && frag ? vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &(VkGraphicsPipelineCreateInfo){
@@ -317,7 +319,7 @@ static void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags
 }
 
 void sh_begin_gbuffer_pass(VkCommandBuffer cmd, const VkImage images[5], const VkImageView views[5], uint32_t width,
-                           uint32_t height)
+                           uint32_t height, float clear_depth)
 {
     for (int i = 0; i < 5; ++i) // after rtpbr's compute reads of the previous frame; contents discarded
         image_barrier(cmd, images[i], i < 4 ? VK_IMAGE_ASPECT_COLOR_BIT : VK_IMAGE_ASPECT_DEPTH_BIT,
@@ -334,7 +336,7 @@ void sh_begin_gbuffer_pass(VkCommandBuffer cmd, const VkImage images[5], const V
             .imageView = views[i],
             .imageLayout = i < 4 ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
             .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, .storeOp = VK_ATTACHMENT_STORE_OP_STORE};
-    attachments[4].clearValue.depthStencil = (VkClearDepthStencilValue){1.0f, 0}; // 1: background (rtpbr.h)
+    attachments[4].clearValue.depthStencil = (VkClearDepthStencilValue){clear_depth, 0}; // the background (rtpbr.h)
     vkCmdBeginRendering(cmd, &(VkRenderingInfo){.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
         .renderArea = {{0, 0}, {width, height}}, .layerCount = 1, .colorAttachmentCount = 4,
         .pColorAttachments = attachments, .pDepthAttachment = &attachments[4]});
@@ -345,8 +347,10 @@ static void record_geometry(sh_renderer *r, VkCommandBuffer cmd, const sh_scene 
 {
     VkImage images[5] = {r->gbuffer[0].image, r->gbuffer[1].image, r->gbuffer[2].image, r->gbuffer[3].image, r->depth.image};
     VkImageView views[5] = {r->gbuffer[0].view, r->gbuffer[1].view, r->gbuffer[2].view, r->gbuffer[3].view, r->depth.view};
-    sh_begin_gbuffer_pass(cmd, images, views, r->width, r->height);
+    const int reversed = r->camera_mode == SH_CAMERA_REVERSED_Z;
+    sh_begin_gbuffer_pass(cmd, images, views, r->width, r->height, reversed ? 0.0f : 1.0f);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->geometry_pipeline);
+    vkCmdSetDepthCompareOp(cmd, reversed ? VK_COMPARE_OP_GREATER_OR_EQUAL : VK_COMPARE_OP_LESS_OR_EQUAL);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->geometry_layout, 0, 1, &r->geometry_set, 0, NULL);
     vkCmdSetViewport(cmd, 0, 1, &(VkViewport){0.0f, 0.0f, (float)r->width, (float)r->height, 0.0f, 1.0f});
     vkCmdSetScissor(cmd, 0, 1, &(VkRect2D){{0, 0}, {r->width, r->height}});
@@ -402,7 +406,8 @@ int sh_render_frame(sh_renderer *r, const sh_scene *s, float exposure, float *hd
     if (rr != RTPBR_SUCCESS) return sample_vk_fail(error, error_size, "rtpbr_light_set_update: %s", rtpbr_result_string(rr));
 
     float view[16], projection[16], view_proj[16];
-    sh_camera_matrices(&s->camera, (float)r->width / (float)r->height, view, projection, view_proj);
+    sh_camera_matrices(&s->camera, (float)r->width / (float)r->height, r->camera_mode == SH_CAMERA_REVERSED_Z, view,
+                       projection, view_proj);
 
     VkDevice dev = r->device->vk.device;
     VkCommandBuffer cmd;
@@ -412,12 +417,13 @@ int sh_render_frame(sh_renderer *r, const sh_scene *s, float exposure, float *hd
         .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT});
     if (vr == VK_SUCCESS) {
         record_geometry(r, cmd, s, view_proj);
-        // rtpbr's lighting of the host's G-buffer. The camera as rtpbr's camera description:
-        // its matrices are the host's (sh_camera_matrices follows rtpbr_camera_desc's
-        // convention), and the result is rtpbr_render's bit for bit. Handing the host's
-        // `view` and `projection` instead (.camera = NULL) works too, but reconstructs
-        // positions through their inverse, and the bundled room then differs from rtpbr_render
-        // by 5e-6 relative on average but up to 0.35 at a few dark pixels (measured on lavapipe).
+        // rtpbr's lighting of the host's G-buffer. By default the camera as rtpbr's camera
+        // description: its matrices are the host's (sh_camera_matrices follows
+        // rtpbr_camera_desc's convention), and the result is rtpbr_render's bit for bit.
+        // Handing the host's `view` and `projection` instead (.camera = NULL) works too, but
+        // reconstructs positions through the inverse of another float product, and the bundled
+        // room then differs from rtpbr_render by 5e-6 relative on average but up to 0.35 at a
+        // few dark pixels (measured on lavapipe). A reversed-Z host must hand its matrices.
         rtpbr_lighting_record_desc rec = {.command_buffer = cmd, .frame = 0, .lights = r->lights,
             .gbuffer_old_layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
             .depth_old_layout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
@@ -425,7 +431,13 @@ int sh_render_frame(sh_renderer *r, const sh_scene *s, float exposure, float *hd
         rtpbr_camera_desc cam = {.yfov = s->camera.yfov, .znear = SH_ZNEAR, .zfar = SH_ZFAR};
         memcpy(cam.position, s->camera.position, sizeof cam.position);
         memcpy(cam.target, s->camera.target, sizeof cam.target);
-        rec.camera = &cam;
+        if (r->camera_mode == SH_CAMERA_RTPBR) {
+            rec.camera = &cam;
+        } else {
+            memcpy(rec.view, view, sizeof rec.view);
+            memcpy(rec.projection, projection, sizeof rec.projection);
+            rec.reversed_z = r->camera_mode == SH_CAMERA_REVERSED_Z;
+        }
         memcpy(rec.background, s->background, sizeof rec.background);
         rr = rtpbr_lighting_record(r->targets, &rec);
         if (rr == RTPBR_SUCCESS) record_tonemap_and_copies(r, cmd, exposure);

@@ -67,10 +67,17 @@ rtpbr_material_desc sh_material_record(const sh_material *m);
 rtpbr_light_desc sh_light_record(const sh_light *l);
 
 // The host's camera: world-to-view and view-to-clip matrices, column-major, Vulkan's clip space
-// (x right, y down, depth 0 near .. 1 far), and their product.
+// (x right, y down, depth 0 near .. 1 far, or 1 near .. 0 far when reversed_z), and their
+// product.
 #define SH_ZNEAR 0.05f
 #define SH_ZFAR 100.0f
-void sh_camera_matrices(const sh_camera *c, float aspect, float view[16], float projection[16], float view_proj[16]);
+void sh_camera_matrices(const sh_camera *c, float aspect, int reversed_z, float view[16], float projection[16],
+                        float view_proj[16]);
+
+// How the host hands its camera to rtpbr_lighting_record: rtpbr's camera description (the
+// default; its matrices are the host's, bit for bit), the host's view and projection, or those
+// with a reversed-Z projection (depth cleared to 0, compared GREATER_OR_EQUAL; reversed_z set).
+typedef enum sh_camera_mode { SH_CAMERA_RTPBR, SH_CAMERA_MATRICES, SH_CAMERA_REVERSED_Z } sh_camera_mode;
 
 // ---------------------------------------------------------------------------------------------
 // The host's frame (frame.c): its images and passes, and rtpbr's light set and targets
@@ -93,6 +100,7 @@ typedef struct sh_renderer {
     VkFence fence;
     rtpbr_light_set *lights;
     rtpbr_lighting_targets *targets;
+    sh_camera_mode camera_mode; // SH_CAMERA_RTPBR after sh_renderer_create; set it between frames
 } sh_renderer;
 
 // Everything the frames use, made once for the scene's size, materials and light capacity.
@@ -111,9 +119,10 @@ extern const size_t sh_geometry_vert_size, sh_geometry_frag_size;
 // formats) and D32 depth move from any layout (contents discarded) to the attachment layouts,
 // after an execution dependency on VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT (where rtpbr's lighting
 // of a previous frame last read them, rtpbr.h); then vkCmdBeginRendering with the four colour
-// targets and depth cleared (depth to 1: background). The caller draws and ends the rendering.
+// targets and depth cleared to clear_depth (the background: 1, or 0 for reversed-Z). The caller
+// draws and ends the rendering.
 void sh_begin_gbuffer_pass(VkCommandBuffer cmd, const VkImage images[5], const VkImageView views[5], uint32_t width,
-                           uint32_t height);
+                           uint32_t height, float clear_depth);
 
 // One frame: the scene's lights into the light set, then one command buffer (geometry pass,
 // rtpbr_lighting_record, tone mapping, copies to the readback buffers), submitted and waited

@@ -10,13 +10,17 @@
 #include <string.h>
 
 static const char *const usage =
-    "usage: rtpbr-sample-host [MESH] [-o OUT.png] [--hdr OUT.pfm] [--exposure EV] [--validation]\n"
+    "usage: rtpbr-sample-host [MESH] [-o OUT.png] [--hdr OUT.pfm] [--exposure EV] [--camera MODE]\n"
+    "                         [--validation]\n"
     "A host engine's frame with rtpbr as its lighting pass: reads MESH (the sample's own text mesh\n"
     "format; default: the bundled room.mesh), draws its G-buffer with its own geometry pass, lights\n"
     "it with rtpbr_lighting_record, tone-maps it with its own pass (Reinhard on luminance, sRGB).\n"
     "  -o OUT.png        the display image (default sample-host.png)\n"
     "  --hdr OUT.pfm     also the linear radiance, as a PFM (RGB float, bottom row first)\n"
     "  --exposure EV     scale the radiance by 2^EV before tone mapping (default 0)\n"
+    "  --camera MODE     how the camera reaches rtpbr: rtpbr (rtpbr_camera_desc, the default),\n"
+    "                    matrices (the host's view and projection) or reversed-z (those with a\n"
+    "                    reversed-Z projection and depth test, reversed_z set)\n"
     "  --validation      VK_LAYER_KHRONOS_validation with synchronization validation; any message\n"
     "                    fails the run\n"
     "  -h, --help        this text\n"
@@ -39,10 +43,21 @@ int main(int argc, char **argv)
     const char *mesh_path = RTPBR_SAMPLE_HOST_DEFAULT_MESH, *png_path = "sample-host.png", *pfm_path = NULL;
     float exposure = 0.0f;
     int validation = 0, have_mesh = 0;
+    sh_camera_mode camera_mode = SH_CAMERA_RTPBR;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) return fputs(usage, stdout), 0;
         if (!strcmp(a, "--validation")) validation = 1;
+        else if (!strcmp(a, "--camera") && i + 1 < argc) {
+            const char *v = argv[++i];
+            if (!strcmp(v, "rtpbr")) camera_mode = SH_CAMERA_RTPBR;
+            else if (!strcmp(v, "matrices")) camera_mode = SH_CAMERA_MATRICES;
+            else if (!strcmp(v, "reversed-z")) camera_mode = SH_CAMERA_REVERSED_Z;
+            else {
+                fprintf(stderr, "rtpbr-sample-host: --camera: '%s' is not rtpbr, matrices or reversed-z\n", v);
+                return 2;
+            }
+        }
         else if ((!strcmp(a, "-o") || !strcmp(a, "--hdr") || !strcmp(a, "--exposure")) && i + 1 < argc) {
             const char *v = argv[++i];
             if (a[1] == 'o') png_path = v;
@@ -86,9 +101,9 @@ int main(int argc, char **argv)
         snprintf(error, sizeof error, "rtpbr_context_create: %s", rtpbr_result_string(rr));
         goto done;
     }
-    if (sh_renderer_create(&renderer, &device, ctx, &scene, error, sizeof error) ||
-        sh_render_frame(&renderer, &scene, exposure, hdr, ldr, error, sizeof error))
-        goto done;
+    if (sh_renderer_create(&renderer, &device, ctx, &scene, error, sizeof error)) goto done;
+    renderer.camera_mode = camera_mode;
+    if (sh_render_frame(&renderer, &scene, exposure, hdr, ldr, error, sizeof error)) goto done;
     if (!stbi_write_png(png_path, (int)scene.width, (int)scene.height, 4, ldr, (int)scene.width * 4)) {
         snprintf(error, sizeof error, "cannot write %s", png_path);
         goto done;

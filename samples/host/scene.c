@@ -305,7 +305,8 @@ static void normalize(float v[3])
 // A right-handed look-at (view looks down -Z) and a perspective projection into Vulkan's clip
 // space; the same convention as rtpbr_camera_desc, so rtpbr_render of the same camera rasterises
 // the same pixels.
-void sh_camera_matrices(const sh_camera *c, float aspect, float view[16], float proj[16], float view_proj[16])
+void sh_camera_matrices(const sh_camera *c, float aspect, int reversed_z, float view[16], float proj[16],
+                        float view_proj[16])
 {
     float f[3] = {c->target[0] - c->position[0], c->target[1] - c->position[1], c->target[2] - c->position[2]};
     normalize(f);
@@ -323,6 +324,10 @@ void sh_camera_matrices(const sh_camera *c, float aspect, float view[16], float 
     pr[10] = SH_ZFAR / (SH_ZNEAR - SH_ZFAR); // depth 0 at znear, 1 at zfar
     pr[11] = -1.0f;
     pr[14] = SH_ZNEAR * SH_ZFAR / (SH_ZNEAR - SH_ZFAR);
+    if (reversed_z) { // depth 1 at znear, 0 at zfar: (n z + n f) / ((f - n) (-z))
+        pr[10] = SH_ZNEAR / (SH_ZFAR - SH_ZNEAR);
+        pr[14] = SH_ZNEAR * SH_ZFAR / (SH_ZFAR - SH_ZNEAR);
+    }
     memcpy(view, v, sizeof v);
     memcpy(proj, pr, sizeof pr);
     for (int col = 0; col < 4; ++col) // view_proj = proj * view

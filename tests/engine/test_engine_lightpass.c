@@ -142,7 +142,7 @@ static VkCommandBuffer host_frame(host *g, rtpbr_lighting_targets *targets, rtpb
     VkImage images[5];
     VkImageView views[5];
     for (int i = 0; i < 5; ++i) images[i] = g->images[G0 + i].image, views[i] = g->images[G0 + i].view; // g0 .. g3, depth
-    sh_begin_gbuffer_pass(cmd, images, views, W, H); // the sample host's (samples/host/frame.c)
+    sh_begin_gbuffer_pass(cmd, images, views, W, H, 1.0f); // the sample host's (samples/host/frame.c)
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->pass.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g->pass.layout, 0, 1, &g->pass.set, 0, NULL);
     vkCmdSetViewport(cmd, 0, 1, &(VkViewport){0.0f, 0.0f, W, H, 0.0f, 1.0f});
@@ -491,6 +491,9 @@ static void lighting_api_refuses_bad_input(void **state)
     EXPECT(rtpbr_lighting_record(t, &r2), RTPBR_ERROR_INVALID_ARGUMENT);
     r2 = rec;
     r2.background[0] = INFINITY;
+    EXPECT(rtpbr_lighting_record(t, &r2), RTPBR_ERROR_INVALID_ARGUMENT);
+    r2 = rec;
+    r2.reversed_z = 1; // with rtpbr's camera (which maps near to 0): refused
     EXPECT(rtpbr_lighting_record(t, &r2), RTPBR_ERROR_INVALID_ARGUMENT);
     EXPECT(rtpbr_lighting_record(t, NULL), RTPBR_ERROR_INVALID_ARGUMENT);
     assert_int_equal(rtpbr_lighting_record(NULL, &rec), RTPBR_ERROR_INVALID_ARGUMENT);

@@ -27,7 +27,7 @@ def check(cond, what):
 
 rc, so, se = run("--help")
 check(rc == 0, "--help exits 0")
-for option in ("-o", "--hdr", "--exposure", "--validation", "--help"):
+for option in ("-o", "--hdr", "--exposure", "--camera", "--validation", "--help"):
     check(option in so, f"--help lists {option}")
 
 png, pfm = os.path.join(out, "room.png"), os.path.join(out, "room.pfm")
@@ -44,6 +44,8 @@ if rc == 0:
         data = f.read()
     header = b"PF\n640 480\n-1.0\n"
     check(data.startswith(header) and len(data) == len(header) + 640 * 480 * 12, "a 640 x 480 RGB PFM")
+rc, so, se = run(room, "-o", os.path.join(out, "room-reversed-z.png"), "--camera", "reversed-z", "--validation")
+check(rc == 0 and "validation" not in se, f"the room renders with a reversed-Z camera, validation clean (rc {rc})")
 
 
 def write(name, text):
@@ -65,6 +67,7 @@ cases = [
      1, "rtpbr_light_set_update"),
     ("an unknown option", ["--frobnicate"], 2, "unexpected argument '--frobnicate'"),
     ("a bad exposure", ["--exposure", "bright"], 2, "--exposure"),
+    ("a bad camera mode", ["--camera", "ortho"], 2, "--camera: 'ortho'"),
 ]
 for what, args, want, message in cases:
     rc, so, se = run(*args)

@@ -797,10 +797,11 @@ typedef struct rtpbr_lighting_record_desc {
     // rtpbr_render's, with the targets' aspect ratio). NULL: view and projection below.
     const rtpbr_camera_desc *camera;
     // Used when camera is NULL: column-major world-to-view and view-to-clip matrices, clip
-    // space Vulkan's (x right, y down, depth 0 near .. 1 far), the product invertible.
+    // space Vulkan's (x right, y down, depth 0 near .. 1 far, or 1 near .. 0 far with
+    // reversed_z), the product invertible.
     float view[16];
     float projection[16];
-    float background[3];           // radiance where depth is 1; default black
+    float background[3];           // radiance where depth is the far value (1; 0: reversed_z); default black
     rtpbr_ndf ndf;                 // as rtpbr_render_desc
     rtpbr_multiscatter multiscatter;
     float light_cull_form_factor;  // as rtpbr_render_desc (zero: 1e-4, negative: exact test only)
@@ -813,6 +814,11 @@ typedef struct rtpbr_lighting_record_desc {
     // written). And the layout to leave it in; zero: GENERAL.
     VkImageLayout output_old_layout;
     VkImageLayout output_new_layout;
+    // Nonzero: the host's depth is reversed-Z (near 1, far 0: the background is where depth is
+    // 0), as its projection above maps it; camera must then be NULL (rtpbr's camera maps near
+    // to 0). Any depth format of the contract; the position is reconstructed through the
+    // inverse of projection x view either way.
+    uint32_t reversed_z;
 } rtpbr_lighting_record_desc;
 
 // Records, into the host's command buffer, culling and lighting of the targets' G-buffer by
