@@ -306,6 +306,10 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
     bool twoSided = Host_LightTwoSided(i);
     if (abs(side) <= 1e-7f * sphere.w || (!twoSided && side < 0.0f) || dot(N, rtpbr_float3(sphere.x, sphere.y, sphere.z) - P) < -sphere.w)
         return;
+#if !RTPBR_AREA_LIGHT_FULL
+    // (latency: docs/performance.md, 8) fetched before the walk, which hides its latency
+    rtpbr_float3 visibility = Host_LightVisibility(i);
+#endif
 #if RTPBR_AREA_LIGHT_STREAK
     // (registers: docs/performance.md, 3)
     bool streakSized = LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
@@ -316,6 +320,15 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
     float ff = min(F.z, 1.0f);
     if (!(ff > 0.0f)) return;
     float lenF = length(F);
+#if !RTPBR_AREA_LIGHT_FULL
+    // The representative direction of the polygon: its vector form factor's. The cosine-weighted
+    // mean of each albedo over the polygon (KC_PolygonMeanE): the table read here, before the
+    // point correction, which hides its latency (docs/performance.md, 8; the full evaluation
+    // reads it after, where it is at its register limit).
+    rtpbr_float3 lRep = F / lenF;
+    float muRep = rtpbr_saturate(lRep.z);
+    rtpbr_float2 eRep = Host_TableE_EF(muRep, s.tableRoughness, s.eta);
+#endif
 #if RTPBR_LTC_POINT_CORRECTION
     rtpbr_float4 pointLtc1 = AreaLight_IsotropicLtc1(px.specularMinv);
 #if RTPBR_AREA_LIGHT_FULL
@@ -342,11 +355,13 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 #endif
 #endif
 #endif
+#if RTPBR_AREA_LIGHT_FULL
     // The representative direction of the polygon: its vector form factor's.
     rtpbr_float3 lRep = F / lenF;
     float muRep = rtpbr_saturate(lRep.z);
     // The cosine-weighted mean of each albedo over the polygon (KC_PolygonMeanE).
     rtpbr_float2 eRep = Host_TableE_EF(muRep, s.tableRoughness, s.eta);
+#endif
     float Erep = KC_PolygonMeanE(eRep.x, s.Eavg, lenF);
 
     // (with RTPBR_KC_SHAPE: KC_PolygonLobeShaped, its two parts folded into specularScale and
@@ -380,7 +395,10 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 #if RTPBR_LTC_POINT_CORRECTION && !RTPBR_AREA_LIGHT_FULL
     acc.specularMass += specularFF;
 #endif
-    acc.sum += Host_LightRadiance(i) * lo * Host_LightVisibility(i);
+#if RTPBR_AREA_LIGHT_FULL
+    rtpbr_float3 visibility = Host_LightVisibility(i);
+#endif
+    acc.sum += Host_LightRadiance(i) * lo * visibility;
 }
 
 #if RTPBR_AREA_LIGHT_STREAK
