@@ -94,9 +94,10 @@ bool container_sizes_fit(const std::string& path, long long max_pixels, std::str
     // Tiles larger than both the data window and 256 x 256 pixels: OpenEXR allocates a tile's
     // buffers when it opens the file (a 64 x 64 image declaring 1069 x 262179 tiles: 1.7 GB),
     // before OpenImageIO's spec can be checked (open_checked checks it again, for TIFF too).
-    long long window_pixels = 0, tile_pixels = 0;
+    // Unsigned 64 bits: two uint32 tile sizes multiply without overflow.
+    unsigned long long window_pixels = 0, tile_pixels = 0;
     const auto tiles_fit = [&]() {
-        if (tile_pixels <= std::max(window_pixels, 65536LL)) return true;
+        if (tile_pixels <= std::max(window_pixels, 65536ULL)) return true;
         error = "'" + path + "': EXR tiles of " + std::to_string(tile_pixels) + " pixels for a data window of " +
                 std::to_string(window_pixels);
         return false;
@@ -135,10 +136,10 @@ bool container_sizes_fit(const std::string& path, long long max_pixels, std::str
                         (w <= 0 || h <= 0 ? " is empty" : " exceeds the limit of " + std::to_string(max_pixels) + " pixels");
                 return false;
             }
-            window_pixels = w * h;
+            window_pixels = static_cast<unsigned long long>(w * h);  // <= max_pixels (checked above)
         }
         if (name == "tiles" && size == 9)  // tiledesc: x size, y size (uint32), mode
-            tile_pixels = static_cast<long long>(u32(value)) * static_cast<long long>(u32(value + 4));
+            tile_pixels = static_cast<unsigned long long>(u32(value)) * u32(value + 4);
         at = value + static_cast<std::size_t>(size);
     }
     return tiles_fit();
