@@ -128,7 +128,25 @@ bool container_sizes_fit(const std::string& path, long long max_pixels, std::str
             return false;
         }
         if (static_cast<std::size_t>(size) > head.size() - value) break;  // beyond what was read
-        if (name == "dataWindow" && size == 16) {
+        // OpenEXR reads an attribute of a fixed-size type at that size whatever the size field
+        // says, and this walk would then follow other attributes than OpenEXR does: a 12-byte
+        // dataWindow made it read a huge window from the next bytes and allocate 1.8 GB of line
+        // offsets, a 0-byte box2i hid 1069 x 262179 tiles from this walk (found by fuzz_image).
+        // Refused unless the sizes agree (OpenEXR 3.1's fixed-size attribute types).
+        static const struct { const char* type; long long size; } kFixed[] = {
+            {"box2i", 16}, {"box2f", 16}, {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12},
+            {"v3d", 24}, {"int", 4}, {"float", 4}, {"double", 8}, {"compression", 1}, {"lineOrder", 1},
+            {"envmap", 1}, {"deepImageState", 1}, {"tiledesc", 9}, {"m33f", 36}, {"m33d", 72}, {"m44f", 64},
+            {"m44d", 128}, {"chromaticities", 32}, {"rational", 8}, {"timecode", 8}, {"keycode", 28}};
+        const std::string type(reinterpret_cast<const char*>(&head[name_end + 1]), type_end - name_end - 1);
+        for (const auto& fixed : kFixed) {
+            if (type == fixed.type && size != fixed.size) {
+                error = "'" + path + "': EXR attribute '" + name.substr(0, 64) + "' of type " + type + " is " +
+                        std::to_string(size) + " bytes, not " + std::to_string(fixed.size);
+                return false;
+            }
+        }
+        if (name == "dataWindow" && type == "box2i") {
             const auto s32 = [&](std::size_t i) { return static_cast<long long>(static_cast<int32_t>(u32(value + 4 * i))); };
             const long long w = s32(2) - s32(0) + 1, h = s32(3) - s32(1) + 1;
             if (w <= 0 || h <= 0 || w > max_pixels / h) {
@@ -138,7 +156,7 @@ bool container_sizes_fit(const std::string& path, long long max_pixels, std::str
             }
             window_pixels = static_cast<unsigned long long>(w * h);  // <= max_pixels (checked above)
         }
-        if (name == "tiles" && size == 9)  // tiledesc: x size, y size (uint32), mode
+        if (name == "tiles" && type == "tiledesc")  // x size, y size (uint32), mode
             tile_pixels = static_cast<unsigned long long>(u32(value)) * u32(value + 4);
         at = value + static_cast<std::size_t>(size);
     }

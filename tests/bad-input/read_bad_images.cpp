@@ -1,9 +1,9 @@
 // Regression inputs for rtpbr-diff's image reading (tests/bad-input/images/):
 //   read_bad_images DIR
-// reads DIR/expected.txt, lines "FILE error [WORD]" or "FILE ok" ('#' starts a comment), reads
+// reads DIR/expected.txt, lines "FILE error [WORDS]" or "FILE ok" ('#' starts a comment), reads
 // each FILE with rtpbr::read_image (common/rtpbr_common/image_read.hpp) and checks the outcome:
-// an error must come with a message (containing WORD when given: the reason, not just any
-// failure), a success with width x height x 3 finite values.
+// an error must come with a message (containing WORDS, the rest of the line, when given: the
+// reason, not just any failure), a success with width x height x 3 finite values.
 #include "rtpbr_common/image_read.hpp"
 
 #include <cmath>
@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
         std::istringstream fields(line);
         std::string file, want, word;
         if (line.empty() || line[0] == '#' || !(fields >> file >> want)) continue;
-        fields >> word;
+        std::getline(fields >> std::ws, word);  // the rest of the line
         ++cases;
         rtpbr::Image image;
         std::string error;
