@@ -89,6 +89,26 @@ bool container_sizes_fit(const std::string& path, long long max_pixels, std::str
         return static_cast<uint32_t>(head[at]) | static_cast<uint32_t>(head[at + 1]) << 8 |
                static_cast<uint32_t>(head[at + 2]) << 16 | static_cast<uint32_t>(head[at + 3]) << 24;
     };
+    // BMP: OpenImageIO's reader decodes an RLE image while opening it, before its spec can be
+    // checked: a 5 x 687865859 RLE header made it resize a vector past the limit (found by
+    // fuzz_image). The info header's size is checked here first.
+    if (head.size() >= 26 && head[0] == 'B' && head[1] == 'M') {
+        const uint32_t info = u32(14);
+        long long w = 0, h = 0;
+        if (info == 12) {  // BITMAPCOREHEADER: uint16 width and height
+            w = head[18] | head[19] << 8;
+            h = head[20] | head[21] << 8;
+        } else if (info >= 40) {  // BITMAPINFOHEADER and later: int32 width, height (< 0: top-down)
+            w = std::llabs(static_cast<long long>(static_cast<int32_t>(u32(18))));
+            h = std::llabs(static_cast<long long>(static_cast<int32_t>(u32(22))));
+        }
+        if (w > 0 && h > 0 && w > max_pixels / h) {
+            error = "'" + path + "': BMP of " + std::to_string(w) + "x" + std::to_string(h) + " pixels exceeds the limit of " +
+                    std::to_string(max_pixels) + " pixels";
+            return false;
+        }
+        return true;
+    }
     if (head.size() < 8 || u32(0) != 20000630u || file_size < 0) return true;  // not EXR
     const bool multipart = (u32(4) & 0x1000u) != 0;
     // Tiles larger than both the data window and 256 x 256 pixels: OpenEXR allocates a tile's
@@ -253,10 +273,23 @@ std::unique_ptr<OIIO::ImageInput> open_checked(const std::string& path, std::str
     return in;
 }
 
-}  // namespace
 
-bool read_image_size(const std::string& path, int& width, int& height, std::string& error,
-                     const ImageReadOptions& options) {
+// The codecs throw on some hostile files (OpenImageIO's BMP reader: std::length_error from a
+// vector resize, found by fuzz_image); both public functions turn that into a message.
+template <typename Read>
+bool without_exceptions(const std::string& path, std::string& error, Read read) {
+    try {
+        return read();
+    } catch (const std::bad_alloc&) {
+        error = "cannot read '" + path + "': out of memory while decoding";
+    } catch (const std::exception& e) {
+        error = "cannot read '" + path + "': the decoder failed (" + e.what() + ")";
+    }
+    return false;
+}
+
+bool read_image_size_unguarded(const std::string& path, int& width, int& height, std::string& error,
+                               const ImageReadOptions& options) {
     SilenceStderr quiet(options.quiet);
     const auto in = open_checked(path, error, options);
     if (!in) return false;
@@ -265,7 +298,7 @@ bool read_image_size(const std::string& path, int& width, int& height, std::stri
     return true;
 }
 
-bool read_image(const std::string& path, Image& image, std::string& error, const ImageReadOptions& options) {
+bool read_image_unguarded(const std::string& path, Image& image, std::string& error, const ImageReadOptions& options) {
     SilenceStderr quiet(options.quiet);
     const auto in = open_checked(path, error, options);
     if (!in) return false;
@@ -335,6 +368,19 @@ bool read_image(const std::string& path, Image& image, std::string& error, const
     }
     in->close();
     return true;
+}
+
+}  // namespace
+
+bool read_image_size(const std::string& path, int& width, int& height, std::string& error,
+                     const ImageReadOptions& options) {
+    return without_exceptions(path, error, [&] { return read_image_size_unguarded(path, width, height, error, options); });
+}
+
+bool read_image(const std::string& path, Image& image, std::string& error, const ImageReadOptions& options) {
+    const bool ok = without_exceptions(path, error, [&] { return read_image_unguarded(path, image, error, options); });
+    if (!ok) image = Image();
+    return ok;
 }
 
 }  // namespace rtpbr
