@@ -167,8 +167,13 @@ RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, r
             LTC_LobeEdge(lobe, seg.a, seg.b);
         }
     }
-    Fl = LTC_LobeEndVector(lobe);
-    return LTC_LobeEnd(lobe);
+    // LTC_LobeEndVector and LTC_LobeEnd in one: the closing segment's integral once, its z the
+    // form factor's sum (the same value; the two calls left two copies: docs/performance.md, 9)
+    rtpbr_float3 v = lobe.vec;
+    if (lobe.clip.crossed)
+        v += LTC_EdgeIntegral(LTC_SafeNormalize(lobe.clip.exitPoint), LTC_SafeNormalize(lobe.clip.entryPoint));
+    Fl = v.z < 0.0f ? -v : v;
+    return LTC_HorizonFraction(abs(v.z), LTC_HorizonMass(lobe.minv));
 }
 
 // The specular lobe's LTC result ltcFF corrected (ltc_corrections.h): the point correction

@@ -283,7 +283,7 @@ struct LtcClipper {
     bool crossed;
 };
 
-// A clipped edge: the segment a -> b, or nothing (valid = false).
+// A clipped edge: the segment a -> b, or nothing (valid = false; a and b are then not values to read).
 struct LtcSegment {
     rtpbr_float3 a;
     rtpbr_float3 b;
@@ -302,8 +302,9 @@ RTPBR_FN LtcClipper LTC_ClipperBegin() {
 RTPBR_FN LtcSegment LTC_ClipEdge(RTPBR_INOUT(LtcClipper) clip, rtpbr_float3 a, rtpbr_float3 b) {
     bool inA = a.z >= 0.0f;
     bool inB = b.z >= 0.0f;
-    // a.z and b.z have opposite signs when the edge crosses: a.z - b.z != 0, t in [0, 1].
-    float t = inA != inB ? a.z / (a.z - b.z) : 0.0f;
+    // a.z and b.z have opposite signs when the edge crosses: a.z - b.z != 0, t in [0, 1]. Not
+    // selected to 0 elsewhere: x is read only where the edge crosses (docs/performance.md, 10).
+    float t = a.z / (a.z - b.z);
     rtpbr_float3 x = a + (b - a) * t;
     x.z = 0.0f;
     if (inA && !inB) {
