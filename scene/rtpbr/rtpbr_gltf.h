@@ -451,6 +451,36 @@ typedef struct rtpbr_gltf_light {
                                primitive's node                            */
 } rtpbr_gltf_light;
 
+/* A KHR_lights_punctual light on a node, in world space: a point, a spot or
+ * a directional light (the extension's text). Evaluated exactly as a delta
+ * light: no size (radius 0, angular diameter 0). */
+typedef enum rtpbr_gltf_punctual_type {
+    RTPBR_GLTF_PUNCTUAL_POINT = 0,
+    RTPBR_GLTF_PUNCTUAL_SPOT = 1,
+    RTPBR_GLTF_PUNCTUAL_DIRECTIONAL = 2,
+} rtpbr_gltf_punctual_type;
+
+typedef struct rtpbr_gltf_punctual_light {
+    rtpbr_gltf_punctual_type type;
+    float position[3];      /* the node's origin (point, spot; directional:
+                               the node's origin too, unused)               */
+    float direction[3];     /* unit: the node's -Z, the way the light travels
+                               (spot, directional; point: the same, unused) */
+    float intensity[3];     /* color × intensity × area_light_radiance_scale:
+                               candela (lm/sr) for point and spot, lux
+                               (lm/m²) for directional; radiance of a surface
+                               lit head-on at distance d: I / d² × BRDF      */
+    float range;            /* distance where the light ends, > 0, windowed
+                               by the spec's recommended clamp(1 - (d/range)^4,
+                               0, 1); 0 = infinite (no window)              */
+    float inner_cone_angle; /* spot: radians, 0 <= inner < outer <= pi/2    */
+    float outer_cone_angle; /* (defaults 0, pi/4); the spec's falloff: t =
+                               clamp((cos - cos outer) / max(cos inner - cos
+                               outer, 1e-3), 0, 1), times t²                */
+    int32_t gltf_node;      /* the node carrying it                         */
+    int32_t gltf_light;     /* index in KHR_lights_punctual.lights          */
+} rtpbr_gltf_punctual_light;
+
 /* A perspective camera, world space. */
 typedef struct rtpbr_gltf_camera {
     float position[3];
@@ -471,6 +501,8 @@ typedef struct rtpbr_gltf_scene {
                                           material i; a default one last if used */
     rtpbr_gltf_texture* textures;     uint32_t texture_count;
     rtpbr_gltf_light* lights;         uint32_t light_count;
+    rtpbr_gltf_punctual_light* punctual_lights; uint32_t punctual_light_count;
+                                      /* KHR_lights_punctual, in node order */
     rtpbr_gltf_camera* cameras;       uint32_t camera_count; /* 0 = none   */
     uint32_t total_vertex_count;
     uint32_t total_index_count;
