@@ -18,6 +18,7 @@
 //       at most A / d^2), so the light's diffuse contribution is below Le * albedo *
 //       cull_form_factor. Glossy reflections of such a light are dropped with it (a bias
 //       bounded only for the diffuse term). cull_form_factor < 0 disables this test.
+// A punctual light (point, spot, directional) is kept unless the box is beyond its range (3).
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
@@ -36,6 +37,12 @@ layout(local_size_x = RTPBR_CULL_GROUP, local_size_y = RTPBR_CULL_GROUP) in;
 
 bool light_may_contribute(uint i, vec3 boxMin, vec3 boxMax)
 {
+    // (3) A punctual light is kept unless the box is beyond its range (its window is 0 there:
+    // exact); without a range its sphere's radius is RTPBR_LIGHT_INFINITE.
+    if (lights[i].shape != uint(RTPBR_LIGHT_SHAPE_POLYGON)) {
+        vec4 reach = lights[i].sphere;
+        return length(reach.xyz - clamp(reach.xyz, boxMin, boxMax)) < reach.w;
+    }
     vec4 plane = lights[i].plane;
     if (lights[i].two_sided == 0.0f) {
         bool anyInFront = false;
