@@ -87,9 +87,16 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     shade_pixel = pixel;
     AreaLightSum acc = AreaLight_SumBegin();
 #ifdef RTPBR_STATS_FIXED_LIGHTS
+#ifdef RTPBR_STATS_FIXED_SHAPE // every light a punctual light of this shape (bench/shader-stats)
+    mat3 frame3 = LTC_Frame(N, V);
+    [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
+        AreaLight_AddPunctual(result, s, frame3, P, i, uint(RTPBR_STATS_FIXED_SHAPE));
+    AreaLightPixel px = AreaLight_Begin(s, N, V);
+#else
     AreaLightPixel px = AreaLight_Begin(s, N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
         AreaLight_Add(px, acc, s, P, N, i);
+#endif
 #elif defined(RTPBR_SHADE_ALL_LIGHTS)
     // Punctual lights first (the whole BRDF's terms live), then the polygons (their per-point
     // state live): registers, docs/performance.md, 11.
