@@ -55,9 +55,11 @@ static rtpbr_result validate_punctual(const rtpbr_context *ctx, const rtpbr_ligh
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     double outer = l->outer_cone_angle == 0.0f ? LIGHT_PI / 4.0 : l->outer_cone_angle;
-    if (l->type == RTPBR_LIGHT_SPOT && !(l->inner_cone_angle >= 0.0f && l->inner_cone_angle < outer && outer <= LIGHT_PI / 2.0 + 1e-6)) {
+    // inner == outer is let through: glTF's inner < outer can round to equal floats (the
+    // falloff's 1e-3 guard makes it a step)
+    if (l->type == RTPBR_LIGHT_SPOT && !(l->inner_cone_angle >= 0.0f && l->inner_cone_angle <= outer && outer <= LIGHT_PI / 2.0 + 1e-6)) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
-                  "light %u: spot cones inner %g, outer %g radians; 0 <= inner < outer <= pi/2 is required", index,
+                  "light %u: spot cones inner %g, outer %g radians; 0 <= inner <= outer <= pi/2 is required", index,
                   l->inner_cone_angle, outer);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }

@@ -430,7 +430,7 @@ typedef struct rtpbr_light_desc {
     float direction[3];      // spot, directional: the way the light travels (need not be unit;
                              // non-zero)
     float range;             // point, spot: > 0, where W(d) ends; zero: infinite
-    float inner_cone_angle;  // spot: radians, 0 <= inner < outer <= pi/2; the falloff
+    float inner_cone_angle;  // spot: radians, 0 <= inner <= outer <= pi/2; the falloff
     float outer_cone_angle;  // t = clamp((cos - cos outer) / max(cos inner - cos outer, 1e-3),
                              // 0, 1), times t^2 (KHR_lights_punctual); both zero: 0 and pi/4
 } rtpbr_light_desc;
