@@ -96,11 +96,13 @@ Result validatePunctualLight(const rtpbr_gltf_punctual_light &P, uint32_t i, boo
         }
     }
     if (P.type == RTPBR_GLTF_PUNCTUAL_SPOT) {
-        // KHR_lights_punctual: 0 <= innerConeAngle < outerConeAngle <= pi/2.
+        // KHR_lights_punctual: 0 <= innerConeAngle < outerConeAngle <= pi/2. Equal angles are
+        // let through: the loader checks the file's doubles, which may round to the same float
+        // (the falloff's max(1e-3, ...) keeps them finite).
         const float inner = P.inner_cone_angle, outer = P.outer_cone_angle;
-        if (!finite(inner) || !finite(outer) || !(inner >= 0.0f) || !(inner < outer) ||
+        if (!finite(inner) || !finite(outer) || !(inner >= 0.0f) || !(inner <= outer) ||
             !(outer <= 1.5707964f)) {
-            *error = fmt("punctual light %u (spot): cone angles inner %g, outer %g rad: need 0 <= inner < outer <= "
+            *error = fmt("punctual light %u (spot): cone angles inner %g, outer %g rad: need 0 <= inner <= outer <= "
                          "pi/2", i, double(inner), double(outer));
             return Result::InvalidScene;
         }

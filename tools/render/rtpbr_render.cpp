@@ -262,7 +262,8 @@ int run(int argc, char **argv)
         if (r == RTPBR_SUCCESS) {
             rtpbr_tools::EnergyStats es = punctual ? rtpbr_tools::energy_stats_unbounded(rgb.data(), w, h, 3)
                                                    : rtpbr_tools::energy_stats(rgb.data(), w, h, 3, bound);
-            std::printf("rtpbr-render: %s%s\n", es.bounded ? "energy bound: " : "", rtpbr_tools::energy_summary(es).c_str());
+            std::printf("rtpbr-render: %s%s\n", es.bounded ? "energy bound: " : "",
+                        rtpbr_tools::energy_summary(es).c_str());
             bound_held = es.non_finite == 0 && (max_ratio <= 0.0 || es.max_ratio <= max_ratio);
             if (!bound_held)
                 std::fprintf(stderr, "rtpbr-render: energy bound exceeded: largest pixel %.6g x the brightest emitter "
