@@ -226,9 +226,12 @@ int run(int argc, char **argv)
     }
     uint32_t proxies = 0;
     for (uint32_t i = 0; i < loaded->light_count; ++i) proxies += loaded->lights[i].proxy ? 1u : 0u;
-    std::printf("rtpbr-render: %s: %u lights", scene_path.c_str(), loaded->light_count);
+    std::printf("rtpbr-render: %s: %u %slights", scene_path.c_str(), loaded->light_count,
+                loaded->punctual_light_count ? "area " : "");
     if (proxies)
         std::printf(" (%u of them standing in for emissive meshes: docs/materials.md, \"Lights from materials\")", proxies);
+    if (loaded->punctual_light_count)
+        std::printf(" and %u punctual lights (KHR_lights_punctual)", loaded->punctual_light_count);
     std::printf("\n");
     if (loaded->camera_count == 0)
         std::fprintf(stderr, "rtpbr-render: warning: %s has no camera: rendering from a default one at (0, 0, 5) "
