@@ -4,7 +4,7 @@
 // shading kernel has no barriers: lavapipe runs a workgroup's invocations as coroutines that
 // switch at each barrier). One invocation per RTPBR_TILE_SIZE^2 screen tile: it bounds the
 // world positions of the tile's pixels by a box, keeps the lights that may reach the box (bit
-// i of the tile's mask, tile_masks), and queues the tile for the lighting variant of its class
+// i of the tile's masks, tile_masks: one of polygons, one of punctual lights), and queues the tile for the lighting variant of its class
 // (tile_dispatch / tile_list, consumed by indirect dispatches):
 //   EMPTY  no surface pixel, or no light left: emission and background only;
 //   BASIC  every material of the tile is basic (material_tile_class);
@@ -92,14 +92,18 @@ void main()
     bool anyLight = false;
     uint words = (frame.light_count + 31u) / 32u;
     for (uint w = 0u; w < words; ++w) {
-        uint bits = 0u;
+        uint bits = 0u, punctualBits = 0u; // polygons, punctual lights
         if (materialClass != RTPBR_TILE_CLASS_EMPTY) {
             uint count = min(32u, frame.light_count - 32u * w);
             for (uint b = 0u; b < count; ++b)
-                if (light_may_contribute(32u * w + b, boxMin, boxMax)) bits |= 1u << b;
+                if (light_may_contribute(32u * w + b, boxMin, boxMax)) {
+                    if (lights[32u * w + b].shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) bits |= 1u << b;
+                    else punctualBits |= 1u << b;
+                }
         }
-        tile_masks[tile * uint(RTPBR_TILE_MASK_WORDS) + w] = bits;
-        anyLight = anyLight || bits != 0u;
+        tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + w] = bits;
+        tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + uint(RTPBR_TILE_MASK_WORDS) + w] = punctualBits;
+        anyLight = anyLight || (bits | punctualBits) != 0u;
     }
     uint tileClass = anyLight ? materialClass : RTPBR_TILE_CLASS_EMPTY;
     uint slot = atomicAdd(tile_dispatch[tileClass].x, 1u);

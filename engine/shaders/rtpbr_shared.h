@@ -252,6 +252,9 @@
 // Light culling (cull.comp): one invocation per tile, RTPBR_CULL_GROUP^2 tiles per workgroup.
 #define RTPBR_CULL_GROUP 8
 #define RTPBR_TILE_MASK_WORDS (RTPBR_SHADER_MAX_LIGHTS / 32)
+// A tile's masks: RTPBR_TILE_MASK_WORDS words of its polygonal lights, then as many of its
+// punctual lights (the lighting pass walks each kind without reading a light's shape).
+#define RTPBR_TILE_MASK_STRIDE (2 * RTPBR_TILE_MASK_WORDS)
 // Tile classes: each has its lighting variant, dispatched indirectly over its tile queue.
 #define RTPBR_TILE_CLASS_EMPTY 0 // no surface pixel or no light left: emission and background
 #define RTPBR_TILE_CLASS_BASIC 1 // metallic-roughness without clear coat, sheen, anisotropy

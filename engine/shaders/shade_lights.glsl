@@ -107,20 +107,19 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     for (uint i = 0u; i < frame.light_count; ++i)
         if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) AreaLight_Add(px, acc, s, P, N, i);
 #else
+    // The tile's masks (cull.comp): its punctual lights', then its polygons'.
     uint words = (frame.light_count + 31u) / 32u;
-    uint maskBase = tile * uint(RTPBR_TILE_MASK_WORDS);
+    uint maskBase = tile * uint(RTPBR_TILE_MASK_STRIDE);
     mat3 frame3 = LTC_Frame(N, V);
     for (uint word = 0u; word < words; ++word)
-        for (uint bits = tile_masks[maskBase + word]; bits != 0u; bits &= bits - 1u) {
+        for (uint bits = tile_masks[maskBase + uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u) {
             uint i = word * 32u + uint(findLSB(bits));
-            if (lights[i].shape != uint(RTPBR_LIGHT_SHAPE_POLYGON)) AreaLight_AddPunctual(result, s, frame3, P, i, lights[i].shape);
+            AreaLight_AddPunctual(result, s, frame3, P, i, lights[i].shape);
         }
     AreaLightPixel px = AreaLight_Begin(s, N, V);
     for (uint word = 0u; word < words; ++word)
-        for (uint bits = tile_masks[maskBase + word]; bits != 0u; bits &= bits - 1u) {
-            uint i = word * 32u + uint(findLSB(bits));
-            if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) AreaLight_Add(px, acc, s, P, N, i);
-        }
+        for (uint bits = tile_masks[maskBase + word]; bits != 0u; bits &= bits - 1u)
+            AreaLight_Add(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
 #endif
     result += AreaLight_End(px, acc, s, P);
 }

@@ -289,7 +289,7 @@ struct rtpbr_renderer {
     rtpbr_image display;       // R8G8B8A8_SRGB, the target of rtpbr_render
     rtpbr_buffer frame;        // rtpbr_shader_frame, host visible
     uint32_t tiles_x, tiles_y; // lighting tiles of the shaded image (RTPBR_TILE_SIZE pixels a side)
-    rtpbr_buffer tile_masks;   // RTPBR_TILE_MASK_WORDS uints per tile (cull.comp)
+    rtpbr_buffer tile_masks;   // RTPBR_TILE_MASK_STRIDE uints per tile (cull.comp)
     rtpbr_buffer tile_lists;   // per class: indirect dispatch arguments, then the tile queues
     rtpbr_buffer radiance_readback, display_readback;
     // Each pass's descriptor set (made and written by its file in passes/).
