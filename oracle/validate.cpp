@@ -59,12 +59,17 @@ bool withinExtent(const float *v) {
 // A KHR_lights_punctual light as the renderer relies on it (rtpbr_gltf_punctual_light's
 // contract); *emits when its intensity is above 0 in any channel.
 Result validatePunctualLight(const rtpbr_gltf_punctual_light &P, uint32_t i, bool *emits, std::string *error) {
-    const char *type = P.type == RTPBR_GLTF_PUNCTUAL_POINT         ? "point"
-                       : P.type == RTPBR_GLTF_PUNCTUAL_SPOT        ? "spot"
-                       : P.type == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL ? "directional"
-                                                                   : nullptr;
+    // The type's bits as stored: a C caller (or a corrupted scene) may hold any int there, which
+    // C++ may not read as the enum (UBSan: not a valid value for the type).
+    int raw = 0;
+    static_assert(sizeof raw == sizeof P.type, "rtpbr_gltf_punctual_type is an int");
+    std::memcpy(&raw, &P.type, sizeof raw);
+    const char *type = raw == RTPBR_GLTF_PUNCTUAL_POINT         ? "point"
+                       : raw == RTPBR_GLTF_PUNCTUAL_SPOT        ? "spot"
+                       : raw == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL ? "directional"
+                                                                : nullptr;
     if (!type) {
-        *error = fmt("punctual light %u: unknown type %d (point, spot or directional)", i, int(P.type));
+        *error = fmt("punctual light %u: unknown type %d (point, spot or directional)", i, raw);
         return Result::InvalidScene;
     }
     if (!finite3(P.intensity) || P.intensity[0] < 0.0f || P.intensity[1] < 0.0f || P.intensity[2] < 0.0f) {
