@@ -161,8 +161,8 @@ def validate(args, on_cluster):
     os.makedirs(args.out, exist_ok=True)
     oracle_version = file_hash([oracle])[:16]
 
-    # Bundled scenes (samples/scenes/NAME.gltf) and real assets (samples/assets/NAME/NAME.lit.gltf,
-    # the public models lit by tools/assets/light_assets.py), each with its thresholds.
+    # Bundled scenes (samples/scenes/NAME.gltf) and real assets (the public models lit by
+    # tools/assets/light_assets.py: asset_file), each with its thresholds.
     entries = dict((n, ("scene", c)) for n, c in config["scenes"].items())
     entries.update((n, ("asset", c)) for n, c in config.get("assets", {}).items())
     names = args.scenes or list(entries.keys())
@@ -181,7 +181,7 @@ def validate(args, on_cluster):
             log("thresholds.json: scene %s has no max_mean/max_p95 for mode %s" % (name, mode))
             return 2
         if kind == "asset":
-            gltf = os.path.join(ROOT, "samples", "assets", name, name + ".lit.gltf")
+            gltf = asset_file(name)
         else:
             gltf = os.path.join(ROOT, "samples", "scenes", name + ".gltf")
         if not os.path.isfile(gltf):
@@ -280,6 +280,14 @@ def validate(args, on_cluster):
     return 1 if failed else 0
 
 
+def asset_file(name):
+    """The wrapper an 'assets' entry of thresholds.json names: NAME is the asset lit by its area
+    lights, samples/assets/NAME/NAME.lit.gltf; NAME.punctual the same asset lit by its
+    KHR_lights_punctual lights, samples/assets/NAME/NAME.punctual.gltf (samples/assets/lights.json)."""
+    asset, dot, variant = name.partition(".")
+    return os.path.join(ROOT, "samples", "assets", asset, "%s.%s.gltf" % (asset, variant if dot else "lit"))
+
+
 def ratio_text(energy):
     return "%.4g" % energy["max_ratio"] if energy else "-"
 
@@ -359,7 +367,8 @@ def write_report(out, results, mode):
         if kind == "asset" and chosen:
             sections.append("<h2 id='assets'>Real assets</h2><p>Public Khronos glTF sample models (samples/assets, "
                             "licences beside each), lit by the added lights of samples/assets/lights.json "
-                            "(tools/assets/light_assets.py).</p>")
+                            "(tools/assets/light_assets.py): NAME by its area lights, NAME.punctual by its "
+                            "KHR_lights_punctual lights.</p>")
         for r in chosen:
             s = html.escape(r["scene"])
             bound = r["metrics"].get("bound", {})
