@@ -57,9 +57,12 @@ static int parse_sizes(const char *text, int (*out)[2], int max)
 //              the view, 2 to 3 m up, all facing down: every pixel sees every light and
 //              culling keeps them all (issue 32's "scene unlike the benchmark's");
 //   full       the benchmark's layout with a material that needs the full lighting variant
-//              (clear coat, sheen and anisotropy on metallic-roughness).
-typedef enum bench_scene { SCENE_BENCHMARK, SCENE_FLOOR, SCENE_FULL, SCENE_COUNT } bench_scene;
-static const char *const scene_names[SCENE_COUNT] = {"benchmark", "floor", "full"};
+//              (clear coat, sheen and anisotropy on metallic-roughness);
+//   points     the benchmark's layout with point lights (KHR_lights_punctual's) at the
+//              squares' centres, of the squares' intensity seen head-on (radiance x area):
+//              the cost of a punctual light (issue 30).
+typedef enum bench_scene { SCENE_BENCHMARK, SCENE_FLOOR, SCENE_FULL, SCENE_POINTS, SCENE_COUNT } bench_scene;
+static const char *const scene_names[SCENE_COUNT] = {"benchmark", "floor", "full", "points"};
 
 static void square_light(rtpbr_light_desc *light, float x, float y, float z, float s, int up)
 {
@@ -104,7 +107,13 @@ static rtpbr_result make_scene(rtpbr_context *ctx, bench_scene kind, int n, rtpb
         float x = -28.0f + 56.0f * (float)(seed >> 8) / 16777216.0f;
         seed = seed * 1664525u + 1013904223u;
         float y = -28.0f + 56.0f * (float)(seed >> 8) / 16777216.0f;
-        square_light(&lights[i], x, y, 0.5f + 2.5f * (float)(i % 7) / 6.0f, 0.1f + 0.05f * (float)(i % 5), i % 4 == 3);
+        float z = 0.5f + 2.5f * (float)(i % 7) / 6.0f, half = 0.1f + 0.05f * (float)(i % 5);
+        if (kind == SCENE_POINTS)
+            lights[i] = (rtpbr_light_desc){.type = RTPBR_LIGHT_POINT, .position = {x, y, z},
+                                           .emission = {20.0f * 4.0f * half * half, 20.0f * 4.0f * half * half,
+                                                        20.0f * 4.0f * half * half}};
+        else
+            square_light(&lights[i], x, y, z, half, i % 4 == 3);
     }
     rtpbr_gpu_scene_desc desc = {.meshes = &mesh, .mesh_count = 1, .materials = &material, .material_count = 1,
                                  .lights = lights, .light_count = (uint32_t)n, .cameras = &camera, .camera_count = 1};
@@ -163,7 +172,7 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
 
 static const char *const usage =
     "usage: rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu]\n"
-    "                          [--scene benchmark|floor|full|all]\n"
+    "                          [--scene benchmark|floor|full|points|all]\n"
     "Median frame time of rtpbr_render against light count and resolution; compare the ratios\n"
     "printed in one run.\n"
     "  --repeat N     frames per configuration (1..1000; default 5)\n"
@@ -171,7 +180,8 @@ static const char *const usage =
     "  --lights LIST  light counts (default 0,1,4,16,64,256)\n"
     "  --cpu          the process CPU time (lavapipe's threads included) instead of wall time\n"
     "  --scene NAME   benchmark, floor (metal floor at 45 degrees, every light seen by\n"
-    "                 every pixel), full (materials of the full lighting variant), all (default)\n"
+    "                 every pixel), full (materials of the full lighting variant), points\n"
+    "                 (the benchmark's layout with point lights), all (default)\n"
     "  -h, --help     this text\n";
 
 int main(int argc, char **argv)

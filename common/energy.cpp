@@ -32,6 +32,7 @@ EnergyStats energy_stats(const float *pixels, int width, int height, int channel
         sum_max += m;
         if (m > largest) {
             largest = m;
+            s.largest = m;
             s.max_x = int(p % size_t(width));
             s.max_y = int(p / size_t(width));
         }
@@ -57,9 +58,24 @@ EnergyStats energy_stats(const float *pixels, int width, int height, int channel
     return s;
 }
 
+EnergyStats energy_stats_unbounded(const float *pixels, int width, int height, int channels)
+{
+    EnergyStats s = energy_stats(pixels, width, height, channels, 0.0); // 0: no ratios
+    s.bounded = false;
+    return s;
+}
+
 std::string energy_summary(const EnergyStats &s)
 {
-    char line[320];
+    char line[400];
+    if (!s.bounded) {
+        std::snprintf(line, sizeof line,
+                      "no energy bound (punctual lights: a delta light's irradiance I / d^2 has no upper limit); "
+                      "largest pixel %.6g at (%d, %d); the brightest 0.01 %% of pixels hold %.3g %% of the energy; "
+                      "%zu not finite",
+                      s.largest, s.max_x, s.max_y, 100.0 * s.top_share, s.non_finite);
+        return line;
+    }
     std::snprintf(line, sizeof line,
                   "largest pixel / brightest emitter (%.6g) %.4g at (%d, %d); the brightest 0.01 %% of pixels hold "
                   "%.3g %% of the energy; %zu over 1.01, %zu not finite",
@@ -69,12 +85,13 @@ std::string energy_summary(const EnergyStats &s)
 
 std::string energy_json(const EnergyStats &s)
 {
-    char line[320];
+    char line[400];
     std::snprintf(line, sizeof line,
-                  "{\"brightest_emitter\": %.9g, \"max_ratio\": %.9g, \"max_x\": %d, \"max_y\": %d, "
-                  "\"mean_ratio\": %.9g, \"top_share\": %.9g, \"over\": %zu, \"non_finite\": %zu}",
-                  s.brightest_emitter, s.max_ratio, s.max_x, s.max_y, s.mean_ratio, s.top_share, s.over,
-                  s.non_finite);
+                  "{\"bounded\": %s, \"brightest_emitter\": %.9g, \"largest\": %.9g, \"max_ratio\": %.9g, "
+                  "\"max_x\": %d, \"max_y\": %d, \"mean_ratio\": %.9g, \"top_share\": %.9g, \"over\": %zu, "
+                  "\"non_finite\": %zu}",
+                  s.bounded ? "true" : "false", s.brightest_emitter, s.largest, s.max_ratio, s.max_x, s.max_y,
+                  s.mean_ratio, s.top_share, s.over, s.non_finite);
     return line;
 }
 

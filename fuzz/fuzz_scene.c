@@ -5,7 +5,8 @@
  *
  * Beyond "no crash, no leak, no UB" the target checks what rtpbr_gltf.h promises: on
  * failure *out is NULL and the message is non-empty; on success every index, material and
- * texture reference is in range, light polygons have 3..8 vertices, and the limits hold.
+ * texture reference is in range, light polygons have 3..8 vertices, punctual lights are
+ * finite with a unit direction and cones in range, and the limits hold.
  * A broken promise aborts, which libFuzzer records as a crash. */
 #define _XOPEN_SOURCE 700
 #define _DEFAULT_SOURCE
@@ -176,6 +177,23 @@ static void check_scene(const rtpbr_gltf_scene* s) {
         check(isfinite(l->facts.area) && l->facts.area > 0.0f, "light area > 0");
         check(l->primitive < 0 || (uint32_t)l->primitive < s->primitive_count, "light primitive in range");
         check(l->material < 0 || (uint32_t)l->material < s->material_count, "light material in range");
+    }
+    check(s->punctual_light_count <= kFuzzMaxLights - s->light_count, "max_lights, area and punctual lights");
+    for (uint32_t i = 0; i < s->punctual_light_count; ++i) {
+        const rtpbr_gltf_punctual_light* l = &s->punctual_lights[i];
+        check(l->type <= RTPBR_GLTF_PUNCTUAL_DIRECTIONAL, "punctual type in range");
+        check(finite3(l->position) && finite3(l->direction) && finite3(l->intensity), "finite punctual light");
+        const float len2 = l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
+                           l->direction[2] * l->direction[2];
+        check(fabsf(len2 - 1.0f) < 1e-5f, "unit punctual direction");
+        check(l->intensity[0] >= 0.0f && l->intensity[1] >= 0.0f && l->intensity[2] >= 0.0f, "intensity >= 0");
+        check(isfinite(l->range) && l->range >= 0.0f, "range >= 0");
+        check(l->type != RTPBR_GLTF_PUNCTUAL_DIRECTIONAL || l->range == 0.0f, "directional range 0");
+        check(l->inner_cone_angle >= 0.0f && l->inner_cone_angle <= l->outer_cone_angle &&
+                  l->outer_cone_angle <= 1.5707964f,
+              "cones in range");
+        check(l->type == RTPBR_GLTF_PUNCTUAL_SPOT || l->outer_cone_angle == 0.0f, "cones only on spots");
+        check(l->gltf_node >= 0 && l->gltf_light >= 0, "punctual sources");
     }
 }
 

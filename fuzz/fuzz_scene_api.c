@@ -106,6 +106,16 @@ static void read_lights(reader* in, rtpbr_light_desc* lights, uint32_t count) {
         numbers(in, &lights[i].vertices[0][0], 3 * RTPBR_MAX_POLYGON_VERTICES);
         numbers(in, lights[i].emission, 3);
         lights[i].two_sided = (int)(u8(in) % 3) - 1;
+        /* mostly polygons; else a punctual light (issue 30), sometimes of no valid type */
+        uint32_t t = u8(in);
+        if (t >= 160) {
+            lights[i].type = (rtpbr_light_type)(t % 5 == 4 ? 200 + t % 50 : 1 + t % 3);
+            numbers(in, lights[i].position, 3);
+            numbers(in, lights[i].direction, 3);
+            lights[i].range = number(in);
+            lights[i].inner_cone_angle = number(in);
+            lights[i].outer_cone_angle = number(in);
+        }
     }
 }
 

@@ -6,7 +6,8 @@
 OUT_DIR/scene: the bundled scenes (samples/scenes/*.gltf, external .bin as shipped), each
 also as GLB (BIN chunk) and as .gltf with a data: URI buffer, plus one small scene that uses
 every feature the loader reads (textures by file, data: URI and bufferView; all KHR material
-extensions; Disney extras; EXT_lights_area rect and disk; a camera; strips and fans).
+extensions; Disney extras; EXT_lights_area rect and disk; KHR_lights_punctual point, spot and
+directional; a camera; strips and fans).
 OUT_DIR/image: tiny images in the formats rtpbr-diff is used with (PNG 8/16-bit, grey,
 alpha; EXR half/float; HDR; JPEG) and a few others OpenImageIO reads, made by oiiotool.
 """
@@ -55,7 +56,7 @@ def scene_seeds(samples, out):
 
 
 def features_seed(assets, out):
-    """A quad (indexed), a strip and a fan, with every material feature and both light kinds."""
+    """A quad (indexed), a strip and a fan, with every material feature and every light kind."""
     pos = [-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1]
     nrm = [0, 1, 0] * 4
     uv = [0, 0, 1, 0, 1, 1, 0, 1]
@@ -110,13 +111,18 @@ def features_seed(assets, out):
         "asset": {"version": "2.0", "generator": "rtpbr fuzz/make_seeds.py"},
         "extensionsUsed": ["KHR_materials_specular", "KHR_materials_ior", "KHR_materials_sheen",
                            "KHR_materials_clearcoat", "KHR_materials_anisotropy",
-                           "KHR_materials_emissive_strength", "EXT_lights_area"],
+                           "KHR_materials_emissive_strength", "EXT_lights_area", "KHR_lights_punctual"],
         "extensions": {"EXT_lights_area": {"lights": [
             {"type": "rect", "color": [1, 1, 0.9], "intensity": 100, "size": 0.5, "rect": {"aspect": 2}},
             {"type": "disk", "color": [0.9, 1, 1], "intensity": 50, "size": 0.3},
-            {"shape": "rect", "width": 0.4, "height": 0.2, "luminance": 80, "twoSided": True}]}},
+            {"shape": "rect", "width": 0.4, "height": 0.2, "luminance": 80, "twoSided": True}]},
+                       "KHR_lights_punctual": {"lights": [
+            {"type": "point", "color": [1, 0.8, 0.6], "intensity": 20, "range": 8},
+            {"type": "spot", "intensity": 40, "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.7}},
+            {"type": "spot"},
+            {"type": "directional", "color": [0.9, 0.9, 1], "intensity": 3}]}},
         "scene": 0,
-        "scenes": [{"nodes": [0, 1, 2, 3, 4, 5, 6]}],
+        "scenes": [{"nodes": [0, 1, 2, 3, 4, 5, 6, 8, 9, 10]}],
         "nodes": [
             {"mesh": 0},
             {"mesh": 1, "translation": [0, 2, 0], "rotation": [1, 0, 0, 0]},
@@ -127,6 +133,11 @@ def features_seed(assets, out):
             {"extensions": {"EXT_lights_area": {"light": 1}}, "translation": [1, 3, 0], "scale": [2, 2, 2]},
             {"extensions": {"EXT_lights_area": {"light": 2}}, "translation": [-1, 3, 0]},
             {"camera": 1},
+            {"extensions": {"KHR_lights_punctual": {"light": 0}}, "translation": [0, 2, 1], "children": [11]},
+            {"extensions": {"KHR_lights_punctual": {"light": 1}}, "translation": [2, 3, 0],
+             "rotation": [-0.5, 0.5, 0.5, 0.5], "scale": [1, 2, 1]},
+            {"extensions": {"KHR_lights_punctual": {"light": 3}}, "rotation": [-0.3826834, 0, 0, 0.9238795]},
+            {"extensions": {"KHR_lights_punctual": {"light": 2}}, "translation": [0, 0, -1]},
         ],
         "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "zfar": 100, "aspectRatio": 1.5}},
                     {"type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.01}}],

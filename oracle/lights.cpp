@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rtpbr_oracle {
 
@@ -206,6 +207,61 @@ float LightSet::pdf(glm::vec3 pf, uint32_t l, glm::vec3 wi, float distance) cons
     if (!(cosL > 0.0) || !(L.area > 0.0))
         return 0.0f;
     return float(sel * double(distance) * double(distance) / (cosL * L.area));
+}
+
+// ---- punctual lights ---------------------------------------------------------------------------
+
+PunctualLights::PunctualLights(const rtpbr_gltf_scene &scene) {
+    for (uint32_t i = 0; i < scene.punctual_light_count; i++) {
+        const rtpbr_gltf_punctual_light &P = scene.punctual_lights[i];
+        if (P.intensity[0] > 0.0f || P.intensity[1] > 0.0f || P.intensity[2] > 0.0f)
+            lights_.push_back(P);
+    }
+}
+
+double PunctualLights::spotFalloff(double cd, double innerConeAngle, double outerConeAngle) {
+    // KHR_lights_punctual, "Inner and Outer Cone Angles": lightAngleScale, lightAngleOffset.
+    double cosOuter = std::cos(outerConeAngle);
+    double scale = 1.0 / std::max(1e-3, std::cos(innerConeAngle) - cosOuter);
+    double t = glm::clamp((cd - cosOuter) * scale, 0.0, 1.0);
+    return t * t;
+}
+
+double PunctualLights::rangeWindow(double d, double range) {
+    if (!(range > 0.0))
+        return 1.0;
+    // KHR_lights_punctual, "Range Property": the recommended clamp(1 - (d / range)^4, 0, 1).
+    double r = d / range;
+    return glm::clamp(1.0 - r * r * r * r, 0.0, 1.0);
+}
+
+bool PunctualLights::illuminate(uint32_t l, glm::vec3 pf, PunctualSample *s) const {
+    const rtpbr_gltf_punctual_light &P = lights_[l];
+    const dvec3 dir(P.direction[0], P.direction[1], P.direction[2]); // the way the light travels
+    dvec3 wi;
+    double scale;
+    if (P.type == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL) {
+        wi = -dir;
+        s->distance = std::numeric_limits<float>::infinity();
+        scale = 1.0;
+    } else {
+        dvec3 d = dvec3(P.position[0], P.position[1], P.position[2]) - dvec3(pf);
+        double d2 = glm::dot(d, d);
+        if (!(d2 > 0.0))
+            return false;
+        double dist = std::sqrt(d2);
+        wi = d / dist;
+        s->distance = float(dist);
+        // Inverse square law, windowed by the range.
+        scale = rangeWindow(dist, double(P.range)) / d2;
+        if (P.type == RTPBR_GLTF_PUNCTUAL_SPOT)
+            scale *= spotFalloff(glm::dot(dir, -wi), double(P.inner_cone_angle), double(P.outer_cone_angle));
+    }
+    if (!(scale > 0.0) || !std::isfinite(scale))
+        return false;
+    s->wi = glm::vec3(wi);
+    s->irradiance = glm::vec3(dvec3(P.intensity[0], P.intensity[1], P.intensity[2]) * scale);
+    return true;
 }
 
 } // namespace rtpbr_oracle

@@ -1,4 +1,4 @@
-// rtpbr oracle: sampling the polygonal area lights.
+// rtpbr oracle: sampling the polygonal area lights; the punctual (delta) lights.
 //
 // A light is a convex planar polygon (3..8 vertices) emitting constant radiance from its
 // front face (both faces if two-sided). One light is picked with probability proportional
@@ -63,6 +63,41 @@ private:
     std::vector<Light> lights_;
     std::vector<double> cdf_; // light selection by power
     LightSampling mode_;
+};
+
+// KHR_lights_punctual lights (rtpbr_gltf_punctual_light): point, spot and directional, as
+// true delta lights. A delta light has no surface: no ray meets it, so it enters only through
+// next-event estimation, with weight 1 (no MIS: the BSDF strategy cannot find it), and every
+// light is taken at every vertex (no selection: scenes have few, and a sum adds no noise).
+// What one light gives at a point p (the extension's text):
+//   reflected radiance = f(wo, wi) max(N.wi, 0) x irradiance,
+//   point:       wi = normalize(position - p), irradiance = intensity W(d) / d^2, d = |position - p|
+//   spot:        the point's, times the cone's falloff t^2 (PunctualLights::spotFalloff)
+//   directional: wi = -direction, irradiance = intensity (no distance falloff, range unused)
+//   W(d) = clamp(1 - (d / range)^4, 0, 1) for range > 0, else 1 (the spec's recommended window).
+struct PunctualSample {
+    glm::vec3 wi;         // unit direction from p to the light
+    float distance;       // to the light position; infinity for a directional light
+    glm::vec3 irradiance; // on a surface facing the light: reflected = f cos(theta) x this
+};
+
+class PunctualLights {
+public:
+    explicit PunctualLights(const rtpbr_gltf_scene &scene);
+
+    size_t size() const { return lights_.size(); }
+    bool empty() const { return lights_.empty(); }
+    // Light l seen from p; false where it gives nothing (outside its cone or range, a black
+    // light, p at the light's position).
+    bool illuminate(uint32_t l, glm::vec3 p, PunctualSample *s) const;
+    // KHR_lights_punctual's spot falloff: t = clamp((cd - cos outer) / max(1e-3, cos inner -
+    // cos outer), 0, 1), returned as t^2; cd = cos of the angle from the spot's axis.
+    static double spotFalloff(double cd, double innerConeAngle, double outerConeAngle);
+    // The spec's recommended range window clamp(1 - (d / range)^4, 0, 1); 1 for range <= 0.
+    static double rangeWindow(double d, double range);
+
+private:
+    std::vector<rtpbr_gltf_punctual_light> lights_; // the scene's, with any intensity > 0
 };
 
 } // namespace rtpbr_oracle

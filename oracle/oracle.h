@@ -88,7 +88,8 @@ struct RenderStats {
 using ProgressCallback = std::function<void(uint64_t pixelsDone, uint64_t pixelsTotal)>;
 
 // Checks the scene data the renderer relies on (finite vertices, indices in range, material
-// references, a camera, an emitting light); error describes the first problem.
+// references, a camera, an emitting light, the punctual lights' parameters); error describes
+// the first problem.
 Result validateScene(const rtpbr_gltf_scene &scene, const RenderSettings &settings, std::string *error);
 
 Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Accumulator *out, std::string *error,

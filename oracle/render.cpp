@@ -122,9 +122,10 @@ void orthonormalBasis(vec3 n, vec3 *t, vec3 *b) {
 
 class Integrator {
 public:
-    Integrator(const rtpbr_gltf_scene &scene, const EmbreeScene &es, const LightSet &lights, const RenderSettings &s,
-               const std::vector<Texture> &textures, const std::vector<const LayerAlbedo *> &layers)
-        : scene_(scene), es_(es), lights_(lights), s_(s), textures_(textures), layers_(layers) {
+    Integrator(const rtpbr_gltf_scene &scene, const EmbreeScene &es, const LightSet &lights,
+               const PunctualLights &punctual, const RenderSettings &s, const std::vector<Texture> &textures,
+               const std::vector<const LayerAlbedo *> &layers)
+        : scene_(scene), es_(es), lights_(lights), punctual_(punctual), s_(s), textures_(textures), layers_(layers) {
         maxDepth_ = s.directOnly ? 1u : std::max(1u, s.maxDepth);
     }
 
@@ -181,6 +182,9 @@ public:
                              (misWeight(ls.pdf, bsdf.pdfMis(wiL)) / ls.pdf);
                 }
             }
+            // The punctual lights: each one, weight 1 (no other strategy finds a delta light).
+            for (uint32_t l = 0; l < punctual_.size(); l++)
+                L += beta * punctualLight(l, sp, bt, origin, bsdf, rng);
 
             // BSDF sampling.
             BsdfSample bs;
@@ -285,6 +289,28 @@ private:
         if (!(tfar > 0.0f))
             return true;
         return !occluded(origin, d / len, tfar);
+    }
+
+    // What punctual light l reflects toward wo at sp (bt: the shading frame's bitangent):
+    // f cos x its irradiance there (PunctualLights), if a shadow ray from origin (sp.p off
+    // its surface) reaches the light (a directional light: to infinity), or with noShadows.
+    // The light's direction and distance are taken from sp.p itself, the point the
+    // extension's formulas speak of.
+    vec3 punctualLight(uint32_t l, const SurfacePoint &sp, vec3 bt, vec3 origin, const Bsdf &bsdf, Rng &rng) {
+        PunctualSample ps;
+        if (!punctual_.illuminate(l, sp.p, &ps) || !(glm::dot(ps.wi, sp.ng) > 0.0f))
+            return vec3(0.0f);
+        vec3 f = bsdf.eval(vec3(glm::dot(ps.wi, sp.tangent), glm::dot(ps.wi, bt), glm::dot(ps.wi, sp.ns)), rng);
+        if (!(f.x > 0.0f || f.y > 0.0f || f.z > 0.0f))
+            return vec3(0.0f);
+        if (!s_.noShadows) {
+            bool blocked = std::isinf(ps.distance)
+                               ? occluded(origin, ps.wi, std::numeric_limits<float>::infinity())
+                               : !unoccluded(origin, sp.p + ps.wi * ps.distance);
+            if (blocked)
+                return vec3(0.0f);
+        }
+        return f * ps.irradiance;
     }
 
     // Light l's radiance toward -wi at its point q: LightSet::emitted, times the emission
@@ -481,6 +507,7 @@ private:
     const rtpbr_gltf_scene &scene_;
     const EmbreeScene &es_;
     const LightSet &lights_;
+    const PunctualLights &punctual_;
     const RenderSettings &s_;
     const std::vector<Texture> &textures_;
     const std::vector<const LayerAlbedo *> &layers_; // per material
@@ -647,6 +674,7 @@ Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Acc
     std::vector<std::unique_ptr<LayerAlbedo>> layerTables;
     const std::vector<const LayerAlbedo *> layers = layerAlbedoTables(scene, &layerTables);
     LightSet lights(scene, s.lightSampling);
+    PunctualLights punctual(scene);
     EmbreeScene es;
     r = buildEmbree(scene, textures, &es, error);
     if (r != Result::Success)
@@ -675,7 +703,7 @@ Result render(const rtpbr_gltf_scene &scene, const RenderSettings &settings, Acc
 
     // Each thread takes the next tile until none is left.
     auto worker = [&]() {
-        Integrator integ(scene, es, lights, s, textures, layers);
+        Integrator integ(scene, es, lights, punctual, s, textures, layers);
         PixelSampler sampler{integ, cam, s.seed, s.sampleBegin, sEnd, out};
         for (;;) {
             uint32_t tile = nextTile.fetch_add(1);

@@ -56,6 +56,67 @@ bool withinExtent(const float *v) {
     return true;
 }
 
+// A KHR_lights_punctual light as the renderer relies on it (rtpbr_gltf_punctual_light's
+// contract); *emits when its intensity is above 0 in any channel.
+Result validatePunctualLight(const rtpbr_gltf_punctual_light &P, uint32_t i, bool *emits, std::string *error) {
+    // The type's bits as stored: a C caller (or a corrupted scene) may hold any int there, which
+    // C++ may not read as the enum (UBSan: not a valid value for the type).
+    int raw = 0;
+    static_assert(sizeof raw == sizeof P.type, "rtpbr_gltf_punctual_type is an int");
+    std::memcpy(&raw, &P.type, sizeof raw);
+    const char *type = raw == RTPBR_GLTF_PUNCTUAL_POINT         ? "point"
+                       : raw == RTPBR_GLTF_PUNCTUAL_SPOT        ? "spot"
+                       : raw == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL ? "directional"
+                                                                : nullptr;
+    if (!type) {
+        *error = fmt("punctual light %u: unknown type %d (point, spot or directional)", i, raw);
+        return Result::InvalidScene;
+    }
+    if (!finite3(P.intensity) || P.intensity[0] < 0.0f || P.intensity[1] < 0.0f || P.intensity[2] < 0.0f) {
+        *error = fmt("punctual light %u (%s): intensity (%g, %g, %g) is negative or not finite", i, type,
+                     double(P.intensity[0]), double(P.intensity[1]), double(P.intensity[2]));
+        return Result::InvalidScene;
+    }
+    if (P.type != RTPBR_GLTF_PUNCTUAL_DIRECTIONAL) {
+        if (!finite3(P.position) || !withinExtent(P.position)) {
+            *error = fmt("punctual light %u (%s): position (%g, %g, %g) is not finite or lies beyond the oracle's "
+                         "scene extent of +-%g", i, type, double(P.position[0]), double(P.position[1]),
+                         double(P.position[2]), double(kMaxSceneCoordinate));
+            return Result::InvalidScene;
+        }
+        if (!finite(P.range) || P.range < 0.0f) {
+            *error = fmt("punctual light %u (%s): range %g is negative or not finite (0 = infinite)", i, type,
+                         double(P.range));
+            return Result::InvalidScene;
+        }
+    }
+    if (P.type != RTPBR_GLTF_PUNCTUAL_POINT) {
+        // The direction must be unit: the spot's cosines and the directional wi use it as is.
+        double len = std::sqrt(double(P.direction[0]) * P.direction[0] + double(P.direction[1]) * P.direction[1] +
+                               double(P.direction[2]) * P.direction[2]);
+        if (!finite3(P.direction) || !(std::fabs(len - 1.0) <= 1e-3)) {
+            *error = fmt("punctual light %u (%s): direction (%g, %g, %g) is not a finite unit vector (length %g)", i,
+                         type, double(P.direction[0]), double(P.direction[1]), double(P.direction[2]), len);
+            return Result::InvalidScene;
+        }
+    }
+    if (P.type == RTPBR_GLTF_PUNCTUAL_SPOT) {
+        // KHR_lights_punctual: 0 <= innerConeAngle < outerConeAngle <= pi/2. Equal angles are
+        // let through: the loader checks the file's doubles, which may round to the same float
+        // (the falloff's max(1e-3, ...) keeps them finite).
+        const float inner = P.inner_cone_angle, outer = P.outer_cone_angle;
+        if (!finite(inner) || !finite(outer) || !(inner >= 0.0f) || !(inner <= outer) ||
+            !(outer <= 1.5707964f)) {
+            *error = fmt("punctual light %u (spot): cone angles inner %g, outer %g rad: need 0 <= inner <= outer <= "
+                         "pi/2", i, double(inner), double(outer));
+            return Result::InvalidScene;
+        }
+    }
+    if (P.intensity[0] > 0.0f || P.intensity[1] > 0.0f || P.intensity[2] > 0.0f)
+        *emits = true;
+    return Result::Success;
+}
+
 } // namespace
 
 Result validateScene(const rtpbr_gltf_scene &scene, const RenderSettings &s, std::string *error) {
@@ -163,8 +224,18 @@ Result validateScene(const rtpbr_gltf_scene &scene, const RenderSettings &s, std
         if (L.radiance[0] > 0.0f || L.radiance[1] > 0.0f || L.radiance[2] > 0.0f)
             emits = true;
     }
+    if (scene.punctual_light_count > 0 && !scene.punctual_lights) {
+        *error = fmt("%u punctual lights but no punctual light array", scene.punctual_light_count);
+        return Result::InvalidScene;
+    }
+    for (uint32_t i = 0; i < scene.punctual_light_count; i++) {
+        Result r = validatePunctualLight(scene.punctual_lights[i], i, &emits, error);
+        if (r != Result::Success)
+            return r;
+    }
     if (!emits) {
-        *error = "the scene has no lights (no emissive primitive or EXT_lights_area light with radiance > 0)";
+        *error = "the scene has no lights (no emissive primitive, EXT_lights_area light with radiance > 0 or "
+                 "KHR_lights_punctual light with intensity > 0)";
         return Result::NoLights;
     }
     return Result::Success;

@@ -237,7 +237,7 @@ struct Builder {
     Context& ctx;
     const tinygltf::Model& model;
     Scene& scene;
-    std::vector<std::pair<int, Mat4>>* light_nodes;
+    LightNodes* light_nodes;
     std::vector<char> on_path;
     size_t visits = 0;
 
@@ -666,7 +666,8 @@ bool Builder::node(int index, const Mat4& parent, unsigned depth) {
             if (!primitive(index, world, n.mesh, int(p))) return false;
     }
     if (n.camera >= 0 && !camera(index, world)) return false;
-    if (n.extensions.count("EXT_lights_area")) light_nodes->push_back({index, world});
+    if (n.extensions.count("EXT_lights_area")) light_nodes->area.push_back({index, world});
+    if (n.extensions.count("KHR_lights_punctual")) light_nodes->punctual.push_back({index, world});
     on_path[size_t(index)] = 1;
     for (int child : n.children)
         if (!node(child, world, depth + 1)) return false;
@@ -757,8 +758,7 @@ bool check_forest(Context& ctx, const tinygltf::Model& model) {
 
 }  // namespace
 
-bool convert_nodes(Context& ctx, const tinygltf::Model& model, Scene& scene,
-                   std::vector<std::pair<int, Mat4>>* light_nodes) {
+bool convert_nodes(Context& ctx, const tinygltf::Model& model, Scene& scene, LightNodes* light_nodes) {
     if (!check_forest(ctx, model)) return false;
     Builder b{ctx, model, scene, light_nodes, std::vector<char>(model.nodes.size(), 0), 0};
     std::vector<int> roots;

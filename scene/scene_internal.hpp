@@ -78,14 +78,17 @@ struct Scene {
     std::vector<rtpbr_gltf_material> materials;
     std::vector<Texture> textures;
     std::vector<rtpbr_gltf_light> lights;
+    std::vector<rtpbr_gltf_punctual_light> punctual_lights;
     std::vector<rtpbr_gltf_camera> cameras;
     uint64_t total_vertices = 0;
     uint64_t total_indices = 0;
 };
 
 // scene_schema.cpp: the glTF 2.0 schema's types, ranges and required properties of the
-// core objects, on the JSON text (syntax errors are left to tinygltf).
-bool check_schema(Context& ctx, const char* json_text, size_t size);
+// core objects and of KHR_lights_punctual, on the JSON text (syntax errors are left to
+// tinygltf). *rewritten: left empty, or the document to give tinygltf instead, with the
+// defaults it would refuse to supply (a spot light's "spot" object).
+bool check_schema(Context& ctx, const char* json_text, size_t size, std::string* rewritten);
 
 // scene_materials.cpp: fills scene.materials (one per glTF material, plus a
 // default one appended on demand by default_material()) and scene.textures.
@@ -93,9 +96,14 @@ bool convert_materials(Context& ctx, const tinygltf::Model& model, Scene& scene)
 uint32_t default_material(Scene& scene);
 rtpbr_gltf_material make_default_material();
 
+// Nodes carrying a light, in traversal order, with their world matrices.
+struct LightNodes {
+    std::vector<std::pair<int, Mat4>> area;      // extensions.EXT_lights_area
+    std::vector<std::pair<int, Mat4>> punctual;  // extensions.KHR_lights_punctual
+};
+
 // scene_geometry.cpp: walks the node tree, fills primitives and cameras.
-bool convert_nodes(Context& ctx, const tinygltf::Model& model, Scene& scene,
-                   std::vector<std::pair<int, Mat4>>* light_nodes);
+bool convert_nodes(Context& ctx, const tinygltf::Model& model, Scene& scene, LightNodes* light_nodes);
 bool node_local_matrix(Context& ctx, const tinygltf::Node& node, int index, Mat4* out);
 Mat4 mat_mul(const Mat4& a, const Mat4& b);
 Vec3 transform_point(const Mat4& m, const Vec3& p);
@@ -105,5 +113,8 @@ Vec3 transform_dir(const Mat4& m, const Vec3& d);
 bool lights_from_primitive(Context& ctx, Scene& scene, uint32_t primitive_index);
 bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& scene,
                           const std::vector<std::pair<int, Mat4>>& light_nodes);
+// After the area lights: they and the punctual lights share ctx.max_lights.
+bool lights_from_khr_punctual(Context& ctx, const tinygltf::Model& model, Scene& scene,
+                              const std::vector<std::pair<int, Mat4>>& light_nodes);
 
 }  // namespace rtpbr_gltf_detail

@@ -1,5 +1,6 @@
 // Polygonal area lights: emissive primitives merged into convex polygons of
-// at most 8 vertices, and EXT_lights_area rect/disk lights.
+// at most 8 vertices, and EXT_lights_area rect/disk lights; KHR_lights_punctual
+// point, spot and directional lights.
 #include "scene_internal.hpp"
 
 #include <algorithm>
@@ -553,6 +554,8 @@ bool cluster_lights(Context& ctx, Scene& scene, uint32_t primitive_index, const 
     return true;
 }
 
+bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+
 double number_or(const tinygltf::Value& obj, const char* key, double def, bool* bad) {
     if (!obj.IsObject() || !obj.Has(key)) return def;
     const tinygltf::Value& v = obj.Get(key);
@@ -561,6 +564,22 @@ double number_or(const tinygltf::Value& obj, const char* key, double def, bool* 
         return def;
     }
     return v.GetNumberAsDouble();
+}
+
+// The index of the light a node's `extension` ({"light": n}) references: an integer below
+// count, else the load fails (false).
+bool node_light(Context& ctx, const tinygltf::Model& model, int node, const char* extension, size_t count,
+                int* index) {
+    const tinygltf::Value& ref = model.nodes[size_t(node)].extensions.at(extension);
+    bool bad = false;
+    const double li = number_or(ref, "light", -1.0, &bad);
+    if (bad || !ref.IsObject() || !ref.Has("light") || li != std::floor(li))
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "node %d: %s.light must be an integer", node, extension);
+    if (li < 0.0 || li >= double(count))
+        return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "node %d: %s light %.0f does not exist (%zu lights)", node,
+                        extension, li, count);
+    *index = int(li);
+    return true;
 }
 
 }  // namespace
@@ -610,17 +629,9 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
     for (const auto& ln : light_nodes) {
         const int node = ln.first;
         const Mat4& world = ln.second;
-        const tinygltf::Value& ref = model.nodes[size_t(node)].extensions.at("EXT_lights_area");
+        int index = -1;
+        if (!node_light(ctx, model, node, "EXT_lights_area", lights ? lights->ArrayLen() : 0, &index)) return false;
         bool bad = false;
-        const double li = number_or(ref, "light", -1.0, &bad);
-        if (bad || !ref.IsObject() || !ref.Has("light") || li != std::floor(li))
-            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "node %d: EXT_lights_area.light must be an integer",
-                            node);
-        if (!lights || li < 0.0 || li >= double(lights->ArrayLen()))
-            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE,
-                            "node %d: EXT_lights_area light %.0f does not exist (%zu lights)", node, li,
-                            lights ? lights->ArrayLen() : size_t(0));
-        const int index = int(li);
         const tinygltf::Value& L = lights->Get(index);
         if (!L.IsObject())
             return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "EXT_lights_area light %d is not an object", index);
@@ -725,6 +736,76 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
         l.gltf_node = node;
         l.triangle = -1;
         scene.lights.push_back(l);
+    }
+    return true;
+}
+
+bool lights_from_khr_punctual(Context& ctx, const tinygltf::Model& model, Scene& scene,
+                              const std::vector<std::pair<int, Mat4>>& light_nodes) {
+    // check_schema has checked the extension's JSON (types, ranges, the cones, every node's
+    // index), which tinygltf's model.lights then holds as written; what is left to check here
+    // is what the node and desc add: the world frame and the float range of the results.
+    for (const auto& ln : light_nodes) {
+        const int node = ln.first;
+        const Mat4& world = ln.second;
+        int index = -1;
+        if (!node_light(ctx, model, node, "KHR_lights_punctual", model.lights.size(), &index)) return false;
+        const tinygltf::Light& L = model.lights[size_t(index)];
+        rtpbr_gltf_punctual_light p;
+        std::memset(&p, 0, sizeof p);
+        if (L.type == "point") p.type = RTPBR_GLTF_PUNCTUAL_POINT;
+        else if (L.type == "spot") p.type = RTPBR_GLTF_PUNCTUAL_SPOT;
+        else if (L.type == "directional") p.type = RTPBR_GLTF_PUNCTUAL_DIRECTIONAL;
+        else
+            return ctx.fail(RTPBR_GLTF_ERROR_UNSUPPORTED, "node %d: KHR_lights_punctual light %d: type '%s' not supported",
+                            node, index, L.type.size() > 40 ? "..." : L.type.c_str());
+        if (!L.color.empty() && L.color.size() != 3)
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "KHR_lights_punctual light %d: color must be 3 numbers", index);
+
+        // The node's origin, and its -Z axis (the matrix's third column negated); scale is
+        // left out by normalising.
+        const Vec3 position = transform_point(world, {0, 0, 0});
+        Vec3 direction = {-world[8], -world[9], -world[10]};
+        const double len = length(direction);
+        if (std::isfinite(len) && len > 0.0) {
+            direction = scaled(direction, 1.0 / len);
+        } else if (p.type == RTPBR_GLTF_PUNCTUAL_POINT) {
+            direction = {0, 0, -1};  // unused by a point light: any unit vector
+        } else {
+            return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE,
+                            "node %d: KHR_lights_punctual light %d: degenerate transform (the node's -Z axis has no direction)",
+                            node, index);
+        }
+        for (int k = 0; k < 3; ++k) {
+            p.position[k] = float(position[size_t(k)]);
+            p.direction[k] = float(direction[size_t(k)]);
+            const double color = L.color.empty() ? 1.0 : L.color[size_t(k)];
+            p.intensity[k] = float(color * L.intensity * ctx.area_light_radiance_scale);
+        }
+        if (p.type != RTPBR_GLTF_PUNCTUAL_DIRECTIONAL) {
+            p.range = float(L.range);
+        } else if (L.range > 0.0) {
+            ctx.warn("node %d: KHR_lights_punctual light %d: range ignored on a directional light", node, index);
+        }
+        if (p.type == RTPBR_GLTF_PUNCTUAL_SPOT) {
+            p.inner_cone_angle = float(L.spot.innerConeAngle);
+            p.outer_cone_angle = float(L.spot.outerConeAngle);
+        }
+        if (!finite3(p.position) || !finite3(p.intensity))
+            return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE,
+                            "node %d: KHR_lights_punctual light %d: position or intensity (color x intensity x "
+                            "area_light_radiance_scale) not representable as a float",
+                            node, index);
+        if (p.type != RTPBR_GLTF_PUNCTUAL_DIRECTIONAL && L.range > 0.0 && !(p.range > 0.0f))
+            return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: KHR_lights_punctual light %d: range %g underflows a float",
+                            node, index, L.range);
+        if (scene.lights.size() + scene.punctual_lights.size() >= ctx.max_lights)
+            return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS,
+                            "node %d: more than %u lights (area lights and KHR_lights_punctual lights together)", node,
+                            ctx.max_lights);
+        p.gltf_node = node;
+        p.gltf_light = index;
+        scene.punctual_lights.push_back(p);
     }
     return true;
 }

@@ -303,6 +303,31 @@ bool check_json_depth(Context& ctx, const char* json, size_t size) {
     return true;
 }
 
+// The checked GLB `data` with its JSON chunk replaced by `json` (empty: kept as it is) and,
+// unless keep_rest, nothing after the JSON chunk.
+bool rebuild_glb(Context& ctx, const unsigned char* data, uint32_t json_length, const std::string& json,
+                 bool keep_rest, std::vector<unsigned char>* out) {
+    const size_t length = read_u32le(data + 8);
+    const size_t padded = json.empty() ? json_length : (json.size() + 3) / 4 * 4;
+    const size_t rest = keep_rest ? length - 20 - json_length : 0;
+    if (20 + padded + rest > RTPBR_GLTF_MAX_FILE_SIZE)
+        return ctx.fail(RTPBR_GLTF_ERROR_IO, "GLB: the document with defaults filled in exceeds RTPBR_GLTF_MAX_FILE_SIZE");
+    out->assign(data, data + 20);
+    if (json.empty()) {
+        out->insert(out->end(), data + 20, data + 20 + json_length);
+    } else {
+        out->insert(out->end(), json.begin(), json.end());
+        out->resize(20 + padded, ' ');
+    }
+    out->insert(out->end(), data + 20 + json_length, data + 20 + json_length + rest);
+    auto put_u32 = [&](size_t at, size_t v) {
+        for (int k = 0; k < 4; ++k) (*out)[at + size_t(k)] = static_cast<unsigned char>(v >> (8 * k));
+    };
+    put_u32(8, out->size());
+    put_u32(12, padded);
+    return true;
+}
+
 void forward_lines(const Context& ctx, rtpbr_gltf_log_level level, const std::string& text) {
     size_t start = 0;
     while (start < text.size()) {
@@ -321,7 +346,7 @@ std::string first_line(const std::string& text) {
 const char* const kSupportedRequiredExtensions[] = {
     "KHR_materials_emissive_strength", "KHR_materials_specular", "KHR_materials_ior",
     "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_anisotropy",
-    "KHR_texture_transform", "EXT_lights_area",
+    "KHR_texture_transform", "EXT_lights_area", "KHR_lights_punctual",
 };
 
 bool check_required_extensions(Context& ctx, const tinygltf::Model& model) {
@@ -430,6 +455,8 @@ rtpbr_gltf_result build_output(Context& ctx, const Scene& in, rtpbr_gltf_scene**
     }
     if (ok) ok = copy_array(al, in.lights, &s->lights);
     if (ok) s->light_count = static_cast<uint32_t>(in.lights.size());
+    if (ok) ok = copy_array(al, in.punctual_lights, &s->punctual_lights);
+    if (ok) s->punctual_light_count = static_cast<uint32_t>(in.punctual_lights.size());
     if (ok) ok = copy_array(al, in.cameras, &s->cameras);
     if (ok) s->camera_count = static_cast<uint32_t>(in.cameras.size());
     if (!ok) {
@@ -506,21 +533,21 @@ rtpbr_gltf_result load_model(Context& ctx, const unsigned char* data, size_t siz
         return ctx.result;
     }
     bool is_glb = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
-    std::vector<unsigned char> glb_without_unknown;
+    std::vector<unsigned char> rebuilt_glb;
+    std::string rewritten;  // the JSON tinygltf reads instead, when check_schema fills it
     if (want_glb || is_glb) {
         bool unknown_second_chunk = false;
         if (!check_glb(ctx, data, size, &unknown_second_chunk)) return ctx.result;
         uint32_t json_length = read_u32le(data + 12);
         if (!check_json_depth(ctx, reinterpret_cast<const char*>(data) + 20, json_length) ||
-            !check_schema(ctx, reinterpret_cast<const char*>(data) + 20, json_length))
+            !check_schema(ctx, reinterpret_cast<const char*>(data) + 20, json_length, &rewritten))
             return ctx.result;
-        if (unknown_second_chunk) {
-            ctx.warn("GLB: chunks of unknown type ignored");
-            glb_without_unknown.assign(data, data + 20 + size_t(json_length));
-            const uint32_t length = 20u + json_length;
-            for (int k = 0; k < 4; ++k) glb_without_unknown[size_t(8 + k)] = static_cast<unsigned char>(length >> (8 * k));
-            data = glb_without_unknown.data();
-            size = glb_without_unknown.size();
+        if (unknown_second_chunk) ctx.warn("GLB: chunks of unknown type ignored");
+        if (unknown_second_chunk || !rewritten.empty()) {
+            if (!rebuild_glb(ctx, data, json_length, rewritten, !unknown_second_chunk, &rebuilt_glb))
+                return ctx.result;
+            data = rebuilt_glb.data();
+            size = rebuilt_glb.size();
         }
         is_glb = true;
     } else {
@@ -528,8 +555,15 @@ rtpbr_gltf_result load_model(Context& ctx, const unsigned char* data, size_t siz
             return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON, "JSON: %zu bytes, empty document", size),
                    ctx.result;
         if (!check_json_depth(ctx, reinterpret_cast<const char*>(data), size) ||
-            !check_schema(ctx, reinterpret_cast<const char*>(data), size))
+            !check_schema(ctx, reinterpret_cast<const char*>(data), size, &rewritten))
             return ctx.result;
+        if (!rewritten.empty()) {
+            if (rewritten.size() > RTPBR_GLTF_MAX_FILE_SIZE)
+                return ctx.fail(RTPBR_GLTF_ERROR_IO, "JSON: the document with defaults filled in exceeds "
+                                "RTPBR_GLTF_MAX_FILE_SIZE"), ctx.result;
+            data = reinterpret_cast<const unsigned char*>(rewritten.data());
+            size = rewritten.size();
+        }
     }
 
     tinygltf::TinyGLTF loader;
@@ -569,23 +603,24 @@ rtpbr_gltf_result load_model(Context& ctx, const unsigned char* data, size_t siz
 
     if (!check_required_extensions(ctx, model)) return ctx.result;
     Scene scene;
-    std::vector<std::pair<int, Mat4>> light_nodes;
+    LightNodes light_nodes;
     if (!convert_materials(ctx, model, scene)) return ctx.result;
     if (!convert_nodes(ctx, model, scene, &light_nodes)) return ctx.result;
     if (!ctx.desc.no_emissive_lights) {
         for (uint32_t i = 0; i < scene.primitives.size(); ++i)
             if (!lights_from_primitive(ctx, scene, i)) return ctx.result;
     }
-    if (!lights_from_ext_area(ctx, model, scene, light_nodes)) return ctx.result;
-    if (scene.lights.empty())
-        ctx.warn("the scene has no lights (no EXT_lights_area light%s): only emission and the background "
-                 "will show; add lights (docs/materials.md)",
+    if (!lights_from_ext_area(ctx, model, scene, light_nodes.area)) return ctx.result;
+    if (!lights_from_khr_punctual(ctx, model, scene, light_nodes.punctual)) return ctx.result;
+    if (scene.lights.empty() && scene.punctual_lights.empty())
+        ctx.warn("the scene has no lights (no EXT_lights_area or KHR_lights_punctual light%s): only emission "
+                 "and the background will show; add lights (docs/materials.md)",
                  ctx.desc.no_emissive_lights ? ", emissive lights turned off" : " and no emissive surface");
     ctx.info("loaded %zu primitives (%llu vertices, %llu indices), %zu materials, %zu textures, "
-             "%zu lights, %zu cameras",
+             "%zu area lights, %zu punctual lights, %zu cameras",
              scene.primitives.size(), static_cast<unsigned long long>(scene.total_vertices),
              static_cast<unsigned long long>(scene.total_indices), scene.materials.size(),
-             scene.textures.size(), scene.lights.size(), scene.cameras.size());
+             scene.textures.size(), scene.lights.size(), scene.punctual_lights.size(), scene.cameras.size());
     rtpbr_gltf_result r = build_output(ctx, scene, out);
     if (r != RTPBR_GLTF_SUCCESS) ctx.fail(r, "out of memory while copying the scene");
     return r;
@@ -713,6 +748,7 @@ extern "C" void rtpbr_gltf_destroy(rtpbr_gltf_scene* scene) {
     al.release(scene->materials);
     al.release(scene->textures);
     al.release(scene->lights);
+    al.release(scene->punctual_lights);
     al.release(scene->cameras);
     al.release(scene);
 }

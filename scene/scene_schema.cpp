@@ -4,10 +4,16 @@
 // so a schema error would otherwise load as something else. Every property the schema
 // defines for the core objects is checked (types, minimum/maximum, enums, array lengths,
 // uniqueness of node lists, required properties); unknown properties, extensions and
-// extras are left to the code that reads them. Errors are RTPBR_GLTF_ERROR_INVALID_JSON
+// extras are left to the code that reads them, except KHR_lights_punctual, checked whole here
+// (tinygltf 2.7 refuses a spot light without "spot", drops a node's extension that is not an
+// object and casts integer literals in extension values to int). Errors are
+// RTPBR_GLTF_ERROR_INVALID_JSON
 // with a JSON pointer to the value; an index to an element that does not exist is
 // RTPBR_GLTF_ERROR_INVALID_REFERENCE, whether or not the scene uses the referring object.
+// (a KHR_lights_punctual number that overflows a float: RTPBR_GLTF_ERROR_NONFINITE; an unknown
+// light type: RTPBR_GLTF_ERROR_UNSUPPORTED).
 // Reference: the glTF 2.0 JSON schema, https://github.com/KhronosGroup/glTF/tree/main/specification/2.0/schema
+// and KHR_lights_punctual's (extensions/2.0/Khronos/KHR_lights_punctual/schema there).
 #include "scene_internal.hpp"
 
 #include <nlohmann/json.hpp>
@@ -27,6 +33,8 @@ constexpr double kMaxIndex = 2147483647.0;
 struct Checker {
     Context& ctx;
     const json& root;
+    size_t punctual_count = 0;                // extensions.KHR_lights_punctual.lights
+    std::vector<size_t> spots_without_cone;   // spot lights that have no "spot" object
 
     // "node 3 (/nodes/3/rotation)" for a JSON pointer into a top-level array.
     static std::string describe(const std::string& where) {
@@ -420,12 +428,109 @@ struct Checker {
             for (const json& e : *r) len2 += e.is_number() ? number(e) * number(e) : 0.0;
             if (std::fabs(std::sqrt(len2) - 1.0) > 5e-3) return fail(at + "/rotation", "not a unit quaternion");
         }
-        return common(n, at) && index(n, at, "camera", "cameras") && indices(n, at, "children", "nodes") && index(n, at, "skin", "skins") &&
+        return common(n, at) && punctual_node(n, at) && index(n, at, "camera", "cameras") && indices(n, at, "children", "nodes") && index(n, at, "skin", "skins") &&
                numbers(n, at, "matrix", 16, -HUGE_VAL, HUGE_VAL) && index(n, at, "mesh", "meshes") &&
                numbers(n, at, "rotation", 4, -1.0, 1.0) && numbers(n, at, "scale", 3, -HUGE_VAL, HUGE_VAL) &&
                numbers(n, at, "translation", 3, -HUGE_VAL, HUGE_VAL) &&
                numbers(n, at, "weights", 0, -HUGE_VAL, HUGE_VAL);
     }
+
+    // ---- KHR_lights_punctual ----
+    // The schema's maximum outerConeAngle, 1.570796326794897: as a double one step above pi/2,
+    // so that pi/2 written to any precision is accepted.
+    static constexpr double kMaxConeAngle = 1.570796326794897;
+    static constexpr double kDefaultOuterCone = 0.78539816339744830962;  // pi/4, the extension's default
+    bool light_fail(rtpbr_gltf_result r, size_t light, const std::string& where, const char* what) {
+        return ctx.fail(r, "KHR_lights_punctual light %zu (%s): %s", light, where.c_str(), what);
+    }
+    // An optional number of light `light`: a number (else INVALID_JSON), in [lo, hi] (lo itself
+    // excluded when exclusive_lo; else INVALID_JSON, `range` says which), finite as a float
+    // (else NONFINITE). *value keeps its default when absent.
+    bool light_number(const json& o, size_t light, const std::string& at, const char* key, double lo, double hi,
+                      bool exclusive_lo, const char* range, double* value) {
+        auto it = o.find(key);
+        if (it == o.end()) return true;
+        const std::string p = at + "/" + key;
+        if (!it->is_number()) return light_fail(RTPBR_GLTF_ERROR_INVALID_JSON, light, p, "must be a number");
+        const double d = number(*it);
+        if (!(d >= lo && d <= hi) || (exclusive_lo && d <= lo))
+            return light_fail(RTPBR_GLTF_ERROR_INVALID_JSON, light, p, range);
+        if (!fits_float(d)) return light_fail(RTPBR_GLTF_ERROR_NONFINITE, light, p, "not representable as a float");
+        *value = d;
+        return true;
+    }
+    bool punctual_light(const json& l, size_t i, const std::string& at) {
+        if (!l.is_object()) return light_fail(RTPBR_GLTF_ERROR_INVALID_JSON, i, at, "must be an object");
+        auto type = l.find("type");
+        if (type == l.end()) return light_fail(RTPBR_GLTF_ERROR_INVALID_JSON, i, at + "/type", "required string missing");
+        if (!type->is_string()) return light_fail(RTPBR_GLTF_ERROR_INVALID_JSON, i, at + "/type", "must be a string");
+        const std::string& t = type->get_ref<const std::string&>();
+        if (t != "point" && t != "spot" && t != "directional")
+            return ctx.fail(RTPBR_GLTF_ERROR_UNSUPPORTED,
+                            "KHR_lights_punctual light %zu (%s/type): type '%s' not supported (point, spot, directional)",
+                            i, at.c_str(), t.size() > 40 ? "..." : t.c_str());
+        auto color = l.find("color");
+        if (color != l.end()) {
+            const std::string p = at + "/color";
+            if (!color->is_array() || color->size() != 3)
+                return light_fail(RTPBR_GLTF_ERROR_INVALID_JSON, i, p, "must be an array of 3 numbers");
+            for (const json& c : *color) {
+                if (!c.is_number()) return light_fail(RTPBR_GLTF_ERROR_INVALID_JSON, i, p, "element is not a number");
+                if (!(number(c) >= 0.0 && number(c) <= 1.0))
+                    return light_fail(RTPBR_GLTF_ERROR_INVALID_JSON, i, p, "element out of [0, 1]");
+            }
+        }
+        double unused = 0.0, inner = 0.0, outer = kDefaultOuterCone;
+        if (!light_number(l, i, at, "intensity", 0.0, HUGE_VAL, false, "must be >= 0", &unused) ||
+            !light_number(l, i, at, "range", 0.0, HUGE_VAL, true, "must be > 0", &unused))
+            return false;
+        auto spot = l.find("spot");
+        if (spot == l.end()) {
+            if (t == "spot") spots_without_cone.push_back(i);
+            return true;
+        }
+        const std::string p = at + "/spot";
+        if (!spot->is_object()) return light_fail(RTPBR_GLTF_ERROR_INVALID_JSON, i, p, "must be an object");
+        if (!light_number(*spot, i, p, "innerConeAngle", 0.0, kMaxConeAngle, false, "must be in [0, pi/2]", &inner) ||
+            !light_number(*spot, i, p, "outerConeAngle", 0.0, kMaxConeAngle, false, "must be in [0, pi/2]", &outer))
+            return false;
+        if (!(inner < outer))
+            return light_fail(RTPBR_GLTF_ERROR_INVALID_JSON, i, p,
+                              "innerConeAngle must be less than outerConeAngle (defaults 0 and pi/4)");
+        return true;
+    }
+    // The root's extensions.KHR_lights_punctual: an object with an array of lights.
+    bool punctual_root() {
+        auto ext = root.find("extensions");
+        if (ext == root.end() || !ext->is_object()) return true;  // reported by object()
+        auto k = ext->find("KHR_lights_punctual");
+        if (k == ext->end()) return true;
+        const std::string at = "/extensions/KHR_lights_punctual";
+        if (!k->is_object()) return fail(at, "must be an object");
+        auto lights = k->find("lights");
+        if (lights == k->end()) return fail(at + "/lights", "required array missing");
+        if (!lights->is_array()) return fail(at + "/lights", "must be an array of lights");
+        punctual_count = lights->size();
+        for (size_t i = 0; i < lights->size(); ++i)
+            if (!punctual_light((*lights)[i], i, at + "/lights/" + std::to_string(i))) return false;
+        return true;
+    }
+    // A node's extensions.KHR_lights_punctual: {"light": index into the lights}.
+    bool punctual_node(const json& n, const std::string& at) {
+        auto ext = n.find("extensions");
+        if (ext == n.end() || !ext->is_object()) return true;  // reported by common()
+        auto k = ext->find("KHR_lights_punctual");
+        if (k == ext->end()) return true;
+        const std::string p = at + "/extensions/KHR_lights_punctual";
+        if (!k->is_object()) return fail(p, "must be an object");
+        if (!integer(*k, p, "light", 0.0, kMaxIndex, true)) return false;
+        const double light = number((*k)["light"]);
+        if (light >= double(punctual_count))
+            return ctx.fail(RTPBR_GLTF_ERROR_INVALID_REFERENCE, "%s: KHR_lights_punctual light %.0f does not exist (%zu lights)",
+                            describe(p + "/light").c_str(), light, punctual_count);
+        return true;
+    }
+
     // An integer outside the enum is only a warning for the Khronos validator where the reader
     // has a sensible default (bufferView target, sampler filters and wraps); so it is here.
     bool soft_enum(const json& o, const std::string& at, const char* key, std::initializer_list<int> values) {
@@ -514,7 +619,7 @@ struct Checker {
             }
         }
         return
-               index(root, "", "scene", "scenes") && object(root, "", "extensions") &&
+               index(root, "", "scene", "scenes") && object(root, "", "extensions") && punctual_root() &&
                array_of("accessors", &Checker::accessor) && array_of("animations", &Checker::any) &&
                array_of("buffers", &Checker::buffer) && array_of("bufferViews", &Checker::buffer_view) &&
                array_of("cameras", &Checker::camera) && array_of("images", &Checker::image) &&
@@ -527,11 +632,20 @@ struct Checker {
 
 }  // namespace
 
-bool check_schema(Context& ctx, const char* json_text, size_t size) {
+bool check_schema(Context& ctx, const char* json_text, size_t size, std::string* rewritten) {
     // A syntax error is left to tinygltf, whose message names the position.
     json doc = json::parse(json_text, json_text + size, nullptr, false);
     if (doc.is_discarded()) return true;
-    return Checker{ctx, doc}.run();
+    Checker checker{ctx, doc, 0, {}};
+    if (!checker.run()) return false;
+    if (!checker.spots_without_cone.empty()) {
+        // "When the spot property is omitted, a spot light must use default values" (the
+        // extension's text); tinygltf 2.7 refuses the file instead, so it gets an empty "spot".
+        json& lights = doc["extensions"]["KHR_lights_punctual"]["lights"];
+        for (size_t i : checker.spots_without_cone) lights[i]["spot"] = json::object();
+        *rewritten = doc.dump();
+    }
+    return true;
 }
 
 }  // namespace rtpbr_gltf_detail

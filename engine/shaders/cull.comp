@@ -4,7 +4,7 @@
 // shading kernel has no barriers: lavapipe runs a workgroup's invocations as coroutines that
 // switch at each barrier). One invocation per RTPBR_TILE_SIZE^2 screen tile: it bounds the
 // world positions of the tile's pixels by a box, keeps the lights that may reach the box (bit
-// i of the tile's mask, tile_masks), and queues the tile for the lighting variant of its class
+// i of the tile's masks, tile_masks: one of polygons, one of punctual lights), and queues the tile for the lighting variant of its class
 // (tile_dispatch / tile_list, consumed by indirect dispatches):
 //   EMPTY  no surface pixel, or no light left: emission and background only;
 //   BASIC  every material of the tile is basic (material_tile_class);
@@ -18,6 +18,7 @@
 //       at most A / d^2), so the light's diffuse contribution is below Le * albedo *
 //       cull_form_factor. Glossy reflections of such a light are dropped with it (a bias
 //       bounded only for the diffuse term). cull_form_factor < 0 disables this test.
+// A punctual light (point, spot, directional) is kept unless the box is beyond its range (3).
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
@@ -36,6 +37,12 @@ layout(local_size_x = RTPBR_CULL_GROUP, local_size_y = RTPBR_CULL_GROUP) in;
 
 bool light_may_contribute(uint i, vec3 boxMin, vec3 boxMax)
 {
+    // (3) A punctual light is kept unless the box is beyond its range (its window is 0 there:
+    // exact); without a range its sphere's radius is RTPBR_LIGHT_INFINITE.
+    if (lights[i].shape != uint(RTPBR_LIGHT_SHAPE_POLYGON)) {
+        vec4 reach = lights[i].sphere;
+        return length(reach.xyz - clamp(reach.xyz, boxMin, boxMax)) < reach.w;
+    }
     vec4 plane = lights[i].plane;
     if (lights[i].two_sided == 0.0f) {
         bool anyInFront = false;
@@ -85,14 +92,18 @@ void main()
     bool anyLight = false;
     uint words = (frame.light_count + 31u) / 32u;
     for (uint w = 0u; w < words; ++w) {
-        uint bits = 0u;
+        uint bits = 0u, punctualBits = 0u; // polygons, punctual lights
         if (materialClass != RTPBR_TILE_CLASS_EMPTY) {
             uint count = min(32u, frame.light_count - 32u * w);
             for (uint b = 0u; b < count; ++b)
-                if (light_may_contribute(32u * w + b, boxMin, boxMax)) bits |= 1u << b;
+                if (light_may_contribute(32u * w + b, boxMin, boxMax)) {
+                    if (lights[32u * w + b].shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) bits |= 1u << b;
+                    else punctualBits |= 1u << b;
+                }
         }
-        tile_masks[tile * uint(RTPBR_TILE_MASK_WORDS) + w] = bits;
-        anyLight = anyLight || bits != 0u;
+        tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + w] = bits;
+        tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + uint(RTPBR_TILE_MASK_WORDS) + w] = punctualBits;
+        anyLight = anyLight || (bits | punctualBits) != 0u;
     }
     uint tileClass = anyLight ? materialClass : RTPBR_TILE_CLASS_EMPTY;
     uint slot = atomicAdd(tile_dispatch[tileClass].x, 1u);

@@ -60,7 +60,8 @@ void main()
     g.roughness = f.roughness;
     g.anisotropyDirection = f.anisotropyDirection;
     ShadingSurface s = surface_terms(g, m, rtpbr_saturate(dot(N, V)));
-    vec3 radiance = f.emission + shade_lights(P, N, V, s, 0u, ivec2(0));
+    vec3 radiance = f.emission;
+    shade_lights(P, N, V, s, 0u, ivec2(0), radiance);
     float alpha = rtpbr_saturate(f.alpha);
     out_radiance = vec4(radiance * alpha, alpha);
 }

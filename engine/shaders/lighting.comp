@@ -62,7 +62,7 @@ void main()
     vec3 V = normalize(frame.camera_position.xyz - P);
     vec3 N = g.normal;
     ShadingSurface s = surface_terms(g, materials[g.materialIndex], rtpbr_saturate(dot(N, V)));
-    result += shade_lights(lifted_point(ndc, depth, P, N), N, V, s, tile, pixel);
+    shade_lights(lifted_point(ndc, depth, P, N), N, V, s, tile, pixel, result);
 #endif
     imageStore(radiance, pixel, vec4(result, 1.0));
 }

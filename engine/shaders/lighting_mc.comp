@@ -6,8 +6,8 @@
 // material model (lighting.comp's shade_lights: metallic-roughness with the Kulla-Conty
 // dielectric-over-diffuse layering and KHR clearcoat, or Disney), estimated by sampling
 // instead of LTC: every lobe is evaluated per sample direction by the shader library
-// (BRDF_Specular, KC_Lobe with E, E_F fetched at the sample's NoL, BRDF_DisneyDiffuse /
-// _Sheen / _Clearcoat with the true GTR1 coat), where lighting.comp integrates LTC fits and
+// (surface.h's Surface_Evaluate: BRDF_Specular, KC_Lobe with E, E_F fetched at the sample's
+// NoL, BRDF_DisneyDiffuse / _Sheen / _Clearcoat with the true GTR1 coat), where lighting.comp integrates LTC fits and
 // evaluates the separable lobes at one representative direction per polygon. Like
 // lighting.comp it shades anisotropic lobes isotropically at sqrt(alpha_t alpha_b) (the
 // G-buffer has no tangent).
@@ -20,6 +20,8 @@
 // 2023 for GGX, Heitz & d'Eon 2014 for Beckmann; shaderlib sampling.h). pBrdf = 0.5 Fs /
 // (Fs + Fd), Fs, Fd the largest channel of the specular lobe's average Fresnel and of the
 // diffuse colour: 0 for a surface without specular (pure light sampling), 1/2 for a metal.
+// Punctual lights (point, spot, directional: shaderlib punctual.h) are exact, as in
+// lighting.comp: their BRDF times N.L times their intensity's factor, with no sample.
 // No per-tile culling: every light is summed at every pixel (lights behind a one-sided light's
 // plane are skipped per pixel, where the integrand is 0). The host splits the pass into
 // dispatches over ranges of lights and samples (lavapipe ends every loop of a shader run after
@@ -37,6 +39,7 @@
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"
 #include "rtpbr/material.h"
+#include "rtpbr/punctual.h"
 #include "material.glsl"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
 #include "frame.glsl"
@@ -60,27 +63,10 @@ layout(push_constant, std430) uniform McParams {
 #define MC_PDF_REFLECTION PDF_GGX_Reflection
 #endif
 
-float max3(vec3 v)
-{
-    return max(v.x, max(v.y, v.z));
-}
-
 // Reflected radiance from this dispatch's lights at P: samples mc.first_sample ..
 // + mc.sample_count - 1 of the mc.samples directions per light of the estimate.
 vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
 {
-    // The material terms of lighting_common.glsl (those of lighting.comp's shade_lights).
-    bool disney = s.disney;
-    DisneyMaterial dm = s.dm;
-    float tableRoughness = s.tableRoughness;
-    float specularWeight = s.specularWeight;
-    float eta = s.eta;
-    FresnelParams fresnel;
-    fresnel.f0 = s.f0;
-    fresnel.f90 = s.f90;
-    fresnel.eta = RTPBR_F3(eta);
-    fresnel.k = RTPBR_F3(0.0f);
-
     // Local frame z = N, x along the anisotropy direction (alpha_t) when there is one, else
     // toward V (as LTC_Frame); NoV clamped as the LTC table lookup.
     bool anisotropic = s.anisoK > 1.0f;
@@ -94,36 +80,9 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
     float woTangentLength = length(woTangent);
     woTangent = woTangentLength > 0.0f ? woTangent * (sqrt(1.0f - NoV * NoV) / woTangentLength) : vec2(0.0f);
     vec3 wo = vec3(woTangent, NoV);
-#if RTPBR_KC_SHAPE
-    float alphaIso = tableRoughness * tableRoughness; // resolved (Material_Resolve): no second clamp
-    float kcBeta = KC_ShapeWeight(tableRoughness, NoV);
-#endif
-
-    // Kulla-Conty: the lobe colours and the layered base's albedos.
-    float Eo = s.Eo, Eavg = s.Eavg, FmsDielectric = s.FmsDielectric;
-    vec3 msColor = s.msColor;
-    vec3 diffuseColor = s.diffuseColor;
-    bool layered = !disney && specularWeight > 0.0f && max3(diffuseColor) > 0.0f; // E_s(mu_i) needed per sample
-    float Eso = s.Eso, EsAvg = s.EsAvg;
-    bool needEi = layered || max3(msColor) > 0.0f;
-
-    // The coat: KHR clearcoat (attenuates the rest by 1 - c Fc(NoV)) or Disney's (does not).
-    float coat = s.coat, coatRoughness = s.coatRoughness, baseAttenuation = s.baseAttenuation;
-    FresnelParams coatFresnel;
-    coatFresnel.f0 = RTPBR_F3(RTPBR_MATERIAL_COAT_F0);
-    coatFresnel.f90 = 1.0f;
-    coatFresnel.eta = RTPBR_F3(1.5f);
-    coatFresnel.k = RTPBR_F3(0.0f);
-    float coatAlpha = coatRoughness * coatRoughness; // resolved (Material_Resolve): no second clamp
-    float Eoc = s.Eoc, Eavgc = s.Eavgc;
-    vec3 msCoat = s.msCoat;
-    bool sheen = s.sheen;
-    vec3 sheenColor = s.sheenColor;
-    float sheenRoughness = s.sheenRoughness, EsheenO = s.EsheenO;
-
     // Strategy weights: Schlick's average Fresnel f0 + (f90 - f0) / 21 (Kulla & Conty 2017).
-    float fs = max3(F_Avg_Schlick(fresnel.f0, fresnel.f90));
-    float fd = max3(diffuseColor);
+    float fs = Surface_Max3(F_Avg_Schlick(s.f0, s.f90));
+    float fd = Surface_Max3(s.diffuseColor);
     float pBrdf = fs > 0.0f ? 0.5f * fs / (fs + fd) : 0.0f;
     vec2 alphaSample = s.alphas; // the specular lobe's (alpha_t along T, alpha_b along B)
 
@@ -140,12 +99,14 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
         // vk (rtpbr_shared.h, RTPBR_LIGHT_FIELDS); area is the polygon's.
         vec3 v0 = lights[i].vertices[0].xyz;
         float area = lights[i].area;
-        bool lit = count >= 3u && area > 0.0f && (twoSided ? side != 0.0f : side > 0.0f);
+        uint shape = lights[i].shape;
+        bool lit = shape == uint(RTPBR_LIGHT_SHAPE_POLYGON) && count >= 3u && area > 0.0f &&
+                   (twoSided ? side != 0.0f : side > 0.0f);
         uint n = lit ? mc.sample_count : 0u;
 
         uint rng = mc_seed(pixel, i, mc.seed) * mc.skip_mul + mc.skip_add; // at mc.first_sample
         vec3 lightSum = vec3(0.0f);
-        for (uint s = 0u; s < n; ++s) {
+        for (uint j = 0u; j < n; ++j) {
             float uStrategy = mc_uniform(rng);
             float uPick = mc_uniform(rng);
             vec2 u = vec2(mc_uniform(rng), mc_uniform(rng));
@@ -179,41 +140,21 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
             float pdfBrdf = pBrdf > 0.0f ? MC_PDF_REFLECTION(wo, wiLocal, alphaSample.x, alphaSample.y) : 0.0f;
             float pdf = (1.0f - pBrdf) * pdfLight + pBrdf * pdfBrdf;
 
+            // every lobe of the material (the shader library's, as a punctual light's)
             float NoL = wiLocal.z;
-            vec3 h = normalize(wo + wiLocal);
-            float NoH = h.z;
-            float VoH = dot(wo, h);
-            float mu = max(NoL, 0.0f);
-            vec2 ei = needEi ? kc_E_EF(mu, tableRoughness, eta) : vec2(1.0f, 0.0f);
-            float Ei = ei.x;
-#if RTPBR_KC_SHAPE
-            // the shaped multiple-scattering lobe (kulla_conty.h), its single-scattering part
-            // from the isotropic lobe at the tables' roughness (as BRDF_SpecularMS)
-            float fss1 = NoL > 0.0f ? D_Microfacet(NoH, alphaIso) * V_Microfacet(NoV, NoL, alphaIso) : 0.0f;
-            vec3 f = BRDF_SpecularLocal(wo, wiLocal, alphaSample.x, alphaSample.y, fresnel) +
-                     msColor * KC_LobeShaped(Eo, Ei, Eavg, fss1, kcBeta);
-#else
-            vec3 f = BRDF_SpecularLocal(wo, wiLocal, alphaSample.x, alphaSample.y, fresnel) + msColor * KC_Lobe(Eo, Ei, Eavg);
-#endif
-            if (disney) {
-                f += BRDF_DisneyDiffuse(dm, wo, wiLocal) + BRDF_DisneySheen(dm, wo, wiLocal);
-            } else {
-                float Esi = layered ? specularWeight * KC_SpecularAlbedoDielectric(ei.y, Ei, FmsDielectric) : 0.0f;
-                f += diffuseColor * KC_Lobe(Eso, Esi, EsAvg);
-            }
-            if (sheen)
-                f = f * Sheen_AlbedoScaling(sheenColor, EsheenO, sheen_E(mu, sheenRoughness)) +
-                    BRDF_Sheen(sheenColor, sheenRoughness, NoV, NoL, NoH);
-            f *= baseAttenuation;
-            if (coat > 0.0f) {
-                float coatLobe = disney ? BRDF_DisneyClearcoat(dm, wo, wiLocal)
-                                        : coat * BRDF_Specular(NoV, NoL, NoH, VoH, coatAlpha, coatFresnel).x;
-                f += RTPBR_F3(coatLobe) + msCoat * KC_Lobe(Eoc, kc_E(mu, coatRoughness), Eavgc);
-            }
+            vec3 f = Surface_Evaluate(s, wo, wiLocal);
             bool valid = hit && NoL > 0.0f && pdf > 0.0f;
             lightSum += valid ? f * (NoL / pdf) : vec3(0.0f);
         }
-        sum += lights[i].radiance * (lightSum / float(samples)) * shadow_factor(i, ivec2(pixel));
+        vec3 lightTerm = lightSum / float(samples);
+        // A punctual light: exact, no sample (added once, by the dispatch of the first samples).
+        if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON)) {
+            vec4 incident = Punctual_Incident(P, shape, lights[i].vertices[0], lights[i].vertices[1].xyz, lights[i].vertices[2].xy);
+            vec3 wiLocal = vec3(dot(incident.xyz, T), dot(incident.xyz, B), dot(incident.xyz, N));
+            bool on = mc.first_sample == 0u && wiLocal.z > 0.0f && incident.w > 0.0f;
+            lightTerm = on ? Surface_Evaluate(s, wo, wiLocal) * (wiLocal.z * incident.w) : vec3(0.0f);
+        }
+        sum += lights[i].radiance * lightTerm * shadow_factor(i, ivec2(pixel));
     }
     return sum;
 }

@@ -216,26 +216,45 @@
 #define RTPBR_BINDING_LIGHT_TILE_LISTS 23  // storage: per-class tile queues (cull.comp)
 #define RTPBR_LIGHTING_BINDING_COUNT 28 // with RTPBR_BINDING_LIGHT_SHADOW_RATIO (24) and GBUFFER4..6 (below)
 
-// One polygonal light, the std430 element of the lights buffer (RTPBR_BINDING_LIGHT_LIGHTS,
+// One light, the std430 element of the lights buffer (RTPBR_BINDING_LIGHT_LIGHTS,
 // RTPBR_BINDING_SHADOW_LIGHTS; rtpbr_shader_light, light.glsl): written by engine/src/scene.c.
-// vertices[k].w is the area of the fan polygon v0 .. vk, the triangles (v0, vj, vj+1) for
-// 1 <= j < k (0 for k <= 1; the sum of every fan triangle at k = vertex_count - 1), summed from
-// the light's facts (rtpbr_gltf_polygon_facts.fan_area): the Monte Carlo and shadow passes
-// pick a fan triangle by area from it. area is the polygon's (Newell's normal, the facts').
+// A polygon (shape RTPBR_LIGHT_SHAPE_POLYGON): vertices[k].w is the area of the fan polygon
+// v0 .. vk, the triangles (v0, vj, vj+1) for 1 <= j < k (0 for k <= 1; the sum of every fan
+// triangle at k = vertex_count - 1), summed from the light's facts
+// (rtpbr_gltf_polygon_facts.fan_area): the Monte Carlo and shadow passes pick a fan triangle
+// by area from it. area is the polygon's (Newell's normal, the facts').
+// A punctual light (shape POINT, SPOT, DIRECTIONAL; vertex_count 0, area 0, two_sided 1,
+// plane (0, 0, 0, 1)): vertices[0] = (position, 1 / range^2, 0 without a range),
+// vertices[1] = (the unit direction the light travels, 0), vertices[2] = (cos of the spot's
+// outer cone, 1 / max(cos inner - cos outer, 1e-3), 0, 0) (shaderlib/rtpbr/punctual.h),
+// radiance = its intensity (candela; directional: lux), sphere = (position, range) or an
+// infinite radius (RTPBR_LIGHT_INFINITE).
 #define RTPBR_LIGHT_FIELDS(F, S)                                                                  \
     F(S, VEC4, vertices, [RTPBR_SHADER_MAX_POLYGON_VERTICES]) /* xyz; w: fan area below vertex k */ \
-    F(S, VEC3, radiance, )     /* emitted radiance, rgb */                                         \
+    F(S, VEC3, radiance, )     /* emitted radiance, rgb (punctual: intensity) */                   \
     F(S, FLOAT, two_sided, )   /* 1: emits on both sides; 0: on the front side (plane normal) */  \
     F(S, VEC4, plane, )        /* unit normal xyz, w = -dot(normal, vertex 0) */                  \
     F(S, VEC4, sphere, )       /* bounding sphere: centre xyz, radius w */                        \
-    F(S, UINT, vertex_count, ) /* 3 .. RTPBR_SHADER_MAX_POLYGON_VERTICES */                       \
+    F(S, UINT, vertex_count, ) /* 3 .. RTPBR_SHADER_MAX_POLYGON_VERTICES; punctual: 0 */          \
     F(S, FLOAT, area, )                                                                            \
-    F(S, UINT, pad0, )                                                                             \
+    F(S, UINT, shape, )        /* RTPBR_LIGHT_SHAPE_* (= rtpbr_light_type) */                     \
     F(S, UINT, pad1, )
+
+// A light's shape (rtpbr_shader_light.shape): the values of rtpbr_light_type (rtpbr.h) and of
+// the shader library's RTPBR_PUNCTUAL_* (punctual.h); both checked (internal.h, shade_lights.glsl).
+#define RTPBR_LIGHT_SHAPE_POLYGON 0
+#define RTPBR_LIGHT_SHAPE_POINT 1
+#define RTPBR_LIGHT_SHAPE_SPOT 2
+#define RTPBR_LIGHT_SHAPE_DIRECTIONAL 3
+// The bounding radius of a light without a range: everything is within reach.
+#define RTPBR_LIGHT_INFINITE 3.0e38
 
 // Light culling (cull.comp): one invocation per tile, RTPBR_CULL_GROUP^2 tiles per workgroup.
 #define RTPBR_CULL_GROUP 8
 #define RTPBR_TILE_MASK_WORDS (RTPBR_SHADER_MAX_LIGHTS / 32)
+// A tile's masks: RTPBR_TILE_MASK_WORDS words of its polygonal lights, then as many of its
+// punctual lights (the lighting pass walks each kind without reading a light's shape).
+#define RTPBR_TILE_MASK_STRIDE (2 * RTPBR_TILE_MASK_WORDS)
 // Tile classes: each has its lighting variant, dispatched indirectly over its tile queue.
 #define RTPBR_TILE_CLASS_EMPTY 0 // no surface pixel or no light left: emission and background
 #define RTPBR_TILE_CLASS_BASIC 1 // metallic-roughness without clear coat, sheen, anisotropy

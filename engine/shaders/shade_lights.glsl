@@ -1,4 +1,4 @@
-// Reflected radiance from polygonal lights at a surface point (shade_lights), shared by the LTC
+// Reflected radiance from the lights at a surface point (shade_lights), shared by the LTC
 // lighting pass (lighting.comp) and the forward pass of BLEND surfaces (forward.frag). The
 // per-light evaluation is the shader library's (shaderlib/rtpbr/area_light.h): this file binds
 // the LTC tables, says how the library reads a light and a table (its host bridge), and loops
@@ -39,6 +39,18 @@ vec4 Host_LightPlane(uint i) { return lights[i].plane; }
 vec4 Host_LightSphere(uint i) { return lights[i].sphere; }
 bool Host_LightTwoSided(uint i) { return lights[i].two_sided != 0.0f; }
 vec3 Host_LightRadiance(uint i) { return lights[i].radiance; }
+// Punctual lights (shaderlib punctual.h; the record's layout: rtpbr_shared.h, RTPBR_LIGHT_FIELDS).
+uint Host_LightShape(uint i)
+{
+#ifdef RTPBR_STATS_FIXED_LIGHTS
+    return 0u; // the per-quad-light figures
+#else
+    return lights[i].shape;
+#endif
+}
+vec4 Host_LightPosition(uint i) { return lights[i].vertices[0]; }
+vec3 Host_LightDirection(uint i) { return lights[i].vertices[1].xyz; }
+vec2 Host_LightSpotCone(uint i) { return lights[i].vertices[2].xy; }
 ivec2 shade_pixel; // the pixel shade_lights shades (for its shadow ratios)
 vec3 Host_LightVisibility(uint i) { return vec3(shadow_factor(i, shade_pixel)); }
 vec4 Host_TableLtc1(int table, vec2 uv)
@@ -55,30 +67,59 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 }
 
 #define RTPBR_AREA_LIGHT_FULL RTPBR_LIGHTING_FULL
+#define RTPBR_AREA_LIGHT_PUNCTUAL 2 // punctual lights summed first, apart (area_light.h)
 #define RTPBR_UNROLL [[unroll]]
 #define RTPBR_DONT_UNROLL [[dont_unroll]]
 #include "rtpbr/area_light.h"
+#if RTPBR_PUNCTUAL_POINT != RTPBR_LIGHT_SHAPE_POINT || RTPBR_PUNCTUAL_SPOT != RTPBR_LIGHT_SHAPE_SPOT || \
+    RTPBR_PUNCTUAL_DIRECTIONAL != RTPBR_LIGHT_SHAPE_DIRECTIONAL || RTPBR_LIGHT_SHAPE_POLYGON != 0
+#error "light shapes differ between rtpbr_shared.h and shaderlib/rtpbr/punctual.h"
+#endif
 
-// Reflected radiance from the tile's polygonal lights (those of the tile's mask in the lighting
-// pass; with RTPBR_SHADE_ALL_LIGHTS every light of the frame: the forward pass's surfaces are
-// not in the G-buffer the masks were culled by), each weighted by its shadow ratio
-// shadow_factor(i, pixel) (shadow_ratio.glsl, or 1).
-vec3 shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pixel)
+// Reflected radiance from the tile's lights (those of the tile's mask in the lighting pass;
+// with RTPBR_SHADE_ALL_LIGHTS every light of the frame: the forward pass's surfaces are not in
+// the G-buffer the masks were culled by), each weighted by its shadow ratio
+// shadow_factor(i, pixel) (shadow_ratio.glsl, or 1), added to result (the emission): punctual
+// lights first, straight into it (AreaLight_AddPunctual), then the polygons (AreaLight_Add,
+// their sum held to the energy bound; registers: docs/performance.md, 11).
+void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pixel, inout vec3 result)
 {
     shade_pixel = pixel;
-    AreaLightPixel px = AreaLight_Begin(s, N, V);
     AreaLightSum acc = AreaLight_SumBegin();
 #ifdef RTPBR_STATS_FIXED_LIGHTS
+#ifdef RTPBR_STATS_FIXED_SHAPE // every light a punctual light of this shape (bench/shader-stats)
+    mat3 frame3 = LTC_Frame(N, V);
+    [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
+        AreaLight_AddPunctual(result, s, frame3, P, i, uint(RTPBR_STATS_FIXED_SHAPE));
+    AreaLightPixel px = AreaLight_Begin(s, N, V);
+#else
+    AreaLightPixel px = AreaLight_Begin(s, N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
         AreaLight_Add(px, acc, s, P, N, i);
+#endif
 #elif defined(RTPBR_SHADE_ALL_LIGHTS)
+    // Punctual lights first (the whole BRDF's terms live), then the polygons (their per-point
+    // state live): registers, docs/performance.md, 11.
+    mat3 frame3 = LTC_Frame(N, V);
     for (uint i = 0u; i < frame.light_count; ++i)
-        AreaLight_Add(px, acc, s, P, N, i);
+        if (lights[i].shape != uint(RTPBR_LIGHT_SHAPE_POLYGON)) AreaLight_AddPunctual(result, s, frame3, P, i, lights[i].shape);
+    AreaLightPixel px = AreaLight_Begin(s, N, V);
+    for (uint i = 0u; i < frame.light_count; ++i)
+        if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) AreaLight_Add(px, acc, s, P, N, i);
 #else
+    // The tile's masks (cull.comp): its punctual lights', then its polygons'.
     uint words = (frame.light_count + 31u) / 32u;
+    uint maskBase = tile * uint(RTPBR_TILE_MASK_STRIDE);
+    mat3 frame3 = LTC_Frame(N, V);
     for (uint word = 0u; word < words; ++word)
-        for (uint bits = tile_masks[tile * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
+        for (uint bits = tile_masks[maskBase + uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u) {
+            uint i = word * 32u + uint(findLSB(bits));
+            AreaLight_AddPunctual(result, s, frame3, P, i, lights[i].shape);
+        }
+    AreaLightPixel px = AreaLight_Begin(s, N, V);
+    for (uint word = 0u; word < words; ++word)
+        for (uint bits = tile_masks[maskBase + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_Add(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
 #endif
-    return AreaLight_End(px, acc, s, P);
+    result += AreaLight_End(px, acc, s, P);
 }

@@ -19,11 +19,16 @@
 // stops every loop of a shader once its invocations together have taken 65535 loop
 // iterations (llvmpipe's LP_MAX_TGSI_LOOP_ITERATIONS, one budget for all the loops of a
 // shader run) and silently skips what follows them.
+// A punctual light (point, spot, directional) takes one ray, w = max(cos_x, 0), V to its
+// position or along its reverse direction.
 // shadow_denoise.comp filters n S and n U and writes their ratio, S / U.
 #include "rtpbr_shared.h"
 #include "shadow_common.glsl"
 #include "material.glsl"
 #include "bvh.glsl"
+
+// How far a directional light's shadow ray goes (world units).
+#define RTPBR_SHADOW_FAR 1.0e7f
 
 #include "light.glsl"
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_LIGHTS, std430) readonly buffer Lights {
@@ -61,7 +66,11 @@ void main()
         uint(pixel.x) + bvh_hash(uint(pixel.y) + bvh_hash(k + bvh_hash(params.seed))));
     vec2 shift = vec2(float(h & 0xffffu), float(h >> 16u)) / 65536.0f;
     vec3 v0 = light.vertices[0].xyz;
-    for (uint j = params.first_sample; facing && j < params.first_sample + params.samples; ++j) {
+    // A punctual light: one ray (every sample would be the same), to its position or, for a
+    // directional light, RTPBR_SHADOW_FAR along its reverse direction; weight N.L.
+    bool punctual = light.shape != uint(RTPBR_LIGHT_SHAPE_POLYGON);
+    uint sampleEnd = punctual ? min(params.samples, 1u) * uint(params.first_sample == 0u) : params.samples;
+    for (uint j = params.first_sample; facing && j < params.first_sample + sampleEnd; ++j) {
         // R2: the lattice of the plastic number (Roberts 2018).
         vec2 u = fract(shift + float(j) * vec2(0.7548776662f, 0.5698402910f));
         // The fan triangle (v0, v_i, v_i+1) holding u.x of the area, and u.x rescaled in it;
@@ -78,6 +87,8 @@ void main()
         // Uniform on the triangle (Turk 1990): sqrt warps the first coordinate.
         float su = sqrt(ux);
         vec3 y = v0 * (1.0f - su) + a * (su * (1.0f - u.y)) + b * (su * u.y);
+        if (punctual)
+            y = light.shape == uint(RTPBR_LIGHT_SHAPE_DIRECTIONAL) ? origin - light.vertices[1].xyz * RTPBR_SHADOW_FAR : v0;
         vec3 d = y - origin;
         float dist2 = dot(d, d);
         float dist = sqrt(dist2);
@@ -86,6 +97,7 @@ void main()
         float cosY = -dot(light.plane.xyz, l);
         cosY = twoSided ? abs(cosY) : cosY;
         float w = cosX > 0.0f && cosY > 0.0f ? light.area * cosX * cosY / dist2 : 0.0f;
+        if (punctual) w = max(cosX, 0.0f);
         unshadowed += w;
         if (w > 0.0f && !bvh_occluded(origin, d, 1.0f - 1e-3f, bvh_hash(h + j))) shadowed += w;
     }

@@ -44,6 +44,9 @@ _Static_assert(RTPBR_SHADER_MAX_POLYGON_VERTICES == RTPBR_MAX_POLYGON_VERTICES,
                "RTPBR_SHADER_MAX_POLYGON_VERTICES (rtpbr_shared.h) differs from RTPBR_MAX_POLYGON_VERTICES (rtpbr.h)");
 _Static_assert(sizeof(rtpbr_shader_material) == 144, "Material layout");
 _Static_assert(sizeof(rtpbr_shader_light) == 192, "Light layout");
+_Static_assert(RTPBR_LIGHT_SHAPE_POLYGON == RTPBR_LIGHT_POLYGON && RTPBR_LIGHT_SHAPE_POINT == RTPBR_LIGHT_POINT &&
+                   RTPBR_LIGHT_SHAPE_SPOT == RTPBR_LIGHT_SPOT && RTPBR_LIGHT_SHAPE_DIRECTIONAL == RTPBR_LIGHT_DIRECTIONAL,
+               "light shapes (rtpbr_shared.h) equal rtpbr_light_type (rtpbr.h)");
 _Static_assert(sizeof(rtpbr_shader_draw) == 128, "Draw push constants (128 bytes: the guaranteed minimum)");
 _Static_assert(RTPBR_SHADER_MAX_LIGHTS == RTPBR_MAX_LIGHTS, "light limit shared by C and shaders");
 _Static_assert(RTPBR_TILE_SIZE == RTPBR_TILE_SIZE_PIXELS, "tile size shared by C and shaders");
@@ -286,7 +289,7 @@ struct rtpbr_renderer {
     rtpbr_image display;       // R8G8B8A8_SRGB, the target of rtpbr_render
     rtpbr_buffer frame;        // rtpbr_shader_frame, host visible
     uint32_t tiles_x, tiles_y; // lighting tiles of the shaded image (RTPBR_TILE_SIZE pixels a side)
-    rtpbr_buffer tile_masks;   // RTPBR_TILE_MASK_WORDS uints per tile (cull.comp)
+    rtpbr_buffer tile_masks;   // RTPBR_TILE_MASK_STRIDE uints per tile (cull.comp)
     rtpbr_buffer tile_lists;   // per class: indirect dispatch arguments, then the tile queues
     rtpbr_buffer radiance_readback, display_readback;
     // Each pass's descriptor set (made and written by its file in passes/).

@@ -6,6 +6,8 @@
 #include "passes/passes.h"
 #include "rtpbr/rtpbr_gltf.h"
 
+#define LIGHT_PI 3.14159265358979323846
+
 // ---------------------------------------------------------------------------------------------
 // Lights
 
@@ -27,9 +29,52 @@ static rtpbr_gltf_polygon_facts *derive_light_facts(const rtpbr_context *ctx, co
     return facts;
 }
 
+// A punctual light's checks (rtpbr_light_desc: the type's fields).
+static rtpbr_result validate_punctual(const rtpbr_context *ctx, const rtpbr_light_desc *l, uint32_t index)
+{
+    float cones[3] = {l->range, l->inner_cone_angle, l->outer_cone_angle};
+    if (!rtpbr_finite(l->emission, 3) || !rtpbr_finite(l->position, 3) || !rtpbr_finite(l->direction, 3) ||
+        !rtpbr_finite(cones, 3)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has a NaN or infinite emission, position, direction, range or cone",
+                  index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (l->emission[0] < 0.0f || l->emission[1] < 0.0f || l->emission[2] < 0.0f) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has negative emission", index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (l->range < 0.0f) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has a negative range (%g; zero: infinite)", index, l->range);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    double len2 = 0.0;
+    for (int k = 0; k < 3; ++k) len2 += (double)l->direction[k] * l->direction[k];
+    if (l->type != RTPBR_LIGHT_POINT && !(len2 > 1e-30)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (%s) has a zero direction", index,
+                  l->type == RTPBR_LIGHT_SPOT ? "spot" : "directional");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    double outer = l->outer_cone_angle == 0.0f ? LIGHT_PI / 4.0 : l->outer_cone_angle;
+    // inner == outer is let through: glTF's inner < outer can round to equal floats (the
+    // falloff's 1e-3 guard makes it a step)
+    if (l->type == RTPBR_LIGHT_SPOT && !(l->inner_cone_angle >= 0.0f && l->inner_cone_angle <= outer && outer <= LIGHT_PI / 2.0 + 1e-6)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                  "light %u: spot cones inner %g, outer %g radians; 0 <= inner <= outer <= pi/2 is required", index,
+                  l->inner_cone_angle, outer);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    return RTPBR_SUCCESS;
+}
+
 rtpbr_result rtpbr_light_validate(const rtpbr_context *ctx, const rtpbr_light_desc *l,
                                    const rtpbr_gltf_polygon_facts *f, uint32_t index)
 {
+    if ((unsigned)l->type > (unsigned)RTPBR_LIGHT_DIRECTIONAL) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has type %d; RTPBR_LIGHT_POLYGON .. _DIRECTIONAL (0 .. 3) are allowed",
+                  index, (int)l->type);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (l->type != RTPBR_LIGHT_POLYGON) return validate_punctual(ctx, l, index);
     if (l->vertex_count < 3 || l->vertex_count > RTPBR_MAX_POLYGON_VERTICES) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has %u vertices; 3 to %u are allowed", index, l->vertex_count,
                   RTPBR_MAX_POLYGON_VERTICES);
@@ -91,8 +136,39 @@ static rtpbr_result validate_lights(const rtpbr_context *ctx, const rtpbr_light_
     return RTPBR_SUCCESS;
 }
 
+// A punctual light's record (RTPBR_LIGHT_FIELDS).
+static void punctual_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
+{
+    rtpbr_shader_light g = {0};
+    bool directional = l->type == RTPBR_LIGHT_DIRECTIONAL;
+    double len = sqrt((double)l->direction[0] * l->direction[0] + (double)l->direction[1] * l->direction[1] +
+                      (double)l->direction[2] * l->direction[2]);
+    for (int k = 0; k < 3; ++k) {
+        g.vertices[0][k] = directional ? 0.0f : l->position[k];
+        g.vertices[1][k] = len > 0.0 ? (float)(l->direction[k] / len) : 0.0f;
+        g.sphere[k] = g.vertices[0][k];
+    }
+    g.vertices[0][3] = l->range > 0.0f && !directional ? (float)(1.0 / ((double)l->range * l->range)) : 0.0f;
+    // The spot's falloff (KHR_lights_punctual's recommended implementation): t = clamp((cos -
+    // cos outer) / max(cos inner - cos outer, 1e-3), 0, 1); a point light's cone takes everything.
+    double outer = l->outer_cone_angle == 0.0f ? LIGHT_PI / 4.0 : l->outer_cone_angle;
+    bool spot = l->type == RTPBR_LIGHT_SPOT;
+    g.vertices[2][0] = spot ? (float)cos(outer) : -2.0f;
+    g.vertices[2][1] = spot ? (float)(1.0 / fmax(cos((double)l->inner_cone_angle) - cos(outer), 1e-3)) : 1.0f;
+    memcpy(g.radiance, l->emission, sizeof g.radiance);
+    g.two_sided = 1.0f;
+    g.plane[3] = 1.0f;
+    g.sphere[3] = l->range > 0.0f && !directional ? l->range : (float)RTPBR_LIGHT_INFINITE;
+    g.shape = (uint32_t)l->type;
+    *out = g;
+}
+
 void rtpbr_light_record(const rtpbr_light_desc *l, const rtpbr_gltf_polygon_facts *f, rtpbr_shader_light *out)
 {
+    if (l->type != RTPBR_LIGHT_POLYGON) {
+        punctual_record(l, out);
+        return;
+    }
     rtpbr_shader_light g = {0};
     double fan = 0.0; // w of vertex v: the area of the fan polygon v0 .. v (RTPBR_LIGHT_FIELDS)
     for (uint32_t v = 0; v < l->vertex_count; ++v) {

@@ -37,7 +37,8 @@
 // difference only for coloured specular).
 // Lights: every loader light (emissive primitives, EXT_lights_area rectangles and disks as
 // their equal-area octagons) becomes a polygonal light with its radiance and sidedness, and
-// its derived facts (normal, centre, area, bounding sphere) as the loader computed them.
+// its derived facts (normal, centre, area, bounding sphere) as the loader computed them;
+// KHR_lights_punctual lights follow them as point, spot and directional lights.
 #include <math.h>
 #include <string.h>
 
@@ -202,6 +203,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         {loaded->material_count, loaded->materials, "materials"},
         {loaded->texture_count, loaded->textures, "textures"},
         {loaded->light_count, loaded->lights, "lights"},
+        {loaded->punctual_light_count, loaded->punctual_lights, "punctual_lights"},
         {loaded->camera_count, loaded->cameras, "cameras"},
     };
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
@@ -210,11 +212,13 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
                       arrays[i].name, arrays[i].name, arrays[i].count);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
-    if (loaded->light_count > RTPBR_MAX_LIGHTS) {
-        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "scene has %u lights; at most RTPBR_MAX_LIGHTS = %u are allowed",
-                  loaded->light_count, RTPBR_MAX_LIGHTS);
+    if (loaded->light_count > RTPBR_MAX_LIGHTS || loaded->punctual_light_count > RTPBR_MAX_LIGHTS - loaded->light_count) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                  "scene has %u area and %u punctual lights; at most RTPBR_MAX_LIGHTS = %u are allowed in all",
+                  loaded->light_count, loaded->punctual_light_count, RTPBR_MAX_LIGHTS);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
+    uint32_t light_count = loaded->light_count + loaded->punctual_light_count;
     rtpbr_result result = RTPBR_SUCCESS;
     rtpbr_mesh_desc *meshes = NULL;
     rtpbr_material_desc *materials = NULL;
@@ -226,8 +230,8 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
     for (uint32_t i = 0; i < loaded->texture_count; ++i) rtpbr_texture_desc_from_loaded(loaded, i, &textures[i]);
     if (loaded->primitive_count) RTPBR_ALLOC(&ctx->host, meshes, loaded->primitive_count * sizeof *meshes);
     if (loaded->material_count) RTPBR_ALLOC(&ctx->host, materials, loaded->material_count * sizeof *materials);
-    if (loaded->light_count) RTPBR_ALLOC(&ctx->host, lights, loaded->light_count * sizeof *lights);
-    if (loaded->light_count) RTPBR_ALLOC(&ctx->host, light_facts, loaded->light_count * sizeof *light_facts);
+    if (light_count) RTPBR_ALLOC(&ctx->host, lights, light_count * sizeof *lights);
+    if (light_count) RTPBR_ALLOC(&ctx->host, light_facts, light_count * sizeof *light_facts);
     if (loaded->camera_count) RTPBR_ALLOC(&ctx->host, cameras, loaded->camera_count * sizeof *cameras);
 
     for (uint32_t i = 0; i < loaded->primitive_count; ++i) {
@@ -255,6 +259,24 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         d->two_sided = l->two_sided;
         light_facts[i] = l->facts;
     }
+    // KHR_lights_punctual lights after the area lights (the first RTPBR_MAX_SHADOWED_LIGHTS of
+    // all cast shadows); facts: none (all zero).
+    for (uint32_t i = 0; i < loaded->punctual_light_count; ++i) {
+        const rtpbr_gltf_punctual_light *l = &loaded->punctual_lights[i];
+        rtpbr_light_desc *d = &lights[loaded->light_count + i];
+        *d = (rtpbr_light_desc){
+            .type = l->type == RTPBR_GLTF_PUNCTUAL_SPOT          ? RTPBR_LIGHT_SPOT
+                    : l->type == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL ? RTPBR_LIGHT_DIRECTIONAL
+                                                                 : RTPBR_LIGHT_POINT,
+            .range = l->range,
+            .inner_cone_angle = l->inner_cone_angle,
+            .outer_cone_angle = l->outer_cone_angle,
+        };
+        memcpy(d->emission, l->intensity, sizeof d->emission);
+        memcpy(d->position, l->position, sizeof d->position);
+        memcpy(d->direction, l->direction, sizeof d->direction);
+        memset(&light_facts[loaded->light_count + i], 0, sizeof light_facts[0]);
+    }
     for (uint32_t i = 0; i < loaded->camera_count; ++i) {
         const rtpbr_gltf_camera *c = &loaded->cameras[i];
         rtpbr_camera_desc *d = &cameras[i];
@@ -271,7 +293,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         .materials = materials,
         .material_count = loaded->material_count,
         .lights = lights,
-        .light_count = loaded->light_count,
+        .light_count = light_count,
         .cameras = cameras,
         .camera_count = loaded->camera_count,
         .textures = textures,

@@ -41,7 +41,7 @@ typedef struct app {
     float exposure;
     // Selection and key edits.
     int mode; // 0 move, 1 rotate, 2 scale
-    uint32_t light, material, colour_index;
+    uint32_t light, material, colour_index; // light: polygonal lights first, then punctual
     bool light_selected;      // the last click or Tab/M chose a light (else a material)
     // Reference image and live FLIP.
     float *reference;
@@ -65,12 +65,25 @@ typedef struct app {
     const char *notice;
 } app;
 
+// The selected light (a->light, the engine's numbering: viewer_scene_light_total): a polygonal
+// light, or else a punctual light; NULL when it is of the other kind (or there is none).
+static inline viewer_light *app_area_light(app *a)
+{
+    return a->light < a->scene.light_count ? &a->scene.lights[a->light] : NULL;
+}
+static inline viewer_punctual *app_punctual_light(app *a)
+{
+    uint32_t i = a->light - a->scene.light_count;
+    return a->light >= a->scene.light_count && i < a->scene.punctual_count ? &a->scene.punctual[i] : NULL;
+}
+
 // What the panels call after editing the app (they set fields directly, then say so). Inline
 // here, so that the panels (ui.cpp) and the app (viewer.c) do not call each other in a circle.
 // Anything the engine draws (bumps view_generation).
 static inline void app_changed(app *a) { a->view_generation++; }
 
-// The selected light's polygon, colour or sides.
+// The selected light's polygon, colour or sides; a punctual light's colour, intensity, position,
+// direction, range or cones.
 static inline void app_light_edited(app *a)
 {
     a->lights_dirty = true;

@@ -33,6 +33,15 @@ static void on_loader_log(rtpbr_gltf_log_level level, const char *message, void 
         fprintf(stderr, "rtpbr-viewer: %s: %s\n", level == RTPBR_GLTF_LOG_ERROR ? "error" : "warning", message);
 }
 
+// An emission as colour (max component 1) times intensity (colour x intensity: the emission
+// within a float ulp; e / peak * peak is not always e).
+static void split_emission(const float emission[3], float color[3], float *intensity)
+{
+    float peak = fmaxf(emission[0], fmaxf(emission[1], emission[2]));
+    *intensity = peak;
+    for (int c = 0; c < 3; ++c) color[c] = peak > 0.0f ? emission[c] / peak : 1.0f;
+}
+
 bool viewer_scene_load(viewer_scene *s, const char *path)
 {
     memset(s, 0, sizeof *s);
@@ -47,10 +56,12 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
     const rtpbr_gltf_scene *in = s->loaded;
     s->material_count = in->material_count;
     s->light_count = in->light_count;
+    s->punctual_count = in->punctual_light_count;
     s->materials = calloc(in->material_count ? in->material_count : 1, sizeof *s->materials);
     s->lights = calloc(in->light_count ? in->light_count : 1, sizeof *s->lights);
+    s->punctual = calloc(in->punctual_light_count ? in->punctual_light_count : 1, sizeof *s->punctual);
     s->primitive_is_light = calloc(in->primitive_count ? in->primitive_count : 1, sizeof *s->primitive_is_light);
-    if (!s->materials || !s->lights || !s->primitive_is_light) {
+    if (!s->materials || !s->lights || !s->punctual || !s->primitive_is_light) {
         fprintf(stderr, "rtpbr-viewer: out of memory\n");
         viewer_scene_destroy(s);
         return false;
@@ -62,13 +73,25 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         viewer_light *v = &s->lights[i];
         v->vertex_count = l->vertex_count;
         memcpy(v->vertices, l->vertices, sizeof v->vertices);
-        float peak = fmaxf(l->radiance[0], fmaxf(l->radiance[1], l->radiance[2]));
-        v->intensity = peak;
-        for (int c = 0; c < 3; ++c) v->color[c] = peak > 0.0f ? l->radiance[c] / peak : 1.0f;
+        split_emission(l->radiance, v->color, &v->intensity);
         v->two_sided = l->two_sided;
         v->material = l->material >= 0 && (uint32_t)l->material < in->material_count ? l->material : -1;
         if (l->primitive >= 0 && (uint32_t)l->primitive < in->primitive_count) s->primitive_is_light[l->primitive] = true;
         mat4_identity(v->transform);
+    }
+    // rtpbr_gpu_scene_from_loaded's mapping of the punctual lights.
+    for (uint32_t i = 0; i < in->punctual_light_count; ++i) {
+        const rtpbr_gltf_punctual_light *l = &in->punctual_lights[i];
+        viewer_punctual *p = &s->punctual[i];
+        p->type = l->type == RTPBR_GLTF_PUNCTUAL_SPOT          ? RTPBR_LIGHT_SPOT
+                  : l->type == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL ? RTPBR_LIGHT_DIRECTIONAL
+                                                               : RTPBR_LIGHT_POINT;
+        memcpy(p->position, l->position, sizeof p->position);
+        memcpy(p->direction, l->direction, sizeof p->direction);
+        split_emission(l->intensity, p->color, &p->intensity);
+        p->range = l->range;
+        p->inner_cone_angle = l->inner_cone_angle;
+        p->outer_cone_angle = l->outer_cone_angle;
     }
     return true;
 }
@@ -78,6 +101,7 @@ void viewer_scene_destroy(viewer_scene *s)
     rtpbr_gltf_destroy(s->loaded);
     free(s->materials);
     free(s->lights);
+    free(s->punctual);
     free(s->primitive_is_light);
     memset(s, 0, sizeof *s);
 }
@@ -94,13 +118,26 @@ static rtpbr_material_desc light_material(const viewer_scene *s, uint32_t i)
     return m;
 }
 
-static void light_desc(const viewer_light *l, rtpbr_light_desc *d)
+// Every light as the engine has it: the polygonal lights, then the punctual lights
+// (light_count + punctual_count descs).
+static void light_descs(const viewer_scene *s, rtpbr_light_desc *out)
 {
-    memset(d, 0, sizeof *d);
-    memcpy(d->vertices, l->vertices, sizeof d->vertices);
-    d->vertex_count = l->vertex_count;
-    for (int c = 0; c < 3; ++c) d->emission[c] = l->color[c] * l->intensity;
-    d->two_sided = l->two_sided;
+    for (uint32_t i = 0; i < s->light_count; ++i) {
+        const viewer_light *l = &s->lights[i];
+        rtpbr_light_desc *d = &out[i];
+        *d = (rtpbr_light_desc){.vertex_count = l->vertex_count, .two_sided = l->two_sided};
+        memcpy(d->vertices, l->vertices, sizeof d->vertices);
+        for (int c = 0; c < 3; ++c) d->emission[c] = l->color[c] * l->intensity;
+    }
+    for (uint32_t i = 0; i < s->punctual_count; ++i) {
+        const viewer_punctual *p = &s->punctual[i];
+        rtpbr_light_desc *d = &out[s->light_count + i];
+        *d = (rtpbr_light_desc){.type = p->type, .range = p->range, .inner_cone_angle = p->inner_cone_angle,
+                                .outer_cone_angle = p->outer_cone_angle};
+        memcpy(d->position, p->position, sizeof d->position);
+        memcpy(d->direction, p->direction, sizeof d->direction);
+        for (int c = 0; c < 3; ++c) d->emission[c] = p->color[c] * p->intensity;
+    }
 }
 
 rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_scene **out)
@@ -110,7 +147,8 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
     uint32_t mesh_cap = in->primitive_count + s->light_count;
     rtpbr_mesh_desc *meshes = calloc(mesh_cap ? mesh_cap : 1, sizeof *meshes);
     rtpbr_material_desc *materials = calloc(s->material_count + s->light_count + 1, sizeof *materials);
-    rtpbr_light_desc *lights = calloc(s->light_count ? s->light_count : 1, sizeof *lights);
+    uint32_t light_total = s->light_count + s->punctual_count;
+    rtpbr_light_desc *lights = calloc(light_total ? light_total : 1, sizeof *lights);
     // Light polygons as triangle fans: at most 8 vertices, 6 triangles each.
     float *light_positions = calloc((size_t)s->light_count * RTPBR_MAX_POLYGON_VERTICES * 3 + 1, sizeof(float));
     float *light_normals = calloc((size_t)s->light_count * RTPBR_MAX_POLYGON_VERTICES * 3 + 1, sizeof(float));
@@ -131,7 +169,6 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
     s->light_mesh_base = mesh_count;
     for (uint32_t i = 0; i < s->light_count; ++i) {
         viewer_light *l = &s->lights[i];
-        light_desc(l, &lights[i]);
         materials[s->material_count + i] = light_material(s, i);
         mat4_identity(l->transform);
         l->reshaped = false;
@@ -153,9 +190,10 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
             .vertex_count = l->vertex_count, .index_count = 3 * (l->vertex_count - 2),
             .material = s->material_count + i};
     }
+    light_descs(s, lights);
     // No cameras: the viewer always passes its orbit camera to rtpbr_record.
     rtpbr_gpu_scene_desc desc = {.meshes = meshes, .mesh_count = mesh_count, .materials = materials,
-        .material_count = s->material_count + s->light_count, .lights = lights, .light_count = s->light_count,
+        .material_count = s->material_count + s->light_count, .lights = lights, .light_count = light_total,
         .textures = textures, .texture_count = in->texture_count};
     r = rtpbr_gpu_scene_create(ctx, &desc, out);
 done:
@@ -179,20 +217,39 @@ rtpbr_result viewer_scene_update_material(const viewer_scene *s, rtpbr_gpu_scene
     return r;
 }
 
+// Polygonal light i's surface: its material and its mesh's transform.
+static rtpbr_result update_light_surface(const viewer_scene *s, rtpbr_gpu_scene *gpu, uint32_t i)
+{
+    rtpbr_material_desc m = light_material(s, i);
+    rtpbr_result r = rtpbr_gpu_scene_set_material(gpu, s->material_count + i, &m);
+    if (r == RTPBR_SUCCESS) r = rtpbr_gpu_scene_set_transform(gpu, s->light_mesh_base + i, s->lights[i].transform);
+    return r;
+}
+
+// rtpbr_gpu_scene_set_lights replaces them all: every light, in the upload's order.
+static rtpbr_result set_all_lights(const viewer_scene *s, rtpbr_gpu_scene *gpu)
+{
+    uint32_t total = s->light_count + s->punctual_count;
+    rtpbr_light_desc *lights = calloc(total ? total : 1, sizeof *lights);
+    if (!lights) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
+    light_descs(s, lights);
+    rtpbr_result r = rtpbr_gpu_scene_set_lights(gpu, lights, total);
+    free(lights);
+    return r;
+}
+
 rtpbr_result viewer_scene_update_light(const viewer_scene *s, rtpbr_gpu_scene *gpu, uint32_t light)
 {
     if (light >= s->light_count) return RTPBR_ERROR_INVALID_ARGUMENT;
-    rtpbr_material_desc m = light_material(s, light);
-    rtpbr_result r = rtpbr_gpu_scene_set_material(gpu, s->material_count + light, &m);
-    if (r == RTPBR_SUCCESS)
-        r = rtpbr_gpu_scene_set_transform(gpu, s->light_mesh_base + light, s->lights[light].transform);
-    if (r != RTPBR_SUCCESS) return r;
-    rtpbr_light_desc *lights = calloc(s->light_count, sizeof *lights); // set_lights replaces them all
-    if (!lights) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-    for (uint32_t i = 0; i < s->light_count; ++i) light_desc(&s->lights[i], &lights[i]);
-    r = rtpbr_gpu_scene_set_lights(gpu, lights, s->light_count);
-    free(lights);
-    return r;
+    rtpbr_result r = update_light_surface(s, gpu, light);
+    return r == RTPBR_SUCCESS ? set_all_lights(s, gpu) : r;
+}
+
+rtpbr_result viewer_scene_update_lights(const viewer_scene *s, rtpbr_gpu_scene *gpu)
+{
+    rtpbr_result r = RTPBR_SUCCESS;
+    for (uint32_t i = 0; i < s->light_count && r == RTPBR_SUCCESS; ++i) r = update_light_surface(s, gpu, i);
+    return r == RTPBR_SUCCESS ? set_all_lights(s, gpu) : r;
 }
 
 bool viewer_scene_needs_upload(const viewer_scene *s)
@@ -281,16 +338,22 @@ static void compose_about(viewer_light *l, const float center[3], const float a[
     mat4_premultiply(l->transform, m);
 }
 
+// Point p turned about the world axis through center (right-handed: in the (a, b) plane,
+// a = axis + 1, b = axis + 2, from a toward b).
+static void rotate_point(float p[3], const float center[3], int axis, float cs, float sn)
+{
+    int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    float pa = p[a] - center[a], pb = p[b] - center[b];
+    p[a] = center[a] + cs * pa - sn * pb;
+    p[b] = center[b] + sn * pa + cs * pb;
+}
+
 void viewer_light_rotate(viewer_light *l, int axis, float radians)
 {
     float center[3], cs = cosf(radians), sn = sinf(radians);
     viewer_light_center(l, center);
     int a = (axis + 1) % 3, b = (axis + 2) % 3; // rotation in the (a, b) plane
-    for (uint32_t v = 0; v < l->vertex_count; ++v) {
-        float pa = l->vertices[v][a] - center[a], pb = l->vertices[v][b] - center[b];
-        l->vertices[v][a] = center[a] + cs * pa - sn * pb;
-        l->vertices[v][b] = center[b] + sn * pa + cs * pb;
-    }
+    for (uint32_t v = 0; v < l->vertex_count; ++v) rotate_point(l->vertices[v], center, axis, cs, sn);
     float m[3][3] = {{0}};
     m[axis][axis] = 1.0f;
     m[a][a] = cs, m[a][b] = -sn, m[b][a] = sn, m[b][b] = cs;
@@ -332,4 +395,47 @@ void viewer_light_set_vertex_count(viewer_light *l, uint32_t n)
     }
     l->vertex_count = n;
     l->reshaped = true;
+}
+
+const char *viewer_punctual_kind(const viewer_punctual *p)
+{
+    return p->type == RTPBR_LIGHT_SPOT ? "spot" : p->type == RTPBR_LIGHT_DIRECTIONAL ? "directional" : "point";
+}
+
+void viewer_punctual_rotate(viewer_punctual *p, int axis, float radians)
+{
+    if (axis < 0 || axis > 2) return;
+    const float origin[3] = {0.0f, 0.0f, 0.0f};
+    rotate_point(p->direction, origin, axis, cosf(radians), sinf(radians));
+}
+
+void viewer_punctual_angles(const viewer_punctual *p, float *azimuth, float *elevation)
+{
+    const float *d = p->direction;
+    float horizontal = sqrtf(d[0] * d[0] + d[2] * d[2]);
+    *elevation = atan2f(d[1], horizontal);
+    *azimuth = horizontal > 0.0f ? atan2f(d[0], d[2]) : 0.0f;
+}
+
+void viewer_punctual_set_angles(viewer_punctual *p, float azimuth, float elevation)
+{
+    p->direction[0] = cosf(elevation) * sinf(azimuth);
+    p->direction[1] = sinf(elevation);
+    p->direction[2] = cosf(elevation) * cosf(azimuth);
+}
+
+void viewer_punctual_clamp(viewer_punctual *p)
+{
+    p->intensity = fmaxf(p->intensity, 0.0f); // fmaxf: NaN -> 0
+    p->range = fmaxf(p->range, 0.0f);
+    for (int c = 0; c < 3; ++c) p->color[c] = fminf(fmaxf(p->color[c], 0.0f), 1.0f);
+    float *d = p->direction, len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (len > 0.0f && isfinite(len))
+        for (int c = 0; c < 3; ++c) d[c] /= len;
+    else
+        d[0] = d[2] = 0.0f, d[1] = -1.0f; // straight down
+    if (p->type != RTPBR_LIGHT_SPOT) return;
+    const float half_pi = 1.57079632679f;
+    p->outer_cone_angle = fminf(fmaxf(p->outer_cone_angle, VIEWER_MIN_CONE), half_pi);
+    p->inner_cone_angle = fminf(fmaxf(p->inner_cone_angle, 0.0f), 0.99f * p->outer_cone_angle);
 }

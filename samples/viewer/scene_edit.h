@@ -1,8 +1,9 @@
 // The viewer's editable copy of a glTF scene: loaded once with the rtpbr scene loader, edited
 // (lights, materials) and kept in step with the engine scene in place: materials with
 // rtpbr_gpu_scene_set_material, a light's emissive polygon with rtpbr_gpu_scene_set_transform
-// (moves, turns and scales are affine maps of the uploaded polygon), the lights with
-// rtpbr_gpu_scene_set_lights. Only a new vertex count re-uploads the scene.
+// (moves, turns and scales are affine maps of the uploaded polygon), the lights (polygonal and
+// KHR_lights_punctual) with rtpbr_gpu_scene_set_lights. Only a new vertex count re-uploads the
+// scene.
 #ifndef RTPBR_VIEWER_SCENE_EDIT_H
 #define RTPBR_VIEWER_SCENE_EDIT_H
 
@@ -27,29 +28,52 @@ typedef struct viewer_light {
     bool reshaped;      // the vertex count changed: the polygon mesh must be re-uploaded
 } viewer_light;
 
+// A KHR_lights_punctual light (rtpbr_light_desc's point, spot and directional lights): no
+// geometry, nothing drawn; only its light is seen.
+typedef struct viewer_punctual {
+    rtpbr_light_type type;  // RTPBR_LIGHT_POINT, RTPBR_LIGHT_SPOT or RTPBR_LIGHT_DIRECTIONAL
+    float position[3];      // point, spot: world space
+    float direction[3];     // spot, directional: unit, the way the light travels
+    float color[3];         // max component 1
+    float intensity;        // emission = color * intensity: candela (point, spot), lux (directional)
+    float range;            // point, spot: where the light ends; 0: infinite
+    float inner_cone_angle; // spot: radians, 0 <= inner < outer <= pi/2
+    float outer_cone_angle;
+} viewer_punctual;
+
 typedef struct viewer_scene {
     rtpbr_gltf_scene *loaded;
     rtpbr_material_desc *materials; // one per loaded material (edited in place)
     uint32_t material_count;
     viewer_light *lights;
     uint32_t light_count;
+    viewer_punctual *punctual;      // the loaded scene's punctual lights, in its order
+    uint32_t punctual_count;
     bool *primitive_is_light;       // primitives replaced by the lights' own polygons
     uint32_t light_mesh_base;       // engine mesh index of light 0's polygon (last upload)
 } viewer_scene;
+
+// Polygonal and punctual lights together: the viewer numbers them as the engine does, the
+// polygonal lights first.
+static inline uint32_t viewer_scene_light_total(const viewer_scene *s) { return s->light_count + s->punctual_count; }
 
 // Loads a glTF file; false with the loader's message on stderr.
 bool viewer_scene_load(viewer_scene *s, const char *path);
 void viewer_scene_destroy(viewer_scene *s);
 // Builds the engine scene: every non-emissive primitive with its (edited) material, and every
-// light both as a polygonal light and as an emissive polygon mesh, so that it is seen.
-// Materials are the scene's (engine index i = loader material i), then one per light (the
-// light's surface: its source material with the light's emission). Resets the lights'
-// transforms to the identity (the polygons are uploaded where they are).
+// polygonal light both as a polygonal light and as an emissive polygon mesh, so that it is
+// seen. Materials are the scene's (engine index i = loader material i), then one per light (the
+// light's surface: its source material with the light's emission). The engine's lights are
+// the polygonal lights, then the punctual lights (rtpbr_gpu_scene_from_loaded's order: a scene
+// without edits renders as rtpbr-render renders the file). Resets the lights' transforms to
+// the identity (the polygons are uploaded where they are).
 rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_scene **out);
-// In-place updates of an uploaded scene (no frame may be pending): material i, light i's
-// surface material and mesh transform, and all the lights' polygons.
+// In-place updates of an uploaded scene (no frame may be pending): material i; polygonal light
+// i's surface material and mesh transform, and all the lights; every polygonal light's surface
+// and transform, and all the lights (after any light edit, punctual lights' too).
 rtpbr_result viewer_scene_update_material(const viewer_scene *s, rtpbr_gpu_scene *gpu, uint32_t material);
 rtpbr_result viewer_scene_update_light(const viewer_scene *s, rtpbr_gpu_scene *gpu, uint32_t light);
+rtpbr_result viewer_scene_update_lights(const viewer_scene *s, rtpbr_gpu_scene *gpu);
 // True when an edit needs viewer_scene_upload (a light's vertex count changed).
 bool viewer_scene_needs_upload(const viewer_scene *s);
 
@@ -66,6 +90,19 @@ void viewer_light_rotate(viewer_light *l, int axis, float radians); // about a w
 void viewer_light_scale(viewer_light *l, float factor);
 // A regular polygon of n (3..8) vertices with the light's centre, normal and mean radius.
 void viewer_light_set_vertex_count(viewer_light *l, uint32_t n);
+
+// "point", "spot" or "directional".
+const char *viewer_punctual_kind(const viewer_punctual *p);
+// Edits of one punctual light. Its direction turned about a world axis 0..2 (the sense of
+// viewer_light_rotate); as two angles: direction = (cos e sin a, sin e, cos e cos a), azimuth a
+// about +Y from +Z toward +X, elevation e above the horizon (negative: down).
+void viewer_punctual_rotate(viewer_punctual *p, int axis, float radians);
+void viewer_punctual_angles(const viewer_punctual *p, float *azimuth, float *elevation);
+void viewer_punctual_set_angles(viewer_punctual *p, float azimuth, float elevation);
+// After an edit: values the engine accepts (intensity and range >= 0, a unit direction, a
+// spot's cones 0 <= inner < outer <= pi/2 with outer at least VIEWER_MIN_CONE).
+#define VIEWER_MIN_CONE 0.01f
+void viewer_punctual_clamp(viewer_punctual *p);
 
 #ifdef __cplusplus
 }

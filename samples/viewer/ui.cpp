@@ -221,11 +221,12 @@ static void stats_panel(app *a)
         ImGui::TextDisabled("GPU timestamps: not available on this queue");
     }
     ImGui::Text("panels: %.2f ms CPU to build", a->ui_ms);
-    ImGui::Text("%u lights, %u materials, %ux%u", a->scene.light_count, a->scene.material_count, a->renderer_w,
-                a->renderer_h);
-    if (a->scene.light_count == 0)
+    ImGui::Text("%u area + %u punctual lights, %u materials, %ux%u", a->scene.light_count, a->scene.punctual_count,
+                a->scene.material_count, a->renderer_w, a->renderer_h);
+    if (viewer_scene_light_total(&a->scene) == 0)
         ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.2f, 1.0f), "No lights: only emission and the background show\n"
-                                                             "(add EXT_lights_area lights or emissive surfaces)");
+                                                             "(add EXT_lights_area or KHR_lights_punctual\n"
+                                                             "lights, or emissive surfaces)");
     if (!a->flip) {
         ImGui::TextDisabled("HDR-FLIP: no --reference");
         return;
@@ -287,16 +288,56 @@ static void technique_panel(app *a)
     if (changed) app_changed(a);
 }
 
+// A punctual light: what its kind has (no size, no sides; nothing of it is drawn).
+static void punctual_panel(app *a, viewer_punctual *p)
+{
+    bool point = p->type == RTPBR_LIGHT_POINT, spot = p->type == RTPBR_LIGHT_SPOT;
+    ImGui::TextDisabled("%s light (punctual; not drawn)", viewer_punctual_kind(p));
+    bool edited = false;
+    if (!spot && !point) ImGui::TextDisabled("(no position: light from one direction)");
+    else edited |= ImGui::DragFloat3("position", p->position, 0.01f);
+    if (!point) {
+        // Turns as two angles (degrees): azimuth about +Y from +Z, elevation above the horizon.
+        float azimuth, elevation;
+        viewer_punctual_angles(p, &azimuth, &elevation);
+        float angles[2] = {azimuth * 57.2957795f, elevation * 57.2957795f};
+        if (ImGui::DragFloat2("azimuth, elev.", angles, 0.5f, -180.0f, 180.0f, "%.1f deg")) {
+            viewer_punctual_set_angles(p, angles[0] * 0.0174532925f, std::fmax(-90.0f, std::fmin(90.0f, angles[1])) * 0.0174532925f);
+            edited = true;
+        }
+    }
+    edited |= ImGui::ColorEdit3("colour", p->color, ImGuiColorEditFlags_Float);
+    edited |= ImGui::DragFloat(point || spot ? "intensity (cd)" : "illum. (lux)", &p->intensity, 0.05f, 0.0f,
+                               1e5f, "%.2f");
+    if (point || spot)
+        edited |= ImGui::DragFloat("range (m)", &p->range, 0.05f, 0.0f, 1e4f, p->range > 0.0f ? "%.2f" : "infinite");
+    if (spot) {
+        edited |= ImGui::SliderAngle("inner cone", &p->inner_cone_angle, 0.0f, 90.0f);
+        edited |= ImGui::SliderAngle("outer cone", &p->outer_cone_angle, 0.0f, 90.0f);
+    }
+    if (edited) {
+        viewer_punctual_clamp(p);
+        app_light_edited(a);
+    }
+}
+
 static void light_panel(app *a)
 {
     viewer_scene *s = &a->scene;
-    if (s->light_count == 0) {
-        ImGui::TextDisabled("no polygonal lights");
+    uint32_t total = viewer_scene_light_total(s);
+    if (total == 0) {
+        ImGui::TextDisabled("no lights");
         return;
     }
     int index = (int)a->light;
-        if (ImGui::SliderInt("light", &index, 0, (int)s->light_count - 1)) a->light = (uint32_t)index;
-    viewer_light *l = &s->lights[a->light];
+        if (ImGui::SliderInt("light", &index, 0, (int)total - 1)) a->light = (uint32_t)index;
+    if (viewer_punctual *p = app_punctual_light(a)) {
+        punctual_panel(a, p);
+        return;
+    }
+    viewer_light *l = app_area_light(a);
+    if (!l) return;
+    ImGui::TextDisabled("polygonal light");
     bool edited = false;
     int n = (int)l->vertex_count;
     if (ImGui::SliderInt("vertices", &n, 3, (int)RTPBR_MAX_POLYGON_VERTICES)) {
@@ -398,7 +439,7 @@ void viewer_ui_build(viewer_ui *ui, app *a)
     ImGui::PushItemWidth(200.0f); // fixed: the windows size themselves to their content
     stats_panel(a);
     if (ImGui::CollapsingHeader("Technique", ImGuiTreeNodeFlags_DefaultOpen)) technique_panel(a);
-    ImGui::TextDisabled("click: select a light or surface; H: keys");
+    ImGui::TextDisabled("click: select a polygon light or surface; H: keys");
     ImGui::PopItemWidth();
     ImGui::End();
     // The selection on the right: the clicked light or material opens its own panel.

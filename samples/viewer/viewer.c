@@ -1,8 +1,9 @@
 // rtpbr-viewer: an interactive area-light viewer. A GLFW window whose Vulkan device the viewer
 // creates itself (rtpbr runs embedded in it and records into the swapchain images), an orbit
-// camera, Dear ImGui panels (ui.cpp) over the image, editable polygonal lights and materials
-// (updated in the engine scene in place), the engine's technique toggles, per-pass GPU times,
-// a split view and the live HDR-FLIP against an oracle reference image, screenshots.
+// camera, Dear ImGui panels (ui.cpp) over the image, editable polygonal and punctual
+// (KHR_lights_punctual) lights and materials (updated in the engine scene in place), the
+// engine's technique toggles, per-pass GPU times, a split view and the live HDR-FLIP against
+// an oracle reference image, screenshots.
 //   usage: rtpbr-viewer [SCENE.gltf] [--reference REF.exr] [--width W] [--height H] [--no-ui]
 //                       [--frames N [--screenshot OUT.png] [--radiance OUT.exr]] [--keys KEYS]
 //                       [--validation]
@@ -23,15 +24,16 @@ static const char *const help_text =
     "rtpbr-viewer controls (the panels do the same with the mouse)\n"
     "  mouse: left drag orbit, right drag pan, wheel zoom, left click: select a light or surface\n"
     "  Home            back to the scene's camera\n"
-    "  Tab             select the next light\n"
-    "  1 / 2 / 3       the keys below move / rotate / scale the light (mode 1 at start)\n"
+    "  Tab             select the next light (polygonal lights, then punctual lights)\n"
+    "  1 / 2 / 3       the keys below move / rotate / scale the light (mode 1 at start);\n"
+    "                  a punctual light: its position / direction / range\n"
     "  Left / Right    along (about) world X -/+\n"
     "  Up / Down       along (about) world Z -/+\n"
     "  PgDn / PgUp     along (about) world Y -/+\n"
-    "  [ / ]           light vertex count -/+ (3..8)\n"
+    "  [ / ]           light vertex count -/+ (3..8); a spot light: outer cone -/+ 2 degrees\n"
     "  C               next light colour\n"
     "  - / =           light intensity -/+ (x 1.25)\n"
-    "  T               light one-/two-sided\n"
+    "  T               light one-/two-sided (polygonal lights)\n"
     "  M               select the next material\n"
     "  7 / 8           material roughness -/+\n"
     "  9 / 0           material metallic -/+\n"
@@ -166,12 +168,20 @@ static void update_title(app *a)
                      a->frame_ms, a->monte_carlo ? "Monte Carlo" : "LTC",
                      a->ndf == RTPBR_NDF_BECKMANN_MODEL ? "Beckmann" : "GGX", a->multiscatter_off ? "off" : "on",
                      a->exposure, tonemap_names[a->tonemap]);
-    if (a->scene.light_count > 0 && n > 0 && (size_t)n < sizeof title) {
-        const viewer_light *l = &a->scene.lights[a->light];
+    if (viewer_scene_light_total(&a->scene) > 0 && n > 0 && (size_t)n < sizeof title) {
         static const char *const modes[] = {"move", "rotate", "scale"};
-        n += snprintf(title + n, sizeof title - n, " | light %u/%u [%s] %u-gon I=%.2f %s", a->light + 1,
-                      a->scene.light_count, modes[a->mode], l->vertex_count, l->intensity,
-                      l->two_sided ? "two-sided" : "one-sided");
+        n += snprintf(title + n, sizeof title - n, " | light %u/%u [%s]", a->light + 1,
+                      viewer_scene_light_total(&a->scene), modes[a->mode]);
+        const viewer_light *l = app_area_light(a);
+        const viewer_punctual *p = app_punctual_light(a);
+        if (l && n > 0 && (size_t)n < sizeof title)
+            n += snprintf(title + n, sizeof title - n, " %u-gon I=%.2f %s", l->vertex_count, l->intensity,
+                          l->two_sided ? "two-sided" : "one-sided");
+        else if (p && n > 0 && (size_t)n < sizeof title)
+            n += snprintf(title + n, sizeof title - n, " %s I=%.2f %s", viewer_punctual_kind(p), p->intensity,
+                          p->type == RTPBR_LIGHT_DIRECTIONAL ? "lux" : "cd");
+        if (p && p->range > 0.0f && p->type != RTPBR_LIGHT_DIRECTIONAL && n > 0 && (size_t)n < sizeof title)
+            n += snprintf(title + n, sizeof title - n, " range %.2f", p->range);
     }
     if (a->scene.material_count > 0 && n > 0 && (size_t)n < sizeof title) {
         const rtpbr_material_desc *m = &a->scene.materials[a->material];
@@ -190,13 +200,37 @@ static void update_title(app *a)
     glfwSetWindowTitle(a->win.glfw, title);
 }
 
+// The arrow keys' edit of a punctual light: its position, direction or range (what it has).
+static void edit_punctual(app *a, viewer_punctual *p, int axis, float sign)
+{
+    if (a->mode == 0 && p->type != RTPBR_LIGHT_DIRECTIONAL) {
+        p->position[axis] += 0.1f * sign;
+    } else if (a->mode == 1 && p->type != RTPBR_LIGHT_POINT) {
+        viewer_punctual_rotate(p, axis, sign * 0.0872665f); // 5 degrees
+    } else if (a->mode == 2 && p->type != RTPBR_LIGHT_DIRECTIONAL && p->range > 0.0f) {
+        p->range *= sign > 0.0f ? 1.1f : 1.0f / 1.1f;
+    } else {
+        a->notice = a->mode == 0   ? "a directional light has no position"
+                    : a->mode == 1 ? "a point light has no direction"
+                                   : "scale: a point or spot light's finite range (the panel sets one)";
+        return;
+    }
+    viewer_punctual_clamp(p);
+    app_light_edited(a);
+}
+
 static void edit_light(app *a, int key)
 {
-    if (a->scene.light_count == 0) return;
-    viewer_light *l = &a->scene.lights[a->light];
     // Arrows: X and Z; PgUp/PgDn: Y (world axes).
     int axis = key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT ? 0 : (key == GLFW_KEY_UP || key == GLFW_KEY_DOWN ? 2 : 1);
     float sign = key == GLFW_KEY_RIGHT || key == GLFW_KEY_DOWN || key == GLFW_KEY_PAGE_UP ? 1.0f : -1.0f;
+    viewer_punctual *p = app_punctual_light(a);
+    if (p) {
+        edit_punctual(a, p, axis, sign);
+        return;
+    }
+    viewer_light *l = app_area_light(a);
+    if (!l) return;
     if (a->mode == 0) {
         float d[3] = {0.0f, 0.0f, 0.0f};
         d[axis] = 0.1f * sign;
@@ -217,7 +251,9 @@ static void set_overlay(app *a, viewer_overlay overlay)
 
 static void handle_key(app *a, int key)
 {
-    viewer_light *l = a->scene.light_count ? &a->scene.lights[a->light] : NULL;
+    viewer_light *l = app_area_light(a);
+    viewer_punctual *p = app_punctual_light(a);
+    uint32_t light_total = viewer_scene_light_total(&a->scene);
     rtpbr_material_desc *m = a->scene.material_count ? &a->scene.materials[a->material] : NULL;
     static const float colours[][3] = {{1, 1, 1}, {1, 0.85f, 0.7f}, {0.7f, 0.85f, 1}, {1, 0.2f, 0.1f},
                                        {0.2f, 1, 0.3f}, {0.2f, 0.4f, 1}};
@@ -231,7 +267,7 @@ static void handle_key(app *a, int key)
         app_changed(a);
         break;
     case GLFW_KEY_TAB:
-        if (a->scene.light_count) a->light = (a->light + 1) % a->scene.light_count, a->light_selected = true;
+        if (light_total) a->light = (a->light + 1) % light_total, a->light_selected = true;
         break;
     case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: a->mode = key - GLFW_KEY_1; break;
     case GLFW_KEY_LEFT: case GLFW_KEY_RIGHT: case GLFW_KEY_UP: case GLFW_KEY_DOWN:
@@ -239,13 +275,19 @@ static void handle_key(app *a, int key)
     case GLFW_KEY_LEFT_BRACKET: case GLFW_KEY_RIGHT_BRACKET:
         if (l) viewer_light_set_vertex_count(l, l->vertex_count + (key == GLFW_KEY_RIGHT_BRACKET ? 1 : -1));
         if (l) app_light_edited(a);
+        if (p && p->type == RTPBR_LIGHT_SPOT) { // 2 degrees; the inner cone stays inside
+            p->outer_cone_angle += key == GLFW_KEY_RIGHT_BRACKET ? 0.0349066f : -0.0349066f;
+            viewer_punctual_clamp(p);
+            app_light_edited(a);
+        }
         break;
     case GLFW_KEY_C:
-        if (l) a->colour_index = (a->colour_index + 1) % 6, memcpy(l->color, colours[a->colour_index], sizeof l->color);
-        if (l) app_light_edited(a);
+        if (l || p) a->colour_index = (a->colour_index + 1) % 6;
+        if (l || p) memcpy(l ? l->color : p->color, colours[a->colour_index], sizeof colours[0]), app_light_edited(a);
         break;
     case GLFW_KEY_EQUAL: case GLFW_KEY_MINUS:
         if (l) l->intensity *= key == GLFW_KEY_EQUAL ? 1.25f : 0.8f, app_light_edited(a);
+        if (p) p->intensity *= key == GLFW_KEY_EQUAL ? 1.25f : 0.8f, app_light_edited(a);
         break;
     case GLFW_KEY_T: if (l) l->two_sided = !l->two_sided, app_light_edited(a); break;
     case GLFW_KEY_M:
@@ -439,8 +481,7 @@ static bool sync_engine(app *a)
     // In place (the last frame has completed): every material and light, a few host writes.
     for (uint32_t i = 0; a->materials_dirty && i < a->scene.material_count && r == RTPBR_SUCCESS; ++i)
         r = viewer_scene_update_material(&a->scene, a->gpu, i);
-    for (uint32_t i = 0; a->lights_dirty && i < a->scene.light_count && r == RTPBR_SUCCESS; ++i)
-        r = viewer_scene_update_light(&a->scene, a->gpu, i);
+    if (a->lights_dirty && r == RTPBR_SUCCESS) r = viewer_scene_update_lights(&a->scene, a->gpu);
     if (r != RTPBR_SUCCESS) {
         fprintf(stderr, "rtpbr-viewer: scene update: %s\n", rtpbr_result_string(r));
         return false;
@@ -556,7 +597,7 @@ int main(int argc, char **argv)
         goto done;
     }
     camera_home(a);
-    a->light_selected = a->scene.light_count > 0;
+    a->light_selected = viewer_scene_light_total(&a->scene) > 0;
     if (!replay_keys(a, keys)) goto done;
     if (!frames) fputs(help_text, stdout);
     bool screenshot_written = false;

@@ -4,7 +4,9 @@
  * The loader flattens a glTF scene into plain data in WORLD space:
  * triangle primitives (node transforms applied), materials mapped onto the
  * rtpbr material model, decoded RGBA8 textures, polygonal area lights
- * (emissive primitives + EXT_lights_area), perspective cameras, a bounding box.
+ * (emissive primitives + EXT_lights_area), point, spot and directional lights
+ * (KHR_lights_punctual, in their own array), perspective cameras, a bounding
+ * box.
  *
  *   rtpbr_gltf_load_desc desc = {0};               // zero = defaults
  *   char err[RTPBR_GLTF_ERROR_MESSAGE_SIZE];
@@ -20,7 +22,9 @@
  * - glTF units: metres, right-handed, +Y up; cameras look down their local -Z.
  * - Colours are linear RGB (glTF factors are linear). Radiance is in the
  *   renderer's (relative) unit: emission = emissiveFactor × emissive_strength;
- *   EXT_lights_area: nits × desc.area_light_radiance_scale (docs/materials.md).
+ *   EXT_lights_area: nits × desc.area_light_radiance_scale (docs/materials.md);
+ *   KHR_lights_punctual: candela (point, spot) or lux (directional) ×
+ *   desc.area_light_radiance_scale, the same unit rule.
  * - Triangles are counter-clockwise seen from the side their geometric normal
  *   points to (glTF front face). Nodes with a negative-determinant transform
  *   get their index winding flipped so this stays true in world space.
@@ -52,7 +56,7 @@ extern "C" {
 /* ---- limits --------------------------------------------------------------
  * Hard limits; a desc may lower (never raise) the first three.              */
 #define RTPBR_GLTF_MAX_VERTICES (1u << 24)          /* total, all primitives  */
-#define RTPBR_GLTF_MAX_LIGHTS 65536u                /* all area lights        */
+#define RTPBR_GLTF_MAX_LIGHTS 65536u                /* area + punctual lights */
 #define RTPBR_GLTF_MAX_TEXTURE_DIMENSION 16384u     /* width and height       */
 #define RTPBR_GLTF_MAX_INDICES (3u * (1u << 25))    /* total, after triangulation */
 #define RTPBR_GLTF_MAX_FILE_SIZE ((uint64_t)1 << 30)/* any one file or data: URI */
@@ -78,14 +82,16 @@ typedef enum rtpbr_gltf_result {
     RTPBR_GLTF_ERROR_URI_REJECTED,       /* absolute path, '..' escape, shell
                                              characters, unsupported scheme   */
     RTPBR_GLTF_ERROR_INVALID_REFERENCE,  /* index to a missing node, mesh,
-                                             material, texture, camera, image */
+                                             material, texture, camera, image,
+                                             light                            */
     RTPBR_GLTF_ERROR_INVALID_ACCESSOR,   /* accessor/bufferView/buffer bounds,
                                              type, stride, count mismatch     */
     RTPBR_GLTF_ERROR_INDEX_OUT_OF_RANGE, /* vertex index >= vertex count     */
     RTPBR_GLTF_ERROR_NONFINITE,          /* NaN/Inf position, transform,
                                              camera or light parameter        */
     RTPBR_GLTF_ERROR_UNSUPPORTED,        /* extensionsRequired we cannot do,
-                                             a node cycle, too deep hierarchy */
+                                             a node cycle, too deep hierarchy,
+                                             an unknown light type            */
     RTPBR_GLTF_ERROR_IMAGE_DECODE,       /* image data could not be decoded  */
     RTPBR_GLTF_ERROR_TOO_MANY_VERTICES,  /* > max_vertices or max indices    */
     RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS,    /* > max_lights                     */
@@ -172,7 +178,8 @@ typedef struct rtpbr_gltf_load_desc {
     /* EXT_lights_area gives luminance in nits (cd/m²). Radiance written to
      * rtpbr_gltf_light = color × intensity × area_light_radiance_scale;
      * 0 = 1 (nits used as the renderer's radiance unit, like emissive
-     * materials). 1/683 gives W/(sr·m²) at 555 nm. */
+     * materials). 1/683 gives W/(sr·m²) at 555 nm. The same scale multiplies
+     * KHR_lights_punctual intensities (rtpbr_gltf_punctual_light.intensity). */
     float area_light_radiance_scale;
     /* Bytes of decoded texels (4 per texel, 8 while a 16-bit PNG is reduced)
      * the scene's textures may take together; an image that would exceed it
@@ -451,6 +458,47 @@ typedef struct rtpbr_gltf_light {
                                primitive's node                            */
 } rtpbr_gltf_light;
 
+/* A KHR_lights_punctual light on a node, in world space: a point, a spot or
+ * a directional light (the extension's text). Evaluated exactly as a delta
+ * light: no size (radius 0, angular diameter 0). One per node that references
+ * a light (two nodes referencing one light: two entries), in node traversal
+ * order; the node's scale changes neither intensity, range nor cones. The
+ * angles and range are checked in double precision, as written in the file,
+ * then rounded to float. */
+typedef enum rtpbr_gltf_punctual_type {
+    RTPBR_GLTF_PUNCTUAL_POINT = 0,
+    RTPBR_GLTF_PUNCTUAL_SPOT = 1,
+    RTPBR_GLTF_PUNCTUAL_DIRECTIONAL = 2,
+} rtpbr_gltf_punctual_type;
+
+typedef struct rtpbr_gltf_punctual_light {
+    rtpbr_gltf_punctual_type type;
+    float position[3];      /* the node's origin (point, spot; directional:
+                               the node's origin too, unused)               */
+    float direction[3];     /* unit: the node's -Z, the way the light travels
+                               (spot, directional; point: the same, unused,
+                               or (0,0,-1) where the node's Z axis is
+                               degenerate, which a spot or directional light
+                               refuses: RTPBR_GLTF_ERROR_NONFINITE)         */
+    float intensity[3];     /* color × intensity × area_light_radiance_scale:
+                               candela (lm/sr) for point and spot, lux
+                               (lm/m²) for directional; radiance of a surface
+                               lit head-on at distance d: I / d² × BRDF      */
+    float range;            /* distance where the light ends, > 0, windowed
+                               by the spec's recommended clamp(1 - (d/range)^4,
+                               0, 1); 0 = infinite (no window): absent, and
+                               always for directional lights (ignored there
+                               with a warning)                              */
+    float inner_cone_angle; /* spot: radians, 0 <= inner < outer <= pi/2    */
+    float outer_cone_angle; /* (defaults 0, pi/4, also without a "spot"
+                               object); the spec's falloff: t =
+                               clamp((cos - cos outer) / max(cos inner - cos
+                               outer, 1e-3), 0, 1), times t². Both 0 for
+                               point and directional lights                 */
+    int32_t gltf_node;      /* the node carrying it                         */
+    int32_t gltf_light;     /* index in KHR_lights_punctual.lights          */
+} rtpbr_gltf_punctual_light;
+
 /* A perspective camera, world space. */
 typedef struct rtpbr_gltf_camera {
     float position[3];
@@ -471,11 +519,14 @@ typedef struct rtpbr_gltf_scene {
                                           material i; a default one last if used */
     rtpbr_gltf_texture* textures;     uint32_t texture_count;
     rtpbr_gltf_light* lights;         uint32_t light_count;
+    rtpbr_gltf_punctual_light* punctual_lights; uint32_t punctual_light_count;
+                                      /* KHR_lights_punctual, in node order */
     rtpbr_gltf_camera* cameras;       uint32_t camera_count; /* 0 = none   */
     uint32_t total_vertex_count;
     uint32_t total_index_count;
     /* World AABB of all primitives and area lights (disk lights: the disk
-     * and its octagon); all zero when empty. */
+     * and its octagon); all zero when empty. Punctual lights are not in it
+     * (not even a point light's position). */
     float bounds_min[3];
     float bounds_max[3];
     /* Set by the loader (how to free); ignored in hand-built scenes. */

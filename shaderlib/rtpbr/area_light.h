@@ -17,12 +17,22 @@
 //   AreaLight_Begin      per-point setup: the tables' values, the lobes' matrices and scales
 //   AreaLight_SumBegin   an empty sum over lights
 //   AreaLight_Add        one light's reflected radiance (x its radiance and visibility) added
+//   AreaLight_AddPunctual  the same for a punctual light (AreaLight_Add calls it)
 //   AreaLight_End        the sum, held to the energy bound across lights, with the streak
 //                        estimate (GGX, RTPBR_AREA_LIGHT_FULL 0)
 //   AreaLight_Evaluate   one light alone (the four above with one light)
 //   AreaLight_Lobe       one pass over a light's edges for one LTC lobe (the building block)
 //
 // Flags (before the include)
+//   RTPBR_AREA_LIGHT_PUNCTUAL  0 (default): every light is a polygon; 1: a light may also be
+//                          a point, spot or directional light (punctual.h; Host_LightShape),
+//                          its radiance exact (Surface_Evaluate), added to the same sum by
+//                          AreaLight_Add; 2: the same, but the host calls AreaLight_AddPunctual
+//                          for those itself, into a sum of its own, and AreaLight_Add only for
+//                          polygons (the engine: its punctual lights are summed before
+//                          AreaLight_Begin into the emission's sum, so that neither the
+//                          polygons' per-point state and the whole BRDF's terms nor a sum of
+//                          their own are live at once; docs/performance.md, 11)
 //   RTPBR_AREA_LIGHT_FULL  1 (default): every lobe surface.h resolves (Disney, coat, sheen,
 //                          anisotropy); 0: metallic-roughness without them (the engine's
 //                          basic variant: fewer registers, the streak estimate on GGX).
@@ -42,6 +52,14 @@
 //   rtpbr_float3 Host_LightRadiance(uint light)   emitted radiance
 //   rtpbr_float3 Host_LightVisibility(uint light) its visibility from the point being shaded
 //                                     (a shadow ratio; 1 without shadows), per channel
+// and with RTPBR_AREA_LIGHT_PUNCTUAL (the polygon functions above are not called for the
+// others; punctual.h's layout):
+//   uint         Host_LightShape(uint light)      0: a polygon; RTPBR_PUNCTUAL_POINT, _SPOT,
+//                                     _DIRECTIONAL
+//   rtpbr_float4 Host_LightPosition(uint light)   position xyz, w = 1 / range^2 (0: none)
+//   rtpbr_float3 Host_LightDirection(uint light)  unit, the way the light travels
+//   rtpbr_float2 Host_LightSpotCone(uint light)   (Punctual_SpotCone; a point light's (-2, 1))
+// (Host_LightRadiance is then a punctual light's intensity; Host_LightVisibility as above);
 //   rtpbr_float4 Host_TableLtc1(int table, rtpbr_float2 uv)  the LTC tables at uv
 //   rtpbr_float4 Host_TableLtc2(int table, rtpbr_float2 uv)  (LTC_LutCoord), table one of
 //                                     RTPBR_TABLE_LTC_SPECULAR (rtpbr_ltc_ggx_1/_2, or
@@ -68,7 +86,11 @@
 #include "disney.h"
 #include "sheen.h"
 #include "surface.h"
+#include "punctual.h"
 
+#ifndef RTPBR_AREA_LIGHT_PUNCTUAL
+#define RTPBR_AREA_LIGHT_PUNCTUAL 0
+#endif
 #ifndef RTPBR_AREA_LIGHT_FULL
 #define RTPBR_AREA_LIGHT_FULL 1
 #endif
@@ -117,6 +139,8 @@ struct AreaLightSum {
     float specularMass;          // the sum of the specular lobe's corrected shares
     uint streakLight;            // the streak estimate's light, RTPBR_AREA_LIGHT_NONE for none
     float streakFF;              // its specular result in the loop
+    rtpbr_float3 punctual;       // the punctual lights' reflected radiance (not held to the
+                                 // polygons' energy bound: exact)
 };
 
 RTPBR_FN AreaLightSum AreaLight_SumBegin() {
@@ -125,6 +149,7 @@ RTPBR_FN AreaLightSum AreaLight_SumBegin() {
     acc.specularMass = 0.0f;
     acc.streakLight = RTPBR_AREA_LIGHT_NONE;
     acc.streakFF = 0.0f;
+    acc.punctual = RTPBR_F3(0.0f);
     return acc;
 }
 
@@ -301,8 +326,46 @@ RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_
 // polygon's size (KC_PolygonLobe, KC_PolygonMeanE). Disney's subsurface shape and sheen are
 // evaluated at the representative direction x pi x the form factor; its GTR1 coat is
 // integrated as GGX at the same alpha.
+#if RTPBR_AREA_LIGHT_PUNCTUAL
+// Punctual light i (shape, punctual.h) at P: exact, the surface's BRDF (Surface_Evaluate) in
+// the direction of the light, added to sum (AreaLight_Add: AreaLightSum.punctual; a host
+// summing punctual lights apart, RTPBR_AREA_LIGHT_PUNCTUAL 2, passes its own, which is not held
+// to the polygons' energy bound either). frame: LTC_Frame(N, V) (AreaLightPixel's), the BRDF's
+// local frame (z = N) for isotropic lobes; an anisotropic lobe's is turned about N to its
+// direction.
+RTPBR_FN void AreaLight_AddPunctual(RTPBR_INOUT(rtpbr_float3) sum, ShadingSurface s, rtpbr_float3x3 frame,
+                                    rtpbr_float3 P, uint i, uint shape) {
+    rtpbr_float4 incident = Punctual_Incident(P, shape, Host_LightPosition(i), Host_LightDirection(i), Host_LightSpotCone(i));
+    rtpbr_float3 wi = rtpbr_mul(frame, rtpbr_float3(incident.x, incident.y, incident.z));
+    if (!(wi.z > 0.0f && incident.w > 0.0f)) return;
+    rtpbr_float3 wo = rtpbr_float3(sqrt(max(1.0f - s.NoV * s.NoV, 0.0f)), 0.0f, s.NoV);
+#if RTPBR_AREA_LIGHT_FULL
+    rtpbr_float3 t = rtpbr_mul(frame, s.anisoDir);
+    float tl2 = t.x * t.x + t.y * t.y;
+    if (s.anisoK > 1.0f && tl2 > 1e-10f) {
+        rtpbr_float2 tx = rtpbr_float2(t.x, t.y) * rtpbr_rsqrt(tl2); // B = N x T = (-t.y, t.x, 0)
+        wo = rtpbr_float3(wo.x * tx.x + wo.y * tx.y, wo.y * tx.x - wo.x * tx.y, wo.z);
+        wi = rtpbr_float3(wi.x * tx.x + wi.y * tx.y, wi.y * tx.x - wi.x * tx.y, wi.z);
+    }
+#endif
+#if RTPBR_AREA_LIGHT_FULL
+    rtpbr_float3 f = Surface_EvaluateLobes(s, wo, wi, true);
+#else
+    rtpbr_float3 f = Surface_EvaluateLobes(s, wo, wi, false); // the lobes AreaLight_Add integrates
+#endif
+    sum += Host_LightRadiance(i) * f * (wi.z * incident.w) * Host_LightVisibility(i);
+}
+#endif
+
 RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                            rtpbr_float3 N, uint i) {
+#if RTPBR_AREA_LIGHT_PUNCTUAL == 1
+    uint shape = Host_LightShape(i);
+    if (shape != 0u) {
+        AreaLight_AddPunctual(acc.punctual, s, px.frame, P, i, shape);
+        return;
+    }
+#endif
     // P on the light's plane sees it edge-on; behind a one-sided light, nothing; a light
     // whose bounding sphere is below the horizon, nothing.
     rtpbr_float4 plane = Host_LightPlane(i);
@@ -461,6 +524,9 @@ RTPBR_FN rtpbr_float3 AreaLight_End(AreaLightPixel px, AreaLightSum acc, Shading
 #endif
 #if RTPBR_LTC_POINT_CORRECTION && !RTPBR_AREA_LIGHT_FULL
     if (acc.specularMass > 1.0f) sum *= 1.0f / acc.specularMass;
+#endif
+#if RTPBR_AREA_LIGHT_PUNCTUAL
+    sum += acc.punctual;
 #endif
 #if RTPBR_AREA_LIGHT_STREAK
     if (acc.streakLight != RTPBR_AREA_LIGHT_NONE) {

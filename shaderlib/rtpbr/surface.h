@@ -37,6 +37,7 @@
 #include "config.h"
 #include "fresnel.h"
 #include "ndf.h"
+#include "microfacet.h"
 #include "kulla_conty.h"
 #include "disney.h"
 #include "sheen.h"
@@ -136,6 +137,77 @@ RTPBR_FN ShadingSurface Surface_Resolve(MaterialParams p, float NoV, rtpbr_float
     s.sheen = max(s.sheenColor.x, max(s.sheenColor.y, s.sheenColor.z)) > 0.0f;
     s.EsheenO = s.sheen ? Host_TableSheenE(NoV, s.sheenRoughness) : 0.0f;
     return s;
+}
+
+// The largest channel.
+RTPBR_FN float Surface_Max3(rtpbr_float3 v) {
+    return max(v.x, max(v.y, v.z));
+}
+
+// The BRDF of surface s for one pair of directions (the model above, every lobe), wo and wi
+// unit vectors in a local frame: z = the shading normal, x along the anisotropy direction
+// (alpha_t) when the lobe is anisotropic (s.anisoK > 1; any tangent otherwise), wo.z = s.NoV.
+// What a punctual light (area_light.h) and a Monte Carlo estimator evaluate per direction: the
+// multiple-scattering and layered lobes with E and E_F at wi (Host_TableE_EF), the coat's E
+// (Host_TableE) and E_sheen (Host_TableSheenE) read where the material needs them. Zero below
+// the horizon is the caller's (f is returned as the lobes give it; callers weigh by max(wi.z, 0)).
+// full = false: the metallic-roughness lobes alone (no Disney, sheen, coat; the lobes of
+// area_light.h's RTPBR_AREA_LIGHT_FULL 0), for surfaces known to have none of them.
+RTPBR_FN rtpbr_float3 Surface_EvaluateLobes(ShadingSurface s, rtpbr_float3 wo, rtpbr_float3 wi, bool full) {
+    FresnelParams fresnel;
+    fresnel.f0 = s.f0;
+    fresnel.f90 = s.f90;
+    fresnel.eta = RTPBR_F3(s.eta);
+    fresnel.k = RTPBR_F3(0.0f);
+    bool layered = !(full && s.disney) && s.specularWeight > 0.0f && Surface_Max3(s.diffuseColor) > 0.0f;
+    bool needEi = layered || Surface_Max3(s.msColor) > 0.0f;
+    float NoL = wi.z;
+    rtpbr_float3 h = normalize(wo + wi);
+    float NoH = h.z;
+    float VoH = dot(wo, h);
+    float mu = max(NoL, 0.0f);
+    rtpbr_float2 ei = needEi ? Host_TableE_EF(mu, s.tableRoughness, s.eta) : rtpbr_float2(1.0f, 0.0f);
+    float Ei = ei.x;
+#if RTPBR_KC_SHAPE
+    // the shaped multiple-scattering lobe (kulla_conty.h), its single-scattering part from the
+    // isotropic lobe at the tables' roughness (as BRDF_SpecularMS); resolved roughness
+    // (Material_Resolve): no second clamp
+    float alphaIso = s.tableRoughness * s.tableRoughness;
+    float fss1 = NoL > 0.0f ? D_Microfacet(NoH, alphaIso) * V_Microfacet(s.NoV, NoL, alphaIso) : 0.0f;
+    rtpbr_float3 f = BRDF_SpecularLocal(wo, wi, s.alphas.x, s.alphas.y, fresnel) +
+                     s.msColor * KC_LobeShaped(s.Eo, Ei, s.Eavg, fss1, KC_ShapeWeight(s.tableRoughness, s.NoV));
+#else
+    rtpbr_float3 f = BRDF_SpecularLocal(wo, wi, s.alphas.x, s.alphas.y, fresnel) + s.msColor * KC_Lobe(s.Eo, Ei, s.Eavg);
+#endif
+    if (full && s.disney) {
+        f += BRDF_DisneyDiffuse(s.dm, wo, wi) + BRDF_DisneySheen(s.dm, wo, wi);
+    } else {
+        float Esi = layered ? s.specularWeight * KC_SpecularAlbedoDielectric(ei.y, Ei, s.FmsDielectric) : 0.0f;
+        f += s.diffuseColor * KC_Lobe(s.Eso, Esi, s.EsAvg);
+    }
+    if (full && s.sheen)
+        f = f * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, Host_TableSheenE(mu, s.sheenRoughness)) +
+            BRDF_Sheen(s.sheenColor, s.sheenRoughness, s.NoV, NoL, NoH);
+    if (!full) return f;
+    f *= s.baseAttenuation;
+    if (s.coat > 0.0f) {
+        // KHR clearcoat: GGX with Schlick(0.04, 1); Disney's: its GTR1 lobe
+        FresnelParams coatFresnel;
+        coatFresnel.f0 = RTPBR_F3(RTPBR_MATERIAL_COAT_F0);
+        coatFresnel.f90 = 1.0f;
+        coatFresnel.eta = RTPBR_F3(1.5f);
+        coatFresnel.k = RTPBR_F3(0.0f);
+        float coatAlpha = s.coatRoughness * s.coatRoughness; // resolved: no second clamp
+        float coatLobe = s.disney ? BRDF_DisneyClearcoat(s.dm, wo, wi)
+                                  : s.coat * BRDF_Specular(s.NoV, NoL, NoH, VoH, coatAlpha, coatFresnel).x;
+        f += RTPBR_F3(coatLobe) + s.msCoat * KC_Lobe(s.Eoc, Host_TableE(mu, s.coatRoughness), s.Eavgc);
+    }
+    return f;
+}
+
+// Every lobe (Surface_EvaluateLobes with full = true).
+RTPBR_FN rtpbr_float3 Surface_Evaluate(ShadingSurface s, rtpbr_float3 wo, rtpbr_float3 wi) {
+    return Surface_EvaluateLobes(s, wo, wi, true);
 }
 
 RTPBR_NAMESPACE_END

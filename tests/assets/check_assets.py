@@ -2,7 +2,9 @@
 """Checks of the real-asset suite (samples/assets/, suite 'assets').
 
     check_assets.py reproducible LIGHT_ASSETS_PY ASSETS_DIR
-        regenerating the lit wrappers from lights.json gives the committed files, byte for byte
+        regenerating the wrappers from lights.json (<Name>.lit.gltf, and <Name>.punctual.gltf for
+        the assets that list punctual lights) gives the committed files, byte for byte; a
+        punctual wrapper of an asset that lists none is stale
     check_assets.py licences ASSETS_DIR
         every asset of lights.json has a LICENSE.md naming a permissive SPDX licence, a source
         and its changes, a row in README.md, every file its glTF references, and stays small
@@ -24,25 +26,40 @@ MAX_ASSET_BYTES = 5 * 1024 * 1024  # "each under a few MB" (issue 28); SheenClot
 MAX_SUITE_BYTES = 15 * 1024 * 1024
 
 
-def names(assets):
+def spec(assets):
     with open(os.path.join(assets, "lights.json"), encoding="utf-8") as f:
-        return sorted(json.load(f)["assets"])
+        return json.load(f)["assets"]
+
+
+def names(assets):
+    return sorted(spec(assets))
+
+
+def wrappers(assets, name):
+    """The wrapper files lights.json makes for one asset."""
+    return [name + ".lit.gltf"] + ([name + ".punctual.gltf"] if "punctual" in spec(assets)[name] else [])
 
 
 def reproducible(tool, assets):
     bad = []
+    count = 0
     with tempfile.TemporaryDirectory() as tmp:
         subprocess.run([sys.executable, tool, "--spec", os.path.join(assets, "lights.json"), "--assets", assets,
                         "--out", tmp], check=True, stderr=subprocess.DEVNULL)
         for n in names(assets):
-            a = os.path.join(tmp, n, n + ".lit.gltf")
-            b = os.path.join(assets, n, n + ".lit.gltf")
-            if not os.path.exists(b) or not filecmp.cmp(a, b, shallow=False):
-                bad.append(b)
+            for w in wrappers(assets, n):
+                count += 1
+                a = os.path.join(tmp, n, w)
+                b = os.path.join(assets, n, w)
+                if not os.path.exists(b) or not filecmp.cmp(a, b, shallow=False):
+                    bad.append(b)
+            stale = os.path.join(assets, n, n + ".punctual.gltf")
+            if os.path.exists(stale) and n + ".punctual.gltf" not in wrappers(assets, n):
+                bad.append(stale + " (lights.json lists no punctual light for it)")
     if bad:
-        print("stale or missing lit wrappers (run tools/assets/light_assets.py):", " ".join(bad))
+        print("stale or missing wrappers (run tools/assets/light_assets.py):", " ".join(bad))
         return 1
-    print("%d lit wrappers match lights.json" % len(names(assets)))
+    print("%d wrappers (lit and punctual) match lights.json" % count)
     return 0
 
 
@@ -74,7 +91,7 @@ def licences(assets):
                 problems.append("%s: LICENSE.md has no %s line" % (n, field))
         if "| %s |" % n not in index:
             problems.append("%s: no row in samples/assets/README.md" % n)
-        for gltf in (n + ".gltf", n + ".lit.gltf"):
+        for gltf in [n + ".gltf"] + wrappers(assets, n):
             path = os.path.join(folder, gltf)
             if not os.path.isfile(path):
                 problems.append("%s: %s missing" % (n, gltf))

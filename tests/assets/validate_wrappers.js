@@ -1,9 +1,11 @@
 #!/usr/bin/env node
-// The Khronos glTF Validator on each lit wrapper (samples/assets/<Name>/<Name>.lit.gltf)
-// and on the asset it wraps (<Name>.gltf): the wrapper must add no error and no warning to
-// what the published asset already has (some published assets have a few, e.g.
-// ClearCoatTest's MESH_PRIMITIVE_NO_TANGENT_SPACE). Infos and hints are not compared: the
-// added EXT_lights_area is an info (an extension the validator does not know).
+// The Khronos glTF Validator on each wrapper (samples/assets/<Name>/<Name>.lit.gltf, and
+// <Name>.punctual.gltf where lights.json lists punctual lights for the asset) and on the
+// asset it wraps (<Name>.gltf): a wrapper must add no error and no warning to what the
+// published asset already has (some published assets have a few, e.g. ClearCoatTest's
+// MESH_PRIMITIVE_NO_TANGENT_SPACE). Infos and hints are not compared: the added
+// EXT_lights_area is an info (an extension the validator does not know); KHR_lights_punctual
+// is one it knows, so the punctual lights themselves are checked.
 // usage: NODE_PATH=DIR/node_modules node validate_wrappers.js ASSETS_DIR NAME...
 'use strict';
 const fs = require('fs');
@@ -37,15 +39,20 @@ async function problems(file) {
     console.error('usage: validate_wrappers.js ASSETS_DIR NAME...');
     process.exit(2);
   }
+  const spec = JSON.parse(fs.readFileSync(path.join(dir, 'lights.json'), 'utf8')).assets;
   let ok = true;
   for (const name of names) {
+    const wrappers = [name + '.lit.gltf'];
+    if (spec[name] && spec[name].punctual) wrappers.push(name + '.punctual.gltf');
     try {
       const published = new Set(await problems(path.join(dir, name, name + '.gltf')));
-      const lit = await problems(path.join(dir, name, name + '.lit.gltf'));
-      const added = lit.filter((p) => !published.has(p));
-      console.log(`${name}: published ${published.size} errors+warnings, wrapper adds ${added.length}`);
-      for (const p of added) console.log('  ' + p);
-      ok = ok && added.length === 0;
+      for (const wrapper of wrappers) {
+        const found = await problems(path.join(dir, name, wrapper));
+        const added = found.filter((p) => !published.has(p));
+        console.log(`${wrapper}: published ${published.size} errors+warnings, wrapper adds ${added.length}`);
+        for (const p of added) console.log('  ' + p);
+        ok = ok && added.length === 0;
+      }
     } catch (e) {
       console.log(`${name}: cannot validate: ${e}`);
       ok = false;

@@ -1,8 +1,9 @@
 /* Regression inputs of the fuzzers and hand-made bad files (tests/bad-input/scenes/):
  *   load_bad_files DIR
- * reads DIR/expected.txt, lines "FILE RESULT [MEMORY_RESULT]" (rtpbr_gltf_result names;
+ * reads DIR/expected.txt, lines "FILE RESULT [MEMORY_RESULT] [: WORDS]" (rtpbr_gltf_result names;
  * MEMORY_RESULT when loading from memory differs, e.g. a .glb with a broken magic is JSON
- * there, "-" = not loadable from memory: a folder, a missing file; '#' starts a comment),
+ * there, "-" = not loadable from memory: a folder, a missing file; WORDS, the rest of the
+ * line after " : ", must appear in the message; '#' starts a comment),
  * loads each FILE by path and from memory (base_dir DIR), checks
  * the result, that a message is given and that no scene is returned. A crash, a leak
  * (ASan build) or a wrong result fails the test. */
@@ -15,12 +16,12 @@
 #include <string.h>
 
 static int check(const char* what, const char* file, rtpbr_gltf_result got, const char* want,
-                 const rtpbr_gltf_scene* scene, const char* message) {
-    int ok = strcmp(rtpbr_gltf_result_string(got), want) == 0 && message[0] != '\0';
+                 const char* words, const rtpbr_gltf_scene* scene, const char* message) {
+    int ok = strcmp(rtpbr_gltf_result_string(got), want) == 0 && message[0] != '\0' && strstr(message, words);
     if (got != RTPBR_GLTF_SUCCESS && scene) ok = 0;
     printf("%s %s (%s): %s: %s\n", ok ? "ok  " : "FAIL", file, what, rtpbr_gltf_result_string(got),
            message[0] ? message : "(no message)");
-    if (!ok) printf("     expected %s\n", want);
+    if (!ok) printf("     expected %s%s%s\n", want, words[0] ? " : " : "", words);
     return ok;
 }
 
@@ -61,6 +62,13 @@ int main(int argc, char** argv) {
     int failures = 0, cases = 0;
     while (fgets(line, sizeof line, list)) {
         char file[512], want[128], want_memory[128];
+        const char* words = "";
+        char* colon = strstr(line, " : ");
+        if (colon) {
+            *colon = '\0';
+            words = colon + 3;
+            colon[3 + strcspn(colon + 3, "\r\n")] = '\0';
+        }
         const int fields = line[0] == '#' ? 0 : sscanf(line, "%511s %127s %127s", file, want, want_memory);
         if (fields < 2) continue;
         if (fields == 2) memcpy(want_memory, want, sizeof want);
@@ -73,7 +81,7 @@ int main(int argc, char** argv) {
         rtpbr_gltf_scene* scene = (rtpbr_gltf_scene*)(uintptr_t)1;
         rtpbr_gltf_result r = rtpbr_gltf_load(path, &desc, &scene);
         if (r == RTPBR_GLTF_SUCCESS) snprintf(message, sizeof message, "(loaded)");
-        failures += !check("path", file, r, want, scene, message);
+        failures += !check("path", file, r, want, words, scene, message);
         if (r == RTPBR_GLTF_SUCCESS) rtpbr_gltf_destroy(scene);
 
         if (strcmp(want_memory, "-") == 0) continue;
@@ -88,7 +96,7 @@ int main(int argc, char** argv) {
         scene = (rtpbr_gltf_scene*)(uintptr_t)1;
         r = rtpbr_gltf_load_memory(data, size, &desc, &scene);
         if (r == RTPBR_GLTF_SUCCESS) snprintf(message, sizeof message, "(loaded)");
-        failures += !check("memory", file, r, want_memory, scene, message);
+        failures += !check("memory", file, r, want_memory, words, scene, message);
         if (r == RTPBR_GLTF_SUCCESS) rtpbr_gltf_destroy(scene);
         free(data);
     }

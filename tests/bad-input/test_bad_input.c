@@ -486,6 +486,94 @@ static void test_too_many_lights(void** state) {
     free(json);
 }
 
+/* ---- KHR_lights_punctual (issue 30) ---------------------------------------------- */
+/* The files in scenes/ hold the plain cases (each value out of its range, an unknown type, an
+ * index past the lights); these are what tinygltf 2.7 would alter or drop before the loader
+ * sees it, the checks on lights no node uses, and what only the node or desc can make bad. */
+static void test_punctual_lights(void** state) {
+    (void)state;
+    const char* dir = ts_dir("punctual");
+    const char* point = "\"lights\":[{\"type\":\"point\"}]";
+    static const struct {
+        const char* node;   /* node 1's members after its extensions, or its whole extension object */
+        const char* lights; /* extensions.KHR_lights_punctual's members (NULL: no such extension) */
+        rtpbr_gltf_result want;
+        const char* needle;
+    } cases[] = {
+        /* tinygltf's Value drops the null (3 numbers), casts 4294967296 to 0, drops a
+         * non-object extension (no light at all) */
+        {"{\"light\":0}", "\"lights\":[{\"type\":\"point\",\"color\":[1,null,1,1]}]", RTPBR_GLTF_ERROR_INVALID_JSON,
+         "light 0 (/extensions/KHR_lights_punctual/lights/0/color): must be an array of 3 numbers"},
+        {"{\"light\":4294967296}", NULL, RTPBR_GLTF_ERROR_INVALID_JSON,
+         "node 1 (/nodes/1/extensions/KHR_lights_punctual/light): integer out of range"},
+        {"{\"light\":-1}", NULL, RTPBR_GLTF_ERROR_INVALID_JSON, "/nodes/1/extensions/KHR_lights_punctual/light"},
+        {"{\"light\":\"0\"}", NULL, RTPBR_GLTF_ERROR_INVALID_JSON, "must be an integer"},
+        {"0", NULL, RTPBR_GLTF_ERROR_INVALID_JSON, "(/nodes/1/extensions/KHR_lights_punctual): must be an object"},
+        {"{}", NULL, RTPBR_GLTF_ERROR_INVALID_JSON, "/nodes/1/extensions/KHR_lights_punctual/light): required integer missing"},
+        /* the lights array and its elements */
+        {"{\"light\":0}", "\"lights\":[3]", RTPBR_GLTF_ERROR_INVALID_JSON, "light 0 (/extensions/KHR_lights_punctual/lights/0): must be an object"},
+        {"{\"light\":0}", "\"lights\":[{\"color\":[1,1,1]}]", RTPBR_GLTF_ERROR_INVALID_JSON, "lights/0/type): required string missing"},
+        {"{\"light\":0}", "\"lights\":[{\"type\":7}]", RTPBR_GLTF_ERROR_INVALID_JSON, "lights/0/type): must be a string"},
+        {"{\"light\":0}", "\"lights\":[{\"type\":\"SPOT\"}]", RTPBR_GLTF_ERROR_UNSUPPORTED, "type 'SPOT' not supported"},
+        {"{\"light\":0}", "\"lights\":[{\"type\":\"spot\",\"spot\":1}]", RTPBR_GLTF_ERROR_INVALID_JSON, "lights/0/spot): must be an object"},
+        {"{\"light\":0}", "", RTPBR_GLTF_ERROR_INVALID_JSON, "/extensions/KHR_lights_punctual/lights): required array missing"},
+        {"{\"light\":0}", "\"lights\":[{\"type\":\"point\",\"color\":[-1,0,0]}]", RTPBR_GLTF_ERROR_INVALID_JSON, "color): element out of [0, 1]"},
+        {"{\"light\":0}", "\"lights\":[{\"type\":\"point\",\"color\":[0,2,0]}]", RTPBR_GLTF_ERROR_INVALID_JSON, "color): element out of [0, 1]"},
+        {"{\"light\":0}", "\"lights\":[{\"type\":\"point\",\"color\":[0,\"1\",0]}]", RTPBR_GLTF_ERROR_INVALID_JSON, "color): element is not a number"},
+        {"{\"light\":0}", "\"lights\":[{\"type\":\"spot\",\"spot\":{\"innerConeAngle\":-0.1}}]", RTPBR_GLTF_ERROR_INVALID_JSON,
+         "spot/innerConeAngle): must be in [0, pi/2]"},
+        {"{\"light\":0}", "\"lights\":[{\"type\":\"spot\",\"spot\":{\"innerConeAngle\":1}}]", RTPBR_GLTF_ERROR_INVALID_JSON,
+         "innerConeAngle must be less than outerConeAngle"},
+        /* a light no node uses is checked all the same; no lights at all */
+        {"{\"light\":0}", "\"lights\":[{\"type\":\"point\"},{\"type\":\"point\",\"intensity\":-1}]", RTPBR_GLTF_ERROR_INVALID_JSON,
+         "KHR_lights_punctual light 1 (/extensions/KHR_lights_punctual/lights/1/intensity): must be >= 0"},
+        {"{\"light\":0}", "\"lights\":[]", RTPBR_GLTF_ERROR_INVALID_REFERENCE, "light 0 does not exist (0 lights)"},
+        /* what the node makes of it */
+        {"{\"light\":0}},\"scale\":[1,1,0],\"x\":{", "\"lights\":[{\"type\":\"spot\"}]", RTPBR_GLTF_ERROR_NONFINITE,
+         "node 1: KHR_lights_punctual light 0: degenerate transform"},
+        {"{\"light\":0}},\"scale\":[0,0,0],\"x\":{", "\"lights\":[{\"type\":\"directional\"}]", RTPBR_GLTF_ERROR_NONFINITE,
+         "degenerate transform"},
+        {"{\"light\":0}", "\"lights\":[{\"type\":\"point\",\"range\":1e-50}]", RTPBR_GLTF_ERROR_NONFINITE, "range 1e-50 underflows a float"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        ts_scene s = triangle();
+        char* nodes = ts_format("{\"mesh\":0},{\"extensions\":{\"KHR_lights_punctual\":%s}}", cases[i].node);
+        char* extra = cases[i].lights ? ts_format(",\"extensions\":{\"KHR_lights_punctual\":{%s}}", cases[i].lights)
+                                      : ts_format(",\"extensions\":{\"KHR_lights_punctual\":{%s}}", point);
+        s.nodes = nodes;
+        s.scene_nodes = "0,1";
+        s.extra = extra;
+        char name[32];
+        snprintf(name, sizeof name, "case%zu.gltf", i);
+        expect_scene(dir, name, &s, cases[i].want, cases[i].needle);
+        free(nodes);
+        free(extra);
+    }
+    /* No root extension at all. */
+    ts_scene s = triangle();
+    s.nodes = "{\"mesh\":0},{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}";
+    s.scene_nodes = "0,1";
+    expect_scene(dir, "noroot.gltf", &s, RTPBR_GLTF_ERROR_INVALID_REFERENCE, "light 0 does not exist (0 lights)");
+    /* A world position past a float: 3e38 + 2 × 3e38. */
+    s.nodes = "{\"mesh\":0},{\"translation\":[3e38,0,0],\"scale\":[2,2,2],\"children\":[2]},"
+              "{\"translation\":[3e38,0,0],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}";
+    s.extra = ",\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"point\"}]}}";
+    expect_scene(dir, "far.gltf", &s, RTPBR_GLTF_ERROR_NONFINITE, "node 2: KHR_lights_punctual light 0: position or intensity");
+    s.nodes = "{\"mesh\":0},{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}";
+    /* color × intensity × desc.area_light_radiance_scale past a float. */
+    s.extra = ",\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"point\",\"intensity\":1e38}]}}";
+    char* json = ts_scene_json(&s);
+    rtpbr_gltf_load_desc desc = {0};
+    expect_text(dir, "bright.gltf", json, &desc, RTPBR_GLTF_SUCCESS, NULL);
+    desc.area_light_radiance_scale = 10.0f;
+    expect_text(dir, "bright.gltf", json, &desc, RTPBR_GLTF_ERROR_NONFINITE, "not representable as a float");
+    free(json);
+    /* Loaded and destroyed through the scene's counting allocator: release() checks that
+     * nothing is left, the punctual lights included. */
+    s.extra = ",\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"spot\"}]}}";
+    expect_scene(dir, "good.gltf", &s, RTPBR_GLTF_SUCCESS, NULL);
+}
+
 /* ---- textures ------------------------------------------------------------------ */
 static uint32_t crc32_png(const unsigned char* p, size_t n) {
     uint32_t crc = 0xFFFFFFFFu; /* ISO/IEC 15948 Annex D */
@@ -974,6 +1062,7 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_truncated),
                 cmocka_unit_test(test_degenerate),
                 cmocka_unit_test(test_bad_lights),
                 cmocka_unit_test(test_too_many_lights),
+                cmocka_unit_test(test_punctual_lights),
                 cmocka_unit_test(test_textures),
                 cmocka_unit_test(test_paths),
                 cmocka_unit_test(test_uri_confinement),

@@ -122,6 +122,11 @@ float Host_TableE(float mu, float r) { return 0.0f; }
 float Host_TableEavg(float r) { return 0.0f; }
 float Host_TableEFavg(float r, float eta) { return 0.0f; }
 float Host_TableSheenE(float mu, float r) { return 0.0f; }
+uint Host_LightShape(uint light) { return 0u; }
+rtpbr_float4 Host_LightPosition(uint light) { return RTPBR_F4(0.0f); }
+rtpbr_float3 Host_LightDirection(uint light) { return RTPBR_F3(0.0f); }
+rtpbr_float2 Host_LightSpotCone(uint light) { return RTPBR_F2(0.0f); }
+#define RTPBR_AREA_LIGHT_PUNCTUAL 1
 """
 
 

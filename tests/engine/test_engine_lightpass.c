@@ -17,7 +17,7 @@
 #include "host.h" // samples/host: its geometry shaders, sh_begin_gbuffer_pass
 
 
-enum { W = 96, H = 72, QUADS = 4, LIGHTS = 6 };
+enum { W = 96, H = 72, QUADS = 4, LIGHTS = 8 };
 
 // Measured on lavapipe (Mesa 22.3.6), both frames: the host's G-buffer equals the engine's
 // bit for bit (same triangles, same view-projection, same values through GBuffer_Encode), and
@@ -60,10 +60,19 @@ static void quad(int q, float v[4][3], float n[3])
     n[0] = 0, n[1] = 0, n[2] = 1;
 }
 
-// Light i of frame f: quads facing down above the scene (frame 1: moved and recoloured).
+// Light i of frame f: quads facing down above the scene (frame 1: moved and recoloured);
+// lights 6 and 7 a spot and a point light with a range (issue 30: punctual lights through the
+// light set).
 static rtpbr_light_desc light(int i, int f)
 {
     float x = -2.0f + 0.8f * (float)i + 0.3f * (float)f, y = 2.0f + 0.2f * (float)(i % 3), z = -0.5f + 0.4f * (float)(i % 2);
+    if (i == 6)
+        return (rtpbr_light_desc){.type = RTPBR_LIGHT_SPOT, .position = {x - 3.0f, y, z + 1.0f},
+                                  .direction = {0.2f, -1.0f, -0.4f - 0.3f * (float)f}, .inner_cone_angle = 0.2f,
+                                  .outer_cone_angle = 0.5f, .emission = {4.0f, 3.0f + (float)f, 2.0f}};
+    if (i == 7)
+        return (rtpbr_light_desc){.type = RTPBR_LIGHT_POINT, .position = {x - 4.0f, 0.8f, 0.5f}, .range = 3.0f,
+                                  .emission = {1.0f, 2.0f + (float)f, 3.0f}};
     float a = 0.25f;
     rtpbr_light_desc l = {.vertex_count = 4,
                           .vertices = {{x - a, y, z - a}, {x + a, y, z - a}, {x + a, y, z + a}, {x - a, y, z + a}}};

@@ -17,6 +17,7 @@ struct SceneBuilder {
     std::vector<rtpbr_gltf_primitive> primitives;
     std::vector<rtpbr_gltf_material> materials;
     std::vector<rtpbr_gltf_light> lights;
+    std::vector<rtpbr_gltf_punctual_light> punctualLights;
     std::vector<rtpbr_gltf_camera> cameras;
     rtpbr_gltf_scene scene{};
 
@@ -93,6 +94,25 @@ struct SceneBuilder {
         lights.push_back(L);
     }
 
+    // A KHR_lights_punctual light as the loader fills it (rtpbr_gltf_punctual_light):
+    // direction is normalised here; range 0 = infinite; cone angles for spots only.
+    void punctual(rtpbr_gltf_punctual_type type, glm::vec3 position, glm::vec3 direction, glm::vec3 intensity,
+                  float range = 0.0f, float inner = 0.0f, float outer = 0.7853982f) {
+        rtpbr_gltf_punctual_light P{};
+        P.type = type;
+        glm::vec3 d = glm::normalize(direction);
+        for (int i = 0; i < 3; i++) {
+            P.position[i] = position[i];
+            P.direction[i] = d[i];
+            P.intensity[i] = intensity[i];
+        }
+        P.range = range;
+        P.inner_cone_angle = inner;
+        P.outer_cone_angle = outer;
+        P.gltf_node = P.gltf_light = -1;
+        punctualLights.push_back(P);
+    }
+
     // A camera at pos looking at target (up hint +y unless parallel).
     void camera(glm::vec3 pos, glm::vec3 target, float yfov, glm::vec3 upHint = glm::vec3(0, 1, 0)) {
         rtpbr_gltf_camera c{};
@@ -120,6 +140,8 @@ struct SceneBuilder {
         scene.material_count = uint32_t(materials.size());
         scene.lights = lights.data();
         scene.light_count = uint32_t(lights.size());
+        scene.punctual_lights = punctualLights.data();
+        scene.punctual_light_count = uint32_t(punctualLights.size());
         scene.cameras = cameras.data();
         scene.camera_count = uint32_t(cameras.size());
         return scene;

@@ -176,6 +176,18 @@ void test_energy() {
     expect(std::fabs(s.mean_ratio - mean) < 1e-9, "energy: mean ratio over the finite pixels");
     rtpbr_tools::EnergyStats none = rtpbr_tools::energy_stats(px.data(), w, h, 3, 0.0);
     expect(none.max_ratio == 0.0 && none.over == 0, "energy: no bound, no ratios");
+    expect(s.bounded && s.largest == 4.0, "energy: bounded, largest pixel value");
+    expect(rtpbr_tools::energy_json(s).find("\"bounded\": true") != std::string::npos, "energy: JSON bounded");
+    // A scene with punctual lights: no bound; the image's own figures, said so.
+    rtpbr_tools::EnergyStats u = rtpbr_tools::energy_stats_unbounded(px.data(), w, h, 3);
+    expect(!u.bounded && u.brightest_emitter == 0.0 && u.max_ratio == 0.0 && u.mean_ratio == 0.0 && u.over == 0,
+           "energy: unbounded, no ratios");
+    expect(u.largest == 4.0 && u.max_x == 7 && u.max_y == 3 && u.non_finite == 1 &&
+               std::fabs(u.top_share - share) < 1e-6,
+           "energy: unbounded, the image's own figures");
+    expect(rtpbr_tools::energy_summary(u).rfind("no energy bound (punctual lights", 0) == 0 &&
+               rtpbr_tools::energy_json(u).find("\"bounded\": false") != std::string::npos,
+           "energy: unbounded, said so in the summary and the JSON");
 }
 
 } // namespace

@@ -2,11 +2,12 @@
 // n-gon's area, right-handed rotations, areas under scaling, the tracked transform that moves
 // the uploaded polygon in place; the loader-to-viewer mapping of the bundled quad_light and
 // showcase scenes (numbers read from scenes.json by hand); and picking by ray.
-#include <setjmp.h>
-#include <stdarg.h>
-#include <stddef.h>
-#include "test_main.h"
-#include <math.h>
+// Punctual lights (issue 30): punctual_lights' three lights as the file gives them, their edits
+// (turns, angles, the clamp to what the engine accepts), and on the device (lavapipe,
+// validation on: any message fails): the viewer's upload renders the radiance of the engine's
+// own rtpbr_gpu_scene_from_loaded, an intensity x2 doubles each light's part of the image, and
+// rtpbr_gpu_scene_set_lights through the viewer keeps a mixed scene's area light intact.
+#include "engine_test.h" // test_main.h, the validation-counting context, test_render_radiance
 
 #include "scene_edit.h"
 
@@ -158,8 +159,320 @@ static void test_showcase(void **state)
     viewer_scene_destroy(&s);
 }
 
+// punctual_lights (tools/make-scenes, KHR_lights_punctual): a warm point light with a range,
+// a cool spot, a low sun; no area light. Numbers from the file.
+static void test_load_punctual(void **state)
+{
+    (void)state;
+    viewer_scene s;
+    assert_true(viewer_scene_load(&s, RTPBR_SAMPLES_SCENES "/punctual_lights.gltf"));
+    assert_int_equal(s.light_count, 0);
+    assert_int_equal(s.punctual_count, 3);
+    assert_int_equal(viewer_scene_light_total(&s), 3);
+    const viewer_punctual *point = &s.punctual[0], *spot = &s.punctual[1], *sun = &s.punctual[2];
+    assert_int_equal(point->type, RTPBR_LIGHT_POINT);
+    assert_int_equal(spot->type, RTPBR_LIGHT_SPOT);
+    assert_int_equal(sun->type, RTPBR_LIGHT_DIRECTIONAL);
+    assert_string_equal(viewer_punctual_kind(spot), "spot");
+    const float point_position[3] = {-2.2f, 1.8f, 1.2f}, point_color[3] = {1.0f, 0.75f, 0.5f};
+    for (int c = 0; c < 3; ++c) {
+        assert_float_equal(point->position[c], point_position[c], 1e-6f);
+        assert_float_equal(point->color[c], point_color[c], 1e-6f);
+    }
+    assert_float_equal(point->intensity, 4.0f, 1e-6f);
+    assert_float_equal(point->range, 9.0f, 1e-6f);
+    assert_float_equal(spot->intensity, 12.0f, 1e-6f);
+    assert_float_equal(spot->color[0], 0.55f, 1e-6f);
+    assert_float_equal(spot->range, 0.0f, 0.0f); // none in the file: infinite
+    assert_float_equal(spot->inner_cone_angle, 0.24434609527920614, 1e-6f);
+    assert_float_equal(spot->outer_cone_angle, 0.4188790204786391, 1e-6f);
+    assert_float_equal(sun->intensity, 1.2f, 1e-6f);
+    assert_float_equal(sun->color[2], 0.88f, 1e-6f);
+    float azimuth, elevation;
+    viewer_punctual_angles(spot, &azimuth, &elevation);
+    assert_true(elevation < -0.5f); // the spot looks down at the floor
+    viewer_punctual_angles(sun, &azimuth, &elevation);
+    assert_true(elevation < 0.0f && elevation > -0.8f); // a low sun, shining down
+    for (uint32_t i = 0; i < 3; ++i) { // colour x intensity = the loader's intensity, within an ulp
+        const float *loaded = s.loaded->punctual_lights[i].intensity;
+        for (int c = 0; c < 3; ++c)
+            assert_float_equal(s.punctual[i].color[c] * s.punctual[i].intensity, loaded[c], 1.2e-7f * loaded[c]);
+    }
+    viewer_scene_destroy(&s);
+}
+
+static void test_punctual_edits(void **state)
+{
+    (void)state;
+    viewer_punctual p = {.type = RTPBR_LIGHT_SPOT, .direction = {0.0f, 0.0f, 1.0f}, .intensity = 1.0f,
+                         .inner_cone_angle = 0.2f, .outer_cone_angle = 0.4f};
+    viewer_punctual_rotate(&p, 1, (float)(pi / 2)); // about +Y, right-handed: +Z -> +X
+    assert_float_equal(p.direction[0], 1.0f, 1e-6f);
+    assert_float_equal(p.direction[2], 0.0f, 1e-6f);
+    viewer_punctual_rotate(&p, 2, (float)(pi / 2)); // about +Z: +X -> +Y
+    assert_float_equal(p.direction[1], 1.0f, 1e-6f);
+    // Two angles: (cos e sin a, sin e, cos e cos a), and back.
+    viewer_punctual_set_angles(&p, 0.7f, -0.4f);
+    assert_float_equal(p.direction[0], cos(-0.4) * sin(0.7), 1e-6f);
+    assert_float_equal(p.direction[1], sin(-0.4), 1e-6f);
+    assert_float_equal(p.direction[2], cos(-0.4) * cos(0.7), 1e-6f);
+    float azimuth, elevation;
+    viewer_punctual_angles(&p, &azimuth, &elevation);
+    assert_float_equal(azimuth, 0.7f, 1e-5f);
+    assert_float_equal(elevation, -0.4f, 1e-5f);
+    viewer_punctual_set_angles(&p, 1.0f, (float)(-pi / 2)); // straight down: azimuth 0
+    viewer_punctual_angles(&p, &azimuth, &elevation);
+    assert_float_equal(elevation, -pi / 2, 1e-5f);
+    // The clamp: cones crossed or too wide, a negative intensity and range, a zero direction.
+    p = (viewer_punctual){.type = RTPBR_LIGHT_SPOT, .intensity = -1.0f, .range = -2.0f, .color = {2.0f, 0.5f, -1.0f},
+                          .inner_cone_angle = 1.0f, .outer_cone_angle = 0.5f};
+    viewer_punctual_clamp(&p);
+    assert_float_equal(p.intensity, 0.0f, 0.0f);
+    assert_float_equal(p.range, 0.0f, 0.0f);
+    assert_float_equal(p.color[0], 1.0f, 0.0f);
+    assert_float_equal(p.color[2], 0.0f, 0.0f);
+    assert_float_equal(p.direction[1], -1.0f, 0.0f);
+    assert_true(p.inner_cone_angle >= 0.0f && p.inner_cone_angle < p.outer_cone_angle);
+    assert_float_equal(p.outer_cone_angle, 0.5f, 0.0f);
+    p.outer_cone_angle = 3.0f;
+    p.direction[0] = 3.0f, p.direction[1] = 0.0f, p.direction[2] = 4.0f;
+    viewer_punctual_clamp(&p);
+    assert_float_equal(p.outer_cone_angle, pi / 2, 1e-6f);
+    assert_float_equal(p.direction[0], 0.6f, 1e-6f);
+    assert_float_equal(p.direction[2], 0.8f, 1e-6f);
+    p.outer_cone_angle = 0.0f;
+    viewer_punctual_clamp(&p);
+    assert_float_equal(p.outer_cone_angle, VIEWER_MIN_CONE, 0.0f);
+    assert_true(p.inner_cone_angle < p.outer_cone_angle);
+}
+
+// ---- on the device ------------------------------------------------------------------------
+
+enum { RW = 160, RH = 120 };
+
+// The file's first camera, as rtpbr_gpu_scene_from_loaded maps it (the viewer's upload has no
+// cameras: both scenes are rendered from this one).
+static rtpbr_camera_desc file_camera(const viewer_scene *s)
+{
+    const rtpbr_gltf_camera *c = &s->loaded->cameras[0];
+    rtpbr_camera_desc d = {.yfov = c->yfov, .znear = c->znear, .zfar = c->zfar};
+    for (int k = 0; k < 3; ++k) {
+        d.position[k] = c->position[k];
+        d.target[k] = c->position[k] + c->forward[k];
+        d.up[k] = c->up[k];
+    }
+    return d;
+}
+
+// What each device test starts from: a bundled scene in the viewer, the file's camera, an
+// RW x RH renderer on the fixture's context.
+typedef struct device_case {
+    rtpbr_context *ctx;
+    viewer_scene s;
+    rtpbr_camera_desc camera;
+    rtpbr_renderer *r;
+} device_case;
+
+static void device_case_open(device_case *d, void **state, const char *scene)
+{
+    d->ctx = test_env_context(state);
+    assert_true(viewer_scene_load(&d->s, scene));
+    d->camera = file_camera(&d->s);
+    d->r = test_renderer(d->ctx, &(rtpbr_renderer_desc){.width = RW, .height = RH});
+}
+
+static void device_case_close(device_case *d)
+{
+    rtpbr_renderer_destroy(d->r);
+    viewer_scene_destroy(&d->s);
+}
+
+// An upload of the viewer's scene as it is now.
+static rtpbr_gpu_scene *upload(device_case *d)
+{
+    rtpbr_gpu_scene *gpu = NULL;
+    assert_int_equal(viewer_scene_upload(&d->s, d->ctx, &gpu), RTPBR_SUCCESS);
+    return gpu;
+}
+
+static float *render(const device_case *d, const rtpbr_gpu_scene *gpu)
+{
+    return test_render_radiance(d->r, gpu, &(rtpbr_render_desc){.camera = &d->camera}, RW, RH);
+}
+
+// Pixels (of RW x RH) whose RGB differ at all; the largest difference relative to the larger
+// value's magnitude, in *max_rel.
+static size_t pixels_differing(const float *a, const float *b, double *max_rel)
+{
+    size_t count = 0;
+    *max_rel = 0.0;
+    for (size_t i = 0; i < (size_t)RW * RH; ++i) {
+        bool differs = false;
+        for (int c = 0; c < 3; ++c) {
+            double x = a[4 * i + c], y = b[4 * i + c], d = fabs(x - y);
+            differs |= d != 0.0;
+            if (d > 0.0) *max_rel = fmax(*max_rel, d / fmax(fabs(x), fabs(y)));
+        }
+        count += differs;
+    }
+    return count;
+}
+
+// Pixels with some radiance (any channel above 1e-3: the floor and spheres where lit).
+static size_t pixels_lit(const float *a)
+{
+    size_t count = 0;
+    for (size_t i = 0; i < (size_t)RW * RH; ++i)
+        count += a[4 * i] > 1e-3f || a[4 * i + 1] > 1e-3f || a[4 * i + 2] > 1e-3f;
+    return count;
+}
+
+// The viewer's upload of punctual_lights renders the radiance of rtpbr_gpu_scene_from_loaded
+// of the same loaded file (what rtpbr-render shows): the same meshes and materials in the same
+// order (no area lights, so no light polygons), the lights in the same order; the only
+// difference allowed is the emission, which the viewer keeps as colour x intensity (the loader's
+// emission divided by its largest component and multiplied back: within one float ulp, at most
+// 1.2e-7 relative, of the loader's; the spot's red is one ulp off). Radiance is linear in each
+// light's emission, so pixels may differ by a few ulps of their value: 1e-6 relative is allowed
+// (measured: 336 of 19,200 pixels differ, by at most 2.2e-7; the others are bit for bit).
+// Before issue 30 the viewer uploaded the area lights only: that image is black where this one
+// is lit, which the same comparison rejects.
+static void test_punctual_upload_matches_engine(void **state)
+{
+    device_case d;
+    device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/punctual_lights.gltf");
+    rtpbr_gpu_scene *engine = NULL, *viewer = upload(&d);
+    assert_int_equal(rtpbr_gpu_scene_from_loaded(d.ctx, d.s.loaded, &engine), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_gpu_scene_light_count(viewer), 3);
+    float *want = render(&d, engine), *got = render(&d, viewer);
+    double max_rel;
+    size_t differing = pixels_differing(want, got, &max_rel), lit = pixels_lit(want);
+    printf("viewer upload vs rtpbr_gpu_scene_from_loaded: %zu of %d pixels differ (max relative %.3g); %zu lit\n",
+           differing, RW * RH, max_rel, lit);
+    assert_true(lit > (size_t)RW * RH / 2);
+    assert_true(max_rel <= 1e-6);
+    uint32_t punctual_count = d.s.punctual_count; // the upload of the viewer before issue 30
+    d.s.punctual_count = 0;
+    rtpbr_gpu_scene *area_only = upload(&d);
+    d.s.punctual_count = punctual_count;
+    float *old = render(&d, area_only);
+    assert_true(pixels_lit(old) < lit / 10);
+    assert_true(pixels_differing(want, old, &max_rel) > lit / 2 && max_rel > 1e-6);
+    free(want);
+    free(got);
+    free(old);
+    rtpbr_gpu_scene_destroy(area_only);
+    rtpbr_gpu_scene_destroy(viewer);
+    rtpbr_gpu_scene_destroy(engine);
+    device_case_close(&d);
+}
+
+// An edit of one light's intensity x2, through viewer_scene_update_lights (set_lights, no
+// re-upload), doubles that light's part of the radiance: with R0 the image without it
+// (intensity 0), R1 with it and R2 with twice its intensity, R2 - R0 = 2 (R1 - R0) at every
+// pixel. Colour x intensity doubles exactly (x2 is exact in floats) and the shading is linear
+// in emission; what may differ is the rounding of the sum over the three lights: 1e-5 of the
+// pixel's value is allowed. Each light must light a good part of the image by itself.
+static void test_punctual_intensity_doubles(void **state)
+{
+    device_case d;
+    device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/punctual_lights.gltf");
+    rtpbr_gpu_scene *gpu = upload(&d);
+    for (uint32_t k = 0; k < d.s.punctual_count; ++k) {
+        viewer_punctual *p = &d.s.punctual[k];
+        float intensity = p->intensity, *images[3];
+        for (int step = 0; step < 3; ++step) { // intensity 0, x1, x2
+            p->intensity = intensity * (float)step;
+            assert_int_equal(viewer_scene_update_lights(&d.s, gpu), RTPBR_SUCCESS);
+            images[step] = render(&d, gpu);
+        }
+        p->intensity = intensity;
+        size_t lit = 0, bad = 0;
+        double worst = 0.0;
+        for (size_t i = 0; i < (size_t)RW * RH; ++i) {
+            bool is_lit = false;
+            for (int c = 0; c < 3; ++c) {
+                double r0 = images[0][4 * i + c], r1 = images[1][4 * i + c], r2 = images[2][4 * i + c];
+                double part = r1 - r0, err = fabs((r2 - r0) - 2.0 * part);
+                is_lit |= part > 1e-3;
+                worst = fmax(worst, err / fmax(r2, 1e-30));
+                bad += err > 1e-5 * r2 + 1e-9;
+            }
+            lit += is_lit;
+        }
+        printf("%s light: lit %zu of %d pixels by itself; x2: worst relative error %.3g\n",
+               viewer_punctual_kind(p), lit, RW * RH, worst);
+        assert_int_equal(bad, 0);
+        assert_true(lit > (size_t)RW * RH / 20);
+        for (int step = 0; step < 3; ++step) free(images[step]);
+    }
+    rtpbr_gpu_scene_destroy(gpu);
+    device_case_close(&d);
+}
+
+// A mixed scene: quad_light (one polygonal light and its emissive quad) plus a point light
+// added to the viewer's scene. The area light's image C (uploaded without the point light)
+// must come back bit for bit when the point light's intensity is set to 0 in place (set_lights
+// keeps the area light as it was; a zero emission adds exactly 0), the mixed image A when it is
+// restored, and A again after an update of the area light (viewer_scene_update_light replaces
+// every light: the punctual one must stay).
+static void test_mixed_scene_set_lights(void **state)
+{
+    device_case d;
+    device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/quad_light.gltf");
+    viewer_scene *s = &d.s;
+    assert_int_equal(s->light_count, 1);
+    assert_int_equal(s->punctual_count, 0);
+    rtpbr_gpu_scene *area_only = upload(&d);
+    float *area_image = render(&d, area_only);
+    viewer_punctual *grown = realloc(s->punctual, sizeof *grown);
+    assert_non_null(grown);
+    s->punctual = grown;
+    s->punctual[0] = (viewer_punctual){.type = RTPBR_LIGHT_POINT, .position = {1.5f, 0.6f, 1.0f},
+                                       .color = {1.0f, 0.5f, 0.25f}, .intensity = 2.0f, .range = 4.0f};
+    s->punctual_count = 1;
+    rtpbr_gpu_scene *mixed = upload(&d);
+    assert_int_equal(rtpbr_gpu_scene_light_count(mixed), 2);
+    float *mixed_image = render(&d, mixed);
+    double max_rel;
+    size_t point_lit = pixels_differing(area_image, mixed_image, &max_rel);
+    printf("mixed scene: the point light changes %zu of %d pixels\n", point_lit, RW * RH);
+    assert_true(point_lit > (size_t)RW * RH / 10);
+
+    s->punctual[0].intensity = 0.0f;
+    assert_int_equal(viewer_scene_update_lights(s, mixed), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_gpu_scene_light_count(mixed), 2);
+    float *dark = render(&d, mixed);
+    size_t differing = pixels_differing(area_image, dark, &max_rel);
+    printf("mixed scene, point light off in place vs the area light alone: %zu pixels differ (max relative %.3g)\n",
+           differing, max_rel);
+    assert_int_equal(differing, 0);
+
+    s->punctual[0].intensity = 2.0f;
+    assert_int_equal(viewer_scene_update_lights(s, mixed), RTPBR_SUCCESS);
+    float *back = render(&d, mixed);
+    assert_int_equal(pixels_differing(mixed_image, back, &max_rel), 0);
+    assert_int_equal(viewer_scene_update_light(s, mixed, 0), RTPBR_SUCCESS); // the area light's path
+    assert_int_equal(rtpbr_gpu_scene_light_count(mixed), 2);
+    float *after_area = render(&d, mixed);
+    assert_int_equal(pixels_differing(mixed_image, after_area, &max_rel), 0);
+    free(area_image);
+    free(mixed_image);
+    free(dark);
+    free(back);
+    free(after_area);
+    rtpbr_gpu_scene_destroy(mixed);
+    rtpbr_gpu_scene_destroy(area_only);
+    device_case_close(&d);
+}
+
 RTPBR_TEST_MAIN(cmocka_unit_test(test_vertex_count),
                 cmocka_unit_test(test_rotate_scale_translate),
                 cmocka_unit_test(test_tracked_transform),
                 cmocka_unit_test(test_load_quad_light),
-                cmocka_unit_test(test_showcase))
+                cmocka_unit_test(test_showcase),
+                cmocka_unit_test(test_load_punctual),
+                cmocka_unit_test(test_punctual_edits),
+                test_env_case(test_punctual_upload_matches_engine),
+                test_env_case(test_punctual_intensity_doubles),
+                test_env_case(test_mixed_scene_set_lights))

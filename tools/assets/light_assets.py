@@ -18,7 +18,14 @@ OUT/<Name>/<Name>.lit.gltf: the asset's own JSON unchanged except for
     meaningful without it);
   - `asset.extras.rtpbr_lit_wrapper`, saying where the file comes from.
 
-Buffers and images are referenced by the asset's own relative URIs, so the wrapper must sit
+An asset whose entry lists `punctual` lights also gets OUT/<Name>/<Name>.punctual.gltf: the
+asset's JSON with the same camera, one root node per light with
+`extensions.KHR_lights_punctual.light`, the lights in the root
+`extensions.KHR_lights_punctual.lights` (docs/materials.md, "Punctual lights"),
+"KHR_lights_punctual" in `extensionsUsed` and `asset.extras.rtpbr_punctual_wrapper`; no
+EXT_lights_area light.
+
+Buffers and images are referenced by the asset's own relative URIs, so the wrappers must sit
 beside the asset (OUT defaults to the assets folder).
 
 The camera is given in the asset's world coordinates: `eye`, `target`, `yfov_deg` and
@@ -30,6 +37,16 @@ in the same units; `size` (its height, along local Y) is a fraction of the box d
 `aspect` is width / height. `radiance` is linear RGB in the renderers' radiance unit (nits,
 docs/materials.md): it is written as color = radiance / max(radiance),
 intensity = max(radiance).
+
+A punctual light has a `type` (point, spot, directional), an `offset` (and, for a spot or a
+directional light, an `aim`: a directional light shines from offset towards aim; a point light
+node gets no rotation) and an `intensity`, linear RGB written as color = intensity /
+max(intensity), intensity = max. A point or spot light's intensity is given in candela per
+squared box diagonal and written times diagonal^2: the irradiance of a point light is I / d^2
+and the distances scale with the box, so one value gives the same irradiance, max / k^2 at a
+box-centre distance of k diagonals, on an asset of any size. A directional light's intensity
+is lux, written as given. `range` (optional, point and spot) is in box diagonals; a spot's
+`inner_deg` and `outer_deg` (default 0 and 45) are its cone angles in degrees.
 
 Only the Python standard library is used; output is deterministic (same spec and asset,
 same bytes).
@@ -44,6 +61,8 @@ SPEC_DEFAULT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".
                             "lights.json")
 WRAPPER_NOTE = ("Lit wrapper written by tools/assets/light_assets.py from samples/assets/lights.json: "
                 "the asset as published plus an added camera and EXT_lights_area lights.")
+PUNCTUAL_NOTE = ("Punctual wrapper written by tools/assets/light_assets.py from samples/assets/lights.json: "
+                 "the asset as published plus an added camera and KHR_lights_punctual lights.")
 
 
 # ---- small vector and matrix helpers (column-major 4x4 as in glTF) --------------------
@@ -159,9 +178,12 @@ def box_relative(lo, hi, offset):
     return [(l + h) * 0.5 + o * diagonal for l, h, o in zip(lo, hi, offset)]
 
 
-# ---- the wrapper ----------------------------------------------------------------------
+# ---- the wrappers ---------------------------------------------------------------------
 
-def lit_wrapper(doc, spec):
+def wrapper_base(doc, spec, note_key, note):
+    """A deep copy of the asset with the camera of `spec` (camera 0 of its scene, on a new root
+    node) and the note in `asset.extras`; returns it, the scene's root node list, the nodes and
+    the asset's box (lo, hi, diagonal)."""
     lo, hi = world_bounds(doc)
     diagonal = math.sqrt(sum((h - l) ** 2 for l, h in zip(lo, hi)))
     out = json.loads(json.dumps(doc))  # a deep copy that keeps key order
@@ -191,31 +213,90 @@ def lit_wrapper(doc, spec):
     root.append(len(nodes))
     nodes.append({"name": "rtpbr_camera", "camera": len(cameras) - 1,
                   "translation": rounded(eye), "rotation": rounded(quaternion_facing(eye, target))})
+    out["asset"].setdefault("extras", {})[note_key] = note
+    return out, root, nodes, (lo, hi, diagonal)
 
+
+def add_light_node(root, nodes, name, extension, index, position, aim=None):
+    """A root node for light `index` of `extension` at `position`, its local -Z turned towards
+    `aim` (no rotation when aim is None: a point light shines every way)."""
+    node = {"name": "rtpbr_light_" + name, "translation": rounded(position)}
+    if aim is not None:
+        node["rotation"] = rounded(quaternion_facing(position, aim))
+    node["extensions"] = {extension: {"light": index}}
+    root.append(len(nodes))
+    nodes.append(node)
+
+
+def color_and_intensity(name, rgb):
+    """Linear RGB split into the glTF pair: color = rgb / max(rgb), intensity = max(rgb)."""
+    rgb = [float(c) for c in rgb]
+    intensity = max(rgb)
+    if intensity <= 0.0:
+        raise ValueError("light %s: its colour must have a positive component" % name)
+    return [c / intensity for c in rgb], intensity
+
+
+def use_extension(out, extension, lights):
+    out.setdefault("extensions", {})[extension] = {"lights": lights}
+    used = out.setdefault("extensionsUsed", [])
+    if extension not in used:
+        used.append(extension)
+
+
+def lit_wrapper(doc, spec):
+    out, root, nodes, (lo, hi, diagonal) = wrapper_base(doc, spec, "rtpbr_lit_wrapper", WRAPPER_NOTE)
     lights = []
     for light in spec["lights"]:
-        radiance = [float(c) for c in light["radiance"]]
-        intensity = max(radiance)
-        if intensity <= 0.0:
-            raise ValueError("light %s: radiance must have a positive component" % light["name"])
+        color, intensity = color_and_intensity(light["name"], light["radiance"])
         entry = {"name": light["name"], "type": "rect",
-                 "color": rounded([c / intensity for c in radiance]),
+                 "color": rounded(color),
                  "intensity": rounded(intensity),
                  "size": rounded(light["size"] * diagonal),
                  "rect": {"aspect": rounded(light.get("aspect", 1.0))}}
         position = box_relative(lo, hi, light["offset"])
         aim = box_relative(lo, hi, light.get("aim", [0.0, 0.0, 0.0]))
-        root.append(len(nodes))
-        nodes.append({"name": "rtpbr_light_" + light["name"],
-                      "translation": rounded(position), "rotation": rounded(quaternion_facing(position, aim)),
-                      "extensions": {"EXT_lights_area": {"light": len(lights)}}})
+        add_light_node(root, nodes, light["name"], "EXT_lights_area", len(lights), position, aim)
         lights.append(entry)
-    out.setdefault("extensions", {})["EXT_lights_area"] = {"lights": lights}
-    used = out.setdefault("extensionsUsed", [])
-    if "EXT_lights_area" not in used:
-        used.append("EXT_lights_area")
-    out["asset"].setdefault("extras", {})["rtpbr_lit_wrapper"] = WRAPPER_NOTE
+    use_extension(out, "EXT_lights_area", lights)
     return out, (lo, hi)
+
+
+def punctual_wrapper(doc, spec):
+    """The asset with the camera and the KHR_lights_punctual lights of spec["punctual"]."""
+    out, root, nodes, (lo, hi, diagonal) = wrapper_base(doc, spec, "rtpbr_punctual_wrapper", PUNCTUAL_NOTE)
+    lights = []
+    for light in spec["punctual"]:
+        kind = light["type"]
+        if kind not in ("point", "spot", "directional"):
+            raise ValueError("punctual light %s: type %r (point, spot or directional)" % (light["name"], kind))
+        color, intensity = color_and_intensity(light["name"], light["intensity"])
+        if kind != "directional":
+            intensity *= diagonal * diagonal  # candela per squared diagonal: irradiance I / d^2 scales with the box
+        entry = {"name": light["name"], "type": kind, "color": rounded(color), "intensity": rounded(intensity)}
+        if "range" in light:
+            if kind == "directional":
+                raise ValueError("punctual light %s: a directional light has no range" % light["name"])
+            entry["range"] = rounded(light["range"] * diagonal)
+        if kind == "spot":
+            inner, outer = light.get("inner_deg", 0.0), light.get("outer_deg", 45.0)
+            if not 0.0 <= inner < outer <= 90.0:
+                raise ValueError("spot light %s: needs 0 <= inner_deg < outer_deg <= 90" % light["name"])
+            entry["spot"] = {"innerConeAngle": rounded(math.radians(inner)),
+                             "outerConeAngle": rounded(math.radians(outer))}
+        position = box_relative(lo, hi, light["offset"])
+        aim = None if kind == "point" else box_relative(lo, hi, light.get("aim", [0.0, 0.0, 0.0]))
+        add_light_node(root, nodes, light["name"], "KHR_lights_punctual", len(lights), position, aim)
+        lights.append(entry)
+    use_extension(out, "KHR_lights_punctual", lights)
+    return out, (lo, hi)
+
+
+def write_json(path, doc):
+    with open(path, "w", encoding="utf-8", newline="\n") as f:
+        json.dump(doc, f, indent=1, ensure_ascii=False)
+        f.write("\n")
+    print("wrote", path, file=sys.stderr)
 
 
 def main(argv=None):
@@ -241,11 +322,9 @@ def main(argv=None):
             print("%s: min %s max %s" % (name, rounded(lo, 4), rounded(hi, 4)))
         out_dir = os.path.join(out_root, name)
         os.makedirs(out_dir, exist_ok=True)
-        dst = os.path.join(out_dir, name + ".lit.gltf")
-        with open(dst, "w", encoding="utf-8", newline="\n") as f:
-            json.dump(lit, f, indent=1, ensure_ascii=False)
-            f.write("\n")
-        print("wrote", dst, file=sys.stderr)
+        write_json(os.path.join(out_dir, name + ".lit.gltf"), lit)
+        if "punctual" in entry:
+            write_json(os.path.join(out_dir, name + ".punctual.gltf"), punctual_wrapper(doc, entry)[0])
     return 0
 
 

@@ -13,7 +13,9 @@ Figures:
                 time, so this bounds the frame time from above. cpu s: the process's CPU time.
   L_light       the brightest emitter radiance of the file: max over EXT_lights_area lights
                 of color x intensity, and over materials of emissiveFactor x
-                KHR_materials_emissive_strength.
+                KHR_materials_emissive_strength. None ("no bound") for a file whose nodes carry
+                KHR_lights_punctual lights that shine: a delta light's irradiance I / d^2 has no upper
+                limit, so no radiance bounds its pixels (and max / L is not given).
   max / L       the largest pixel radiance (max over RGB) divided by L_light. A surface that
                 does not emit cannot exceed 1 (issue 28); the lights are out of frame in
                 every spec, and the assets' own emissive surfaces emit at most L_light.
@@ -57,6 +59,11 @@ def read_exr(path):
 def brightest_emitter(gltf_path):
     with open(gltf_path, encoding="utf-8") as f:
         doc = json.load(f)
+    punctual = doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
+    for node in doc.get("nodes", []):
+        i = node.get("extensions", {}).get("KHR_lights_punctual", {}).get("light", -1)
+        if 0 <= i < len(punctual) and punctual[i].get("intensity", 1.0) * max(punctual[i].get("color", [1, 1, 1])) > 0:
+            return None  # a shining punctual light: no energy bound
     best = 0.0
     for light in doc.get("extensions", {}).get("EXT_lights_area", {}).get("lights", []):
         color = light.get("color", [1.0, 1.0, 1.0])
@@ -73,9 +80,11 @@ def energy_figures(img, light):
     k = max(1, int(round(energy.size * 1e-4)))
     top = np.sort(energy)[-k:].sum()
     total = energy.sum()
-    over = int((np.nan_to_num(img).max(axis=2) > 1.01 * light).sum())
-    return {"max": peak, "ratio": peak / light if light > 0 else float("inf"), "over": over,
-            "top_share": float(top / total) if total > 0 else 0.0, "nan": int(np.isnan(img).sum())}
+    figures = {"max": peak, "top_share": float(top / total) if total > 0 else 0.0, "nan": int(np.isnan(img).sum())}
+    if light is not None:  # else no bound (punctual lights): no ratio
+        figures["over"] = int((np.nan_to_num(img).max(axis=2) > 1.01 * light).sum())
+        figures["ratio"] = peak / light if light > 0 else float("inf")
+    return figures
 
 
 def timed(cmd):
@@ -156,10 +165,11 @@ def main(argv=None):
         e, o = r["engine"], r["oracle"]
         flip = r.get("flip") or {}
         mean = flip.get("mean", flip.get("flip_mean"))
-        print("| %s | %s | %s | %.2f (%.2f) | %s | %g | %s | %s | %s | %s | %s | %s |" % (
+        print("| %s | %s | %s | %.2f (%.2f) | %s | %s | %s | %s | %s | %s | %s | %s |" % (
             name, "loads" if e["exit"] == 0 else "refused (exit %d)" % e["exit"],
             "loads" if o["exit"] == 0 else "refused (exit %d)" % o["exit"], e["wall_s"], e["cpu_s"],
-            "%.4f" % mean if isinstance(mean, (int, float)) else "—", r["L_light"],
+            "%.4f" % mean if isinstance(mean, (int, float)) else "—",
+            "no bound" if r["L_light"] is None else "%g" % r["L_light"],
             cell(e, "ratio", "%.3g"), cell(o, "ratio", "%.3g"), cell(e, "over", "%d"), cell(o, "over", "%d"),
             cell(e, "top_share", "%.3g"), cell(o, "top_share", "%.3g")))
     for name, r in results.items():

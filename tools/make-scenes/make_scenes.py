@@ -248,6 +248,26 @@ class GltfBuilder:
         self.doc["nodes"].append(n)
         self.doc["scenes"][0]["nodes"].append(len(self.doc["nodes"]) - 1)
 
+    def punctual_light(self, spec):
+        """A KHR_lights_punctual light on a node of its own: spec has type (point, spot,
+        directional), color, intensity (candela; lux for directional), translation, and for spot
+        and directional lights a target the light points at (the node's -Z); optional range and
+        a spot's inner/outer cone angles in degrees."""
+        light = {"type": spec["type"], "color": [float(c) for c in spec.get("color", [1, 1, 1])],
+                 "intensity": float(spec["intensity"])}
+        if "range" in spec:
+            light["range"] = float(spec["range"])
+        if spec["type"] == "spot":
+            light["spot"] = {"innerConeAngle": math.radians(spec.get("inner_deg", 0.0)),
+                             "outerConeAngle": math.radians(spec.get("outer_deg", 45.0))}
+        ext = self.doc.setdefault("extensions", {}).setdefault("KHR_lights_punctual", {"lights": []})
+        ext["lights"].append(light)
+        self.extensions.add("KHR_lights_punctual")
+        t = spec.get("translation", [0.0, 0.0, 0.0])
+        q = look_at_quaternion(t, spec["target"], tuple(spec.get("up", (0.0, 1.0, 0.0)))) if "target" in spec else None
+        self.node(spec.get("name", "light%d" % (len(ext["lights"]) - 1)), translation=t, rotation=q)
+        self.doc["nodes"][-1]["extensions"] = {"KHR_lights_punctual": {"light": len(ext["lights"]) - 1}}
+
     def camera(self, spec):
         cam = {"type": "perspective", "perspective": {
             "yfov": math.radians(spec.get("yfov_deg", 45.0)), "znear": spec.get("znear", 0.05),
@@ -284,6 +304,8 @@ def build_scene(name, spec, out_dir):
 
     for cam in spec.get("cameras", []):
         b.camera(cam)
+    for light in spec.get("punctual_lights", []):
+        b.punctual_light(light)
     for i, obj in enumerate(spec["objects"]):
         shape = obj["shape"]
         label = obj.get("name", "%s%d" % (shape, i))

@@ -41,7 +41,9 @@ void usage(FILE *out = stderr)
                  "                   (the reference the LTC pass is benchmarked against; default 0: LTC)\n"
                  "  --max-ratio R    exit 1 when a pixel exceeds R x the brightest emitter's radiance (lights,\n"
                  "                   emissive materials): no surface reflects more than reaches it. The\n"
-                 "                   figures are printed on every render (energy bound, docs/limits.md)\n"
+                 "                   figures are printed on every render (energy bound, docs/limits.md).\n"
+                 "                   A scene with KHR_lights_punctual lights has no such bound: the figures\n"
+                 "                   say so, and --max-ratio is refused\n"
                  "  --stats-json FILE  writes those figures as JSON (rtpbr-validate reads them)\n"
                  "  --memory-limit MIB  refuse a render that needs more memory than this (default: what the\n"
                  "                   system has available; the need is counted before anything is allocated:\n"
@@ -69,8 +71,21 @@ void on_loader_log(rtpbr_gltf_log_level level, const char *message, void *)
         std::fprintf(stderr, "rtpbr-render: %s: %s\n", level == RTPBR_GLTF_LOG_ERROR ? "error" : "warning", message);
 }
 
+// The KHR_lights_punctual lights of the scene that shine (intensity > 0): with any, the scene
+// has no energy bound (a delta light's irradiance I / d^2 has no upper limit; rtpbr_common/energy.hpp).
+uint32_t shining_punctual_lights(const rtpbr_gltf_scene *scene)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < scene->punctual_light_count; ++i) {
+        const float *c = scene->punctual_lights[i].intensity;
+        n += c[0] > 0.0f || c[1] > 0.0f || c[2] > 0.0f ? 1u : 0u;
+    }
+    return n;
+}
+
 // The brightest radiance any emitter of the scene has: its lights and its emissive materials
-// (an emission texture only scales the factor down). The background is black here.
+// (an emission texture only scales the factor down). The background is black here. Not a
+// bound for a scene with punctual lights (shining_punctual_lights).
 double brightest_emitter(const rtpbr_gltf_scene *scene)
 {
     double b = 0.0;
@@ -201,11 +216,22 @@ int run(int argc, char **argv)
         return 1;
     }
     const double bound = brightest_emitter(loaded);
+    const uint32_t punctual = shining_punctual_lights(loaded);
+    if (punctual && max_ratio > 0.0) {
+        std::fprintf(stderr, "rtpbr-render: --max-ratio: %s has %u KHR_lights_punctual light(s), and a scene with "
+                             "punctual (delta) lights has no energy bound to hold pixels to (docs/limits.md)\n",
+                     scene_path.c_str(), punctual);
+        rtpbr_gltf_destroy(loaded);
+        return 1;
+    }
     uint32_t proxies = 0;
     for (uint32_t i = 0; i < loaded->light_count; ++i) proxies += loaded->lights[i].proxy ? 1u : 0u;
-    std::printf("rtpbr-render: %s: %u lights", scene_path.c_str(), loaded->light_count);
+    std::printf("rtpbr-render: %s: %u %slights", scene_path.c_str(), loaded->light_count,
+                loaded->punctual_light_count ? "area " : "");
     if (proxies)
         std::printf(" (%u of them standing in for emissive meshes: docs/materials.md, \"Lights from materials\")", proxies);
+    if (loaded->punctual_light_count)
+        std::printf(" and %u punctual lights (KHR_lights_punctual)", loaded->punctual_light_count);
     std::printf("\n");
     if (loaded->camera_count == 0)
         std::fprintf(stderr, "rtpbr-render: warning: %s has no camera: rendering from a default one at (0, 0, 5) "
@@ -237,8 +263,10 @@ int run(int argc, char **argv)
         for (size_t p = 0; p < size_t(w) * h; ++p)
             for (int c = 0; c < 3; ++c) rgb[3 * p + c] = rgba[4 * p + c];
         if (r == RTPBR_SUCCESS) {
-            rtpbr_tools::EnergyStats es = rtpbr_tools::energy_stats(rgb.data(), w, h, 3, bound);
-            std::printf("rtpbr-render: energy bound: %s\n", rtpbr_tools::energy_summary(es).c_str());
+            rtpbr_tools::EnergyStats es = punctual ? rtpbr_tools::energy_stats_unbounded(rgb.data(), w, h, 3)
+                                                   : rtpbr_tools::energy_stats(rgb.data(), w, h, 3, bound);
+            std::printf("rtpbr-render: %s%s\n", es.bounded ? "energy bound: " : "",
+                        rtpbr_tools::energy_summary(es).c_str());
             bound_held = es.non_finite == 0 && (max_ratio <= 0.0 || es.max_ratio <= max_ratio);
             if (!bound_held)
                 std::fprintf(stderr, "rtpbr-render: energy bound exceeded: largest pixel %.6g x the brightest emitter "

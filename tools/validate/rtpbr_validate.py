@@ -161,8 +161,8 @@ def validate(args, on_cluster):
     os.makedirs(args.out, exist_ok=True)
     oracle_version = file_hash([oracle])[:16]
 
-    # Bundled scenes (samples/scenes/NAME.gltf) and real assets (samples/assets/NAME/NAME.lit.gltf,
-    # the public models lit by tools/assets/light_assets.py), each with its thresholds.
+    # Bundled scenes (samples/scenes/NAME.gltf) and real assets (the public models lit by
+    # tools/assets/light_assets.py: asset_file), each with its thresholds.
     entries = dict((n, ("scene", c)) for n, c in config["scenes"].items())
     entries.update((n, ("asset", c)) for n, c in config.get("assets", {}).items())
     names = args.scenes or list(entries.keys())
@@ -181,7 +181,7 @@ def validate(args, on_cluster):
             log("thresholds.json: scene %s has no max_mean/max_p95 for mode %s" % (name, mode))
             return 2
         if kind == "asset":
-            gltf = os.path.join(ROOT, "samples", "assets", name, name + ".lit.gltf")
+            gltf = asset_file(name)
         else:
             gltf = os.path.join(ROOT, "samples", "scenes", name + ".gltf")
         if not os.path.isfile(gltf):
@@ -196,7 +196,12 @@ def validate(args, on_cluster):
         _, t_engine = run([render, gltf, "-o", engine_exr, "--width", w, "--height", h, "--camera", "0",
                            "--stats-json", engine_stats] + list(sc.get("engine_flags", [])), "rtpbr-render")
         with open(engine_stats) as f:
-            brightest = json.load(f)["brightest_emitter"]
+            energy = json.load(f)
+        brightest = energy["brightest_emitter"]
+        # A scene with punctual lights has no energy bound (rtpbr_common/energy.hpp): none is checked.
+        bounded = energy.get("bounded", True)
+        if not bounded:
+            log("[%d/%d] %s: %s" % (k + 1, len(names), name, NO_BOUND))
 
         oracle_args = ["--width", w, "--height", h, "--camera", "0", "--spp", str(sc["spp"]),
                        "--seed", str(sc.get("seed", 1))] + list(sc.get("oracle_flags", []))
@@ -259,26 +264,45 @@ def validate(args, on_cluster):
         to_png(oiiotool, engine_exr, os.path.join(outdir, "engine.png"), exposure)
         to_png(oiiotool, oracle_exr, os.path.join(outdir, "oracle.png"), exposure)
         results.append({"scene": name, "kind": kind, "ok": ok, "max_mean": sc["max_mean"], "max_p95": sc["max_p95"],
-                        "max_ratio": max_ratio,
+                        "max_ratio": max_ratio, "bounded": bounded,
                         "width": sc["width"], "height": sc["height"], "spp": sc["spp"],
                         "oracle_flags": sc.get("oracle_flags", []), "engine_flags": sc.get("engine_flags", []),
                         "description": descriptions.get(name, "") if kind == "scene" else "",
                         "engine_seconds": round(t_engine, 2), "oracle_seconds": round(t_oracle, 2),
                         "oracle_args": oracle_args, "oracle_render": how, "metrics": metrics})
-        bound = metrics.get("bound", {})
         log("[%d/%d] %s: HDR-FLIP mean %.4f p95 %.4f (limits %.3f / %.3f); largest pixel / brightest emitter: "
-            "engine %s, oracle %s (limit %.2f) %s"
+            "%s %s"
             % (k + 1, len(names), name, metrics["mean"], metrics["p95"], sc["max_mean"], sc["max_p95"],
-               ratio_text(bound.get("test")), ratio_text(bound.get("reference")), max_ratio,
-               "ok" if ok else "EXCEEDED"))
+               bound_text(results[-1]), "ok" if ok else "EXCEEDED"))
 
     write_report(args.out, results, mode)
     log("report: %s" % os.path.join(args.out, "index.html"))
     return 1 if failed else 0
 
 
+def asset_file(name):
+    """The wrapper an 'assets' entry of thresholds.json names: NAME is the asset lit by its area
+    lights, samples/assets/NAME/NAME.lit.gltf; NAME.punctual the same asset lit by its
+    KHR_lights_punctual lights, samples/assets/NAME/NAME.punctual.gltf (samples/assets/lights.json)."""
+    asset, dot, variant = name.partition(".")
+    return os.path.join(ROOT, "samples", "assets", asset, "%s.%s.gltf" % (asset, variant if dot else "lit"))
+
+
 def ratio_text(energy):
     return "%.4g" % energy["max_ratio"] if energy else "-"
+
+
+NO_BOUND = ("no energy bound: the scene has punctual lights (KHR_lights_punctual), whose irradiance I / d^2 has "
+            "no upper limit")
+
+
+def bound_text(r, bold=lambda t: t):
+    """A result's largest pixel / brightest emitter, engine and oracle, with the limit."""
+    if not r.get("bounded", True):
+        return "none (punctual lights)"
+    bound = r["metrics"].get("bound", {})
+    return "engine %s, oracle %s (limit %.2f)" % (bold(ratio_text(bound.get("test"))),
+                                                  ratio_text(bound.get("reference")), r["max_ratio"])
 
 
 def share_text(energy):
@@ -317,11 +341,12 @@ def write_report(out, results, mode):
                                         rendering["cluster"] or "a cluster", rendering["tasks"], rendering["workers"],
                                         rendering["retries"], rendering["from_cache"]))
     cols = ["scene", "HDR-FLIP mean", "median", "p95", "p99", "max", "RMSE", "relMSE", "limits (mean / p95)",
-            "largest / brightest emitter: engine, oracle (limit)", "brightest 0.01 % hold (engine)", "result"]
+            "largest / brightest emitter", "brightest 0.01 % hold (engine)", "result"]
     md = ["# rtpbr validation (%s)" % mode, "", how_line + " " + LIMITS_LINE, "",
           "Largest / brightest emitter: the largest pixel of the image over the brightest emitter's "
           "radiance; no surface reflects more than reaches it, so above 1.01 the engine fails (the "
-          "oracle's noise may cross it: reported only).", "",
+          "oracle's noise may cross it: reported only). A scene with punctual lights has no such bound "
+          "(none is checked).", "",
           "| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     rows_html = []
     for r in results:
@@ -331,8 +356,7 @@ def write_report(out, results, mode):
                 "%.4f" % m["median"], "%.4f" % m["p95"], "%.4f" % m["p99"],
                 "%.4f" % m["max"], "%.4g" % m["rmse"], "%.4g" % m["relmse"],
                 "%.3f / %.3f" % (r["max_mean"], r["max_p95"]),
-                "%s, %s (%.2f)" % (ratio_text(bound.get("test")), ratio_text(bound.get("reference")), r["max_ratio"]),
-                share_text(bound.get("test")), "ok" if r["ok"] else "EXCEEDED"]
+                bound_text(r), share_text(bound.get("test")), "ok" if r["ok"] else "EXCEEDED"]
         md.append("| " + " | ".join(vals) + " |")
         rows_html.append("<tr class='%s'>%s</tr>" % ("ok" if r["ok"] else "bad", "".join("<td>%s</td>" % html.escape(v) for v in vals)))
     with open(os.path.join(out, "summary.md"), "w") as f:
@@ -343,22 +367,23 @@ def write_report(out, results, mode):
         if kind == "asset" and chosen:
             sections.append("<h2 id='assets'>Real assets</h2><p>Public Khronos glTF sample models (samples/assets, "
                             "licences beside each), lit by the added lights of samples/assets/lights.json "
-                            "(tools/assets/light_assets.py).</p>")
+                            "(tools/assets/light_assets.py): NAME by its area lights, NAME.punctual by its "
+                            "KHR_lights_punctual lights.</p>")
         for r in chosen:
             s = html.escape(r["scene"])
             bound = r["metrics"].get("bound", {})
             sections.append(
                 "<h%d id='%s'>%s</h%d><p>%s</p><p>oracle: %s spp, flags <code>%s</code>; %dx%d; HDR-FLIP mean <b>%.4f</b>, "
-                "p95 %.4f (limits %.3f / %.3f); largest pixel / brightest emitter: engine <b>%s</b>, oracle %s "
-                "(limit %.2f); the brightest 0.01 %% of the engine's pixels hold %s of its energy</p>"
+                "p95 %.4f (limits %.3f / %.3f); largest pixel / brightest emitter: %s; "
+                "the brightest 0.01 %% of the engine's pixels hold %s of its energy</p>"
                 "<p class='how'>oracle reference %s</p><div class='row'><figure><img src='%s/engine.png'><figcaption>engine "
                 "(LTC)</figcaption></figure><figure><img src='%s/oracle.png'><figcaption>oracle (path traced)</figcaption>"
                 "</figure><figure><img src='%s/flip.png'><figcaption>HDR-FLIP error (magma)</figcaption></figure></div>"
                 % (2 if kind == "scene" else 3, s, s, 2 if kind == "scene" else 3, html.escape(r["description"]), r["spp"],
                    html.escape(" ".join(r["oracle_flags"])), r["width"], r["height"],
                    r["metrics"]["mean"], r["metrics"]["p95"], r["max_mean"], r["max_p95"],
-                   ratio_text(bound.get("test")), ratio_text(bound.get("reference")), r["max_ratio"],
-                   share_text(bound.get("test")), html.escape(describe_render(r["oracle_render"])), s, s, s))
+                   bound_text(r, lambda t: "<b>%s</b>" % t), share_text(bound.get("test")),
+                   html.escape(describe_render(r["oracle_render"])), s, s, s))
     page = """<!doctype html><meta charset="utf-8"><title>rtpbr validation</title>
 <style>body{font-family:sans-serif;margin:2em;background:#fafafa}table{border-collapse:collapse}
 td,th{border:1px solid #ccc;padding:4px 8px;text-align:right}tr.bad td{background:#fdd}

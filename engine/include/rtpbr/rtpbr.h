@@ -403,13 +403,36 @@ typedef struct rtpbr_mesh_desc {
     float transform[16];      // world-from-object, column-major; all zero: identity
 } rtpbr_mesh_desc;
 
-// A convex planar polygon emitting on its front side (counter-clockwise vertices seen from
-// the front, normal = right-hand rule), or on both sides.
+// What a light is (rtpbr_light_desc.type). Zero: a polygon.
+typedef enum rtpbr_light_type {
+    RTPBR_LIGHT_POLYGON = 0,     // an area light: vertices, vertex_count, two_sided
+    RTPBR_LIGHT_POINT = 1,       // glTF KHR_lights_punctual's, evaluated exactly (no size):
+    RTPBR_LIGHT_SPOT = 2,        //   position, range; a spot's direction and cones;
+    RTPBR_LIGHT_DIRECTIONAL = 3, //   a directional light's direction
+} rtpbr_light_type;
+
+// A light. RTPBR_LIGHT_POLYGON (zero): a convex planar polygon emitting on its front side
+// (counter-clockwise vertices seen from the front, normal = right-hand rule), or on both sides.
+// The punctual types (docs/materials.md, "Punctual lights"): the radiance a surface reflects
+// toward V from a point or spot light at distance d in direction L is
+//   f(V, L) (N.L) emission W(d) / d^2  (x the spot's falloff),
+// W(d) = clamp(1 - (d / range)^4, 0, 1) (1 without a range); from a directional light
+// f(V, L) (N.L) emission, L = -direction.
 typedef struct rtpbr_light_desc {
-    float vertices[RTPBR_MAX_POLYGON_VERTICES][3]; // world space
-    uint32_t vertex_count;   // 3..RTPBR_MAX_POLYGON_VERTICES
-    float emission[3];       // radiance; zero: a light that contributes nothing
-    int two_sided;           // non-zero: emits on both sides. Default: front only
+    float vertices[RTPBR_MAX_POLYGON_VERTICES][3]; // polygon: world space
+    uint32_t vertex_count;   // polygon: 3..RTPBR_MAX_POLYGON_VERTICES; punctual: ignored
+    float emission[3];       // polygon: radiance; point, spot: intensity (candela, the
+                             // renderer's radiance unit x m^2); directional: illuminance (lux,
+                             // the radiance unit x sr). Zero: a light that contributes nothing
+    int two_sided;           // polygon: non-zero emits on both sides. Default: front only
+    rtpbr_light_type type;   // zero: a polygon
+    float position[3];       // point, spot: world space
+    float direction[3];      // spot, directional: the way the light travels (need not be unit;
+                             // non-zero)
+    float range;             // point, spot: > 0, where W(d) ends; zero: infinite
+    float inner_cone_angle;  // spot: radians, 0 <= inner <= outer <= pi/2; the falloff
+    float outer_cone_angle;  // t = clamp((cos - cos outer) / max(cos inner - cos outer, 1e-3),
+                             // 0, 1), times t^2 (KHR_lights_punctual); both zero: 0 and pi/4
 } rtpbr_light_desc;
 
 typedef struct rtpbr_camera_desc {

@@ -128,7 +128,7 @@ rtpbr_result rtpbr_lighting_tile_buffers_create(rtpbr_context *ctx, uint32_t til
 {
     rtpbr_result result = RTPBR_SUCCESS;
     VkDeviceSize tiles = (VkDeviceSize)tiles_x * tiles_y;
-    RTPBR_TRY(rtpbr_buffer_create_device(ctx, tiles * RTPBR_TILE_MASK_WORDS * sizeof(uint32_t),
+    RTPBR_TRY(rtpbr_buffer_create_device(ctx, tiles * RTPBR_TILE_MASK_STRIDE * sizeof(uint32_t),
                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, masks));
     RTPBR_TRY(rtpbr_buffer_create_device(ctx, RTPBR_TILE_CLASS_COUNT * (4 + tiles) * sizeof(uint32_t),
                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |

@@ -2,7 +2,9 @@
 // through a host bridge of its own: a white Lambertian surface (KHR specular 0, so the
 // specular lobe's scale is 0 whatever the tables hold) under a square light must give the
 // square's form factor in closed form (Howell's catalogue, C-10: a parallel rectangle on the
-// normal), and nothing where the light cannot reach.
+// normal), and nothing where the light cannot reach. The same surface under punctual lights
+// (RTPBR_AREA_LIGHT_PUNCTUAL 1: AreaLight_Add dispatching on Host_LightShape) gives their
+// closed forms from KHR_lights_punctual's text: I cos / (pi d^2) x window x cone falloff.
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
 
@@ -17,7 +19,17 @@ namespace {
 // The light: a square of half-size h at height d above the origin, facing down (or up).
 float g_half = 1.0f, g_height = 2.0f;
 bool g_faceDown = true, g_twoSided = false;
+// A punctual light instead (shape != 0): its position (w = 1 / range^2), direction and cone.
+uint g_shape = 0u;
+float4 g_position(0.0f);
+float3 g_direction(0.0f, 0.0f, -1.0f);
+float2 g_cone(-2.0f, 1.0f);
 } // namespace
+
+uint Host_LightShape(uint) { return g_shape; }
+float4 Host_LightPosition(uint) { return g_position; }
+float3 Host_LightDirection(uint) { return g_direction; }
+float2 Host_LightSpotCone(uint) { return g_cone; }
 
 uint Host_LightVertexCount(uint) { return 4u; }
 float3 Host_LightVertex(uint, uint k) {
@@ -39,6 +51,7 @@ float Host_TableEavg(float) { return 1.0f; }
 float Host_TableEFavg(float, float) { return 1.0f; }
 float Host_TableSheenE(float, float) { return 0.0f; }
 
+#define RTPBR_AREA_LIGHT_PUNCTUAL 1
 #include "rtpbr/area_light.h"
 
 #include <cstdarg>
@@ -98,7 +111,57 @@ void test_no_light_where_it_cannot_reach(void **) {
     g_faceDown = false;
     assert_true(lambert_radiance() == 0.0f);
 }
+
+// The white Lambertian surface at the origin under punctual lights against the closed forms.
+void test_punctual_closed_form(void **) {
+    const double pi = 3.14159265358979323846;
+    // point light at (0.3, -0.2, 2): cos / (pi d^2)
+    g_shape = RTPBR_PUNCTUAL_POINT;
+    g_position = float4(0.3f, -0.2f, 2.0f, 0.0f);
+    g_cone = float2(-2.0f, 1.0f);
+    double d2 = 0.09 + 0.04 + 4.0, expect = 2.0 / std::sqrt(d2) / (pi * d2);
+    double got = lambert_radiance();
+    print_message("point: %.7f (closed form %.7f)\n", got, expect);
+    assert_true(std::fabs(got - expect) <= 1e-5 * expect);
+    // its range: the window 1 - (d / range)^4 at range 2.5; beyond the range, nothing
+    g_position.w = 1.0f / (2.5f * 2.5f);
+    double q = d2 / 6.25, windowed = expect * (1.0 - q * q);
+    got = lambert_radiance();
+    print_message("point, range 2.5: %.7f (closed form %.7f)\n", got, windowed);
+    assert_true(std::fabs(got - windowed) <= 1e-5 * windowed);
+    g_position.w = 1.0f / (2.0f * 2.0f);
+    assert_true(lambert_radiance() == 0.0f);
+    g_position.w = 0.0f;
+    // below the horizon: nothing
+    g_position = float4(0.3f, -0.2f, -2.0f, 0.0f);
+    assert_true(lambert_radiance() == 0.0f);
+    // a spot straight above, pointing down, cones 0.1 and 0.3: the point's value inside the
+    // inner cone, nothing outside the outer one, the falloff t^2 between
+    g_shape = RTPBR_PUNCTUAL_SPOT;
+    g_position = float4(0.0f, 0.0f, 2.0f, 0.0f);
+    const double inner = 0.1, outer = 0.3;
+    g_cone = rtpbr::Punctual_SpotCone(float(inner), float(outer));
+    const float tilts[] = {0.0f, 0.15f, 0.25f, 0.35f}; // the spot's axis turned away from the point
+    for (float tilt : tilts) {
+        g_direction = float3(std::sin(tilt), 0.0f, -std::cos(tilt));
+        double t = (std::cos(double(tilt)) - std::cos(outer)) / (std::cos(inner) - std::cos(outer));
+        t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+        double spot = 1.0 / (pi * 4.0) * t * t;
+        got = lambert_radiance();
+        print_message("spot tilted %.2f: %.7f (closed form %.7f)\n", tilt, got, spot);
+        assert_true(std::fabs(got - spot) <= 1e-5 * spot + 1e-9);
+    }
+    // a directional light of illuminance 1 at 60 degrees: cos 60 / pi
+    g_shape = RTPBR_PUNCTUAL_DIRECTIONAL;
+    g_direction = float3(-std::sin(1.0471976f), 0.0f, -std::cos(1.0471976f));
+    expect = 0.5 / pi;
+    got = lambert_radiance();
+    print_message("directional: %.7f (closed form %.7f)\n", got, expect);
+    assert_true(std::fabs(got - expect) <= 1e-5 * expect);
+    g_shape = 0u;
+}
 } // namespace
 
 RTPBR_TEST_MAIN(cmocka_unit_test(test_lambert_closed_form),
-                cmocka_unit_test(test_no_light_where_it_cannot_reach))
+                cmocka_unit_test(test_no_light_where_it_cannot_reach),
+                cmocka_unit_test(test_punctual_closed_form))

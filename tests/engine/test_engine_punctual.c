@@ -1,0 +1,378 @@
+#define _DEFAULT_SOURCE // M_PI
+// Engine: punctual lights (KHR_lights_punctual's point, spot and directional lights; issue 30)
+// against their closed forms, computed here in double precision from the extension's text,
+// independently of the shader library:
+//   Lo = f (N.L) I W(d) S / d^2 (point, spot),  Lo = f (N.L) E (directional),
+//   W(d) = clamp(1 - (d / range)^4, 0, 1),  S = t^2, t = clamp((cd - cos outer) / (cos inner -
+//   cos outer), 0, 1).
+// A Lambertian plane (f = 0.8 / pi) under all four kinds, in the LTC pass and the Monte Carlo
+// pass (exact for punctual lights: no sample), a GGX metal plane (single scattering: D G / (4
+// N.L N.V), Smith's height-correlated G, F = 1), and shadows of an occluder, every pixel
+// checked.
+#include <stdlib.h>
+
+#include "engine_test.h"
+
+enum { W = 120, H = 90 };
+
+static const rtpbr_camera_desc camera = {.position = {0.3f, -0.2f, 3.0f}, .target = {0.2f, 0.0f, 0.0f}, .yfov = 1.2f,
+                                         .znear = 0.1f, .zfar = 100.0f};
+
+// The four lights: a point light, a spot light (tilted, cones 0.25 and 0.5 radians), a
+// directional light and a point light with a range that ends above the plane's middle.
+static const rtpbr_light_desc punctual_lights[4] = {
+    {.type = RTPBR_LIGHT_POINT, .position = {-1.0f, 0.5f, 1.5f}, .emission = {2.0f, 1.0f, 0.5f}},
+    {.type = RTPBR_LIGHT_SPOT, .position = {1.5f, -1.0f, 2.0f}, .direction = {-0.3f, 0.2f, -1.0f},
+     .inner_cone_angle = 0.25f, .outer_cone_angle = 0.5f, .emission = {6.0f, 6.0f, 6.0f}},
+    {.type = RTPBR_LIGHT_DIRECTIONAL, .direction = {0.3f, 0.2f, -1.0f}, .emission = {0.3f, 0.4f, 0.5f}},
+    {.type = RTPBR_LIGHT_POINT, .position = {0.5f, 1.5f, 0.6f}, .range = 1.5f, .emission = {0.5f, 0.5f, 2.0f}},
+};
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// Light l at the plane's point p (normal +Z): the unit direction to it in L and the factor its
+// emission is multiplied by (W S / d^2, or 1), from the extension's text; 0 when it is off.
+static double incident(const rtpbr_light_desc *l, const double p[3], double L[3])
+{
+    double dir[3] = {l->direction[0], l->direction[1], l->direction[2]};
+    double dl = sqrt(dot3(dir, dir));
+    if (l->type == RTPBR_LIGHT_DIRECTIONAL) {
+        for (int k = 0; k < 3; ++k) L[k] = -dir[k] / dl;
+        return 1.0;
+    }
+    double d[3] = {l->position[0] - p[0], l->position[1] - p[1], l->position[2] - p[2]};
+    double d2 = dot3(d, d), dist = sqrt(d2);
+    for (int k = 0; k < 3; ++k) L[k] = d[k] / dist;
+    double factor = 1.0 / d2;
+    if (l->range > 0.0f) {
+        double q = dist / l->range;
+        factor *= fmin(fmax(1.0 - q * q * q * q, 0.0), 1.0);
+    }
+    if (l->type == RTPBR_LIGHT_SPOT) {
+        double cd = -dot3(dir, L) / dl, co = cos(l->outer_cone_angle), ci = cos(l->inner_cone_angle);
+        double t = fmin(fmax((cd - co) / (ci - co), 0.0), 1.0);
+        factor *= t * t;
+    }
+    return factor;
+}
+
+// The anisotropic lobe of ggx_single: alpha_t along (cos, sin) of this angle in the plane's
+// xy (the tangent +X turned toward the bitangent +Y), alpha_b across it; 0: isotropic.
+static double aniso_alpha_t, aniso_angle;
+
+// Smith's Lambda of direction w (anisotropic GGX: Heitz 2014, "Understanding the
+// Masking-Shadowing Function", Eq. 86).
+static double ggx_lambda(const double w[3], double at, double ab, double c, double s)
+{
+    double wt = c * w[0] + s * w[1], wb = -s * w[0] + c * w[1];
+    return (-1.0 + sqrt(1.0 + (at * at * wt * wt + ab * ab * wb * wb) / (w[2] * w[2]))) / 2.0;
+}
+
+// Smith's height-correlated GGX masking-shadowing, D and the specular BRDF (F = 1) at alpha
+// (alpha_b; alpha_t = aniso_alpha_t when set).
+static double ggx_single(const double wo[3], const double wi[3], double alpha)
+{
+    double at = aniso_alpha_t > 0.0 ? aniso_alpha_t : alpha, ab = alpha;
+    double c = cos(aniso_angle), sn = sin(aniso_angle);
+    double h[3] = {wo[0] + wi[0], wo[1] + wi[1], wo[2] + wi[2]};
+    double hl = sqrt(dot3(h, h));
+    for (int k = 0; k < 3; ++k) h[k] /= hl;
+    double ht = c * h[0] + sn * h[1], hb = -sn * h[0] + c * h[1];
+    double q = (ht / at) * (ht / at) + (hb / ab) * (hb / ab) + h[2] * h[2];
+    double D = 1.0 / (M_PI * at * ab * q * q);
+    double lo = ggx_lambda(wo, at, ab, c, sn), li = ggx_lambda(wi, at, ab, c, sn);
+    return D / (1.0 + lo + li) / (4.0 * wo[2] * wi[2]);
+}
+
+// The expected radiance at p, toward the camera, of the plane (Lambert 0.8, or the GGX metal
+// of alpha > 0), from lights[0 .. n), light l weighted by visible[l] (1 without shadows).
+static void expected(const rtpbr_light_desc *lights, int n, const double visible[], double alpha, const double p[3],
+                     double out[3])
+{
+    double wo[3] = {camera.position[0] - p[0], camera.position[1] - p[1], camera.position[2] - p[2]};
+    double ol = sqrt(dot3(wo, wo));
+    for (int k = 0; k < 3; ++k) wo[k] /= ol;
+    out[0] = out[1] = out[2] = 0.0;
+    for (int l = 0; l < n; ++l) {
+        double L[3];
+        double factor = incident(&lights[l], p, L) * visible[l];
+        if (!(L[2] > 0.0) || factor == 0.0) continue;
+        double f = alpha > 0.0 ? ggx_single(wo, L, alpha) : 0.8 / M_PI;
+        for (int c = 0; c < 3; ++c) out[c] += f * L[2] * lights[l].emission[c] * factor;
+    }
+}
+
+// Every pixel of the plane (or those `filter` keeps, with its visibilities) against
+// expected() for `lights` (n of them): the largest error relative to the pixel's value plus
+// `floor` (an absolute allowance where the radiance is near 0), over every channel, or over
+// the red one alone (red_only). *checked_out: the pixels compared.
+typedef bool (*pixel_filter)(const double p[3], double visible[]);
+static double largest_error(const float *px, const rtpbr_light_desc *lights, int n, double alpha, double floor,
+                            pixel_filter filter, bool red_only, int *checked_out)
+{
+    int checked = 0;
+    double worst = 0.0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            double p[3], visible[4] = {1.0, 1.0, 1.0, 1.0}, want[3];
+            if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
+            if (filter && !filter(p, visible)) continue;
+            expected(lights, n, visible, alpha, p, want);
+            for (int c = 0; c < (red_only ? 1 : 3); ++c)
+                worst = fmax(worst, fabs(px[4 * (y * W + x) + c] - want[c]) / (want[c] + floor));
+            ++checked;
+        }
+    if (checked_out) *checked_out = checked;
+    return worst;
+}
+
+// largest_error over every channel must be at most `bound`, over more than min_pixels pixels.
+static void compare(const float *px, double alpha, double bound, double floor, pixel_filter filter, int min_pixels,
+                    const char *what)
+{
+    int checked = 0;
+    double worst = largest_error(px, punctual_lights, 4, alpha, floor, filter, false, &checked);
+    printf("%s: %d pixels, largest error %.3g (bound %.3g)\n", what, checked, worst, bound);
+    assert_true(worst <= bound);
+    assert_true(checked > min_pixels);
+}
+
+// The plane z = 0 of `material` under `lights` (4), seen by the camera; `mesh`: its mesh, with
+// positions in `plane` (tangent +X where tangents are given).
+static const float plane_normals[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+static const float plane_tangents[16] = {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1};
+static rtpbr_gpu_scene *plane_scene(rtpbr_context *ctx, const rtpbr_material_desc *material,
+                                    const rtpbr_light_desc *lights, float plane[12], rtpbr_mesh_desc *mesh)
+{
+    square_positions(4.0f, 0.0f, plane);
+    *mesh = (rtpbr_mesh_desc){.positions = plane, .normals = plane_normals, .tangents = plane_tangents,
+                              .indices = square_indices, .vertex_count = 4, .index_count = 6};
+    return test_mesh_scene(ctx, mesh, material, lights, 4, &camera);
+}
+
+// One render of the plane scene with `desc` (the caller frees the pixels).
+static float *render_plane(rtpbr_context *ctx, const rtpbr_material_desc *material, const rtpbr_light_desc *lights,
+                           const rtpbr_render_desc *desc)
+{
+    float plane[12];
+    rtpbr_mesh_desc mesh;
+    rtpbr_gpu_scene *scene = plane_scene(ctx, material, lights, plane, &mesh);
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
+    float *px = test_render_radiance(r, scene, desc, W, H);
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+    return px;
+}
+
+// A Lambertian plane under the four lights: the LTC pass (basic and full variants:
+// multiscatter on and off) and the Monte Carlo pass. Float rounding only (the G-buffer's depth
+// and the float light record): 1e-3 relative, 1e-5 absolute where a light's window or cone ends.
+static void lambert_plane(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    const struct {
+        rtpbr_render_desc desc;
+        const char *what;
+    } passes[] = {
+        {{.multiscatter = RTPBR_MULTISCATTER_ON}, "lambert, LTC pass"},
+        {{.multiscatter = RTPBR_MULTISCATTER_OFF}, "lambert, LTC pass, no multiscatter"},
+        {{.mc_samples = 4, .mc_seed = 3}, "lambert, Monte Carlo pass"},
+    };
+    for (size_t i = 0; i < sizeof passes / sizeof passes[0]; ++i) {
+        float *px = render_plane(ctx, &test_lambert_material, punctual_lights, &passes[i].desc);
+        compare(px, 0.0, 1e-3, 1e-5, NULL, W * H / 2, passes[i].what);
+        free(px);
+    }
+}
+
+// The lights must each be there: a render without the spot differs from the closed form with
+// it, in its cone.
+static void each_light_counts(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    rtpbr_light_desc lights[4];
+    memcpy(lights, punctual_lights, sizeof lights);
+    lights[1].emission[0] = lights[1].emission[1] = lights[1].emission[2] = 0.0f;
+    float *px = render_plane(ctx, &test_lambert_material, lights, &(rtpbr_render_desc){0});
+    int lit = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            double p[3], L[3];
+            if (test_plane_point(&camera, x, y, W, H, p) && incident(&punctual_lights[1], p, L) > 0.0) ++lit;
+        }
+    double worst = largest_error(px, punctual_lights, 4, 0.0, 1e-5, NULL, true, NULL);
+    printf("without the spot: %d pixels in its cone; largest error against the closed form with it %.3g\n", lit, worst);
+    assert_true(lit > 200);
+    assert_true(worst > 0.1);
+    free(px);
+}
+
+// A GGX metal plane (base colour 1, metallic 1: F = 1; roughness 0.625, alpha 0.390625: exact
+// in the G-buffer's half float, where 0.6 would be stored as 0.59961, 0.25% on the highlight's
+// peak) under the four lights, multiple scattering off: the single-scattering closed form.
+static void ggx_plane(void **state)
+{
+    const rtpbr_material_desc metal = {.base_color = {1.0f, 1.0f, 1.0f}, .metallic = 1.0f, .roughness = 0.625f};
+    float *px = render_plane(test_env_context(state), &metal, punctual_lights,
+                             &(rtpbr_render_desc){.multiscatter = RTPBR_MULTISCATTER_OFF});
+    compare(px, 0.390625, 1e-3, 1e-5, NULL, W * H / 2, "GGX metal, LTC pass");
+    free(px);
+}
+
+// The same plane anisotropic (KHR_materials_anisotropy strength 0.6, rotation 0.4 from the
+// mesh's tangent +X): alpha_t = mix(alpha, 1, 0.36) along (cos 0.4, sin 0.4, 0), alpha_b =
+// alpha; the full lighting variant, the BRDF's frame turned to the anisotropy direction.
+static void anisotropic_plane(void **state)
+{
+    const rtpbr_material_desc metal = {.base_color = {1.0f, 1.0f, 1.0f}, .metallic = 1.0f, .roughness = 0.625f,
+                                       .anisotropy_strength = 0.6f, .anisotropy_rotation = 0.4f};
+    float *px = render_plane(test_env_context(state), &metal, punctual_lights,
+                             &(rtpbr_render_desc){.multiscatter = RTPBR_MULTISCATTER_OFF});
+    aniso_alpha_t = 0.390625 + (1.0 - 0.390625) * 0.36;
+    aniso_angle = 0.4;
+    compare(px, 0.390625, 1e-3, 1e-5, NULL, W * H / 2, "anisotropic GGX metal, LTC pass");
+    // and not the isotropic lobe
+    aniso_alpha_t = 0.0;
+    double iso = largest_error(px, punctual_lights, 4, 0.390625, 1e-5, NULL, true, NULL);
+    printf("anisotropic plane against the isotropic closed form: largest error %.3g\n", iso);
+    assert_true(iso > 0.1);
+    free(px);
+}
+
+// Shadows: a square occluder at z = 0.8 under the point light (light 0) and in the way of the
+// directional light (light 2), facing the plane. Its shadow from each light, computed here, is
+// 0; elsewhere the
+// closed form (the denoiser off); pixels within 0.01 of a shadow's edge or showing the occluder
+// are skipped.
+static const double occluder_z = 0.8, occluder_min[2] = {-1.4, 0.1}, occluder_max[2] = {-0.6, 0.9};
+
+// How far the segment from p toward light l (unit direction L) passes inside the occluder's
+// square at its height: > 0 inside, < 0 outside (in distance from the nearest edge); -1 when it
+// does not reach that height.
+static double occluder_depth(const double p[3], const double L[3])
+{
+    if (!(L[2] > 0.0)) return -1.0;
+    double t = (occluder_z - p[2]) / L[2];
+    double q[2] = {p[0] + t * L[0], p[1] + t * L[1]};
+    double inside = 1e30;
+    for (int k = 0; k < 2; ++k) inside = fmin(inside, fmin(q[k] - occluder_min[k], occluder_max[k] - q[k]));
+    return inside;
+}
+
+static bool shadow_filter(const double p[3], double visible[])
+{
+    // The camera ray hits the occluder first?
+    double e[3] = {camera.position[0] - p[0], camera.position[1] - p[1], camera.position[2] - p[2]};
+    double el = sqrt(dot3(e, e));
+    for (int k = 0; k < 3; ++k) e[k] /= el;
+    if (occluder_depth(p, e) > -0.05) return false;
+    for (int l = 0; l < 4; ++l) {
+        double L[3];
+        incident(&punctual_lights[l], p, L);
+        if (l == 1 || l == 3) continue; // the spot and the ranged light: no occluder in their way
+        if (l == 0 && punctual_lights[0].position[2] < occluder_z) continue;
+        double depth = occluder_depth(p, L);
+        if (fabs(depth) < 0.01) return false;
+        visible[l] = depth > 0.0 ? 0.0 : 1.0;
+    }
+    return true;
+}
+
+// The pixels shadow_filter keeps, every light visible.
+static bool shadow_pixels(const double p[3], double visible[])
+{
+    (void)visible;
+    double unused[4];
+    return shadow_filter(p, unused);
+}
+
+static void shadows(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    float plane[12];
+    float occluder[12] = {(float)occluder_min[0], (float)occluder_min[1], (float)occluder_z,
+                          (float)occluder_max[0], (float)occluder_min[1], (float)occluder_z,
+                          (float)occluder_max[0], (float)occluder_max[1], (float)occluder_z,
+                          (float)occluder_min[0], (float)occluder_max[1], (float)occluder_z};
+    // facing down, toward the plane: a one-sided triangle blocks rays that meet its front
+    // (the shadow rays go up); the camera above sees its back, which is culled
+    static const uint32_t down[6] = {0, 2, 1, 0, 3, 2};
+    rtpbr_mesh_desc meshes[2] = {test_square_mesh(4.0f, 0.0f, plane),
+                                 {.positions = occluder, .indices = down, .vertex_count = 4, .index_count = 6}};
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = meshes, .mesh_count = 2,
+                                                                      .materials = &test_lambert_material,
+                                                                      .material_count = 1,
+                                                                      .lights = punctual_lights, .light_count = 4,
+                                                                      .cameras = &camera, .camera_count = 1});
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
+    // The denoiser off: each pixel's own ray (its filter would blur the edges over several pixels).
+    float *px = test_render_radiance(
+        r, scene, &(rtpbr_render_desc){.shadows = RTPBR_SHADOWS_ON, .shadow_denoiser = RTPBR_SHADOW_DENOISER_OFF}, W, H);
+    int umbra = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            double p[3], visible[4] = {1, 1, 1, 1};
+            if (test_plane_point(&camera, x, y, W, H, p) && fabs(p[0]) < 3.9 && fabs(p[1]) < 3.9 &&
+                shadow_filter(p, visible) && (visible[0] == 0.0 || visible[2] == 0.0))
+                ++umbra;
+        }
+    printf("shadows on: %d pixels in a shadow\n", umbra);
+    assert_true(umbra > 100);
+    // An absolute allowance of 1e-3 x 1e-2 (a light leaking 1% through the occluder is 7e-4
+    // here): where the other lights are in shadow, the ranged light's window ends steeply
+    // (dW/dd = -4 d^3 / range^4) and the position from the depth buffer is off by ~1e-5:
+    // 2.5e-6 of 2.2e-4.
+    compare(px, 0.0, 1e-3, 1e-2, shadow_filter, W * H / 3, "shadows on");
+    free(px);
+    // Without shadows the same pixels are lit as if the occluder were not there.
+    px = test_render_radiance(r, scene, &(rtpbr_render_desc){.shadows = RTPBR_SHADOWS_OFF}, W, H);
+    compare(px, 0.0, 1e-3, 1e-5, shadow_pixels, W * H / 3, "shadows off, against the unshadowed closed form");
+    free(px);
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+}
+
+// Bad punctual lights are refused with RTPBR_ERROR_INVALID_ARGUMENT, before the GPU.
+static void bad_lights(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    float plane[12];
+    rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
+    const rtpbr_light_desc bad[] = {
+        {.type = (rtpbr_light_type)7, .emission = {1, 1, 1}},
+        {.type = RTPBR_LIGHT_POINT, .position = {0, 0, NAN}, .emission = {1, 1, 1}},
+        {.type = RTPBR_LIGHT_POINT, .emission = {1, -1, 1}},
+        {.type = RTPBR_LIGHT_POINT, .range = -1.0f, .emission = {1, 1, 1}},
+        {.type = RTPBR_LIGHT_SPOT, .emission = {1, 1, 1}},                                       // no direction
+        {.type = RTPBR_LIGHT_SPOT, .direction = {0, 0, -1}, .inner_cone_angle = 0.5f, .outer_cone_angle = 0.4f},
+        {.type = RTPBR_LIGHT_SPOT, .direction = {0, 0, -1}, .outer_cone_angle = 2.0f},
+        {.type = RTPBR_LIGHT_DIRECTIONAL, .direction = {0, INFINITY, 0}, .emission = {1, 1, 1}},
+        {.type = RTPBR_LIGHT_DIRECTIONAL, .emission = {1, 1, 1}},                                // no direction
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        rtpbr_gpu_scene *scene = NULL;
+        rtpbr_result result = rtpbr_gpu_scene_create(
+            ctx,
+            &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1, .materials = &test_lambert_material,
+                                    .material_count = 1, .lights = &bad[i], .light_count = 1},
+            &scene);
+        if (result != RTPBR_ERROR_INVALID_ARGUMENT) fail_msg("bad light %zu: result %d", i, (int)result);
+        assert_null(scene);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        test_env_case(lambert_plane),
+        test_env_case(each_light_counts),
+        test_env_case(ggx_plane),
+        test_env_case(anisotropic_plane),
+        test_env_case(shadows),
+        test_env_case(bad_lights),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
