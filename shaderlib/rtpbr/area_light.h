@@ -315,17 +315,6 @@ RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_
     return px;
 }
 
-// Light i's reflected radiance at P per unit of its radiance, in lo; false (lo unset) when
-// the light cannot contribute: P on its plane, behind a one-sided light, its bounding sphere
-// below the horizon, or nothing of it above the horizon. Every lobe's polygon integral: LTC
-// (ltc.h) for the specular lobes and Burley's diffuse, the clipped polygon's vector form
-// factor F for Lambert, Kulla-Conty (kulla_conty.h) for the multiple-scattering lobes and the
-// dielectric-over-diffuse layering: separable lobes (f_ms, the layered base) integrate as
-// (1 - E(mu_o)) / (1 - E_avg) x the form factor x (1 - the cosine-weighted mean of E over the
-// polygon), from E at the representative direction (F's) widened towards E_avg with the
-// polygon's size (KC_PolygonLobe, KC_PolygonMeanE). Disney's subsurface shape and sheen are
-// evaluated at the representative direction x pi x the form factor; its GTR1 coat is
-// integrated as GGX at the same alpha.
 #if RTPBR_AREA_LIGHT_PUNCTUAL
 // Punctual light i (shape, punctual.h) at P: exact, the surface's BRDF (Surface_Evaluate) in
 // the direction of the light, added to sum (AreaLight_Add: AreaLightSum.punctual; a host
@@ -357,6 +346,17 @@ RTPBR_FN void AreaLight_AddPunctual(RTPBR_INOUT(rtpbr_float3) sum, ShadingSurfac
 }
 #endif
 
+// Light i's reflected radiance at P per unit of its radiance, in lo; false (lo unset) when
+// the light cannot contribute: P on its plane, behind a one-sided light, its bounding sphere
+// below the horizon, or nothing of it above the horizon. Every lobe's polygon integral: LTC
+// (ltc.h) for the specular lobes and Burley's diffuse, the clipped polygon's vector form
+// factor F for Lambert, Kulla-Conty (kulla_conty.h) for the multiple-scattering lobes and the
+// dielectric-over-diffuse layering: separable lobes (f_ms, the layered base) integrate as
+// (1 - E(mu_o)) / (1 - E_avg) x the form factor x (1 - the cosine-weighted mean of E over the
+// polygon), from E at the representative direction (F's) widened towards E_avg with the
+// polygon's size (KC_PolygonLobe, KC_PolygonMeanE). Disney's subsurface shape and sheen are
+// evaluated at the representative direction x pi x the form factor; its GTR1 coat is
+// integrated as GGX at the same alpha.
 RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                            rtpbr_float3 N, uint i) {
 #if RTPBR_AREA_LIGHT_PUNCTUAL == 1
