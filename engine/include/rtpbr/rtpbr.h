@@ -605,7 +605,8 @@ typedef struct rtpbr_render_desc {
     // between the tile's bounding box and the light's bounding sphere) is below this value:
     // its diffuse contribution is then below emission * albedo * light_cull_form_factor.
     // Glossy reflections of a culled light are lost with it. Zero: 1e-4; negative: only
-    // the exact test.
+    // the exact test. Punctual lights (KHR_lights_punctual) are not held to this bound: they
+    // are skipped only where the tile is beyond their range (exact: their window is 0 there).
     float light_cull_form_factor;
     // The lighting pass. Zero (default): LTC (the real-time pass). N > 0: a brute-force Monte
     // Carlo reference pass of the same direct-lighting integral and material model, N samples
