@@ -148,7 +148,7 @@ static void print_markdown(const options *opt, const family_result *results, con
         printf("\n");
     }
     if (pair_count == 0) return;
-    printf("## Per light (build with 2 lights minus build with 1: -D%s1 / 2)\n\n", SS_FIXED_LIGHTS_DEFINE + 2);
+    printf("## Per light (build with 2 lights minus build with 1: -D%s1 / 2)\n\n", &SS_FIXED_LIGHTS_DEFINE[2]);
     printf("| light loop | chip |");
     for (size_t s = 0; s < sizeof per_light_stats / sizeof *per_light_stats; ++s)
         printf(" %s |", ss_statistic_columns[per_light_stats[s]]);

@@ -569,7 +569,6 @@ void test_multibounce_point(void **) {
         const char *names[3] = {"room-depth1", "room-depth2", "room-depth16"};
         img[k] = renderImage(room.b, s, n, n, names[k]);
     }
-    MeanEstimator diff;
     double sumImg = 0.0, sumRef = 0.0, sumVar = 0.0, sumDeep = 0.0, varDeep = 0.0;
     for (uint32_t y = y0; y < y1; y++)
         for (uint32_t x = x0; x < x1; x++) {
