@@ -787,6 +787,7 @@ bool lights_from_khr_punctual(Context& ctx, const tinygltf::Model& model, Scene&
         } else if (L.range > 0.0) {
             ctx.warn("node %d: KHR_lights_punctual light %d: range ignored on a directional light", node, index);
         }
+        if (p.type == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL) p.angular_diameter = RTPBR_GLTF_SUN_ANGULAR_DIAMETER;
         if (p.type == RTPBR_GLTF_PUNCTUAL_SPOT) {
             p.inner_cone_angle = float(L.spot.innerConeAngle);
             p.outer_cone_angle = float(L.spot.outerConeAngle);

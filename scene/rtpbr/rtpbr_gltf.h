@@ -459,12 +459,19 @@ typedef struct rtpbr_gltf_light {
 } rtpbr_gltf_light;
 
 /* A KHR_lights_punctual light on a node, in world space: a point, a spot or
- * a directional light (the extension's text). Evaluated exactly as a delta
- * light: no size (radius 0, angular diameter 0). One per node that references
+ * a directional light (the extension's text). Point and spot lights are
+ * evaluated exactly as delta lights (no size); a directional light is the
+ * sun's disk, of angular_diameter (the extension has no size: every
+ * directional light gets RTPBR_GLTF_SUN_ANGULAR_DIAMETER; a program may set 0,
+ * a true direction, evaluated exactly). One per node that references
  * a light (two nodes referencing one light: two entries), in node traversal
  * order; the node's scale changes neither intensity, range nor cones. The
  * angles and range are checked in double precision, as written in the file,
  * then rounded to float. */
+/* The sun's mean angular diameter seen from the Earth, 0.53 degrees, in
+ * radians (the default angular_diameter of a directional light). */
+#define RTPBR_GLTF_SUN_ANGULAR_DIAMETER 0.00925f
+
 typedef enum rtpbr_gltf_punctual_type {
     RTPBR_GLTF_PUNCTUAL_POINT = 0,
     RTPBR_GLTF_PUNCTUAL_SPOT = 1,
@@ -495,6 +502,11 @@ typedef struct rtpbr_gltf_punctual_light {
                                clamp((cos - cos outer) / max(cos inner - cos
                                outer, 1e-3), 0, 1), times t². Both 0 for
                                point and directional lights                 */
+    float angular_diameter; /* directional: the disk's full apex angle,
+                               radians, in [0, pi/2): its illuminance at
+                               normal incidence is `intensity`, its radiance
+                               intensity / (pi sin^2(angular_diameter / 2));
+                               0 = a true direction. Point, spot: 0         */
     int32_t gltf_node;      /* the node carrying it                         */
     int32_t gltf_light;     /* index in KHR_lights_punctual.lights          */
 } rtpbr_gltf_punctual_light;

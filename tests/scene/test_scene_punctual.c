@@ -115,6 +115,9 @@ static void test_defaults(void** state) {
         const int spot = l->type == RTPBR_GLTF_PUNCTUAL_SPOT;
         assert_true(l->inner_cone_angle == 0.0f);
         assert_true(l->outer_cone_angle == (spot ? (float)(TS_PI / 4.0) : 0.0f));
+        /* the sun's 0.53 degrees (0.53 pi / 180 = 0.0092502 rad) on directional lights only */
+        const int directional = l->type == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL;
+        assert_true(fabs(l->angular_diameter - (directional ? 0.53 * TS_PI / 180.0 : 0.0)) < 1e-6);
         assert_int_equal(l->gltf_node, (int32_t)i);
         assert_int_equal(l->gltf_light, (int32_t)i);
     }
