@@ -19,6 +19,8 @@
 //       cull_form_factor. Glossy reflections of such a light are dropped with it (a bias
 //       bounded only for the diffuse term). cull_form_factor < 0 disables this test.
 // A punctual light (point, spot, directional) is kept unless the box is beyond its range (3).
+// A directional light's disk (a polygon far away, rtpbr_shader_light.sun) is not held to (2): its
+// form factor is small (the sun's: 2e-5) but its radiance large.
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
@@ -53,7 +55,7 @@ bool light_may_contribute(uint i, vec3 boxMin, vec3 boxMax)
         }
         if (!anyInFront) return false;
     }
-    if (frame.cull_form_factor >= 0.0f) {
+    if (frame.cull_form_factor >= 0.0f && lights[i].sun == 0u) {
         vec4 sphere = lights[i].sphere;
         vec3 nearest = clamp(sphere.xyz, boxMin, boxMax);
         float d = length(sphere.xyz - nearest) - sphere.w;

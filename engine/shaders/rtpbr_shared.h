@@ -238,7 +238,7 @@
     F(S, UINT, vertex_count, ) /* 3 .. RTPBR_SHADER_MAX_POLYGON_VERTICES; punctual: 0 */          \
     F(S, FLOAT, area, )                                                                            \
     F(S, UINT, shape, )        /* RTPBR_LIGHT_SHAPE_* (= rtpbr_light_type) */                     \
-    F(S, UINT, pad1, )
+    F(S, UINT, sun, )          /* 1: a directional light's disk (a far polygon): no distance cull */
 
 // A light's shape (rtpbr_shader_light.shape): the values of rtpbr_light_type (rtpbr.h) and of
 // the shader library's RTPBR_PUNCTUAL_* (punctual.h); both checked (internal.h, shade_lights.glsl).

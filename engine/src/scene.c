@@ -47,6 +47,12 @@ static rtpbr_result validate_punctual(const rtpbr_context *ctx, const rtpbr_ligh
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has a negative range (%g; zero: infinite)", index, l->range);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
+    if (l->type == RTPBR_LIGHT_DIRECTIONAL && !(isfinite(l->angular_diameter) && l->angular_diameter < LIGHT_PI / 2.0)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                  "light %u (directional) has angular diameter %g radians; below pi/2 is required (zero: the sun's "
+                  "0.53 degrees; negative: a true direction)", index, l->angular_diameter);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
     double len2 = 0.0;
     for (int k = 0; k < 3; ++k) len2 += (double)l->direction[k] * l->direction[k];
     if (l->type != RTPBR_LIGHT_POINT && !(len2 > 1e-30)) {
@@ -163,8 +169,66 @@ static void punctual_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
     *out = g;
 }
 
+// A directional light with an angular diameter (rtpbr_light_desc): a regular octagon of its
+// disk's area, at RTPBR_SUN_DISTANCE from the origin toward the light, facing the origin, of the
+// radiance that gives `emission` at normal incidence (the octagon's form factor there, Lambert's
+// polygon formula in double precision); a polygon record, marked to be kept by the cull
+// whatever its form factor (RTPBR_LIGHT_FIELDS: sun).
+static void sun_record(const rtpbr_light_desc *l, double diameter, rtpbr_shader_light *out)
+{
+    enum { N = 8 };
+    double len = sqrt((double)l->direction[0] * l->direction[0] + (double)l->direction[1] * l->direction[1] +
+                      (double)l->direction[2] * l->direction[2]);
+    double w[3]; // toward the light
+    for (int k = 0; k < 3; ++k) w[k] = -l->direction[k] / len;
+    // t1, t2: an orthonormal basis of the disk's plane (Duff et al. 2017, branchless ONB)
+    double sign = w[2] >= 0.0 ? 1.0 : -1.0, a = -1.0 / (sign + w[2]), b = w[0] * w[1] * a;
+    double t1[3] = {1.0 + sign * w[0] * w[0] * a, sign * b, -sign * w[0]};
+    double t2[3] = {b, sign + w[1] * w[1] * a, -w[1]};
+    // At unit distance: the disk's radius tan(d/2), the octagon's circumradius for the same
+    // area (pi r^2 = (N/2) R^2 sin(2 pi / N)).
+    double r = tan(0.5 * diameter), R = r * sqrt(LIGHT_PI / (0.5 * N * sin(2.0 * LIGHT_PI / N)));
+    double u[N][3];
+    for (int v = 0; v < N; ++v) {
+        // clockwise about w seen from the light's side: counter-clockwise about -w, the way the
+        // light travels (the emitting side, rtpbr_gltf_polygon_facts' normal)
+        double phi = -2.0 * LIGHT_PI * v / N;
+        for (int k = 0; k < 3; ++k) u[v][k] = w[k] + R * (cos(phi) * t1[k] + sin(phi) * t2[k]);
+    }
+    // The form factor at the origin (Lambert: (1 / 2 pi) sum of the edges' angles x their
+    // planes' normals . the surface normal w).
+    double ff = 0.0;
+    for (int v = 0; v < N; ++v) {
+        const double *p = u[v], *q = u[(v + 1) % N];
+        double c[3] = {p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]};
+        double cl = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        double dot = p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
+        ff += atan2(cl, dot) * (c[0] * w[0] + c[1] * w[1] + c[2] * w[2]) / cl;
+    }
+    ff = fabs(ff) / (2.0 * LIGHT_PI);
+    rtpbr_light_desc poly = {0};
+    poly.vertex_count = N;
+    for (int v = 0; v < N; ++v)
+        for (int k = 0; k < 3; ++k) poly.vertices[v][k] = (float)(u[v][k] * RTPBR_SUN_DISTANCE);
+    for (int k = 0; k < 3; ++k) poly.emission[k] = (float)(l->emission[k] / (LIGHT_PI * ff));
+    rtpbr_gltf_polygon_facts facts;
+    rtpbr_gltf_polygon_facts_of(poly.vertices, poly.vertex_count, &facts);
+    rtpbr_light_record(&poly, &facts, out);
+    out->sun = 1u;
+}
+
+// The angular diameter a directional light is shaded with (rtpbr_light_desc); 0: a true direction.
+static double directional_diameter(const rtpbr_light_desc *l)
+{
+    return l->angular_diameter == 0.0f ? (double)RTPBR_SUN_ANGULAR_DIAMETER : l->angular_diameter > 0.0f ? l->angular_diameter : 0.0;
+}
+
 void rtpbr_light_record(const rtpbr_light_desc *l, const rtpbr_gltf_polygon_facts *f, rtpbr_shader_light *out)
 {
+    if (l->type == RTPBR_LIGHT_DIRECTIONAL && directional_diameter(l) > 0.0) {
+        sun_record(l, directional_diameter(l), out);
+        return;
+    }
     if (l->type != RTPBR_LIGHT_POLYGON) {
         punctual_record(l, out);
         return;

@@ -217,6 +217,11 @@ RTPBR_API const char *rtpbr_context_device_name(const rtpbr_context *context);
 // the shaders' RTPBR_SHADER_MAX_POLYGON_VERTICES (checked in engine/src/internal.h) and
 // shaderlib's RTPBR_LTC_MAX_VERTICES (checked in engine/shaders/vertex_limit.glsl).
 #define RTPBR_MAX_POLYGON_VERTICES 8u
+// A directional light's default angular diameter: the sun's mean, 0.53 degrees (radians).
+#define RTPBR_SUN_ANGULAR_DIAMETER 0.00925f
+// Where a directional light's disk is placed, from the world origin (its parallax at a point
+// at distance r from the origin is r / RTPBR_SUN_DISTANCE radians: 1e-5 at 1 km).
+#define RTPBR_SUN_DISTANCE 1.0e8f
 #define RTPBR_MAX_MATERIALS 65536u
 #define RTPBR_MAX_RENDER_SIZE 16384u     // width and height of a renderer
 
@@ -433,6 +438,13 @@ typedef struct rtpbr_light_desc {
     float inner_cone_angle;  // spot: radians, 0 <= inner <= outer <= pi/2; the falloff
     float outer_cone_angle;  // t = clamp((cos - cos outer) / max(cos inner - cos outer, 1e-3),
                              // 0, 1), times t^2 (KHR_lights_punctual); both zero: 0 and pi/4
+    float angular_diameter;  // directional: the full apex angle of the light's disk, radians,
+                             // < pi/2; zero: RTPBR_SUN_ANGULAR_DIAMETER; negative: a true
+                             // direction (a delta light, evaluated exactly). The disk is shaded
+                             // as an equal-area octagon at RTPBR_SUN_DISTANCE from the origin
+                             // (a polygon light: soft shadows, glossy highlights of its size),
+                             // of the radiance that gives `emission` lux at normal incidence.
+                             // Point, spot: ignored
 } rtpbr_light_desc;
 
 typedef struct rtpbr_camera_desc {
