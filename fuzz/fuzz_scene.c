@@ -193,6 +193,9 @@ static void check_scene(const rtpbr_gltf_scene* s) {
                   l->outer_cone_angle <= 1.5707964f,
               "cones in range");
         check(l->type == RTPBR_GLTF_PUNCTUAL_SPOT || l->outer_cone_angle == 0.0f, "cones only on spots");
+        check(l->type == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL ? l->angular_diameter == RTPBR_GLTF_SUN_ANGULAR_DIAMETER
+                                                         : l->angular_diameter == 0.0f,
+              "the sun's angular diameter on directional lights only");
         check(l->gltf_node >= 0 && l->gltf_light >= 0, "punctual sources");
     }
 }

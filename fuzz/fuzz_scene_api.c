@@ -115,6 +115,7 @@ static void read_lights(reader* in, rtpbr_light_desc* lights, uint32_t count) {
             lights[i].range = number(in);
             lights[i].inner_cone_angle = number(in);
             lights[i].outer_cone_angle = number(in);
+            lights[i].angular_diameter = number(in);
         }
     }
 }

@@ -217,10 +217,13 @@ static void sun_record(const rtpbr_light_desc *l, double diameter, rtpbr_shader_
     out->sun = 1u;
 }
 
-// The angular diameter a directional light is shaded with (rtpbr_light_desc); 0: a true direction.
+// The angular diameter a directional light is shaded with (rtpbr_light_desc); 0: a true
+// direction, also below RTPBR_SUN_MIN_ANGULAR_DIAMETER (the float octagon's edge integrals would
+// lose the disk there; nothing but a mirror tells it from a direction).
 static double directional_diameter(const rtpbr_light_desc *l)
 {
-    return l->angular_diameter == 0.0f ? (double)RTPBR_SUN_ANGULAR_DIAMETER : l->angular_diameter > 0.0f ? l->angular_diameter : 0.0;
+    double d = l->angular_diameter == 0.0f ? (double)RTPBR_SUN_ANGULAR_DIAMETER : l->angular_diameter;
+    return d >= RTPBR_SUN_MIN_ANGULAR_DIAMETER ? d : 0.0;
 }
 
 void rtpbr_light_record(const rtpbr_light_desc *l, const rtpbr_gltf_polygon_facts *f, rtpbr_shader_light *out)

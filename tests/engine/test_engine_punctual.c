@@ -444,6 +444,7 @@ static void sun_disk(void **state)
         {-0.1, 0.0, 2e-3, "the sun with its centre 0.1 degrees below the horizon"},
         {35.0, 20.0, 1e-4, "a 20-degree disk at 35 degrees"},
         {4.0, 20.0, 2e-4, "a 20-degree disk straddling the horizon (centre at 4 degrees)"},
+        {40.0, 5.7e-5, 2e-4, "a 1e-6 rad disk (below RTPBR_SUN_MIN_ANGULAR_DIAMETER: a true direction)"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         double el = cases[i].elevation * M_PI / 180.0, az = 0.7;

@@ -222,6 +222,8 @@ RTPBR_API const char *rtpbr_context_device_name(const rtpbr_context *context);
 // Where a directional light's disk is placed, from the world origin (its parallax at a point
 // at distance r from the origin is r / RTPBR_SUN_DISTANCE radians: 1e-5 at 1 km).
 #define RTPBR_SUN_DISTANCE 1.0e8f
+// Smaller angular diameters are shaded as a true direction (1e-4 rad, 0.0057 degrees).
+#define RTPBR_SUN_MIN_ANGULAR_DIAMETER 1.0e-4f
 #define RTPBR_MAX_MATERIALS 65536u
 #define RTPBR_MAX_RENDER_SIZE 16384u     // width and height of a renderer
 
@@ -439,8 +441,9 @@ typedef struct rtpbr_light_desc {
     float outer_cone_angle;  // t = clamp((cos - cos outer) / max(cos inner - cos outer, 1e-3),
                              // 0, 1), times t^2 (KHR_lights_punctual); both zero: 0 and pi/4
     float angular_diameter;  // directional: the full apex angle of the light's disk, radians,
-                             // < pi/2; zero: RTPBR_SUN_ANGULAR_DIAMETER; negative: a true
-                             // direction (a delta light, evaluated exactly). The disk is shaded
+                             // < pi/2; zero: RTPBR_SUN_ANGULAR_DIAMETER; negative (or below
+                             // RTPBR_SUN_MIN_ANGULAR_DIAMETER): a true direction (a delta
+                             // light, evaluated exactly). The disk is shaded
                              // as an equal-area octagon at RTPBR_SUN_DISTANCE from the origin
                              // (a polygon light: soft shadows, glossy highlights of its size),
                              // of the radiance that gives `emission` lux at normal incidence.
