@@ -39,6 +39,7 @@ typedef struct viewer_punctual {
     float range;            // point, spot: where the light ends; 0: infinite
     float inner_cone_angle; // spot: radians, 0 <= inner < outer <= pi/2
     float outer_cone_angle;
+    float angular_diameter; // directional: the disk's, radians (rtpbr_light_desc's); 0: a true direction
 } viewer_punctual;
 
 typedef struct viewer_scene {

@@ -311,6 +311,8 @@ static void punctual_panel(app *a, viewer_punctual *p)
                                1e5f, "%.2f");
     if (point || spot)
         edited |= ImGui::DragFloat("range (m)", &p->range, 0.05f, 0.0f, 1e4f, p->range > 0.0f ? "%.2f" : "infinite");
+    if (!point && !spot) // the disk's angular diameter: 0.53 degrees is the sun's; 0 a true direction
+        edited |= ImGui::SliderAngle("disk diameter", &p->angular_diameter, 0.0f, 10.0f, "%.2f deg");
     if (spot) {
         edited |= ImGui::SliderAngle("inner cone", &p->inner_cone_angle, 0.0f, 90.0f);
         edited |= ImGui::SliderAngle("outer cone", &p->outer_cone_angle, 0.0f, 90.0f);
