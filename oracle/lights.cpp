@@ -57,6 +57,15 @@ dvec3 sampleSphericalTriangle(dvec3 A, dvec3 B, dvec3 C, double u1, double u2) {
     return z * B + std::sqrt(std::max(0.0, 1.0 - z * z)) * (pPerp / lp);
 }
 
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited" (n unit).
+void orthonormalBasis(dvec3 n, dvec3 *t, dvec3 *b) {
+    double sign = std::copysign(1.0, n.z);
+    double a = -1.0 / (sign + n.z);
+    double bb = n.x * n.y * a;
+    *t = dvec3(1.0 + sign * n.x * n.x * a, sign * bb, -sign * n.x);
+    *b = dvec3(bb, sign + n.y * n.y * a, -n.y);
+}
+
 float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 } // namespace
@@ -214,8 +223,24 @@ float LightSet::pdf(glm::vec3 pf, uint32_t l, glm::vec3 wi, float distance) cons
 PunctualLights::PunctualLights(const rtpbr_gltf_scene &scene) {
     for (uint32_t i = 0; i < scene.punctual_light_count; i++) {
         const rtpbr_gltf_punctual_light &P = scene.punctual_lights[i];
-        if (P.intensity[0] > 0.0f || P.intensity[1] > 0.0f || P.intensity[2] > 0.0f)
-            lights_.push_back(P);
+        if (!(P.intensity[0] > 0.0f || P.intensity[1] > 0.0f || P.intensity[2] > 0.0f))
+            continue;
+        lights_.push_back(P);
+        Disk D;
+        if (P.type == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL && P.angular_diameter > 0.0f) {
+            D.halfAngle = 0.5 * double(P.angular_diameter);
+            D.axis = -glm::normalize(dvec3(P.direction[0], P.direction[1], P.direction[2]));
+            orthonormalBasis(D.axis, &D.t, &D.b);
+            const double s = std::sin(D.halfAngle), sHalf = std::sin(0.5 * D.halfAngle);
+            D.sin2 = s * s;
+            D.oneMinusCos = 2.0 * sHalf * sHalf;
+            D.pdf = 1.0 / (2.0 * kPi * D.oneMinusCos);
+            const dvec3 E(P.intensity[0], P.intensity[1], P.intensity[2]);
+            D.radiance = E / (kPi * D.sin2);
+            D.perSample = E * (2.0 / (2.0 - D.oneMinusCos));
+            anyDisk_ = true;
+        }
+        disks_.push_back(D);
     }
 }
 
@@ -235,8 +260,23 @@ double PunctualLights::rangeWindow(double d, double range) {
     return glm::clamp(1.0 - r * r * r * r, 0.0, 1.0);
 }
 
-bool PunctualLights::illuminate(uint32_t l, glm::vec3 pf, PunctualSample *s) const {
+bool PunctualLights::illuminate(uint32_t l, glm::vec3 pf, float u1, float u2, PunctualSample *s) const {
     const rtpbr_gltf_punctual_light &P = lights_[l];
+    s->pdf = 0.0;
+    if (hasDisk(l)) {
+        // Uniform in the cap's solid angle: 1 - cos(theta) uniform in [0, 1 - cos a).
+        const Disk &D = disks_[l];
+        const double oneMinusCos = double(u1) * D.oneMinusCos;
+        const double cosTheta = 1.0 - oneMinusCos;
+        const double sinTheta = std::sqrt(std::max(0.0, oneMinusCos * (2.0 - oneMinusCos)));
+        const double phi = 2.0 * kPi * double(u2);
+        const dvec3 wi = cosTheta * D.axis + sinTheta * (std::cos(phi) * D.t + std::sin(phi) * D.b);
+        s->wi = glm::vec3(glm::normalize(wi));
+        s->distance = std::numeric_limits<float>::infinity();
+        s->irradiance = glm::vec3(D.perSample);
+        s->pdf = D.pdf;
+        return true;
+    }
     const dvec3 dir(P.direction[0], P.direction[1], P.direction[2]); // the way the light travels
     dvec3 wi;
     double scale;
@@ -261,6 +301,22 @@ bool PunctualLights::illuminate(uint32_t l, glm::vec3 pf, PunctualSample *s) con
         return false;
     s->wi = glm::vec3(wi);
     s->irradiance = glm::vec3(dvec3(P.intensity[0], P.intensity[1], P.intensity[2]) * scale);
+    return true;
+}
+
+bool PunctualLights::diskRadiance(uint32_t l, glm::vec3 wi, dvec3 *radiance, double *pdf) const {
+    const Disk &D = disks_[l];
+    if (!(D.halfAngle > 0.0))
+        return false;
+    // Inside the cap: in front of the light and sin^2 of the angle from its axis within
+    // sin^2 a (a < pi / 4); the cross product keeps its precision for a tiny disk, where the
+    // cosine would round to 1.
+    const dvec3 w = glm::normalize(dvec3(wi));
+    const dvec3 c = glm::cross(w, D.axis);
+    if (!(glm::dot(w, D.axis) > 0.0) || !(glm::dot(c, c) <= D.sin2))
+        return false;
+    *radiance = D.radiance;
+    *pdf = D.pdf;
     return true;
 }
 

@@ -65,20 +65,31 @@ private:
     LightSampling mode_;
 };
 
-// KHR_lights_punctual lights (rtpbr_gltf_punctual_light): point, spot and directional, as
-// true delta lights. A delta light has no surface: no ray meets it, so it enters only through
-// next-event estimation, with weight 1 (no MIS: the BSDF strategy cannot find it), and every
-// light is taken at every vertex (no selection: scenes have few, and a sum adds no noise).
-// What one light gives at a point p (the extension's text):
+// KHR_lights_punctual lights (rtpbr_gltf_punctual_light): point, spot and directional.
+// Point and spot lights, and directional lights of angular_diameter 0, are true delta lights.
+// A delta light has no surface: no ray meets it, so it enters only through next-event
+// estimation, with weight 1 (no MIS: the BSDF strategy cannot find it), and every light is
+// taken at every vertex (no selection: scenes have few, and a sum adds no noise).
+// What one delta light gives at a point p (the extension's text):
 //   reflected radiance = f(wo, wi) max(N.wi, 0) x irradiance,
 //   point:       wi = normalize(position - p), irradiance = intensity W(d) / d^2, d = |position - p|
 //   spot:        the point's, times the cone's falloff t^2 (PunctualLights::spotFalloff)
 //   directional: wi = -direction, irradiance = intensity (no distance falloff, range unused)
 //   W(d) = clamp(1 - (d / range)^4, 0, 1) for range > 0, else 1 (the spec's recommended window).
+// A directional light of angular_diameter d > 0 is the sun's disk: the spherical cap of
+// half-angle a = d / 2 around -direction, at infinity, of uniform radiance
+// L = intensity / (pi sin^2 a) (its illuminance at normal incidence is intensity). It is
+// sampled uniformly in the cap (solid-angle pdf 1 / (2 pi (1 - cos a))) and combined by MIS
+// with the BSDF rays that escape the scene inside the cap (diskRadiance). Its constants are
+// computed in double: 1 - cos a = 2 sin^2(a / 2) stays exact for a tiny disk, and a sample's
+// irradiance L / pdf = intensity 2 / (1 + cos a) stays finite where L and the pdf do not fit
+// a float.
 struct PunctualSample {
     glm::vec3 wi;         // unit direction from p to the light
     float distance;       // to the light position; infinity for a directional light
     glm::vec3 irradiance; // on a surface facing the light: reflected = f cos(theta) x this
+                          // (for a sun's disk, the one-sample estimate L / pdf)
+    double pdf;           // 0 for a delta light; a sun's disk: the solid-angle density of wi
 };
 
 class PunctualLights {
@@ -87,9 +98,18 @@ public:
 
     size_t size() const { return lights_.size(); }
     bool empty() const { return lights_.empty(); }
+    // Is light l a sun's disk (a directional light of angular_diameter > 0)? Only then does
+    // illuminate() use u1, u2, and only then can a ray see the light (diskRadiance).
+    bool hasDisk(uint32_t l) const { return disks_[l].halfAngle > 0.0; }
+    bool anyDisk() const { return anyDisk_; }
     // Light l seen from p; false where it gives nothing (outside its cone or range, a black
-    // light, p at the light's position).
-    bool illuminate(uint32_t l, glm::vec3 p, PunctualSample *s) const;
+    // light, p at the light's position). A sun's disk: a direction uniform in its cap from
+    // (u1, u2) in [0, 1)^2, with its density in s->pdf; a delta light ignores u1, u2.
+    bool illuminate(uint32_t l, glm::vec3 p, float u1, float u2, PunctualSample *s) const;
+    // A ray leaving towards wi sees sun l's disk: its radiance (double: a tiny disk's may not
+    // fit a float) and the density illuminate() samples wi with; false outside the cap (and
+    // for every delta light).
+    bool diskRadiance(uint32_t l, glm::vec3 wi, glm::dvec3 *radiance, double *pdf) const;
     // KHR_lights_punctual's spot falloff: t = clamp((cd - cos outer) / max(1e-3, cos inner -
     // cos outer), 0, 1), returned as t^2; cd = cos of the angle from the spot's axis.
     static double spotFalloff(double cd, double innerConeAngle, double outerConeAngle);
@@ -97,7 +117,19 @@ public:
     static double rangeWindow(double d, double range);
 
 private:
+    // A sun's cap around axis (= -direction), with (t, b, axis) an orthonormal frame.
+    struct Disk {
+        double halfAngle = 0.0; // a; 0: a delta light
+        glm::dvec3 axis{0.0}, t{0.0}, b{0.0};
+        double oneMinusCos = 0.0; // 1 - cos a = 2 sin^2(a / 2)
+        double sin2 = 0.0;        // sin^2 a
+        double pdf = 0.0;         // 1 / (2 pi (1 - cos a))
+        glm::dvec3 radiance{0.0}; // intensity / (pi sin^2 a)
+        glm::dvec3 perSample{0.0}; // radiance / pdf = intensity 2 / (1 + cos a)
+    };
     std::vector<rtpbr_gltf_punctual_light> lights_; // the scene's, with any intensity > 0
+    std::vector<Disk> disks_;                         // one per light
+    bool anyDisk_ = false;
 };
 
 } // namespace rtpbr_oracle

@@ -137,8 +137,14 @@ public:
         float prevPdf = 0.0f;
         for (uint32_t depth = 0;; depth++) {
             Hit h = intersect(es_.full, org, dir, std::numeric_limits<float>::infinity());
-            if (!h.found)
+            if (!h.found) {
+                // A BSDF ray that leaves the scene may see a sun's disk (MIS against sampling
+                // it; with noShadows the light-only test below counted it already). Camera
+                // rays do not: like the punctual lights, the sun is not drawn as the sky.
+                if (depth > 0 && !s_.noShadows && punctual_.anyDisk())
+                    L += beta * disksSeen(dir, prevPdf);
                 break;
+            }
             SurfacePoint sp = surfacePoint(h, dir);
             // Emission: seen directly, or found by BSDF sampling (MIS against light sampling;
             // with noShadows the unoccluded light-only ray below did that already).
@@ -203,6 +209,8 @@ public:
                     vec3 Le = emittedAt(l, wi, origin + wi * lh.t);
                     L += beta * Le * misWeight(bs.pdfMis, lights_.pdf(sp.p, l, wi, lh.t));
                 }
+                if (punctual_.anyDisk())
+                    L += beta * disksSeen(wi, bs.pdfMis);
                 if (depth + 1 >= maxDepth_)
                     break; // the next vertex would only add emission, already counted
             }
@@ -295,12 +303,21 @@ private:
     // f cos x its irradiance there (PunctualLights), if a shadow ray from origin (sp.p off
     // its surface) reaches the light (a directional light: to infinity), or with noShadows.
     // The light's direction and distance are taken from sp.p itself, the point the
-    // extension's formulas speak of.
+    // extension's formulas speak of. A sun's disk: one direction sampled in its cap (two
+    // random numbers, drawn for it alone: delta lights draw none), weighted by MIS against
+    // the BSDF rays that see the disk (disksSeen); the part of the cap below the surface's
+    // horizon gives nothing.
     vec3 punctualLight(uint32_t l, const SurfacePoint &sp, vec3 bt, vec3 origin, const Bsdf &bsdf, Rng &rng) {
         PunctualSample ps;
-        if (!punctual_.illuminate(l, sp.p, &ps) || !(glm::dot(ps.wi, sp.ng) > 0.0f))
+        float u1 = 0.0f, u2 = 0.0f;
+        if (punctual_.hasDisk(l)) {
+            u1 = rng.uniform();
+            u2 = rng.uniform();
+        }
+        if (!punctual_.illuminate(l, sp.p, u1, u2, &ps) || !(glm::dot(ps.wi, sp.ng) > 0.0f))
             return vec3(0.0f);
-        vec3 f = bsdf.eval(vec3(glm::dot(ps.wi, sp.tangent), glm::dot(ps.wi, bt), glm::dot(ps.wi, sp.ns)), rng);
+        const vec3 wiLocal(glm::dot(ps.wi, sp.tangent), glm::dot(ps.wi, bt), glm::dot(ps.wi, sp.ns));
+        vec3 f = bsdf.eval(wiLocal, rng);
         if (!(f.x > 0.0f || f.y > 0.0f || f.z > 0.0f))
             return vec3(0.0f);
         if (!s_.noShadows) {
@@ -310,7 +327,22 @@ private:
             if (blocked)
                 return vec3(0.0f);
         }
+        if (ps.pdf > 0.0) // balance heuristic, in double: a tiny disk's density exceeds a float
+            return f * ps.irradiance * float(ps.pdf / (ps.pdf + double(bsdf.pdfMis(wiLocal))));
         return f * ps.irradiance;
+    }
+
+    // The suns' disks a ray leaving towards wi sees (it met nothing, or noShadows), weighted
+    // by MIS against sampling them (punctualLight); bsdfPdf: the BSDF sample's pdfMis.
+    vec3 disksSeen(vec3 wi, float bsdfPdf) const {
+        glm::dvec3 sum(0.0);
+        for (uint32_t l = 0; l < punctual_.size(); l++) {
+            glm::dvec3 Le;
+            double pdf;
+            if (bsdfPdf > 0.0f && punctual_.diskRadiance(l, wi, &Le, &pdf))
+                sum += Le * (double(bsdfPdf) / (double(bsdfPdf) + pdf));
+        }
+        return vec3(sum);
     }
 
     // Light l's radiance toward -wi at its point q: LightSet::emitted, times the emission

@@ -112,6 +112,20 @@ Result validatePunctualLight(const rtpbr_gltf_punctual_light &P, uint32_t i, boo
             return Result::InvalidScene;
         }
     }
+    // A directional light's sun disk: 0 <= angular_diameter < pi/2 (the cap's half-angle below
+    // pi/4); point and spot lights have no size.
+    const float diameter = P.angular_diameter;
+    if (P.type == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL) {
+        if (!(diameter >= 0.0f) || !(double(diameter) < 1.57079632679489661923)) {
+            *error = fmt("punctual light %u (directional): angular diameter %g rad: need 0 <= angular diameter < pi/2",
+                         i, double(diameter));
+            return Result::InvalidScene;
+        }
+    } else if (diameter != 0.0f) {
+        *error = fmt("punctual light %u (%s): angular diameter %g rad: only a directional light has one (0 here)", i,
+                     type, double(diameter));
+        return Result::InvalidScene;
+    }
     if (P.intensity[0] > 0.0f || P.intensity[1] > 0.0f || P.intensity[2] > 0.0f)
         *emits = true;
     return Result::Success;

@@ -10,6 +10,10 @@
 //     library's BRDF_SpecularLocal only as a cross-check of the formula written here;
 //   - multi-bounce: a floor in the shadow of a shade is exactly 0 with direct lighting and,
 //     with two scattering events, the integral of the lit wall's radiance over the wall.
+//   - the sun's disk (a directional light's angular_diameter > 0): a Lambert plane a/pi E cos
+//     theta while the disk is wholly above its horizon, the quadrature of the part above it
+//     where it straddles the horizon, exactly 0 below; GGX (roughness 0.05, 0.3) against the
+//     quadrature of f cos L over the disk, f the shader library's BRDF_SpecularLocal.
 // The oracle's pixel is the mean of spp evaluations at points jittered uniformly in the pixel,
 // so its expectation is the closed form averaged over the pixel's footprint, and its error is
 // the jitter's (and the paths'), which its standard error measures.
@@ -594,6 +598,230 @@ void test_multibounce_point(void **) {
     assert_true(sumDeep / m > sumImg / m + 3.0 * std::sqrt(sumVar + varDeep) / m);
 }
 
+// ---- the sun's disk (a directional light's angular_diameter) --------------------------------
+
+// A directional light of angular diameter d: the cap of half-angle d / 2 around towardLight,
+// radiance E / (pi sin^2(d / 2)) (rtpbr_gltf_punctual_light.angular_diameter).
+void addSun(SceneBuilder &b, glm::dvec3 towardLight, double E, double diameter) {
+    b.punctual(RTPBR_GLTF_PUNCTUAL_DIRECTIONAL, glm::vec3(0.0f), -glm::vec3(towardLight), glm::vec3(float(E)));
+    b.punctualLights.back().angular_diameter = float(diameter);
+}
+
+double sunRadiance(double E, double diameter) {
+    const double s = std::sin(0.5 * diameter);
+    return E / (kPi * s * s);
+}
+
+// The integral of g(w) over the cap of half-angle a around the unit vector c, in double, by
+// the midpoint rule on rings x sectors cells of equal solid angle (1 - cos theta and phi
+// uniform).
+template <class G>
+auto capIntegral(glm::dvec3 c, double a, int rings, int sectors, const G &g) -> decltype(g(c)) {
+    glm::dvec3 t = glm::normalize(glm::cross(std::fabs(c.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0), c));
+    glm::dvec3 b = glm::cross(c, t);
+    const double sh = std::sin(0.5 * a), oneMinusCosA = 2.0 * sh * sh;
+    const double cell = 2.0 * kPi * oneMinusCosA / (double(rings) * sectors);
+    decltype(g(c)) sum(0.0);
+    for (int i = 0; i < rings; i++) {
+        const double u = (i + 0.5) / rings * oneMinusCosA; // 1 - cos theta
+        const double cosT = 1.0 - u, sinT = std::sqrt(u * (2.0 - u));
+        for (int j = 0; j < sectors; j++) {
+            const double phi = 2.0 * kPi * (j + 0.5) / sectors;
+            sum += g(cosT * c + sinT * (std::cos(phi) * t + std::sin(phi) * b));
+        }
+    }
+    return sum * cell;
+}
+
+// Every pixel of img (channels 0..2, spp samples each) against one value, on a scene where
+// every pixel's samples have one distribution (grey light and surfaces: the channels are one
+// estimate, counted once): each pixel within 5 pooled standard errors (the pixels' mean
+// variance) and the image mean within 3 of its own. A pixel's own standard error is no
+// measure here: by the balance heuristic a BSDF ray that finds the disk adds about one light
+// sample's worth (f cos L / (pdf_bsdf + pdf_disk) ~ f cos E), a rare event for a small disk
+// (probability ~ sin^2 a cos theta per sample: 2e-5 for the sun), which a pixel's samples
+// rarely show; so both bounds also allow two such events (2 ref / samples).
+void expectUniformImage(const Image &img, double ref, uint32_t spp, const char *what) {
+    double sum = 0.0, var = 0.0;
+    for (uint32_t y = 0; y < img.h; y++)
+        for (uint32_t x = 0; x < img.w; x++)
+            var += img.e(x, y) * img.e(x, y);
+    const double n = double(img.w) * img.h, pooled = std::sqrt(var / n);
+    for (uint32_t y = 0; y < img.h; y++)
+        for (uint32_t x = 0; x < img.w; x++) {
+            for (int c = 0; c < 3; c++) {
+                const double v = img.v(x, y, c);
+                if (!(std::fabs(v - ref) <= 5.0 * pooled + (2.0 / spp + kRounding) * ref))
+                    fail_msg("%s: pixel (%u, %u) channel %d: %.7g vs %.7g (pooled standard error %.3g)", what, x, y,
+                             c, v, ref, pooled);
+            }
+            sum += img.v(x, y);
+        }
+    const double mean = sum / n, se = std::sqrt(var) / n;
+    std::printf("%s: mean %.7g vs %.7g (relative error %+.2e, %.2f se)\n", what, mean, ref, mean / ref - 1.0,
+                se > 0.0 ? (mean - ref) / se : 0.0);
+    EXPECT_AGREE(mean, se, ref, 0.0, 3.0, (2.0 / (n * spp) + kRounding) * ref);
+}
+
+// A Lambert floor under a sun wholly above its horizon: a/pi E cos(theta), as under a delta
+// light (a uniform cap's irradiance is pi L sin^2 a cos theta = E cos theta), for the sun's
+// 0.53 degrees and wide disks; angular diameter 0 is the delta light (exact); 1e-6 and 1e-30
+// (a = 5e-31, sin^2 a = 2.5e-61: the disk's constants fit only a double) stay finite, a delta
+// light in all but name. Direct lighting (the cap sampled, MIS against the BSDF rays that
+// escape into it), all bounces and noShadows (the BSDF rays' disk found without a shadow ray).
+void test_sun_lambert(void **) {
+    struct Case {
+        double theta, azimuth, diameter;
+    };
+    const Case cases[] = {{0.0, 0.0, 0.3},  {0.7, 0.4, 0.00925}, {0.7, 0.4, 0.0},
+                          {1.2, 2.0, 0.4}, {0.45, -1.0, 1e-6}, {0.3, 2.5, 1e-30}};
+    const double E = 3.0;
+    for (const Case &k : cases) {
+        const glm::dvec3 toward(std::sin(k.theta) * std::cos(k.azimuth), std::cos(k.theta),
+                                std::sin(k.theta) * std::sin(k.azimuth));
+        const double expected = kAlbedo / kPi * E * std::cos(k.theta);
+        for (int mode = 0; mode < 3; mode++) {
+            SceneBuilder b;
+            floorPlane(b, lambertMaterial(b, kAlbedo));
+            addSun(b, toward, E, k.diameter);
+            b.camera(glm::vec3(0.3f, 1.5f, 2.0f), glm::vec3(0.0f), 0.8f);
+            RenderSettings s;
+            s.spp = 128;
+            s.directOnly = mode == 0;
+            s.noShadows = mode == 2;
+            Image img = renderImage(b, s, 12, 12, "sun-lambert");
+            char what[160];
+            std::snprintf(what, sizeof what, "sun %.3g rad at %.2f rad from the zenith, %s", k.diameter, k.theta,
+                          mode == 0 ? "direct" : mode == 1 ? "multi-bounce" : "no shadows");
+            if (k.diameter == 0.0) { // the delta light, exactly
+                for (float v : img.rgb)
+                    if (!(std::fabs(v - expected) <= 1e-6 * expected))
+                        fail_msg("%s: pixel %.8g, a/pi E cos = %.8g", what, double(v), expected);
+                std::printf("%s: every pixel %.7g (exact)\n", what, expected);
+                continue;
+            }
+            expectUniformImage(img, expected, s.spp, what);
+        }
+    }
+}
+
+// A sun straddling the floor's horizon (half-angle 0.1 rad, its centre between 0.06 below
+// and 0.07 above it): only the part above lights the floor, against a/pi L times the
+// quadrature of max(0, cos) over the cap; wholly below: exactly 0.
+void test_sun_horizon(void **) {
+    const double E = 2.0, diameter = 0.2, a = 0.5 * diameter, L = sunRadiance(E, diameter);
+    auto cosUp = [](glm::dvec3 w) { return std::max(0.0, w.y); };
+    // The quadrature against the closed form where the cap is wholly above the horizon.
+    const glm::dvec3 high = glm::normalize(glm::dvec3(0.6, 0.5, 0.2));
+    const double qHigh = L * capIntegral(high, a, 400, 800, cosUp);
+    std::printf("quadrature check, cap above the horizon: %.9g vs E cos = %.9g\n", qHigh, E * high.y);
+    assert_true(std::fabs(qHigh - E * high.y) <= 1e-6 * E * high.y);
+    for (double elevation : {-0.06, 0.0, 0.07, -0.12}) {
+        const glm::dvec3 toward(std::cos(elevation) * 0.8, std::sin(elevation), std::cos(elevation) * -0.6);
+        const double irr = L * capIntegral(toward, a, 400, 800, cosUp);
+        const double expected = kAlbedo / kPi * irr;
+        for (int mode = 0; mode < 2; mode++) {
+            SceneBuilder b;
+            floorPlane(b, lambertMaterial(b, kAlbedo));
+            addSun(b, toward, E, diameter);
+            b.camera(glm::vec3(0.3f, 1.5f, 2.0f), glm::vec3(0.0f), 0.8f);
+            RenderSettings s;
+            s.spp = 1024;
+            s.directOnly = mode == 0;
+            Image img = renderImage(b, s, 12, 12, "sun-horizon");
+            char what[160];
+            std::snprintf(what, sizeof what, "sun's centre %.2f rad above the horizon (half-angle %.2f), %s",
+                          elevation, a, mode == 0 ? "direct" : "multi-bounce");
+            if (elevation < -a) {
+                for (float v : img.rgb)
+                    assert_true(v == 0.0f);
+                std::printf("%s: every pixel 0\n", what);
+                continue;
+            }
+            std::printf("  irradiance %.6g of E = %.6g\n", irr, E);
+            expectUniformImage(img, expected, s.spp, what);
+        }
+    }
+}
+
+// A GGX conductor (single scattering) seeing the sun's reflection: each pixel against the
+// footprint mean of L times the quadrature over the cap of f cos, f the shader library's
+// BRDF_SpecularLocal. Roughness 0.05 (alpha 0.0025) under the sun's 0.53 degrees: the
+// highlight is the sun's blurred image, found as often by BSDF sampling as by sampling the
+// disk (MIS); roughness 0.3 under a 0.1 rad disk. The camera sees the mirror direction of
+// the sun's centre at the image's centre.
+void test_sun_ggx(void **) {
+    const glm::dvec3 f0(0.95, 0.64, 0.54);
+    const rtpbr::FresnelParams F = rtpbr::Fresnel_FromF0(glm::vec3(f0));
+    struct Case {
+        double roughness, diameter;
+        float yfov;
+    };
+    const Case cases[] = {{0.05, 0.00925, 0.05f}, {0.3, 0.1, 0.6f}};
+    const double E = 2.0, elevation = 0.6;
+    const glm::dvec3 toward(0.0, std::sin(elevation), -std::cos(elevation));
+    for (const Case &k : cases) {
+        const float alpha = float(k.roughness * k.roughness);
+        const double L = sunRadiance(E, k.diameter);
+        SceneBuilder b;
+        floorPlane(b, b.material(glm::vec3(f0), 1.0f, float(k.roughness)));
+        addSun(b, toward, E, k.diameter);
+        const glm::vec3 camPos = 2.0f * glm::vec3(0.0f, float(toward.y), float(-toward.z));
+        b.camera(camPos, glm::vec3(0.0f), k.yfov);
+        RenderSettings s;
+        s.spp = 1024;
+        s.directOnly = true;
+        s.singleScatter = true;
+        const uint32_t n = 12;
+        Image img = renderImage(b, s, n, n, k.roughness < 0.1 ? "sun-ggx-005" : "sun-ggx-03");
+        // Reflected radiance towards wo (world; the floor's local frame: z = +y).
+        auto local = [](glm::dvec3 w) { return glm::vec3(float(w.x), float(-w.z), float(w.y)); };
+        auto reflected = [&](glm::dvec3 wo) {
+            const glm::vec3 woL = local(wo);
+            return L * capIntegral(toward, 0.5 * k.diameter, 48, 96, [&](glm::dvec3 wi) {
+                       const glm::vec3 wiL = local(wi);
+                       return glm::dvec3(rtpbr::BRDF_SpecularLocal(woL, wiL, alpha, alpha, F) * wiL.z);
+                   });
+        };
+        // Per channel: sums of pixels and of the references, the pixels' variance.
+        glm::dvec3 sum(0.0), ref(0.0), var(0.0);
+        double hi = 0.0;
+        for (uint32_t y = 0; y < n; y++)
+            for (uint32_t x = 0; x < n; x++) {
+                // The footprint mean of each channel (4 x 4 points), and the jitter's spread.
+                const int q = 4;
+                glm::dvec3 mean(0.0), sq(0.0);
+                const glm::dvec3 o(camPos);
+                for (int i = 0; i < q; i++)
+                    for (int j = 0; j < q; j++) {
+                        const float sx = float(x) + (i + 0.5f) / q, sy = float(y) + (j + 0.5f) / q;
+                        const glm::dvec3 d(cameraRay(b.cameras[0], sx, sy, n, n));
+                        const glm::dvec3 p = o - (o.y / d.y) * d;
+                        const glm::dvec3 v = reflected(glm::normalize(o - p));
+                        mean += v / double(q * q);
+                        sq += v * v / double(q * q);
+                    }
+                for (int c = 0; c < 3; c++) {
+                    const double sd = std::sqrt(std::max(0.0, sq[c] - mean[c] * mean[c]));
+                    expectPixel(img, x, y, c, mean[c], sd / std::sqrt(double(s.spp)), "GGX under the sun");
+                    sum[c] += img.v(x, y, c);
+                    var[c] += img.e(x, y, c) * img.e(x, y, c);
+                    ref[c] += mean[c];
+                    hi = std::max(hi, mean[c]);
+                }
+            }
+        const double m = double(n) * n;
+        std::printf("GGX roughness %.2f, sun %.3g rad (L %.5g): pixels up to %.5g (F0 L = %.5g); largest |z| %.2f\n",
+                    k.roughness, k.diameter, L, hi, f0.x * L, worstZ());
+        for (int c = 0; c < 3; c++) {
+            std::printf("  channel %d: image mean %.6g vs quadrature %.6g (relative %+.2e, %.2f se)\n", c, sum[c] / m,
+                        ref[c] / m, sum[c] / ref[c] - 1.0, (sum[c] - ref[c]) / std::sqrt(var[c]));
+            EXPECT_AGREE(sum[c] / m, std::sqrt(var[c]) / m, ref[c] / m, 0.0, 3.0, 1e-3 * ref[c] / m);
+        }
+        assert_true(hi > 5.0 * ref.x / m); // the highlight is in view
+    }
+}
+
 // ---- validation ----------------------------------------------------------------------------
 
 void expectRejected(const std::function<void(rtpbr_gltf_punctual_light &)> &spoil, Result want, const char *words) {
@@ -632,6 +860,19 @@ void test_validation(void **) {
     expectRejected([](P &p) { p.type = RTPBR_GLTF_PUNCTUAL_POINT, p.direction[1] = 0.0f; }, Result::Success, "");
     expectRejected([nan](P &p) { p.type = RTPBR_GLTF_PUNCTUAL_DIRECTIONAL, p.position[0] = nan, p.range = -1.0f; },
                    Result::Success, "");
+    // The sun's disk: a directional light's angular diameter in [0, pi/2); none on the others.
+    auto directional = [](P &p, float d) { p.type = RTPBR_GLTF_PUNCTUAL_DIRECTIONAL, p.angular_diameter = d; };
+    expectRejected([&](P &p) { directional(p, 0.00925f); }, Result::Success, "");
+    expectRejected([&](P &p) { directional(p, 1e-30f); }, Result::Success, "");
+    expectRejected([&](P &p) { directional(p, 1.5707963f); }, Result::Success, "");
+    expectRejected([&](P &p) { directional(p, 1.5707964f); }, Result::InvalidScene, "angular diameter");
+    expectRejected([&](P &p) { directional(p, -0.01f); }, Result::InvalidScene, "angular diameter");
+    expectRejected([&](P &p) { directional(p, nan); }, Result::InvalidScene, "angular diameter");
+    expectRejected([&](P &p) { directional(p, INFINITY); }, Result::InvalidScene, "angular diameter");
+    expectRejected([](P &p) { p.angular_diameter = 0.01f; }, Result::InvalidScene,
+                   "punctual light 0 (spot): angular diameter");
+    expectRejected([](P &p) { p.type = RTPBR_GLTF_PUNCTUAL_POINT, p.angular_diameter = 0.01f; }, Result::InvalidScene,
+                   "punctual light 0 (point): angular diameter");
     // Only black lights: nothing to render.
     expectRejected([](P &p) { p.intensity[0] = p.intensity[1] = p.intensity[2] = 0.0f; }, Result::NoLights,
                    "KHR_lights_punctual");
@@ -642,4 +883,5 @@ void test_validation(void **) {
 RTPBR_TEST_MAIN(cmocka_unit_test(test_directional_lambert), cmocka_unit_test(test_point_lambert),
                 cmocka_unit_test(test_point_range), cmocka_unit_test(test_spot), cmocka_unit_test(test_point_shadow),
                 cmocka_unit_test(test_directional_shadow), cmocka_unit_test(test_ggx_directional),
-                cmocka_unit_test(test_multibounce_point), cmocka_unit_test(test_validation))
+                cmocka_unit_test(test_multibounce_point), cmocka_unit_test(test_sun_lambert),
+                cmocka_unit_test(test_sun_horizon), cmocka_unit_test(test_sun_ggx), cmocka_unit_test(test_validation))
