@@ -112,14 +112,7 @@ RTPBR_FN LtcPolygon LTC_Quad(rtpbr_float3 p0, rtpbr_float3 p1, rtpbr_float3 p2, 
 // texel centres, so bilinear filtering never extrapolates (Heitz et al. 2016, LUT_SCALE/BIAS).
 RTPBR_FN rtpbr_float2 LTC_LutCoord(float NoV, float perceptualRoughness) {
     float u = rtpbr_saturate(perceptualRoughness);
-    // The GGX table's last row (fitted at NoV = 1e-3) is singular in its near-mirror columns
-    // 0-7 (M^-1's third row 0: no mass above the horizon, and lobes of rounding; ClearCoatTest's
-    // coat at grazing views reflected 4.9 x its brightest emitter): at perceptual roughness
-    // below 8 / (SIZE - 1) lookups stop at row SIZE - 2 (NoV = 0.0315), and reach the last row
-    // by 9 / (SIZE - 1). (tests/shaderlib/ltc/test_ltc_mc.cpp, test_grazing_partition)
-    const float last = float(RTPBR_LTC_SIZE) - 1.0f;
-    float vMax = (last - 1.0f + rtpbr_saturate(u * last - 8.0f)) / last;
-    float v = min(rtpbr_safe_sqrt(1.0f - rtpbr_saturate(NoV)), vMax);
+    float v = rtpbr_safe_sqrt(1.0f - rtpbr_saturate(NoV));
     float scale = (float(RTPBR_LTC_SIZE) - 1.0f) / float(RTPBR_LTC_SIZE);
     float bias = 0.5f / float(RTPBR_LTC_SIZE);
     return rtpbr_float2(u * scale + bias, v * scale + bias);

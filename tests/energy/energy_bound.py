@@ -41,8 +41,9 @@ MC_SAMPLES = "256"
 MC_PIXEL_GUARD = 1.25
 # The LTC pass once more at this size. ClearCoatTest lit by its own labels (radiance 1) reached
 # 4.904 at 640x480 (1593 pixels over the bound) and nothing at 320x240 and below: its coat
-# (roughness 0.03) over a normal-mapped base, at NoV = 0, read the GGX table's singular last row
-# (ltc.h, LTC_LutCoord). Its lit wrapper hides it: there the bound is the 12-nit key light's.
+# (roughness 0.03) over a normal-mapped base, at NoV = 0, read the GGX table's last row, then
+# singular (shaderlib/luts/ltc.md). Its lit wrapper hides it: there the bound is the 12-nit key
+# light's.
 LARGE = (640, 480)
 
 

@@ -577,9 +577,9 @@ static void test_point_correction(void **state) {
 // Every lobe is a distribution: the six faces of a cube around the shading point partition the
 // sphere, so their fractions of the lobe (each clipped to the horizon) sum to 1, for every
 // table at the lookups LTC_LutCoord makes, down to NoV = 0 (a normal-mapped normal turned away
-// from the viewer). Before the lookup stopped at row 62 for near-mirror roughness, the GGX
-// table's singular last row put the sum 4 away from 1 there (ClearCoatTest's coat: 4.9 x the
-// brightest emitter) while the Beckmann, Disney and sheen tables summed to 1.
+// from the viewer). Before the refit of its last row (test_last_row_regular), the GGX table's
+// singular cells there put the sum 4 away from 1 (ClearCoatTest's coat: 4.9 x the brightest
+// emitter) while the Beckmann, Disney and sheen tables summed to 1.
 static void test_grazing_partition(void **state) {
     (void)state;
     struct Table { const char *name; const float *t1; } tables[] = {
