@@ -1,4 +1,5 @@
 // Scenes built through the API: validation, then upload to GPU buffers.
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -29,6 +30,15 @@ static rtpbr_gltf_polygon_facts *derive_light_facts(const rtpbr_context *ctx, co
     return facts;
 }
 
+// The angular diameter a directional light is shaded with (rtpbr_light_desc); 0: a true
+// direction, also below RTPBR_SUN_MIN_ANGULAR_DIAMETER (the float octagon's edge integrals would
+// lose the disk there; nothing but a mirror tells it from a direction).
+static double directional_diameter(const rtpbr_light_desc *l)
+{
+    double d = l->angular_diameter == 0.0f ? (double)RTPBR_SUN_ANGULAR_DIAMETER : l->angular_diameter;
+    return d >= RTPBR_SUN_MIN_ANGULAR_DIAMETER ? d : 0.0;
+}
+
 // A punctual light's checks (rtpbr_light_desc: the type's fields).
 static rtpbr_result validate_punctual(const rtpbr_context *ctx, const rtpbr_light_desc *l, uint32_t index)
 {
@@ -52,6 +62,17 @@ static rtpbr_result validate_punctual(const rtpbr_context *ctx, const rtpbr_ligh
                   "light %u (directional) has angular diameter %g radians; below pi/2 is required (zero: the sun's "
                   "0.53 degrees; negative: a true direction)", index, l->angular_diameter);
         return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (l->type == RTPBR_LIGHT_DIRECTIONAL && directional_diameter(l) > 0.0) {
+        // its disk's radiance, about emission / (pi sin^2(d / 2)) (sun_record), must be a float
+        double s = sin(0.5 * directional_diameter(l));
+        double most = fmax(fmax(l->emission[0], l->emission[1]), l->emission[2]);
+        if (!(most / (LIGHT_PI * s * s) <= 0.5 * FLT_MAX)) {
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                      "light %u (directional): illuminance %g lux over a disk of %g radians is a radiance beyond a float",
+                      index, most, directional_diameter(l));
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
     }
     double len2 = 0.0;
     for (int k = 0; k < 3; ++k) len2 += (double)l->direction[k] * l->direction[k];
@@ -215,15 +236,6 @@ static void sun_record(const rtpbr_light_desc *l, double diameter, rtpbr_shader_
     rtpbr_gltf_polygon_facts_of(poly.vertices, poly.vertex_count, &facts);
     rtpbr_light_record(&poly, &facts, out);
     out->sun = 1u;
-}
-
-// The angular diameter a directional light is shaded with (rtpbr_light_desc); 0: a true
-// direction, also below RTPBR_SUN_MIN_ANGULAR_DIAMETER (the float octagon's edge integrals would
-// lose the disk there; nothing but a mirror tells it from a direction).
-static double directional_diameter(const rtpbr_light_desc *l)
-{
-    double d = l->angular_diameter == 0.0f ? (double)RTPBR_SUN_ANGULAR_DIAMETER : l->angular_diameter;
-    return d >= RTPBR_SUN_MIN_ANGULAR_DIAMETER ? d : 0.0;
 }
 
 void rtpbr_light_record(const rtpbr_light_desc *l, const rtpbr_gltf_polygon_facts *f, rtpbr_shader_light *out)

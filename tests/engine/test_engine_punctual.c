@@ -354,6 +354,8 @@ static void bad_lights(void **state)
         {.type = RTPBR_LIGHT_DIRECTIONAL, .emission = {1, 1, 1}},                                // no direction
         {.type = RTPBR_LIGHT_DIRECTIONAL, .direction = {0, 0, -1}, .angular_diameter = NAN, .emission = {1, 1, 1}},
         {.type = RTPBR_LIGHT_DIRECTIONAL, .direction = {0, 0, -1}, .angular_diameter = 1.6f, .emission = {1, 1, 1}},
+        // the sun's radiance 1e35 / 6.7e-5 would overflow a float
+        {.type = RTPBR_LIGHT_DIRECTIONAL, .direction = {0, 0, -1}, .emission = {1e35f, 1, 1}},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         rtpbr_gpu_scene *scene = NULL;
