@@ -460,7 +460,8 @@ typedef struct rtpbr_gltf_light {
 
 /* A KHR_lights_punctual light on a node, in world space: a point, a spot or
  * a directional light (the extension's text). Point and spot lights are
- * evaluated exactly as delta lights (no size); a directional light is the
+ * evaluated exactly as delta lights (no size), unless a point light carries a
+ * radius (a sphere, below); a directional light is the
  * sun's disk, of angular_diameter (the extension has no size: every
  * directional light gets RTPBR_GLTF_SUN_ANGULAR_DIAMETER; a program may set 0,
  * a true direction, evaluated exactly). One per node that references
@@ -507,6 +508,16 @@ typedef struct rtpbr_gltf_punctual_light {
                                normal incidence is `intensity`, its radiance
                                intensity / (pi sin^2(angular_diameter / 2));
                                0 = a true direction. Point, spot: 0         */
+    float radius;           /* point: the radius of the sphere it is, > 0, of
+                               uniform radiance intensity / (pi radius^2)
+                               (the same intensity far away), times W(d) at
+                               the distance d from its centre; from the
+                               light's "extras": {"radius": r} (metres; the
+                               extension has no size: Blender writes a light's
+                               custom property "radius" there). 0 = a true
+                               point (absent), evaluated exactly. Spot,
+                               directional: 0 (a spot's radius is ignored
+                               with a warning)                              */
     int32_t gltf_node;      /* the node carrying it                         */
     int32_t gltf_light;     /* index in KHR_lights_punctual.lights          */
 } rtpbr_gltf_punctual_light;

@@ -448,6 +448,13 @@ typedef struct rtpbr_light_desc {
                              // (a polygon light: soft shadows, glossy highlights of its size),
                              // of the radiance that gives `emission` lux at normal incidence.
                              // Point, spot: ignored
+    float radius;            // point: >= 0; > 0 makes it a sphere of that radius (world units)
+                             // around position, of uniform radiance emission / (pi radius^2)
+                             // (the same intensity far away) times W(d), d the distance from
+                             // its centre: an area light (soft shadows, highlights of its size)
+                             // shaded with LTC like a polygon. Zero: a true point (exact).
+                             // Spot: must be zero (spheres with a cone: not yet). Directional,
+                             // polygon: ignored
 } rtpbr_light_desc;
 
 typedef struct rtpbr_camera_desc {
