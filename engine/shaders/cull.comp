@@ -4,11 +4,14 @@
 // shading kernel has no barriers: lavapipe runs a workgroup's invocations as coroutines that
 // switch at each barrier). One invocation per RTPBR_TILE_SIZE^2 screen tile: it bounds the
 // world positions of the tile's pixels by a box, keeps the lights that may reach the box (bit
-// i of the tile's masks, tile_masks: one of polygons, one of punctual lights), and queues the tile for the lighting variant of its class
-// (tile_dispatch / tile_list, consumed by indirect dispatches):
+// i of the tile's masks, tile_masks: one of polygons, one of punctual lights, one of spheres),
+// and queues the tile for the lighting variant of its class (tile_dispatch / tile_list,
+// consumed by indirect dispatches):
 //   EMPTY  no surface pixel, or no light left: emission and background only;
 //   BASIC  every material of the tile is basic (material_tile_class);
-//   FULL   otherwise.
+//   FULL   otherwise;
+//   BASIC_SPHERES, FULL_SPHERES  the same with a sphere among the tile's lights (the variants
+//          with the spheres' loop).
 // Light i is kept unless
 //   (1) the light is one-sided and every corner of the box is behind its plane: it cannot
 //       light any point of the tile (exact), or
@@ -21,6 +24,9 @@
 // A punctual light (point, spot, directional) is kept unless the box is beyond its range (3).
 // A directional light's disk (a polygon far away, rtpbr_shader_light.sun) is not held to (2): its
 // form factor is small (the sun's: 2e-5) but its radiance large.
+// A sphere (a point light with a radius) is kept unless the box is beyond its range from its
+// centre or its form factor from the whole box, at most r^2 / d^2, is below the threshold (4).
+// Each kind goes to its own mask (polygons, punctual lights, spheres).
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
@@ -41,7 +47,19 @@ bool light_may_contribute(uint i, vec3 boxMin, vec3 boxMax)
 {
     // (3) A punctual light is kept unless the box is beyond its range (its window is 0 there:
     // exact); without a range its sphere's radius is RTPBR_LIGHT_INFINITE.
-    if (lights[i].shape != uint(RTPBR_LIGHT_SHAPE_POLYGON)) {
+    uint shape = lights[i].shape;
+    if (shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) {
+        // (4) A sphere: kept unless the box is beyond its range (measured from its centre, as
+        // its window) or it subtends less than the form factor threshold from the box (its
+        // Lambert form factor is at most r^2 / d^2 = area / (pi d^2), d from the centre).
+        vec4 sphere = lights[i].sphere;
+        float d = length(sphere.xyz - clamp(sphere.xyz, boxMin, boxMax));
+        float invRange2 = lights[i].vertices[0].w;
+        if (invRange2 > 0.0f && d * d * invRange2 >= 1.0f) return false;
+        return !(frame.cull_form_factor >= 0.0f && d > sphere.w &&
+                 lights[i].area < frame.cull_form_factor * 3.14159265f * d * d);
+    }
+    if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON)) {
         vec4 reach = lights[i].sphere;
         return length(reach.xyz - clamp(reach.xyz, boxMin, boxMax)) < reach.w;
     }
@@ -91,23 +109,29 @@ void main()
             }
         }
 
-    bool anyLight = false;
+    bool anyLight = false, anySphere = false;
     uint words = (frame.light_count + 31u) / 32u;
     for (uint w = 0u; w < words; ++w) {
-        uint bits = 0u, punctualBits = 0u; // polygons, punctual lights
+        uint bits = 0u, punctualBits = 0u, sphereBits = 0u; // polygons, punctual lights, spheres
         if (materialClass != RTPBR_TILE_CLASS_EMPTY) {
             uint count = min(32u, frame.light_count - 32u * w);
             for (uint b = 0u; b < count; ++b)
                 if (light_may_contribute(32u * w + b, boxMin, boxMax)) {
-                    if (lights[32u * w + b].shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) bits |= 1u << b;
+                    uint shape = lights[32u * w + b].shape;
+                    if (shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) bits |= 1u << b;
+                    else if (shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) sphereBits |= 1u << b;
                     else punctualBits |= 1u << b;
                 }
         }
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + w] = bits;
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + uint(RTPBR_TILE_MASK_WORDS) + w] = punctualBits;
-        anyLight = anyLight || (bits | punctualBits) != 0u;
+        tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 2u * uint(RTPBR_TILE_MASK_WORDS) + w] = sphereBits;
+        anyLight = anyLight || (bits | punctualBits | sphereBits) != 0u;
+        anySphere = anySphere || sphereBits != 0u;
     }
     uint tileClass = anyLight ? materialClass : RTPBR_TILE_CLASS_EMPTY;
+    if (anySphere && tileClass != RTPBR_TILE_CLASS_EMPTY)
+        tileClass += uint(RTPBR_TILE_CLASS_BASIC_SPHERES - RTPBR_TILE_CLASS_BASIC);
     uint slot = atomicAdd(tile_dispatch[tileClass].x, 1u);
     tile_list[tileClass * frame.tile_capacity + slot] = tile;
 }

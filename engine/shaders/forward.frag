@@ -26,6 +26,9 @@
 
 #define RTPBR_LIGHTING_FULL 1
 #define RTPBR_SHADE_ALL_LIGHTS 1
+#ifndef RTPBR_LIGHTING_SPHERES
+#define RTPBR_LIGHTING_SPHERES 0 // 1: the variant that shades sphere lights
+#endif
 #include "shading.glsl"
 #include "fragment_material.glsl"
 

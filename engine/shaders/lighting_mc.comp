@@ -21,7 +21,10 @@
 // (Fs + Fd), Fs, Fd the largest channel of the specular lobe's average Fresnel and of the
 // diffuse colour: 0 for a surface without specular (pure light sampling), 1/2 for a metal.
 // Punctual lights (point, spot, directional: shaderlib punctual.h) are exact, as in
-// lighting.comp: their BRDF times N.L times their intensity's factor, with no sample.
+// lighting.comp: their BRDF times N.L times their intensity's factor, with no sample. A sphere
+// light (a point light with a radius) is sampled uniformly in the cone it subtends (pdf
+// 1 / (2 pi (1 - cos of its half-angle))), and a BRDF direction hits it when inside that cone;
+// its radiance is windowed by its range at the distance from its centre.
 // No per-tile culling: every light is summed at every pixel (lights behind a one-sided light's
 // plane are skipped per pixel, where the integrand is 0). The host splits the pass into
 // dispatches over ranges of lights and samples (lavapipe ends every loop of a shader run after
@@ -100,8 +103,22 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
         vec3 v0 = lights[i].vertices[0].xyz;
         float area = lights[i].area;
         uint shape = lights[i].shape;
-        bool lit = shape == uint(RTPBR_LIGHT_SHAPE_POLYGON) && count >= 3u && area > 0.0f &&
-                   (twoSided ? side != 0.0f : side > 0.0f);
+        // A sphere: the cone it subtends from P (axis sphereAxis, cos of its half-angle
+        // cosMax; every direction from inside it, cosMax = -1), sampled uniformly (pdf
+        // 1 / (2 pi (1 - cosMax))); a direction hits it exactly when it is inside the cone.
+        bool sphereLight = shape == uint(RTPBR_LIGHT_SHAPE_SPHERE);
+        vec4 sphere = lights[i].sphere;
+        vec3 toCentre = sphere.xyz - P;
+        float centre2 = dot(toCentre, toCentre);
+        bool insideSphere = centre2 <= sphere.w * sphere.w;
+        float sin2Max = insideSphere ? 1.0f : sphere.w * sphere.w / centre2;
+        float cosMax = insideSphere ? -1.0f : sqrt(max(1.0f - sin2Max, 0.0f));
+        float oneMinusCos = insideSphere ? 2.0f : sin2Max / (1.0f + cosMax);
+        vec3 sphereAxis = toCentre * inversesqrt(max(centre2, 1e-30f));
+        float window = sphereLight ? Punctual_RangeWindow(centre2, lights[i].vertices[0].w) : 1.0f;
+        bool lit = (shape == uint(RTPBR_LIGHT_SHAPE_POLYGON) && count >= 3u && area > 0.0f &&
+                    (twoSided ? side != 0.0f : side > 0.0f)) ||
+                   (sphereLight && window > 0.0f && centre2 > 0.0f);
         uint n = lit ? mc.sample_count : 0u;
 
         uint rng = mc_seed(pixel, i, mc.seed) * mc.skip_mul + mc.skip_add; // at mc.first_sample
@@ -119,7 +136,15 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
                 // Strategy 2: a visible normal of the specular lobe, reflected; does it hit?
                 vec3 wiLocal = Reflect_About(wo, MC_SAMPLE_VNDF(wo, alphaSample.x, alphaSample.y, u));
                 wi = T * wiLocal.x + B * wiLocal.y + N * wiLocal.z;
-                hit = mc_ray_polygon(P, wi, i, count, t);
+                hit = sphereLight ? dot(wi, sphereAxis) >= cosMax : mc_ray_polygon(P, wi, i, count, t);
+            } else if (sphereLight) {
+                // Strategy 1 for a sphere: a direction uniform in its cone.
+                float cosT = 1.0f - u.x * oneMinusCos;
+                float sinT = sqrt(max(1.0f - cosT * cosT, 0.0f));
+                float phi = 6.28318531f * u.y;
+                vec3 a1 = normalize(cross(abs(sphereAxis.z) < 0.9f ? vec3(0.0f, 0.0f, 1.0f) : vec3(1.0f, 0.0f, 0.0f), sphereAxis));
+                wi = sphereAxis * cosT + (a1 * cos(phi) + cross(sphereAxis, a1) * sin(phi)) * sinT;
+                hit = true;
             } else {
                 // Strategy 1: a uniform point on the polygon (fan triangle chosen by area).
                 float target = uPick * area;
@@ -133,8 +158,8 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
             }
             // The light's front faces -plane.xyz travellers; one-sided lights emit only there.
             float cosLight = -dot(plane.xyz, wi);
-            hit = hit && (twoSided ? cosLight != 0.0f : cosLight > 0.0f);
-            float pdfLight = hit ? t * t / (abs(cosLight) * area) : 0.0f;
+            hit = hit && (sphereLight || (twoSided ? cosLight != 0.0f : cosLight > 0.0f));
+            float pdfLight = hit ? (sphereLight ? 1.0f / (6.28318531f * oneMinusCos) : t * t / (abs(cosLight) * area)) : 0.0f;
 
             vec3 wiLocal = vec3(dot(wi, T), dot(wi, B), dot(wi, N));
             float pdfBrdf = pBrdf > 0.0f ? MC_PDF_REFLECTION(wo, wiLocal, alphaSample.x, alphaSample.y) : 0.0f;
@@ -146,9 +171,9 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
             bool valid = hit && NoL > 0.0f && pdf > 0.0f;
             lightSum += valid ? f * (NoL / pdf) : vec3(0.0f);
         }
-        vec3 lightTerm = lightSum / float(samples);
+        vec3 lightTerm = lightSum / float(samples) * window;
         // A punctual light: exact, no sample (added once, by the dispatch of the first samples).
-        if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON)) {
+        if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && !sphereLight) {
             vec4 incident = Punctual_Incident(P, shape, lights[i].vertices[0], lights[i].vertices[1].xyz, lights[i].vertices[2].xy);
             vec3 wiLocal = vec3(dot(incident.xyz, T), dot(incident.xyz, B), dot(incident.xyz, N));
             bool on = mc.first_sample == 0u && wiLocal.z > 0.0f && incident.w > 0.0f;

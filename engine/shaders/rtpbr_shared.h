@@ -229,13 +229,17 @@
 // outer cone, 1 / max(cos inner - cos outer, 1e-3), 0, 0) (shaderlib/rtpbr/punctual.h),
 // radiance = its intensity (candela; directional: lux), sphere = (position, range) or an
 // infinite radius (RTPBR_LIGHT_INFINITE).
+// A sphere (shape SPHERE: a point light with a radius; vertex_count 0, two_sided 1, plane
+// (0, 0, 0, 1)): sphere = (centre, radius) exactly (not a bound), vertices[0] = (centre,
+// 1 / range^2 or 0), radiance = its uniform radiance (intensity / (pi radius^2)), area = pi
+// radius^2 (the cull's form factor); shaded by area_light.h's AreaLight_AddSphere.
 #define RTPBR_LIGHT_FIELDS(F, S)                                                                  \
     F(S, VEC4, vertices, [RTPBR_SHADER_MAX_POLYGON_VERTICES]) /* xyz; w: fan area below vertex k */ \
     F(S, VEC3, radiance, )     /* emitted radiance, rgb (punctual: intensity) */                   \
     F(S, FLOAT, two_sided, )   /* 1: emits on both sides; 0: on the front side (plane normal) */  \
     F(S, VEC4, plane, )        /* unit normal xyz, w = -dot(normal, vertex 0) */                  \
     F(S, VEC4, sphere, )       /* bounding sphere: centre xyz, radius w */                        \
-    F(S, UINT, vertex_count, ) /* 3 .. RTPBR_SHADER_MAX_POLYGON_VERTICES; punctual: 0 */          \
+    F(S, UINT, vertex_count, ) /* 3 .. RTPBR_SHADER_MAX_POLYGON_VERTICES; others: 0 */            \
     F(S, FLOAT, area, )                                                                            \
     F(S, UINT, shape, )        /* RTPBR_LIGHT_SHAPE_* (= rtpbr_light_type) */                     \
     F(S, UINT, sun, )          /* 1: a directional light's disk (a far polygon): no distance cull */
@@ -246,6 +250,7 @@
 #define RTPBR_LIGHT_SHAPE_POINT 1
 #define RTPBR_LIGHT_SHAPE_SPOT 2
 #define RTPBR_LIGHT_SHAPE_DIRECTIONAL 3
+#define RTPBR_LIGHT_SHAPE_SPHERE 4 // a point light with a radius (not an rtpbr_light_type)
 // The bounding radius of a light without a range: everything is within reach.
 #define RTPBR_LIGHT_INFINITE 3.0e38
 
@@ -253,13 +258,18 @@
 #define RTPBR_CULL_GROUP 8
 #define RTPBR_TILE_MASK_WORDS (RTPBR_SHADER_MAX_LIGHTS / 32)
 // A tile's masks: RTPBR_TILE_MASK_WORDS words of its polygonal lights, then as many of its
-// punctual lights (the lighting pass walks each kind without reading a light's shape).
-#define RTPBR_TILE_MASK_STRIDE (2 * RTPBR_TILE_MASK_WORDS)
+// punctual lights, then of its spheres (the lighting pass walks each kind without reading a
+// light's shape).
+#define RTPBR_TILE_MASK_STRIDE (3 * RTPBR_TILE_MASK_WORDS)
 // Tile classes: each has its lighting variant, dispatched indirectly over its tile queue.
 #define RTPBR_TILE_CLASS_EMPTY 0 // no surface pixel or no light left: emission and background
 #define RTPBR_TILE_CLASS_BASIC 1 // metallic-roughness without clear coat, sheen, anisotropy
 #define RTPBR_TILE_CLASS_FULL 2  // any material
-#define RTPBR_TILE_CLASS_COUNT 3
+// The same with a sphere light (a point light with a radius) among the tile's lights: the
+// variants with the spheres' loop (whose registers the others do not pay).
+#define RTPBR_TILE_CLASS_BASIC_SPHERES 3
+#define RTPBR_TILE_CLASS_FULL_SPHERES 4
+#define RTPBR_TILE_CLASS_COUNT 5
 
 // Monte Carlo lighting pass push constants (std430; rtpbr_shader_mc, lighting_mc.comp). The
 // pass runs in dispatches over ranges of lights and of samples (lavapipe's loop budget, see

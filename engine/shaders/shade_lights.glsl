@@ -68,9 +68,16 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 
 #define RTPBR_AREA_LIGHT_FULL RTPBR_LIGHTING_FULL
 #define RTPBR_AREA_LIGHT_PUNCTUAL 2 // punctual lights summed first, apart (area_light.h)
+#define RTPBR_AREA_LIGHT_SPHERES 1  // AreaLight_AddSphere for the spheres' mask (RTPBR_LIGHTING_SPHERES)
+// A sphere the horizon cuts: clipped exactly in the basic variant; the full variant's registers
+// take the sphere proxy (area_light.h; no spills: tests/shader-stats)
+#define RTPBR_AREA_LIGHT_SPHERE_CLIP (!RTPBR_LIGHTING_FULL)
 #define RTPBR_UNROLL [[unroll]]
 #define RTPBR_DONT_UNROLL [[dont_unroll]]
 #include "rtpbr/area_light.h"
+#if RTPBR_LIGHT_SHAPE_SPHERE <= RTPBR_PUNCTUAL_DIRECTIONAL
+#error "a sphere's shape value must differ from every punctual light's"
+#endif
 #if RTPBR_PUNCTUAL_POINT != RTPBR_LIGHT_SHAPE_POINT || RTPBR_PUNCTUAL_SPOT != RTPBR_LIGHT_SHAPE_SPOT || \
     RTPBR_PUNCTUAL_DIRECTIONAL != RTPBR_LIGHT_SHAPE_DIRECTIONAL || RTPBR_LIGHT_SHAPE_POLYGON != 0
 #error "light shapes differ between rtpbr_shared.h and shaderlib/rtpbr/punctual.h"
@@ -80,14 +87,19 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 // with RTPBR_SHADE_ALL_LIGHTS every light of the frame: the forward pass's surfaces are not in
 // the G-buffer the masks were culled by), each weighted by its shadow ratio
 // shadow_factor(i, pixel) (shadow_ratio.glsl, or 1), added to result (the emission): punctual
-// lights first, straight into it (AreaLight_AddPunctual), then the polygons (AreaLight_Add,
-// their sum held to the energy bound; registers: docs/performance.md, 11).
+// lights first, straight into it (AreaLight_AddPunctual), then the polygons (AreaLight_Add)
+// and the spheres (AreaLight_AddSphere), their sum held to the energy bound (registers:
+// docs/performance.md, 11).
 void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pixel, inout vec3 result)
 {
     shade_pixel = pixel;
     AreaLightSum acc = AreaLight_SumBegin();
 #ifdef RTPBR_STATS_FIXED_LIGHTS
-#ifdef RTPBR_STATS_FIXED_SHAPE // every light a punctual light of this shape (bench/shader-stats)
+#if defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_LIGHT_SHAPE_SPHERE // every light a sphere
+    AreaLightPixel px = AreaLight_Begin(s, N, V);
+    [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
+        AreaLight_AddSphere(px, acc, s, P, N, i);
+#elif defined(RTPBR_STATS_FIXED_SHAPE) // every light a punctual light of this shape (bench/shader-stats)
     mat3 frame3 = LTC_Frame(N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
         AreaLight_AddPunctual(result, s, frame3, P, i, uint(RTPBR_STATS_FIXED_SHAPE));
@@ -101,13 +113,20 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     // Punctual lights first (the whole BRDF's terms live), then the polygons (their per-point
     // state live): registers, docs/performance.md, 11.
     mat3 frame3 = LTC_Frame(N, V);
-    for (uint i = 0u; i < frame.light_count; ++i)
-        if (lights[i].shape != uint(RTPBR_LIGHT_SHAPE_POLYGON)) AreaLight_AddPunctual(result, s, frame3, P, i, lights[i].shape);
+    for (uint i = 0u; i < frame.light_count; ++i) {
+        uint shape = lights[i].shape;
+        if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && shape != uint(RTPBR_LIGHT_SHAPE_SPHERE))
+            AreaLight_AddPunctual(result, s, frame3, P, i, shape);
+    }
     AreaLightPixel px = AreaLight_Begin(s, N, V);
     for (uint i = 0u; i < frame.light_count; ++i)
         if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) AreaLight_Add(px, acc, s, P, N, i);
+#if RTPBR_LIGHTING_SPHERES
+    for (uint i = 0u; i < frame.light_count; ++i)
+        if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) AreaLight_AddSphere(px, acc, s, P, N, i);
+#endif
 #else
-    // The tile's masks (cull.comp): its punctual lights', then its polygons'.
+    // The tile's masks (cull.comp): its punctual lights', then its polygons' and its spheres'.
     uint words = (frame.light_count + 31u) / 32u;
     uint maskBase = tile * uint(RTPBR_TILE_MASK_STRIDE);
     mat3 frame3 = LTC_Frame(N, V);
@@ -120,6 +139,11 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     for (uint word = 0u; word < words; ++word)
         for (uint bits = tile_masks[maskBase + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_Add(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
+#if RTPBR_LIGHTING_SPHERES
+    for (uint word = 0u; word < words; ++word)
+        for (uint bits = tile_masks[maskBase + 2u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
+            AreaLight_AddSphere(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
+#endif
 #endif
     result += AreaLight_End(px, acc, s, P);
 }

@@ -20,7 +20,8 @@
 // iterations (llvmpipe's LP_MAX_TGSI_LOOP_ITERATIONS, one budget for all the loops of a
 // shader run) and silently skips what follows them.
 // A punctual light (point, spot, directional) takes one ray, w = max(cos_x, 0), V to its
-// position or along its reverse direction.
+// position or along its reverse direction. A sphere light: n directions uniform in the cone it
+// subtends (R2 as above), w = max(cos_x, 0), V to where each meets the sphere.
 // shadow_denoise.comp filters n S and n U and writes their ratio, S / U.
 #include "rtpbr_shared.h"
 #include "shadow_common.glsl"
@@ -68,7 +69,18 @@ void main()
     vec3 v0 = light.vertices[0].xyz;
     // A punctual light: one ray (every sample would be the same), to its position or, for a
     // directional light, RTPBR_SHADOW_FAR along its reverse direction; weight N.L.
-    bool punctual = light.shape != uint(RTPBR_LIGHT_SHAPE_POLYGON);
+    bool sphereLight = light.shape == uint(RTPBR_LIGHT_SHAPE_SPHERE);
+    bool punctual = light.shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && !sphereLight;
+    // A sphere: directions uniform in the cone it subtends from x (from inside it, every
+    // direction), each to where it meets the sphere, weight max(cos_x, 0) (the cone's constant
+    // density cancels in the ratio).
+    vec3 toCentre = light.sphere.xyz - origin;
+    float centre2 = dot(toCentre, toCentre), radius2 = light.sphere.w * light.sphere.w;
+    bool insideSphere = centre2 <= radius2;
+    float oneMinusCos = insideSphere ? 2.0f : radius2 / centre2 / (1.0f + sqrt(max(1.0f - radius2 / centre2, 0.0f)));
+    vec3 sphereAxis = toCentre * inversesqrt(max(centre2, 1e-30f));
+    vec3 sphereA1 = normalize(cross(abs(sphereAxis.z) < 0.9f ? vec3(0.0f, 0.0f, 1.0f) : vec3(1.0f, 0.0f, 0.0f), sphereAxis));
+    vec3 sphereA2 = cross(sphereAxis, sphereA1);
     uint sampleEnd = punctual ? min(params.samples, 1u) * uint(params.first_sample == 0u) : params.samples;
     for (uint j = params.first_sample; facing && j < params.first_sample + sampleEnd; ++j) {
         // R2: the lattice of the plastic number (Roberts 2018).
@@ -89,6 +101,16 @@ void main()
         vec3 y = v0 * (1.0f - su) + a * (su * (1.0f - u.y)) + b * (su * u.y);
         if (punctual)
             y = light.shape == uint(RTPBR_LIGHT_SHAPE_DIRECTIONAL) ? origin - light.vertices[1].xyz * RTPBR_SHADOW_FAR : v0;
+        if (sphereLight) {
+            float cosT = 1.0f - u.x * oneMinusCos;
+            float sinT = sqrt(max(1.0f - cosT * cosT, 0.0f));
+            float phi = 6.28318531f * u.y;
+            vec3 dir = sphereAxis * cosT + (sphereA1 * cos(phi) + sphereA2 * sin(phi)) * sinT;
+            // the ray's first meeting with the sphere (from inside: its exit)
+            float b = dot(dir, toCentre);
+            float root = sqrt(max(b * b - centre2 + radius2, 0.0f));
+            y = origin + dir * (insideSphere ? b + root : b - root);
+        }
         vec3 d = y - origin;
         float dist2 = dot(d, d);
         float dist = sqrt(dist2);
@@ -97,7 +119,7 @@ void main()
         float cosY = -dot(light.plane.xyz, l);
         cosY = twoSided ? abs(cosY) : cosY;
         float w = cosX > 0.0f && cosY > 0.0f ? light.area * cosX * cosY / dist2 : 0.0f;
-        if (punctual) w = max(cosX, 0.0f);
+        if (punctual || sphereLight) w = max(cosX, 0.0f);
         unshadowed += w;
         if (w > 0.0f && !bvh_occluded(origin, d, 1.0f - 1e-3f, bvh_hash(h + j))) shadowed += w;
     }

@@ -112,7 +112,8 @@ typedef struct rtpbr_lighting_pass {             // passes/lighting.c, passes/li
 typedef struct rtpbr_forward_pass {              // passes/forward.c
     VkDescriptorSetLayout set_layout;            // set 0 (set 1: the G-buffer pass's material sets)
     VkPipelineLayout layout;                     // + push constants rtpbr_shader_draw
-    VkPipeline pipelines[RTPBR_LIGHTING_VARIANT_COUNT]; // compiled on first use
+    VkPipeline pipelines[2 * RTPBR_LIGHTING_VARIANT_COUNT]; // compiled on first use; the second
+                                                 // half: with the spheres' loop
 } rtpbr_forward_pass;
 
 typedef struct rtpbr_resolve_pass {              // passes/resolve.c
@@ -241,6 +242,8 @@ rtpbr_result rtpbr_material_validate(const rtpbr_context *ctx, const rtpbr_mater
 rtpbr_result rtpbr_light_validate(const rtpbr_context *ctx, const rtpbr_light_desc *l,
                                   const struct rtpbr_gltf_polygon_facts *f, uint32_t index);
 void rtpbr_light_record(const rtpbr_light_desc *l, const struct rtpbr_gltf_polygon_facts *f, rtpbr_shader_light *out);
+// Whether any of count light records is a sphere (the spheres' lighting variants are needed).
+bool rtpbr_lights_have_spheres(const rtpbr_shader_light *lights, uint32_t count);
 
 // The RTPBR_EXTENSION_TEXTURES_* bits of the scene's materials together (scene.c): which of
 // G-buffers 4 to 6 its frames render and read.

@@ -400,7 +400,10 @@ rtpbr_result rtpbr_lighting_record(rtpbr_lighting_targets *t, const rtpbr_lighti
     if (!frame_constants(t, d, lights->count[d->frame], &frame)) FAIL("NaN, infinite or degenerate camera");
     // Before anything is recorded: a variant's first use compiles it, which may fail.
     VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT];
-    rtpbr_result result = rtpbr_lighting_pipelines_get(ctx, d->ndf, d->multiscatter, pipelines);
+    const rtpbr_shader_light *records = (const rtpbr_shader_light *)((const char *)lights->buffer.mapped + d->frame * lights->stride);
+    rtpbr_result result =
+        rtpbr_lighting_pipelines_get(ctx, d->ndf, d->multiscatter, rtpbr_lights_have_spheres(records, lights->count[d->frame]),
+                                     pipelines);
     if (result != RTPBR_SUCCESS) return result;
 #undef FAIL
 

@@ -57,6 +57,27 @@ static rtpbr_result validate_punctual(const rtpbr_context *ctx, const rtpbr_ligh
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has a negative range (%g; zero: infinite)", index, l->range);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
+    if (l->type == RTPBR_LIGHT_POINT && !(l->radius >= 0.0f && isfinite(l->radius))) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (point) has radius %g; finite and >= 0 is required (zero: a true point)",
+                  index, l->radius);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (l->type == RTPBR_LIGHT_SPOT && l->radius != 0.0f) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (spot) has radius %g; spots are true points (radius 0)", index,
+                  l->radius);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (l->type == RTPBR_LIGHT_POINT && l->radius > 0.0f) {
+        // its sphere's radiance emission / (pi r^2) (sphere_record) and pi r^2 must be floats
+        double most = fmax(fmax(l->emission[0], l->emission[1]), l->emission[2]);
+        double disk = LIGHT_PI * (double)l->radius * l->radius;
+        if (!(most / disk <= 0.5 * FLT_MAX) || !(disk <= 0.5 * FLT_MAX)) {
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                      "light %u (point): intensity %g over a sphere of radius %g is a radiance (or area) beyond a float",
+                      index, most, l->radius);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+    }
     if (l->type == RTPBR_LIGHT_DIRECTIONAL && !(isfinite(l->angular_diameter) && l->angular_diameter < LIGHT_PI / 2.0)) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
                   "light %u (directional) has angular diameter %g radians; below pi/2 is required (zero: the sun's "
@@ -238,10 +259,34 @@ static void sun_record(const rtpbr_light_desc *l, double diameter, rtpbr_shader_
     out->sun = 1u;
 }
 
+// A point light with a radius (rtpbr_light_desc): the sphere of that radius around its
+// position, of uniform radiance emission / (pi r^2) (RTPBR_LIGHT_FIELDS: SPHERE).
+static void sphere_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
+{
+    rtpbr_shader_light g = {0};
+    double disk = LIGHT_PI * (double)l->radius * l->radius;
+    for (int k = 0; k < 3; ++k) {
+        g.vertices[0][k] = l->position[k];
+        g.sphere[k] = l->position[k];
+        g.radiance[k] = (float)(l->emission[k] / disk);
+    }
+    g.vertices[0][3] = l->range > 0.0f ? (float)(1.0 / ((double)l->range * l->range)) : 0.0f;
+    g.sphere[3] = l->radius;
+    g.area = (float)disk;
+    g.two_sided = 1.0f;
+    g.plane[3] = 1.0f;
+    g.shape = RTPBR_LIGHT_SHAPE_SPHERE;
+    *out = g;
+}
+
 void rtpbr_light_record(const rtpbr_light_desc *l, const rtpbr_gltf_polygon_facts *f, rtpbr_shader_light *out)
 {
     if (l->type == RTPBR_LIGHT_DIRECTIONAL && directional_diameter(l) > 0.0) {
         sun_record(l, directional_diameter(l), out);
+        return;
+    }
+    if (l->type == RTPBR_LIGHT_POINT && l->radius > 0.0f) {
+        sphere_record(l, out);
         return;
     }
     if (l->type != RTPBR_LIGHT_POLYGON) {
@@ -886,6 +931,13 @@ rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh
     else memcpy(draw->push.world_from_object, transform, sizeof draw->push.world_from_object);
     normal_matrix(draw->push.world_from_object, draw->push.normal_matrix);
     return RTPBR_SUCCESS;
+}
+
+bool rtpbr_lights_have_spheres(const rtpbr_shader_light *lights, uint32_t count)
+{
+    for (uint32_t i = 0; i < count; ++i)
+        if (lights[i].shape == RTPBR_LIGHT_SHAPE_SPHERE) return true;
+    return false;
 }
 
 bool rtpbr_scene_has_blend(const rtpbr_gpu_scene *scene)

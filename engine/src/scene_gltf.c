@@ -273,6 +273,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
             .outer_cone_angle = l->outer_cone_angle,
             // the loader's 0 is a true direction, the desc's zero the default disk
             .angular_diameter = l->angular_diameter > 0.0f ? l->angular_diameter : -1.0f,
+            .radius = l->type == RTPBR_GLTF_PUNCTUAL_POINT ? l->radius : 0.0f, // a sphere, or a point at 0
         };
         memcpy(d->emission, l->intensity, sizeof d->emission);
         memcpy(d->position, l->position, sizeof d->position);

@@ -22,6 +22,11 @@
 //                        estimate (GGX, RTPBR_AREA_LIGHT_FULL 0)
 //   AreaLight_Evaluate   one light alone (the four above with one light)
 //   AreaLight_Lobe       one pass over a light's edges for one LTC lobe (the building block)
+//   AreaLight_AddSphere  a sphere light's reflected radiance added, as AreaLight_Add's
+//                        (RTPBR_AREA_LIGHT_SPHERES)
+//   AreaLight_AddShape   AreaLight_Add or AreaLight_AddSphere by a run-time flag: one loop
+//                        over polygons and spheres (RTPBR_AREA_LIGHT_SPHERES)
+//   AreaLight_ShapeLobe  AreaLight_Lobe over a polygon or a sphere
 //
 // Flags (before the include)
 //   RTPBR_AREA_LIGHT_PUNCTUAL  0 (default): every light is a polygon; 1: a light may also be
@@ -33,6 +38,13 @@
 //                          AreaLight_Begin into the emission's sum, so that neither the
 //                          polygons' per-point state and the whole BRDF's terms nor a sum of
 //                          their own are live at once; docs/performance.md, 11)
+//   RTPBR_AREA_LIGHT_SPHERES  0 (default); 1: AreaLight_AddSphere, which the host calls for
+//                          its sphere lights (a point light with a radius: ltc_shapes.h,
+//                          every lobe and correction of AreaLight_Add over the sphere's
+//                          cone), into the same sum as its polygons
+//   RTPBR_AREA_LIGHT_SPHERE_CLIP  1 (default): a sphere the horizon cuts is clipped exactly
+//                          (its disk's 12-gon); 0: Heitz & Hill's sphere proxy (no walk, fewer
+//                          registers; a glossy lobe leaks light from below the surface)
 //   RTPBR_AREA_LIGHT_FULL  1 (default): every lobe surface.h resolves (Disney, coat, sheen,
 //                          anisotropy); 0: metallic-roughness without them (the engine's
 //                          basic variant: fewer registers, the streak estimate on GGX).
@@ -60,6 +72,10 @@
 //   rtpbr_float3 Host_LightDirection(uint light)  unit, the way the light travels
 //   rtpbr_float2 Host_LightSpotCone(uint light)   (Punctual_SpotCone; a point light's (-2, 1))
 // (Host_LightRadiance is then a punctual light's intensity; Host_LightVisibility as above);
+// with RTPBR_AREA_LIGHT_SPHERES a sphere light is read through Host_LightSphere (its centre and
+// radius, exactly), Host_LightRadiance (its uniform radiance), Host_LightPosition's w (1 /
+// range^2, 0 for none: its radiance is windowed by Punctual_RangeWindow at the distance from
+// its centre) and Host_LightVisibility;
 //   rtpbr_float4 Host_TableLtc1(int table, rtpbr_float2 uv)  the LTC tables at uv
 //   rtpbr_float4 Host_TableLtc2(int table, rtpbr_float2 uv)  (LTC_LutCoord), table one of
 //                                     RTPBR_TABLE_LTC_SPECULAR (rtpbr_ltc_ggx_1/_2, or
@@ -87,9 +103,20 @@
 #include "sheen.h"
 #include "surface.h"
 #include "punctual.h"
+#include "ltc_shapes.h"
 
 #ifndef RTPBR_AREA_LIGHT_PUNCTUAL
 #define RTPBR_AREA_LIGHT_PUNCTUAL 0
+#endif
+#ifndef RTPBR_AREA_LIGHT_SPHERES
+#define RTPBR_AREA_LIGHT_SPHERES 0
+#endif
+#ifndef RTPBR_AREA_LIGHT_SPHERE_CLIP
+#define RTPBR_AREA_LIGHT_SPHERE_CLIP 1
+#endif
+// The sides of the equal-area polygon a sphere's disk is clipped as (RTPBR_AREA_LIGHT_SPHERE_CLIP).
+#ifndef RTPBR_AREA_LIGHT_SPHERE_SIDES
+#define RTPBR_AREA_LIGHT_SPHERE_SIDES 12
 #endif
 #ifndef RTPBR_AREA_LIGHT_FULL
 #define RTPBR_AREA_LIGHT_FULL 1
@@ -172,6 +199,17 @@ RTPBR_FN LtcSegment AreaLight_EdgeStep(uint i, rtpbr_float3 P, rtpbr_float3x3 lt
     return seg;
 }
 
+// The end of a lobe's pass (AreaLight_Lobe): its form factor, and its vector form factor in Fl.
+// LTC_LobeEndVector and LTC_LobeEnd in one: the closing segment's integral once, its z the
+// form factor's sum (the same value; the two calls left two copies: docs/performance.md, 9).
+RTPBR_FN float AreaLight_LobeClose(LtcLobe lobe, RTPBR_OUT(rtpbr_float3) Fl) {
+    rtpbr_float3 v = lobe.vec;
+    if (lobe.clip.crossed)
+        v += LTC_EdgeIntegral(LTC_SafeNormalize(lobe.clip.exitPoint), LTC_SafeNormalize(lobe.clip.entryPoint));
+    Fl = v.z < 0.0f ? -v : v;
+    return LTC_HorizonFraction(abs(v.z), LTC_HorizonMass(lobe.minv));
+}
+
 // One pass over light i's edges (vectors from P in the LTC frame): the horizon clip, then the
 // LTC lobe minv; returns its form factor, the clipped polygon's vector form factor F (up to
 // its sign) and the lobe's own vector form factor Fl (LTC_LobeEndVector; callers that do not
@@ -192,13 +230,108 @@ RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, r
             LTC_LobeEdge(lobe, seg.a, seg.b);
         }
     }
-    // LTC_LobeEndVector and LTC_LobeEnd in one: the closing segment's integral once, its z the
-    // form factor's sum (the same value; the two calls left two copies: docs/performance.md, 9)
-    rtpbr_float3 v = lobe.vec;
-    if (lobe.clip.crossed)
-        v += LTC_EdgeIntegral(LTC_SafeNormalize(lobe.clip.exitPoint), LTC_SafeNormalize(lobe.clip.entryPoint));
+    return AreaLight_LobeClose(lobe, Fl);
+}
+
+#if RTPBR_AREA_LIGHT_SPHERES
+// The disk that stands for sphere light i (Host_LightSphere: centre, radius) at P, in the LTC
+// frame (LTC_SphereAsDisk's: it fills the sphere's cone, radius r d / sqrt(d^2 - r^2) about the
+// axis c): centre c, orthogonal semi-axes u, w; the sphere's exact vector form factor in F
+// (sin^2 of its angular radius along the axis, z the cap's horizon-clipped form factor:
+// LTC_SphereCapFormFactor). False inside the sphere. The disk's in-plane basis is any (it is
+// round): it is taken from the lobe's matrix minv, so that each lobe builds its own and the
+// compiler keeps none live across lobes (registers).
+RTPBR_FN bool AreaLight_SphereDisk(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+                                   RTPBR_OUT(rtpbr_float3) c, RTPBR_OUT(rtpbr_float3) u, RTPBR_OUT(rtpbr_float3) w,
+                                   RTPBR_OUT(rtpbr_float3) F) {
+    rtpbr_float4 sphere = Host_LightSphere(i);
+    c = rtpbr_mul(ltcFrame, rtpbr_float3(sphere.x, sphere.y, sphere.z) - P);
+    float d2 = dot(c, c);
+    float r2 = sphere.w * sphere.w;
+    u = RTPBR_F3(0.0f);
+    w = RTPBR_F3(0.0f);
+    F = rtpbr_float3(0.0f, 0.0f, 1.0f);
+    if (!(d2 > r2))
+        return false;
+    rtpbr_float3 axis = c * rtpbr_rsqrt(d2);
+    rtpbr_float3 t = rtpbr_float3(rtpbr_mat3_at(minv, 0, 0), rtpbr_mat3_at(minv, 1, 0), rtpbr_mat3_at(minv, 2, 0));
+    t = abs(dot(t, axis)) < 0.9f * length(t) ? t : rtpbr_float3(axis.y, axis.z, axis.x);
+    rtpbr_float3 b1 = normalize(cross(t, axis));
+    float R = sphere.w * sqrt(d2 / (d2 - r2));
+    u = b1 * R;
+    w = cross(axis, b1) * R;
+    F = axis * (r2 / d2);
+    F.z = LTC_SphereCapFormFactor(F);
+    return true;
+}
+
+#endif
+
+#if RTPBR_AREA_LIGHT_SPHERES
+// AreaLight_Lobe over sphere light i. While the sphere's cone is above the horizon and its
+// image under minv above the LTC's own, the disk's closed form (LTC_EllipseVector: exact).
+// Across either horizon, with RTPBR_AREA_LIGHT_SPHERE_CLIP (1) the disk's equal-area polygon
+// (RTPBR_AREA_LIGHT_SPHERE_SIDES) clipped exactly and integrated (its error against the disk,
+// measured); with 0,
+// Heitz & Hill's sphere proxy (the cap of the same vector form factor, clipped by the LTC's
+// own horizon: LTC_SphereCapFormFactor), which lights a glossy lobe from the part of the sphere
+// below the surface (measured: tests/engine/test_engine_punctual.c, sphere_ggx) but has no
+// walk (fewer registers). F: the sphere's exact vector form factor. Inside the sphere: 1.
+RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+                                    RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl) {
+    rtpbr_float3 c, u, w;
+    if (!AreaLight_SphereDisk(i, P, ltcFrame, minv, c, u, w, F)) {
+        Fl = F;
+        return 1.0f;
+    }
+#if RTPBR_AREA_LIGHT_SPHERE_CLIP
+    rtpbr_float3 cl = rtpbr_mul(minv, c), ul = rtpbr_mul(minv, u), wl = rtpbr_mul(minv, w);
+    if (!(c.z >= sqrt(u.z * u.z + w.z * w.z) && cl.z >= sqrt(ul.z * ul.z + wl.z * wl.z))) {
+        LtcClipper horizon = LTC_ClipperBegin();
+        LtcLobe lobe = LTC_LobeBegin(minv);
+        // the disk's equal-area RTPBR_AREA_LIGHT_SPHERE_SIDES-gon: circumradius sqrt(2 pi / (n
+        // sin(2 pi / n))) x the disk's
+        const float n = float(RTPBR_AREA_LIGHT_SPHERE_SIDES);
+        float scale = sqrt(2.0f * RTPBR_PI / (n * sin(2.0f * RTPBR_PI / n)));
+        u *= scale;
+        w *= scale;
+        rtpbr_float3 a = c + u;
+        RTPBR_UNROLL for (uint k = 1u; k <= uint(RTPBR_AREA_LIGHT_SPHERE_SIDES) + 1u; ++k) {
+            LtcSegment seg;
+            if (k <= uint(RTPBR_AREA_LIGHT_SPHERE_SIDES)) {
+                float phi = 2.0f * RTPBR_PI * float(k) / n; // vertex n is vertex 0
+                rtpbr_float3 b = c + u * cos(phi) + w * sin(phi);
+                seg = LTC_ClipEdge(horizon, a, b);
+                a = b;
+            } else {
+                seg = LTC_ClipClose(horizon);
+            }
+            if (seg.valid)
+                LTC_LobeEdge(lobe, seg.a, seg.b);
+        }
+        return AreaLight_LobeClose(lobe, Fl);
+    }
+#endif
+    rtpbr_float3 v = LTC_EllipseVector(minv, c, u, w, true);
     Fl = v.z < 0.0f ? -v : v;
-    return LTC_HorizonFraction(abs(v.z), LTC_HorizonMass(lobe.minv));
+#if RTPBR_AREA_LIGHT_SPHERE_CLIP
+    return LTC_HorizonFraction(abs(v.z), LTC_HorizonMass(minv));
+#else
+    return LTC_HorizonFraction(LTC_SphereCapFormFactor(v), LTC_HorizonMass(minv));
+#endif
+}
+#endif
+
+// AreaLight_Lobe, or AreaLight_SphereLobe where sphereLight (RTPBR_AREA_LIGHT_SPHERES).
+RTPBR_FN float AreaLight_ShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+                                   RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, bool sphereLight) {
+#if RTPBR_AREA_LIGHT_SPHERES
+    if (sphereLight)
+        return AreaLight_SphereLobe(i, P, ltcFrame, minv, F, Fl);
+#else
+    RTPBR_UNUSED(sphereLight);
+#endif
+    return AreaLight_Lobe(i, P, ltcFrame, minv, F, Fl);
 }
 
 // The specular lobe's LTC result ltcFF corrected (ltc_corrections.h): the point correction
@@ -357,33 +490,41 @@ RTPBR_FN void AreaLight_AddPunctual(RTPBR_INOUT(rtpbr_float3) sum, ShadingSurfac
 // polygon's size (KC_PolygonLobe, KC_PolygonMeanE). Disney's subsurface shape and sheen are
 // evaluated at the representative direction x pi x the form factor; its GTR1 coat is
 // integrated as GGX at the same alpha.
-RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
-                           rtpbr_float3 N, uint i) {
-#if RTPBR_AREA_LIGHT_PUNCTUAL == 1
-    uint shape = Host_LightShape(i);
-    if (shape != 0u) {
-        AreaLight_AddPunctual(acc.punctual, s, px.frame, P, i, shape);
-        return;
-    }
-#endif
+// AreaLight_AddShape: AreaLight_Add for a polygon, AreaLight_AddSphere where sphereLight
+// (RTPBR_AREA_LIGHT_SPHERES), which may vary at run time: a loop over both kinds of light calls
+// it once (one copy of the evaluation's code, whose registers are the polygon's).
+RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
+                                 rtpbr_float3 N, uint i, bool sphereLight) {
     // P on the light's plane sees it edge-on; behind a one-sided light, nothing; a light
-    // whose bounding sphere is below the horizon, nothing.
-    rtpbr_float4 plane = Host_LightPlane(i);
+    // whose bounding sphere is below the horizon, nothing. A sphere light: below the horizon
+    // or beyond its range, nothing.
     rtpbr_float4 sphere = Host_LightSphere(i);
-    float side = dot(rtpbr_float3(plane.x, plane.y, plane.z), P) + plane.w; // > 0: the front (emitting) side
-    bool twoSided = Host_LightTwoSided(i);
-    if (abs(side) <= 1e-7f * sphere.w || (!twoSided && side < 0.0f) || dot(N, rtpbr_float3(sphere.x, sphere.y, sphere.z) - P) < -sphere.w)
-        return;
+    float window = 1.0f; // a sphere light's range window
+    if (sphereLight) {
+#if RTPBR_AREA_LIGHT_SPHERES
+        rtpbr_float3 toCentre = rtpbr_float3(sphere.x, sphere.y, sphere.z) - P;
+        window = Punctual_RangeWindow(dot(toCentre, toCentre), Host_LightPosition(i).w);
+        if (dot(N, toCentre) < -sphere.w || !(window > 0.0f))
+            return;
+#endif
+    } else {
+        rtpbr_float4 plane = Host_LightPlane(i);
+        float side = dot(rtpbr_float3(plane.x, plane.y, plane.z), P) + plane.w; // > 0: the front (emitting) side
+        bool twoSided = Host_LightTwoSided(i);
+        if (abs(side) <= 1e-7f * sphere.w || (!twoSided && side < 0.0f) || dot(N, rtpbr_float3(sphere.x, sphere.y, sphere.z) - P) < -sphere.w)
+            return;
+    }
 #if !RTPBR_AREA_LIGHT_FULL
     // (latency: docs/performance.md, 8) fetched before the walk, which hides its latency
     rtpbr_float3 visibility = Host_LightVisibility(i);
 #endif
 #if RTPBR_AREA_LIGHT_STREAK
     // (registers: docs/performance.md, 3)
-    bool streakSized = LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
+    // (a sphere light is no candidate: the estimate walks a polygon's edges)
+    bool streakSized = !sphereLight && LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
 #endif
     rtpbr_float3 F, Fl;
-    float specularFF = AreaLight_Lobe(i, P, px.frame, px.specularMinv, F, Fl);
+    float specularFF = AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, F, Fl, sphereLight);
     F = F.z < 0.0f ? -F : F;
     float ff = min(F.z, 1.0f);
     if (!(ff > 0.0f)) return;
@@ -405,9 +546,9 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
     // form factor of 0.5 or more the factor is within (16 - 1) x 0.5^16 = 2.3e-4 of 1, and a
     // light holding half of the LTC's mass lies mostly outside its tail: the tail estimate is
     // skipped with it); the norm fetched again (the same texel).
-    if (px.pointOn && specularFF < 0.5f) {
+    if (px.pointOn && specularFF < 0.5f && !sphereLight) {
         rtpbr_float3 unusedF2;
-        AreaLight_Lobe(i, P, px.frame, px.specularMinv, unusedF2, Fl);
+        AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, unusedF2, Fl, sphereLight);
         float norm = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.tableRoughness)).x;
         specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, norm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
     }
@@ -440,7 +581,7 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 #if RTPBR_AREA_LIGHT_FULL
     if (s.disney) {
         float LoH = rtpbr_saturate(dot(lRep, normalize(lRep + px.vLocal)));
-        base = px.burleyScale * AreaLight_Lobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1d), unusedF, unusedFl) +
+        base = px.burleyScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1d), unusedF, unusedFl, sphereLight) +
                (s.dm.subsurface * Disney_DiffuseLobe(px.dss, s.NoV, muRep, LoH) + Disney_SheenLobe(s.dm, LoH)) *
                    (RTPBR_PI * ff);
     } else
@@ -454,10 +595,10 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 #if RTPBR_AREA_LIGHT_FULL
     if (s.sheen)
         lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, Host_TableSheenE(muRep, s.sheenRoughness)) +
-             px.sheenScale * AreaLight_Lobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl);
+             px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl, sphereLight);
     lo *= s.baseAttenuation;
     if (px.coated)
-        lo += px.coatScale * AreaLight_Lobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, unusedFl) +
+        lo += px.coatScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, unusedFl, sphereLight) +
               s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(Host_TableE(muRep, s.coatRoughness), s.Eavgc, lenF), s.Eavgc, ff);
 #endif
 #if RTPBR_LTC_POINT_CORRECTION && !RTPBR_AREA_LIGHT_FULL
@@ -466,8 +607,35 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 #if RTPBR_AREA_LIGHT_FULL
     rtpbr_float3 visibility = Host_LightVisibility(i);
 #endif
+    if (sphereLight)
+        visibility *= window;
     acc.sum += Host_LightRadiance(i) * lo * visibility;
 }
+
+// Polygon light i's reflected radiance at P (x its radiance and visibility) added to acc
+// (AreaLight_AddShape above); with RTPBR_AREA_LIGHT_PUNCTUAL 1, a punctual light's.
+RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
+                           rtpbr_float3 N, uint i) {
+#if RTPBR_AREA_LIGHT_PUNCTUAL == 1
+    uint shape = Host_LightShape(i);
+    if (shape != 0u) {
+        AreaLight_AddPunctual(acc.punctual, s, px.frame, P, i, shape);
+        return;
+    }
+#endif
+    AreaLight_AddShape(px, acc, s, P, N, i, false);
+}
+
+#if RTPBR_AREA_LIGHT_SPHERES
+// Sphere light i's reflected radiance at P (x its radiance, range window and visibility) added
+// to acc, as AreaLight_Add's for a polygon: every lobe over the sphere's cone (AreaLight_ShapeLobe),
+// with the point correction, Kulla-Conty and the energy bound; no streak estimate. Nothing when
+// the sphere is wholly below the horizon. A point inside the sphere sees only the light.
+RTPBR_FN void AreaLight_AddSphere(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
+                                  rtpbr_float3 N, uint i) {
+    AreaLight_AddShape(px, acc, s, P, N, i, true);
+}
+#endif
 
 #if RTPBR_AREA_LIGHT_STREAK
 // The streak estimate (ltc_corrections.h, LTC_StreakEnd) of light i's specular lobe: two more

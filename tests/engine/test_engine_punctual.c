@@ -8,7 +8,9 @@
 // A Lambertian plane (f = 0.8 / pi) under all four kinds, in the LTC pass and the Monte Carlo
 // pass (exact for punctual lights: no sample), a GGX metal plane (single scattering: D G / (4
 // N.L N.V), Smith's height-correlated G, F = 1), and shadows of an occluder, every pixel
-// checked.
+// checked. Point lights with a radius (spheres) against the cap they subtend: closed forms and
+// double-precision quadratures, the Monte Carlo pass, shadows (sphere_light, sphere_ggx,
+// sphere_shadow).
 #include <stdlib.h>
 
 #include "engine_test.h"
@@ -290,9 +292,9 @@ static bool shadow_pixels(const double p[3], double visible[])
     return shadow_filter(p, unused);
 }
 
-static void shadows(void **state)
+// The plane and the occluder under `lights` (4 of them).
+static rtpbr_gpu_scene *occluder_scene(rtpbr_context *ctx, const rtpbr_light_desc *lights)
 {
-    rtpbr_context *ctx = test_env_context(state);
     float plane[12];
     float occluder[12] = {(float)occluder_min[0], (float)occluder_min[1], (float)occluder_z,
                           (float)occluder_max[0], (float)occluder_min[1], (float)occluder_z,
@@ -303,11 +305,16 @@ static void shadows(void **state)
     static const uint32_t down[6] = {0, 2, 1, 0, 3, 2};
     rtpbr_mesh_desc meshes[2] = {test_square_mesh(4.0f, 0.0f, plane),
                                  {.positions = occluder, .indices = down, .vertex_count = 4, .index_count = 6}};
-    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = meshes, .mesh_count = 2,
-                                                                      .materials = &test_lambert_material,
-                                                                      .material_count = 1,
-                                                                      .lights = punctual_lights, .light_count = 4,
-                                                                      .cameras = &camera, .camera_count = 1});
+    return test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = meshes, .mesh_count = 2,
+                                                    .materials = &test_lambert_material, .material_count = 1,
+                                                    .lights = lights, .light_count = 4, .cameras = &camera,
+                                                    .camera_count = 1});
+}
+
+static void shadows(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    rtpbr_gpu_scene *scene = occluder_scene(ctx, punctual_lights);
     rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     // The denoiser off: each pixel's own ray (its filter would blur the edges over several pixels).
     float *px = test_render_radiance(
@@ -356,6 +363,14 @@ static void bad_lights(void **state)
         {.type = RTPBR_LIGHT_DIRECTIONAL, .direction = {0, 0, -1}, .angular_diameter = 1.6f, .emission = {1, 1, 1}},
         // the sun's radiance 1e35 / 6.7e-5 would overflow a float
         {.type = RTPBR_LIGHT_DIRECTIONAL, .direction = {0, 0, -1}, .emission = {1e35f, 1, 1}},
+        // spheres: a negative, NaN or infinite radius, a radius on a spot, a radiance (3e69) or an
+        // area (3e40) beyond a float
+        {.type = RTPBR_LIGHT_POINT, .radius = -0.1f, .emission = {1, 1, 1}},
+        {.type = RTPBR_LIGHT_POINT, .radius = NAN, .emission = {1, 1, 1}},
+        {.type = RTPBR_LIGHT_POINT, .radius = INFINITY, .emission = {1, 1, 1}},
+        {.type = RTPBR_LIGHT_SPOT, .direction = {0, 0, -1}, .radius = 0.1f, .emission = {1, 1, 1}},
+        {.type = RTPBR_LIGHT_POINT, .radius = 1e-20f, .emission = {1e30f, 1, 1}},
+        {.type = RTPBR_LIGHT_POINT, .radius = 1e20f, .emission = {1, 1, 1}},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         rtpbr_gpu_scene *scene = NULL;
@@ -378,16 +393,31 @@ static void bad_lights(void **state)
 
 // The cap's projected solid angle above z = 0 (int max(w.z, 0) dw over the cap around c, half
 // angle a), by the midpoint rule in (t, phi), in double precision.
-static double cap_projected(const double c[3], double a)
+// An orthonormal frame (t1, t2, c) about the unit vector c.
+static void cap_frame(const double c[3], double t1[3], double t2[3])
 {
-    double t1[3] = {1, 0, 0};
-    if (fabs(c[0]) > 0.9) t1[0] = 0, t1[1] = 1;
+    t1[0] = fabs(c[0]) > 0.9 ? 0.0 : 1.0;
+    t1[1] = fabs(c[0]) > 0.9 ? 1.0 : 0.0;
+    t1[2] = 0.0;
     double d = dot3(t1, c);
     for (int k = 0; k < 3; ++k) t1[k] -= d * c[k];
     double tl = sqrt(dot3(t1, t1));
     for (int k = 0; k < 3; ++k) t1[k] /= tl;
-    double t2[3] = {c[1] * t1[2] - c[2] * t1[1], c[2] * t1[0] - c[0] * t1[2], c[0] * t1[1] - c[1] * t1[0]};
-    enum { NT = 1500, NP = 1500 };
+    t2[0] = c[1] * t1[2] - c[2] * t1[1];
+    t2[1] = c[2] * t1[0] - c[0] * t1[2];
+    t2[2] = c[0] * t1[1] - c[1] * t1[0];
+}
+
+static double cap_projected_n(const double c[3], double a, int n);
+static double cap_projected(const double c[3], double a)
+{
+    return cap_projected_n(c, a, 1500);
+}
+static double cap_projected_n(const double c[3], double a, int n)
+{
+    double t1[3], t2[3];
+    cap_frame(c, t1, t2);
+    const int NT = n, NP = n;
     double sum = 0.0;
     for (int i = 0; i < NT; ++i) {
         double t = (i + 0.5) * a / NT, st = sin(t), ct = cos(t);
@@ -518,6 +548,247 @@ static void sun_disk(void **state)
     }
 }
 
+// A point light with a radius (rtpbr_light_desc.radius): a sphere of uniform radiance
+// I / (pi r^2), windowed by its range at the distance from its centre. Against its cap, computed
+// here: a Lambertian plane's radiance is 0.8 / pi x L x the cap's projected solid angle above
+// the plane (I cos(theta) / d^2 x 0.8 in closed form where the sphere is wholly above the
+// horizon, cap_projected_n's quadrature where the horizon cuts it), and 0.8 L inside the sphere
+// (every direction sees it). Pixels within 0.02 of the sphere's surface are skipped (the disk
+// that stands for the sphere grows without bound there).
+static double sphere_want(const double centre[3], double r, double I, double range, const double p[3], bool *skip)
+{
+    double c[3] = {centre[0] - p[0], centre[1] - p[1], centre[2] - p[2]};
+    double d = sqrt(dot3(c, c));
+    *skip = fabs(d - r) < 0.02;
+    double L = I / (M_PI * r * r), window = 1.0;
+    if (range > 0.0) {
+        double q = d / range;
+        window = fmin(fmax(1.0 - q * q * q * q, 0.0), 1.0);
+    }
+    if (d <= r) return 0.8 * L * window;
+    for (int k = 0; k < 3; ++k) c[k] /= d;
+    double a = asin(r / d);
+    double projected = c[2] > sin(a) ? M_PI * sin(a) * sin(a) * c[2] : c[2] < -sin(a) ? 0.0 : cap_projected_n(c, a, 120);
+    return 0.8 / M_PI * L * projected * window;
+}
+
+static void sphere_light(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    const struct {
+        double centre[3], radius, range;
+        double bound_ltc; // relative to the largest expected pixel
+        const char *what;
+    } cases[] = {
+        {{-0.5, 0.3, 1.2}, 0.3, 0.0, 1e-3, "a sphere above the plane (r 0.3 at height 1.2)"},
+        {{0.4, 0.2, 0.15}, 0.5, 0.0, 1e-3, "a sphere the plane cuts (r 0.5 at height 0.15)"},
+        {{0.2, -0.3, 0.6}, 0.2, 1.8, 1e-3, "a sphere with a range of 1.8 (r 0.2 at height 0.6)"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        const double I = 3.0;
+        rtpbr_light_desc lights[4] = {{.type = RTPBR_LIGHT_POINT,
+                                       .position = {(float)cases[i].centre[0], (float)cases[i].centre[1], (float)cases[i].centre[2]},
+                                       .radius = (float)cases[i].radius, .range = (float)cases[i].range,
+                                       .emission = {(float)I, (float)I, (float)I}}};
+        for (int l = 1; l < 4; ++l)
+            lights[l] = (rtpbr_light_desc){.type = RTPBR_LIGHT_DIRECTIONAL, .direction = {0, 0, -1}, .angular_diameter = -1.0f};
+        const rtpbr_render_desc descs[2] = {{0}, {.mc_samples = 16, .mc_seed = 7}};
+        for (int pass = 0; pass < 2; ++pass) {
+            float *px = render_plane(ctx, &test_lambert_material, lights, &descs[pass]);
+            double worst = 0.0, peak = 0.0, sum = 0.0, sum2 = 0.0, wantSum = 0.0;
+            int checked = 0, inside = 0, cut = 0;
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x) {
+                    double p[3];
+                    bool skip;
+                    if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
+                    double want = sphere_want(cases[i].centre, cases[i].radius, I, cases[i].range, p, &skip);
+                    if (skip) continue;
+                    double dc[3] = {cases[i].centre[0] - p[0], cases[i].centre[1] - p[1], cases[i].centre[2] - p[2]};
+                    double d = sqrt(dot3(dc, dc));
+                    inside += d <= cases[i].radius;
+                    cut += d > cases[i].radius && dc[2] < cases[i].radius * sqrt(dot3(dc, dc)) / d;
+                    double v = px[4 * (y * W + x)];
+                    worst = fmax(worst, fabs(v - want));
+                    peak = fmax(peak, want);
+                    sum += v - want, sum2 += (v - want) * (v - want), wantSum += want;
+                    ++checked;
+                }
+            assert_true(checked > W * H / 2);
+            if (pass == 0) {
+                printf("%s, LTC pass: %d pixels (%d inside it, %d with the horizon cutting it), largest error %.3g of "
+                       "the peak %.4g (bound %.3g)\n",
+                       cases[i].what, checked, inside, cut, worst / peak, peak, cases[i].bound_ltc);
+                assert_true(worst <= cases[i].bound_ltc * peak);
+            } else {
+                double mean = sum / checked, se = sqrt(fmax(sum2 / checked - mean * mean, 0.0) / checked);
+                printf("%s, Monte Carlo pass: mean difference %.3g of the mean %.4g: %.2f standard errors\n",
+                       cases[i].what, mean, wantSum / checked, fabs(mean) / se);
+                assert_true(fabs(mean) <= 4.0 * se + 1e-5 * wantSum / checked);
+            }
+            free(px);
+        }
+    }
+}
+
+// The integral of f(wo, w) max(w.z, 0) over the cap around c (unit) of half-angle a, f the GGX
+// metal of ggx_single (F = 1, single scattering) at alpha: the midpoint rule in (t, phi), n x n.
+static double cap_ggx(const double c[3], double a, const double wo[3], double alpha, int n)
+{
+    double t1[3], t2[3];
+    cap_frame(c, t1, t2);
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+        double t = (i + 0.5) * a / n, st = sin(t), ct = cos(t);
+        for (int j = 0; j < n; ++j) {
+            double phi = (j + 0.5) * 2.0 * M_PI / n, w[3];
+            for (int k = 0; k < 3; ++k) w[k] = ct * c[k] + st * (cos(phi) * t1[k] + sin(phi) * t2[k]);
+            if (w[2] > 0.0) sum += ggx_single(wo, w, alpha) * w[2] * st;
+        }
+    }
+    return sum * (a / n) * (2.0 * M_PI / n);
+}
+
+// A GGX metal plane (F = 1, multiple scattering off) under a sphere: against cap_ggx on every
+// 3rd pixel in x and y. The LTC pass is the LTC fit's approximation (its error stated, not
+// float rounding); the Monte Carlo pass's mean within 4 standard errors.
+static void sphere_ggx(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    const struct {
+        double roughness, alpha, radius, height, bound_ltc;
+        bool full; // a full-variant material (anisotropy 1e-4: alpha_t = alpha + 6e-9)
+    } cases[] = {
+        {0.625, 0.390625, 0.3, 1.0, 0.025, false}, // measured 0.0164
+        {0.25, 0.0625, 0.3, 1.0, 0.005, false},    // 0.0019
+        {0.25, 0.0625, 0.4, 0.1, 0.03, false},     // 0.018: the horizon cuts it (its 12-gon, clipped)
+        {0.25, 0.0625, 0.3, 1.0, 0.02, true},      // the full variant: no point correction
+        {0.25, 0.0625, 0.4, 0.1, 0.2, true},       // 0.152: and the sphere proxy at the horizon (leaks)
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        const rtpbr_material_desc metal = {.base_color = {1.0f, 1.0f, 1.0f}, .metallic = 1.0f,
+                                           .roughness = (float)cases[i].roughness,
+                                           .anisotropy_strength = cases[i].full ? 1e-4f : 0.0f};
+        const double centre[3] = {-0.4, 0.6, cases[i].height}, r = cases[i].radius, I = 2.0, L = I / (M_PI * r * r);
+        rtpbr_light_desc lights[4] = {{.type = RTPBR_LIGHT_POINT,
+                                       .position = {(float)centre[0], (float)centre[1], (float)centre[2]},
+                                       .radius = (float)r, .emission = {(float)I, (float)I, (float)I}}};
+        for (int l = 1; l < 4; ++l)
+            lights[l] = (rtpbr_light_desc){.type = RTPBR_LIGHT_DIRECTIONAL, .direction = {0, 0, -1}, .angular_diameter = -1.0f};
+        const rtpbr_render_desc descs[2] = {{.multiscatter = RTPBR_MULTISCATTER_OFF},
+                                            {.multiscatter = RTPBR_MULTISCATTER_OFF, .mc_samples = 64, .mc_seed = 9}};
+        for (int pass = 0; pass < 2; ++pass) {
+            float *px = render_plane(ctx, &metal, lights, &descs[pass]);
+            double worst = 0.0, peak = 0.0, sum = 0.0, sum2 = 0.0, wantSum = 0.0, errSum = 0.0;
+            int checked = 0;
+            for (int y = 1; y < H; y += 3)
+                for (int x = 1; x < W; x += 3) {
+                    double p[3];
+                    if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
+                    double c[3] = {centre[0] - p[0], centre[1] - p[1], centre[2] - p[2]};
+                    double d = sqrt(dot3(c, c));
+                    if (d < r + 0.02) continue;
+                    for (int k = 0; k < 3; ++k) c[k] /= d;
+                    double wo[3] = {camera.position[0] - p[0], camera.position[1] - p[1], camera.position[2] - p[2]};
+                    double ol = sqrt(dot3(wo, wo));
+                    for (int k = 0; k < 3; ++k) wo[k] /= ol;
+                    double want = L * cap_ggx(c, asin(r / d), wo, cases[i].alpha, 96);
+                    double v = px[4 * (y * W + x)];
+                    worst = fmax(worst, fabs(v - want));
+                    errSum += fabs(v - want);
+                    peak = fmax(peak, want);
+                    sum += v - want, sum2 += (v - want) * (v - want), wantSum += want;
+                    ++checked;
+                }
+            assert_true(checked > W * H / 20);
+            if (pass == 0) {
+                printf("GGX alpha %.4g under a sphere (r %.2g at height %.2g)%s, LTC pass: %d pixels, largest error %.3g "
+                       "of the peak %.4g, mean |error| %.3g of the mean %.4g (bound %.3g of the peak)\n",
+                       cases[i].alpha, r, cases[i].height, cases[i].full ? ", full variant" : "", checked, worst / peak,
+                       peak, errSum / wantSum, wantSum / checked, cases[i].bound_ltc);
+                assert_true(worst <= cases[i].bound_ltc * peak);
+            } else {
+                double mean = sum / checked, se = sqrt(fmax(sum2 / checked - mean * mean, 0.0) / checked);
+                printf("GGX alpha %.4g under a sphere (r %.2g at height %.2g), Monte Carlo pass: mean difference %.3g of "
+                       "the mean %.4g: %.2f standard errors\n",
+                       cases[i].alpha, r, cases[i].height, mean, wantSum / checked, fabs(mean) / se);
+                assert_true(fabs(mean) <= 4.0 * se + 1e-4 * wantSum / checked);
+            }
+            free(px);
+        }
+    }
+}
+
+// Where the occluder of `shadows` stands between p and the sphere (centre, r): 1 when every ray
+// from p to the sphere passes through the occluder's square 0.01 inside its edges (the rays
+// along the cone's boundary, 64 of them: the square and the cone's cross-section are convex),
+// 0 when none comes within 0.01 of it (nor the centre's), -1 in between (the penumbra).
+static int sphere_umbra(const double centre[3], double r, const double p[3])
+{
+    double c[3] = {centre[0] - p[0], centre[1] - p[1], centre[2] - p[2]};
+    double d = sqrt(dot3(c, c));
+    for (int k = 0; k < 3; ++k) c[k] /= d;
+    double a = asin(r / d);
+    double t1[3], t2[3];
+    cap_frame(c, t1, t2);
+    int inside = 0, outside = occluder_depth(p, c) < -0.01 ? 1 : 0;
+    for (int j = 0; j < 64; ++j) {
+        double phi = 2.0 * M_PI * j / 64, w[3];
+        for (int k = 0; k < 3; ++k) w[k] = cos(a) * c[k] + sin(a) * (cos(phi) * t1[k] + sin(phi) * t2[k]);
+        double depth = occluder_depth(p, w);
+        inside += depth > 0.01;
+        outside += depth < -0.01;
+    }
+    return inside == 64 ? 1 : outside == 65 ? 0 : -1;
+}
+
+// Shadows of a sphere light: the occluder of `shadows` under a sphere (r 0.15 at height 1.5): 0
+// in its umbra, the unshadowed closed form where nothing is in the way (the ratio estimator is
+// exact at both: every sample agrees), the denoiser off; the penumbra in between (both kinds
+// must be there, and the penumbra wider than a point light's edge).
+static void sphere_shadow(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    const double centre[3] = {-1.0, 0.5, 1.5}, r = 0.15, I = 2.0;
+    rtpbr_light_desc lights[4] = {{.type = RTPBR_LIGHT_POINT, .position = {-1.0f, 0.5f, 1.5f}, .radius = (float)r,
+                                   .emission = {(float)I, (float)I, (float)I}}};
+    for (int l = 1; l < 4; ++l)
+        lights[l] = (rtpbr_light_desc){.type = RTPBR_LIGHT_DIRECTIONAL, .direction = {0, 0, -1}, .angular_diameter = -1.0f};
+    rtpbr_gpu_scene *scene = occluder_scene(ctx, lights);
+    rtpbr_renderer *r2 = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
+    float *px = test_render_radiance(
+        r2, scene, &(rtpbr_render_desc){.shadows = RTPBR_SHADOWS_ON, .shadow_denoiser = RTPBR_SHADOW_DENOISER_OFF}, W, H);
+    int umbra = 0, lit = 0, penumbra = 0;
+    double worst = 0.0, peak = 0.0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            double p[3];
+            if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
+            double e[3] = {camera.position[0] - p[0], camera.position[1] - p[1], camera.position[2] - p[2]};
+            double el = sqrt(dot3(e, e));
+            for (int k = 0; k < 3; ++k) e[k] /= el;
+            if (occluder_depth(p, e) > -0.05) continue; // the camera sees the occluder
+            int kind = sphere_umbra(centre, r, p);
+            if (kind < 0) {
+                ++penumbra;
+                continue;
+            }
+            bool skip;
+            double want = kind == 1 ? 0.0 : sphere_want(centre, r, I, 0.0, p, &skip);
+            peak = fmax(peak, want);
+            worst = fmax(worst, fabs(px[4 * (y * W + x)] - want));
+            umbra += kind == 1;
+            lit += kind == 0;
+        }
+    printf("sphere shadows: %d pixels in the umbra, %d lit, %d in the penumbra; largest error %.3g of the peak %.4g\n",
+           umbra, lit, penumbra, worst / peak, peak);
+    assert_true(umbra > 50 && lit > W * H / 3 && penumbra > 100);
+    assert_true(worst <= 1e-3 * peak);
+    free(px);
+    rtpbr_renderer_destroy(r2);
+    rtpbr_gpu_scene_destroy(scene);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -528,6 +799,9 @@ int main(void)
         test_env_case(shadows),
         test_env_case(bad_lights),
         test_env_case(sun_disk),
+        test_env_case(sphere_light),
+        test_env_case(sphere_ggx),
+        test_env_case(sphere_shadow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

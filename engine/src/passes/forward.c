@@ -17,6 +17,10 @@
 #include "rtpbr_spirv_forward_beckmann_ms1.h"
 #include "rtpbr_spirv_forward_ggx_ms0.h"
 #include "rtpbr_spirv_forward_ggx_ms1.h"
+#include "rtpbr_spirv_forward_beckmann_ms0_spheres.h"
+#include "rtpbr_spirv_forward_beckmann_ms1_spheres.h"
+#include "rtpbr_spirv_forward_ggx_ms0_spheres.h"
+#include "rtpbr_spirv_forward_ggx_ms1_spheres.h"
 
 // Set 0: the lighting set's numbering for what shading needs (shading.glsl), and the G-buffer
 // vertex shader's texture transforms (gbuffer.vert) at a number the lighting set leaves free.
@@ -64,20 +68,25 @@ cleanup:
 void rtpbr_forward_pass_finish(rtpbr_context *ctx)
 {
     rtpbr_forward_pass *pass = &ctx->forward;
-    rtpbr_pass_objects_destroy(ctx, pass->pipelines, RTPBR_LIGHTING_VARIANT_COUNT, pass->layout, pass->set_layout);
+    rtpbr_pass_objects_destroy(ctx, pass->pipelines, 2 * RTPBR_LIGHTING_VARIANT_COUNT, pass->layout, pass->set_layout);
     *pass = (rtpbr_forward_pass){0};
 }
 
-rtpbr_result rtpbr_forward_pipeline_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, VkPipeline *out)
+rtpbr_result rtpbr_forward_pipeline_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, bool spheres,
+                                        VkPipeline *out)
 {
-    static const rtpbr_spirv frag[RTPBR_LIGHTING_VARIANT_COUNT] = {
+    static const rtpbr_spirv frag[2 * RTPBR_LIGHTING_VARIANT_COUNT] = {
         RTPBR_SPIRV(rtpbr_spirv_forward_ggx_ms0),
         RTPBR_SPIRV(rtpbr_spirv_forward_ggx_ms1),
         RTPBR_SPIRV(rtpbr_spirv_forward_beckmann_ms0),
         RTPBR_SPIRV(rtpbr_spirv_forward_beckmann_ms1),
+        RTPBR_SPIRV(rtpbr_spirv_forward_ggx_ms0_spheres),
+        RTPBR_SPIRV(rtpbr_spirv_forward_ggx_ms1_spheres),
+        RTPBR_SPIRV(rtpbr_spirv_forward_beckmann_ms0_spheres),
+        RTPBR_SPIRV(rtpbr_spirv_forward_beckmann_ms1_spheres),
     };
     rtpbr_forward_pass *pass = &ctx->forward;
-    uint32_t v = rtpbr_lighting_variant(ndf, ms);
+    uint32_t v = rtpbr_lighting_variant(ndf, ms) + (spheres ? RTPBR_LIGHTING_VARIANT_COUNT : 0);
     rtpbr_result result = RTPBR_SUCCESS;
     VkShaderModule vert = VK_NULL_HANDLE, fragment = VK_NULL_HANDLE;
     if (!pass->pipelines[v]) {

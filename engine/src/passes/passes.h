@@ -54,14 +54,16 @@ rtpbr_result rtpbr_lighting_pass_init(rtpbr_context *ctx);
 void rtpbr_lighting_pass_finish(rtpbr_context *ctx);
 // The LTC pipelines of a model variant, one per tile class (out[RTPBR_TILE_CLASS_*]),
 // compiled on first use.
-rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms,
+// spheres: the frame has a sphere light (the spheres' classes are compiled too; without, their
+// slots hold the others').
+rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, bool spheres,
                                           VkPipeline out[RTPBR_TILE_CLASS_COUNT]);
 // Index of a model variant in rtpbr_lighting_pass's arrays.
 uint32_t rtpbr_lighting_variant(rtpbr_ndf ndf, rtpbr_multiscatter ms);
 struct rtpbr_buffer; // internal.h
 // The culling pass's outputs for tiles_x x tiles_y tiles (a renderer's, the host path's
-// targets'): two light masks per tile (RTPBR_TILE_MASK_STRIDE uints, polygons and punctual
-// lights: 256 bytes per 256 pixels), and
+// targets'): three light masks per tile (RTPBR_TILE_MASK_STRIDE uints: polygons, punctual
+// lights and spheres: 384 bytes per 256 pixels), and
 // per tile class its indirect dispatch arguments (a uvec4) and a queue as long as the tile count.
 rtpbr_result rtpbr_lighting_tile_buffers_create(rtpbr_context *ctx, uint32_t tiles_x, uint32_t tiles_y,
                                                 struct rtpbr_buffer *masks, struct rtpbr_buffer *lists);
@@ -113,8 +115,10 @@ void rtpbr_lighting_mc_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, V
 // ---- Forward pass of BLEND surfaces (passes/forward.c), after the lighting pass. ----------
 rtpbr_result rtpbr_forward_pass_init(rtpbr_context *ctx); // after rtpbr_gbuffer_pass_init
 void rtpbr_forward_pass_finish(rtpbr_context *ctx);
-// The pipeline of a model variant, compiled on first use.
-rtpbr_result rtpbr_forward_pipeline_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, VkPipeline *out);
+// The pipeline of a model variant, compiled on first use; spheres: the variant that shades
+// sphere lights (the others skip them).
+rtpbr_result rtpbr_forward_pipeline_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, bool spheres,
+                                        VkPipeline *out);
 rtpbr_result rtpbr_forward_renderer_init(rtpbr_renderer *r);
 void rtpbr_forward_renderer_finish(rtpbr_renderer *r);
 void rtpbr_forward_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
