@@ -196,6 +196,8 @@ static void check_scene(const rtpbr_gltf_scene* s) {
         check(l->type == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL ? l->angular_diameter == RTPBR_GLTF_SUN_ANGULAR_DIAMETER
                                                          : l->angular_diameter == 0.0f,
               "the sun's angular diameter on directional lights only");
+        check(isfinite(l->radius) && l->radius >= 0.0f, "radius finite, >= 0");
+        check(l->type == RTPBR_GLTF_PUNCTUAL_POINT || l->radius == 0.0f, "a radius on point lights only");
         check(l->gltf_node >= 0 && l->gltf_light >= 0, "punctual sources");
     }
 }

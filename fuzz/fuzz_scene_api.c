@@ -116,6 +116,7 @@ static void read_lights(reader* in, rtpbr_light_desc* lights, uint32_t count) {
             lights[i].inner_cone_angle = number(in);
             lights[i].outer_cone_angle = number(in);
             lights[i].angular_diameter = number(in);
+            lights[i].radius = number(in);
         }
     }
 }

@@ -68,6 +68,17 @@ void orthonormalBasis(dvec3 n, dvec3 *t, dvec3 *b) {
 
 float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
+// A direction uniform in the solid angle of the cap around axis ((t, b, axis) orthonormal)
+// whose half-angle has 1 - cos = oneMinusCosMax, from (u1, u2) in [0, 1)^2: 1 - cos(theta)
+// uniform in [0, oneMinusCosMax).
+dvec3 sampleCap(dvec3 axis, dvec3 t, dvec3 b, double oneMinusCosMax, double u1, double u2) {
+    const double oneMinusCos = u1 * oneMinusCosMax;
+    const double cosTheta = 1.0 - oneMinusCos;
+    const double sinTheta = std::sqrt(std::max(0.0, oneMinusCos * (2.0 - oneMinusCos)));
+    const double phi = 2.0 * kPi * u2;
+    return glm::normalize(cosTheta * axis + sinTheta * (std::cos(phi) * t + std::sin(phi) * b));
+}
+
 } // namespace
 
 LightSet::LightSet(const rtpbr_gltf_scene &scene, LightSampling mode) : mode_(mode) {
@@ -238,9 +249,18 @@ PunctualLights::PunctualLights(const rtpbr_gltf_scene &scene) {
             const dvec3 E(P.intensity[0], P.intensity[1], P.intensity[2]);
             D.radiance = E / (kPi * D.sin2);
             D.perSample = E * (2.0 / (2.0 - D.oneMinusCos));
-            anyDisk_ = true;
+            anyVisible_ = true;
         }
         disks_.push_back(D);
+        Sphere S;
+        if (P.type == RTPBR_GLTF_PUNCTUAL_POINT && P.radius > 0.0f) {
+            S.radius = double(P.radius);
+            S.centre = dvec3(P.position[0], P.position[1], P.position[2]);
+            S.intensity = dvec3(P.intensity[0], P.intensity[1], P.intensity[2]);
+            S.radiance = S.intensity / (kPi * S.radius * S.radius);
+            anyVisible_ = true;
+        }
+        spheres_.push_back(S);
     }
 }
 
@@ -264,17 +284,32 @@ bool PunctualLights::illuminate(uint32_t l, glm::vec3 pf, float u1, float u2, Pu
     const rtpbr_gltf_punctual_light &P = lights_[l];
     s->pdf = 0.0;
     if (hasDisk(l)) {
-        // Uniform in the cap's solid angle: 1 - cos(theta) uniform in [0, 1 - cos a).
         const Disk &D = disks_[l];
-        const double oneMinusCos = double(u1) * D.oneMinusCos;
-        const double cosTheta = 1.0 - oneMinusCos;
-        const double sinTheta = std::sqrt(std::max(0.0, oneMinusCos * (2.0 - oneMinusCos)));
-        const double phi = 2.0 * kPi * double(u2);
-        const dvec3 wi = cosTheta * D.axis + sinTheta * (std::cos(phi) * D.t + std::sin(phi) * D.b);
-        s->wi = glm::vec3(glm::normalize(wi));
+        s->wi = glm::vec3(sampleCap(D.axis, D.t, D.b, D.oneMinusCos, double(u1), double(u2)));
         s->distance = std::numeric_limits<float>::infinity();
         s->irradiance = glm::vec3(D.perSample);
         s->pdf = D.pdf;
+        return true;
+    }
+    if (hasSphere(l)) {
+        const Sphere &S = spheres_[l];
+        const Cone c = sphereCone(S, dvec3(pf));
+        const double window = rangeWindow(c.d, double(P.range));
+        if (!(c.d > S.radius) || !(window > 0.0)) // inside the sphere: BSDF rays alone see it
+            return false;
+        dvec3 t, b;
+        orthonormalBasis(c.axis, &t, &b);
+        const dvec3 wi = sampleCap(c.axis, t, b, c.oneMinusCos, double(u1), double(u2));
+        // The near surface along wi: the smaller root of t^2 - 2 t d cos(theta) + d^2 - r^2,
+        // written (d^2 - r^2) / (d cos(theta) + sqrt(r^2 - d^2 sin^2(theta))) (no cancellation
+        // for a small sphere); |wi x axis| d = d sin(theta).
+        const dvec3 off = glm::cross(wi, c.axis) * c.d;
+        const double h2 = std::max(0.0, S.radius * S.radius - glm::dot(off, off));
+        s->wi = glm::vec3(wi);
+        s->distance = float((c.d - S.radius) * (c.d + S.radius) / (glm::dot(wi, c.axis) * c.d + std::sqrt(h2)));
+        // L W / pdf = intensity / (pi r^2) W 2 pi sin^2 s / (1 + cos s), sin s = r / d.
+        s->irradiance = glm::vec3(S.intensity * (window * 2.0 / (c.d * c.d * c.onePlusCos)));
+        s->pdf = 1.0 / (2.0 * kPi * c.oneMinusCos);
         return true;
     }
     const dvec3 dir(P.direction[0], P.direction[1], P.direction[2]); // the way the light travels
@@ -317,6 +352,45 @@ bool PunctualLights::diskRadiance(uint32_t l, glm::vec3 wi, dvec3 *radiance, dou
         return false;
     *radiance = D.radiance;
     *pdf = D.pdf;
+    return true;
+}
+
+PunctualLights::Cone PunctualLights::sphereCone(const Sphere &S, dvec3 p) {
+    const dvec3 toCentre = S.centre - p;
+    const double d = glm::length(toCentre);
+    // sin s = r / d, cos s = sqrt((d - r)(d + r)) / d; 1 - cos s = sin^2 s / (1 + cos s) keeps
+    // its precision for a small sphere, where cos s rounds to 1.
+    const double sinS = S.radius / d, cosS = std::sqrt(std::max(0.0, (d - S.radius) * (d + S.radius))) / d;
+    return Cone{toCentre / d, d, sinS * sinS / (1.0 + cosS), 1.0 + cosS};
+}
+
+bool PunctualLights::sphereRadiance(uint32_t l, glm::vec3 pf, glm::vec3 wif, float tmax, dvec3 *radiance,
+                                    double *pdf) const {
+    const Sphere &S = spheres_[l];
+    if (!(S.radius > 0.0))
+        return false;
+    const dvec3 p(pf), w = glm::normalize(dvec3(wif)), toCentre = S.centre - p;
+    const double d = glm::length(toCentre), along = glm::dot(w, toCentre);
+    // r^2 minus the squared distance from the centre to the ray's line (the cross product keeps
+    // its precision where the angle to the centre is tiny).
+    const dvec3 off = glm::cross(w, toCentre);
+    const double h2 = S.radius * S.radius - glm::dot(off, off);
+    if (!(h2 >= 0.0))
+        return false;
+    double t;
+    if (d > S.radius) { // outside: the near surface, ahead only
+        if (!(along > 0.0))
+            return false;
+        t = (d - S.radius) * (d + S.radius) / (along + std::sqrt(h2));
+        *pdf = 1.0 / (2.0 * kPi * sphereCone(S, p).oneMinusCos);
+    } else { // inside: the surface ahead; no light sample competes
+        t = along + std::sqrt(h2);
+        *pdf = 0.0;
+    }
+    const double window = rangeWindow(d, double(lights_[l].range));
+    if (!(t <= double(tmax)) || !(window > 0.0))
+        return false;
+    *radiance = S.radiance * window;
     return true;
 }
 

@@ -84,12 +84,25 @@ private:
 // computed in double: 1 - cos a = 2 sin^2(a / 2) stays exact for a tiny disk, and a sample's
 // irradiance L / pdf = intensity 2 / (1 + cos a) stays finite where L and the pdf do not fit
 // a float.
+// A point light of radius r > 0 is a sphere around its position, of uniform radiance
+// L W(d), L = intensity / (pi r^2) (far away its intensity is intensity), W the range window
+// at the distance d from the shading point to the centre. It is transparent to everything
+// else (it occludes nothing: not scene geometry) and emits towards every point outside it
+// (and, seen from inside, towards every point inside). From p outside it (d > r) it is the cone
+// of half-angle s, sin s = r / d: next-event estimation samples a direction uniformly in the
+// cone (solid-angle pdf 1 / (2 pi (1 - cos s)), 1 - cos s = sin^2 s / (1 + cos s)) with a
+// shadow ray to the sphere's near surface, combined by MIS with the BSDF rays that meet the
+// sphere before the scene (sphereRadiance); a sample's L W / pdf = intensity W 2 / (d^2 (1 +
+// cos s)) stays finite for a tiny sphere. From p inside (d <= r) every direction sees it: BSDF
+// rays alone find it, with weight 1.
 struct PunctualSample {
     glm::vec3 wi;         // unit direction from p to the light
-    float distance;       // to the light position; infinity for a directional light
+    float distance;       // to the light position (a sphere: to its near surface along wi);
+                          // infinity for a directional light
     glm::vec3 irradiance; // on a surface facing the light: reflected = f cos(theta) x this
-                          // (for a sun's disk, the one-sample estimate L / pdf)
-    double pdf;           // 0 for a delta light; a sun's disk: the solid-angle density of wi
+                          // (for a sun's disk or a sphere, the one-sample estimate L W / pdf)
+    double pdf;           // 0 for a delta light; a sun's disk, a sphere: the solid-angle density
+                          // of wi
 };
 
 class PunctualLights {
@@ -101,15 +114,26 @@ public:
     // Is light l a sun's disk (a directional light of angular_diameter > 0)? Only then does
     // illuminate() use u1, u2, and only then can a ray see the light (diskRadiance).
     bool hasDisk(uint32_t l) const { return disks_[l].halfAngle > 0.0; }
-    bool anyDisk() const { return anyDisk_; }
+    // Is light l a sphere (a point light of radius > 0)? Only then does illuminate() use u1,
+    // u2, and only then can a ray from a point see it (sphereRadiance).
+    bool hasSphere(uint32_t l) const { return spheres_[l].radius > 0.0; }
+    // Can a ray see any light (is any a disk or a sphere)?
+    bool anyVisible() const { return anyVisible_; }
     // Light l seen from p; false where it gives nothing (outside its cone or range, a black
-    // light, p at the light's position). A sun's disk: a direction uniform in its cap from
-    // (u1, u2) in [0, 1)^2, with its density in s->pdf; a delta light ignores u1, u2.
+    // light, p at the light's position or inside its sphere). A sun's disk or a sphere: a
+    // direction uniform in its cap (cone) from (u1, u2) in [0, 1)^2, with its density in
+    // s->pdf (a sphere: s->distance to its near surface); a delta light ignores u1, u2.
     bool illuminate(uint32_t l, glm::vec3 p, float u1, float u2, PunctualSample *s) const;
     // A ray leaving towards wi sees sun l's disk: its radiance (double: a tiny disk's may not
     // fit a float) and the density illuminate() samples wi with; false outside the cap (and
     // for every delta light).
     bool diskRadiance(uint32_t l, glm::vec3 wi, glm::dvec3 *radiance, double *pdf) const;
+    // The ray p + t wi (0 < t <= tmax: the scene's hit, or infinity) meets sphere l: its
+    // radiance L W(|centre - p|) and the density illuminate() samples wi with from p (0 from
+    // inside the sphere, where it does not sample); false where it misses (and for every other
+    // light).
+    bool sphereRadiance(uint32_t l, glm::vec3 p, glm::vec3 wi, float tmax, glm::dvec3 *radiance,
+                        double *pdf) const;
     // KHR_lights_punctual's spot falloff: t = clamp((cd - cos outer) / max(1e-3, cos inner -
     // cos outer), 0, 1), returned as t^2; cd = cos of the angle from the spot's axis.
     static double spotFalloff(double cd, double innerConeAngle, double outerConeAngle);
@@ -127,9 +151,25 @@ private:
         glm::dvec3 radiance{0.0}; // intensity / (pi sin^2 a)
         glm::dvec3 perSample{0.0}; // radiance / pdf = intensity 2 / (1 + cos a)
     };
+    // A point light's sphere.
+    struct Sphere {
+        double radius = 0.0; // r; 0: a delta light
+        glm::dvec3 centre{0.0};
+        glm::dvec3 intensity{0.0};
+        glm::dvec3 radiance{0.0}; // intensity / (pi r^2)
+    };
+    // The cone sphere S subtends from p (outside it): axis towards the centre, d, 1 - cos s and
+    // 1 + cos s of its half-angle s, all in double.
+    struct Cone {
+        glm::dvec3 axis;
+        double d, oneMinusCos, onePlusCos;
+    };
+    static Cone sphereCone(const Sphere &S, glm::dvec3 p);
+
     std::vector<rtpbr_gltf_punctual_light> lights_; // the scene's, with any intensity > 0
     std::vector<Disk> disks_;                         // one per light
-    bool anyDisk_ = false;
+    std::vector<Sphere> spheres_;                     // one per light
+    bool anyVisible_ = false;
 };
 
 } // namespace rtpbr_oracle

@@ -137,14 +137,14 @@ public:
         float prevPdf = 0.0f;
         for (uint32_t depth = 0;; depth++) {
             Hit h = intersect(es_.full, org, dir, std::numeric_limits<float>::infinity());
-            if (!h.found) {
-                // A BSDF ray that leaves the scene may see a sun's disk (MIS against sampling
-                // it; with noShadows the light-only test below counted it already). Camera
-                // rays do not: like the punctual lights, the sun is not drawn as the sky.
-                if (depth > 0 && !s_.noShadows && punctual_.anyDisk())
-                    L += beta * disksSeen(dir, prevPdf);
+            // A BSDF ray may see a sphere before its hit, or a sun's disk if it leaves the scene
+            // (MIS against sampling them; with noShadows the light-only test below counted
+            // them already). Camera rays do not: like the punctual lights, spheres and the sun
+            // are not drawn.
+            if (depth > 0 && !s_.noShadows && punctual_.anyVisible())
+                L += beta * punctualSeen(prevP, dir, h.found ? h.t : std::numeric_limits<float>::infinity(), prevPdf);
+            if (!h.found)
                 break;
-            }
             SurfacePoint sp = surfacePoint(h, dir);
             // Emission: seen directly, or found by BSDF sampling (MIS against light sampling;
             // with noShadows the unoccluded light-only ray below did that already).
@@ -209,8 +209,8 @@ public:
                     vec3 Le = emittedAt(l, wi, origin + wi * lh.t);
                     L += beta * Le * misWeight(bs.pdfMis, lights_.pdf(sp.p, l, wi, lh.t));
                 }
-                if (punctual_.anyDisk())
-                    L += beta * disksSeen(wi, bs.pdfMis);
+                if (punctual_.anyVisible())
+                    L += beta * punctualSeen(sp.p, wi, std::numeric_limits<float>::infinity(), bs.pdfMis);
                 if (depth + 1 >= maxDepth_)
                     break; // the next vertex would only add emission, already counted
             }
@@ -303,14 +303,15 @@ private:
     // f cos x its irradiance there (PunctualLights), if a shadow ray from origin (sp.p off
     // its surface) reaches the light (a directional light: to infinity), or with noShadows.
     // The light's direction and distance are taken from sp.p itself, the point the
-    // extension's formulas speak of. A sun's disk: one direction sampled in its cap (two
-    // random numbers, drawn for it alone: delta lights draw none), weighted by MIS against
-    // the BSDF rays that see the disk (disksSeen); the part of the cap below the surface's
-    // horizon gives nothing.
+    // extension's formulas speak of. A sun's disk or a sphere: one direction sampled in its
+    // cap or cone (two random numbers, drawn for them alone: delta lights draw none), weighted
+    // by MIS against the BSDF rays that see it (punctualSeen), the shadow ray to infinity or
+    // to the sphere's near surface; the part of the cap or cone below the surface's horizon
+    // gives nothing.
     vec3 punctualLight(uint32_t l, const SurfacePoint &sp, vec3 bt, vec3 origin, const Bsdf &bsdf, Rng &rng) {
         PunctualSample ps;
         float u1 = 0.0f, u2 = 0.0f;
-        if (punctual_.hasDisk(l)) {
+        if (punctual_.hasDisk(l) || punctual_.hasSphere(l)) {
             u1 = rng.uniform();
             u2 = rng.uniform();
         }
@@ -332,15 +333,20 @@ private:
         return f * ps.irradiance;
     }
 
-    // The suns' disks a ray leaving towards wi sees (it met nothing, or noShadows), weighted
-    // by MIS against sampling them (punctualLight); bsdfPdf: the BSDF sample's pdfMis.
-    vec3 disksSeen(vec3 wi, float bsdfPdf) const {
+    // What the punctual lights a BSDF ray from shading point p towards wi sees give, weighted
+    // by MIS against sampling them (punctualLight); bsdfPdf: the BSDF sample's pdfMis. The
+    // spheres it meets before tmax (the scene's hit; infinity with noShadows), the suns'
+    // disks where tmax is infinite (it met nothing, or noShadows). From inside a sphere no
+    // light sample competes: weight 1.
+    vec3 punctualSeen(vec3 p, vec3 wi, float tmax, float bsdfPdf) const {
         glm::dvec3 sum(0.0);
         for (uint32_t l = 0; l < punctual_.size(); l++) {
             glm::dvec3 Le;
             double pdf;
-            if (bsdfPdf > 0.0f && punctual_.diskRadiance(l, wi, &Le, &pdf))
+            if (std::isinf(tmax) && bsdfPdf > 0.0f && punctual_.diskRadiance(l, wi, &Le, &pdf))
                 sum += Le * (double(bsdfPdf) / (double(bsdfPdf) + pdf));
+            else if (punctual_.sphereRadiance(l, p, wi, tmax, &Le, &pdf))
+                sum += pdf > 0.0 ? Le * (double(bsdfPdf) / (double(bsdfPdf) + pdf)) : Le;
         }
         return vec3(sum);
     }

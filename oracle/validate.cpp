@@ -126,6 +126,19 @@ Result validatePunctualLight(const rtpbr_gltf_punctual_light &P, uint32_t i, boo
                      type, double(diameter));
         return Result::InvalidScene;
     }
+    // A point light's sphere: radius >= 0 (0: a true point); spot and directional lights have
+    // none (a spot with a radius, a sphere with a cone: not modelled).
+    if (P.type == RTPBR_GLTF_PUNCTUAL_POINT) {
+        if (!finite(P.radius) || !(P.radius >= 0.0f)) {
+            *error = fmt("punctual light %u (point): radius %g is negative or not finite (0 = a true point)", i,
+                         double(P.radius));
+            return Result::InvalidScene;
+        }
+    } else if (P.radius != 0.0f) {
+        *error = fmt("punctual light %u (%s): radius %g: only a point light has one (0 here)", i, type,
+                     double(P.radius));
+        return Result::InvalidScene;
+    }
     if (P.intensity[0] > 0.0f || P.intensity[1] > 0.0f || P.intensity[2] > 0.0f)
         *emits = true;
     return Result::Success;

@@ -43,6 +43,12 @@ struct Context {
     // decoded after validation). Images in bufferViews are sliced later.
     std::map<int, std::vector<unsigned char>> encoded_images;
 
+    // The radius of each KHR_lights_punctual light (index in the extension's lights), from its
+    // "extras": {"radius": r} as written (a double: tinygltf casts integer literals in extras
+    // to int), checked by check_schema: > 0 only for a point light; 0 when absent, not a
+    // number or on a spot or directional light (those warned). Read by lights_from_khr_punctual.
+    std::vector<double> punctual_radii;
+
     // Records the first failure; later ones are ignored. Always returns false.
     bool fail(rtpbr_gltf_result r, const char* fmt, ...) RTPBR_GLTF_PRINTF(3, 4);
     void warn(const char* fmt, ...) RTPBR_GLTF_PRINTF(2, 3);
@@ -87,7 +93,8 @@ struct Scene {
 // scene_schema.cpp: the glTF 2.0 schema's types, ranges and required properties of the
 // core objects and of KHR_lights_punctual, on the JSON text (syntax errors are left to
 // tinygltf). *rewritten: left empty, or the document to give tinygltf instead, with the
-// defaults it would refuse to supply (a spot light's "spot" object).
+// defaults it would refuse to supply (a spot light's "spot" object). Fills
+// ctx.punctual_radii.
 bool check_schema(Context& ctx, const char* json_text, size_t size, std::string* rewritten);
 
 // scene_materials.cpp: fills scene.materials (one per glTF material, plus a

@@ -788,6 +788,10 @@ bool lights_from_khr_punctual(Context& ctx, const tinygltf::Model& model, Scene&
             ctx.warn("node %d: KHR_lights_punctual light %d: range ignored on a directional light", node, index);
         }
         if (p.type == RTPBR_GLTF_PUNCTUAL_DIRECTIONAL) p.angular_diameter = RTPBR_GLTF_SUN_ANGULAR_DIAMETER;
+        // A point light's sphere (check_schema read it; 0 on the other types); the node's scale
+        // does not change it, as it changes no range.
+        const double radius = size_t(index) < ctx.punctual_radii.size() ? ctx.punctual_radii[size_t(index)] : 0.0;
+        p.radius = float(radius);
         if (p.type == RTPBR_GLTF_PUNCTUAL_SPOT) {
             p.inner_cone_angle = float(L.spot.innerConeAngle);
             p.outer_cone_angle = float(L.spot.outerConeAngle);
@@ -800,6 +804,17 @@ bool lights_from_khr_punctual(Context& ctx, const tinygltf::Model& model, Scene&
         if (p.type != RTPBR_GLTF_PUNCTUAL_DIRECTIONAL && L.range > 0.0 && !(p.range > 0.0f))
             return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: KHR_lights_punctual light %d: range %g underflows a float",
                             node, index, L.range);
+        if (radius > 0.0) {
+            // The sphere's area and radiance, intensity / (pi radius^2), must be floats too.
+            const double area = kPi * double(p.radius) * double(p.radius);
+            bool fits = p.radius > 0.0f && fits_float(area);
+            for (int k = 0; k < 3 && fits; ++k) fits = fits_float(double(p.intensity[k]) / area);
+            if (!fits)
+                return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE,
+                                "node %d: KHR_lights_punctual light %d: radius %g: the sphere's area (pi radius^2) or "
+                                "radiance (intensity / area) not representable as a float",
+                                node, index, radius);
+        }
         if (scene.lights.size() + scene.punctual_lights.size() >= ctx.max_lights)
             return ctx.fail(RTPBR_GLTF_ERROR_TOO_MANY_LIGHTS,
                             "node %d: more than %u lights (area lights and KHR_lights_punctual lights together)", node,

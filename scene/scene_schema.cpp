@@ -11,7 +11,10 @@
 // with a JSON pointer to the value; an index to an element that does not exist is
 // RTPBR_GLTF_ERROR_INVALID_REFERENCE, whether or not the scene uses the referring object.
 // (a KHR_lights_punctual number that overflows a float: RTPBR_GLTF_ERROR_NONFINITE; an unknown
-// light type: RTPBR_GLTF_ERROR_UNSUPPORTED).
+// light type: RTPBR_GLTF_ERROR_UNSUPPORTED). A light's "extras": {"radius": r} is read here too
+// (a point light's sphere, ctx.punctual_radii): extras are free-form, so a radius that is not a
+// number, or one on a spot or directional light, is only a warning; a point light's number must
+// be >= 0 and fit a float.
 // Reference: the glTF 2.0 JSON schema, https://github.com/KhronosGroup/glTF/tree/main/specification/2.0/schema
 // and KHR_lights_punctual's (extensions/2.0/Khronos/KHR_lights_punctual/schema there).
 #include "scene_internal.hpp"
@@ -482,7 +485,8 @@ struct Checker {
         }
         double unused = 0.0, inner = 0.0, outer = kDefaultOuterCone;
         if (!light_number(l, i, at, "intensity", 0.0, HUGE_VAL, false, "must be >= 0", &unused) ||
-            !light_number(l, i, at, "range", 0.0, HUGE_VAL, true, "must be > 0", &unused))
+            !light_number(l, i, at, "range", 0.0, HUGE_VAL, true, "must be > 0", &unused) ||
+            !punctual_radius(l, i, at, t))
             return false;
         auto spot = l.find("spot");
         if (spot == l.end()) {
@@ -499,6 +503,32 @@ struct Checker {
                               "innerConeAngle must be less than outerConeAngle (defaults 0 and pi/4)");
         return true;
     }
+    // A light's "extras": {"radius": r} (Blender writes a light's custom properties to extras),
+    // into ctx.punctual_radii[i]: a point light's sphere. Extras belong to whoever wrote them: a
+    // radius that is not a number, or one on a spot or directional light, is ignored with a
+    // warning; a point light's number is held to the rules of the extension's own numbers.
+    bool punctual_radius(const json& l, size_t i, const std::string& at, const std::string& type) {
+        auto extras = l.find("extras");
+        if (extras == l.end() || !extras->is_object()) return true;
+        auto r = extras->find("radius");
+        if (r == extras->end()) return true;
+        const std::string p = at + "/extras/radius";
+        if (!r->is_number()) {
+            ctx.warn("KHR_lights_punctual light %zu (%s): not a number: ignored (no radius)", i, p.c_str());
+            return true;
+        }
+        if (type != "point") {
+            if (number(*r) != 0.0)
+                ctx.warn("KHR_lights_punctual light %zu (%s): radius ignored on a %s light (only a point light is a "
+                         "sphere)", i, p.c_str(), type.c_str());
+            return true;
+        }
+        double radius = 0.0;
+        if (!light_number(*extras, i, at + "/extras", "radius", 0.0, HUGE_VAL, false, "must be >= 0", &radius))
+            return false;
+        ctx.punctual_radii[i] = radius > 0.0 ? radius : 0.0;  // -0 is no radius
+        return true;
+    }
     // The root's extensions.KHR_lights_punctual: an object with an array of lights.
     bool punctual_root() {
         auto ext = root.find("extensions");
@@ -511,6 +541,7 @@ struct Checker {
         if (lights == k->end()) return fail(at + "/lights", "required array missing");
         if (!lights->is_array()) return fail(at + "/lights", "must be an array of lights");
         punctual_count = lights->size();
+        ctx.punctual_radii.assign(punctual_count, 0.0);
         for (size_t i = 0; i < lights->size(); ++i)
             if (!punctual_light((*lights)[i], i, at + "/lights/" + std::to_string(i))) return false;
         return true;

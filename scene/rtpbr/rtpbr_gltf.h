@@ -517,7 +517,12 @@ typedef struct rtpbr_gltf_punctual_light {
                                custom property "radius" there). 0 = a true
                                point (absent), evaluated exactly. Spot,
                                directional: 0 (a spot's radius is ignored
-                               with a warning)                              */
+                               with a warning). A point light's radius must
+                               be a number >= 0 (RTPBR_GLTF_ERROR_INVALID_JSON)
+                               whose sphere's area and radiance fit a float
+                               (RTPBR_GLTF_ERROR_NONFINITE); one that is not a
+                               number is ignored with a warning (extras are
+                               free-form). The node's scale does not change it */
     int32_t gltf_node;      /* the node carrying it                         */
     int32_t gltf_light;     /* index in KHR_lights_punctual.lights          */
 } rtpbr_gltf_punctual_light;

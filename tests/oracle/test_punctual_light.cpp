@@ -14,6 +14,11 @@
 //     theta while the disk is wholly above its horizon, the quadrature of the part above it
 //     where it straddles the horizon, exactly 0 below; GGX (roughness 0.05, 0.3) against the
 //     quadrature of f cos L over the disk, f the shader library's BRDF_SpecularLocal.
+//   - a point light's sphere (radius > 0): on a Lambert plane the point light's I cos / d^2
+//     while it is wholly above the horizon (also with a range window, and seen through it: it
+//     occludes nothing), the horizon-clipped cap's closed form (Snyder 1996, checked against
+//     quadrature) where it straddles the horizon, a L inside it, exactly 0 in its umbra; GGX
+//     (roughness 0.05, 0.3) against the quadrature of f cos L over its cone.
 // The oracle's pixel is the mean of spp evaluations at points jittered uniformly in the pixel,
 // so its expectation is the closed form averaged over the pixel's footprint, and its error is
 // the jitter's (and the paths'), which its standard error measures.
@@ -23,6 +28,7 @@
 #include "scene_builder.h"
 
 #include <rtpbr/fresnel.h>
+#include <rtpbr/ltc_shapes.h>
 #include <rtpbr/microfacet.h>
 
 #include <algorithm>
@@ -47,6 +53,7 @@ struct Light {
     double intensity;               // candela (point, spot) or lux (directional), grey
     double range = 0.0;             // 0: infinite
     double inner = 0.0, outer = kPi / 4.0;
+    double radius = 0.0;            // point: a sphere's (0: a true point)
 };
 
 // Irradiance at p on a surface of normal n from the unoccluded light; *wi: towards the light.
@@ -120,6 +127,7 @@ void occluder(SceneBuilder &b, double y, double cx, double cz, double r) {
 void addLight(SceneBuilder &b, const Light &L) {
     b.punctual(L.type, glm::vec3(L.position), glm::vec3(L.direction), glm::vec3(float(L.intensity)), float(L.range),
                float(L.inner), float(L.outer));
+    b.punctualLights.back().radius = float(L.radius);
 }
 
 struct Image {
@@ -260,18 +268,26 @@ void test_directional_lambert(void **) {
 
 constexpr uint32_t kN = 16; // image size of the point and spot scenes
 
-// A Lambert floor under L, seen from a camera above: each pixel against its footprint's mean.
-// Returns the number of pixels whose footprint gets no light at all (each of them exactly 0).
-int checkLambertFloor(const Light &L, RenderSettings s, glm::vec3 camPos, glm::vec3 camTarget, float yfov,
-                      glm::vec3 upHint, const char *what, const char *name) {
+// A Lambert floor under the lights, seen from a camera above: each pixel against its
+// footprint's mean of the lights' sum (closed forms of true points: a sphere wholly above the
+// floor's horizon is one, below). Returns the number of pixels whose footprint gets no light
+// at all (each of them exactly 0).
+int checkLambertFloor(const std::vector<Light> &lights, RenderSettings s, glm::vec3 camPos, glm::vec3 camTarget,
+                      float yfov, glm::vec3 upHint, const char *what, const char *name) {
     SceneBuilder b;
     floorPlane(b, lambertMaterial(b, kAlbedo));
-    addLight(b, L);
+    for (const Light &L : lights)
+        addLight(b, L);
     b.camera(camPos, camTarget, yfov, upHint);
     Image img = renderImage(b, s, kN, kN, name);
-    auto f = [&L](glm::dvec3 p, glm::dvec3) { return lambert(L, p, kUp, kAlbedo); };
+    auto f = [&lights](glm::dvec3 p, glm::dvec3) {
+        double sum = 0.0;
+        for (const Light &L : lights)
+            sum += lambert(L, p, kUp, kAlbedo);
+        return sum;
+    };
     int dark = 0;
-    double lo = 1e300, hi = 0.0;
+    double lo = 1e300, hi = 0.0, sum = 0.0, ref = 0.0, var = 0.0; // over the lit pixels, channel 0
     for (uint32_t y = 0; y < kN; y++)
         for (uint32_t x = 0; x < kN; x++) {
             Footprint fp = footprint(b.cameras[0], x, y, kN, kN, 16, f);
@@ -287,9 +303,15 @@ int checkLambertFloor(const Light &L, RenderSettings s, glm::vec3 camPos, glm::v
             hi = std::max(hi, fp.mean);
             for (int c = 0; c < 3; c++)
                 expectPixel(img, x, y, c, fp.mean, fp.se(s.spp), what);
+            sum += img.v(x, y);
+            ref += fp.mean;
+            var += img.e(x, y) * img.e(x, y);
         }
-    std::printf("%s: %d pixels exactly 0, the others from %.4g to %.4g, largest |z| %.2f\n", what, dark, lo, hi,
-                worstZ());
+    std::printf("%s: %d pixels exactly 0, the others from %.4g to %.4g, largest |z| %.2f; their sum %+.2e "
+                "relative, %.2f se\n", what, dark, lo, hi, worstZ(), sum / ref - 1.0, (sum - ref) / std::sqrt(var));
+    // The sum finds a bias too small for any one pixel (a sphere's BSDF-ray share of 10%
+    // without its range window: 2% of each pixel, 6 standard errors of the sum).
+    EXPECT_AGREE(sum, std::sqrt(var), ref, 0.0, 4.0, kRounding * ref);
     return dark;
 }
 
@@ -299,7 +321,7 @@ void test_point_lambert(void **) {
         RenderSettings s;
         s.spp = 64;
         s.directOnly = mode == 0;
-        int dark = checkLambertFloor(L, s, glm::vec3(0.0f, 1.6f, 1.8f), glm::vec3(0.0f), 0.9f, glm::vec3(0, 1, 0),
+        int dark = checkLambertFloor({L}, s, glm::vec3(0.0f, 1.6f, 1.8f), glm::vec3(0.0f), 0.9f, glm::vec3(0, 1, 0),
                                      mode == 0 ? "point, direct only" : "point, multi-bounce",
                                      mode == 0 ? "point-direct" : "point-multi");
         assert_int_equal(dark, 0);
@@ -313,7 +335,7 @@ void test_point_range(void **) {
     RenderSettings s;
     s.spp = 64;
     s.directOnly = true;
-    int dark = checkLambertFloor(L, s, glm::vec3(0.0f, 2.0f, 0.3f), glm::vec3(0.0f), 1.0f, glm::vec3(0, 1, 0),
+    int dark = checkLambertFloor({L}, s, glm::vec3(0.0f, 2.0f, 0.3f), glm::vec3(0.0f), 1.0f, glm::vec3(0, 1, 0),
                                  "point with range 1", "point-range");
     assert_true(dark >= 40);
 }
@@ -329,7 +351,7 @@ void test_spot(void **) {
     s.directOnly = true;
     const glm::vec3 camPos(0.0f, 2.0f, 0.0f), camTarget(0.0f), up(0, 0, -1);
     const float yfov = 0.75f;
-    int dark = checkLambertFloor(L, s, camPos, camTarget, yfov, up, "spot", "spot");
+    int dark = checkLambertFloor({L}, s, camPos, camTarget, yfov, up, "spot", "spot");
     assert_true(dark >= 40);
     // The three zones counted, and inside the inner cone the spot is the point light.
     SceneBuilder b;
@@ -744,81 +766,334 @@ void test_sun_horizon(void **) {
     }
 }
 
-// A GGX conductor (single scattering) seeing the sun's reflection: each pixel against the
-// footprint mean of L times the quadrature over the cap of f cos, f the shader library's
-// BRDF_SpecularLocal. Roughness 0.05 (alpha 0.0025) under the sun's 0.53 degrees: the
-// highlight is the sun's blurred image, found as often by BSDF sampling as by sampling the
-// disk (MIS); roughness 0.3 under a 0.1 rad disk. The camera sees the mirror direction of
-// the sun's centre at the image's centre.
-void test_sun_ggx(void **) {
+// What a light with a size is, seen from a point: the cone (cap) of half-angle halfAngle
+// around axis, of uniform radiance.
+struct SeenCone {
+    glm::dvec3 axis;
+    double halfAngle, radiance;
+};
+
+// A GGX conductor floor (single scattering, direct light) seeing a light's reflection: the
+// camera, 2 from the origin, sees at its image's centre the mirror image of the direction
+// `toward` (0, sin 0.6, -cos 0.6). Each pixel against the footprint mean (4 x 4 points) of L
+// times the quadrature over the light's cone seen from the floor point (cone(p)) of f cos, f
+// the shader library's BRDF_SpecularLocal; the image mean of each channel within 3 standard
+// errors; the highlight in view.
+const glm::dvec3 kGgxToward(0.0, std::sin(0.6), -std::cos(0.6));
+void checkGgxFloor(double roughness, float yfov, const std::function<void(SceneBuilder &)> &addLights,
+                   const std::function<SeenCone(glm::dvec3)> &cone, const char *name, const char *what) {
     const glm::dvec3 f0(0.95, 0.64, 0.54);
     const rtpbr::FresnelParams F = rtpbr::Fresnel_FromF0(glm::vec3(f0));
+    const float alpha = float(roughness * roughness);
+    SceneBuilder b;
+    floorPlane(b, b.material(glm::vec3(f0), 1.0f, float(roughness)));
+    addLights(b);
+    const glm::vec3 camPos = 2.0f * glm::vec3(0.0f, float(kGgxToward.y), float(-kGgxToward.z));
+    b.camera(camPos, glm::vec3(0.0f), yfov);
+    RenderSettings s;
+    s.spp = 1024;
+    s.directOnly = true;
+    s.singleScatter = true;
+    const uint32_t n = 12;
+    Image img = renderImage(b, s, n, n, name);
+    // Reflected radiance at p towards wo (world; the floor's local frame: z = +y).
+    auto local = [](glm::dvec3 w) { return glm::vec3(float(w.x), float(-w.z), float(w.y)); };
+    auto reflected = [&](glm::dvec3 p, glm::dvec3 wo) {
+        const glm::vec3 woL = local(wo);
+        const SeenCone c = cone(p);
+        return c.radiance * capIntegral(c.axis, c.halfAngle, 48, 96, [&](glm::dvec3 wi) {
+                   const glm::vec3 wiL = local(wi);
+                   return glm::dvec3(rtpbr::BRDF_SpecularLocal(woL, wiL, alpha, alpha, F) * wiL.z);
+               });
+    };
+    // Per channel: sums of pixels and of the references, the pixels' variance.
+    glm::dvec3 sum(0.0), ref(0.0), var(0.0);
+    double hi = 0.0;
+    for (uint32_t y = 0; y < n; y++)
+        for (uint32_t x = 0; x < n; x++) {
+            // The footprint mean of each channel (4 x 4 points), and the jitter's spread.
+            const int q = 4;
+            glm::dvec3 mean(0.0), sq(0.0);
+            const glm::dvec3 o(camPos);
+            for (int i = 0; i < q; i++)
+                for (int j = 0; j < q; j++) {
+                    const float sx = float(x) + (i + 0.5f) / q, sy = float(y) + (j + 0.5f) / q;
+                    const glm::dvec3 d(cameraRay(b.cameras[0], sx, sy, n, n));
+                    const glm::dvec3 p = o - (o.y / d.y) * d;
+                    const glm::dvec3 v = reflected(p, glm::normalize(o - p));
+                    mean += v / double(q * q);
+                    sq += v * v / double(q * q);
+                }
+            for (int c = 0; c < 3; c++) {
+                const double sd = std::sqrt(std::max(0.0, sq[c] - mean[c] * mean[c]));
+                expectPixel(img, x, y, c, mean[c], sd / std::sqrt(double(s.spp)), what);
+                sum[c] += img.v(x, y, c);
+                var[c] += img.e(x, y, c) * img.e(x, y, c);
+                ref[c] += mean[c];
+                hi = std::max(hi, mean[c]);
+            }
+        }
+    const double m = double(n) * n, L = cone(glm::dvec3(0.0)).radiance;
+    std::printf("%s, roughness %.2f (L %.5g): pixels up to %.5g (F0 L = %.5g); largest |z| %.2f\n", what, roughness, L,
+                hi, f0.x * L, worstZ());
+    for (int c = 0; c < 3; c++) {
+        std::printf("  channel %d: image mean %.6g vs quadrature %.6g (relative %+.2e, %.2f se)\n", c, sum[c] / m,
+                    ref[c] / m, sum[c] / ref[c] - 1.0, (sum[c] - ref[c]) / std::sqrt(var[c]));
+        EXPECT_AGREE(sum[c] / m, std::sqrt(var[c]) / m, ref[c] / m, 0.0, 3.0, 1e-3 * ref[c] / m);
+    }
+    assert_true(hi > 5.0 * ref.x / m); // the highlight is in view
+}
+
+// The sun's reflection in GGX: roughness 0.05 (alpha 0.0025) under the sun's 0.53 degrees: the
+// highlight is the sun's blurred image, found as often by BSDF sampling as by sampling the
+// disk (MIS); roughness 0.3 under a 0.1 rad disk.
+void test_sun_ggx(void **) {
     struct Case {
         double roughness, diameter;
         float yfov;
     };
     const Case cases[] = {{0.05, 0.00925, 0.05f}, {0.3, 0.1, 0.6f}};
-    const double E = 2.0, elevation = 0.6;
-    const glm::dvec3 toward(0.0, std::sin(elevation), -std::cos(elevation));
+    const double E = 2.0;
     for (const Case &k : cases) {
-        const float alpha = float(k.roughness * k.roughness);
-        const double L = sunRadiance(E, k.diameter);
-        SceneBuilder b;
-        floorPlane(b, b.material(glm::vec3(f0), 1.0f, float(k.roughness)));
-        addSun(b, toward, E, k.diameter);
-        const glm::vec3 camPos = 2.0f * glm::vec3(0.0f, float(toward.y), float(-toward.z));
-        b.camera(camPos, glm::vec3(0.0f), k.yfov);
-        RenderSettings s;
-        s.spp = 1024;
-        s.directOnly = true;
-        s.singleScatter = true;
-        const uint32_t n = 12;
-        Image img = renderImage(b, s, n, n, k.roughness < 0.1 ? "sun-ggx-005" : "sun-ggx-03");
-        // Reflected radiance towards wo (world; the floor's local frame: z = +y).
-        auto local = [](glm::dvec3 w) { return glm::vec3(float(w.x), float(-w.z), float(w.y)); };
-        auto reflected = [&](glm::dvec3 wo) {
-            const glm::vec3 woL = local(wo);
-            return L * capIntegral(toward, 0.5 * k.diameter, 48, 96, [&](glm::dvec3 wi) {
-                       const glm::vec3 wiL = local(wi);
-                       return glm::dvec3(rtpbr::BRDF_SpecularLocal(woL, wiL, alpha, alpha, F) * wiL.z);
-                   });
-        };
-        // Per channel: sums of pixels and of the references, the pixels' variance.
-        glm::dvec3 sum(0.0), ref(0.0), var(0.0);
-        double hi = 0.0;
-        for (uint32_t y = 0; y < n; y++)
-            for (uint32_t x = 0; x < n; x++) {
-                // The footprint mean of each channel (4 x 4 points), and the jitter's spread.
-                const int q = 4;
-                glm::dvec3 mean(0.0), sq(0.0);
-                const glm::dvec3 o(camPos);
-                for (int i = 0; i < q; i++)
-                    for (int j = 0; j < q; j++) {
-                        const float sx = float(x) + (i + 0.5f) / q, sy = float(y) + (j + 0.5f) / q;
-                        const glm::dvec3 d(cameraRay(b.cameras[0], sx, sy, n, n));
-                        const glm::dvec3 p = o - (o.y / d.y) * d;
-                        const glm::dvec3 v = reflected(glm::normalize(o - p));
-                        mean += v / double(q * q);
-                        sq += v * v / double(q * q);
-                    }
-                for (int c = 0; c < 3; c++) {
-                    const double sd = std::sqrt(std::max(0.0, sq[c] - mean[c] * mean[c]));
-                    expectPixel(img, x, y, c, mean[c], sd / std::sqrt(double(s.spp)), "GGX under the sun");
-                    sum[c] += img.v(x, y, c);
-                    var[c] += img.e(x, y, c) * img.e(x, y, c);
-                    ref[c] += mean[c];
-                    hi = std::max(hi, mean[c]);
-                }
-            }
-        const double m = double(n) * n;
-        std::printf("GGX roughness %.2f, sun %.3g rad (L %.5g): pixels up to %.5g (F0 L = %.5g); largest |z| %.2f\n",
-                    k.roughness, k.diameter, L, hi, f0.x * L, worstZ());
-        for (int c = 0; c < 3; c++) {
-            std::printf("  channel %d: image mean %.6g vs quadrature %.6g (relative %+.2e, %.2f se)\n", c, sum[c] / m,
-                        ref[c] / m, sum[c] / ref[c] - 1.0, (sum[c] - ref[c]) / std::sqrt(var[c]));
-            EXPECT_AGREE(sum[c] / m, std::sqrt(var[c]) / m, ref[c] / m, 0.0, 3.0, 1e-3 * ref[c] / m);
+        const SeenCone sun{kGgxToward, 0.5 * k.diameter, sunRadiance(E, k.diameter)};
+        char what[80];
+        std::snprintf(what, sizeof what, "GGX under the sun of %.3g rad", k.diameter);
+        checkGgxFloor(
+            k.roughness, k.yfov, [&](SceneBuilder &b) { addSun(b, kGgxToward, E, k.diameter); },
+            [&](glm::dvec3) { return sun; }, k.roughness < 0.1 ? "sun-ggx-005" : "sun-ggx-03", what);
+    }
+}
+
+// ---- a point light's sphere (rtpbr_gltf_punctual_light.radius) --------------------------------
+
+// The sphere's radiance I / (pi r^2).
+double sphereRadiance(const Light &L) { return L.intensity / (kPi * L.radius * L.radius); }
+
+// A sphere wholly above a Lambert floor's horizon (its centre higher than its radius) is, on
+// the floor, the point light of its intensity: the cone of half-angle s, sin s = r / d, gives
+// the irradiance pi L sin^2 s cos(theta) = I cos(theta) / d^2 (its exact form factor), times
+// W(d). Three spheres (one almost touching the floor), direct lighting (the cone sampled, MIS
+// against the BSDF rays that meet the sphere), all bounces and noShadows; tiny radii (1e-6,
+// and 1e-30, whose radiance and cone density fit only a double) stay finite, the point light
+// in all but name. A sphere occludes nothing: a point light above one lights the floor
+// through it. (Radius 0, the delta light, exact: test_point_lambert.) 256 samples a pixel: a
+// BSDF ray meets the sphere with probability ~ its cone's projected solid angle / pi (~0.1
+// here), an event a pixel must see often enough for its standard error to mean something
+// (at 64 samples one pixel in a few hundred is 5 of its standard errors off).
+void test_sphere_lambert(void **) {
+    struct Case {
+        glm::dvec3 centre;
+        double radius;
+    };
+    const Case cases[] = {{{0.2, 0.7, -0.1}, 0.3}, {{-0.3, 0.5, 0.2}, 0.45}, {{0.1, 0.6, 0.0}, 1e-6},
+                          {{0.0, 0.8, 0.1}, 1e-30}};
+    for (const Case &k : cases) {
+        Light L{RTPBR_GLTF_PUNCTUAL_POINT, k.centre, glm::dvec3(0, 0, -1), 2.0};
+        L.radius = k.radius;
+        const int modes = k.radius > 1e-3 ? 3 : 1;
+        for (int mode = 0; mode < modes; mode++) {
+            RenderSettings s;
+            s.spp = 256;
+            s.directOnly = mode == 0;
+            s.noShadows = mode == 2;
+            char what[160];
+            std::snprintf(what, sizeof what, "sphere of radius %.3g at height %.2f, %s", k.radius, k.centre.y,
+                          mode == 0 ? "direct" : mode == 1 ? "multi-bounce" : "no shadows");
+            assert_int_equal(checkLambertFloor({L}, s, glm::vec3(0.0f, 1.6f, 1.8f), glm::vec3(0.0f), 0.9f,
+                                               glm::vec3(0, 1, 0), what, "sphere-lambert"),
+                             0);
         }
-        assert_true(hi > 5.0 * ref.x / m); // the highlight is in view
+    }
+    Light sphere{RTPBR_GLTF_PUNCTUAL_POINT, glm::dvec3(0.0, 0.5, 0.0), glm::dvec3(0, 0, -1), 1.5};
+    sphere.radius = 0.3;
+    const Light above{RTPBR_GLTF_PUNCTUAL_POINT, glm::dvec3(0.05, 1.2, 0.0), glm::dvec3(0, 0, -1), 1.0};
+    RenderSettings s;
+    s.spp = 256;
+    s.directOnly = true;
+    checkLambertFloor({sphere, above}, s, glm::vec3(0.0f, 0.9f, 1.0f), glm::vec3(0.0f), 0.9f, glm::vec3(0, 1, 0),
+                      "a point light above a sphere, through it", "sphere-transparent");
+}
+
+// The form factor of the cone of half-angle s (sin^2 s = s2) around the unit vector axis on a
+// surface of normal +y, clipped by its horizon: the shader library's exact closed form (Snyder
+// 1996), checked against quadrature below.
+double capFormFactor(glm::dvec3 axis, double s2) {
+    const glm::dvec3 F = axis * s2;
+    return double(rtpbr::LTC_SphereCapFormFactor(glm::vec3(float(F.x), float(F.z), float(F.y))));
+}
+
+// A sphere straddling the floor's horizon (radius 0.4, its centre 0.15 above the floor, then
+// 0.1 below it): a floor point outside it sees the part of its cone above the horizon, a/pi pi
+// L FF with FF the horizon-clipped cap's form factor; a point inside it sees it in every
+// direction: a L. Pixels whose footprint straddles the sphere's edge are left out.
+void test_sphere_horizon(void **) {
+    const double r = 0.4, I = 2.0;
+    // The closed form against quadrature at points outside, the cap straddling the horizon.
+    for (glm::dvec3 toCentre : {glm::dvec3(0.6, 0.1, 0.2), glm::dvec3(-0.3, -0.15, 0.5), glm::dvec3(0.0, 0.3, 0.45)}) {
+        const double d = glm::length(toCentre), sinS = r / d;
+        const glm::dvec3 axis = toCentre / d;
+        const double q = capIntegral(axis, std::asin(sinS), 400, 800, [](glm::dvec3 w) { return std::max(0.0, w.y); });
+        const double ff = kPi * capFormFactor(axis, sinS * sinS);
+        std::printf("horizon-clipped cap (sin s %.3f, axis %.2f above the horizon): closed form %.8f, quadrature "
+                    "%.8f\n", sinS, axis.y, ff, q);
+        assert_true(std::fabs(ff - q) <= 1e-5 * q);
+    }
+    for (double height : {0.15, -0.1}) {
+        Light L{RTPBR_GLTF_PUNCTUAL_POINT, glm::dvec3(0.1, height, -0.05), glm::dvec3(0, 0, -1), I};
+        L.radius = r;
+        const double Le = sphereRadiance(L);
+        auto edge = [&L](glm::dvec3 p, glm::dvec3) { return glm::length(L.position - p) - L.radius; };
+        auto reflected = [&L, Le](glm::dvec3 p, glm::dvec3) {
+            const glm::dvec3 toCentre = L.position - p;
+            const double d = glm::length(toCentre);
+            if (d <= L.radius)
+                return kAlbedo * Le;
+            return kAlbedo * Le * capFormFactor(toCentre / d, (L.radius / d) * (L.radius / d));
+        };
+        for (int mode = 0; mode < 2; mode++) {
+            SceneBuilder b;
+            floorPlane(b, lambertMaterial(b, kAlbedo));
+            addLight(b, L);
+            b.camera(glm::vec3(0.0f, 1.2f, 1.3f), glm::vec3(0.0f), 1.0f);
+            RenderSettings s;
+            s.spp = 256;
+            s.directOnly = mode == 0;
+            Image img = renderImage(b, s, kN, kN, height > 0.0 ? "sphere-horizon-above" : "sphere-horizon-below");
+            char what[160];
+            std::snprintf(what, sizeof what, "sphere's centre %.2f above the floor (radius %.1f), %s", height, r,
+                          mode == 0 ? "direct" : "multi-bounce");
+            int inside = 0, outside = 0;
+            double sum = 0.0, ref = 0.0, var = 0.0; // the pixels outside, channel 0
+            for (uint32_t y = 0; y < kN; y++)
+                for (uint32_t x = 0; x < kN; x++) {
+                    const Footprint e = footprint(b.cameras[0], x, y, kN, kN, 8, edge);
+                    if (e.max < 0.0) {
+                        inside++;
+                        // Every BSDF ray sees the sphere: a L, exactly.
+                        for (int c = 0; c < 3; c++)
+                            if (!(std::fabs(img.v(x, y, c) - kAlbedo * Le) <= 1e-5 * kAlbedo * Le))
+                                fail_msg("%s: pixel (%u, %u) inside the sphere: %.7g, a L = %.7g", what, x, y,
+                                         img.v(x, y, c), kAlbedo * Le);
+                    } else if (e.min > 0.0) {
+                        outside++;
+                        const Footprint fp = footprint(b.cameras[0], x, y, kN, kN, 16, reflected);
+                        for (int c = 0; c < 3; c++)
+                            expectPixel(img, x, y, c, fp.mean, fp.se(s.spp), what);
+                        sum += img.v(x, y);
+                        ref += fp.mean;
+                        var += img.e(x, y) * img.e(x, y);
+                    }
+                }
+            std::printf("%s: %d pixels inside (a L = %.5g exactly), %d outside: largest |z| %.2f, their sum %+.2e "
+                        "relative, %.2f se\n", what, inside, kAlbedo * Le, outside, worstZ(), sum / ref - 1.0,
+                        (sum - ref) / std::sqrt(var));
+            assert_true(inside >= 4);
+            assert_true(outside >= 100);
+        }
+    }
+}
+
+// A sphere's reflection in GGX (checkGgxFloor; the sphere 2 from the origin in the direction
+// the camera sees mirrored): roughness 0.05 (alpha 0.0025) under a sphere of angular radius
+// 0.01 (found as often by BSDF sampling as by sampling the cone: MIS), roughness 0.3 under one
+// of 0.1.
+void test_sphere_ggx(void **) {
+    struct Case {
+        double roughness, radius;
+        float yfov;
+    };
+    const Case cases[] = {{0.05, 0.02, 0.05f}, {0.3, 0.2, 0.6f}};
+    for (const Case &k : cases) {
+        Light L{RTPBR_GLTF_PUNCTUAL_POINT, 2.0 * kGgxToward, glm::dvec3(0, 0, -1), 3.0};
+        L.radius = k.radius;
+        auto cone = [&L](glm::dvec3 p) {
+            const glm::dvec3 toCentre = L.position - p;
+            const double d = glm::length(toCentre);
+            return SeenCone{toCentre / d, std::asin(L.radius / d), sphereRadiance(L)};
+        };
+        char what[80];
+        std::snprintf(what, sizeof what, "GGX under a sphere of radius %.2f at 2", k.radius);
+        checkGgxFloor(
+            k.roughness, k.yfov, [&L](SceneBuilder &b) { addLight(b, L); }, cone,
+            k.roughness < 0.1 ? "sphere-ggx-005" : "sphere-ggx-03", what);
+    }
+}
+
+// A sphere's shadow (radius 0.1, 1 above the floor, over the shade of test_point_shadow): a
+// floor point whose every line to the sphere crosses the shade (its cone's edge, 64
+// directions, crosses the shade's plane inside it, 0.01 from its edges: the cone's section and
+// the square are convex) is exactly 0: no light sample passes the shade and no BSDF ray meets
+// the sphere before it. With noShadows the same pixels show the unshadowed sphere, the point
+// light's closed form, within the standard error of the rare event that a pixel's own samples
+// may not show: a BSDF ray meets this small sphere with probability at most sin^2 s (~0.01),
+// each time adding about the pixel's value (by the balance heuristic, as a light sample does).
+void test_sphere_shadow(void **) {
+    Light L{RTPBR_GLTF_PUNCTUAL_POINT, glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0, 0, -1), 1.5};
+    L.radius = 0.1;
+    const double shadeY = 0.5, shadeR = 0.2;
+    auto umbra = [&](glm::dvec3 p, glm::dvec3) {
+        const glm::dvec3 toCentre = L.position - p;
+        const double d = glm::length(toCentre), sinS = L.radius / d, cosS = std::sqrt(1.0 - sinS * sinS);
+        const glm::dvec3 axis = toCentre / d;
+        const glm::dvec3 t = glm::normalize(glm::cross(axis, glm::dvec3(1, 0, 0))), b = glm::cross(axis, t);
+        double worst = -1e300; // the largest max-norm of an edge direction's crossing, minus the shade's
+        for (int k = 0; k < 64; k++) {
+            const double phi = 2.0 * kPi * k / 64.0;
+            const glm::dvec3 w = cosS * axis + sinS * (std::cos(phi) * t + std::sin(phi) * b);
+            const glm::dvec3 q = p + (shadeY / w.y) * w;
+            worst = std::max(worst, std::max(std::fabs(q.x), std::fabs(q.z)) - (shadeR - 0.01));
+        }
+        return worst;
+    };
+    auto unshadowed = [&L](glm::dvec3 p, glm::dvec3) { return lambert(L, p, kUp, kAlbedo); };
+    for (int noShadows = 0; noShadows < 2; noShadows++) {
+        SceneBuilder b;
+        floorPlane(b, lambertMaterial(b, kAlbedo));
+        occluder(b, shadeY, 0.0, 0.0, shadeR);
+        addLight(b, L);
+        shadowCamera(b);
+        RenderSettings s;
+        s.spp = 256;
+        s.directOnly = true;
+        s.noShadows = noShadows == 1;
+        Image img = renderImage(b, s, kN, kN, noShadows ? "sphere-shadow-off" : "sphere-shadow");
+        int inside = 0;
+        for (uint32_t y = 0; y < kN; y++)
+            for (uint32_t x = 0; x < kN; x++) {
+                if (!(footprint(b.cameras[0], x, y, kN, kN, 8, umbra).max < 0.0))
+                    continue;
+                inside++;
+                Footprint fp = footprint(b.cameras[0], x, y, kN, kN, 16, unshadowed);
+                const double sin2 = L.radius * L.radius; // sin^2 s = r^2 / d^2, d >= 1 on the floor
+                if (noShadows)
+                    expectPixel(img, x, y, 0, fp.mean, std::max(fp.se(s.spp), fp.mean * std::sqrt(sin2 / s.spp)),
+                                "in the sphere's umbra without shadows");
+                else if (img.v(x, y) != 0.0)
+                    fail_msg("pixel (%u, %u) in the sphere's umbra: %.4g (unshadowed %.4g)", x, y, img.v(x, y),
+                             fp.mean);
+            }
+        std::printf("sphere shadow%s: %d pixels in the umbra, largest |z| %.2f\n", noShadows ? " (no shadows)" : "",
+                    inside, worstZ());
+        assert_true(inside >= 12);
+    }
+}
+
+// The range window W(d), d from the shading point to the sphere's centre, scales the sphere's
+// radiance: wholly above the horizon the floor gets I W(d) cos / d^2, the point light's, and
+// exactly 0 beyond the range (0.87 from the centre's foot).
+void test_sphere_range(void **) {
+    Light L{RTPBR_GLTF_PUNCTUAL_POINT, glm::dvec3(0.1, 0.5, 0.0), glm::dvec3(0, 0, -1), 2.0};
+    L.range = 1.0;
+    L.radius = 0.2;
+    for (int mode = 0; mode < 2; mode++) {
+        RenderSettings s;
+        s.spp = 256;
+        s.directOnly = mode == 0;
+        int dark = checkLambertFloor({L}, s, glm::vec3(0.0f, 2.0f, 0.3f), glm::vec3(0.0f), 1.0f, glm::vec3(0, 1, 0),
+                                     mode == 0 ? "sphere of radius 0.2 with range 1, direct"
+                                               : "sphere of radius 0.2 with range 1, multi-bounce",
+                                     "sphere-range");
+        assert_true(dark >= 40);
     }
 }
 
@@ -873,6 +1148,18 @@ void test_validation(void **) {
                    "punctual light 0 (spot): angular diameter");
     expectRejected([](P &p) { p.type = RTPBR_GLTF_PUNCTUAL_POINT, p.angular_diameter = 0.01f; }, Result::InvalidScene,
                    "punctual light 0 (point): angular diameter");
+    // A point light's sphere: radius >= 0 and finite; none on the others.
+    auto point = [](P &p, float r) { p.type = RTPBR_GLTF_PUNCTUAL_POINT, p.radius = r; };
+    expectRejected([&](P &p) { point(p, 0.3f); }, Result::Success, "");
+    expectRejected([&](P &p) { point(p, 1e-30f); }, Result::Success, "");
+    expectRejected([&](P &p) { point(p, -0.1f); }, Result::InvalidScene, "punctual light 0 (point): radius -0.1");
+    expectRejected([&](P &p) { point(p, nan); }, Result::InvalidScene, "punctual light 0 (point): radius nan");
+    expectRejected([&](P &p) { point(p, INFINITY); }, Result::InvalidScene, "radius inf is negative or not finite");
+    expectRejected([](P &p) { p.radius = 0.2f; }, Result::InvalidScene,
+                   "punctual light 0 (spot): radius 0.2: only a point light has one");
+    expectRejected([nan](P &p) { p.radius = nan; }, Result::InvalidScene, "punctual light 0 (spot): radius nan");
+    expectRejected([](P &p) { p.type = RTPBR_GLTF_PUNCTUAL_DIRECTIONAL, p.radius = 1.0f; }, Result::InvalidScene,
+                   "punctual light 0 (directional): radius 1");
     // Only black lights: nothing to render.
     expectRejected([](P &p) { p.intensity[0] = p.intensity[1] = p.intensity[2] = 0.0f; }, Result::NoLights,
                    "KHR_lights_punctual");
@@ -884,4 +1171,8 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_directional_lambert), cmocka_unit_test(tes
                 cmocka_unit_test(test_point_range), cmocka_unit_test(test_spot), cmocka_unit_test(test_point_shadow),
                 cmocka_unit_test(test_directional_shadow), cmocka_unit_test(test_ggx_directional),
                 cmocka_unit_test(test_multibounce_point), cmocka_unit_test(test_sun_lambert),
-                cmocka_unit_test(test_sun_horizon), cmocka_unit_test(test_sun_ggx), cmocka_unit_test(test_validation))
+                cmocka_unit_test(test_sun_horizon), cmocka_unit_test(test_sun_ggx),
+                cmocka_unit_test(test_sphere_lambert), cmocka_unit_test(test_sphere_horizon),
+                cmocka_unit_test(test_sphere_ggx), cmocka_unit_test(test_sphere_shadow),
+                cmocka_unit_test(test_sphere_range),
+                cmocka_unit_test(test_validation))

@@ -51,7 +51,7 @@ static light_nodes nodes_for_lights(int count) {
 }
 
 typedef struct log_counts {
-    int warnings, no_lights, range_ignored;
+    int warnings, no_lights, range_ignored, radius_ignored, radius_not_number;
 } log_counts;
 
 static void on_log(rtpbr_gltf_log_level level, const char* message, void* user) {
@@ -60,6 +60,8 @@ static void on_log(rtpbr_gltf_log_level level, const char* message, void* user) 
     c->warnings++;
     if (strstr(message, "no lights")) c->no_lights++;
     if (strstr(message, "range ignored")) c->range_ignored++;
+    if (strstr(message, "radius ignored")) c->radius_ignored++;
+    if (strstr(message, "extras/radius): not a number")) c->radius_not_number++;
 }
 
 /* Loads text (as a file, then from memory) and returns the file's scene; fails the test when
@@ -112,6 +114,7 @@ static void test_defaults(void** state) {
         assert_vec(l->direction, 0, 0, -1, 0, "default direction");
         assert_vec(l->intensity, 1, 1, 1, 0, "default intensity");
         assert_true(l->range == 0.0f);
+        assert_true(l->radius == 0.0f); /* no extras: a true point */
         const int spot = l->type == RTPBR_GLTF_PUNCTUAL_SPOT;
         assert_true(l->inner_cone_angle == 0.0f);
         assert_true(l->outer_cone_angle == (spot ? (float)(TS_PI / 4.0) : 0.0f));
@@ -333,10 +336,103 @@ static void test_glb_spot_defaults(void** state) {
     free(json);
 }
 
+/* A point light's radius, from the light's "extras": {"radius": r}: the sphere's, in metres,
+ * unchanged by the node's scale (node 0 scales by 3; node 8 carries light 0 too); integer
+ * literals (which tinygltf would cast to int) read as written; 0 when absent. On a spot or a
+ * directional light it is ignored, with a warning (one per light that has a non-zero one); a
+ * radius that is not a number is ignored with a warning (extras are free-form). */
+static void test_radius(void** state) {
+    (void)state;
+    const char* dir = ts_dir("punctual_radius");
+    char* json = lights_json("{\"type\":\"point\",\"intensity\":5,\"extras\":{\"radius\":0.25,\"other\":\"x\"}},"
+                             "{\"type\":\"point\"},"
+                             "{\"type\":\"point\",\"extras\":{\"radius\":3000000000}},"
+                             "{\"type\":\"spot\",\"extras\":{\"radius\":0.5}},"
+                             "{\"type\":\"directional\",\"extras\":{\"radius\":2}},"
+                             "{\"type\":\"point\",\"extras\":{\"radius\":\"0.3\"}},"
+                             "{\"type\":\"point\",\"extras\":{\"radius\":0}},"
+                             "{\"type\":\"spot\",\"extras\":{\"radius\":0}}",
+                             "{\"scale\":[3,3,3],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},"
+                             "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}},"
+                             "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":2}}},"
+                             "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":3}}},"
+                             "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":4}}},"
+                             "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":5}}},"
+                             "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":6}}},"
+                             "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":7}}},"
+                             "{\"translation\":[0,1,0],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}",
+                             "0,1,2,3,4,5,6,7,8", NULL);
+    log_counts counts;
+    rtpbr_gltf_scene* scene = load(dir, "radius.gltf", json, NULL, &counts);
+    assert_int_equal(scene->punctual_light_count, 9);
+    const rtpbr_gltf_punctual_light* l = scene->punctual_lights;
+    const float want[9] = {0.25f, 0.0f, 3e9f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.25f};
+    for (int i = 0; i < 9; ++i)
+        if (l[i].radius != want[i]) fail_msg("light on node %d: radius %.9g, expected %.9g", i, l[i].radius, want[i]);
+    assert_vec(l[0].intensity, 5, 5, 5, 0, "a sphere's intensity as written");
+    assert_true(l[4].angular_diameter > 0.0f); /* the directional light stays the sun's disk */
+    assert_int_equal(counts.radius_ignored, 2);
+    assert_int_equal(counts.radius_not_number, 1);
+    rtpbr_gltf_destroy(scene);
+    free(json);
+}
+
+/* A point light's radius is held to the rules of the extension's numbers: >= 0 (-0 is no
+ * radius), finite as written, and its sphere's area pi r^2 and radiance I / (pi r^2) floats. */
+static void test_radius_refused(void** state) {
+    (void)state;
+    const char* dir = ts_dir("punctual_radius_bad");
+    const light_nodes n = nodes_for_lights(1);
+    static const struct {
+        const char* light;
+        rtpbr_gltf_result result;
+        const char* words;
+    } cases[] = {
+        {"{\"type\":\"point\",\"extras\":{\"radius\":-0.5}}", RTPBR_GLTF_ERROR_INVALID_JSON,
+         "light 0 (/extensions/KHR_lights_punctual/lights/0/extras/radius): must be >= 0"},
+        /* JSON has no NaN; the nearest, a number beyond the double, is a syntax error */
+        {"{\"type\":\"point\",\"extras\":{\"radius\":1e999}}", RTPBR_GLTF_ERROR_INVALID_JSON, "overflow"},
+        {"{\"type\":\"point\",\"extras\":{\"radius\":1e39}}", RTPBR_GLTF_ERROR_NONFINITE,
+         "extras/radius): not representable as a float"},
+        {"{\"type\":\"point\",\"extras\":{\"radius\":1e30}}", RTPBR_GLTF_ERROR_NONFINITE,
+         "node 0: KHR_lights_punctual light 0: radius 1e+30: the sphere's area"},
+        {"{\"type\":\"point\",\"extras\":{\"radius\":1e-50}}", RTPBR_GLTF_ERROR_NONFINITE, "radius 1e-50"},
+        {"{\"type\":\"point\",\"intensity\":1e30,\"extras\":{\"radius\":1e-5}}", RTPBR_GLTF_ERROR_NONFINITE,
+         "radiance (intensity / area)"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        char* json = lights_json(cases[i].light, n.nodes, n.roots, NULL);
+        char err[512] = "";
+        rtpbr_gltf_scene* scene = NULL;
+        const rtpbr_gltf_result r = ts_load_text(dir, "bad.gltf", json, NULL, &scene, err, sizeof err);
+        printf("  %s: %s: %s\n", cases[i].light, rtpbr_gltf_result_string(r), err);
+        if (r != cases[i].result || !strstr(err, cases[i].words))
+            fail_msg("%s: %s (%s), expected %s with \"%s\"", cases[i].light, rtpbr_gltf_result_string(r), err,
+                     rtpbr_gltf_result_string(cases[i].result), cases[i].words);
+        assert_null(scene);
+        free(json);
+    }
+    /* -0 is no radius; the largest that fits (pi r^2 < FLT_MAX) and a tiny one (I / (pi r^2)
+     * fits) load. */
+    const light_nodes three = nodes_for_lights(3);
+    char* json = lights_json("{\"type\":\"point\",\"extras\":{\"radius\":-0.0}},"
+                             "{\"type\":\"point\",\"extras\":{\"radius\":1e19}},"
+                             "{\"type\":\"point\",\"extras\":{\"radius\":1e-19}}",
+                             three.nodes, three.roots, NULL);
+    rtpbr_gltf_scene* scene = load(dir, "edges.gltf", json, NULL, NULL);
+    assert_true(scene->punctual_lights[0].radius == 0.0f && !signbit(scene->punctual_lights[0].radius));
+    assert_true(scene->punctual_lights[1].radius == 1e19f);
+    assert_true(scene->punctual_lights[2].radius == 1e-19f);
+    rtpbr_gltf_destroy(scene);
+    free(json);
+}
+
 RTPBR_TEST_MAIN(cmocka_unit_test(test_defaults),
                 cmocka_unit_test(test_world_frame),
                 cmocka_unit_test(test_intensity_and_range),
                 cmocka_unit_test(test_spot_cones),
                 cmocka_unit_test(test_shared_light),
                 cmocka_unit_test(test_light_limit),
-                cmocka_unit_test(test_glb_spot_defaults))
+                cmocka_unit_test(test_glb_spot_defaults),
+                cmocka_unit_test(test_radius),
+                cmocka_unit_test(test_radius_refused))
