@@ -93,6 +93,7 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         p->inner_cone_angle = l->inner_cone_angle;
         p->outer_cone_angle = l->outer_cone_angle;
         p->angular_diameter = l->angular_diameter;
+        p->radius = l->type == RTPBR_GLTF_PUNCTUAL_POINT ? l->radius : 0.0f;
     }
     return true;
 }
@@ -135,7 +136,8 @@ static void light_descs(const viewer_scene *s, rtpbr_light_desc *out)
         rtpbr_light_desc *d = &out[s->light_count + i];
         *d = (rtpbr_light_desc){.type = p->type, .range = p->range, .inner_cone_angle = p->inner_cone_angle,
                                 .outer_cone_angle = p->outer_cone_angle,
-                                .angular_diameter = p->angular_diameter > 0.0f ? p->angular_diameter : -1.0f};
+                                .angular_diameter = p->angular_diameter > 0.0f ? p->angular_diameter : -1.0f,
+                                .radius = p->type == RTPBR_LIGHT_POINT ? p->radius : 0.0f};
         memcpy(d->position, p->position, sizeof d->position);
         memcpy(d->direction, p->direction, sizeof d->direction);
         for (int c = 0; c < 3; ++c) d->emission[c] = p->color[c] * p->intensity;
@@ -431,6 +433,7 @@ void viewer_punctual_clamp(viewer_punctual *p)
     p->intensity = fmaxf(p->intensity, 0.0f); // fmaxf: NaN -> 0
     p->range = fmaxf(p->range, 0.0f);
     p->angular_diameter = fminf(fmaxf(p->angular_diameter, 0.0f), 0.5f); // at most ~29 degrees
+    p->radius = fminf(fmaxf(p->radius, 0.0f), 100.0f);                     // fmaxf: NaN -> 0
     for (int c = 0; c < 3; ++c) p->color[c] = fminf(fmaxf(p->color[c], 0.0f), 1.0f);
     float *d = p->direction, len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     if (len > 0.0f && isfinite(len))

@@ -40,6 +40,7 @@ typedef struct viewer_punctual {
     float inner_cone_angle; // spot: radians, 0 <= inner < outer <= pi/2
     float outer_cone_angle;
     float angular_diameter; // directional: the disk's, radians (rtpbr_light_desc's); 0: a true direction
+    float radius;           // point: the sphere's (rtpbr_light_desc's); 0: a true point
 } viewer_punctual;
 
 typedef struct viewer_scene {

@@ -367,6 +367,45 @@ static void test_punctual_upload_matches_engine(void **state)
     device_case_close(&d);
 }
 
+// sphere_lights (point lights with radii, extras.radius): the viewer reads each radius and its
+// upload shades the spheres as rtpbr_gpu_scene_from_loaded does; with the radii zeroed (true
+// points) the image differs.
+static void test_sphere_upload_matches_engine(void **state)
+{
+    device_case d;
+    device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/sphere_lights.gltf");
+    assert_int_equal(d.s.punctual_count, 3);
+    assert_float_equal(d.s.punctual[0].radius, 0.25f, 0.0f);
+    assert_float_equal(d.s.punctual[1].radius, 0.4f, 0.0f);
+    rtpbr_gpu_scene *engine = NULL, *viewer = upload(&d);
+    assert_int_equal(rtpbr_gpu_scene_from_loaded(d.ctx, d.s.loaded, &engine), RTPBR_SUCCESS);
+    float *want = render(&d, engine), *got = render(&d, viewer);
+    double max_rel;
+    size_t differing = pixels_differing(want, got, &max_rel), lit = pixels_lit(want);
+    printf("spheres: viewer upload vs rtpbr_gpu_scene_from_loaded: %zu of %d pixels differ (max relative %.3g); %zu lit\n",
+           differing, RW * RH, max_rel, lit);
+    assert_true(lit > (size_t)RW * RH / 2);
+    assert_true(max_rel <= 1e-6);
+    for (uint32_t i = 0; i < d.s.punctual_count; ++i) d.s.punctual[i].radius = 0.0f;
+    rtpbr_gpu_scene *points = upload(&d);
+    float *old = render(&d, points);
+    assert_true(pixels_differing(want, old, &max_rel) > lit / 4 && max_rel > 1e-3);
+    // the clamp: a negative or NaN radius is 0
+    d.s.punctual[0].radius = -1.0f;
+    viewer_punctual_clamp(&d.s.punctual[0]);
+    assert_float_equal(d.s.punctual[0].radius, 0.0f, 0.0f);
+    d.s.punctual[0].radius = NAN;
+    viewer_punctual_clamp(&d.s.punctual[0]);
+    assert_float_equal(d.s.punctual[0].radius, 0.0f, 0.0f);
+    free(want);
+    free(got);
+    free(old);
+    rtpbr_gpu_scene_destroy(points);
+    rtpbr_gpu_scene_destroy(viewer);
+    rtpbr_gpu_scene_destroy(engine);
+    device_case_close(&d);
+}
+
 // An edit of one light's intensity x2, through viewer_scene_update_lights (set_lights, no
 // re-upload), doubles that light's part of the radiance: with R0 the image without it
 // (intensity 0), R1 with it and R2 with twice its intensity, R2 - R0 = 2 (R1 - R0) at every
@@ -474,5 +513,6 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_vertex_count),
                 cmocka_unit_test(test_load_punctual),
                 cmocka_unit_test(test_punctual_edits),
                 test_env_case(test_punctual_upload_matches_engine),
+                test_env_case(test_sphere_upload_matches_engine),
                 test_env_case(test_punctual_intensity_doubles),
                 test_env_case(test_mixed_scene_set_lights))

@@ -251,12 +251,14 @@ class GltfBuilder:
     def punctual_light(self, spec):
         """A KHR_lights_punctual light on a node of its own: spec has type (point, spot,
         directional), color, intensity (candela; lux for directional), translation, and for spot
-        and directional lights a target the light points at (the node's -Z); optional range and
-        a spot's inner/outer cone angles in degrees."""
+        and directional lights a target the light points at (the node's -Z); optional range, a
+        point light's radius (extras.radius) and a spot's inner/outer cone angles in degrees."""
         light = {"type": spec["type"], "color": [float(c) for c in spec.get("color", [1, 1, 1])],
                  "intensity": float(spec["intensity"])}
         if "range" in spec:
             light["range"] = float(spec["range"])
+        if "radius" in spec:  # a point light's sphere (rtpbr reads extras.radius: docs/materials.md)
+            light["extras"] = {"radius": float(spec["radius"])}
         if spec["type"] == "spot":
             light["spot"] = {"innerConeAngle": math.radians(spec.get("inner_deg", 0.0)),
                              "outerConeAngle": math.radians(spec.get("outer_deg", 45.0))}

@@ -71,26 +71,40 @@ void on_loader_log(rtpbr_gltf_log_level level, const char *message, void *)
         std::fprintf(stderr, "rtpbr-render: %s: %s\n", level == RTPBR_GLTF_LOG_ERROR ? "error" : "warning", message);
 }
 
-// The KHR_lights_punctual lights of the scene that shine (intensity > 0): with any, the scene
-// has no energy bound (a delta light's irradiance I / d^2 has no upper limit; rtpbr_common/energy.hpp).
+// Is punctual light l a sphere (a point light with a radius): an emitter of radiance
+// intensity / (pi r^2) (times its range window, at most 1), not a delta light?
+bool is_sphere(const rtpbr_gltf_punctual_light &l)
+{
+    return l.type == RTPBR_GLTF_PUNCTUAL_POINT && l.radius > 0.0f;
+}
+
+// The KHR_lights_punctual lights of the scene that shine (intensity > 0) and have no size
+// (spheres apart): with any, the scene has no energy bound (a delta light's irradiance I / d^2
+// has no upper limit; rtpbr_common/energy.hpp).
 uint32_t shining_punctual_lights(const rtpbr_gltf_scene *scene)
 {
     uint32_t n = 0;
     for (uint32_t i = 0; i < scene->punctual_light_count; ++i) {
         const float *c = scene->punctual_lights[i].intensity;
-        n += c[0] > 0.0f || c[1] > 0.0f || c[2] > 0.0f ? 1u : 0u;
+        n += !is_sphere(scene->punctual_lights[i]) && (c[0] > 0.0f || c[1] > 0.0f || c[2] > 0.0f) ? 1u : 0u;
     }
     return n;
 }
 
-// The brightest radiance any emitter of the scene has: its lights and its emissive materials
-// (an emission texture only scales the factor down). The background is black here. Not a
-// bound for a scene with punctual lights (shining_punctual_lights).
+// The brightest radiance any emitter of the scene has: its lights (a sphere's intensity /
+// (pi r^2)) and its emissive materials (an emission texture only scales the factor down). The
+// background is black here. Not a bound for a scene with punctual lights (shining_punctual_lights).
 double brightest_emitter(const rtpbr_gltf_scene *scene)
 {
     double b = 0.0;
     for (uint32_t i = 0; i < scene->light_count; ++i)
         for (int c = 0; c < 3; ++c) b = std::max(b, double(scene->lights[i].radiance[c]));
+    for (uint32_t i = 0; i < scene->punctual_light_count; ++i) {
+        const rtpbr_gltf_punctual_light &l = scene->punctual_lights[i];
+        const double r = l.radius;
+        if (is_sphere(l))
+            for (int c = 0; c < 3; ++c) b = std::max(b, double(l.intensity[c]) / (3.14159265358979323846 * r * r));
+    }
     for (uint32_t i = 0; i < scene->material_count; ++i)
         for (int c = 0; c < 3; ++c) b = std::max(b, double(scene->materials[i].emission[c]));
     return b;
