@@ -62,7 +62,7 @@ static void quad(int q, float v[4][3], float n[3])
 
 // Light i of frame f: quads facing down above the scene (frame 1: moved and recoloured);
 // lights 6 and 7 a spot and a point light with a range (issue 30: punctual lights through the
-// light set).
+// light set), light 7 in frame 1 a sphere (radius 0.3: the spheres' lighting variants).
 static rtpbr_light_desc light(int i, int f)
 {
     float x = -2.0f + 0.8f * (float)i + 0.3f * (float)f, y = 2.0f + 0.2f * (float)(i % 3), z = -0.5f + 0.4f * (float)(i % 2);
@@ -72,7 +72,7 @@ static rtpbr_light_desc light(int i, int f)
                                   .outer_cone_angle = 0.5f, .emission = {4.0f, 3.0f + (float)f, 2.0f}};
     if (i == 7)
         return (rtpbr_light_desc){.type = RTPBR_LIGHT_POINT, .position = {x - 4.0f, 0.8f, 0.5f}, .range = 3.0f,
-                                  .emission = {1.0f, 2.0f + (float)f, 3.0f}};
+                                  .emission = {1.0f, 2.0f + (float)f, 3.0f}, .radius = f == 1 ? 0.3f : 0.0f};
     float a = 0.25f;
     rtpbr_light_desc l = {.vertex_count = 4,
                           .vertices = {{x - a, y, z - a}, {x + a, y, z - a}, {x + a, y, z + a}, {x - a, y, z + a}}};

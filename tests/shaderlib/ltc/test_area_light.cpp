@@ -39,7 +39,9 @@ float3 Host_LightVertex(uint, uint k) {
     return float3(sx[k] * g_half, y * g_half, g_height);
 }
 float4 Host_LightPlane(uint) { return g_faceDown ? float4(0, 0, -1, g_height) : float4(0, 0, 1, -g_height); }
-float4 Host_LightSphere(uint) { return float4(0, 0, g_height, g_half * std::sqrt(2.0f)); }
+// (a sphere light's: the sphere itself, g_sphere, when its radius is set)
+float4 g_sphere(0.0f);
+float4 Host_LightSphere(uint) { return g_sphere.w > 0.0f ? g_sphere : float4(0, 0, g_height, g_half * std::sqrt(2.0f)); }
 bool Host_LightTwoSided(uint) { return g_twoSided; }
 float3 Host_LightRadiance(uint) { return float3(1.0f); }
 float3 Host_LightVisibility(uint) { return float3(1.0f); }
@@ -52,6 +54,7 @@ float Host_TableEFavg(float, float) { return 1.0f; }
 float Host_TableSheenE(float, float) { return 0.0f; }
 
 #define RTPBR_AREA_LIGHT_PUNCTUAL 1
+#define RTPBR_AREA_LIGHT_SPHERES 1
 #include "rtpbr/area_light.h"
 
 #include <cstdarg>
@@ -62,7 +65,7 @@ extern "C" {
 }
 
 namespace {
-float lambert_radiance() {
+float lambert_radiance(bool sphere = false) {
     rtpbr::MaterialInputs m{};
     m.model = rtpbr::RTPBR_MATERIAL_MODEL_METALLIC_ROUGHNESS;
     m.baseColor = float3(1.0f);
@@ -73,7 +76,15 @@ float lambert_radiance() {
     m.disney = rtpbr::Disney_DefaultMaterial();
     float3 N(0, 0, 1), V = glm::normalize(float3(0.3f, 0.0f, 1.0f));
     rtpbr::ShadingSurface s = rtpbr::Surface_Resolve(rtpbr::Material_Resolve(m), glm::dot(N, V), float3(0.0f));
-    float3 L = rtpbr::AreaLight_Evaluate(s, float3(0.0f), N, V, 0u);
+    float3 L;
+    if (sphere) { // AreaLight_AddSphere, as a host's loop over its spheres calls it
+        rtpbr::AreaLightPixel px = rtpbr::AreaLight_Begin(s, N, V);
+        rtpbr::AreaLightSum acc = rtpbr::AreaLight_SumBegin();
+        rtpbr::AreaLight_AddSphere(px, acc, s, float3(0.0f), N, 0u);
+        L = rtpbr::AreaLight_End(px, acc, s, float3(0.0f));
+    } else {
+        L = rtpbr::AreaLight_Evaluate(s, float3(0.0f), N, V, 0u);
+    }
     assert_true(L.x == L.y && L.y == L.z);
     return L.x;
 }
@@ -160,8 +171,64 @@ void test_punctual_closed_form(void **) {
     assert_true(std::fabs(got - expect) <= 1e-5 * expect);
     g_shape = 0u;
 }
+
+// The white Lambertian surface at the origin under a sphere light of radiance 1 (RTPBR_AREA_
+// LIGHT_SPHERES: AreaLight_AddSphere): its form factor (r / d)^2 cos(theta) wholly above the
+// horizon; the horizon-clipped cap's where the horizon cuts it, against a midpoint quadrature
+// in double here; 1 inside it; nothing below the horizon; its range window.
+double cap_quadrature(double cx, double cy, double cz, double r) {
+    double d = std::sqrt(cx * cx + cy * cy + cz * cz), a = std::asin(r / d);
+    double c[3] = {cx / d, cy / d, cz / d}, t1[3] = {1, 0, 0};
+    if (std::fabs(c[0]) > 0.9) t1[0] = 0, t1[1] = 1;
+    double dt = t1[0] * c[0] + t1[1] * c[1] + t1[2] * c[2];
+    for (int k = 0; k < 3; ++k) t1[k] -= dt * c[k];
+    double tl = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+    for (int k = 0; k < 3; ++k) t1[k] /= tl;
+    double t2[3] = {c[1] * t1[2] - c[2] * t1[1], c[2] * t1[0] - c[0] * t1[2], c[0] * t1[1] - c[1] * t1[0]};
+    const int n = 800;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+        double t = (i + 0.5) * a / n;
+        for (int j = 0; j < n; ++j) {
+            double phi = (j + 0.5) * 2.0 * M_PI / n;
+            double z = std::cos(t) * c[2] + std::sin(t) * (std::cos(phi) * t1[2] + std::sin(phi) * t2[2]);
+            if (z > 0.0) sum += z * std::sin(t);
+        }
+    }
+    return sum * (a / n) * (2.0 * M_PI / n) / M_PI;
+}
+
+void test_sphere_closed_form(void **) {
+    g_shape = 0u;
+    g_position = float4(0.0f); // no range
+    struct {
+        float x, y, z, r;
+    } cases[] = {{0.3f, -0.2f, 2.0f, 0.5f}, {1.5f, 0.0f, 0.8f, 0.3f}, {0.0f, 0.0f, 10.0f, 0.01f},
+                 {0.6f, 0.1f, 0.2f, 0.4f},  {1.0f, 0.0f, -0.1f, 0.4f}};
+    for (const auto &c : cases) {
+        g_sphere = float4(c.x, c.y, c.z, c.r);
+        double d2 = double(c.x) * c.x + double(c.y) * c.y + double(c.z) * c.z, d = std::sqrt(d2);
+        double expect = c.z / d > c.r / d ? double(c.r) * c.r / d2 * (c.z / d) : cap_quadrature(c.x, c.y, c.z, c.r);
+        double got = lambert_radiance(true);
+        print_message("sphere (%g, %g, %g) r %g: %.7f (expected %.7f)\n", c.x, c.y, c.z, c.r, got, expect);
+        assert_true(std::fabs(got - expect) <= 2e-5 * expect + 1e-9);
+    }
+    g_sphere = float4(0.2f, 0.1f, 0.3f, 1.0f); // the point inside: every direction is the light
+    assert_true(std::fabs(lambert_radiance(true) - 1.0) <= 1e-6);
+    g_sphere = float4(0.2f, 0.1f, -1.0f, 0.5f); // wholly below the horizon
+    assert_true(lambert_radiance(true) == 0.0f);
+    g_sphere = float4(0.3f, -0.2f, 2.0f, 0.5f); // a range of 2.5 from its centre: the window
+    g_position.w = 1.0f / (2.5f * 2.5f);
+    double d2 = 0.09 + 0.04 + 4.0, q = d2 / 6.25;
+    double expect = 0.25 / d2 * (2.0 / std::sqrt(d2)) * (1.0 - q * q), got = lambert_radiance(true);
+    print_message("sphere, range 2.5: %.7f (expected %.7f)\n", got, expect);
+    assert_true(std::fabs(got - expect) <= 2e-5 * expect);
+    g_position.w = 0.0f;
+    g_sphere = float4(0.0f);
+}
 } // namespace
 
 RTPBR_TEST_MAIN(cmocka_unit_test(test_lambert_closed_form),
                 cmocka_unit_test(test_no_light_where_it_cannot_reach),
-                cmocka_unit_test(test_punctual_closed_form))
+                cmocka_unit_test(test_punctual_closed_form),
+                cmocka_unit_test(test_sphere_closed_form))
