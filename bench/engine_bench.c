@@ -60,9 +60,11 @@ static int parse_sizes(const char *text, int (*out)[2], int max)
 //              (clear coat, sheen and anisotropy on metallic-roughness);
 //   points     the benchmark's layout with point lights (KHR_lights_punctual's) at the
 //              squares' centres, of the squares' intensity seen head-on (radiance x area):
-//              the cost of a punctual light (issue 30).
-typedef enum bench_scene { SCENE_BENCHMARK, SCENE_FLOOR, SCENE_FULL, SCENE_POINTS, SCENE_COUNT } bench_scene;
-static const char *const scene_names[SCENE_COUNT] = {"benchmark", "floor", "full", "points"};
+//              the cost of a punctual light (issue 30);
+//   spheres    the same with a radius: spheres of the squares' area (pi r^2 = the square's)
+//              and intensity (the spheres' lighting variants: issue 30).
+typedef enum bench_scene { SCENE_BENCHMARK, SCENE_FLOOR, SCENE_FULL, SCENE_POINTS, SCENE_SPHERES, SCENE_COUNT } bench_scene;
+static const char *const scene_names[SCENE_COUNT] = {"benchmark", "floor", "full", "points", "spheres"};
 
 static void square_light(rtpbr_light_desc *light, float x, float y, float z, float s, int up)
 {
@@ -108,10 +110,11 @@ static rtpbr_result make_scene(rtpbr_context *ctx, bench_scene kind, int n, rtpb
         seed = seed * 1664525u + 1013904223u;
         float y = -28.0f + 56.0f * (float)(seed >> 8) / 16777216.0f;
         float z = 0.5f + 2.5f * (float)(i % 7) / 6.0f, half = 0.1f + 0.05f * (float)(i % 5);
-        if (kind == SCENE_POINTS)
+        if (kind == SCENE_POINTS || kind == SCENE_SPHERES)
             lights[i] = (rtpbr_light_desc){.type = RTPBR_LIGHT_POINT, .position = {x, y, z},
                                            .emission = {20.0f * 4.0f * half * half, 20.0f * 4.0f * half * half,
-                                                        20.0f * 4.0f * half * half}};
+                                                        20.0f * 4.0f * half * half},
+                                           .radius = kind == SCENE_SPHERES ? 2.0f * half / 1.7724539f : 0.0f};
         else
             square_light(&lights[i], x, y, z, half, i % 4 == 3);
     }
@@ -172,7 +175,7 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
 
 static const char *const usage =
     "usage: rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu]\n"
-    "                          [--scene benchmark|floor|full|points|all]\n"
+    "                          [--scene benchmark|floor|full|points|spheres|all]\n"
     "Median frame time of rtpbr_render against light count and resolution; compare the ratios\n"
     "printed in one run.\n"
     "  --repeat N     frames per configuration (1..1000; default 5)\n"
@@ -181,7 +184,8 @@ static const char *const usage =
     "  --cpu          the process CPU time (lavapipe's threads included) instead of wall time\n"
     "  --scene NAME   benchmark, floor (metal floor at 45 degrees, every light seen by\n"
     "                 every pixel), full (materials of the full lighting variant), points\n"
-    "                 (the benchmark's layout with point lights), all (default)\n"
+    "                 (the benchmark's layout with point lights), spheres (with radii), all\n"
+    "                 (default)\n"
     "  -h, --help     this text\n";
 
 int main(int argc, char **argv)

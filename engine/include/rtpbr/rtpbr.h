@@ -413,7 +413,8 @@ typedef struct rtpbr_mesh_desc {
 // What a light is (rtpbr_light_desc.type). Zero: a polygon.
 typedef enum rtpbr_light_type {
     RTPBR_LIGHT_POLYGON = 0,     // an area light: vertices, vertex_count, two_sided
-    RTPBR_LIGHT_POINT = 1,       // glTF KHR_lights_punctual's, evaluated exactly (no size):
+    RTPBR_LIGHT_POINT = 1,       // glTF KHR_lights_punctual's, evaluated exactly (no size; a
+                                 //   point light may have a radius: a sphere, below):
     RTPBR_LIGHT_SPOT = 2,        //   position, range; a spot's direction and cones;
     RTPBR_LIGHT_DIRECTIONAL = 3, //   a directional light's direction
 } rtpbr_light_type;
