@@ -309,6 +309,8 @@ RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
             if (seg.valid)
                 LTC_LobeEdge(lobe, seg.a, seg.b);
         }
+        // (F keeps the whole cap's direction, its z the clipped cap's form factor: the clipped
+        // polygon's own F, summed here, took the basic variant from 96 to 112 VGPRs)
         return AreaLight_LobeClose(lobe, Fl);
     }
 #endif

@@ -17,7 +17,8 @@
 // orthogonal U, W of length r); its front is the side cross(U, W) points to. Accuracy (measured
 // against closed forms and quadrature: tests/shaderlib/ltc/test_ltc_shapes.cpp):
 //   - above the horizon, exact for every lobe up to float rounding (the cone's integral and F
-//     are closed forms);
+//     are closed forms); in a sharp lobe's far tail (a small light seen at grazing angles on a
+//     polished surface) that rounding is within 1e-6 of the lobe's mass, not relative;
 //   - across the horizon (or the LTC's), exact for a sphere under the Lambert lobe (a circular
 //     cone: the cap's closed form), otherwise the error of the equal-area polygon that is
 //     clipped instead; the test states it per case.
@@ -52,7 +53,12 @@ RTPBR_FN rtpbr_float3 LTC_ShapesCubicRoots(float b, float c, float d) {
     float phi = acos(clamp(cosArg, -1.0f, 1.0f)) / 3.0f;
     const float third = 2.0943951f; // 2 pi / 3
     rtpbr_float3 x = RTPBR_F3(2.0f * m) * rtpbr_float3(cos(phi), cos(phi - third), cos(phi + third)) - RTPBR_F3(b / 3.0f);
-    float z = x.z;
+    // The smallest root from the product of the three (-d, Vieta's): the two large ones are
+    // accurate to float rounding relative to themselves, where Viete's formula loses the small
+    // one entirely when the others are 1e4 or more times larger (a thin ellipse far off the
+    // lobe's axis); Newton then polishes it.
+    float large = x.x * x.y;
+    float z = large != 0.0f && abs(large) < 3.0e38f ? -d / large : x.z;
     for (int i = 0; i < 2; ++i) {
         float f = ((z + b) * z + c) * z + d;
         float df = (3.0f * z + 2.0f * b) * z + c;
@@ -76,7 +82,9 @@ RTPBR_FN rtpbr_float3 LTC_EllipseVector(rtpbr_float3x3 minv, rtpbr_float3 C, rtp
     float uu = dot(U, U), ww = dot(W, W), uw = dot(U, W);
     float mean = 0.5f * (uu + ww);
     float root = sqrt(0.25f * (uu - ww) * (uu - ww) + uw * uw);
-    float e1 = mean + root, e2 = max(mean - root, 0.0f); // squared semi-axis lengths
+    // squared semi-axis lengths; the smaller from the Gram determinant |U x W|^2 = e1 e2, not
+    // mean - root, which cancels for a thin ellipse (a sharp lobe's image of a small light)
+    float e1 = mean + root, e2 = max(mean - root, 0.0f);
     if (!(e2 > 0.0f))
         return RTPBR_F3(0.0f);
     rtpbr_float3 a1, a2;
