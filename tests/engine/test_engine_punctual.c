@@ -584,17 +584,24 @@ static void sphere_light(void **state)
         {{0.4, 0.2, 0.15}, 0.5, 0.0, 1e-3, "a sphere the plane cuts (r 0.5 at height 0.15)"},
         {{0.2, -0.3, 0.6}, 0.2, 1.8, 1e-3, "a sphere with a range of 1.8 (r 0.2 at height 0.6)"},
     };
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0] + 1; ++i) {
+        // the last: the first case on a BLEND plane of alpha 1 (the forward pass's spheres
+        // variant shades it; the background behind it is black)
+        bool blend = i == sizeof cases / sizeof cases[0];
+        size_t ci = blend ? 0 : i;
         const double I = 3.0;
         rtpbr_light_desc lights[4] = {{.type = RTPBR_LIGHT_POINT,
-                                       .position = {(float)cases[i].centre[0], (float)cases[i].centre[1], (float)cases[i].centre[2]},
-                                       .radius = (float)cases[i].radius, .range = (float)cases[i].range,
+                                       .position = {(float)cases[ci].centre[0], (float)cases[ci].centre[1], (float)cases[ci].centre[2]},
+                                       .radius = (float)cases[ci].radius, .range = (float)cases[ci].range,
                                        .emission = {(float)I, (float)I, (float)I}}};
         for (int l = 1; l < 4; ++l)
             lights[l] = (rtpbr_light_desc){.type = RTPBR_LIGHT_DIRECTIONAL, .direction = {0, 0, -1}, .angular_diameter = -1.0f};
         const rtpbr_render_desc descs[2] = {{0}, {.mc_samples = 16, .mc_seed = 7}};
         for (int pass = 0; pass < 2; ++pass) {
-            float *px = render_plane(ctx, &test_lambert_material, lights, &descs[pass]);
+            rtpbr_material_desc material = test_lambert_material;
+            if (blend) material.alpha_mode = RTPBR_ALPHA_BLEND, material.alpha = 1.0f;
+            if (blend && pass == 1) continue; // (the Monte Carlo pass draws BLEND with the forward pass too: once is enough)
+            float *px = render_plane(ctx, &material, lights, &descs[pass]);
             double worst = 0.0, peak = 0.0, sum = 0.0, sum2 = 0.0, wantSum = 0.0;
             int checked = 0, inside = 0, cut = 0;
             for (int y = 0; y < H; ++y)
@@ -602,12 +609,12 @@ static void sphere_light(void **state)
                     double p[3];
                     bool skip;
                     if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
-                    double want = sphere_want(cases[i].centre, cases[i].radius, I, cases[i].range, p, &skip);
+                    double want = sphere_want(cases[ci].centre, cases[ci].radius, I, cases[ci].range, p, &skip);
                     if (skip) continue;
-                    double dc[3] = {cases[i].centre[0] - p[0], cases[i].centre[1] - p[1], cases[i].centre[2] - p[2]};
+                    double dc[3] = {cases[ci].centre[0] - p[0], cases[ci].centre[1] - p[1], cases[ci].centre[2] - p[2]};
                     double d = sqrt(dot3(dc, dc));
-                    inside += d <= cases[i].radius;
-                    cut += d > cases[i].radius && dc[2] < cases[i].radius * sqrt(dot3(dc, dc)) / d;
+                    inside += d <= cases[ci].radius;
+                    cut += d > cases[ci].radius && dc[2] < cases[ci].radius * sqrt(dot3(dc, dc)) / d;
                     double v = px[4 * (y * W + x)];
                     worst = fmax(worst, fabs(v - want));
                     peak = fmax(peak, want);
@@ -616,14 +623,15 @@ static void sphere_light(void **state)
                 }
             assert_true(checked > W * H / 2);
             if (pass == 0) {
-                printf("%s, LTC pass: %d pixels (%d inside it, %d with the horizon cutting it), largest error %.3g of "
+                printf("%s%s, LTC pass: %d pixels (%d inside it, %d with the horizon cutting it), largest error %.3g of "
                        "the peak %.4g (bound %.3g)\n",
-                       cases[i].what, checked, inside, cut, worst / peak, peak, cases[i].bound_ltc);
-                assert_true(worst <= cases[i].bound_ltc * peak);
+                       cases[ci].what, blend ? ", BLEND (forward pass)" : "", checked, inside, cut, worst / peak, peak,
+                       cases[ci].bound_ltc);
+                assert_true(worst <= cases[ci].bound_ltc * peak);
             } else {
                 double mean = sum / checked, se = sqrt(fmax(sum2 / checked - mean * mean, 0.0) / checked);
                 printf("%s, Monte Carlo pass: mean difference %.3g of the mean %.4g: %.2f standard errors\n",
-                       cases[i].what, mean, wantSum / checked, fabs(mean) / se);
+                       cases[ci].what, mean, wantSum / checked, fabs(mean) / se);
                 assert_true(fabs(mean) <= 4.0 * se + 1e-5 * wantSum / checked);
             }
             free(px);
