@@ -272,8 +272,7 @@ RTPBR_FN bool AreaLight_SphereDisk(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFra
 // image under minv above the LTC's own, the disk's closed form (LTC_EllipseVector: exact).
 // Across either horizon, with RTPBR_AREA_LIGHT_SPHERE_CLIP (1) the disk's equal-area polygon
 // (RTPBR_AREA_LIGHT_SPHERE_SIDES) clipped exactly and integrated (its error against the disk,
-// measured); with 0,
-// Heitz & Hill's sphere proxy (the cap of the same vector form factor, clipped by the LTC's
+// measured); with 0, Heitz & Hill's sphere proxy (the cap of the same vector form factor, clipped by the LTC's
 // own horizon: LTC_SphereCapFormFactor), which lights a glossy lobe from the part of the sphere
 // below the surface (measured: tests/engine/test_engine_punctual.c, sphere_ggx) but has no
 // walk (fewer registers). F: the sphere's exact vector form factor. Inside the sphere: 1.
@@ -494,7 +493,9 @@ RTPBR_FN void AreaLight_AddPunctual(RTPBR_INOUT(rtpbr_float3) sum, ShadingSurfac
 // integrated as GGX at the same alpha.
 // AreaLight_AddShape: AreaLight_Add for a polygon, AreaLight_AddSphere where sphereLight
 // (RTPBR_AREA_LIGHT_SPHERES), which may vary at run time: a loop over both kinds of light calls
-// it once (one copy of the evaluation's code, whose registers are the polygon's).
+// it once (one copy of the evaluation's code; but the disk's state then lives beside the
+// polygon's: in the engine's full variant that spilled, so the engine calls the two in loops
+// of their own, docs/performance.md, 12).
 RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                                  rtpbr_float3 N, uint i, bool sphereLight) {
     // P on the light's plane sees it edge-on; behind a one-sided light, nothing; a light
@@ -547,7 +548,8 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
     // (the same lobe, so the same value), only where the fade leaves anything to correct (at a
     // form factor of 0.5 or more the factor is within (16 - 1) x 0.5^16 = 2.3e-4 of 1, and a
     // light holding half of the LTC's mass lies mostly outside its tail: the tail estimate is
-    // skipped with it); the norm fetched again (the same texel).
+    // skipped with it); the norm fetched again (the same texel). Not for a sphere light: its
+    // second pass did not fit the registers (docs/performance.md, 12).
     if (px.pointOn && specularFF < 0.5f && !sphereLight) {
         rtpbr_float3 unusedF2;
         AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, unusedF2, Fl, sphereLight);
@@ -631,7 +633,8 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 #if RTPBR_AREA_LIGHT_SPHERES
 // Sphere light i's reflected radiance at P (x its radiance, range window and visibility) added
 // to acc, as AreaLight_Add's for a polygon: every lobe over the sphere's cone (AreaLight_ShapeLobe),
-// with the point correction, Kulla-Conty and the energy bound; no streak estimate. Nothing when
+// with Kulla-Conty and the energy bound, the point correction in the metallic-roughness
+// evaluation (RTPBR_AREA_LIGHT_FULL 0; not in the full one); no streak estimate. Nothing when
 // the sphere is wholly below the horizon. A point inside the sphere sees only the light.
 RTPBR_FN void AreaLight_AddSphere(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                                   rtpbr_float3 N, uint i) {
