@@ -3,7 +3,8 @@
 //   1. its geometry pass (geometry.vert / .frag): the G-buffer contract g0 .. g3 and D32 depth
 //   2. rtpbr_lighting_record: rtpbr's culling and lighting of that G-buffer into the HDR image
 //   3. its tone mapping (tonemap.comp): Reinhard on luminance, sRGB encode, into an RGBA8 image
-//   4. copies of the HDR and display images into host-visible buffers
+//   4. copies of the HDR and display images into host-visible buffers (headless, sh_render_frame),
+//      or of the display image into the window's swapchain image (windowed.c)
 #include "host.h"
 
 #include <math.h>
@@ -27,7 +28,7 @@ typedef struct host_material { float base_metallic[4], emission_roughness[4]; } 
 typedef struct geometry_push { float view_proj[16], camera[4]; uint32_t material; } geometry_push;
 enum { GEOMETRY_PUSH_SIZE = 84 };
 // tonemap.comp's push constants.
-typedef struct tonemap_push { float scale; uint32_t width, height; } tonemap_push;
+typedef struct tonemap_push { float scale; uint32_t width, height, swap_rb; } tonemap_push;
 
 // ---------------------------------------------------------------------------------------------
 // Images and buffers
@@ -371,16 +372,17 @@ static void record_geometry(sh_renderer *r, VkCommandBuffer cmd, const sh_scene 
 }
 
 // The host's tone mapping (tonemap.comp) of rtpbr's output (GENERAL, its writes visible to
-// every stage after rtpbr's exit barrier: no barrier before the dispatch), then both images
-// copied out for the CPU. The HDR image's next user is rtpbr's next recording, which takes
-// it from any layout (output_old_layout; UNDEFINED here: every pixel is rewritten).
-static void record_tonemap_and_copies(sh_renderer *r, VkCommandBuffer cmd, float exposure)
+// every stage after rtpbr's exit barrier: no barrier before the dispatch). Both images are left
+// in TRANSFER_SRC_OPTIMAL for the copies that follow. The HDR image's next user is rtpbr's next
+// recording, which takes it from any layout (output_old_layout; UNDEFINED here: every pixel is
+// rewritten).
+static void record_tonemap(sh_renderer *r, VkCommandBuffer cmd, float exposure, int bgra)
 {
     image_barrier(cmd, r->ldr.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                   VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->tonemap_pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->tonemap_layout, 0, 1, &r->tonemap_set, 0, NULL);
-    tonemap_push push = {exp2f(exposure), r->width, r->height};
+    tonemap_push push = {exp2f(exposure), r->width, r->height, bgra ? 1u : 0u};
     vkCmdPushConstants(cmd, r->tonemap_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     vkCmdDispatch(cmd, (r->width + 7) / 8, (r->height + 7) / 8, 1);
     image_barrier(cmd, r->ldr.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
@@ -388,6 +390,11 @@ static void record_tonemap_and_copies(sh_renderer *r, VkCommandBuffer cmd, float
                   VK_ACCESS_TRANSFER_READ_BIT);
     image_barrier(cmd, r->hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+// Both images copied out for the CPU (after record_tonemap).
+static void record_readback(sh_renderer *r, VkCommandBuffer cmd)
+{
     VkBufferImageCopy copy = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {r->width, r->height, 1}};
     vkCmdCopyImageToBuffer(cmd, r->hdr.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->hdr_readback.buffer, 1, &copy);
     vkCmdCopyImageToBuffer(cmd, r->ldr.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->ldr_readback.buffer, 1, &copy);
@@ -396,7 +403,7 @@ static void record_tonemap_and_copies(sh_renderer *r, VkCommandBuffer cmd, float
         0, NULL, 0, NULL);
 }
 
-int sh_render_frame(sh_renderer *r, const sh_scene *s, float exposure, float *hdr, uint8_t *ldr, char *error,
+int sh_record_frame(sh_renderer *r, VkCommandBuffer cmd, const sh_scene *s, float exposure, int bgra, char *error,
                     size_t error_size)
 {
     // The lights of this frame: written into the light set's mapped memory, nothing else.
@@ -408,42 +415,51 @@ int sh_render_frame(sh_renderer *r, const sh_scene *s, float exposure, float *hd
     float view[16], projection[16], view_proj[16];
     sh_camera_matrices(&s->camera, (float)r->width / (float)r->height, r->camera_mode == SH_CAMERA_REVERSED_Z, view,
                        projection, view_proj);
+    record_geometry(r, cmd, s, view_proj);
+    // rtpbr's lighting of the host's G-buffer. By default the camera as rtpbr's camera
+    // description: its matrices are the host's (sh_camera_matrices follows rtpbr_camera_desc's
+    // convention), and the result is rtpbr_render's bit for bit. Handing the host's `view` and
+    // `projection` instead (.camera = NULL) works too, but reconstructs positions through the
+    // inverse of another float product, and the bundled room then differs from rtpbr_render by
+    // 5e-6 relative on average but up to 0.35 at a few dark pixels (measured on lavapipe). A
+    // reversed-Z host must hand its matrices.
+    rtpbr_lighting_record_desc rec = {.command_buffer = cmd, .frame = 0, .lights = r->lights,
+        .gbuffer_old_layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+        .depth_old_layout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+        .output_old_layout = VK_IMAGE_LAYOUT_UNDEFINED, .output_new_layout = VK_IMAGE_LAYOUT_GENERAL};
+    rtpbr_camera_desc cam = {.yfov = s->camera.yfov, .znear = SH_ZNEAR, .zfar = SH_ZFAR};
+    memcpy(cam.position, s->camera.position, sizeof cam.position);
+    memcpy(cam.target, s->camera.target, sizeof cam.target);
+    if (r->camera_mode == SH_CAMERA_RTPBR) {
+        rec.camera = &cam;
+    } else {
+        memcpy(rec.view, view, sizeof rec.view);
+        memcpy(rec.projection, projection, sizeof rec.projection);
+        rec.reversed_z = r->camera_mode == SH_CAMERA_REVERSED_Z;
+    }
+    memcpy(rec.background, s->background, sizeof rec.background);
+    rr = rtpbr_lighting_record(r->targets, &rec);
+    if (rr != RTPBR_SUCCESS) return sample_vk_fail(error, error_size, "rtpbr_lighting_record: %s", rtpbr_result_string(rr));
+    record_tonemap(r, cmd, exposure, bgra);
+    return 0;
+}
 
+int sh_render_frame(sh_renderer *r, const sh_scene *s, float exposure, float *hdr, uint8_t *ldr, char *error,
+                    size_t error_size)
+{
     VkDevice dev = r->device->vk.device;
     VkCommandBuffer cmd;
     SAMPLE_VK(vkAllocateCommandBuffers(dev, &(VkCommandBufferAllocateInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
         .commandPool = r->command_pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1}, &cmd));
     VkResult vr = vkBeginCommandBuffer(cmd, &(VkCommandBufferBeginInfo){.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
         .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT});
+    int failed = 0;
     if (vr == VK_SUCCESS) {
-        record_geometry(r, cmd, s, view_proj);
-        // rtpbr's lighting of the host's G-buffer. By default the camera as rtpbr's camera
-        // description: its matrices are the host's (sh_camera_matrices follows
-        // rtpbr_camera_desc's convention), and the result is rtpbr_render's bit for bit.
-        // Handing the host's `view` and `projection` instead (.camera = NULL) works too, but
-        // reconstructs positions through the inverse of another float product, and the bundled
-        // room then differs from rtpbr_render by 5e-6 relative on average but up to 0.35 at a
-        // few dark pixels (measured on lavapipe). A reversed-Z host must hand its matrices.
-        rtpbr_lighting_record_desc rec = {.command_buffer = cmd, .frame = 0, .lights = r->lights,
-            .gbuffer_old_layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-            .depth_old_layout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-            .output_old_layout = VK_IMAGE_LAYOUT_UNDEFINED, .output_new_layout = VK_IMAGE_LAYOUT_GENERAL};
-        rtpbr_camera_desc cam = {.yfov = s->camera.yfov, .znear = SH_ZNEAR, .zfar = SH_ZFAR};
-        memcpy(cam.position, s->camera.position, sizeof cam.position);
-        memcpy(cam.target, s->camera.target, sizeof cam.target);
-        if (r->camera_mode == SH_CAMERA_RTPBR) {
-            rec.camera = &cam;
-        } else {
-            memcpy(rec.view, view, sizeof rec.view);
-            memcpy(rec.projection, projection, sizeof rec.projection);
-            rec.reversed_z = r->camera_mode == SH_CAMERA_REVERSED_Z;
-        }
-        memcpy(rec.background, s->background, sizeof rec.background);
-        rr = rtpbr_lighting_record(r->targets, &rec);
-        if (rr == RTPBR_SUCCESS) record_tonemap_and_copies(r, cmd, exposure);
+        failed = sh_record_frame(r, cmd, s, exposure, 0, error, error_size);
+        if (!failed) record_readback(r, cmd);
         vr = vkEndCommandBuffer(cmd);
     }
-    if (vr == VK_SUCCESS && rr == RTPBR_SUCCESS) {
+    if (vr == VK_SUCCESS && !failed) {
         vr = vkResetFences(dev, 1, &r->fence);
         if (vr == VK_SUCCESS)
             vr = vkQueueSubmit(r->device->vk.queue, 1, &(VkSubmitInfo){.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
@@ -451,7 +467,7 @@ int sh_render_frame(sh_renderer *r, const sh_scene *s, float exposure, float *hd
         if (vr == VK_SUCCESS) vr = vkWaitForFences(dev, 1, &r->fence, VK_TRUE, UINT64_MAX);
     }
     vkFreeCommandBuffers(dev, r->command_pool, 1, &cmd);
-    if (rr != RTPBR_SUCCESS) return sample_vk_fail(error, error_size, "rtpbr_lighting_record: %s", rtpbr_result_string(rr));
+    if (failed) return 1;
     if (vr != VK_SUCCESS) return sample_vk_fail(error, error_size, "frame submission failed (VkResult %d)", (int)vr);
     if (hdr) memcpy(hdr, r->hdr_readback.mapped, (size_t)r->width * r->height * 16);
     if (ldr) memcpy(ldr, r->ldr_readback.mapped, (size_t)r->width * r->height * 4);

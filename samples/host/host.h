@@ -124,11 +124,68 @@ extern const size_t sh_geometry_vert_size, sh_geometry_frag_size;
 void sh_begin_gbuffer_pass(VkCommandBuffer cmd, const VkImage images[5], const VkImageView views[5], uint32_t width,
                            uint32_t height, float clear_depth);
 
+// One frame recorded into the caller's command buffer: the scene's lights into the light set
+// (its mapped memory: the previous frame must be complete), the geometry pass,
+// rtpbr_lighting_record, the tone mapping into r->ldr (bgra: channels stored B, G, R, A, to be
+// copied as bytes into a BGRA swapchain image). Leaves r->ldr and r->hdr in
+// TRANSFER_SRC_OPTIMAL, their writes visible to transfers. The window's frame (windowed.c) and
+// sh_render_frame both use it.
+int sh_record_frame(sh_renderer *r, VkCommandBuffer cmd, const sh_scene *scene, float exposure, int bgra, char *error,
+                    size_t error_size);
+
 // One frame: the scene's lights into the light set, then one command buffer (geometry pass,
 // rtpbr_lighting_record, tone mapping, copies to the readback buffers), submitted and waited
 // for. hdr (optional): width x height x RGBA float linear radiance, top row first; ldr
 // (optional): RGBA8 sRGB after Reinhard on luminance with 2^exposure.
 int sh_render_frame(sh_renderer *r, const sh_scene *scene, float exposure, float *hdr, uint8_t *ldr,
                     char *error, size_t error_size);
+
+// ---------------------------------------------------------------------------------------------
+// The host's controls (controls.c): what a key does to the scene, shared by the window and by
+// --keys (scripted, headless too). Keys are spelled as --keys spells them: upper-case letters,
+// digits, - and = as themselves; l r u d = Left Right Up Down, p n = PgUp PgDn, t = Tab,
+// h = Home. The window's own keys (P, H, Esc) are windowed.c's.
+
+#define SH_MOVE_STEP 0.1f  // metres per arrow key
+#define SH_EXPOSURE_STEP 0.5f
+
+typedef struct sh_controls {
+    uint32_t light;      // the selected light (Tab)
+    float exposure;      // EV (E / D)
+    int animate;         // A: every light moves on a circle and turns its hue, one step a frame
+    uint32_t frame;      // animation steps taken
+    sh_camera home;      // the mesh file's camera (Home)
+    uint32_t colour[SH_MAX_LIGHTS]; // the palette entry C gave each light last
+} sh_controls;
+
+// Starts with the scene's camera as home and the given exposure.
+void sh_controls_init(sh_controls *c, const sh_scene *scene, float exposure);
+// Applies one key; returns 0, or 1 for a character that is no key here.
+int sh_controls_key(sh_controls *c, sh_scene *scene, char key);
+// Before each frame: one animation step when animate is on.
+void sh_controls_frame(sh_controls *c, sh_scene *scene);
+// The orbit camera (the viewer's mouse): turn about the target by yaw and pitch (radians), pan
+// the target in the view's plane by (right, up) in units of the distance, zoom by a factor.
+void sh_camera_orbit(sh_camera *camera, float yaw, float pitch);
+void sh_camera_pan(sh_camera *camera, float right, float up);
+void sh_camera_zoom(sh_camera *camera, float factor);
+// The controls' help (one key per line).
+extern const char sh_controls_help[];
+
+// ---------------------------------------------------------------------------------------------
+// The window (windowed.c; built when GLFW is found, SH_HAVE_WINDOW)
+
+typedef struct sh_window_options {
+    uint32_t frames;          // render this many frames, then close (0: until the window closes)
+    const char *screenshot;   // with frames: the last frame as presented, as a PNG
+    int validation;           // validation layer with synchronization validation; a message fails
+    sh_camera_mode camera_mode;
+} sh_window_options;
+
+// Runs the host's frame in a window: a GLFW window and swapchain on a device of the window's,
+// rtpbr embedded in it, the display image copied into each swapchain image; the viewer's
+// mouse (left drag orbit, right drag pan, wheel zoom) and sh_controls' keys. Resizing the
+// window re-creates the renderer at the new size. Returns 0, or 1 with a message on stderr.
+int sh_run_window(sh_scene *scene, sh_controls *controls, const sh_window_options *options);
 
 #endif

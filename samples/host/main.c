@@ -1,7 +1,8 @@
 // rtpbr-sample-host: a C engine with its own mesh format, device, geometry pass and tone
 // mapping, using rtpbr as its lighting pass (rtpbr_lighting_record in its command buffer).
 // Headless: renders one frame and writes the display image (PNG) and, optionally, the linear
-// radiance (PFM). See samples/README.md, "rtpbr-sample-host".
+// radiance (PFM). --window: the same frame in a window with the viewer's mouse and keys
+// (windowed.c). See samples/README.md, "rtpbr-sample-host".
 #include "host.h"
 
 #include <stb_image_write.h>
@@ -11,19 +12,27 @@
 
 static const char *const usage =
     "usage: rtpbr-sample-host [MESH] [-o OUT.png] [--hdr OUT.pfm] [--exposure EV] [--camera MODE]\n"
-    "                         [--validation]\n"
+    "                         [--keys KEYS] [--window [--frames N] [--screenshot OUT.png]] [--validation]\n"
     "A host engine's frame with rtpbr as its lighting pass: reads MESH (the sample's own text mesh\n"
     "format; default: the bundled room.mesh), draws its G-buffer with its own geometry pass, lights\n"
     "it with rtpbr_lighting_record, tone-maps it with its own pass (Reinhard on luminance, sRGB).\n"
-    "  -o OUT.png        the display image (default sample-host.png)\n"
+    "  -o OUT.png        the display image (default sample-host.png; not with --window)\n"
     "  --hdr OUT.pfm     also the linear radiance, as a PFM (RGB float, bottom row first)\n"
     "  --exposure EV     scale the radiance by 2^EV before tone mapping (default 0)\n"
     "  --camera MODE     how the camera reaches rtpbr: rtpbr (rtpbr_camera_desc, the default),\n"
     "                    matrices (the host's view and projection) or reversed-z (those with a\n"
     "                    reversed-Z projection and depth test, reversed_z set)\n"
+    "  --keys KEYS       replay key presses before the first frame, as the window's keys (below):\n"
+    "                    upper-case letters, - and = as themselves; l r u d = arrow keys,\n"
+    "                    p n = PgUp PgDn, t = Tab, h = Home (headless too)\n"
+    "  --window          show the frame in a window (GLFW) instead of writing a file, with the\n"
+    "                    viewer's mouse and the keys below; resizing re-creates the renderer\n"
+    "  --frames N        with --window: render N frames, then exit (default: until closed)\n"
+    "  --screenshot OUT.png  with --window and --frames: the last frame as presented\n"
     "  --validation      VK_LAYER_KHRONOS_validation with synchronization validation; any message\n"
     "                    fails the run\n"
     "  -h, --help        this text\n"
+    "Window controls:\n%s"
     "Exit status: 0 written, 1 bad input or failure, 2 bad command line.\n";
 
 // PFM (Portable Float Map): "PF", width height, -1 (little-endian), then RGB float rows from
@@ -41,13 +50,26 @@ static int write_pfm(const char *path, const float *rgba, uint32_t w, uint32_t h
 int main(int argc, char **argv)
 {
     const char *mesh_path = RTPBR_SAMPLE_HOST_DEFAULT_MESH, *png_path = "sample-host.png", *pfm_path = NULL;
+    const char *keys = "", *screenshot = NULL;
     float exposure = 0.0f;
-    int validation = 0, have_mesh = 0;
+    int validation = 0, have_mesh = 0, window = 0;
+    long frames = 0;
     sh_camera_mode camera_mode = SH_CAMERA_RTPBR;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) return fputs(usage, stdout), 0;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) return printf(usage, sh_controls_help), 0;
         if (!strcmp(a, "--validation")) validation = 1;
+        else if (!strcmp(a, "--window")) window = 1;
+        else if (!strcmp(a, "--keys") && i + 1 < argc) keys = argv[++i];
+        else if (!strcmp(a, "--screenshot") && i + 1 < argc) screenshot = argv[++i];
+        else if (!strcmp(a, "--frames") && i + 1 < argc) {
+            char *end;
+            frames = strtol(argv[++i], &end, 10);
+            if (end == argv[i] || *end || frames < 1 || frames > 1000000) {
+                fprintf(stderr, "rtpbr-sample-host: --frames: '%s' is not a whole number in 1..1000000\n", argv[i]);
+                return 2;
+            }
+        }
         else if (!strcmp(a, "--camera") && i + 1 < argc) {
             const char *v = argv[++i];
             if (!strcmp(v, "rtpbr")) camera_mode = SH_CAMERA_RTPBR;
@@ -72,9 +94,18 @@ int main(int argc, char **argv)
             }
         } else if (a[0] != '-' && !have_mesh) mesh_path = a, have_mesh = 1;
         else {
-            fprintf(stderr, "rtpbr-sample-host: unexpected argument '%s'\n%s", a, usage);
+            fprintf(stderr, "rtpbr-sample-host: unexpected argument '%s'\n", a);
+            fprintf(stderr, usage, sh_controls_help);
             return 2;
         }
+    }
+    if (!window && (frames || screenshot)) {
+        fprintf(stderr, "rtpbr-sample-host: --frames and --screenshot are for --window\n");
+        return 2;
+    }
+    if (screenshot && !frames) {
+        fprintf(stderr, "rtpbr-sample-host: --screenshot needs --frames\n");
+        return 2;
     }
 
     char error[512] = "";
@@ -83,6 +114,30 @@ int main(int argc, char **argv)
         fprintf(stderr, "rtpbr-sample-host: %s\n", error);
         return 1;
     }
+    // The controls: --keys edit the scene before the first frame, in the window or not.
+    sh_controls controls;
+    sh_controls_init(&controls, &scene, exposure);
+    for (const char *k = keys; *k; ++k)
+        if (sh_controls_key(&controls, &scene, *k)) {
+            fprintf(stderr, "rtpbr-sample-host: --keys: no key for '%c'\n", *k);
+            sh_scene_free(&scene);
+            return 2;
+        }
+    exposure = controls.exposure;
+    if (window) {
+#ifdef SH_HAVE_WINDOW
+        int rc = sh_run_window(&scene, &controls, &(sh_window_options){.frames = (uint32_t)frames,
+            .screenshot = screenshot, .validation = validation, .camera_mode = camera_mode});
+        sh_scene_free(&scene);
+        return rc;
+#else
+        fprintf(stderr, "rtpbr-sample-host: --window: this build has no window support (GLFW was not found, or "
+                        "-Dviewer=disabled)\n");
+        sh_scene_free(&scene);
+        return 1;
+#endif
+    }
+    sh_controls_frame(&controls, &scene); // 'A': one animation step, as before a window's frame
     sample_device device = {0};
     rtpbr_context *ctx = NULL;
     sh_renderer renderer = {0};

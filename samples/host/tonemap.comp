@@ -7,6 +7,7 @@ layout(set = 0, binding = 1, rgba8) uniform writeonly image2D ldr;
 layout(push_constant) uniform Tonemap {
     float scale; // 2^exposure
     uint width, height;
+    uint swap_rb; // 1: stored as B, G, R, A (copied as bytes into a BGRA swapchain image)
 } tm;
 
 // The sRGB transfer function (IEC 61966-2-1).
@@ -22,5 +23,6 @@ void main()
     vec3 c = max(imageLoad(hdr, ivec2(p)).rgb * tm.scale, vec3(0.0));
     float l = dot(c, vec3(0.2126, 0.7152, 0.0722)); // Rec. 709 luminance
     c *= 1.0 / (1.0 + l);                             // Reinhard on luminance: L / (1 + L)
-    imageStore(ldr, ivec2(p), vec4(srgb_encode(clamp(c, 0.0, 1.0)), 1.0));
+    c = srgb_encode(clamp(c, 0.0, 1.0));
+    imageStore(ldr, ivec2(p), vec4(tm.swap_rb != 0u ? c.bgr : c, 1.0));
 }

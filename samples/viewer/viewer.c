@@ -580,7 +580,7 @@ int main(int argc, char **argv)
         a->overlay = VIEWER_OVERLAY_SPLIT;
     }
     if (!viewer_scene_load(&a->scene, scene_path)) goto done;
-    if (!viewer_window_create(&a->win, (int)width, (int)height, validation)) goto done;
+    if (!viewer_window_create(&a->win, (int)width, (int)height, validation, false)) goto done;
     glfwSetWindowUserPointer(a->win.glfw, a);
     glfwSetKeyCallback(a->win.glfw, on_key);
     glfwSetMouseButtonCallback(a->win.glfw, on_button);

@@ -7,27 +7,29 @@
 #include <stdlib.h>
 #include <string.h>
 
+const char *viewer_window_program = "rtpbr-viewer";
+
 #define CHECK(call)                                                                        \
     do {                                                                                   \
         VkResult check_result_ = (call);                                                   \
         if (check_result_ != VK_SUCCESS) {                                                 \
-            fprintf(stderr, "rtpbr-viewer: %s failed (VkResult %d)\n", #call, check_result_); \
+            fprintf(stderr, "%s: %s failed (VkResult %d)\n", viewer_window_program, #call, check_result_); \
             return false;                                                                  \
         }                                                                                  \
     } while (0)
 
-static bool create_instance(viewer_window *w, bool validation)
+static bool create_instance(viewer_window *w, bool validation, bool sync_validation)
 {
     uint32_t glfw_count = 0;
     const char **glfw_exts = glfwGetRequiredInstanceExtensions(&glfw_count);
     if (!glfw_exts) {
-        fprintf(stderr, "rtpbr-viewer: GLFW found no Vulkan surface support\n");
+        fprintf(stderr, "%s: GLFW found no Vulkan surface support\n", viewer_window_program);
         return false;
     }
     char error[256];
-    if (sample_vk_create_instance("rtpbr-viewer", glfw_exts, glfw_count, validation, 0, &w->validation_messages,
+    if (sample_vk_create_instance(viewer_window_program, glfw_exts, glfw_count, validation, sync_validation, &w->validation_messages,
                                   &w->instance, &w->messenger, error, sizeof error)) {
-        fprintf(stderr, "rtpbr-viewer: %s\n", error);
+        fprintf(stderr, "%s: %s\n", viewer_window_program, error);
         return false;
     }
     return true;
@@ -38,7 +40,7 @@ static bool create_device(viewer_window *w)
 {
     sample_vk_pick_device(w->instance, w->surface, &w->physical_device, &w->queue_family);
     if (!w->physical_device) {
-        fprintf(stderr, "rtpbr-viewer: no Vulkan 1.3 device that can present to the window\n");
+        fprintf(stderr, "%s: no Vulkan 1.3 device that can present to the window\n", viewer_window_program);
         return false;
     }
     float priority = 1.0f;
@@ -93,7 +95,7 @@ static bool create_host_buffer(viewer_window *w, VkDeviceSize size, VkBufferUsag
     for (uint32_t i = 0; i < props.memoryTypeCount && type == UINT32_MAX; ++i)
         if ((req.memoryTypeBits & (1u << i)) && (props.memoryTypes[i].propertyFlags & want) == want) type = i;
     if (type == UINT32_MAX) {
-        fprintf(stderr, "rtpbr-viewer: no host-visible coherent memory\n");
+        fprintf(stderr, "%s: no host-visible coherent memory\n", viewer_window_program);
         return false;
     }
     VkMemoryAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
@@ -127,7 +129,7 @@ bool viewer_window_resize(viewer_window *w)
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                                     VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     if ((caps.supportedUsageFlags & usage) != usage) {
-        fprintf(stderr, "rtpbr-viewer: the surface does not support transfers to and from its images\n");
+        fprintf(stderr, "%s: the surface does not support transfers to and from its images\n", viewer_window_program);
         return false;
     }
     int fb_w = 0, fb_h = 0;
@@ -146,7 +148,7 @@ bool viewer_window_resize(viewer_window *w)
             if (formats[i].format == preferred[p] && formats[i].colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
                 chosen = formats[i];
     if (chosen.format == VK_FORMAT_UNDEFINED) {
-        fprintf(stderr, "rtpbr-viewer: the surface offers no 8-bit RGBA/BGRA format\n");
+        fprintf(stderr, "%s: the surface offers no 8-bit RGBA/BGRA format\n", viewer_window_program);
         return false;
     }
     w->format = chosen.format;
@@ -176,28 +178,28 @@ bool viewer_window_resize(viewer_window *w)
 
 static void on_glfw_error(int code, const char *message)
 {
-    fprintf(stderr, "rtpbr-viewer: GLFW error %d: %s\n", code, message);
+    fprintf(stderr, "%s: GLFW error %d: %s\n", viewer_window_program, code, message);
 }
 
-bool viewer_window_create(viewer_window *w, int width, int height, bool validation)
+bool viewer_window_create(viewer_window *w, int width, int height, bool validation, bool sync_validation)
 {
     memset(w, 0, sizeof *w);
     glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit()) {
-        fprintf(stderr, "rtpbr-viewer: glfwInit failed (no display?)\n");
+        fprintf(stderr, "%s: glfwInit failed (no display?)\n", viewer_window_program);
         return false;
     }
     if (!glfwVulkanSupported()) {
-        fprintf(stderr, "rtpbr-viewer: GLFW found no Vulkan loader\n");
+        fprintf(stderr, "%s: GLFW found no Vulkan loader\n", viewer_window_program);
         return false;
     }
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-    w->glfw = glfwCreateWindow(width, height, "rtpbr viewer", NULL, NULL);
+    w->glfw = glfwCreateWindow(width, height, viewer_window_program, NULL, NULL);
     if (!w->glfw) {
-        fprintf(stderr, "rtpbr-viewer: cannot create a %dx%d window\n", width, height);
+        fprintf(stderr, "%s: cannot create a %dx%d window\n", viewer_window_program, width, height);
         return false;
     }
-    if (!create_instance(w, validation)) return false;
+    if (!create_instance(w, validation, sync_validation)) return false;
     CHECK(glfwCreateWindowSurface(w->instance, w->glfw, NULL, &w->surface));
     return create_device(w) && viewer_window_resize(w);
 }
@@ -246,7 +248,7 @@ bool viewer_window_frame(viewer_window *w, viewer_record_fn record, viewer_recor
         return true;
     }
     if (acquired != VK_SUCCESS && acquired != VK_SUBOPTIMAL_KHR) {
-        fprintf(stderr, "rtpbr-viewer: vkAcquireNextImageKHR failed (VkResult %d)\n", acquired);
+        fprintf(stderr, "%s: vkAcquireNextImageKHR failed (VkResult %d)\n", viewer_window_program, acquired);
         return false;
     }
     CHECK(vkResetCommandPool(w->device, w->pool, 0));
@@ -306,7 +308,7 @@ bool viewer_window_frame(viewer_window *w, viewer_record_fn record, viewer_recor
     if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR || acquired == VK_SUBOPTIMAL_KHR)
         *out_of_date = true;
     else if (presented != VK_SUCCESS) {
-        fprintf(stderr, "rtpbr-viewer: vkQueuePresentKHR failed (VkResult %d)\n", presented);
+        fprintf(stderr, "%s: vkQueuePresentKHR failed (VkResult %d)\n", viewer_window_program, presented);
         return false;
     }
     return true;
@@ -334,6 +336,6 @@ bool viewer_window_write_screenshot(const viewer_window *w, const char *path)
     }
     bool ok = stbi_write_png(path, (int)w->extent.width, (int)w->extent.height, 4, rgba, (int)w->extent.width * 4) != 0;
     free(rgba);
-    if (!ok) fprintf(stderr, "rtpbr-viewer: cannot write %s\n", path);
+    if (!ok) fprintf(stderr, "%s: cannot write %s\n", viewer_window_program, path);
     return ok;
 }

@@ -47,9 +47,14 @@ typedef struct viewer_window {
     uint32_t validation_messages;
 } viewer_window;
 
+// The program name messages start with and the window's first title ("rtpbr-viewer"; the
+// sample host's window sets its own).
+extern const char *viewer_window_program;
+
 // Creates window, device and swapchain. validation: the Khronos layer with a messenger that
-// counts warnings and errors. Returns false with a message on stderr.
-bool viewer_window_create(viewer_window *w, int width, int height, bool validation);
+// counts warnings and errors (sync_validation: its synchronization validation too). Returns
+// false with a message on stderr.
+bool viewer_window_create(viewer_window *w, int width, int height, bool validation, bool sync_validation);
 void viewer_window_destroy(viewer_window *w);
 // Recreates the swapchain (and the per-size buffers) at the framebuffer's current size.
 bool viewer_window_resize(viewer_window *w);
