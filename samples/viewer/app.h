@@ -42,6 +42,7 @@ typedef struct app {
     // Selection and key edits.
     int mode; // 0 move, 1 rotate, 2 scale
     uint32_t light, material, colour_index; // light: polygonal lights first, then punctual
+    int new_light_kind;       // what I adds next (viewer_new_light's kinds, cycled)
     bool light_selected;      // the last click or Tab/M chose a light (else a material)
     // Reference image and live FLIP.
     float *reference;
@@ -89,6 +90,28 @@ static inline void app_light_edited(app *a)
     a->lights_dirty = true;
     a->light_selected = true;
     app_changed(a);
+}
+
+// Adds a light of viewer_new_light's kind 1 m above the orbit target and selects it; removes
+// the selected light. The engine scene is re-uploaded before the next frame.
+static inline bool app_add_light(app *a, int kind)
+{
+    float at[3] = {a->target[0], a->target[1] + 1.0f, a->target[2]};
+    viewer_light l;
+    viewer_punctual p;
+    bool polygonal = viewer_new_light(kind, at, &l, &p);
+    if (polygonal ? !viewer_scene_add_light(&a->scene, &l) : !viewer_scene_add_punctual(&a->scene, &p)) return false;
+    a->light = polygonal ? a->scene.light_count - 1 : viewer_scene_light_total(&a->scene) - 1;
+    app_light_edited(a);
+    return true;
+}
+static inline bool app_remove_light(app *a)
+{
+    if (!viewer_scene_remove_light(&a->scene, a->light)) return false;
+    uint32_t total = viewer_scene_light_total(&a->scene);
+    if (a->light >= total) a->light = total ? total - 1 : 0;
+    app_light_edited(a);
+    return true;
 }
 
 // The selected material.

@@ -195,6 +195,7 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
             .material = s->material_count + i};
     }
     light_descs(s, lights);
+    s->lights_restructured = false;
     // No cameras: the viewer always passes its orbit camera to rtpbr_record.
     rtpbr_gpu_scene_desc desc = {.meshes = meshes, .mesh_count = mesh_count, .materials = materials,
         .material_count = s->material_count + s->light_count, .lights = lights, .light_count = light_total,
@@ -256,8 +257,89 @@ rtpbr_result viewer_scene_update_lights(const viewer_scene *s, rtpbr_gpu_scene *
     return r == RTPBR_SUCCESS ? set_all_lights(s, gpu) : r;
 }
 
+bool viewer_scene_add_light(viewer_scene *s, const viewer_light *light)
+{
+    viewer_light *grown = realloc(s->lights, (s->light_count + 1) * sizeof *grown);
+    if (!grown) return false;
+    s->lights = grown;
+    viewer_light *l = &s->lights[s->light_count++];
+    *l = *light;
+    l->material = -1;
+    mat4_identity(l->transform);
+    l->reshaped = false;
+    s->lights_restructured = true;
+    return true;
+}
+
+bool viewer_scene_add_punctual(viewer_scene *s, const viewer_punctual *light)
+{
+    viewer_punctual *grown = realloc(s->punctual, (s->punctual_count + 1) * sizeof *grown);
+    if (!grown) return false;
+    s->punctual = grown;
+    s->punctual[s->punctual_count++] = *light;
+    viewer_punctual_clamp(&s->punctual[s->punctual_count - 1]);
+    s->lights_restructured = true;
+    return true;
+}
+
+bool viewer_scene_remove_light(viewer_scene *s, uint32_t index)
+{
+    if (index < s->light_count) {
+        memmove(&s->lights[index], &s->lights[index + 1], (s->light_count - index - 1) * sizeof *s->lights);
+        --s->light_count;
+    } else if (index - s->light_count < s->punctual_count) {
+        uint32_t i = index - s->light_count;
+        memmove(&s->punctual[i], &s->punctual[i + 1], (s->punctual_count - i - 1) * sizeof *s->punctual);
+        --s->punctual_count;
+    } else {
+        return false;
+    }
+    s->lights_restructured = true;
+    return true;
+}
+
+const char *viewer_new_light_name(int kind)
+{
+    static const char *const names[VIEWER_NEW_LIGHT_KINDS] = {"quad", "sphere", "spot", "point", "directional"};
+    return kind >= 0 && kind < VIEWER_NEW_LIGHT_KINDS ? names[kind] : "?";
+}
+
+bool viewer_new_light(int kind, const float at[3], viewer_light *light, viewer_punctual *punctual)
+{
+    if (kind == 0) {
+        // Counter-clockwise seen from below: it faces -Y.
+        static const float corners[4][2] = {{-0.25f, -0.25f}, {0.25f, -0.25f}, {0.25f, 0.25f}, {-0.25f, 0.25f}};
+        memset(light, 0, sizeof *light);
+        for (int v = 0; v < 4; ++v) {
+            light->vertices[v][0] = at[0] + corners[v][0];
+            light->vertices[v][1] = at[1];
+            light->vertices[v][2] = at[2] + corners[v][1];
+        }
+        light->vertex_count = 4;
+        light->color[0] = light->color[1] = light->color[2] = 1.0f;
+        light->intensity = 4.0f; // radiance
+        light->material = -1;
+        mat4_identity(light->transform);
+        return true;
+    }
+    memset(punctual, 0, sizeof *punctual);
+    punctual->type = kind == 2 ? RTPBR_LIGHT_SPOT : kind == 4 ? RTPBR_LIGHT_DIRECTIONAL : RTPBR_LIGHT_POINT;
+    memcpy(punctual->position, at, sizeof punctual->position);
+    punctual->direction[1] = -1.0f;
+    if (kind == 4) punctual->direction[0] = 0.5f, punctual->direction[2] = -0.3f;
+    punctual->color[0] = punctual->color[1] = punctual->color[2] = 1.0f;
+    punctual->intensity = kind == 4 ? 1.0f : kind == 2 ? 4.0f : 2.0f; // lux; candela
+    punctual->inner_cone_angle = 0.3f;
+    punctual->outer_cone_angle = 0.5f;
+    punctual->radius = kind == 1 ? 0.1f : 0.0f;
+    punctual->angular_diameter = kind == 4 ? RTPBR_SUN_ANGULAR_DIAMETER : 0.0f; // the sun's disk
+    viewer_punctual_clamp(punctual); // a unit direction
+    return false;
+}
+
 bool viewer_scene_needs_upload(const viewer_scene *s)
 {
+    if (s->lights_restructured) return true;
     for (uint32_t i = 0; i < s->light_count; ++i)
         if (s->lights[i].reshaped) return true;
     return false;

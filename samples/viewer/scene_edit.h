@@ -52,6 +52,7 @@ typedef struct viewer_scene {
     viewer_punctual *punctual;      // the loaded scene's punctual lights, in its order
     uint32_t punctual_count;
     bool *primitive_is_light;       // primitives replaced by the lights' own polygons
+    bool lights_restructured;       // a light was added or removed: the scene must be re-uploaded
     uint32_t light_mesh_base;       // engine mesh index of light 0's polygon (last upload)
 } viewer_scene;
 
@@ -76,7 +77,24 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
 rtpbr_result viewer_scene_update_material(const viewer_scene *s, rtpbr_gpu_scene *gpu, uint32_t material);
 rtpbr_result viewer_scene_update_light(const viewer_scene *s, rtpbr_gpu_scene *gpu, uint32_t light);
 rtpbr_result viewer_scene_update_lights(const viewer_scene *s, rtpbr_gpu_scene *gpu);
-// True when an edit needs viewer_scene_upload (a light's vertex count changed).
+// Adds a polygonal light (its own surface: a rough black material with its emission; material
+// and transform are set here) or a punctual light at the end of its kind, or removes light
+// `index` in the viewer's numbering (polygonal lights first; a polygonal light's surface goes
+// with it). False when out of memory or index is out of range. Each makes
+// viewer_scene_needs_upload true (the engine scene's light and mesh counts change).
+bool viewer_scene_add_light(viewer_scene *s, const viewer_light *light);
+bool viewer_scene_add_punctual(viewer_scene *s, const viewer_punctual *light);
+bool viewer_scene_remove_light(viewer_scene *s, uint32_t index);
+// The new lights the viewer's Insert key (I) adds, kind 0..4: a 0.5 m square quad facing down,
+// a sphere (radius 0.1 m), a spot pointing down, a point, a directional light; the quad's,
+// sphere's, spot's and point's centre at `at`.
+#define VIEWER_NEW_LIGHT_KINDS 5
+const char *viewer_new_light_name(int kind);
+// Fills *light (kind 0) or *punctual (kinds 1..4); returns true for a polygonal light.
+bool viewer_new_light(int kind, const float at[3], viewer_light *light, viewer_punctual *punctual);
+
+// True when an edit needs viewer_scene_upload (a light's vertex count changed, a light was added
+// or removed).
 bool viewer_scene_needs_upload(const viewer_scene *s);
 
 // The nearest surface hit by the ray origin + t dir (t > 0): a light (*light >= 0, *material

@@ -328,10 +328,21 @@ static void punctual_panel(app *a, viewer_punctual *p)
 static void light_panel(app *a)
 {
     viewer_scene *s = &a->scene;
+    // Add a light of each kind (I cycles them) or remove the selected one (X).
+    ImGui::TextUnformatted("add");
+    for (int kind = 0; kind < VIEWER_NEW_LIGHT_KINDS; ++kind) {
+        ImGui::SameLine();
+        if (ImGui::SmallButton(viewer_new_light_name(kind))) app_add_light(a, kind);
+    }
     uint32_t total = viewer_scene_light_total(s);
     if (total == 0) {
         ImGui::TextDisabled("no lights");
         return;
+    }
+    if (ImGui::SmallButton("remove this light")) {
+        app_remove_light(a);
+        total = viewer_scene_light_total(s);
+        if (total == 0) return;
     }
     int index = (int)a->light;
         if (ImGui::SliderInt("light", &index, 0, (int)total - 1)) a->light = (uint32_t)index;

@@ -34,6 +34,9 @@ static const char *const help_text =
     "  C               next light colour\n"
     "  - / =           light intensity -/+ (x 1.25)\n"
     "  T               light one-/two-sided (polygonal lights)\n"
+    "  I               add a light 1 m above the orbit target: quad, sphere, spot, point,\n"
+    "                  directional in turn (selected; the panel adds each kind too)\n"
+    "  X               remove the selected light\n"
     "  M               select the next material\n"
     "  7 / 8           material roughness -/+\n"
     "  9 / 0           material metallic -/+\n"
@@ -290,6 +293,13 @@ static void handle_key(app *a, int key)
         if (p) p->intensity *= key == GLFW_KEY_EQUAL ? 1.25f : 0.8f, app_light_edited(a);
         break;
     case GLFW_KEY_T: if (l) l->two_sided = !l->two_sided, app_light_edited(a); break;
+    case GLFW_KEY_I:
+        static const char *const added[VIEWER_NEW_LIGHT_KINDS] = {"added a quad light", "added a sphere light",
+            "added a spot light", "added a point light", "added a directional light"};
+        a->notice = app_add_light(a, a->new_light_kind) ? added[a->new_light_kind] : "out of memory";
+        a->new_light_kind = (a->new_light_kind + 1) % VIEWER_NEW_LIGHT_KINDS;
+        break;
+    case GLFW_KEY_X: if (!app_remove_light(a)) a->notice = "no light to remove"; break;
     case GLFW_KEY_M:
         if (a->scene.material_count)
             a->material = (a->material + 1) % a->scene.material_count, a->light_selected = false;

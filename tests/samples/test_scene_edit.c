@@ -505,6 +505,94 @@ static void test_mixed_scene_set_lights(void **state)
     device_case_close(&d);
 }
 
+// Adding and removing lights (the viewer's I and X keys, its panel's buttons), issue 30: each
+// kind viewer_new_light makes is what it says (a quad of 0.25 m^2 facing down, a sphere of
+// radius 0.1, a spot and a sun pointing down their directions, unit length); added to
+// quad_light they make the scene need an upload, which has 1 + 5 lights and in which each added
+// light lights pixels of its own (the image with it differs from the image without it, removed
+// again); removing every added light gives the scene's own image back bit for bit; a removal
+// out of range is refused.
+static void test_add_remove_lights(void **state)
+{
+    device_case d;
+    device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/quad_light.gltf");
+    viewer_scene *s = &d.s;
+    rtpbr_gpu_scene *base = upload(&d);
+    float *base_image = render(&d, base);
+    assert_false(viewer_scene_needs_upload(s));
+    const float at[3] = {0.0f, 1.5f, 0.5f};
+    for (int kind = 0; kind < VIEWER_NEW_LIGHT_KINDS; ++kind) {
+        viewer_light l;
+        viewer_punctual p;
+        bool polygonal = viewer_new_light(kind, at, &l, &p);
+        assert_int_equal(polygonal, kind == 0);
+        if (polygonal) {
+            float n[3], c[3];
+            viewer_light_normal(&l, n);
+            viewer_light_center(&l, c);
+            assert_float_equal(n[1], -1.0f, 1e-6f);
+            for (int k = 0; k < 3; ++k) assert_float_equal(c[k], at[k], 1e-6f);
+            assert_float_equal(fabsf((l.vertices[1][0] - l.vertices[0][0]) * (l.vertices[2][2] - l.vertices[1][2])), 0.25f,
+                               1e-6f);
+            assert_true(viewer_scene_add_light(s, &l));
+        } else {
+            float len = sqrtf(p.direction[0] * p.direction[0] + p.direction[1] * p.direction[1] +
+                              p.direction[2] * p.direction[2]);
+            assert_float_equal(len, 1.0f, 1e-6f);
+            assert_true(p.direction[1] < 0.0f);
+            assert_float_equal(p.radius, kind == 1 ? 0.1f : 0.0f, 0.0f);
+            assert_int_equal(p.type, kind == 2 ? RTPBR_LIGHT_SPOT : kind == 4 ? RTPBR_LIGHT_DIRECTIONAL : RTPBR_LIGHT_POINT);
+            assert_true(viewer_scene_add_punctual(s, &p));
+        }
+        assert_true(viewer_scene_needs_upload(s));
+    }
+    assert_int_equal(s->light_count, 2);
+    assert_int_equal(s->punctual_count, 4);
+    rtpbr_gpu_scene *all = upload(&d);
+    assert_false(viewer_scene_needs_upload(s));
+    assert_int_equal(rtpbr_gpu_scene_light_count(all), 6);
+    float *all_image = render(&d, all);
+    double max_rel;
+    // Each added light, removed alone (viewer numbering: polygonal lights first), changes the image.
+    for (uint32_t k = 1; k < 6; ++k) {
+        viewer_scene copy = *s; // the arrays are shared: remove from a copy of the arrays
+        viewer_light *lights = malloc(s->light_count * sizeof *lights);
+        viewer_punctual *punctual = malloc(s->punctual_count * sizeof *punctual);
+        assert_non_null(lights);
+        assert_non_null(punctual);
+        memcpy(lights, s->lights, s->light_count * sizeof *lights);
+        memcpy(punctual, s->punctual, s->punctual_count * sizeof *punctual);
+        copy.lights = lights, copy.punctual = punctual;
+        assert_true(viewer_scene_remove_light(&copy, k));
+        rtpbr_gpu_scene *without = NULL;
+        assert_int_equal(viewer_scene_upload(&copy, d.ctx, &without), RTPBR_SUCCESS);
+        assert_int_equal(rtpbr_gpu_scene_light_count(without), 5);
+        float *image = render(&d, without);
+        size_t changed = pixels_differing(all_image, image, &max_rel);
+        printf("added light %u (%s): lights %zu of %d pixels\n", k, viewer_new_light_name(k == 1 ? 0 : (int)k - 1),
+               changed, RW * RH);
+        assert_true(changed > (size_t)RW * RH / 20 && max_rel > 1e-3);
+        free(image);
+        rtpbr_gpu_scene_destroy(without);
+        free(copy.lights);
+        free(copy.punctual);
+    }
+    assert_false(viewer_scene_remove_light(s, 6));
+    while (s->punctual_count) assert_true(viewer_scene_remove_light(s, s->light_count));
+    assert_true(viewer_scene_remove_light(s, 1));
+    assert_int_equal(s->light_count, 1);
+    rtpbr_gpu_scene *back = upload(&d);
+    float *back_image = render(&d, back);
+    assert_int_equal(pixels_differing(base_image, back_image, &max_rel), 0);
+    free(base_image);
+    free(all_image);
+    free(back_image);
+    rtpbr_gpu_scene_destroy(back);
+    rtpbr_gpu_scene_destroy(all);
+    rtpbr_gpu_scene_destroy(base);
+    device_case_close(&d);
+}
+
 RTPBR_TEST_MAIN(cmocka_unit_test(test_vertex_count),
                 cmocka_unit_test(test_rotate_scale_translate),
                 cmocka_unit_test(test_tracked_transform),
@@ -515,4 +603,5 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_vertex_count),
                 test_env_case(test_punctual_upload_matches_engine),
                 test_env_case(test_sphere_upload_matches_engine),
                 test_env_case(test_punctual_intensity_doubles),
-                test_env_case(test_mixed_scene_set_lights))
+                test_env_case(test_mixed_scene_set_lights),
+                test_env_case(test_add_remove_lights))
