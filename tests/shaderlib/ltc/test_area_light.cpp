@@ -7,7 +7,7 @@
 // closed forms from KHR_lights_punctual's text: I cos / (pi d^2) x window x cone falloff.
 // Disk lights (RTPBR_AREA_LIGHT_DISKS: AreaLight_AddDisk) against closed forms and a
 // double-precision quadrature over the disk (test_disk_*), and against the equal-area octagon
-// that stood for a disk before.
+// that stood for a disk before (with the committed GGX and Disney diffuse tables too).
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
 #include "luts/rtpbr_ltc_tables.h"
@@ -505,6 +505,152 @@ void test_disk_back_face_and_degenerate(void **) {
     }
     g_tables = false;
 }
+
+// The LTC distribution of ltc1 (M^-1 = rows (m00 0 m02), (0 1 0), (m20 0 m22)) at direction w.
+double ltc_density(float4 l, D3 w) {
+    D3 t = {l.x * w.x + l.y * w.z, w.y, l.z * w.x + l.w * w.z};
+    double n = len3(t), det = std::fabs(double(l.x) * l.w - double(l.y) * l.z);
+    return std::max(t.z / n, 0.0) / M_PI * det / (n * n * n);
+}
+// Its mass above the horizon: Gauss-Legendre in cos(theta), trapezoids in phi.
+double ltc_horizon_mass(float4 l) {
+    std::vector<double> x, w;
+    gauss_legendre(400, x, w);
+    const int nphi = 800;
+    double sum = 0.0;
+    for (int i = 0; i < 400; ++i) {
+        double ct = x[i], st = std::sqrt(1.0 - ct * ct);
+        for (int j = 0; j < nphi; ++j) {
+            double phi = 2.0 * M_PI * (j + 0.5) / nphi;
+            sum += w[i] * (2.0 * M_PI / nphi) * ltc_density(l, {st * std::cos(phi), st * std::sin(phi), ct});
+        }
+    }
+    return sum;
+}
+
+// GGX f cos with F = 1 (D_GGX, V_SmithGGXCorrelated: the lobe the tables fit), in double.
+double ggx_cos(double alpha, D3 v, D3 l) {
+    if (l.z <= 0.0) return 0.0;
+    D3 h = v + l;
+    h = h * (1.0 / len3(h));
+    double a2 = alpha * alpha, t = h.z * h.z * (a2 - 1.0) + 1.0, D = a2 / (M_PI * t * t);
+    double Vis = 0.5 / (l.z * std::sqrt(v.z * v.z * (1.0 - a2) + a2) + v.z * std::sqrt(l.z * l.z * (1.0 - a2) + a2));
+    return D * Vis * l.z;
+}
+
+struct GlossyCase {
+    const char *name;
+    double roughness, NoV;
+    D3 c, n;
+    double r1, r2, twist;
+};
+// Disks at the mirror direction, off the peak, small and large, and across the horizon.
+const GlossyCase kGlossyCases[] = {
+    {"mirror, r 0.5, NoV 0.8", 0.5, 0.8, {-0.9, 0.1, 1.2}, {0.6, 0.0, -0.8}, 0.3, 0.3, 0.0},
+    {"mirror, r 0.3, NoV 0.5, small", 0.3, 0.5, {-1.6, 0.0, 0.95}, {1.0, 0.0, -0.5}, 0.15, 0.15, 0.0},
+    {"off the peak, r 0.5, NoV 0.5", 0.5, 0.5, {0.4, 0.9, 1.3}, {-0.2, -0.5, -1.0}, 0.4, 0.25, 0.6},
+    {"overhead, large, r 0.4, NoV 0.9", 0.4, 0.9, {0.1, -0.2, 0.7}, {0.0, 0.2, -1.0}, 1.2, 1.0, 0.2},
+    {"across the horizon, r 0.5, NoV 0.5", 0.5, 0.5, {-1.2, 0.3, 0.1}, {1.0, -0.2, 0.0}, 0.5, 0.5, 0.0},
+    {"across the horizon, r 0.35, NoV 0.3", 0.35, 0.3, {-0.9, -0.5, 0.2}, {1.0, 0.4, -0.3}, 0.6, 0.4, 0.4},
+};
+
+float3 view(double NoV) { return float3(std::sqrt(1.0 - NoV * NoV), 0.0, NoV); }
+
+// (a) What the LTC can be exact about: its own distribution over the disk. The disk's lobe
+// (AreaLight_ShapeLobe: the fraction of the LTC's mass above the horizon that falls on it)
+// against the quadrature of the same distribution over the disk divided by the same mass, for
+// the GGX table and the Disney diffuse one; the octagon's (AreaLight_Lobe over light 2) beside
+// it. Measured: within 3.0e-6 while the disk and its image are above both horizons (held at
+// 1e-5); across the horizon the clipped 12-gon's error, 1.0e-3 (the octagon 6.8e-3; held at
+// 1.5e-3). The disk nearer than the octagon wherever the octagon is off by 1e-5 or more.
+void test_disk_ltc_integral(void **) {
+    bool ok = true;
+    g_diskTwoSided = false;
+    for (int table = 0; table < 2; ++table) {
+        const float *t1 = table == 0 ? rtpbr_ltc_ggx_1 : rtpbr_ltc_disney_diffuse_1;
+        for (const GlossyCase &c : kGlossyCases) {
+            set_disk(c.c, c.n, c.r1, c.r2, c.twist);
+            float3 V = view(c.NoV);
+            float4 l1 = fetch(t1, rtpbr::LTC_LutCoord(float(c.NoV), float(c.roughness)));
+            double want = disk_quadrature([&](D3 d) { return ltc_density(l1, d); }, 300) / ltc_horizon_mass(l1);
+            rtpbr::float3x3 frame = rtpbr::LTC_Frame(kN, V), minv = rtpbr::LTC_InverseMatrix(l1);
+            float3 F, Fl;
+            double disk = rtpbr::AreaLight_ShapeLobe(1u, float3(0.0f), frame, minv, F, Fl, true, true);
+            double oct = rtpbr::AreaLight_ShapeLobe(2u, float3(0.0f), frame, minv, F, Fl, false, false);
+            double err = std::fabs(disk - want) / want, octErr = std::fabs(oct - want) / want;
+            float3 cl = rtpbr::rtpbr_mul(minv, g_diskC), ul = rtpbr::rtpbr_mul(minv, g_diskU), wl = rtpbr::rtpbr_mul(minv, g_diskV);
+            bool above = g_diskC.z >= std::sqrt(g_diskU.z * g_diskU.z + g_diskV.z * g_diskV.z) &&
+                         cl.z >= std::sqrt(ul.z * ul.z + wl.z * wl.z);
+            print_message("%-14s %-38s LTC quadrature %.6f disk %.6f error %.1e; octagon %.6f error %.1e%s\n",
+                          table == 0 ? "GGX" : "Disney diffuse", c.name, want, disk, err, oct, octErr,
+                          above ? "" : " (clipped)");
+            ok = ok && err <= (above ? 1e-5 : 1.5e-3) && (err < octErr || octErr < 1e-5);
+        }
+    }
+    assert_true(ok);
+}
+
+// (b) The whole evaluation (AreaLight_AddDisk with the committed tables) against the quadrature
+// of the true BRDF over the disk: GGX on a white metal (F = 1; the bridge's Kulla-Conty tables
+// hold E = 1, so the multiple-scattering lobe is 0 and the reference is D V cos alone), and
+// Disney's model (Burley's diffuse lobe through its own table, with the specular one), against
+// Surface_EvaluateLobes, the BRDF the punctual path and the Monte Carlo estimators evaluate.
+// What is left is the LTC fit's own error (test_ltc_mc's grid: a mean of 4 % for GGX), which
+// the disk and the octagon share, so that here the disk is not always the nearer (GGX 3, Disney
+// 4 of 6): the octagon's shape error (above, under 7e-3) is small beside it, and the octagon,
+// a polygon, gets the point correction (GGX off the peak: 4.6e-3 against the disk's 3.1e-2),
+// which a disk, like a sphere, does not in the full evaluation. The Disney cases across the
+// horizon (0.24, 0.11) are its diffuse lobe's at grazing light, the octagon's alike.
+// Bounds: the error measured per case x 1.5 (+ 1e-4).
+const double kTrueBrdfMeasured[2][6] = {{5.15e-3, 3.90e-3, 3.09e-2, 1.09e-2, 3.02e-2, 1.08e-3},
+                                        {9.68e-3, 3.22e-2, 3.49e-3, 2.64e-5, 2.41e-1, 1.11e-1}};
+void test_disk_true_brdf(void **) {
+    g_tables = true;
+    g_diskTwoSided = false;
+    double worst[2] = {0.0, 0.0}, worstOct[2] = {0.0, 0.0};
+    int diskBetter[2] = {0, 0};
+    bool ok = true;
+    for (int lobe = 0; lobe < 2; ++lobe) {
+        for (size_t k = 0; k < std::size(kGlossyCases); ++k) {
+            const GlossyCase &c = kGlossyCases[k];
+            set_disk(c.c, c.n, c.r1, c.r2, c.twist);
+            float3 V = view(c.NoV);
+            rtpbr::MaterialInputs m = lambert_material();
+            m.roughness = float(c.roughness);
+            double want;
+            if (lobe == 0) {
+                m.metallic = 1.0f;
+                m.specularFactor = 1.0f;
+                double alpha = c.roughness * c.roughness;
+                want = disk_quadrature([&](D3 d) { return ggx_cos(alpha, d3(V), d); }, 300);
+            } else {
+                m.model = rtpbr::RTPBR_MATERIAL_MODEL_DISNEY;
+                m.disney.baseColor = float3(1.0f);
+                m.disney.roughness = float(c.roughness);
+                rtpbr::ShadingSurface s = rtpbr::Surface_Resolve(rtpbr::Material_Resolve(m), float(c.NoV), float3(0.0f));
+                want = disk_quadrature(
+                    [&](D3 d) {
+                        float3 f = rtpbr::Surface_EvaluateLobes(s, V, float3(d.x, d.y, d.z), true);
+                        return double(f.x + f.y + f.z) / 3.0 * d.z;
+                    },
+                    300);
+            }
+            double disk = evaluate(m, V, 1u), oct = evaluate(m, V, 2u);
+            double err = std::fabs(disk - want) / want, octErr = std::fabs(oct - want) / want;
+            print_message("%-7s %-38s quadrature %.6f disk %.6f error %.2e; octagon %.6f error %.2e\n",
+                          lobe == 0 ? "GGX" : "Disney", c.name, want, disk, err, oct, octErr);
+            assert_true(std::isfinite(disk) && std::isfinite(oct));
+            worst[lobe] = std::max(worst[lobe], err);
+            worstOct[lobe] = std::max(worstOct[lobe], octErr);
+            diskBetter[lobe] += err < octErr;
+            ok = ok && err <= 1.5 * kTrueBrdfMeasured[lobe][k] + 1e-4;
+        }
+    }
+    print_message("largest error: GGX disk %.2e (octagon %.2e), Disney disk %.2e (octagon %.2e); the disk nearer in %d and %d of %d\n",
+                  worst[0], worstOct[0], worst[1], worstOct[1], diskBetter[0], diskBetter[1], int(std::size(kGlossyCases)));
+    g_tables = false;
+    assert_true(ok);
+}
 } // namespace
 
 RTPBR_TEST_MAIN(cmocka_unit_test(test_lambert_closed_form),
@@ -512,4 +658,5 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_lambert_closed_form),
                 cmocka_unit_test(test_punctual_closed_form),
                 cmocka_unit_test(test_sphere_closed_form),
                 cmocka_unit_test(test_disk_lambert), cmocka_unit_test(test_disk_horizon),
-                cmocka_unit_test(test_disk_back_face_and_degenerate))
+                cmocka_unit_test(test_disk_back_face_and_degenerate), cmocka_unit_test(test_disk_ltc_integral),
+                cmocka_unit_test(test_disk_true_brdf))
