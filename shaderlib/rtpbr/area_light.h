@@ -24,9 +24,12 @@
 //   AreaLight_Lobe       one pass over a light's edges for one LTC lobe (the building block)
 //   AreaLight_AddSphere  a sphere light's reflected radiance added, as AreaLight_Add's
 //                        (RTPBR_AREA_LIGHT_SPHERES)
+//   AreaLight_AddDisk    a disk (ellipse) light's reflected radiance added, as AreaLight_Add's
+//                        (RTPBR_AREA_LIGHT_DISKS)
 //   AreaLight_AddShape   AreaLight_Add or AreaLight_AddSphere by a run-time flag: one loop
-//                        over polygons and spheres (RTPBR_AREA_LIGHT_SPHERES)
-//   AreaLight_ShapeLobe  AreaLight_Lobe over a polygon or a sphere
+//                        over polygons and spheres (RTPBR_AREA_LIGHT_SPHERES); with
+//                        RTPBR_AREA_LIGHT_DISKS a last flag, diskLight: AreaLight_AddDisk
+//   AreaLight_ShapeLobe  AreaLight_Lobe over a polygon, a sphere or a disk
 //
 // Flags (before the include)
 //   RTPBR_AREA_LIGHT_PUNCTUAL  0 (default): every light is a polygon; 1: a light may also be
@@ -45,6 +48,11 @@
 //   RTPBR_AREA_LIGHT_SPHERE_CLIP  1 (default): a sphere the horizon cuts is clipped exactly
 //                          (its disk's 12-gon); 0: Heitz & Hill's sphere proxy (no walk, fewer
 //                          registers; a glossy lobe leaks light from below the surface)
+//   RTPBR_AREA_LIGHT_DISKS  0 (default); 1: AreaLight_AddDisk, which the host calls for its
+//                          disk and ellipse lights (glTF EXT_lights_area disks: ltc_shapes.h,
+//                          every lobe and correction of AreaLight_Add over the disk itself, the
+//                          horizon as a sphere's: RTPBR_AREA_LIGHT_SPHERE_CLIP, _SPHERE_SIDES),
+//                          into the same sum as its polygons
 //   RTPBR_AREA_LIGHT_FULL  1 (default): every lobe surface.h resolves (Disney, coat, sheen,
 //                          anisotropy); 0: metallic-roughness without them (the engine's
 //                          basic variant: fewer registers, the streak estimate on GGX).
@@ -76,6 +84,15 @@
 // radius, exactly), Host_LightRadiance (its uniform radiance), Host_LightPosition's w (1 /
 // range^2, 0 for none: its radiance is windowed by Punctual_RangeWindow at the distance from
 // its centre) and Host_LightVisibility;
+// with RTPBR_AREA_LIGHT_DISKS a disk or ellipse light (the points centre + u cos t + v sin t,
+// t in [0, 2 pi), scaled by 0 .. 1; u, v conjugate half-axes, orthogonal and of one length for
+// a disk) is read through
+//   rtpbr_float3 Host_LightDiskAxis(uint light, uint k)  its half-axis u (k = 0) or v (k = 1),
+//                                     world space; it emits toward cross(u, v) (both ways
+//                                     where Host_LightTwoSided)
+// with Host_LightSphere (its centre xyz, exactly; w a bounding radius, the longer half-axis'
+// length, as a polygon's), Host_LightTwoSided, Host_LightRadiance (its uniform radiance) and
+// Host_LightVisibility (the polygon functions are not called for it);
 //   rtpbr_float4 Host_TableLtc1(int table, rtpbr_float2 uv)  the LTC tables at uv
 //   rtpbr_float4 Host_TableLtc2(int table, rtpbr_float2 uv)  (LTC_LutCoord), table one of
 //                                     RTPBR_TABLE_LTC_SPECULAR (rtpbr_ltc_ggx_1/_2, or
@@ -111,6 +128,9 @@
 #ifndef RTPBR_AREA_LIGHT_SPHERES
 #define RTPBR_AREA_LIGHT_SPHERES 0
 #endif
+#ifndef RTPBR_AREA_LIGHT_DISKS
+#define RTPBR_AREA_LIGHT_DISKS 0
+#endif
 #ifndef RTPBR_AREA_LIGHT_SPHERE_CLIP
 #define RTPBR_AREA_LIGHT_SPHERE_CLIP 1
 #endif
@@ -126,6 +146,15 @@
 #endif
 #ifndef RTPBR_DONT_UNROLL
 #define RTPBR_DONT_UNROLL
+#endif
+// With RTPBR_AREA_LIGHT_DISKS the functions that take a sphere light's kind (sphereLight)
+// take a disk light's too: the parameter diskLight after it, the argument x.
+#if RTPBR_AREA_LIGHT_DISKS
+#define RTPBR_AREA_LIGHT_DISK_PARAM , bool diskLight
+#define RTPBR_AREA_LIGHT_DISK_ARG(x) , x
+#else
+#define RTPBR_AREA_LIGHT_DISK_PARAM
+#define RTPBR_AREA_LIGHT_DISK_ARG(x)
 #endif
 // The streak estimate runs in the metallic-roughness evaluation on GGX (its registers do not
 // fit the full one's).
@@ -233,7 +262,7 @@ RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, r
     return AreaLight_LobeClose(lobe, Fl);
 }
 
-#if RTPBR_AREA_LIGHT_SPHERES
+#if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS
 // The disk that stands for sphere light i (Host_LightSphere: centre, radius) at P, in the LTC
 // frame (LTC_SphereAsDisk's: it fills the sphere's cone, radius r d / sqrt(d^2 - r^2) about the
 // axis c): centre c, orthogonal semi-axes u, w; the sphere's exact vector form factor in F
@@ -267,18 +296,54 @@ RTPBR_FN bool AreaLight_SphereDisk(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFra
 
 #endif
 
-#if RTPBR_AREA_LIGHT_SPHERES
-// AreaLight_Lobe over sphere light i. While the sphere's cone is above the horizon and its
+#if RTPBR_AREA_LIGHT_DISKS
+// Disk light i at P in the LTC frame: its centre c (Host_LightSphere's xyz) and half-axes u, w
+// (Host_LightDiskAxis), read again for each lobe (registers, as AreaLight_SphereDisk). F: the
+// disk's Lambert vector form factor where it is wholly above the horizon, exact (the cone's
+// closed form, LTC_EllipseVector, under the identity); where the horizon cuts it, zero with
+// RTPBR_AREA_LIGHT_SPHERE_CLIP (AreaLight_SphereLobe's walk sums its clipped polygon's), with 0
+// the form factor of the cap with the same vector (the sphere proxy's, as a sphere's lobes).
+// True where the horizon cuts it.
+RTPBR_FN bool AreaLight_DiskEllipse(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, RTPBR_OUT(rtpbr_float3) c,
+                                    RTPBR_OUT(rtpbr_float3) u, RTPBR_OUT(rtpbr_float3) w, RTPBR_OUT(rtpbr_float3) F) {
+    rtpbr_float4 sphere = Host_LightSphere(i);
+    c = rtpbr_mul(ltcFrame, rtpbr_float3(sphere.x, sphere.y, sphere.z) - P);
+    u = rtpbr_mul(ltcFrame, Host_LightDiskAxis(i, 0u));
+    w = rtpbr_mul(ltcFrame, Host_LightDiskAxis(i, 1u));
+    bool cut = !(c.z >= sqrt(u.z * u.z + w.z * w.z)); // the ellipse spans c.z +- that in z
+    F = RTPBR_F3(0.0f);
+#if RTPBR_AREA_LIGHT_SPHERE_CLIP
+    if (!cut)
+        F = LTC_EllipseVector(LTC_InverseMatrix(LTC_Identity()), c, u, w, true);
+#else
+    F = LTC_EllipseVector(LTC_InverseMatrix(LTC_Identity()), c, u, w, true);
+    if (cut)
+        F.z = LTC_SphereCapFormFactor(F);
+#endif
+    return cut;
+}
+#endif
+
+#if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS
+// AreaLight_Lobe over sphere light i, or with diskLight (RTPBR_AREA_LIGHT_DISKS) over disk
+// light i (AreaLight_DiskEllipse: the disk itself instead of the sphere's; the rest alike). While the sphere's cone is above the horizon and its
 // image under minv above the LTC's own, the disk's closed form (LTC_EllipseVector: exact).
 // Across either horizon, with RTPBR_AREA_LIGHT_SPHERE_CLIP (1) the disk's equal-area polygon
 // (RTPBR_AREA_LIGHT_SPHERE_SIDES) clipped exactly and integrated (its error against the disk,
 // measured); with 0, Heitz & Hill's sphere proxy (the cap of the same vector form factor, clipped by the LTC's
 // own horizon: LTC_SphereCapFormFactor), which lights a glossy lobe from the part of the sphere
 // below the surface (measured: tests/engine/test_engine_punctual.c, sphere_ggx) but has no
-// walk (fewer registers). F: the sphere's exact vector form factor. Inside the sphere: 1.
+// walk (fewer registers). F: the sphere's exact vector form factor (a disk's: AreaLight_DiskEllipse's, or
+// its clipped polygon's where the horizon cuts it). Inside the sphere: 1.
 RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
-                                    RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl) {
+                                    RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl RTPBR_AREA_LIGHT_DISK_PARAM) {
     rtpbr_float3 c, u, w;
+#if RTPBR_AREA_LIGHT_DISKS
+    bool diskCut = false; // a disk the horizon cuts: its F is summed by the walk below
+    if (diskLight)
+        diskCut = AreaLight_DiskEllipse(i, P, ltcFrame, c, u, w, F);
+    else
+#endif
     if (!AreaLight_SphereDisk(i, P, ltcFrame, minv, c, u, w, F)) {
         Fl = F;
         return 1.0f;
@@ -305,13 +370,22 @@ RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
             } else {
                 seg = LTC_ClipClose(horizon);
             }
-            if (seg.valid)
+            if (seg.valid) {
                 LTC_LobeEdge(lobe, seg.a, seg.b);
+#if RTPBR_AREA_LIGHT_DISKS
+                if (diskCut)
+                    F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+#endif
+            }
         }
-        // (F keeps the whole cap's direction, its z the clipped cap's form factor: the clipped
-        // polygon's own F, summed here, took the basic variant from 96 to 112 VGPRs)
+        // (a sphere's F keeps the whole cap's direction, its z the clipped cap's form factor:
+        // the clipped polygon's own F, summed here, took the basic variant from 96 to 112 VGPRs;
+        // a disk has no such closed form)
         return AreaLight_LobeClose(lobe, Fl);
     }
+#endif
+#if RTPBR_AREA_LIGHT_DISKS && !RTPBR_AREA_LIGHT_SPHERE_CLIP
+    RTPBR_UNUSED(diskCut);
 #endif
     rtpbr_float3 v = LTC_EllipseVector(minv, c, u, w, true);
     Fl = v.z < 0.0f ? -v : v;
@@ -323,12 +397,13 @@ RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
 }
 #endif
 
-// AreaLight_Lobe, or AreaLight_SphereLobe where sphereLight (RTPBR_AREA_LIGHT_SPHERES).
+// AreaLight_Lobe, or AreaLight_SphereLobe where sphereLight (RTPBR_AREA_LIGHT_SPHERES; a disk
+// where diskLight too, RTPBR_AREA_LIGHT_DISKS).
 RTPBR_FN float AreaLight_ShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
-                                   RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, bool sphereLight) {
-#if RTPBR_AREA_LIGHT_SPHERES
+                                   RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM) {
+#if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS
     if (sphereLight)
-        return AreaLight_SphereLobe(i, P, ltcFrame, minv, F, Fl);
+        return AreaLight_SphereLobe(i, P, ltcFrame, minv, F, Fl RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
 #else
     RTPBR_UNUSED(sphereLight);
 #endif
@@ -495,14 +570,32 @@ RTPBR_FN void AreaLight_AddPunctual(RTPBR_INOUT(rtpbr_float3) sum, ShadingSurfac
 // (RTPBR_AREA_LIGHT_SPHERES), which may vary at run time: a loop over both kinds of light calls
 // it once (one copy of the evaluation's code; but the disk's state then lives beside the
 // polygon's: in the engine's full variant that spilled, so the engine calls the two in loops
-// of their own, docs/performance.md, 12).
+// of their own, docs/performance.md, 12). With RTPBR_AREA_LIGHT_DISKS, AreaLight_AddDisk where
+// the last flag, diskLight (sphereLight then does not matter).
 RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
-                                 rtpbr_float3 N, uint i, bool sphereLight) {
+                                 rtpbr_float3 N, uint i, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM) {
     // P on the light's plane sees it edge-on; behind a one-sided light, nothing; a light
     // whose bounding sphere is below the horizon, nothing. A sphere light: below the horizon
     // or beyond its range, nothing.
     rtpbr_float4 sphere = Host_LightSphere(i);
     float window = 1.0f; // a sphere light's range window
+#if RTPBR_AREA_LIGHT_DISKS
+    // A disk light: P on its plane sees it edge-on; behind a one-sided disk, nothing; wholly
+    // below the horizon (its centre's height less sqrt((N.u)^2 + (N.v)^2), the ellipse's
+    // half-extent along N), nothing; a zero or NaN axis, nothing. From here on it is lit as a
+    // sphere's disk is (sphereLight: AreaLight_SphereLobe, every choice below alike).
+    if (diskLight) {
+        sphereLight = true;
+        rtpbr_float3 toCentre = rtpbr_float3(sphere.x, sphere.y, sphere.z) - P;
+        rtpbr_float3 du = Host_LightDiskAxis(i, 0u), dv = Host_LightDiskAxis(i, 1u);
+        rtpbr_float3 dn = cross(du, dv); // toward the emitting side
+        float side = -dot(dn, toCentre); // > 0: the front
+        float Nu = dot(N, du), Nv = dot(N, dv);
+        if (!(abs(side) > 1e-7f * length(dn) * sqrt(max(dot(du, du), dot(dv, dv)))) ||
+            (!Host_LightTwoSided(i) && side < 0.0f) || !(dot(N, toCentre) + sqrt(Nu * Nu + Nv * Nv) > 0.0f))
+            return;
+    } else
+#endif
     if (sphereLight) {
 #if RTPBR_AREA_LIGHT_SPHERES
         rtpbr_float3 toCentre = rtpbr_float3(sphere.x, sphere.y, sphere.z) - P;
@@ -527,7 +620,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
     bool streakSized = !sphereLight && LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
 #endif
     rtpbr_float3 F, Fl;
-    float specularFF = AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, F, Fl, sphereLight);
+    float specularFF = AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, F, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
     F = F.z < 0.0f ? -F : F;
     float ff = min(F.z, 1.0f);
     if (!(ff > 0.0f)) return;
@@ -552,7 +645,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
     // second pass did not fit the registers (docs/performance.md, 12).
     if (px.pointOn && specularFF < 0.5f && !sphereLight) {
         rtpbr_float3 unusedF2;
-        AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, unusedF2, Fl, sphereLight);
+        AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, unusedF2, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
         float norm = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.tableRoughness)).x;
         specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, norm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
     }
@@ -585,7 +678,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
 #if RTPBR_AREA_LIGHT_FULL
     if (s.disney) {
         float LoH = rtpbr_saturate(dot(lRep, normalize(lRep + px.vLocal)));
-        base = px.burleyScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1d), unusedF, unusedFl, sphereLight) +
+        base = px.burleyScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1d), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight)) +
                (s.dm.subsurface * Disney_DiffuseLobe(px.dss, s.NoV, muRep, LoH) + Disney_SheenLobe(s.dm, LoH)) *
                    (RTPBR_PI * ff);
     } else
@@ -599,10 +692,10 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
 #if RTPBR_AREA_LIGHT_FULL
     if (s.sheen)
         lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, Host_TableSheenE(muRep, s.sheenRoughness)) +
-             px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl, sphereLight);
+             px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
     lo *= s.baseAttenuation;
     if (px.coated)
-        lo += px.coatScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, unusedFl, sphereLight) +
+        lo += px.coatScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight)) +
               s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(Host_TableE(muRep, s.coatRoughness), s.Eavgc, lenF), s.Eavgc, ff);
 #endif
 #if RTPBR_LTC_POINT_CORRECTION && !RTPBR_AREA_LIGHT_FULL
@@ -627,7 +720,7 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
         return;
     }
 #endif
-    AreaLight_AddShape(px, acc, s, P, N, i, false);
+    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(false));
 }
 
 #if RTPBR_AREA_LIGHT_SPHERES
@@ -638,7 +731,22 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 // the sphere is wholly below the horizon. A point inside the sphere sees only the light.
 RTPBR_FN void AreaLight_AddSphere(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                                   rtpbr_float3 N, uint i) {
-    AreaLight_AddShape(px, acc, s, P, N, i, true);
+    AreaLight_AddShape(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false));
+}
+#endif
+
+#if RTPBR_AREA_LIGHT_DISKS
+// Disk (or ellipse) light i's reflected radiance at P (x its radiance and visibility) added
+// to acc, as AreaLight_Add's for a polygon: every lobe over the disk itself (AreaLight_ShapeLobe:
+// the ellipse's closed form while it is above the horizon and its image above the LTC's, its
+// equal-area RTPBR_AREA_LIGHT_SPHERE_SIDES-gon clipped exactly across either), the diffuse
+// lobe's vector form factor exact above the horizon, Kulla-Conty and the energy bound, the point
+// correction in the metallic-roughness evaluation (RTPBR_AREA_LIGHT_FULL 0; not in the full one:
+// as a sphere's); no streak estimate. Nothing on its plane, behind a one-sided disk or when it
+// is wholly below the horizon.
+RTPBR_FN void AreaLight_AddDisk(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
+                                rtpbr_float3 N, uint i) {
+    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(true));
 }
 #endif
 

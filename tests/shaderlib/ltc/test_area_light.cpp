@@ -5,10 +5,18 @@
 // normal), and nothing where the light cannot reach. The same surface under punctual lights
 // (RTPBR_AREA_LIGHT_PUNCTUAL 1: AreaLight_Add dispatching on Host_LightShape) gives their
 // closed forms from KHR_lights_punctual's text: I cos / (pi d^2) x window x cone falloff.
+// Disk lights (RTPBR_AREA_LIGHT_DISKS: AreaLight_AddDisk) against closed forms and a
+// double-precision quadrature over the disk (test_disk_*), and against the equal-area octagon
+// that stood for a disk before (with the committed GGX and Disney diffuse tables too).
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
+#include "luts/rtpbr_ltc_tables.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
 
 using rtpbr::float2;
 using rtpbr::float3;
@@ -24,29 +32,73 @@ uint g_shape = 0u;
 float4 g_position(0.0f);
 float3 g_direction(0.0f, 0.0f, -1.0f);
 float2 g_cone(-2.0f, 1.0f);
-} // namespace
-
 uint Host_LightShape(uint) { return g_shape; }
 float4 Host_LightPosition(uint) { return g_position; }
 float3 Host_LightDirection(uint) { return g_direction; }
 float2 Host_LightSpotCone(uint) { return g_cone; }
 
-uint Host_LightVertexCount(uint) { return 4u; }
-float3 Host_LightVertex(uint, uint k) {
+// Light 1: a disk (or ellipse): centre, half-axes u, v (it emits toward cross(u, v)); light 2:
+// the same disk's equal-area regular octagon, a polygon (what a disk was before).
+float3 g_diskC(0.0f, 0.0f, 2.0f), g_diskU(1.0f, 0.0f, 0.0f), g_diskV(0.0f, -1.0f, 0.0f);
+bool g_diskTwoSided = false;
+// The LTC tables: false, the identity (Lambert); true, the committed GGX and Disney diffuse
+// tables, fetched bilinearly as a GPU sampler does.
+bool g_tables = false;
+float3 octagon_vertex(uint k) {
+    const double n = 8.0, scale = std::sqrt(2.0 * M_PI / (n * std::sin(2.0 * M_PI / n)));
+    double phi = 2.0 * M_PI * k / n;
+    return g_diskC + (g_diskU * float(std::cos(phi)) + g_diskV * float(std::sin(phi))) * float(scale);
+}
+} // namespace
+
+uint Host_LightVertexCount(uint i) { return i == 2u ? 8u : 4u; }
+float3 Host_LightVertex(uint i, uint k) {
+    if (i == 2u) return octagon_vertex(k);
     const float sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
     // counter-clockwise seen from below when the light faces down
     float y = g_faceDown ? -sy[k] : sy[k];
     return float3(sx[k] * g_half, y * g_half, g_height);
 }
-float4 Host_LightPlane(uint) { return g_faceDown ? float4(0, 0, -1, g_height) : float4(0, 0, 1, -g_height); }
-// (a sphere light's: the sphere itself, g_sphere, when its radius is set)
+float4 Host_LightPlane(uint i) {
+    if (i == 2u) {
+        float3 n = glm::normalize(glm::cross(g_diskU, g_diskV));
+        return float4(n, -glm::dot(n, g_diskC));
+    }
+    return g_faceDown ? float4(0, 0, -1, g_height) : float4(0, 0, 1, -g_height);
+}
+// (a sphere light's: the sphere itself, g_sphere, when its radius is set; a disk's: its centre,
+// its longer half-axis)
 float4 g_sphere(0.0f);
-float4 Host_LightSphere(uint) { return g_sphere.w > 0.0f ? g_sphere : float4(0, 0, g_height, g_half * std::sqrt(2.0f)); }
-bool Host_LightTwoSided(uint) { return g_twoSided; }
+float4 Host_LightSphere(uint i) {
+    if (i >= 1u) return float4(g_diskC, 1.1f * std::max(glm::length(g_diskU), glm::length(g_diskV)));
+    return g_sphere.w > 0.0f ? g_sphere : float4(0, 0, g_height, g_half * std::sqrt(2.0f));
+}
+float3 Host_LightDiskAxis(uint, uint k) { return k == 0u ? g_diskU : g_diskV; }
+bool Host_LightTwoSided(uint i) { return i >= 1u ? g_diskTwoSided : g_twoSided; }
 float3 Host_LightRadiance(uint) { return float3(1.0f); }
 float3 Host_LightVisibility(uint) { return float3(1.0f); }
-float4 Host_TableLtc1(int, float2) { return float4(1, 0, 0, 1); }
-float4 Host_TableLtc2(int, float2) { return float4(1, 0, 0, 0); }
+namespace {
+float4 fetch(const float *table, float2 uv) { // bilinear, clamp to edge, texel centres at (i + 0.5) / n
+    const int n = RTPBR_LTC_SIZE;
+    float x = std::clamp(uv.x * n - 0.5f, 0.0f, float(n - 1)), y = std::clamp(uv.y * n - 0.5f, 0.0f, float(n - 1));
+    int x0 = std::min(int(x), n - 2), y0 = std::min(int(y), n - 2);
+    float fx = x - float(x0), fy = y - float(y0);
+    auto at = [&](int i, int j) {
+        const float *p = table + (size_t(j) * n + size_t(i)) * 4;
+        return float4(p[0], p[1], p[2], p[3]);
+    };
+    float4 a = at(x0, y0) + (at(x0 + 1, y0) - at(x0, y0)) * fx, b = at(x0, y0 + 1) + (at(x0 + 1, y0 + 1) - at(x0, y0 + 1)) * fx;
+    return a + (b - a) * fy;
+}
+} // namespace
+float4 Host_TableLtc1(int table, float2 uv) {
+    if (!g_tables) return float4(1, 0, 0, 1);
+    return fetch(table == RTPBR_TABLE_LTC_DISNEY_DIFFUSE ? rtpbr_ltc_disney_diffuse_1 : rtpbr_ltc_ggx_1, uv);
+}
+float4 Host_TableLtc2(int table, float2 uv) {
+    if (!g_tables) return float4(1, 0, 0, 0);
+    return fetch(table == RTPBR_TABLE_LTC_DISNEY_DIFFUSE ? rtpbr_ltc_disney_diffuse_2 : rtpbr_ltc_ggx_2, uv);
+}
 float2 Host_TableE_EF(float, float, float) { return float2(1.0f); }
 float Host_TableE(float, float) { return 1.0f; }
 float Host_TableEavg(float) { return 1.0f; }
@@ -55,6 +107,7 @@ float Host_TableSheenE(float, float) { return 0.0f; }
 
 #define RTPBR_AREA_LIGHT_PUNCTUAL 1
 #define RTPBR_AREA_LIGHT_SPHERES 1
+#define RTPBR_AREA_LIGHT_DISKS 1
 #include "rtpbr/area_light.h"
 
 #include <cstdarg>
@@ -226,9 +279,384 @@ void test_sphere_closed_form(void **) {
     g_position.w = 0.0f;
     g_sphere = float4(0.0f);
 }
+
+// ---- Disk lights (RTPBR_AREA_LIGHT_DISKS): light 1 the disk, light 2 its equal-area octagon.
+struct D3 {
+    double x, y, z;
+};
+D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+D3 operator*(D3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+double dot3(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+D3 cross3(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+double len3(D3 a) { return std::sqrt(dot3(a, a)); }
+D3 d3(float3 v) { return {v.x, v.y, v.z}; }
+
+// A disk or ellipse of half-axes r1, r2 at centre c emitting toward n (unit), turned by twist
+// in its plane: g_disk*.
+void set_disk(D3 c, D3 n, double r1, double r2, double twist = 0.0) {
+    n = n * (1.0 / len3(n));
+    D3 t = std::fabs(n.z) < 0.9 ? D3{0, 0, 1} : D3{1, 0, 0};
+    D3 t1 = cross3(t, n);
+    t1 = t1 * (1.0 / len3(t1));
+    D3 t2 = cross3(n, t1); // cross(t1, t2) = n
+    D3 u = t1 * std::cos(twist) + t2 * std::sin(twist), v = t2 * std::cos(twist) + t1 * -std::sin(twist);
+    g_diskC = float3(c.x, c.y, c.z);
+    g_diskU = float3(u.x * r1, u.y * r1, u.z * r1);
+    g_diskV = float3(v.x * r2, v.y * r2, v.z * r2);
+}
+
+// Gauss-Legendre nodes and weights on [0, 1].
+void gauss_legendre(int n, std::vector<double> &x, std::vector<double> &w) {
+    x.resize(n);
+    w.resize(n);
+    for (int i = 0; i < n; ++i) {
+        double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
+        for (int it = 0; it < 100; ++it) {
+            double p0 = 1.0, p1 = z;
+            for (int k = 2; k <= n; ++k) {
+                double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = n * (z * p1 - p0) / (z * z - 1.0);
+            double dz = p1 / dp;
+            z -= dz;
+            if (std::fabs(dz) < 1e-15) break;
+        }
+        x[i] = 0.5 * (1.0 - z);
+        w[i] = 1.0 / ((1.0 - z * z) * dp * dp);
+    }
+}
+
+// The integral of g(direction) over the solid angle of the disk g_disk* above the horizon seen
+// from the origin (front side only unless g_diskTwoSided): over its area, dw = |cos| dA / d^2.
+// The horizon cuts the disk along a chord: coordinates turned so that the chord is a line
+// y = y0 in the unit disk's (x, y), y = sin t (no square-root ends), x across the chord, both
+// Gauss-Legendre, so that the integrand is smooth and the quadrature noise-free.
+double disk_quadrature(const std::function<double(D3)> &g, int n = 200) {
+    D3 C = d3(g_diskC), U = d3(g_diskU), V = d3(g_diskV), nrm = cross3(U, V);
+    double area = len3(nrm); // dA = area dx dy over the unit disk
+    nrm = nrm * (1.0 / area);
+    if (!g_diskTwoSided && dot3(nrm, C) >= 0.0) return 0.0;
+    // height z = C.z + a U.z + b V.z over the unit disk's (a, b); above where y > y0 along e
+    double p = U.z, q = V.z, k = std::sqrt(p * p + q * q);
+    double ea = k > 0.0 ? p / k : 1.0, eb = k > 0.0 ? q / k : 0.0;
+    double y0 = k > 0.0 ? std::max(-1.0, -C.z / k) : (C.z > 0.0 ? -1.0 : 1.0);
+    if (y0 >= 1.0) return 0.0;
+    std::vector<double> x, w;
+    gauss_legendre(n, x, w);
+    double t0 = std::asin(y0), t1 = 0.5 * M_PI, sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+        double t = t0 + (t1 - t0) * x[i], y = std::sin(t), half = std::cos(t);
+        for (int j = 0; j < n; ++j) {
+            double xx = -half + 2.0 * half * x[j];
+            double a = y * ea - xx * eb, b = y * eb + xx * ea; // (y along e, x across it)
+            D3 P = C + U * a + V * b;
+            double d = len3(P);
+            D3 dir = P * (1.0 / d);
+            if (dir.z <= 0.0) continue;
+            double dA = area * (t1 - t0) * w[i] * half * 2.0 * half * w[j]; // dy = cos t dt, dx = 2 half dx'
+            sum += g(dir) * std::fabs(dot3(nrm, dir)) * dA / (d * d);
+        }
+    }
+    return sum;
+}
+
+const float3 kN(0, 0, 1);
+
+// The whole evaluation at the origin (N = z, V in the xz-plane: LTC_Frame is the identity) of
+// light 1 (AreaLight_AddDisk) or light 2 (AreaLight_Add over the octagon), grey.
+float evaluate(const rtpbr::MaterialInputs &m, float3 V, uint light) {
+    rtpbr::ShadingSurface s = rtpbr::Surface_Resolve(rtpbr::Material_Resolve(m), glm::dot(kN, V), float3(0.0f));
+    rtpbr::AreaLightPixel px = rtpbr::AreaLight_Begin(s, kN, V);
+    rtpbr::AreaLightSum acc = rtpbr::AreaLight_SumBegin();
+    if (light == 1u)
+        rtpbr::AreaLight_AddDisk(px, acc, s, float3(0.0f), kN, 1u);
+    else
+        rtpbr::AreaLight_Add(px, acc, s, float3(0.0f), kN, light);
+    float3 L = rtpbr::AreaLight_End(px, acc, s, float3(0.0f));
+    return (L.x + L.y + L.z) / 3.0f;
+}
+
+rtpbr::MaterialInputs lambert_material() {
+    rtpbr::MaterialInputs m{};
+    m.model = rtpbr::RTPBR_MATERIAL_MODEL_METALLIC_ROUGHNESS;
+    m.baseColor = float3(1.0f);
+    m.roughness = 0.5f;
+    m.ior = 1.5f;
+    m.specularFactor = 0.0f; // the specular lobe's scale is 0: a white Lambertian surface
+    m.specularColor = float3(1.0f);
+    m.disney = rtpbr::Disney_DefaultMaterial();
+    return m;
+}
+
+const float3 kV0 = glm::normalize(float3(0.3f, 0.0f, 1.0f));
+
+// A white Lambertian surface under a disk of radiance 1: on the normal's axis its form factor
+// sin^2 = r^2 / (r^2 + d^2) (Howell's catalogue, B-13); tilted, off-axis and elliptic disks
+// against the quadrature of cos / pi; the octagon's error beside the disk's.
+void test_disk_lambert(void **) {
+    g_tables = false;
+    g_diskTwoSided = false;
+    const double axis[][2] = {{1.0, 2.0}, {0.1, 3.0}, {2.0, 0.5}, {0.01, 10.0}, {5.0, 0.1}};
+    bool ok = true;
+    for (const auto &c : axis) {
+        set_disk({0, 0, c[1]}, {0, 0, -1}, c[0], c[0], 0.4);
+        double want = c[0] * c[0] / (c[0] * c[0] + c[1] * c[1]);
+        double disk = evaluate(lambert_material(), kV0, 1u), oct = evaluate(lambert_material(), kV0, 2u);
+        double err = std::fabs(disk - want) / want, octErr = std::fabs(oct - want) / want;
+        print_message("disk on the axis r %g d %g: %.7f (closed form %.7f) error %.1e; octagon %.1e\n", c[0], c[1], disk,
+                      want, err, octErr);
+        ok = ok && err <= 2e-5 && (err < octErr || octErr < 1e-5); // (octagon within float noise: no test)
+    }
+    struct {
+        const char *name;
+        D3 c, n;
+        double r1, r2, twist;
+    } cases[] = {
+        {"tilted disk", {0.5, 0.3, 1.5}, {-0.3, 0.1, -1.0}, 0.4, 0.4, 0.0},
+        {"off-axis disk", {1.8, -0.6, 1.0}, {-0.2, 0.4, -1.0}, 0.5, 0.5, 0.0},
+        {"facing the point, grazing", {2.0, 0.5, 0.6}, {-2.0, -0.5, -0.6}, 0.3, 0.3, 0.0},
+        {"tilted ellipse", {-0.7, 0.2, 1.2}, {0.4, -0.2, -1.0}, 0.8, 0.3, 0.7},
+        {"near large ellipse", {0.2, 0.1, 0.4}, {0.1, 0.0, -1.0}, 2.0, 1.0, 0.3},
+    };
+    for (const auto &c : cases) {
+        set_disk(c.c, c.n, c.r1, c.r2, c.twist);
+        double want = disk_quadrature([](D3 d) { return d.z / M_PI; });
+        double disk = evaluate(lambert_material(), kV0, 1u), oct = evaluate(lambert_material(), kV0, 2u);
+        double err = std::fabs(disk - want) / want, octErr = std::fabs(oct - want) / want;
+        print_message("%-28s quadrature %.7f disk %.7f error %.1e; octagon %.7f error %.1e\n", c.name, want, disk, err, oct,
+                      octErr);
+        ok = ok && err <= 2e-5 && (err < octErr || octErr < 1e-5); // (octagon within float noise: no test)
+    }
+    assert_true(ok);
+}
+
+// Disks the horizon cuts: the white Lambertian surface against the quadrature of the part
+// above the horizon (no light leaks from the part below, none is missing), the disk's clipped
+// equal-area RTPBR_AREA_LIGHT_SPHERE_SIDES-gon (12) against the clipped octagon; a disk wholly
+// below the horizon gives nothing. Measured: the 12-gon within 2.4e-4 where the octagon is
+// 1.3e-3 off (held at 1.5x: 3.6e-4; where the octagon is within 1e-5 there is nothing to beat).
+void test_disk_horizon(void **) {
+    g_tables = false;
+    g_diskTwoSided = true;
+    struct {
+        const char *name;
+        D3 c, n;
+        double r1, r2, twist;
+    } cases[] = {
+        {"vertical disk, half below", {1.0, 0.0, 0.0}, {-1.0, 0.0, 0.0}, 0.5, 0.5, 0.0},
+        {"vertical disk, a third below", {0.8, 0.4, 0.15}, {-1.0, -0.3, 0.0}, 0.45, 0.45, 0.0},
+        {"tilted ellipse across the horizon", {-0.6, 0.9, 0.1}, {0.5, -0.6, -0.6}, 0.7, 0.35, 0.5},
+        {"disk over the point, cut near the edge", {0.0, 0.0, 0.3}, {1.0, 0.0, -0.4}, 1.0, 1.0, 0.0},
+    };
+    bool ok = true;
+    for (const auto &c : cases) {
+        set_disk(c.c, c.n, c.r1, c.r2, c.twist);
+        double want = disk_quadrature([](D3 d) { return d.z / M_PI; }, 400);
+        double disk = evaluate(lambert_material(), kV0, 1u), oct = evaluate(lambert_material(), kV0, 2u);
+        double err = std::fabs(disk - want) / want, octErr = std::fabs(oct - want) / want;
+        print_message("%-40s quadrature %.7f disk %.7f error %.1e; octagon %.7f error %.1e\n", c.name, want, disk, err, oct,
+                      octErr);
+        ok = ok && std::isfinite(disk) && err <= 3.6e-4 && (err < octErr || octErr < 1e-5);
+    }
+    set_disk({1.0, 0.0, -0.6}, {-1.0, 0.0, 0.0}, 0.5, 0.5); // wholly below: nothing
+    assert_true(evaluate(lambert_material(), kV0, 1u) == 0.0f);
+    set_disk({1.0, 0.0, -0.5001}, {-1.0, 0.0, 1.0}, 0.5, 0.5); // tilted, its top 1e-4 below
+    assert_true(evaluate(lambert_material(), kV0, 1u) == 0.0f);
+    assert_true(ok);
+}
+
+// A one-sided disk seen from behind gives exactly 0; two-sided, the same as from the front.
+// Degenerate disks (a zero axis, both axes parallel, NaN anywhere, P on its plane) give 0,
+// never NaN, in the whole evaluation with the real tables.
+void test_disk_back_face_and_degenerate(void **) {
+    g_diskTwoSided = false;
+    for (bool tables : {false, true}) {
+        g_tables = tables;
+        rtpbr::MaterialInputs m = lambert_material();
+        m.specularFactor = 1.0f;
+        set_disk({0.3, 0.2, 1.5}, {0.0, 0.0, 1.0}, 0.5, 0.4); // emits upward, away from the point
+        assert_true(evaluate(m, kV0, 1u) == 0.0f);
+        set_disk({0.3, 0.2, 1.5}, {0.0, 0.0, -1.0}, 0.5, 0.4);
+        float front = evaluate(m, kV0, 1u);
+        assert_true(front > 0.0f);
+        g_diskTwoSided = true;
+        set_disk({0.3, 0.2, 1.5}, {0.0, 0.0, 1.0}, 0.5, 0.4);
+        assert_float_equal(evaluate(m, kV0, 1u), front, 1e-6f * front);
+        g_diskTwoSided = false;
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        set_disk({0.3, 0.2, 1.5}, {0.0, 0.0, -1.0}, 0.5, 0.4);
+        float3 U = g_diskU, V = g_diskV, C = g_diskC;
+        const float3 bad[][3] = {{C, float3(0.0f), V},          {C, U, U * 2.0f},        {C, float3(nan, 0, 0), V},
+                                 {float3(0, nan, 1.5f), U, V},  {C, U, float3(0, 0, nan)}, {float3(0.3f, 0.2f, 0.0f), U, V}};
+        for (const auto &b : bad) {
+            g_diskC = b[0];
+            g_diskU = b[1];
+            g_diskV = b[2];
+            float v = evaluate(m, kV0, 1u);
+            assert_true(v == 0.0f);
+        }
+        // the disk in the surface's own plane (P on its plane too): nothing
+        set_disk({0.5, 0.0, 0.0}, {0.0, 0.0, 1.0}, 0.3, 0.3);
+        g_diskTwoSided = true;
+        assert_true(evaluate(m, kV0, 1u) == 0.0f);
+        g_diskTwoSided = false;
+    }
+    g_tables = false;
+}
+
+// The LTC distribution of ltc1 (M^-1 = rows (m00 0 m02), (0 1 0), (m20 0 m22)) at direction w.
+double ltc_density(float4 l, D3 w) {
+    D3 t = {l.x * w.x + l.y * w.z, w.y, l.z * w.x + l.w * w.z};
+    double n = len3(t), det = std::fabs(double(l.x) * l.w - double(l.y) * l.z);
+    return std::max(t.z / n, 0.0) / M_PI * det / (n * n * n);
+}
+// Its mass above the horizon: Gauss-Legendre in cos(theta), trapezoids in phi.
+double ltc_horizon_mass(float4 l) {
+    std::vector<double> x, w;
+    gauss_legendre(400, x, w);
+    const int nphi = 800;
+    double sum = 0.0;
+    for (int i = 0; i < 400; ++i) {
+        double ct = x[i], st = std::sqrt(1.0 - ct * ct);
+        for (int j = 0; j < nphi; ++j) {
+            double phi = 2.0 * M_PI * (j + 0.5) / nphi;
+            sum += w[i] * (2.0 * M_PI / nphi) * ltc_density(l, {st * std::cos(phi), st * std::sin(phi), ct});
+        }
+    }
+    return sum;
+}
+
+// GGX f cos with F = 1 (D_GGX, V_SmithGGXCorrelated: the lobe the tables fit), in double.
+double ggx_cos(double alpha, D3 v, D3 l) {
+    if (l.z <= 0.0) return 0.0;
+    D3 h = v + l;
+    h = h * (1.0 / len3(h));
+    double a2 = alpha * alpha, t = h.z * h.z * (a2 - 1.0) + 1.0, D = a2 / (M_PI * t * t);
+    double Vis = 0.5 / (l.z * std::sqrt(v.z * v.z * (1.0 - a2) + a2) + v.z * std::sqrt(l.z * l.z * (1.0 - a2) + a2));
+    return D * Vis * l.z;
+}
+
+struct GlossyCase {
+    const char *name;
+    double roughness, NoV;
+    D3 c, n;
+    double r1, r2, twist;
+};
+// Disks at the mirror direction, off the peak, small and large, and across the horizon.
+const GlossyCase kGlossyCases[] = {
+    {"mirror, r 0.5, NoV 0.8", 0.5, 0.8, {-0.9, 0.1, 1.2}, {0.6, 0.0, -0.8}, 0.3, 0.3, 0.0},
+    {"mirror, r 0.3, NoV 0.5, small", 0.3, 0.5, {-1.6, 0.0, 0.95}, {1.0, 0.0, -0.5}, 0.15, 0.15, 0.0},
+    {"off the peak, r 0.5, NoV 0.5", 0.5, 0.5, {0.4, 0.9, 1.3}, {-0.2, -0.5, -1.0}, 0.4, 0.25, 0.6},
+    {"overhead, large, r 0.4, NoV 0.9", 0.4, 0.9, {0.1, -0.2, 0.7}, {0.0, 0.2, -1.0}, 1.2, 1.0, 0.2},
+    {"across the horizon, r 0.5, NoV 0.5", 0.5, 0.5, {-1.2, 0.3, 0.1}, {1.0, -0.2, 0.0}, 0.5, 0.5, 0.0},
+    {"across the horizon, r 0.35, NoV 0.3", 0.35, 0.3, {-0.9, -0.5, 0.2}, {1.0, 0.4, -0.3}, 0.6, 0.4, 0.4},
+};
+
+float3 view(double NoV) { return float3(std::sqrt(1.0 - NoV * NoV), 0.0, NoV); }
+
+// (a) What the LTC can be exact about: its own distribution over the disk. The disk's lobe
+// (AreaLight_ShapeLobe: the fraction of the LTC's mass above the horizon that falls on it)
+// against the quadrature of the same distribution over the disk divided by the same mass, for
+// the GGX table and the Disney diffuse one; the octagon's (AreaLight_Lobe over light 2) beside
+// it. Measured: within 3.0e-6 while the disk and its image are above both horizons (held at
+// 1e-5); across the horizon the clipped 12-gon's error, 1.0e-3 (the octagon 6.8e-3; held at
+// 1.5e-3). The disk nearer than the octagon wherever the octagon is off by 1e-5 or more.
+void test_disk_ltc_integral(void **) {
+    bool ok = true;
+    g_diskTwoSided = false;
+    for (int table = 0; table < 2; ++table) {
+        const float *t1 = table == 0 ? rtpbr_ltc_ggx_1 : rtpbr_ltc_disney_diffuse_1;
+        for (const GlossyCase &c : kGlossyCases) {
+            set_disk(c.c, c.n, c.r1, c.r2, c.twist);
+            float3 V = view(c.NoV);
+            float4 l1 = fetch(t1, rtpbr::LTC_LutCoord(float(c.NoV), float(c.roughness)));
+            double want = disk_quadrature([&](D3 d) { return ltc_density(l1, d); }, 300) / ltc_horizon_mass(l1);
+            rtpbr::float3x3 frame = rtpbr::LTC_Frame(kN, V), minv = rtpbr::LTC_InverseMatrix(l1);
+            float3 F, Fl;
+            double disk = rtpbr::AreaLight_ShapeLobe(1u, float3(0.0f), frame, minv, F, Fl, true, true);
+            double oct = rtpbr::AreaLight_ShapeLobe(2u, float3(0.0f), frame, minv, F, Fl, false, false);
+            double err = std::fabs(disk - want) / want, octErr = std::fabs(oct - want) / want;
+            float3 cl = rtpbr::rtpbr_mul(minv, g_diskC), ul = rtpbr::rtpbr_mul(minv, g_diskU), wl = rtpbr::rtpbr_mul(minv, g_diskV);
+            bool above = g_diskC.z >= std::sqrt(g_diskU.z * g_diskU.z + g_diskV.z * g_diskV.z) &&
+                         cl.z >= std::sqrt(ul.z * ul.z + wl.z * wl.z);
+            print_message("%-14s %-38s LTC quadrature %.6f disk %.6f error %.1e; octagon %.6f error %.1e%s\n",
+                          table == 0 ? "GGX" : "Disney diffuse", c.name, want, disk, err, oct, octErr,
+                          above ? "" : " (clipped)");
+            ok = ok && err <= (above ? 1e-5 : 1.5e-3) && (err < octErr || octErr < 1e-5);
+        }
+    }
+    assert_true(ok);
+}
+
+// (b) The whole evaluation (AreaLight_AddDisk with the committed tables) against the quadrature
+// of the true BRDF over the disk: GGX on a white metal (F = 1; the bridge's Kulla-Conty tables
+// hold E = 1, so the multiple-scattering lobe is 0 and the reference is D V cos alone), and
+// Disney's model (Burley's diffuse lobe through its own table, with the specular one), against
+// Surface_EvaluateLobes, the BRDF the punctual path and the Monte Carlo estimators evaluate.
+// What is left is the LTC fit's own error (test_ltc_mc's grid: a mean of 4 % for GGX), which
+// the disk and the octagon share, so that here the disk is not always the nearer (GGX 3, Disney
+// 4 of 6): the octagon's shape error (above, under 7e-3) is small beside it, and the octagon,
+// a polygon, gets the point correction (GGX off the peak: 4.6e-3 against the disk's 3.1e-2),
+// which a disk, like a sphere, does not in the full evaluation. The Disney cases across the
+// horizon (0.24, 0.11) are its diffuse lobe's at grazing light, the octagon's alike.
+// Bounds: the error measured per case x 1.5 (+ 1e-4).
+const double kTrueBrdfMeasured[2][6] = {{5.15e-3, 3.90e-3, 3.09e-2, 1.09e-2, 3.02e-2, 1.08e-3},
+                                        {9.68e-3, 3.22e-2, 3.49e-3, 2.64e-5, 2.41e-1, 1.11e-1}};
+void test_disk_true_brdf(void **) {
+    g_tables = true;
+    g_diskTwoSided = false;
+    double worst[2] = {0.0, 0.0}, worstOct[2] = {0.0, 0.0};
+    int diskBetter[2] = {0, 0};
+    bool ok = true;
+    for (int lobe = 0; lobe < 2; ++lobe) {
+        for (size_t k = 0; k < std::size(kGlossyCases); ++k) {
+            const GlossyCase &c = kGlossyCases[k];
+            set_disk(c.c, c.n, c.r1, c.r2, c.twist);
+            float3 V = view(c.NoV);
+            rtpbr::MaterialInputs m = lambert_material();
+            m.roughness = float(c.roughness);
+            double want;
+            if (lobe == 0) {
+                m.metallic = 1.0f;
+                m.specularFactor = 1.0f;
+                double alpha = c.roughness * c.roughness;
+                want = disk_quadrature([&](D3 d) { return ggx_cos(alpha, d3(V), d); }, 300);
+            } else {
+                m.model = rtpbr::RTPBR_MATERIAL_MODEL_DISNEY;
+                m.disney.baseColor = float3(1.0f);
+                m.disney.roughness = float(c.roughness);
+                rtpbr::ShadingSurface s = rtpbr::Surface_Resolve(rtpbr::Material_Resolve(m), float(c.NoV), float3(0.0f));
+                want = disk_quadrature(
+                    [&](D3 d) {
+                        float3 f = rtpbr::Surface_EvaluateLobes(s, V, float3(d.x, d.y, d.z), true);
+                        return double(f.x + f.y + f.z) / 3.0 * d.z;
+                    },
+                    300);
+            }
+            double disk = evaluate(m, V, 1u), oct = evaluate(m, V, 2u);
+            double err = std::fabs(disk - want) / want, octErr = std::fabs(oct - want) / want;
+            print_message("%-7s %-38s quadrature %.6f disk %.6f error %.2e; octagon %.6f error %.2e\n",
+                          lobe == 0 ? "GGX" : "Disney", c.name, want, disk, err, oct, octErr);
+            assert_true(std::isfinite(disk) && std::isfinite(oct));
+            worst[lobe] = std::max(worst[lobe], err);
+            worstOct[lobe] = std::max(worstOct[lobe], octErr);
+            diskBetter[lobe] += err < octErr;
+            ok = ok && err <= 1.5 * kTrueBrdfMeasured[lobe][k] + 1e-4;
+        }
+    }
+    print_message("largest error: GGX disk %.2e (octagon %.2e), Disney disk %.2e (octagon %.2e); the disk nearer in %d and %d of %d\n",
+                  worst[0], worstOct[0], worst[1], worstOct[1], diskBetter[0], diskBetter[1], int(std::size(kGlossyCases)));
+    g_tables = false;
+    assert_true(ok);
+}
 } // namespace
 
 RTPBR_TEST_MAIN(cmocka_unit_test(test_lambert_closed_form),
                 cmocka_unit_test(test_no_light_where_it_cannot_reach),
                 cmocka_unit_test(test_punctual_closed_form),
-                cmocka_unit_test(test_sphere_closed_form))
+                cmocka_unit_test(test_sphere_closed_form),
+                cmocka_unit_test(test_disk_lambert), cmocka_unit_test(test_disk_horizon),
+                cmocka_unit_test(test_disk_back_face_and_degenerate), cmocka_unit_test(test_disk_ltc_integral),
+                cmocka_unit_test(test_disk_true_brdf))
