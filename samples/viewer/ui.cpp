@@ -328,11 +328,13 @@ static void punctual_panel(app *a, viewer_punctual *p)
 static void light_panel(app *a)
 {
     viewer_scene *s = &a->scene;
-    // Add a light of each kind (I cycles them) or remove the selected one (X).
+    // Add a light of each kind (I cycles them) or remove the selected one (X); short labels:
+    // the row fits the panel's 300 pixels.
+    static const char *const labels[VIEWER_NEW_LIGHT_KINDS] = {"quad", "sphere", "spot", "point", "sun"};
     ImGui::TextUnformatted("add");
     for (int kind = 0; kind < VIEWER_NEW_LIGHT_KINDS; ++kind) {
         ImGui::SameLine();
-        if (ImGui::SmallButton(viewer_new_light_name(kind))) app_add_light(a, kind);
+        if (ImGui::SmallButton(labels[kind])) app_add_light(a, kind);
     }
     uint32_t total = viewer_scene_light_total(s);
     if (total == 0) {
