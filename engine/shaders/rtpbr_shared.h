@@ -259,8 +259,13 @@
 #define RTPBR_TILE_MASK_WORDS (RTPBR_SHADER_MAX_LIGHTS / 32)
 // A tile's masks: RTPBR_TILE_MASK_WORDS words of its polygonal lights, then as many of its
 // punctual lights, then of its spheres (the lighting pass walks each kind without reading a
-// light's shape).
-#define RTPBR_TILE_MASK_STRIDE (3 * RTPBR_TILE_MASK_WORDS)
+// light's shape); then, at RTPBR_TILE_SHADOW_SLOTS, the lights whose shadows the tile traces:
+// RTPBR_SHADER_MAX_SHADOWED_LIGHTS light indices in increasing order, RTPBR_TILE_NO_LIGHT for
+// an empty slot (shadow_select.comp writes them when the frame has shadows; slot k's ratio is
+// layer k of the shadow images).
+#define RTPBR_TILE_SHADOW_SLOTS (3 * RTPBR_TILE_MASK_WORDS)
+#define RTPBR_TILE_MASK_STRIDE (3 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS)
+#define RTPBR_TILE_NO_LIGHT 0xffffffffu
 // Tile classes: each has its lighting variant, dispatched indirectly over its tile queue.
 #define RTPBR_TILE_CLASS_EMPTY 0 // no surface pixel or no light left: emission and background
 #define RTPBR_TILE_CLASS_BASIC 1 // metallic-roughness without clear coat, sheen, anisotropy
@@ -315,8 +320,9 @@
 #define RTPBR_ENCODE_SRGB 1 // UNORM attachment: the shader applies the sRGB curve
 
 // Area-light shadows (issue 17; engine/src/passes/shadow.c, shaders/shadow*.comp, bvh.glsl).
-// Lights 0 .. RTPBR_SHADER_MAX_SHADOWED_LIGHTS - 1 of a scene cast shadows (also
-// RTPBR_MAX_SHADOWED_LIGHTS in rtpbr.h); the others are unshadowed.
+// In each tile, the RTPBR_SHADER_MAX_SHADOWED_LIGHTS lights of the largest irradiance bound at
+// the tile's surface points cast shadows (shadow_select.comp; also RTPBR_MAX_SHADOWED_LIGHTS in
+// rtpbr.h); the others are unshadowed there.
 #define RTPBR_SHADER_MAX_SHADOWED_LIGHTS 8
 // Deepest BVH node (root: depth 0) = the traversal stack's size.
 #define RTPBR_BVH_MAX_DEPTH 32
@@ -343,7 +349,9 @@
 #define RTPBR_BINDING_SHADOW_TEXTURE_TRANSFORMS 10 // storage: rtpbr_shader_texture_transforms[]
 #define RTPBR_BINDING_SHADOW_ALPHA_TEXTURES 11 // storage: rtpbr_shader_alpha_texture[], by scene texture (0: none)
 #define RTPBR_BINDING_SHADOW_ALPHA_TEXELS 12  // storage: uint[], the textures' alpha bytes, 4 per uint
-#define RTPBR_SHADOW_BINDING_COUNT 13
+#define RTPBR_BINDING_SHADOW_TILES 13       // storage: the lighting pass's tile masks (RTPBR_TILE_MASK_STRIDE
+                                              // uints a tile), whose shadow slots shadow_select.comp writes
+#define RTPBR_SHADOW_BINDING_COUNT 14
 // The scene's vertex layout, floats per vertex: position 3, normal 3, uv 2, tangent 4, uv1 2.
 #define RTPBR_VERTEX_FLOATS 14
 #define RTPBR_VERTEX_UV_OFFSET 6

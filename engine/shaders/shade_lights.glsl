@@ -52,7 +52,12 @@ vec4 Host_LightPosition(uint i) { return lights[i].vertices[0]; }
 vec3 Host_LightDirection(uint i) { return lights[i].vertices[1].xyz; }
 vec2 Host_LightSpotCone(uint i) { return lights[i].vertices[2].xy; }
 ivec2 shade_pixel; // the pixel shade_lights shades (for its shadow ratios)
+#ifdef RTPBR_SHADE_ALL_LIGHTS
 vec3 Host_LightVisibility(uint i) { return vec3(shadow_factor(i, shade_pixel)); }
+#else
+uvec4 shade_slots_lo, shade_slots_hi; // its tile's shadow slots (shadow_ratio.glsl), loaded once
+vec3 Host_LightVisibility(uint i) { return vec3(shadow_factor_slots(i, shade_pixel, shade_slots_lo, shade_slots_hi)); }
+#endif
 vec4 Host_TableLtc1(int table, vec2 uv)
 {
     if (table == RTPBR_TABLE_LTC_DISNEY_DIFFUSE) return textureLod(lut_ltc_disney_1, uv, 0.0f);
@@ -93,6 +98,10 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pixel, inout vec3 result)
 {
     shade_pixel = pixel;
+#ifndef RTPBR_SHADE_ALL_LIGHTS
+    shade_slots_lo = shade_slots_hi = uvec4(RTPBR_TILE_NO_LIGHT);
+    if (frame.shadow_light_count != 0u) shadow_slots(tile, shade_slots_lo, shade_slots_hi);
+#endif
     AreaLightSum acc = AreaLight_SumBegin();
 #ifdef RTPBR_STATS_FIXED_LIGHTS
 #if defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_LIGHT_SHAPE_SPHERE // every light a sphere

@@ -13,9 +13,10 @@
 // light by a hash (Cranley-Patterson rotation): stratified, and independent between pixels.
 // V traces a ray from x (lifted off the surface by a few depth ulps) to y_j, shortened by
 // 1e-3 of its length so that the light's own emitting triangles do not occlude it.
-// One invocation: one pixel and one light (z = k), samples first_sample .. first_sample +
-// samples - 1 of the n, added to the sums n S and n U (layers 2k and 2k + 1; the first
-// dispatch writes them): passes/shadow.c splits n over several dispatches, because lavapipe
+// One invocation: one pixel and one shadow slot of its tile (z = k: light
+// shadow_tiles[slot k], chosen by shadow_select.comp; an empty slot's sums stay 0), samples
+// first_sample .. first_sample + samples - 1 of the n, added to the sums n S and n U (layers
+// 2k and 2k + 1; the first dispatch writes them): passes/shadow.c splits n over several dispatches, because lavapipe
 // stops every loop of a shader once its invocations together have taken 65535 loop
 // iterations (llvmpipe's LP_MAX_TGSI_LOOP_ITERATIONS, one budget for all the loops of a
 // shader run) and silently skips what follows them.
@@ -58,13 +59,16 @@ void main()
     float lift = length(further.xyz / further.w - P) + 1e-4f * length(frame.camera_position.xyz - P);
     vec3 origin = P + N * lift;
 
-    Light light = lights[k];
+    uint li = shadow_tiles[shadow_group_slot_base() + k]; // the slot's light (uniform)
+    bool slotUsed = li < frame.light_count;
+    li = slotUsed ? li : 0u;
+    Light light = lights[li];
     bool twoSided = light.two_sided != 0.0f;
-    // Background (both stay 0); behind a one-sided light, or the light below the horizon
-    // everywhere: both stay 0.
-    bool facing = depth < 1.0f && (twoSided || dot(light.plane.xyz, origin) + light.plane.w > 0.0f);
-    uint h = bvh_hash( // PCG (Jarzynski & Olano 2020; bvh.glsl)
-        uint(pixel.x) + bvh_hash(uint(pixel.y) + bvh_hash(k + bvh_hash(params.seed))));
+    // Background or an empty slot (both stay 0); behind a one-sided light, or the light below
+    // the horizon everywhere: both stay 0.
+    bool facing = slotUsed && depth < 1.0f && (twoSided || dot(light.plane.xyz, origin) + light.plane.w > 0.0f);
+    uint h = bvh_hash( // PCG (Jarzynski & Olano 2020; bvh.glsl); by light, not slot
+        uint(pixel.x) + bvh_hash(uint(pixel.y) + bvh_hash(li + bvh_hash(params.seed))));
     vec2 shift = vec2(float(h & 0xffffu), float(h >> 16u)) / 65536.0f;
     vec3 v0 = light.vertices[0].xyz;
     // A punctual light: one ray (every sample would be the same), to its position or, for a
@@ -92,7 +96,7 @@ void main()
         while (i + 2u < light.vertex_count && light.vertices[i + 1u].w < target) ++i;
         // The picked vertices from the buffer, not the private copy: indexed by a per-pixel i,
         // the copy's whole fan stays in scalar registers (4 SGPRs spilled on navi21 and gfx1100).
-        vec4 a4 = lights[k].vertices[i], b4 = lights[k].vertices[i + 1u];
+        vec4 a4 = lights[li].vertices[i], b4 = lights[li].vertices[i + 1u];
         vec3 a = a4.xyz, b = b4.xyz;
         float below = a4.w, triArea = b4.w - a4.w;
         float ux = clamp((target - below) / max(triArea, 1e-30f), 0.0f, 1.0f);

@@ -22,3 +22,21 @@ vec3 shadow_world_point(ivec2 pixel, float depth)
     vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
     return world.xyz / world.w;
 }
+
+// The lighting pass's tile masks, whose shadow slots (RTPBR_TILE_SHADOW_SLOTS) shadow_select.comp
+// writes and the other two passes read.
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_TILES, std430) buffer ShadowTiles {
+    uint shadow_tiles[];
+};
+
+// The first word of the shadow slots of the workgroup's tile: a workgroup's
+// RTPBR_SHADOW_GROUP_SIZE^2 pixels lie in one tile, and an index the compiler sees is uniform
+// keeps the light's record in scalar registers (from the pixel's tile: 96 -> 128 VGPRs on navi21).
+#if RTPBR_TILE_SIZE % RTPBR_SHADOW_GROUP_SIZE != 0
+#error "a shadow workgroup must lie in one lighting tile"
+#endif
+uint shadow_group_slot_base()
+{
+    uvec2 tileXY = gl_WorkGroupID.xy / uint(RTPBR_TILE_SIZE / RTPBR_SHADOW_GROUP_SIZE);
+    return (tileXY.y * frame.tiles_x + tileXY.x) * uint(RTPBR_TILE_MASK_STRIDE) + uint(RTPBR_TILE_SHADOW_SLOTS);
+}

@@ -10,8 +10,31 @@
 // (its distance to p's tangent plane relative to the viewing distance, and the agreement of
 // the normals: a cross-bilateral filter guided by the G-buffer); background pixels weigh 0.
 // radius 0: the pixel's own estimates.
+// Slot k of the pixel's tile holds light L (shadow_select.comp); a neighbour in another tile
+// contributes its estimates of L from the slot where its tile holds L, and nothing where its
+// tile does not shadow L (no estimates of L there).
 #include "rtpbr_shared.h"
 #include "shadow_common.glsl"
+#if RTPBR_SHADER_MAX_SHADOWED_LIGHTS != 8
+#error "a tile's slots are two uvec4"
+#endif
+
+// The shadow slots of tile t (tile coordinates); none outside the image's tiles.
+void shadow_tile_slots(ivec2 t, ivec2 tiles, out uvec4 slots[2])
+{
+    slots[0] = slots[1] = uvec4(RTPBR_TILE_NO_LIGHT);
+    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, tiles))) return;
+    uint base = (uint(t.y) * frame.tiles_x + uint(t.x)) * uint(RTPBR_TILE_MASK_STRIDE) + uint(RTPBR_TILE_SHADOW_SLOTS);
+    slots[0] = uvec4(shadow_tiles[base], shadow_tiles[base + 1u], shadow_tiles[base + 2u], shadow_tiles[base + 3u]);
+    slots[1] = uvec4(shadow_tiles[base + 4u], shadow_tiles[base + 5u], shadow_tiles[base + 6u], shadow_tiles[base + 7u]);
+}
+
+// The slot holding `light` among slots, or -1 (no loop: lavapipe's loop budget).
+int shadow_slot_of(uint light, uvec4 slots[2])
+{
+    int k = slots[0].x == light ? 0 : slots[0].y == light ? 1 : slots[0].z == light ? 2 : slots[0].w == light ? 3 : -1;
+    return slots[1].x == light ? 4 : slots[1].y == light ? 5 : slots[1].z == light ? 6 : slots[1].w == light ? 7 : k;
+}
 
 void main()
 {
@@ -28,19 +51,39 @@ void main()
     float planeScale = 1.0f / (0.01f * length(frame.camera_position.xyz - P));
     int r = int(params.radius);
     ivec2 lo = max(pixel - r, ivec2(0)), hi = min(pixel + r, ivec2(frame.size) - 1);
+    // The window (radius < RTPBR_TILE_SIZE, shadow.c) reaches at most three other tiles: the
+    // one beside the pixel's tile on the side of the nearer vertical edge (when within r of
+    // it), the one above or below, and the one on the diagonal. Their slots, read once.
+    ivec2 tileP = pixel / RTPBR_TILE_SIZE, inTile = pixel - tileP * RTPBR_TILE_SIZE;
+    ivec2 side = ivec2(inTile.x < r ? -1 : inTile.x >= RTPBR_TILE_SIZE - r ? 1 : 0,
+                       inTile.y < r ? -1 : inTile.y >= RTPBR_TILE_SIZE - r ? 1 : 0);
+    ivec2 tiles = (ivec2(frame.size) + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE;
+    uvec4 own[2], beside[2], across[2], diagonal[2];
+    shadow_tile_slots(tileP, tiles, own);
+    shadow_tile_slots(side.x != 0 ? tileP + ivec2(side.x, 0) : ivec2(-1), tiles, beside);
+    shadow_tile_slots(side.y != 0 ? tileP + ivec2(0, side.y) : ivec2(-1), tiles, across);
+    shadow_tile_slots(side.x != 0 && side.y != 0 ? tileP + side : ivec2(-1), tiles, diagonal);
     for (uint k = 0u; k < lightCount; ++k) {
+        uint light = own[k / 4u][k % 4u];
+        // where each of those tiles holds this light (-1: it does not shadow it there)
+        int slotBeside = shadow_slot_of(light, beside), slotAcross = shadow_slot_of(light, across),
+            slotDiagonal = shadow_slot_of(light, diagonal);
         vec2 sum = vec2(0.0f);
         for (int y = lo.y; y <= hi.y; ++y)
             for (int x = lo.x; x <= hi.x; ++x) {
                 ivec2 q = ivec2(x, y);
                 float dq = texelFetch(gbuffer_depth, q, 0).r;
                 if (dq >= 1.0f) continue;
+                // q's tile: the pixel's, or one of the three: its estimates of this light
+                bvec2 other = notEqual(q / RTPBR_TILE_SIZE, tileP);
+                int kq = other.x ? (other.y ? slotDiagonal : slotBeside) : (other.y ? slotAcross : int(k));
+                if (kq < 0 || uint(kq) >= lightCount) continue;
                 float plane = dot(N, shadow_world_point(q, dq) - P) * planeScale;
                 float nq = max(dot(N, normalize(texelFetch(gbuffer_normal, q, 0).xyz)), 0.0f);
                 float n2 = nq * nq, n4 = n2 * n2, n8 = n4 * n4;
                 float w = exp(-plane * plane) * n8 * n8;
-                sum += w * vec2(imageLoad(shadow_estimates, ivec3(q, int(2u * k))).r,
-                                imageLoad(shadow_estimates, ivec3(q, int(2u * k + 1u))).r);
+                sum += w * vec2(imageLoad(shadow_estimates, ivec3(q, 2 * kq)).r,
+                                imageLoad(shadow_estimates, ivec3(q, 2 * kq + 1)).r);
             }
         imageStore(shadow_ratio_out, ivec3(pixel, int(k)), vec4(sum.y > 0.0f ? sum.x / sum.y : 1.0f));
     }

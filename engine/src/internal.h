@@ -135,9 +135,9 @@ typedef struct rtpbr_tonemap_pass {              // passes/tonemap.c
 } rtpbr_tonemap_pass;
 
 typedef struct rtpbr_shadow_pass {               // passes/shadow.c
-    VkDescriptorSetLayout set_layout;            // shared by the trace and the denoiser
+    VkDescriptorSetLayout set_layout;            // shared by the selection, the trace and the denoiser
     VkPipelineLayout layout;                     // + push constants rtpbr_shader_shadow
-    VkPipeline trace, denoise;                   // compiled on first use
+    VkPipeline select, trace, denoise;           // compiled on first use
 } rtpbr_shadow_pass;
 
 struct rtpbr_context {

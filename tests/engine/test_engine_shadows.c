@@ -249,6 +249,90 @@ static void penumbra_closed_form(void **state)
     assert_true(off_last < 0.25 * off_first);
 }
 
+// Which lights cast is chosen per tile by their irradiance bound, not by index (issue 32):
+// the penumbra scene's light comes last, after DECOYS tiny dim lights far away (0.02 m squares
+// of radiance 1 at 30 m, facing down: each adds about 1e-7 of the light's radiance to the floor).
+// Before, lights 0 .. 7 cast everywhere and this light none: the umbra was lit as if the
+// blocker were not there (error 100% of the unoccluded). Now it must meet penumbra_closed_form's
+// bounds: default settings, and 256 samples without the denoiser.
+enum { DECOYS = 10 };
+static void casters_by_contribution(void **state)
+{
+    penumbra_scene *ps = *state;
+    rtpbr_light_desc lights[DECOYS + 1];
+    const float l = (float)LIGHT_HALF, z = (float)Z_LIGHT, d = 0.01f;
+    for (int i = 0; i < DECOYS; ++i) {
+        float cx = -30.0f + 60.0f * (float)i / (DECOYS - 1), cy = 30.0f;
+        lights[i] = (rtpbr_light_desc){
+            .vertices = {{cx - d, cy - d, z}, {cx - d, cy + d, z}, {cx + d, cy + d, z}, {cx + d, cy - d, z}},
+            .vertex_count = 4, .emission = {1.0f, 1.0f, 1.0f}};
+    }
+    lights[DECOYS] = (rtpbr_light_desc){.vertices = {{-l, -l, z}, {-l, l, z}, {l, l, z}, {l, -l, z}}, .vertex_count = 4,
+                                        .emission = {EMISSION, EMISSION, EMISSION}};
+    assert_int_equal(rtpbr_gpu_scene_set_lights(ps->scene, lights, DECOYS + 1), RTPBR_SUCCESS);
+    penumbra_error def = measure(ps, &(rtpbr_render_desc){.shadows = RTPBR_SHADOWS_ON});
+    penumbra_error off = measure(ps, &(rtpbr_render_desc){.shadows = RTPBR_SHADOWS_ON, .shadow_samples = 256,
+                                                          .shadow_denoiser = RTPBR_SHADOW_DENOISER_OFF});
+    printf("the light after %d decoys: default: mean |rel| %.3f%%, umbra mean %.3f%% largest %.3f%%; "
+           "256 samples, no denoiser: mean |rel| %.3f%%, umbra mean %.3f%%\n",
+           DECOYS, 100.0 * def.mean_abs, 100.0 * def.umbra_mean, 100.0 * def.umbra_max, 100.0 * off.mean_abs,
+           100.0 * off.umbra_mean);
+    assert_int_equal(rtpbr_gpu_scene_set_lights(ps->scene, &lights[DECOYS], 1), RTPBR_SUCCESS); // as setup left it
+    assert_true(def.lit > W * H / 4 && def.umbra > 100);
+    assert_true(def.mean_abs <= 0.02);
+    assert_true(def.umbra_mean <= 0.05);
+    assert_true(off.mean_abs <= 0.005);
+    assert_true(off.umbra_mean <= 0.005);
+}
+
+// The denoiser across tiles that keep different lights: three dim vertical decoy lights in
+// the plane x = 0, facing -X, come first: tiles left of x = 0 keep them (slots 0 .. 2) and the
+// penumbra scene's light in slot 3, tiles right of it (behind the decoys) the light alone, in
+// slot 0. The blocker's umbra straddles x = 0 (the middle tile column boundary), so the
+// denoiser's window there reads neighbours that hold the light in another slot: it must take
+// their estimates of this light (not of whatever their slot k holds: the decoys', unoccluded,
+// would light the umbra). Radiance 1e-3 each: they add < 1e-3 of the light's radiance.
+static void casters_across_tiles(void **state)
+{
+    penumbra_scene *ps = *state;
+    rtpbr_light_desc lights[4];
+    const float l = (float)LIGHT_HALF, z = (float)Z_LIGHT;
+    for (int i = 0; i < 3; ++i) {
+        float cy = -1.0f + (float)i, h = 0.5f; // 1 m squares at x = 0, y in [-1.5, 1.5], z in [0.5, 1.5]
+        lights[i] = (rtpbr_light_desc){
+            .vertices = {{0.0f, cy - h, 0.5f}, {0.0f, cy + h, 0.5f}, {0.0f, cy + h, 1.5f}, {0.0f, cy - h, 1.5f}},
+            .vertex_count = 4, .emission = {1e-3f, 1e-3f, 1e-3f}};
+    }
+    lights[3] = (rtpbr_light_desc){.vertices = {{-l, -l, z}, {-l, l, z}, {l, l, z}, {l, -l, z}}, .vertex_count = 4,
+                                   .emission = {EMISSION, EMISSION, EMISSION}};
+    assert_int_equal(rtpbr_gpu_scene_set_lights(ps->scene, lights, 4), RTPBR_SUCCESS);
+    penumbra_error def = measure(ps, &(rtpbr_render_desc){.shadows = RTPBR_SHADOWS_ON});
+    printf("the light after 3 decoys kept left of x = 0 only: default: mean |rel| %.3f%%, umbra mean %.3f%% "
+           "largest %.3f%%\n", 100.0 * def.mean_abs, 100.0 * def.umbra_mean, 100.0 * def.umbra_max);
+    assert_true(def.lit > W * H / 4 && def.umbra > 100);
+    assert_true(def.mean_abs <= 0.02);
+    assert_true(def.umbra_mean <= 0.05);
+    // Sharper: the same with the decoys dark (bound 0: no tile keeps them, the light is in slot
+    // 0 everywhere) has the same light index, so the same samples and estimates at every pixel;
+    // only their slots differ. The denoised ratios must then agree, and the images differ by
+    // the decoys' own light alone (< 1e-3 radiance x albedo x form factor < 1: 8e-4).
+    const rtpbr_render_desc desc = {.shadows = RTPBR_SHADOWS_ON};
+    float *with = malloc(W * H * 16), *dark = malloc(W * H * 16);
+    assert_int_equal(rtpbr_render(ps->renderer, ps->scene, &desc), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(ps->renderer, with, W * H * 16), RTPBR_SUCCESS);
+    for (int i = 0; i < 3; ++i) lights[i].emission[0] = lights[i].emission[1] = lights[i].emission[2] = 0.0f;
+    assert_int_equal(rtpbr_gpu_scene_set_lights(ps->scene, lights, 4), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_render(ps->renderer, ps->scene, &desc), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(ps->renderer, dark, W * H * 16), RTPBR_SUCCESS);
+    double largest = 0.0;
+    for (int i = 0; i < W * H; ++i) largest = fmax(largest, fabs((double)with[4 * i] - dark[4 * i]));
+    printf("the same with the decoys dark (the light in slot 0 everywhere): largest difference %.3g\n", largest);
+    free(with);
+    free(dark);
+    assert_int_equal(rtpbr_gpu_scene_set_lights(ps->scene, &lights[3], 1), RTPBR_SUCCESS); // as setup left it
+    assert_true(largest <= 8e-4);
+}
+
 // Without shadows the floor under the blocker is lit as if it were not there (LTC alone):
 // the shadow pass is what darkens it.
 static void shadows_off_unchanged(void **state)
@@ -410,6 +494,8 @@ int main(void)
                     cmocka_unit_test(bad_shadow_settings),
                     cmocka_unit_test(shadows_off_unchanged),
                     cmocka_unit_test(penumbra_closed_form),
+                    cmocka_unit_test(casters_by_contribution),
+                    cmocka_unit_test(casters_across_tiles),
                     cmocka_unit_test(khr_materials_shadows_only_darken),
                     cmocka_unit_test(khr_materials_lights_add_up));
 }

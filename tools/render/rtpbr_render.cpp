@@ -33,7 +33,7 @@ void usage(FILE *out = stderr)
                  "                    [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]\n"
                  "                    [--shadows] [--shadow-samples N] [--no-shadow-denoiser]\n"
                  "                    [--max-ratio R] [--stats-json FILE] [--memory-limit MIB]\n"
-                 "  --shadows        area-light shadows (ratio estimator; the first 8 lights cast shadows)\n"
+                 "  --shadows        area-light shadows (ratio estimator; in each 16x16 tile the 8 lights that may light it most cast)\n"
                  "  --shadow-samples N  shadow rays per pixel and shadowed light (default 4; implies --shadows)\n"
                  "  --no-shadow-denoiser  each pixel's own shadow ratio, unfiltered\n"
                  "  --supersample S  anti-aliasing: shade S x S samples per pixel, box-filtered (1..4; default 1)\n"

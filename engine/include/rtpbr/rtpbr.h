@@ -45,8 +45,8 @@
 //      Transformed Cosines (shaderlib/rtpbr/ltc.h; GGX or Beckmann, rtpbr_render_desc.ndf),
 //      the Kulla-Conty multiple-scattering lobe (kulla_conty.h), clear coat and sheen layers,
 //      plus emitted radiance; all BRDF and integration math is the shader library's. With
-//      shadows, each of the first RTPBR_MAX_SHADOWED_LIGHTS lights is multiplied by its
-//      shadow ratio at the pixel. rtpbr_render_desc.mc_samples replaces this pass by a Monte
+//      shadows, in each 16 x 16 tile the RTPBR_MAX_SHADOWED_LIGHTS lights that may light it
+//      most are multiplied by their shadow ratios at the pixel. rtpbr_render_desc.mc_samples replaces this pass by a Monte
 //      Carlo reference of the same integral.
 //   3. Tone mapping: radiance * 2^exposure through a documented operator (rtpbr_tonemap),
 //      sRGB-encoded into the display target.
@@ -647,8 +647,11 @@ typedef struct rtpbr_render_desc {
     // or the Monte Carlo pass's) is multiplied by the ratio of the shadowed to the unshadowed
     // estimate of its cosine-weighted irradiance, both from the same samples and each denoised
     // by a depth- and normal-guided spatial filter. Exact in the limit for Lambertian
-    // surfaces; glossy lobes get the cosine-weighted visibility of the light. The first
-    // RTPBR_MAX_SHADOWED_LIGHTS lights of the scene cast shadows, the others do not.
+    // surfaces; glossy lobes get the cosine-weighted visibility of the light. Which lights cast
+    // is chosen per 16 x 16 pixel tile: the RTPBR_MAX_SHADOWED_LIGHTS lights of the largest
+    // bound on their irradiance at the tile's surface points (luminance; an area light's
+    // L min(A / d^2, pi), a point or spot light's I / d^2, a directional light's E; ties: the
+    // lower index). The others are unshadowed in that tile.
     // Costs per frame about shadow_samples rays per pixel and shadowed light.
     rtpbr_shadows shadows;
     // Samples per pixel and shadowed light; zero: RTPBR_DEFAULT_SHADOW_SAMPLES. At most

@@ -1,7 +1,10 @@
 // Area-light shadows (issue 17): the ratio estimator of Heitz, Hill & McGuire 2018,
-// "Combining Analytic Direct Illumination and Stochastic Shadows", as two compute passes that
+// "Combining Analytic Direct Illumination and Stochastic Shadows", as compute passes that
 // run between the G-buffer and the lighting pass:
-//   1. shadow.comp traces, per pixel and shadowed light, rtpbr_render_desc.shadow_samples
+//   0. shadow_select.comp chooses, per lighting tile, the RTPBR_MAX_SHADOWED_LIGHTS lights of
+//      the largest irradiance bound at the tile (issue 32; before, lights 0 .. 7 everywhere)
+//      and writes them to the tile's shadow slots in the lighting pass's tile masks;
+//   1. shadow.comp traces, per pixel and shadow slot, rtpbr_render_desc.shadow_samples
 //      rays to points on the light against the scene's BVH (../bvh.c) and writes the shadowed
 //      and unshadowed sums of the light's cosine-weighted irradiance samples (layers 2 light
 //      and 2 light + 1), in dispatches of at most RTPBR_SHADOW_SAMPLES_PER_DISPATCH samples
@@ -11,9 +14,10 @@
 //      stays well inside);
 //   2. shadow_denoise.comp filters both estimates with the same depth- and normal-guided
 //      weights and writes their ratio (layer = light).
-// The lighting passes multiply light i's result by the ratio of layer i (shaders/
-// shadow_ratio.glsl, binding RTPBR_BINDING_LIGHT_SHADOW_RATIO) for i < shadow_light_count
-// of the frame block. Lights 0 .. RTPBR_MAX_SHADOWED_LIGHTS - 1 cast shadows.
+// The lighting passes multiply light i's result by the ratio of layer k where slot k of the
+// pixel's tile holds light i (shaders/shadow_ratio.glsl, binding
+// RTPBR_BINDING_LIGHT_SHADOW_RATIO), by 1 where no slot does. shadow_light_count of the frame
+// block is the number of slots in use, min(lights, RTPBR_MAX_SHADOWED_LIGHTS).
 // Memory: 12 bytes per shading pixel and shadowed-light slot (96 bytes per pixel), allocated
 // with the renderer.
 #include "passes.h"
@@ -22,8 +26,12 @@
 #include "pipeline.h"
 #include "rtpbr_spirv_shadow_comp.h"
 #include "rtpbr_spirv_shadow_denoise_comp.h"
+#include "rtpbr_spirv_shadow_select_comp.h"
 
 enum { RTPBR_SHADOW_SAMPLES_PER_DISPATCH = 16 };
+// shadow_denoise.comp's window reaches at most the tiles beside, above or below and diagonal
+// to the pixel's (their shadow slots are read once per pixel).
+_Static_assert(RTPBR_SHADOW_DENOISE_RADIUS < RTPBR_TILE_SIZE, "the denoiser's window spans at most 2 x 2 tiles");
 
 #define COMPUTE(binding, type) {binding, VK_DESCRIPTOR_TYPE_##type, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL}
 static const VkDescriptorSetLayoutBinding bindings[] = {
@@ -40,6 +48,7 @@ static const VkDescriptorSetLayoutBinding bindings[] = {
     COMPUTE(RTPBR_BINDING_SHADOW_TEXTURE_TRANSFORMS, STORAGE_BUFFER),
     COMPUTE(RTPBR_BINDING_SHADOW_ALPHA_TEXTURES, STORAGE_BUFFER),
     COMPUTE(RTPBR_BINDING_SHADOW_ALPHA_TEXELS, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_SHADOW_TILES, STORAGE_BUFFER),
 };
 #undef COMPUTE
 _Static_assert(sizeof bindings / sizeof bindings[0] == RTPBR_SHADOW_BINDING_COUNT, "every shadow binding");
@@ -57,8 +66,8 @@ cleanup:
 void rtpbr_shadow_pass_finish(rtpbr_context *ctx)
 {
     rtpbr_shadow_pass *pass = &ctx->shadow;
-    const VkPipeline pipelines[2] = {pass->trace, pass->denoise};
-    rtpbr_pass_objects_destroy(ctx, pipelines, 2, pass->layout, pass->set_layout);
+    const VkPipeline pipelines[3] = {pass->select, pass->trace, pass->denoise};
+    rtpbr_pass_objects_destroy(ctx, pipelines, 3, pass->layout, pass->set_layout);
     *pass = (rtpbr_shadow_pass){0};
 }
 
@@ -66,6 +75,9 @@ rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx)
 {
     rtpbr_shadow_pass *pass = &ctx->shadow;
     rtpbr_result result = RTPBR_SUCCESS;
+    if (!pass->select)
+        RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_select_comp), pass->layout,
+                                                &pass->select));
     if (!pass->trace)
         RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_comp), pass->layout, &pass->trace));
     if (!pass->denoise)
@@ -114,6 +126,7 @@ rtpbr_result rtpbr_shadow_renderer_init(rtpbr_renderer *r)
                                  r->shadow_estimates.view, VK_IMAGE_LAYOUT_GENERAL);
     rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_SHADOW_RATIO, VK_NULL_HANDLE, r->shadow_ratio.view,
                                  VK_IMAGE_LAYOUT_GENERAL);
+    rtpbr_descriptor_write_buffer(ctx, table, set, RTPBR_BINDING_SHADOW_TILES, r->tile_masks.buffer, VK_WHOLE_SIZE);
 cleanup:
     return result; // the caller destroys the renderer, and with it a half-built state
 }
@@ -163,6 +176,20 @@ void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCom
     uint32_t gx = (r->shade_width + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE;
     uint32_t gy = (r->shade_height + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE;
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.layout, 0, 1, &r->shadow_set.set, 0, NULL);
+    // The shadow slots of each tile (in the tile masks: after the previous frame's culling and
+    // lighting, before this frame's trace, denoiser, culling and lighting).
+    const VkMemoryBarrier before = {VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL,
+                                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_WRITE_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &before,
+                         0, NULL, 0, NULL);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.select);
+    vkCmdPushConstants(cmd, ctx->shadow.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
+    vkCmdDispatch(cmd, (r->tiles_x + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE,
+                  (r->tiles_y + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE, 1);
+    const VkMemoryBarrier selected = {VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL, VK_ACCESS_SHADER_WRITE_BIT,
+                                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
+                         &selected, 0, NULL, 0, NULL);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.trace);
     // The previous frame's denoise read the sums; each dispatch adds to the previous one's.
     for (uint32_t first = 0; first < samples; first += RTPBR_SHADOW_SAMPLES_PER_DISPATCH) {
