@@ -259,8 +259,8 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         d->two_sided = l->two_sided;
         light_facts[i] = l->facts;
     }
-    // KHR_lights_punctual lights after the area lights (the first RTPBR_MAX_SHADOWED_LIGHTS of
-    // all cast shadows); facts: none (all zero).
+    // KHR_lights_punctual lights after the area lights (with shadows, the order does not
+    // matter: each tile's casters are chosen by their irradiance bound); facts: none (all zero).
     for (uint32_t i = 0; i < loaded->punctual_light_count; ++i) {
         const rtpbr_gltf_punctual_light *l = &loaded->punctual_lights[i];
         rtpbr_light_desc *d = &lights[loaded->light_count + i];
