@@ -18,6 +18,8 @@
 #include <limits>
 #include <vector>
 
+#include "quadrature.hpp" // gauss_legendre
+
 using rtpbr::float2;
 using rtpbr::float3;
 using rtpbr::float4;
@@ -305,28 +307,6 @@ void set_disk(D3 c, D3 n, double r1, double r2, double twist = 0.0) {
     g_diskV = float3(v.x * r2, v.y * r2, v.z * r2);
 }
 
-// Gauss-Legendre nodes and weights on [0, 1].
-void gauss_legendre(int n, std::vector<double> &x, std::vector<double> &w) {
-    x.resize(n);
-    w.resize(n);
-    for (int i = 0; i < n; ++i) {
-        double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = z;
-            for (int k = 2; k <= n; ++k) {
-                double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (z * p1 - p0) / (z * z - 1.0);
-            double dz = p1 / dp;
-            z -= dz;
-            if (std::fabs(dz) < 1e-15) break;
-        }
-        x[i] = 0.5 * (1.0 - z);
-        w[i] = 1.0 / ((1.0 - z * z) * dp * dp);
-    }
-}
 
 // The integral of g(direction) over the solid angle of the disk g_disk* above the horizon seen
 // from the origin (front side only unless g_diskTwoSided): over its area, dw = |cos| dA / d^2.

@@ -23,6 +23,8 @@ extern "C" {
 #include <functional>
 #include <vector>
 
+#include "quadrature.hpp" // gauss_legendre
+
 using rtpbr::float3;
 using rtpbr::float4;
 
@@ -38,28 +40,6 @@ D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x
 double len(D3 a) { return std::sqrt(dot(a, a)); }
 float3 f3(D3 v) { return float3(float(v.x), float(v.y), float(v.z)); }
 
-// Gauss-Legendre nodes and weights on [0, 1] (Newton on the Legendre polynomial).
-void gauss_legendre(int n, std::vector<double> &x, std::vector<double> &w) {
-    x.resize(n);
-    w.resize(n);
-    for (int i = 0; i < n; ++i) {
-        double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = z;
-            for (int k = 2; k <= n; ++k) {
-                double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (z * p1 - p0) / (z * z - 1.0);
-            double dz = p1 / dp;
-            z -= dz;
-            if (std::fabs(dz) < 1e-15) break;
-        }
-        x[i] = 0.5 * (1.0 - z);
-        w[i] = 1.0 / ((1.0 - z * z) * dp * dp);
-    }
-}
 
 // The LTC distribution for ltc1 = (m00, m02, m20, m22) of M^-1 (ltc.h's layout), in the
 // local frame (z = N).
