@@ -10,8 +10,8 @@
 //   EMPTY  no surface pixel, or no light left: emission and background only;
 //   BASIC  every material of the tile is basic (material_tile_class);
 //   FULL   otherwise;
-//   BASIC_SPHERES, FULL_SPHERES  the same with a sphere among the tile's lights (the variants
-//          with the spheres' loop).
+//   BASIC_SPHERES, FULL_SPHERES  the same with a sphere or a disk among the tile's lights (the
+//          variants with the spheres' and disks' loops).
 // Light i is kept unless
 //   (1) the light is one-sided and every corner of the box is behind its plane: it cannot
 //       light any point of the tile (exact), or
@@ -26,7 +26,9 @@
 // form factor is small (the sun's: 2e-5) but its radiance large.
 // A sphere (a point light with a radius) is kept unless the box is beyond its range from its
 // centre or its form factor from the whole box, at most r^2 / d^2, is below the threshold (4).
-// Each kind goes to its own mask (polygons, punctual lights, spheres).
+// A disk is culled as a polygon ((1) by its plane, (2) by its bounding sphere and area).
+// Each kind goes to its own mask (polygons, punctual lights, spheres and disks: the lighting
+// variants' spheres loop shades both).
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
@@ -59,7 +61,7 @@ bool light_may_contribute(uint i, vec3 boxMin, vec3 boxMax)
         return !(frame.cull_form_factor >= 0.0f && d > sphere.w &&
                  lights[i].area < frame.cull_form_factor * 3.14159265f * d * d);
     }
-    if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON)) {
+    if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && shape != uint(RTPBR_LIGHT_SHAPE_DISK)) {
         vec4 reach = lights[i].sphere;
         return length(reach.xyz - clamp(reach.xyz, boxMin, boxMax)) < reach.w;
     }
@@ -119,7 +121,8 @@ void main()
                 if (light_may_contribute(32u * w + b, boxMin, boxMax)) {
                     uint shape = lights[32u * w + b].shape;
                     if (shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) bits |= 1u << b;
-                    else if (shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) sphereBits |= 1u << b;
+                    else if (shape == uint(RTPBR_LIGHT_SHAPE_SPHERE) || shape == uint(RTPBR_LIGHT_SHAPE_DISK))
+                        sphereBits |= 1u << b;
                     else punctualBits |= 1u << b;
                 }
         }

@@ -116,7 +116,9 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
         float oneMinusCos = insideSphere ? 2.0f : sin2Max / (1.0f + cosMax);
         vec3 sphereAxis = toCentre * inversesqrt(max(centre2, 1e-30f));
         float window = sphereLight ? Punctual_RangeWindow(centre2, lights[i].vertices[0].w) : 1.0f;
-        bool lit = (shape == uint(RTPBR_LIGHT_SHAPE_POLYGON) && count >= 3u && area > 0.0f &&
+        // A disk: as a polygon, its points uniform by area (mc_disk_point, mc_ray_disk).
+        bool diskLight = shape == uint(RTPBR_LIGHT_SHAPE_DISK);
+        bool lit = ((shape == uint(RTPBR_LIGHT_SHAPE_POLYGON) && count >= 3u || diskLight) && area > 0.0f &&
                     (twoSided ? side != 0.0f : side > 0.0f)) ||
                    (sphereLight && window > 0.0f && centre2 > 0.0f);
         uint n = lit ? mc.sample_count : 0u;
@@ -136,7 +138,8 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
                 // Strategy 2: a visible normal of the specular lobe, reflected; does it hit?
                 vec3 wiLocal = Reflect_About(wo, MC_SAMPLE_VNDF(wo, alphaSample.x, alphaSample.y, u));
                 wi = T * wiLocal.x + B * wiLocal.y + N * wiLocal.z;
-                hit = sphereLight ? dot(wi, sphereAxis) >= cosMax : mc_ray_polygon(P, wi, i, count, t);
+                hit = sphereLight ? dot(wi, sphereAxis) >= cosMax
+                      : diskLight ? mc_ray_disk(P, wi, i, t) : mc_ray_polygon(P, wi, i, count, t);
             } else if (sphereLight) {
                 // Strategy 1 for a sphere: a direction uniform in its cone.
                 float cosT = 1.0f - u.x * oneMinusCos;
@@ -151,7 +154,8 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
                 uint pick = 1u;
                 for (uint k = 2u; k + 1u < count; ++k)
                     if (target >= lights[i].vertices[k].w) pick = k;
-                vec3 toLight = mc_triangle_point(v0, lights[i].vertices[pick].xyz, lights[i].vertices[pick + 1u].xyz, u) - P;
+                vec3 toLight = (diskLight ? mc_disk_point(i, u)
+                                          : mc_triangle_point(v0, lights[i].vertices[pick].xyz, lights[i].vertices[pick + 1u].xyz, u)) - P;
                 t = length(toLight);
                 wi = toLight / max(t, 1e-30f);
                 hit = t > 0.0f;
@@ -173,7 +177,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
         }
         vec3 lightTerm = lightSum / float(samples) * window;
         // A punctual light: exact, no sample (added once, by the dispatch of the first samples).
-        if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && !sphereLight) {
+        if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && !sphereLight && !diskLight) {
             vec4 incident = Punctual_Incident(P, shape, lights[i].vertices[0], lights[i].vertices[1].xyz, lights[i].vertices[2].xy);
             vec3 wiLocal = vec3(dot(incident.xyz, T), dot(incident.xyz, B), dot(incident.xyz, N));
             bool on = mc.first_sample == 0u && wiLocal.z > 0.0f && incident.w > 0.0f;

@@ -62,4 +62,25 @@ bool mc_ray_polygon(vec3 P, vec3 w, uint light, uint count, out float t)
     return inside;
 }
 
+// Does the ray P + t w (t > 0) meet disk light `light` (RTPBR_LIGHT_FIELDS, DISK: centre
+// vertices[0], orthogonal half-axes vertices[1], vertices[2])? t: where it meets its plane.
+bool mc_ray_disk(vec3 P, vec3 w, uint light, out float t)
+{
+    vec4 plane = lights[light].plane;
+    float denom = dot(plane.xyz, w);
+    t = denom != 0.0f ? -(dot(plane.xyz, P) + plane.w) / denom : -1.0f;
+    vec3 X = P + t * w - lights[light].vertices[0].xyz;
+    vec3 u = lights[light].vertices[1].xyz, v = lights[light].vertices[2].xyz;
+    float a = dot(X, u) / dot(u, u), b = dot(X, v) / dot(v, v);
+    return t > 0.0f && a * a + b * b <= 1.0f;
+}
+
+// A point of disk light `light` uniform by area from u in [0, 1)^2 (polar: radius sqrt(u.x)).
+vec3 mc_disk_point(uint light, vec2 u)
+{
+    float rho = sqrt(u.x), phi = 6.28318531f * u.y;
+    return lights[light].vertices[0].xyz + lights[light].vertices[1].xyz * (rho * cos(phi)) +
+           lights[light].vertices[2].xyz * (rho * sin(phi));
+}
+
 #endif // RTPBR_MC_SAMPLING_GLSL

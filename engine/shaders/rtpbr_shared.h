@@ -233,6 +233,11 @@
 // (0, 0, 0, 1)): sphere = (centre, radius) exactly (not a bound), vertices[0] = (centre,
 // 1 / range^2 or 0), radiance = its uniform radiance (intensity / (pi radius^2)), area = pi
 // radius^2 (the cull's form factor); shaded by area_light.h's AreaLight_AddSphere.
+// A disk (shape DISK; vertex_count 0): sphere = (centre, radius), vertices[0] = (centre, 0),
+// vertices[1], vertices[2] = its orthogonal half-axes u, v (length radius, cross(u, v) along
+// the emitting side's normal), plane = (unit normal, -dot(normal, centre)), area = pi radius^2,
+// two_sided as a polygon's; in the tiles' sphere mask (cull.comp), shaded by area_light.h's
+// AreaLight_AddDisk.
 #define RTPBR_LIGHT_FIELDS(F, S)                                                                  \
     F(S, VEC4, vertices, [RTPBR_SHADER_MAX_POLYGON_VERTICES]) /* xyz; w: fan area below vertex k */ \
     F(S, VEC3, radiance, )     /* emitted radiance, rgb (punctual: intensity) */                   \
@@ -250,7 +255,8 @@
 #define RTPBR_LIGHT_SHAPE_POINT 1
 #define RTPBR_LIGHT_SHAPE_SPOT 2
 #define RTPBR_LIGHT_SHAPE_DIRECTIONAL 3
-#define RTPBR_LIGHT_SHAPE_SPHERE 4 // a point light with a radius (not an rtpbr_light_type)
+#define RTPBR_LIGHT_SHAPE_DISK 4
+#define RTPBR_LIGHT_SHAPE_SPHERE 5 // a point light with a radius (not an rtpbr_light_type)
 // The bounding radius of a light without a range: everything is within reach.
 #define RTPBR_LIGHT_INFINITE 3.0e38
 

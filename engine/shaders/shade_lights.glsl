@@ -51,6 +51,8 @@ uint Host_LightShape(uint i)
 vec4 Host_LightPosition(uint i) { return lights[i].vertices[0]; }
 vec3 Host_LightDirection(uint i) { return lights[i].vertices[1].xyz; }
 vec2 Host_LightSpotCone(uint i) { return lights[i].vertices[2].xy; }
+// A disk's half-axes (RTPBR_LIGHT_FIELDS, DISK: vertices[1], vertices[2]).
+vec3 Host_LightDiskAxis(uint i, uint k) { return lights[i].vertices[1u + k].xyz; }
 ivec2 shade_pixel; // the pixel shade_lights shades (for its shadow ratios)
 #ifdef RTPBR_SHADE_ALL_LIGHTS
 vec3 Host_LightVisibility(uint i) { return vec3(shadow_factor(i, shade_pixel)); }
@@ -74,6 +76,7 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 #define RTPBR_AREA_LIGHT_FULL RTPBR_LIGHTING_FULL
 #define RTPBR_AREA_LIGHT_PUNCTUAL 2 // punctual lights summed first, apart (area_light.h)
 #define RTPBR_AREA_LIGHT_SPHERES 1  // AreaLight_AddSphere for the spheres' mask (RTPBR_LIGHTING_SPHERES)
+#define RTPBR_AREA_LIGHT_DISKS 1    // AreaLight_AddDisk for the disks in that mask
 // A sphere the horizon cuts: clipped exactly in the basic variant; the full variant's registers
 // take the sphere proxy (area_light.h; no spills: tests/shader-stats)
 #define RTPBR_AREA_LIGHT_SPHERE_CLIP (!RTPBR_LIGHTING_FULL)
@@ -92,8 +95,8 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 // with RTPBR_SHADE_ALL_LIGHTS every light of the frame: the forward pass's surfaces are not in
 // the G-buffer the masks were culled by), each weighted by its shadow ratio
 // shadow_factor(i, pixel) (shadow_ratio.glsl, or 1), added to result (the emission): punctual
-// lights first, straight into it (AreaLight_AddPunctual), then the polygons (AreaLight_Add)
-// and the spheres (AreaLight_AddSphere), their sum held to the energy bound (registers:
+// lights first, straight into it (AreaLight_AddPunctual), then the polygons (AreaLight_Add),
+// the spheres (AreaLight_AddSphere) and the disks (AreaLight_AddDisk), their sum held to the energy bound (registers:
 // docs/performance.md, 11).
 void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pixel, inout vec3 result)
 {
@@ -124,7 +127,8 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     mat3 frame3 = LTC_Frame(N, V);
     for (uint i = 0u; i < frame.light_count; ++i) {
         uint shape = lights[i].shape;
-        if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && shape != uint(RTPBR_LIGHT_SHAPE_SPHERE))
+        if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && shape != uint(RTPBR_LIGHT_SHAPE_SPHERE) &&
+            shape != uint(RTPBR_LIGHT_SHAPE_DISK))
             AreaLight_AddPunctual(result, s, frame3, P, i, shape);
     }
     AreaLightPixel px = AreaLight_Begin(s, N, V);
@@ -133,6 +137,8 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
 #if RTPBR_LIGHTING_SPHERES
     for (uint i = 0u; i < frame.light_count; ++i)
         if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) AreaLight_AddSphere(px, acc, s, P, N, i);
+    for (uint i = 0u; i < frame.light_count; ++i)
+        if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_DISK)) AreaLight_AddDisk(px, acc, s, P, N, i);
 #endif
 #else
     // The tile's masks (cull.comp): its punctual lights', then its polygons' and its spheres'.
@@ -149,9 +155,19 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
         for (uint bits = tile_masks[maskBase + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_Add(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
 #if RTPBR_LIGHTING_SPHERES
+    // The spheres' mask holds the disks too: one loop for each kind, so that each compiles with
+    // its kind fixed (one loop choosing at run time took the basic variant's registers from 96
+    // to 104 on navi21); the mask's words are scalar loads, walked twice.
     for (uint word = 0u; word < words; ++word)
-        for (uint bits = tile_masks[maskBase + 2u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
-            AreaLight_AddSphere(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
+        for (uint bits = tile_masks[maskBase + 2u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u) {
+            uint i = word * 32u + uint(findLSB(bits));
+            if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) AreaLight_AddSphere(px, acc, s, P, N, i);
+        }
+    for (uint word = 0u; word < words; ++word)
+        for (uint bits = tile_masks[maskBase + 2u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u) {
+            uint i = word * 32u + uint(findLSB(bits));
+            if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_DISK)) AreaLight_AddDisk(px, acc, s, P, N, i);
+        }
 #endif
 #endif
     result += AreaLight_End(px, acc, s, P);

@@ -22,7 +22,8 @@
 // shader run) and silently skips what follows them.
 // A punctual light (point, spot, directional) takes one ray, w = max(cos_x, 0), V to its
 // position or along its reverse direction. A sphere light: n directions uniform in the cone it
-// subtends (R2 as above), w = max(cos_x, 0), V to where each meets the sphere.
+// subtends (R2 as above), w = max(cos_x, 0), V to where each meets the sphere. A disk: as a
+// polygon, its points uniform by area (polar, R2 as above).
 // shadow_denoise.comp filters n S and n U and writes their ratio, S / U.
 #include "rtpbr_shared.h"
 #include "shadow_common.glsl"
@@ -74,7 +75,7 @@ void main()
     // A punctual light: one ray (every sample would be the same), to its position or, for a
     // directional light, RTPBR_SHADOW_FAR along its reverse direction; weight N.L.
     bool sphereLight = light.shape == uint(RTPBR_LIGHT_SHAPE_SPHERE);
-    bool punctual = light.shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && !sphereLight;
+    bool punctual = light.shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && !sphereLight && light.shape != uint(RTPBR_LIGHT_SHAPE_DISK);
     // A sphere: directions uniform in the cone it subtends from x (from inside it, every
     // direction), each to where it meets the sphere, weight max(cos_x, 0) (the cone's constant
     // density cancels in the ratio).
@@ -102,7 +103,14 @@ void main()
         float ux = clamp((target - below) / max(triArea, 1e-30f), 0.0f, 1.0f);
         // Uniform on the triangle (Turk 1990): sqrt warps the first coordinate.
         float su = sqrt(ux);
-        vec3 y = v0 * (1.0f - su) + a * (su * (1.0f - u.y)) + b * (su * u.y);
+        // A disk: uniform by area (polar, radius sqrt(u.x)); a and b are then its half-axes,
+        // vertices[1] and [2] (vertex_count 0 leaves i at 1), w as a polygon's. One expression
+        // for both kinds, by their weights, chosen by the vertex count (a disk's own loads, sum
+        // and flag spilled 2-4 SGPRs on navi21 and gfx1100).
+        float phi = 6.28318531f * u.y, rho = sqrt(u.x);
+        // (vertex_count 0 is also a sphere's and a punctual light's, whose y is set below)
+        vec3 weights = light.vertex_count == 0u ? vec3(1.0f, rho * cos(phi), rho * sin(phi)) : vec3(1.0f - su, su * (1.0f - u.y), su * u.y);
+        vec3 y = v0 * weights.x + a * weights.y + b * weights.z;
         if (punctual)
             y = light.shape == uint(RTPBR_LIGHT_SHAPE_DIRECTIONAL) ? origin - light.vertices[1].xyz * RTPBR_SHADOW_FAR : v0;
         if (sphereLight) {

@@ -242,7 +242,8 @@ rtpbr_result rtpbr_material_validate(const rtpbr_context *ctx, const rtpbr_mater
 rtpbr_result rtpbr_light_validate(const rtpbr_context *ctx, const rtpbr_light_desc *l,
                                   const struct rtpbr_gltf_polygon_facts *f, uint32_t index);
 void rtpbr_light_record(const rtpbr_light_desc *l, const struct rtpbr_gltf_polygon_facts *f, rtpbr_shader_light *out);
-// Whether any of count light records is a sphere (the spheres' lighting variants are needed).
+// Whether any of count light records is a sphere or a disk (the spheres' lighting variants
+// are needed: their loop shades both).
 bool rtpbr_lights_have_spheres(const rtpbr_shader_light *lights, uint32_t count);
 
 // The RTPBR_EXTENSION_TEXTURES_* bits of the scene's materials together (scene.c): which of

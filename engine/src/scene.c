@@ -114,14 +114,44 @@ static rtpbr_result validate_punctual(const rtpbr_context *ctx, const rtpbr_ligh
     return RTPBR_SUCCESS;
 }
 
+// A disk's checks (rtpbr_light_desc: position, direction, radius, emission).
+static rtpbr_result validate_disk(const rtpbr_context *ctx, const rtpbr_light_desc *l, uint32_t index)
+{
+    if (!rtpbr_finite(l->emission, 3) || !rtpbr_finite(l->position, 3) || !rtpbr_finite(l->direction, 3) ||
+        !isfinite(l->radius)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (disk) has a NaN or infinite emission, position, direction or radius",
+                  index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (l->emission[0] < 0.0f || l->emission[1] < 0.0f || l->emission[2] < 0.0f) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has negative emission", index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    double len2 = 0.0;
+    for (int k = 0; k < 3; ++k) len2 += (double)l->direction[k] * l->direction[k];
+    if (!(len2 > 1e-30)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (disk) has a zero direction (its normal)", index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    // pi r^2 must be a float, and r well above the centre's rounding (the shading's axes)
+    double extent = fmax(fmax(fabs(l->position[0]), fabs(l->position[1])), fabs(l->position[2]));
+    if (!(l->radius > 1e-6 * extent) || !(LIGHT_PI * (double)l->radius * l->radius <= 0.5 * FLT_MAX)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (disk) has radius %g; > 0 (and above 1e-6 of its centre's "
+                  "coordinates) is required", index, l->radius);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    return RTPBR_SUCCESS;
+}
+
 rtpbr_result rtpbr_light_validate(const rtpbr_context *ctx, const rtpbr_light_desc *l,
                                    const rtpbr_gltf_polygon_facts *f, uint32_t index)
 {
-    if ((unsigned)l->type > (unsigned)RTPBR_LIGHT_DIRECTIONAL) {
-        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has type %d; RTPBR_LIGHT_POLYGON .. _DIRECTIONAL (0 .. 3) are allowed",
+    if ((unsigned)l->type > (unsigned)RTPBR_LIGHT_DISK) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has type %d; RTPBR_LIGHT_POLYGON .. _DISK (0 .. 4) are allowed",
                   index, (int)l->type);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
+    if (l->type == RTPBR_LIGHT_DISK) return validate_disk(ctx, l, index);
     if (l->type != RTPBR_LIGHT_POLYGON) return validate_punctual(ctx, l, index);
     if (l->vertex_count < 3 || l->vertex_count > RTPBR_MAX_POLYGON_VERTICES) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has %u vertices; 3 to %u are allowed", index, l->vertex_count,
@@ -279,8 +309,43 @@ static void sphere_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
     *out = g;
 }
 
+// A disk (rtpbr_light_desc): its centre, orthogonal half-axes of length radius (cross(u, v)
+// along the unit normal) and plane (RTPBR_LIGHT_FIELDS: DISK).
+static void disk_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
+{
+    rtpbr_shader_light g = {0};
+    double len = sqrt((double)l->direction[0] * l->direction[0] + (double)l->direction[1] * l->direction[1] +
+                      (double)l->direction[2] * l->direction[2]);
+    double n[3];
+    for (int k = 0; k < 3; ++k) n[k] = l->direction[k] / len;
+    // t1, t2: an orthonormal basis of the disk's plane with t1 x t2 = n (Duff et al. 2017)
+    double sign = n[2] >= 0.0 ? 1.0 : -1.0, a = -1.0 / (sign + n[2]), b = n[0] * n[1] * a;
+    double t1[3] = {1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0]};
+    double t2[3] = {b, sign + n[1] * n[1] * a, -n[1]};
+    double r = l->radius, dotc = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        g.vertices[0][k] = l->position[k];
+        g.vertices[1][k] = (float)(r * t1[k]);
+        g.vertices[2][k] = (float)(r * t2[k]);
+        g.sphere[k] = l->position[k];
+        g.plane[k] = (float)n[k];
+        dotc += n[k] * l->position[k];
+    }
+    g.plane[3] = (float)-dotc;
+    g.sphere[3] = l->radius;
+    memcpy(g.radiance, l->emission, sizeof g.radiance);
+    g.area = (float)(LIGHT_PI * r * r);
+    g.two_sided = l->two_sided ? 1.0f : 0.0f;
+    g.shape = RTPBR_LIGHT_SHAPE_DISK;
+    *out = g;
+}
+
 void rtpbr_light_record(const rtpbr_light_desc *l, const rtpbr_gltf_polygon_facts *f, rtpbr_shader_light *out)
 {
+    if (l->type == RTPBR_LIGHT_DISK) {
+        disk_record(l, out);
+        return;
+    }
     if (l->type == RTPBR_LIGHT_DIRECTIONAL && directional_diameter(l) > 0.0) {
         sun_record(l, directional_diameter(l), out);
         return;
@@ -936,7 +1001,7 @@ rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh
 bool rtpbr_lights_have_spheres(const rtpbr_shader_light *lights, uint32_t count)
 {
     for (uint32_t i = 0; i < count; ++i)
-        if (lights[i].shape == RTPBR_LIGHT_SHAPE_SPHERE) return true;
+        if (lights[i].shape == RTPBR_LIGHT_SHAPE_SPHERE || lights[i].shape == RTPBR_LIGHT_SHAPE_DISK) return true;
     return false;
 }
 

@@ -35,9 +35,10 @@
 // shaders through shaderlib/rtpbr/material.h, as in the oracle. specular_color is applied to
 // the Schlick F0 of the specular lobe; the oracle's exact dielectric Fresnel ignores it (a
 // difference only for coloured specular).
-// Lights: every loader light (emissive primitives, EXT_lights_area rectangles and disks as
-// their equal-area octagons) becomes a polygonal light with its radiance and sidedness, and
-// its derived facts (normal, centre, area, bounding sphere) as the loader computed them;
+// Lights: every loader light (emissive primitives, EXT_lights_area rectangles) becomes a
+// polygonal light with its radiance and sidedness, and its derived facts (normal, centre,
+// area, bounding sphere) as the loader computed them; EXT_lights_area disks become disk
+// lights (RTPBR_LIGHT_DISK: shaded as the disk, not its octagon);
 // KHR_lights_punctual lights follow them as point, spot and directional lights.
 #include <math.h>
 #include <string.h>
@@ -258,6 +259,12 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         memcpy(d->emission, l->radiance, sizeof d->emission);
         d->two_sided = l->two_sided;
         light_facts[i] = l->facts;
+        if (l->shape == RTPBR_GLTF_LIGHT_DISK) { // the disk itself (its octagon stays in vertices)
+            d->type = RTPBR_LIGHT_DISK;
+            memcpy(d->position, l->facts.center, sizeof d->position);
+            memcpy(d->direction, l->facts.normal, sizeof d->direction);
+            d->radius = l->radius;
+        }
     }
     // KHR_lights_punctual lights after the area lights (with shadows, the order does not
     // matter: each tile's casters are chosen by their irradiance bound); facts: none (all zero).

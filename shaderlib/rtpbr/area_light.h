@@ -294,14 +294,54 @@ RTPBR_FN bool AreaLight_SphereDisk(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFra
     return true;
 }
 
+#if RTPBR_AREA_LIGHT_SPHERE_CLIP
+// The ellipse (c, u, w)'s equal-area RTPBR_AREA_LIGHT_SPHERE_SIDES-gon (circumradius sqrt(2 pi /
+// (n sin(2 pi / n))) x the ellipse's), walked one edge at a time through the horizon clip:
+// call with k = 1 .. n + 1 and a = c + u x that scale (AreaLight_EllipseGonStart) at first;
+// edge k ends at vertex k (vertex n is vertex 0), step n + 1 closes the clipped polygon.
+RTPBR_FN float AreaLight_EllipseGonScale() {
+    const float n = float(RTPBR_AREA_LIGHT_SPHERE_SIDES);
+    return sqrt(2.0f * RTPBR_PI / (n * sin(2.0f * RTPBR_PI / n)));
+}
+RTPBR_FN LtcSegment AreaLight_EllipseGonEdge(RTPBR_INOUT(LtcClipper) horizon, rtpbr_float3 c, rtpbr_float3 u,
+                                             rtpbr_float3 w, uint k, RTPBR_INOUT(rtpbr_float3) a) {
+    if (k > uint(RTPBR_AREA_LIGHT_SPHERE_SIDES))
+        return LTC_ClipClose(horizon);
+    float phi = 2.0f * RTPBR_PI * float(k) / float(RTPBR_AREA_LIGHT_SPHERE_SIDES);
+    rtpbr_float3 b = c + u * cos(phi) + w * sin(phi);
+    LtcSegment seg = LTC_ClipEdge(horizon, a, b);
+    a = b;
+    return seg;
+}
+#endif
+
 #endif
 
 #if RTPBR_AREA_LIGHT_DISKS
+#if RTPBR_AREA_LIGHT_SPHERE_CLIP
+// The vector form factor of the ellipse (c, u, w)'s equal-area polygon (AreaLight_SphereLobe's)
+// clipped by the horizon: a walk of its own, not summed in the lobe's walk (registers: summed
+// there, the engine's basic variant took 104 VGPRs on navi21, 96 here).
+RTPBR_FN rtpbr_float3 AreaLight_EllipseClippedVector(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float3 w) {
+    float scale = AreaLight_EllipseGonScale();
+    u *= scale;
+    w *= scale;
+    LtcClipper horizon = LTC_ClipperBegin();
+    rtpbr_float3 F = RTPBR_F3(0.0f), a = c + u;
+    RTPBR_UNROLL for (uint k = 1u; k <= uint(RTPBR_AREA_LIGHT_SPHERE_SIDES) + 1u; ++k) {
+        LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, a);
+        if (seg.valid)
+            F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+    }
+    return F;
+}
+#endif
+
 // Disk light i at P in the LTC frame: its centre c (Host_LightSphere's xyz) and half-axes u, w
 // (Host_LightDiskAxis), read again for each lobe (registers, as AreaLight_SphereDisk). F: the
 // disk's Lambert vector form factor where it is wholly above the horizon, exact (the cone's
-// closed form, LTC_EllipseVector, under the identity); where the horizon cuts it, zero with
-// RTPBR_AREA_LIGHT_SPHERE_CLIP (AreaLight_SphereLobe's walk sums its clipped polygon's), with 0
+// closed form, LTC_EllipseVector, under the identity); where the horizon cuts it, with
+// RTPBR_AREA_LIGHT_SPHERE_CLIP its clipped polygon's (AreaLight_EllipseClippedVector), with 0
 // the form factor of the cap with the same vector (the sphere proxy's, as a sphere's lobes).
 // True where the horizon cuts it.
 RTPBR_FN bool AreaLight_DiskEllipse(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, RTPBR_OUT(rtpbr_float3) c,
@@ -315,6 +355,8 @@ RTPBR_FN bool AreaLight_DiskEllipse(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
 #if RTPBR_AREA_LIGHT_SPHERE_CLIP
     if (!cut)
         F = LTC_EllipseVector(LTC_InverseMatrix(LTC_Identity()), c, u, w, true);
+    else
+        F = AreaLight_EllipseClippedVector(c, u, w);
 #else
     F = LTC_EllipseVector(LTC_InverseMatrix(LTC_Identity()), c, u, w, true);
     if (cut)
@@ -339,9 +381,8 @@ RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
                                     RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl RTPBR_AREA_LIGHT_DISK_PARAM) {
     rtpbr_float3 c, u, w;
 #if RTPBR_AREA_LIGHT_DISKS
-    bool diskCut = false; // a disk the horizon cuts: its F is summed by the walk below
     if (diskLight)
-        diskCut = AreaLight_DiskEllipse(i, P, ltcFrame, c, u, w, F);
+        AreaLight_DiskEllipse(i, P, ltcFrame, c, u, w, F);
     else
 #endif
     if (!AreaLight_SphereDisk(i, P, ltcFrame, minv, c, u, w, F)) {
@@ -353,39 +394,20 @@ RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
     if (!(c.z >= sqrt(u.z * u.z + w.z * w.z) && cl.z >= sqrt(ul.z * ul.z + wl.z * wl.z))) {
         LtcClipper horizon = LTC_ClipperBegin();
         LtcLobe lobe = LTC_LobeBegin(minv);
-        // the disk's equal-area RTPBR_AREA_LIGHT_SPHERE_SIDES-gon: circumradius sqrt(2 pi / (n
-        // sin(2 pi / n))) x the disk's
-        const float n = float(RTPBR_AREA_LIGHT_SPHERE_SIDES);
-        float scale = sqrt(2.0f * RTPBR_PI / (n * sin(2.0f * RTPBR_PI / n)));
+        float scale = AreaLight_EllipseGonScale();
         u *= scale;
         w *= scale;
         rtpbr_float3 a = c + u;
         RTPBR_UNROLL for (uint k = 1u; k <= uint(RTPBR_AREA_LIGHT_SPHERE_SIDES) + 1u; ++k) {
-            LtcSegment seg;
-            if (k <= uint(RTPBR_AREA_LIGHT_SPHERE_SIDES)) {
-                float phi = 2.0f * RTPBR_PI * float(k) / n; // vertex n is vertex 0
-                rtpbr_float3 b = c + u * cos(phi) + w * sin(phi);
-                seg = LTC_ClipEdge(horizon, a, b);
-                a = b;
-            } else {
-                seg = LTC_ClipClose(horizon);
-            }
-            if (seg.valid) {
+            LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, a);
+            if (seg.valid)
                 LTC_LobeEdge(lobe, seg.a, seg.b);
-#if RTPBR_AREA_LIGHT_DISKS
-                if (diskCut)
-                    F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
-#endif
-            }
         }
         // (a sphere's F keeps the whole cap's direction, its z the clipped cap's form factor:
         // the clipped polygon's own F, summed here, took the basic variant from 96 to 112 VGPRs;
         // a disk has no such closed form)
         return AreaLight_LobeClose(lobe, Fl);
     }
-#endif
-#if RTPBR_AREA_LIGHT_DISKS && !RTPBR_AREA_LIGHT_SPHERE_CLIP
-    RTPBR_UNUSED(diskCut);
 #endif
     rtpbr_float3 v = LTC_EllipseVector(minv, c, u, w, true);
     Fl = v.z < 0.0f ? -v : v;

@@ -417,6 +417,8 @@ typedef enum rtpbr_light_type {
                                  //   point light may have a radius: a sphere, below):
     RTPBR_LIGHT_SPOT = 2,        //   position, range; a spot's direction and cones;
     RTPBR_LIGHT_DIRECTIONAL = 3, //   a directional light's direction
+    RTPBR_LIGHT_DISK = 4,        // an area light: a disk of radius `radius` about position,
+                                 //   emitting along direction (its normal), two_sided
 } rtpbr_light_type;
 
 // A light. RTPBR_LIGHT_POLYGON (zero): a convex planar polygon emitting on its front side
@@ -426,17 +428,21 @@ typedef enum rtpbr_light_type {
 //   f(V, L) (N.L) emission W(d) / d^2  (x the spot's falloff),
 // W(d) = clamp(1 - (d / range)^4, 0, 1) (1 without a range); from a directional light
 // f(V, L) (N.L) emission, L = -direction.
+// RTPBR_LIGHT_DISK: a flat disk of uniform radiance `emission`, shaded exactly (the disk's own
+// ellipse under each lobe's LTC, Heitz & Hill 2017; shaderlib/rtpbr/area_light.h,
+// AreaLight_AddDisk), not as a polygon: position its centre, direction its normal (the side it
+// emits on; need not be unit, non-zero), radius > 0, two_sided as a polygon's.
 typedef struct rtpbr_light_desc {
     float vertices[RTPBR_MAX_POLYGON_VERTICES][3]; // polygon: world space
     uint32_t vertex_count;   // polygon: 3..RTPBR_MAX_POLYGON_VERTICES; punctual: ignored
     float emission[3];       // polygon: radiance; point, spot: intensity (candela, the
                              // renderer's radiance unit x m^2); directional: illuminance (lux,
                              // the radiance unit x sr). Zero: a light that contributes nothing
-    int two_sided;           // polygon: non-zero emits on both sides. Default: front only
+    int two_sided;           // polygon, disk: non-zero emits on both sides. Default: front only
     rtpbr_light_type type;   // zero: a polygon
-    float position[3];       // point, spot: world space
+    float position[3];       // point, spot: world space; disk: its centre
     float direction[3];      // spot, directional: the way the light travels (need not be unit;
-                             // non-zero)
+                             // non-zero); disk: its normal, toward the side it emits on
     float range;             // point, spot: > 0, where W(d) ends; zero: infinite
     float inner_cone_angle;  // spot: radians, 0 <= inner <= outer <= pi/2; the falloff
     float outer_cone_angle;  // t = clamp((cos - cos outer) / max(cos inner - cos outer, 1e-3),
@@ -454,8 +460,8 @@ typedef struct rtpbr_light_desc {
                              // (the same intensity far away) times W(d), d the distance from
                              // its centre: an area light (soft shadows, highlights of its size)
                              // shaded with LTC like a polygon. Zero: a true point (exact).
-                             // Spot: must be zero (spheres with a cone: not yet). Directional,
-                             // polygon: ignored
+                             // Spot: must be zero (spheres with a cone: not yet). Disk: > 0,
+                             // the disk's radius. Directional, polygon: ignored
 } rtpbr_light_desc;
 
 typedef struct rtpbr_camera_desc {
