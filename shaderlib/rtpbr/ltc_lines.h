@@ -170,13 +170,13 @@ RTPBR_FN float LTC_TubeHalfWidth(rtpbr_float3 P, rtpbr_float3 P1, rtpbr_float3 P
 // rest). Count 0 when the half-width is.
 RTPBR_FN LtcPolygon LTC_TubeQuad(rtpbr_float3 P, rtpbr_float3 P1, rtpbr_float3 P2, float radius) {
     rtpbr_float3 o = cross(P1 - P, P2 - P1);
-    float half = LTC_TubeHalfWidth(P, P1, P2, radius);
+    float halfWidth = LTC_TubeHalfWidth(P, P1, P2, radius);
     LtcPolygon q = LTC_Quad(P1, P2, P2, P1);
-    if (!(half > 0.0f)) {
+    if (!(halfWidth > 0.0f)) {
         q.count = 0;
         return q;
     }
-    rtpbr_float3 h = o * (half * rtpbr_rsqrt(dot(o, o)));
+    rtpbr_float3 h = o * (halfWidth * rtpbr_rsqrt(dot(o, o)));
     return LTC_Quad(P1 + h, P2 + h, P2 - h, P1 - h);
 }
 
