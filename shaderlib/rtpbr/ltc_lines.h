@@ -10,9 +10,10 @@
 // "New Implementation of LTC Line Lights" (the term along the line is -n / (n^2 + t^2), his
 // corrected Eq. 1.23; one angle instead of two arc tangents). A tube of radius r (a capsule:
 // the cylinder around a segment closed by two hemispheres) is a quad for the cylinder (Heitz &
-// Hill's facing quad, its width that of the cylinder's silhouette) integrated as a polygon
-// (ltc.h), plus its two end spheres (ltc_shapes.h), weighted so that the three fill the
-// capsule's silhouette.
+// Hill's facing quad, as wide and as long as the cylinder's silhouette between the points where
+// the two planes through P tangent to it touch the end spheres) integrated as a polygon (ltc.h),
+// plus its two end spheres (ltc_shapes.h), each weighted by the share of its disk outside the
+// quad.
 //
 // Conventions: those of ltc.h and ltc_shapes.h (local frame, ltc1 from the tables, results are
 // form factors in [0, 1]: the fraction of the LTC's mass above the horizon that falls on the
@@ -30,12 +31,13 @@
 //   - LTC_EvaluateTube: approximate. Exact (up to rounding) where one end sphere hides the rest
 //     (seen end-on) and at length 0 (LTC_EvaluateSphere's value), and tends to the line of
 //     width 2r as r -> 0 (relative difference under 2 r / distance). The cylinder's quad spans
-//     its silhouette exactly; the approximations are the ends (each sphere counted whole,
-//     weighted, where only the part outside the quad shows) and the planar geometry of the
-//     weights. Measured against the capsule (Lambert, GGX 0.25 to 0.75): within 7e-3 for far,
-//     long, oblique and broadside tubes and across the horizon, 1.1e-2 at 1.9 radii from the
-//     axis, and up to 0.19 where the length is about the radius and a sharp lobe (GGX 0.25)
-//     looks at the overlap of the two ends (5e-3 under Lambert).
+//     its silhouette exactly; the approximation is the ends: each sphere is counted whole,
+//     weighted by the area share of its disk outside the quad, where only that part shows.
+//     Measured against the capsule (Lambert, GGX 0.25 to 0.75): within 7e-3 for far, long,
+//     oblique, broadside and nearly end-on tubes and across the horizon, 9.5e-3 at 1.9 radii
+//     from the axis; a sharp lobe (GGX 0.25) that looks at the ends errs more: up to 4.4e-2
+//     on tubes seen nearly or half end-on, 0.26 where the length is about the radius (2.3e-3
+//     under Lambert).
 //
 // Public functions
 //   LTC_LineCosineIntegral   the clamped cosine's integral over a unit-width strip along a
@@ -137,11 +139,10 @@ RTPBR_FN float LTC_EvaluateLine(rtpbr_float3 N, rtpbr_float3 V, rtpbr_float3 P, 
 
 // A capsule's silhouette seen from P is the convex hull of its two end spheres' cones (angular
 // radii s1, s2, centres theta apart). Where one cone holds the other, it is that sphere alone:
-// (0, 1, 0) or (0, 0, 1). Otherwise, drawn flat, the hull is the band between the common
-// tangents (the cylinder's quad, shortened by cos beta where the tangents tilt by beta,
-// sin beta = (s1 - s2) / theta) and, outside it, 1/2 + beta / pi of the first disk and
-// 1/2 - beta / pi of the second: (cos beta, 1/2 + beta / pi, 1/2 - beta / pi). At length 0 the
-// first sphere alone; for a thin far tube seen broadside (1, 1/2, 1/2).
+// (0, 1, 0) or (0, 0, 1) (and at length 0 the first). Otherwise it is LTC_TubeQuad (weight 1)
+// and, beyond its ends, the part of each sphere's facing disk outside the quad's end: the
+// weights are those parts' shares of the disks' areas, (1, share1, share2); for a thin far
+// tube seen broadside (1, 1/2, 1/2).
 RTPBR_FN rtpbr_float3 LTC_TubeWeights(rtpbr_float3 P, rtpbr_float3 P1, rtpbr_float3 P2, float radius) {
     rtpbr_float3 c1 = P1 - P, c2 = P2 - P;
     float d1 = length(c1), d2 = length(c2);
@@ -150,8 +151,30 @@ RTPBR_FN rtpbr_float3 LTC_TubeWeights(rtpbr_float3 P, rtpbr_float3 P1, rtpbr_flo
     float theta = rtpbr_atan2(length(cross(c1, c2)), dot(c1, c2));
     if (!(theta > abs(s1 - s2)))
         return s1 >= s2 ? rtpbr_float3(0.0f, 1.0f, 0.0f) : rtpbr_float3(0.0f, 0.0f, 1.0f);
-    float beta = asin(clamp((s1 - s2) / theta, -1.0f, 1.0f));
-    return rtpbr_float3(cos(beta), 0.5f + beta * RTPBR_INV_PI, 0.5f - beta * RTPBR_INV_PI);
+    // The tangent planes touch sphere i at the axial position of P_i, at the chord whose
+    // midpoint is P_i moved toward P by r^2 / d (d: P's distance from the axis); seen from P
+    // that chord cuts the sphere's facing disk (radius rho) at the signed offset u rho toward
+    // the outside, which leaves (acos u - u sqrt(1 - u^2)) / pi of the disk outside the quad.
+    rtpbr_float3 ab = P2 - P1;
+    rtpbr_float3 toP = P - (P1 + ab * (dot(P - P1, ab) / dot(ab, ab)));
+    rtpbr_float3 shift = toP * (radius * radius / max(dot(toP, toP), 1e-30f));
+    rtpbr_float2 u = rtpbr_float2(0.0f, 0.0f);
+    for (int i = 0; i < 2; ++i) {
+        rtpbr_float3 c = i == 0 ? c1 : c2, m = c + shift;
+        float dd = dot(c, c);
+        rtpbr_float3 offset = m * (dd / dot(c, m)) - c;
+        float rho = radius * sqrt(dd / (dd - radius * radius));
+        float side = dot(offset, i == 0 ? -ab : ab) >= 0.0f ? 1.0f : -1.0f;
+        float ui = clamp(side * length(offset) / rho, -1.0f, 1.0f);
+        if (i == 0)
+            u.x = ui;
+        else
+            u.y = ui;
+    }
+    rtpbr_float2 share = (rtpbr_float2(acos(u.x), acos(u.y)) -
+                          u * rtpbr_float2(rtpbr_safe_sqrt(1.0f - u.x * u.x), rtpbr_safe_sqrt(1.0f - u.y * u.y))) *
+                         RTPBR_INV_PI;
+    return rtpbr_float3(1.0f, share.x, share.y);
 }
 
 // The half-width of LTC_TubeQuad: r d / sqrt(d^2 - r^2), d the distance of P from the axis'
@@ -164,20 +187,27 @@ RTPBR_FN float LTC_TubeHalfWidth(rtpbr_float3 P, rtpbr_float3 P1, rtpbr_float3 P
 }
 
 // The quad (world space) that stands for the cylinder of a tube (axis P1 -> P2) seen from P: in
-// the plane of the axis that faces P, across the axis from P1 to P2, of half-width
-// LTC_TubeHalfWidth, so that its long edges lie in the two planes through P tangent to the
-// cylinder: the cylinder's silhouette exactly, cut square at the ends (the end spheres do the
-// rest). Count 0 when the half-width is.
+// the plane of the axis that faces P, of half-width LTC_TubeHalfWidth, so that its long edges
+// lie in the two planes through P tangent to the cylinder, and its corners on the rays from P
+// through the points where those planes touch the end spheres (at P_i's place along the axis:
+// the quad reaches k = d^2 / (d^2 - r^2) times as far from P's foot on the axis). Seen from P,
+// the cylinder's silhouette between the spheres exactly. Count 0 when the half-width is.
 RTPBR_FN LtcPolygon LTC_TubeQuad(rtpbr_float3 P, rtpbr_float3 P1, rtpbr_float3 P2, float radius) {
-    rtpbr_float3 o = cross(P1 - P, P2 - P1);
+    rtpbr_float3 ab = P2 - P1;
+    rtpbr_float3 o = cross(P1 - P, ab);
     float halfWidth = LTC_TubeHalfWidth(P, P1, P2, radius);
     LtcPolygon q = LTC_Quad(P1, P2, P2, P1);
     if (!(halfWidth > 0.0f)) {
         q.count = 0;
         return q;
     }
+    rtpbr_float3 foot = P1 + ab * (dot(P - P1, ab) / dot(ab, ab));
+    rtpbr_float3 toFoot = P - foot;
+    float d2 = dot(toFoot, toFoot);
+    float k = d2 / (d2 - radius * radius);
+    rtpbr_float3 e1 = foot + (P1 - foot) * k, e2 = foot + (P2 - foot) * k;
     rtpbr_float3 h = o * (halfWidth * rtpbr_rsqrt(dot(o, o)));
-    return LTC_Quad(P1 + h, P2 + h, P2 - h, P1 - h);
+    return LTC_Quad(e1 + h, e2 + h, e2 - h, e1 - h);
 }
 
 // The form factor at P (normal N, view V) of the tube (capsule) of the given radius around the
