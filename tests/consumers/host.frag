@@ -22,6 +22,7 @@
 #include "rtpbr/ltc_clipless.h"
 #include "rtpbr/ltc_corrections.h"
 #include "rtpbr/ltc_shapes.h"
+#include "rtpbr/ltc_lines.h"
 #include "rtpbr/ltc_textured.h"
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"

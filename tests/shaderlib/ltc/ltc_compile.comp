@@ -1,7 +1,7 @@
 #version 450
 // Compile check of shaderlib/rtpbr/ltc.h as GLSL (and, with RTPBR_HLSL, as HLSL: see
 // ltc_compile.hlsl). Calls every public function of ltc.h, ltc_anisotropy.h, ltc_clipless.h
-// ltc_shapes.h and ltc_textured.h so that each is type-checked; ltc_corrections.h is compiled beside them
+// ltc_shapes.h, ltc_lines.h and ltc_textured.h so that each is type-checked; ltc_corrections.h is compiled beside them
 // (glslang checks uncalled functions too).
 #extension GL_GOOGLE_include_directive : require
 #include "rtpbr/ltc.h"
@@ -9,6 +9,7 @@
 #include "rtpbr/ltc_clipless.h"
 #include "rtpbr/ltc_corrections.h"
 #include "rtpbr/ltc_shapes.h"
+#include "rtpbr/ltc_lines.h"
 #include "rtpbr/ltc_textured.h"
 layout(local_size_x = 1) in;
 layout(std430, binding = 0) buffer Out { vec4 result[]; };
@@ -63,4 +64,13 @@ void main() {
                                    LTC_InverseMatrix(ltc1), Fe);
     result[5].xyz += uvf + LTC_TextureLookupProjected(LTC_Frame(N, V), P, vec3(-0.5f, 0.5f, 1.0f), vec3(1.0f, 0.0f, 0.0f),
                                                       vec3(0.0f, -1.0f, 0.0f), LTC_InverseMatrix(ltc1));
+    // ltc_lines.h: line and tube (capsule) lights.
+    vec3 L1 = vec3(-1.0f, -0.5f, 1.5f), L2 = vec3(1.0f, 0.5f, 1.2f);
+    mat3 lineMinv = LTC_InverseMatrix(ltc1);
+    float lineSum = LTC_EvaluateLine(N, V, P, L1, L2, 0.05f, ltc1) + LTC_LineCosineIntegral(L1, L2) +
+                 LTC_LineWidthFactor(lineMinv, L1, L2) + LTC_IntegrateLineLocal(lineMinv, L1, L2, 0.05f);
+    vec3 tubeWeights = LTC_TubeWeights(P, L1, L2, 0.1f);
+    LtcPolygon tubeQuad = LTC_TubeQuad(P, L1, L2, 0.1f);
+    result[6] = vec4(lineSum, LTC_EvaluateTube(N, V, P, L1, L2, 0.1f, ltc1) + LTC_TubeHalfWidth(P, L1, L2, 0.1f),
+                     tubeWeights.x + tubeWeights.y, tubeQuad.v[2].x);
 }

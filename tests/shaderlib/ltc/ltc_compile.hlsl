@@ -1,11 +1,12 @@
 // Compile check of shaderlib/rtpbr/ltc.h, ltc_anisotropy.h, ltc_clipless.h, ltc_corrections.h,
-// ltc_shapes.h and ltc_textured.h as HLSL (glslang's HLSL front end).
+// ltc_shapes.h, ltc_lines.h and ltc_textured.h as HLSL (glslang's HLSL front end).
 #define RTPBR_HLSL 1
 #include "rtpbr/ltc.h"
 #include "rtpbr/ltc_anisotropy.h"
 #include "rtpbr/ltc_clipless.h"
 #include "rtpbr/ltc_corrections.h"
 #include "rtpbr/ltc_shapes.h"
+#include "rtpbr/ltc_lines.h"
 #include "rtpbr/ltc_textured.h"
 RWStructuredBuffer<float4> result : register(u0);
 [numthreads(1, 1, 1)]
@@ -60,4 +61,13 @@ void main() {
                                    LTC_InverseMatrix(ltc1), Fe);
     result[5].xyz += uvf + LTC_TextureLookupProjected(LTC_Frame(N, V), P, float3(-0.5f, 0.5f, 1.0f), float3(1.0f, 0.0f, 0.0f),
                                                       float3(0.0f, -1.0f, 0.0f), LTC_InverseMatrix(ltc1));
+    // ltc_lines.h: line and tube (capsule) lights.
+    float3 L1 = float3(-1.0f, -0.5f, 1.5f), L2 = float3(1.0f, 0.5f, 1.2f);
+    float3x3 lineMinv = LTC_InverseMatrix(ltc1);
+    float lineSum = LTC_EvaluateLine(N, V, P, L1, L2, 0.05f, ltc1) + LTC_LineCosineIntegral(L1, L2) +
+                 LTC_LineWidthFactor(lineMinv, L1, L2) + LTC_IntegrateLineLocal(lineMinv, L1, L2, 0.05f);
+    float3 tubeWeights = LTC_TubeWeights(P, L1, L2, 0.1f);
+    LtcPolygon tubeQuad = LTC_TubeQuad(P, L1, L2, 0.1f);
+    result[6] = float4(lineSum, LTC_EvaluateTube(N, V, P, L1, L2, 0.1f, ltc1) + LTC_TubeHalfWidth(P, L1, L2, 0.1f),
+                     tubeWeights.x + tubeWeights.y, tubeQuad.v[2].x);
 }
