@@ -7,6 +7,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace rtpbr_oracle {
@@ -118,6 +119,87 @@ void setSurfaceFilter(RTCScene scene, unsigned id, const SurfaceFilter *f) {
     rtcCommitGeometry(g);
 }
 
+// ---- disk lights: an Embree user geometry of one primitive (DiskGeometry) ----
+
+void diskBounds(const RTCBoundsFunctionArguments *args) {
+    const DiskShape &D = static_cast<const DiskGeometry *>(args->geometryUserPtr)->shape;
+    // Along axis k the disk reaches r sqrt(1 - n_k^2) from its centre; rounded outwards.
+    float lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        const double e = D.radius * std::sqrt(std::max(0.0, 1.0 - D.n[k] * D.n[k]));
+        lo[k] = std::nextafter(float(D.centre[k] - e), -INFINITY);
+        hi[k] = std::nextafter(float(D.centre[k] + e), INFINITY);
+    }
+    RTCBounds *b = args->bounds_o;
+    b->lower_x = lo[0];
+    b->lower_y = lo[1];
+    b->lower_z = lo[2];
+    b->upper_x = hi[0];
+    b->upper_y = hi[1];
+    b->upper_z = hi[2];
+}
+
+// Does ray i of a packet meet the disk within [tnear, tfar] (not its back, if culled)? *t,
+// *x, *y: where (the hit distance in float, within the interval).
+bool diskHit(const DiskGeometry &g, RTCRayN *ray, unsigned N, unsigned i, float *t, float *x, float *y) {
+    const glm::dvec3 o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
+    const glm::dvec3 w(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
+    if (g.cullBackFaces && glm::dot(w, g.shape.n) > 0.0)
+        return false;
+    const float tnear = RTCRayN_tnear(ray, N, i), tfar = RTCRayN_tfar(ray, N, i);
+    double s, dx, dy;
+    if (!g.shape.intersect(o, w, double(tnear), double(tfar), &s, &dx, &dy))
+        return false;
+    *t = glm::clamp(float(s), tnear, tfar);
+    *x = float(dx);
+    *y = float(dy);
+    return true;
+}
+
+void diskIntersect(const RTCIntersectFunctionNArguments *args) {
+    const auto &g = *static_cast<const DiskGeometry *>(args->geometryUserPtr);
+    RTCRayN *ray = RTCRayHitN_RayN(args->rayhit, args->N);
+    RTCHitN *hit = RTCRayHitN_HitN(args->rayhit, args->N);
+    for (unsigned i = 0; i < args->N; i++) {
+        float t, x, y;
+        if (args->valid[i] != -1 || !diskHit(g, ray, args->N, i, &t, &x, &y))
+            continue;
+        RTCRayN_tfar(ray, args->N, i) = t;
+        RTCHitN_Ng_x(hit, args->N, i) = float(g.shape.n.x);
+        RTCHitN_Ng_y(hit, args->N, i) = float(g.shape.n.y);
+        RTCHitN_Ng_z(hit, args->N, i) = float(g.shape.n.z);
+        RTCHitN_u(hit, args->N, i) = x;
+        RTCHitN_v(hit, args->N, i) = y;
+        RTCHitN_primID(hit, args->N, i) = args->primID;
+        RTCHitN_geomID(hit, args->N, i) = args->geomID;
+        RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+    }
+}
+
+void diskOccluded(const RTCOccludedFunctionNArguments *args) {
+    const auto &g = *static_cast<const DiskGeometry *>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; i++) {
+        float t, x, y;
+        if (args->valid[i] == -1 && diskHit(g, args->ray, args->N, i, &t, &x, &y))
+            RTCRayN_tfar(args->ray, args->N, i) = -INFINITY;
+    }
+}
+
+unsigned attachDisk(RTCDevice device, RTCScene scene, DiskGeometry *d) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    if (!g)
+        return RTC_INVALID_GEOMETRY_ID;
+    rtcSetGeometryUserPrimitiveCount(g, 1);
+    rtcSetGeometryUserData(g, d);
+    rtcSetGeometryBoundsFunction(g, diskBounds, d);
+    rtcSetGeometryIntersectFunction(g, diskIntersect);
+    rtcSetGeometryOccludedFunction(g, diskOccluded);
+    rtcCommitGeometry(g);
+    unsigned id = rtcAttachGeometry(scene, g);
+    rtcReleaseGeometry(g);
+    return id;
+}
+
 unsigned attachLight(RTCDevice device, RTCScene scene, const rtpbr_gltf_light &L) {
     float pos[3 * RTPBR_GLTF_MAX_POLYGON_VERTICES];
     uint32_t idx[3 * RTPBR_GLTF_MAX_POLYGON_VERTICES];
@@ -185,15 +267,25 @@ Result buildEmbree(const rtpbr_gltf_scene &scene, const std::vector<Texture> &te
         }
     }
     for (uint32_t l = 0; l < scene.light_count; l++) {
-        unsigned id = attachLight(es->device, es->full, scene.lights[l]);
-        unsigned id2 = attachLight(es->device, es->lightsOnly, scene.lights[l]);
+        const rtpbr_gltf_light &L = scene.lights[l];
+        const bool singleSided = L.material >= 0 && uint32_t(L.material) < scene.material_count &&
+                                 !scene.materials[L.material].double_sided;
+        unsigned id, id2;
+        if (L.shape == RTPBR_GLTF_LIGHT_DISK) {
+            // Back faces dropped in `full` only, as the light polygons' filters are.
+            es->disks.push_back(DiskGeometry{DiskShape::of(L), singleSided});
+            id = attachDisk(es->device, es->full, &es->disks.back());
+            es->disks.push_back(DiskGeometry{DiskShape::of(L), false});
+            id2 = attachDisk(es->device, es->lightsOnly, &es->disks.back());
+        } else {
+            id = attachLight(es->device, es->full, L);
+            id2 = attachLight(es->device, es->lightsOnly, L);
+        }
         if (id == RTC_INVALID_GEOMETRY_ID || id2 == RTC_INVALID_GEOMETRY_ID)
             break;
         es->fullGeoms.resize(std::max<size_t>(es->fullGeoms.size(), id + 1));
         es->fullGeoms[id] = {true, l};
-        const rtpbr_gltf_light &L = scene.lights[l];
-        if (L.material >= 0 && uint32_t(L.material) < scene.material_count &&
-            !scene.materials[L.material].double_sided) {
+        if (singleSided && L.shape != RTPBR_GLTF_LIGHT_DISK) {
             SurfaceFilter f;
             f.cullBackFaces = true;
             std::memcpy(f.lightNormal, L.facts.normal, sizeof f.lightNormal);

@@ -40,6 +40,14 @@ struct SurfaceFilter {
     const Texture *alphaTexture = nullptr; // the base colour texture; null: none
 };
 
+// A disk light's Embree user geometry (one primitive): its shape, and whether a ray that meets
+// its back passes through it (a single-sided emissive material, as a light polygon's filter
+// does). A hit's u, v are the point's disk coordinates (DiskShape::point).
+struct DiskGeometry {
+    DiskShape shape;
+    bool cullBackFaces = false;
+};
+
 struct EmbreeScene {
     RTCDevice device = nullptr;
     RTCScene full = nullptr;
@@ -47,6 +55,7 @@ struct EmbreeScene {
     std::vector<GeometryRecord> fullGeoms;  // by geomID in `full`
     std::vector<uint32_t> lightOnlyGeoms;   // light index by geomID in `lightsOnly`
     std::deque<SurfaceFilter> filters;      // user data of the filters (stable addresses)
+    std::deque<DiskGeometry> disks;         // user data of the disk lights' geometries
     DeviceErrors errors;
 
     ~EmbreeScene() {
@@ -59,12 +68,13 @@ struct EmbreeScene {
     }
 };
 
-// Builds `full` (surfaces + light polygons) and `lightsOnly` (light polygons, for
-// --no-shadows); the first device error, if any, becomes *error. In `full`, the surfaces of
-// single-sided materials (and light polygons of single-sided emissive materials) carry
-// intersection and occlusion filters that drop back-face hits, and the surfaces of MASK and
-// BLEND materials filters that apply their alpha (SurfaceFilter), for camera, bounce and
-// shadow rays alike. `textures` (the scene's, by loader index) must outlive *es.
+// Builds `full` (surfaces + lights) and `lightsOnly` (lights, for --no-shadows); a light is its
+// polygon's triangles, or a disk light (RTPBR_GLTF_LIGHT_DISK) the disk itself (DiskGeometry);
+// the first device error, if any, becomes *error. In `full`, the surfaces of single-sided
+// materials (and lights of single-sided emissive materials) drop back-face hits (a filter; a
+// disk's own test), and the surfaces of MASK and BLEND materials carry filters that apply
+// their alpha (SurfaceFilter), for camera, bounce and shadow rays alike. `textures` (the
+// scene's, by loader index) must outlive *es.
 Result buildEmbree(const rtpbr_gltf_scene &scene, const std::vector<Texture> &textures, EmbreeScene *es,
                    std::string *error);
 

@@ -79,22 +79,73 @@ dvec3 sampleCap(dvec3 axis, dvec3 t, dvec3 b, double oneMinusCosMax, double u1, 
     return glm::normalize(cosTheta * axis + sinTheta * (std::cos(phi) * t + std::sin(phi) * b));
 }
 
+// Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square": (u1, u2) in [0, 1)^2 to
+// the unit disk, preserving area (so uniform in, uniform out), by concentric squares to circles.
+glm::dvec2 concentricDisk(double u1, double u2) {
+    const double a = 2.0 * u1 - 1.0, b = 2.0 * u2 - 1.0;
+    if (a == 0.0 && b == 0.0)
+        return glm::dvec2(0.0);
+    double r, phi;
+    if (std::fabs(a) > std::fabs(b)) {
+        r = a;
+        phi = (kPi / 4.0) * (b / a);
+    } else {
+        r = b;
+        phi = kPi / 2.0 - (kPi / 4.0) * (a / b);
+    }
+    return glm::dvec2(r * std::cos(phi), r * std::sin(phi));
+}
+
 } // namespace
+
+DiskShape DiskShape::of(const rtpbr_gltf_light &L) {
+    DiskShape D;
+    D.centre = dvec3(L.facts.center[0], L.facts.center[1], L.facts.center[2]);
+    D.n = glm::normalize(dvec3(L.facts.normal[0], L.facts.normal[1], L.facts.normal[2]));
+    orthonormalBasis(D.n, &D.t, &D.b);
+    D.radius = double(L.radius);
+    return D;
+}
+
+bool DiskShape::intersect(dvec3 o, dvec3 w, double sMin, double sMax, double *s, double *x, double *y) const {
+    const double wn = glm::dot(w, n);
+    if (wn == 0.0)
+        return false;
+    const dvec3 fromCentre = o - centre;
+    const double hit = -glm::dot(fromCentre, n) / wn;
+    if (!(hit >= sMin && hit <= sMax))
+        return false;
+    const dvec3 q = fromCentre + hit * w;
+    const double qx = glm::dot(q, t), qy = glm::dot(q, b);
+    if (!(qx * qx + qy * qy <= radius * radius))
+        return false;
+    *s = hit;
+    *x = qx;
+    *y = qy;
+    return true;
+}
 
 LightSet::LightSet(const rtpbr_gltf_scene &scene, LightSampling mode) : mode_(mode) {
     double total = 0.0;
     for (uint32_t i = 0; i < scene.light_count; i++) {
         const rtpbr_gltf_light &s = scene.lights[i];
         Light L;
-        for (uint32_t k = 0; k < s.vertex_count && k < RTPBR_GLTF_MAX_POLYGON_VERTICES; k++)
-            L.v.push_back(dvec3(s.vertices[k][0], s.vertices[k][1], s.vertices[k][2]));
-        // The loader's derived facts (rtpbr_gltf_polygon_facts), read, not derived again.
-        L.n = glm::normalize(dvec3(s.facts.normal[0], s.facts.normal[1], s.facts.normal[2]));
         L.radiance = glm::vec3(s.radiance[0], s.radiance[1], s.radiance[2]);
         L.twoSided = s.two_sided;
-        L.area = double(s.facts.area);
-        for (size_t k = 1; k + 1 < L.v.size(); k++)
-            L.triArea.push_back(double(s.facts.fan_area[k - 1]));
+        if (s.shape == RTPBR_GLTF_LIGHT_DISK) { // the disk itself, not its octagon
+            L.isDisk = true;
+            L.disk = DiskShape::of(s);
+            L.n = L.disk.n;
+            L.area = kPi * L.disk.radius * L.disk.radius;
+        } else {
+            for (uint32_t k = 0; k < s.vertex_count && k < RTPBR_GLTF_MAX_POLYGON_VERTICES; k++)
+                L.v.push_back(dvec3(s.vertices[k][0], s.vertices[k][1], s.vertices[k][2]));
+            // The loader's derived facts (rtpbr_gltf_polygon_facts), read, not derived again.
+            L.n = glm::normalize(dvec3(s.facts.normal[0], s.facts.normal[1], s.facts.normal[2]));
+            L.area = double(s.facts.area);
+            for (size_t k = 1; k + 1 < L.v.size(); k++)
+                L.triArea.push_back(double(s.facts.fan_area[k - 1]));
+        }
         double power = double(std::max(luminance(L.radiance), 0.0f)) * L.area * (L.twoSided ? 2.0 : 1.0);
         if (!(power > 0.0) || !std::isfinite(power))
             power = 0.0;
@@ -115,7 +166,14 @@ double LightSet::selectionPdf(uint32_t l) const {
 }
 
 bool LightSet::facing(const Light &L, dvec3 p) const {
-    return L.twoSided || glm::dot(p - L.v[0], L.n) > 0.0;
+    return L.twoSided || glm::dot(p - (L.isDisk ? L.disk.centre : L.v[0]), L.n) > 0.0;
+}
+
+double LightSet::areaDensity(const Light &L, double sel, dvec3 dir, double dist) {
+    const double cosL = std::fabs(glm::dot(dir, L.n));
+    if (!(cosL > 0.0) || !(L.area > 0.0))
+        return 0.0;
+    return sel * dist * dist / (cosL * L.area);
 }
 
 glm::vec3 LightSet::emitted(uint32_t l, glm::vec3 wi) const {
@@ -150,6 +208,8 @@ bool LightSet::sample(glm::vec3 pf, float uLight, float u1, float u2, LightSampl
     dvec3 p(pf);
     if (!facing(L, p))
         return false;
+    if (L.isDisk)
+        return sampleDisk(L, l, p, u1, u2, s);
     double omega[RTPBR_GLTF_MAX_POLYGON_VERTICES];
     double total = mode_ == LightSampling::SolidAngle ? fanSolidAngles(L, p, omega) : 0.0;
     bool bySolidAngle = mode_ == LightSampling::SolidAngle && total >= kMinSolidAngle;
@@ -209,6 +269,22 @@ bool LightSet::sample(glm::vec3 pf, float uLight, float u1, float u2, LightSampl
     return s->pdf > 0.0f && std::isfinite(s->pdf);
 }
 
+// A point uniform in the disk's area (Shirley & Chiu's map of (u1, u2)), seen from p.
+bool LightSet::sampleDisk(const Light &L, uint32_t l, dvec3 p, float u1, float u2, LightSample *s) const {
+    const glm::dvec2 d = concentricDisk(double(u1), double(u2)) * L.disk.radius;
+    const dvec3 toPoint = L.disk.point(d.x, d.y) - p;
+    const double dist = glm::length(toPoint);
+    if (!(dist > 0.0))
+        return false;
+    const dvec3 dir = toPoint / dist;
+    s->wi = glm::vec3(dir);
+    s->distance = float(dist);
+    s->light = l;
+    s->radiance = emitted(l, s->wi);
+    s->pdf = float(areaDensity(L, selectionPdf(l), dir, dist)); // as pdf() computes it
+    return s->pdf > 0.0f && std::isfinite(s->pdf);
+}
+
 float LightSet::pdf(glm::vec3 pf, uint32_t l, glm::vec3 wi, float distance) const {
     if (l >= lights_.size())
         return 0.0f;
@@ -217,16 +293,13 @@ float LightSet::pdf(glm::vec3 pf, uint32_t l, glm::vec3 wi, float distance) cons
     if (!facing(L, p))
         return 0.0f;
     double sel = selectionPdf(l);
-    if (mode_ == LightSampling::SolidAngle) {
+    if (mode_ == LightSampling::SolidAngle && !L.isDisk) {
         double omega[RTPBR_GLTF_MAX_POLYGON_VERTICES];
         double total = fanSolidAngles(L, p, omega);
         if (total >= kMinSolidAngle)
             return float(sel / total);
     }
-    double cosL = std::fabs(glm::dot(dvec3(wi), L.n));
-    if (!(cosL > 0.0) || !(L.area > 0.0))
-        return 0.0f;
-    return float(sel * double(distance) * double(distance) / (cosL * L.area));
+    return float(areaDensity(L, sel, dvec3(wi), double(distance)));
 }
 
 // ---- punctual lights ---------------------------------------------------------------------------

@@ -1,14 +1,17 @@
-// rtpbr oracle: sampling the polygonal area lights; the punctual (delta) lights.
+// rtpbr oracle: sampling the area lights (polygons and disks); the punctual (delta) lights.
 //
-// A light is a convex planar polygon (3..8 vertices) emitting constant radiance from its
-// front face (both faces if two-sided). One light is picked with probability proportional
-// to its power; a point on it is then sampled
-//   - SolidAngle (default): uniformly in the solid angle the polygon subtends: the fan
+// A light is a convex planar polygon (3..8 vertices) or a disk (RTPBR_GLTF_LIGHT_DISK: the
+// true disk, not the equal-area octagon the loader also gives), emitting constant radiance
+// from its front face (both faces if two-sided). One light is picked with probability
+// proportional to its power; a point on it is then sampled
+//   - SolidAngle (default): a polygon uniformly in the solid angle it subtends: the fan
 //     triangles are picked by solid angle and each is sampled by Arvo 1995, "Stratified
 //     Sampling of Spherical Triangles"; polygons subtending less than kMinSolidAngle fall
 //     back to area sampling (Arvo's formulas lose precision there, and both are equally
 //     good for small lights);
-//   - Area: uniformly in area (the fan triangles by area), for comparison.
+//   - Area: a polygon uniformly in area (the fan triangles by area), for comparison.
+// A disk is sampled uniformly in area in either mode (Shirley & Chiu's concentric map), its
+// density converted to solid angle (distance^2 / (cos area)).
 // The density of a direction is a deterministic function of (point, light, direction),
 // which multiple importance sampling needs (pdf()).
 #ifndef RTPBR_ORACLE_LIGHTS_H
@@ -23,6 +26,22 @@
 namespace rtpbr_oracle {
 
 enum class LightSampling { SolidAngle, Area };
+
+// A disk light (RTPBR_GLTF_LIGHT_DISK, EXT_lights_area "disk") as itself: the points
+// centre + x t + y b with x^2 + y^2 <= radius^2, (t, b, n) orthonormal, n its emitting side.
+// The loader's facts give the centre and n; the frame is Duff et al.'s basis about n. Both the
+// Embree geometry (embree_scene.h) and the light sampling use it, so a hit's disk coordinates
+// and a sample's point are the same disk's.
+struct DiskShape {
+    glm::dvec3 centre{0.0}, n{0.0}, t{0.0}, b{0.0};
+    double radius = 0.0;
+
+    static DiskShape of(const rtpbr_gltf_light &L);
+    glm::dvec3 point(double x, double y) const { return centre + x * t + y * b; }
+    // The ray o + s w (any w != 0; either face) meets the disk at s in [sMin, sMax]: *s and the
+    // point's disk coordinates (*x, *y), in double.
+    bool intersect(glm::dvec3 o, glm::dvec3 w, double sMin, double sMax, double *s, double *x, double *y) const;
+};
 
 struct LightSample {
     glm::vec3 wi;       // unit direction from the shading point to the light point
@@ -45,17 +64,25 @@ public:
     bool sample(glm::vec3 p, float uLight, float u1, float u2, LightSample *s) const;
     // Density (solid angle, with selection) of sampling direction wi towards light l from p.
     float pdf(glm::vec3 p, uint32_t l, glm::vec3 wi, float distance) const;
+    // Light l's disk; nullptr for a polygon.
+    const DiskShape *disk(uint32_t l) const { return lights_[l].isDisk ? &lights_[l].disk : nullptr; }
 
 private:
     struct Light {
-        std::vector<glm::dvec3> v; // vertices
+        std::vector<glm::dvec3> v; // vertices (a disk: none)
         glm::dvec3 n;              // unit normal of the emitting face
         glm::vec3 radiance;
         bool twoSided;
-        double area;
+        double area;                 // a disk's: pi r^2
         std::vector<double> triArea; // fan triangles (v0, v[i], v[i+1])
+        bool isDisk = false;
+        DiskShape disk;
     };
     bool facing(const Light &L, glm::dvec3 p) const;
+    // The density of the point at distance dist along dir on L when L is sampled uniformly in
+    // area, in solid angle, times the selection probability sel.
+    static double areaDensity(const Light &L, double sel, glm::dvec3 dir, double dist);
+    bool sampleDisk(const Light &L, uint32_t l, glm::dvec3 p, float u1, float u2, LightSample *s) const;
     // Solid angles of the fan triangles seen from p; returns their sum.
     double fanSolidAngles(const Light &L, glm::dvec3 p, double *omega) const;
     double selectionPdf(uint32_t l) const;

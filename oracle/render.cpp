@@ -391,7 +391,15 @@ private:
         // primitive's own surface, with its texture coordinates, normals and tangents.
         const bool lightTriangle = g.isLight && scene_.lights[g.index].triangle >= 0 &&
                                    scene_.lights[g.index].primitive >= 0;
-        if (g.isLight && !lightTriangle) {
+        const DiskShape *disk = g.isLight ? lights_.disk(g.index) : nullptr;
+        if (disk) { // the hit's u, v: its disk coordinates (DiskGeometry)
+            const rtpbr_gltf_light &L = scene_.lights[g.index];
+            sp.light = int32_t(g.index);
+            sp.material = L.material;
+            sp.ng = vec3(disk->n);
+            sp.ns = sp.ng;
+            sp.p = vec3(disk->point(double(h.u), double(h.v)));
+        } else if (g.isLight && !lightTriangle) {
             const rtpbr_gltf_light &L = scene_.lights[g.index];
             p0 = glm::make_vec3(L.vertices[0]);
             p1 = glm::make_vec3(L.vertices[h.primID + 1]);

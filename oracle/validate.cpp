@@ -248,6 +248,30 @@ Result validateScene(const rtpbr_gltf_scene &scene, const RenderSettings &s, std
             *error = fmt("light %u: material %d out of range", l, L.material);
             return Result::InvalidScene;
         }
+        // The shape's bits as stored (as a punctual light's type, which C++ may not read as the
+        // enum when they are no enumerator). A disk is rendered as itself (its centre, normal
+        // and radius), not as its octagon.
+        int shape = 0;
+        static_assert(sizeof shape == sizeof L.shape, "rtpbr_gltf_light_shape is an int");
+        std::memcpy(&shape, &L.shape, sizeof shape);
+        if (shape == RTPBR_GLTF_LIGHT_DISK) {
+            const float *n = L.facts.normal, *c = L.facts.center;
+            const double len = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+            bool inside = true; // the disk within the extent: each coordinate of its centre +- r
+            for (int k = 0; k < 3; k++)
+                inside = inside && std::fabs(double(c[k])) + double(L.radius) <= double(kMaxSceneCoordinate);
+            if (!(L.radius > 0.0f) || !finite(L.radius) || !finite3(c) || !inside || !(std::fabs(len - 1.0) < 1e-3)) {
+                *error = fmt("light %u (disk): radius %g, centre (%g, %g, %g) and normal (%g, %g, %g): need a finite "
+                             "radius > 0, the disk within the oracle's scene extent of +-%g and a unit normal",
+                             l, double(L.radius), double(L.facts.center[0]), double(L.facts.center[1]),
+                             double(L.facts.center[2]), double(n[0]), double(n[1]), double(n[2]),
+                             double(kMaxSceneCoordinate));
+                return Result::InvalidScene;
+            }
+        } else if (shape != RTPBR_GLTF_LIGHT_POLYGON) {
+            *error = fmt("light %u: unknown shape %d (polygon or disk)", l, shape);
+            return Result::InvalidScene;
+        }
         if (L.radiance[0] > 0.0f || L.radiance[1] > 0.0f || L.radiance[2] > 0.0f)
             emits = true;
     }

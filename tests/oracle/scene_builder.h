@@ -94,6 +94,35 @@ struct SceneBuilder {
         lights.push_back(L);
     }
 
+    // An EXT_lights_area disk as the loader fills it (scene_lights.cpp): shape DISK, the radius,
+    // the equal-area octagon (diskOctagon) as its vertices and their facts (the octagon's
+    // centre and normal are the disk's); material -1 = black.
+    void disk(glm::vec3 centre, glm::vec3 normal, float radius, glm::vec3 radiance, bool twoSided, int32_t mat = -1) {
+        light(diskOctagon(centre, normal, radius), radiance, twoSided, mat);
+        lights.back().shape = RTPBR_GLTF_LIGHT_DISK;
+        lights.back().radius = radius;
+    }
+
+    // The regular octagon of the disk's area (2 sqrt(2) R^2 = pi r^2) the loader gives a disk,
+    // counter-clockwise about normal (its emitting side), a vertex along diskTangent(normal).
+    static std::vector<glm::vec3> diskOctagon(glm::vec3 centre, glm::vec3 normal, float radius) {
+        const double pi = 3.14159265358979323846;
+        const glm::dvec3 n = glm::normalize(glm::dvec3(normal)), t = diskTangent(normal), b = glm::cross(n, t);
+        const double R = double(radius) * std::sqrt(pi / (2.0 * std::sqrt(2.0)));
+        std::vector<glm::vec3> v;
+        for (int k = 0; k < 8; k++) {
+            const double a = 2.0 * pi * k / 8.0;
+            v.push_back(glm::vec3(glm::dvec3(centre) + R * (std::cos(a) * t + std::sin(a) * b)));
+        }
+        return v;
+    }
+    // A unit vector orthogonal to normal: where diskOctagon puts its first vertex.
+    static glm::dvec3 diskTangent(glm::vec3 normal) {
+        const glm::dvec3 n = glm::normalize(glm::dvec3(normal));
+        const glm::dvec3 a = std::fabs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+        return glm::normalize(glm::cross(a, n));
+    }
+
     // A KHR_lights_punctual light as the loader fills it (rtpbr_gltf_punctual_light):
     // direction is normalised here; range 0 = infinite; cone angles for spots only.
     void punctual(rtpbr_gltf_punctual_type type, glm::vec3 position, glm::vec3 direction, glm::vec3 intensity,
@@ -147,6 +176,22 @@ struct SceneBuilder {
         return scene;
     }
 };
+
+// The irradiance at x (surface normal n) from a polygon of radiance L, by Lambert 1760's
+// polygon form factor (e.g. Arvo 1995, "Applications of Irradiance Tensors", eq. 1):
+// E(x) = L/2 sum_i angle(v_i, v_{i+1}) n . normalize(v_i x v_{i+1}), v_i the directions from x
+// to the vertices; the absolute value takes care of orientation. The polygon wholly above the
+// horizon.
+inline double polygonIrradiance(glm::dvec3 x, glm::dvec3 n, const std::vector<glm::vec3> &poly, double L) {
+    double s = 0.0;
+    for (size_t i = 0; i < poly.size(); i++) {
+        glm::dvec3 a = glm::normalize(glm::dvec3(poly[i]) - x);
+        glm::dvec3 b = glm::normalize(glm::dvec3(poly[(i + 1) % poly.size()]) - x);
+        double angle = std::acos(glm::clamp(glm::dot(a, b), -1.0, 1.0));
+        s += angle * glm::dot(n, glm::normalize(glm::cross(a, b)));
+    }
+    return 0.5 * L * std::fabs(s);
+}
 
 // Camera ray direction through pixel coordinates (x, y) in [0, W] x [0, H] as the oracle
 // computes it (pinhole, yfov vertical, image aspect W / H); used by tests to integrate

@@ -1,6 +1,7 @@
 // A Lambertian plane under a polygonal light: the rendered radiance is albedo / pi times the
-// irradiance from Lambert's closed-form polygon formula, per pixel within the oracle's own
-// standard error, for both light sampling strategies; --no-shadows ignores an occluder.
+// irradiance from Lambert's closed-form polygon formula (polygonIrradiance, scene_builder.h),
+// per pixel within the oracle's own standard error, for both light sampling strategies;
+// --no-shadows ignores an occluder.
 #include "test_common.h"
 
 #include "oracle.h"
@@ -16,20 +17,6 @@ constexpr float kRadiance = 5.0f;
 const std::vector<glm::vec3> kLight = {
     // A convex pentagon in the plane y = 1.2, counter-clockwise seen from below: emits down.
     {-0.5f, 1.2f, -0.4f}, {0.6f, 1.2f, -0.5f}, {0.8f, 1.2f, 0.3f}, {0.1f, 1.2f, 0.7f}, {-0.6f, 1.2f, 0.4f}};
-
-// Lambert 1760 / the polygon form factor (e.g. Arvo 1995, "Applications of Irradiance
-// Tensors", eq. 1): E(x) = L/2 sum_i angle(v_i, v_{i+1}) n . normalize(v_i x v_{i+1}), with
-// v_i the directions from x to the vertices; the absolute value takes care of orientation.
-double polygonIrradiance(glm::dvec3 x, glm::dvec3 n, const std::vector<glm::vec3> &poly, double L) {
-    double s = 0.0;
-    for (size_t i = 0; i < poly.size(); i++) {
-        glm::dvec3 a = glm::normalize(glm::dvec3(poly[i]) - x);
-        glm::dvec3 b = glm::normalize(glm::dvec3(poly[(i + 1) % poly.size()]) - x);
-        double angle = std::acos(glm::clamp(glm::dot(a, b), -1.0, 1.0));
-        s += angle * glm::dot(n, glm::normalize(glm::cross(a, b)));
-    }
-    return 0.5 * L * std::fabs(s);
-}
 
 struct Scene {
     SceneBuilder b;

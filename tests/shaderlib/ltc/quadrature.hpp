@@ -1,5 +1,6 @@
-// Gauss-Legendre quadrature for the LTC shape tests (test_ltc_shapes.cpp, test_area_light.cpp):
-// their noise-free references over disks, caps and ellipses.
+// Gauss-Legendre quadrature for the LTC shape tests (test_ltc_shapes.cpp, test_area_light.cpp)
+// and the oracle's disk lights (tests/oracle/test_disk_light.cpp): their noise-free references
+// over disks, caps and ellipses.
 #pragma once
 
 #include <cmath>
