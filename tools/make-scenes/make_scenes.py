@@ -270,6 +270,23 @@ class GltfBuilder:
         self.node(spec.get("name", "light%d" % (len(ext["lights"]) - 1)), translation=t, rotation=q)
         self.doc["nodes"][-1]["extensions"] = {"KHR_lights_punctual": {"light": len(ext["lights"]) - 1}}
 
+    def area_light(self, spec):
+        """An EXT_lights_area light (the draft of KhronosGroup/glTF pull request 2525;
+        docs/materials.md) on a node of its own: spec has type (disk, rect), color, intensity
+        (nits), size (a disk's diameter, a rect's height), a rect's aspect, translation and a
+        target the light faces (it emits down the node's -Z)."""
+        light = {"type": spec["type"], "color": [float(c) for c in spec.get("color", [1, 1, 1])],
+                 "intensity": float(spec["intensity"]), "size": float(spec.get("size", 1.0))}
+        if spec["type"] == "rect":
+            light["rect"] = {"aspect": float(spec.get("aspect", 1.0))}
+        ext = self.doc.setdefault("extensions", {}).setdefault("EXT_lights_area", {"lights": []})
+        ext["lights"].append(light)
+        self.extensions.add("EXT_lights_area")
+        t = spec.get("translation", [0.0, 0.0, 0.0])
+        q = look_at_quaternion(t, spec["target"], tuple(spec.get("up", (0.0, 1.0, 0.0))))
+        self.node(spec.get("name", "area_light%d" % (len(ext["lights"]) - 1)), translation=t, rotation=q)
+        self.doc["nodes"][-1]["extensions"] = {"EXT_lights_area": {"light": len(ext["lights"]) - 1}}
+
     def camera(self, spec):
         cam = {"type": "perspective", "perspective": {
             "yfov": math.radians(spec.get("yfov_deg", 45.0)), "znear": spec.get("znear", 0.05),
@@ -308,6 +325,8 @@ def build_scene(name, spec, out_dir):
         b.camera(cam)
     for light in spec.get("punctual_lights", []):
         b.punctual_light(light)
+    for light in spec.get("area_lights", []):
+        b.area_light(light)
     for i, obj in enumerate(spec["objects"]):
         shape = obj["shape"]
         label = obj.get("name", "%s%d" % (shape, i))
