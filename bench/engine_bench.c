@@ -62,9 +62,11 @@ static int parse_sizes(const char *text, int (*out)[2], int max)
 //              squares' centres, of the squares' intensity seen head-on (radiance x area):
 //              the cost of a punctual light (issue 30);
 //   spheres    the same with a radius: spheres of the squares' area (pi r^2 = the square's)
-//              and intensity (the spheres' lighting variants: issue 30).
-typedef enum bench_scene { SCENE_BENCHMARK, SCENE_FLOOR, SCENE_FULL, SCENE_POINTS, SCENE_SPHERES, SCENE_COUNT } bench_scene;
-static const char *const scene_names[SCENE_COUNT] = {"benchmark", "floor", "full", "points", "spheres"};
+//              and intensity (the spheres' lighting variants: issue 30);
+//   disks      the benchmark's squares as disks of their area, radiance and facing (the
+//              spheres' lighting variants, AreaLight_AddDisk: issue 30).
+typedef enum bench_scene { SCENE_BENCHMARK, SCENE_FLOOR, SCENE_FULL, SCENE_POINTS, SCENE_SPHERES, SCENE_DISKS, SCENE_COUNT } bench_scene;
+static const char *const scene_names[SCENE_COUNT] = {"benchmark", "floor", "full", "points", "spheres", "disks"};
 
 static void square_light(rtpbr_light_desc *light, float x, float y, float z, float s, int up)
 {
@@ -115,6 +117,10 @@ static rtpbr_result make_scene(rtpbr_context *ctx, bench_scene kind, int n, rtpb
                                            .emission = {20.0f * 4.0f * half * half, 20.0f * 4.0f * half * half,
                                                         20.0f * 4.0f * half * half},
                                            .radius = kind == SCENE_SPHERES ? 2.0f * half / 1.7724539f : 0.0f};
+        else if (kind == SCENE_DISKS)
+            lights[i] = (rtpbr_light_desc){.type = RTPBR_LIGHT_DISK, .position = {x, y, z},
+                                           .direction = {0.0f, 0.0f, i % 4 == 3 ? 1.0f : -1.0f},
+                                           .radius = 2.0f * half / 1.7724539f, .emission = {20.0f, 20.0f, 20.0f}};
         else
             square_light(&lights[i], x, y, z, half, i % 4 == 3);
     }
@@ -175,7 +181,7 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
 
 static const char *const usage =
     "usage: rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu]\n"
-    "                          [--scene benchmark|floor|full|points|spheres|all]\n"
+    "                          [--scene benchmark|floor|full|points|spheres|disks|all]\n"
     "Median frame time of rtpbr_render against light count and resolution; compare the ratios\n"
     "printed in one run.\n"
     "  --repeat N     frames per configuration (1..1000; default 5)\n"
@@ -184,7 +190,7 @@ static const char *const usage =
     "  --cpu          the process CPU time (lavapipe's threads included) instead of wall time\n"
     "  --scene NAME   benchmark, floor (metal floor at 45 degrees, every light seen by\n"
     "                 every pixel), full (materials of the full lighting variant), points\n"
-    "                 (the benchmark's layout with point lights), spheres (with radii), all\n"
+    "                 (the benchmark's layout with point lights), spheres (with radii), disks, all\n"
     "                 (default)\n"
     "  -h, --help     this text\n";
 

@@ -4,7 +4,8 @@
 // shading kernel has no barriers: lavapipe runs a workgroup's invocations as coroutines that
 // switch at each barrier). One invocation per RTPBR_TILE_SIZE^2 screen tile: it bounds the
 // world positions of the tile's pixels by a box, keeps the lights that may reach the box (bit
-// i of the tile's masks, tile_masks: one of polygons, one of punctual lights, one of spheres),
+// i of the tile's masks, tile_masks: one of polygons, one of punctual lights, one of spheres,
+// one of disks),
 // and queues the tile for the lighting variant of its class (tile_dispatch / tile_list,
 // consumed by indirect dispatches):
 //   EMPTY  no surface pixel, or no light left: emission and background only;
@@ -27,8 +28,8 @@
 // A sphere (a point light with a radius) is kept unless the box is beyond its range from its
 // centre or its form factor from the whole box, at most r^2 / d^2, is below the threshold (4).
 // A disk is culled as a polygon ((1) by its plane, (2) by its bounding sphere and area).
-// Each kind goes to its own mask (polygons, punctual lights, spheres and disks: the lighting
-// variants' spheres loop shades both).
+// Each kind goes to its own mask (polygons, punctual lights, spheres, disks; the spheres'
+// lighting variants shade spheres and disks).
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
@@ -114,23 +115,24 @@ void main()
     bool anyLight = false, anySphere = false;
     uint words = (frame.light_count + 31u) / 32u;
     for (uint w = 0u; w < words; ++w) {
-        uint bits = 0u, punctualBits = 0u, sphereBits = 0u; // polygons, punctual lights, spheres
+        uint bits = 0u, punctualBits = 0u, sphereBits = 0u, diskBits = 0u; // polygons, punctual lights, spheres, disks
         if (materialClass != RTPBR_TILE_CLASS_EMPTY) {
             uint count = min(32u, frame.light_count - 32u * w);
             for (uint b = 0u; b < count; ++b)
                 if (light_may_contribute(32u * w + b, boxMin, boxMax)) {
                     uint shape = lights[32u * w + b].shape;
                     if (shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) bits |= 1u << b;
-                    else if (shape == uint(RTPBR_LIGHT_SHAPE_SPHERE) || shape == uint(RTPBR_LIGHT_SHAPE_DISK))
-                        sphereBits |= 1u << b;
+                    else if (shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) sphereBits |= 1u << b;
+                    else if (shape == uint(RTPBR_LIGHT_SHAPE_DISK)) diskBits |= 1u << b;
                     else punctualBits |= 1u << b;
                 }
         }
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + w] = bits;
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + uint(RTPBR_TILE_MASK_WORDS) + w] = punctualBits;
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 2u * uint(RTPBR_TILE_MASK_WORDS) + w] = sphereBits;
-        anyLight = anyLight || (bits | punctualBits | sphereBits) != 0u;
-        anySphere = anySphere || sphereBits != 0u;
+        tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 3u * uint(RTPBR_TILE_MASK_WORDS) + w] = diskBits;
+        anyLight = anyLight || (bits | punctualBits | sphereBits | diskBits) != 0u;
+        anySphere = anySphere || (sphereBits | diskBits) != 0u;
     }
     uint tileClass = anyLight ? materialClass : RTPBR_TILE_CLASS_EMPTY;
     if (anySphere && tileClass != RTPBR_TILE_CLASS_EMPTY)

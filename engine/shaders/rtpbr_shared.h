@@ -236,8 +236,8 @@
 // A disk (shape DISK; vertex_count 0): sphere = (centre, radius), vertices[0] = (centre, 0),
 // vertices[1], vertices[2] = its orthogonal half-axes u, v (length radius, cross(u, v) along
 // the emitting side's normal), plane = (unit normal, -dot(normal, centre)), area = pi radius^2,
-// two_sided as a polygon's; in the tiles' sphere mask (cull.comp), shaded by area_light.h's
-// AreaLight_AddDisk.
+// two_sided as a polygon's; in the tiles' disk mask (cull.comp; the spheres' lighting
+// variants), shaded by area_light.h's AreaLight_AddDisk.
 #define RTPBR_LIGHT_FIELDS(F, S)                                                                  \
     F(S, VEC4, vertices, [RTPBR_SHADER_MAX_POLYGON_VERTICES]) /* xyz; w: fan area below vertex k */ \
     F(S, VEC3, radiance, )     /* emitted radiance, rgb (punctual: intensity) */                   \
@@ -264,13 +264,14 @@
 #define RTPBR_CULL_GROUP 8
 #define RTPBR_TILE_MASK_WORDS (RTPBR_SHADER_MAX_LIGHTS / 32)
 // A tile's masks: RTPBR_TILE_MASK_WORDS words of its polygonal lights, then as many of its
-// punctual lights, then of its spheres (the lighting pass walks each kind without reading a
-// light's shape); then, at RTPBR_TILE_SHADOW_SLOTS, the lights whose shadows the tile traces:
+// punctual lights, then of its spheres, then of its disks (the lighting pass walks each kind
+// without reading a light's shape: on lavapipe a loop choosing by shape ran both kinds' code
+// for every light); then, at RTPBR_TILE_SHADOW_SLOTS, the lights whose shadows the tile traces:
 // RTPBR_SHADER_MAX_SHADOWED_LIGHTS light indices in increasing order, RTPBR_TILE_NO_LIGHT for
 // an empty slot (shadow_select.comp writes them when the frame has shadows; slot k's ratio is
 // layer k of the shadow images).
-#define RTPBR_TILE_SHADOW_SLOTS (3 * RTPBR_TILE_MASK_WORDS)
-#define RTPBR_TILE_MASK_STRIDE (3 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS)
+#define RTPBR_TILE_SHADOW_SLOTS (4 * RTPBR_TILE_MASK_WORDS)
+#define RTPBR_TILE_MASK_STRIDE (4 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS)
 #define RTPBR_TILE_NO_LIGHT 0xffffffffu
 // Tile classes: each has its lighting variant, dispatched indirectly over its tile queue.
 #define RTPBR_TILE_CLASS_EMPTY 0 // no surface pixel or no light left: emission and background

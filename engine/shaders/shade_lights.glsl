@@ -111,6 +111,10 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     AreaLightPixel px = AreaLight_Begin(s, N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
         AreaLight_AddSphere(px, acc, s, P, N, i);
+#elif defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_LIGHT_SHAPE_DISK // every light a disk
+    AreaLightPixel px = AreaLight_Begin(s, N, V);
+    [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
+        AreaLight_AddDisk(px, acc, s, P, N, i);
 #elif defined(RTPBR_STATS_FIXED_SHAPE) // every light a punctual light of this shape (bench/shader-stats)
     mat3 frame3 = LTC_Frame(N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
@@ -141,7 +145,8 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
         if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_DISK)) AreaLight_AddDisk(px, acc, s, P, N, i);
 #endif
 #else
-    // The tile's masks (cull.comp): its punctual lights', then its polygons' and its spheres'.
+    // The tile's masks (cull.comp): its punctual lights', then its polygons', its spheres' and
+    // its disks'.
     uint words = (frame.light_count + 31u) / 32u;
     uint maskBase = tile * uint(RTPBR_TILE_MASK_STRIDE);
     mat3 frame3 = LTC_Frame(N, V);
@@ -155,19 +160,15 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
         for (uint bits = tile_masks[maskBase + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_Add(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
 #if RTPBR_LIGHTING_SPHERES
-    // The spheres' mask holds the disks too: one loop for each kind, so that each compiles with
-    // its kind fixed (one loop choosing at run time took the basic variant's registers from 96
-    // to 104 on navi21); the mask's words are scalar loads, walked twice.
+    // Spheres and disks: a mask and a loop each, so that each loop compiles with its kind
+    // fixed (one loop choosing at run time took the basic variant's registers from 96 to 104
+    // on navi21, and lavapipe ran both kinds' code for every light).
     for (uint word = 0u; word < words; ++word)
-        for (uint bits = tile_masks[maskBase + 2u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u) {
-            uint i = word * 32u + uint(findLSB(bits));
-            if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) AreaLight_AddSphere(px, acc, s, P, N, i);
-        }
+        for (uint bits = tile_masks[maskBase + 2u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
+            AreaLight_AddSphere(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
     for (uint word = 0u; word < words; ++word)
-        for (uint bits = tile_masks[maskBase + 2u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u) {
-            uint i = word * 32u + uint(findLSB(bits));
-            if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_DISK)) AreaLight_AddDisk(px, acc, s, P, N, i);
-        }
+        for (uint bits = tile_masks[maskBase + 3u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
+            AreaLight_AddDisk(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
 #endif
 #endif
     result += AreaLight_End(px, acc, s, P);
