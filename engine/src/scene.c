@@ -133,11 +133,10 @@ static rtpbr_result validate_disk(const rtpbr_context *ctx, const rtpbr_light_de
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (disk) has a zero direction (its normal)", index);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
-    // pi r^2 must be a float, and r well above the centre's rounding (the shading's axes)
-    double extent = fmax(fmax(fabs(l->position[0]), fabs(l->position[1])), fabs(l->position[2]));
-    if (!(l->radius > 1e-6 * extent) || !(LIGHT_PI * (double)l->radius * l->radius <= 0.5 * FLT_MAX)) {
-        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (disk) has radius %g; > 0 (and above 1e-6 of its centre's "
-                  "coordinates) is required", index, l->radius);
+    // pi r^2 (the record's area) must be a float
+    if (!(l->radius > 0.0f) || !(LIGHT_PI * (double)l->radius * l->radius <= 0.5 * FLT_MAX)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (disk) has radius %g; > 0 is required (and pi r^2 a float)",
+                  index, l->radius);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     return RTPBR_SUCCESS;
