@@ -7,6 +7,8 @@
 // validation on: any message fails): the viewer's upload renders the radiance of the engine's
 // own rtpbr_gpu_scene_from_loaded, an intensity x2 doubles each light's part of the image, and
 // rtpbr_gpu_scene_set_lights through the viewer keeps a mixed scene's area light intact.
+// Disk lights (issue 30): light_shapes' EXT_lights_area disks are disks in the viewer (its
+// descs, its picking and, on the device, the engine's own image, moved in place too).
 #include "engine_test.h" // test_main.h, the validation-counting context, test_render_radiance
 
 #include "scene_edit.h"
@@ -246,6 +248,86 @@ static void test_punctual_edits(void **state)
     assert_true(p.inner_cone_angle < p.outer_cone_angle);
 }
 
+// light_shapes (tools/make-scenes): two EXT_lights_area disks (radius 0.45 and 0.5 m), a rect
+// and a sphere. The viewer has each disk as the disk the engine's loader path makes of it
+// (rtpbr_gpu_scene_from_loaded: centre, normal and radius as the loader has them), not as the
+// loader's octagon; the rect stays a quad. Moving a disk moves the desc's centre; turning it
+// turns the desc's normal; a ray from in front at its centre picks it, one just outside its
+// rim (inside the octagon's corner) does not.
+static void test_load_light_shapes(void **state)
+{
+    (void)state;
+    viewer_scene s;
+    assert_true(viewer_scene_load(&s, RTPBR_SAMPLES_SCENES "/light_shapes.gltf"));
+    assert_int_equal(s.light_count, 3);
+    assert_int_equal(s.punctual_count, 1);
+    const float radii[2] = {0.45f, 0.5f};
+    for (uint32_t i = 0; i < 2; ++i) {
+        const rtpbr_gltf_light *in = &s.loaded->lights[i];
+        const viewer_light *l = &s.lights[i];
+        assert_int_equal(in->shape, RTPBR_GLTF_LIGHT_DISK);
+        assert_int_equal(l->type, RTPBR_LIGHT_DISK);
+        assert_int_equal(l->vertex_count, 0);
+        assert_float_equal(l->radius, radii[i], 1e-6f);
+        for (int c = 0; c < 3; ++c) {
+            assert_float_equal(l->center[c], in->facts.center[c], 0.0f);
+            assert_float_equal(l->normal[c], in->facts.normal[c], 0.0f);
+        }
+    }
+    assert_int_equal(s.lights[2].type, RTPBR_LIGHT_POLYGON);
+    assert_int_equal(s.lights[2].vertex_count, 4);
+    rtpbr_light_desc descs[4];
+    viewer_scene_light_descs(&s, descs);
+    for (uint32_t i = 0; i < 2; ++i) {
+        assert_int_equal(descs[i].type, RTPBR_LIGHT_DISK);
+        assert_float_equal(descs[i].radius, s.loaded->lights[i].radius, 0.0f);
+        for (int c = 0; c < 3; ++c) {
+            assert_float_equal(descs[i].position[c], s.loaded->lights[i].facts.center[c], 0.0f);
+            assert_float_equal(descs[i].direction[c], s.loaded->lights[i].facts.normal[c], 0.0f);
+        }
+    }
+    assert_int_equal(descs[2].type, RTPBR_LIGHT_POLYGON);
+    assert_int_equal(descs[3].type, RTPBR_LIGHT_POINT);
+
+    // Picking: from 1 m in front of disk 0 (the overhead one), at its centre and 1.02 radii
+    // out along a direction in its plane (the equal-area octagon reaches 1.054 radii at its
+    // corners: the old octagon would be hit there at some angles, the disk never).
+    const viewer_light *disk = &s.lights[0];
+    float eye[3], toward[3];
+    for (int c = 0; c < 3; ++c) eye[c] = disk->center[c] + disk->normal[c], toward[c] = -disk->normal[c];
+    int32_t light, material;
+    assert_true(viewer_scene_pick(&s, eye, toward, &light, &material));
+    assert_int_equal(light, 0);
+    float t[3] = {disk->normal[1], -disk->normal[0], 0.0f}; // in the plane
+    float tl = sqrtf(t[0] * t[0] + t[1] * t[1]);
+    for (int c = 0; c < 3; ++c) t[c] /= tl;
+    int hits = 0;
+    for (int k = 0; k < 64; ++k) { // rays 1.02 radii out, all around, none hits the disk
+        float angle = 2.0f * (float)pi * (float)k / 64.0f, b[3] = {
+            disk->normal[1] * t[2] - disk->normal[2] * t[1], disk->normal[2] * t[0] - disk->normal[0] * t[2],
+            disk->normal[0] * t[1] - disk->normal[1] * t[0]};
+        float from[3];
+        for (int c = 0; c < 3; ++c)
+            from[c] = eye[c] + 1.02f * disk->radius * (cosf(angle) * t[c] + sinf(angle) * b[c]);
+        hits += viewer_scene_pick(&s, from, toward, &light, &material) && light == 0;
+    }
+    assert_int_equal(hits, 0);
+
+    viewer_light *moved = &s.lights[0];
+    viewer_light_translate(moved, (const float[3]){0.5f, -0.25f, 0.125f});
+    viewer_light_rotate(moved, 1, 0.3f);
+    viewer_scene_light_descs(&s, descs);
+    const float *c0 = s.loaded->lights[0].facts.center, *n0 = s.loaded->lights[0].facts.normal;
+    assert_float_equal(descs[0].position[0], c0[0] + 0.5f, 1e-6f);
+    assert_float_equal(descs[0].position[1], c0[1] - 0.25f, 1e-6f);
+    assert_float_equal(descs[0].position[2], c0[2] + 0.125f, 1e-6f);
+    // about +Y, right-handed: (x, z) -> (x cos + z sin, -x sin + z cos)
+    assert_float_equal(descs[0].direction[0], n0[0] * cosf(0.3f) + n0[2] * sinf(0.3f), 1e-6f);
+    assert_float_equal(descs[0].direction[1], n0[1], 1e-6f);
+    assert_float_equal(descs[0].direction[2], -n0[0] * sinf(0.3f) + n0[2] * cosf(0.3f), 1e-6f);
+    viewer_scene_destroy(&s);
+}
+
 // ---- on the device ------------------------------------------------------------------------
 
 enum { RW = 160, RH = 120 };
@@ -401,6 +483,88 @@ static void test_sphere_upload_matches_engine(void **state)
     free(got);
     free(old);
     rtpbr_gpu_scene_destroy(points);
+    rtpbr_gpu_scene_destroy(viewer);
+    rtpbr_gpu_scene_destroy(engine);
+    device_case_close(&d);
+}
+
+// Pixels (of RW x RH) where some channel differs by more than `rel` of the larger value.
+static size_t pixels_beyond(const float *a, const float *b, double rel)
+{
+    size_t count = 0;
+    for (size_t i = 0; i < (size_t)RW * RH; ++i) {
+        bool differs = false;
+        for (int c = 0; c < 3; ++c) {
+            double x = a[4 * i + c], y = b[4 * i + c];
+            differs |= fabs(x - y) > rel * fmax(fabs(x), fabs(y));
+        }
+        count += differs;
+    }
+    return count;
+}
+
+// light_shapes' disks in the viewer are the disks the engine shades (issue 30). The viewer's
+// upload renders what rtpbr_gpu_scene_from_loaded renders: no pixel differs beyond 1e-5
+// relative (colour x intensity may be one ulp off the loader's radiance). The viewer also
+// draws its area lights' surfaces, which rtpbr-render does not for EXT_lights_area lights, but
+// from the file's camera all three show their backs (one-sided: culled). The viewer of before,
+// which had each disk as the loader's equal-area octagon, differs on most lit pixels (measured:
+// 7,268 of 11,152). Moving disk 0 in place (update_lights, no upload) renders what the engine's
+// loader path renders for the file with that disk moved (its centre and octagon moved by the
+// same offset); the move changes most lit pixels.
+static void test_disk_upload_matches_engine(void **state)
+{
+    device_case d;
+    device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/light_shapes.gltf");
+    rtpbr_gpu_scene *engine = NULL, *viewer = upload(&d);
+    assert_int_equal(rtpbr_gpu_scene_from_loaded(d.ctx, d.s.loaded, &engine), RTPBR_SUCCESS);
+    float *want = render(&d, engine), *got = render(&d, viewer);
+    size_t lit = pixels_lit(want), differing = pixels_beyond(want, got, 1e-5);
+    printf("light_shapes: viewer upload vs rtpbr_gpu_scene_from_loaded: %zu of %d pixels differ beyond 1e-5; %zu lit\n",
+           differing, RW * RH, lit);
+    assert_true(lit > (size_t)RW * RH / 2);
+    assert_int_equal(differing, 0);
+
+    viewer_scene *s = &d.s; // the viewer of before: the disks as their octagons
+    viewer_light disks[2] = {s->lights[0], s->lights[1]};
+    for (uint32_t i = 0; i < 2; ++i) {
+        const rtpbr_gltf_light *in = &s->loaded->lights[i];
+        s->lights[i].type = RTPBR_LIGHT_POLYGON;
+        s->lights[i].vertex_count = in->vertex_count;
+        memcpy(s->lights[i].vertices, in->vertices, sizeof in->vertices);
+    }
+    rtpbr_gpu_scene *octagons = upload(&d);
+    float *old = render(&d, octagons);
+    size_t old_differing = pixels_beyond(want, old, 1e-5);
+    printf("light_shapes: the disks as octagons: %zu pixels differ beyond 1e-5\n", old_differing);
+    assert_true(old_differing > lit / 2);
+    s->lights[0] = disks[0], s->lights[1] = disks[1];
+
+    const float offset[3] = {0.4f, -0.3f, -0.5f};
+    viewer_light_translate(&s->lights[0], offset);
+    assert_false(viewer_scene_needs_upload(s));
+    assert_int_equal(viewer_scene_update_lights(s, viewer), RTPBR_SUCCESS);
+    float *moved = render(&d, viewer);
+    rtpbr_gltf_light *in = &s->loaded->lights[0]; // the file with disk 0 moved
+    for (int c = 0; c < 3; ++c) {
+        in->facts.center[c] += offset[c];
+        for (uint32_t v = 0; v < in->vertex_count; ++v) in->vertices[v][c] += offset[c];
+    }
+    rtpbr_gpu_scene *engine_moved = NULL;
+    assert_int_equal(rtpbr_gpu_scene_from_loaded(d.ctx, s->loaded, &engine_moved), RTPBR_SUCCESS);
+    float *want_moved = render(&d, engine_moved);
+    size_t moved_differing = pixels_beyond(want_moved, moved, 1e-5), move_changes = pixels_beyond(want, want_moved, 1e-5);
+    printf("light_shapes, disk 0 moved in place: %zu pixels differ from the engine's moved disk beyond 1e-5; the move "
+           "changes %zu\n", moved_differing, move_changes);
+    assert_int_equal(moved_differing, 0);
+    assert_true(move_changes > lit / 2);
+    free(want);
+    free(got);
+    free(old);
+    free(moved);
+    free(want_moved);
+    rtpbr_gpu_scene_destroy(engine_moved);
+    rtpbr_gpu_scene_destroy(octagons);
     rtpbr_gpu_scene_destroy(viewer);
     rtpbr_gpu_scene_destroy(engine);
     device_case_close(&d);
@@ -600,8 +764,10 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_vertex_count),
                 cmocka_unit_test(test_showcase),
                 cmocka_unit_test(test_load_punctual),
                 cmocka_unit_test(test_punctual_edits),
+                cmocka_unit_test(test_load_light_shapes),
                 test_env_case(test_punctual_upload_matches_engine),
                 test_env_case(test_sphere_upload_matches_engine),
+                test_env_case(test_disk_upload_matches_engine),
                 test_env_case(test_punctual_intensity_doubles),
                 test_env_case(test_mixed_scene_set_lights),
                 test_env_case(test_add_remove_lights))
