@@ -100,9 +100,9 @@ static inline bool app_add_light(app *a, int kind)
     float at[3] = {a->target[0], a->target[1] + 1.0f, a->target[2]};
     viewer_light l;
     viewer_punctual p;
-    bool polygonal = viewer_new_light(kind, at, &l, &p);
-    if (polygonal ? !viewer_scene_add_light(&a->scene, &l) : !viewer_scene_add_punctual(&a->scene, &p)) return false;
-    a->light = polygonal ? a->scene.light_count - 1 : viewer_scene_light_total(&a->scene) - 1;
+    bool area = viewer_new_light(kind, at, &l, &p);
+    if (area ? !viewer_scene_add_light(&a->scene, &l) : !viewer_scene_add_punctual(&a->scene, &p)) return false;
+    a->light = area ? a->scene.light_count - 1 : viewer_scene_light_total(&a->scene) - 1;
     app_light_edited(a);
     return true;
 }

@@ -349,39 +349,49 @@ bool viewer_scene_remove_light(viewer_scene *s, uint32_t index)
 
 const char *viewer_new_light_name(int kind)
 {
-    static const char *const names[VIEWER_NEW_LIGHT_KINDS] = {"quad", "sphere", "spot", "point", "directional"};
+    static const char *const names[VIEWER_NEW_LIGHT_KINDS] = {
+        [VIEWER_NEW_QUAD] = "quad", [VIEWER_NEW_DISK] = "disk", [VIEWER_NEW_SPHERE] = "sphere",
+        [VIEWER_NEW_SPOT] = "spot", [VIEWER_NEW_POINT] = "point", [VIEWER_NEW_DIRECTIONAL] = "directional"};
     return kind >= 0 && kind < VIEWER_NEW_LIGHT_KINDS ? names[kind] : "?";
 }
 
 bool viewer_new_light(int kind, const float at[3], viewer_light *light, viewer_punctual *punctual)
 {
-    if (kind == 0) {
-        // Counter-clockwise seen from below: it faces -Y.
-        static const float corners[4][2] = {{-0.25f, -0.25f}, {0.25f, -0.25f}, {0.25f, 0.25f}, {-0.25f, 0.25f}};
+    if (kind == VIEWER_NEW_QUAD || kind == VIEWER_NEW_DISK) {
         memset(light, 0, sizeof *light);
-        for (int v = 0; v < 4; ++v) {
-            light->vertices[v][0] = at[0] + corners[v][0];
-            light->vertices[v][1] = at[1];
-            light->vertices[v][2] = at[2] + corners[v][1];
+        if (kind == VIEWER_NEW_QUAD) {
+            // Counter-clockwise seen from below: it faces -Y.
+            static const float corners[4][2] = {{-0.25f, -0.25f}, {0.25f, -0.25f}, {0.25f, 0.25f}, {-0.25f, 0.25f}};
+            for (int v = 0; v < 4; ++v) {
+                light->vertices[v][0] = at[0] + corners[v][0];
+                light->vertices[v][1] = at[1];
+                light->vertices[v][2] = at[2] + corners[v][1];
+            }
+            light->vertex_count = 4;
+        } else { // the quad's area, pi r^2 = 0.25 m^2, facing -Y
+            light->type = RTPBR_LIGHT_DISK;
+            memcpy(light->center, at, sizeof light->center);
+            light->normal[1] = -1.0f;
+            light->radius = 0.28209479177f; // 0.5 / sqrt(pi)
         }
-        light->vertex_count = 4;
         light->color[0] = light->color[1] = light->color[2] = 1.0f;
         light->intensity = 4.0f; // radiance
         light->material = -1;
         mat4_identity(light->transform);
         return true;
     }
+    bool spot = kind == VIEWER_NEW_SPOT, directional = kind == VIEWER_NEW_DIRECTIONAL;
     memset(punctual, 0, sizeof *punctual);
-    punctual->type = kind == 2 ? RTPBR_LIGHT_SPOT : kind == 4 ? RTPBR_LIGHT_DIRECTIONAL : RTPBR_LIGHT_POINT;
+    punctual->type = spot ? RTPBR_LIGHT_SPOT : directional ? RTPBR_LIGHT_DIRECTIONAL : RTPBR_LIGHT_POINT;
     memcpy(punctual->position, at, sizeof punctual->position);
     punctual->direction[1] = -1.0f;
-    if (kind == 4) punctual->direction[0] = 0.5f, punctual->direction[2] = -0.3f;
+    if (directional) punctual->direction[0] = 0.5f, punctual->direction[2] = -0.3f;
     punctual->color[0] = punctual->color[1] = punctual->color[2] = 1.0f;
-    punctual->intensity = kind == 4 ? 1.0f : kind == 2 ? 4.0f : 2.0f; // lux; candela
+    punctual->intensity = directional ? 1.0f : spot ? 4.0f : 2.0f; // lux; candela
     punctual->inner_cone_angle = 0.3f;
     punctual->outer_cone_angle = 0.5f;
-    punctual->radius = kind == 1 ? 0.1f : 0.0f;
-    punctual->angular_diameter = kind == 4 ? RTPBR_SUN_ANGULAR_DIAMETER : 0.0f; // the sun's disk
+    punctual->radius = kind == VIEWER_NEW_SPHERE ? 0.1f : 0.0f;
+    punctual->angular_diameter = directional ? RTPBR_SUN_ANGULAR_DIAMETER : 0.0f; // the sun's disk
     viewer_punctual_clamp(punctual); // a unit direction
     return false;
 }

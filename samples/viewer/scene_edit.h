@@ -104,12 +104,16 @@ void viewer_scene_light_descs(const viewer_scene *s, rtpbr_light_desc *out);
 bool viewer_scene_add_light(viewer_scene *s, const viewer_light *light);
 bool viewer_scene_add_punctual(viewer_scene *s, const viewer_punctual *light);
 bool viewer_scene_remove_light(viewer_scene *s, uint32_t index);
-// The new lights the viewer's Insert key (I) adds, kind 0..4: a 0.5 m square quad facing down,
-// a sphere (radius 0.1 m), a spot pointing down, a point, a directional light; the quad's,
-// sphere's, spot's and point's centre at `at`.
-#define VIEWER_NEW_LIGHT_KINDS 5
+// The new lights the viewer's Insert key (I) adds, in this order: a 0.5 m square quad facing
+// down (radiance 4), a disk facing down of the quad's area and radiance (so of its power:
+// radius 0.5 / sqrt(pi) m), a sphere (radius 0.1 m), a spot pointing down, a point, a
+// directional light; all but the directional light centred at `at`.
+typedef enum viewer_new_light_kind {
+    VIEWER_NEW_QUAD, VIEWER_NEW_DISK, VIEWER_NEW_SPHERE, VIEWER_NEW_SPOT, VIEWER_NEW_POINT, VIEWER_NEW_DIRECTIONAL,
+    VIEWER_NEW_LIGHT_KINDS
+} viewer_new_light_kind;
 const char *viewer_new_light_name(int kind);
-// Fills *light (kind 0) or *punctual (kinds 1..4); returns true for an area light.
+// Fills *light (the quad, the disk) or *punctual (the others); returns true for an area light.
 bool viewer_new_light(int kind, const float at[3], viewer_light *light, viewer_punctual *punctual);
 
 // True when an edit needs viewer_scene_upload (a polygon's vertex count changed, a light was

@@ -328,12 +328,16 @@ static void punctual_panel(app *a, viewer_punctual *p)
 static void light_panel(app *a)
 {
     viewer_scene *s = &a->scene;
-    // Add a light of each kind (I cycles them) or remove the selected one (X); short labels:
-    // the row fits the panel's 300 pixels.
-    static const char *const labels[VIEWER_NEW_LIGHT_KINDS] = {"quad", "sphere", "spot", "point", "sun"};
+    // Add a light of each kind (I cycles them) or remove the selected one (X); short labels,
+    // in two rows (the area lights, the punctual ones) that fit the panel's 300 pixels.
+    static const char *const labels[] = {"quad", "disk", "sphere", "spot", "point", "sun"}; // viewer_new_light_kind
+    static_assert(sizeof labels / sizeof *labels == VIEWER_NEW_LIGHT_KINDS, "a label for each kind");
     ImGui::TextUnformatted("add");
+    float row_start = 0.0f;
     for (int kind = 0; kind < VIEWER_NEW_LIGHT_KINDS; ++kind) {
-        ImGui::SameLine();
+        if (kind == VIEWER_NEW_SPOT) ImGui::SetCursorPosX(row_start); // the second row, under the first
+        else ImGui::SameLine();
+        if (kind == VIEWER_NEW_QUAD) row_start = ImGui::GetCursorPosX();
         if (ImGui::SmallButton(labels[kind])) app_add_light(a, kind);
     }
     uint32_t total = viewer_scene_light_total(s);

@@ -36,8 +36,8 @@ static const char *const help_text =
     "  C               next light colour\n"
     "  - / =           light intensity -/+ (x 1.25)\n"
     "  T               light one-/two-sided (area lights: polygons, disks)\n"
-    "  I               add a light 1 m above the orbit target: quad, sphere, spot, point,\n"
-    "                  directional in turn (selected; the panel adds each kind too)\n"
+    "  I               add a light 1 m above the orbit target: quad, disk, sphere, spot,\n"
+    "                  point, directional in turn (selected; the panel adds each kind too)\n"
     "  X               remove the selected light\n"
     "  M               select the next material\n"
     "  7 / 8           material roughness -/+\n"
@@ -303,8 +303,10 @@ static void handle_key(app *a, int key)
         break;
     case GLFW_KEY_T: if (l) l->two_sided = !l->two_sided, app_light_edited(a); break;
     case GLFW_KEY_I:
-        static const char *const added[VIEWER_NEW_LIGHT_KINDS] = {"added a quad light", "added a sphere light",
-            "added a spot light", "added a point light", "added a directional light"};
+        static const char *const added[VIEWER_NEW_LIGHT_KINDS] = {
+            [VIEWER_NEW_QUAD] = "added a quad light", [VIEWER_NEW_DISK] = "added a disk light",
+            [VIEWER_NEW_SPHERE] = "added a sphere light", [VIEWER_NEW_SPOT] = "added a spot light",
+            [VIEWER_NEW_POINT] = "added a point light", [VIEWER_NEW_DIRECTIONAL] = "added a directional light"};
         a->notice = app_add_light(a, a->new_light_kind) ? added[a->new_light_kind] : "out of memory";
         a->new_light_kind = (a->new_light_kind + 1) % VIEWER_NEW_LIGHT_KINDS;
         break;
