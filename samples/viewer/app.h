@@ -41,7 +41,7 @@ typedef struct app {
     float exposure;
     // Selection and key edits.
     int mode; // 0 move, 1 rotate, 2 scale
-    uint32_t light, material, colour_index; // light: polygonal lights first, then punctual
+    uint32_t light, material, colour_index; // light: area lights first, then punctual
     int new_light_kind;       // what I adds next (viewer_new_light's kinds, cycled)
     bool light_selected;      // the last click or Tab/M chose a light (else a material)
     // Reference image and live FLIP.
@@ -66,8 +66,9 @@ typedef struct app {
     const char *notice;
 } app;
 
-// The selected light (a->light, the engine's numbering: viewer_scene_light_total): a polygonal
-// light, or else a punctual light; NULL when it is of the other kind (or there is none).
+// The selected light (a->light, the engine's numbering: viewer_scene_light_total): an area
+// light (a polygon or a disk), or else a punctual light; NULL when it is of the other kind (or
+// there is none).
 static inline viewer_light *app_area_light(app *a)
 {
     return a->light < a->scene.light_count ? &a->scene.lights[a->light] : NULL;
@@ -83,8 +84,8 @@ static inline viewer_punctual *app_punctual_light(app *a)
 // Anything the engine draws (bumps view_generation).
 static inline void app_changed(app *a) { a->view_generation++; }
 
-// The selected light's polygon, colour or sides; a punctual light's colour, intensity, position,
-// direction, range or cones.
+// The selected area light's shape, placement, colour or sides; a punctual light's colour,
+// intensity, position, direction, range or cones.
 static inline void app_light_edited(app *a)
 {
     a->lights_dirty = true;
@@ -99,9 +100,9 @@ static inline bool app_add_light(app *a, int kind)
     float at[3] = {a->target[0], a->target[1] + 1.0f, a->target[2]};
     viewer_light l;
     viewer_punctual p;
-    bool polygonal = viewer_new_light(kind, at, &l, &p);
-    if (polygonal ? !viewer_scene_add_light(&a->scene, &l) : !viewer_scene_add_punctual(&a->scene, &p)) return false;
-    a->light = polygonal ? a->scene.light_count - 1 : viewer_scene_light_total(&a->scene) - 1;
+    bool area = viewer_new_light(kind, at, &l, &p);
+    if (area ? !viewer_scene_add_light(&a->scene, &l) : !viewer_scene_add_punctual(&a->scene, &p)) return false;
+    a->light = area ? a->scene.light_count - 1 : viewer_scene_light_total(&a->scene) - 1;
     app_light_edited(a);
     return true;
 }

@@ -71,8 +71,15 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
     for (uint32_t i = 0; i < in->light_count; ++i) {
         const rtpbr_gltf_light *l = &in->lights[i];
         viewer_light *v = &s->lights[i];
-        v->vertex_count = l->vertex_count;
-        memcpy(v->vertices, l->vertices, sizeof v->vertices);
+        if (l->shape == RTPBR_GLTF_LIGHT_DISK) { // the disk, as rtpbr_gpu_scene_from_loaded has it (not its octagon)
+            v->type = RTPBR_LIGHT_DISK;
+            memcpy(v->center, l->facts.center, sizeof v->center);
+            memcpy(v->normal, l->facts.normal, sizeof v->normal);
+            v->radius = l->radius;
+        } else {
+            v->vertex_count = l->vertex_count;
+            memcpy(v->vertices, l->vertices, sizeof v->vertices);
+        }
         split_emission(l->radiance, v->color, &v->intensity);
         v->two_sided = l->two_sided;
         v->material = l->material >= 0 && (uint32_t)l->material < in->material_count ? l->material : -1;
@@ -120,15 +127,21 @@ static rtpbr_material_desc light_material(const viewer_scene *s, uint32_t i)
     return m;
 }
 
-// Every light as the engine has it: the polygonal lights, then the punctual lights
-// (light_count + punctual_count descs).
-static void light_descs(const viewer_scene *s, rtpbr_light_desc *out)
+void viewer_scene_light_descs(const viewer_scene *s, rtpbr_light_desc *out)
 {
     for (uint32_t i = 0; i < s->light_count; ++i) {
         const viewer_light *l = &s->lights[i];
         rtpbr_light_desc *d = &out[i];
-        *d = (rtpbr_light_desc){.vertex_count = l->vertex_count, .two_sided = l->two_sided};
-        memcpy(d->vertices, l->vertices, sizeof d->vertices);
+        *d = (rtpbr_light_desc){.two_sided = l->two_sided};
+        if (l->type == RTPBR_LIGHT_DISK) {
+            d->type = RTPBR_LIGHT_DISK;
+            memcpy(d->position, l->center, sizeof d->position);
+            memcpy(d->direction, l->normal, sizeof d->direction);
+            d->radius = l->radius;
+        } else {
+            d->vertex_count = l->vertex_count;
+            memcpy(d->vertices, l->vertices, sizeof d->vertices);
+        }
         for (int c = 0; c < 3; ++c) d->emission[c] = l->color[c] * l->intensity;
     }
     for (uint32_t i = 0; i < s->punctual_count; ++i) {
@@ -144,6 +157,42 @@ static void light_descs(const viewer_scene *s, rtpbr_light_desc *out)
     }
 }
 
+// The most vertices of a light's emissive surface: a polygon's, or a disk's inscribed polygon.
+#define OUTLINE_MAX (VIEWER_DISK_SEGMENTS > RTPBR_MAX_POLYGON_VERTICES ? VIEWER_DISK_SEGMENTS : RTPBR_MAX_POLYGON_VERTICES)
+
+// A unit tangent frame (t, b) of the unit normal n with t x b = n: angles from t toward b turn
+// counter-clockwise seen from the front.
+static void tangent_frame(const float n[3], float t[3], float b[3])
+{
+    // t: the world axis least along n, made perpendicular to it
+    int axis = fabsf(n[0]) <= fabsf(n[1]) && fabsf(n[0]) <= fabsf(n[2]) ? 0 : fabsf(n[1]) <= fabsf(n[2]) ? 1 : 2;
+    float len = 0.0f;
+    for (int c = 0; c < 3; ++c) {
+        t[c] = (c == axis ? 1.0f : 0.0f) - n[axis] * n[c];
+        len += t[c] * t[c];
+    }
+    len = sqrtf(len);
+    for (int c = 0; c < 3; ++c) t[c] /= len;
+    b[0] = n[1] * t[2] - n[2] * t[1], b[1] = n[2] * t[0] - n[0] * t[2], b[2] = n[0] * t[1] - n[1] * t[0];
+}
+
+// The outline of light l's emissive surface, counter-clockwise seen from the front: a polygon's
+// vertices, or the regular VIEWER_DISK_SEGMENTS-gon inscribed in a disk. Returns the count.
+static uint32_t light_outline(const viewer_light *l, float out[OUTLINE_MAX][3])
+{
+    if (l->type != RTPBR_LIGHT_DISK) {
+        memcpy(out, l->vertices, l->vertex_count * sizeof l->vertices[0]);
+        return l->vertex_count;
+    }
+    float t[3], b[3];
+    tangent_frame(l->normal, t, b);
+    for (uint32_t v = 0; v < VIEWER_DISK_SEGMENTS; ++v) {
+        float angle = 6.28318530718f * (float)v / (float)VIEWER_DISK_SEGMENTS;
+        for (int c = 0; c < 3; ++c) out[v][c] = l->center[c] + l->radius * (cosf(angle) * t[c] + sinf(angle) * b[c]);
+    }
+    return VIEWER_DISK_SEGMENTS;
+}
+
 rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_scene **out)
 {
     const rtpbr_gltf_scene *in = s->loaded;
@@ -153,10 +202,10 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
     rtpbr_material_desc *materials = calloc(s->material_count + s->light_count + 1, sizeof *materials);
     uint32_t light_total = s->light_count + s->punctual_count;
     rtpbr_light_desc *lights = calloc(light_total ? light_total : 1, sizeof *lights);
-    // Light polygons as triangle fans: at most 8 vertices, 6 triangles each.
-    float *light_positions = calloc((size_t)s->light_count * RTPBR_MAX_POLYGON_VERTICES * 3 + 1, sizeof(float));
-    float *light_normals = calloc((size_t)s->light_count * RTPBR_MAX_POLYGON_VERTICES * 3 + 1, sizeof(float));
-    uint32_t *light_indices = calloc((size_t)s->light_count * (RTPBR_MAX_POLYGON_VERTICES - 2) * 3 + 1, sizeof(uint32_t));
+    // Light surfaces as triangle fans: at most OUTLINE_MAX vertices, OUTLINE_MAX - 2 triangles each.
+    float *light_positions = calloc((size_t)s->light_count * OUTLINE_MAX * 3 + 1, sizeof(float));
+    float *light_normals = calloc((size_t)s->light_count * OUTLINE_MAX * 3 + 1, sizeof(float));
+    uint32_t *light_indices = calloc((size_t)s->light_count * (OUTLINE_MAX - 2) * 3 + 1, sizeof(uint32_t));
     rtpbr_result r = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
     if (!meshes || !materials || !lights || !light_positions || !light_normals || !light_indices || !textures)
         goto done;
@@ -176,25 +225,25 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
         materials[s->material_count + i] = light_material(s, i);
         mat4_identity(l->transform);
         l->reshaped = false;
-        float *pos = light_positions + (size_t)i * RTPBR_MAX_POLYGON_VERTICES * 3;
-        float *nrm = light_normals + (size_t)i * RTPBR_MAX_POLYGON_VERTICES * 3;
-        uint32_t *idx = light_indices + (size_t)i * (RTPBR_MAX_POLYGON_VERTICES - 2) * 3;
-        float n[3];
+        float *pos = light_positions + (size_t)i * OUTLINE_MAX * 3;
+        float *nrm = light_normals + (size_t)i * OUTLINE_MAX * 3;
+        uint32_t *idx = light_indices + (size_t)i * (OUTLINE_MAX - 2) * 3;
+        float n[3], outline[OUTLINE_MAX][3];
         viewer_light_normal(l, n);
-        for (uint32_t v = 0; v < l->vertex_count; ++v) {
-            memcpy(pos + 3 * v, l->vertices[v], 3 * sizeof(float));
+        uint32_t count = light_outline(l, outline);
+        for (uint32_t v = 0; v < count; ++v) {
+            memcpy(pos + 3 * v, outline[v], 3 * sizeof(float));
             memcpy(nrm + 3 * v, n, 3 * sizeof(float));
         }
-        for (uint32_t t = 0; t + 2 < l->vertex_count; ++t) {
+        for (uint32_t t = 0; t + 2 < count; ++t) {
             idx[3 * t] = 0;
             idx[3 * t + 1] = t + 1;
             idx[3 * t + 2] = t + 2;
         }
         meshes[mesh_count++] = (rtpbr_mesh_desc){.positions = pos, .normals = nrm, .indices = idx,
-            .vertex_count = l->vertex_count, .index_count = 3 * (l->vertex_count - 2),
-            .material = s->material_count + i};
+            .vertex_count = count, .index_count = 3 * (count - 2), .material = s->material_count + i};
     }
-    light_descs(s, lights);
+    viewer_scene_light_descs(s, lights);
     s->lights_restructured = false;
     // No cameras: the viewer always passes its orbit camera to rtpbr_record.
     rtpbr_gpu_scene_desc desc = {.meshes = meshes, .mesh_count = mesh_count, .materials = materials,
@@ -222,7 +271,7 @@ rtpbr_result viewer_scene_update_material(const viewer_scene *s, rtpbr_gpu_scene
     return r;
 }
 
-// Polygonal light i's surface: its material and its mesh's transform.
+// Area light i's surface: its material and its mesh's transform.
 static rtpbr_result update_light_surface(const viewer_scene *s, rtpbr_gpu_scene *gpu, uint32_t i)
 {
     rtpbr_material_desc m = light_material(s, i);
@@ -237,7 +286,7 @@ static rtpbr_result set_all_lights(const viewer_scene *s, rtpbr_gpu_scene *gpu)
     uint32_t total = s->light_count + s->punctual_count;
     rtpbr_light_desc *lights = calloc(total ? total : 1, sizeof *lights);
     if (!lights) return RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-    light_descs(s, lights);
+    viewer_scene_light_descs(s, lights);
     rtpbr_result r = rtpbr_gpu_scene_set_lights(gpu, lights, total);
     free(lights);
     return r;
@@ -300,39 +349,49 @@ bool viewer_scene_remove_light(viewer_scene *s, uint32_t index)
 
 const char *viewer_new_light_name(int kind)
 {
-    static const char *const names[VIEWER_NEW_LIGHT_KINDS] = {"quad", "sphere", "spot", "point", "directional"};
+    static const char *const names[VIEWER_NEW_LIGHT_KINDS] = {
+        [VIEWER_NEW_QUAD] = "quad", [VIEWER_NEW_DISK] = "disk", [VIEWER_NEW_SPHERE] = "sphere",
+        [VIEWER_NEW_SPOT] = "spot", [VIEWER_NEW_POINT] = "point", [VIEWER_NEW_DIRECTIONAL] = "directional"};
     return kind >= 0 && kind < VIEWER_NEW_LIGHT_KINDS ? names[kind] : "?";
 }
 
 bool viewer_new_light(int kind, const float at[3], viewer_light *light, viewer_punctual *punctual)
 {
-    if (kind == 0) {
-        // Counter-clockwise seen from below: it faces -Y.
-        static const float corners[4][2] = {{-0.25f, -0.25f}, {0.25f, -0.25f}, {0.25f, 0.25f}, {-0.25f, 0.25f}};
+    if (kind == VIEWER_NEW_QUAD || kind == VIEWER_NEW_DISK) {
         memset(light, 0, sizeof *light);
-        for (int v = 0; v < 4; ++v) {
-            light->vertices[v][0] = at[0] + corners[v][0];
-            light->vertices[v][1] = at[1];
-            light->vertices[v][2] = at[2] + corners[v][1];
+        if (kind == VIEWER_NEW_QUAD) {
+            // Counter-clockwise seen from below: it faces -Y.
+            static const float corners[4][2] = {{-0.25f, -0.25f}, {0.25f, -0.25f}, {0.25f, 0.25f}, {-0.25f, 0.25f}};
+            for (int v = 0; v < 4; ++v) {
+                light->vertices[v][0] = at[0] + corners[v][0];
+                light->vertices[v][1] = at[1];
+                light->vertices[v][2] = at[2] + corners[v][1];
+            }
+            light->vertex_count = 4;
+        } else { // the quad's area, pi r^2 = 0.25 m^2, facing -Y
+            light->type = RTPBR_LIGHT_DISK;
+            memcpy(light->center, at, sizeof light->center);
+            light->normal[1] = -1.0f;
+            light->radius = 0.28209479177f; // 0.5 / sqrt(pi)
         }
-        light->vertex_count = 4;
         light->color[0] = light->color[1] = light->color[2] = 1.0f;
         light->intensity = 4.0f; // radiance
         light->material = -1;
         mat4_identity(light->transform);
         return true;
     }
+    bool spot = kind == VIEWER_NEW_SPOT, directional = kind == VIEWER_NEW_DIRECTIONAL;
     memset(punctual, 0, sizeof *punctual);
-    punctual->type = kind == 2 ? RTPBR_LIGHT_SPOT : kind == 4 ? RTPBR_LIGHT_DIRECTIONAL : RTPBR_LIGHT_POINT;
+    punctual->type = spot ? RTPBR_LIGHT_SPOT : directional ? RTPBR_LIGHT_DIRECTIONAL : RTPBR_LIGHT_POINT;
     memcpy(punctual->position, at, sizeof punctual->position);
     punctual->direction[1] = -1.0f;
-    if (kind == 4) punctual->direction[0] = 0.5f, punctual->direction[2] = -0.3f;
+    if (directional) punctual->direction[0] = 0.5f, punctual->direction[2] = -0.3f;
     punctual->color[0] = punctual->color[1] = punctual->color[2] = 1.0f;
-    punctual->intensity = kind == 4 ? 1.0f : kind == 2 ? 4.0f : 2.0f; // lux; candela
+    punctual->intensity = directional ? 1.0f : spot ? 4.0f : 2.0f; // lux; candela
     punctual->inner_cone_angle = 0.3f;
     punctual->outer_cone_angle = 0.5f;
-    punctual->radius = kind == 1 ? 0.1f : 0.0f;
-    punctual->angular_diameter = kind == 4 ? RTPBR_SUN_ANGULAR_DIAMETER : 0.0f; // the sun's disk
+    punctual->radius = kind == VIEWER_NEW_SPHERE ? 0.1f : 0.0f;
+    punctual->angular_diameter = directional ? RTPBR_SUN_ANGULAR_DIAMETER : 0.0f; // the sun's disk
     viewer_punctual_clamp(punctual); // a unit direction
     return false;
 }
@@ -377,18 +436,24 @@ bool viewer_scene_pick(const viewer_scene *s, const float origin[3], const float
         }
     }
     for (uint32_t i = 0; i < s->light_count; ++i) {
-        const viewer_light *l = &s->lights[i];
-        for (uint32_t k = 1; k + 1 < l->vertex_count; ++k) {
-            float t = ray_triangle(origin, dir, l->vertices[0], l->vertices[k], l->vertices[k + 1]);
+        float outline[OUTLINE_MAX][3]; // the surface drawn
+        uint32_t count = light_outline(&s->lights[i], outline);
+        for (uint32_t k = 1; k + 1 < count; ++k) {
+            float t = ray_triangle(origin, dir, outline[0], outline[k], outline[k + 1]);
             if (t > 0.0f && t < best) best = t, *light = (int32_t)i, *material = -1;
         }
     }
     return best < INFINITY;
 }
 
-// The edited polygon's derived facts, by the loader's one function (rtpbr_gltf_polygon_facts).
+// The edited polygon's derived facts, by the loader's one function (rtpbr_gltf_polygon_facts);
+// a disk's own.
 void viewer_light_center(const viewer_light *l, float out[3])
 {
+    if (l->type == RTPBR_LIGHT_DISK) {
+        memcpy(out, l->center, sizeof l->center);
+        return;
+    }
     rtpbr_gltf_polygon_facts f;
     rtpbr_gltf_polygon_facts_of(l->vertices, l->vertex_count, &f);
     memcpy(out, f.center, sizeof f.center);
@@ -396,6 +461,10 @@ void viewer_light_center(const viewer_light *l, float out[3])
 
 void viewer_light_normal(const viewer_light *l, float out[3])
 {
+    if (l->type == RTPBR_LIGHT_DISK) {
+        memcpy(out, l->normal, sizeof l->normal);
+        return;
+    }
     rtpbr_gltf_polygon_facts f;
     rtpbr_gltf_polygon_facts_of(l->vertices, l->vertex_count, &f);
     memcpy(out, f.normal, sizeof f.normal);
@@ -404,6 +473,8 @@ void viewer_light_normal(const viewer_light *l, float out[3])
 
 void viewer_light_translate(viewer_light *l, const float d[3])
 {
+    if (l->type == RTPBR_LIGHT_DISK)
+        for (int c = 0; c < 3; ++c) l->center[c] += d[c];
     for (uint32_t v = 0; v < l->vertex_count; ++v)
         for (int c = 0; c < 3; ++c) l->vertices[v][c] += d[c];
     float m[16];
@@ -440,6 +511,12 @@ void viewer_light_rotate(viewer_light *l, int axis, float radians)
     viewer_light_center(l, center);
     int a = (axis + 1) % 3, b = (axis + 2) % 3; // rotation in the (a, b) plane
     for (uint32_t v = 0; v < l->vertex_count; ++v) rotate_point(l->vertices[v], center, axis, cs, sn);
+    if (l->type == RTPBR_LIGHT_DISK) { // the normal turns about the origin, kept unit
+        const float origin[3] = {0.0f, 0.0f, 0.0f};
+        rotate_point(l->normal, origin, axis, cs, sn);
+        float *n = l->normal, len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int c = 0; c < 3; ++c) n[c] /= len;
+    }
     float m[3][3] = {{0}};
     m[axis][axis] = 1.0f;
     m[a][a] = cs, m[a][b] = -sn, m[b][a] = sn, m[b][b] = cs;
@@ -450,22 +527,37 @@ void viewer_light_scale(viewer_light *l, float factor)
 {
     float center[3];
     viewer_light_center(l, center);
+    if (l->type == RTPBR_LIGHT_DISK) {
+        float radius = fminf(fmaxf(l->radius * factor, VIEWER_MIN_DISK_RADIUS), VIEWER_MAX_DISK_RADIUS);
+        factor = radius / l->radius;
+        l->radius = radius;
+    }
     for (uint32_t v = 0; v < l->vertex_count; ++v)
         for (int c = 0; c < 3; ++c) l->vertices[v][c] = center[c] + factor * (l->vertices[v][c] - center[c]);
     const float m[3][3] = {{factor, 0, 0}, {0, factor, 0}, {0, 0, factor}};
     compose_about(l, center, m);
 }
 
-void viewer_light_set_vertex_count(viewer_light *l, uint32_t n)
+const char *viewer_light_kind(const viewer_light *l) { return l->type == RTPBR_LIGHT_DISK ? "disk" : "polygon"; }
+
+float viewer_light_radius(const viewer_light *l)
 {
-    if (n < 3 || n > RTPBR_MAX_POLYGON_VERTICES) return;
-    float center[3], normal[3], radius = 0.0f;
+    if (l->type == RTPBR_LIGHT_DISK) return l->radius;
+    float center[3], radius = 0.0f;
     viewer_light_center(l, center);
-    viewer_light_normal(l, normal);
     for (uint32_t v = 0; v < l->vertex_count; ++v) {
         float d[3] = {l->vertices[v][0] - center[0], l->vertices[v][1] - center[1], l->vertices[v][2] - center[2]};
         radius += sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / (float)l->vertex_count;
     }
+    return radius;
+}
+
+void viewer_light_set_vertex_count(viewer_light *l, uint32_t n)
+{
+    if (l->type == RTPBR_LIGHT_DISK || n < 3 || n > RTPBR_MAX_POLYGON_VERTICES) return;
+    float center[3], normal[3], radius = viewer_light_radius(l);
+    viewer_light_center(l, center);
+    viewer_light_normal(l, normal);
     // Tangent frame (t, b) with t x b = normal, so increasing angles go counter-clockwise
     // seen from the front.
     float t[3] = {l->vertices[0][0] - center[0], l->vertices[0][1] - center[1], l->vertices[0][2] - center[2]};

@@ -1,9 +1,9 @@
 // The viewer's editable copy of a glTF scene: loaded once with the rtpbr scene loader, edited
 // (lights, materials) and kept in step with the engine scene in place: materials with
-// rtpbr_gpu_scene_set_material, a light's emissive polygon with rtpbr_gpu_scene_set_transform
-// (moves, turns and scales are affine maps of the uploaded polygon), the lights (polygonal and
-// KHR_lights_punctual) with rtpbr_gpu_scene_set_lights. Only a new vertex count re-uploads the
-// scene.
+// rtpbr_gpu_scene_set_material, an area light's emissive surface (its polygon, or a disk's fan)
+// with rtpbr_gpu_scene_set_transform (moves, turns and scales are affine maps of the uploaded
+// surface), the lights (polygons, disks and KHR_lights_punctual) with
+// rtpbr_gpu_scene_set_lights. Only a new vertex count re-uploads the scene.
 #ifndef RTPBR_VIEWER_SCENE_EDIT_H
 #define RTPBR_VIEWER_SCENE_EDIT_H
 
@@ -15,9 +15,16 @@
 extern "C" {
 #endif
 
+// An area light: a convex polygon (type RTPBR_LIGHT_POLYGON, zero) or a disk
+// (RTPBR_LIGHT_DISK: centre, normal, radius; an EXT_lights_area disk is this disk, not the
+// loader's octagon). Either is drawn as an emissive surface, so it is seen and can be picked.
 typedef struct viewer_light {
-    float vertices[RTPBR_MAX_POLYGON_VERTICES][3]; // convex, counter-clockwise seen from the front
-    uint32_t vertex_count;
+    rtpbr_light_type type;  // RTPBR_LIGHT_POLYGON or RTPBR_LIGHT_DISK
+    float vertices[RTPBR_MAX_POLYGON_VERTICES][3]; // polygon: convex, counter-clockwise seen from the front
+    uint32_t vertex_count;  // polygon: 3..8; disk: 0
+    float center[3];        // disk: its centre
+    float normal[3];        // disk: unit, toward the side it emits on
+    float radius;           // disk: > 0 (VIEWER_MIN_DISK_RADIUS .. VIEWER_MAX_DISK_RADIUS after an edit)
     float color[3];     // max component 1
     float intensity;    // radiance = color * intensity
     bool two_sided;
@@ -27,6 +34,13 @@ typedef struct viewer_light {
     float transform[16];
     bool reshaped;      // the vertex count changed: the polygon mesh must be re-uploaded
 } viewer_light;
+
+// A disk is drawn as a regular polygon of this many vertices inscribed in it (the engine shades
+// the disk itself); its radius stays in [MIN, MAX] under the viewer's scaling (the engine asks
+// for a radius above 1e-6 of the centre's coordinates).
+#define VIEWER_DISK_SEGMENTS 48
+#define VIEWER_MIN_DISK_RADIUS 1e-3f
+#define VIEWER_MAX_DISK_RADIUS 100.0f
 
 // A KHR_lights_punctual light (rtpbr_light_desc's point, spot and directional lights): no
 // geometry, nothing drawn; only its light is seen.
@@ -47,54 +61,63 @@ typedef struct viewer_scene {
     rtpbr_gltf_scene *loaded;
     rtpbr_material_desc *materials; // one per loaded material (edited in place)
     uint32_t material_count;
-    viewer_light *lights;
+    viewer_light *lights;           // the area lights: polygons and disks, in the loader's order
     uint32_t light_count;
     viewer_punctual *punctual;      // the loaded scene's punctual lights, in its order
     uint32_t punctual_count;
     bool *primitive_is_light;       // primitives replaced by the lights' own polygons
     bool lights_restructured;       // a light was added or removed: the scene must be re-uploaded
-    uint32_t light_mesh_base;       // engine mesh index of light 0's polygon (last upload)
+    uint32_t light_mesh_base;       // engine mesh index of light 0's surface (last upload)
 } viewer_scene;
 
-// Polygonal and punctual lights together: the viewer numbers them as the engine does, the
-// polygonal lights first.
+// Area and punctual lights together: the viewer numbers them as the engine does, the area
+// lights first.
 static inline uint32_t viewer_scene_light_total(const viewer_scene *s) { return s->light_count + s->punctual_count; }
 
 // Loads a glTF file; false with the loader's message on stderr.
 bool viewer_scene_load(viewer_scene *s, const char *path);
 void viewer_scene_destroy(viewer_scene *s);
 // Builds the engine scene: every non-emissive primitive with its (edited) material, and every
-// polygonal light both as a polygonal light and as an emissive polygon mesh, so that it is
-// seen. Materials are the scene's (engine index i = loader material i), then one per light (the
-// light's surface: its source material with the light's emission). The engine's lights are
-// the polygonal lights, then the punctual lights (rtpbr_gpu_scene_from_loaded's order: a scene
-// without edits renders as rtpbr-render renders the file). Resets the lights' transforms to
-// the identity (the polygons are uploaded where they are).
+// area light both as a light (a polygon or a disk) and as an emissive mesh (its polygon, a
+// disk's fan of VIEWER_DISK_SEGMENTS triangles), so that it is seen. Materials are the scene's
+// (engine index i = loader material i), then one per light (the light's surface: its source
+// material with the light's emission). The engine's lights are the area lights, then the
+// punctual lights (rtpbr_gpu_scene_from_loaded's order and kinds: a scene without edits is
+// lit as rtpbr-render lights the file). Resets the lights' transforms to the identity (the
+// surfaces are uploaded where they are).
 rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_scene **out);
-// In-place updates of an uploaded scene (no frame may be pending): material i; polygonal light
-// i's surface material and mesh transform, and all the lights; every polygonal light's surface
-// and transform, and all the lights (after any light edit, punctual lights' too).
+// In-place updates of an uploaded scene (no frame may be pending): material i; area light i's
+// surface material and mesh transform, and all the lights; every area light's surface and
+// transform, and all the lights (after any light edit, punctual lights' too).
 rtpbr_result viewer_scene_update_material(const viewer_scene *s, rtpbr_gpu_scene *gpu, uint32_t material);
 rtpbr_result viewer_scene_update_light(const viewer_scene *s, rtpbr_gpu_scene *gpu, uint32_t light);
 rtpbr_result viewer_scene_update_lights(const viewer_scene *s, rtpbr_gpu_scene *gpu);
-// Adds a polygonal light (its own surface: a rough black material with its emission; material
+// Every light as the engine gets it (upload and updates): viewer_scene_light_total descs, the
+// area lights (RTPBR_LIGHT_POLYGON with the vertices; RTPBR_LIGHT_DISK with position = centre,
+// direction = normal, radius), then the punctual lights.
+void viewer_scene_light_descs(const viewer_scene *s, rtpbr_light_desc *out);
+// Adds an area light (its own surface: a rough black material with its emission; material
 // and transform are set here) or a punctual light at the end of its kind, or removes light
-// `index` in the viewer's numbering (polygonal lights first; a polygonal light's surface goes
-// with it). False when out of memory or index is out of range. Each makes
+// `index` in the viewer's numbering (area lights first; an area light's surface goes with
+// it). False when out of memory or index is out of range. Each makes
 // viewer_scene_needs_upload true (the engine scene's light and mesh counts change).
 bool viewer_scene_add_light(viewer_scene *s, const viewer_light *light);
 bool viewer_scene_add_punctual(viewer_scene *s, const viewer_punctual *light);
 bool viewer_scene_remove_light(viewer_scene *s, uint32_t index);
-// The new lights the viewer's Insert key (I) adds, kind 0..4: a 0.5 m square quad facing down,
-// a sphere (radius 0.1 m), a spot pointing down, a point, a directional light; the quad's,
-// sphere's, spot's and point's centre at `at`.
-#define VIEWER_NEW_LIGHT_KINDS 5
+// The new lights the viewer's Insert key (I) adds, in this order: a 0.5 m square quad facing
+// down (radiance 4), a disk facing down of the quad's area and radiance (so of its power:
+// radius 0.5 / sqrt(pi) m), a sphere (radius 0.1 m), a spot pointing down, a point, a
+// directional light; all but the directional light centred at `at`.
+typedef enum viewer_new_light_kind {
+    VIEWER_NEW_QUAD, VIEWER_NEW_DISK, VIEWER_NEW_SPHERE, VIEWER_NEW_SPOT, VIEWER_NEW_POINT, VIEWER_NEW_DIRECTIONAL,
+    VIEWER_NEW_LIGHT_KINDS
+} viewer_new_light_kind;
 const char *viewer_new_light_name(int kind);
-// Fills *light (kind 0) or *punctual (kinds 1..4); returns true for a polygonal light.
+// Fills *light (the quad, the disk) or *punctual (the others); returns true for an area light.
 bool viewer_new_light(int kind, const float at[3], viewer_light *light, viewer_punctual *punctual);
 
-// True when an edit needs viewer_scene_upload (a light's vertex count changed, a light was added
-// or removed).
+// True when an edit needs viewer_scene_upload (a polygon's vertex count changed, a light was
+// added or removed).
 bool viewer_scene_needs_upload(const viewer_scene *s);
 
 // The nearest surface hit by the ray origin + t dir (t > 0): a light (*light >= 0, *material
@@ -102,13 +125,21 @@ bool viewer_scene_needs_upload(const viewer_scene *s);
 bool viewer_scene_pick(const viewer_scene *s, const float origin[3], const float dir[3], int32_t *light,
                        int32_t *material);
 
-// Edits of one light, about its centre (vertex mean).
+// Edits of one area light, about its centre (a polygon's vertex mean, a disk's centre). A disk
+// moves its centre, turns its normal and scales its radius (kept within
+// VIEWER_MIN_DISK_RADIUS .. VIEWER_MAX_DISK_RADIUS: the factor applied is the one that keeps it
+// there).
 void viewer_light_center(const viewer_light *l, float out[3]);
 void viewer_light_normal(const viewer_light *l, float out[3]);
 void viewer_light_translate(viewer_light *l, const float d[3]);
 void viewer_light_rotate(viewer_light *l, int axis, float radians); // about a world axis 0..2
 void viewer_light_scale(viewer_light *l, float factor);
-// A regular polygon of n (3..8) vertices with the light's centre, normal and mean radius.
+// "polygon" or "disk".
+const char *viewer_light_kind(const viewer_light *l);
+// A polygon's mean distance of its vertices from the centre; a disk's radius.
+float viewer_light_radius(const viewer_light *l);
+// A regular polygon of n (3..8) vertices with the light's centre, normal and mean radius. A
+// disk has no vertices: it stays as it is.
 void viewer_light_set_vertex_count(viewer_light *l, uint32_t n);
 
 // "point", "spot" or "directional".

@@ -328,12 +328,16 @@ static void punctual_panel(app *a, viewer_punctual *p)
 static void light_panel(app *a)
 {
     viewer_scene *s = &a->scene;
-    // Add a light of each kind (I cycles them) or remove the selected one (X); short labels:
-    // the row fits the panel's 300 pixels.
-    static const char *const labels[VIEWER_NEW_LIGHT_KINDS] = {"quad", "sphere", "spot", "point", "sun"};
+    // Add a light of each kind (I cycles them) or remove the selected one (X); short labels,
+    // in two rows (the area lights, the punctual ones) that fit the panel's 300 pixels.
+    static const char *const labels[] = {"quad", "disk", "sphere", "spot", "point", "sun"}; // viewer_new_light_kind
+    static_assert(sizeof labels / sizeof *labels == VIEWER_NEW_LIGHT_KINDS, "a label for each kind");
     ImGui::TextUnformatted("add");
+    float row_start = 0.0f;
     for (int kind = 0; kind < VIEWER_NEW_LIGHT_KINDS; ++kind) {
-        ImGui::SameLine();
+        if (kind == VIEWER_NEW_SPOT) ImGui::SetCursorPosX(row_start); // the second row, under the first
+        else ImGui::SameLine();
+        if (kind == VIEWER_NEW_QUAD) row_start = ImGui::GetCursorPosX();
         if (ImGui::SmallButton(labels[kind])) app_add_light(a, kind);
     }
     uint32_t total = viewer_scene_light_total(s);
@@ -354,24 +358,30 @@ static void light_panel(app *a)
     }
     viewer_light *l = app_area_light(a);
     if (!l) return;
-    ImGui::TextDisabled("polygonal light");
-    bool edited = false;
-    int n = (int)l->vertex_count;
-    if (ImGui::SliderInt("vertices", &n, 3, (int)RTPBR_MAX_POLYGON_VERTICES)) {
-        viewer_light_set_vertex_count(l, (uint32_t)n);
-        edited = true;
+    bool disk = l->type == RTPBR_LIGHT_DISK, edited = false;
+    ImGui::TextDisabled("%s light", viewer_light_kind(l));
+    float radius = viewer_light_radius(l);
+    if (disk) {
+        float r = radius; // the disk's own radius, as the engine shades it
+        if (ImGui::DragFloat("radius (m)", &r, 0.005f, VIEWER_MIN_DISK_RADIUS, VIEWER_MAX_DISK_RADIUS, "%.3f") &&
+            r > 0.0f) {
+            viewer_light_scale(l, r / radius);
+            edited = true;
+        }
+    } else {
+        int n = (int)l->vertex_count;
+        if (ImGui::SliderInt("vertices", &n, 3, (int)RTPBR_MAX_POLYGON_VERTICES)) {
+            viewer_light_set_vertex_count(l, (uint32_t)n);
+            edited = true;
+        }
+        float size = 2.0f * radius; // twice the vertices' mean distance from the centre
+        if (ImGui::DragFloat("size (m)", &size, 0.01f, 0.01f, 100.0f, "%.2f") && size > 0.0f && radius > 0.0f) {
+            viewer_light_scale(l, 0.5f * size / radius);
+            edited = true;
+        }
     }
-    float center[3], radius = 0.0f;
+    float center[3];
     viewer_light_center(l, center);
-    for (uint32_t v = 0; v < l->vertex_count; ++v) {
-        float d[3] = {l->vertices[v][0] - center[0], l->vertices[v][1] - center[1], l->vertices[v][2] - center[2]};
-        radius += std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / (float)l->vertex_count;
-    }
-    float size = 2.0f * radius;
-    if (ImGui::DragFloat("size (m)", &size, 0.01f, 0.01f, 100.0f, "%.2f") && size > 0.0f && radius > 0.0f) {
-        viewer_light_scale(l, 0.5f * size / radius);
-        edited = true;
-    }
     float position[3] = {center[0], center[1], center[2]};
     if (ImGui::DragFloat3("position", position, 0.01f)) {
         float d[3] = {position[0] - center[0], position[1] - center[1], position[2] - center[2]};
@@ -456,7 +466,7 @@ void viewer_ui_build(viewer_ui *ui, app *a)
     ImGui::PushItemWidth(200.0f); // fixed: the windows size themselves to their content
     stats_panel(a);
     if (ImGui::CollapsingHeader("Technique", ImGuiTreeNodeFlags_DefaultOpen)) technique_panel(a);
-    ImGui::TextDisabled("click: select a polygon light or surface; H: keys");
+    ImGui::TextDisabled("click: select an area light or surface; H: keys");
     ImGui::PopItemWidth();
     ImGui::End();
     // The selection on the right: the clicked light or material opens its own panel.

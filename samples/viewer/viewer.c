@@ -1,7 +1,7 @@
 // rtpbr-viewer: an interactive area-light viewer. A GLFW window whose Vulkan device the viewer
 // creates itself (rtpbr runs embedded in it and records into the swapchain images), an orbit
-// camera, Dear ImGui panels (ui.cpp) over the image, editable polygonal and punctual
-// (KHR_lights_punctual) lights and materials (updated in the engine scene in place), the
+// camera, Dear ImGui panels (ui.cpp) over the image, editable area (polygons, disks) and
+// punctual (KHR_lights_punctual) lights and materials (updated in the engine scene in place), the
 // engine's technique toggles, per-pass GPU times, a split view and the live HDR-FLIP against
 // an oracle reference image, screenshots.
 //   usage: rtpbr-viewer [SCENE.gltf] [--reference REF.exr] [--width W] [--height H] [--no-ui]
@@ -24,18 +24,20 @@ static const char *const help_text =
     "rtpbr-viewer controls (the panels do the same with the mouse)\n"
     "  mouse: left drag orbit, right drag pan, wheel zoom, left click: select a light or surface\n"
     "  Home            back to the scene's camera\n"
-    "  Tab             select the next light (polygonal lights, then punctual lights)\n"
-    "  1 / 2 / 3       the keys below move / rotate / scale the light (mode 1 at start);\n"
+    "  Tab             select the next light (area lights, then punctual lights)\n"
+    "  1 / 2 / 3       the keys below move / rotate / scale the light (mode 1 at start;\n"
+    "                  a disk's scale is its radius);\n"
     "                  a punctual light: its position / direction / range\n"
     "  Left / Right    along (about) world X -/+\n"
     "  Up / Down       along (about) world Z -/+\n"
     "  PgDn / PgUp     along (about) world Y -/+\n"
-    "  [ / ]           light vertex count -/+ (3..8); a spot light: outer cone -/+ 2 degrees\n"
+    "  [ / ]           polygon light vertex count -/+ (3..8); a spot light: outer cone -/+\n"
+    "                  2 degrees\n"
     "  C               next light colour\n"
     "  - / =           light intensity -/+ (x 1.25)\n"
-    "  T               light one-/two-sided (polygonal lights)\n"
-    "  I               add a light 1 m above the orbit target: quad, sphere, spot, point,\n"
-    "                  directional in turn (selected; the panel adds each kind too)\n"
+    "  T               light one-/two-sided (area lights: polygons, disks)\n"
+    "  I               add a light 1 m above the orbit target: quad, disk, sphere, spot,\n"
+    "                  point, directional in turn (selected; the panel adds each kind too)\n"
     "  X               remove the selected light\n"
     "  M               select the next material\n"
     "  7 / 8           material roughness -/+\n"
@@ -177,7 +179,10 @@ static void update_title(app *a)
                       viewer_scene_light_total(&a->scene), modes[a->mode]);
         const viewer_light *l = app_area_light(a);
         const viewer_punctual *p = app_punctual_light(a);
-        if (l && n > 0 && (size_t)n < sizeof title)
+        if (l && l->type == RTPBR_LIGHT_DISK && n > 0 && (size_t)n < sizeof title)
+            n += snprintf(title + n, sizeof title - n, " disk r=%.2f I=%.2f %s", l->radius, l->intensity,
+                          l->two_sided ? "two-sided" : "one-sided");
+        else if (l && n > 0 && (size_t)n < sizeof title)
             n += snprintf(title + n, sizeof title - n, " %u-gon I=%.2f %s", l->vertex_count, l->intensity,
                           l->two_sided ? "two-sided" : "one-sided");
         else if (p && n > 0 && (size_t)n < sizeof title)
@@ -276,8 +281,12 @@ static void handle_key(app *a, int key)
     case GLFW_KEY_LEFT: case GLFW_KEY_RIGHT: case GLFW_KEY_UP: case GLFW_KEY_DOWN:
     case GLFW_KEY_PAGE_UP: case GLFW_KEY_PAGE_DOWN: edit_light(a, key); break;
     case GLFW_KEY_LEFT_BRACKET: case GLFW_KEY_RIGHT_BRACKET:
-        if (l) viewer_light_set_vertex_count(l, l->vertex_count + (key == GLFW_KEY_RIGHT_BRACKET ? 1 : -1));
-        if (l) app_light_edited(a);
+        if (l && l->type == RTPBR_LIGHT_DISK) {
+            a->notice = "a disk has no vertices (scale, 3, sets its radius)";
+        } else if (l) {
+            viewer_light_set_vertex_count(l, l->vertex_count + (key == GLFW_KEY_RIGHT_BRACKET ? 1 : -1));
+            app_light_edited(a);
+        }
         if (p && p->type == RTPBR_LIGHT_SPOT) { // 2 degrees; the inner cone stays inside
             p->outer_cone_angle += key == GLFW_KEY_RIGHT_BRACKET ? 0.0349066f : -0.0349066f;
             viewer_punctual_clamp(p);
@@ -294,8 +303,10 @@ static void handle_key(app *a, int key)
         break;
     case GLFW_KEY_T: if (l) l->two_sided = !l->two_sided, app_light_edited(a); break;
     case GLFW_KEY_I:
-        static const char *const added[VIEWER_NEW_LIGHT_KINDS] = {"added a quad light", "added a sphere light",
-            "added a spot light", "added a point light", "added a directional light"};
+        static const char *const added[VIEWER_NEW_LIGHT_KINDS] = {
+            [VIEWER_NEW_QUAD] = "added a quad light", [VIEWER_NEW_DISK] = "added a disk light",
+            [VIEWER_NEW_SPHERE] = "added a sphere light", [VIEWER_NEW_SPOT] = "added a spot light",
+            [VIEWER_NEW_POINT] = "added a point light", [VIEWER_NEW_DIRECTIONAL] = "added a directional light"};
         a->notice = app_add_light(a, a->new_light_kind) ? added[a->new_light_kind] : "out of memory";
         a->new_light_kind = (a->new_light_kind + 1) % VIEWER_NEW_LIGHT_KINDS;
         break;

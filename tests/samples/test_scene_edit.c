@@ -7,6 +7,9 @@
 // validation on: any message fails): the viewer's upload renders the radiance of the engine's
 // own rtpbr_gpu_scene_from_loaded, an intensity x2 doubles each light's part of the image, and
 // rtpbr_gpu_scene_set_lights through the viewer keeps a mixed scene's area light intact.
+// Disk lights (issue 30): light_shapes' EXT_lights_area disks are disks in the viewer (its
+// descs, its picking and, on the device, the engine's own image, moved in place too), and the
+// disk I adds (its place in I's order, its desc, its edits).
 #include "engine_test.h" // test_main.h, the validation-counting context, test_render_radiance
 
 #include "scene_edit.h"
@@ -246,6 +249,186 @@ static void test_punctual_edits(void **state)
     assert_true(p.inner_cone_angle < p.outer_cone_angle);
 }
 
+// The order I adds lights in (viewer.c cycles viewer_new_light's kinds 0, 1, ...): a quad, a
+// disk, a sphere, a spot, a point and a directional light, each of the kind its name says.
+static void test_new_light_order(void **state)
+{
+    (void)state;
+    static const char *const names[] = {"quad", "disk", "sphere", "spot", "point", "directional"};
+    static const rtpbr_light_type types[] = {RTPBR_LIGHT_POLYGON, RTPBR_LIGHT_DISK, RTPBR_LIGHT_POINT,
+                                             RTPBR_LIGHT_SPOT, RTPBR_LIGHT_POINT, RTPBR_LIGHT_DIRECTIONAL};
+    assert_int_equal(VIEWER_NEW_LIGHT_KINDS, 6);
+    const float at[3] = {1.0f, 2.0f, 3.0f};
+    for (int kind = 0; kind < VIEWER_NEW_LIGHT_KINDS; ++kind) {
+        assert_string_equal(viewer_new_light_name(kind), names[kind]);
+        viewer_light l;
+        viewer_punctual p;
+        bool area = viewer_new_light(kind, at, &l, &p);
+        assert_int_equal(area, kind <= 1);
+        assert_int_equal(area ? l.type : p.type, types[kind]);
+        if (!area) assert_float_equal(p.radius, kind == 2 ? 0.1f : 0.0f, 0.0f); // the sphere is the point of radius 0.1
+    }
+    assert_string_equal(viewer_new_light_name(VIEWER_NEW_LIGHT_KINDS), "?");
+}
+
+// The disk I adds (issue 30): the quad's twin, facing down at `at` with the quad's area
+// (0.25 m^2: radius 0.5 / sqrt(pi)) and radiance 4, so its power; in a scene its desc is an
+// RTPBR_LIGHT_DISK with that centre, normal and radius (not a polygon). Moving, turning and
+// scaling it move its centre, turn its normal and scale its radius, and the tracked transform
+// (its drawn fan's) maps the uploaded disk onto the edited one; the scale stops at the radius
+// limits, the transform with it; [ / ] (the vertex count) leaves it alone.
+static void test_new_disk(void **state)
+{
+    (void)state;
+    const float at[3] = {0.5f, 2.0f, -1.0f};
+    viewer_light l;
+    viewer_punctual p;
+    assert_true(viewer_new_light(VIEWER_NEW_DISK, at, &l, &p));
+    assert_int_equal(l.type, RTPBR_LIGHT_DISK);
+    assert_string_equal(viewer_light_kind(&l), "disk");
+    assert_float_equal(pi * l.radius * l.radius, 0.25, 1e-6);
+    assert_float_equal(l.intensity, 4.0f, 0.0f);
+    assert_int_equal(l.vertex_count, 0);
+    viewer_scene s;
+    assert_true(viewer_scene_load(&s, RTPBR_SAMPLES_SCENES "/quad_light.gltf"));
+    assert_true(viewer_scene_add_light(&s, &l));
+    assert_int_equal(s.light_count, 2);
+    assert_true(viewer_scene_needs_upload(&s));
+    rtpbr_light_desc descs[2];
+    viewer_scene_light_descs(&s, descs);
+    assert_int_equal(descs[0].type, RTPBR_LIGHT_POLYGON); // the file's quad
+    const rtpbr_light_desc *d = &descs[1];
+    assert_int_equal(d->type, RTPBR_LIGHT_DISK);
+    for (int c = 0; c < 3; ++c) {
+        assert_float_equal(d->position[c], at[c], 0.0f);
+        assert_float_equal(d->direction[c], c == 1 ? -1.0f : 0.0f, 0.0f);
+        assert_float_equal(d->emission[c], 4.0f, 0.0f);
+    }
+    assert_float_equal(d->radius, 0.5 / sqrt(pi), 1e-7);
+    assert_false(d->two_sided);
+
+    viewer_light *disk = &s.lights[1];
+    const float uploaded_center[3] = {at[0], at[1], at[2]}, uploaded_rim[3] = {at[0] + d->radius, at[1], at[2]};
+    viewer_light_translate(disk, (const float[3]){0.25f, -0.5f, 1.0f});
+    viewer_light_rotate(disk, 0, (float)(pi / 2)); // about +X: the down normal (0, -1, 0) -> (0, 0, -1)
+    viewer_light_scale(disk, 2.0f);
+    viewer_scene_light_descs(&s, descs);
+    const float moved[3] = {0.75f, 1.5f, 0.0f};
+    for (int c = 0; c < 3; ++c) assert_float_equal(d->position[c], moved[c], 1e-6f);
+    assert_float_equal(d->direction[0], 0.0f, 1e-6f);
+    assert_float_equal(d->direction[1], 0.0f, 1e-6f);
+    assert_float_equal(d->direction[2], -1.0f, 1e-6f);
+    assert_float_equal(d->radius, 1.0 / sqrt(pi), 1e-6);
+    float center[3], normal[3];
+    viewer_light_center(disk, center);
+    viewer_light_normal(disk, normal);
+    assert_float_equal(viewer_light_radius(disk), d->radius, 0.0f);
+    for (int c = 0; c < 3; ++c) assert_float_equal(center[c], d->position[c], 0.0f);
+    for (int c = 0; c < 3; ++c) assert_float_equal(normal[c], d->direction[c], 0.0f);
+    // The transform takes the uploaded centre to the centre and a rim point (+X of it, which
+    // the turn about X keeps) to the rim at the new radius.
+    float mapped[2][3];
+    for (int k = 0; k < 2; ++k) {
+        const float *q = k == 0 ? uploaded_center : uploaded_rim;
+        for (int r = 0; r < 3; ++r) {
+            mapped[k][r] = disk->transform[12 + r];
+            for (int c = 0; c < 3; ++c) mapped[k][r] += disk->transform[c * 4 + r] * q[c];
+        }
+    }
+    for (int c = 0; c < 3; ++c) assert_float_equal(mapped[0][c], moved[c], 1e-6f);
+    assert_float_equal(mapped[1][0] - mapped[0][0], d->radius, 1e-6f);
+    viewer_light_scale(disk, 1e-9f); // stops at the smallest radius, and the transform with it
+    assert_float_equal(disk->radius, VIEWER_MIN_DISK_RADIUS, 1e-9f);
+    assert_float_equal(disk->transform[0], VIEWER_MIN_DISK_RADIUS / (0.5 / sqrt(pi)), 1e-6f);
+    viewer_light_scale(disk, 1e9f);
+    assert_float_equal(disk->radius, VIEWER_MAX_DISK_RADIUS, 0.0f);
+    viewer_light_set_vertex_count(disk, 5); // a disk has no vertices
+    assert_int_equal(disk->type, RTPBR_LIGHT_DISK);
+    assert_int_equal(disk->vertex_count, 0);
+    assert_false(disk->reshaped);
+    viewer_scene_destroy(&s);
+}
+
+// light_shapes (tools/make-scenes): two EXT_lights_area disks (radius 0.45 and 0.5 m), a rect
+// and a sphere. The viewer has each disk as the disk the engine's loader path makes of it
+// (rtpbr_gpu_scene_from_loaded: centre, normal and radius as the loader has them), not as the
+// loader's octagon; the rect stays a quad. Moving a disk moves the desc's centre; turning it
+// turns the desc's normal; a ray from in front at its centre picks it, one just outside its
+// rim (inside the octagon's corner) does not.
+static void test_load_light_shapes(void **state)
+{
+    (void)state;
+    viewer_scene s;
+    assert_true(viewer_scene_load(&s, RTPBR_SAMPLES_SCENES "/light_shapes.gltf"));
+    assert_int_equal(s.light_count, 3);
+    assert_int_equal(s.punctual_count, 1);
+    const float radii[2] = {0.45f, 0.5f};
+    for (uint32_t i = 0; i < 2; ++i) {
+        const rtpbr_gltf_light *in = &s.loaded->lights[i];
+        const viewer_light *l = &s.lights[i];
+        assert_int_equal(in->shape, RTPBR_GLTF_LIGHT_DISK);
+        assert_int_equal(l->type, RTPBR_LIGHT_DISK);
+        assert_int_equal(l->vertex_count, 0);
+        assert_float_equal(l->radius, radii[i], 1e-6f);
+        for (int c = 0; c < 3; ++c) {
+            assert_float_equal(l->center[c], in->facts.center[c], 0.0f);
+            assert_float_equal(l->normal[c], in->facts.normal[c], 0.0f);
+        }
+    }
+    assert_int_equal(s.lights[2].type, RTPBR_LIGHT_POLYGON);
+    assert_int_equal(s.lights[2].vertex_count, 4);
+    rtpbr_light_desc descs[4];
+    viewer_scene_light_descs(&s, descs);
+    for (uint32_t i = 0; i < 2; ++i) {
+        assert_int_equal(descs[i].type, RTPBR_LIGHT_DISK);
+        assert_float_equal(descs[i].radius, s.loaded->lights[i].radius, 0.0f);
+        for (int c = 0; c < 3; ++c) {
+            assert_float_equal(descs[i].position[c], s.loaded->lights[i].facts.center[c], 0.0f);
+            assert_float_equal(descs[i].direction[c], s.loaded->lights[i].facts.normal[c], 0.0f);
+        }
+    }
+    assert_int_equal(descs[2].type, RTPBR_LIGHT_POLYGON);
+    assert_int_equal(descs[3].type, RTPBR_LIGHT_POINT);
+
+    // Picking: from 1 m in front of disk 0 (the overhead one), at its centre and 1.02 radii
+    // out along a direction in its plane (the equal-area octagon reaches 1.054 radii at its
+    // corners: the old octagon would be hit there at some angles, the disk never).
+    const viewer_light *disk = &s.lights[0];
+    float eye[3], toward[3];
+    for (int c = 0; c < 3; ++c) eye[c] = disk->center[c] + disk->normal[c], toward[c] = -disk->normal[c];
+    int32_t light, material;
+    assert_true(viewer_scene_pick(&s, eye, toward, &light, &material));
+    assert_int_equal(light, 0);
+    float t[3] = {disk->normal[1], -disk->normal[0], 0.0f}; // in the plane
+    float tl = sqrtf(t[0] * t[0] + t[1] * t[1]);
+    for (int c = 0; c < 3; ++c) t[c] /= tl;
+    int hits = 0;
+    for (int k = 0; k < 64; ++k) { // rays 1.02 radii out, all around, none hits the disk
+        float angle = 2.0f * (float)pi * (float)k / 64.0f, b[3] = {
+            disk->normal[1] * t[2] - disk->normal[2] * t[1], disk->normal[2] * t[0] - disk->normal[0] * t[2],
+            disk->normal[0] * t[1] - disk->normal[1] * t[0]};
+        float from[3];
+        for (int c = 0; c < 3; ++c)
+            from[c] = eye[c] + 1.02f * disk->radius * (cosf(angle) * t[c] + sinf(angle) * b[c]);
+        hits += viewer_scene_pick(&s, from, toward, &light, &material) && light == 0;
+    }
+    assert_int_equal(hits, 0);
+
+    viewer_light *moved = &s.lights[0];
+    viewer_light_translate(moved, (const float[3]){0.5f, -0.25f, 0.125f});
+    viewer_light_rotate(moved, 1, 0.3f);
+    viewer_scene_light_descs(&s, descs);
+    const float *c0 = s.loaded->lights[0].facts.center, *n0 = s.loaded->lights[0].facts.normal;
+    assert_float_equal(descs[0].position[0], c0[0] + 0.5f, 1e-6f);
+    assert_float_equal(descs[0].position[1], c0[1] - 0.25f, 1e-6f);
+    assert_float_equal(descs[0].position[2], c0[2] + 0.125f, 1e-6f);
+    // about +Y, right-handed: (x, z) -> (x cos + z sin, -x sin + z cos)
+    assert_float_equal(descs[0].direction[0], n0[0] * cosf(0.3f) + n0[2] * sinf(0.3f), 1e-6f);
+    assert_float_equal(descs[0].direction[1], n0[1], 1e-6f);
+    assert_float_equal(descs[0].direction[2], -n0[0] * sinf(0.3f) + n0[2] * cosf(0.3f), 1e-6f);
+    viewer_scene_destroy(&s);
+}
+
 // ---- on the device ------------------------------------------------------------------------
 
 enum { RW = 160, RH = 120 };
@@ -406,6 +589,88 @@ static void test_sphere_upload_matches_engine(void **state)
     device_case_close(&d);
 }
 
+// Pixels (of RW x RH) where some channel differs by more than `rel` of the larger value.
+static size_t pixels_beyond(const float *a, const float *b, double rel)
+{
+    size_t count = 0;
+    for (size_t i = 0; i < (size_t)RW * RH; ++i) {
+        bool differs = false;
+        for (int c = 0; c < 3; ++c) {
+            double x = a[4 * i + c], y = b[4 * i + c];
+            differs |= fabs(x - y) > rel * fmax(fabs(x), fabs(y));
+        }
+        count += differs;
+    }
+    return count;
+}
+
+// light_shapes' disks in the viewer are the disks the engine shades (issue 30). The viewer's
+// upload renders what rtpbr_gpu_scene_from_loaded renders: no pixel differs beyond 1e-5
+// relative (colour x intensity may be one ulp off the loader's radiance). The viewer also
+// draws its area lights' surfaces, which rtpbr-render does not for EXT_lights_area lights, but
+// from the file's camera all three show their backs (one-sided: culled). The viewer of before,
+// which had each disk as the loader's equal-area octagon, differs on most lit pixels (measured:
+// 7,268 of 11,152). Moving disk 0 in place (update_lights, no upload) renders what the engine's
+// loader path renders for the file with that disk moved (its centre and octagon moved by the
+// same offset); the move changes most lit pixels.
+static void test_disk_upload_matches_engine(void **state)
+{
+    device_case d;
+    device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/light_shapes.gltf");
+    rtpbr_gpu_scene *engine = NULL, *viewer = upload(&d);
+    assert_int_equal(rtpbr_gpu_scene_from_loaded(d.ctx, d.s.loaded, &engine), RTPBR_SUCCESS);
+    float *want = render(&d, engine), *got = render(&d, viewer);
+    size_t lit = pixels_lit(want), differing = pixels_beyond(want, got, 1e-5);
+    printf("light_shapes: viewer upload vs rtpbr_gpu_scene_from_loaded: %zu of %d pixels differ beyond 1e-5; %zu lit\n",
+           differing, RW * RH, lit);
+    assert_true(lit > (size_t)RW * RH / 2);
+    assert_int_equal(differing, 0);
+
+    viewer_scene *s = &d.s; // the viewer of before: the disks as their octagons
+    viewer_light disks[2] = {s->lights[0], s->lights[1]};
+    for (uint32_t i = 0; i < 2; ++i) {
+        const rtpbr_gltf_light *in = &s->loaded->lights[i];
+        s->lights[i].type = RTPBR_LIGHT_POLYGON;
+        s->lights[i].vertex_count = in->vertex_count;
+        memcpy(s->lights[i].vertices, in->vertices, sizeof in->vertices);
+    }
+    rtpbr_gpu_scene *octagons = upload(&d);
+    float *old = render(&d, octagons);
+    size_t old_differing = pixels_beyond(want, old, 1e-5);
+    printf("light_shapes: the disks as octagons: %zu pixels differ beyond 1e-5\n", old_differing);
+    assert_true(old_differing > lit / 2);
+    s->lights[0] = disks[0], s->lights[1] = disks[1];
+
+    const float offset[3] = {0.4f, -0.3f, -0.5f};
+    viewer_light_translate(&s->lights[0], offset);
+    assert_false(viewer_scene_needs_upload(s));
+    assert_int_equal(viewer_scene_update_lights(s, viewer), RTPBR_SUCCESS);
+    float *moved = render(&d, viewer);
+    rtpbr_gltf_light *in = &s->loaded->lights[0]; // the file with disk 0 moved
+    for (int c = 0; c < 3; ++c) {
+        in->facts.center[c] += offset[c];
+        for (uint32_t v = 0; v < in->vertex_count; ++v) in->vertices[v][c] += offset[c];
+    }
+    rtpbr_gpu_scene *engine_moved = NULL;
+    assert_int_equal(rtpbr_gpu_scene_from_loaded(d.ctx, s->loaded, &engine_moved), RTPBR_SUCCESS);
+    float *want_moved = render(&d, engine_moved);
+    size_t moved_differing = pixels_beyond(want_moved, moved, 1e-5), move_changes = pixels_beyond(want, want_moved, 1e-5);
+    printf("light_shapes, disk 0 moved in place: %zu pixels differ from the engine's moved disk beyond 1e-5; the move "
+           "changes %zu\n", moved_differing, move_changes);
+    assert_int_equal(moved_differing, 0);
+    assert_true(move_changes > lit / 2);
+    free(want);
+    free(got);
+    free(old);
+    free(moved);
+    free(want_moved);
+    rtpbr_gpu_scene_destroy(engine_moved);
+    rtpbr_gpu_scene_destroy(octagons);
+    rtpbr_gpu_scene_destroy(viewer);
+    rtpbr_gpu_scene_destroy(engine);
+    device_case_close(&d);
+}
+
 // An edit of one light's intensity x2, through viewer_scene_update_lights (set_lights, no
 // re-upload), doubles that light's part of the radiance: with R0 the image without it
 // (intensity 0), R1 with it and R2 with twice its intensity, R2 - R0 = 2 (R1 - R0) at every
@@ -506,12 +771,12 @@ static void test_mixed_scene_set_lights(void **state)
 }
 
 // Adding and removing lights (the viewer's I and X keys, its panel's buttons), issue 30: each
-// kind viewer_new_light makes is what it says (a quad of 0.25 m^2 facing down, a sphere of
-// radius 0.1, a spot and a sun pointing down their directions, unit length); added to
-// quad_light they make the scene need an upload, which has 1 + 5 lights and in which each added
-// light lights pixels of its own (the image with it differs from the image without it, removed
-// again); removing every added light gives the scene's own image back bit for bit; a removal
-// out of range is refused.
+// kind viewer_new_light makes is what it says (a quad of 0.25 m^2 facing down, a disk of the
+// same area facing down, a sphere of radius 0.1, a spot and a sun pointing down their
+// directions, unit length); added to quad_light they make the scene need an upload, which has
+// 1 + 6 lights and in which each added light lights pixels of its own (the image with it
+// differs from the image without it, removed again); removing every added light (the disk among
+// them) gives the scene's own image back bit for bit; a removal out of range is refused.
 static void test_add_remove_lights(void **state)
 {
     device_case d;
@@ -524,37 +789,43 @@ static void test_add_remove_lights(void **state)
     for (int kind = 0; kind < VIEWER_NEW_LIGHT_KINDS; ++kind) {
         viewer_light l;
         viewer_punctual p;
-        bool polygonal = viewer_new_light(kind, at, &l, &p);
-        assert_int_equal(polygonal, kind == 0);
-        if (polygonal) {
+        bool area = viewer_new_light(kind, at, &l, &p);
+        assert_int_equal(area, kind == VIEWER_NEW_QUAD || kind == VIEWER_NEW_DISK);
+        if (area) {
             float n[3], c[3];
             viewer_light_normal(&l, n);
             viewer_light_center(&l, c);
             assert_float_equal(n[1], -1.0f, 1e-6f);
             for (int k = 0; k < 3; ++k) assert_float_equal(c[k], at[k], 1e-6f);
-            assert_float_equal(fabsf((l.vertices[1][0] - l.vertices[0][0]) * (l.vertices[2][2] - l.vertices[1][2])), 0.25f,
-                               1e-6f);
+            if (kind == VIEWER_NEW_QUAD)
+                assert_float_equal(fabsf((l.vertices[1][0] - l.vertices[0][0]) * (l.vertices[2][2] - l.vertices[1][2])),
+                                   0.25f, 1e-6f);
+            else
+                assert_float_equal(pi * l.radius * l.radius, 0.25, 1e-6);
             assert_true(viewer_scene_add_light(s, &l));
         } else {
             float len = sqrtf(p.direction[0] * p.direction[0] + p.direction[1] * p.direction[1] +
                               p.direction[2] * p.direction[2]);
             assert_float_equal(len, 1.0f, 1e-6f);
             assert_true(p.direction[1] < 0.0f);
-            assert_float_equal(p.radius, kind == 1 ? 0.1f : 0.0f, 0.0f);
-            assert_int_equal(p.type, kind == 2 ? RTPBR_LIGHT_SPOT : kind == 4 ? RTPBR_LIGHT_DIRECTIONAL : RTPBR_LIGHT_POINT);
+            assert_float_equal(p.radius, kind == VIEWER_NEW_SPHERE ? 0.1f : 0.0f, 0.0f);
+            assert_int_equal(p.type, kind == VIEWER_NEW_SPOT          ? RTPBR_LIGHT_SPOT
+                                     : kind == VIEWER_NEW_DIRECTIONAL ? RTPBR_LIGHT_DIRECTIONAL
+                                                                      : RTPBR_LIGHT_POINT);
             assert_true(viewer_scene_add_punctual(s, &p));
         }
         assert_true(viewer_scene_needs_upload(s));
     }
-    assert_int_equal(s->light_count, 2);
+    assert_int_equal(s->light_count, 3);
     assert_int_equal(s->punctual_count, 4);
     rtpbr_gpu_scene *all = upload(&d);
     assert_false(viewer_scene_needs_upload(s));
-    assert_int_equal(rtpbr_gpu_scene_light_count(all), 6);
+    assert_int_equal(rtpbr_gpu_scene_light_count(all), 7);
     float *all_image = render(&d, all);
     double max_rel;
-    // Each added light, removed alone (viewer numbering: polygonal lights first), changes the image.
-    for (uint32_t k = 1; k < 6; ++k) {
+    // Each added light, removed alone (viewer numbering: area lights first, so light k is the
+    // one of kind k - 1), changes the image.
+    for (uint32_t k = 1; k < 7; ++k) {
         viewer_scene copy = *s; // the arrays are shared: remove from a copy of the arrays
         viewer_light *lights = malloc(s->light_count * sizeof *lights);
         viewer_punctual *punctual = malloc(s->punctual_count * sizeof *punctual);
@@ -566,19 +837,22 @@ static void test_add_remove_lights(void **state)
         assert_true(viewer_scene_remove_light(&copy, k));
         rtpbr_gpu_scene *without = NULL;
         assert_int_equal(viewer_scene_upload(&copy, d.ctx, &without), RTPBR_SUCCESS);
-        assert_int_equal(rtpbr_gpu_scene_light_count(without), 5);
+        assert_int_equal(rtpbr_gpu_scene_light_count(without), 6);
         float *image = render(&d, without);
         size_t changed = pixels_differing(all_image, image, &max_rel);
-        printf("added light %u (%s): lights %zu of %d pixels\n", k, viewer_new_light_name(k == 1 ? 0 : (int)k - 1),
-               changed, RW * RH);
+        printf("added light %u (%s): lights %zu of %d pixels\n", k, viewer_new_light_name((int)k - 1), changed,
+               RW * RH);
         assert_true(changed > (size_t)RW * RH / 20 && max_rel > 1e-3);
         free(image);
         rtpbr_gpu_scene_destroy(without);
         free(copy.lights);
         free(copy.punctual);
     }
-    assert_false(viewer_scene_remove_light(s, 6));
+    assert_false(viewer_scene_remove_light(s, 7));
     while (s->punctual_count) assert_true(viewer_scene_remove_light(s, s->light_count));
+    assert_int_equal(s->lights[2].type, RTPBR_LIGHT_DISK);
+    assert_true(viewer_scene_remove_light(s, 2)); // the disk
+    assert_int_equal(s->lights[1].type, RTPBR_LIGHT_POLYGON);
     assert_true(viewer_scene_remove_light(s, 1));
     assert_int_equal(s->light_count, 1);
     rtpbr_gpu_scene *back = upload(&d);
@@ -600,8 +874,12 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_vertex_count),
                 cmocka_unit_test(test_showcase),
                 cmocka_unit_test(test_load_punctual),
                 cmocka_unit_test(test_punctual_edits),
+                cmocka_unit_test(test_new_light_order),
+                cmocka_unit_test(test_new_disk),
+                cmocka_unit_test(test_load_light_shapes),
                 test_env_case(test_punctual_upload_matches_engine),
                 test_env_case(test_sphere_upload_matches_engine),
+                test_env_case(test_disk_upload_matches_engine),
                 test_env_case(test_punctual_intensity_doubles),
                 test_env_case(test_mixed_scene_set_lights),
                 test_env_case(test_add_remove_lights))
