@@ -76,7 +76,8 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 #define RTPBR_AREA_LIGHT_FULL RTPBR_LIGHTING_FULL
 #define RTPBR_AREA_LIGHT_PUNCTUAL 2 // punctual lights summed first, apart (area_light.h)
 #define RTPBR_AREA_LIGHT_SPHERES 1  // AreaLight_AddSphere for the spheres' mask (RTPBR_LIGHTING_SPHERES)
-#define RTPBR_AREA_LIGHT_DISKS 1    // AreaLight_AddDisk for the disks in that mask
+#define RTPBR_AREA_LIGHT_DISKS 1    // AreaLight_AddDisk for the disks' mask
+#define RTPBR_AREA_LIGHT_ROUND_DISKS 1 // (rtpbr_light_desc has round disks only)
 // A sphere the horizon cuts: clipped exactly in the basic variant; the full variant's registers
 // take the sphere proxy (area_light.h; no spills: tests/shader-stats)
 #define RTPBR_AREA_LIGHT_SPHERE_CLIP (!RTPBR_LIGHTING_FULL)

@@ -53,6 +53,9 @@
 //                          every lobe and correction of AreaLight_Add over the disk itself, the
 //                          horizon as a sphere's: RTPBR_AREA_LIGHT_SPHERE_CLIP, _SPHERE_SIDES),
 //                          into the same sum as its polygons
+//   RTPBR_AREA_LIGHT_ROUND_DISKS  0 (default); 1: the host's disk lights are round (half-axes
+//                          orthogonal, of one length): their Lambert vector form factor is a
+//                          closed form (LTC_DiskVector) instead of an elliptic cone's
 //   RTPBR_AREA_LIGHT_FULL  1 (default): every lobe surface.h resolves (Disney, coat, sheen,
 //                          anisotropy); 0: metallic-roughness without them (the engine's
 //                          basic variant: fewer registers, the streak estimate on GGX).
@@ -130,6 +133,9 @@
 #endif
 #ifndef RTPBR_AREA_LIGHT_DISKS
 #define RTPBR_AREA_LIGHT_DISKS 0
+#endif
+#ifndef RTPBR_AREA_LIGHT_ROUND_DISKS
+#define RTPBR_AREA_LIGHT_ROUND_DISKS 0
 #endif
 #ifndef RTPBR_AREA_LIGHT_SPHERE_CLIP
 #define RTPBR_AREA_LIGHT_SPHERE_CLIP 1
@@ -337,6 +343,20 @@ RTPBR_FN rtpbr_float3 AreaLight_EllipseClippedVector(rtpbr_float3 c, rtpbr_float
 }
 #endif
 
+// The Lambert vector form factor of the ellipse (c, u, w), without the horizon: with
+// RTPBR_AREA_LIGHT_ROUND_DISKS (the host's disks are round: u, w orthogonal, of one length)
+// LTC_DiskVector's closed form (no cubic: per disk light on navi21, 3439 -> 3295 cycles in the
+// engine's basic variant, 2526 -> 2330 in the full one; and exact in float where the elliptic
+// cone loses a disk seen edge-on), otherwise the elliptic cone's (LTC_EllipseVector under the
+// identity).
+RTPBR_FN rtpbr_float3 AreaLight_DiskLambertVector(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float3 w) {
+#if RTPBR_AREA_LIGHT_ROUND_DISKS
+    return LTC_DiskVector(c, normalize(cross(u, w)), length(u));
+#else
+    return LTC_EllipseVector(LTC_InverseMatrix(LTC_Identity()), c, u, w, true);
+#endif
+}
+
 // Disk light i at P in the LTC frame: its centre c (Host_LightSphere's xyz) and half-axes u, w
 // (Host_LightDiskAxis), read again for each lobe (registers, as AreaLight_SphereDisk). F: the
 // disk's Lambert vector form factor where it is wholly above the horizon, exact (the cone's
@@ -354,11 +374,11 @@ RTPBR_FN bool AreaLight_DiskEllipse(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
     F = RTPBR_F3(0.0f);
 #if RTPBR_AREA_LIGHT_SPHERE_CLIP
     if (!cut)
-        F = LTC_EllipseVector(LTC_InverseMatrix(LTC_Identity()), c, u, w, true);
+        F = AreaLight_DiskLambertVector(c, u, w);
     else
         F = AreaLight_EllipseClippedVector(c, u, w);
 #else
-    F = LTC_EllipseVector(LTC_InverseMatrix(LTC_Identity()), c, u, w, true);
+    F = AreaLight_DiskLambertVector(c, u, w);
     if (cut)
         F.z = LTC_SphereCapFormFactor(F);
 #endif

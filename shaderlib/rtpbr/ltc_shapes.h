@@ -25,6 +25,7 @@
 //
 // Public functions
 //   LTC_EllipseVector          an ellipse's vector form factor under M^-1 (relative, local)
+//   LTC_DiskVector             a round disk's vector form factor (Lambert's: no cubic)
 //   LTC_SphereCapFormFactor    the horizon-clipped form factor of the cap with vector form
 //                              factor F, exact (no table; LTC_SphereFormFactor reads ltc2.w)
 //   LTC_SphereAsDisk           the disk facing P that fills the same cone as a sphere
@@ -116,6 +117,35 @@ RTPBR_FN rtpbr_float3 LTC_EllipseVector(rtpbr_float3x3 minv, rtpbr_float3 C, rtp
     float t1 = -eNeg / max(e.x, 1e-30f), t2 = -eNeg / max(e.y, 1e-30f); // L1^2, L2^2
     float ff = sqrt(t1 * t2 / ((1.0f + t1) * (1.0f + t2)));
     return axis * ff;
+}
+
+// The vector form factor (1/pi) int w dw of the round disk of centre C (relative to the shading
+// point), unit normal n and radius r, without the horizon: the Lambert lobe's exact vector, with
+// no cubic. Its component toward the disk's plane is the configuration factor of a differential
+// element parallel to a disk, (1/2) (1 - (h^2 + a^2 - r^2) / q), and its component toward the
+// disk's axis in that plane the perpendicular element's, (h / 2a) ((h^2 + a^2 + r^2) / q - 1),
+// q = sqrt((h^2 + a^2 + r^2)^2 - 4 a^2 r^2), h the distance to the plane and a the offset from
+// the axis (Howell's catalog of configuration factors, element to a coaxial-plane disk; valid
+// inside the disk's cylinder too: the unclamped vector). Two-sided: a one-sided disk seen from
+// behind is the caller's to drop. Agrees with LTC_EllipseVector under the identity.
+RTPBR_FN rtpbr_float3 LTC_DiskVector(rtpbr_float3 C, rtpbr_float3 n, float r) {
+    float s = dot(C, n);
+    rtpbr_float3 toPlane = s > 0.0f ? n : -n; // toward the disk's plane
+    float h = abs(s);
+    rtpbr_float3 toAxis = C - n * s; // from the shading point's foot on the plane to the centre
+    float a2 = dot(toAxis, toAxis), r2 = r * r;
+    float Z = h * h + a2 + r2;
+    float q = sqrt(max(Z * Z - 4.0f * a2 * r2, 0.0f));
+    if (!(q > 0.0f))
+        return RTPBR_F3(0.0f);
+    // (1/2) (1 - Y / q), Y = h^2 + a^2 - r^2: for Y >= 0 as 2 r^2 h^2 / (q (q + Y)) (q^2 - Y^2 =
+    // 4 r^2 h^2), which keeps a small far disk's r^2 / d^2 that 1 - Y / q loses in float
+    float Y = h * h + a2 - r2;
+    float along = Y >= 0.0f ? 2.0f * r2 * h * h / (q * (q + Y)) : 0.5f - 0.5f * Y / q;
+    // (h / 2a) (Z / q - 1) along toAxis / a: h (Z - q) / (2 a^2 q) along toAxis; with Z - q =
+    // 4 a^2 r^2 / (Z + q) (no cancellation): 2 h r^2 / (q (Z + q)) along toAxis
+    float across = 2.0f * h * r2 / (q * (Z + q));
+    return toPlane * along + toAxis * across;
 }
 
 // The horizon-clipped form factor of the spherical cap whose (unclipped) vector form factor is

@@ -950,7 +950,8 @@ static void disk_lambert(void **state)
 {
     rtpbr_context *ctx = test_env_context(state);
     const double L = 3.0;
-    const double bound[] = {2e-4, 4e-4, 0.012}; // of the peak; measured 4.9e-5, 1.25e-4, 0.0089
+    const double bound[] = {2e-4, 2e-4, 0.012}; // of the peak; measured 4.9e-5, 5.4e-5, 0.0090 (the
+                                                // quadrature's own error is about 5e-5)
     for (size_t ci = 0; ci < sizeof disk_cases / sizeof disk_cases[0]; ++ci) {
         const disk_case *c = &disk_cases[ci];
         double errs[2] = {0, 0}, means[2] = {0, 0}, peak = 0.0;

@@ -442,7 +442,69 @@ void test_sphere_cap_against_the_approximation(void **) {
     assert_float_equal(rtpbr::LTC_SphereFormFactorApprox(off), 0.15f, 1e-6f);
 }
 
-RTPBR_TEST_MAIN(cmocka_unit_test(test_disk_on_axis_closed_form), cmocka_unit_test(test_sphere_above_horizon_closed_form),
+// LTC_DiskVector, the round disk's Lambert vector in closed form, against a double-precision
+// quadrature of (1/pi) int w cos_l / d^2 dA over the disk (the midpoint rule on 300 x 300 cells
+// of equal area) on random disks, inside the disk's cylinder and out, and against the on-axis
+// closed form r^2 / (r^2 + h^2) for small far disks, where 1 - Y / q would lose it in float.
+// The elliptic cone (LTC_EllipseVector under the identity, which the closed form replaces for
+// round disks) is printed beside it: in float it was off by up to 41 % of |F| on these disks,
+// where they are seen edge-on (the point within 0.5 % of |c| of the disk's plane, |F| < 4e-4).
+static void test_disk_vector(void **state) {
+    (void)state;
+    unsigned seed = 7u;
+    auto uniform = [&seed]() {
+        seed = seed * 1664525u + 1013904223u;
+        return double(seed >> 8) / 16777216.0;
+    };
+    double worst = 0.0, worstCone = 0.0;
+    int checked = 0;
+    const int N = 300;
+    for (int k = 0; k < 200; ++k) {
+        D3 n = {uniform() - 0.5, uniform() - 0.5, uniform() - 0.5};
+        n = n * (1.0 / len(n));
+        D3 c = {4.0 * uniform() - 2.0, 4.0 * uniform() - 2.0, 4.0 * uniform() - 2.0};
+        double r = 0.05 + 1.5 * uniform();
+        double s = dot(c, n);
+        D3 foot = c + n * -s; // the shading point's offset from the disk's axis: |foot| = a
+        double rim = std::max(len(foot) - r, 0.0);
+        if (std::sqrt(s * s + rim * rim) < 0.2) continue; // (the quadrature's cells near the disk)
+        D3 t = std::fabs(n.x) < 0.9 ? D3{1, 0, 0} : D3{0, 1, 0};
+        D3 u = cross(n, t);
+        u = u * (1.0 / len(u));
+        D3 w = cross(n, u);
+        D3 want = {0, 0, 0};
+        for (int i = 0; i < N; ++i) {
+            double rho = r * std::sqrt((i + 0.5) / N);
+            for (int j = 0; j < N; ++j) {
+                double phi = 2.0 * M_PI * (j + 0.5) / N;
+                D3 y = c + u * (rho * std::cos(phi)) + w * (rho * std::sin(phi));
+                double d2 = dot(y, y), d = std::sqrt(d2);
+                want = want + y * (std::fabs(dot(y, n)) / d / (d2 * d));
+            }
+        }
+        want = want * (M_PI * r * r / (double(N) * N) / M_PI);
+        float3 a = rtpbr::LTC_DiskVector(f3(c), f3(n), float(r));
+        float3 b = rtpbr::LTC_EllipseVector(rtpbr::LTC_InverseMatrix(rtpbr::LTC_Identity()), f3(c), f3(u * r), f3(w * r), true);
+        D3 ea = {a.x - want.x, a.y - want.y, a.z - want.z}, eb = {b.x - want.x, b.y - want.y, b.z - want.z};
+        worst = std::max(worst, len(ea) / len(want));
+        worstCone = std::max(worstCone, len(eb) / len(want));
+        ++checked;
+    }
+    std::printf("LTC_DiskVector against the quadrature, %d random disks: largest difference %.3g of |F| (the elliptic "
+                "cone's: %.3g)\n", checked, worst, worstCone);
+    assert_true(checked > 100);
+    assert_true(worst < 2e-5);
+    // on the axis, far: r^2 / (r^2 + h^2), relative
+    const double cases[][2] = {{0.01, 10.0}, {1e-3, 50.0}, {0.5, 0.5}, {2.0, 0.1}};
+    for (const auto &cs : cases) {
+        double r = cs[0], h = cs[1], want = r * r / (r * r + h * h);
+        float3 F = rtpbr::LTC_DiskVector(float3(0.0f, 0.0f, float(h)), float3(0.0f, 0.0f, -1.0f), float(r));
+        std::printf("disk r %g at %g on its axis: F.z %.8g, closed form %.8g\n", r, h, double(F.z), want);
+        assert_true(std::fabs(F.z - want) <= 1e-6 * want && std::fabs(F.x) + std::fabs(F.y) == 0.0f);
+    }
+}
+
+RTPBR_TEST_MAIN(cmocka_unit_test(test_disk_on_axis_closed_form), cmocka_unit_test(test_disk_vector), cmocka_unit_test(test_sphere_above_horizon_closed_form),
                 cmocka_unit_test(test_against_quadrature), cmocka_unit_test(test_one_sided_and_invariance),
                 cmocka_unit_test(test_sphere_cap_against_the_approximation),
                 cmocka_unit_test(test_textured_quad_lookup), cmocka_unit_test(test_textured_quad_emission))
