@@ -75,9 +75,15 @@ uint32_t imageHeight(const rtpbr_gltf_scene &scene, const RenderSettings &s, uin
     return std::max(1u, width * 3 / 4);
 }
 
+// The oracle's own image of a scene: bumped when a scene's image changes with the same settings
+// (2: EXT_lights_area disks rendered as disks, not their octagons), so that a resumed .acc
+// never merges samples of two versions.
+constexpr uint64_t kImageVersion = 2;
+
 // Everything that changes the image except the sample range, the region and the thread count.
 uint64_t settingsHash(const RenderSettings &s, uint32_t w, uint32_t h) {
     uint64_t x = mix64(0x6f7261636c65ull);
+    x = mix64(x ^ (kImageVersion << 56));
     auto add = [&x](uint64_t v) { x = mix64(x ^ v); };
     add(w);
     add(h);
