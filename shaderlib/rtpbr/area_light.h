@@ -53,6 +53,9 @@
 //                          every lobe and correction of AreaLight_Add over the disk itself, the
 //                          horizon as a sphere's: RTPBR_AREA_LIGHT_SPHERE_CLIP, _SPHERE_SIDES),
 //                          into the same sum as its polygons
+//   RTPBR_AREA_LIGHT_DISK_CLIP_SIDES  24 (default): where the horizon cuts a disk (with
+//                          RTPBR_AREA_LIGHT_SPHERE_CLIP), the sides of the equal-area polygon its
+//                          diffuse vector form factor is clipped and integrated over
 //   RTPBR_AREA_LIGHT_ROUND_DISKS  0 (default); 1: the host's disk lights are round (half-axes
 //                          orthogonal, of one length): their Lambert vector form factor is a
 //                          closed form (LTC_DiskVector) instead of an elliptic cone's
@@ -133,6 +136,9 @@
 #endif
 #ifndef RTPBR_AREA_LIGHT_DISKS
 #define RTPBR_AREA_LIGHT_DISKS 0
+#endif
+#ifndef RTPBR_AREA_LIGHT_DISK_CLIP_SIDES
+#define RTPBR_AREA_LIGHT_DISK_CLIP_SIDES 24
 #endif
 #ifndef RTPBR_AREA_LIGHT_ROUND_DISKS
 #define RTPBR_AREA_LIGHT_ROUND_DISKS 0
@@ -305,15 +311,15 @@ RTPBR_FN bool AreaLight_SphereDisk(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFra
 // (n sin(2 pi / n))) x the ellipse's), walked one edge at a time through the horizon clip:
 // call with k = 1 .. n + 1 and a = c + u x that scale (AreaLight_EllipseGonStart) at first;
 // edge k ends at vertex k (vertex n is vertex 0), step n + 1 closes the clipped polygon.
-RTPBR_FN float AreaLight_EllipseGonScale() {
-    const float n = float(RTPBR_AREA_LIGHT_SPHERE_SIDES);
+RTPBR_FN float AreaLight_EllipseGonScale(uint sides) {
+    const float n = float(sides);
     return sqrt(2.0f * RTPBR_PI / (n * sin(2.0f * RTPBR_PI / n)));
 }
 RTPBR_FN LtcSegment AreaLight_EllipseGonEdge(RTPBR_INOUT(LtcClipper) horizon, rtpbr_float3 c, rtpbr_float3 u,
-                                             rtpbr_float3 w, uint k, RTPBR_INOUT(rtpbr_float3) a) {
-    if (k > uint(RTPBR_AREA_LIGHT_SPHERE_SIDES))
+                                             rtpbr_float3 w, uint k, uint sides, RTPBR_INOUT(rtpbr_float3) a) {
+    if (k > sides)
         return LTC_ClipClose(horizon);
-    float phi = 2.0f * RTPBR_PI * float(k) / float(RTPBR_AREA_LIGHT_SPHERE_SIDES);
+    float phi = 2.0f * RTPBR_PI * float(k) / float(sides);
     rtpbr_float3 b = c + u * cos(phi) + w * sin(phi);
     LtcSegment seg = LTC_ClipEdge(horizon, a, b);
     a = b;
@@ -325,17 +331,20 @@ RTPBR_FN LtcSegment AreaLight_EllipseGonEdge(RTPBR_INOUT(LtcClipper) horizon, rt
 
 #if RTPBR_AREA_LIGHT_DISKS
 #if RTPBR_AREA_LIGHT_SPHERE_CLIP
-// The vector form factor of the ellipse (c, u, w)'s equal-area polygon (AreaLight_SphereLobe's)
+// The vector form factor of the ellipse (c, u, w)'s equal-area RTPBR_AREA_LIGHT_DISK_CLIP_SIDES-gon
 // clipped by the horizon: a walk of its own, not summed in the lobe's walk (registers: summed
-// there, the engine's basic variant took 104 VGPRs on navi21, 96 here).
+// there, the engine's basic variant took 104 VGPRs on navi21, 96 here), and so with sides of its
+// own: 24 (the lobes' 12-gon was 9e-3 of the peak off at a cut disk's rim on a Lambertian
+// floor, 16 sides 2.1e-3, 24 and 32 5.3e-4: tests/engine/test_engine_punctual.c, disk_lambert).
 RTPBR_FN rtpbr_float3 AreaLight_EllipseClippedVector(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float3 w) {
-    float scale = AreaLight_EllipseGonScale();
+    const uint sides = uint(RTPBR_AREA_LIGHT_DISK_CLIP_SIDES);
+    float scale = AreaLight_EllipseGonScale(sides);
     u *= scale;
     w *= scale;
     LtcClipper horizon = LTC_ClipperBegin();
     rtpbr_float3 F = RTPBR_F3(0.0f), a = c + u;
-    RTPBR_UNROLL for (uint k = 1u; k <= uint(RTPBR_AREA_LIGHT_SPHERE_SIDES) + 1u; ++k) {
-        LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, a);
+    RTPBR_UNROLL for (uint k = 1u; k <= sides + 1u; ++k) {
+        LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, sides, a);
         if (seg.valid)
             F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
     }
@@ -414,12 +423,12 @@ RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
     if (!(c.z >= sqrt(u.z * u.z + w.z * w.z) && cl.z >= sqrt(ul.z * ul.z + wl.z * wl.z))) {
         LtcClipper horizon = LTC_ClipperBegin();
         LtcLobe lobe = LTC_LobeBegin(minv);
-        float scale = AreaLight_EllipseGonScale();
+        float scale = AreaLight_EllipseGonScale(uint(RTPBR_AREA_LIGHT_SPHERE_SIDES));
         u *= scale;
         w *= scale;
         rtpbr_float3 a = c + u;
         RTPBR_UNROLL for (uint k = 1u; k <= uint(RTPBR_AREA_LIGHT_SPHERE_SIDES) + 1u; ++k) {
-            LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, a);
+            LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, uint(RTPBR_AREA_LIGHT_SPHERE_SIDES), a);
             if (seg.valid)
                 LTC_LobeEdge(lobe, seg.a, seg.b);
         }

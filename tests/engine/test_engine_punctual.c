@@ -950,8 +950,8 @@ static void disk_lambert(void **state)
 {
     rtpbr_context *ctx = test_env_context(state);
     const double L = 3.0;
-    const double bound[] = {2e-4, 2e-4, 0.012}; // of the peak; measured 4.9e-5, 5.4e-5, 0.0090 (the
-                                                // quadrature's own error is about 5e-5)
+    const double bound[] = {2e-4, 2e-4, 1e-3}; // of the peak; measured 4.9e-5, 5.4e-5, 5.3e-4 (the
+                                               // quadrature's own error is about 5e-5)
     for (size_t ci = 0; ci < sizeof disk_cases / sizeof disk_cases[0]; ++ci) {
         const disk_case *c = &disk_cases[ci];
         double errs[2] = {0, 0}, means[2] = {0, 0}, peak = 0.0;
@@ -991,11 +991,11 @@ static void disk_lambert(void **state)
         }
         free(wants);
         assert_true(errs[0] <= bound[ci]);
-        // The disk beats the octagon it replaces: on average everywhere, and at every pixel
-        // where the horizon does not cut it (where it does, the disk's clipped 12-gon is as far
-        // off at the rim as the octagon: measured 0.0089 and 0.0077 of the peak)
+        // The disk beats the octagon it replaces, on average and at its worst pixel (where the
+        // horizon cuts it: 5.3e-4 of the peak against the octagon's 7.8e-3; with the lobes'
+        // 12-gon for its diffuse vector it was 9.0e-3)
         assert_true(means[0] < means[1]);
-        if (!disk_cases[ci].two_sided) assert_true(errs[0] < errs[1]);
+        assert_true(errs[0] < errs[1]);
     }
 }
 
