@@ -42,34 +42,46 @@ static double lt_srgb_to_linear(double c)
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
+// One axis of the source: n texels and the wrap mode (repeat has period n, mirrored repeat 2n).
+typedef struct lt_axis {
+    uint32_t n;
+    rtpbr_wrap wrap;
+    double period, inv_period;
+} lt_axis;
+
 typedef struct lt_source {
     const uint8_t *rgba;
-    uint32_t width, height;
-    rtpbr_wrap wrap_s, wrap_t;
+    lt_axis s, t;
     float decode[256]; // linear value of each 8-bit code
 } lt_source;
 
-// The two texels a bilinear read at texel coordinate x (texel i's centre at i + 1/2, so
-// x = u W) blends along an axis of n texels, after the wrap, and the weight f of the second.
-static void lt_axis(double x, uint32_t n, rtpbr_wrap wrap, uint32_t *i0, uint32_t *i1, float *f)
+static lt_axis lt_axis_make(uint32_t n, rtpbr_wrap wrap)
 {
-    double lower = floor(x - 0.5);
-    *f = (float)(x - 0.5 - lower);
-    if (wrap == RTPBR_WRAP_CLAMP_TO_EDGE) {
-        double hi = (double)n - 1.0;
+    double period = wrap == RTPBR_WRAP_MIRRORED_REPEAT ? 2.0 * n : (double)n;
+    return (lt_axis){.n = n, .wrap = wrap, .period = period, .inv_period = 1.0 / period};
+}
+
+// The two texels a bilinear read blends along an axis, after the wrap, and the weight f of the
+// second; x is the texel coordinate less 1/2 (texel i's centre at i: x = u n - 1/2).
+static void lt_axis_texels(double x, const lt_axis *axis, uint32_t *i0, uint32_t *i1, float *f)
+{
+    double lower = floor(x);
+    *f = (float)(x - lower);
+    if (axis->wrap == RTPBR_WRAP_CLAMP_TO_EDGE) {
+        double hi = (double)axis->n - 1.0;
         *i0 = (uint32_t)(lower < 0.0 ? 0.0 : lower > hi ? hi : lower);
         *i1 = (uint32_t)(lower + 1.0 < 0.0 ? 0.0 : lower + 1.0 > hi ? hi : lower + 1.0);
         return;
     }
-    // Repeat has period n, mirrored repeat 2n; the reduction's rounding is corrected once, and a
-    // coordinate too large for a texel index to mean anything reads texel 0 (no out-of-range read).
-    double period = wrap == RTPBR_WRAP_REPEAT ? (double)n : 2.0 * n;
-    double m = lower - period * floor(lower / period);
+    // The reduction's rounding is corrected once, and a coordinate too large for a texel index
+    // to mean anything reads texel 0 (no out-of-range read).
+    double period = axis->period;
+    double m = lower - period * floor(lower * axis->inv_period);
     if (m < 0.0) m += period;
     if (m >= period) m -= period;
     if (!(m >= 0.0 && m < period)) m = 0.0;
-    uint32_t a = (uint32_t)m, b = a + 1 == (uint32_t)period ? 0 : a + 1;
-    if (wrap == RTPBR_WRAP_MIRRORED_REPEAT) { // texel i of the mirrored copy is texel 2n - 1 - i
+    uint32_t a = (uint32_t)m, b = a + 1 == (uint32_t)period ? 0 : a + 1, n = axis->n;
+    if (axis->wrap == RTPBR_WRAP_MIRRORED_REPEAT) { // texel i of the mirrored copy is texel 2n - 1 - i
         a = a < n ? a : 2 * n - 1 - a;
         b = b < n ? b : 2 * n - 1 - b;
     }
@@ -77,22 +89,29 @@ static void lt_axis(double x, uint32_t n, rtpbr_wrap wrap, uint32_t *i0, uint32_
     *i1 = b;
 }
 
-// Bilinear read of the decoded RGB at (u, v), accumulated into acc.
-static void lt_read(const lt_source *src, double u, double v, double acc[3])
+typedef struct lt_rgb {
+    float r, g, b;
+} lt_rgb;
+
+// Bilinear read of the decoded RGB at texel coordinates (x, y) less 1/2.
+static lt_rgb lt_read(const lt_source *src, double x, double y)
 {
     uint32_t x0, x1, y0, y1;
     float fx, fy;
-    lt_axis(u * src->width, src->width, src->wrap_s, &x0, &x1, &fx);
-    lt_axis(v * src->height, src->height, src->wrap_t, &y0, &y1, &fy);
-    const uint8_t *r0 = src->rgba + (size_t)y0 * src->width * 4, *r1 = src->rgba + (size_t)y1 * src->width * 4;
+    lt_axis_texels(x, &src->s, &x0, &x1, &fx);
+    lt_axis_texels(y, &src->t, &y0, &y1, &fy);
+    size_t row = (size_t)src->s.n * 4;
+    const uint8_t *r0 = src->rgba + y0 * row, *r1 = src->rgba + y1 * row;
     const uint8_t *p00 = r0 + (size_t)x0 * 4, *p10 = r0 + (size_t)x1 * 4;
     const uint8_t *p01 = r1 + (size_t)x0 * 4, *p11 = r1 + (size_t)x1 * 4;
     const float *d = src->decode;
-    for (int c = 0; c < 3; ++c) {
-        float top = d[p00[c]] + fx * (d[p10[c]] - d[p00[c]]);
-        float bottom = d[p01[c]] + fx * (d[p11[c]] - d[p01[c]]);
-        acc[c] += top + fy * (bottom - top);
+    float c[3];
+    for (int i = 0; i < 3; ++i) {
+        float top = d[p00[i]] + fx * (d[p10[i]] - d[p00[i]]);
+        float bottom = d[p01[i]] + fx * (d[p11[i]] - d[p01[i]]);
+        c[i] = top + fy * (bottom - top);
     }
+    return (lt_rgb){c[0], c[1], c[2]};
 }
 
 // Supersamples per axis of a cell whose edge spans `texels` texels: two per texel, 2..16.
@@ -102,24 +121,31 @@ static int lt_samples(double texels)
     return n <= 2.0 ? 2 : n >= LT_MAX_SAMPLES ? LT_MAX_SAMPLES : (int)n;
 }
 
+// Sample (i, j) of cell (x, y) is at s = (x ns + i + 1/2) / (ns S), t likewise; in texel
+// coordinates less 1/2, (u W, v H) - 1/2 with (u, v) = uv0 + s du + t dv.
 static void lt_level0(const lt_source *src, const float uv0[2], const float du[2], const float dv[2], float *out)
 {
-    int ns = lt_samples(hypot((double)du[0] * src->width, (double)du[1] * src->height) / LT_S);
-    int nt = lt_samples(hypot((double)dv[0] * src->width, (double)dv[1] * src->height) / LT_S);
+    double w = src->s.n, h = src->t.n;
+    int ns = lt_samples(hypot(du[0] * w, du[1] * h) / LT_S);
+    int nt = lt_samples(hypot(dv[0] * w, dv[1] * h) / LT_S);
+    double ds = 1.0 / ((double)ns * LT_S), dt = 1.0 / ((double)nt * LT_S);
+    double step_x = du[0] * w * ds, step_y = du[1] * h * ds; // per sample along s
     double inv = 1.0 / ((double)ns * nt);
     for (int y = 0; y < LT_S; ++y)
         for (int x = 0; x < LT_S; ++x) {
-            double acc[3] = {0.0, 0.0, 0.0};
-            for (int b = 0; b < nt; ++b) {
-                double t = (y + (b + 0.5) / nt) / LT_S;
-                double ut = uv0[0] + t * dv[0], vt = uv0[1] + t * dv[1];
-                for (int a = 0; a < ns; ++a) {
-                    double s = (x + (a + 0.5) / ns) / LT_S;
-                    lt_read(src, ut + s * du[0], vt + s * du[1], acc);
+            double r = 0.0, g = 0.0, b = 0.0; // in registers: no chain through memory
+            double s0 = (x * ns + 0.5) * ds;
+            for (int j = 0; j < nt; ++j) {
+                double t = (y * nt + j + 0.5) * dt;
+                double x0 = (uv0[0] + s0 * du[0] + t * dv[0]) * w - 0.5;
+                double y0 = (uv0[1] + s0 * du[1] + t * dv[1]) * h - 0.5;
+                for (int i = 0; i < ns; ++i) {
+                    lt_rgb c = lt_read(src, x0 + i * step_x, y0 + i * step_y);
+                    r += c.r, g += c.g, b += c.b;
                 }
             }
             float *texel = out + ((size_t)y * LT_S + x) * 4;
-            for (int c = 0; c < 3; ++c) texel[c] = (float)(acc[c] * inv);
+            texel[0] = (float)(r * inv), texel[1] = (float)(g * inv), texel[2] = (float)(b * inv);
             texel[3] = 1.0f;
         }
 }
@@ -219,8 +245,8 @@ int rtpbr_light_texture_prefilter(const rtpbr_texture_desc *src, const float uv0
     if (!lt_wrap_known(src->wrap_s) || !lt_wrap_known(src->wrap_t)) return -1;
     if (!lt_finite2(uv0) || !lt_finite2(du) || !lt_finite2(dv)) return -1;
 
-    lt_source source = {.rgba = src->rgba, .width = src->width, .height = src->height,
-                        .wrap_s = src->wrap_s, .wrap_t = src->wrap_t};
+    lt_source source = {.rgba = src->rgba, .s = lt_axis_make(src->width, src->wrap_s),
+                        .t = lt_axis_make(src->height, src->wrap_t)};
     for (int code = 0; code < 256; ++code)
         source.decode[code] = (float)(src->srgb ? lt_srgb_to_linear(code / 255.0) : code / 255.0);
     lt_level0(&source, uv0, du, dv, out);
