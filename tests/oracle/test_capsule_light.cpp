@@ -15,6 +15,7 @@
 //   - capsules straddling the floor's horizon (horizontal and tilted): the quadrature of the
 //     part above it (no leak from the part below, nothing missing from the part above); wholly
 //     below: exactly 0; a floor point inside a capsule: a L_e exactly (every BSDF ray sees it);
+//   - from glTF: the loader's capsule (axis the node's +X) rendered as the quadrature says.
 // (Bad capsules refused by validateScene: test_punctual_light.cpp, test_validation.)
 // A point's radiance is a 1 x 1 image whose camera looks at it from close by with a field of
 // view of 1e-3 rad, as in test_disk_light.cpp; the references are taken where the oracle's rays
@@ -363,7 +364,43 @@ void test_capsule_horizon(void **) {
     assert_true(std::fabs(inside.v - aLe) <= 1e-5 * aLe);
 }
 
+// ---- from glTF -------------------------------------------------------------------------------
+
+// A capsule from glTF (KHR_lights_punctual point light, "extras": {"radius": 0.1, "length": 1},
+// its node 0.5 up and turned 90 degrees about +y: its +X, the axis, becomes -z): the loader's
+// light, put over a Lambert floor, against the quadrature of the capsule along z at a point
+// under its end (along x it would give 0.65 of it there, 100 standard errors off).
+void test_capsule_from_gltf(void **) {
+    const char *json = "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_lights_punctual\"],"
+                       "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"point\",\"intensity\":2,"
+                       "\"extras\":{\"radius\":0.1,\"length\":1}}]}},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+                       "\"nodes\":[{\"translation\":[0,0.5,0],\"rotation\":[0,0.70710678118654752,0,0.70710678118654752],"
+                       "\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}]}";
+    rtpbr_gltf_scene *scene = nullptr;
+    rtpbr_gltf_load_desc desc{};
+    if (rtpbr_gltf_load_memory(json, std::strlen(json), &desc, &scene) != RTPBR_GLTF_SUCCESS)
+        fail_msg("the loader refused the capsule scene");
+    assert_int_equal(scene->punctual_light_count, 1);
+    const rtpbr_gltf_punctual_light P = scene->punctual_lights[0];
+    rtpbr_gltf_destroy(scene);
+    std::printf("loaded: radius %g, length %g, axis (%g, %g, %g)\n", double(P.radius), double(P.length),
+                double(P.axis[0]), double(P.axis[1]), double(P.axis[2]));
+    assert_true(std::fabs(P.axis[2] + 1.0f) <= 1e-6f && P.length == 1.0f && P.radius == 0.1f);
+    SceneBuilder b;
+    floorPlane(b, lambertMaterial(b, kAlbedo));
+    b.punctualLights.push_back(P);
+    const glm::dvec3 p(0.05, 0.0, 0.6);
+    const Capsule alongZ{glm::dvec3(0.0, 0.5, 0.0), glm::dvec3(0, 0, 1), 0.1, 1.0, 2.0};
+    const Capsule alongX{glm::dvec3(0.0, 0.5, 0.0), glm::dvec3(1, 0, 0), 0.1, 1.0, 2.0};
+    std::printf("  along x it would be %.6f\n", lambertQuadrature(alongX, leaving(p)));
+    RenderSettings s;
+    s.spp = 1u << 18;
+    s.directOnly = true;
+    expectWithin(renderPoint(b, p, s), lambertQuadrature(alongZ, leaving(p)), "under the end of a loaded capsule");
+}
+
 } // namespace
 
 RTPBR_TEST_MAIN(cmocka_unit_test(test_capsule_shape), cmocka_unit_test(test_capsule_lambert),
-                cmocka_unit_test(test_capsule_sphere_limit), cmocka_unit_test(test_capsule_horizon))
+                cmocka_unit_test(test_capsule_sphere_limit), cmocka_unit_test(test_capsule_horizon),
+                cmocka_unit_test(test_capsule_from_gltf))
