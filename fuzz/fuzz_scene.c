@@ -198,6 +198,10 @@ static void check_scene(const rtpbr_gltf_scene* s) {
               "the sun's angular diameter on directional lights only");
         check(isfinite(l->radius) && l->radius >= 0.0f, "radius finite, >= 0");
         check(l->type == RTPBR_GLTF_PUNCTUAL_POINT || l->radius == 0.0f, "a radius on point lights only");
+        check(isfinite(l->length) && l->length >= 0.0f, "length finite, >= 0");
+        check(l->length == 0.0f || l->radius > 0.0f, "a length on spheres only");
+        const float axis2 = l->axis[0] * l->axis[0] + l->axis[1] * l->axis[1] + l->axis[2] * l->axis[2];
+        check(finite3(l->axis) && fabsf(axis2 - 1.0f) < 1e-5f, "unit punctual axis");
         check(l->gltf_node >= 0 && l->gltf_light >= 0, "punctual sources");
     }
 }

@@ -302,6 +302,113 @@ float LightSet::pdf(glm::vec3 pf, uint32_t l, glm::vec3 wi, float distance) cons
     return float(areaDensity(L, sel, dvec3(wi), double(distance)));
 }
 
+// ---- capsules -----------------------------------------------------------------------------------
+
+namespace {
+
+// The roots of a s^2 - 2 b s + c = 0 (a > 0) given disc = b^2 - a c, computed by the caller
+// without cancellation: q = b + sign(b) sqrt(disc), roots q / a and c / q (Press et al.,
+// Numerical Recipes, 5.6), ascending. False where there is none.
+bool quadraticRoots(double a, double b, double c, double disc, double *s0, double *s1) {
+    if (!(disc >= 0.0) || !(a > 0.0))
+        return false;
+    const double q = b + std::copysign(std::sqrt(disc), b);
+    double r0 = q / a, r1 = q != 0.0 ? c / q : r0;
+    if (r0 > r1)
+        std::swap(r0, r1);
+    *s0 = r0;
+    *s1 = r1;
+    return true;
+}
+
+} // namespace
+
+CapsuleShape CapsuleShape::of(const rtpbr_gltf_punctual_light &P) {
+    CapsuleShape c;
+    c.centre = dvec3(P.position[0], P.position[1], P.position[2]);
+    const dvec3 axis(P.axis[0], P.axis[1], P.axis[2]);
+    const double len = glm::length(axis);
+    c.axis = len > 0.0 && std::isfinite(len) ? axis / len : dvec3(1.0, 0.0, 0.0);
+    orthonormalBasis(c.axis, &c.t, &c.b);
+    c.radius = double(P.radius);
+    c.half = 0.5 * double(P.length);
+    return c;
+}
+
+double CapsuleShape::cylinderArea() const { return 2.0 * kPi * radius * (2.0 * half); }
+
+double CapsuleShape::area() const { return 4.0 * kPi * radius * radius + cylinderArea(); }
+
+bool CapsuleShape::contains(dvec3 p) const {
+    const dvec3 q = p - centre;
+    const double z = glm::clamp(glm::dot(q, axis), -half, half);
+    const dvec3 off = q - z * axis;
+    return glm::dot(off, off) <= radius * radius;
+}
+
+bool CapsuleShape::intersect(dvec3 o, dvec3 w, double sMax, double *sHit, dvec3 *nHit) const {
+    const dvec3 D = centre - o; // o + s w - centre = s w - D
+    const double Du = glm::dot(D, axis), wu = glm::dot(w, axis);
+    double best = std::numeric_limits<double>::infinity();
+    dvec3 bestN(0.0);
+    auto consider = [&](double s, dvec3 n) {
+        if (s > 0.0 && s <= sMax && s < best) {
+            best = s;
+            bestN = n;
+        }
+    };
+    // The cylinder |(s w - D)_perp| = r, with |z| <= half, z = s wu - Du the axial coordinate:
+    // a = |w_perp|^2, b = w_perp.D_perp, c = |D_perp|^2 - r^2, b^2 - a c = a r^2 - |w_perp x
+    // D_perp|^2 (no cancellation where the ray passes close to the axis).
+    const dvec3 wp = w - wu * axis, Dp = D - Du * axis;
+    const dvec3 cr = glm::cross(wp, Dp);
+    const double a = glm::dot(wp, wp);
+    double s0, s1;
+    if (quadraticRoots(a, glm::dot(wp, Dp), glm::dot(Dp, Dp) - radius * radius, a * radius * radius - glm::dot(cr, cr),
+                       &s0, &s1)) {
+        for (double s : {s0, s1}) {
+            const double z = s * wu - Du;
+            if (std::fabs(z) <= half)
+                consider(s, (s * wp - Dp) / radius);
+        }
+    }
+    // The caps: spheres at centre +- half axis, the part beyond the cylinder's end (z >= half,
+    // z <= -half): s^2 - 2 (w.Dc) s + |Dc|^2 - r^2 = 0, b^2 - c = r^2 - |w x Dc|^2.
+    for (double side : {1.0, -1.0}) {
+        const dvec3 Dc = D + side * half * axis;
+        const dvec3 x = glm::cross(w, Dc);
+        if (quadraticRoots(1.0, glm::dot(w, Dc), glm::dot(Dc, Dc) - radius * radius, radius * radius - glm::dot(x, x),
+                           &s0, &s1)) {
+            for (double s : {s0, s1}) {
+                const double z = s * wu - Du;
+                if (side * z >= half)
+                    consider(s, (s * w - Dc) / radius);
+            }
+        }
+    }
+    if (!(best <= sMax) || std::isinf(best)) // no root in (0, sMax] (sMax may be infinite)
+        return false;
+    *sHit = best;
+    *nHit = bestN;
+    return true;
+}
+
+dvec3 CapsuleShape::sample(double u1, double u2, dvec3 *n) const {
+    const double pCylinder = cylinderArea() / area();
+    const double phi = 2.0 * kPi * u2;
+    if (u1 < pCylinder) { // the cylinder: z uniform along the axis, phi uniform around it
+        const double z = (2.0 * (u1 / pCylinder) - 1.0) * half;
+        *n = std::cos(phi) * t + std::sin(phi) * b;
+        return centre + z * axis + radius * *n;
+    }
+    // The caps: a direction uniform on the unit sphere (cos uniform in [-1, 1]); its upper half
+    // on the cap at +half, its lower half on the cap at -half.
+    const double v = std::min(1.0, (u1 - pCylinder) / (1.0 - pCylinder));
+    const double cz = 1.0 - 2.0 * v, sz = std::sqrt(std::max(0.0, (1.0 - cz) * (1.0 + cz)));
+    *n = sz * std::cos(phi) * t + sz * std::sin(phi) * b + cz * axis;
+    return centre + (cz >= 0.0 ? half : -half) * axis + radius * *n;
+}
+
 // ---- punctual lights ---------------------------------------------------------------------------
 
 PunctualLights::PunctualLights(const rtpbr_gltf_scene &scene) {
@@ -325,8 +432,17 @@ PunctualLights::PunctualLights(const rtpbr_gltf_scene &scene) {
             anyVisible_ = true;
         }
         disks_.push_back(D);
+        Capsule C;
+        if (P.type == RTPBR_GLTF_PUNCTUAL_POINT && P.radius > 0.0f && P.length > 0.0f) {
+            C.radius = double(P.radius);
+            C.shape = CapsuleShape::of(P);
+            C.area = C.shape.area();
+            C.radiance = dvec3(P.intensity[0], P.intensity[1], P.intensity[2]) * (4.0 / C.area);
+            anyVisible_ = true;
+        }
+        capsules_.push_back(C);
         Sphere S;
-        if (P.type == RTPBR_GLTF_PUNCTUAL_POINT && P.radius > 0.0f) {
+        if (P.type == RTPBR_GLTF_PUNCTUAL_POINT && P.radius > 0.0f && !(P.length > 0.0f)) {
             S.radius = double(P.radius);
             S.centre = dvec3(P.position[0], P.position[1], P.position[2]);
             S.intensity = dvec3(P.intensity[0], P.intensity[1], P.intensity[2]);
@@ -362,6 +478,28 @@ bool PunctualLights::illuminate(uint32_t l, glm::vec3 pf, float u1, float u2, Pu
         s->distance = std::numeric_limits<float>::infinity();
         s->irradiance = glm::vec3(D.perSample);
         s->pdf = D.pdf;
+        return true;
+    }
+    if (hasCapsule(l)) {
+        const Capsule &C = capsules_[l];
+        const dvec3 p(pf);
+        const double window = rangeWindow(glm::length(C.shape.centre - p), double(P.range));
+        if (C.shape.contains(p) || !(window > 0.0)) // inside the capsule: BSDF rays alone see it
+            return false;
+        dvec3 n;
+        const dvec3 x = C.shape.sample(double(u1), double(u2), &n);
+        const dvec3 d = x - p;
+        const double dist = glm::length(d);
+        const dvec3 wi = d / dist;
+        // Convex: the point is visible from p iff it faces p; else the capsule hides it.
+        const double cosLight = -glm::dot(n, wi);
+        if (!(dist > 0.0) || !(cosLight > 0.0))
+            return false;
+        s->wi = glm::vec3(wi);
+        s->distance = float(dist);
+        // L_e W / pdf, pdf = dist^2 / (cos_light area): the density of area sampling in solid angle.
+        s->irradiance = glm::vec3(C.radiance * (window * cosLight * C.area / (dist * dist)));
+        s->pdf = dist * dist / (cosLight * C.area);
         return true;
     }
     if (hasSphere(l)) {
@@ -425,6 +563,26 @@ bool PunctualLights::diskRadiance(uint32_t l, glm::vec3 wi, dvec3 *radiance, dou
         return false;
     *radiance = D.radiance;
     *pdf = D.pdf;
+    return true;
+}
+
+bool PunctualLights::capsuleRadiance(uint32_t l, glm::vec3 pf, glm::vec3 wif, float tmax, dvec3 *radiance,
+                                     double *pdf) const {
+    const Capsule &C = capsules_[l];
+    if (!(C.radius > 0.0))
+        return false;
+    const dvec3 p(pf), w = glm::normalize(dvec3(wif));
+    double t;
+    dvec3 n;
+    if (!C.shape.intersect(p, w, double(tmax), &t, &n))
+        return false;
+    const double window = rangeWindow(glm::length(C.shape.centre - p), double(lights_[l].range));
+    if (!(window > 0.0))
+        return false;
+    const double cosLight = -glm::dot(n, w);
+    // From inside (the ray leaves through the surface: cos <= 0) no light sample competes.
+    *pdf = !C.shape.contains(p) && cosLight > 0.0 ? t * t / (cosLight * C.area) : 0.0;
+    *radiance = C.radiance * window;
     return true;
 }
 

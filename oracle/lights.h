@@ -43,6 +43,29 @@ struct DiskShape {
     bool intersect(glm::dvec3 o, glm::dvec3 w, double sMin, double sMax, double *s, double *x, double *y) const;
 };
 
+// A point light's capsule (rtpbr_gltf_punctual_light.length > 0): the segment centre +- axis
+// half (half = length / 2) swept by the ball of radius `radius`, i.e. a cylinder of length
+// 2 half and two hemispherical caps; (t, b, axis) orthonormal. It is convex, so a point x of its
+// surface is visible from a point p outside it iff its outward normal faces p, n.(p - x) > 0
+// (the tangent plane at x supports it: the open segment p -> x lies on its far side); a point
+// with n.(p - x) <= 0 is hidden by the capsule itself. All in double.
+struct CapsuleShape {
+    glm::dvec3 centre{0.0}, axis{1.0, 0.0, 0.0}, t{0.0}, b{0.0};
+    double radius = 0.0, half = 0.0;
+
+    static CapsuleShape of(const rtpbr_gltf_punctual_light &P);
+    double cylinderArea() const; // 2 pi r (2 half)
+    double area() const;         // 4 pi r^2 + 2 pi r (2 half)
+    // Is p inside or on it (its distance to the segment <= radius)?
+    bool contains(glm::dvec3 p) const;
+    // The ray o + s w (w unit) meets its surface first at s in (0, sMax]: *s and the outward
+    // normal there (from inside: where it leaves).
+    bool intersect(glm::dvec3 o, glm::dvec3 w, double sMax, double *s, glm::dvec3 *n) const;
+    // A point uniformly in its area from (u1, u2) in [0, 1)^2 (the cylinder or the caps by their
+    // areas; the caps as one sphere split at its equator) and its outward normal *n.
+    glm::dvec3 sample(double u1, double u2, glm::dvec3 *n) const;
+};
+
 struct LightSample {
     glm::vec3 wi;       // unit direction from the shading point to the light point
     float distance;     // to the light point
@@ -122,6 +145,15 @@ private:
 // sphere before the scene (sphereRadiance); a sample's L W / pdf = intensity W 2 / (d^2 (1 +
 // cos s)) stays finite for a tiny sphere. From p inside (d <= r) every direction sees it: BSDF
 // rays alone find it, with weight 1.
+// A point light of radius r > 0 and length L > 0 is a capsule (CapsuleShape: the segment
+// position +- axis L / 2 swept by the ball of radius r) of uniform radiance L_e W(d),
+// L_e = 2 intensity / (pi r (2 r + L)) (its power stays 4 pi intensity; at L = 0 the sphere's
+// intensity / (pi r^2)), W at the distance d from the shading point to its centre. Transparent
+// to everything else as the sphere is. Next-event estimation takes a point uniformly in its area
+// (CapsuleShape::sample), keeps it if it faces the shading point (exact visibility on a convex
+// body) and converts the density to solid angle, dist^2 / (cos_light area); BSDF rays that meet
+// it first before the scene carry L_e W with that density's MIS weight (capsuleRadiance). From
+// inside it, BSDF rays alone, weight 1.
 struct PunctualSample {
     glm::vec3 wi;         // unit direction from p to the light
     float distance;       // to the light position (a sphere: to its near surface along wi);
@@ -144,12 +176,17 @@ public:
     // Is light l a sphere (a point light of radius > 0)? Only then does illuminate() use u1,
     // u2, and only then can a ray from a point see it (sphereRadiance).
     bool hasSphere(uint32_t l) const { return spheres_[l].radius > 0.0; }
-    // Can a ray see any light (is any a disk or a sphere)?
+    // Is light l a capsule (a point light of radius > 0 and length > 0)? Only then does
+    // illuminate() use u1, u2 as a point on it, and only then can a ray see it (capsuleRadiance).
+    bool hasCapsule(uint32_t l) const { return capsules_[l].radius > 0.0; }
+    // Can a ray see any light (is any a disk, a sphere or a capsule)?
     bool anyVisible() const { return anyVisible_; }
     // Light l seen from p; false where it gives nothing (outside its cone or range, a black
-    // light, p at the light's position or inside its sphere). A sun's disk or a sphere: a
-    // direction uniform in its cap (cone) from (u1, u2) in [0, 1)^2, with its density in
-    // s->pdf (a sphere: s->distance to its near surface); a delta light ignores u1, u2.
+    // light, p at the light's position or inside its sphere or capsule, a capsule's point that
+    // faces away from p). A sun's disk or a sphere: a direction uniform in its cap (cone) from
+    // (u1, u2) in [0, 1)^2, with its density in s->pdf (a sphere: s->distance to its near
+    // surface); a capsule: a point uniform in its area (s->distance to it), s->pdf its density
+    // in solid angle; a delta light ignores u1, u2.
     bool illuminate(uint32_t l, glm::vec3 p, float u1, float u2, PunctualSample *s) const;
     // A ray leaving towards wi sees sun l's disk: its radiance (double: a tiny disk's may not
     // fit a float) and the density illuminate() samples wi with; false outside the cap (and
@@ -161,6 +198,11 @@ public:
     // light).
     bool sphereRadiance(uint32_t l, glm::vec3 p, glm::vec3 wi, float tmax, glm::dvec3 *radiance,
                         double *pdf) const;
+    // The ray p + t wi (0 < t <= tmax) meets capsule l: its radiance L_e W(|centre - p|) and
+    // the density (solid angle) illuminate() samples wi with from p (0 from inside it, where it
+    // does not sample); false where it misses (and for every other light).
+    bool capsuleRadiance(uint32_t l, glm::vec3 p, glm::vec3 wi, float tmax, glm::dvec3 *radiance,
+                         double *pdf) const;
     // KHR_lights_punctual's spot falloff: t = clamp((cd - cos outer) / max(1e-3, cos inner -
     // cos outer), 0, 1), returned as t^2; cd = cos of the angle from the spot's axis.
     static double spotFalloff(double cd, double innerConeAngle, double outerConeAngle);
@@ -192,10 +234,18 @@ private:
         double d, oneMinusCos, onePlusCos;
     };
     static Cone sphereCone(const Sphere &S, glm::dvec3 p);
+    // A point light's capsule.
+    struct Capsule {
+        double radius = 0.0; // r; 0: not a capsule
+        CapsuleShape shape;
+        double area = 0.0;
+        glm::dvec3 radiance{0.0}; // 2 intensity / (pi r (2 r + L)) = 4 intensity / area
+    };
 
     std::vector<rtpbr_gltf_punctual_light> lights_; // the scene's, with any intensity > 0
     std::vector<Disk> disks_;                         // one per light
     std::vector<Sphere> spheres_;                     // one per light
+    std::vector<Capsule> capsules_;                   // one per light
     bool anyVisible_ = false;
 };
 

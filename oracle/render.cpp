@@ -76,9 +76,10 @@ uint32_t imageHeight(const rtpbr_gltf_scene &scene, const RenderSettings &s, uin
 }
 
 // The oracle's own image of a scene: bumped when a scene's image changes with the same settings
-// (2: EXT_lights_area disks rendered as disks, not their octagons), so that a resumed .acc
-// never merges samples of two versions.
-constexpr uint64_t kImageVersion = 2;
+// (2: EXT_lights_area disks rendered as disks, not their octagons; 3: point lights with a
+// length rendered as capsules, not spheres), so that a resumed .acc never merges samples of two
+// versions.
+constexpr uint64_t kImageVersion = 3;
 
 // Everything that changes the image except the sample range, the region and the thread count.
 uint64_t settingsHash(const RenderSettings &s, uint32_t w, uint32_t h) {
@@ -143,10 +144,10 @@ public:
         float prevPdf = 0.0f;
         for (uint32_t depth = 0;; depth++) {
             Hit h = intersect(es_.full, org, dir, std::numeric_limits<float>::infinity());
-            // A BSDF ray may see a sphere before its hit, or a sun's disk if it leaves the scene
-            // (MIS against sampling them; with noShadows the light-only test below counted
-            // them already). Camera rays do not: like the punctual lights, spheres and the sun
-            // are not drawn.
+            // A BSDF ray may see a sphere or a capsule before its hit, or a sun's disk if it
+            // leaves the scene (MIS against sampling them; with noShadows the light-only test
+            // below counted them already). Camera rays do not: like the punctual lights, spheres,
+            // capsules and the sun are not drawn.
             if (depth > 0 && !s_.noShadows && punctual_.anyVisible())
                 L += beta * punctualSeen(prevP, dir, h.found ? h.t : std::numeric_limits<float>::infinity(), prevPdf);
             if (!h.found)
@@ -313,11 +314,12 @@ private:
     // cap or cone (two random numbers, drawn for them alone: delta lights draw none), weighted
     // by MIS against the BSDF rays that see it (punctualSeen), the shadow ray to infinity or
     // to the sphere's near surface; the part of the cap or cone below the surface's horizon
-    // gives nothing.
+    // gives nothing. A capsule: one point on its surface (two random numbers too), the shadow
+    // ray to it, a point below the horizon or facing away giving nothing.
     vec3 punctualLight(uint32_t l, const SurfacePoint &sp, vec3 bt, vec3 origin, const Bsdf &bsdf, Rng &rng) {
         PunctualSample ps;
         float u1 = 0.0f, u2 = 0.0f;
-        if (punctual_.hasDisk(l) || punctual_.hasSphere(l)) {
+        if (punctual_.hasDisk(l) || punctual_.hasSphere(l) || punctual_.hasCapsule(l)) {
             u1 = rng.uniform();
             u2 = rng.uniform();
         }
@@ -341,9 +343,9 @@ private:
 
     // What the punctual lights a BSDF ray from shading point p towards wi sees give, weighted
     // by MIS against sampling them (punctualLight); bsdfPdf: the BSDF sample's pdfMis. The
-    // spheres it meets before tmax (the scene's hit; infinity with noShadows), the suns'
-    // disks where tmax is infinite (it met nothing, or noShadows). From inside a sphere no
-    // light sample competes: weight 1.
+    // spheres and capsules it meets before tmax (the scene's hit; infinity with noShadows), the
+    // suns' disks where tmax is infinite (it met nothing, or noShadows). From inside a sphere or
+    // a capsule no light sample competes: weight 1.
     vec3 punctualSeen(vec3 p, vec3 wi, float tmax, float bsdfPdf) const {
         glm::dvec3 sum(0.0);
         for (uint32_t l = 0; l < punctual_.size(); l++) {
@@ -351,7 +353,8 @@ private:
             double pdf;
             if (std::isinf(tmax) && bsdfPdf > 0.0f && punctual_.diskRadiance(l, wi, &Le, &pdf))
                 sum += Le * (double(bsdfPdf) / (double(bsdfPdf) + pdf));
-            else if (punctual_.sphereRadiance(l, p, wi, tmax, &Le, &pdf))
+            else if (punctual_.sphereRadiance(l, p, wi, tmax, &Le, &pdf) ||
+                     punctual_.capsuleRadiance(l, p, wi, tmax, &Le, &pdf))
                 sum += pdf > 0.0 ? Le * (double(bsdfPdf) / (double(bsdfPdf) + pdf)) : Le;
         }
         return vec3(sum);

@@ -139,6 +139,37 @@ Result validatePunctualLight(const rtpbr_gltf_punctual_light &P, uint32_t i, boo
                      double(P.radius));
         return Result::InvalidScene;
     }
+    // A point light's capsule: length >= 0 (0: the sphere or the point), only with a radius > 0,
+    // along a unit axis, both ends within the scene extent.
+    if (!finite(P.length) || !(P.length >= 0.0f)) {
+        *error = fmt("punctual light %u (%s): length %g is negative or not finite (0 = no capsule)", i, type,
+                     double(P.length));
+        return Result::InvalidScene;
+    }
+    if (P.length > 0.0f) {
+        if (P.type != RTPBR_GLTF_PUNCTUAL_POINT || !(P.radius > 0.0f)) {
+            *error = fmt("punctual light %u (%s): length %g: only a point light with a radius > 0 has one (0 here)", i,
+                         type, double(P.length));
+            return Result::InvalidScene;
+        }
+        const double len = std::sqrt(double(P.axis[0]) * P.axis[0] + double(P.axis[1]) * P.axis[1] +
+                                     double(P.axis[2]) * P.axis[2]);
+        if (!finite3(P.axis) || !(std::fabs(len - 1.0) <= 1e-3)) {
+            *error = fmt("punctual light %u (point): capsule axis (%g, %g, %g) is not a finite unit vector (length %g)",
+                         i, double(P.axis[0]), double(P.axis[1]), double(P.axis[2]), len);
+            return Result::InvalidScene;
+        }
+        for (double side : {-0.5, 0.5}) {
+            float end[3];
+            for (int k = 0; k < 3; ++k)
+                end[k] = float(double(P.position[k]) + side * double(P.length) * double(P.axis[k]) / len);
+            if (!finite3(end) || !withinExtent(end)) {
+                *error = fmt("punctual light %u (point): capsule of length %g reaches beyond the oracle's scene extent "
+                             "of +-%g", i, double(P.length), double(kMaxSceneCoordinate));
+                return Result::InvalidScene;
+            }
+        }
+    }
     if (P.intensity[0] > 0.0f || P.intensity[1] > 0.0f || P.intensity[2] > 0.0f)
         *emits = true;
     return Result::Success;

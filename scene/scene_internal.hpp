@@ -48,6 +48,9 @@ struct Context {
     // to int), checked by check_schema: > 0 only for a point light; 0 when absent, not a
     // number or on a spot or directional light (those warned). Read by lights_from_khr_punctual.
     std::vector<double> punctual_radii;
+    // Each light's "extras": {"length": L} alike: > 0 only for a point light with a radius > 0
+    // (a capsule); a length without a radius is warned and left 0.
+    std::vector<double> punctual_lengths;
 
     // Records the first failure; later ones are ignored. Always returns false.
     bool fail(rtpbr_gltf_result r, const char* fmt, ...) RTPBR_GLTF_PRINTF(3, 4);
@@ -94,7 +97,7 @@ struct Scene {
 // core objects and of KHR_lights_punctual, on the JSON text (syntax errors are left to
 // tinygltf). *rewritten: left empty, or the document to give tinygltf instead, with the
 // defaults it would refuse to supply (a spot light's "spot" object). Fills
-// ctx.punctual_radii.
+// ctx.punctual_radii and ctx.punctual_lengths.
 bool check_schema(Context& ctx, const char* json_text, size_t size, std::string* rewritten);
 
 // scene_materials.cpp: fills scene.materials (one per glTF material, plus a

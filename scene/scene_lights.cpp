@@ -792,6 +792,14 @@ bool lights_from_khr_punctual(Context& ctx, const tinygltf::Model& model, Scene&
         // does not change it, as it changes no range.
         const double radius = size_t(index) < ctx.punctual_radii.size() ? ctx.punctual_radii[size_t(index)] : 0.0;
         p.radius = float(radius);
+        // Its capsule's length (0 without a radius: check_schema warned), unscaled like the
+        // radius, along the node's +X axis (the matrix's first column, normalised).
+        const double length_m = size_t(index) < ctx.punctual_lengths.size() ? ctx.punctual_lengths[size_t(index)] : 0.0;
+        p.length = float(length_m);
+        Vec3 axis = {world[0], world[1], world[2]};
+        const double axis_len = length(axis);
+        axis = std::isfinite(axis_len) && axis_len > 0.0 ? scaled(axis, 1.0 / axis_len) : Vec3{1, 0, 0};
+        for (int k = 0; k < 3; ++k) p.axis[k] = float(axis[size_t(k)]);
         if (p.type == RTPBR_GLTF_PUNCTUAL_SPOT) {
             p.inner_cone_angle = float(L.spot.innerConeAngle);
             p.outer_cone_angle = float(L.spot.outerConeAngle);
@@ -804,7 +812,20 @@ bool lights_from_khr_punctual(Context& ctx, const tinygltf::Model& model, Scene&
         if (p.type != RTPBR_GLTF_PUNCTUAL_DIRECTIONAL && L.range > 0.0 && !(p.range > 0.0f))
             return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: KHR_lights_punctual light %d: range %g underflows a float",
                             node, index, L.range);
-        if (radius > 0.0) {
+        if (radius > 0.0 && length_m > 0.0) {
+            // The capsule's area 2 pi r (2 r + L) and radiance 2 intensity / (pi r (2 r + L))
+            // (its total power stays the point light's 4 pi intensity) must be floats too.
+            const double r = double(p.radius), L = double(p.length);
+            const double area = 2.0 * kPi * r * (2.0 * r + L);
+            bool fits = p.radius > 0.0f && p.length > 0.0f && fits_float(area);
+            for (int k = 0; k < 3 && fits; ++k) fits = fits_float(4.0 * double(p.intensity[k]) / area);
+            if (!fits)
+                return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE,
+                                "node %d: KHR_lights_punctual light %d: radius %g, length %g: the capsule's area "
+                                "(2 pi radius (2 radius + length)) or radiance (4 intensity / area) not representable "
+                                "as a float",
+                                node, index, radius, length_m);
+        } else if (radius > 0.0) {
             // The sphere's area and radiance, intensity / (pi radius^2), must be floats too.
             const double area = kPi * double(p.radius) * double(p.radius);
             bool fits = p.radius > 0.0f && fits_float(area);

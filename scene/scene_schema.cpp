@@ -12,9 +12,10 @@
 // RTPBR_GLTF_ERROR_INVALID_REFERENCE, whether or not the scene uses the referring object.
 // (a KHR_lights_punctual number that overflows a float: RTPBR_GLTF_ERROR_NONFINITE; an unknown
 // light type: RTPBR_GLTF_ERROR_UNSUPPORTED). A light's "extras": {"radius": r} is read here too
-// (a point light's sphere, ctx.punctual_radii): extras are free-form, so a radius that is not a
-// number, or one on a spot or directional light, is only a warning; a point light's number must
-// be >= 0 and fit a float.
+// (a point light's sphere, ctx.punctual_radii), and "length": L (its capsule,
+// ctx.punctual_lengths): extras are free-form, so a radius or length that is not a number, one on
+// a spot or directional light, or a length without a radius, is only a warning; a point light's
+// number must be >= 0 and fit a float.
 // Reference: the glTF 2.0 JSON schema, https://github.com/KhronosGroup/glTF/tree/main/specification/2.0/schema
 // and KHR_lights_punctual's (extensions/2.0/Khronos/KHR_lights_punctual/schema there).
 #include "scene_internal.hpp"
@@ -503,31 +504,45 @@ struct Checker {
                               "innerConeAngle must be less than outerConeAngle (defaults 0 and pi/4)");
         return true;
     }
-    // A light's "extras": {"radius": r} (Blender writes a light's custom properties to extras),
-    // into ctx.punctual_radii[i]: a point light's sphere. Extras belong to whoever wrote them: a
-    // radius that is not a number, or one on a spot or directional light, is ignored with a
-    // warning; a point light's number is held to the rules of the extension's own numbers.
+    // A light's "extras": {"radius": r, "length": L} (Blender writes a light's custom properties
+    // to extras), into ctx.punctual_radii[i] and ctx.punctual_lengths[i]: a point light's sphere,
+    // or its capsule (a segment of length L swept by the ball of radius r). Extras belong to
+    // whoever wrote them: a value that is not a number, one on a spot or directional light, or a
+    // length without a radius is ignored with a warning; a point light's number is held to the
+    // rules of the extension's own numbers.
     bool punctual_radius(const json& l, size_t i, const std::string& at, const std::string& type) {
         auto extras = l.find("extras");
         if (extras == l.end() || !extras->is_object()) return true;
-        auto r = extras->find("radius");
-        if (r == extras->end()) return true;
-        const std::string p = at + "/extras/radius";
+        double radius = 0.0, length = 0.0;
+        if (!punctual_size(*extras, i, at, type, "radius", "only a point light is a sphere", &radius) ||
+            !punctual_size(*extras, i, at, type, "length", "only a point light is a capsule", &length))
+            return false;
+        ctx.punctual_radii[i] = radius > 0.0 ? radius : 0.0;  // -0 is no radius
+        if (length > 0.0 && !(radius > 0.0))
+            ctx.warn("KHR_lights_punctual light %zu (%s/extras/length): length ignored without a radius (a capsule "
+                     "needs radius > 0)", i, at.c_str());
+        else
+            ctx.punctual_lengths[i] = length > 0.0 ? length : 0.0;  // -0 is no length
+        return true;
+    }
+    // One of a light's extras sizes (metres): 0 when absent, not a number (a warning) or on a
+    // spot or directional light (a warning unless 0); else a number >= 0 that fits a float.
+    bool punctual_size(const json& extras, size_t i, const std::string& at, const std::string& type, const char* key,
+                       const char* only, double* value) {
+        auto r = extras.find(key);
+        if (r == extras.end()) return true;
+        const std::string p = at + "/extras/" + key;
         if (!r->is_number()) {
-            ctx.warn("KHR_lights_punctual light %zu (%s): not a number: ignored (no radius)", i, p.c_str());
+            ctx.warn("KHR_lights_punctual light %zu (%s): not a number: ignored (no %s)", i, p.c_str(), key);
             return true;
         }
         if (type != "point") {
             if (number(*r) != 0.0)
-                ctx.warn("KHR_lights_punctual light %zu (%s): radius ignored on a %s light (only a point light is a "
-                         "sphere)", i, p.c_str(), type.c_str());
+                ctx.warn("KHR_lights_punctual light %zu (%s): %s ignored on a %s light (%s)", i, p.c_str(), key,
+                         type.c_str(), only);
             return true;
         }
-        double radius = 0.0;
-        if (!light_number(*extras, i, at + "/extras", "radius", 0.0, HUGE_VAL, false, "must be >= 0", &radius))
-            return false;
-        ctx.punctual_radii[i] = radius > 0.0 ? radius : 0.0;  // -0 is no radius
-        return true;
+        return light_number(extras, i, at + "/extras", key, 0.0, HUGE_VAL, false, "must be >= 0", value);
     }
     // The root's extensions.KHR_lights_punctual: an object with an array of lights.
     bool punctual_root() {
@@ -542,6 +557,7 @@ struct Checker {
         if (!lights->is_array()) return fail(at + "/lights", "must be an array of lights");
         punctual_count = lights->size();
         ctx.punctual_radii.assign(punctual_count, 0.0);
+        ctx.punctual_lengths.assign(punctual_count, 0.0);
         for (size_t i = 0; i < lights->size(); ++i)
             if (!punctual_light((*lights)[i], i, at + "/lights/" + std::to_string(i))) return false;
         return true;

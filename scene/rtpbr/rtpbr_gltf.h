@@ -525,6 +525,26 @@ typedef struct rtpbr_gltf_punctual_light {
                                free-form). The node's scale does not change it */
     int32_t gltf_node;      /* the node carrying it                         */
     int32_t gltf_light;     /* index in KHR_lights_punctual.lights          */
+    float length;           /* point with radius > 0: a capsule (a tube, UE's
+                               "source length"): the segment position +-
+                               axis length/2 swept by the ball of radius
+                               `radius` (a cylinder of length `length` and
+                               two hemispherical caps), of uniform radiance
+                               2 intensity / (pi radius (2 radius + length))
+                               (its power stays 4 pi intensity; at length 0
+                               the sphere's), times W(d), d from its centre
+                               `position`. From the light's "extras":
+                               {"length": L} (metres), read like the radius:
+                               a number >= 0 (RTPBR_GLTF_ERROR_INVALID_JSON)
+                               whose capsule's area 2 pi r (2 r + L) and
+                               radiance fit a float (RTPBR_GLTF_ERROR_NONFINITE),
+                               not a number: ignored with a warning, not
+                               scaled by the node. 0 = the sphere (absent);
+                               ignored with a warning (left 0) without a
+                               radius and on spot and directional lights   */
+    float axis[3];          /* unit: the node's local +X in world space, the
+                               capsule's axis (every light; (1,0,0) where the
+                               node's X axis is degenerate)                 */
 } rtpbr_gltf_punctual_light;
 
 /* A perspective camera, world space. */

@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <deque>
@@ -203,6 +204,26 @@ inline glm::vec3 cameraRay(const rtpbr_gltf_camera &c, float x, float y, uint32_
     glm::vec3 r(c.right[0], c.right[1], c.right[2]);
     glm::vec3 u(c.up[0], c.up[1], c.up[2]);
     return glm::normalize(f + (2.0f * x / float(W) - 1.0f) * t * a * r + (1.0f - 2.0f * y / float(H)) * t * u);
+}
+
+// ---- floors for the light tests ------------------------------------------------------------
+
+// A pure Lambert material of the given albedo (no specular layer).
+inline uint32_t lambertMaterial(SceneBuilder &b, float albedo) {
+    uint32_t m = b.material(glm::vec3(albedo), 0.0f, 1.0f);
+    b.materials[m].specular.specular_factor = 0.0f;
+    return m;
+}
+
+// A floor y = 0 from (x0, z0) to (x1, z1), facing +y, of material mat.
+inline void floorPlane(SceneBuilder &b, uint32_t mat, float x0 = -40, float x1 = 40, float z0 = -40, float z1 = 40) {
+    b.polygon({{x0, 0, z1}, {x1, 0, z1}, {x1, 0, z0}, {x0, 0, z0}}, mat);
+}
+
+// Where the oracle's rays leave a floor point p (normal +y) from: 1e-4 (1 + |p|_inf) above it
+// (oracle/README.md, shadow rays).
+inline glm::dvec3 leaving(glm::dvec3 p) {
+    return p + glm::dvec3(0.0, 1e-4 * (1.0 + std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)))), 0.0);
 }
 
 #endif

@@ -113,23 +113,7 @@ double lambertOctagon(const Disk &D, glm::dvec3 x) {
     return kAlbedo / kPi * polygonIrradiance(x, kUp, oct, D.L);
 }
 
-// Where the oracle's rays leave a floor point p from: 1e-4 (1 + |p|_inf) above it.
-glm::dvec3 leaving(glm::dvec3 p) {
-    return p + kUp * (1e-4 * (1.0 + std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)))));
-}
-
 // ---- scenes and renders --------------------------------------------------------------------
-
-uint32_t lambertMaterial(SceneBuilder &b, float albedo) {
-    uint32_t m = b.material(glm::vec3(albedo), 0.0f, 1.0f);
-    b.materials[m].specular.specular_factor = 0.0f; // no specular layer: pure Lambert
-    return m;
-}
-
-// A floor y = 0 from (x0, z0) to (x1, z1), facing +y, of material mat.
-void floorPlane(SceneBuilder &b, uint32_t mat, float x0 = -40, float x1 = 40, float z0 = -40, float z1 = 40) {
-    b.polygon({{x0, 0, z1}, {x1, 0, z1}, {x1, 0, z0}, {x0, 0, z0}}, mat);
-}
 
 // D as a disk light (EXT_lights_area, one-sided unless twoSided), or as its octagon: a polygon
 // light of the same vertices.

@@ -105,17 +105,6 @@ double ggxReflectance(glm::dvec3 n, glm::dvec3 wo, glm::dvec3 wi, double alpha, 
 
 const glm::dvec3 kUp(0.0, 1.0, 0.0);
 
-// A floor y = 0 (80 x 80, facing +y) of material mat.
-void floorPlane(SceneBuilder &b, uint32_t mat) {
-    b.polygon({{-40, 0, 40}, {40, 0, 40}, {40, 0, -40}, {-40, 0, -40}}, mat);
-}
-
-uint32_t lambertMaterial(SceneBuilder &b, float albedo) {
-    uint32_t m = b.material(glm::vec3(albedo), 0.0f, 1.0f);
-    b.materials[m].specular.specular_factor = 0.0f; // no specular layer: pure Lambert
-    return m;
-}
-
 // A black, double-sided square at height y, centre (cx, cz), half-size r: an occluder.
 void occluder(SceneBuilder &b, double y, double cx, double cz, double r) {
     uint32_t black = lambertMaterial(b, 0.0f);
@@ -1160,6 +1149,25 @@ void test_validation(void **) {
     expectRejected([nan](P &p) { p.radius = nan; }, Result::InvalidScene, "punctual light 0 (spot): radius nan");
     expectRejected([](P &p) { p.type = RTPBR_GLTF_PUNCTUAL_DIRECTIONAL, p.radius = 1.0f; }, Result::InvalidScene,
                    "punctual light 0 (directional): radius 1");
+    // A point light's capsule (test_capsule_light.cpp): length >= 0 and finite, only with a
+    // radius > 0, a unit axis, both ends within the scene extent.
+    auto capsule = [](P &p, float length) {
+        p.type = RTPBR_GLTF_PUNCTUAL_POINT, p.radius = 0.15f, p.length = length;
+        p.axis[0] = 1.0f, p.axis[1] = p.axis[2] = 0.0f;
+    };
+    expectRejected([&](P &p) { capsule(p, 0.8f); }, Result::Success, "");
+    expectRejected([&](P &p) { capsule(p, -0.5f); }, Result::InvalidScene, "punctual light 0 (point): length -0.5");
+    expectRejected([&](P &p) { capsule(p, nan); }, Result::InvalidScene, "length nan");
+    expectRejected([&](P &p) { capsule(p, INFINITY); }, Result::InvalidScene, "length inf");
+    expectRejected([&](P &p) { capsule(p, 0.8f), p.radius = 0.0f; }, Result::InvalidScene,
+                   "(point): length 0.8: only a point light with a radius > 0");
+    expectRejected([&](P &p) { capsule(p, 0.8f), p.radius = 0.0f, p.type = RTPBR_GLTF_PUNCTUAL_SPOT; },
+                   Result::InvalidScene, "(spot): length 0.8: only a point light with a radius > 0");
+    expectRejected([&](P &p) { capsule(p, 0.8f), p.axis[0] = 0.5f; }, Result::InvalidScene, "capsule axis (0.5, 0, 0)");
+    expectRejected([&](P &p) { capsule(p, 0.8f), p.axis[1] = nan; }, Result::InvalidScene, "capsule axis");
+    expectRejected([&](P &p) { capsule(p, 3e15f); }, Result::InvalidScene, "beyond the oracle's scene extent");
+    // No length: the axis is not used (a hand-built light may leave it 0).
+    expectRejected([&](P &p) { capsule(p, 0.0f), p.axis[0] = 0.0f; }, Result::Success, "");
     // Only black lights: nothing to render.
     expectRejected([](P &p) { p.intensity[0] = p.intensity[1] = p.intensity[2] = 0.0f; }, Result::NoLights,
                    "KHR_lights_punctual");

@@ -52,6 +52,7 @@ static light_nodes nodes_for_lights(int count) {
 
 typedef struct log_counts {
     int warnings, no_lights, range_ignored, radius_ignored, radius_not_number;
+    int length_ignored, length_without_radius, length_not_number;
 } log_counts;
 
 static void on_log(rtpbr_gltf_log_level level, const char* message, void* user) {
@@ -62,6 +63,9 @@ static void on_log(rtpbr_gltf_log_level level, const char* message, void* user) 
     if (strstr(message, "range ignored")) c->range_ignored++;
     if (strstr(message, "radius ignored")) c->radius_ignored++;
     if (strstr(message, "extras/radius): not a number")) c->radius_not_number++;
+    if (strstr(message, "length ignored on a")) c->length_ignored++;
+    if (strstr(message, "length ignored without a radius")) c->length_without_radius++;
+    if (strstr(message, "extras/length): not a number")) c->length_not_number++;
 }
 
 /* Loads text (as a file, then from memory) and returns the file's scene; fails the test when
@@ -115,6 +119,8 @@ static void test_defaults(void** state) {
         assert_vec(l->intensity, 1, 1, 1, 0, "default intensity");
         assert_true(l->range == 0.0f);
         assert_true(l->radius == 0.0f); /* no extras: a true point */
+        assert_true(l->length == 0.0f);
+        assert_vec(l->axis, 1, 0, 0, 0, "default axis (the node's +X)");
         const int spot = l->type == RTPBR_GLTF_PUNCTUAL_SPOT;
         assert_true(l->inner_cone_angle == 0.0f);
         assert_true(l->outer_cone_angle == (spot ? (float)(TS_PI / 4.0) : 0.0f));
@@ -336,6 +342,28 @@ static void test_glb_spot_defaults(void** state) {
     free(json);
 }
 
+/* A light the loader refuses, on a node of its own: the result and words in the message. */
+typedef struct refusal {
+    const char* light;
+    rtpbr_gltf_result result;
+    const char* words;
+} refusal;
+static void expect_refused(const char* dir, const refusal* cases, size_t count) {
+    const light_nodes n = nodes_for_lights(1);
+    for (size_t i = 0; i < count; ++i) {
+        char* json = lights_json(cases[i].light, n.nodes, n.roots, NULL);
+        char err[512] = "";
+        rtpbr_gltf_scene* scene = NULL;
+        const rtpbr_gltf_result r = ts_load_text(dir, "bad.gltf", json, NULL, &scene, err, sizeof err);
+        printf("  %s: %s: %s\n", cases[i].light, rtpbr_gltf_result_string(r), err);
+        if (r != cases[i].result || !strstr(err, cases[i].words))
+            fail_msg("%s: %s (%s), expected %s with \"%s\"", cases[i].light, rtpbr_gltf_result_string(r), err,
+                     rtpbr_gltf_result_string(cases[i].result), cases[i].words);
+        assert_null(scene);
+        free(json);
+    }
+}
+
 /* A point light's radius, from the light's "extras": {"radius": r}: the sphere's, in metres,
  * unchanged by the node's scale (node 0 scales by 3; node 8 carries light 0 too); integer
  * literals (which tinygltf would cast to int) read as written; 0 when absent. On a spot or a
@@ -382,12 +410,7 @@ static void test_radius(void** state) {
 static void test_radius_refused(void** state) {
     (void)state;
     const char* dir = ts_dir("punctual_radius_bad");
-    const light_nodes n = nodes_for_lights(1);
-    static const struct {
-        const char* light;
-        rtpbr_gltf_result result;
-        const char* words;
-    } cases[] = {
+    static const refusal cases[] = {
         {"{\"type\":\"point\",\"extras\":{\"radius\":-0.5}}", RTPBR_GLTF_ERROR_INVALID_JSON,
          "light 0 (/extensions/KHR_lights_punctual/lights/0/extras/radius): must be >= 0"},
         /* JSON has no NaN; the nearest, a number beyond the double, is a syntax error */
@@ -400,18 +423,7 @@ static void test_radius_refused(void** state) {
         {"{\"type\":\"point\",\"intensity\":1e30,\"extras\":{\"radius\":1e-5}}", RTPBR_GLTF_ERROR_NONFINITE,
          "radiance (intensity / area)"},
     };
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
-        char* json = lights_json(cases[i].light, n.nodes, n.roots, NULL);
-        char err[512] = "";
-        rtpbr_gltf_scene* scene = NULL;
-        const rtpbr_gltf_result r = ts_load_text(dir, "bad.gltf", json, NULL, &scene, err, sizeof err);
-        printf("  %s: %s: %s\n", cases[i].light, rtpbr_gltf_result_string(r), err);
-        if (r != cases[i].result || !strstr(err, cases[i].words))
-            fail_msg("%s: %s (%s), expected %s with \"%s\"", cases[i].light, rtpbr_gltf_result_string(r), err,
-                     rtpbr_gltf_result_string(cases[i].result), cases[i].words);
-        assert_null(scene);
-        free(json);
-    }
+    expect_refused(dir, cases, sizeof cases / sizeof cases[0]);
     /* -0 is no radius; the largest that fits (pi r^2 < FLT_MAX) and a tiny one (I / (pi r^2)
      * fits) load. */
     const light_nodes three = nodes_for_lights(3);
@@ -427,6 +439,97 @@ static void test_radius_refused(void** state) {
     free(json);
 }
 
+/* A point light's capsule, from the light's "extras": {"length": L} next to its radius: the
+ * length in metres, unchanged by the node's scale, along the node's +X axis in world space,
+ * normalised. Node 0 turns 90 degrees about +Z (quaternion (0, 0, sin 45, cos 45)) and scales
+ * by 3: +X becomes +Y, the length stays 2. Node 5 turns 90 degrees about +Y and scales x by 2:
+ * +X becomes -Z (rotation about Y: (cos, 0, -sin)). Node 6 scales x by 0: no +X, the axis is
+ * (1, 0, 0). A length without a radius (light 2), on a spot (3) or not a number (4) is ignored
+ * with a warning; 0 is no length (1). */
+static void test_length(void** state) {
+    (void)state;
+    const char* dir = ts_dir("punctual_length");
+    char* json = lights_json("{\"type\":\"point\",\"intensity\":5,\"extras\":{\"radius\":0.1,\"length\":2}},"
+                             "{\"type\":\"point\",\"extras\":{\"radius\":0.1,\"length\":0}},"
+                             "{\"type\":\"point\",\"extras\":{\"length\":1}},"
+                             "{\"type\":\"spot\",\"extras\":{\"radius\":0.1,\"length\":1}},"
+                             "{\"type\":\"point\",\"extras\":{\"radius\":0.2,\"length\":\"1\"}},"
+                             "{\"type\":\"point\",\"extras\":{\"radius\":0.1,\"length\":3}},"
+                             "{\"type\":\"point\",\"extras\":{\"radius\":0.1,\"length\":0.5}}",
+                             "{\"scale\":[3,3,3],\"rotation\":[0,0,0.70710678118654752,0.70710678118654752],"
+                             "\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},"
+                             "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}},"
+                             "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":2}}},"
+                             "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":3}}},"
+                             "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":4}}},"
+                             "{\"scale\":[2,1,1],\"rotation\":[0,0.70710678118654752,0,0.70710678118654752],"
+                             "\"extensions\":{\"KHR_lights_punctual\":{\"light\":5}}},"
+                             "{\"scale\":[0,1,1],\"extensions\":{\"KHR_lights_punctual\":{\"light\":6}}}",
+                             "0,1,2,3,4,5,6", NULL);
+    log_counts counts;
+    rtpbr_gltf_scene* scene = load(dir, "length.gltf", json, NULL, &counts);
+    assert_int_equal(scene->punctual_light_count, 7);
+    const rtpbr_gltf_punctual_light* l = scene->punctual_lights;
+    const float want_length[7] = {2.0f, 0.0f, 0.0f, 0.0f, 0.0f, 3.0f, 0.5f};
+    const float want_radius[7] = {0.1f, 0.1f, 0.0f, 0.0f, 0.2f, 0.1f, 0.1f};
+    for (int i = 0; i < 7; ++i) {
+        if (l[i].length != want_length[i])
+            fail_msg("light on node %d: length %.9g, expected %.9g", i, l[i].length, want_length[i]);
+        if (l[i].radius != want_radius[i])
+            fail_msg("light on node %d: radius %.9g, expected %.9g", i, l[i].radius, want_radius[i]);
+    }
+    assert_vec(l[0].axis, 0, 1, 0, EPS, "+X turned about +Z, scaled by 3");
+    assert_vec(l[1].axis, 1, 0, 0, 0, "identity node");
+    assert_vec(l[5].axis, 0, 0, -1, EPS, "+X turned about +Y, scaled by 2");
+    assert_vec(l[6].axis, 1, 0, 0, 0, "a node scaled by 0 along x");
+    assert_vec(l[0].intensity, 5, 5, 5, 0, "a capsule's intensity as written");
+    assert_int_equal(counts.length_without_radius, 1);
+    assert_int_equal(counts.length_ignored, 1);
+    assert_int_equal(counts.radius_ignored, 1);
+    assert_int_equal(counts.length_not_number, 1);
+    rtpbr_gltf_destroy(scene);
+    free(json);
+}
+
+/* A point light's length is held to the rules of its radius: >= 0 (-0 is no length), finite as
+ * written, and its capsule's area 2 pi r (2 r + L) and radiance 2 I / (pi r (2 r + L)) floats. */
+static void test_length_refused(void** state) {
+    (void)state;
+    const char* dir = ts_dir("punctual_length_bad");
+    static const refusal cases[] = {
+        {"{\"type\":\"point\",\"extras\":{\"radius\":0.1,\"length\":-0.5}}", RTPBR_GLTF_ERROR_INVALID_JSON,
+         "light 0 (/extensions/KHR_lights_punctual/lights/0/extras/length): must be >= 0"},
+        /* refused even without a radius: the number is checked before it is found unused */
+        {"{\"type\":\"point\",\"extras\":{\"length\":-1}}", RTPBR_GLTF_ERROR_INVALID_JSON, "length): must be >= 0"},
+        {"{\"type\":\"point\",\"extras\":{\"radius\":0.1,\"length\":1e39}}", RTPBR_GLTF_ERROR_NONFINITE,
+         "extras/length): not representable as a float"},
+        {"{\"type\":\"point\",\"extras\":{\"radius\":1e19,\"length\":1e19}}", RTPBR_GLTF_ERROR_NONFINITE,
+         "node 0: KHR_lights_punctual light 0: radius 1e+19, length 1e+19: the capsule's area"},
+        {"{\"type\":\"point\",\"extras\":{\"radius\":0.1,\"length\":1e-50}}", RTPBR_GLTF_ERROR_NONFINITE,
+         "length 1e-50"},
+        {"{\"type\":\"point\",\"intensity\":1e30,\"extras\":{\"radius\":1e-5,\"length\":1e-5}}",
+         RTPBR_GLTF_ERROR_NONFINITE, "radiance (4 intensity / area)"},
+    };
+    expect_refused(dir, cases, sizeof cases / sizeof cases[0]);
+    /* -0 is no length; the longest that fits with radius 1 (2 pi (2 + L) < FLT_MAX) and a tiny
+     * one load; a length on a directional light is only a warning, whatever its sign. */
+    const light_nodes four = nodes_for_lights(4);
+    char* json = lights_json("{\"type\":\"point\",\"extras\":{\"radius\":0.1,\"length\":-0.0}},"
+                             "{\"type\":\"point\",\"extras\":{\"radius\":1,\"length\":5e37}},"
+                             "{\"type\":\"point\",\"extras\":{\"radius\":0.1,\"length\":1e-30}},"
+                             "{\"type\":\"directional\",\"extras\":{\"length\":-1}}",
+                             four.nodes, four.roots, NULL);
+    log_counts counts;
+    rtpbr_gltf_scene* scene = load(dir, "edges.gltf", json, NULL, &counts);
+    assert_true(scene->punctual_lights[0].length == 0.0f && !signbit(scene->punctual_lights[0].length));
+    assert_true(scene->punctual_lights[1].length == 5e37f);
+    assert_true(scene->punctual_lights[2].length == 1e-30f);
+    assert_true(scene->punctual_lights[3].length == 0.0f);
+    assert_int_equal(counts.length_ignored, 1);
+    rtpbr_gltf_destroy(scene);
+    free(json);
+}
+
 RTPBR_TEST_MAIN(cmocka_unit_test(test_defaults),
                 cmocka_unit_test(test_world_frame),
                 cmocka_unit_test(test_intensity_and_range),
@@ -435,4 +538,6 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_defaults),
                 cmocka_unit_test(test_light_limit),
                 cmocka_unit_test(test_glb_spot_defaults),
                 cmocka_unit_test(test_radius),
-                cmocka_unit_test(test_radius_refused))
+                cmocka_unit_test(test_radius_refused),
+                cmocka_unit_test(test_length),
+                cmocka_unit_test(test_length_refused))
