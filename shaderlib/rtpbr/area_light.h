@@ -26,6 +26,8 @@
 //                        (RTPBR_AREA_LIGHT_SPHERES)
 //   AreaLight_AddDisk    a disk (ellipse) light's reflected radiance added, as AreaLight_Add's
 //                        (RTPBR_AREA_LIGHT_DISKS)
+//   AreaLight_AddTexturedQuad  a quad light with an emission texture, as AreaLight_Add's
+//                        (RTPBR_AREA_LIGHT_TEXTURED)
 //   AreaLight_AddShape   AreaLight_Add or AreaLight_AddSphere by a run-time flag: one loop
 //                        over polygons and spheres (RTPBR_AREA_LIGHT_SPHERES); with
 //                        RTPBR_AREA_LIGHT_DISKS a last flag, diskLight: AreaLight_AddDisk
@@ -59,6 +61,11 @@
 //   RTPBR_AREA_LIGHT_ROUND_DISKS  0 (default); 1: the host's disk lights are round (half-axes
 //                          orthogonal, of one length): their Lambert vector form factor is a
 //                          closed form (LTC_DiskVector) instead of an elliptic cone's
+//   RTPBR_AREA_LIGHT_TEXTURED  0 (default); 1: AreaLight_AddTexturedQuad, which the host calls
+//                          for its quad lights with an emission texture (a screen, a window;
+//                          ltc_textured.h: each lobe reads the host's prefiltered texture where
+//                          its vector form factor meets the quad, Heitz et al. 2016), into the
+//                          same sum as its polygons
 //   RTPBR_AREA_LIGHT_FULL  1 (default): every lobe surface.h resolves (Disney, coat, sheen,
 //                          anisotropy); 0: metallic-roughness without them (the engine's
 //                          basic variant: fewer registers, the streak estimate on GGX).
@@ -99,6 +106,15 @@
 // with Host_LightSphere (its centre xyz, exactly; w a bounding radius, the longer half-axis'
 // length, as a polygon's), Host_LightTwoSided, Host_LightRadiance (its uniform radiance) and
 // Host_LightVisibility (the polygon functions are not called for it);
+// with RTPBR_AREA_LIGHT_TEXTURED a textured quad (a polygon of 4 vertices, a parallelogram:
+// texture coordinate (s, t) at v0 + s (v1 - v0) + t (v3 - v0), s, t in [0, 1]) is read as a
+// polygon and through
+//   rtpbr_float3 Host_LightTexture(uint light, rtpbr_float3 lookup)  the emission's factor (rgb,
+//                                     times Host_LightRadiance) at lookup = (s, t, footprint)
+//                                     (LTC_TextureLookup: s, t may fall outside [0, 1]; the
+//                                     footprint in units of the quad's size): the host reads its
+//                                     chain prefiltered for it (mip k blurred over 2^k texels:
+//                                     lod = log2(footprint x size)), clamped to the edge;
 //   rtpbr_float4 Host_TableLtc1(int table, rtpbr_float2 uv)  the LTC tables at uv
 //   rtpbr_float4 Host_TableLtc2(int table, rtpbr_float2 uv)  (LTC_LutCoord), table one of
 //                                     RTPBR_TABLE_LTC_SPECULAR (rtpbr_ltc_ggx_1/_2, or
@@ -127,6 +143,7 @@
 #include "surface.h"
 #include "punctual.h"
 #include "ltc_shapes.h"
+#include "ltc_textured.h"
 
 #ifndef RTPBR_AREA_LIGHT_PUNCTUAL
 #define RTPBR_AREA_LIGHT_PUNCTUAL 0
@@ -145,6 +162,9 @@
 #endif
 #ifndef RTPBR_AREA_LIGHT_SPHERE_CLIP
 #define RTPBR_AREA_LIGHT_SPHERE_CLIP 1
+#endif
+#ifndef RTPBR_AREA_LIGHT_TEXTURED
+#define RTPBR_AREA_LIGHT_TEXTURED 0
 #endif
 // The sides of the equal-area polygon a sphere's disk is clipped as (RTPBR_AREA_LIGHT_SPHERE_CLIP).
 #ifndef RTPBR_AREA_LIGHT_SPHERE_SIDES
@@ -167,6 +187,16 @@
 #else
 #define RTPBR_AREA_LIGHT_DISK_PARAM
 #define RTPBR_AREA_LIGHT_DISK_ARG(x)
+#endif
+// With RTPBR_AREA_LIGHT_TEXTURED AreaLight_AddShape takes a last flag, texturedLight.
+#if RTPBR_AREA_LIGHT_TEXTURED
+#define RTPBR_AREA_LIGHT_TEXTURE_PARAM , bool texturedLight
+#define RTPBR_AREA_LIGHT_TEXTURE_ARG(x) , x
+#define RTPBR_AREA_LIGHT_TEXTURED_FLAG texturedLight
+#else
+#define RTPBR_AREA_LIGHT_TEXTURE_PARAM
+#define RTPBR_AREA_LIGHT_TEXTURE_ARG(x)
+#define RTPBR_AREA_LIGHT_TEXTURED_FLAG false
 #endif
 // The streak estimate runs in the metallic-roughness evaluation on GGX (its registers do not
 // fit the full one's).
@@ -606,6 +636,25 @@ RTPBR_FN void AreaLight_AddPunctual(RTPBR_INOUT(rtpbr_float3) sum, ShadingSurfac
 }
 #endif
 
+#if RTPBR_AREA_LIGHT_TEXTURED
+// Textured quad i's emission factor at the point of its Lambert vector (the whole quad's,
+// unclipped: four edges, no other state) from P, in the LTC frame ltcFrame (Host_LightTexture at
+// LTC_TextureLookup's point and footprint).
+RTPBR_FN rtpbr_float3 AreaLight_TexturedQuadLambert(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame) {
+    rtpbr_float3 v0 = Host_LightVertex(i, 0u);
+    rtpbr_float3 F = RTPBR_F3(0.0f);
+    rtpbr_float3 a = LTC_SafeNormalize(rtpbr_mul(ltcFrame, v0 - P));
+    rtpbr_float3 first = a;
+    RTPBR_UNROLL for (uint k = 1u; k <= 4u; ++k) {
+        rtpbr_float3 b = k < 4u ? LTC_SafeNormalize(rtpbr_mul(ltcFrame, Host_LightVertex(i, k) - P)) : first;
+        F += LTC_EdgeIntegral(a, b);
+        a = b;
+    }
+    return Host_LightTexture(i, LTC_TextureLookup(ltcFrame, P, v0, Host_LightVertex(i, 1u) - v0,
+                                                  Host_LightVertex(i, 3u) - v0, LTC_InverseMatrix(LTC_Identity()), F));
+}
+#endif
+
 // Light i's reflected radiance at P per unit of its radiance, in lo; false (lo unset) when
 // the light cannot contribute: P on its plane, behind a one-sided light, its bounding sphere
 // below the horizon, or nothing of it above the horizon. Every lobe's polygon integral: LTC
@@ -624,7 +673,8 @@ RTPBR_FN void AreaLight_AddPunctual(RTPBR_INOUT(rtpbr_float3) sum, ShadingSurfac
 // of their own, docs/performance.md, 12). With RTPBR_AREA_LIGHT_DISKS, AreaLight_AddDisk where
 // the last flag, diskLight (sphereLight then does not matter).
 RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
-                                 rtpbr_float3 N, uint i, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM) {
+                                 rtpbr_float3 N, uint i, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM
+                                     RTPBR_AREA_LIGHT_TEXTURE_PARAM) {
     // P on the light's plane sees it edge-on; behind a one-sided light, nothing; a light
     // whose bounding sphere is below the horizon, nothing. A sphere light: below the horizon
     // or beyond its range, nothing.
@@ -668,10 +718,30 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
 #if RTPBR_AREA_LIGHT_STREAK
     // (registers: docs/performance.md, 3)
     // (a sphere light is no candidate: the estimate walks a polygon's edges)
-    bool streakSized = !sphereLight && LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
+    bool streakSized = !sphereLight && !RTPBR_AREA_LIGHT_TEXTURED_FLAG && LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
 #endif
     rtpbr_float3 F, Fl;
     float specularFF = AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, F, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
+    // A textured quad's emission where each lobe looks (ltc_textured.h: the point where the
+    // lobe's vector form factor meets the quad, read from the chain prefiltered to the lobe's
+    // footprint): texS for the specular lobe and its multiple scattering, read here (Fl is the
+    // specular lobe's), texD, at the Lambert vector's point, for the diffuse lobe, read after
+    // the point correction. The full evaluation reads one texel for every lobe of the base
+    // after their walks, at the point of the unclipped quad's Lambert vector
+    // (AreaLight_TexturedQuadLambert: registers, a colour live through its lobes' walks spilled
+    // on gfx1100; a glossy base lobe's reflection of the texture is then as blurred as the
+    // diffuse lobe's, and the point of a quad the horizon cuts is its whole quad's), and one for
+    // the coat at the coat lobe's own point, after its walk.
+#if !RTPBR_AREA_LIGHT_FULL
+    rtpbr_float3 texS = RTPBR_F3(1.0f);
+#if RTPBR_AREA_LIGHT_TEXTURED
+    if (texturedLight) {
+        rtpbr_float3 v0 = Host_LightVertex(i, 0u);
+        texS = Host_LightTexture(i, LTC_TextureLookup(px.frame, P, v0, Host_LightVertex(i, 1u) - v0,
+                                                      Host_LightVertex(i, 3u) - v0, px.specularMinv, Fl));
+    }
+#endif
+#endif
     F = F.z < 0.0f ? -F : F;
     float ff = min(F.z, 1.0f);
     if (!(ff > 0.0f)) return;
@@ -720,10 +790,21 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
     rtpbr_float2 eRep = Host_TableE_EF(muRep, s.tableRoughness, s.eta);
 #endif
     float Erep = KC_PolygonMeanE(eRep.x, s.Eavg, lenF);
+    rtpbr_float3 texD = RTPBR_F3(1.0f);
+#if RTPBR_AREA_LIGHT_TEXTURED && !RTPBR_AREA_LIGHT_FULL
+    if (texturedLight) {
+        rtpbr_float3 v0 = Host_LightVertex(i, 0u);
+        texD = Host_LightTexture(i, LTC_TextureLookup(px.frame, P, v0, Host_LightVertex(i, 1u) - v0,
+                                                      Host_LightVertex(i, 3u) - v0, LTC_InverseMatrix(LTC_Identity()), lRep));
+    }
+#endif
+#if RTPBR_AREA_LIGHT_FULL
+    rtpbr_float3 texS = texD; // (ones: the texel multiplies lo at the end)
+#endif
 
     // (with RTPBR_KC_SHAPE: KC_PolygonLobeShaped, its two parts folded into specularScale and
     // msColor by AreaLight_Begin)
-    rtpbr_float3 lo = px.specularScale * specularFF + px.msColor * KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff);
+    rtpbr_float3 lo = texS * (px.specularScale * specularFF + px.msColor * KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff));
     rtpbr_float3 unusedF, unusedFl;
     rtpbr_float3 base;
 #if RTPBR_AREA_LIGHT_FULL
@@ -739,15 +820,30 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
         float Esrep = s.specularWeight * KC_SpecularAlbedoDielectric(EFrep, Erep, s.FmsDielectric);
         base = s.diffuseColor * KC_PolygonLobe(s.Eso, Esrep, s.EsAvg, ff);
     }
-    lo += base;
+    lo += texD * base;
 #if RTPBR_AREA_LIGHT_FULL
     if (s.sheen)
         lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, Host_TableSheenE(muRep, s.sheenRoughness)) +
-             px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
+             texD * px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
     lo *= s.baseAttenuation;
-    if (px.coated)
-        lo += px.coatScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight)) +
-              s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(Host_TableE(muRep, s.coatRoughness), s.Eavgc, lenF), s.Eavgc, ff);
+#if RTPBR_AREA_LIGHT_TEXTURED
+    if (texturedLight)
+        lo *= AreaLight_TexturedQuadLambert(i, P, px.frame);
+#endif
+    if (px.coated) {
+        rtpbr_float3 coatFl;
+        rtpbr_float3 coat = texS * (px.coatScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, coatFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight)) +
+              s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(Host_TableE(muRep, s.coatRoughness), s.Eavgc, lenF), s.Eavgc, ff));
+#if RTPBR_AREA_LIGHT_TEXTURED
+        // the coat, often the sharpest lobe: its own point and footprint
+        if (texturedLight) {
+            rtpbr_float3 v0 = Host_LightVertex(i, 0u);
+            coat *= Host_LightTexture(i, LTC_TextureLookup(px.frame, P, v0, Host_LightVertex(i, 1u) - v0,
+                                                           Host_LightVertex(i, 3u) - v0, LTC_InverseMatrix(px.ltc1c), coatFl));
+        }
+#endif
+        lo += coat;
+    }
 #endif
 #if RTPBR_LTC_POINT_CORRECTION && !RTPBR_AREA_LIGHT_FULL
     acc.specularMass += specularFF;
@@ -771,7 +867,7 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
         return;
     }
 #endif
-    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(false));
+    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false));
 }
 
 #if RTPBR_AREA_LIGHT_SPHERES
@@ -782,7 +878,7 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 // the sphere is wholly below the horizon. A point inside the sphere sees only the light.
 RTPBR_FN void AreaLight_AddSphere(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                                   rtpbr_float3 N, uint i) {
-    AreaLight_AddShape(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false));
+    AreaLight_AddShape(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false));
 }
 #endif
 
@@ -797,7 +893,22 @@ RTPBR_FN void AreaLight_AddSphere(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) a
 // is wholly below the horizon.
 RTPBR_FN void AreaLight_AddDisk(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                                 rtpbr_float3 N, uint i) {
-    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(true));
+    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(true) RTPBR_AREA_LIGHT_TEXTURE_ARG(false));
+}
+#endif
+
+#if RTPBR_AREA_LIGHT_TEXTURED
+// Textured quad light i's reflected radiance at P (x its radiance, its texture where each lobe
+// looks, and its visibility) added to acc, as AreaLight_Add's for a polygon, each lobe's result
+// times the host's prefiltered emission texture (Host_LightTexture) at the point where the
+// lobe's vector form factor meets the quad (LTC_TextureLookup; the footprint picks the blur):
+// the specular lobe's (and its multiple scattering's, the coat's) at its own, the diffuse
+// lobes' at the Lambert vector's. No streak estimate (it would read the untextured radiance).
+// Error: ltc_textured.h's (one blurred read per lobe stands for the lobe's weighted mean of the
+// emission over the quad).
+RTPBR_FN void AreaLight_AddTexturedQuad(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s,
+                                        rtpbr_float3 P, rtpbr_float3 N, uint i) {
+    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(true));
 }
 #endif
 
