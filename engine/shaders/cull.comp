@@ -28,8 +28,8 @@
 // A sphere (a point light with a radius) is kept unless the box is beyond its range from its
 // centre or its form factor from the whole box, at most r^2 / d^2, is below the threshold (4).
 // A disk is culled as a polygon ((1) by its plane, (2) by its bounding sphere and area).
-// Each kind goes to its own mask (polygons, punctual lights, spheres, disks; the spheres'
-// lighting variants shade spheres and disks).
+// Each kind goes to its own mask (polygons, punctual lights, spheres, disks, textured quads;
+// the spheres' lighting variants shade spheres, disks and textured quads).
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
@@ -115,13 +115,14 @@ void main()
     bool anyLight = false, anySphere = false;
     uint words = (frame.light_count + 31u) / 32u;
     for (uint w = 0u; w < words; ++w) {
-        uint bits = 0u, punctualBits = 0u, sphereBits = 0u, diskBits = 0u; // polygons, punctual lights, spheres, disks
+        uint bits = 0u, punctualBits = 0u, sphereBits = 0u, diskBits = 0u, texturedBits = 0u; // polygons, punctual lights, spheres, disks, textured quads
         if (materialClass != RTPBR_TILE_CLASS_EMPTY) {
             uint count = min(32u, frame.light_count - 32u * w);
             for (uint b = 0u; b < count; ++b)
                 if (light_may_contribute(32u * w + b, boxMin, boxMax)) {
                     uint shape = lights[32u * w + b].shape;
-                    if (shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) bits |= 1u << b;
+                    if (shape == uint(RTPBR_LIGHT_SHAPE_POLYGON) && lights[32u * w + b].texture != 0u) texturedBits |= 1u << b;
+                    else if (shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) bits |= 1u << b;
                     else if (shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) sphereBits |= 1u << b;
                     else if (shape == uint(RTPBR_LIGHT_SHAPE_DISK)) diskBits |= 1u << b;
                     else punctualBits |= 1u << b;
@@ -131,8 +132,9 @@ void main()
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + uint(RTPBR_TILE_MASK_WORDS) + w] = punctualBits;
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 2u * uint(RTPBR_TILE_MASK_WORDS) + w] = sphereBits;
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 3u * uint(RTPBR_TILE_MASK_WORDS) + w] = diskBits;
-        anyLight = anyLight || (bits | punctualBits | sphereBits | diskBits) != 0u;
-        anySphere = anySphere || (sphereBits | diskBits) != 0u;
+        tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 4u * uint(RTPBR_TILE_MASK_WORDS) + w] = texturedBits;
+        anyLight = anyLight || (bits | punctualBits | sphereBits | diskBits | texturedBits) != 0u;
+        anySphere = anySphere || (sphereBits | diskBits | texturedBits) != 0u;
     }
     uint tileClass = anyLight ? materialClass : RTPBR_TILE_CLASS_EMPTY;
     if (anySphere && tileClass != RTPBR_TILE_CLASS_EMPTY)

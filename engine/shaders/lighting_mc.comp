@@ -56,6 +56,9 @@ layout(push_constant, std430) uniform McParams {
 
 #include "lighting_common.glsl"
 #include "mc_sampling.glsl"
+// The textured quads' emission (rtpbr_shared.h: RTPBR_BINDING_LIGHT_TEXTURES), read unblurred
+// (level 0) at the sample's point.
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_TEXTURES) uniform sampler2DArray light_textures;
 #include "shadow_ratio.glsl"
 
 #if RTPBR_NDF == RTPBR_NDF_BECKMANN
@@ -173,6 +176,16 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
             float NoL = wiLocal.z;
             vec3 f = Surface_Evaluate(s, wo, wiLocal);
             bool valid = hit && NoL > 0.0f && pdf > 0.0f;
+            // A textured quad: its texture at (s, t) of the point met, X = v0 + s e1 + t e2.
+            uint layer = lights[i].texture;
+            if (valid && layer != 0u) {
+                vec3 e1 = lights[i].vertices[1].xyz - v0, e2 = lights[i].vertices[3].xyz - v0;
+                vec3 r = P + t * wi - v0;
+                float a11 = dot(e1, e1), a12 = dot(e1, e2), a22 = dot(e2, e2);
+                float r1 = dot(r, e1), r2 = dot(r, e2), det = a11 * a22 - a12 * a12;
+                vec2 st = vec2(a22 * r1 - a12 * r2, a11 * r2 - a12 * r1) / det;
+                f *= textureLod(light_textures, vec3(st, float(layer - 1u)), 0.0f).rgb;
+            }
             lightSum += valid ? f * (NoL / pdf) : vec3(0.0f);
         }
         vec3 lightTerm = lightSum / float(samples) * window;

@@ -214,7 +214,7 @@
 #define RTPBR_BINDING_LIGHT_MATERIALS 21   // storage: rtpbr_shader_material[]
 #define RTPBR_BINDING_LIGHT_TILE_MASKS 22  // storage: per-tile light masks (cull.comp)
 #define RTPBR_BINDING_LIGHT_TILE_LISTS 23  // storage: per-class tile queues (cull.comp)
-#define RTPBR_LIGHTING_BINDING_COUNT 28 // with RTPBR_BINDING_LIGHT_SHADOW_RATIO (24) and GBUFFER4..6 (below)
+#define RTPBR_LIGHTING_BINDING_COUNT 29 // with RTPBR_BINDING_LIGHT_SHADOW_RATIO (24), GBUFFER4..6 and LIGHT_TEXTURES (below)
 
 // One light, the std430 element of the lights buffer (RTPBR_BINDING_LIGHT_LIGHTS,
 // RTPBR_BINDING_SHADOW_LIGHTS; rtpbr_shader_light, light.glsl): written by engine/src/scene.c.
@@ -238,6 +238,10 @@
 // the emitting side's normal), plane = (unit normal, -dot(normal, centre)), area = pi radius^2,
 // two_sided as a polygon's; in the tiles' disk mask (cull.comp; the spheres' lighting
 // variants), shaded by area_light.h's AreaLight_AddDisk.
+// A textured quad (shape POLYGON, vertex_count 4, a parallelogram; texture = 1 + its layer of
+// the light textures, RTPBR_BINDING_LIGHT_TEXTURES): a polygon whose radiance is times its
+// prefiltered texture at (s, t), v0 + s (v1 - v0) + t (v3 - v0); in the tiles' textured mask
+// (the spheres' lighting variants), shaded by area_light.h's AreaLight_AddTexturedQuad.
 #define RTPBR_LIGHT_FIELDS(F, S)                                                                  \
     F(S, VEC4, vertices, [RTPBR_SHADER_MAX_POLYGON_VERTICES]) /* xyz; w: fan area below vertex k */ \
     F(S, VEC3, radiance, )     /* emitted radiance, rgb (punctual: intensity) */                   \
@@ -247,7 +251,10 @@
     F(S, UINT, vertex_count, ) /* 3 .. RTPBR_SHADER_MAX_POLYGON_VERTICES; others: 0 */            \
     F(S, FLOAT, area, )                                                                            \
     F(S, UINT, shape, )        /* RTPBR_LIGHT_SHAPE_* (= rtpbr_light_type) */                     \
-    F(S, UINT, sun, )          /* 1: a directional light's disk (a far polygon): no distance cull */
+    F(S, UINT, sun, )          /* 1: a directional light's disk (a far polygon): no distance cull */ \
+    F(S, UINT, texture, )      /* a textured quad: 1 + its layer of the light textures; 0: none */ \
+    F(S, UINT, reserved0, )    /* (std430: the record's size a multiple of 16 bytes) */           \
+    F(S, UVEC2, reserved1, )
 
 // A light's shape (rtpbr_shader_light.shape): the values of rtpbr_light_type (rtpbr.h) and of
 // the shader library's RTPBR_PUNCTUAL_* (punctual.h); both checked (internal.h, shade_lights.glsl).
@@ -264,14 +271,14 @@
 #define RTPBR_CULL_GROUP 8
 #define RTPBR_TILE_MASK_WORDS (RTPBR_SHADER_MAX_LIGHTS / 32)
 // A tile's masks: RTPBR_TILE_MASK_WORDS words of its polygonal lights, then as many of its
-// punctual lights, then of its spheres, then of its disks (the lighting pass walks each kind
+// punctual lights, then of its spheres, then of its disks, then of its textured quads (the lighting pass walks each kind
 // without reading a light's shape: on lavapipe a loop choosing by shape ran both kinds' code
 // for every light); then, at RTPBR_TILE_SHADOW_SLOTS, the lights whose shadows the tile traces:
 // RTPBR_SHADER_MAX_SHADOWED_LIGHTS light indices in increasing order, RTPBR_TILE_NO_LIGHT for
 // an empty slot (shadow_select.comp writes them when the frame has shadows; slot k's ratio is
 // layer k of the shadow images).
-#define RTPBR_TILE_SHADOW_SLOTS (4 * RTPBR_TILE_MASK_WORDS)
-#define RTPBR_TILE_MASK_STRIDE (4 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS)
+#define RTPBR_TILE_SHADOW_SLOTS (5 * RTPBR_TILE_MASK_WORDS)
+#define RTPBR_TILE_MASK_STRIDE (5 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS)
 #define RTPBR_TILE_NO_LIGHT 0xffffffffu
 // Tile classes: each has its lighting variant, dispatched indirectly over its tile queue.
 #define RTPBR_TILE_CLASS_EMPTY 0 // no surface pixel or no light left: emission and background
@@ -341,6 +348,13 @@
 #define RTPBR_BINDING_LIGHT_GBUFFER4 25   // RGBA8 sRGB: specular colour rgb, specular a
 #define RTPBR_BINDING_LIGHT_GBUFFER5 26   // RGBA8 sRGB: sheen colour rgb, sheen roughness a
 #define RTPBR_BINDING_LIGHT_GBUFFER6 27   // RG8: clearcoat, clearcoat roughness
+// The textured quads' prefiltered emission (RTPBR_LIGHT_FIELDS: texture): a 2D array, one layer
+// per textured light (a 1-layer stand-in without any), RGBA16F, RTPBR_SHADER_LIGHT_TEXTURE_SIZE
+// square with RTPBR_SHADER_LIGHT_TEXTURE_LEVELS levels, level k blurred over 2^k texels of level
+// 0 (engine/src/light_texture.c); sampled linearly, clamped to the edge.
+#define RTPBR_BINDING_LIGHT_TEXTURES 28
+#define RTPBR_SHADER_LIGHT_TEXTURE_SIZE 128
+#define RTPBR_SHADER_LIGHT_TEXTURE_LEVELS 8
 // Shadow passes, descriptor set 0 (shadow.comp traces, shadow_denoise.comp filters).
 #define RTPBR_BINDING_SHADOW_FRAME 0          // uniform: rtpbr_shader_frame
 #define RTPBR_BINDING_SHADOW_LIGHTS 1         // storage: rtpbr_shader_light[]

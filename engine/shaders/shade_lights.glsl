@@ -14,6 +14,9 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_DISNEY_1) uniform sampler2D lut_
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_DISNEY_2) uniform sampler2D lut_ltc_disney_2;
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_SHEEN_1) uniform sampler2D lut_ltc_sheen_1;
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_SHEEN_2) uniform sampler2D lut_ltc_sheen_2;
+#if RTPBR_LIGHTING_SPHERES
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_TEXTURES) uniform sampler2DArray light_textures;
+#endif
 
 // The LTC tables of the NDF this variant is built for.
 #if RTPBR_NDF == RTPBR_NDF_BECKMANN
@@ -53,6 +56,17 @@ vec3 Host_LightDirection(uint i) { return lights[i].vertices[1].xyz; }
 vec2 Host_LightSpotCone(uint i) { return lights[i].vertices[2].xy; }
 // A disk's half-axes (RTPBR_LIGHT_FIELDS, DISK: vertices[1], vertices[2]).
 vec3 Host_LightDiskAxis(uint i, uint k) { return lights[i].vertices[1u + k].xyz; }
+#if RTPBR_LIGHTING_SPHERES
+// A textured quad's emission factor at lookup = (s, t, footprint) (area_light.h): its chain's
+// level k is blurred over 2^k texels (rtpbr_shared.h, RTPBR_BINDING_LIGHT_TEXTURES), so the
+// footprint's radius of footprint x size texels reads lod log2 of it.
+vec3 Host_LightTexture(uint i, vec3 lookup)
+{
+    float lod = clamp(log2(max(lookup.z * float(RTPBR_SHADER_LIGHT_TEXTURE_SIZE), 1e-6f)), 0.0f,
+                      float(RTPBR_SHADER_LIGHT_TEXTURE_LEVELS - 1));
+    return textureLod(light_textures, vec3(lookup.xy, float(lights[i].texture - 1u)), lod).rgb;
+}
+#endif
 ivec2 shade_pixel; // the pixel shade_lights shades (for its shadow ratios)
 #ifdef RTPBR_SHADE_ALL_LIGHTS
 vec3 Host_LightVisibility(uint i) { return vec3(shadow_factor(i, shade_pixel)); }
@@ -78,6 +92,7 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 #define RTPBR_AREA_LIGHT_SPHERES 1  // AreaLight_AddSphere for the spheres' mask (RTPBR_LIGHTING_SPHERES)
 #define RTPBR_AREA_LIGHT_DISKS 1    // AreaLight_AddDisk for the disks' mask
 #define RTPBR_AREA_LIGHT_ROUND_DISKS 1 // (rtpbr_light_desc has round disks only)
+#define RTPBR_AREA_LIGHT_TEXTURED RTPBR_LIGHTING_SPHERES // AreaLight_AddTexturedQuad for the textured quads' mask
 // A sphere the horizon cuts: clipped exactly in the basic variant; the full variant's registers
 // take the sphere proxy (area_light.h; no spills: tests/shader-stats)
 #define RTPBR_AREA_LIGHT_SPHERE_CLIP (!RTPBR_LIGHTING_FULL)
@@ -97,7 +112,8 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 // the G-buffer the masks were culled by), each weighted by its shadow ratio
 // shadow_factor(i, pixel) (shadow_ratio.glsl, or 1), added to result (the emission): punctual
 // lights first, straight into it (AreaLight_AddPunctual), then the polygons (AreaLight_Add),
-// the spheres (AreaLight_AddSphere) and the disks (AreaLight_AddDisk), their sum held to the energy bound (registers:
+// the spheres (AreaLight_AddSphere), the disks (AreaLight_AddDisk) and the textured quads
+// (AreaLight_AddTexturedQuad), their sum held to the energy bound (registers:
 // docs/performance.md, 11).
 void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pixel, inout vec3 result)
 {
@@ -138,12 +154,14 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     }
     AreaLightPixel px = AreaLight_Begin(s, N, V);
     for (uint i = 0u; i < frame.light_count; ++i)
-        if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) AreaLight_Add(px, acc, s, P, N, i);
+        if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_POLYGON) && lights[i].texture == 0u) AreaLight_Add(px, acc, s, P, N, i);
 #if RTPBR_LIGHTING_SPHERES
     for (uint i = 0u; i < frame.light_count; ++i)
         if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) AreaLight_AddSphere(px, acc, s, P, N, i);
     for (uint i = 0u; i < frame.light_count; ++i)
         if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_DISK)) AreaLight_AddDisk(px, acc, s, P, N, i);
+    for (uint i = 0u; i < frame.light_count; ++i)
+        if (lights[i].texture != 0u) AreaLight_AddTexturedQuad(px, acc, s, P, N, i);
 #endif
 #else
     // The tile's masks (cull.comp): its punctual lights', then its polygons', its spheres' and
@@ -157,9 +175,22 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
             AreaLight_AddPunctual(result, s, frame3, P, i, lights[i].shape);
         }
     AreaLightPixel px = AreaLight_Begin(s, N, V);
+#if RTPBR_LIGHTING_SPHERES && RTPBR_LIGHTING_FULL
+    // The full variant shades its textured quads in the polygons' loop (one copy of the
+    // evaluation, the texel read at its end where texturedLight: a loop of their own spilled 3
+    // VGPRs on gfx1100); the basic variant in a loop of their own, below.
+    for (uint word = 0u; word < words; ++word) {
+        uint textured = tile_masks[maskBase + 4u * uint(RTPBR_TILE_MASK_WORDS) + word];
+        for (uint bits = tile_masks[maskBase + word] | textured; bits != 0u; bits &= bits - 1u) {
+            uint b = uint(findLSB(bits));
+            AreaLight_AddShape(px, acc, s, P, N, word * 32u + b, false, false, ((textured >> b) & 1u) != 0u);
+        }
+    }
+#else
     for (uint word = 0u; word < words; ++word)
         for (uint bits = tile_masks[maskBase + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_Add(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
+#endif
 #if RTPBR_LIGHTING_SPHERES
     // Spheres and disks: a mask and a loop each, so that each loop compiles with its kind
     // fixed (one loop choosing at run time took the basic variant's registers from 96 to 104
@@ -170,6 +201,11 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     for (uint word = 0u; word < words; ++word)
         for (uint bits = tile_masks[maskBase + 3u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_AddDisk(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
+#if !RTPBR_LIGHTING_FULL
+    for (uint word = 0u; word < words; ++word)
+        for (uint bits = tile_masks[maskBase + 4u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
+            AreaLight_AddTexturedQuad(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
+#endif
 #endif
 #endif
     result += AreaLight_End(px, acc, s, P);

@@ -1,6 +1,7 @@
 // The context's life cycle: device, command pool, samplers, lookup tables and the passes'
 // pipelines; it destroys the scenes and renderers the host left alive.
 #include "internal.h"
+#include "light_texture.h"
 #include "passes/passes.h"
 
 rtpbr_result rtpbr_context_create(const rtpbr_context_desc *desc, rtpbr_context **out_context)
@@ -48,7 +49,21 @@ rtpbr_result rtpbr_context_create(const rtpbr_context_desc *desc, rtpbr_context 
     RTPBR_VK(&ctx->host, vkCreateSampler(ctx->device, &sampler_info, NULL, &ctx->lut_sampler));
     sampler_info.magFilter = sampler_info.minFilter = VK_FILTER_NEAREST;
     RTPBR_VK(&ctx->host, vkCreateSampler(ctx->device, &sampler_info, NULL, &ctx->gbuffer_sampler));
+    sampler_info.magFilter = sampler_info.minFilter = VK_FILTER_LINEAR;
+    sampler_info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    sampler_info.maxLod = (float)(RTPBR_LIGHT_TEXTURE_LEVELS - 1);
+    RTPBR_VK(&ctx->host, vkCreateSampler(ctx->device, &sampler_info, NULL, &ctx->light_texture_sampler));
     RTPBR_TRY(rtpbr_luts_create(ctx));
+    {
+        // (a chain of ones: what an untextured light would read)
+        size_t floats = rtpbr_light_texture_floats();
+        float *ones;
+        RTPBR_ALLOC(&ctx->host, ones, floats * sizeof(float));
+        for (size_t i = 0; i < floats; ++i) ones[i] = 1.0f;
+        result = rtpbr_light_textures_create(ctx, ones, 1, &ctx->light_texture_stand_in);
+        rtpbr_free(&ctx->host, ones);
+        if (result != RTPBR_SUCCESS) goto cleanup;
+    }
     // The passes' layouts and pipelines (variants other than the defaults: on first use).
     RTPBR_TRY(rtpbr_gbuffer_pass_init(ctx));
     RTPBR_TRY(rtpbr_lighting_pass_init(ctx));
@@ -98,6 +113,8 @@ void rtpbr_context_destroy(rtpbr_context *ctx)
         rtpbr_shadow_pass_finish(ctx);
         rtpbr_gbuffer_pass_finish(ctx);
         rtpbr_luts_destroy(ctx);
+        rtpbr_image_destroy(ctx, &ctx->light_texture_stand_in);
+        vkDestroySampler(ctx->device, ctx->light_texture_sampler, NULL);
         vkDestroySampler(ctx->device, ctx->lut_sampler, NULL);
         vkDestroySampler(ctx->device, ctx->gbuffer_sampler, NULL);
         vkDestroyFence(ctx->device, ctx->upload_fence, NULL);

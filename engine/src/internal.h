@@ -43,7 +43,7 @@ _Static_assert(RTPBR_SHADER_MAX_SHADOWED_LIGHTS == RTPBR_MAX_SHADOWED_LIGHTS, "s
 _Static_assert(RTPBR_SHADER_MAX_POLYGON_VERTICES == RTPBR_MAX_POLYGON_VERTICES,
                "RTPBR_SHADER_MAX_POLYGON_VERTICES (rtpbr_shared.h) differs from RTPBR_MAX_POLYGON_VERTICES (rtpbr.h)");
 _Static_assert(sizeof(rtpbr_shader_material) == 144, "Material layout");
-_Static_assert(sizeof(rtpbr_shader_light) == 192, "Light layout");
+_Static_assert(sizeof(rtpbr_shader_light) == 208, "Light layout");
 _Static_assert(RTPBR_LIGHT_SHAPE_POLYGON == RTPBR_LIGHT_POLYGON && RTPBR_LIGHT_SHAPE_POINT == RTPBR_LIGHT_POINT &&
                    RTPBR_LIGHT_SHAPE_SPOT == RTPBR_LIGHT_SPOT && RTPBR_LIGHT_SHAPE_DIRECTIONAL == RTPBR_LIGHT_DIRECTIONAL,
                "light shapes (rtpbr_shared.h) equal rtpbr_light_type (rtpbr.h)");
@@ -159,6 +159,9 @@ struct rtpbr_context {
     VkFence upload_fence;
     VkSampler lut_sampler;        // linear, clamp to edge
     VkSampler gbuffer_sampler;    // nearest (the G-buffer is read with texelFetch)
+    VkSampler light_texture_sampler; // trilinear, clamp to edge, every level (light textures)
+    rtpbr_image light_texture_stand_in; // a 1-layer chain of ones: RTPBR_BINDING_LIGHT_TEXTURES
+                                        // where no textured light is bound (light sets)
     float max_anisotropy;         // material textures' sampler anisotropy; 0: samplerAnisotropy not enabled
     rtpbr_lut luts[RTPBR_LUT_COUNT]; // in binding order RTPBR_BINDING_LUT_LTC_GGX_1 ...
 
@@ -224,7 +227,20 @@ struct rtpbr_gpu_scene {
     uint32_t bvh_node_count, bvh_triangle_count;
     rtpbr_buffer alpha_textures; // rtpbr_shader_alpha_texture[texture_count] (scene.c), for the shadow rays
     rtpbr_buffer alpha_texels;   // uint[]: the alpha bytes of the textures that have any below 255
+    // The textured quads' prefiltered emission (light_texture.h): one layer per distinct
+    // (texture, coordinates) of the creation's lights, in light_texture_keys; no image (the
+    // context's stand-in is bound) without any.
+    rtpbr_image light_textures;
+    struct rtpbr_light_texture_key *light_texture_keys;
+    uint32_t light_texture_layers;
 };
+// A textured light's chain: its texture (1 + index) and coordinates (defaults applied).
+typedef struct rtpbr_light_texture_key {
+    uint32_t texture;
+    float uv[3][2];
+} rtpbr_light_texture_key;
+// The image a scene's lights read at RTPBR_BINDING_LIGHT_TEXTURES (its own, or the stand-in).
+VkImageView rtpbr_gpu_scene_light_texture_view(const rtpbr_gpu_scene *scene);
 
 // rtpbr_gpu_scene_create with the lights' derived facts (normal, centre, area, bounding sphere,
 // fan; scene/rtpbr/rtpbr_gltf.h) given, one per light, as the loader computed them
@@ -369,6 +385,10 @@ void rtpbr_lut_destroy(rtpbr_context *ctx, rtpbr_lut *lut);
 // Every table of ctx->luts (luts.c), from the shader library's generated arrays.
 rtpbr_result rtpbr_luts_create(rtpbr_context *ctx);
 void rtpbr_luts_destroy(rtpbr_context *ctx);
+// The textured quads' prefiltered chains (light_texture.h: `layers` chains of
+// RTPBR_LIGHT_TEXTURE_LEVELS levels, RGBA floats, one after the other) as one RGBA16F 2D-array
+// image (SHADER_READ_ONLY_OPTIMAL), a layer per chain (RTPBR_BINDING_LIGHT_TEXTURES).
+rtpbr_result rtpbr_light_textures_create(rtpbr_context *ctx, const float *chains, uint32_t layers, rtpbr_image *out);
 // Uploads tightly packed texels into a new sampled image (SHADER_READ_ONLY_OPTIMAL).
 rtpbr_result rtpbr_image_create_with_data(rtpbr_context *ctx, uint32_t width, uint32_t height, VkFormat format,
                                           const void *texels, size_t bytes, rtpbr_image *out);

@@ -118,6 +118,13 @@ rtpbr_result rtpbr_light_set_update(rtpbr_light_set *set, uint32_t frame, const 
             rtpbr_gltf_polygon_facts_of(l->vertices, l->vertex_count, &set->facts[i]);
         rtpbr_result result = rtpbr_light_validate(ctx, l, &set->facts[i], i);
         if (result != RTPBR_SUCCESS) return result;
+        if (l->emission_texture) {
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                      "rtpbr_light_set_update: light %u has an emission texture; textured lights need a scene "
+                      "(rtpbr_gpu_scene_create), a light set has none",
+                      i);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
     }
     rtpbr_shader_light *region = (rtpbr_shader_light *)((char *)set->buffer.mapped + frame * set->stride);
     for (uint32_t i = 0; i < count; ++i) rtpbr_light_record(&lights[i], &set->facts[i], &region[i]);

@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "light_texture.h"
 
 static uint32_t find_memory_type(const rtpbr_context *ctx, uint32_t type_bits, VkMemoryPropertyFlags want)
 {
@@ -376,6 +377,68 @@ static uint16_t half_from_float(float f)
     uint32_t rest = mantissa & 0x1fffu;
     if (rest > 0x1000u || (rest == 0x1000u && (half & 1u))) ++half; // may carry into the exponent: correct
     return (uint16_t)half;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Light textures (the textured quads' prefiltered chains, light_texture.h)
+
+typedef struct light_texture_upload {
+    VkBuffer staging;
+    VkImage image;
+    uint32_t layers;
+} light_texture_upload;
+
+static void record_light_texture_upload(VkCommandBuffer cmd, void *user)
+{
+    const light_texture_upload *u = user;
+    const VkImageSubresourceRange all = {VK_IMAGE_ASPECT_COLOR_BIT, 0, RTPBR_LIGHT_TEXTURE_LEVELS, 0, u->layers};
+    rtpbr_image_range_barrier(cmd, u->image, all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                              VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                              VK_ACCESS_TRANSFER_WRITE_BIT);
+    // one region per level and layer: the staging buffer holds the chains one after the other
+    VkBufferImageCopy regions[RTPBR_LIGHT_TEXTURE_LEVELS];
+    for (uint32_t layer = 0; layer < u->layers; ++layer) {
+        for (uint32_t k = 0; k < RTPBR_LIGHT_TEXTURE_LEVELS; ++k) {
+            uint32_t size = RTPBR_LIGHT_TEXTURE_SIZE >> k;
+            regions[k] = (VkBufferImageCopy){
+                .bufferOffset = ((VkDeviceSize)layer * rtpbr_light_texture_floats() +
+                                 rtpbr_light_texture_level_offset(k)) * sizeof(uint16_t),
+                .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, k, layer, 1},
+                .imageExtent = {size, size, 1},
+            };
+        }
+        vkCmdCopyBufferToImage(cmd, u->staging, u->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               RTPBR_LIGHT_TEXTURE_LEVELS, regions);
+    }
+    rtpbr_image_range_barrier(cmd, u->image, all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                              VK_ACCESS_TRANSFER_WRITE_BIT,
+                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                              VK_ACCESS_SHADER_READ_BIT);
+}
+
+rtpbr_result rtpbr_light_textures_create(rtpbr_context *ctx, const float *chains, uint32_t layers, rtpbr_image *out)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
+    rtpbr_buffer staging = {0};
+    memset(out, 0, sizeof *out);
+    // RGBA16F: linear filtering is required of it (not of RGBA32F); the chains are emission
+    // factors in [0, 1] (sRGB-decoded 8-bit texels), which half floats hold to 2^-11.
+    size_t count = rtpbr_light_texture_floats() * layers;
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, count * sizeof(uint16_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &staging));
+    uint16_t *dst = staging.mapped;
+    for (size_t i = 0; i < count; ++i) dst[i] = half_from_float(chains[i]);
+    RTPBR_TRY(image_create_levels(ctx, RTPBR_LIGHT_TEXTURE_SIZE, RTPBR_LIGHT_TEXTURE_SIZE, 1, layers,
+                                  RTPBR_LIGHT_TEXTURE_LEVELS, VK_FORMAT_R16G16B16A16_SFLOAT,
+                                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, out));
+    light_texture_upload upload = {staging.buffer, out->image, layers};
+    RTPBR_TRY(rtpbr_submit_once(ctx, record_light_texture_upload, &upload));
+    rtpbr_buffer_destroy(ctx, &staging);
+    return RTPBR_SUCCESS;
+cleanup:
+    rtpbr_buffer_destroy(ctx, &staging);
+    rtpbr_image_destroy(ctx, out);
+    return result;
 }
 
 rtpbr_result rtpbr_lut_create(rtpbr_context *ctx, uint32_t width, uint32_t height, uint32_t depth, const float *rgba,

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "light_texture.h"
 #include "passes/passes.h"
 #include "rtpbr/rtpbr_gltf.h"
 
@@ -150,6 +151,11 @@ rtpbr_result rtpbr_light_validate(const rtpbr_context *ctx, const rtpbr_light_de
                   index, (int)l->type);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
+    if (l->emission_texture && l->type != RTPBR_LIGHT_POLYGON) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u: an emission texture on a light of type %d; polygons only", index,
+                  (int)l->type);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
     if (l->type == RTPBR_LIGHT_DISK) return validate_disk(ctx, l, index);
     if (l->type != RTPBR_LIGHT_POLYGON) return validate_punctual(ctx, l, index);
     if (l->vertex_count < 3 || l->vertex_count > RTPBR_MAX_POLYGON_VERTICES) {
@@ -183,6 +189,23 @@ rtpbr_result rtpbr_light_validate(const rtpbr_context *ctx, const rtpbr_light_de
         for (int k = 0; k < 3; ++k) d += (double)f->normal[k] * ((double)l->vertices[i][k] - l->vertices[0][k]);
         if (fabs(d) > 1e-3 * extent) {
             rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u is not planar (vertex %u is %g off the plane)", index, i, d);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+    }
+    if (l->emission_texture) {
+        // a parallelogram: v0 + v2 = v1 + v3 (the texture's (s, t) are affine over it)
+        double gap = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            double d = (double)l->vertices[0][k] + l->vertices[2][k] - l->vertices[1][k] - l->vertices[3][k];
+            gap += d * d;
+        }
+        if (l->vertex_count != 4 || sqrt(gap) > 1e-3 * extent) {
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                      "light %u has an emission texture but is not a parallelogram of 4 vertices (v0 + v2 = v1 + v3)", index);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+        if (!rtpbr_finite(&l->emission_uv[0][0], 6)) {
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has a NaN or infinite emission_uv", index);
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
     }
@@ -375,11 +398,106 @@ void rtpbr_light_record(const rtpbr_light_desc *l, const rtpbr_gltf_polygon_fact
     *out = g;
 }
 
+static bool is_zero(const float *v, size_t n);
+
+// A textured light's key: its texture and coordinates, the defaults applied (all zero: the
+// whole texture, (0, 0), (1, 0), (0, 1)).
+static rtpbr_light_texture_key light_texture_key(const rtpbr_light_desc *l)
+{
+    rtpbr_light_texture_key key = {.texture = l->emission_texture};
+    if (is_zero(&l->emission_uv[0][0], 6)) {
+        key.uv[1][0] = 1.0f;
+        key.uv[2][1] = 1.0f;
+    } else {
+        memcpy(key.uv, l->emission_uv, sizeof key.uv);
+    }
+    return key;
+}
+
+// The layer of the scene's light textures holding key's chain, or -1.
+static int32_t light_texture_layer(const rtpbr_light_texture_key *keys, uint32_t count, const rtpbr_light_texture_key *key)
+{
+    for (uint32_t i = 0; i < count; ++i)
+        if (keys[i].texture == key->texture && memcmp(keys[i].uv, key->uv, sizeof key->uv) == 0) return (int32_t)i;
+    return -1;
+}
+
+// The textured lights' textures exist (texture_count: the scene's); with a scene (set_lights),
+// each light's chain is one the scene was created with.
+static rtpbr_result validate_light_textures(const rtpbr_context *ctx, const rtpbr_light_desc *lights, uint32_t count,
+                                            uint32_t texture_count, const rtpbr_gpu_scene *scene)
+{
+    for (uint32_t i = 0; i < count; ++i) {
+        if (!lights[i].emission_texture) continue;
+        if (lights[i].emission_texture > texture_count) {
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u: emission_texture %u is past the scene's %u textures", i,
+                      lights[i].emission_texture, texture_count);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+        rtpbr_light_texture_key key = light_texture_key(&lights[i]);
+        if (scene && light_texture_layer(scene->light_texture_keys, scene->light_texture_layers, &key) < 0) {
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                      "light %u: rtpbr_gpu_scene_set_lights takes a textured light only with a texture and emission_uv "
+                      "of the scene's creation (its chain is prefiltered then)", i);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+    }
+    return RTPBR_SUCCESS;
+}
+
+// The prefiltered chain of each distinct (texture, coordinates) of the lights (light_texture.h),
+// uploaded as one layer each.
+static rtpbr_result create_light_textures(rtpbr_gpu_scene *scene, const rtpbr_gpu_scene_desc *desc)
+{
+    rtpbr_context *ctx = scene->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    float *chains = NULL;
+    uint32_t layers = 0;
+    RTPBR_ALLOC(&ctx->host, scene->light_texture_keys, RTPBR_MAX_TEXTURED_LIGHTS * sizeof *scene->light_texture_keys);
+    for (uint32_t i = 0; i < desc->light_count; ++i) {
+        if (!desc->lights[i].emission_texture) continue;
+        rtpbr_light_texture_key key = light_texture_key(&desc->lights[i]);
+        if (light_texture_layer(scene->light_texture_keys, layers, &key) >= 0) continue;
+        if (layers == RTPBR_MAX_TEXTURED_LIGHTS)
+            RTPBR_FAIL(&ctx->host, RTPBR_ERROR_LIMIT_EXCEEDED,
+                       "more than RTPBR_MAX_TEXTURED_LIGHTS = %u distinct textured lights (texture and emission_uv)",
+                       RTPBR_MAX_TEXTURED_LIGHTS);
+        scene->light_texture_keys[layers++] = key;
+    }
+    if (layers == 0) goto cleanup;
+    size_t floats = rtpbr_light_texture_floats();
+    RTPBR_ALLOC(&ctx->host, chains, layers * floats * sizeof(float));
+    for (uint32_t k = 0; k < layers; ++k) {
+        const rtpbr_light_texture_key *key = &scene->light_texture_keys[k];
+        const float du[2] = {key->uv[1][0] - key->uv[0][0], key->uv[1][1] - key->uv[0][1]};
+        const float dv[2] = {key->uv[2][0] - key->uv[0][0], key->uv[2][1] - key->uv[0][1]};
+        if (rtpbr_light_texture_prefilter(&desc->textures[key->texture - 1], key->uv[0], du, dv, chains + k * floats) != 0)
+            RTPBR_FAIL(&ctx->host, RTPBR_ERROR_INVALID_ARGUMENT,
+                       "textured light: texture %u with these emission_uv could not be prefiltered", key->texture - 1);
+    }
+    RTPBR_TRY(rtpbr_light_textures_create(ctx, chains, layers, &scene->light_textures));
+    scene->light_texture_layers = layers;
+cleanup:
+    rtpbr_free(&ctx->host, chains);
+    return result;
+}
+
+VkImageView rtpbr_gpu_scene_light_texture_view(const rtpbr_gpu_scene *scene)
+{
+    return scene->light_texture_layers ? scene->light_textures.view : scene->context->light_texture_stand_in.view;
+}
+
 static void write_lights(rtpbr_gpu_scene *scene, const rtpbr_light_desc *lights, const rtpbr_gltf_polygon_facts *facts,
                          uint32_t count)
 {
     rtpbr_shader_light *gpu = scene->lights.mapped;
-    for (uint32_t i = 0; i < count; ++i) rtpbr_light_record(&lights[i], &facts[i], &gpu[i]);
+    for (uint32_t i = 0; i < count; ++i) {
+        rtpbr_light_record(&lights[i], &facts[i], &gpu[i]);
+        if (lights[i].emission_texture) { // validated: the scene holds its chain
+            rtpbr_light_texture_key key = light_texture_key(&lights[i]);
+            gpu[i].texture = 1u + (uint32_t)light_texture_layer(scene->light_texture_keys, scene->light_texture_layers, &key);
+        }
+    }
     scene->light_count = count;
 }
 
@@ -390,6 +508,8 @@ rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const rtpbr_ligh
     if (result != RTPBR_SUCCESS) return result;
     rtpbr_gltf_polygon_facts *facts = derive_light_facts(scene->context, lights, light_count, &result);
     if (facts) result = validate_lights(scene->context, lights, facts, light_count);
+    if (facts && result == RTPBR_SUCCESS)
+        result = validate_light_textures(scene->context, lights, light_count, scene->texture_count, scene);
     if (result == RTPBR_SUCCESS) write_lights(scene, lights, facts, light_count);
     rtpbr_free(&scene->context->host, facts);
     return result;
@@ -812,6 +932,7 @@ rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const r
         goto cleanup; // frees the derived facts
         }
     }
+    RTPBR_TRY(validate_light_textures(ctx, desc->lights, desc->light_count, desc->texture_count, NULL));
     for (uint32_t i = 0; i < desc->camera_count; ++i)
         if (!rtpbr_finite((const float *)&desc->cameras[i], sizeof desc->cameras[i] / sizeof(float))) {
             rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "camera %u has a NaN or infinite parameter", i);
@@ -896,6 +1017,7 @@ rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const r
     RTPBR_TRY(create_textures(scene, desc, material_slots));
     RTPBR_TRY(create_alpha_textures(scene, desc));
 
+    RTPBR_TRY(create_light_textures(scene, desc));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, RTPBR_MAX_LIGHTS * sizeof(rtpbr_shader_light),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->lights));
     write_lights(scene, desc->lights, facts, desc->light_count);
@@ -925,6 +1047,8 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_bvh_destroy(scene);
     rtpbr_buffer_destroy(ctx, &scene->alpha_textures);
     rtpbr_buffer_destroy(ctx, &scene->alpha_texels);
+    rtpbr_image_destroy(ctx, &scene->light_textures);
+    rtpbr_free(&ctx->host, scene->light_texture_keys);
     rtpbr_gbuffer_material_sets_destroy(scene);
     for (uint32_t i = 0; i < scene->texture_count; ++i) rtpbr_image_destroy(ctx, &scene->textures[i]);
     for (uint32_t i = 0; i < RTPBR_SAMPLER_KEY_COUNT; ++i)
@@ -1000,7 +1124,9 @@ rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh
 bool rtpbr_lights_have_spheres(const rtpbr_shader_light *lights, uint32_t count)
 {
     for (uint32_t i = 0; i < count; ++i)
-        if (lights[i].shape == RTPBR_LIGHT_SHAPE_SPHERE || lights[i].shape == RTPBR_LIGHT_SHAPE_DISK) return true;
+        if (lights[i].shape == RTPBR_LIGHT_SHAPE_SPHERE || lights[i].shape == RTPBR_LIGHT_SHAPE_DISK ||
+            lights[i].texture != 0)
+            return true;
     return false;
 }
 

@@ -58,6 +58,80 @@ static uint32_t texture_ref(const rtpbr_gltf_scene *loaded, int32_t index)
     return (uint32_t)index + 1;
 }
 
+// The texture coordinate the emission texture reads at vertex v of primitive p: its set, then
+// KHR_texture_transform (rtpbr_gltf.h: uv' = T R S uv).
+static void emission_uv_at(const rtpbr_gltf_primitive *p, const rtpbr_gltf_texture_transform *t, uint32_t v,
+                           float out[2])
+{
+    const float *set = t->texcoord == 1 ? p->texcoords1 : p->texcoords;
+    float u = set[2 * v], w = set[2 * v + 1];
+    if (!t->has_transform) {
+        out[0] = u;
+        out[1] = w;
+        return;
+    }
+    float c = cosf(t->rotation), s = sinf(t->rotation);
+    out[0] = c * t->scale[0] * u + s * t->scale[1] * w + t->offset[0];
+    out[1] = -s * t->scale[0] * u + c * t->scale[1] * w + t->offset[1];
+}
+
+// A BOUNDED quad light of a primitive whose material has an emission texture (a screen, a
+// window): its texture and the coordinates at vertices 0, 1, 3 (rtpbr_light_desc.emission_uv),
+// when the quad is a parallelogram each of whose corners is a vertex of the primitive and the
+// primitive's coordinates are affine over it (the fourth corner's agree within 1e-3); the
+// emission is then the material's (the texture multiplies it per point) instead of the
+// texture's mean. Anything else keeps the mean (false).
+static bool textured_quad(const rtpbr_gltf_scene *loaded, const rtpbr_gltf_light *l, rtpbr_light_desc *d)
+{
+    if (l->vertex_count != 4 || l->proxy || l->triangle >= 0 || l->primitive < 0 || l->material < 0 ||
+        (uint32_t)l->primitive >= loaded->primitive_count || (uint32_t)l->material >= loaded->material_count)
+        return false;
+    const rtpbr_gltf_material *m = &loaded->materials[l->material];
+    const rtpbr_gltf_primitive *p = &loaded->primitives[l->primitive];
+    if (m->emission_texture < 0 || (uint32_t)m->emission_texture >= loaded->texture_count || !p->vertex_count ||
+        !(m->emission_texture_transform.texcoord == 1 ? p->has_texcoords1 : p->has_texcoords))
+        return false;
+    float uv[4][2];
+    double extent2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        double e = (double)l->vertices[2][k] - l->vertices[0][k];
+        extent2 += e * e;
+    }
+    for (uint32_t c = 0; c < 4; ++c) {
+        // the primitive's vertex at the corner (the merged polygon's corners are its vertices)
+        uint32_t best = 0;
+        double best2 = INFINITY;
+        for (uint32_t v = 0; v < p->vertex_count; ++v) {
+            double d2 = 0.0;
+            for (int k = 0; k < 3; ++k) {
+                double e = (double)p->positions[3 * v + k] - l->vertices[c][k];
+                d2 += e * e;
+            }
+            if (d2 < best2) best2 = d2, best = v;
+        }
+        if (!(best2 <= 1e-10 * extent2)) return false;
+        emission_uv_at(p, &m->emission_texture_transform, best, uv[c]);
+    }
+    double gap = 0.0, span = 0.0;
+    for (int k = 0; k < 2; ++k) {
+        double e = (double)uv[0][k] + uv[2][k] - uv[1][k] - uv[3][k];
+        gap += e * e;
+        span += ((double)uv[2][k] - uv[0][k]) * ((double)uv[2][k] - uv[0][k]);
+    }
+    double shape = 0.0; // the corners' parallelogram gap, as the engine checks it
+    for (int k = 0; k < 3; ++k) {
+        double e = (double)l->vertices[0][k] + l->vertices[2][k] - l->vertices[1][k] - l->vertices[3][k];
+        shape += e * e;
+    }
+    if (!(span > 0.0) || gap > 1e-6 * span || shape > 1e-8 * extent2) return false;
+    d->emission_texture = (uint32_t)m->emission_texture + 1u;
+    memcpy(d->emission_uv[0], uv[0], sizeof uv[0]);
+    memcpy(d->emission_uv[1], uv[1], sizeof uv[1]);
+    memcpy(d->emission_uv[2], uv[3], sizeof uv[3]);
+    memcpy(d->emission, m->emission, sizeof d->emission);
+    return true;
+}
+
 static rtpbr_texture_transform texture_transform(const rtpbr_gltf_texture_transform *t)
 {
     rtpbr_texture_transform out = {.texcoord = t->texcoord};
@@ -265,6 +339,7 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
             memcpy(d->direction, l->facts.normal, sizeof d->direction);
             d->radius = l->radius;
         }
+        textured_quad(loaded, l, d);
     }
     // KHR_lights_punctual lights after the area lights (with shadows, the order does not
     // matter: each tile's casters are chosen by their irradiance bound); facts: none (all zero).

@@ -212,6 +212,8 @@ RTPBR_API const char *rtpbr_context_device_name(const rtpbr_context *context);
 
 // Documented limits; exceeding any is RTPBR_ERROR_LIMIT_EXCEEDED.
 #define RTPBR_MAX_LIGHTS 1024u           // polygonal lights per scene
+// Distinct (texture, coordinates) pairs of textured lights per scene (rtpbr_light_desc.emission_texture).
+#define RTPBR_MAX_TEXTURED_LIGHTS 64u
 // Vertices per polygonal light: the one source of truth of the vertex limit. Equal to it
 // must be RTPBR_GLTF_MAX_POLYGON_VERTICES (rtpbr_gltf.h; checked in engine/src/scene_gltf.c),
 // the shaders' RTPBR_SHADER_MAX_POLYGON_VERTICES (checked in engine/src/internal.h) and
@@ -462,6 +464,20 @@ typedef struct rtpbr_light_desc {
                              // shaded with LTC like a polygon. Zero: a true point (exact).
                              // Spot: must be zero (spheres with a cone: not yet). Disk: > 0,
                              // the disk's radius. Directional, polygon: ignored
+    uint32_t emission_texture; // polygon of 4 vertices, a parallelogram (a screen, a window):
+                             // 1 + the index of a scene texture (rtpbr_gpu_scene_desc.textures;
+                             // its rgb, sRGB-decoded when srgb, times `emission` is the radiance
+                             // over the quad, alpha ignored); 0: none. The quad's point
+                             // v0 + s (v1 - v0) + t (v3 - v0), s, t in [0, 1], has the texture
+                             // coordinate uv0 + s (uv1 - uv0) + t (uv3 - uv0) (emission_uv; the
+                             // texture's wrap modes apply). Shaded with LTC's textured lookup (each
+                             // lobe reads a chain prefiltered at load, docs/materials.md). The
+                             // texture must stay as it was: rtpbr_gpu_scene_set_lights accepts a
+                             // textured light only with a texture and uv the scene was created
+                             // with. rtpbr_light_set: not supported (RTPBR_ERROR_INVALID_ARGUMENT)
+    float emission_uv[3][2]; // the texture coordinates uv0, uv1, uv3 at vertices 0, 1 and 3;
+                             // all zero: (0, 0), (1, 0), (0, 1) (the whole texture, its top row
+                             // along v0 -> v1)
 } rtpbr_light_desc;
 
 typedef struct rtpbr_camera_desc {
@@ -759,7 +775,7 @@ typedef struct rtpbr_light_set_desc {
 
 typedef struct rtpbr_light_set rtpbr_light_set;
 
-// One host-visible buffer of frames_in_flight x capacity light records (192 bytes each), mapped
+// One host-visible buffer of frames_in_flight x capacity light records (208 bytes each), mapped
 // for the set's lifetime, and the host-side scratch its updates use. Every region starts
 // with no lights. Capacity or frames out of range: RTPBR_ERROR_LIMIT_EXCEEDED.
 RTPBR_API rtpbr_result rtpbr_light_set_create(rtpbr_context *context, const rtpbr_light_set_desc *desc,

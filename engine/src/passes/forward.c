@@ -44,6 +44,7 @@ static const VkDescriptorSetLayoutBinding bindings[] = {
     FRAGMENT(RTPBR_BINDING_LUT_LTC_SHEEN_1, COMBINED_IMAGE_SAMPLER),
     FRAGMENT(RTPBR_BINDING_LUT_LTC_SHEEN_2, COMBINED_IMAGE_SAMPLER),
     FRAGMENT(RTPBR_BINDING_LIGHT_MATERIALS, STORAGE_BUFFER),
+    FRAGMENT(RTPBR_BINDING_LIGHT_TEXTURES, COMBINED_IMAGE_SAMPLER),
 };
 #undef FRAGMENT
 _Static_assert(RTPBR_BINDING_GBUFFER_FRAME == RTPBR_BINDING_LIGHT_FRAME, "gbuffer.vert's frame binding");
@@ -143,6 +144,9 @@ void rtpbr_forward_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
     };
     rtpbr_descriptor_write_buffers(r->context, RTPBR_BINDINGS(bindings), r->forward_set.set, writes,
                                    sizeof writes / sizeof writes[0]);
+    rtpbr_descriptor_write_image(r->context, RTPBR_BINDINGS(bindings), r->forward_set.set, RTPBR_BINDING_LIGHT_TEXTURES,
+                                 r->context->light_texture_sampler, rtpbr_gpu_scene_light_texture_view(scene),
+                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
 static int farther_first(const void *a, const void *b)

@@ -56,6 +56,7 @@ static const VkDescriptorSetLayoutBinding bindings[] = {
     COMPUTE(RTPBR_BINDING_LIGHT_GBUFFER4, COMBINED_IMAGE_SAMPLER),
     COMPUTE(RTPBR_BINDING_LIGHT_GBUFFER5, COMBINED_IMAGE_SAMPLER),
     COMPUTE(RTPBR_BINDING_LIGHT_GBUFFER6, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LIGHT_TEXTURES, COMBINED_IMAGE_SAMPLER),
 };
 // The binding of each G-buffer image (renderer.gbuffer[i]).
 static const uint32_t gbuffer_bindings[RTPBR_GBUFFER_COUNT] = {
@@ -213,6 +214,10 @@ void rtpbr_lighting_write_image(rtpbr_context *ctx, VkDescriptorSet set, uint32_
 
 void rtpbr_lighting_write_luts(rtpbr_context *ctx, VkDescriptorSet set)
 {
+    // (and the light textures' stand-in: a light set has no textured lights)
+    rtpbr_descriptor_write_image(ctx, RTPBR_BINDINGS(bindings), set, RTPBR_BINDING_LIGHT_TEXTURES,
+                                 ctx->light_texture_sampler, ctx->light_texture_stand_in.view,
+                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     for (uint32_t i = 0; i < RTPBR_LUT_COUNT; ++i)
         rtpbr_descriptor_write_image(ctx, RTPBR_BINDINGS(bindings), set, RTPBR_BINDING_LUT_LTC_GGX_1 + i,
                                      ctx->lut_sampler, ctx->luts[i].image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -230,6 +235,9 @@ void rtpbr_lighting_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
         {RTPBR_BINDING_LIGHT_LIGHTS, scene->lights.buffer},
     };
     rtpbr_descriptor_write_buffers(r->context, RTPBR_BINDINGS(bindings), r->lighting_set.set, writes, 2);
+    rtpbr_descriptor_write_image(r->context, RTPBR_BINDINGS(bindings), r->lighting_set.set, RTPBR_BINDING_LIGHT_TEXTURES,
+                                 r->context->light_texture_sampler, rtpbr_gpu_scene_light_texture_view(scene),
+                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
 // The image the lighting pass writes: the output, or its supersampled version.
