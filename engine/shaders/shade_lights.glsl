@@ -27,6 +27,10 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_TEXTURES) uniform sampler2DArray l
 #define LUT_LTC_2 lut_ltc_ggx_2
 #endif
 
+// bench/shader-stats' per-light builds over textured quads (not a record's shape: a polygon
+// with a texture).
+#define RTPBR_STATS_SHAPE_TEXTURED_QUAD 16
+
 // The library's host bridge (area_light.h): lights from the lights buffer, tables from the
 // bindings above. RTPBR_STATS_FIXED_LIGHTS (bench/shader-stats) makes every light a quad.
 uint Host_LightVertexCount(uint i)
@@ -132,6 +136,10 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     AreaLightPixel px = AreaLight_Begin(s, N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
         AreaLight_AddDisk(px, acc, s, P, N, i);
+#elif defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_STATS_SHAPE_TEXTURED_QUAD // every light a textured quad
+    AreaLightPixel px = AreaLight_Begin(s, N, V);
+    [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
+        AreaLight_AddShape(px, acc, s, P, N, i, false, false, true);
 #elif defined(RTPBR_STATS_FIXED_SHAPE) // every light a punctual light of this shape (bench/shader-stats)
     mat3 frame3 = LTC_Frame(N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
