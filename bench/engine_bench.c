@@ -64,9 +64,13 @@ static int parse_sizes(const char *text, int (*out)[2], int max)
 //   spheres    the same with a radius: spheres of the squares' area (pi r^2 = the square's)
 //              and intensity (the spheres' lighting variants: issue 30);
 //   disks      the benchmark's squares as disks of their area, radiance and facing (the
-//              spheres' lighting variants, AreaLight_AddDisk: issue 30).
-typedef enum bench_scene { SCENE_BENCHMARK, SCENE_FLOOR, SCENE_FULL, SCENE_POINTS, SCENE_SPHERES, SCENE_DISKS, SCENE_COUNT } bench_scene;
-static const char *const scene_names[SCENE_COUNT] = {"benchmark", "floor", "full", "points", "spheres", "disks"};
+//              spheres' lighting variants, AreaLight_AddDisk: issue 30);
+//   textured   the benchmark's squares with an emission texture (a 64 x 64 checker of 8 x 8
+//              squares, one for all: AreaLight_AddTexturedQuad in the spheres' variants).
+typedef enum bench_scene { SCENE_BENCHMARK, SCENE_FLOOR, SCENE_FULL, SCENE_POINTS, SCENE_SPHERES, SCENE_DISKS,
+                           SCENE_TEXTURED, SCENE_COUNT } bench_scene;
+static const char *const scene_names[SCENE_COUNT] = {"benchmark", "floor", "full", "points", "spheres", "disks",
+                                                     "textured"};
 
 static void square_light(rtpbr_light_desc *light, float x, float y, float z, float s, int up)
 {
@@ -123,9 +127,15 @@ static rtpbr_result make_scene(rtpbr_context *ctx, bench_scene kind, int n, rtpb
                                            .radius = 2.0f * half / 1.7724539f, .emission = {20.0f, 20.0f, 20.0f}};
         else
             square_light(&lights[i], x, y, z, half, i % 4 == 3);
+        if (kind == SCENE_TEXTURED) lights[i].emission_texture = 1;
     }
+    static uint8_t checker[64 * 64 * 4];
+    for (int t = 0; t < 64 * 64; ++t)
+        for (int c = 0; c < 4; ++c) checker[4 * t + c] = c == 3 || ((t % 64) / 8 + (t / 64) / 8) % 2 ? 255 : 40;
+    rtpbr_texture_desc texture = {.width = 64, .height = 64, .rgba = checker};
     rtpbr_gpu_scene_desc desc = {.meshes = &mesh, .mesh_count = 1, .materials = &material, .material_count = 1,
-                                 .lights = lights, .light_count = (uint32_t)n, .cameras = &camera, .camera_count = 1};
+                                 .lights = lights, .light_count = (uint32_t)n, .cameras = &camera, .camera_count = 1,
+                                 .textures = &texture, .texture_count = kind == SCENE_TEXTURED ? 1 : 0};
     rtpbr_result r = rtpbr_gpu_scene_create(ctx, &desc, out);
     free(lights);
     return r;
@@ -181,7 +191,7 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
 
 static const char *const usage =
     "usage: rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu]\n"
-    "                          [--scene benchmark|floor|full|points|spheres|disks|all]\n"
+    "                          [--scene benchmark|floor|full|points|spheres|disks|textured|all]\n"
     "Median frame time of rtpbr_render against light count and resolution; compare the ratios\n"
     "printed in one run.\n"
     "  --repeat N     frames per configuration (1..1000; default 5)\n"
@@ -190,7 +200,7 @@ static const char *const usage =
     "  --cpu          the process CPU time (lavapipe's threads included) instead of wall time\n"
     "  --scene NAME   benchmark, floor (metal floor at 45 degrees, every light seen by\n"
     "                 every pixel), full (materials of the full lighting variant), points\n"
-    "                 (the benchmark's layout with point lights), spheres (with radii), disks, all\n"
+    "                 (the benchmark's layout with point lights), spheres (with radii), disks, textured, all\n"
     "                 (default)\n"
     "  -h, --help     this text\n";
 
