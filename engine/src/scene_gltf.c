@@ -132,6 +132,26 @@ static bool textured_quad(const rtpbr_gltf_scene *loaded, const rtpbr_gltf_light
     return true;
 }
 
+void rtpbr_light_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint32_t light, rtpbr_light_desc *d)
+{
+    if (!d) return;
+    *d = (rtpbr_light_desc){0};
+    if (!loaded || !loaded->lights || light >= loaded->light_count) return;
+    const rtpbr_gltf_light *l = &loaded->lights[light];
+    d->vertex_count = l->vertex_count;
+    uint32_t n = l->vertex_count <= RTPBR_MAX_POLYGON_VERTICES ? l->vertex_count : RTPBR_MAX_POLYGON_VERTICES;
+    memcpy(d->vertices, l->vertices, n * sizeof d->vertices[0]);
+    memcpy(d->emission, l->radiance, sizeof d->emission);
+    d->two_sided = l->two_sided;
+    if (l->shape == RTPBR_GLTF_LIGHT_DISK) { // the disk itself (its octagon stays in vertices)
+        d->type = RTPBR_LIGHT_DISK;
+        memcpy(d->position, l->facts.center, sizeof d->position);
+        memcpy(d->direction, l->facts.normal, sizeof d->direction);
+        d->radius = l->radius;
+    }
+    textured_quad(loaded, l, d);
+}
+
 static rtpbr_texture_transform texture_transform(const rtpbr_gltf_texture_transform *t)
 {
     rtpbr_texture_transform out = {.texcoord = t->texcoord};
@@ -325,21 +345,8 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
     }
     for (uint32_t i = 0; i < loaded->material_count; ++i) rtpbr_material_desc_from_loaded(loaded, i, &materials[i]);
     for (uint32_t i = 0; i < loaded->light_count; ++i) {
-        const rtpbr_gltf_light *l = &loaded->lights[i];
-        rtpbr_light_desc *d = &lights[i];
-        d->vertex_count = l->vertex_count;
-        uint32_t n = l->vertex_count <= RTPBR_MAX_POLYGON_VERTICES ? l->vertex_count : RTPBR_MAX_POLYGON_VERTICES;
-        memcpy(d->vertices, l->vertices, n * sizeof d->vertices[0]);
-        memcpy(d->emission, l->radiance, sizeof d->emission);
-        d->two_sided = l->two_sided;
-        light_facts[i] = l->facts;
-        if (l->shape == RTPBR_GLTF_LIGHT_DISK) { // the disk itself (its octagon stays in vertices)
-            d->type = RTPBR_LIGHT_DISK;
-            memcpy(d->position, l->facts.center, sizeof d->position);
-            memcpy(d->direction, l->facts.normal, sizeof d->direction);
-            d->radius = l->radius;
-        }
-        textured_quad(loaded, l, d);
+        rtpbr_light_desc_from_loaded(loaded, i, &lights[i]);
+        light_facts[i] = loaded->lights[i].facts;
     }
     // KHR_lights_punctual lights after the area lights (with shadows, the order does not
     // matter: each tile's casters are chosen by their irradiance bound); facts: none (all zero).

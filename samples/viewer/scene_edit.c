@@ -71,6 +71,10 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
     for (uint32_t i = 0; i < in->light_count; ++i) {
         const rtpbr_gltf_light *l = &in->lights[i];
         viewer_light *v = &s->lights[i];
+        rtpbr_light_desc engine; // rtpbr_gpu_scene_from_loaded's light: a screen's texture, its emission
+        rtpbr_light_desc_from_loaded(in, i, &engine);
+        v->emission_texture = engine.emission_texture;
+        memcpy(v->emission_uv, engine.emission_uv, sizeof v->emission_uv);
         if (l->shape == RTPBR_GLTF_LIGHT_DISK) { // the disk, as rtpbr_gpu_scene_from_loaded has it (not its octagon)
             v->type = RTPBR_LIGHT_DISK;
             memcpy(v->center, l->facts.center, sizeof v->center);
@@ -80,7 +84,7 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
             v->vertex_count = l->vertex_count;
             memcpy(v->vertices, l->vertices, sizeof v->vertices);
         }
-        split_emission(l->radiance, v->color, &v->intensity);
+        split_emission(engine.emission, v->color, &v->intensity);
         v->two_sided = l->two_sided;
         v->material = l->material >= 0 && (uint32_t)l->material < in->material_count ? l->material : -1;
         if (l->primitive >= 0 && (uint32_t)l->primitive < in->primitive_count) s->primitive_is_light[l->primitive] = true;
@@ -141,6 +145,8 @@ void viewer_scene_light_descs(const viewer_scene *s, rtpbr_light_desc *out)
         } else {
             d->vertex_count = l->vertex_count;
             memcpy(d->vertices, l->vertices, sizeof d->vertices);
+            d->emission_texture = l->vertex_count == 4 ? l->emission_texture : 0;
+            memcpy(d->emission_uv, l->emission_uv, sizeof d->emission_uv);
         }
         for (int c = 0; c < 3; ++c) d->emission[c] = l->color[c] * l->intensity;
     }
@@ -573,6 +579,7 @@ void viewer_light_set_vertex_count(viewer_light *l, uint32_t n)
     }
     l->vertex_count = n;
     l->reshaped = true;
+    l->emission_texture = 0; // (a textured quad no more)
 }
 
 const char *viewer_punctual_kind(const viewer_punctual *p)

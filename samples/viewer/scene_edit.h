@@ -28,6 +28,8 @@ typedef struct viewer_light {
     float color[3];     // max component 1
     float intensity;    // radiance = color * intensity
     bool two_sided;
+    uint32_t emission_texture; // polygon of 4 vertices: rtpbr_light_desc's (a screen: radiance =
+    float emission_uv[3][2];   // color * intensity * the texture); dropped when it is reshaped
     int32_t material;   // the emissive material it came from (its surface), -1: none
     // World-from-uploaded map of the edits since the last upload (column-major): the light's
     // emissive mesh is drawn with it, so moves need no new geometry.

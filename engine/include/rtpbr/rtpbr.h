@@ -532,6 +532,12 @@ RTPBR_API void rtpbr_material_desc_from_loaded(const struct rtpbr_gltf_scene *lo
                                                rtpbr_material_desc *out);
 RTPBR_API void rtpbr_texture_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint32_t texture,
                                               rtpbr_texture_desc *out);
+// Area light `light` of a loaded scene (its lights[], not the punctual ones) as
+// rtpbr_gpu_scene_from_loaded makes it: a polygon, a disk (EXT_lights_area's, not its octagon),
+// or a textured quad (a screen: emission_texture, emission_uv; docs/materials.md, "Lights from
+// materials"), for hosts that build their own lights (the viewer). Out of range: *out is zeroed.
+RTPBR_API void rtpbr_light_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint32_t light,
+                                            rtpbr_light_desc *out);
 RTPBR_API void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene);
 RTPBR_API uint32_t rtpbr_gpu_scene_camera_count(const rtpbr_gpu_scene *scene);
 RTPBR_API uint32_t rtpbr_gpu_scene_light_count(const rtpbr_gpu_scene *scene);
