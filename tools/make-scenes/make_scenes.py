@@ -13,13 +13,20 @@ winding faces) unless the material is double-sided. Shapes:
   box      {size: [w, h, d], inward?}         closed box, normals out (or in)
   polygon  {sides, radius, normal?, twist?}   regular convex polygon (triangle fan), facing
            or {vertices: [[x,y,z], ...]}      `normal` (default -y), vertices in order
+  rect     {size: [w, h]}                     quad in the xy-plane, normal +z, its UVs the
+                                              whole image upright (u right, v down)
   sphere_row  {materials: [...], radius, spacing}      spheres along +x, one per material
   disney_grid {parameters: [...], steps, base: {...}, radius, spacing}
            one row per Disney parameter swept from 0 to 1, the others from `base`
 
 Objects take translation [x, y, z], rotation [x, y, z, w] (a quaternion) and a material
 name. Materials: baseColor, metallic, roughness, ior, specularFactor, emissive, strength, doubleSided,
-disney (a dict of Burley 2012 parameters, written to extras.rtpbr_disney).
+emissiveTexture (the name of one of the scene's pictures), disney (a dict of Burley 2012
+parameters, written to extras.rtpbr_disney). A scene's pictures are drawn here and written as
+DIR/NAME_PICTURE.png (8-bit sRGB, stored deflate blocks: the bytes depend on no zlib version):
+{size: [w, h], fill: [r, g, b], blocks: [{rect: [x0, y0, x1, y1], color: [r, g, b]}, ...]},
+colours as sRGB bytes, each block painting pixels x0 <= x < x1, y0 <= y < y1 (y down) over the
+ones before it.
 Only the Python standard library is used; output is deterministic.
 """
 import argparse
@@ -28,6 +35,7 @@ import math
 import os
 import struct
 import sys
+import zlib
 
 
 def normalize(v):
@@ -143,10 +151,50 @@ def shape_polygon(obj):
     return pos, nrm, uv, idx
 
 
+def shape_rect(size):
+    w, h = size[0] / 2.0, size[1] / 2.0
+    pos = [[-w, -h, 0], [w, -h, 0], [w, h, 0], [-w, h, 0]]
+    nrm = [[0, 0, 1]] * 4
+    uv = [[0, 1], [1, 1], [1, 0], [0, 0]]
+    return pos, nrm, uv, [0, 1, 2, 0, 2, 3]
+
+
+# ---- pictures (emission textures) -----------------------------------------------------------
+
+def picture_rows(spec):
+    """The picture's rows of RGB bytes, top row first."""
+    w, h = int(spec["size"][0]), int(spec["size"][1])
+    pixels = [[list(spec.get("fill", [0, 0, 0])) for _ in range(w)] for _ in range(h)]
+    for block in spec.get("blocks", []):
+        x0, y0, x1, y1 = (int(c) for c in block["rect"])
+        for y in range(max(y0, 0), min(y1, h)):
+            for x in range(max(x0, 0), min(x1, w)):
+                pixels[y][x] = list(block["color"])
+    return w, h, [bytes(c for px in row for c in px) for row in pixels]
+
+
+def png_bytes(width, height, rows):
+    """An 8-bit RGB PNG; its zlib stream is stored blocks (no compression), so the file is the
+    same bytes wherever it is written."""
+    raw = b"".join(b"\0" + row for row in rows)  # filter type 0 on every row
+    stream = bytearray(b"\x78\x01")
+    for start in range(0, max(len(raw), 1), 65535):
+        block = raw[start:start + 65535]
+        final = 1 if start + 65535 >= len(raw) else 0
+        stream += struct.pack("<BHH", final, len(block), len(block) ^ 0xFFFF) + block
+    stream += struct.pack(">I", zlib.adler32(raw))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
+            chunk(b"sRGB", b"\0") + chunk(b"IDAT", bytes(stream)) + chunk(b"IEND", b""))
+
+
 # ---- glTF writer ---------------------------------------------------------------------------
 
 class GltfBuilder:
-    def __init__(self, name):
+    def __init__(self, name, pictures=None):
         self.name = name
         self.bin = bytearray()
         self.doc = {
@@ -159,6 +207,25 @@ class GltfBuilder:
         self.mesh_cache = {}
         self.geometry_cache = {}
         self.extensions = set()
+        self.pictures = pictures or {}  # picture name -> its spec
+        self.texture_index = {}         # picture name -> texture index
+        self.png_files = {}             # file name -> bytes
+
+    def texture(self, picture):
+        """The texture of one of the scene's pictures (its PNG written beside the .gltf)."""
+        if picture in self.texture_index:
+            return self.texture_index[picture]
+        if picture not in self.pictures:
+            raise SystemExit("scene %s: unknown picture %r" % (self.name, picture))
+        uri = "%s_%s.png" % (self.name, picture)
+        self.png_files[uri] = png_bytes(*picture_rows(self.pictures[picture]))
+        doc = self.doc
+        if "samplers" not in doc:  # linear filtering, clamped at the picture's edges
+            doc["samplers"] = [{"magFilter": 9729, "minFilter": 9729, "wrapS": 33071, "wrapT": 33071}]
+        doc.setdefault("images", []).append({"name": picture, "uri": uri})
+        doc.setdefault("textures", []).append({"sampler": 0, "source": len(doc["images"]) - 1})
+        self.texture_index[picture] = len(doc["textures"]) - 1
+        return self.texture_index[picture]
 
     def _view(self, data, target):
         while len(self.bin) % 4:
@@ -193,6 +260,8 @@ class GltfBuilder:
             strength = float(spec.get("strength", 1.0))
             if strength != 1.0:
                 ext["KHR_materials_emissive_strength"] = {"emissiveStrength": strength}
+            if "emissiveTexture" in spec:
+                m["emissiveTexture"] = {"index": self.texture(spec["emissiveTexture"])}
         if "ior" in spec:
             ext["KHR_materials_ior"] = {"ior": float(spec["ior"])}
         if "specularFactor" in spec:
@@ -307,13 +376,16 @@ class GltfBuilder:
             self.doc["extensionsUsed"] = sorted(self.extensions)
         with open(os.path.join(out_dir, bin_name), "wb") as f:
             f.write(self.bin)
+        for uri, data in sorted(self.png_files.items()):
+            with open(os.path.join(out_dir, uri), "wb") as f:
+                f.write(data)
         with open(os.path.join(out_dir, self.name + ".gltf"), "w") as f:
             json.dump(self.doc, f, indent=1, sort_keys=True)
             f.write("\n")
 
 
 def build_scene(name, spec, out_dir):
-    b = GltfBuilder(name)
+    b = GltfBuilder(name, spec.get("pictures"))
     materials = spec.get("materials", {})
 
     def mat(mname):
@@ -333,6 +405,8 @@ def build_scene(name, spec, out_dir):
         t, r = obj.get("translation", [0, 0, 0]), obj.get("rotation")
         if shape == "plane":
             b.node(label, b.mesh("plane%s" % obj["size"], shape_plane(obj["size"]), mat(obj["material"])), t, r)
+        elif shape == "rect":
+            b.node(label, b.mesh("rect%s" % obj["size"], shape_rect(obj["size"]), mat(obj["material"])), t, r)
         elif shape == "sphere":
             geo = shape_sphere(obj["radius"], obj.get("segments", 48), obj.get("rings", 24))
             b.node(label, b.mesh("sphere%s" % obj["radius"], geo, mat(obj["material"])), t, r)
