@@ -29,7 +29,7 @@
 // centre or its form factor from the whole box, at most r^2 / d^2, is below the threshold (4).
 // A disk is culled as a polygon ((1) by its plane, (2) by its bounding sphere and area).
 // Each kind goes to its own mask (polygons, punctual lights, spheres, disks, textured quads;
-// the spheres' lighting variants shade spheres, disks and textured quads).
+// the spheres' lighting variants shade spheres and disks, the textured ones all three).
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
@@ -112,7 +112,7 @@ void main()
             }
         }
 
-    bool anyLight = false, anySphere = false;
+    bool anyLight = false, anySphere = false, anyTextured = false;
     uint words = (frame.light_count + 31u) / 32u;
     for (uint w = 0u; w < words; ++w) {
         uint bits = 0u, punctualBits = 0u, sphereBits = 0u, diskBits = 0u, texturedBits = 0u; // polygons, punctual lights, spheres, disks, textured quads
@@ -134,10 +134,13 @@ void main()
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 3u * uint(RTPBR_TILE_MASK_WORDS) + w] = diskBits;
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 4u * uint(RTPBR_TILE_MASK_WORDS) + w] = texturedBits;
         anyLight = anyLight || (bits | punctualBits | sphereBits | diskBits | texturedBits) != 0u;
-        anySphere = anySphere || (sphereBits | diskBits | texturedBits) != 0u;
+        anySphere = anySphere || (sphereBits | diskBits) != 0u;
+        anyTextured = anyTextured || texturedBits != 0u;
     }
     uint tileClass = anyLight ? materialClass : RTPBR_TILE_CLASS_EMPTY;
-    if (anySphere && tileClass != RTPBR_TILE_CLASS_EMPTY)
+    if (anyTextured && tileClass != RTPBR_TILE_CLASS_EMPTY)
+        tileClass += uint(RTPBR_TILE_CLASS_BASIC_TEXTURED - RTPBR_TILE_CLASS_BASIC);
+    else if (anySphere && tileClass != RTPBR_TILE_CLASS_EMPTY)
         tileClass += uint(RTPBR_TILE_CLASS_BASIC_SPHERES - RTPBR_TILE_CLASS_BASIC);
     uint slot = atomicAdd(tile_dispatch[tileClass].x, 1u);
     tile_list[tileClass * frame.tile_capacity + slot] = tile;

@@ -14,7 +14,10 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_DISNEY_1) uniform sampler2D lut_
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_DISNEY_2) uniform sampler2D lut_ltc_disney_2;
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_SHEEN_1) uniform sampler2D lut_ltc_sheen_1;
 layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_SHEEN_2) uniform sampler2D lut_ltc_sheen_2;
-#if RTPBR_LIGHTING_SPHERES
+#ifndef RTPBR_LIGHTING_TEXTURED
+#define RTPBR_LIGHTING_TEXTURED RTPBR_LIGHTING_SPHERES // (the forward pass: its spheres' variant)
+#endif
+#if RTPBR_LIGHTING_TEXTURED
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_TEXTURES) uniform sampler2DArray light_textures;
 #endif
 
@@ -60,7 +63,7 @@ vec3 Host_LightDirection(uint i) { return lights[i].vertices[1].xyz; }
 vec2 Host_LightSpotCone(uint i) { return lights[i].vertices[2].xy; }
 // A disk's half-axes (RTPBR_LIGHT_FIELDS, DISK: vertices[1], vertices[2]).
 vec3 Host_LightDiskAxis(uint i, uint k) { return lights[i].vertices[1u + k].xyz; }
-#if RTPBR_LIGHTING_SPHERES
+#if RTPBR_LIGHTING_TEXTURED
 // A textured quad's emission factor at lookup = (s, t, footprint) (area_light.h): its chain's
 // level k is blurred over 2^k texels (rtpbr_shared.h, RTPBR_BINDING_LIGHT_TEXTURES), so the
 // footprint's radius of footprint x size texels reads lod log2 of it.
@@ -96,7 +99,7 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 #define RTPBR_AREA_LIGHT_SPHERES 1  // AreaLight_AddSphere for the spheres' mask (RTPBR_LIGHTING_SPHERES)
 #define RTPBR_AREA_LIGHT_DISKS 1    // AreaLight_AddDisk for the disks' mask
 #define RTPBR_AREA_LIGHT_ROUND_DISKS 1 // (rtpbr_light_desc has round disks only)
-#define RTPBR_AREA_LIGHT_TEXTURED RTPBR_LIGHTING_SPHERES // AreaLight_AddTexturedQuad for the textured quads' mask
+#define RTPBR_AREA_LIGHT_TEXTURED RTPBR_LIGHTING_TEXTURED // AreaLight_AddTexturedQuad for the textured quads' mask
 // A sphere the horizon cuts: clipped exactly in the basic variant; the full variant's registers
 // take the sphere proxy (area_light.h; no spills: tests/shader-stats)
 #define RTPBR_AREA_LIGHT_SPHERE_CLIP (!RTPBR_LIGHTING_FULL)
@@ -168,8 +171,10 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
         if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) AreaLight_AddSphere(px, acc, s, P, N, i);
     for (uint i = 0u; i < frame.light_count; ++i)
         if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_DISK)) AreaLight_AddDisk(px, acc, s, P, N, i);
+#if RTPBR_LIGHTING_TEXTURED
     for (uint i = 0u; i < frame.light_count; ++i)
         if (lights[i].texture != 0u) AreaLight_AddTexturedQuad(px, acc, s, P, N, i);
+#endif
 #endif
 #else
     // The tile's masks (cull.comp): its punctual lights', then its polygons', its spheres' and
@@ -183,7 +188,7 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
             AreaLight_AddPunctual(result, s, frame3, P, i, lights[i].shape);
         }
     AreaLightPixel px = AreaLight_Begin(s, N, V);
-#if RTPBR_LIGHTING_SPHERES && RTPBR_LIGHTING_FULL
+#if RTPBR_LIGHTING_TEXTURED && RTPBR_LIGHTING_FULL
     // The full variant shades its textured quads in the polygons' loop (one copy of the
     // evaluation, the texel read at its end where texturedLight: a loop of their own spilled 3
     // VGPRs on gfx1100); the basic variant in a loop of their own, below.
@@ -209,7 +214,7 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     for (uint word = 0u; word < words; ++word)
         for (uint bits = tile_masks[maskBase + 3u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_AddDisk(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
-#if !RTPBR_LIGHTING_FULL
+#if RTPBR_LIGHTING_TEXTURED && !RTPBR_LIGHTING_FULL
     for (uint word = 0u; word < words; ++word)
         for (uint bits = tile_masks[maskBase + 4u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_AddTexturedQuad(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));

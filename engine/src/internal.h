@@ -261,6 +261,9 @@ void rtpbr_light_record(const rtpbr_light_desc *l, const struct rtpbr_gltf_polyg
 // Whether any of count light records is a sphere or a disk (the spheres' lighting variants
 // are needed: their loop shades both).
 bool rtpbr_lights_have_spheres(const rtpbr_shader_light *lights, uint32_t count);
+// The lighting variants count lights need (rtpbr_lighting_pipelines_get): 2 with a textured quad,
+// else 1 with a sphere or a disk, else 0.
+uint32_t rtpbr_lights_shapes(const rtpbr_shader_light *lights, uint32_t count);
 
 // The RTPBR_EXTENSION_TEXTURES_* bits of the scene's materials together (scene.c): which of
 // G-buffers 4 to 6 its frames render and read.

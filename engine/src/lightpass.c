@@ -409,7 +409,7 @@ rtpbr_result rtpbr_lighting_record(rtpbr_lighting_targets *t, const rtpbr_lighti
     VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT];
     const rtpbr_shader_light *records = (const rtpbr_shader_light *)((const char *)lights->buffer.mapped + d->frame * lights->stride);
     rtpbr_result result =
-        rtpbr_lighting_pipelines_get(ctx, d->ndf, d->multiscatter, rtpbr_lights_have_spheres(records, lights->count[d->frame]),
+        rtpbr_lighting_pipelines_get(ctx, d->ndf, d->multiscatter, rtpbr_lights_shapes(records, lights->count[d->frame]),
                                      pipelines);
     if (result != RTPBR_SUCCESS) return result;
 #undef FAIL

@@ -1121,6 +1121,16 @@ rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh
     return RTPBR_SUCCESS;
 }
 
+uint32_t rtpbr_lights_shapes(const rtpbr_shader_light *lights, uint32_t count)
+{
+    uint32_t shapes = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        if (lights[i].texture != 0) return 2;
+        if (lights[i].shape == RTPBR_LIGHT_SHAPE_SPHERE || lights[i].shape == RTPBR_LIGHT_SHAPE_DISK) shapes = 1;
+    }
+    return shapes;
+}
+
 bool rtpbr_lights_have_spheres(const rtpbr_shader_light *lights, uint32_t count)
 {
     for (uint32_t i = 0; i < count; ++i)

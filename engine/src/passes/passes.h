@@ -56,7 +56,7 @@ void rtpbr_lighting_pass_finish(rtpbr_context *ctx);
 // compiled on first use.
 // spheres: the frame has a sphere light (the spheres' classes are compiled too; without, their
 // slots hold the others').
-rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, bool spheres,
+rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, uint32_t shapes,
                                           VkPipeline out[RTPBR_TILE_CLASS_COUNT]);
 // Index of a model variant in rtpbr_lighting_pass's arrays.
 uint32_t rtpbr_lighting_variant(rtpbr_ndf ndf, rtpbr_multiscatter ms);
