@@ -127,6 +127,8 @@ static rtpbr_material_desc light_material(const viewer_scene *s, uint32_t i)
     rtpbr_material_desc m = {.roughness = 1.0f};
     if (l->material >= 0) m = s->materials[l->material];
     for (int c = 0; c < 3; ++c) m.emission[c] = l->color[c] * l->intensity;
+    // a screen's surface carries its coordinates already transformed (emission_uv)
+    if (l->emission_texture && l->vertex_count == 4) m.emission_texture_transform = (rtpbr_texture_transform){0};
     m.double_sided = l->two_sided;
     return m;
 }
@@ -211,9 +213,11 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
     // Light surfaces as triangle fans: at most OUTLINE_MAX vertices, OUTLINE_MAX - 2 triangles each.
     float *light_positions = calloc((size_t)s->light_count * OUTLINE_MAX * 3 + 1, sizeof(float));
     float *light_normals = calloc((size_t)s->light_count * OUTLINE_MAX * 3 + 1, sizeof(float));
+    float *light_uvs = calloc((size_t)s->light_count * OUTLINE_MAX * 2 + 1, sizeof(float));
     uint32_t *light_indices = calloc((size_t)s->light_count * (OUTLINE_MAX - 2) * 3 + 1, sizeof(uint32_t));
     rtpbr_result r = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
-    if (!meshes || !materials || !lights || !light_positions || !light_normals || !light_indices || !textures)
+    if (!meshes || !materials || !lights || !light_positions || !light_normals || !light_indices || !textures ||
+        !light_uvs)
         goto done;
     for (uint32_t i = 0; i < in->texture_count; ++i) rtpbr_texture_desc_from_loaded(in, i, &textures[i]);
     memcpy(materials, s->materials, s->material_count * sizeof *materials);
@@ -233,6 +237,7 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
         l->reshaped = false;
         float *pos = light_positions + (size_t)i * OUTLINE_MAX * 3;
         float *nrm = light_normals + (size_t)i * OUTLINE_MAX * 3;
+        float *uv = light_uvs + (size_t)i * OUTLINE_MAX * 2;
         uint32_t *idx = light_indices + (size_t)i * (OUTLINE_MAX - 2) * 3;
         float n[3], outline[OUTLINE_MAX][3];
         viewer_light_normal(l, n);
@@ -241,13 +246,22 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
             memcpy(pos + 3 * v, outline[v], 3 * sizeof(float));
             memcpy(nrm + 3 * v, n, 3 * sizeof(float));
         }
+        // a screen's surface shows its texture: the corners' coordinates (emission_uv at v0, v1,
+        // v3; v2's the parallelogram's fourth)
+        bool textured = l->emission_texture && count == 4;
+        for (int c = 0; c < 2 && textured; ++c) {
+            uv[c] = l->emission_uv[0][c];
+            uv[2 + c] = l->emission_uv[1][c];
+            uv[4 + c] = l->emission_uv[1][c] + l->emission_uv[2][c] - l->emission_uv[0][c];
+            uv[6 + c] = l->emission_uv[2][c];
+        }
         for (uint32_t t = 0; t + 2 < count; ++t) {
             idx[3 * t] = 0;
             idx[3 * t + 1] = t + 1;
             idx[3 * t + 2] = t + 2;
         }
-        meshes[mesh_count++] = (rtpbr_mesh_desc){.positions = pos, .normals = nrm, .indices = idx,
-            .vertex_count = count, .index_count = 3 * (count - 2), .material = s->material_count + i};
+        meshes[mesh_count++] = (rtpbr_mesh_desc){.positions = pos, .normals = nrm, .texcoords = textured ? uv : NULL,
+            .indices = idx, .vertex_count = count, .index_count = 3 * (count - 2), .material = s->material_count + i};
     }
     viewer_scene_light_descs(s, lights);
     s->lights_restructured = false;
@@ -263,6 +277,7 @@ done:
     free(lights);
     free(light_positions);
     free(light_normals);
+    free(light_uvs);
     free(light_indices);
     return r;
 }

@@ -613,18 +613,33 @@ static size_t pixels_beyond(const float *a, const float *b, double rel)
 // 7,268 of 11,152). Moving disk 0 in place (update_lights, no upload) renders what the engine's
 // loader path renders for the file with that disk moved (its centre and octagon moved by the
 // same offset); the move changes most lit pixels.
+// The viewer's upload of d's scene against rtpbr_gpu_scene_from_loaded's: no pixel differs
+// beyond 1e-5, and more than RW x RH / min_lit_part pixels are lit. Returns the engine's image
+// (want) and both scenes; the number of lit pixels.
+static size_t upload_matches_engine(device_case *d, const char *what, size_t min_lit_part, float **want,
+                                    rtpbr_gpu_scene **engine, rtpbr_gpu_scene **viewer)
+{
+    *engine = NULL;
+    *viewer = upload(d);
+    assert_int_equal(rtpbr_gpu_scene_from_loaded(d->ctx, d->s.loaded, engine), RTPBR_SUCCESS);
+    *want = render(d, *engine);
+    float *got = render(d, *viewer);
+    size_t lit = pixels_lit(*want), differing = pixels_beyond(*want, got, 1e-5);
+    printf("%s: viewer upload vs rtpbr_gpu_scene_from_loaded: %zu of %d pixels differ beyond 1e-5; %zu lit\n", what,
+           differing, RW * RH, lit);
+    assert_true(lit > (size_t)RW * RH / min_lit_part);
+    assert_int_equal(differing, 0);
+    free(got);
+    return lit;
+}
+
 static void test_disk_upload_matches_engine(void **state)
 {
     device_case d;
     device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/light_shapes.gltf");
-    rtpbr_gpu_scene *engine = NULL, *viewer = upload(&d);
-    assert_int_equal(rtpbr_gpu_scene_from_loaded(d.ctx, d.s.loaded, &engine), RTPBR_SUCCESS);
-    float *want = render(&d, engine), *got = render(&d, viewer);
-    size_t lit = pixels_lit(want), differing = pixels_beyond(want, got, 1e-5);
-    printf("light_shapes: viewer upload vs rtpbr_gpu_scene_from_loaded: %zu of %d pixels differ beyond 1e-5; %zu lit\n",
-           differing, RW * RH, lit);
-    assert_true(lit > (size_t)RW * RH / 2);
-    assert_int_equal(differing, 0);
+    rtpbr_gpu_scene *engine, *viewer;
+    float *want;
+    size_t lit = upload_matches_engine(&d, "light_shapes", 2, &want, &engine, &viewer);
 
     viewer_scene *s = &d.s; // the viewer of before: the disks as their octagons
     viewer_light disks[2] = {s->lights[0], s->lights[1]};
@@ -660,12 +675,63 @@ static void test_disk_upload_matches_engine(void **state)
     assert_int_equal(moved_differing, 0);
     assert_true(move_changes > lit / 2);
     free(want);
-    free(got);
     free(old);
     free(moved);
     free(want_moved);
     rtpbr_gpu_scene_destroy(engine_moved);
     rtpbr_gpu_scene_destroy(octagons);
+    rtpbr_gpu_scene_destroy(viewer);
+    rtpbr_gpu_scene_destroy(engine);
+    device_case_close(&d);
+}
+
+// The loader's radiance of light `in` (a textured emitter's: the texture's mean) as the viewer's
+// colour x intensity.
+static void split_mean(const rtpbr_gltf_light *in, viewer_light *l)
+{
+    float m = fmaxf(in->radiance[0], fmaxf(in->radiance[1], in->radiance[2]));
+    for (int c = 0; c < 3; ++c) l->color[c] = m > 0.0f ? in->radiance[c] / m : 0.0f;
+    l->intensity = m;
+}
+
+// textured_light's screen in the viewer is the textured quad the engine shades (issue 30): its
+// upload renders what rtpbr_gpu_scene_from_loaded renders (the light and the screen's surface,
+// its picture), no pixel beyond 1e-5. The viewer of before lit the screen at the loader's mean
+// of its texture and drew its surface at the texel (0, 0): most lit pixels differ. Moving the
+// screen in place (set_lights with the creation's texture and coordinates) is accepted and
+// changes the image.
+static void test_screen_upload_matches_engine(void **state)
+{
+    device_case d;
+    device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/textured_light.gltf");
+    viewer_scene *s = &d.s;
+    assert_true(s->light_count == 1 && s->lights[0].emission_texture != 0);
+    rtpbr_gpu_scene *engine, *viewer;
+    float *want;
+    size_t lit = upload_matches_engine(&d, "textured_light", 4, &want, &engine, &viewer);
+
+    viewer_light screen = s->lights[0]; // the viewer of before: the mean, no texture
+    s->lights[0].emission_texture = 0;
+    split_mean(&s->loaded->lights[0], &s->lights[0]);
+    rtpbr_gpu_scene *mean = upload(&d);
+    float *old = render(&d, mean);
+    size_t old_differing = pixels_beyond(want, old, 1e-5);
+    printf("textured_light: lit at the texture's mean: %zu pixels differ beyond 1e-5\n", old_differing);
+    assert_true(old_differing > lit / 2);
+    s->lights[0] = screen;
+
+    const float offset[3] = {0.1f, 0.05f, 0.0f};
+    viewer_light_translate(&s->lights[0], offset);
+    assert_false(viewer_scene_needs_upload(s));
+    assert_int_equal(viewer_scene_update_lights(s, viewer), RTPBR_SUCCESS);
+    float *moved = render(&d, viewer);
+    size_t move_changes = pixels_beyond(want, moved, 1e-5);
+    printf("textured_light, the screen moved in place: the move changes %zu pixels\n", move_changes);
+    assert_true(move_changes > lit / 4);
+    free(want);
+    free(old);
+    free(moved);
+    rtpbr_gpu_scene_destroy(mean);
     rtpbr_gpu_scene_destroy(viewer);
     rtpbr_gpu_scene_destroy(engine);
     device_case_close(&d);
@@ -880,6 +946,7 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_vertex_count),
                 test_env_case(test_punctual_upload_matches_engine),
                 test_env_case(test_sphere_upload_matches_engine),
                 test_env_case(test_disk_upload_matches_engine),
+                test_env_case(test_screen_upload_matches_engine),
                 test_env_case(test_punctual_intensity_doubles),
                 test_env_case(test_mixed_scene_set_lights),
                 test_env_case(test_add_remove_lights))
