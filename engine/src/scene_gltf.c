@@ -344,10 +344,30 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         }; // positions are already in world space: identity transform
     }
     for (uint32_t i = 0; i < loaded->material_count; ++i) rtpbr_material_desc_from_loaded(loaded, i, &materials[i]);
+    // Textured quads: at most RTPBR_MAX_TEXTURED_LIGHTS distinct textures and mappings (one
+    // prefiltered chain each); the others are lit at their texture's mean, as before them.
+    uint32_t chains = 0, demoted = 0;
+    const rtpbr_light_desc *chain_of[RTPBR_MAX_TEXTURED_LIGHTS];
     for (uint32_t i = 0; i < loaded->light_count; ++i) {
-        rtpbr_light_desc_from_loaded(loaded, i, &lights[i]);
+        rtpbr_light_desc *d = &lights[i];
+        rtpbr_light_desc_from_loaded(loaded, i, d);
         light_facts[i] = loaded->lights[i].facts;
+        if (!d->emission_texture) continue;
+        bool known = false;
+        for (uint32_t k = 0; k < chains && !known; ++k)
+            known = chain_of[k]->emission_texture == d->emission_texture &&
+                    memcmp(chain_of[k]->emission_uv, d->emission_uv, sizeof d->emission_uv) == 0;
+        if (!known && chains < RTPBR_MAX_TEXTURED_LIGHTS) chain_of[chains++] = d, known = true;
+        if (!known) {
+            d->emission_texture = 0;
+            memcpy(d->emission, loaded->lights[i].radiance, sizeof d->emission);
+            ++demoted;
+        }
     }
+    if (demoted)
+        rtpbr_log(&ctx->host, RTPBR_LOG_WARNING,
+                  "%u textured quad lights past RTPBR_MAX_TEXTURED_LIGHTS = %u distinct textures and mappings are lit "
+                  "at their texture's mean", demoted, RTPBR_MAX_TEXTURED_LIGHTS);
     // KHR_lights_punctual lights after the area lights (with shadows, the order does not
     // matter: each tile's casters are chosen by their irradiance bound); facts: none (all zero).
     for (uint32_t i = 0; i < loaded->punctual_light_count; ++i) {

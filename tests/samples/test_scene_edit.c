@@ -737,6 +737,49 @@ static void test_screen_upload_matches_engine(void **state)
     device_case_close(&d);
 }
 
+// More distinct textured screens than RTPBR_MAX_TEXTURED_LIGHTS: rtpbr_gpu_scene_from_loaded
+// lights those past the limit at their texture's mean (a warning) instead of refusing the scene
+// (scene creation alone refuses a desc with that many: RTPBR_ERROR_LIMIT_EXCEEDED). The loaded
+// textured_light is given RTPBR_MAX_TEXTURED_LIGHTS + 1 copies of its screen, each on a copy of
+// its primitive whose coordinates are shifted (a mapping, a chain of its own).
+static void test_many_screens(void **state)
+{
+    device_case d;
+    device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/textured_light.gltf");
+    rtpbr_gltf_scene *in = d.s.loaded;
+    const uint32_t n = RTPBR_MAX_TEXTURED_LIGHTS + 1, base = in->primitive_count;
+    const rtpbr_gltf_light screen = in->lights[0];
+    const rtpbr_gltf_primitive prim = in->primitives[screen.primitive];
+    rtpbr_gltf_primitive *prims = malloc((base + n) * sizeof *prims);
+    rtpbr_gltf_light *lights = malloc(n * sizeof *lights);
+    float *uvs = malloc((size_t)n * prim.vertex_count * 2 * sizeof(float));
+    assert_true(prims && lights && uvs);
+    memcpy(prims, in->primitives, base * sizeof *prims);
+    for (uint32_t k = 0; k < n; ++k) {
+        float *uv = uvs + (size_t)k * prim.vertex_count * 2;
+        for (uint32_t v = 0; v < 2 * prim.vertex_count; ++v) uv[v] = prim.texcoords[v] + (v % 2 ? 0.0f : 1e-3f * (float)k);
+        prims[base + k] = prim;
+        prims[base + k].texcoords = uv;
+        lights[k] = screen;
+        lights[k].primitive = (int32_t)(base + k);
+    }
+    rtpbr_gltf_primitive *old_prims = in->primitives;
+    rtpbr_gltf_light *old_lights = in->lights;
+    uint32_t old_prim_count = in->primitive_count, old_light_count = in->light_count;
+    in->primitives = prims, in->primitive_count = base + n;
+    in->lights = lights, in->light_count = n;
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_from_loaded(d.ctx, in, &scene), RTPBR_SUCCESS);
+    assert_int_equal(rtpbr_gpu_scene_light_count(scene), n + in->punctual_light_count);
+    rtpbr_gpu_scene_destroy(scene);
+    in->primitives = old_prims, in->primitive_count = old_prim_count;
+    in->lights = old_lights, in->light_count = old_light_count;
+    free(prims);
+    free(lights);
+    free(uvs);
+    device_case_close(&d);
+}
+
 // An edit of one light's intensity x2, through viewer_scene_update_lights (set_lights, no
 // re-upload), doubles that light's part of the radiance: with R0 the image without it
 // (intensity 0), R1 with it and R2 with twice its intensity, R2 - R0 = 2 (R1 - R0) at every
@@ -947,6 +990,7 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_vertex_count),
                 test_env_case(test_sphere_upload_matches_engine),
                 test_env_case(test_disk_upload_matches_engine),
                 test_env_case(test_screen_upload_matches_engine),
+                test_env_case(test_many_screens),
                 test_env_case(test_punctual_intensity_doubles),
                 test_env_case(test_mixed_scene_set_lights),
                 test_env_case(test_add_remove_lights))
