@@ -799,7 +799,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
     }
 #endif
 #if RTPBR_AREA_LIGHT_FULL
-    rtpbr_float3 texS = texD; // (ones: the texel multiplies lo at the end)
+    rtpbr_float3 texS = texD; // (ones: the base's texel multiplies lo after its lobes' walks)
 #endif
 
     // (with RTPBR_KC_SHAPE: KC_PolygonLobeShaped, its two parts folded into specularScale and
@@ -901,9 +901,11 @@ RTPBR_FN void AreaLight_AddDisk(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc
 // Textured quad light i's reflected radiance at P (x its radiance, its texture where each lobe
 // looks, and its visibility) added to acc, as AreaLight_Add's for a polygon, each lobe's result
 // times the host's prefiltered emission texture (Host_LightTexture) at the point where the
-// lobe's vector form factor meets the quad (LTC_TextureLookup; the footprint picks the blur):
-// the specular lobe's (and its multiple scattering's, the coat's) at its own, the diffuse
-// lobes' at the Lambert vector's. No streak estimate (it would read the untextured radiance).
+// lobe's vector form factor meets the quad (LTC_TextureLookup; the footprint picks the blur).
+// Metallic-roughness evaluation: the specular lobe's (and its multiple scattering's) at its
+// own, the diffuse lobe's at the Lambert vector's. Full evaluation (registers): one texel for
+// every lobe of the base at the unclipped quad's Lambert point, the coat's at its own. No
+// streak estimate (it would read the untextured radiance).
 // Error: ltc_textured.h's (one blurred read per lobe stands for the lobe's weighted mean of the
 // emission over the quad).
 RTPBR_FN void AreaLight_AddTexturedQuad(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s,
