@@ -422,7 +422,8 @@ static int32_t light_texture_layer(const rtpbr_light_texture_key *keys, uint32_t
     return -1;
 }
 
-// The textured lights' textures exist (texture_count: the scene's); with a scene (set_lights),
+// The textured lights' textures exist (texture_count: the desc's; a scene's images hold one more,
+// the white stand-in); with a scene (set_lights),
 // each light's chain is one the scene was created with.
 static rtpbr_result validate_light_textures(const rtpbr_context *ctx, const rtpbr_light_desc *lights, uint32_t count,
                                             uint32_t texture_count, const rtpbr_gpu_scene *scene)
@@ -509,7 +510,7 @@ rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const rtpbr_ligh
     rtpbr_gltf_polygon_facts *facts = derive_light_facts(scene->context, lights, light_count, &result);
     if (facts) result = validate_lights(scene->context, lights, facts, light_count);
     if (facts && result == RTPBR_SUCCESS)
-        result = validate_light_textures(scene->context, lights, light_count, scene->texture_count, scene);
+        result = validate_light_textures(scene->context, lights, light_count, scene->texture_count - 1u, scene);
     if (result == RTPBR_SUCCESS) write_lights(scene, lights, facts, light_count);
     rtpbr_free(&scene->context->host, facts);
     return result;
