@@ -123,10 +123,11 @@ void setSurfaceFilter(RTCScene scene, unsigned id, const SurfaceFilter *f) {
 
 void diskBounds(const RTCBoundsFunctionArguments *args) {
     const DiskShape &D = static_cast<const DiskGeometry *>(args->geometryUserPtr)->shape;
-    // Along axis k the disk reaches r sqrt(1 - n_k^2) from its centre; rounded outwards.
+    // Along axis k the ellipse reaches sqrt((r1 t_k)^2 + (r2 b_k)^2) from its centre (a disk:
+    // r sqrt(1 - n_k^2)); rounded outwards.
     float lo[3], hi[3];
     for (int k = 0; k < 3; k++) {
-        const double e = D.radius * std::sqrt(std::max(0.0, 1.0 - D.n[k] * D.n[k]));
+        const double e = std::hypot(D.radius * D.t[k], D.radius2 * D.b[k]);
         lo[k] = std::nextafter(float(D.centre[k] - e), -INFINITY);
         hi[k] = std::nextafter(float(D.centre[k] + e), INFINITY);
     }

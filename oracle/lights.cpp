@@ -104,6 +104,13 @@ DiskShape DiskShape::of(const rtpbr_gltf_light &L) {
     D.n = glm::normalize(dvec3(L.facts.normal[0], L.facts.normal[1], L.facts.normal[2]));
     orthonormalBasis(D.n, &D.t, &D.b);
     D.radius = double(L.radius);
+    D.radius2 = L.radius2 > 0.0f ? double(L.radius2) : D.radius; // 0: a circle (lights built by hand)
+    const dvec3 axis(L.axis[0], L.axis[1], L.axis[2]);
+    const dvec3 inPlane = axis - glm::dot(axis, D.n) * D.n;
+    if (glm::dot(inPlane, inPlane) > 1e-12) { // the ellipse's half-axis `radius` along it; t x b = n
+        D.t = glm::normalize(inPlane);
+        D.b = glm::cross(D.n, D.t);
+    }
     return D;
 }
 
@@ -117,7 +124,7 @@ bool DiskShape::intersect(dvec3 o, dvec3 w, double sMin, double sMax, double *s,
         return false;
     const dvec3 q = fromCentre + hit * w;
     const double qx = glm::dot(q, t), qy = glm::dot(q, b);
-    if (!(qx * qx + qy * qy <= radius * radius))
+    if (!((qx / radius) * (qx / radius) + (qy / radius2) * (qy / radius2) <= 1.0))
         return false;
     *s = hit;
     *x = qx;
@@ -136,7 +143,7 @@ LightSet::LightSet(const rtpbr_gltf_scene &scene, LightSampling mode) : mode_(mo
             L.isDisk = true;
             L.disk = DiskShape::of(s);
             L.n = L.disk.n;
-            L.area = kPi * L.disk.radius * L.disk.radius;
+            L.area = kPi * L.disk.radius * L.disk.radius2;
         } else {
             for (uint32_t k = 0; k < s.vertex_count && k < RTPBR_GLTF_MAX_POLYGON_VERTICES; k++)
                 L.v.push_back(dvec3(s.vertices[k][0], s.vertices[k][1], s.vertices[k][2]));
@@ -271,7 +278,7 @@ bool LightSet::sample(glm::vec3 pf, float uLight, float u1, float u2, LightSampl
 
 // A point uniform in the disk's area (Shirley & Chiu's map of (u1, u2)), seen from p.
 bool LightSet::sampleDisk(const Light &L, uint32_t l, dvec3 p, float u1, float u2, LightSample *s) const {
-    const glm::dvec2 d = concentricDisk(double(u1), double(u2)) * L.disk.radius;
+    const glm::dvec2 d = concentricDisk(double(u1), double(u2)) * glm::dvec2(L.disk.radius, L.disk.radius2);
     const dvec3 toPoint = L.disk.point(d.x, d.y) - p;
     const double dist = glm::length(toPoint);
     if (!(dist > 0.0))

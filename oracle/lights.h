@@ -34,7 +34,7 @@ enum class LightSampling { SolidAngle, Area };
 // and a sample's point are the same disk's.
 struct DiskShape {
     glm::dvec3 centre{0.0}, n{0.0}, t{0.0}, b{0.0};
-    double radius = 0.0;
+    double radius = 0.0, radius2 = 0.0; // the half-axes along t and b (an ellipse; equal: a disk)
 
     static DiskShape of(const rtpbr_gltf_light &L);
     glm::dvec3 point(double x, double y) const { return centre + x * t + y * b; }

@@ -21,6 +21,7 @@ constexpr double kCollinearSin = 1e-6;
 constexpr double kParallelCos = 1e-6;
 
 Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3 add(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
 Vec3 cross(const Vec3& a, const Vec3& b) {
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
@@ -687,7 +688,8 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
         if (!(lx > 0.0) || !(scale > 0.0))
             return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: degenerate transform for an area light", node);
         x = scaled(x, 1.0 / lx);
-        y = sub(y, scaled(x, dot(x, y)));
+        const double shear = dot(x, y); // the y column's part along x
+        y = sub(y, scaled(x, shear));
         const double ly = length(y);
         if (!(ly > 0.0))
             return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: degenerate transform for an area light", node);
@@ -705,22 +707,37 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
             l.shape = RTPBR_GLTF_LIGHT_POLYGON;
             local = {{-hw, -hh}, {-hw, hh}, {hw, hh}, {hw, -hh}};
         } else {
-            const double r = radius * scale;
-            // Regular octagon with the disk's area: 2·sqrt(2)·R² = π r².
-            const double R = r * std::sqrt(kPi / (2.0 * std::sqrt(2.0)));
+            // The disk's image under the node's transform, an ellipse: in the orthonormal (x, y)
+            // the map is A = [lx shear; 0 ly], whose singular values are the half-axes (per unit
+            // radius) along the eigenvectors of A A^T (angle t: tan 2t = 2 b / (a - d)).
+            const double a = lx * lx + shear * shear, b = shear * ly, d = ly * ly;
+            const double mid = 0.5 * (a + d), half = std::sqrt(0.25 * (a - d) * (a - d) + b * b);
+            const double s1 = std::sqrt(mid + half), s2 = std::sqrt(std::max(mid - half, 0.0));
+            const double t = 0.5 * std::atan2(2.0 * b, a - d);
+            const Vec3 e1 = add(scaled(x, std::cos(t)), scaled(y, std::sin(t)));
+            const Vec3 e2 = add(scaled(x, -std::sin(t)), scaled(y, std::cos(t)));
+            x = e1; // (x, y) stays a right-handed frame of the plane: e2 is e1 turned by +90 degrees
+            y = e2;
+            const double r1 = radius * s1, r2 = radius * s2;
+            // Octagon with the ellipse's area: 2·sqrt(2)·R1·R2 = π r1 r2 (a regular one for a disk).
+            const double k = std::sqrt(kPi / (2.0 * std::sqrt(2.0)));
             l.shape = RTPBR_GLTF_LIGHT_DISK;
-            for (int k = 0; k < 8; ++k) {
-                const double a = -2.0 * kPi * k / 8.0;
-                local.push_back({R * std::cos(a), R * std::sin(a)});
+            for (int v = 0; v < 8; ++v) {
+                const double ang = -2.0 * kPi * v / 8.0;
+                local.push_back({k * r1 * std::cos(ang), k * r2 * std::sin(ang)});
             }
-            l.radius = float(r);
+            l.radius = float(r1);
+            l.radius2 = float(r2);
+            for (int c = 0; c < 3; ++c) l.axis[c] = float(e1[size_t(c)]);
+            if (!(r2 > 0.0))
+                return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: degenerate transform for an area light", node);
         }
         l.vertex_count = uint32_t(local.size());
         for (size_t i = 0; i < local.size(); ++i)
             for (int k = 0; k < 3; ++k)
                 l.vertices[i][k] = float(center[size_t(k)] + x[size_t(k)] * local[i][0] + y[size_t(k)] * local[i][1]);
         for (int k = 0; k < 3; ++k) l.radiance[k] = float(color[k] * intensity * ctx.area_light_radiance_scale);
-        bool finite = std::isfinite(l.radius);
+        bool finite = std::isfinite(l.radius) && std::isfinite(l.radius2);
         for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(l.radiance[k]);
         for (const auto& v : l.vertices)
             for (float f : v) finite = finite && std::isfinite(f);

@@ -466,7 +466,8 @@ rtpbr_gltf_result build_output(Context& ctx, const Scene& in, rtpbr_gltf_scene**
     for (const rtpbr_gltf_light& l : in.lights) {
         for (uint32_t v = 0; v < l.vertex_count; ++v) grow_bounds(lo, hi, l.vertices[v]);
         if (l.shape == RTPBR_GLTF_LIGHT_DISK) {
-            // The disk itself: centre ± r·sqrt(1 - n_k²) along each axis.
+            // The disk itself: centre ± r·sqrt(1 - n_k²) along each axis (an ellipse: r its larger
+            // half-axis, radius, a bound).
             for (int k = 0; k < 3; ++k) {
                 float e = l.radius * std::sqrt(std::max(0.0f, 1.0f - l.facts.normal[k] * l.facts.normal[k]));
                 lo[k] = std::min(lo[k], l.facts.center[k] - e);

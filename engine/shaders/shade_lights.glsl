@@ -98,7 +98,7 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 #define RTPBR_AREA_LIGHT_PUNCTUAL 2 // punctual lights summed first, apart (area_light.h)
 #define RTPBR_AREA_LIGHT_SPHERES 1  // AreaLight_AddSphere for the spheres' mask (RTPBR_LIGHTING_SPHERES)
 #define RTPBR_AREA_LIGHT_DISKS 1    // AreaLight_AddDisk for the disks' mask
-#define RTPBR_AREA_LIGHT_ROUND_DISKS 1 // (rtpbr_light_desc has round disks only)
+#define RTPBR_AREA_LIGHT_ROUND_DISKS 1 // (round disks' closed form; ellipses, disk_radius2, the cone's)
 #define RTPBR_AREA_LIGHT_TEXTURED RTPBR_LIGHTING_TEXTURED // AreaLight_AddTexturedQuad for the textured quads' mask
 // A sphere the horizon cuts: clipped exactly in the basic variant; the full variant's registers
 // take the sphere proxy (area_light.h; no spills: tests/shader-stats)

@@ -140,6 +140,30 @@ static rtpbr_result validate_disk(const rtpbr_context *ctx, const rtpbr_light_de
                   index, l->radius);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
+    // An ellipse: its second half-axis as the radius, and an axis with a part in its plane.
+    if (!isfinite(l->disk_radius2) || !(l->disk_radius2 >= 0.0f) ||
+        !(LIGHT_PI * (double)l->disk_radius2 * l->disk_radius2 <= 0.5 * FLT_MAX)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                  "light %u (disk) has disk_radius2 %g; >= 0 is required (0: a circle; pi r2^2 a float)", index,
+                  l->disk_radius2);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (l->disk_radius2 > 0.0f) {
+        double an = 0.0, a2 = 0.0;
+        for (int k = 0; k < 3; ++k) an += (double)l->disk_axis[k] * l->direction[k];
+        for (int k = 0; k < 3; ++k) {
+            double c = l->disk_axis[k] - an * l->direction[k] / len2;
+            a2 += c * c;
+        }
+        double axis2 = 0.0;
+        for (int k = 0; k < 3; ++k) axis2 += (double)l->disk_axis[k] * l->disk_axis[k];
+        if (!rtpbr_finite(l->disk_axis, 3) || !(a2 > 1e-12 * axis2) || !(axis2 > 1e-30)) {
+            rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                      "light %u (ellipse: disk_radius2 > 0) has a disk_axis that is zero, not finite or along its normal",
+                      index);
+            return RTPBR_ERROR_INVALID_ARGUMENT;
+        }
+    }
     return RTPBR_SUCCESS;
 }
 
@@ -331,8 +355,9 @@ static void sphere_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
     *out = g;
 }
 
-// A disk (rtpbr_light_desc): its centre, orthogonal half-axes of length radius (cross(u, v)
-// along the unit normal) and plane (RTPBR_LIGHT_FIELDS: DISK).
+// A disk (rtpbr_light_desc): its centre, orthogonal half-axes of length radius (an ellipse's:
+// radius along disk_axis, disk_radius2 across; cross(u, v) along the unit normal) and plane
+// (RTPBR_LIGHT_FIELDS: DISK).
 static void disk_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
 {
     rtpbr_shader_light g = {0};
@@ -344,19 +369,31 @@ static void disk_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
     double sign = n[2] >= 0.0 ? 1.0 : -1.0, a = -1.0 / (sign + n[2]), b = n[0] * n[1] * a;
     double t1[3] = {1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0]};
     double t2[3] = {b, sign + n[1] * n[1] * a, -n[1]};
-    double r = l->radius, dotc = 0.0;
+    double r = l->radius, r2 = l->radius;
+    if (l->disk_radius2 > 0.0f) { // an ellipse: t1 along disk_axis' part in the plane, t2 = n x t1
+        double an = 0.0, len1 = 0.0;
+        r2 = l->disk_radius2;
+        for (int k = 0; k < 3; ++k) an += l->disk_axis[k] * n[k];
+        for (int k = 0; k < 3; ++k) t1[k] = l->disk_axis[k] - an * n[k], len1 += t1[k] * t1[k];
+        len1 = sqrt(len1);
+        for (int k = 0; k < 3; ++k) t1[k] /= len1;
+        t2[0] = n[1] * t1[2] - n[2] * t1[1];
+        t2[1] = n[2] * t1[0] - n[0] * t1[2];
+        t2[2] = n[0] * t1[1] - n[1] * t1[0];
+    }
+    double dotc = 0.0;
     for (int k = 0; k < 3; ++k) {
         g.vertices[0][k] = l->position[k];
         g.vertices[1][k] = (float)(r * t1[k]);
-        g.vertices[2][k] = (float)(r * t2[k]);
+        g.vertices[2][k] = (float)(r2 * t2[k]);
         g.sphere[k] = l->position[k];
         g.plane[k] = (float)n[k];
         dotc += n[k] * l->position[k];
     }
     g.plane[3] = (float)-dotc;
-    g.sphere[3] = l->radius;
+    g.sphere[3] = (float)fmax(r, r2);
     memcpy(g.radiance, l->emission, sizeof g.radiance);
-    g.area = (float)(LIGHT_PI * r * r);
+    g.area = (float)(LIGHT_PI * r * r2);
     g.two_sided = l->two_sided ? 1.0f : 0.0f;
     g.shape = RTPBR_LIGHT_SHAPE_DISK;
     *out = g;

@@ -148,6 +148,10 @@ void rtpbr_light_desc_from_loaded(const struct rtpbr_gltf_scene *loaded, uint32_
         memcpy(d->position, l->facts.center, sizeof d->position);
         memcpy(d->direction, l->facts.normal, sizeof d->direction);
         d->radius = l->radius;
+        if (l->radius2 > 0.0f && l->radius2 != l->radius) { // an ellipse (a disk node scaled unevenly)
+            d->disk_radius2 = l->radius2;
+            memcpy(d->disk_axis, l->axis, sizeof d->disk_axis);
+        }
     }
     textured_quad(loaded, l, d);
 }

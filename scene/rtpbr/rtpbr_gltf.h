@@ -442,7 +442,8 @@ typedef struct rtpbr_gltf_light {
                                area (a disk's: π r² to rounding), bounding
                                sphere, fan: rtpbr_gltf_polygon_facts_of the
                                vertices, computed by the loader            */
-    float radius;           /* disk radius, 0 for polygons                  */
+    float radius;           /* disk radius (an ellipse's half-axis along
+                               `axis`, below), 0 for polygons              */
     float radiance[3];      /* W/(sr·m²), linear RGB                        */
     bool two_sided;         /* emits from both faces (material doubleSided) */
     int32_t primitive;      /* index into scene->primitives, -1 for
@@ -456,6 +457,14 @@ typedef struct rtpbr_gltf_light {
                                with an emission texture)                   */
     int32_t gltf_node;      /* node carrying an EXT_lights_area light, or the
                                primitive's node                            */
+    float radius2;          /* disk: its other half-axis, across `axis`
+                               (radius is the one along it): an ellipse, the
+                               image of the light's circle under a node
+                               scaled unevenly; radius for a circle; 0 for
+                               polygons                                    */
+    float axis[3];          /* disk: unit, in its plane, the direction of
+                               the half-axis `radius` (axis x the direction
+                               of radius2 = normal); 0 for polygons        */
 } rtpbr_gltf_light;
 
 /* A KHR_lights_punctual light on a node, in world space: a point, a spot or

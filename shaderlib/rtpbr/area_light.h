@@ -58,9 +58,10 @@
 //   RTPBR_AREA_LIGHT_DISK_CLIP_SIDES  24 (default): where the horizon cuts a disk (with
 //                          RTPBR_AREA_LIGHT_SPHERE_CLIP), the sides of the equal-area polygon its
 //                          diffuse vector form factor is clipped and integrated over
-//   RTPBR_AREA_LIGHT_ROUND_DISKS  0 (default); 1: the host's disk lights are round (half-axes
-//                          orthogonal, of one length): their Lambert vector form factor is a
-//                          closed form (LTC_DiskVector) instead of an elliptic cone's
+//   RTPBR_AREA_LIGHT_ROUND_DISKS  0 (default); 1: the Lambert vector form factor of a round disk
+//                          light (half-axes orthogonal, of one length) is a closed form
+//                          (LTC_DiskVector) instead of an elliptic cone's; ellipses still take
+//                          the cone's (a run-time choice: both codes in the shader)
 //   RTPBR_AREA_LIGHT_TEXTURED  0 (default); 1: AreaLight_AddTexturedQuad, which the host calls
 //                          for its quad lights with an emission texture (a screen, a window;
 //                          ltc_textured.h: each lobe reads the host's prefiltered texture where
@@ -383,17 +384,18 @@ RTPBR_FN rtpbr_float3 AreaLight_EllipseClippedVector(rtpbr_float3 c, rtpbr_float
 #endif
 
 // The Lambert vector form factor of the ellipse (c, u, w), without the horizon: with
-// RTPBR_AREA_LIGHT_ROUND_DISKS (the host's disks are round: u, w orthogonal, of one length)
-// LTC_DiskVector's closed form (no cubic: per disk light on navi21, 3439 -> 3295 cycles in the
-// engine's basic variant, 2526 -> 2330 in the full one; and exact in float where the elliptic
-// cone loses a disk seen edge-on), otherwise the elliptic cone's (LTC_EllipseVector under the
-// identity).
+// RTPBR_AREA_LIGHT_ROUND_DISKS, for a round disk (u, w orthogonal, of one length to 1e-4 of
+// their squares) LTC_DiskVector's closed form (no cubic: per disk light on navi21, 3439 -> 3295
+// cycles in the engine's basic variant, 2526 -> 2330 in the full one; and exact in float where
+// the elliptic cone loses a disk seen edge-on); otherwise, and for an ellipse, the elliptic
+// cone's (LTC_EllipseVector under the identity).
 RTPBR_FN rtpbr_float3 AreaLight_DiskLambertVector(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float3 w) {
 #if RTPBR_AREA_LIGHT_ROUND_DISKS
-    return LTC_DiskVector(c, normalize(cross(u, w)), length(u));
-#else
-    return LTC_EllipseVector(LTC_InverseMatrix(LTC_Identity()), c, u, w, true);
+    float uu = dot(u, u), ww = dot(w, w);
+    if (abs(uu - ww) <= 1e-4f * uu)
+        return LTC_DiskVector(c, normalize(cross(u, w)), sqrt(uu));
 #endif
+    return LTC_EllipseVector(LTC_InverseMatrix(LTC_Identity()), c, u, w, true);
 }
 
 // Disk light i at P in the LTC frame: its centre c (Host_LightSphere's xyz) and half-axes u, w

@@ -104,6 +104,25 @@ struct SceneBuilder {
         lights.back().radius = radius;
     }
 
+    // An ellipse (issue 30): half-axes r1 along axis (unit, in the plane) and r2 across it, as the
+    // loader gives an EXT_lights_area disk under an uneven scale (its octagon stretched alike).
+    void ellipse(glm::vec3 centre, glm::vec3 normal, glm::vec3 axis, float r1, float r2, glm::vec3 radiance,
+                 bool twoSided) {
+        const double pi = 3.14159265358979323846;
+        const glm::dvec3 n = glm::normalize(glm::dvec3(normal)), t = glm::dvec3(axis), b = glm::cross(n, t);
+        const double R = std::sqrt(pi / (2.0 * std::sqrt(2.0)));
+        std::vector<glm::vec3> v;
+        for (int k = 0; k < 8; k++) {
+            const double a = 2.0 * pi * k / 8.0;
+            v.push_back(glm::vec3(glm::dvec3(centre) + R * (r1 * std::cos(a) * t + r2 * std::sin(a) * b)));
+        }
+        light(v, radiance, twoSided);
+        lights.back().shape = RTPBR_GLTF_LIGHT_DISK;
+        lights.back().radius = r1;
+        lights.back().radius2 = r2;
+        for (int k = 0; k < 3; k++) lights.back().axis[k] = axis[k];
+    }
+
     // The regular octagon of the disk's area (2 sqrt(2) R^2 = pi r^2) the loader gives a disk,
     // counter-clockwise about normal (its emitting side), a vertex along diskTangent(normal).
     static std::vector<glm::vec3> diskOctagon(glm::vec3 centre, glm::vec3 normal, float radius) {

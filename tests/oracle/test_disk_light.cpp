@@ -464,6 +464,47 @@ void test_disk_ggx(void **) {
 
 // ---- from glTF, and bad disks ------------------------------------------------------------------
 
+// An ellipse (half-axes 0.6 along (1, 0, 1) / sqrt 2 and 0.25 across it, 0.4 above a Lambert
+// floor, facing it, L = 2): under its centre the closed form a L r1 r2 / sqrt((r1^2 + h^2)
+// (r2^2 + h^2)) (the disk's r^2 / (r^2 + h^2) when r1 = r2); half-way to its tip along the long
+// axis, a midpoint quadrature over the ellipse (there the circle of the same area is 7.8 % low,
+// the ellipse with its axes swapped 29 % low).
+void test_ellipse(void **) {
+    const glm::dvec3 c(0.0, 0.4, 0.0), n = -kUp, axis = glm::normalize(glm::dvec3(1.0, 0.0, 1.0));
+    const double r1 = 0.6, r2 = 0.25, L = 2.0, h = 0.4;
+    const glm::dvec3 across = glm::cross(n, axis);
+    auto quadrature = [&](glm::dvec3 x) { // the floor's radiance at x: a / pi int L cos_x cos_l / d^2 dA
+        const int m = 600;
+        double sum = 0.0;
+        for (int i = 0; i < m; i++)
+            for (int j = 0; j < m; j++) {
+                const double s = std::sqrt((i + 0.5) / m), phi = 2.0 * kPi * (j + 0.5) / m;
+                const glm::dvec3 q = c + s * (r1 * std::cos(phi) * axis + r2 * std::sin(phi) * across) - x;
+                const double d2 = glm::dot(q, q), cosX = q.y / std::sqrt(d2), cosL = -glm::dot(q, n) / std::sqrt(d2);
+                if (cosX > 0.0 && cosL > 0.0)
+                    sum += cosX * cosL / d2;
+            }
+        return kAlbedo / kPi * L * sum * kPi * r1 * r2 / (double(m) * m);
+    };
+    const glm::dvec3 p0(0.0), p1 = 0.5 * r1 * axis, toCamera = glm::normalize(glm::dvec3(0.0, 0.3, 1.0));
+    const double he = h - leaving(p0).y; // (the references are taken just above the floor)
+    const double closed = kAlbedo * L * r1 * r2 / std::sqrt((r1 * r1 + he * he) * (r2 * r2 + he * he));
+    const double q0 = quadrature(leaving(p0)), q1 = quadrature(leaving(p1));
+    std::printf("ellipse: under its centre closed form %.8f, quadrature %.8f; half-way to its tip quadrature %.8f\n",
+                closed, q0, q1);
+    assert_true(std::fabs(q0 - closed) <= 1e-5 * closed);
+    RenderSettings s;
+    s.spp = 1u << 20;
+    s.directOnly = true;
+    for (int k = 0; k < 2; k++) {
+        SceneBuilder b;
+        floorPlane(b, lambertMaterial(b, kAlbedo));
+        b.ellipse(glm::vec3(c), glm::vec3(n), glm::vec3(axis), float(r1), float(r2), glm::vec3(float(L)), false);
+        expectWithin(renderPoint(b, k ? p1 : p0, toCamera, 0.2, s), k ? q1 : closed,
+                     k ? "ellipse, half-way to its tip" : "ellipse, under its centre", 1e-6);
+    }
+}
+
 // An EXT_lights_area disk (size 1: radius 0.5; radiance 3; at the origin, emitting towards -z)
 // through the loader, a 1 x 1 camera 1 from its plane looking along its axis at a point
 // (x, y) of it: in front, L inside the disk and 0 outside, where the octagon would say the
@@ -550,4 +591,5 @@ void test_disk_validation(void **) {
 RTPBR_TEST_MAIN(cmocka_unit_test(test_disk_on_axis), cmocka_unit_test(test_disk_parallel_offset),
                 cmocka_unit_test(test_disk_sides), cmocka_unit_test(test_disk_horizon), cmocka_unit_test(test_disk_seen),
                 cmocka_unit_test(test_disk_shadow), cmocka_unit_test(test_disk_ggx),
-                cmocka_unit_test(test_disk_from_gltf), cmocka_unit_test(test_disk_validation))
+                cmocka_unit_test(test_disk_from_gltf), cmocka_unit_test(test_disk_validation),
+                cmocka_unit_test(test_ellipse))

@@ -339,6 +339,49 @@ static void test_mirrored_node_keeps_ccw_winding(void** state) {
     rtpbr_gltf_destroy(scene);
 }
 
+/* An EXT_lights_area disk under an uneven scale is the circle's image, an ellipse (issue 30):
+ * the parent scales x by 2, the child turns by 45 degrees about z and scales y by 0.5, so the
+ * world map of the light's plane is S_p R S_c, with a shear. Every image point of the circle of
+ * radius 0.5 must lie on the loaded ellipse (centre, axis, radius, radius2, normal), whose area is
+ * pi 0.25 |det| = pi / 4; the octagon keeps that area. */
+static void test_ext_lights_area_ellipse(void** state) {
+    (void)state;
+    const char* dir = ts_dir("ext_lights_area_ellipse");
+    const char* json =
+        "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"EXT_lights_area\"],"
+        "\"extensions\":{\"EXT_lights_area\":{\"lights\":[{\"type\":\"disk\",\"size\":1,\"intensity\":5}]}},"
+        "\"nodes\":[{\"scale\":[2,1,1],\"children\":[1]},"
+        "{\"rotation\":[0,0,0.38268343236508977,0.9238795325112867],\"scale\":[1,0.5,1],"
+        "\"extensions\":{\"EXT_lights_area\":{\"light\":0}}}],"
+        "\"scenes\":[{\"nodes\":[0]}],\"scene\":0}";
+    char err[512];
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, "ellipse.gltf", json, NULL, &scene, err, sizeof err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s", rtpbr_gltf_result_string(r), err);
+    assert_int_equal(scene->light_count, 1);
+    const rtpbr_gltf_light* e = &scene->lights[0];
+    assert_int_equal(e->shape, RTPBR_GLTF_LIGHT_DISK);
+    assert_convex_ccw(e);
+    assert_true(e->radius >= e->radius2 && e->radius2 > 0.0f);
+    assert_near(TS_PI * e->radius * e->radius2, TS_PI / 4.0, 1e-5, "ellipse area");
+    assert_near(e->facts.area, TS_PI / 4.0, 1e-5, "octagon area = ellipse area");
+    assert_near(e->facts.normal[2], -1.0, EPS, "ellipse normal");
+    double a[3] = {e->axis[0], e->axis[1], e->axis[2]}, n[3] = {e->facts.normal[0], e->facts.normal[1], e->facts.normal[2]};
+    double b[3];
+    cross3(n, a, b);
+    assert_near(a[0] * a[0] + a[1] * a[1] + a[2] * a[2], 1.0, 1e-6, "axis unit");
+    assert_near(a[0] * n[0] + a[1] * n[1] + a[2] * n[2], 0.0, 1e-6, "axis in the plane");
+    const double c = 0.9238795325112867 * 0.9238795325112867 - 0.38268343236508977 * 0.38268343236508977; /* cos 45 */
+    const double sn = 2.0 * 0.9238795325112867 * 0.38268343236508977;                                  /* sin 45 */
+    for (int i = 0; i < 16; ++i) {
+        double t = 2.0 * TS_PI * i / 16.0, lx = 0.5 * cos(t), ly = 0.5 * sin(t) * 0.5; /* the child's scale */
+        double p[3] = {2.0 * (c * lx - sn * ly), sn * lx + c * ly, 0.0};           /* its turn, the parent's scale */
+        double u = (p[0] * a[0] + p[1] * a[1]) / e->radius, v = (p[0] * b[0] + p[1] * b[1]) / e->radius2;
+        assert_near(u * u + v * v, 1.0, 1e-5, "circle image on the ellipse");
+    }
+    rtpbr_gltf_destroy(scene);
+}
+
 static void test_ext_lights_area(void** state) {
     (void)state;
     /* Light 0: rect, size 2, aspect 1.5 → width 3 (local x), height 2 (local y),
@@ -660,5 +703,6 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_quad_light_over_plane),
                 cmocka_unit_test(test_non_emissive_and_degenerate),
                 cmocka_unit_test(test_mirrored_node_keeps_ccw_winding),
                 cmocka_unit_test(test_ext_lights_area),
+                cmocka_unit_test(test_ext_lights_area_ellipse),
                 cmocka_unit_test(test_glb_and_memory),
                 cmocka_unit_test(test_sparse_positions))

@@ -433,7 +433,8 @@ typedef enum rtpbr_light_type {
 // RTPBR_LIGHT_DISK: a flat disk of uniform radiance `emission`, shaded exactly (the disk's own
 // ellipse under each lobe's LTC, Heitz & Hill 2017; shaderlib/rtpbr/area_light.h,
 // AreaLight_AddDisk), not as a polygon: position its centre, direction its normal (the side it
-// emits on; need not be unit, non-zero), radius > 0, two_sided as a polygon's.
+// emits on; need not be unit, non-zero), radius > 0, two_sided as a polygon's. With
+// disk_radius2 > 0, an ellipse (half-axes radius along disk_axis, disk_radius2 across it).
 typedef struct rtpbr_light_desc {
     float vertices[RTPBR_MAX_POLYGON_VERTICES][3]; // polygon: world space
     uint32_t vertex_count;   // polygon: 3..RTPBR_MAX_POLYGON_VERTICES; punctual: ignored
@@ -478,6 +479,13 @@ typedef struct rtpbr_light_desc {
     float emission_uv[3][2]; // the texture coordinates uv0, uv1, uv3 at vertices 0, 1 and 3;
                              // all zero: (0, 0), (1, 0), (0, 1) (the whole texture, its top row
                              // along v0 -> v1)
+    float disk_radius2;      // disk: > 0 makes it an ellipse, `radius` its half-axis along
+                             // disk_axis and disk_radius2 the one across it (both in its plane),
+                             // shaded exactly as a disk is (its ellipse under each LTC). Zero: a
+                             // circle of radius `radius`. Other types: ignored
+    float disk_axis[3];      // disk with disk_radius2 > 0: the direction of the half-axis
+                             // `radius`; need not be unit nor in the plane (its part in the
+                             // plane is used, which must not be zero)
 } rtpbr_light_desc;
 
 typedef struct rtpbr_camera_desc {
