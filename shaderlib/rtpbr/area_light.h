@@ -600,6 +600,8 @@ RTPBR_FN float AreaLight_TubeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFram
             Fl += Flp * wt.x;
         }
     }
+    // (registers: one copy of a sphere's lobe for both ends; unrolled, the engine's basic
+    // variant over one tube took 104 VGPRs on navi21 instead of 96: bench/shader-stats' _tube)
     RTPBR_DONT_UNROLL for (uint e = 0u; e < 2u; ++e) {
         float we = e == 0u ? wt.y : wt.z;
         if (we > 0.0f) {
