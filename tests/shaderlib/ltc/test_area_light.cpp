@@ -783,7 +783,8 @@ void test_tube_ltc_integral(void **) {
 // (c) The limits: at length 0 the tube is the sphere light of its radius (AreaLight_AddSphere),
 // bit for bit (LTC_TubeWeights gives the first end alone), Lambert and GGX, above and across the
 // horizon; a tube wholly below the horizon (just below it) gives exactly 0, a point inside the
-// capsule sees only the light (the white Lambertian surface: 1).
+// capsule sees only the light (the white Lambertian surface: 1); thin tubes (the quad walked)
+// against LTC_EvaluateTube (the line's closed form).
 void test_tube_limits(void **) {
     bool ok = true;
     const float3 centres[] = {float3(-1.0f, 0.2f, 1.5f), float3(-1.0f, -0.5f, 0.1f)};
@@ -817,7 +818,24 @@ void test_tube_limits(void **) {
         print_message("%-7s wholly below: %g, tilted %g\n", lobe == 0 ? "Lambert" : "GGX 0.4", below, belowTilted);
         ok = ok && below == 0.0f && belowTilted == 0.0f;
     }
+    // thin tubes: AreaLight_TubeLobe walks the facing quad whatever its width, where
+    // LTC_EvaluateTube takes the line's closed form below RTPBR_LTC_TUBE_THIN (the white
+    // Lambertian surface, a 1.6-long tube about 1.56 away; measured: 0 at radius 1e-2 (both
+    // walk the quad), 3.6e-5 at 1e-3, 3.2e-4 at 1e-4, 2.4e-4 at 1e-5: held at 1.5 x 3.2e-4)
     g_tables = false;
+    print_message("thin tubes against LTC_EvaluateTube (line branch), relative difference at radius");
+    for (double rr : {1e-2, 1e-3, 1e-4, 1e-5}) {
+        g_tubeA = float3(-1.0f, -0.8f, 1.2f);
+        g_tubeB = float3(-1.0f, 0.8f, 1.2f);
+        g_tubeR = float(rr);
+        double got = evaluate(lambert_material(), kV0, 3u);
+        double want = rtpbr::LTC_EvaluateTube(kN, kV0, float3(0.0f), g_tubeA, g_tubeB, g_tubeR, float4(1, 0, 0, 1));
+        double rel = std::fabs(got - want) / want;
+        print_message("  %.0e: %.2e", rr, rel);
+        ok = ok && rel <= 1.5 * 3.2e-4;
+    }
+    print_message("\n");
+    g_tubeR = 0.1f;
     g_tubeA = float3(-0.5f, -1.0f, 0.05f);
     g_tubeB = float3(0.5f, 1.0f, 0.05f);
     float inside = evaluate(lambert_material(), kV0, 3u);
