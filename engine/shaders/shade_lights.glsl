@@ -33,6 +33,9 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_TEXTURES) uniform sampler2DArray l
 // bench/shader-stats' per-light builds over textured quads (not a record's shape: a polygon
 // with a texture).
 #define RTPBR_STATS_SHAPE_TEXTURED_QUAD 16
+// and over tube (capsule) lights (area_light.h's AreaLight_AddTube; the engine has no tube
+// lights yet: what one would cost, its ends and radius read from vertices[0], vertices[1]).
+#define RTPBR_STATS_SHAPE_TUBE 17
 
 // The library's host bridge (area_light.h): lights from the lights buffer, tables from the
 // bindings above. RTPBR_STATS_FIXED_LIGHTS (bench/shader-stats) makes every light a quad.
@@ -100,6 +103,10 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 #define RTPBR_AREA_LIGHT_DISKS 1    // AreaLight_AddDisk for the disks' mask
 #define RTPBR_AREA_LIGHT_ROUND_DISKS 1 // (round disks' closed form; ellipses, disk_radius2, the cone's)
 #define RTPBR_AREA_LIGHT_TEXTURED RTPBR_LIGHTING_TEXTURED // AreaLight_AddTexturedQuad for the textured quads' mask
+#if defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_STATS_SHAPE_TUBE
+#define RTPBR_AREA_LIGHT_TUBES 1
+vec4 Host_LightTube(uint i, uint k) { return lights[i].vertices[k]; }
+#endif
 // A sphere the horizon cuts: clipped exactly in the basic variant; the full variant's registers
 // take the sphere proxy (area_light.h; no spills: tests/shader-stats)
 #define RTPBR_AREA_LIGHT_SPHERE_CLIP (!RTPBR_LIGHTING_FULL)
@@ -143,6 +150,10 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     AreaLightPixel px = AreaLight_Begin(s, N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
         AreaLight_AddShape(px, acc, s, P, N, i, false, false, true);
+#elif defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_STATS_SHAPE_TUBE // every light a tube
+    AreaLightPixel px = AreaLight_Begin(s, N, V);
+    [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
+        AreaLight_AddTube(px, acc, s, P, N, i);
 #elif defined(RTPBR_STATS_FIXED_SHAPE) // every light a punctual light of this shape (bench/shader-stats)
     mat3 frame3 = LTC_Frame(N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)

@@ -28,10 +28,14 @@
 //                        (RTPBR_AREA_LIGHT_DISKS)
 //   AreaLight_AddTexturedQuad  a quad light with an emission texture, as AreaLight_Add's
 //                        (RTPBR_AREA_LIGHT_TEXTURED)
+//   AreaLight_AddTube    a tube (capsule) light's reflected radiance added, as AreaLight_Add's
+//                        (RTPBR_AREA_LIGHT_TUBES)
 //   AreaLight_AddShape   AreaLight_Add or AreaLight_AddSphere by a run-time flag: one loop
 //                        over polygons and spheres (RTPBR_AREA_LIGHT_SPHERES); with
 //                        RTPBR_AREA_LIGHT_DISKS a last flag, diskLight: AreaLight_AddDisk
-//   AreaLight_ShapeLobe  AreaLight_Lobe over a polygon, a sphere or a disk
+//   AreaLight_ShapeLobe  AreaLight_Lobe over a polygon, a sphere, a disk or a tube
+//   AreaLight_WalkLobe   AreaLight_Lobe over a light's polygon or an explicit parallelogram
+//                        (AreaLightQuad: a tube's facing quad)
 //
 // Flags (before the include)
 //   RTPBR_AREA_LIGHT_PUNCTUAL  0 (default): every light is a polygon; 1: a light may also be
@@ -67,6 +71,12 @@
 //                          ltc_textured.h: each lobe reads the host's prefiltered texture where
 //                          its vector form factor meets the quad, Heitz et al. 2016), into the
 //                          same sum as its polygons
+//   RTPBR_AREA_LIGHT_TUBES  0 (default); 1: AreaLight_AddTube, which the host calls for its tube
+//                          (capsule) lights (ltc_lines.h's LTC_EvaluateTube decomposition: the
+//                          facing quad walked as a polygon plus the two end spheres, weighted by
+//                          LTC_TubeWeights, every lobe's form factor and vector form factors
+//                          summed with those weights), into the same sum as its polygons;
+//                          AreaLight_AddShape and AreaLight_ShapeLobe take a last flag, tubeLight
 //   RTPBR_AREA_LIGHT_FULL  1 (default): every lobe surface.h resolves (Disney, coat, sheen,
 //                          anisotropy); 0: metallic-roughness without them (the engine's
 //                          basic variant: fewer registers, the streak estimate on GGX).
@@ -116,6 +126,12 @@
 //                                     footprint in units of the quad's size): the host reads its
 //                                     chain prefiltered for it (mip k blurred over 2^k texels:
 //                                     lod = log2(footprint x size)), clamped to the edge;
+// with RTPBR_AREA_LIGHT_TUBES a tube light (the capsule of radius r around the segment from one
+// end's centre to the other's; radiance uniform over its surface) is read through
+//   rtpbr_float4 Host_LightTube(uint light, uint k)  end k's (0, 1) centre xyz, world space, and
+//                                     the radius w (the same for both ends; > 0)
+// with Host_LightSphere (read, its value unused: any bounding sphere), Host_LightRadiance and
+// Host_LightVisibility (the polygon functions are not called for it; no range window);
 //   rtpbr_float4 Host_TableLtc1(int table, rtpbr_float2 uv)  the LTC tables at uv
 //   rtpbr_float4 Host_TableLtc2(int table, rtpbr_float2 uv)  (LTC_LutCoord), table one of
 //                                     RTPBR_TABLE_LTC_SPECULAR (rtpbr_ltc_ggx_1/_2, or
@@ -145,6 +161,9 @@
 #include "punctual.h"
 #include "ltc_shapes.h"
 #include "ltc_textured.h"
+#if RTPBR_AREA_LIGHT_TUBES
+#include "ltc_lines.h"
+#endif
 
 #ifndef RTPBR_AREA_LIGHT_PUNCTUAL
 #define RTPBR_AREA_LIGHT_PUNCTUAL 0
@@ -166,6 +185,9 @@
 #endif
 #ifndef RTPBR_AREA_LIGHT_TEXTURED
 #define RTPBR_AREA_LIGHT_TEXTURED 0
+#endif
+#ifndef RTPBR_AREA_LIGHT_TUBES
+#define RTPBR_AREA_LIGHT_TUBES 0
 #endif
 // The sides of the equal-area polygon a sphere's disk is clipped as (RTPBR_AREA_LIGHT_SPHERE_CLIP).
 #ifndef RTPBR_AREA_LIGHT_SPHERE_SIDES
@@ -198,6 +220,15 @@
 #define RTPBR_AREA_LIGHT_TEXTURE_PARAM
 #define RTPBR_AREA_LIGHT_TEXTURE_ARG(x)
 #define RTPBR_AREA_LIGHT_TEXTURED_FLAG false
+#endif
+// With RTPBR_AREA_LIGHT_TUBES the functions that take a disk light's kind take a tube light's
+// after it (and after texturedLight in AreaLight_AddShape): the parameter tubeLight.
+#if RTPBR_AREA_LIGHT_TUBES
+#define RTPBR_AREA_LIGHT_TUBE_PARAM , bool tubeLight
+#define RTPBR_AREA_LIGHT_TUBE_ARG(x) , x
+#else
+#define RTPBR_AREA_LIGHT_TUBE_PARAM
+#define RTPBR_AREA_LIGHT_TUBE_ARG(x)
 #endif
 // The streak estimate runs in the metallic-roughness evaluation on GGX (its registers do not
 // fit the full one's).
@@ -252,17 +283,44 @@ RTPBR_FN AreaLightSum AreaLight_SumBegin() {
     return acc;
 }
 
+// A parallelogram walked in place of a light's own vertices (AreaLight_WalkLobe: a tube's facing
+// quad, LTC_TubeQuad): corners o, o + u, o + u + v, o + v (world space); on = false: the light's
+// own polygon (Host_LightVertex).
+struct AreaLightQuad {
+    rtpbr_float3 o;
+    rtpbr_float3 u;
+    rtpbr_float3 v;
+    bool on;
+};
+
+RTPBR_FN AreaLightQuad AreaLight_NoQuad() {
+    AreaLightQuad q;
+    q.o = RTPBR_F3(0.0f);
+    q.u = RTPBR_F3(0.0f);
+    q.v = RTPBR_F3(0.0f);
+    q.on = false;
+    return q;
+}
+
+// Vertex k of light i (Host_LightVertex), or of the parallelogram quad where quad.on.
+RTPBR_FN rtpbr_float3 AreaLight_Vertex(uint i, uint k, AreaLightQuad quad) {
+    if (!quad.on)
+        return Host_LightVertex(i, k);
+    return quad.o + (k == 1u || k == 2u ? quad.u : RTPBR_F3(0.0f)) + (k >= 2u ? quad.v : RTPBR_F3(0.0f));
+}
+
 // Step k (1 .. count + 1) of a streamed walk over light i's count edges (vectors from P in the
 // LTC frame ltcFrame; first = vertex 0's, a = the previous vertex's, advanced here): edge
 // k - 1 -> k (vertex count is vertex 0) clipped to the horizon, then (k = count + 1) the
-// segment that closes the clipped polygon along it (LTC_ClipClose).
+// segment that closes the clipped polygon along it (LTC_ClipClose). The vertices: light i's, or
+// quad's where quad.on (AreaLight_Vertex).
 RTPBR_FN LtcSegment AreaLight_EdgeStep(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, uint k, uint count,
                                        rtpbr_float3 first, RTPBR_INOUT(LtcClipper) horizon,
-                                       RTPBR_INOUT(rtpbr_float3) a) {
+                                       RTPBR_INOUT(rtpbr_float3) a, AreaLightQuad quad) {
     LtcSegment seg;
     rtpbr_float3 b = a;
     if (k <= count) {
-        b = k < count ? rtpbr_mul(ltcFrame, Host_LightVertex(i, k) - P) : first;
+        b = k < count ? rtpbr_mul(ltcFrame, AreaLight_Vertex(i, k, quad) - P) : first;
         seg = LTC_ClipEdge(horizon, a, b);
     } else {
         seg = LTC_ClipClose(horizon);
@@ -286,17 +344,18 @@ RTPBR_FN float AreaLight_LobeClose(LtcLobe lobe, RTPBR_OUT(rtpbr_float3) Fl) {
 // LTC lobe minv; returns its form factor, the clipped polygon's vector form factor F (up to
 // its sign) and the lobe's own vector form factor Fl (LTC_LobeEndVector; callers that do not
 // read it leave its x, y to dead-code elimination). The full evaluation runs a pass per lobe
-// the material has, so that one lobe's clip state is live at a time.
-RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
-                              RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl) {
+// the material has, so that one lobe's clip state is live at a time. AreaLight_WalkLobe: the
+// same over the parallelogram quad instead where quad.on (a tube's facing quad).
+RTPBR_FN float AreaLight_WalkLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+                                  RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, AreaLightQuad quad) {
     LtcClipper horizon = LTC_ClipperBegin();
     LtcLobe lobe = LTC_LobeBegin(minv);
     F = RTPBR_F3(0.0f);
-    uint count = Host_LightVertexCount(i);
-    rtpbr_float3 first = rtpbr_mul(ltcFrame, Host_LightVertex(i, 0u) - P);
+    uint count = quad.on ? 4u : Host_LightVertexCount(i);
+    rtpbr_float3 first = rtpbr_mul(ltcFrame, AreaLight_Vertex(i, 0u, quad) - P);
     rtpbr_float3 a = first;
     RTPBR_UNROLL for (uint k = 1u; k <= count + 1u; ++k) {
-        LtcSegment seg = AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a);
+        LtcSegment seg = AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a, quad);
         if (seg.valid) {
             F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
             LTC_LobeEdge(lobe, seg.a, seg.b);
@@ -304,19 +363,22 @@ RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, r
     }
     return AreaLight_LobeClose(lobe, Fl);
 }
+RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+                              RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl) {
+    return AreaLight_WalkLobe(i, P, ltcFrame, minv, F, Fl, AreaLight_NoQuad());
+}
 
-#if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS
-// The disk that stands for sphere light i (Host_LightSphere: centre, radius) at P, in the LTC
-// frame (LTC_SphereAsDisk's: it fills the sphere's cone, radius r d / sqrt(d^2 - r^2) about the
-// axis c): centre c, orthogonal semi-axes u, w; the sphere's exact vector form factor in F
+#if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS || RTPBR_AREA_LIGHT_TUBES
+// The disk that stands for the sphere (centre xyz, radius w: a sphere light's Host_LightSphere,
+// a tube's end) at P, in the LTC frame (LTC_SphereAsDisk's: it fills the sphere's cone, radius
+// r d / sqrt(d^2 - r^2) about the axis c): centre c, orthogonal semi-axes u, w; the sphere's exact vector form factor in F
 // (sin^2 of its angular radius along the axis, z the cap's horizon-clipped form factor:
 // LTC_SphereCapFormFactor). False inside the sphere. The disk's in-plane basis is any (it is
 // round): it is taken from the lobe's matrix minv, so that each lobe builds its own and the
 // compiler keeps none live across lobes (registers).
-RTPBR_FN bool AreaLight_SphereDisk(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+RTPBR_FN bool AreaLight_SphereDisk(rtpbr_float4 sphere, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
                                    RTPBR_OUT(rtpbr_float3) c, RTPBR_OUT(rtpbr_float3) u, RTPBR_OUT(rtpbr_float3) w,
                                    RTPBR_OUT(rtpbr_float3) F) {
-    rtpbr_float4 sphere = Host_LightSphere(i);
     c = rtpbr_mul(ltcFrame, rtpbr_float3(sphere.x, sphere.y, sphere.z) - P);
     float d2 = dot(c, c);
     float r2 = sphere.w * sphere.w;
@@ -427,29 +489,12 @@ RTPBR_FN bool AreaLight_DiskEllipse(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
 }
 #endif
 
-#if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS
-// AreaLight_Lobe over sphere light i, or with diskLight (RTPBR_AREA_LIGHT_DISKS) over disk
-// light i (AreaLight_DiskEllipse: the disk itself instead of the sphere's; the rest alike). While the sphere's cone is above the horizon and its
-// image under minv above the LTC's own, the disk's closed form (LTC_EllipseVector: exact).
-// Across either horizon, with RTPBR_AREA_LIGHT_SPHERE_CLIP (1) the disk's equal-area polygon
-// (RTPBR_AREA_LIGHT_SPHERE_SIDES) clipped exactly and integrated (its error against the disk,
-// measured); with 0, Heitz & Hill's sphere proxy (the cap of the same vector form factor, clipped by the LTC's
-// own horizon: LTC_SphereCapFormFactor), which lights a glossy lobe from the part of the sphere
-// below the surface (measured: tests/engine/test_engine_punctual.c, sphere_ggx) but has no
-// walk (fewer registers). F: the sphere's exact vector form factor (a disk's: AreaLight_DiskEllipse's, or
-// its clipped polygon's where the horizon cuts it). Inside the sphere: 1.
-RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
-                                    RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl RTPBR_AREA_LIGHT_DISK_PARAM) {
-    rtpbr_float3 c, u, w;
-#if RTPBR_AREA_LIGHT_DISKS
-    if (diskLight)
-        AreaLight_DiskEllipse(i, P, ltcFrame, c, u, w, F);
-    else
-#endif
-    if (!AreaLight_SphereDisk(i, P, ltcFrame, minv, c, u, w, F)) {
-        Fl = F;
-        return 1.0f;
-    }
+#if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS || RTPBR_AREA_LIGHT_TUBES
+// AreaLight_SphereLobe's lobe over the ellipse (c, u, w) in the LTC frame (a sphere's disk,
+// AreaLight_SphereDisk, or a disk light's, AreaLight_DiskEllipse): its form factor, Fl its
+// vector form factor (see there).
+RTPBR_FN float AreaLight_EllipseLobe(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float3 w, rtpbr_float3x3 minv,
+                                     RTPBR_OUT(rtpbr_float3) Fl) {
 #if RTPBR_AREA_LIGHT_SPHERE_CLIP
     rtpbr_float3 cl = rtpbr_mul(minv, c), ul = rtpbr_mul(minv, u), wl = rtpbr_mul(minv, w);
     if (!(c.z >= sqrt(u.z * u.z + w.z * w.z) && cl.z >= sqrt(ul.z * ul.z + wl.z * wl.z))) {
@@ -478,12 +523,110 @@ RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
     return LTC_HorizonFraction(LTC_SphereCapFormFactor(v), LTC_HorizonMass(minv));
 #endif
 }
+
+// AreaLight_SphereLobe over the sphere (centre xyz, radius w) rather than a light's: a sphere
+// light's (Host_LightSphere) or a tube's end.
+RTPBR_FN float AreaLight_SphereLobeAt(rtpbr_float4 sphere, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+                                      RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl) {
+    rtpbr_float3 c, u, w;
+    if (!AreaLight_SphereDisk(sphere, P, ltcFrame, minv, c, u, w, F)) {
+        Fl = F;
+        return 1.0f;
+    }
+    return AreaLight_EllipseLobe(c, u, w, minv, Fl);
+}
+#endif
+
+#if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS
+// AreaLight_Lobe over sphere light i, or with diskLight (RTPBR_AREA_LIGHT_DISKS) over disk
+// light i (AreaLight_DiskEllipse: the disk itself instead of the sphere's; the rest alike). While the sphere's cone is above the horizon and its
+// image under minv above the LTC's own, the disk's closed form (LTC_EllipseVector: exact).
+// Across either horizon, with RTPBR_AREA_LIGHT_SPHERE_CLIP (1) the disk's equal-area polygon
+// (RTPBR_AREA_LIGHT_SPHERE_SIDES) clipped exactly and integrated (its error against the disk,
+// measured); with 0, Heitz & Hill's sphere proxy (the cap of the same vector form factor, clipped by the LTC's
+// own horizon: LTC_SphereCapFormFactor), which lights a glossy lobe from the part of the sphere
+// below the surface (measured: tests/engine/test_engine_punctual.c, sphere_ggx) but has no
+// walk (fewer registers). F: the sphere's exact vector form factor (a disk's: AreaLight_DiskEllipse's, or
+// its clipped polygon's where the horizon cuts it). Inside the sphere: 1.
+RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+                                    RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl RTPBR_AREA_LIGHT_DISK_PARAM) {
+#if RTPBR_AREA_LIGHT_DISKS
+    if (diskLight) {
+        rtpbr_float3 c, u, w;
+        AreaLight_DiskEllipse(i, P, ltcFrame, c, u, w, F);
+        return AreaLight_EllipseLobe(c, u, w, minv, Fl);
+    }
+#endif
+    return AreaLight_SphereLobeAt(Host_LightSphere(i), P, ltcFrame, minv, F, Fl);
+}
+#endif
+
+#if RTPBR_AREA_LIGHT_TUBES
+// AreaLight_Lobe over tube (capsule) light i (Host_LightTube: its ends' centres, its radius)
+// seen from P: LTC_EvaluateTube's decomposition, the facing quad (LTC_TubeQuad, walked as a
+// polygon through the horizon clip: AreaLight_WalkLobe) and the two end spheres
+// (AreaLight_SphereLobeAt), weighted by LTC_TubeWeights w: the form factor, the vector form
+// factor F (the quad's oriented to z >= 0) and the lobe's Fl each w.x quad + w.y end 1 + w.z
+// end 2 (linear in the emitter, so that every later step sees one consistent emitter). The form
+// factor held to 1 (as LTC_EvaluateTube). Inside the capsule: 1, F = Fl = (0, 0, 1). Unlike
+// LTC_EvaluateTube, a quad thinner than RTPBR_LTC_TUBE_THIN is walked too (no line branch:
+// registers): measured against its line branch, 3.6e-5 relative at a radius of 6e-4 of the
+// distance, 3.2e-4 at 6e-5 and 6e-6 (test_area_light.cpp, test_tube_limits).
+RTPBR_FN float AreaLight_TubeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+                                  RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl) {
+    rtpbr_float4 end1 = Host_LightTube(i, 0u), end2 = Host_LightTube(i, 1u);
+    rtpbr_float3 p1 = rtpbr_float3(end1.x, end1.y, end1.z), p2 = rtpbr_float3(end2.x, end2.y, end2.z);
+    float radius = end1.w;
+    rtpbr_float3 axis = p2 - p1;
+    float len2 = dot(axis, axis);
+    float h = len2 > 0.0f ? rtpbr_saturate(dot(P - p1, axis) / len2) : 0.0f;
+    rtpbr_float3 nearest = p1 + axis * h - P; // the axis' nearest point
+    F = rtpbr_float3(0.0f, 0.0f, 1.0f);
+    Fl = F;
+    if (!(dot(nearest, nearest) > radius * radius))
+        return 1.0f;
+    rtpbr_float3 wt = LTC_TubeWeights(P, p1, p2, radius);
+    F = RTPBR_F3(0.0f);
+    Fl = RTPBR_F3(0.0f);
+    float ff = 0.0f;
+    rtpbr_float3 Fp, Flp;
+    if (wt.x > 0.0f) {
+        LtcPolygon q = LTC_TubeQuad(P, p1, p2, radius);
+        if (q.count > 0) {
+            AreaLightQuad quad;
+            quad.o = q.v[0];
+            quad.u = q.v[1] - q.v[0];
+            quad.v = q.v[3] - q.v[0];
+            quad.on = true;
+            ff += wt.x * AreaLight_WalkLobe(i, P, ltcFrame, minv, Fp, Flp, quad);
+            F += (Fp.z < 0.0f ? -Fp : Fp) * wt.x;
+            Fl += Flp * wt.x;
+        }
+    }
+    // (registers: one copy of a sphere's lobe for both ends; unrolled, the engine's basic
+    // variant over one tube took 104 VGPRs on navi21 instead of 96: bench/shader-stats' _tube)
+    RTPBR_DONT_UNROLL for (uint e = 0u; e < 2u; ++e) {
+        float we = e == 0u ? wt.y : wt.z;
+        if (we > 0.0f) {
+            ff += we * AreaLight_SphereLobeAt(e == 0u ? rtpbr_float4(p1, radius) : rtpbr_float4(p2, radius), P, ltcFrame, minv, Fp, Flp);
+            F += Fp * we;
+            Fl += Flp * we;
+        }
+    }
+    return min(ff, 1.0f);
+}
 #endif
 
 // AreaLight_Lobe, or AreaLight_SphereLobe where sphereLight (RTPBR_AREA_LIGHT_SPHERES; a disk
-// where diskLight too, RTPBR_AREA_LIGHT_DISKS).
+// where diskLight too, RTPBR_AREA_LIGHT_DISKS), or AreaLight_TubeLobe where tubeLight
+// (RTPBR_AREA_LIGHT_TUBES; the others then do not matter).
 RTPBR_FN float AreaLight_ShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
-                                   RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM) {
+                                   RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM
+                                       RTPBR_AREA_LIGHT_TUBE_PARAM) {
+#if RTPBR_AREA_LIGHT_TUBES
+    if (tubeLight)
+        return AreaLight_TubeLobe(i, P, ltcFrame, minv, F, Fl);
+#endif
 #if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS
     if (sphereLight)
         return AreaLight_SphereLobe(i, P, ltcFrame, minv, F, Fl RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
@@ -676,12 +819,23 @@ RTPBR_FN rtpbr_float3 AreaLight_TexturedQuadLambert(uint i, rtpbr_float3 P, rtpb
 // the last flag, diskLight (sphereLight then does not matter).
 RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                                  rtpbr_float3 N, uint i, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM
-                                     RTPBR_AREA_LIGHT_TEXTURE_PARAM) {
+                                     RTPBR_AREA_LIGHT_TEXTURE_PARAM RTPBR_AREA_LIGHT_TUBE_PARAM) {
     // P on the light's plane sees it edge-on; behind a one-sided light, nothing; a light
     // whose bounding sphere is below the horizon, nothing. A sphere light: below the horizon
     // or beyond its range, nothing.
     rtpbr_float4 sphere = Host_LightSphere(i);
     float window = 1.0f; // a sphere light's range window
+#if RTPBR_AREA_LIGHT_TUBES
+    // A tube light: wholly below the horizon (both ends' centres more than the radius below it),
+    // nothing; no range window. From here on it is lit as a sphere is (sphereLight: every choice
+    // below alike), its lobes by AreaLight_TubeLobe.
+    if (tubeLight) {
+        sphereLight = true;
+        rtpbr_float4 end1 = Host_LightTube(i, 0u), end2 = Host_LightTube(i, 1u);
+        if (!(max(dot(N, rtpbr_float3(end1.x, end1.y, end1.z) - P), dot(N, rtpbr_float3(end2.x, end2.y, end2.z) - P)) > -end1.w))
+            return;
+    } else
+#endif
 #if RTPBR_AREA_LIGHT_DISKS
     // A disk light: P on its plane sees it edge-on; behind a one-sided disk, nothing; wholly
     // below the horizon (its centre's height less sqrt((N.u)^2 + (N.v)^2), the ellipse's
@@ -723,7 +877,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
     bool streakSized = !sphereLight && !RTPBR_AREA_LIGHT_TEXTURED_FLAG && LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
 #endif
     rtpbr_float3 F, Fl;
-    float specularFF = AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, F, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
+    float specularFF = AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, F, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_ARG(tubeLight));
     // A textured quad's emission where each lobe looks (ltc_textured.h: the point where the
     // lobe's vector form factor meets the quad, read from the chain prefiltered to the lobe's
     // footprint): texS for the specular lobe and its multiple scattering, read here (Fl is the
@@ -768,7 +922,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
     // second pass did not fit the registers (docs/performance.md, 12).
     if (px.pointOn && specularFF < 0.5f && !sphereLight) {
         rtpbr_float3 unusedF2;
-        AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, unusedF2, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
+        AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, unusedF2, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_ARG(tubeLight));
         float norm = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.tableRoughness)).x;
         specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, norm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
     }
@@ -812,7 +966,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
 #if RTPBR_AREA_LIGHT_FULL
     if (s.disney) {
         float LoH = rtpbr_saturate(dot(lRep, normalize(lRep + px.vLocal)));
-        base = px.burleyScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1d), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight)) +
+        base = px.burleyScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1d), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_ARG(tubeLight)) +
                (s.dm.subsurface * Disney_DiffuseLobe(px.dss, s.NoV, muRep, LoH) + Disney_SheenLobe(s.dm, LoH)) *
                    (RTPBR_PI * ff);
     } else
@@ -826,7 +980,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
 #if RTPBR_AREA_LIGHT_FULL
     if (s.sheen)
         lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, Host_TableSheenE(muRep, s.sheenRoughness)) +
-             texD * px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
+             texD * px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_ARG(tubeLight));
     lo *= s.baseAttenuation;
 #if RTPBR_AREA_LIGHT_TEXTURED
     if (texturedLight)
@@ -834,7 +988,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
 #endif
     if (px.coated) {
         rtpbr_float3 coatFl;
-        rtpbr_float3 coat = texS * (px.coatScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, coatFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight)) +
+        rtpbr_float3 coat = texS * (px.coatScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, coatFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_ARG(tubeLight)) +
               s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(Host_TableE(muRep, s.coatRoughness), s.Eavgc, lenF), s.Eavgc, ff));
 #if RTPBR_AREA_LIGHT_TEXTURED
         // the coat, often the sharpest lobe: its own point and footprint
@@ -869,7 +1023,7 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
         return;
     }
 #endif
-    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false));
+    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false) RTPBR_AREA_LIGHT_TUBE_ARG(false));
 }
 
 #if RTPBR_AREA_LIGHT_SPHERES
@@ -880,7 +1034,7 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 // the sphere is wholly below the horizon. A point inside the sphere sees only the light.
 RTPBR_FN void AreaLight_AddSphere(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                                   rtpbr_float3 N, uint i) {
-    AreaLight_AddShape(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false));
+    AreaLight_AddShape(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false) RTPBR_AREA_LIGHT_TUBE_ARG(false));
 }
 #endif
 
@@ -895,7 +1049,7 @@ RTPBR_FN void AreaLight_AddSphere(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) a
 // is wholly below the horizon.
 RTPBR_FN void AreaLight_AddDisk(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                                 rtpbr_float3 N, uint i) {
-    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(true) RTPBR_AREA_LIGHT_TEXTURE_ARG(false));
+    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(true) RTPBR_AREA_LIGHT_TEXTURE_ARG(false) RTPBR_AREA_LIGHT_TUBE_ARG(false));
 }
 #endif
 
@@ -912,7 +1066,21 @@ RTPBR_FN void AreaLight_AddDisk(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc
 // emission over the quad).
 RTPBR_FN void AreaLight_AddTexturedQuad(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s,
                                         rtpbr_float3 P, rtpbr_float3 N, uint i) {
-    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(true));
+    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(true) RTPBR_AREA_LIGHT_TUBE_ARG(false));
+}
+#endif
+
+#if RTPBR_AREA_LIGHT_TUBES
+// Tube (capsule) light i's reflected radiance at P (x its radiance and visibility) added to acc,
+// as AreaLight_Add's for a polygon: every lobe over the tube (AreaLight_TubeLobe: the facing
+// quad and the end spheres, weighted as LTC_EvaluateTube), with Kulla-Conty and the energy
+// bound, the point correction in the metallic-roughness evaluation (RTPBR_AREA_LIGHT_FULL 0; not
+// in the full one: as a sphere's); no streak estimate, no range window. Nothing when the tube is
+// wholly below the horizon. A point inside the capsule sees only the light.
+// Error: LTC_EvaluateTube's (ltc_lines.h: its ends), plus the LTC fit's.
+RTPBR_FN void AreaLight_AddTube(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
+                                rtpbr_float3 N, uint i) {
+    AreaLight_AddShape(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false) RTPBR_AREA_LIGHT_TUBE_ARG(true));
 }
 #endif
 
@@ -932,7 +1100,7 @@ RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_flo
         rtpbr_float3 first = rtpbr_mul(ltcFrame, Host_LightVertex(i, 0u) - P);
         rtpbr_float3 a = first;
         for (uint k = 1u; k <= count + 1u; ++k) {
-            LtcSegment seg = AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a);
+            LtcSegment seg = AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a, AreaLight_NoQuad());
             if (seg.valid) {
                 if (pass == 0) {
                     F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));

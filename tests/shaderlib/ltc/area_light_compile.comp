@@ -4,7 +4,8 @@
 // quad's corners or a disk's centre and half-axes), the disk path called by AreaLight_AddDisk
 // and by AreaLight_AddShape's run-time flag, beside polygons (and spheres, with
 // -DRTPBR_AREA_LIGHT_SPHERES=1). The meson test runs it with the flags' other values too
-// (RTPBR_AREA_LIGHT_FULL, _SPHERE_CLIP), and with textured quads (-DRTPBR_AREA_LIGHT_TEXTURED=1).
+// (RTPBR_AREA_LIGHT_FULL, _SPHERE_CLIP), and with textured quads (-DRTPBR_AREA_LIGHT_TEXTURED=1)
+// and tubes (-DRTPBR_AREA_LIGHT_TUBES=1).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 #include "rtpbr/lang.h"
@@ -13,7 +14,7 @@
 layout(local_size_x = 1) in;
 struct Light {
     vec4 v[4];      // a quad's corners; a disk's centre (v[0].xyz, w its longer half-axis) and half-axes v[1], v[2]
-    vec4 radiance;  // rgb; w: 1 = a disk, 2 = a sphere (v[0]: centre, radius), 3 = a textured quad, else a quad
+    vec4 radiance;  // rgb; w: 1 = a disk, 2 = a sphere (v[0]: centre, radius), 3 = a textured quad, 4 = a tube (v[0], v[1]: its ends, w its radius), else a quad
 };
 layout(std430, binding = 0) readonly buffer Lights { Light lights[]; };
 layout(std430, binding = 1) buffer Out { vec4 result[]; };
@@ -34,6 +35,7 @@ vec4 Host_LightPosition(uint light) { return vec4(lights[light].v[0].xyz, 0.0f);
 bool Host_LightTwoSided(uint light) { return false; }
 vec3 Host_LightRadiance(uint light) { return lights[light].radiance.rgb; }
 vec3 Host_LightVisibility(uint light) { return vec3(1.0f); }
+vec4 Host_LightTube(uint light, uint k) { return lights[light].v[k]; }
 // (RTPBR_AREA_LIGHT_TEXTURED: a textured quad's emission, here one of the tables)
 vec3 Host_LightTexture(uint light, vec3 lookup) { return textureLod(tables[3], lookup.xy, log2(max(lookup.z * 128.0f, 1e-6f))).rgb; }
 vec4 Host_TableLtc1(int table, vec2 uv) { return textureLod(tables[0], uv, 0.0f); }
@@ -81,7 +83,12 @@ void main() {
         else
             AreaLight_Add(px, acc, s, P, N, i);
         // the run-time flag: one call for every kind
-        AreaLight_AddShape(px, acc, s, P, N, i, kind == 2.0f, kind == 1.0f RTPBR_AREA_LIGHT_TEXTURE_ARG(kind == 3.0f));
+        AreaLight_AddShape(px, acc, s, P, N, i, kind == 2.0f, kind == 1.0f RTPBR_AREA_LIGHT_TEXTURE_ARG(kind == 3.0f)
+                               RTPBR_AREA_LIGHT_TUBE_ARG(kind == 4.0f));
+#if RTPBR_AREA_LIGHT_TUBES
+        if (kind == 4.0f)
+            AreaLight_AddTube(px, acc, s, P, N, i);
+#endif
 #if RTPBR_AREA_LIGHT_TEXTURED
         if (kind == 3.0f)
             AreaLight_AddTexturedQuad(px, acc, s, P, N, i);

@@ -6,7 +6,7 @@
 
 struct Light {
     float4 v[4];     // a quad's corners; a disk's centre (v[0].xyz, w its longer half-axis) and half-axes v[1], v[2]
-    float4 radiance; // rgb; w: 1 = a disk, 2 = a sphere (v[0]: centre, radius), 3 = a textured quad, else a quad
+    float4 radiance; // rgb; w: 1 = a disk, 2 = a sphere (v[0]: centre, radius), 3 = a textured quad, 4 = a tube (v[0], v[1]: its ends, w its radius), else a quad
 };
 StructuredBuffer<Light> lights : register(t0);
 RWStructuredBuffer<float4> result : register(u1);
@@ -28,6 +28,7 @@ float4 Host_LightPosition(uint light) { return float4(lights[light].v[0].xyz, 0.
 bool Host_LightTwoSided(uint light) { return false; }
 float3 Host_LightRadiance(uint light) { return lights[light].radiance.rgb; }
 float3 Host_LightVisibility(uint light) { return RTPBR_F3(1.0f); }
+float4 Host_LightTube(uint light, uint k) { return lights[light].v[k]; }
 // (RTPBR_AREA_LIGHT_TEXTURED: a textured quad's emission, here one of the tables)
 float3 Host_LightTexture(uint light, float3 lookup) { return tables[3].SampleLevel(lutSampler, lookup.xy, log2(max(lookup.z * 128.0f, 1e-6f))).rgb; }
 float4 Host_TableLtc1(int table, float2 uv) { return tables[0].SampleLevel(lutSampler, uv, 0.0f); }
@@ -78,7 +79,12 @@ void main() {
         else
             AreaLight_Add(px, acc, s, P, N, i);
         // the run-time flag: one call for every kind
-        AreaLight_AddShape(px, acc, s, P, N, i, kind == 2.0f, kind == 1.0f RTPBR_AREA_LIGHT_TEXTURE_ARG(kind == 3.0f));
+        AreaLight_AddShape(px, acc, s, P, N, i, kind == 2.0f, kind == 1.0f RTPBR_AREA_LIGHT_TEXTURE_ARG(kind == 3.0f)
+                               RTPBR_AREA_LIGHT_TUBE_ARG(kind == 4.0f));
+#if RTPBR_AREA_LIGHT_TUBES
+        if (kind == 4.0f)
+            AreaLight_AddTube(px, acc, s, P, N, i);
+#endif
 #if RTPBR_AREA_LIGHT_TEXTURED
         if (kind == 3.0f)
             AreaLight_AddTexturedQuad(px, acc, s, P, N, i);

@@ -22,7 +22,7 @@ extern "C" {
 #include <cstdio>
 #include <vector>
 
-#include "quadrature.hpp" // gauss_legendre
+#include "capsule_quadrature.hpp" // capsule_integral, integrate (gauss_legendre)
 
 using rtpbr::float3;
 using rtpbr::float4;
@@ -74,16 +74,6 @@ const Lobe kLambert = {"Lambert", 1, 0, 0, 1};
 // The shading point at the origin, N = z, V in the xz-plane: LTC_Frame is the identity.
 const float3 kN(0, 0, 1), kV(0.6f, 0.0f, 0.8f), kP(0, 0, 0);
 
-// Gauss-Legendre on [a, b] in `panels` panels of `order` nodes.
-template <class F> double integrate(double a, double b, int panels, int order, F f) {
-    std::vector<double> x, w;
-    gauss_legendre(order, x, w);
-    double h = (b - a) / panels, sum = 0.0;
-    for (int p = 0; p < panels; ++p)
-        for (int k = 0; k < order; ++k) sum += h * w[k] * f(a + h * (p + x[k]));
-    return sum;
-}
-
 // The line a -> b of width W: W int D(p / |p|) n / |p|^3 dt over the part with z > 0, over the
 // lobe's mass above the horizon. aboveOnly = false: D's integral over the whole segment, below
 // the horizon too (a clip in the cosine's space alone sees that).
@@ -132,36 +122,11 @@ float line_ff(const Lobe &lobe, D3 a, D3 b, double W) {
     return rtpbr::LTC_EvaluateLine(kN, kV, kP, f3(a), f3(b), float(W), lobe.ltc1());
 }
 
-// The capsule of radius r around a -> b (relative to the point): its front-facing surface.
+// The capsule of radius r around a -> b (relative to the point): its front-facing surface
+// (capsule_quadrature.hpp), over the lobe's mass above the horizon.
 double capsule_reference(const Lobe &lobe, D3 a, D3 b, double r, int scale = 1) {
-    D3 T = unit(b - a);
-    double L = len(b - a);
-    D3 t = std::fabs(T.z) < 0.9 ? D3{0, 0, 1} : D3{1, 0, 0};
-    D3 e1 = unit(cross(t, T)), e2 = cross(T, e1);
-    const int nphi = 1024 * scale;
-    auto visible = [&](D3 x, D3 normal) { // D(w) max(0, -n.w) / |x|^2, above the horizon
-        if (x.z <= 0.0) return 0.0;
-        double d = len(x);
-        D3 w = x * (1.0 / d);
-        double c = -dot(normal, w);
-        return c > 0.0 ? lobe.D(w) * c / (d * d) : 0.0;
-    };
-    double sum = 0.0;
-    for (int j = 0; j < nphi; ++j) {
-        double phi = 2.0 * M_PI * (j + 0.5) / nphi, dphi = 2.0 * M_PI / nphi;
-        D3 radial = e1 * std::cos(phi) + e2 * std::sin(phi);
-        if (L > 0.0)
-            sum += dphi * r * integrate(0.0, L, 64 * scale, 8, [&](double l) { return visible(a + T * l + radial * r, radial); });
-        // the hemispheres: u = cos of the angle from the outward axis, dA = r^2 du dphi
-        for (int end = 0; end < 2; ++end) {
-            D3 c = end ? b : a, out = end ? T : T * -1.0;
-            sum += dphi * r * r * integrate(0.0, 1.0, 32 * scale, 8, [&](double u) {
-                D3 nrm = out * u + radial * std::sqrt(1.0 - u * u);
-                return visible(c + nrm * r, nrm);
-            });
-        }
-    }
-    return sum / lobe.mass();
+    const double A[3] = {a.x, a.y, a.z}, B[3] = {b.x, b.y, b.z};
+    return capsule_integral(A, B, r, [&](double x, double y, double z) { return lobe.D({x, y, z}); }, scale) / lobe.mass();
 }
 
 float tube_ff(const Lobe &lobe, D3 a, D3 b, double r) {
