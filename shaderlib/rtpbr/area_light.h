@@ -33,7 +33,10 @@
 //   AreaLight_AddShape   AreaLight_Add or AreaLight_AddSphere by a run-time flag: one loop
 //                        over polygons and spheres (RTPBR_AREA_LIGHT_SPHERES); with
 //                        RTPBR_AREA_LIGHT_DISKS a last flag, diskLight: AreaLight_AddDisk
-//   AreaLight_ShapeLobe  AreaLight_Lobe over a polygon, a sphere, a disk or a tube
+//   AreaLight_AddShapePart  AreaLight_AddShape over one part of a tube (its facing quad or an
+//                        end's sphere: AreaLight_AddTube lights the three as three lights)
+//   AreaLight_ShapeLobe  AreaLight_Lobe over a polygon, a sphere, a disk or a tube's part
+//   AreaLight_TubeLobe   AreaLight_Lobe over a whole tube (its three parts summed in one lobe)
 //   AreaLight_WalkLobe   AreaLight_Lobe over a light's polygon or an explicit parallelogram
 //                        (AreaLightQuad: a tube's facing quad)
 //
@@ -74,9 +77,15 @@
 //   RTPBR_AREA_LIGHT_TUBES  0 (default); 1: AreaLight_AddTube, which the host calls for its tube
 //                          (capsule) lights (ltc_lines.h's LTC_EvaluateTube decomposition: the
 //                          facing quad walked as a polygon plus the two end spheres, weighted by
-//                          LTC_TubeWeights, every lobe's form factor and vector form factors
-//                          summed with those weights), into the same sum as its polygons;
-//                          AreaLight_AddShape and AreaLight_ShapeLobe take a last flag, tubeLight
+//                          LTC_TubeWeights, each of the three evaluated as a light of its own,
+//                          its radiance times its weight), into the same sum as its polygons;
+//                          AreaLight_AddShape takes a last flag, tubeLight, and
+//                          AreaLight_ShapeLobe a last part, tubePart (RTPBR_AREA_LIGHT_TUBE_*)
+//   RTPBR_AREA_LIGHT_TUBE_UNROLL  0 (default): a tube's three parts in a loop (one copy of the
+//                          evaluation: a quad's or a sphere's registers); 1: unrolled, three
+//                          copies (faster where registers do not bind, e.g. on a CPU: lavapipe
+//                          111 against 264 ns per pixel-light, but 112 VGPRs on navi21 in the
+//                          engine's basic variant, where the loop takes 96)
 //   RTPBR_AREA_LIGHT_FULL  1 (default): every lobe surface.h resolves (Disney, coat, sheen,
 //                          anisotropy); 0: metallic-roughness without them (the engine's
 //                          basic variant: fewer registers, the streak estimate on GGX).
@@ -189,6 +198,9 @@
 #ifndef RTPBR_AREA_LIGHT_TUBES
 #define RTPBR_AREA_LIGHT_TUBES 0
 #endif
+#ifndef RTPBR_AREA_LIGHT_TUBE_UNROLL
+#define RTPBR_AREA_LIGHT_TUBE_UNROLL 0
+#endif
 // The sides of the equal-area polygon a sphere's disk is clipped as (RTPBR_AREA_LIGHT_SPHERE_CLIP).
 #ifndef RTPBR_AREA_LIGHT_SPHERE_SIDES
 #define RTPBR_AREA_LIGHT_SPHERE_SIDES 12
@@ -222,13 +234,20 @@
 #define RTPBR_AREA_LIGHT_TEXTURED_FLAG false
 #endif
 // With RTPBR_AREA_LIGHT_TUBES the functions that take a disk light's kind take a tube light's
-// after it (and after texturedLight in AreaLight_AddShape): the parameter tubeLight.
+// after it (and after texturedLight in AreaLight_AddShape): AreaLight_AddShape the flag
+// tubeLight, AreaLight_ShapeLobe (and AreaLight_AddShapePart) the part tubePart, one of
+// RTPBR_AREA_LIGHT_TUBE_NONE (not a tube), _QUAD (the facing quad alone), _END1, _END2 (an end's
+// sphere alone); AreaLight_TubeLobe is the three parts summed in one lobe.
 #if RTPBR_AREA_LIGHT_TUBES
 #define RTPBR_AREA_LIGHT_TUBE_PARAM , bool tubeLight
 #define RTPBR_AREA_LIGHT_TUBE_ARG(x) , x
+#define RTPBR_AREA_LIGHT_TUBE_PART_PARAM , uint tubePart
+#define RTPBR_AREA_LIGHT_TUBE_PART_ARG(x) , x
 #else
 #define RTPBR_AREA_LIGHT_TUBE_PARAM
 #define RTPBR_AREA_LIGHT_TUBE_ARG(x)
+#define RTPBR_AREA_LIGHT_TUBE_PART_PARAM
+#define RTPBR_AREA_LIGHT_TUBE_PART_ARG(x)
 #endif
 // The streak estimate runs in the metallic-roughness evaluation on GGX (its registers do not
 // fit the full one's).
@@ -242,6 +261,11 @@ RTPBR_NAMESPACE_BEGIN
 
 // No light (AreaLightPixel.streakLight).
 RTPBR_CONST uint RTPBR_AREA_LIGHT_NONE = 0xffffffffu;
+// A tube light's parts (AreaLight_ShapeLobe's tubePart, RTPBR_AREA_LIGHT_TUBES).
+RTPBR_CONST uint RTPBR_AREA_LIGHT_TUBE_NONE = 0u; // not a tube
+RTPBR_CONST uint RTPBR_AREA_LIGHT_TUBE_QUAD = 1u; // its facing quad (LTC_TubeQuad)
+RTPBR_CONST uint RTPBR_AREA_LIGHT_TUBE_END1 = 2u; // its first end's sphere (_END2: the second's)
+RTPBR_CONST uint RTPBR_AREA_LIGHT_TUBE_END2 = 3u;
 
 // A point's state across its lights (AreaLight_Begin).
 struct AreaLightPixel {
@@ -284,8 +308,10 @@ RTPBR_FN AreaLightSum AreaLight_SumBegin() {
 }
 
 // A parallelogram walked in place of a light's own vertices (AreaLight_WalkLobe: a tube's facing
-// quad, LTC_TubeQuad): corners o, o + u, o + u + v, o + v (world space); on = false: the light's
-// own polygon (Host_LightVertex).
+// quad, LTC_TubeQuad): corners o, o + u, o + u + v, o + v, in the LTC frame and relative to the
+// shading point (o = ltcFrame (corner - P)); on = false: the light's own polygon
+// (Host_LightVertex). (Registers: held in world space and moved into the frame at each vertex,
+// it spilled the engine's full variant over tubes on gfx1100, 3 VGPRs; in the frame, none.)
 struct AreaLightQuad {
     rtpbr_float3 o;
     rtpbr_float3 u;
@@ -302,10 +328,11 @@ RTPBR_FN AreaLightQuad AreaLight_NoQuad() {
     return q;
 }
 
-// Vertex k of light i (Host_LightVertex), or of the parallelogram quad where quad.on.
-RTPBR_FN rtpbr_float3 AreaLight_Vertex(uint i, uint k, AreaLightQuad quad) {
+// Vertex k of light i seen from P in the LTC frame ltcFrame (Host_LightVertex), or of the
+// parallelogram quad where quad.on (already in that frame).
+RTPBR_FN rtpbr_float3 AreaLight_Vertex(uint i, uint k, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, AreaLightQuad quad) {
     if (!quad.on)
-        return Host_LightVertex(i, k);
+        return rtpbr_mul(ltcFrame, Host_LightVertex(i, k) - P);
     return quad.o + (k == 1u || k == 2u ? quad.u : RTPBR_F3(0.0f)) + (k >= 2u ? quad.v : RTPBR_F3(0.0f));
 }
 
@@ -320,7 +347,7 @@ RTPBR_FN LtcSegment AreaLight_EdgeStep(uint i, rtpbr_float3 P, rtpbr_float3x3 lt
     LtcSegment seg;
     rtpbr_float3 b = a;
     if (k <= count) {
-        b = k < count ? rtpbr_mul(ltcFrame, AreaLight_Vertex(i, k, quad) - P) : first;
+        b = k < count ? AreaLight_Vertex(i, k, P, ltcFrame, quad) : first;
         seg = LTC_ClipEdge(horizon, a, b);
     } else {
         seg = LTC_ClipClose(horizon);
@@ -352,7 +379,7 @@ RTPBR_FN float AreaLight_WalkLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFram
     LtcLobe lobe = LTC_LobeBegin(minv);
     F = RTPBR_F3(0.0f);
     uint count = quad.on ? 4u : Host_LightVertexCount(i);
-    rtpbr_float3 first = rtpbr_mul(ltcFrame, AreaLight_Vertex(i, 0u, quad) - P);
+    rtpbr_float3 first = AreaLight_Vertex(i, 0u, P, ltcFrame, quad);
     rtpbr_float3 a = first;
     RTPBR_UNROLL for (uint k = 1u; k <= count + 1u; ++k) {
         LtcSegment seg = AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a, quad);
@@ -594,9 +621,9 @@ RTPBR_FN float AreaLight_TubeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFram
         LtcPolygon q = LTC_TubeQuad(P, p1, p2, radius);
         if (q.count > 0) {
             AreaLightQuad quad;
-            quad.o = q.v[0];
-            quad.u = q.v[1] - q.v[0];
-            quad.v = q.v[3] - q.v[0];
+            quad.o = rtpbr_mul(ltcFrame, q.v[0] - P);
+            quad.u = rtpbr_mul(ltcFrame, q.v[1] - q.v[0]);
+            quad.v = rtpbr_mul(ltcFrame, q.v[3] - q.v[0]);
             quad.on = true;
             ff += wt.x * AreaLight_WalkLobe(i, P, ltcFrame, minv, Fp, Flp, quad);
             F += (Fp.z < 0.0f ? -Fp : Fp) * wt.x;
@@ -615,17 +642,69 @@ RTPBR_FN float AreaLight_TubeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFram
     }
     return min(ff, 1.0f);
 }
+
+// The weight of tube light i's part (RTPBR_AREA_LIGHT_TUBE_QUAD, _END1, _END2) at P: its
+// LTC_TubeWeights component; inside the capsule, 1 for the quad (AreaLight_TubePartLobe: the
+// light fills the view) and 0 for the ends.
+RTPBR_FN float AreaLight_TubePartWeight(uint i, uint part, rtpbr_float3 P) {
+    rtpbr_float4 end1 = Host_LightTube(i, 0u), end2 = Host_LightTube(i, 1u);
+    rtpbr_float3 p1 = rtpbr_float3(end1.x, end1.y, end1.z), p2 = rtpbr_float3(end2.x, end2.y, end2.z);
+    rtpbr_float3 axis = p2 - p1;
+    float len2 = dot(axis, axis);
+    float h = len2 > 0.0f ? rtpbr_saturate(dot(P - p1, axis) / len2) : 0.0f;
+    rtpbr_float3 nearest = p1 + axis * h - P;
+    if (!(dot(nearest, nearest) > end1.w * end1.w))
+        return part == RTPBR_AREA_LIGHT_TUBE_QUAD ? 1.0f : 0.0f;
+    rtpbr_float3 wt = LTC_TubeWeights(P, p1, p2, end1.w);
+    return part == RTPBR_AREA_LIGHT_TUBE_QUAD ? wt.x : part == RTPBR_AREA_LIGHT_TUBE_END1 ? wt.y : wt.z;
+}
+
+// AreaLight_Lobe over one part of tube light i (RTPBR_AREA_LIGHT_TUBE_QUAD: the facing quad,
+// walked as AreaLight_TubeLobe walks it, F oriented to z >= 0; _END1, _END2: an end's sphere,
+// AreaLight_SphereLobeAt), unweighted (AreaLight_TubePartWeight). Inside the capsule the quad
+// gives 1, F = Fl = (0, 0, 1). The three parts weighted and summed are AreaLight_TubeLobe; one
+// at a time each holds a quad's or a sphere's state alone (registers: AreaLight_AddShapePart).
+RTPBR_FN float AreaLight_TubePartLobe(uint i, uint part, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+                                      RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl) {
+    rtpbr_float4 end1 = Host_LightTube(i, 0u), end2 = Host_LightTube(i, 1u);
+    rtpbr_float3 p1 = rtpbr_float3(end1.x, end1.y, end1.z), p2 = rtpbr_float3(end2.x, end2.y, end2.z);
+    if (part != RTPBR_AREA_LIGHT_TUBE_QUAD)
+        return AreaLight_SphereLobeAt(rtpbr_float4(part == RTPBR_AREA_LIGHT_TUBE_END1 ? p1 : p2, end1.w), P, ltcFrame, minv, F, Fl);
+    rtpbr_float3 axis = p2 - p1;
+    float len2 = dot(axis, axis);
+    float h = len2 > 0.0f ? rtpbr_saturate(dot(P - p1, axis) / len2) : 0.0f;
+    rtpbr_float3 nearest = p1 + axis * h - P;
+    F = rtpbr_float3(0.0f, 0.0f, 1.0f);
+    Fl = F;
+    if (!(dot(nearest, nearest) > end1.w * end1.w))
+        return 1.0f;
+    F = RTPBR_F3(0.0f);
+    Fl = F;
+    LtcPolygon q = LTC_TubeQuad(P, p1, p2, end1.w);
+    if (q.count == 0)
+        return 0.0f;
+    AreaLightQuad quad;
+    quad.o = rtpbr_mul(ltcFrame, q.v[0] - P);
+    quad.u = rtpbr_mul(ltcFrame, q.v[1] - q.v[0]);
+    quad.v = rtpbr_mul(ltcFrame, q.v[3] - q.v[0]);
+    quad.on = true;
+    float ff = AreaLight_WalkLobe(i, P, ltcFrame, minv, F, Fl, quad);
+    F = F.z < 0.0f ? -F : F;
+    return ff;
+}
 #endif
 
 // AreaLight_Lobe, or AreaLight_SphereLobe where sphereLight (RTPBR_AREA_LIGHT_SPHERES; a disk
-// where diskLight too, RTPBR_AREA_LIGHT_DISKS), or AreaLight_TubeLobe where tubeLight
-// (RTPBR_AREA_LIGHT_TUBES; the others then do not matter).
+// where diskLight too, RTPBR_AREA_LIGHT_DISKS), or with RTPBR_AREA_LIGHT_TUBES a tube's part
+// where tubePart is not RTPBR_AREA_LIGHT_TUBE_NONE (AreaLight_TubePartLobe; the others then do
+// not matter). (The whole tube in one lobe, AreaLight_TubeLobe, is not a case here: in a loop
+// over a tube's parts its state joined every part's and took the registers it saves.)
 RTPBR_FN float AreaLight_ShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
                                    RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM
-                                       RTPBR_AREA_LIGHT_TUBE_PARAM) {
+                                       RTPBR_AREA_LIGHT_TUBE_PART_PARAM) {
 #if RTPBR_AREA_LIGHT_TUBES
-    if (tubeLight)
-        return AreaLight_TubeLobe(i, P, ltcFrame, minv, F, Fl);
+    if (tubePart != RTPBR_AREA_LIGHT_TUBE_NONE)
+        return AreaLight_TubePartLobe(i, tubePart, P, ltcFrame, minv, F, Fl);
 #endif
 #if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS
     if (sphereLight)
@@ -817,22 +896,29 @@ RTPBR_FN rtpbr_float3 AreaLight_TexturedQuadLambert(uint i, rtpbr_float3 P, rtpb
 // polygon's: in the engine's full variant that spilled, so the engine calls the two in loops
 // of their own, docs/performance.md, 12). With RTPBR_AREA_LIGHT_DISKS, AreaLight_AddDisk where
 // the last flag, diskLight (sphereLight then does not matter).
-RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
-                                 rtpbr_float3 N, uint i, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM
-                                     RTPBR_AREA_LIGHT_TEXTURE_PARAM RTPBR_AREA_LIGHT_TUBE_PARAM) {
+// AreaLight_AddShapePart: the same, with RTPBR_AREA_LIGHT_TUBES over one part of a tube light
+// (tubePart: AreaLight_AddShape calls it for each).
+RTPBR_FN void AreaLight_AddShapePart(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
+                                     rtpbr_float3 N, uint i, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM
+                                         RTPBR_AREA_LIGHT_TEXTURE_PARAM RTPBR_AREA_LIGHT_TUBE_PART_PARAM) {
     // P on the light's plane sees it edge-on; behind a one-sided light, nothing; a light
     // whose bounding sphere is below the horizon, nothing. A sphere light: below the horizon
     // or beyond its range, nothing.
     rtpbr_float4 sphere = Host_LightSphere(i);
-    float window = 1.0f; // a sphere light's range window
+    float window = 1.0f; // a sphere light's range window (a tube's part: its weight)
 #if RTPBR_AREA_LIGHT_TUBES
-    // A tube light: wholly below the horizon (both ends' centres more than the radius below it),
-    // nothing; no range window. From here on it is lit as a sphere is (sphereLight: every choice
-    // below alike), its lobes by AreaLight_TubeLobe.
-    if (tubeLight) {
+    // A tube light's part: the tube wholly below the horizon (both ends' centres more than the
+    // radius below it), nothing; a part of weight 0 (AreaLight_TubePartWeight), nothing; no
+    // range window: the window is the part's weight instead (the radiance's scale). From here on
+    // it is lit as a sphere is (sphereLight: every choice below alike), its lobes by
+    // AreaLight_TubePartLobe.
+    if (tubePart != RTPBR_AREA_LIGHT_TUBE_NONE) {
         sphereLight = true;
         rtpbr_float4 end1 = Host_LightTube(i, 0u), end2 = Host_LightTube(i, 1u);
         if (!(max(dot(N, rtpbr_float3(end1.x, end1.y, end1.z) - P), dot(N, rtpbr_float3(end2.x, end2.y, end2.z) - P)) > -end1.w))
+            return;
+        window = AreaLight_TubePartWeight(i, tubePart, P);
+        if (!(window > 0.0f))
             return;
     } else
 #endif
@@ -877,7 +963,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
     bool streakSized = !sphereLight && !RTPBR_AREA_LIGHT_TEXTURED_FLAG && LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
 #endif
     rtpbr_float3 F, Fl;
-    float specularFF = AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, F, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_ARG(tubeLight));
+    float specularFF = AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, F, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart));
     // A textured quad's emission where each lobe looks (ltc_textured.h: the point where the
     // lobe's vector form factor meets the quad, read from the chain prefiltered to the lobe's
     // footprint): texS for the specular lobe and its multiple scattering, read here (Fl is the
@@ -922,7 +1008,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
     // second pass did not fit the registers (docs/performance.md, 12).
     if (px.pointOn && specularFF < 0.5f && !sphereLight) {
         rtpbr_float3 unusedF2;
-        AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, unusedF2, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_ARG(tubeLight));
+        AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, unusedF2, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart));
         float norm = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.tableRoughness)).x;
         specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, norm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
     }
@@ -966,7 +1052,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
 #if RTPBR_AREA_LIGHT_FULL
     if (s.disney) {
         float LoH = rtpbr_saturate(dot(lRep, normalize(lRep + px.vLocal)));
-        base = px.burleyScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1d), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_ARG(tubeLight)) +
+        base = px.burleyScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1d), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart)) +
                (s.dm.subsurface * Disney_DiffuseLobe(px.dss, s.NoV, muRep, LoH) + Disney_SheenLobe(s.dm, LoH)) *
                    (RTPBR_PI * ff);
     } else
@@ -980,7 +1066,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
 #if RTPBR_AREA_LIGHT_FULL
     if (s.sheen)
         lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, Host_TableSheenE(muRep, s.sheenRoughness)) +
-             texD * px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_ARG(tubeLight));
+             texD * px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart));
     lo *= s.baseAttenuation;
 #if RTPBR_AREA_LIGHT_TEXTURED
     if (texturedLight)
@@ -988,7 +1074,7 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
 #endif
     if (px.coated) {
         rtpbr_float3 coatFl;
-        rtpbr_float3 coat = texS * (px.coatScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, coatFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_ARG(tubeLight)) +
+        rtpbr_float3 coat = texS * (px.coatScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, coatFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart)) +
               s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(Host_TableE(muRep, s.coatRoughness), s.Eavgc, lenF), s.Eavgc, ff));
 #if RTPBR_AREA_LIGHT_TEXTURED
         // the coat, often the sharpest lobe: its own point and footprint
@@ -1010,6 +1096,37 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
     if (sphereLight)
         visibility *= window;
     acc.sum += Host_LightRadiance(i) * lo * visibility;
+}
+
+// AreaLight_AddShapePart over a light; with RTPBR_AREA_LIGHT_TUBES and tubeLight, over each part
+// of the tube in turn (RTPBR_AREA_LIGHT_TUBE_QUAD, _END1, _END2: three lights, each of its
+// part's radiance times its weight, each corrected on its own: Kulla-Conty's mean albedo, the
+// point correction), in a loop: one copy of the evaluation for the three. A tube then costs up
+// to three lights' time but a quad's or a sphere's registers (its parts summed in one lobe,
+// AreaLight_TubeLobe, took the engine's basic variant to 112 VGPRs on navi21 and spilled the
+// full one on gfx1100). tubeLight known at compile time leaves one of the two paths; a run-time
+// flag keeps both (two copies of the evaluation: a loop over the parts for every light kept
+// every tube branch in every other light's code, 3x the instructions of the engine's variants).
+RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
+                                 rtpbr_float3 N, uint i, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM
+                                     RTPBR_AREA_LIGHT_TEXTURE_PARAM RTPBR_AREA_LIGHT_TUBE_PARAM) {
+#if RTPBR_AREA_LIGHT_TUBES
+    if (tubeLight) {
+#if RTPBR_AREA_LIGHT_TUBE_UNROLL
+        RTPBR_UNROLL
+#else
+        RTPBR_DONT_UNROLL
+#endif
+        for (uint part = RTPBR_AREA_LIGHT_TUBE_QUAD; part <= RTPBR_AREA_LIGHT_TUBE_END2; ++part)
+            AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
+                                                          RTPBR_AREA_LIGHT_TUBE_PART_ARG(part));
+        return;
+    }
+    AreaLight_AddShapePart(px, acc, s, P, N, i, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight)
+                                              RTPBR_AREA_LIGHT_TEXTURE_ARG(texturedLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_NONE));
+#else
+    AreaLight_AddShapePart(px, acc, s, P, N, i, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TEXTURE_ARG(texturedLight));
+#endif
 }
 
 // Polygon light i's reflected radiance at P (x its radiance and visibility) added to acc
@@ -1072,10 +1189,12 @@ RTPBR_FN void AreaLight_AddTexturedQuad(AreaLightPixel px, RTPBR_INOUT(AreaLight
 
 #if RTPBR_AREA_LIGHT_TUBES
 // Tube (capsule) light i's reflected radiance at P (x its radiance and visibility) added to acc,
-// as AreaLight_Add's for a polygon: every lobe over the tube (AreaLight_TubeLobe: the facing
-// quad and the end spheres, weighted as LTC_EvaluateTube), with Kulla-Conty and the energy
-// bound, the point correction in the metallic-roughness evaluation (RTPBR_AREA_LIGHT_FULL 0; not
-// in the full one: as a sphere's); no streak estimate, no range window. Nothing when the tube is
+// as AreaLight_Add's for a polygon: LTC_EvaluateTube's decomposition, the facing quad and the
+// end spheres weighted by LTC_TubeWeights, each part lit as a light of its own (its radiance x
+// its weight: AreaLight_AddShape), every lobe with Kulla-Conty and the energy bound, the point
+// correction in the metallic-roughness evaluation (RTPBR_AREA_LIGHT_FULL 0; not in the full one:
+// as a sphere's); no streak estimate, no range window. Every lobe's form factor is the sum of
+// the parts' (AreaLight_TubeLobe's); the corrections are each part's. Nothing when the tube is
 // wholly below the horizon. A point inside the capsule sees only the light.
 // Error: LTC_EvaluateTube's (ltc_lines.h: its ends), plus the LTC fit's.
 RTPBR_FN void AreaLight_AddTube(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
