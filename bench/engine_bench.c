@@ -66,11 +66,14 @@ static int parse_sizes(const char *text, int (*out)[2], int max)
 //   disks      the benchmark's squares as disks of their area, radiance and facing (the
 //              spheres' lighting variants, AreaLight_AddDisk: issue 30);
 //   textured   the benchmark's squares with an emission texture (a 64 x 64 checker of 8 x 8
-//              squares, one for all: AreaLight_AddTexturedQuad in the spheres' variants).
+//              squares, one for all: AreaLight_AddTexturedQuad in the spheres' variants);
+//   tubes      the benchmark's squares as tubes (capsules) along x, as long as the square's
+//              side, of a quarter of its half-side in radius, of its radiance (the tubes'
+//              lighting variants, AreaLight_AddTube: issue 30).
 typedef enum bench_scene { SCENE_BENCHMARK, SCENE_FLOOR, SCENE_FULL, SCENE_POINTS, SCENE_SPHERES, SCENE_DISKS,
-                           SCENE_TEXTURED, SCENE_COUNT } bench_scene;
+                           SCENE_TEXTURED, SCENE_TUBES, SCENE_COUNT } bench_scene;
 static const char *const scene_names[SCENE_COUNT] = {"benchmark", "floor", "full", "points", "spheres", "disks",
-                                                     "textured"};
+                                                     "textured", "tubes"};
 
 static void square_light(rtpbr_light_desc *light, float x, float y, float z, float s, int up)
 {
@@ -125,6 +128,9 @@ static rtpbr_result make_scene(rtpbr_context *ctx, bench_scene kind, int n, rtpb
             lights[i] = (rtpbr_light_desc){.type = RTPBR_LIGHT_DISK, .position = {x, y, z},
                                            .direction = {0.0f, 0.0f, i % 4 == 3 ? 1.0f : -1.0f},
                                            .radius = 2.0f * half / 1.7724539f, .emission = {20.0f, 20.0f, 20.0f}};
+        else if (kind == SCENE_TUBES)
+            lights[i] = (rtpbr_light_desc){.type = RTPBR_LIGHT_TUBE, .position = {x, y, z}, .direction = {1.0f, 0.0f, 0.0f},
+                                           .length = 2.0f * half, .radius = 0.25f * half, .emission = {20.0f, 20.0f, 20.0f}};
         else
             square_light(&lights[i], x, y, z, half, i % 4 == 3);
         if (kind == SCENE_TEXTURED) lights[i].emission_texture = 1;
@@ -191,7 +197,7 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
 
 static const char *const usage =
     "usage: rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu]\n"
-    "                          [--scene benchmark|floor|full|points|spheres|disks|textured|all]\n"
+    "                          [--scene benchmark|floor|full|points|spheres|disks|textured|tubes|all]\n"
     "Median frame time of rtpbr_render against light count and resolution; compare the ratios\n"
     "printed in one run.\n"
     "  --repeat N     frames per configuration (1..1000; default 5)\n"
@@ -200,7 +206,7 @@ static const char *const usage =
     "  --cpu          the process CPU time (lavapipe's threads included) instead of wall time\n"
     "  --scene NAME   benchmark, floor (metal floor at 45 degrees, every light seen by\n"
     "                 every pixel), full (materials of the full lighting variant), points\n"
-    "                 (the benchmark's layout with point lights), spheres (with radii), disks, textured, all\n"
+    "                 (the benchmark's layout with point lights), spheres (with radii), disks, textured, tubes, all\n"
     "                 (default)\n"
     "  -h, --help     this text\n";
 

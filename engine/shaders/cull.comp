@@ -27,9 +27,11 @@
 // form factor is small (the sun's: 2e-5) but its radiance large.
 // A sphere (a point light with a radius) is kept unless the box is beyond its range from its
 // centre or its form factor from the whole box, at most r^2 / d^2, is below the threshold (4).
-// A disk is culled as a polygon ((1) by its plane, (2) by its bounding sphere and area).
-// Each kind goes to its own mask (polygons, punctual lights, spheres, disks, textured quads;
-// the spheres' lighting variants shade spheres and disks, the textured ones all three).
+// A disk is culled as a polygon ((1) by its plane, (2) by its bounding sphere and area); a tube
+// too (two-sided: (2) only; its area 4 pi r^2 + 2 pi r L bounds its projected area 2 r L + pi r^2).
+// Each kind goes to its own mask (polygons, punctual lights, spheres, disks, textured quads,
+// tubes; the spheres' lighting variants shade spheres and disks, the textured ones textured quads too,
+// the tubes' ones all four).
 #include "rtpbr_shared.h"
 #include "rtpbr/lang.h"
 #include "rtpbr/config.h"
@@ -62,7 +64,8 @@ bool light_may_contribute(uint i, vec3 boxMin, vec3 boxMax)
         return !(frame.cull_form_factor >= 0.0f && d > sphere.w &&
                  lights[i].area < frame.cull_form_factor * 3.14159265f * d * d);
     }
-    if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && shape != uint(RTPBR_LIGHT_SHAPE_DISK)) {
+    if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && shape != uint(RTPBR_LIGHT_SHAPE_DISK) &&
+        shape != uint(RTPBR_LIGHT_SHAPE_TUBE)) {
         vec4 reach = lights[i].sphere;
         return length(reach.xyz - clamp(reach.xyz, boxMin, boxMax)) < reach.w;
     }
@@ -112,10 +115,10 @@ void main()
             }
         }
 
-    bool anyLight = false, anySphere = false, anyTextured = false;
+    bool anyLight = false, anySphere = false, anyTextured = false, anyTube = false;
     uint words = (frame.light_count + 31u) / 32u;
     for (uint w = 0u; w < words; ++w) {
-        uint bits = 0u, punctualBits = 0u, sphereBits = 0u, diskBits = 0u, texturedBits = 0u; // polygons, punctual lights, spheres, disks, textured quads
+        uint bits = 0u, punctualBits = 0u, sphereBits = 0u, diskBits = 0u, texturedBits = 0u, tubeBits = 0u; // polygons, punctual lights, spheres, disks, textured quads, tubes
         if (materialClass != RTPBR_TILE_CLASS_EMPTY) {
             uint count = min(32u, frame.light_count - 32u * w);
             for (uint b = 0u; b < count; ++b)
@@ -125,6 +128,7 @@ void main()
                     else if (shape == uint(RTPBR_LIGHT_SHAPE_POLYGON)) bits |= 1u << b;
                     else if (shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) sphereBits |= 1u << b;
                     else if (shape == uint(RTPBR_LIGHT_SHAPE_DISK)) diskBits |= 1u << b;
+                    else if (shape == uint(RTPBR_LIGHT_SHAPE_TUBE)) tubeBits |= 1u << b;
                     else punctualBits |= 1u << b;
                 }
         }
@@ -133,12 +137,16 @@ void main()
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 2u * uint(RTPBR_TILE_MASK_WORDS) + w] = sphereBits;
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 3u * uint(RTPBR_TILE_MASK_WORDS) + w] = diskBits;
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 4u * uint(RTPBR_TILE_MASK_WORDS) + w] = texturedBits;
-        anyLight = anyLight || (bits | punctualBits | sphereBits | diskBits | texturedBits) != 0u;
+        tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 5u * uint(RTPBR_TILE_MASK_WORDS) + w] = tubeBits;
+        anyLight = anyLight || (bits | punctualBits | sphereBits | diskBits | texturedBits | tubeBits) != 0u;
         anySphere = anySphere || (sphereBits | diskBits) != 0u;
+        anyTube = anyTube || tubeBits != 0u;
         anyTextured = anyTextured || texturedBits != 0u;
     }
     uint tileClass = anyLight ? materialClass : RTPBR_TILE_CLASS_EMPTY;
-    if (anyTextured && tileClass != RTPBR_TILE_CLASS_EMPTY)
+    if (anyTube && tileClass != RTPBR_TILE_CLASS_EMPTY)
+        tileClass += uint(RTPBR_TILE_CLASS_BASIC_TUBES - RTPBR_TILE_CLASS_BASIC);
+    else if (anyTextured && tileClass != RTPBR_TILE_CLASS_EMPTY)
         tileClass += uint(RTPBR_TILE_CLASS_BASIC_TEXTURED - RTPBR_TILE_CLASS_BASIC);
     else if (anySphere && tileClass != RTPBR_TILE_CLASS_EMPTY)
         tileClass += uint(RTPBR_TILE_CLASS_BASIC_SPHERES - RTPBR_TILE_CLASS_BASIC);

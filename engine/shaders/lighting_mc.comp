@@ -25,6 +25,9 @@
 // light (a point light with a radius) is sampled uniformly in the cone it subtends (pdf
 // 1 / (2 pi (1 - cos of its half-angle))), and a BRDF direction hits it when inside that cone;
 // its radiance is windowed by its range at the distance from its centre.
+// A tube (capsule) light: as a polygon, its surface's points uniform by area (pdf d^2 /
+// (cos_light A), A = 4 pi r^2 + 2 pi r L), cos_light by the point's own normal (> 0 only: the
+// convex capsule hides the rest), and a BRDF direction meets it at the ray's first hit.
 // No per-tile culling: every light is summed at every pixel (lights behind a one-sided light's
 // plane are skipped per pixel, where the integrand is 0). The host splits the pass into
 // dispatches over ranges of lights and samples (lavapipe ends every loop of a shader run after
@@ -56,6 +59,7 @@ layout(push_constant, std430) uniform McParams {
 
 #include "lighting_common.glsl"
 #include "mc_sampling.glsl"
+#include "capsule.glsl"
 // The textured quads' emission (rtpbr_shared.h: RTPBR_BINDING_LIGHT_TEXTURES), read unblurred
 // (level 0) at the sample's point.
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_TEXTURES) uniform sampler2DArray light_textures;
@@ -98,14 +102,17 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
     for (uint i = mc.first_light; i < lightEnd; ++i) {
         // The light's fields are read from the buffer where they are used (no private copy).
         uint count = min(lights[i].vertex_count, uint(RTPBR_SHADER_MAX_POLYGON_VERTICES));
-        bool twoSided = lights[i].two_sided != 0.0f;
+        uint shape = lights[i].shape;
+        // A tube: its capsule's points uniform by area (capsule.glsl) and the first point a ray
+        // meets (capsule_ray), each one-sided by its own normal (the capsule hides the others).
+        bool tubeLight = shape == uint(RTPBR_LIGHT_SHAPE_TUBE);
+        bool twoSided = lights[i].two_sided != 0.0f && !tubeLight;
         vec4 plane = lights[i].plane;
         float side = dot(plane.xyz, P) + plane.w;
         // Fan triangles (v0, vk, vk+1), k = 1..count-2: vertices[k].w is the area of those below
         // vk (rtpbr_shared.h, RTPBR_LIGHT_FIELDS); area is the polygon's.
         vec3 v0 = lights[i].vertices[0].xyz;
         float area = lights[i].area;
-        uint shape = lights[i].shape;
         // A sphere: the cone it subtends from P (axis sphereAxis, cos of its half-angle
         // cosMax; every direction from inside it, cosMax = -1), sampled uniformly (pdf
         // 1 / (2 pi (1 - cosMax))); a direction hits it exactly when it is inside the cone.
@@ -121,7 +128,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
         float window = sphereLight ? Punctual_RangeWindow(centre2, lights[i].vertices[0].w) : 1.0f;
         // A disk: as a polygon, its points uniform by area (mc_disk_point, mc_ray_disk).
         bool diskLight = shape == uint(RTPBR_LIGHT_SHAPE_DISK);
-        bool lit = ((shape == uint(RTPBR_LIGHT_SHAPE_POLYGON) && count >= 3u || diskLight) && area > 0.0f &&
+        bool lit = ((shape == uint(RTPBR_LIGHT_SHAPE_POLYGON) && count >= 3u || diskLight || tubeLight) && area > 0.0f &&
                     (twoSided ? side != 0.0f : side > 0.0f)) ||
                    (sphereLight && window > 0.0f && centre2 > 0.0f);
         uint n = lit ? mc.sample_count : 0u;
@@ -137,11 +144,13 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
             vec3 wi;
             float t;
             bool hit;
+            vec3 lightNormal = plane.xyz; // a tube's: at the point sampled or met
             if (fromBrdf) {
                 // Strategy 2: a visible normal of the specular lobe, reflected; does it hit?
                 vec3 wiLocal = Reflect_About(wo, MC_SAMPLE_VNDF(wo, alphaSample.x, alphaSample.y, u));
                 wi = T * wiLocal.x + B * wiLocal.y + N * wiLocal.z;
                 hit = sphereLight ? dot(wi, sphereAxis) >= cosMax
+                      : tubeLight ? capsule_ray(P, wi, v0, lights[i].vertices[1].xyz, lights[i].vertices[0].w, t, lightNormal)
                       : diskLight ? mc_ray_disk(P, wi, i, t) : mc_ray_polygon(P, wi, i, count, t);
             } else if (sphereLight) {
                 // Strategy 1 for a sphere: a direction uniform in its cone.
@@ -157,14 +166,15 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
                 uint pick = 1u;
                 for (uint k = 2u; k + 1u < count; ++k)
                     if (target >= lights[i].vertices[k].w) pick = k;
-                vec3 toLight = (diskLight ? mc_disk_point(i, u)
+                vec3 toLight = (tubeLight ? capsule_point(v0, lights[i].vertices[1].xyz, lights[i].vertices[0].w, u, lightNormal)
+                                : diskLight ? mc_disk_point(i, u)
                                           : mc_triangle_point(v0, lights[i].vertices[pick].xyz, lights[i].vertices[pick + 1u].xyz, u)) - P;
                 t = length(toLight);
                 wi = toLight / max(t, 1e-30f);
                 hit = t > 0.0f;
             }
             // The light's front faces -plane.xyz travellers; one-sided lights emit only there.
-            float cosLight = -dot(plane.xyz, wi);
+            float cosLight = -dot(lightNormal, wi);
             hit = hit && (sphereLight || (twoSided ? cosLight != 0.0f : cosLight > 0.0f));
             float pdfLight = hit ? (sphereLight ? 1.0f / (6.28318531f * oneMinusCos) : t * t / (abs(cosLight) * area)) : 0.0f;
 
@@ -190,7 +200,7 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
         }
         vec3 lightTerm = lightSum / float(samples) * window;
         // A punctual light: exact, no sample (added once, by the dispatch of the first samples).
-        if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && !sphereLight && !diskLight) {
+        if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && !sphereLight && !diskLight && !tubeLight) {
             vec4 incident = Punctual_Incident(P, shape, lights[i].vertices[0], lights[i].vertices[1].xyz, lights[i].vertices[2].xy);
             vec3 wiLocal = vec3(dot(incident.xyz, T), dot(incident.xyz, B), dot(incident.xyz, N));
             bool on = mc.first_sample == 0u && wiLocal.z > 0.0f && incident.w > 0.0f;

@@ -242,6 +242,12 @@
 // the light textures, RTPBR_BINDING_LIGHT_TEXTURES): a polygon whose radiance is times its
 // prefiltered texture at (s, t), v0 + s (v1 - v0) + t (v3 - v0); in the tiles' textured mask
 // (the spheres' lighting variants), shaded by area_light.h's AreaLight_AddTexturedQuad.
+// A tube (shape TUBE: rtpbr_light_type's RTPBR_LIGHT_TUBE; vertex_count 0, two_sided 1, plane
+// (0, 0, 0, 1)): vertices[0], vertices[1] = its ends' centres, w the radius r (area_light.h's
+// Host_LightTube), vertices[2] = (unit axis, length L), sphere = (centre, L/2 + r) (a bound),
+// radiance = its uniform radiance, area = 4 pi r^2 + 2 pi r L (its surface: the cull's bound and
+// the samples' density); in the tiles' tube mask (the spheres' lighting variants), shaded by
+// area_light.h's AreaLight_AddTube.
 #define RTPBR_LIGHT_FIELDS(F, S)                                                                  \
     F(S, VEC4, vertices, [RTPBR_SHADER_MAX_POLYGON_VERTICES]) /* xyz; w: fan area below vertex k */ \
     F(S, VEC3, radiance, )     /* emitted radiance, rgb (punctual: intensity) */                   \
@@ -264,6 +270,7 @@
 #define RTPBR_LIGHT_SHAPE_DIRECTIONAL 3
 #define RTPBR_LIGHT_SHAPE_DISK 4
 #define RTPBR_LIGHT_SHAPE_SPHERE 5 // a point light with a radius (not an rtpbr_light_type)
+#define RTPBR_LIGHT_SHAPE_TUBE 6   // rtpbr_light_type's RTPBR_LIGHT_TUBE (5), mapped by the record
 // The bounding radius of a light without a range: everything is within reach.
 #define RTPBR_LIGHT_INFINITE 3.0e38
 
@@ -271,14 +278,15 @@
 #define RTPBR_CULL_GROUP 8
 #define RTPBR_TILE_MASK_WORDS (RTPBR_SHADER_MAX_LIGHTS / 32)
 // A tile's masks: RTPBR_TILE_MASK_WORDS words of its polygonal lights, then as many of its
-// punctual lights, then of its spheres, then of its disks, then of its textured quads (the lighting pass walks each kind
+// punctual lights, then of its spheres, then of its disks, then of its textured quads, then of
+// its tubes (the lighting pass walks each kind
 // without reading a light's shape: on lavapipe a loop choosing by shape ran both kinds' code
 // for every light); then, at RTPBR_TILE_SHADOW_SLOTS, the lights whose shadows the tile traces:
 // RTPBR_SHADER_MAX_SHADOWED_LIGHTS light indices in increasing order, RTPBR_TILE_NO_LIGHT for
 // an empty slot (shadow_select.comp writes them when the frame has shadows; slot k's ratio is
 // layer k of the shadow images).
-#define RTPBR_TILE_SHADOW_SLOTS (5 * RTPBR_TILE_MASK_WORDS)
-#define RTPBR_TILE_MASK_STRIDE (5 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS)
+#define RTPBR_TILE_SHADOW_SLOTS (6 * RTPBR_TILE_MASK_WORDS)
+#define RTPBR_TILE_MASK_STRIDE (6 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS)
 #define RTPBR_TILE_NO_LIGHT 0xffffffffu
 // Tile classes: each has its lighting variant, dispatched indirectly over its tile queue.
 #define RTPBR_TILE_CLASS_EMPTY 0 // no surface pixel or no light left: emission and background
@@ -293,7 +301,10 @@
 // on lavapipe its code alone slowed spheres from 61 to 72 ns per pixel-light).
 #define RTPBR_TILE_CLASS_BASIC_TEXTURED 5
 #define RTPBR_TILE_CLASS_FULL_TEXTURED 6
-#define RTPBR_TILE_CLASS_COUNT 7
+// The same with a tube among the tile's lights: the textured variants plus the tubes' loop.
+#define RTPBR_TILE_CLASS_BASIC_TUBES 7
+#define RTPBR_TILE_CLASS_FULL_TUBES 8
+#define RTPBR_TILE_CLASS_COUNT 9
 
 // Monte Carlo lighting pass push constants (std430; rtpbr_shader_mc, lighting_mc.comp). The
 // pass runs in dispatches over ranges of lights and of samples (lavapipe's loop budget, see

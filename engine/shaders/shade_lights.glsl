@@ -17,6 +17,9 @@ layout(set = 0, binding = RTPBR_BINDING_LUT_LTC_SHEEN_2) uniform sampler2D lut_l
 #ifndef RTPBR_LIGHTING_TEXTURED
 #define RTPBR_LIGHTING_TEXTURED RTPBR_LIGHTING_SPHERES // (the forward pass: its spheres' variant)
 #endif
+#ifndef RTPBR_LIGHTING_TUBES
+#define RTPBR_LIGHTING_TUBES RTPBR_LIGHTING_SPHERES // (the forward pass: its spheres' variant)
+#endif
 #if RTPBR_LIGHTING_TEXTURED
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_TEXTURES) uniform sampler2DArray light_textures;
 #endif
@@ -33,8 +36,8 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_TEXTURES) uniform sampler2DArray l
 // bench/shader-stats' per-light builds over textured quads (not a record's shape: a polygon
 // with a texture).
 #define RTPBR_STATS_SHAPE_TEXTURED_QUAD 16
-// and over tube (capsule) lights (area_light.h's AreaLight_AddTube; the engine has no tube
-// lights yet: what one would cost, its ends and radius read from vertices[0], vertices[1]).
+// and over tube (capsule) lights (area_light.h's AreaLight_AddTube; its ends and radius read
+// from vertices[0], vertices[1], as the engine's tube records: RTPBR_LIGHT_FIELDS).
 #define RTPBR_STATS_SHAPE_TUBE 17
 
 // The library's host bridge (area_light.h): lights from the lights buffer, tables from the
@@ -103,8 +106,9 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 #define RTPBR_AREA_LIGHT_DISKS 1    // AreaLight_AddDisk for the disks' mask
 #define RTPBR_AREA_LIGHT_ROUND_DISKS 1 // (round disks' closed form; ellipses, disk_radius2, the cone's)
 #define RTPBR_AREA_LIGHT_TEXTURED RTPBR_LIGHTING_TEXTURED // AreaLight_AddTexturedQuad for the textured quads' mask
-#if defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_STATS_SHAPE_TUBE
-#define RTPBR_AREA_LIGHT_TUBES 1
+#if RTPBR_LIGHTING_TUBES || (defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_STATS_SHAPE_TUBE)
+#define RTPBR_AREA_LIGHT_TUBES 1 // AreaLight_AddTube for the tubes' mask (RTPBR_LIGHTING_TUBES)
+// A tube's ends' centres and radius (RTPBR_LIGHT_FIELDS, TUBE: vertices[0], vertices[1]).
 vec4 Host_LightTube(uint i, uint k) { return lights[i].vertices[k]; }
 #endif
 // A sphere the horizon cuts: clipped exactly in the basic variant; the full variant's registers
@@ -126,8 +130,8 @@ vec4 Host_LightTube(uint i, uint k) { return lights[i].vertices[k]; }
 // the G-buffer the masks were culled by), each weighted by its shadow ratio
 // shadow_factor(i, pixel) (shadow_ratio.glsl, or 1), added to result (the emission): punctual
 // lights first, straight into it (AreaLight_AddPunctual), then the polygons (AreaLight_Add),
-// the spheres (AreaLight_AddSphere), the disks (AreaLight_AddDisk) and the textured quads
-// (AreaLight_AddTexturedQuad), their sum held to the energy bound (registers:
+// the spheres (AreaLight_AddSphere), the disks (AreaLight_AddDisk), the textured quads
+// (AreaLight_AddTexturedQuad) and the tubes (AreaLight_AddTube), their sum held to the energy bound (registers:
 // docs/performance.md, 11).
 void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pixel, inout vec3 result)
 {
@@ -149,7 +153,7 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
 #elif defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_STATS_SHAPE_TEXTURED_QUAD // every light a textured quad
     AreaLightPixel px = AreaLight_Begin(s, N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
-        AreaLight_AddShape(px, acc, s, P, N, i, false, false, true);
+        AreaLight_AddShape(px, acc, s, P, N, i, false, false, true RTPBR_AREA_LIGHT_TUBE_ARG(false));
 #elif defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_STATS_SHAPE_TUBE // every light a tube
     AreaLightPixel px = AreaLight_Begin(s, N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
@@ -171,7 +175,7 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     for (uint i = 0u; i < frame.light_count; ++i) {
         uint shape = lights[i].shape;
         if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && shape != uint(RTPBR_LIGHT_SHAPE_SPHERE) &&
-            shape != uint(RTPBR_LIGHT_SHAPE_DISK))
+            shape != uint(RTPBR_LIGHT_SHAPE_DISK) && shape != uint(RTPBR_LIGHT_SHAPE_TUBE))
             AreaLight_AddPunctual(result, s, frame3, P, i, shape);
     }
     AreaLightPixel px = AreaLight_Begin(s, N, V);
@@ -182,6 +186,10 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
         if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) AreaLight_AddSphere(px, acc, s, P, N, i);
     for (uint i = 0u; i < frame.light_count; ++i)
         if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_DISK)) AreaLight_AddDisk(px, acc, s, P, N, i);
+#if RTPBR_LIGHTING_TUBES
+    for (uint i = 0u; i < frame.light_count; ++i)
+        if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_TUBE)) AreaLight_AddTube(px, acc, s, P, N, i);
+#endif
 #if RTPBR_LIGHTING_TEXTURED
     for (uint i = 0u; i < frame.light_count; ++i)
         if (lights[i].texture != 0u) AreaLight_AddTexturedQuad(px, acc, s, P, N, i);
@@ -207,7 +215,7 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
         uint textured = tile_masks[maskBase + 4u * uint(RTPBR_TILE_MASK_WORDS) + word];
         for (uint bits = tile_masks[maskBase + word] | textured; bits != 0u; bits &= bits - 1u) {
             uint b = uint(findLSB(bits));
-            AreaLight_AddShape(px, acc, s, P, N, word * 32u + b, false, false, ((textured >> b) & 1u) != 0u);
+            AreaLight_AddShape(px, acc, s, P, N, word * 32u + b, false, false, ((textured >> b) & 1u) != 0u RTPBR_AREA_LIGHT_TUBE_ARG(false));
         }
     }
 #else
@@ -229,6 +237,11 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     for (uint word = 0u; word < words; ++word)
         for (uint bits = tile_masks[maskBase + 4u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_AddTexturedQuad(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
+#endif
+#if RTPBR_LIGHTING_TUBES
+    for (uint word = 0u; word < words; ++word)
+        for (uint bits = tile_masks[maskBase + 5u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
+            AreaLight_AddTube(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
 #endif
 #endif
 #endif

@@ -23,7 +23,10 @@
 // A punctual light (point, spot, directional) takes one ray, w = max(cos_x, 0), V to its
 // position or along its reverse direction. A sphere light: n directions uniform in the cone it
 // subtends (R2 as above), w = max(cos_x, 0), V to where each meets the sphere. A disk: as a
-// polygon, its points uniform by area (polar, R2 as above).
+// polygon, its points uniform by area (polar, R2 as above). A tube: its capsule's points
+// uniform by area, the cylinder's far half mirrored to its near half (capsule_point_toward:
+// the cylinder's density doubled, w halved there), cos_y by each point's own normal (0 facing
+// away).
 // shadow_denoise.comp filters n S and n U and writes their ratio, S / U.
 #include "rtpbr_shared.h"
 #include "shadow_common.glsl"
@@ -34,6 +37,7 @@
 #define RTPBR_SHADOW_FAR 1.0e7f
 
 #include "light.glsl"
+#include "capsule.glsl"
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_LIGHTS, std430) readonly buffer Lights {
     Light lights[];
 };
@@ -64,7 +68,8 @@ void main()
     bool slotUsed = li < frame.light_count;
     li = slotUsed ? li : 0u;
     Light light = lights[li];
-    bool twoSided = light.two_sided != 0.0f;
+    bool tubeLight = light.shape == uint(RTPBR_LIGHT_SHAPE_TUBE);
+    bool twoSided = light.two_sided != 0.0f && !tubeLight; // a tube: each sample's own normal, one-sided
     // Background or an empty slot (both stay 0); behind a one-sided light, or the light below
     // the horizon everywhere: both stay 0.
     bool facing = slotUsed && depth < 1.0f && (twoSided || dot(light.plane.xyz, origin) + light.plane.w > 0.0f);
@@ -75,7 +80,7 @@ void main()
     // A punctual light: one ray (every sample would be the same), to its position or, for a
     // directional light, RTPBR_SHADOW_FAR along its reverse direction; weight N.L.
     bool sphereLight = light.shape == uint(RTPBR_LIGHT_SHAPE_SPHERE);
-    bool punctual = light.shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && !sphereLight && light.shape != uint(RTPBR_LIGHT_SHAPE_DISK);
+    bool punctual = light.shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && !sphereLight && light.shape != uint(RTPBR_LIGHT_SHAPE_DISK) && !tubeLight;
     // A sphere: directions uniform in the cone it subtends from x (from inside it, every
     // direction), each to where it meets the sphere, weight max(cos_x, 0) (the cone's constant
     // density cancels in the ratio).
@@ -123,14 +128,19 @@ void main()
             float root = sqrt(max(b * b - centre2 + radius2, 0.0f));
             y = origin + dir * (insideSphere ? b + root : b - root);
         }
+        // A tube: a point of its surface uniform by area (capsule.glsl), weighted as a
+        // polygon's by its own normal (the capsule hides its points facing away).
+        vec3 lightNormal = light.plane.xyz;
+        float density = 1.0f; // a tube's: capsule_point_toward's (its cylinder's near half, twice as dense)
+        if (tubeLight) y = capsule_point_toward(v0, light.vertices[1].xyz, light.vertices[0].w, u, origin, lightNormal, density);
         vec3 d = y - origin;
         float dist2 = dot(d, d);
         float dist = sqrt(dist2);
         vec3 l = d / dist;
         float cosX = dot(N, l);
-        float cosY = -dot(light.plane.xyz, l);
+        float cosY = -dot(lightNormal, l);
         cosY = twoSided ? abs(cosY) : cosY;
-        float w = cosX > 0.0f && cosY > 0.0f ? light.area * cosX * cosY / dist2 : 0.0f;
+        float w = cosX > 0.0f && cosY > 0.0f ? light.area / density * cosX * cosY / dist2 : 0.0f;
         if (punctual || sphereLight) w = max(cosX, 0.0f);
         unshadowed += w;
         if (w > 0.0f && !bvh_occluded(origin, d, 1.0f - 1e-3f, bvh_hash(h + j))) shadowed += w;

@@ -261,7 +261,7 @@ void rtpbr_light_record(const rtpbr_light_desc *l, const struct rtpbr_gltf_polyg
 // Whether any of count light records is a sphere or a disk (the spheres' lighting variants
 // are needed: their loop shades both).
 bool rtpbr_lights_have_spheres(const rtpbr_shader_light *lights, uint32_t count);
-// The lighting variants count lights need (rtpbr_lighting_pipelines_get): 2 with a textured quad,
+// The lighting variants count lights need (rtpbr_lighting_pipelines_get): 3 with a tube, 2 with a textured quad,
 // else 1 with a sphere or a disk, else 0.
 uint32_t rtpbr_lights_shapes(const rtpbr_shader_light *lights, uint32_t count);
 

@@ -167,11 +167,51 @@ static rtpbr_result validate_disk(const rtpbr_context *ctx, const rtpbr_light_de
     return RTPBR_SUCCESS;
 }
 
+// A tube's checks (rtpbr_light_desc: position, direction = its axis, length, radius, emission).
+static rtpbr_result validate_tube(const rtpbr_context *ctx, const rtpbr_light_desc *l, uint32_t index)
+{
+    if (!rtpbr_finite(l->emission, 3) || !rtpbr_finite(l->position, 3) || !rtpbr_finite(l->direction, 3) ||
+        !isfinite(l->radius) || !isfinite(l->length) || !isfinite(l->range)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                  "light %u (tube) has a NaN or infinite emission, position, direction, radius, length or range", index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (l->emission[0] < 0.0f || l->emission[1] < 0.0f || l->emission[2] < 0.0f) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has negative emission", index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    double len2 = 0.0;
+    for (int k = 0; k < 3; ++k) len2 += (double)l->direction[k] * l->direction[k];
+    if (!(len2 > 1e-30)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (tube) has a zero direction (its axis)", index);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (!(l->length >= 0.0f)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (tube) has length %g; >= 0 is required (0: a sphere)", index,
+                  l->length);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    // 4 pi r^2 + 2 pi r L (the record's area) and the ends (centre +- L/2) must be floats
+    double r = l->radius, area = 4.0 * LIGHT_PI * r * r + 2.0 * LIGHT_PI * r * l->length;
+    if (!(l->radius > 0.0f) || !(area <= 0.5 * FLT_MAX) || !(0.5 * (double)l->length + r <= 0.25 * FLT_MAX)) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                  "light %u (tube) has radius %g, length %g; radius > 0 is required (and its area 4 pi r^2 + 2 pi r L a float)",
+                  index, l->radius, l->length);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    if (l->range != 0.0f) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (tube) has range %g; tubes have no range yet (0 is required)",
+                  index, l->range);
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
+    return RTPBR_SUCCESS;
+}
+
 rtpbr_result rtpbr_light_validate(const rtpbr_context *ctx, const rtpbr_light_desc *l,
                                    const rtpbr_gltf_polygon_facts *f, uint32_t index)
 {
-    if ((unsigned)l->type > (unsigned)RTPBR_LIGHT_DISK) {
-        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has type %d; RTPBR_LIGHT_POLYGON .. _DISK (0 .. 4) are allowed",
+    if ((unsigned)l->type > (unsigned)RTPBR_LIGHT_TUBE) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has type %d; RTPBR_LIGHT_POLYGON .. _TUBE (0 .. 5) are allowed",
                   index, (int)l->type);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
@@ -181,6 +221,7 @@ rtpbr_result rtpbr_light_validate(const rtpbr_context *ctx, const rtpbr_light_de
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (l->type == RTPBR_LIGHT_DISK) return validate_disk(ctx, l, index);
+    if (l->type == RTPBR_LIGHT_TUBE) return validate_tube(ctx, l, index);
     if (l->type != RTPBR_LIGHT_POLYGON) return validate_punctual(ctx, l, index);
     if (l->vertex_count < 3 || l->vertex_count > RTPBR_MAX_POLYGON_VERTICES) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u has %u vertices; 3 to %u are allowed", index, l->vertex_count,
@@ -399,8 +440,38 @@ static void disk_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
     *out = g;
 }
 
+// A tube (rtpbr_light_desc): its ends' centres and radius, a bounding sphere (centre, L/2 + r)
+// and area 4 pi r^2 + 2 pi r L (RTPBR_LIGHT_FIELDS: TUBE).
+static void tube_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
+{
+    rtpbr_shader_light g = {0};
+    double len = sqrt((double)l->direction[0] * l->direction[0] + (double)l->direction[1] * l->direction[1] +
+                      (double)l->direction[2] * l->direction[2]);
+    double half = 0.5 * l->length, r = l->radius;
+    for (int k = 0; k < 3; ++k) {
+        double a = l->direction[k] / len;
+        g.vertices[0][k] = (float)(l->position[k] - half * a);
+        g.vertices[1][k] = (float)(l->position[k] + half * a);
+        g.vertices[2][k] = (float)a;
+        g.sphere[k] = l->position[k];
+    }
+    g.vertices[0][3] = g.vertices[1][3] = l->radius;
+    g.vertices[2][3] = l->length;
+    g.sphere[3] = (float)(half + r);
+    memcpy(g.radiance, l->emission, sizeof g.radiance);
+    g.area = (float)(4.0 * LIGHT_PI * r * r + 2.0 * LIGHT_PI * r * l->length);
+    g.two_sided = 1.0f;
+    g.plane[3] = 1.0f;
+    g.shape = RTPBR_LIGHT_SHAPE_TUBE;
+    *out = g;
+}
+
 void rtpbr_light_record(const rtpbr_light_desc *l, const rtpbr_gltf_polygon_facts *f, rtpbr_shader_light *out)
 {
+    if (l->type == RTPBR_LIGHT_TUBE) {
+        tube_record(l, out);
+        return;
+    }
     if (l->type == RTPBR_LIGHT_DISK) {
         disk_record(l, out);
         return;
@@ -1163,8 +1234,9 @@ uint32_t rtpbr_lights_shapes(const rtpbr_shader_light *lights, uint32_t count)
 {
     uint32_t shapes = 0;
     for (uint32_t i = 0; i < count; ++i) {
-        if (lights[i].texture != 0) return 2;
-        if (lights[i].shape == RTPBR_LIGHT_SHAPE_SPHERE || lights[i].shape == RTPBR_LIGHT_SHAPE_DISK) shapes = 1;
+        if (lights[i].shape == RTPBR_LIGHT_SHAPE_TUBE) shapes = 3;
+        else if (lights[i].texture != 0 && shapes < 2) shapes = 2;
+        else if ((lights[i].shape == RTPBR_LIGHT_SHAPE_SPHERE || lights[i].shape == RTPBR_LIGHT_SHAPE_DISK) && shapes < 1) shapes = 1;
     }
     return shapes;
 }
@@ -1173,7 +1245,7 @@ bool rtpbr_lights_have_spheres(const rtpbr_shader_light *lights, uint32_t count)
 {
     for (uint32_t i = 0; i < count; ++i)
         if (lights[i].shape == RTPBR_LIGHT_SHAPE_SPHERE || lights[i].shape == RTPBR_LIGHT_SHAPE_DISK ||
-            lights[i].texture != 0)
+            lights[i].shape == RTPBR_LIGHT_SHAPE_TUBE || lights[i].texture != 0)
             return true;
     return false;
 }

@@ -1167,7 +1167,7 @@ static void bad_disks(void **state)
          .disk_axis = {NAN, 0, 0}},
         {.type = RTPBR_LIGHT_DISK, .direction = {0, 0, -1}, .radius = 1.0f, .emission = {1, 1, 1}, .disk_radius2 = 0.5f,
          .disk_axis = {0, 0, 3}},
-        {.type = (rtpbr_light_type)5, .emission = {1, 1, 1}},
+        {.type = (rtpbr_light_type)6, .emission = {1, 1, 1}}, // (5: RTPBR_LIGHT_TUBE)
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         rtpbr_gpu_scene *scene = NULL;

@@ -421,6 +421,8 @@ typedef enum rtpbr_light_type {
     RTPBR_LIGHT_DIRECTIONAL = 3, //   a directional light's direction
     RTPBR_LIGHT_DISK = 4,        // an area light: a disk of radius `radius` about position,
                                  //   emitting along direction (its normal), two_sided
+    RTPBR_LIGHT_TUBE = 5,        // an area light: a tube (capsule) of radius `radius` around the
+                                 //   segment of `length` centred on position along direction
 } rtpbr_light_type;
 
 // A light. RTPBR_LIGHT_POLYGON (zero): a convex planar polygon emitting on its front side
@@ -435,6 +437,12 @@ typedef enum rtpbr_light_type {
 // AreaLight_AddDisk), not as a polygon: position its centre, direction its normal (the side it
 // emits on; need not be unit, non-zero), radius > 0, two_sided as a polygon's. With
 // disk_radius2 > 0, an ellipse (half-axes radius along disk_axis, disk_radius2 across it).
+// RTPBR_LIGHT_TUBE: a capsule (the segment position +- direction length / 2, direction need not
+// be unit, non-zero; swept by the ball of radius `radius` > 0: a cylinder and two hemispherical
+// caps) of uniform radiance `emission` over its surface (area 4 pi r^2 + 2 pi r length), shaded
+// with the shader library's tube (shaderlib/rtpbr/area_light.h, AreaLight_AddTube: the facing
+// quad's LTC and the caps' sphere). length 0: a sphere of radiance `emission` (the point light
+// of radius r and intensity emission pi r^2). No range (must be zero: not yet).
 typedef struct rtpbr_light_desc {
     float vertices[RTPBR_MAX_POLYGON_VERTICES][3]; // polygon: world space
     uint32_t vertex_count;   // polygon: 3..RTPBR_MAX_POLYGON_VERTICES; punctual: ignored
@@ -443,10 +451,11 @@ typedef struct rtpbr_light_desc {
                              // the radiance unit x sr). Zero: a light that contributes nothing
     int two_sided;           // polygon, disk: non-zero emits on both sides. Default: front only
     rtpbr_light_type type;   // zero: a polygon
-    float position[3];       // point, spot: world space; disk: its centre
+    float position[3];       // point, spot: world space; disk, tube: its centre
     float direction[3];      // spot, directional: the way the light travels (need not be unit;
-                             // non-zero); disk: its normal, toward the side it emits on
-    float range;             // point, spot: > 0, where W(d) ends; zero: infinite
+                             // non-zero); disk: its normal, toward the side it emits on; tube:
+                             // its axis
+    float range;             // point, spot: > 0, where W(d) ends; zero: infinite. Tube: zero
     float inner_cone_angle;  // spot: radians, 0 <= inner <= outer <= pi/2; the falloff
     float outer_cone_angle;  // t = clamp((cos - cos outer) / max(cos inner - cos outer, 1e-3),
                              // 0, 1), times t^2 (KHR_lights_punctual); both zero: 0 and pi/4
@@ -464,7 +473,8 @@ typedef struct rtpbr_light_desc {
                              // its centre: an area light (soft shadows, highlights of its size)
                              // shaded with LTC like a polygon. Zero: a true point (exact).
                              // Spot: must be zero (spheres with a cone: not yet). Disk: > 0,
-                             // the disk's radius. Directional, polygon: ignored
+                             // the disk's radius. Tube: > 0, the capsule's radius.
+                             // Directional, polygon: ignored
     uint32_t emission_texture; // polygon of 4 vertices, a parallelogram (a screen, a window):
                              // 1 + the index of a scene texture (rtpbr_gpu_scene_desc.textures;
                              // its rgb, sRGB-decoded when srgb, times `emission` is the radiance
@@ -486,6 +496,8 @@ typedef struct rtpbr_light_desc {
     float disk_axis[3];      // disk with disk_radius2 > 0: the direction of the half-axis
                              // `radius`; need not be unit nor in the plane (its part in the
                              // plane is used, which must not be zero)
+    float length;            // tube: >= 0, the length of its segment (the cylinder's; world
+                             // units). Other types: ignored
 } rtpbr_light_desc;
 
 typedef struct rtpbr_camera_desc {

@@ -32,6 +32,14 @@
 #include "rtpbr_spirv_lighting_beckmann_ms0_full_textured.h"
 #include "rtpbr_spirv_lighting_beckmann_ms1_basic_textured.h"
 #include "rtpbr_spirv_lighting_beckmann_ms1_full_textured.h"
+#include "rtpbr_spirv_lighting_ggx_ms0_basic_tubes.h"
+#include "rtpbr_spirv_lighting_ggx_ms0_full_tubes.h"
+#include "rtpbr_spirv_lighting_ggx_ms1_basic_tubes.h"
+#include "rtpbr_spirv_lighting_ggx_ms1_full_tubes.h"
+#include "rtpbr_spirv_lighting_beckmann_ms0_basic_tubes.h"
+#include "rtpbr_spirv_lighting_beckmann_ms0_full_tubes.h"
+#include "rtpbr_spirv_lighting_beckmann_ms1_basic_tubes.h"
+#include "rtpbr_spirv_lighting_beckmann_ms1_full_tubes.h"
 
 // The set of the cull, LTC and Monte Carlo passes (rtpbr_shared.h: RTPBR_BINDING_LIGHT_*).
 #define COMPUTE(binding, type) {binding, VK_DESCRIPTOR_TYPE_##type, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL}
@@ -125,21 +133,24 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
      RTPBR_SPIRV(rtpbr_spirv_lighting_##ndf##_##ms##_basic_spheres),                                     \
      RTPBR_SPIRV(rtpbr_spirv_lighting_##ndf##_##ms##_full_spheres),                                      \
      RTPBR_SPIRV(rtpbr_spirv_lighting_##ndf##_##ms##_basic_textured),                                    \
-     RTPBR_SPIRV(rtpbr_spirv_lighting_##ndf##_##ms##_full_textured)}
+     RTPBR_SPIRV(rtpbr_spirv_lighting_##ndf##_##ms##_full_textured),                                     \
+     RTPBR_SPIRV(rtpbr_spirv_lighting_##ndf##_##ms##_basic_tubes),                                       \
+     RTPBR_SPIRV(rtpbr_spirv_lighting_##ndf##_##ms##_full_tubes)}
     static const rtpbr_spirv ltc[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT] = {
         LTC_CLASSES(ggx, ms0), LTC_CLASSES(ggx, ms1), LTC_CLASSES(beckmann, ms0), LTC_CLASSES(beckmann, ms1)};
 #undef LTC_CLASSES
     _Static_assert(RTPBR_TILE_CLASS_EMPTY == 0 && RTPBR_TILE_CLASS_BASIC == 1 && RTPBR_TILE_CLASS_FULL == 2 &&
                        RTPBR_TILE_CLASS_BASIC_SPHERES == 3 && RTPBR_TILE_CLASS_FULL_SPHERES == 4 &&
-                       RTPBR_TILE_CLASS_BASIC_TEXTURED == 5 && RTPBR_TILE_CLASS_FULL_TEXTURED == 6,
-                   "lit classes follow the empty one, the spheres' after the others, the textured last");
+                       RTPBR_TILE_CLASS_BASIC_TEXTURED == 5 && RTPBR_TILE_CLASS_FULL_TEXTURED == 6 &&
+                       RTPBR_TILE_CLASS_BASIC_TUBES == 7 && RTPBR_TILE_CLASS_FULL_TUBES == 8,
+                   "lit classes follow the empty one, the spheres' after the others, the textured, the tubes last");
     rtpbr_lighting_pass *pass = &ctx->lighting;
     uint32_t v = rtpbr_lighting_variant(ndf, ms);
     rtpbr_result result = RTPBR_SUCCESS;
     out[RTPBR_TILE_CLASS_EMPTY] = pass->empty;
     for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) {
         // the spheres' classes only for a frame with a sphere or a disk, the textured ones only
-        // for a frame with a textured quad (shapes: rtpbr_lights_shapes; no tile is queued for
+        // for a frame with a textured quad, the tubes' for one with a tube (shapes: rtpbr_lights_shapes; no tile is queued for
         // the others: their slots get a class's pipeline that is compiled, never dispatched)
         uint32_t k = c < 2u * (shapes + 1u) ? c : c % 2u + 2u * shapes;
         if (!pass->ltc[v][k]) RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, ltc[v][k], pass->layout, &pass->ltc[v][k]));

@@ -62,8 +62,8 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
 uint32_t rtpbr_lighting_variant(rtpbr_ndf ndf, rtpbr_multiscatter ms);
 struct rtpbr_buffer; // internal.h
 // The culling pass's outputs for tiles_x x tiles_y tiles (a renderer's, the host path's
-// targets'): four light masks per tile and its shadow slots (RTPBR_TILE_MASK_STRIDE uints:
-// polygons, punctual lights, spheres and disks, 8 slots: 544 bytes per 256 pixels), and
+// targets'): six light masks per tile and its shadow slots (RTPBR_TILE_MASK_STRIDE uints:
+// polygons, punctual lights, spheres, disks, textured quads and tubes, 8 slots), and
 // per tile class its indirect dispatch arguments (a uvec4) and a queue as long as the tile count.
 rtpbr_result rtpbr_lighting_tile_buffers_create(rtpbr_context *ctx, uint32_t tiles_x, uint32_t tiles_y,
                                                 struct rtpbr_buffer *masks, struct rtpbr_buffer *lists);
