@@ -321,13 +321,17 @@ class GltfBuilder:
         """A KHR_lights_punctual light on a node of its own: spec has type (point, spot,
         directional), color, intensity (candela; lux for directional), translation, and for spot
         and directional lights a target the light points at (the node's -Z); optional range, a
-        point light's radius (extras.radius) and a spot's inner/outer cone angles in degrees."""
+        point light's radius (extras.radius) and length (extras.length: a capsule along the
+        node's +X, turned by an optional rotation quaternion) and a spot's inner/outer cone
+        angles in degrees."""
         light = {"type": spec["type"], "color": [float(c) for c in spec.get("color", [1, 1, 1])],
                  "intensity": float(spec["intensity"])}
         if "range" in spec:
             light["range"] = float(spec["range"])
         if "radius" in spec:  # a point light's sphere (rtpbr reads extras.radius: docs/materials.md)
             light["extras"] = {"radius": float(spec["radius"])}
+        if "length" in spec:  # with a radius, a capsule along the node's +X (extras.length)
+            light.setdefault("extras", {})["length"] = float(spec["length"])
         if spec["type"] == "spot":
             light["spot"] = {"innerConeAngle": math.radians(spec.get("inner_deg", 0.0)),
                              "outerConeAngle": math.radians(spec.get("outer_deg", 45.0))}
@@ -336,6 +340,8 @@ class GltfBuilder:
         self.extensions.add("KHR_lights_punctual")
         t = spec.get("translation", [0.0, 0.0, 0.0])
         q = look_at_quaternion(t, spec["target"], tuple(spec.get("up", (0.0, 1.0, 0.0)))) if "target" in spec else None
+        if "rotation" in spec:  # a quaternion (x, y, z, w): a capsule's axis is the node's +X
+            q = [float(c) for c in spec["rotation"]]
         self.node(spec.get("name", "light%d" % (len(ext["lights"]) - 1)), translation=t, rotation=q)
         self.doc["nodes"][-1]["extensions"] = {"KHR_lights_punctual": {"light": len(ext["lights"]) - 1}}
 
