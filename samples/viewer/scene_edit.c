@@ -105,6 +105,9 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
         p->outer_cone_angle = l->outer_cone_angle;
         p->angular_diameter = l->angular_diameter;
         p->radius = l->type == RTPBR_GLTF_PUNCTUAL_POINT ? l->radius : 0.0f;
+        p->length = p->radius > 0.0f ? l->length : 0.0f;
+        memcpy(p->axis, l->axis, sizeof p->axis);
+        if (!(p->length > 0.0f)) p->axis[0] = 1.0f, p->axis[1] = p->axis[2] = 0.0f;
     }
     return true;
 }
@@ -162,6 +165,13 @@ void viewer_scene_light_descs(const viewer_scene *s, rtpbr_light_desc *out)
         memcpy(d->position, p->position, sizeof d->position);
         memcpy(d->direction, p->direction, sizeof d->direction);
         for (int c = 0; c < 3; ++c) d->emission[c] = p->color[c] * p->intensity;
+        if (viewer_punctual_is_tube(p)) { // rtpbr_gpu_scene_from_loaded's capsule: radiance 2 I / (pi r (2 r + L))
+            double r = p->radius, scale = 2.0 / (3.14159265358979323846 * r * (2.0 * r + p->length));
+            d->type = RTPBR_LIGHT_TUBE;
+            d->length = p->length;
+            memcpy(d->direction, p->axis, sizeof d->direction);
+            for (int c = 0; c < 3; ++c) d->emission[c] = (float)(d->emission[c] * scale);
+        }
     }
 }
 
@@ -372,7 +382,8 @@ const char *viewer_new_light_name(int kind)
 {
     static const char *const names[VIEWER_NEW_LIGHT_KINDS] = {
         [VIEWER_NEW_QUAD] = "quad", [VIEWER_NEW_DISK] = "disk", [VIEWER_NEW_SPHERE] = "sphere",
-        [VIEWER_NEW_SPOT] = "spot", [VIEWER_NEW_POINT] = "point", [VIEWER_NEW_DIRECTIONAL] = "directional"};
+        [VIEWER_NEW_SPOT] = "spot", [VIEWER_NEW_POINT] = "point", [VIEWER_NEW_DIRECTIONAL] = "directional",
+        [VIEWER_NEW_TUBE] = "tube"};
     return kind >= 0 && kind < VIEWER_NEW_LIGHT_KINDS ? names[kind] : "?";
 }
 
@@ -411,7 +422,9 @@ bool viewer_new_light(int kind, const float at[3], viewer_light *light, viewer_p
     punctual->intensity = directional ? 1.0f : spot ? 4.0f : 2.0f; // lux; candela
     punctual->inner_cone_angle = 0.3f;
     punctual->outer_cone_angle = 0.5f;
-    punctual->radius = kind == VIEWER_NEW_SPHERE ? 0.1f : 0.0f;
+    punctual->radius = kind == VIEWER_NEW_SPHERE ? 0.1f : kind == VIEWER_NEW_TUBE ? 0.05f : 0.0f;
+    punctual->length = kind == VIEWER_NEW_TUBE ? 0.8f : 0.0f;
+    punctual->axis[0] = 1.0f;
     punctual->angular_diameter = directional ? RTPBR_SUN_ANGULAR_DIAMETER : 0.0f; // the sun's disk
     viewer_punctual_clamp(punctual); // a unit direction
     return false;
@@ -597,9 +610,17 @@ void viewer_light_set_vertex_count(viewer_light *l, uint32_t n)
     l->emission_texture = 0; // (a textured quad no more)
 }
 
+bool viewer_punctual_is_tube(const viewer_punctual *p)
+{
+    return p->type == RTPBR_LIGHT_POINT && p->radius > 0.0f && p->length > 0.0f && !(p->range > 0.0f);
+}
+
 const char *viewer_punctual_kind(const viewer_punctual *p)
 {
-    return p->type == RTPBR_LIGHT_SPOT ? "spot" : p->type == RTPBR_LIGHT_DIRECTIONAL ? "directional" : "point";
+    return p->type == RTPBR_LIGHT_SPOT          ? "spot"
+           : p->type == RTPBR_LIGHT_DIRECTIONAL ? "directional"
+           : viewer_punctual_is_tube(p)         ? "tube"
+                                                : "point";
 }
 
 void viewer_punctual_rotate(viewer_punctual *p, int axis, float radians)
@@ -607,6 +628,7 @@ void viewer_punctual_rotate(viewer_punctual *p, int axis, float radians)
     if (axis < 0 || axis > 2) return;
     const float origin[3] = {0.0f, 0.0f, 0.0f};
     rotate_point(p->direction, origin, axis, cosf(radians), sinf(radians));
+    rotate_point(p->axis, origin, axis, cosf(radians), sinf(radians));
 }
 
 void viewer_punctual_angles(const viewer_punctual *p, float *azimuth, float *elevation)
@@ -630,6 +652,12 @@ void viewer_punctual_clamp(viewer_punctual *p)
     p->range = fmaxf(p->range, 0.0f);
     p->angular_diameter = fminf(fmaxf(p->angular_diameter, 0.0f), 0.5f); // at most ~29 degrees
     p->radius = fminf(fmaxf(p->radius, 0.0f), 100.0f);                     // fmaxf: NaN -> 0
+    p->length = fminf(fmaxf(p->length, 0.0f), 100.0f);
+    float *x = p->axis, xlen = sqrtf(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    if (xlen > 0.0f && isfinite(xlen))
+        for (int c = 0; c < 3; ++c) x[c] /= xlen;
+    else
+        x[0] = 1.0f, x[1] = x[2] = 0.0f;
     for (int c = 0; c < 3; ++c) p->color[c] = fminf(fmaxf(p->color[c], 0.0f), 1.0f);
     float *d = p->direction, len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     if (len > 0.0f && isfinite(len))

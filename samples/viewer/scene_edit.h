@@ -57,6 +57,9 @@ typedef struct viewer_punctual {
     float outer_cone_angle;
     float angular_diameter; // directional: the disk's, radians (rtpbr_light_desc's); 0: a true direction
     float radius;           // point: the sphere's (rtpbr_light_desc's); 0: a true point
+    float length;           // point with a radius and no range: > 0 a capsule, the engine's
+                            // RTPBR_LIGHT_TUBE (rtpbr_gltf_punctual_light's length); 0: a sphere
+    float axis[3];          // its axis, unit (the loader's; a new tube's +X)
 } viewer_punctual;
 
 typedef struct viewer_scene {
@@ -109,10 +112,11 @@ bool viewer_scene_remove_light(viewer_scene *s, uint32_t index);
 // The new lights the viewer's Insert key (I) adds, in this order: a 0.5 m square quad facing
 // down (radiance 4), a disk facing down of the quad's area and radiance (so of its power:
 // radius 0.5 / sqrt(pi) m), a sphere (radius 0.1 m), a spot pointing down, a point, a
-// directional light; all but the directional light centred at `at`.
+// directional light, a tube (a capsule along +X: radius 0.05 m, length 0.8 m, 2 cd); all but
+// the directional light centred at `at`.
 typedef enum viewer_new_light_kind {
     VIEWER_NEW_QUAD, VIEWER_NEW_DISK, VIEWER_NEW_SPHERE, VIEWER_NEW_SPOT, VIEWER_NEW_POINT, VIEWER_NEW_DIRECTIONAL,
-    VIEWER_NEW_LIGHT_KINDS
+    VIEWER_NEW_TUBE, VIEWER_NEW_LIGHT_KINDS
 } viewer_new_light_kind;
 const char *viewer_new_light_name(int kind);
 // Fills *light (the quad, the disk) or *punctual (the others); returns true for an area light.
@@ -144,16 +148,20 @@ float viewer_light_radius(const viewer_light *l);
 // disk has no vertices: it stays as it is.
 void viewer_light_set_vertex_count(viewer_light *l, uint32_t n);
 
-// "point", "spot" or "directional".
+// "point", "spot", "directional" or "tube" (a point with a radius and a length).
 const char *viewer_punctual_kind(const viewer_punctual *p);
-// Edits of one punctual light. Its direction turned about a world axis 0..2 (the sense of
-// viewer_light_rotate); as two angles: direction = (cos e sin a, sin e, cos e cos a), azimuth a
+// A punctual light the engine shades as a tube (RTPBR_LIGHT_TUBE): a point with a radius, a
+// length and no range (with a range, its sphere: rtpbr_gpu_scene_from_loaded's mapping).
+bool viewer_punctual_is_tube(const viewer_punctual *p);
+// Edits of one punctual light. Its direction (and a tube's axis) turned about a world axis 0..2
+// (the sense of viewer_light_rotate); as two angles: direction = (cos e sin a, sin e, cos e cos a), azimuth a
 // about +Y from +Z toward +X, elevation e above the horizon (negative: down).
 void viewer_punctual_rotate(viewer_punctual *p, int axis, float radians);
 void viewer_punctual_angles(const viewer_punctual *p, float *azimuth, float *elevation);
 void viewer_punctual_set_angles(viewer_punctual *p, float azimuth, float elevation);
 // After an edit: values the engine accepts (intensity and range >= 0, a unit direction, a
-// spot's cones 0 <= inner < outer <= pi/2 with outer at least VIEWER_MIN_CONE).
+// spot's cones 0 <= inner < outer <= pi/2 with outer at least VIEWER_MIN_CONE; radius and
+// length in [0, 100], NaN 0; a unit axis, +X for none).
 #define VIEWER_MIN_CONE 0.01f
 void viewer_punctual_clamp(viewer_punctual *p);
 

@@ -313,6 +313,8 @@ static void punctual_panel(app *a, viewer_punctual *p)
         edited |= ImGui::DragFloat("range (m)", &p->range, 0.05f, 0.0f, 1e4f, p->range > 0.0f ? "%.2f" : "infinite");
     if (point) // the sphere's radius: 0 a true point
         edited |= ImGui::DragFloat("radius (m)", &p->radius, 0.005f, 0.0f, 100.0f, p->radius > 0.0f ? "%.3f" : "a point");
+    if (point && p->radius > 0.0f) // a capsule's length (a tube light; not with a range): 0 a sphere
+        edited |= ImGui::DragFloat("length (m)", &p->length, 0.01f, 0.0f, 100.0f, p->length > 0.0f ? "%.2f" : "a sphere");
     if (!point && !spot) // the disk's angular diameter: 0.53 degrees is the sun's; 0 a true direction
         edited |= ImGui::SliderAngle("disk diameter", &p->angular_diameter, 0.0f, 10.0f, "%.2f deg");
     if (spot) {
@@ -330,7 +332,7 @@ static void light_panel(app *a)
     viewer_scene *s = &a->scene;
     // Add a light of each kind (I cycles them) or remove the selected one (X); short labels,
     // in two rows (the area lights, the punctual ones) that fit the panel's 300 pixels.
-    static const char *const labels[] = {"quad", "disk", "sphere", "spot", "point", "sun"}; // viewer_new_light_kind
+    static const char *const labels[] = {"quad", "disk", "sphere", "spot", "point", "sun", "tube"}; // viewer_new_light_kind
     static_assert(sizeof labels / sizeof *labels == VIEWER_NEW_LIGHT_KINDS, "a label for each kind");
     ImGui::TextUnformatted("add");
     float row_start = 0.0f;

@@ -27,7 +27,7 @@ static const char *const help_text =
     "  Tab             select the next light (area lights, then punctual lights)\n"
     "  1 / 2 / 3       the keys below move / rotate / scale the light (mode 1 at start;\n"
     "                  a disk's scale is its radius);\n"
-    "                  a punctual light: its position / direction / range\n"
+    "                  a punctual light: its position / direction (a tube's axis too) / range\n"
     "  Left / Right    along (about) world X -/+\n"
     "  Up / Down       along (about) world Z -/+\n"
     "  PgDn / PgUp     along (about) world Y -/+\n"
@@ -37,7 +37,8 @@ static const char *const help_text =
     "  - / =           light intensity -/+ (x 1.25)\n"
     "  T               light one-/two-sided (area lights: polygons, disks)\n"
     "  I               add a light 1 m above the orbit target: quad, disk, sphere, spot,\n"
-    "                  point, directional in turn (selected; the panel adds each kind too)\n"
+    "                  point, directional, tube in turn (selected; the panel adds each kind\n"
+    "                  too)\n"
     "  X               remove the selected light\n"
     "  M               select the next material\n"
     "  7 / 8           material roughness -/+\n"
@@ -306,7 +307,8 @@ static void handle_key(app *a, int key)
         static const char *const added[VIEWER_NEW_LIGHT_KINDS] = {
             [VIEWER_NEW_QUAD] = "added a quad light", [VIEWER_NEW_DISK] = "added a disk light",
             [VIEWER_NEW_SPHERE] = "added a sphere light", [VIEWER_NEW_SPOT] = "added a spot light",
-            [VIEWER_NEW_POINT] = "added a point light", [VIEWER_NEW_DIRECTIONAL] = "added a directional light"};
+            [VIEWER_NEW_POINT] = "added a point light", [VIEWER_NEW_DIRECTIONAL] = "added a directional light",
+            [VIEWER_NEW_TUBE] = "added a tube light"};
         a->notice = app_add_light(a, a->new_light_kind) ? added[a->new_light_kind] : "out of memory";
         a->new_light_kind = (a->new_light_kind + 1) % VIEWER_NEW_LIGHT_KINDS;
         break;

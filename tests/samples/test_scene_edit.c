@@ -250,14 +250,15 @@ static void test_punctual_edits(void **state)
 }
 
 // The order I adds lights in (viewer.c cycles viewer_new_light's kinds 0, 1, ...): a quad, a
-// disk, a sphere, a spot, a point and a directional light, each of the kind its name says.
+// disk, a sphere, a spot, a point, a directional light and a tube, each of the kind its name
+// says (the tube: a point light with a radius and a length, the engine's RTPBR_LIGHT_TUBE).
 static void test_new_light_order(void **state)
 {
     (void)state;
-    static const char *const names[] = {"quad", "disk", "sphere", "spot", "point", "directional"};
-    static const rtpbr_light_type types[] = {RTPBR_LIGHT_POLYGON, RTPBR_LIGHT_DISK, RTPBR_LIGHT_POINT,
-                                             RTPBR_LIGHT_SPOT, RTPBR_LIGHT_POINT, RTPBR_LIGHT_DIRECTIONAL};
-    assert_int_equal(VIEWER_NEW_LIGHT_KINDS, 6);
+    static const char *const names[] = {"quad", "disk", "sphere", "spot", "point", "directional", "tube"};
+    static const rtpbr_light_type types[] = {RTPBR_LIGHT_POLYGON, RTPBR_LIGHT_DISK, RTPBR_LIGHT_POINT, RTPBR_LIGHT_SPOT,
+                                             RTPBR_LIGHT_POINT,   RTPBR_LIGHT_DIRECTIONAL, RTPBR_LIGHT_POINT};
+    assert_int_equal(VIEWER_NEW_LIGHT_KINDS, 7);
     const float at[3] = {1.0f, 2.0f, 3.0f};
     for (int kind = 0; kind < VIEWER_NEW_LIGHT_KINDS; ++kind) {
         assert_string_equal(viewer_new_light_name(kind), names[kind]);
@@ -266,7 +267,9 @@ static void test_new_light_order(void **state)
         bool area = viewer_new_light(kind, at, &l, &p);
         assert_int_equal(area, kind <= 1);
         assert_int_equal(area ? l.type : p.type, types[kind]);
-        if (!area) assert_float_equal(p.radius, kind == 2 ? 0.1f : 0.0f, 0.0f); // the sphere is the point of radius 0.1
+        if (!area) assert_float_equal(p.radius, kind == 2 ? 0.1f : kind == 6 ? 0.05f : 0.0f, 0.0f); // the sphere: radius 0.1
+        if (!area) assert_float_equal(p.length, kind == 6 ? 0.8f : 0.0f, 0.0f);
+        if (!area) assert_string_equal(viewer_punctual_kind(&p), kind == 6 ? "tube" : kind == 3 ? "spot" : kind == 5 ? "directional" : "point");
     }
     assert_string_equal(viewer_new_light_name(VIEWER_NEW_LIGHT_KINDS), "?");
 }
@@ -685,6 +688,80 @@ static void test_disk_upload_matches_engine(void **state)
     device_case_close(&d);
 }
 
+// tube_lights' capsules in the viewer are the tubes the engine shades (issue 30): its upload
+// renders what rtpbr_gpu_scene_from_loaded renders (no pixel beyond 1e-5 relative); the viewer of
+// before, which dropped the length (each capsule its sphere), differs on most lit pixels. A
+// tube turned about Y turns its axis (the viewer's rotate): its desc's direction is the turned
+// axis and the image changes; a range makes it its sphere (as the loader's mapping); the clamp
+// keeps the length in [0, 100] (NaN 0) and the axis unit.
+static void test_tube_upload_matches_engine(void **state)
+{
+    device_case d;
+    device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/tube_lights.gltf");
+    viewer_scene *s = &d.s;
+    assert_int_equal(s->light_count, 0); // (descs[3] below: the punctual lights alone)
+    assert_int_equal(s->punctual_count, 3);
+    for (uint32_t i = 0; i < 3; ++i) assert_true(viewer_punctual_is_tube(&s->punctual[i]));
+    assert_float_equal(s->punctual[0].length, 1.4f, 0.0f);
+    assert_float_equal(s->punctual[1].axis[1], 1.0f, 1e-6f); // the upright one: +X turned 90 degrees about Z
+    rtpbr_gpu_scene *engine, *viewer;
+    float *want;
+    size_t lit = upload_matches_engine(&d, "tube_lights", 2, &want, &engine, &viewer);
+    rtpbr_light_desc descs[3];
+    viewer_scene_light_descs(s, descs);
+    for (uint32_t i = 0; i < 3; ++i) {
+        const viewer_punctual *p = &s->punctual[i];
+        double r = p->radius, L = p->length;
+        assert_int_equal(descs[i].type, RTPBR_LIGHT_TUBE);
+        assert_float_equal(descs[i].length, L, 0.0f);
+        // power 4 pi I over the capsule's area 2 pi r (2 r + L), of a Lambertian surface: pi L_e A
+        double want_radiance = 4.0 * pi * p->intensity * p->color[0] / (pi * 2.0 * pi * r * (2.0 * r + L));
+        assert_float_equal(descs[i].emission[0], want_radiance, 1e-6 * want_radiance);
+    }
+
+    viewer_punctual tubes[3] = {s->punctual[0], s->punctual[1], s->punctual[2]};
+    for (uint32_t i = 0; i < 3; ++i) s->punctual[i].length = 0.0f; // the viewer of before: spheres
+    rtpbr_gpu_scene *spheres = upload(&d);
+    float *old = render(&d, spheres);
+    size_t old_differing = pixels_beyond(want, old, 1e-5);
+    printf("tube_lights: the capsules as their spheres: %zu pixels differ beyond 1e-5\n", old_differing);
+    assert_true(old_differing > lit / 2);
+    for (uint32_t i = 0; i < 3; ++i) s->punctual[i] = tubes[i];
+
+    viewer_punctual_rotate(&s->punctual[0], 1, 0.5f); // about Y: the overhead tube's axis turns in the floor's plane
+    viewer_scene_light_descs(s, descs);
+    assert_float_equal(descs[0].direction[0], cosf(0.5f), 1e-6f);
+    assert_float_equal(fabsf(descs[0].direction[2]), sinf(0.5f), 1e-6f);
+    assert_false(viewer_scene_needs_upload(s));
+    assert_int_equal(viewer_scene_update_lights(s, viewer), RTPBR_SUCCESS);
+    float *turned = render(&d, viewer);
+    size_t turn_changes = pixels_beyond(want, turned, 1e-5);
+    printf("tube_lights, tube 0 turned 0.5 rad about Y: changes %zu pixels\n", turn_changes);
+    assert_true(turn_changes > lit / 20);
+
+    viewer_punctual q = tubes[0];
+    q.range = 5.0f;
+    assert_false(viewer_punctual_is_tube(&q));
+    assert_string_equal(viewer_punctual_kind(&q), "point");
+    q.length = NAN;
+    q.axis[0] = q.axis[1] = q.axis[2] = 0.0f;
+    viewer_punctual_clamp(&q);
+    assert_float_equal(q.length, 0.0f, 0.0f);
+    assert_float_equal(q.axis[0], 1.0f, 0.0f);
+    q.length = 1e9f;
+    q.axis[1] = 3.0f;
+    viewer_punctual_clamp(&q);
+    assert_float_equal(q.length, 100.0f, 0.0f);
+    assert_float_equal(q.axis[0] * q.axis[0] + q.axis[1] * q.axis[1] + q.axis[2] * q.axis[2], 1.0f, 1e-6f);
+    free(want);
+    free(old);
+    free(turned);
+    rtpbr_gpu_scene_destroy(spheres);
+    rtpbr_gpu_scene_destroy(viewer);
+    rtpbr_gpu_scene_destroy(engine);
+    device_case_close(&d);
+}
+
 // The loader's radiance of light `in` (a textured emitter's: the texture's mean) as the viewer's
 // colour x intensity.
 static void split_mean(const rtpbr_gltf_light *in, viewer_light *l)
@@ -882,8 +959,8 @@ static void test_mixed_scene_set_lights(void **state)
 // Adding and removing lights (the viewer's I and X keys, its panel's buttons), issue 30: each
 // kind viewer_new_light makes is what it says (a quad of 0.25 m^2 facing down, a disk of the
 // same area facing down, a sphere of radius 0.1, a spot and a sun pointing down their
-// directions, unit length); added to quad_light they make the scene need an upload, which has
-// 1 + 6 lights and in which each added light lights pixels of its own (the image with it
+// directions, unit length, a tube of radius 0.05 and length 0.8); added to quad_light they make the scene need an upload, which has
+// 1 + 7 lights and in which each added light lights pixels of its own (the image with it
 // differs from the image without it, removed again); removing every added light (the disk among
 // them) gives the scene's own image back bit for bit; a removal out of range is refused.
 static void test_add_remove_lights(void **state)
@@ -917,7 +994,7 @@ static void test_add_remove_lights(void **state)
                               p.direction[2] * p.direction[2]);
             assert_float_equal(len, 1.0f, 1e-6f);
             assert_true(p.direction[1] < 0.0f);
-            assert_float_equal(p.radius, kind == VIEWER_NEW_SPHERE ? 0.1f : 0.0f, 0.0f);
+            assert_float_equal(p.radius, kind == VIEWER_NEW_SPHERE ? 0.1f : kind == VIEWER_NEW_TUBE ? 0.05f : 0.0f, 0.0f);
             assert_int_equal(p.type, kind == VIEWER_NEW_SPOT          ? RTPBR_LIGHT_SPOT
                                      : kind == VIEWER_NEW_DIRECTIONAL ? RTPBR_LIGHT_DIRECTIONAL
                                                                       : RTPBR_LIGHT_POINT);
@@ -926,15 +1003,15 @@ static void test_add_remove_lights(void **state)
         assert_true(viewer_scene_needs_upload(s));
     }
     assert_int_equal(s->light_count, 3);
-    assert_int_equal(s->punctual_count, 4);
+    assert_int_equal(s->punctual_count, 5);
     rtpbr_gpu_scene *all = upload(&d);
     assert_false(viewer_scene_needs_upload(s));
-    assert_int_equal(rtpbr_gpu_scene_light_count(all), 7);
+    assert_int_equal(rtpbr_gpu_scene_light_count(all), 8);
     float *all_image = render(&d, all);
     double max_rel;
     // Each added light, removed alone (viewer numbering: area lights first, so light k is the
     // one of kind k - 1), changes the image.
-    for (uint32_t k = 1; k < 7; ++k) {
+    for (uint32_t k = 1; k < 8; ++k) {
         viewer_scene copy = *s; // the arrays are shared: remove from a copy of the arrays
         viewer_light *lights = malloc(s->light_count * sizeof *lights);
         viewer_punctual *punctual = malloc(s->punctual_count * sizeof *punctual);
@@ -946,7 +1023,7 @@ static void test_add_remove_lights(void **state)
         assert_true(viewer_scene_remove_light(&copy, k));
         rtpbr_gpu_scene *without = NULL;
         assert_int_equal(viewer_scene_upload(&copy, d.ctx, &without), RTPBR_SUCCESS);
-        assert_int_equal(rtpbr_gpu_scene_light_count(without), 6);
+        assert_int_equal(rtpbr_gpu_scene_light_count(without), 7);
         float *image = render(&d, without);
         size_t changed = pixels_differing(all_image, image, &max_rel);
         printf("added light %u (%s): lights %zu of %d pixels\n", k, viewer_new_light_name((int)k - 1), changed,
@@ -957,7 +1034,7 @@ static void test_add_remove_lights(void **state)
         free(copy.lights);
         free(copy.punctual);
     }
-    assert_false(viewer_scene_remove_light(s, 7));
+    assert_false(viewer_scene_remove_light(s, 8));
     while (s->punctual_count) assert_true(viewer_scene_remove_light(s, s->light_count));
     assert_int_equal(s->lights[2].type, RTPBR_LIGHT_DISK);
     assert_true(viewer_scene_remove_light(s, 2)); // the disk
@@ -989,6 +1066,7 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_vertex_count),
                 test_env_case(test_punctual_upload_matches_engine),
                 test_env_case(test_sphere_upload_matches_engine),
                 test_env_case(test_disk_upload_matches_engine),
+                test_env_case(test_tube_upload_matches_engine),
                 test_env_case(test_screen_upload_matches_engine),
                 test_env_case(test_many_screens),
                 test_env_case(test_punctual_intensity_doubles),
