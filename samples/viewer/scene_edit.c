@@ -42,6 +42,50 @@ static void split_emission(const float emission[3], float color[3], float *inten
     for (int c = 0; c < 3; ++c) color[c] = peak > 0.0f ? emission[c] / peak : 1.0f;
 }
 
+// An ellipse's axis made unit and perpendicular to its normal (its part in the plane, as the
+// engine takes it); a circle (radius2 0) when that part is zero or not finite.
+static void ellipse_axis_in_plane(viewer_light *l)
+{
+    const float *n = l->normal;
+    float an = l->axis[0] * n[0] + l->axis[1] * n[1] + l->axis[2] * n[2], len = 0.0f;
+    for (int c = 0; c < 3; ++c) l->axis[c] -= an * n[c], len += l->axis[c] * l->axis[c];
+    len = sqrtf(len);
+    if (!(len > 1e-6f) || !isfinite(len)) {
+        l->radius2 = 0.0f;
+        l->axis[0] = l->axis[1] = l->axis[2] = 0.0f;
+        return;
+    }
+    for (int c = 0; c < 3; ++c) l->axis[c] /= len;
+}
+
+void viewer_light_from_loaded(const rtpbr_gltf_scene *in, uint32_t i, viewer_light *v)
+{
+    const rtpbr_gltf_light *l = &in->lights[i];
+    memset(v, 0, sizeof *v);
+    rtpbr_light_desc engine; // rtpbr_gpu_scene_from_loaded's light: a screen's texture, its emission
+    rtpbr_light_desc_from_loaded(in, i, &engine);
+    v->emission_texture = engine.emission_texture;
+    memcpy(v->emission_uv, engine.emission_uv, sizeof v->emission_uv);
+    if (l->shape == RTPBR_GLTF_LIGHT_DISK) { // the disk, as rtpbr_gpu_scene_from_loaded has it (not its octagon)
+        v->type = RTPBR_LIGHT_DISK;
+        memcpy(v->center, l->facts.center, sizeof v->center);
+        memcpy(v->normal, l->facts.normal, sizeof v->normal);
+        v->radius = l->radius;
+        if (engine.disk_radius2 > 0.0f) { // an ellipse (a disk node scaled unevenly)
+            v->radius2 = engine.disk_radius2;
+            memcpy(v->axis, engine.disk_axis, sizeof v->axis);
+            ellipse_axis_in_plane(v);
+        }
+    } else {
+        v->vertex_count = l->vertex_count;
+        memcpy(v->vertices, l->vertices, sizeof v->vertices);
+    }
+    split_emission(engine.emission, v->color, &v->intensity);
+    v->two_sided = l->two_sided;
+    v->material = l->material >= 0 && (uint32_t)l->material < in->material_count ? l->material : -1;
+    mat4_identity(v->transform);
+}
+
 bool viewer_scene_load(viewer_scene *s, const char *path)
 {
     memset(s, 0, sizeof *s);
@@ -70,25 +114,8 @@ bool viewer_scene_load(viewer_scene *s, const char *path)
     for (uint32_t i = 0; i < in->material_count; ++i) rtpbr_material_desc_from_loaded(in, i, &s->materials[i]);
     for (uint32_t i = 0; i < in->light_count; ++i) {
         const rtpbr_gltf_light *l = &in->lights[i];
-        viewer_light *v = &s->lights[i];
-        rtpbr_light_desc engine; // rtpbr_gpu_scene_from_loaded's light: a screen's texture, its emission
-        rtpbr_light_desc_from_loaded(in, i, &engine);
-        v->emission_texture = engine.emission_texture;
-        memcpy(v->emission_uv, engine.emission_uv, sizeof v->emission_uv);
-        if (l->shape == RTPBR_GLTF_LIGHT_DISK) { // the disk, as rtpbr_gpu_scene_from_loaded has it (not its octagon)
-            v->type = RTPBR_LIGHT_DISK;
-            memcpy(v->center, l->facts.center, sizeof v->center);
-            memcpy(v->normal, l->facts.normal, sizeof v->normal);
-            v->radius = l->radius;
-        } else {
-            v->vertex_count = l->vertex_count;
-            memcpy(v->vertices, l->vertices, sizeof v->vertices);
-        }
-        split_emission(engine.emission, v->color, &v->intensity);
-        v->two_sided = l->two_sided;
-        v->material = l->material >= 0 && (uint32_t)l->material < in->material_count ? l->material : -1;
+        viewer_light_from_loaded(in, i, &s->lights[i]);
         if (l->primitive >= 0 && (uint32_t)l->primitive < in->primitive_count) s->primitive_is_light[l->primitive] = true;
-        mat4_identity(v->transform);
     }
     // rtpbr_gpu_scene_from_loaded's mapping of the punctual lights.
     for (uint32_t i = 0; i < in->punctual_light_count; ++i) {
@@ -147,10 +174,16 @@ void viewer_scene_light_descs(const viewer_scene *s, rtpbr_light_desc *out)
             memcpy(d->position, l->center, sizeof d->position);
             memcpy(d->direction, l->normal, sizeof d->direction);
             d->radius = l->radius;
+            if (l->radius2 > 0.0f) {
+                d->disk_radius2 = l->radius2;
+                memcpy(d->disk_axis, l->axis, sizeof d->disk_axis);
+            }
         } else {
             d->vertex_count = l->vertex_count;
             memcpy(d->vertices, l->vertices, sizeof d->vertices);
-            d->emission_texture = l->vertex_count == 4 ? l->emission_texture : 0;
+            d->emission_texture = l->vertex_count != 4                 ? 0
+                                  : l->emission_texture == VIEWER_TEST_CARD ? s->loaded->texture_count + 1
+                                                                           : l->emission_texture;
             memcpy(d->emission_uv, l->emission_uv, sizeof d->emission_uv);
         }
         for (int c = 0; c < 3; ++c) d->emission[c] = l->color[c] * l->intensity;
@@ -194,19 +227,34 @@ static void tangent_frame(const float n[3], float t[3], float b[3])
     b[0] = n[1] * t[2] - n[2] * t[1], b[1] = n[2] * t[0] - n[0] * t[2], b[2] = n[0] * t[1] - n[1] * t[0];
 }
 
+// A disk's frame (t, b), t x b = its normal: an ellipse's t is its axis; a circle's, its normal's
+// tangent_frame.
+static void disk_frame(const viewer_light *l, float t[3], float b[3])
+{
+    if (!(l->radius2 > 0.0f)) {
+        tangent_frame(l->normal, t, b);
+        return;
+    }
+    const float *n = l->normal;
+    memcpy(t, l->axis, 3 * sizeof(float));
+    b[0] = n[1] * t[2] - n[2] * t[1], b[1] = n[2] * t[0] - n[0] * t[2], b[2] = n[0] * t[1] - n[1] * t[0];
+}
+
 // The outline of light l's emissive surface, counter-clockwise seen from the front: a polygon's
-// vertices, or the regular VIEWER_DISK_SEGMENTS-gon inscribed in a disk. Returns the count.
+// vertices, or the VIEWER_DISK_SEGMENTS-gon inscribed in a disk (its ellipse: the circle's image
+// under the stretch across the axis). Returns the count.
 static uint32_t light_outline(const viewer_light *l, float out[OUTLINE_MAX][3])
 {
     if (l->type != RTPBR_LIGHT_DISK) {
         memcpy(out, l->vertices, l->vertex_count * sizeof l->vertices[0]);
         return l->vertex_count;
     }
-    float t[3], b[3];
-    tangent_frame(l->normal, t, b);
+    float t[3], b[3], r2 = l->radius2 > 0.0f ? l->radius2 : l->radius;
+    disk_frame(l, t, b);
     for (uint32_t v = 0; v < VIEWER_DISK_SEGMENTS; ++v) {
         float angle = 6.28318530718f * (float)v / (float)VIEWER_DISK_SEGMENTS;
-        for (int c = 0; c < 3; ++c) out[v][c] = l->center[c] + l->radius * (cosf(angle) * t[c] + sinf(angle) * b[c]);
+        for (int c = 0; c < 3; ++c)
+            out[v][c] = l->center[c] + l->radius * cosf(angle) * t[c] + r2 * sinf(angle) * b[c];
     }
     return VIEWER_DISK_SEGMENTS;
 }
@@ -214,7 +262,12 @@ static uint32_t light_outline(const viewer_light *l, float out[OUTLINE_MAX][3])
 rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_scene **out)
 {
     const rtpbr_gltf_scene *in = s->loaded;
-    rtpbr_texture_desc *textures = calloc(in->texture_count ? in->texture_count : 1, sizeof *textures);
+    rtpbr_texture_desc *textures = calloc(in->texture_count + 1, sizeof *textures);
+    uint32_t texture_count = in->texture_count;
+    static uint8_t card[VIEWER_TEST_CARD_WIDTH * VIEWER_TEST_CARD_HEIGHT * 4]; // the test card, if shown
+    bool shows_card = false;
+    for (uint32_t i = 0; i < s->light_count; ++i)
+        shows_card |= s->lights[i].vertex_count == 4 && s->lights[i].emission_texture == VIEWER_TEST_CARD;
     uint32_t mesh_cap = in->primitive_count + s->light_count;
     rtpbr_mesh_desc *meshes = calloc(mesh_cap ? mesh_cap : 1, sizeof *meshes);
     rtpbr_material_desc *materials = calloc(s->material_count + s->light_count + 1, sizeof *materials);
@@ -230,6 +283,12 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
         !light_uvs)
         goto done;
     for (uint32_t i = 0; i < in->texture_count; ++i) rtpbr_texture_desc_from_loaded(in, i, &textures[i]);
+    if (shows_card) { // the last texture (viewer_scene_light_descs' index)
+        viewer_test_card(card);
+        textures[texture_count++] = (rtpbr_texture_desc){.width = VIEWER_TEST_CARD_WIDTH,
+            .height = VIEWER_TEST_CARD_HEIGHT, .rgba = card, .srgb = 1, .wrap_s = RTPBR_WRAP_CLAMP_TO_EDGE,
+            .wrap_t = RTPBR_WRAP_CLAMP_TO_EDGE};
+    }
     memcpy(materials, s->materials, s->material_count * sizeof *materials);
     uint32_t mesh_count = 0;
     for (uint32_t i = 0; i < in->primitive_count; ++i) {
@@ -278,7 +337,7 @@ rtpbr_result viewer_scene_upload(viewer_scene *s, rtpbr_context *ctx, rtpbr_gpu_
     // No cameras: the viewer always passes its orbit camera to rtpbr_record.
     rtpbr_gpu_scene_desc desc = {.meshes = meshes, .mesh_count = mesh_count, .materials = materials,
         .material_count = s->material_count + s->light_count, .lights = lights, .light_count = light_total,
-        .textures = textures, .texture_count = in->texture_count};
+        .textures = textures, .texture_count = texture_count};
     r = rtpbr_gpu_scene_create(ctx, &desc, out);
 done:
     free(textures);
@@ -383,28 +442,51 @@ const char *viewer_new_light_name(int kind)
     static const char *const names[VIEWER_NEW_LIGHT_KINDS] = {
         [VIEWER_NEW_QUAD] = "quad", [VIEWER_NEW_DISK] = "disk", [VIEWER_NEW_SPHERE] = "sphere",
         [VIEWER_NEW_SPOT] = "spot", [VIEWER_NEW_POINT] = "point", [VIEWER_NEW_DIRECTIONAL] = "directional",
-        [VIEWER_NEW_TUBE] = "tube"};
+        [VIEWER_NEW_TUBE] = "tube", [VIEWER_NEW_ELLIPSE] = "ellipse", [VIEWER_NEW_SCREEN] = "screen"};
     return kind >= 0 && kind < VIEWER_NEW_LIGHT_KINDS ? names[kind] : "?";
+}
+
+// SMPTE-like colour bars (75 %: white, yellow, cyan, green, magenta, red, blue) over the top two
+// thirds, a grey ramp from black to white below; sRGB.
+void viewer_test_card(uint8_t rgba[VIEWER_TEST_CARD_WIDTH * VIEWER_TEST_CARD_HEIGHT * 4])
+{
+    static const uint8_t bars[7][3] = {{191, 191, 191}, {191, 191, 0}, {0, 191, 191}, {0, 191, 0},
+                                       {191, 0, 191},   {191, 0, 0},   {0, 0, 191}};
+    for (int y = 0; y < VIEWER_TEST_CARD_HEIGHT; ++y)
+        for (int x = 0; x < VIEWER_TEST_CARD_WIDTH; ++x) {
+            uint8_t *p = rgba + 4 * (y * VIEWER_TEST_CARD_WIDTH + x);
+            if (3 * y < 2 * VIEWER_TEST_CARD_HEIGHT) {
+                memcpy(p, bars[x * 7 / VIEWER_TEST_CARD_WIDTH], 3);
+            } else {
+                p[0] = p[1] = p[2] = (uint8_t)(255 * x / (VIEWER_TEST_CARD_WIDTH - 1));
+            }
+            p[3] = 255;
+        }
 }
 
 bool viewer_new_light(int kind, const float at[3], viewer_light *light, viewer_punctual *punctual)
 {
-    if (kind == VIEWER_NEW_QUAD || kind == VIEWER_NEW_DISK) {
+    if (kind == VIEWER_NEW_QUAD || kind == VIEWER_NEW_DISK || kind == VIEWER_NEW_ELLIPSE || kind == VIEWER_NEW_SCREEN) {
         memset(light, 0, sizeof *light);
-        if (kind == VIEWER_NEW_QUAD) {
-            // Counter-clockwise seen from below: it faces -Y.
-            static const float corners[4][2] = {{-0.25f, -0.25f}, {0.25f, -0.25f}, {0.25f, 0.25f}, {-0.25f, 0.25f}};
+        if (kind == VIEWER_NEW_QUAD || kind == VIEWER_NEW_SCREEN) {
+            // Counter-clockwise seen from below: it faces -Y. The screen: 0.8 x 0.45 m, its
+            // picture's top row along v0 -> v1 (emission_uv zero: the whole texture).
+            bool screen = kind == VIEWER_NEW_SCREEN;
+            float hx = screen ? 0.4f : 0.25f, hz = screen ? 0.225f : 0.25f;
+            const float corners[4][2] = {{-hx, -hz}, {hx, -hz}, {hx, hz}, {-hx, hz}};
             for (int v = 0; v < 4; ++v) {
                 light->vertices[v][0] = at[0] + corners[v][0];
                 light->vertices[v][1] = at[1];
                 light->vertices[v][2] = at[2] + corners[v][1];
             }
             light->vertex_count = 4;
-        } else { // the quad's area, pi r^2 = 0.25 m^2, facing -Y
+            if (screen) light->emission_texture = VIEWER_TEST_CARD;
+        } else { // the disk: the quad's area, pi r^2 = 0.25 m^2, facing -Y; the ellipse 0.4 x 0.2 m
             light->type = RTPBR_LIGHT_DISK;
             memcpy(light->center, at, sizeof light->center);
             light->normal[1] = -1.0f;
-            light->radius = 0.28209479177f; // 0.5 / sqrt(pi)
+            light->radius = kind == VIEWER_NEW_DISK ? 0.28209479177f : 0.4f; // 0.5 / sqrt(pi)
+            if (kind == VIEWER_NEW_ELLIPSE) light->radius2 = 0.2f, light->axis[0] = 1.0f;
         }
         light->color[0] = light->color[1] = light->color[2] = 1.0f;
         light->intensity = 4.0f; // radiance
@@ -550,6 +632,10 @@ void viewer_light_rotate(viewer_light *l, int axis, float radians)
         rotate_point(l->normal, origin, axis, cs, sn);
         float *n = l->normal, len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         for (int c = 0; c < 3; ++c) n[c] /= len;
+        if (l->radius2 > 0.0f) { // an ellipse's axis with it
+            rotate_point(l->axis, origin, axis, cs, sn);
+            ellipse_axis_in_plane(l);
+        }
     }
     float m[3][3] = {{0}};
     m[axis][axis] = 1.0f;
@@ -561,10 +647,13 @@ void viewer_light_scale(viewer_light *l, float factor)
 {
     float center[3];
     viewer_light_center(l, center);
-    if (l->type == RTPBR_LIGHT_DISK) {
-        float radius = fminf(fmaxf(l->radius * factor, VIEWER_MIN_DISK_RADIUS), VIEWER_MAX_DISK_RADIUS);
-        factor = radius / l->radius;
-        l->radius = radius;
+    if (l->type == RTPBR_LIGHT_DISK) { // the factor that keeps both half-axes in range
+        float lo = fminf(l->radius, viewer_light_radius2(l)), hi = fmaxf(l->radius, viewer_light_radius2(l));
+        factor = fminf(fmaxf(factor, VIEWER_MIN_DISK_RADIUS / lo), VIEWER_MAX_DISK_RADIUS / hi);
+        if (!(factor > 0.0f) || !isfinite(factor)) factor = 1.0f; // NaN, or no factor keeps both
+        l->radius = fminf(fmaxf(l->radius * factor, VIEWER_MIN_DISK_RADIUS), VIEWER_MAX_DISK_RADIUS);
+        if (l->radius2 > 0.0f)
+            l->radius2 = fminf(fmaxf(l->radius2 * factor, VIEWER_MIN_DISK_RADIUS), VIEWER_MAX_DISK_RADIUS);
     }
     for (uint32_t v = 0; v < l->vertex_count; ++v)
         for (int c = 0; c < 3; ++c) l->vertices[v][c] = center[c] + factor * (l->vertices[v][c] - center[c]);
@@ -572,7 +661,32 @@ void viewer_light_scale(viewer_light *l, float factor)
     compose_about(l, center, m);
 }
 
-const char *viewer_light_kind(const viewer_light *l) { return l->type == RTPBR_LIGHT_DISK ? "disk" : "polygon"; }
+void viewer_light_set_radius2(viewer_light *l, float r2)
+{
+    if (l->type != RTPBR_LIGHT_DISK || !(r2 > 0.0f)) return; // (NaN too)
+    r2 = fminf(fmaxf(r2, VIEWER_MIN_DISK_RADIUS), VIEWER_MAX_DISK_RADIUS);
+    float t[3], b[3], factor = r2 / viewer_light_radius2(l);
+    disk_frame(l, t, b); // a circle's: its drawn outline's
+    if (!(l->radius2 > 0.0f)) memcpy(l->axis, t, sizeof l->axis);
+    l->radius2 = r2 == l->radius ? 0.0f : r2;
+    // the surface drawn: stretched by factor across the axis, A = I + (factor - 1) b b^T
+    float a[3][3];
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) a[r][c] = (r == c ? 1.0f : 0.0f) + (factor - 1.0f) * b[r] * b[c];
+    compose_about(l, l->center, a);
+}
+
+const char *viewer_light_kind(const viewer_light *l)
+{
+    if (l->type == RTPBR_LIGHT_DISK) return l->radius2 > 0.0f ? "ellipse" : "disk";
+    return l->vertex_count == 4 && l->emission_texture ? "screen" : "polygon";
+}
+
+float viewer_light_radius2(const viewer_light *l)
+{
+    if (l->type != RTPBR_LIGHT_DISK) return 0.0f;
+    return l->radius2 > 0.0f ? l->radius2 : l->radius;
+}
 
 float viewer_light_radius(const viewer_light *l)
 {

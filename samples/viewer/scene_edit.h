@@ -24,12 +24,17 @@ typedef struct viewer_light {
     uint32_t vertex_count;  // polygon: 3..8; disk: 0
     float center[3];        // disk: its centre
     float normal[3];        // disk: unit, toward the side it emits on
-    float radius;           // disk: > 0 (VIEWER_MIN_DISK_RADIUS .. VIEWER_MAX_DISK_RADIUS after an edit)
+    float radius;           // disk: > 0 (VIEWER_MIN_DISK_RADIUS .. VIEWER_MAX_DISK_RADIUS after an edit);
+                            // an ellipse's half-axis along `axis`
+    float radius2;          // disk: 0 a circle; > 0 an ellipse (rtpbr_light_desc.disk_radius2), its
+                            // half-axis across `axis` (in the same range after an edit)
+    float axis[3];          // ellipse: unit, in its plane, the direction of the half-axis `radius`
     float color[3];     // max component 1
     float intensity;    // radiance = color * intensity
     bool two_sided;
     uint32_t emission_texture; // polygon of 4 vertices: rtpbr_light_desc's (a screen: radiance =
-    float emission_uv[3][2];   // color * intensity * the texture); dropped when it is reshaped
+    float emission_uv[3][2];   // color * intensity * the texture); dropped when it is reshaped.
+                               // VIEWER_TEST_CARD: the viewer's own picture (VIEWER_NEW_SCREEN)
     int32_t material;   // the emissive material it came from (its surface), -1: none
     // World-from-uploaded map of the edits since the last upload (column-major): the light's
     // emissive mesh is drawn with it, so moves need no new geometry.
@@ -43,6 +48,14 @@ typedef struct viewer_light {
 #define VIEWER_DISK_SEGMENTS 48
 #define VIEWER_MIN_DISK_RADIUS 1e-3f
 #define VIEWER_MAX_DISK_RADIUS 100.0f
+
+// viewer_light.emission_texture of a screen showing the viewer's own picture (colour bars over
+// a grey ramp, VIEWER_TEST_CARD_WIDTH x _HEIGHT sRGB texels, viewer_test_card), which the
+// upload appends to the scene's textures when a light shows it.
+#define VIEWER_TEST_CARD UINT32_MAX
+#define VIEWER_TEST_CARD_WIDTH 64
+#define VIEWER_TEST_CARD_HEIGHT 36
+void viewer_test_card(uint8_t rgba[VIEWER_TEST_CARD_WIDTH * VIEWER_TEST_CARD_HEIGHT * 4]);
 
 // A KHR_lights_punctual light (rtpbr_light_desc's point, spot and directional lights): no
 // geometry, nothing drawn; only its light is seen.
@@ -81,6 +94,10 @@ static inline uint32_t viewer_scene_light_total(const viewer_scene *s) { return 
 
 // Loads a glTF file; false with the loader's message on stderr.
 bool viewer_scene_load(viewer_scene *s, const char *path);
+// Loaded light i (i < in->light_count) as the viewer edits it: rtpbr_gpu_scene_from_loaded's
+// light (a disk or an ellipse as itself, a screen's texture and coordinates, the emission as
+// colour x intensity), its material, an identity transform.
+void viewer_light_from_loaded(const rtpbr_gltf_scene *in, uint32_t i, viewer_light *v);
 void viewer_scene_destroy(viewer_scene *s);
 // Builds the engine scene: every non-emissive primitive with its (edited) material, and every
 // area light both as a light (a polygon or a disk) and as an emissive mesh (its polygon, a
@@ -112,14 +129,17 @@ bool viewer_scene_remove_light(viewer_scene *s, uint32_t index);
 // The new lights the viewer's Insert key (I) adds, in this order: a 0.5 m square quad facing
 // down (radiance 4), a disk facing down of the quad's area and radiance (so of its power:
 // radius 0.5 / sqrt(pi) m), a sphere (radius 0.1 m), a spot pointing down, a point, a
-// directional light, a tube (a capsule along +X: radius 0.05 m, length 0.8 m, 2 cd); all but
-// the directional light centred at `at`.
+// directional light, a tube (a capsule along +X: radius 0.05 m, length 0.8 m, 2 cd), an
+// ellipse facing down (half-axes 0.4 m along +X and 0.2 m, radiance 4), a screen (a 0.8 x
+// 0.45 m quad facing down showing the viewer's test card, VIEWER_TEST_CARD, radiance 4 x the
+// picture); all but the directional light centred at `at`.
 typedef enum viewer_new_light_kind {
     VIEWER_NEW_QUAD, VIEWER_NEW_DISK, VIEWER_NEW_SPHERE, VIEWER_NEW_SPOT, VIEWER_NEW_POINT, VIEWER_NEW_DIRECTIONAL,
-    VIEWER_NEW_TUBE, VIEWER_NEW_LIGHT_KINDS
+    VIEWER_NEW_TUBE, VIEWER_NEW_ELLIPSE, VIEWER_NEW_SCREEN, VIEWER_NEW_LIGHT_KINDS
 } viewer_new_light_kind;
 const char *viewer_new_light_name(int kind);
-// Fills *light (the quad, the disk) or *punctual (the others); returns true for an area light.
+// Fills *light (the quad, the disk, the ellipse, the screen) or *punctual (the others); returns
+// true for an area light.
 bool viewer_new_light(int kind, const float at[3], viewer_light *light, viewer_punctual *punctual);
 
 // True when an edit needs viewer_scene_upload (a polygon's vertex count changed, a light was
@@ -132,18 +152,26 @@ bool viewer_scene_pick(const viewer_scene *s, const float origin[3], const float
                        int32_t *material);
 
 // Edits of one area light, about its centre (a polygon's vertex mean, a disk's centre). A disk
-// moves its centre, turns its normal and scales its radius (kept within
-// VIEWER_MIN_DISK_RADIUS .. VIEWER_MAX_DISK_RADIUS: the factor applied is the one that keeps it
-// there).
+// moves its centre, turns its normal (an ellipse its axis too) and scales its radius (an
+// ellipse both half-axes; kept within VIEWER_MIN_DISK_RADIUS .. VIEWER_MAX_DISK_RADIUS: the
+// factor applied is the one that keeps them there).
 void viewer_light_center(const viewer_light *l, float out[3]);
 void viewer_light_normal(const viewer_light *l, float out[3]);
 void viewer_light_translate(viewer_light *l, const float d[3]);
 void viewer_light_rotate(viewer_light *l, int axis, float radians); // about a world axis 0..2
 void viewer_light_scale(viewer_light *l, float factor);
-// "polygon" or "disk".
+// A disk's half-axis across its axis set to r2 (clamped to VIEWER_MIN_DISK_RADIUS ..
+// VIEWER_MAX_DISK_RADIUS; a circle becomes an ellipse whose axis is the first of its drawn
+// outline's frame; r2 equal to the radius, a circle again): its surface is stretched across
+// the axis. Polygons: nothing.
+void viewer_light_set_radius2(viewer_light *l, float r2);
+// "polygon", "screen" (a textured quad), "disk" or "ellipse".
 const char *viewer_light_kind(const viewer_light *l);
-// A polygon's mean distance of its vertices from the centre; a disk's radius.
+// A polygon's mean distance of its vertices from the centre; a disk's radius (an ellipse's
+// half-axis along its axis).
 float viewer_light_radius(const viewer_light *l);
+// A disk's half-axis across its axis (its radius for a circle); 0 for polygons.
+float viewer_light_radius2(const viewer_light *l);
 // A regular polygon of n (3..8) vertices with the light's centre, normal and mean radius. A
 // disk has no vertices: it stays as it is.
 void viewer_light_set_vertex_count(viewer_light *l, uint32_t n);

@@ -331,13 +331,19 @@ static void light_panel(app *a)
 {
     viewer_scene *s = &a->scene;
     // Add a light of each kind (I cycles them) or remove the selected one (X); short labels,
-    // in two rows (the area lights, the punctual ones) that fit the panel's 300 pixels.
-    static const char *const labels[] = {"quad", "disk", "sphere", "spot", "point", "sun", "tube"}; // viewer_new_light_kind
+    // in two rows (the flat area lights; the sphere, the tube and the punctual ones) that fit
+    // the panel's 300 pixels.
+    static const char *const labels[] = {"quad", "disk", "sphere", "spot", "point", "sun", "tube", "ellipse",
+                                         "screen"}; // viewer_new_light_kind
     static_assert(sizeof labels / sizeof *labels == VIEWER_NEW_LIGHT_KINDS, "a label for each kind");
+    static const int order[] = {VIEWER_NEW_QUAD,   VIEWER_NEW_DISK, VIEWER_NEW_ELLIPSE, VIEWER_NEW_SCREEN,
+                                VIEWER_NEW_SPHERE, VIEWER_NEW_TUBE, VIEWER_NEW_SPOT,    VIEWER_NEW_POINT,
+                                VIEWER_NEW_DIRECTIONAL};
+    static_assert(sizeof order / sizeof *order == VIEWER_NEW_LIGHT_KINDS, "each kind in the rows");
     ImGui::TextUnformatted("add");
     float row_start = 0.0f;
-    for (int kind = 0; kind < VIEWER_NEW_LIGHT_KINDS; ++kind) {
-        if (kind == VIEWER_NEW_SPOT) ImGui::SetCursorPosX(row_start); // the second row, under the first
+    for (int kind : order) {
+        if (kind == VIEWER_NEW_SPHERE) ImGui::SetCursorPosX(row_start); // the second row, under the first
         else ImGui::SameLine();
         if (kind == VIEWER_NEW_QUAD) row_start = ImGui::GetCursorPosX();
         if (ImGui::SmallButton(labels[kind])) app_add_light(a, kind);
@@ -364,10 +370,16 @@ static void light_panel(app *a)
     ImGui::TextDisabled("%s light", viewer_light_kind(l));
     float radius = viewer_light_radius(l);
     if (disk) {
-        float r = radius; // the disk's own radius, as the engine shades it
+        float r = radius; // the disk's own radius, as the engine shades it (an ellipse's along its axis)
         if (ImGui::DragFloat("radius (m)", &r, 0.005f, VIEWER_MIN_DISK_RADIUS, VIEWER_MAX_DISK_RADIUS, "%.3f") &&
             r > 0.0f) {
-            viewer_light_scale(l, r / radius);
+            viewer_light_scale(l, r / radius); // both half-axes: the shape kept
+            edited = true;
+        }
+        float r2 = viewer_light_radius2(l); // across the axis: a circle's radius, stretched into an ellipse
+        if (ImGui::DragFloat("across (m)", &r2, 0.005f, VIEWER_MIN_DISK_RADIUS, VIEWER_MAX_DISK_RADIUS, "%.3f") &&
+            r2 > 0.0f) {
+            viewer_light_set_radius2(l, r2);
             edited = true;
         }
     } else {

@@ -37,8 +37,8 @@ static const char *const help_text =
     "  - / =           light intensity -/+ (x 1.25)\n"
     "  T               light one-/two-sided (area lights: polygons, disks)\n"
     "  I               add a light 1 m above the orbit target: quad, disk, sphere, spot,\n"
-    "                  point, directional, tube in turn (selected; the panel adds each kind\n"
-    "                  too)\n"
+    "                  point, directional, tube, ellipse, screen (a quad showing a test card)\n"
+    "                  in turn (selected; the panel adds each kind too)\n"
     "  X               remove the selected light\n"
     "  M               select the next material\n"
     "  7 / 8           material roughness -/+\n"
@@ -181,10 +181,11 @@ static void update_title(app *a)
         const viewer_light *l = app_area_light(a);
         const viewer_punctual *p = app_punctual_light(a);
         if (l && l->type == RTPBR_LIGHT_DISK && n > 0 && (size_t)n < sizeof title)
-            n += snprintf(title + n, sizeof title - n, " disk r=%.2f I=%.2f %s", l->radius, l->intensity,
-                          l->two_sided ? "two-sided" : "one-sided");
+            n += snprintf(title + n, sizeof title - n, " %s r=%.2f x %.2f I=%.2f %s", viewer_light_kind(l), l->radius,
+                          viewer_light_radius2(l), l->intensity, l->two_sided ? "two-sided" : "one-sided");
         else if (l && n > 0 && (size_t)n < sizeof title)
-            n += snprintf(title + n, sizeof title - n, " %u-gon I=%.2f %s", l->vertex_count, l->intensity,
+            n += snprintf(title + n, sizeof title - n, " %u-gon%s I=%.2f %s", l->vertex_count,
+                          l->emission_texture ? " screen" : "", l->intensity,
                           l->two_sided ? "two-sided" : "one-sided");
         else if (p && n > 0 && (size_t)n < sizeof title)
             n += snprintf(title + n, sizeof title - n, " %s I=%.2f %s", viewer_punctual_kind(p), p->intensity,
@@ -308,7 +309,8 @@ static void handle_key(app *a, int key)
             [VIEWER_NEW_QUAD] = "added a quad light", [VIEWER_NEW_DISK] = "added a disk light",
             [VIEWER_NEW_SPHERE] = "added a sphere light", [VIEWER_NEW_SPOT] = "added a spot light",
             [VIEWER_NEW_POINT] = "added a point light", [VIEWER_NEW_DIRECTIONAL] = "added a directional light",
-            [VIEWER_NEW_TUBE] = "added a tube light"};
+            [VIEWER_NEW_TUBE] = "added a tube light", [VIEWER_NEW_ELLIPSE] = "added an ellipse light",
+            [VIEWER_NEW_SCREEN] = "added a screen (a textured quad light)"};
         a->notice = app_add_light(a, a->new_light_kind) ? added[a->new_light_kind] : "out of memory";
         a->new_light_kind = (a->new_light_kind + 1) % VIEWER_NEW_LIGHT_KINDS;
         break;

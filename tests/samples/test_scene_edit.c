@@ -9,7 +9,9 @@
 // rtpbr_gpu_scene_set_lights through the viewer keeps a mixed scene's area light intact.
 // Disk lights (issue 30): light_shapes' EXT_lights_area disks are disks in the viewer (its
 // descs, its picking and, on the device, the engine's own image, moved in place too), and the
-// disk I adds (its place in I's order, its desc, its edits).
+// disk I adds (its place in I's order, its desc, its edits). Ellipses and screens: the ellipse
+// I adds and its edits; a loaded ellipse renders what the engine's loader path renders; the
+// screen I adds shows the viewer's test card (its mean and its layout in the light it adds).
 #include "engine_test.h" // test_main.h, the validation-counting context, test_render_radiance
 
 #include "scene_edit.h"
@@ -250,23 +252,29 @@ static void test_punctual_edits(void **state)
 }
 
 // The order I adds lights in (viewer.c cycles viewer_new_light's kinds 0, 1, ...): a quad, a
-// disk, a sphere, a spot, a point, a directional light and a tube, each of the kind its name
-// says (the tube: a point light with a radius and a length, the engine's RTPBR_LIGHT_TUBE).
+// disk, a sphere, a spot, a point, a directional light, a tube, an ellipse and a screen, each of
+// the kind its name says (the tube: a point light with a radius and a length, the engine's
+// RTPBR_LIGHT_TUBE; the ellipse a disk with a second half-axis; the screen a quad showing the
+// viewer's test card).
 static void test_new_light_order(void **state)
 {
     (void)state;
-    static const char *const names[] = {"quad", "disk", "sphere", "spot", "point", "directional", "tube"};
-    static const rtpbr_light_type types[] = {RTPBR_LIGHT_POLYGON, RTPBR_LIGHT_DISK, RTPBR_LIGHT_POINT, RTPBR_LIGHT_SPOT,
-                                             RTPBR_LIGHT_POINT,   RTPBR_LIGHT_DIRECTIONAL, RTPBR_LIGHT_POINT};
-    assert_int_equal(VIEWER_NEW_LIGHT_KINDS, 7);
+    static const char *const names[] = {"quad", "disk", "sphere", "spot", "point", "directional", "tube", "ellipse",
+                                        "screen"};
+    static const char *const area_kinds[] = {[0] = "polygon", [1] = "disk", [7] = "ellipse", [8] = "screen"};
+    static const rtpbr_light_type types[] = {RTPBR_LIGHT_POLYGON, RTPBR_LIGHT_DISK, RTPBR_LIGHT_POINT,
+                                             RTPBR_LIGHT_SPOT,    RTPBR_LIGHT_POINT, RTPBR_LIGHT_DIRECTIONAL,
+                                             RTPBR_LIGHT_POINT,   RTPBR_LIGHT_DISK,  RTPBR_LIGHT_POLYGON};
+    assert_int_equal(VIEWER_NEW_LIGHT_KINDS, 9);
     const float at[3] = {1.0f, 2.0f, 3.0f};
     for (int kind = 0; kind < VIEWER_NEW_LIGHT_KINDS; ++kind) {
         assert_string_equal(viewer_new_light_name(kind), names[kind]);
         viewer_light l;
         viewer_punctual p;
         bool area = viewer_new_light(kind, at, &l, &p);
-        assert_int_equal(area, kind <= 1);
+        assert_int_equal(area, kind <= 1 || kind >= 7);
         assert_int_equal(area ? l.type : p.type, types[kind]);
+        if (area) assert_string_equal(viewer_light_kind(&l), area_kinds[kind]);
         if (!area) assert_float_equal(p.radius, kind == 2 ? 0.1f : kind == 6 ? 0.05f : 0.0f, 0.0f); // the sphere: radius 0.1
         if (!area) assert_float_equal(p.length, kind == 6 ? 0.8f : 0.0f, 0.0f);
         if (!area) assert_string_equal(viewer_punctual_kind(&p), kind == 6 ? "tube" : kind == 3 ? "spot" : kind == 5 ? "directional" : "point");
@@ -349,6 +357,97 @@ static void test_new_disk(void **state)
     assert_int_equal(disk->type, RTPBR_LIGHT_DISK);
     assert_int_equal(disk->vertex_count, 0);
     assert_false(disk->reshaped);
+    viewer_scene_destroy(&s);
+}
+
+// The ellipse I adds (issue 30): facing down at `at`, half-axes 0.4 m along +X and 0.2 m across
+// (so along Z), radiance 4; its desc an RTPBR_LIGHT_DISK with disk_radius2 0.2 and disk_axis +X.
+// Picking follows the ellipse (not its long half-axis' circle): rays from below hit 0.35 m out
+// along the axis, and miss 0.3 m out across it (inside that circle), hit 0.15 m across. A turn of
+// 90 degrees about +Y turns the axis to -Z (and the picking with it); a scale scales both
+// half-axes, and stops when either reaches a limit; set_radius2 stretches a circle into an
+// ellipse (axis in its plane, the drawn fan's transform stretched across it: a rim point across
+// the axis maps to the new half-axis) and back (r2 = radius: a circle); NaN changes nothing.
+static void test_new_ellipse(void **state)
+{
+    (void)state;
+    const float at[3] = {0.5f, 2.0f, -1.0f};
+    viewer_light l;
+    viewer_punctual p;
+    assert_true(viewer_new_light(VIEWER_NEW_ELLIPSE, at, &l, &p));
+    assert_string_equal(viewer_light_kind(&l), "ellipse");
+    viewer_scene s;
+    assert_true(viewer_scene_load(&s, RTPBR_SAMPLES_SCENES "/quad_light.gltf"));
+    assert_true(viewer_scene_add_light(&s, &l));
+    rtpbr_light_desc descs[2];
+    viewer_scene_light_descs(&s, descs);
+    const rtpbr_light_desc *d = &descs[1];
+    assert_int_equal(d->type, RTPBR_LIGHT_DISK);
+    assert_float_equal(d->radius, 0.4f, 0.0f);
+    assert_float_equal(d->disk_radius2, 0.2f, 0.0f);
+    for (int c = 0; c < 3; ++c) assert_float_equal(d->disk_axis[c], c == 0 ? 1.0f : 0.0f, 0.0f);
+    assert_float_equal(d->direction[1], -1.0f, 0.0f);
+
+    // rays straight up from 0.1 m below the centre, offset (dx, dz)
+    const float up[3] = {0.0f, 1.0f, 0.0f};
+#define PICKS(dx, dz)                                                                                     \
+    (viewer_scene_pick(&s, (const float[3]){at[0] + (dx), at[1] - 0.1f, at[2] + (dz)}, up, &light, &material) && \
+     light == 1)
+    int32_t light, material;
+    assert_true(PICKS(0.0f, 0.0f));
+    assert_true(PICKS(0.35f, 0.0f));
+    assert_true(PICKS(-0.35f, 0.0f));
+    assert_true(PICKS(0.0f, 0.15f));
+    assert_false(PICKS(0.0f, 0.3f));
+    assert_false(PICKS(0.0f, -0.3f));
+    viewer_light *e = &s.lights[1];
+    viewer_light_rotate(e, 1, (float)(pi / 2)); // about +Y: +X -> -Z
+    viewer_scene_light_descs(&s, descs);
+    assert_float_equal(d->disk_axis[0], 0.0f, 1e-6f);
+    assert_float_equal(d->disk_axis[2], -1.0f, 1e-6f);
+    assert_float_equal(d->direction[1], -1.0f, 1e-6f);
+    assert_true(PICKS(0.0f, 0.35f));
+    assert_false(PICKS(0.3f, 0.0f));
+#undef PICKS
+    viewer_light_scale(e, 2.0f);
+    assert_float_equal(e->radius, 0.8f, 1e-6f);
+    assert_float_equal(e->radius2, 0.4f, 1e-6f);
+    viewer_light_scale(e, 1e9f); // stops when the long half-axis reaches the largest radius
+    assert_float_equal(e->radius, VIEWER_MAX_DISK_RADIUS, 1e-3f);
+    assert_float_equal(e->radius2, 0.5f * VIEWER_MAX_DISK_RADIUS, 1e-3f);
+    viewer_light_scale(e, 1e-9f); // and the short one the smallest
+    assert_float_equal(e->radius2, VIEWER_MIN_DISK_RADIUS, 1e-8f);
+    assert_float_equal(e->radius, 2.0f * VIEWER_MIN_DISK_RADIUS, 1e-8f);
+    assert_string_equal(viewer_light_kind(e), "ellipse");
+
+    viewer_light c; // a circle stretched into an ellipse, and back
+    assert_true(viewer_new_light(VIEWER_NEW_DISK, at, &c, &p));
+    float r = c.radius;
+    viewer_light_set_radius2(&c, NAN);
+    assert_string_equal(viewer_light_kind(&c), "disk");
+    viewer_light_set_radius2(&c, 0.5f * r);
+    assert_string_equal(viewer_light_kind(&c), "ellipse");
+    assert_float_equal(viewer_light_radius2(&c), 0.5f * r, 1e-7f);
+    assert_float_equal(c.radius, r, 0.0f);
+    float an = c.axis[0] * c.normal[0] + c.axis[1] * c.normal[1] + c.axis[2] * c.normal[2];
+    assert_float_equal(an, 0.0f, 1e-6f);
+    assert_float_equal(c.axis[0] * c.axis[0] + c.axis[1] * c.axis[1] + c.axis[2] * c.axis[2], 1.0f, 1e-6f);
+    const float *n = c.normal; // across = n x axis: a rim point there maps to half its distance
+    float across[3] = {n[1] * c.axis[2] - n[2] * c.axis[1], n[2] * c.axis[0] - n[0] * c.axis[2],
+                       n[0] * c.axis[1] - n[1] * c.axis[0]};
+    float rim[3], along[3], mapped[2][3];
+    for (int k = 0; k < 3; ++k) rim[k] = at[k] + r * across[k], along[k] = at[k] + r * c.axis[k];
+    for (int q = 0; q < 2; ++q)
+        for (int row = 0; row < 3; ++row) {
+            const float *x = q == 0 ? rim : along;
+            mapped[q][row] = c.transform[12 + row];
+            for (int col = 0; col < 3; ++col) mapped[q][row] += c.transform[col * 4 + row] * x[col];
+        }
+    for (int k = 0; k < 3; ++k) assert_float_equal(mapped[0][k], at[k] + 0.5f * r * across[k], 1e-6f);
+    for (int k = 0; k < 3; ++k) assert_float_equal(mapped[1][k], along[k], 1e-6f);
+    viewer_light_set_radius2(&c, r);
+    assert_string_equal(viewer_light_kind(&c), "disk");
+    assert_float_equal(c.transform[0], 1.0f, 1e-6f);
     viewer_scene_destroy(&s);
 }
 
@@ -688,6 +787,132 @@ static void test_disk_upload_matches_engine(void **state)
     device_case_close(&d);
 }
 
+// An EXT_lights_area disk under an uneven node scale is an ellipse (the loader's radius2 and
+// axis: tests/scene, test_ext_lights_area_ellipse); the viewer has it as that ellipse (issue
+// 30). light_shapes' overhead disk is made one in the loaded scene (its half-axis across an
+// in-plane axis halved), and viewer_light_from_loaded maps it again: the viewer's upload renders
+// what rtpbr_gpu_scene_from_loaded renders of that loaded scene (no pixel beyond 1e-5), and the
+// viewer of before (the circle of its long half-axis: no radius2) differs on many lit pixels.
+// Turning the ellipse about its own normal (here: a fresh load, the axis turned by 90 degrees in
+// the loaded scene) changes the image.
+static void test_ellipse_upload_matches_engine(void **state)
+{
+    device_case d;
+    device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/light_shapes.gltf");
+    viewer_scene *s = &d.s;
+    rtpbr_gltf_light *in = &s->loaded->lights[0];
+    assert_int_equal(in->shape, RTPBR_GLTF_LIGHT_DISK);
+    const float *n = in->facts.normal;
+    float axis[3] = {n[1], -n[0], 0.0f}, len = sqrtf(axis[0] * axis[0] + axis[1] * axis[1]); // in its plane
+    for (int c = 0; c < 3; ++c) axis[c] /= len;
+    in->radius2 = 0.4f * in->radius;
+    memcpy(in->axis, axis, sizeof axis);
+    viewer_light_from_loaded(s->loaded, 0, &s->lights[0]);
+    assert_string_equal(viewer_light_kind(&s->lights[0]), "ellipse");
+    rtpbr_gpu_scene *engine, *viewer;
+    float *want;
+    size_t lit = upload_matches_engine(&d, "light_shapes, disk 0 an ellipse", 2, &want, &engine, &viewer);
+
+    viewer_light ellipse = s->lights[0];
+    s->lights[0].radius2 = 0.0f; // the viewer of before: the circle
+    rtpbr_gpu_scene *circle = upload(&d);
+    float *old = render(&d, circle);
+    size_t old_differing = pixels_beyond(want, old, 1e-5);
+    printf("light_shapes, disk 0 an ellipse: as its circle %zu pixels differ beyond 1e-5\n", old_differing);
+    assert_true(old_differing > lit / 4);
+    s->lights[0] = ellipse;
+
+    float across[3] = {n[1] * axis[2] - n[2] * axis[1], n[2] * axis[0] - n[0] * axis[2], n[0] * axis[1] - n[1] * axis[0]};
+    memcpy(in->axis, across, sizeof across); // the same ellipse turned a quarter about its normal
+    viewer_light_from_loaded(s->loaded, 0, &s->lights[0]);
+    for (int c = 0; c < 3; ++c) assert_float_equal(s->lights[0].axis[c], across[c], 1e-6f);
+    rtpbr_gpu_scene *turned = upload(&d);
+    float *turned_image = render(&d, turned);
+    size_t turn_changes = pixels_beyond(want, turned_image, 1e-5);
+    printf("light_shapes, the ellipse turned a quarter about its normal: changes %zu pixels\n", turn_changes);
+    assert_true(turn_changes > lit / 4);
+    free(want);
+    free(old);
+    free(turned_image);
+    rtpbr_gpu_scene_destroy(turned);
+    rtpbr_gpu_scene_destroy(circle);
+    rtpbr_gpu_scene_destroy(viewer);
+    rtpbr_gpu_scene_destroy(engine);
+    device_case_close(&d);
+}
+
+// sRGB-encoded 8-bit value to linear (IEC 61966-2-1).
+static double srgb_to_linear(uint8_t v)
+{
+    double c = v / 255.0;
+    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+// The screen I adds (issue 30): a quad showing the viewer's test card, which the upload appends
+// to the scene's textures (the desc's emission_texture is 1 + the file's texture count). Lit by
+// it from 0.1 m above the floor, the scene gets, per channel, the light of the same quad without
+// a texture times about the card's mean linear value (computed here from its texels): the
+// image's sum of what the screen adds, card / plain, within 5 % of that mean (measured: 1.4 %;
+// the LTC's prefiltered lookup of a picture seen from nearby is not exactly its mean). The
+// picture's layout shows on the floor: green over red is larger where the card's left (white,
+// yellow, cyan, green bars) shines than where its right (magenta, red, blue) does, so the
+// image's halves differ in that ratio (measured 1.04 and 0.47; a texture read as its mean
+// would give one ratio).
+static void test_screen_test_card(void **state)
+{
+    device_case d;
+    device_case_open(&d, state, RTPBR_SAMPLES_SCENES "/quad_light.gltf");
+    viewer_scene *s = &d.s;
+    uint32_t file_textures = s->loaded->texture_count;
+    rtpbr_gpu_scene *base = upload(&d);
+    float *base_image = render(&d, base);
+    const float at[3] = {0.0f, 0.1f, 0.5f};
+    viewer_light l;
+    viewer_punctual p;
+    assert_true(viewer_new_light(VIEWER_NEW_SCREEN, at, &l, &p));
+    assert_int_equal(l.emission_texture, VIEWER_TEST_CARD);
+    assert_true(viewer_scene_add_light(s, &l));
+    rtpbr_light_desc descs[2];
+    viewer_scene_light_descs(s, descs);
+    assert_int_equal(descs[1].emission_texture, file_textures + 1);
+    rtpbr_gpu_scene *card = upload(&d);
+    float *card_image = render(&d, card);
+    s->lights[1].emission_texture = 0;
+    rtpbr_gpu_scene *plain = upload(&d);
+    float *plain_image = render(&d, plain);
+
+    uint8_t texels[VIEWER_TEST_CARD_WIDTH * VIEWER_TEST_CARD_HEIGHT * 4];
+    viewer_test_card(texels);
+    double mean[3] = {0, 0, 0}, got[3] = {0, 0, 0}, want[3] = {0, 0, 0}, half[2][2] = {{0, 0}, {0, 0}};
+    for (int i = 0; i < VIEWER_TEST_CARD_WIDTH * VIEWER_TEST_CARD_HEIGHT; ++i)
+        for (int c = 0; c < 3; ++c) mean[c] += srgb_to_linear(texels[4 * i + c]) / (VIEWER_TEST_CARD_WIDTH * VIEWER_TEST_CARD_HEIGHT);
+    for (int y = 0; y < RH; ++y)
+        for (int x = 0; x < RW; ++x)
+            for (int c = 0; c < 3; ++c) {
+                size_t i = 4 * ((size_t)y * RW + x) + c;
+                double added = card_image[i] - base_image[i];
+                got[c] += added;
+                want[c] += plain_image[i] - base_image[i];
+                if (c < 2) half[x < RW / 2][c] += added; // red, green per half
+            }
+    for (int c = 0; c < 3; ++c) {
+        printf("screen with the test card: channel %d adds %.4g x the plain quad's light; the card's mean %.4g\n", c,
+               got[c] / want[c], mean[c]);
+        assert_true(want[c] > 0.0);
+        assert_true(fabs(got[c] / want[c] - mean[c]) < 0.05 * mean[c]);
+    }
+    double g_over_r[2] = {half[0][1] / half[0][0], half[1][1] / half[1][0]};
+    printf("screen with the test card: green / red, right half %.3f, left half %.3f\n", g_over_r[0], g_over_r[1]);
+    assert_true(fmax(g_over_r[0], g_over_r[1]) > 1.2 * fmin(g_over_r[0], g_over_r[1]));
+    free(base_image);
+    free(card_image);
+    free(plain_image);
+    rtpbr_gpu_scene_destroy(plain);
+    rtpbr_gpu_scene_destroy(card);
+    rtpbr_gpu_scene_destroy(base);
+    device_case_close(&d);
+}
+
 // tube_lights' capsules in the viewer are the tubes the engine shades (issue 30): its upload
 // renders what rtpbr_gpu_scene_from_loaded renders (no pixel beyond 1e-5 relative); the viewer of
 // before, which dropped the length (each capsule its sphere), differs on most lit pixels. A
@@ -976,18 +1201,20 @@ static void test_add_remove_lights(void **state)
         viewer_light l;
         viewer_punctual p;
         bool area = viewer_new_light(kind, at, &l, &p);
-        assert_int_equal(area, kind == VIEWER_NEW_QUAD || kind == VIEWER_NEW_DISK);
+        assert_int_equal(area, kind == VIEWER_NEW_QUAD || kind == VIEWER_NEW_DISK || kind == VIEWER_NEW_ELLIPSE ||
+                                   kind == VIEWER_NEW_SCREEN);
         if (area) {
             float n[3], c[3];
             viewer_light_normal(&l, n);
             viewer_light_center(&l, c);
             assert_float_equal(n[1], -1.0f, 1e-6f);
             for (int k = 0; k < 3; ++k) assert_float_equal(c[k], at[k], 1e-6f);
-            if (kind == VIEWER_NEW_QUAD)
+            if (kind == VIEWER_NEW_QUAD || kind == VIEWER_NEW_SCREEN)
                 assert_float_equal(fabsf((l.vertices[1][0] - l.vertices[0][0]) * (l.vertices[2][2] - l.vertices[1][2])),
-                                   0.25f, 1e-6f);
+                                   kind == VIEWER_NEW_QUAD ? 0.25f : 0.36f, 1e-6f);
             else
-                assert_float_equal(pi * l.radius * l.radius, 0.25, 1e-6);
+                assert_float_equal(pi * l.radius * viewer_light_radius2(&l), kind == VIEWER_NEW_DISK ? 0.25 : pi * 0.08,
+                                   1e-6);
             assert_true(viewer_scene_add_light(s, &l));
         } else {
             float len = sqrtf(p.direction[0] * p.direction[0] + p.direction[1] * p.direction[1] +
@@ -1002,16 +1229,19 @@ static void test_add_remove_lights(void **state)
         }
         assert_true(viewer_scene_needs_upload(s));
     }
-    assert_int_equal(s->light_count, 3);
+    assert_int_equal(s->light_count, 5);
     assert_int_equal(s->punctual_count, 5);
     rtpbr_gpu_scene *all = upload(&d);
     assert_false(viewer_scene_needs_upload(s));
-    assert_int_equal(rtpbr_gpu_scene_light_count(all), 8);
+    assert_int_equal(rtpbr_gpu_scene_light_count(all), 10);
     float *all_image = render(&d, all);
     double max_rel;
     // Each added light, removed alone (viewer numbering: area lights first, so light k is the
-    // one of kind k - 1), changes the image.
-    for (uint32_t k = 1; k < 8; ++k) {
+    // one of kind kinds[k]), changes the image.
+    static const int kinds[10] = {-1, VIEWER_NEW_QUAD, VIEWER_NEW_DISK, VIEWER_NEW_ELLIPSE, VIEWER_NEW_SCREEN,
+                                  VIEWER_NEW_SPHERE, VIEWER_NEW_SPOT, VIEWER_NEW_POINT, VIEWER_NEW_DIRECTIONAL,
+                                  VIEWER_NEW_TUBE};
+    for (uint32_t k = 1; k < 10; ++k) {
         viewer_scene copy = *s; // the arrays are shared: remove from a copy of the arrays
         viewer_light *lights = malloc(s->light_count * sizeof *lights);
         viewer_punctual *punctual = malloc(s->punctual_count * sizeof *punctual);
@@ -1023,10 +1253,10 @@ static void test_add_remove_lights(void **state)
         assert_true(viewer_scene_remove_light(&copy, k));
         rtpbr_gpu_scene *without = NULL;
         assert_int_equal(viewer_scene_upload(&copy, d.ctx, &without), RTPBR_SUCCESS);
-        assert_int_equal(rtpbr_gpu_scene_light_count(without), 7);
+        assert_int_equal(rtpbr_gpu_scene_light_count(without), 9);
         float *image = render(&d, without);
         size_t changed = pixels_differing(all_image, image, &max_rel);
-        printf("added light %u (%s): lights %zu of %d pixels\n", k, viewer_new_light_name((int)k - 1), changed,
+        printf("added light %u (%s): lights %zu of %d pixels\n", k, viewer_new_light_name(kinds[k]), changed,
                RW * RH);
         assert_true(changed > (size_t)RW * RH / 20 && max_rel > 1e-3);
         free(image);
@@ -1034,8 +1264,12 @@ static void test_add_remove_lights(void **state)
         free(copy.lights);
         free(copy.punctual);
     }
-    assert_false(viewer_scene_remove_light(s, 8));
+    assert_false(viewer_scene_remove_light(s, 10));
     while (s->punctual_count) assert_true(viewer_scene_remove_light(s, s->light_count));
+    assert_string_equal(viewer_light_kind(&s->lights[4]), "screen");
+    assert_true(viewer_scene_remove_light(s, 4));
+    assert_string_equal(viewer_light_kind(&s->lights[3]), "ellipse");
+    assert_true(viewer_scene_remove_light(s, 3));
     assert_int_equal(s->lights[2].type, RTPBR_LIGHT_DISK);
     assert_true(viewer_scene_remove_light(s, 2)); // the disk
     assert_int_equal(s->lights[1].type, RTPBR_LIGHT_POLYGON);
@@ -1062,11 +1296,14 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_vertex_count),
                 cmocka_unit_test(test_punctual_edits),
                 cmocka_unit_test(test_new_light_order),
                 cmocka_unit_test(test_new_disk),
+                cmocka_unit_test(test_new_ellipse),
                 cmocka_unit_test(test_load_light_shapes),
                 test_env_case(test_punctual_upload_matches_engine),
                 test_env_case(test_sphere_upload_matches_engine),
                 test_env_case(test_disk_upload_matches_engine),
+                test_env_case(test_ellipse_upload_matches_engine),
                 test_env_case(test_tube_upload_matches_engine),
+                test_env_case(test_screen_test_card),
                 test_env_case(test_screen_upload_matches_engine),
                 test_env_case(test_many_screens),
                 test_env_case(test_punctual_intensity_doubles),
