@@ -2,7 +2,7 @@
 // polygonal lights and the resolution, with per-tile culling at its default threshold and
 // without distance culling. Not a test: numbers depend on the machine; compare the ratios
 // printed in one run.
-//   rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu]
+//   rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu] [--cull X]
 // Per size it prints the median frame time for each light count (with tile culling at its
 // default threshold, and with every light shaded that faces the tile), then the fixed cost per
 // pixel (the frame with no lights) and the cost per pixel-light, (t(L) - t(0)) / (pixels L),
@@ -16,6 +16,10 @@
 
 #include "bench_time.h"
 #include "rtpbr/rtpbr.h"
+
+// The culling threshold of the culled frames (--cull; rtpbr_render_desc.light_cull_form_factor,
+// 0: the engine's default).
+static float cull_form_factor = 0.0f;
 
 // Wall-clock time, or with --cpu the CPU time of the whole process (lavapipe's worker threads
 // included): steadier than wall time on a shared machine, and what a software device spends.
@@ -166,7 +170,7 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
             r = make_scene(ctx, scene_kind, lights[li], &scene);
             double ms[2] = {0.0, 0.0};
             for (int mode = 0; mode < 2 && r == RTPBR_SUCCESS; ++mode) {
-                rtpbr_render_desc rd = {.light_cull_form_factor = mode == 0 ? 0.0f : -1.0f};
+                rtpbr_render_desc rd = {.light_cull_form_factor = mode == 0 ? cull_form_factor : -1.0f};
                 r = rtpbr_render(renderer, scene, &rd); // warm-up
                 for (int k = 0; k < repeat && r == RTPBR_SUCCESS; ++k) {
                     double t0 = now();
@@ -196,7 +200,7 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
 }
 
 static const char *const usage =
-    "usage: rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu]\n"
+    "usage: rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu] [--cull X]\n"
     "                          [--scene benchmark|floor|full|points|spheres|disks|textured|tubes|all]\n"
     "Median frame time of rtpbr_render against light count and resolution; compare the ratios\n"
     "printed in one run.\n"
@@ -204,6 +208,8 @@ static const char *const usage =
     "  --sizes LIST   resolutions, WxH or N for N x N (default 128,256,512)\n"
     "  --lights LIST  light counts (default 0,1,4,16,64,256)\n"
     "  --cpu          the process CPU time (lavapipe's threads included) instead of wall time\n"
+    "  --cull X       the culled frames' light_cull_form_factor (default 0: the engine's default,\n"
+    "                 RTPBR_DEFAULT_CULL_FORM_FACTOR)\n"
     "  --scene NAME   benchmark, floor (metal floor at 45 degrees, every light seen by\n"
     "                 every pixel), full (materials of the full lighting variant), points\n"
     "                 (the benchmark's layout with point lights), spheres (with radii), disks, textured, tubes, all\n"
@@ -219,6 +225,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--sizes") && i + 1 < argc) size_count = parse_sizes(argv[++i], sizes, 8);
         else if (!strcmp(argv[i], "--lights") && i + 1 < argc) light_count = parse_list(argv[++i], lights, 16);
         else if (!strcmp(argv[i], "--cpu")) bench_clock = CLOCK_PROCESS_CPUTIME_ID;
+        else if (!strcmp(argv[i], "--cull") && i + 1 < argc) cull_form_factor = strtof(argv[++i], NULL);
         else if (!strcmp(argv[i], "--scene") && i + 1 < argc) {
             const char *name = argv[++i];
             scene_first = strcmp(name, "all") == 0 ? 0 : -1;

@@ -115,7 +115,9 @@ static void normal_mapped_plane(void **state)
 
 // Per-tile culling keeps its documented bound: on a Lambertian plane (albedo 0.8) the image
 // with culling differs from the image without by at most 0.8 * cull_form_factor * the sum of
-// the emissions of all lights (each culled light's form factor is below the threshold).
+// the emissions of all lights (each culled light's form factor is below the threshold). It
+// also prints the error relative to each pixel's unculled radiance (bench/README.md, "Many
+// lights", compares culling bounds with it).
 static void culling_bound(void **state)
 {
     rtpbr_context *ctx = test_env_context(state);
@@ -156,7 +158,8 @@ static void culling_bound(void **state)
     // with A < threshold pi dist(p, light)^2, of their Lambertian contribution 0.8 L FF(p)
     // (Lambert's formula, which the engine matches within 1%: lambertian_plane).
     const double n[3] = {0.0, 0.0, 1.0};
-    double loose = 0.8 * threshold * emission_sum, worst = 0.0, worst_ratio = 0.0, mean_full = 0.0;
+    double loose = 0.8 * threshold * emission_sum, worst = 0.0, worst_ratio = 0.0, mean_full = 0.0, worst_rel = 0.0,
+           mean_rel = 0.0;
     int checked = 0;
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
@@ -182,11 +185,12 @@ static void culling_bound(void **state)
                 fail_msg("pixel (%d, %d): culling removed %.4g, more than the cullable lights give (%.4g)", x, y, d,
                          bound);
             if (bound > 0.0 && d / bound > worst_ratio) worst_ratio = d / bound;
+            if (full[4 * i] > 0.0f) worst_rel = fmax(worst_rel, d / full[4 * i]), mean_rel += d / full[4 * i];
             ++checked;
         }
     printf("culling (form factor < %g): largest difference %.3g (bound over all lights %.3g), largest fraction of "
-           "the per-pixel bound %.3f, mean radiance %.3g, %d pixels\n",
-           threshold, worst, loose, worst_ratio, mean_full, checked);
+           "the per-pixel bound %.3f, mean radiance %.3g, %d pixels; relative to the pixel: largest %.3g, mean %.3g\n",
+           threshold, worst, loose, worst_ratio, mean_full, checked, worst_rel, mean_rel / checked);
     assert_true(checked > W * H / 2);
     assert_true(worst <= loose);
     assert_true(worst > 0.0); // something was culled: the test exercises the distance bound
