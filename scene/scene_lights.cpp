@@ -679,13 +679,12 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
             return ctx.fail(RTPBR_GLTF_ERROR_INVALID_JSON,
                             "EXT_lights_area light %d: color/intensity must be >= 0 and sizes > 0", index);
 
-        // Node frame: centre, rotation by Gram-Schmidt, largest axis scale.
+        // Node frame: centre, rotation by Gram-Schmidt; the world columns of local X and Y.
         const Vec3 center = transform_point(world, {0, 0, 0});
         Vec3 x = {world[0], world[1], world[2]}, y = {world[4], world[5], world[6]};
-        const Vec3 zc = {world[8], world[9], world[10]};
-        const double scale = std::max(length(x), std::max(length(y), length(zc)));
+        const Vec3 column_x = x, column_y = y;
         const double lx = length(x);
-        if (!(lx > 0.0) || !(scale > 0.0))
+        if (!(lx > 0.0))
             return ctx.fail(RTPBR_GLTF_ERROR_NONFINITE, "node %d: degenerate transform for an area light", node);
         x = scaled(x, 1.0 / lx);
         const double shear = dot(x, y); // the y column's part along x
@@ -703,9 +702,14 @@ bool lights_from_ext_area(Context& ctx, const tinygltf::Model& model, Scene& sce
         // (x, y) in the light plane, clockwise about +Z: the light emits towards local -Z
         std::vector<std::array<double, 2>> local;
         if (type == "rect") {
-            const double hw = 0.5 * width * scale, hh = 0.5 * height * scale;
+            // The rect's image under the node's transform: its corners through the world columns of
+            // local X and Y (a parallelogram under an uneven scale with a turn between scales; the
+            // draft's uniform scale scales it alike). (x, y) becomes those columns for the corners.
+            const double hw = 0.5 * width, hh = 0.5 * height;
             l.shape = RTPBR_GLTF_LIGHT_POLYGON;
             local = {{-hw, -hh}, {-hw, hh}, {hw, hh}, {hw, -hh}};
+            x = column_x;
+            y = column_y;
         } else {
             // The disk's image under the node's transform, an ellipse: in the orthonormal (x, y)
             // the map is A = [lx shear; 0 ly], whose singular values are the half-axes (per unit

@@ -382,6 +382,49 @@ static void test_ext_lights_area_ellipse(void** state) {
     rtpbr_gltf_destroy(scene);
 }
 
+/* An EXT_lights_area rect under an uneven scale is the rect's image (issue 30; before, every side
+ * was scaled by the largest column length): the parent scales x by 2 and z by 3 (z: not the
+ * rect's plane, so nothing), the child turns by 45 degrees about z and scales y by 0.5. The rect
+ * of width 1.5 (local x) and height 1 (local y) maps its corner (u, v) to
+ * S_p R (u, 0.5 v): each loaded vertex is one such image, the area is 1.5 |det| = 1.5 (det of
+ * the plane's map: 2 x 0.5), and the normal stays -Z. */
+static void test_ext_lights_area_rect_scaled(void** state) {
+    (void)state;
+    const char* dir = ts_dir("ext_lights_area_rect_scaled");
+    const char* json =
+        "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"EXT_lights_area\"],"
+        "\"extensions\":{\"EXT_lights_area\":{\"lights\":[{\"type\":\"rect\",\"size\":1,\"rect\":{\"aspect\":1.5},"
+        "\"intensity\":5}]}},"
+        "\"nodes\":[{\"scale\":[2,1,3],\"children\":[1]},"
+        "{\"rotation\":[0,0,0.38268343236508977,0.9238795325112867],\"scale\":[1,0.5,1],"
+        "\"extensions\":{\"EXT_lights_area\":{\"light\":0}}}],"
+        "\"scenes\":[{\"nodes\":[0]}],\"scene\":0}";
+    char err[512];
+    rtpbr_gltf_scene* scene = NULL;
+    rtpbr_gltf_result r = ts_load_text(dir, "rect.gltf", json, NULL, &scene, err, sizeof err);
+    if (r != RTPBR_GLTF_SUCCESS) fail_msg("%s: %s", rtpbr_gltf_result_string(r), err);
+    assert_int_equal(scene->light_count, 1);
+    const rtpbr_gltf_light* l = &scene->lights[0];
+    assert_int_equal(l->shape, RTPBR_GLTF_LIGHT_POLYGON);
+    assert_int_equal(l->vertex_count, 4);
+    assert_convex_ccw(l);
+    assert_near(l->facts.area, 1.5, 1e-5, "parallelogram area");
+    assert_near(l->facts.normal[2], -1.0, EPS, "rect normal");
+    const double c = 0.9238795325112867 * 0.9238795325112867 - 0.38268343236508977 * 0.38268343236508977; /* cos 45 */
+    const double sn = 2.0 * 0.9238795325112867 * 0.38268343236508977;                                  /* sin 45 */
+    for (int i = 0; i < 4; ++i) { /* each corner's image is a vertex */
+        double u = (i & 1 ? 0.75 : -0.75), v = (i & 2 ? 0.5 : -0.5) * 0.5; /* the child's scale */
+        double p[3] = {2.0 * (c * u - sn * v), sn * u + c * v, 0.0};       /* its turn, the parent's scale */
+        double nearest = INFINITY;
+        for (uint32_t k = 0; k < 4; ++k) {
+            double dx = l->vertices[k][0] - p[0], dy = l->vertices[k][1] - p[1], dz = l->vertices[k][2] - p[2];
+            nearest = fmin(nearest, sqrt(dx * dx + dy * dy + dz * dz));
+        }
+        assert_near(nearest, 0.0, 1e-5, "corner image is a vertex");
+    }
+    rtpbr_gltf_destroy(scene);
+}
+
 static void test_ext_lights_area(void** state) {
     (void)state;
     /* Light 0: rect, size 2, aspect 1.5 → width 3 (local x), height 2 (local y),
@@ -704,5 +747,6 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_quad_light_over_plane),
                 cmocka_unit_test(test_mirrored_node_keeps_ccw_winding),
                 cmocka_unit_test(test_ext_lights_area),
                 cmocka_unit_test(test_ext_lights_area_ellipse),
+        cmocka_unit_test(test_ext_lights_area_rect_scaled),
                 cmocka_unit_test(test_glb_and_memory),
                 cmocka_unit_test(test_sparse_positions))
