@@ -20,6 +20,9 @@
 // The culling threshold of the culled frames (--cull; rtpbr_render_desc.light_cull_form_factor,
 // 0: the engine's default).
 static float cull_form_factor = 0.0f;
+// --passes: each culled row also gives the GPU time of each pass (rtpbr_renderer_timings,
+// medians over the frames) and what the frame's time has beyond them (submit, wait, copies).
+static int show_passes = 0;
 
 // Wall-clock time, or with --cpu the CPU time of the whole process (lavapipe's worker threads
 // included): steadier than wall time on a shared machine, and what a software device spends.
@@ -164,11 +167,12 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
         double base[2] = {0.0, 0.0}; // the frame with no lights, when measured
         char label[32];
         snprintf(label, sizeof label, "%dx%d", w, h);
-        r = rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = (uint32_t)w, .height = (uint32_t)h}, &renderer);
+        r = rtpbr_renderer_create(
+            ctx, &(rtpbr_renderer_desc){.width = (uint32_t)w, .height = (uint32_t)h, .timings = show_passes}, &renderer);
         for (int li = 0; li < light_count && r == RTPBR_SUCCESS; ++li) {
             rtpbr_gpu_scene *scene = NULL;
             r = make_scene(ctx, scene_kind, lights[li], &scene);
-            double ms[2] = {0.0, 0.0};
+            double ms[2] = {0.0, 0.0}, pass[3][1000], pass_ms[3] = {0.0, 0.0, 0.0};
             for (int mode = 0; mode < 2 && r == RTPBR_SUCCESS; ++mode) {
                 rtpbr_render_desc rd = {.light_cull_form_factor = mode == 0 ? cull_form_factor : -1.0f};
                 r = rtpbr_render(renderer, scene, &rd); // warm-up
@@ -176,6 +180,13 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
                     double t0 = now();
                     r = rtpbr_render(renderer, scene, &rd);
                     t[k] = now() - t0;
+                    rtpbr_timings tm = {0};
+                    if (r == RTPBR_SUCCESS && show_passes && mode == 0) r = rtpbr_renderer_timings(renderer, &tm);
+                    pass[0][k] = tm.gbuffer_ms, pass[1][k] = tm.lighting_ms, pass[2][k] = tm.tonemap_ms;
+                }
+                for (int q = 0; q < 3 && show_passes && mode == 0; ++q) {
+                    qsort(pass[q], (size_t)repeat, sizeof pass[q][0], bench_compare_double);
+                    pass_ms[q] = pass[q][repeat / 2];
                 }
                 qsort(t, (size_t)repeat, sizeof *t, bench_compare_double);
                 ms[mode] = 1e3 * t[repeat / 2];
@@ -191,6 +202,10 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
                 printf("%10s %6d %12.2f %12.2f %16.2f %16.2f\n", label, lights[li], ms[0], ms[1],
                        1e6 * (ms[0] - base[0]) / pl, 1e6 * (ms[1] - base[1]) / pl);
             }
+            if (r == RTPBR_SUCCESS && show_passes)
+                printf("%10s %6d   culled, GPU ms: G-buffer %.2f, lighting %.2f, tone mapping %.2f; the rest of the "
+                       "frame %.2f\n", label, lights[li], pass_ms[0], pass_ms[1], pass_ms[2],
+                       ms[0] - pass_ms[0] - pass_ms[1] - pass_ms[2]);
             fflush(stdout);
             rtpbr_gpu_scene_destroy(scene);
         }
@@ -208,6 +223,8 @@ static const char *const usage =
     "  --sizes LIST   resolutions, WxH or N for N x N (default 128,256,512)\n"
     "  --lights LIST  light counts (default 0,1,4,16,64,256)\n"
     "  --cpu          the process CPU time (lavapipe's threads included) instead of wall time\n"
+    "  --passes       also the culled frames' GPU time per pass (G-buffer, lighting, tone mapping)\n"
+    "                 and the rest of the frame (submit, wait, copies)\n"
     "  --cull X       the culled frames' light_cull_form_factor (default 0: the engine's default,\n"
     "                 RTPBR_DEFAULT_CULL_FORM_FACTOR)\n"
     "  --scene NAME   benchmark, floor (metal floor at 45 degrees, every light seen by\n"
@@ -225,6 +242,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--sizes") && i + 1 < argc) size_count = parse_sizes(argv[++i], sizes, 8);
         else if (!strcmp(argv[i], "--lights") && i + 1 < argc) light_count = parse_list(argv[++i], lights, 16);
         else if (!strcmp(argv[i], "--cpu")) bench_clock = CLOCK_PROCESS_CPUTIME_ID;
+        else if (!strcmp(argv[i], "--passes")) show_passes = 1;
         else if (!strcmp(argv[i], "--cull") && i + 1 < argc) cull_form_factor = strtof(argv[++i], NULL);
         else if (!strcmp(argv[i], "--scene") && i + 1 < argc) {
             const char *name = argv[++i];
