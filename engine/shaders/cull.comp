@@ -28,7 +28,8 @@
 // A sphere (a point light with a radius) is kept unless the box is beyond its range from its
 // centre or its form factor from the whole box, at most r^2 / d^2, is below the threshold (4).
 // A disk is culled as a polygon ((1) by its plane, (2) by its bounding sphere and area); a tube
-// too (two-sided: (2) only; its area 4 pi r^2 + 2 pi r L bounds its projected area 2 r L + pi r^2).
+// too (two-sided: (2) only; its area 4 pi r^2 + 2 pi r L bounds its projected area 2 r L + pi r^2),
+// and beyond its range from its centre (5).
 // Each kind goes to its own mask (polygons, punctual lights, spheres, disks, textured quads,
 // tubes; the spheres' lighting variants shade spheres and disks, the textured ones textured quads too,
 // the tubes' ones all four).
@@ -63,6 +64,12 @@ bool light_may_contribute(uint i, vec3 boxMin, vec3 boxMax)
         if (invRange2 > 0.0f && d * d * invRange2 >= 1.0f) return false;
         return !(frame.cull_form_factor >= 0.0f && d > sphere.w &&
                  lights[i].area < frame.cull_form_factor * 3.14159265f * d * d);
+    }
+    if (shape == uint(RTPBR_LIGHT_SHAPE_TUBE)) {
+        // (5) A tube beyond its range from its centre (its window, exact) lights nothing there.
+        vec4 centre = lights[i].vertices[3]; // (centre, 1 / range^2 or 0)
+        vec3 toBox = centre.xyz - clamp(centre.xyz, boxMin, boxMax);
+        if (centre.w > 0.0f && dot(toBox, toBox) * centre.w >= 1.0f) return false;
     }
     if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && shape != uint(RTPBR_LIGHT_SHAPE_DISK) &&
         shape != uint(RTPBR_LIGHT_SHAPE_TUBE)) {

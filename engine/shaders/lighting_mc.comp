@@ -27,7 +27,8 @@
 // its radiance is windowed by its range at the distance from its centre.
 // A tube (capsule) light: as a polygon, its surface's points uniform by area (pdf d^2 /
 // (cos_light A), A = 4 pi r^2 + 2 pi r L), cos_light by the point's own normal (> 0 only: the
-// convex capsule hides the rest), and a BRDF direction meets it at the ray's first hit.
+// convex capsule hides the rest), and a BRDF direction meets it at the ray's first hit; its
+// radiance is windowed by its range at the distance from its centre, as a sphere's.
 // No per-tile culling: every light is summed at every pixel (lights behind a one-sided light's
 // plane are skipped per pixel, where the integrand is 0). The host splits the pass into
 // dispatches over ranges of lights and samples (lavapipe ends every loop of a shader run after
@@ -125,11 +126,15 @@ vec3 shade_lights_mc(vec3 P, vec3 N, vec3 V, ShadingSurface s, uvec2 pixel)
         float cosMax = insideSphere ? -1.0f : sqrt(max(1.0f - sin2Max, 0.0f));
         float oneMinusCos = insideSphere ? 2.0f : sin2Max / (1.0f + cosMax);
         vec3 sphereAxis = toCentre * inversesqrt(max(centre2, 1e-30f));
-        float window = sphereLight ? Punctual_RangeWindow(centre2, lights[i].vertices[0].w) : 1.0f;
+        // A sphere's range window at the distance from its centre; a tube's the same (its record's
+        // sphere is centred on it; vertices[3].w its 1 / range^2).
+        float window = sphereLight ? Punctual_RangeWindow(centre2, lights[i].vertices[0].w)
+                       : tubeLight ? Punctual_RangeWindow(centre2, lights[i].vertices[3].w)
+                                   : 1.0f;
         // A disk: as a polygon, its points uniform by area (mc_disk_point, mc_ray_disk).
         bool diskLight = shape == uint(RTPBR_LIGHT_SHAPE_DISK);
         bool lit = ((shape == uint(RTPBR_LIGHT_SHAPE_POLYGON) && count >= 3u || diskLight || tubeLight) && area > 0.0f &&
-                    (twoSided ? side != 0.0f : side > 0.0f)) ||
+                    (twoSided ? side != 0.0f : side > 0.0f) && window > 0.0f) ||
                    (sphereLight && window > 0.0f && centre2 > 0.0f);
         uint n = lit ? mc.sample_count : 0u;
 

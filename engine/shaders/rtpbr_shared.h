@@ -244,7 +244,8 @@
 // (the spheres' lighting variants), shaded by area_light.h's AreaLight_AddTexturedQuad.
 // A tube (shape TUBE: rtpbr_light_type's RTPBR_LIGHT_TUBE; vertex_count 0, two_sided 1, plane
 // (0, 0, 0, 1)): vertices[0], vertices[1] = its ends' centres, w the radius r (area_light.h's
-// Host_LightTube), vertices[2] = (unit axis, length L), sphere = (centre, L/2 + r) (a bound),
+// Host_LightTube), vertices[2] = (unit axis, length L), vertices[3] = (centre, 1 / range^2 or 0:
+// the range window at the distance from the centre), sphere = (centre, L/2 + r) (a bound),
 // radiance = its uniform radiance, area = 4 pi r^2 + 2 pi r L (its surface: the cull's bound and
 // the samples' density); in the tiles' tube mask (the spheres' lighting variants), shaded by
 // area_light.h's AreaLight_AddTube.

@@ -110,6 +110,8 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 #define RTPBR_AREA_LIGHT_TUBES 1 // AreaLight_AddTube for the tubes' mask (RTPBR_LIGHTING_TUBES)
 // A tube's ends' centres and radius (RTPBR_LIGHT_FIELDS, TUBE: vertices[0], vertices[1]).
 vec4 Host_LightTube(uint i, uint k) { return lights[i].vertices[k]; }
+#define RTPBR_AREA_LIGHT_TUBE_RANGE 1 // a tube's range window (RTPBR_LIGHT_FIELDS, TUBE: vertices[3].w)
+float Host_LightTubeInvRange2(uint i) { return lights[i].vertices[3].w; }
 #endif
 // A sphere the horizon cuts: clipped exactly in the basic variant; the full variant's registers
 // take the sphere proxy (area_light.h; no spills: tests/shader-stats)

@@ -44,6 +44,10 @@ float irradiance_bound(uint i, vec3 boxMin, vec3 boxMax)
         if (invRange2 > 0.0f && toCentre * toCentre * invRange2 >= 1.0f) return 0.0f;
         return toCentre <= sphere.w ? 3.14159265f * L : L * min(lights[i].area / (toCentre * toCentre), 3.14159265f);
     }
+    if (shape == uint(RTPBR_LIGHT_SHAPE_TUBE)) {
+        float invRange2 = lights[i].vertices[3].w; // 1 / range^2 (0: none), from the centre
+        if (invRange2 > 0.0f && toCentre * toCentre * invRange2 >= 1.0f) return 0.0f;
+    }
     vec4 plane = lights[i].plane;
     if (lights[i].two_sided == 0.0f) {
         // the box's corner furthest in front of the plane

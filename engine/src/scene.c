@@ -199,9 +199,9 @@ static rtpbr_result validate_tube(const rtpbr_context *ctx, const rtpbr_light_de
                   index, l->radius, l->length);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
-    if (l->range != 0.0f) {
-        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (tube) has range %g; tubes have no range yet (0 is required)",
-                  index, l->range);
+    if (l->range < 0.0f) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "light %u (tube) has a negative range (%g; zero: infinite)", index,
+                  l->range);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     return RTPBR_SUCCESS;
@@ -440,8 +440,8 @@ static void disk_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
     *out = g;
 }
 
-// A tube (rtpbr_light_desc): its ends' centres and radius, a bounding sphere (centre, L/2 + r)
-// and area 4 pi r^2 + 2 pi r L (RTPBR_LIGHT_FIELDS: TUBE).
+// A tube (rtpbr_light_desc): its ends' centres and radius, a bounding sphere (centre, L/2 + r),
+// area 4 pi r^2 + 2 pi r L and its centre with 1 / range^2 (RTPBR_LIGHT_FIELDS: TUBE).
 static void tube_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
 {
     rtpbr_shader_light g = {0};
@@ -453,8 +453,9 @@ static void tube_record(const rtpbr_light_desc *l, rtpbr_shader_light *out)
         g.vertices[0][k] = (float)(l->position[k] - half * a);
         g.vertices[1][k] = (float)(l->position[k] + half * a);
         g.vertices[2][k] = (float)a;
-        g.sphere[k] = l->position[k];
+        g.vertices[3][k] = g.sphere[k] = l->position[k];
     }
+    g.vertices[3][3] = l->range > 0.0f ? (float)(1.0 / ((double)l->range * l->range)) : 0.0f;
     g.vertices[0][3] = g.vertices[1][3] = l->radius;
     g.vertices[2][3] = l->length;
     g.sphere[3] = (float)(half + r);

@@ -394,20 +394,14 @@ rtpbr_result rtpbr_gpu_scene_from_loaded(rtpbr_context *ctx, const struct rtpbr_
         memset(&light_facts[loaded->light_count + i], 0, sizeof light_facts[0]);
         // A point light with a radius and a length: the capsule (rtpbr_gltf_punctual_light.length)
         // as a tube of radiance 2 I / (pi r (2 r + L)) (its power 4 pi I over its area
-        // 2 pi r (2 r + L), as the loader says). Tubes have no range yet: with one, the sphere of
-        // the same intensity (the window kept, the length dropped).
+        // 2 pi r (2 r + L), as the loader says), its range (if any) windowing it at the distance
+        // from its centre, as the oracle does.
         if (l->type == RTPBR_GLTF_PUNCTUAL_POINT && l->radius > 0.0f && l->length > 0.0f) {
-            if (l->range > 0.0f) {
-                rtpbr_log(&ctx->host, RTPBR_LOG_WARNING,
-                          "punctual light %u: a capsule (length %g) with a range is shaded as its sphere (tubes have no range yet)",
-                          i, l->length);
-            } else {
-                double r = l->radius, scale = 2.0 / (3.14159265358979323846 * r * (2.0 * r + l->length));
-                d->type = RTPBR_LIGHT_TUBE;
-                d->length = l->length;
-                memcpy(d->direction, l->axis, sizeof d->direction);
-                for (int k = 0; k < 3; ++k) d->emission[k] = (float)(l->intensity[k] * scale);
-            }
+            double r = l->radius, scale = 2.0 / (3.14159265358979323846 * r * (2.0 * r + l->length));
+            d->type = RTPBR_LIGHT_TUBE;
+            d->length = l->length;
+            memcpy(d->direction, l->axis, sizeof d->direction);
+            for (int k = 0; k < 3; ++k) d->emission[k] = (float)(l->intensity[k] * scale);
         }
     }
     for (uint32_t i = 0; i < loaded->camera_count; ++i) {

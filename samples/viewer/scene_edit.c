@@ -726,7 +726,7 @@ void viewer_light_set_vertex_count(viewer_light *l, uint32_t n)
 
 bool viewer_punctual_is_tube(const viewer_punctual *p)
 {
-    return p->type == RTPBR_LIGHT_POINT && p->radius > 0.0f && p->length > 0.0f && !(p->range > 0.0f);
+    return p->type == RTPBR_LIGHT_POINT && p->radius > 0.0f && p->length > 0.0f;
 }
 
 const char *viewer_punctual_kind(const viewer_punctual *p)

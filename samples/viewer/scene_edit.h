@@ -70,7 +70,7 @@ typedef struct viewer_punctual {
     float outer_cone_angle;
     float angular_diameter; // directional: the disk's, radians (rtpbr_light_desc's); 0: a true direction
     float radius;           // point: the sphere's (rtpbr_light_desc's); 0: a true point
-    float length;           // point with a radius and no range: > 0 a capsule, the engine's
+    float length;           // point with a radius: > 0 a capsule, the engine's
                             // RTPBR_LIGHT_TUBE (rtpbr_gltf_punctual_light's length); 0: a sphere
     float axis[3];          // its axis, unit (the loader's; a new tube's +X)
 } viewer_punctual;
@@ -178,8 +178,9 @@ void viewer_light_set_vertex_count(viewer_light *l, uint32_t n);
 
 // "point", "spot", "directional" or "tube" (a point with a radius and a length).
 const char *viewer_punctual_kind(const viewer_punctual *p);
-// A punctual light the engine shades as a tube (RTPBR_LIGHT_TUBE): a point with a radius, a
-// length and no range (with a range, its sphere: rtpbr_gpu_scene_from_loaded's mapping).
+// A punctual light the engine shades as a tube (RTPBR_LIGHT_TUBE): a point with a radius
+// and a length (with a range too: windowed at the distance from its centre, as the loader maps
+// it).
 bool viewer_punctual_is_tube(const viewer_punctual *p);
 // Edits of one punctual light. Its direction (and a tube's axis) turned about a world axis 0..2
 // (the sense of viewer_light_rotate); as two angles: direction = (cos e sin a, sin e, cos e cos a), azimuth a

@@ -313,7 +313,7 @@ static void punctual_panel(app *a, viewer_punctual *p)
         edited |= ImGui::DragFloat("range (m)", &p->range, 0.05f, 0.0f, 1e4f, p->range > 0.0f ? "%.2f" : "infinite");
     if (point) // the sphere's radius: 0 a true point
         edited |= ImGui::DragFloat("radius (m)", &p->radius, 0.005f, 0.0f, 100.0f, p->radius > 0.0f ? "%.3f" : "a point");
-    if (point && p->radius > 0.0f) // a capsule's length (a tube light; not with a range): 0 a sphere
+    if (point && p->radius > 0.0f) // a capsule's length (a tube light): 0 a sphere
         edited |= ImGui::DragFloat("length (m)", &p->length, 0.01f, 0.0f, 100.0f, p->length > 0.0f ? "%.2f" : "a sphere");
     if (!point && !spot) // the disk's angular diameter: 0.53 degrees is the sun's; 0 a true direction
         edited |= ImGui::SliderAngle("disk diameter", &p->angular_diameter, 0.0f, 10.0f, "%.2f deg");

@@ -86,6 +86,9 @@
 //                          copies (faster where registers do not bind, e.g. on a CPU: lavapipe
 //                          111 against 264 ns per pixel-light, but 112 VGPRs on navi21 in the
 //                          engine's basic variant, where the loop takes 96)
+//   RTPBR_AREA_LIGHT_TUBE_RANGE  0 (default): tubes have no range; 1: a tube's radiance is
+//                          windowed by Punctual_RangeWindow at the distance from its centre (the
+//                          ends' midpoint) and Host_LightTubeInvRange2 (below)
 //   RTPBR_AREA_LIGHT_FULL  1 (default): every lobe surface.h resolves (Disney, coat, sheen,
 //                          anisotropy); 0: metallic-roughness without them (the engine's
 //                          basic variant: fewer registers, the streak estimate on GGX).
@@ -140,7 +143,12 @@
 //   rtpbr_float4 Host_LightTube(uint light, uint k)  end k's (0, 1) centre xyz, world space, and
 //                                     the radius w (the same for both ends; > 0)
 // with Host_LightSphere (read, its value unused: any bounding sphere), Host_LightRadiance and
-// Host_LightVisibility (the polygon functions are not called for it; no range window);
+// Host_LightVisibility (the polygon functions are not called for it; no range window, unless
+// RTPBR_AREA_LIGHT_TUBE_RANGE, with
+//   float        Host_LightTubeInvRange2(uint light)  1 / range^2, 0 for none: its radiance is
+//                                     windowed by Punctual_RangeWindow at the distance from the
+//                                     tube's centre, the ends' midpoint, as a sphere's from its
+//                                     centre);
 //   rtpbr_float4 Host_TableLtc1(int table, rtpbr_float2 uv)  the LTC tables at uv
 //   rtpbr_float4 Host_TableLtc2(int table, rtpbr_float2 uv)  (LTC_LutCoord), table one of
 //                                     RTPBR_TABLE_LTC_SPECULAR (rtpbr_ltc_ggx_1/_2, or
@@ -200,6 +208,9 @@
 #endif
 #ifndef RTPBR_AREA_LIGHT_TUBE_UNROLL
 #define RTPBR_AREA_LIGHT_TUBE_UNROLL 0
+#endif
+#ifndef RTPBR_AREA_LIGHT_TUBE_RANGE
+#define RTPBR_AREA_LIGHT_TUBE_RANGE 0
 #endif
 // The sides of the equal-area polygon a sphere's disk is clipped as (RTPBR_AREA_LIGHT_SPHERE_CLIP).
 #ifndef RTPBR_AREA_LIGHT_SPHERE_SIDES
@@ -908,8 +919,9 @@ RTPBR_FN void AreaLight_AddShapePart(AreaLightPixel px, RTPBR_INOUT(AreaLightSum
     float window = 1.0f; // a sphere light's range window (a tube's part: its weight)
 #if RTPBR_AREA_LIGHT_TUBES
     // A tube light's part: the tube wholly below the horizon (both ends' centres more than the
-    // radius below it), nothing; a part of weight 0 (AreaLight_TubePartWeight), nothing; no
-    // range window: the window is the part's weight instead (the radiance's scale). From here on
+    // radius below it), nothing; a part of weight 0 (AreaLight_TubePartWeight), nothing; the
+    // window is the part's weight (the radiance's scale), times the range window with
+    // RTPBR_AREA_LIGHT_TUBE_RANGE (beyond the range, nothing). From here on
     // it is lit as a sphere is (sphereLight: every choice below alike), its lobes by
     // AreaLight_TubePartLobe.
     if (tubePart != RTPBR_AREA_LIGHT_TUBE_NONE) {
@@ -918,6 +930,10 @@ RTPBR_FN void AreaLight_AddShapePart(AreaLightPixel px, RTPBR_INOUT(AreaLightSum
         if (!(max(dot(N, rtpbr_float3(end1.x, end1.y, end1.z) - P), dot(N, rtpbr_float3(end2.x, end2.y, end2.z) - P)) > -end1.w))
             return;
         window = AreaLight_TubePartWeight(i, tubePart, P);
+#if RTPBR_AREA_LIGHT_TUBE_RANGE
+        rtpbr_float3 toCentre = 0.5f * (rtpbr_float3(end1.x, end1.y, end1.z) + rtpbr_float3(end2.x, end2.y, end2.z)) - P;
+        window *= Punctual_RangeWindow(dot(toCentre, toCentre), Host_LightTubeInvRange2(i));
+#endif
         if (!(window > 0.0f))
             return;
     } else

@@ -410,6 +410,74 @@ static void tube_shadow(void **state)
     rtpbr_gpu_scene_destroy(scene);
 }
 
+// A tube with a range (issue 30): its radiance windowed by W = clamp(1 - (d / range)^4, 0, 1),
+// d the distance from its centre (KHR_lights_punctual's window, as a sphere's from its centre;
+// the oracle's capsules alike). Tube 0 with range 1.5 m over the Lambertian plane: the LTC pass
+// against the quadrature times W (within tube_lambert's bound for that tube: the window only
+// scales the reference), the Monte Carlo pass's mean within 4 standard errors, and every pixel
+// beyond the range exactly 0 (the window; the cull drops those tiles). Without the range the
+// same pixels are lit (so the window is what darkens them).
+static void tube_range(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    const double L = 3.0, range = 1.5;
+    const tube_case *c = &tube_cases[0];
+    rtpbr_light_desc light = tube_desc(c, L);
+    light.range = (float)range;
+    double *wants = plane_wants(0, 2, c, L, 0.0, 64);
+    int beyond = 0, beyond_lit = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            double p[3];
+            if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) {
+                wants[y * W + x] = NAN;
+                continue;
+            }
+            double v[3] = {p[0] - c->centre[0], p[1] - c->centre[1], p[2] - c->centre[2]};
+            double q = dot3(v, v) / (range * range), window = fmin(fmax(1.0 - q * q, 0.0), 1.0);
+            if (!isnan(wants[y * W + x])) wants[y * W + x] *= window;
+            if (window == 0.0) wants[y * W + x] = -1.0; // beyond the range: checked apart
+        }
+    float *unwindowed = NULL;
+    for (int kind = 0; kind < 3; ++kind) { // LTC, Monte Carlo, LTC without the range
+        rtpbr_render_desc desc = kind == 1 ? (rtpbr_render_desc){.mc_samples = 16, .mc_seed = 7} : (rtpbr_render_desc){0};
+        rtpbr_light_desc l = light;
+        if (kind == 2) l.range = 0.0f;
+        float *px = render_plane(ctx, &test_lambert_material, &l, &desc);
+        if (kind == 2) {
+            unwindowed = px;
+            break;
+        }
+        double *checked = malloc(sizeof(double) * W * H);
+        assert_non_null(checked);
+        for (int i = 0; i < W * H; ++i) {
+            checked[i] = wants[i] < 0.0 ? NAN : wants[i];
+            if (wants[i] < 0.0 && kind == 0) ++beyond, beyond_lit += px[4 * i] != 0.0f;
+        }
+        plane_errors e = measure_plane(px, checked);
+        assert_true(e.checked > W * H / 20);
+        if (kind == 1) {
+            check_mc_mean(&e, 1e-4, "tube 0 with range 1.5");
+        } else {
+            printf("tube 0 with range 1.5, LTC pass: %d pixels, largest error %.3g of the peak %.4g; %d pixels beyond "
+                   "the range, %d of them not 0\n", e.checked, e.worst / e.peak, e.peak, beyond, beyond_lit);
+            assert_true(e.worst <= 6.5e-3 * e.peak);
+        }
+        for (int i = 0; i < W * H && kind == 1; ++i)
+            if (wants[i] < 0.0) assert_true(px[4 * i] == 0.0f);
+        free(checked);
+        free(px);
+    }
+    assert_true(beyond > W * H / 10);
+    assert_int_equal(beyond_lit, 0);
+    int lit_without = 0;
+    for (int i = 0; i < W * H; ++i) lit_without += wants[i] < 0.0 && unwindowed[4 * i] > 0.0f;
+    printf("tube 0 without its range: %d of those %d pixels lit\n", lit_without, beyond);
+    assert_true(lit_without > beyond / 2);
+    free(unwindowed);
+    free(wants);
+}
+
 static void bad_tubes(void **state)
 {
     rtpbr_context *ctx = test_env_context(state);
@@ -427,7 +495,8 @@ static void bad_tubes(void **state)
         {.type = RTPBR_LIGHT_TUBE, .position = {NAN, 0, 0}, .direction = {1, 0, 0}, .radius = 0.1f, .emission = {1, 1, 1}},
         {.type = RTPBR_LIGHT_TUBE, .direction = {1, 0, 0}, .radius = 0.1f, .length = 1.0f, .emission = {-1, 1, 1}},
         {.type = RTPBR_LIGHT_TUBE, .direction = {1, 0, 0}, .radius = 0.1f, .length = 1.0f, .emission = {NAN, 1, 1}},
-        {.type = RTPBR_LIGHT_TUBE, .direction = {1, 0, 0}, .radius = 0.1f, .length = 1.0f, .range = 2.0f, .emission = {1, 1, 1}},
+        {.type = RTPBR_LIGHT_TUBE, .direction = {1, 0, 0}, .radius = 0.1f, .length = 1.0f, .range = -2.0f, .emission = {1, 1, 1}},
+        {.type = RTPBR_LIGHT_TUBE, .direction = {1, 0, 0}, .radius = 0.1f, .length = 1.0f, .range = NAN, .emission = {1, 1, 1}},
         {.type = (rtpbr_light_type)6, .emission = {1, 1, 1}},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
@@ -447,6 +516,7 @@ int main(void)
         test_env_case(tube_lambert),
         test_env_case(tube_ggx),
         test_env_case(tube_shadow),
+        test_env_case(tube_range),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

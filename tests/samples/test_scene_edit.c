@@ -917,8 +917,10 @@ static void test_screen_test_card(void **state)
 // renders what rtpbr_gpu_scene_from_loaded renders (no pixel beyond 1e-5 relative); the viewer of
 // before, which dropped the length (each capsule its sphere), differs on most lit pixels. A
 // tube turned about Y turns its axis (the viewer's rotate): its desc's direction is the turned
-// axis and the image changes; a range makes it its sphere (as the loader's mapping); the clamp
-// keeps the length in [0, 100] (NaN 0) and the axis unit.
+// axis and the image changes; a range keeps it a tube (its desc's range: the engine windows it
+// at the distance from its centre), and the viewer with tube 0 given a range of 1.5 m renders
+// what the loader path renders for the file with that range (no pixel beyond 1e-5), which the
+// range changes; the clamp keeps the length in [0, 100] (NaN 0) and the axis unit.
 static void test_tube_upload_matches_engine(void **state)
 {
     device_case d;
@@ -964,10 +966,25 @@ static void test_tube_upload_matches_engine(void **state)
     printf("tube_lights, tube 0 turned 0.5 rad about Y: changes %zu pixels\n", turn_changes);
     assert_true(turn_changes > lit / 20);
 
+    s->punctual[0] = tubes[0];
+    s->punctual[0].range = 1.5f;
+    s->loaded->punctual_lights[0].range = 1.5f; // the file with that range
+    assert_true(viewer_punctual_is_tube(&s->punctual[0]));
+    assert_string_equal(viewer_punctual_kind(&s->punctual[0]), "tube");
+    viewer_scene_light_descs(s, descs);
+    assert_int_equal(descs[0].type, RTPBR_LIGHT_TUBE);
+    assert_float_equal(descs[0].range, 1.5f, 0.0f);
+    rtpbr_gpu_scene *ranged_engine, *ranged_viewer;
+    float *ranged_want;
+    upload_matches_engine(&d, "tube_lights, tube 0 with a range of 1.5 m", 2, &ranged_want, &ranged_engine,
+                          &ranged_viewer);
+    size_t range_changes = pixels_beyond(want, ranged_want, 1e-5);
+    printf("tube_lights, tube 0 with a range of 1.5 m: changes %zu pixels\n", range_changes);
+    assert_true(range_changes > lit / 20);
+    free(ranged_want);
+    rtpbr_gpu_scene_destroy(ranged_viewer);
+    rtpbr_gpu_scene_destroy(ranged_engine);
     viewer_punctual q = tubes[0];
-    q.range = 5.0f;
-    assert_false(viewer_punctual_is_tube(&q));
-    assert_string_equal(viewer_punctual_kind(&q), "point");
     q.length = NAN;
     q.axis[0] = q.axis[1] = q.axis[2] = 0.0f;
     viewer_punctual_clamp(&q);

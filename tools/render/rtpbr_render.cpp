@@ -92,7 +92,7 @@ uint32_t shining_punctual_lights(const rtpbr_gltf_scene *scene)
 }
 
 // The brightest radiance any emitter of the scene has: its lights (a sphere's intensity /
-// (pi r^2); a capsule's, length L and no range, 2 intensity / (pi r (2 r + L)): the engine's
+// (pi r^2); a capsule's, length L, 2 intensity / (pi r (2 r + L)), with a range or not: the engine's
 // tube, rtpbr_gpu_scene_from_loaded) and its emissive materials (an emission texture only
 // scales the factor down). The background is black here. Not a bound for a scene with punctual
 // lights (shining_punctual_lights).
@@ -104,7 +104,7 @@ double brightest_emitter(const rtpbr_gltf_scene *scene)
     for (uint32_t i = 0; i < scene->punctual_light_count; ++i) {
         const rtpbr_gltf_punctual_light &l = scene->punctual_lights[i];
         const double r = l.radius, pi = 3.14159265358979323846;
-        const double area = l.length > 0.0f && !(l.range > 0.0f) ? pi * r * (2.0 * r + l.length) / 2.0 : pi * r * r;
+        const double area = l.length > 0.0f ? pi * r * (2.0 * r + l.length) / 2.0 : pi * r * r;
         if (is_sphere(l))
             for (int c = 0; c < 3; ++c) b = std::max(b, double(l.intensity[c]) / area);
     }

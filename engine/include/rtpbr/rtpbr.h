@@ -442,7 +442,8 @@ typedef enum rtpbr_light_type {
 // caps) of uniform radiance `emission` over its surface (area 4 pi r^2 + 2 pi r length), shaded
 // with the shader library's tube (shaderlib/rtpbr/area_light.h, AreaLight_AddTube: the facing
 // quad's LTC and the caps' sphere). length 0: a sphere of radiance `emission` (the point light
-// of radius r and intensity emission pi r^2). No range (must be zero: not yet).
+// of radius r and intensity emission pi r^2). A range windows its radiance by W(d), d the
+// distance from its centre (position), as a sphere's.
 typedef struct rtpbr_light_desc {
     float vertices[RTPBR_MAX_POLYGON_VERTICES][3]; // polygon: world space
     uint32_t vertex_count;   // polygon: 3..RTPBR_MAX_POLYGON_VERTICES; punctual: ignored
@@ -455,7 +456,7 @@ typedef struct rtpbr_light_desc {
     float direction[3];      // spot, directional: the way the light travels (need not be unit;
                              // non-zero); disk: its normal, toward the side it emits on; tube:
                              // its axis
-    float range;             // point, spot: > 0, where W(d) ends; zero: infinite. Tube: zero
+    float range;             // point, spot, tube: > 0, where W(d) ends; zero: infinite
     float inner_cone_angle;  // spot: radians, 0 <= inner <= outer <= pi/2; the falloff
     float outer_cone_angle;  // t = clamp((cos - cos outer) / max(cos inner - cos outer, 1e-3),
                              // 0, 1), times t^2 (KHR_lights_punctual); both zero: 0 and pi/4

@@ -5,7 +5,7 @@
 // and by AreaLight_AddShape's run-time flag, beside polygons (and spheres, with
 // -DRTPBR_AREA_LIGHT_SPHERES=1). The meson test runs it with the flags' other values too
 // (RTPBR_AREA_LIGHT_FULL, _SPHERE_CLIP), and with textured quads (-DRTPBR_AREA_LIGHT_TEXTURED=1)
-// and tubes (-DRTPBR_AREA_LIGHT_TUBES=1).
+// and tubes (-DRTPBR_AREA_LIGHT_TUBES=1; with a range: -DRTPBR_AREA_LIGHT_TUBE_RANGE=1).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 #include "rtpbr/lang.h"
@@ -36,6 +36,7 @@ bool Host_LightTwoSided(uint light) { return false; }
 vec3 Host_LightRadiance(uint light) { return lights[light].radiance.rgb; }
 vec3 Host_LightVisibility(uint light) { return vec3(1.0f); }
 vec4 Host_LightTube(uint light, uint k) { return lights[light].v[k]; }
+float Host_LightTubeInvRange2(uint light) { return lights[light].v[3].w; } // (RTPBR_AREA_LIGHT_TUBE_RANGE)
 // (RTPBR_AREA_LIGHT_TEXTURED: a textured quad's emission, here one of the tables)
 vec3 Host_LightTexture(uint light, vec3 lookup) { return textureLod(tables[3], lookup.xy, log2(max(lookup.z * 128.0f, 1e-6f))).rgb; }
 vec4 Host_TableLtc1(int table, vec2 uv) { return textureLod(tables[0], uv, 0.0f); }

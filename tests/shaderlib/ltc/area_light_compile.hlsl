@@ -29,6 +29,7 @@ bool Host_LightTwoSided(uint light) { return false; }
 float3 Host_LightRadiance(uint light) { return lights[light].radiance.rgb; }
 float3 Host_LightVisibility(uint light) { return RTPBR_F3(1.0f); }
 float4 Host_LightTube(uint light, uint k) { return lights[light].v[k]; }
+float Host_LightTubeInvRange2(uint light) { return lights[light].v[3].w; } // (RTPBR_AREA_LIGHT_TUBE_RANGE)
 // (RTPBR_AREA_LIGHT_TEXTURED: a textured quad's emission, here one of the tables)
 float3 Host_LightTexture(uint light, float3 lookup) { return tables[3].SampleLevel(lutSampler, lookup.xy, log2(max(lookup.z * 128.0f, 1e-6f))).rgb; }
 float4 Host_TableLtc1(int table, float2 uv) { return tables[0].SampleLevel(lutSampler, uv, 0.0f); }
