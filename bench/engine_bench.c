@@ -76,11 +76,16 @@ static int parse_sizes(const char *text, int (*out)[2], int max)
 //              squares, one for all: AreaLight_AddTexturedQuad in the spheres' variants);
 //   tubes      the benchmark's squares as tubes (capsules) along x, as long as the square's
 //              side, of a quarter of its half-side in radius, of its radiance (the tubes'
-//              lighting variants, AreaLight_AddTube: issue 30).
+//              lighting variants, AreaLight_AddTube: issue 30);
+//   many       the benchmark's layout with its lights' total area held at 16 lights': n > 16
+//              lights have sqrt(16 / n) of the side, so 1,024 lights are 64 times as many, an
+//              eighth of the side, the same power in all (issue 32's "1,024 small lights",
+//              read as a lighting budget spread over more, smaller lights; the benchmark
+//              scene is the other reading, lights of the same size at 64x the density).
 typedef enum bench_scene { SCENE_BENCHMARK, SCENE_FLOOR, SCENE_FULL, SCENE_POINTS, SCENE_SPHERES, SCENE_DISKS,
-                           SCENE_TEXTURED, SCENE_TUBES, SCENE_COUNT } bench_scene;
+                           SCENE_TEXTURED, SCENE_TUBES, SCENE_MANY, SCENE_COUNT } bench_scene;
 static const char *const scene_names[SCENE_COUNT] = {"benchmark", "floor", "full", "points", "spheres", "disks",
-                                                     "textured", "tubes"};
+                                                     "textured", "tubes", "many"};
 
 static void square_light(rtpbr_light_desc *light, float x, float y, float z, float s, int up)
 {
@@ -126,6 +131,7 @@ static rtpbr_result make_scene(rtpbr_context *ctx, bench_scene kind, int n, rtpb
         seed = seed * 1664525u + 1013904223u;
         float y = -28.0f + 56.0f * (float)(seed >> 8) / 16777216.0f;
         float z = 0.5f + 2.5f * (float)(i % 7) / 6.0f, half = 0.1f + 0.05f * (float)(i % 5);
+        if (kind == SCENE_MANY && n > 16) half *= sqrtf(16.0f / (float)n);
         if (kind == SCENE_POINTS || kind == SCENE_SPHERES)
             lights[i] = (rtpbr_light_desc){.type = RTPBR_LIGHT_POINT, .position = {x, y, z},
                                            .emission = {20.0f * 4.0f * half * half, 20.0f * 4.0f * half * half,
@@ -216,7 +222,7 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
 
 static const char *const usage =
     "usage: rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu] [--cull X]\n"
-    "                          [--scene benchmark|floor|full|points|spheres|disks|textured|tubes|all]\n"
+    "                          [--scene benchmark|floor|full|points|spheres|disks|textured|tubes|many|all]\n"
     "Median frame time of rtpbr_render against light count and resolution; compare the ratios\n"
     "printed in one run.\n"
     "  --repeat N     frames per configuration (1..1000; default 5)\n"
@@ -229,7 +235,8 @@ static const char *const usage =
     "                 RTPBR_DEFAULT_CULL_FORM_FACTOR)\n"
     "  --scene NAME   benchmark, floor (metal floor at 45 degrees, every light seen by\n"
     "                 every pixel), full (materials of the full lighting variant), points\n"
-    "                 (the benchmark's layout with point lights), spheres (with radii), disks, textured, tubes, all\n"
+    "                 (the benchmark's layout with point lights), spheres (with radii), disks, textured, tubes,\n"
+    "                 many (the benchmark's layout, n > 16 lights of 16 lights' total area), all\n"
     "                 (default)\n"
     "  -h, --help     this text\n";
 

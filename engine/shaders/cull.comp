@@ -7,7 +7,8 @@
 // i of the tile's masks, tile_masks: one of polygons, one of punctual lights, one of spheres,
 // one of disks),
 // and queues the tile for the lighting variant of its class (tile_dispatch / tile_list,
-// consumed by indirect dispatches):
+// consumed by indirect dispatches), and per kind a summary word (bit w: the kind's word w is
+// not zero; the lighting pass walks only those words):
 //   EMPTY  no surface pixel, or no light left: emission and background only;
 //   BASIC  every material of the tile is basic (material_tile_class);
 //   FULL   otherwise;
@@ -102,10 +103,10 @@ void main()
     if (tileXY.x >= frame.tiles_x || tileXY.y >= tilesY) return;
     uint tile = tileXY.y * frame.tiles_x + tileXY.x;
 
-    // The tile's world-space box and the most demanding class of its materials.
+    // The tile's world-space box.
     vec3 boxMin = vec3(3.402823466e+38f);
     vec3 boxMax = vec3(-3.402823466e+38f);
-    uint materialClass = RTPBR_TILE_CLASS_EMPTY;
+    bool anySurface = false;
     uvec2 origin = tileXY * uint(RTPBR_TILE_SIZE);
     uvec2 end = min(origin + uvec2(RTPBR_TILE_SIZE), frame.size);
     for (uint y = origin.y; y < end.y; ++y)
@@ -117,16 +118,17 @@ void main()
                 vec3 P = world.xyz / world.w;
                 boxMin = min(boxMin, P);
                 boxMax = max(boxMax, P);
-                if (materialClass != RTPBR_TILE_CLASS_FULL)
-                    materialClass = max(materialClass, material_tile_class(materials[uint(texelFetch(gbuffer2, ivec2(x, y), 0).a)]));
+                anySurface = true;
             }
         }
 
     bool anyLight = false, anySphere = false, anyTextured = false, anyTube = false;
+    // Per kind, bit w: the kind's word w is not zero (RTPBR_TILE_MASK_SUMMARY).
+    uint polygonWords = 0u, punctualWords = 0u, sphereWords = 0u, diskWords = 0u, texturedWords = 0u, tubeWords = 0u;
     uint words = (frame.light_count + 31u) / 32u;
     for (uint w = 0u; w < words; ++w) {
         uint bits = 0u, punctualBits = 0u, sphereBits = 0u, diskBits = 0u, texturedBits = 0u, tubeBits = 0u; // polygons, punctual lights, spheres, disks, textured quads, tubes
-        if (materialClass != RTPBR_TILE_CLASS_EMPTY) {
+        if (anySurface) {
             uint count = min(32u, frame.light_count - 32u * w);
             for (uint b = 0u; b < count; ++b)
                 if (light_may_contribute(32u * w + b, boxMin, boxMax)) {
@@ -145,12 +147,34 @@ void main()
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 3u * uint(RTPBR_TILE_MASK_WORDS) + w] = diskBits;
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 4u * uint(RTPBR_TILE_MASK_WORDS) + w] = texturedBits;
         tile_masks[tile * uint(RTPBR_TILE_MASK_STRIDE) + 5u * uint(RTPBR_TILE_MASK_WORDS) + w] = tubeBits;
+        polygonWords |= bits != 0u ? 1u << w : 0u;
+        punctualWords |= punctualBits != 0u ? 1u << w : 0u;
+        sphereWords |= sphereBits != 0u ? 1u << w : 0u;
+        diskWords |= diskBits != 0u ? 1u << w : 0u;
+        texturedWords |= texturedBits != 0u ? 1u << w : 0u;
+        tubeWords |= tubeBits != 0u ? 1u << w : 0u;
         anyLight = anyLight || (bits | punctualBits | sphereBits | diskBits | texturedBits | tubeBits) != 0u;
         anySphere = anySphere || (sphereBits | diskBits) != 0u;
         anyTube = anyTube || tubeBits != 0u;
         anyTextured = anyTextured || texturedBits != 0u;
     }
-    uint tileClass = anyLight ? materialClass : RTPBR_TILE_CLASS_EMPTY;
+    uint summary = tile * uint(RTPBR_TILE_MASK_STRIDE) + uint(RTPBR_TILE_MASK_SUMMARY);
+    tile_masks[summary] = polygonWords;
+    tile_masks[summary + 1u] = punctualWords;
+    tile_masks[summary + 2u] = sphereWords;
+    tile_masks[summary + 3u] = diskWords;
+    tile_masks[summary + 4u] = texturedWords;
+    tile_masks[summary + 5u] = tubeWords;
+    // The most demanding class of the tile's materials, read only where a light is left (a
+    // tile without one reads no material).
+    uint tileClass = RTPBR_TILE_CLASS_EMPTY;
+    if (anyLight) {
+        tileClass = RTPBR_TILE_CLASS_BASIC;
+        for (uint y = origin.y; y < end.y && tileClass != RTPBR_TILE_CLASS_FULL; ++y)
+            for (uint x = origin.x; x < end.x && tileClass != RTPBR_TILE_CLASS_FULL; ++x)
+                if (texelFetch(gbuffer_depth, ivec2(x, y), 0).r != frame.camera_position.w)
+                    tileClass = max(tileClass, material_tile_class(materials[uint(texelFetch(gbuffer2, ivec2(x, y), 0).a)]));
+    }
     if (anyTube && tileClass != RTPBR_TILE_CLASS_EMPTY)
         tileClass += uint(RTPBR_TILE_CLASS_BASIC_TUBES - RTPBR_TILE_CLASS_BASIC);
     else if (anyTextured && tileClass != RTPBR_TILE_CLASS_EMPTY)

@@ -9,7 +9,8 @@
 // Per-tile light masks written by the culling pass (cull.comp): bit i of word w of a tile is
 // light 32 w + i; per tile (RTPBR_TILE_MASK_STRIDE words, tiles row by row)
 // RTPBR_TILE_MASK_WORDS words of its polygonal lights, then as many of its punctual lights,
-// then of its spheres, then of its disks, then of its textured quads, then of its tubes.
+// then of its spheres, then of its disks, then of its textured quads, then of its tubes; the
+// shadow slots; and a summary word per kind (bit w: its word w is not zero; rtpbr_shared.h).
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_TILE_MASKS, std430) buffer TileMasks {
     uint tile_masks[];
 };

@@ -286,9 +286,17 @@
 // RTPBR_SHADER_MAX_SHADOWED_LIGHTS light indices in increasing order, RTPBR_TILE_NO_LIGHT for
 // an empty slot (shadow_select.comp writes them when the frame has shadows; slot k's ratio is
 // layer k of the shadow images).
+// Then, at RTPBR_TILE_MASK_SUMMARY, one word per kind (in the masks' order): bit w set where
+// the kind's word w is not zero, so that the lighting pass reads only the words that hold a
+// light (with 1,024 lights, walking 32 words per kind per pixel cost more on lavapipe than the
+// few lights a tile keeps).
 #define RTPBR_TILE_SHADOW_SLOTS (6 * RTPBR_TILE_MASK_WORDS)
-#define RTPBR_TILE_MASK_STRIDE (6 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS)
+#define RTPBR_TILE_MASK_SUMMARY (6 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS)
+#define RTPBR_TILE_MASK_STRIDE (6 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS + 6)
 #define RTPBR_TILE_NO_LIGHT 0xffffffffu
+#if RTPBR_TILE_MASK_WORDS > 32
+#error "a summary word has a bit per mask word"
+#endif
 // Tile classes: each has its lighting variant, dispatched indirectly over its tile queue.
 #define RTPBR_TILE_CLASS_EMPTY 0 // no surface pixel or no light left: emission and background
 #define RTPBR_TILE_CLASS_BASIC 1 // metallic-roughness without clear coat, sheen, anisotropy

@@ -198,22 +198,26 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
 #endif
 #endif
 #else
-    // The tile's masks (cull.comp): its punctual lights', then its polygons', its spheres' and
-    // its disks'.
-    uint words = (frame.light_count + 31u) / 32u;
+    // The tile's masks (cull.comp): its punctual lights', then its polygons', its spheres', its
+    // disks', its textured quads' and its tubes'; in each, only the words that the kind's summary
+    // word marks (the others are zero).
     uint maskBase = tile * uint(RTPBR_TILE_MASK_STRIDE);
+    uint summaryBase = maskBase + uint(RTPBR_TILE_MASK_SUMMARY);
     mat3 frame3 = LTC_Frame(N, V);
-    for (uint word = 0u; word < words; ++word)
+    for (uint words = tile_masks[summaryBase + 1u]; words != 0u; words &= words - 1u) {
+        uint word = uint(findLSB(words));
         for (uint bits = tile_masks[maskBase + uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u) {
             uint i = word * 32u + uint(findLSB(bits));
             AreaLight_AddPunctual(result, s, frame3, P, i, lights[i].shape);
         }
+    }
     AreaLightPixel px = AreaLight_Begin(s, N, V);
 #if RTPBR_LIGHTING_TEXTURED && RTPBR_LIGHTING_FULL
     // The full variant shades its textured quads in the polygons' loop (one copy of the
     // evaluation, the texel read at its end where texturedLight: a loop of their own spilled 3
     // VGPRs on gfx1100); the basic variant in a loop of their own, below.
-    for (uint word = 0u; word < words; ++word) {
+    for (uint words = tile_masks[summaryBase] | tile_masks[summaryBase + 4u]; words != 0u; words &= words - 1u) {
+        uint word = uint(findLSB(words));
         uint textured = tile_masks[maskBase + 4u * uint(RTPBR_TILE_MASK_WORDS) + word];
         for (uint bits = tile_masks[maskBase + word] | textured; bits != 0u; bits &= bits - 1u) {
             uint b = uint(findLSB(bits));
@@ -221,29 +225,39 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
         }
     }
 #else
-    for (uint word = 0u; word < words; ++word)
+    for (uint words = tile_masks[summaryBase]; words != 0u; words &= words - 1u) {
+        uint word = uint(findLSB(words));
         for (uint bits = tile_masks[maskBase + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_Add(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
+    }
 #endif
 #if RTPBR_LIGHTING_SPHERES
     // Spheres and disks: a mask and a loop each, so that each loop compiles with its kind
     // fixed (one loop choosing at run time took the basic variant's registers from 96 to 104
     // on navi21, and lavapipe ran both kinds' code for every light).
-    for (uint word = 0u; word < words; ++word)
+    for (uint words = tile_masks[summaryBase + 2u]; words != 0u; words &= words - 1u) {
+        uint word = uint(findLSB(words));
         for (uint bits = tile_masks[maskBase + 2u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_AddSphere(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
-    for (uint word = 0u; word < words; ++word)
+    }
+    for (uint words = tile_masks[summaryBase + 3u]; words != 0u; words &= words - 1u) {
+        uint word = uint(findLSB(words));
         for (uint bits = tile_masks[maskBase + 3u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_AddDisk(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
+    }
 #if RTPBR_LIGHTING_TEXTURED && !RTPBR_LIGHTING_FULL
-    for (uint word = 0u; word < words; ++word)
+    for (uint words = tile_masks[summaryBase + 4u]; words != 0u; words &= words - 1u) {
+        uint word = uint(findLSB(words));
         for (uint bits = tile_masks[maskBase + 4u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_AddTexturedQuad(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
+    }
 #endif
 #if RTPBR_LIGHTING_TUBES
-    for (uint word = 0u; word < words; ++word)
+    for (uint words = tile_masks[summaryBase + 5u]; words != 0u; words &= words - 1u) {
+        uint word = uint(findLSB(words));
         for (uint bits = tile_masks[maskBase + 5u * uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u)
             AreaLight_AddTube(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
+    }
 #endif
 #endif
 #endif

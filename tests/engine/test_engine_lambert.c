@@ -201,6 +201,67 @@ static void culling_bound(void **state)
     rtpbr_gpu_scene_destroy(scene);
 }
 
+// The tile masks' summary words (RTPBR_TILE_MASK_SUMMARY): with 1,024 lights of which only
+// lights 33, 700 and 1023 can light the plane (the others face up, away from it: culled
+// exactly), the lighting pass must find those three in mask words 1, 21 and 31 and nothing in
+// the others. The culled image matches Lambert's formula for the three (within 1%, as
+// lambertian_plane), and the frame with only those three lights to 1e-5.
+static void culled_sparse_words(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    float plane[12];
+    rtpbr_material_desc material = test_lambert_material;
+    rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
+    enum { N = 1024 };
+    static const int lit[3] = {33, 700, 1023};
+    rtpbr_light_desc *lights = calloc(N, sizeof *lights), three[3];
+    for (int i = 0; i < N; ++i) {
+        bool down = i == lit[0] || i == lit[1] || i == lit[2];
+        float x = -3.5f + 7.0f * (float)(i % 32) / 31.0f, y = -3.5f + 7.0f * (float)(i / 32) / 31.0f;
+        float h = down ? 0.4f : 0.05f, z = down ? 1.0f + 0.25f * (float)(i % 3) : 2.0f;
+        float v[4][3] = {{x - h, y - h, z}, {x - h, y + h, z}, {x + h, y + h, z}, {x + h, y - h, z}};
+        for (int k = 0; k < 4; ++k) memcpy(lights[i].vertices[down ? k : 3 - k], v[k], sizeof v[k]);
+        lights[i].vertex_count = 4;
+        lights[i].emission[0] = lights[i].emission[1] = lights[i].emission[2] = down ? 4.0f : 50.0f;
+    }
+    for (int k = 0; k < 3; ++k) three[k] = lights[lit[k]];
+    rtpbr_camera_desc camera = {.position = {0.0f, -5.0f, 6.0f}, .target = {0.0f, 0.0f, 0.0f}, .yfov = 1.0f,
+                                .znear = 0.1f, .zfar = 100.0f};
+    rtpbr_gpu_scene *scene = test_mesh_scene(ctx, &mesh, &material, lights, N, &camera);
+    rtpbr_gpu_scene *only = test_mesh_scene(ctx, &mesh, &material, three, 3, &camera);
+    enum { W = 96, H = 64 };
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
+    float *all = test_render_radiance(r, scene, &(rtpbr_render_desc){0}, W, H);
+    float *alone = test_render_radiance(r, only, &(rtpbr_render_desc){0}, W, H);
+    const double n[3] = {0.0, 0.0, 1.0};
+    int checked = 0;
+    double worst = 0.0, worst_alone = 0.0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            int i = y * W + x;
+            double p[3];
+            if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
+            double expect = 0.0;
+            for (int k = 0; k < 3; ++k) expect += 0.8 * three[k].emission[0] * test_form_factor(p, n, three[k].vertices, 4);
+            double rel = fabs(all[4 * i] - expect) / expect;
+            worst = fmax(worst, rel);
+            if (rel > 0.01)
+                fail_msg("pixel (%d, %d): %.6f, Lambert's formula for lights 33, 700, 1023 %.6f", x, y, all[4 * i], expect);
+            worst_alone = fmax(worst_alone, fabs((double)all[4 * i] - alone[4 * i]) / fmax(alone[4 * i], 1e-6));
+            ++checked;
+        }
+    printf("1,024 lights, 3 lighting the plane (mask words 1, 21, 31): %d pixels, largest error against Lambert "
+           "%.4f%%, against the 3-light frame %.3g\n", checked, 100.0 * worst, worst_alone);
+    assert_true(checked > W * H / 2);
+    assert_true(worst_alone <= 1e-5);
+    free(all);
+    free(alone);
+    free(lights);
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+    rtpbr_gpu_scene_destroy(only);
+}
+
 // Supersampling resolves coverage: a square seen straight on, its edges off the pixel grid.
 // Without supersampling every pixel is in or out (alpha 0 or 1); with s = 2 the edge pixels
 // get the covered fraction of their 2 x 2 samples (alpha in quarters), and the alpha sum over
@@ -257,4 +318,5 @@ static void supersampled_coverage(void **state)
 RTPBR_TEST_MAIN(test_env_case(supersampled_coverage),
                 test_env_case(lambertian_plane),
                 test_env_case(normal_mapped_plane),
-                test_env_case(culling_bound))
+                test_env_case(culling_bound),
+                test_env_case(culled_sparse_words))
