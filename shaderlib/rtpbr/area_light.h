@@ -285,6 +285,8 @@ struct AreaLightPixel {
     rtpbr_float3x3 specularMinv; // the specular lobe's M^-1 (stretched when anisotropic)
     rtpbr_float3 specularScale;  // its Fresnel scale, plus the shaped f_ms lobe's share
     rtpbr_float3 msColor;        // the separable f_ms lobe's colour
+    rtpbr_float3 baseScale;      // the layered base's colour x (1 - Eso) / (1 - EsAvg)
+                                 // (KC_PolygonLobe's per-point factors, docs/performance.md, 15)
     float pointNorm;             // the specular table's norm (ltc2.x)
     bool pointOn;                // the point correction applies (isotropic lobes)
     // RTPBR_AREA_LIGHT_FULL: the coat, Burley diffuse and sheen lobes (unused otherwise)
@@ -837,6 +839,7 @@ RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_
 #else
     px.msColor = s.msColor;
 #endif
+    px.baseScale = s.diffuseColor * KC_PolygonLobe(s.Eso, 0.0f, s.EsAvg, 1.0f);
     return px;
 }
 
@@ -1076,7 +1079,7 @@ RTPBR_FN void AreaLight_AddShapePart(AreaLightPixel px, RTPBR_INOUT(AreaLightSum
     {
         float EFrep = s.specularWeight > 0.0f ? KC_PolygonMeanE(eRep.y, s.EFavg, lenF) : 0.0f;
         float Esrep = s.specularWeight * KC_SpecularAlbedoDielectric(EFrep, Erep, s.FmsDielectric);
-        base = s.diffuseColor * KC_PolygonLobe(s.Eso, Esrep, s.EsAvg, ff);
+        base = px.baseScale * (rtpbr_pos(1.0f - Esrep) * rtpbr_pos(ff)); // KC_PolygonLobe(s.Eso, Esrep, s.EsAvg, ff)
     }
     lo += texD * base;
 #if RTPBR_AREA_LIGHT_FULL
