@@ -222,6 +222,9 @@ RTPBR_FN rtpbr_float3x3 LTC_InverseMatrix(rtpbr_float4 ltc1) {
 // (toward M^-1 z), holding (1 + n.z / |n|) / 2 of the clamped cosine (a tilted plane's sky view
 // factor); for n.z < 0 (n.x^2 + n.y^2) / (2 |n| (|n| - n.z)), without cancellation for a lobe
 // almost all below the horizon (fitted cells reach 1e-15). Any M^-1; 0 if singular or NaN.
+// Both forms computed and selected, no branch: the per-light evaluation calls it twice with the
+// same M^-1 (AreaLight_LobeClose, LTC_LobePoint), and only straight-line code lets the compiler
+// keep one copy (docs/performance.md, 17).
 RTPBR_FN float LTC_HorizonMass(rtpbr_float3x3 minv) {
     rtpbr_float3 cx = rtpbr_mul(minv, rtpbr_float3(1.0f, 0.0f, 0.0f));
     rtpbr_float3 cy = rtpbr_mul(minv, rtpbr_float3(0.0f, 1.0f, 0.0f));
@@ -229,10 +232,10 @@ RTPBR_FN float LTC_HorizonMass(rtpbr_float3x3 minv) {
     rtpbr_float3 n = cross(cx, cy);
     n = dot(n, cz) < 0.0f ? -n : n;
     float len = length(n);
-    if (!(len > 0.0f))
-        return 0.0f;
-    float mass = n.z >= 0.0f ? 0.5f + 0.5f * (n.z / len) : 0.5f * (n.x * n.x + n.y * n.y) / (len * (len - n.z));
-    return rtpbr_saturate(mass);
+    float above = 0.5f + 0.5f * (n.z / len);
+    float below = 0.5f * (n.x * n.x + n.y * n.y) / (len * (len - n.z));
+    float mass = n.z >= 0.0f ? above : below;
+    return len > 0.0f ? rtpbr_saturate(mass) : 0.0f;
 }
 
 // ff <= mass mathematically; kept in [0, 1] against rounding (a lobe of mass 1e-15 sums edge
