@@ -285,6 +285,8 @@ struct AreaLightPixel {
     rtpbr_float3x3 specularMinv; // the specular lobe's M^-1 (stretched when anisotropic)
     rtpbr_float3 specularScale;  // its Fresnel scale, plus the shaped f_ms lobe's share
     rtpbr_float3 msColor;        // the separable f_ms lobe's colour
+    float msScale;               // its (1 - Eo) / (1 - Eavg) (KC_PolygonLobe's per-point
+                                 // factors, docs/performance.md, 18)
     rtpbr_float3 baseScale;      // the layered base's colour x (1 - Eso) / (1 - EsAvg)
                                  // (KC_PolygonLobe's per-point factors, docs/performance.md, 15)
     float pointNorm;             // the specular table's norm (ltc2.x)
@@ -839,6 +841,7 @@ RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_
 #else
     px.msColor = s.msColor;
 #endif
+    px.msScale = KC_PolygonLobe(s.Eo, 0.0f, s.Eavg, 1.0f);
     px.baseScale = s.diffuseColor * KC_PolygonLobe(s.Eso, 0.0f, s.EsAvg, 1.0f);
     return px;
 }
@@ -1065,7 +1068,8 @@ RTPBR_FN void AreaLight_AddShapePart(AreaLightPixel px, RTPBR_INOUT(AreaLightSum
 
     // (with RTPBR_KC_SHAPE: KC_PolygonLobeShaped, its two parts folded into specularScale and
     // msColor by AreaLight_Begin)
-    rtpbr_float3 lo = texS * (px.specularScale * specularFF + px.msColor * KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff));
+    rtpbr_float3 lo = texS * (px.specularScale * specularFF +
+                              px.msColor * (px.msScale * (rtpbr_pos(1.0f - Erep) * rtpbr_pos(ff)))); // KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff)
     rtpbr_float3 unusedF, unusedFl;
     rtpbr_float3 base;
 #if RTPBR_AREA_LIGHT_FULL
