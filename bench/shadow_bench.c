@@ -2,7 +2,9 @@
 // (at several samples per pixel and light) against the same frame without, renders
 // interleaved so that machine load hits both alike. Not a test: compare the ratios of one run.
 //   rtpbr-bench-shadows SCENE.gltf [--width W] [--height H] [--repeat N] [--samples 1,4,16]
+//                       [--cull-ab]
 #define _POSIX_C_SOURCE 200809L
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,13 +17,14 @@
 enum { MAX_CONFIGS = 8, MAX_REPEAT = 64 };
 
 static const char *const usage =
-    "usage: rtpbr-bench-shadows SCENE.gltf [--width W] [--height H] [--repeat N] [--samples 1,4,16]\n"
+    "usage: rtpbr-bench-shadows SCENE.gltf [--width W] [--height H] [--repeat N] [--samples 1,4,16] [--cull-ab]\n"
     "Frame time of SCENE with area-light shadows at several samples per pixel and light against\n"
     "the same frame without, interleaved; compare the ratios of one run.\n"
     "  --width W       image width (default 960)\n"
     "  --height H      image height (default 720)\n"
     "  --repeat N      rounds (1..64; default 5)\n"
     "  --samples LIST  shadow samples per pixel and light (default 4)\n"
+    "  --cull-ab       each shadowed configuration also with shadow-ray culling off\n"
     "  -h, --help      this text\n";
 
 int main(int argc, char **argv)
@@ -30,6 +33,7 @@ int main(int argc, char **argv)
     uint32_t width = 960, height = 720;
     int repeat = 5;
     int samples[MAX_CONFIGS] = {0, 4}, configs = 2; // 0: shadows off
+    bool no_cull[MAX_CONFIGS] = {false}, cull_ab = false;
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--width") && i + 1 < argc) width = (uint32_t)atoi(argv[++i]);
         else if (!strcmp(argv[i], "--height") && i + 1 < argc) height = (uint32_t)atoi(argv[++i]);
@@ -40,11 +44,16 @@ int main(int argc, char **argv)
             for (char *t = strtok_r(copy, ",", &save); t && configs < MAX_CONFIGS; t = strtok_r(NULL, ",", &save))
                 samples[configs++] = atoi(t);
             free(copy);
-        } else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) return fputs(usage, stdout), 0;
+        } else if (!strcmp(argv[i], "--cull-ab")) cull_ab = true;
+        else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) return fputs(usage, stdout), 0;
         else if (argv[i][0] != '-' && !path) path = argv[i];
         else return fputs(usage, stderr), 2;
     }
     if (!path || repeat < 1 || repeat > MAX_REPEAT) return fputs(usage, stderr), 2;
+    for (int c = 1, n = configs; cull_ab && c < n && configs < MAX_CONFIGS; ++c) {
+        samples[configs] = samples[c];
+        no_cull[configs++] = true;
+    }
     rtpbr_context *ctx = NULL;
     rtpbr_gpu_scene *scene = NULL;
     rtpbr_renderer *r = NULL;
@@ -59,7 +68,8 @@ int main(int argc, char **argv)
     for (int rep = -1; rep < repeat; ++rep) // rep -1: warm-up (pipelines compiled on first use)
         for (int c = 0; c < configs; ++c) {
             rtpbr_render_desc desc = {.shadows = samples[c] ? RTPBR_SHADOWS_ON : RTPBR_SHADOWS_OFF,
-                                      .shadow_samples = (uint32_t)samples[c]};
+                                      .shadow_samples = (uint32_t)samples[c],
+                                      .shadow_cull = no_cull[c] ? RTPBR_SHADOW_CULL_OFF : RTPBR_SHADOW_CULL_ON};
             double w0 = bench_seconds(CLOCK_MONOTONIC), c0 = bench_seconds(CLOCK_PROCESS_CPUTIME_ID);
             if (rtpbr_render(r, scene, &desc) != RTPBR_SUCCESS) {
                 fprintf(stderr, "shadow bench: render failed\n");
@@ -79,8 +89,9 @@ int main(int argc, char **argv)
         qsort(cpu[c], (size_t)repeat, sizeof(double), bench_compare_double);
         double mw = wall[c][repeat / 2], mc = cpu[c][repeat / 2];
         if (c == 0) base_wall = mw, base_cpu = mc;
-        char label[32];
-        if (samples[c]) snprintf(label, sizeof label, "on, %d samples", samples[c]);
+        char label[48];
+        if (samples[c])
+            snprintf(label, sizeof label, "on, %d samples%s", samples[c], no_cull[c] ? ", no culling" : "");
         else snprintf(label, sizeof label, "off");
         printf("| %s | %.1f | %.1f | %.2f | %.2f |\n", label, 1e3 * mw, 1e3 * mc, mw / base_wall, mc / base_cpu);
     }

@@ -290,9 +290,13 @@
 // the kind's word w is not zero, so that the lighting pass reads only the words that hold a
 // light (with 1,024 lights, walking 32 words per kind per pixel cost more on lavapipe than the
 // few lights a tile keeps).
+// Then, at RTPBR_TILE_SHADOW_CLEAR, one word: bit k set where no triangle can block any shadow
+// ray of the tile toward slot k's light (shadow_select.comp, shadow_cull.glsl): the trace skips
+// those rays and the denoiser writes ratio 1 where its window lies in such tiles.
 #define RTPBR_TILE_SHADOW_SLOTS (6 * RTPBR_TILE_MASK_WORDS)
 #define RTPBR_TILE_MASK_SUMMARY (6 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS)
-#define RTPBR_TILE_MASK_STRIDE (6 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS + 6)
+#define RTPBR_TILE_SHADOW_CLEAR (RTPBR_TILE_MASK_SUMMARY + 6)
+#define RTPBR_TILE_MASK_STRIDE (6 * RTPBR_TILE_MASK_WORDS + RTPBR_SHADER_MAX_SHADOWED_LIGHTS + 7)
 #define RTPBR_TILE_NO_LIGHT 0xffffffffu
 #if RTPBR_TILE_MASK_WORDS > 32
 #error "a summary word has a bit per mask word"
@@ -408,7 +412,11 @@
     F(S, UINT, samples, )      /* of this trace dispatch, per pixel and shadowed light, >= 1 */    \
     F(S, UINT, seed, )                                                                             \
     F(S, UINT, radius, )       /* of the denoiser's (2 radius + 1)^2 window; 0: no denoising */   \
-    F(S, UINT, first_sample, ) /* index of the dispatch's first sample; 0: the sums start at 0 */
+    F(S, UINT, first_sample, ) /* index of the dispatch's first sample; 0: the sums start at 0 */ \
+    F(S, UINT, cull, )         /* 1: shadow-ray culling (shadow.comp; rtpbr_render_desc.shadow_cull) */ \
+    F(S, UINT, pad0, )                                                                             \
+    F(S, UINT, pad1, )                                                                             \
+    F(S, UINT, pad2, )
 // A BVH node, the std430 element of RTPBR_BINDING_SHADOW_BVH_NODES (rtpbr_shader_bvh_node,
 // bvh.glsl; engine/src/bvh.c documents the tree).
 #define RTPBR_BVH_NODE_FIELDS(F, S)                                                               \

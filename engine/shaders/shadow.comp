@@ -12,7 +12,9 @@
 // The n points are a rank-1 lattice (the R2 sequence, Roberts 2018) shifted per pixel and
 // light by a hash (Cranley-Patterson rotation): stratified, and independent between pixels.
 // V traces a ray from x (lifted off the surface by a few depth ulps) to y_j, shortened by
-// 1e-3 of its length so that the light's own emitting triangles do not occlude it.
+// 1e-3 of its length so that the light's own emitting triangles do not occlude it; in a tile
+// whose slot shadow_select.comp proved clear (no triangle can block any of its rays toward
+// the light, shadow_cull.glsl), V = 1 without a ray.
 // One invocation: one pixel and one shadow slot of its tile (z = k: light
 // shadow_tiles[slot k], chosen by shadow_select.comp; an empty slot's sums stay 0), samples
 // first_sample .. first_sample + samples - 1 of the n, added to the sums n S and n U (layers
@@ -57,14 +59,13 @@ void main()
     float depth = texelFetch(gbuffer_depth, pixel, 0).r;
     vec3 P = shadow_world_point(pixel, depth);
     vec3 N = normalize(texelFetch(gbuffer_normal, pixel, 0).xyz);
-    // Lift x off the surface by the world distance of 4 depth ulps (as lighting_common.glsl's
-    // lifted_point) plus a small fraction of the viewing distance: no self-shadowing.
-    vec2 ndc = (vec2(pixel) + 0.5f) / vec2(frame.size) * 2.0f - 1.0f;
-    vec4 further = frame.inv_view_proj * vec4(ndc, min(depth * (1.0f + 4.0f / 16777216.0f), 1.0f), 1.0f);
-    float lift = length(further.xyz / further.w - P) + 1e-4f * length(frame.camera_position.xyz - P);
-    vec3 origin = P + N * lift;
+    vec3 origin = shadow_ray_origin(pixel, depth, P, N); // lifted off the surface
 
-    uint li = shadow_tiles[shadow_group_slot_base() + k]; // the slot's light (uniform)
+    uint slotBase = shadow_group_slot_base();
+    uint li = shadow_tiles[slotBase + k]; // the slot's light (uniform)
+    // No triangle can block a ray of this tile toward it (shadow_select.comp, shadow_cull.glsl):
+    // every ray would be unoccluded, so none is traced and the shadowed sum is the unshadowed.
+    bool clear = ((shadow_tiles[slotBase - uint(RTPBR_TILE_SHADOW_SLOTS) + uint(RTPBR_TILE_SHADOW_CLEAR)] >> k) & 1u) != 0u;
     bool slotUsed = li < frame.light_count;
     li = slotUsed ? li : 0u;
     Light light = lights[li];
@@ -143,7 +144,7 @@ void main()
         float w = cosX > 0.0f && cosY > 0.0f ? light.area / density * cosX * cosY / dist2 : 0.0f;
         if (punctual || sphereLight) w = max(cosX, 0.0f);
         unshadowed += w;
-        if (w > 0.0f && !bvh_occluded(origin, d, 1.0f - 1e-3f, bvh_hash(h + j))) shadowed += w;
+        if (w > 0.0f && (clear || !bvh_occluded(origin, d, 1.0f - 1e-3f, bvh_hash(h + j)))) shadowed += w;
     }
     imageStore(shadow_estimates, shadowedTexel, vec4(shadowed));
     imageStore(shadow_estimates, unshadowedTexel, vec4(unshadowed));

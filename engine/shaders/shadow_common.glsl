@@ -23,6 +23,17 @@ vec3 shadow_world_point(ivec2 pixel, float depth)
     return world.xyz / world.w;
 }
 
+// A shadow ray's origin: the pixel's point P lifted along its normal N by the world distance of
+// 4 depth ulps (as lighting_common.glsl's lifted_point) plus a small fraction of the viewing
+// distance: no self-shadowing. shadow.comp traces from it; shadow_select.comp bounds a tile's.
+vec3 shadow_ray_origin(ivec2 pixel, float depth, vec3 P, vec3 N)
+{
+    vec2 ndc = (vec2(pixel) + 0.5f) / vec2(frame.size) * 2.0f - 1.0f;
+    vec4 further = frame.inv_view_proj * vec4(ndc, min(depth * (1.0f + 4.0f / 16777216.0f), 1.0f), 1.0f);
+    float lift = length(further.xyz / further.w - P) + 1e-4f * length(frame.camera_position.xyz - P);
+    return P + N * lift;
+}
+
 // The lighting pass's tile masks, whose shadow slots (RTPBR_TILE_SHADOW_SLOTS) shadow_select.comp
 // writes and the other two passes read.
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_TILES, std430) buffer ShadowTiles {

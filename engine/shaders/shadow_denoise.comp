@@ -19,14 +19,23 @@
 #error "a tile's slots are two uvec4"
 #endif
 
-// The shadow slots of tile t (tile coordinates); none outside the image's tiles.
-void shadow_tile_slots(ivec2 t, ivec2 tiles, out uvec4 slots[2])
+// The shadow slots of tile t (tile coordinates) and its clear slots (RTPBR_TILE_SHADOW_CLEAR);
+// none outside the image's tiles.
+uint shadow_tile_slots(ivec2 t, ivec2 tiles, out uvec4 slots[2])
 {
     slots[0] = slots[1] = uvec4(RTPBR_TILE_NO_LIGHT);
-    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, tiles))) return;
-    uint base = (uint(t.y) * frame.tiles_x + uint(t.x)) * uint(RTPBR_TILE_MASK_STRIDE) + uint(RTPBR_TILE_SHADOW_SLOTS);
+    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, tiles))) return 0u;
+    uint tileBase = (uint(t.y) * frame.tiles_x + uint(t.x)) * uint(RTPBR_TILE_MASK_STRIDE);
+    uint base = tileBase + uint(RTPBR_TILE_SHADOW_SLOTS);
     slots[0] = uvec4(shadow_tiles[base], shadow_tiles[base + 1u], shadow_tiles[base + 2u], shadow_tiles[base + 3u]);
     slots[1] = uvec4(shadow_tiles[base + 4u], shadow_tiles[base + 5u], shadow_tiles[base + 6u], shadow_tiles[base + 7u]);
+    return shadow_tiles[tileBase + uint(RTPBR_TILE_SHADOW_CLEAR)];
+}
+
+// Is the light of a tile's slot (-1: the tile does not shadow it) clear there, or absent?
+bool shadow_slot_clear(int slot, uint clear)
+{
+    return slot < 0 || ((clear >> uint(slot)) & 1u) != 0u;
 }
 
 // The slot holding `light` among slots, or -1 (no loop: lavapipe's loop budget).
@@ -59,15 +68,22 @@ void main()
                        inTile.y < r ? -1 : inTile.y >= RTPBR_TILE_SIZE - r ? 1 : 0);
     ivec2 tiles = (ivec2(frame.size) + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE;
     uvec4 own[2], beside[2], across[2], diagonal[2];
-    shadow_tile_slots(tileP, tiles, own);
-    shadow_tile_slots(side.x != 0 ? tileP + ivec2(side.x, 0) : ivec2(-1), tiles, beside);
-    shadow_tile_slots(side.y != 0 ? tileP + ivec2(0, side.y) : ivec2(-1), tiles, across);
-    shadow_tile_slots(side.x != 0 && side.y != 0 ? tileP + side : ivec2(-1), tiles, diagonal);
+    uint ownClear = shadow_tile_slots(tileP, tiles, own);
+    uint besideClear = shadow_tile_slots(side.x != 0 ? tileP + ivec2(side.x, 0) : ivec2(-1), tiles, beside);
+    uint acrossClear = shadow_tile_slots(side.y != 0 ? tileP + ivec2(0, side.y) : ivec2(-1), tiles, across);
+    uint diagonalClear = shadow_tile_slots(side.x != 0 && side.y != 0 ? tileP + side : ivec2(-1), tiles, diagonal);
     for (uint k = 0u; k < lightCount; ++k) {
         uint light = own[k / 4u][k % 4u];
         // where each of those tiles holds this light (-1: it does not shadow it there)
         int slotBeside = shadow_slot_of(light, beside), slotAcross = shadow_slot_of(light, across),
             slotDiagonal = shadow_slot_of(light, diagonal);
+        // Every tile of the window that holds the light is clear of blockers for it: each
+        // neighbour's shadowed sum equals its unshadowed one, so the filtered ratio is 1 exactly.
+        if (shadow_slot_clear(int(k), ownClear) && shadow_slot_clear(slotBeside, besideClear) &&
+            shadow_slot_clear(slotAcross, acrossClear) && shadow_slot_clear(slotDiagonal, diagonalClear)) {
+            imageStore(shadow_ratio_out, ivec3(pixel, int(k)), vec4(1.0f));
+            continue;
+        }
         vec2 sum = vec2(0.0f);
         for (int y = lo.y; y <= hi.y; ++y)
             for (int x = lo.x; x <= hi.x; ++x) {

@@ -17,13 +17,19 @@
 // A bound, not the contribution (materials and occlusion are not known here): a light that
 // could reach a tile brightly is shadowed there before a dim or distant one, whatever the
 // lights' order in the scene (before: lights 0 .. 7 everywhere).
+// Then, with shadow-ray culling on (params.cull), the slots whose light no triangle can keep
+// from any of the tile's shadow-ray origins (shadow_cull.glsl, on the box of the origins):
+// bit k of the tile's RTPBR_TILE_SHADOW_CLEAR word (0 with culling off).
 #include "rtpbr_shared.h"
 #include "shadow_common.glsl"
 
+#include "material.glsl"
+#include "bvh.glsl"
 #include "light.glsl"
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_LIGHTS, std430) readonly buffer Lights {
     Light lights[];
 };
+#include "shadow_cull.glsl"
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
 
@@ -65,8 +71,9 @@ void main()
     if (tileXY.x >= frame.tiles_x || tileXY.y >= tilesY) return;
     uint base = (tileXY.y * frame.tiles_x + tileXY.x) * uint(RTPBR_TILE_MASK_STRIDE) + uint(RTPBR_TILE_SHADOW_SLOTS);
 
-    // The tile's world-space box (its surface pixels).
+    // The tile's world-space box (its surface pixels), and its shadow rays' origins' box.
     vec3 boxMin = vec3(3.402823466e+38f), boxMax = vec3(-3.402823466e+38f);
+    vec3 originMin = boxMin, originMax = boxMax;
     uvec2 origin = tileXY * uint(RTPBR_TILE_SIZE);
     uvec2 end = min(origin + uvec2(RTPBR_TILE_SIZE), frame.size);
     for (uint y = origin.y; y < end.y; ++y)
@@ -76,6 +83,12 @@ void main()
                 vec3 P = shadow_world_point(ivec2(x, y), depth);
                 boxMin = min(boxMin, P);
                 boxMax = max(boxMax, P);
+                if (params.cull != 0u) {
+                    vec3 N = normalize(texelFetch(gbuffer_normal, ivec2(x, y), 0).xyz);
+                    vec3 o = shadow_ray_origin(ivec2(x, y), depth, P, N);
+                    originMin = min(originMin, o);
+                    originMax = max(originMax, o);
+                }
             }
         }
 
@@ -113,4 +126,12 @@ void main()
     RTPBR_STORE(0u) RTPBR_STORE(1u) RTPBR_STORE(2u) RTPBR_STORE(3u) RTPBR_STORE(4u) RTPBR_STORE(5u) RTPBR_STORE(6u)
     RTPBR_STORE(7u)
 #undef RTPBR_STORE
+    // The slots whose light no triangle can keep from any of the tile's ray origins.
+    uint clear = 0u;
+    bool cull = params.cull != 0u && originMin.x <= originMax.x;
+    for (uint k = 0u; cull && k < 8u && kept[k] < frame.light_count; ++k) {
+        Light light = lights[kept[k]];
+        if (shadow_cull_applies(light) && !shadow_cull_may_block(originMin, originMax, light)) clear |= 1u << k;
+    }
+    shadow_tiles[base - uint(RTPBR_TILE_SHADOW_SLOTS) + uint(RTPBR_TILE_SHADOW_CLEAR)] = clear;
 }

@@ -150,8 +150,9 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "render: mc_samples %u; at most %u", desc->mc_samples, RTPBR_MAX_MC_SAMPLES);
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
-    if ((unsigned)desc->shadows > RTPBR_SHADOWS_ON || (unsigned)desc->shadow_denoiser > RTPBR_SHADOW_DENOISER_OFF) {
-        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "render: unknown shadows or shadow_denoiser value");
+    if ((unsigned)desc->shadows > RTPBR_SHADOWS_ON || (unsigned)desc->shadow_denoiser > RTPBR_SHADOW_DENOISER_OFF ||
+        (unsigned)desc->shadow_cull > RTPBR_SHADOW_CULL_OFF) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "render: unknown shadows, shadow_denoiser or shadow_cull value");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (desc->shadow_samples > RTPBR_MAX_SHADOW_SAMPLES) {

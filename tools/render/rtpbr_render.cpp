@@ -2,7 +2,7 @@
 //   rtpbr-render SCENE.gltf -o OUT.exr|OUT.png [--width W] [--height H] [--camera I]
 //                [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]
 //                [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]
-//                [--shadows] [--shadow-samples N] [--no-shadow-denoiser]
+//                [--shadows] [--shadow-samples N] [--no-shadow-denoiser] [--no-shadow-cull]
 //                [--max-ratio R] [--stats-json FILE] [--memory-limit MIB]
 // OUT.exr holds linear scene radiance (RGB float; no exposure, no tone mapping: the quantity
 // the oracle writes); OUT.png the tone-mapped 8-bit sRGB image.
@@ -31,11 +31,12 @@ void usage(FILE *out = stderr)
                  "usage: rtpbr-render SCENE.gltf -o OUT.exr|OUT.png [--width W] [--height H] [--camera I]\n"
                  "                    [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]\n"
                  "                    [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]\n"
-                 "                    [--shadows] [--shadow-samples N] [--no-shadow-denoiser]\n"
+                 "                    [--shadows] [--shadow-samples N] [--no-shadow-denoiser] [--no-shadow-cull]\n"
                  "                    [--max-ratio R] [--stats-json FILE] [--memory-limit MIB]\n"
                  "  --shadows        area-light shadows (ratio estimator; in each 16x16 tile the 8 lights that may light it most cast)\n"
                  "  --shadow-samples N  shadow rays per pixel and shadowed light (default 4; implies --shadows)\n"
                  "  --no-shadow-denoiser  each pixel's own shadow ratio, unfiltered\n"
+                 "  --no-shadow-cull  trace every shadow ray, also where no triangle can block one (the same image)\n"
                  "  --supersample S  anti-aliasing: shade S x S samples per pixel, box-filtered (1..4; default 1)\n"
                  "  --mc-samples N   brute-force Monte Carlo lighting pass, N samples per pixel and light\n"
                  "                   (the reference the LTC pass is benchmarked against; default 0: LTC)\n"
@@ -183,6 +184,7 @@ int run(int argc, char **argv)
             render.shadows = RTPBR_SHADOWS_ON;
         } else if (a == "--shadows") render.shadows = RTPBR_SHADOWS_ON;
         else if (a == "--no-shadow-denoiser") render.shadow_denoiser = RTPBR_SHADOW_DENOISER_OFF;
+        else if (a == "--no-shadow-cull") render.shadow_cull = RTPBR_SHADOW_CULL_OFF;
         else if (a == "--no-multiscatter") render.multiscatter = RTPBR_MULTISCATTER_OFF;
         else if (a == "--validation") validation = 1;
         else if (a == "--max-ratio" && has_value) {

@@ -661,6 +661,12 @@ typedef enum rtpbr_shadow_denoiser {
     RTPBR_SHADOW_DENOISER_OFF,
 } rtpbr_shadow_denoiser;
 
+typedef enum rtpbr_shadow_cull {
+    RTPBR_SHADOW_CULL_DEFAULT = 0, // on
+    RTPBR_SHADOW_CULL_ON,
+    RTPBR_SHADOW_CULL_OFF,
+} rtpbr_shadow_cull;
+
 typedef struct rtpbr_render_desc {
     // The camera: if camera is set it is used; otherwise the scene's camera number
     // camera_index (default 0). camera_index out of range: RTPBR_ERROR_INVALID_ARGUMENT.
@@ -712,6 +718,15 @@ typedef struct rtpbr_render_desc {
     rtpbr_shadow_denoiser shadow_denoiser;
     // Random seed of the shadow samples (each seed gives an independent pattern). Default 0.
     uint32_t shadow_seed;
+    // Shadow-ray culling (default on): a pixel traces no ray toward a light when no triangle
+    // of the scene can cross any segment from it to the light (per 8 x 8 pixels, the BVH
+    // nodes and triangles near the hull of their points and the light's bounding sphere;
+    // per pixel, a triangle is passed over when its bounding sphere misses the cone from the
+    // pixel to that sphere or the pixel and the whole light lie on one side of its plane).
+    // Conservative: such a pixel's rays would all have been unoccluded, so its estimates,
+    // and the image, are the same as with culling off. Off: every ray is traced (for tests
+    // and benchmarks).
+    rtpbr_shadow_cull shadow_cull;
 } rtpbr_render_desc;
 
 #define RTPBR_MAX_SHADOWED_LIGHTS 8u

@@ -172,6 +172,7 @@ void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCom
     rtpbr_shader_shadow params = {
         .seed = desc->shadow_seed,
         .radius = desc->shadow_denoiser == RTPBR_SHADOW_DENOISER_OFF ? 0 : RTPBR_SHADOW_DENOISE_RADIUS,
+        .cull = desc->shadow_cull != RTPBR_SHADOW_CULL_OFF,
     };
     uint32_t gx = (r->shade_width + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE;
     uint32_t gy = (r->shade_height + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE;
