@@ -401,7 +401,15 @@
 #define RTPBR_BINDING_SHADOW_ALPHA_TEXELS 12  // storage: uint[], the textures' alpha bytes, 4 per uint
 #define RTPBR_BINDING_SHADOW_TILES 13       // storage: the lighting pass's tile masks (RTPBR_TILE_MASK_STRIDE
                                               // uints a tile), whose shadow slots shadow_select.comp writes
-#define RTPBR_SHADOW_BINDING_COUNT 14
+#define RTPBR_BINDING_SHADOW_WORK 14        // storage: the trace's work list (shadow_list.comp)
+#define RTPBR_SHADOW_BINDING_COUNT 15
+// The trace's work list (RTPBR_BINDING_SHADOW_WORK), uints: the trace's indirect dispatch
+// arguments x, y, z (workgroup g = y * RTPBR_SHADOW_WORK_ROW + x), the entry count, then from
+// RTPBR_SHADOW_WORK_HEADER one entry per workgroup to run: shadow slot k (bits 0-2), the
+// 8 x 8 group's x (bits 3-16) and y (bits 17-30) in groups. shadow_list.comp writes it after
+// the selection, leaving out the groups and slots whose estimates no pass reads.
+#define RTPBR_SHADOW_WORK_HEADER 4
+#define RTPBR_SHADOW_WORK_ROW 65535u
 // The scene's vertex layout, floats per vertex: position 3, normal 3, uv 2, tangent 4, uv1 2.
 #define RTPBR_VERTEX_FLOATS 14
 #define RTPBR_VERTEX_UV_OFFSET 6

@@ -15,8 +15,10 @@
 // 1e-3 of its length so that the light's own emitting triangles do not occlude it; in a tile
 // whose slot shadow_select.comp proved clear (no triangle can block any of its rays toward
 // the light, shadow_cull.glsl), V = 1 without a ray.
-// One invocation: one pixel and one shadow slot of its tile (z = k: light
-// shadow_tiles[slot k], chosen by shadow_select.comp; an empty slot's sums stay 0), samples
+// One workgroup: an entry of the work list (shadow_list.comp: an 8 x 8 pixel group and shadow
+// slot k of its tile, light shadow_tiles[slot k], chosen by shadow_select.comp; an empty
+// slot's sums stay 0); one invocation: one pixel of it (none for a pixel whose estimates no
+// pass reads: see main), samples
 // first_sample .. first_sample + samples - 1 of the n, added to the sums n S and n U (layers
 // 2k and 2k + 1; the first dispatch writes them): passes/shadow.c splits n over several dispatches, because lavapipe
 // stops every loop of a shader once its invocations together have taken 65535 loop
@@ -44,12 +46,9 @@ layout(set = 0, binding = RTPBR_BINDING_SHADOW_LIGHTS, std430) readonly buffer L
     Light lights[];
 };
 
-void main()
+// The estimates of one pixel (of an 8 x 8 group) and shadow slot.
+void trace(ivec2 pixel, uvec2 group, uint k)
 {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    uint k = gl_GlobalInvocationID.z;
-    if (any(greaterThanEqual(uvec2(pixel), frame.size)) || k >= min(frame.shadow_light_count, frame.light_count))
-        return;
     ivec3 shadowedTexel = ivec3(pixel, int(2u * k)), unshadowedTexel = ivec3(pixel, int(2u * k + 1u));
     float shadowed = 0.0f, unshadowed = 0.0f;
     if (params.first_sample > 0u) {
@@ -61,7 +60,7 @@ void main()
     vec3 N = normalize(texelFetch(gbuffer_normal, pixel, 0).xyz);
     vec3 origin = shadow_ray_origin(pixel, depth, P, N); // lifted off the surface
 
-    uint slotBase = shadow_group_slot_base();
+    uint slotBase = shadow_group_slot_base(group);
     uint li = shadow_tiles[slotBase + k]; // the slot's light (uniform)
     // No triangle can block a ray of this tile toward it (shadow_select.comp, shadow_cull.glsl):
     // every ray would be unoccluded, so none is traced and the shadowed sum is the unshadowed.
@@ -148,4 +147,20 @@ void main()
     }
     imageStore(shadow_estimates, shadowedTexel, vec4(shadowed));
     imageStore(shadow_estimates, unshadowedTexel, vec4(unshadowed));
+}
+
+void main()
+{
+    // The workgroup's entry of the work list (shadow_list.comp): its 8 x 8 pixels and slot.
+    uint g = gl_WorkGroupID.y * RTPBR_SHADOW_WORK_ROW + gl_WorkGroupID.x;
+    if (g >= shadow_work[3]) return; // the last row's rest (uniform)
+    uint entry = shadow_work[RTPBR_SHADOW_WORK_HEADER + g];
+    uint k = entry & 7u;
+    uvec2 group = uvec2((entry >> 3u) & 0x3fffu, entry >> 17u);
+    ivec2 pixel = ivec2(group * uint(RTPBR_SHADOW_GROUP_SIZE) + gl_LocalInvocationID.xy);
+    if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
+    // As shadow_list.comp, per pixel: nothing reads the estimates of a pixel whose tiles within
+    // twice the denoiser's radius are clear of blockers for the light, nor a background pixel's.
+    if (texelFetch(gbuffer_depth, pixel, 0).r >= 1.0f || shadow_clear_around(pixel, 2 * int(params.radius), k)) return;
+    trace(pixel, group, k);
 }

@@ -16,9 +16,12 @@
 // bounding sphere against supersets of the hull (one side of its outer tangent line in the
 // plane through its axis, and two slabs across the axis); test 2 counts a side only beyond a
 // margin of float rounding of the distances. The candidates come from one walk of the BVH
-// through the nodes whose bounding spheres pass test 1; it stops at the first triangle that
-// passes both (the tile then traces) or after RTPBR_SHADOW_CULL_STEPS nodes and triangles
-// (the tile traces: this bounds the walk's cost where the hull holds much of the scene).
+// through the nodes whose bounding spheres pass test 1 and whose boxes no coordinate axis
+// separates from the origins and the rays' ends (test 2 with the box's faces: a tessellated
+// floor or wall under the tile's own points is passed over whole); it stops at the first
+// triangle that passes both (the tile then traces) or after RTPBR_SHADOW_CULL_STEPS nodes and
+// triangles (the tile traces: this bounds the walk's cost where the hull holds much of the
+// scene).
 // Where no triangle passes both, every ray would have been unoccluded: shadow.comp traces none
 // and adds each weight to both sums, exactly as when each ray is traced (the image does not
 // change), and the denoiser writes ratio 1 where its whole window is in such tiles.
@@ -80,18 +83,38 @@ bool shadow_cull_applies(Light light)
     return light.shape != uint(RTPBR_LIGHT_SHAPE_DIRECTIONAL) && light.sun == 0u;
 }
 
-// May a ray from any origin in the box [lo, hi] (the workgroup's tracing pixels') to the light
-// be blocked? Uniform over the workgroup; true at the first triangle that passes both tests.
+// Can a segment from the box [lo, hi] to the light (its axis extents lightMin, lightMax),
+// shortened as the rays are, enter the node's box? Not where an axis separates them: every
+// origin and every ray end beyond the same face of the box (the ends are convex combinations
+// 0.001 o + 0.999 y, as is every point of a segment). Floors, walls and ceilings are
+// axis-aligned slabs that the tile's own origins and the light lie on one side of: their
+// subtrees are passed over whole (one by one their triangles filled the walk's budget).
+bool shadow_cull_node_meets(BvhNode n, vec3 lo, vec3 hi, vec3 lightMin, vec3 lightMax, vec3 centre, float radius,
+                            vec4 ls)
+{
+    if (any(greaterThan(n.box_min, n.box_max))) return false; // empty (no triangles)
+    vec3 margin = 1e-6f * (abs(n.box_min) + abs(n.box_max) + abs(lo) + abs(hi) + abs(lightMin) + abs(lightMax));
+    bvec3 above = bvec3(uvec3(greaterThan(lo, n.box_max + margin)) &
+                        uvec3(greaterThan(0.001f * lo + 0.999f * lightMin, n.box_max + margin)));
+    bvec3 below = bvec3(uvec3(lessThan(hi, n.box_min - margin)) &
+                        uvec3(lessThan(0.001f * hi + 0.999f * lightMax, n.box_min - margin)));
+    if (any(above) || any(below)) return false;
+    vec3 nc = 0.5f * (n.box_min + n.box_max);
+    return shadow_cull_hull_meets(centre, radius, ls.xyz, ls.w, nc, distance(nc, n.box_max));
+}
+
+// May a ray from any origin in the box [lo, hi] (a tile's) to the light be blocked? True at
+// the first triangle that passes both tests, or after RTPBR_SHADOW_CULL_STEPS.
 bool shadow_cull_may_block(vec3 lo, vec3 hi, Light light)
 {
     vec4 ls = shadow_cull_light_sphere(light);
-    BvhNode root = bvh_nodes[0];
-    if (any(greaterThan(root.box_min, root.box_max))) return false; // no triangles
+    vec2 ex = shadow_cull_light_extent(light, vec3(1.0f, 0.0f, 0.0f));
+    vec2 ey = shadow_cull_light_extent(light, vec3(0.0f, 1.0f, 0.0f));
+    vec2 ez = shadow_cull_light_extent(light, vec3(0.0f, 0.0f, 1.0f));
+    vec3 lightMin = vec3(ex.x, ey.x, ez.x), lightMax = vec3(ex.y, ey.y, ez.y);
     vec3 centre = 0.5f * (lo + hi), halfSize = 0.5f * (hi - lo);
     float radius = max(distance(centre, lo), distance(centre, hi));
-    vec3 rootCentre = 0.5f * (root.box_min + root.box_max);
-    if (!shadow_cull_hull_meets(centre, radius, ls.xyz, ls.w, rootCentre, distance(rootCentre, root.box_max)))
-        return false;
+    if (!shadow_cull_node_meets(bvh_nodes[0], lo, hi, lightMin, lightMax, centre, radius, ls)) return false;
     uint stack[RTPBR_BVH_MAX_DEPTH];
     int sp = 0;
     uint node = 0u, steps = 0u;
@@ -123,10 +146,10 @@ bool shadow_cull_may_block(vec3 lo, vec3 hi, Light light)
                 if (!front && !back) return true;
             }
         } else {
-            BvhNode left = bvh_nodes[n.left_or_first], right = bvh_nodes[n.left_or_first + 1u];
-            vec3 lc = 0.5f * (left.box_min + left.box_max), rc = 0.5f * (right.box_min + right.box_max);
-            bool hitLeft = shadow_cull_hull_meets(centre, radius, ls.xyz, ls.w, lc, distance(lc, left.box_max));
-            bool hitRight = shadow_cull_hull_meets(centre, radius, ls.xyz, ls.w, rc, distance(rc, right.box_max));
+            bool hitLeft =
+                shadow_cull_node_meets(bvh_nodes[n.left_or_first], lo, hi, lightMin, lightMax, centre, radius, ls);
+            bool hitRight =
+                shadow_cull_node_meets(bvh_nodes[n.left_or_first + 1u], lo, hi, lightMin, lightMax, centre, radius, ls);
             if (hitLeft || hitRight) {
                 node = hitLeft ? n.left_or_first : n.left_or_first + 1u;
                 if (hitLeft && hitRight) stack[sp++] = n.left_or_first + 1u;

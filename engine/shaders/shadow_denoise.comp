@@ -15,35 +15,6 @@
 // tile does not shadow L (no estimates of L there).
 #include "rtpbr_shared.h"
 #include "shadow_common.glsl"
-#if RTPBR_SHADER_MAX_SHADOWED_LIGHTS != 8
-#error "a tile's slots are two uvec4"
-#endif
-
-// The shadow slots of tile t (tile coordinates) and its clear slots (RTPBR_TILE_SHADOW_CLEAR);
-// none outside the image's tiles.
-uint shadow_tile_slots(ivec2 t, ivec2 tiles, out uvec4 slots[2])
-{
-    slots[0] = slots[1] = uvec4(RTPBR_TILE_NO_LIGHT);
-    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, tiles))) return 0u;
-    uint tileBase = (uint(t.y) * frame.tiles_x + uint(t.x)) * uint(RTPBR_TILE_MASK_STRIDE);
-    uint base = tileBase + uint(RTPBR_TILE_SHADOW_SLOTS);
-    slots[0] = uvec4(shadow_tiles[base], shadow_tiles[base + 1u], shadow_tiles[base + 2u], shadow_tiles[base + 3u]);
-    slots[1] = uvec4(shadow_tiles[base + 4u], shadow_tiles[base + 5u], shadow_tiles[base + 6u], shadow_tiles[base + 7u]);
-    return shadow_tiles[tileBase + uint(RTPBR_TILE_SHADOW_CLEAR)];
-}
-
-// Is the light of a tile's slot (-1: the tile does not shadow it) clear there, or absent?
-bool shadow_slot_clear(int slot, uint clear)
-{
-    return slot < 0 || ((clear >> uint(slot)) & 1u) != 0u;
-}
-
-// The slot holding `light` among slots, or -1 (no loop: lavapipe's loop budget).
-int shadow_slot_of(uint light, uvec4 slots[2])
-{
-    int k = slots[0].x == light ? 0 : slots[0].y == light ? 1 : slots[0].z == light ? 2 : slots[0].w == light ? 3 : -1;
-    return slots[1].x == light ? 4 : slots[1].y == light ? 5 : slots[1].z == light ? 6 : slots[1].w == light ? 7 : k;
-}
 
 void main()
 {

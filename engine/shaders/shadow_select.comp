@@ -126,10 +126,14 @@ void main()
     RTPBR_STORE(0u) RTPBR_STORE(1u) RTPBR_STORE(2u) RTPBR_STORE(3u) RTPBR_STORE(4u) RTPBR_STORE(5u) RTPBR_STORE(6u)
     RTPBR_STORE(7u)
 #undef RTPBR_STORE
-    // The slots whose light no triangle can keep from any of the tile's ray origins.
+    // The slots whose light no triangle can keep from any of the tile's ray origins, and the
+    // empty slots (no rays: so is every slot of a tile without a surface pixel).
     uint clear = 0u;
-    bool cull = params.cull != 0u && originMin.x <= originMax.x;
-    for (uint k = 0u; cull && k < 8u && kept[k] < frame.light_count; ++k) {
+    for (uint k = 0u; params.cull != 0u && k < 8u; ++k) {
+        if (kept[k] >= frame.light_count) {
+            clear |= 1u << k;
+            continue;
+        }
         Light light = lights[kept[k]];
         if (shadow_cull_applies(light) && !shadow_cull_may_block(originMin, originMax, light)) clear |= 1u << k;
     }

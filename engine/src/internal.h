@@ -137,7 +137,7 @@ typedef struct rtpbr_tonemap_pass {              // passes/tonemap.c
 typedef struct rtpbr_shadow_pass {               // passes/shadow.c
     VkDescriptorSetLayout set_layout;            // shared by the selection, the trace and the denoiser
     VkPipelineLayout layout;                     // + push constants rtpbr_shader_shadow
-    VkPipeline select, trace, denoise;           // compiled on first use
+    VkPipeline select, list, trace, denoise;     // compiled on first use
 } rtpbr_shadow_pass;
 
 struct rtpbr_context {
@@ -325,6 +325,7 @@ struct rtpbr_renderer {
     // Shadows (passes/shadow.c), at the shading size, RTPBR_MAX_SHADOWED_LIGHTS layers, GENERAL layout:
     rtpbr_image shadow_estimates; // R32_SFLOAT, 2 layers per light: shadowed, unshadowed sum
     rtpbr_image shadow_ratio;     // R32_SFLOAT: denoised shadowed / unshadowed (lighting binding)
+    rtpbr_buffer shadow_work;     // the trace's work list and indirect arguments (shadow_list.comp)
 };
 
 extern const VkFormat rtpbr_gbuffer_formats[RTPBR_GBUFFER_COUNT];

@@ -707,7 +707,8 @@ typedef struct rtpbr_render_desc {
     // bound on their irradiance at the tile's surface points (luminance; an area light's
     // L min(A / d^2, pi), a point or spot light's I / d^2, a directional light's E; ties: the
     // lower index). The others are unshadowed in that tile.
-    // Costs per frame about shadow_samples rays per pixel and shadowed light.
+    // Costs per frame about shadow_samples rays per pixel and shadowed light, none where
+    // shadow_cull (below) proves that nothing can block them.
     rtpbr_shadows shadows;
     // Samples per pixel and shadowed light; zero: RTPBR_DEFAULT_SHADOW_SAMPLES. At most
     // RTPBR_MAX_SHADOW_SAMPLES (more: RTPBR_ERROR_LIMIT_EXCEEDED).

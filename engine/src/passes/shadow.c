@@ -4,7 +4,10 @@
 //   0. shadow_select.comp chooses, per lighting tile, the RTPBR_MAX_SHADOWED_LIGHTS lights of
 //      the largest irradiance bound at the tile (issue 32; before, lights 0 .. 7 everywhere)
 //      and writes them to the tile's shadow slots in the lighting pass's tile masks;
-//   1. shadow.comp traces, per pixel and shadow slot, rtpbr_render_desc.shadow_samples
+//   0b. shadow_list.comp lists the 8 x 8 pixel groups and slots whose estimates some pass
+//      reads (not those where the slot's light is clear of blockers all around): the work
+//      list, and the trace's indirect dispatch arguments;
+//   1. shadow.comp traces, per listed group, pixel and shadow slot, rtpbr_render_desc.shadow_samples
 //      rays to points on the light against the scene's BVH (../bvh.c) and writes the shadowed
 //      and unshadowed sums of the light's cosine-weighted irradiance samples (layers 2 light
 //      and 2 light + 1), in dispatches of at most RTPBR_SHADOW_SAMPLES_PER_DISPATCH samples
@@ -26,12 +29,15 @@
 #include "pipeline.h"
 #include "rtpbr_spirv_shadow_comp.h"
 #include "rtpbr_spirv_shadow_denoise_comp.h"
+#include "rtpbr_spirv_shadow_list_comp.h"
 #include "rtpbr_spirv_shadow_select_comp.h"
 
 enum { RTPBR_SHADOW_SAMPLES_PER_DISPATCH = 16 };
 // shadow_denoise.comp's window reaches at most the tiles beside, above or below and diagonal
 // to the pixel's (their shadow slots are read once per pixel).
 _Static_assert(RTPBR_SHADOW_DENOISE_RADIUS < RTPBR_TILE_SIZE, "the denoiser's window spans at most 2 x 2 tiles");
+// shadow.comp skips a pixel whose tiles within twice that radius are clear (shadow_clear_around).
+_Static_assert(2 * RTPBR_SHADOW_DENOISE_RADIUS < RTPBR_TILE_SIZE, "twice the window spans at most 2 x 2 tiles");
 
 #define COMPUTE(binding, type) {binding, VK_DESCRIPTOR_TYPE_##type, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL}
 static const VkDescriptorSetLayoutBinding bindings[] = {
@@ -49,6 +55,7 @@ static const VkDescriptorSetLayoutBinding bindings[] = {
     COMPUTE(RTPBR_BINDING_SHADOW_ALPHA_TEXTURES, STORAGE_BUFFER),
     COMPUTE(RTPBR_BINDING_SHADOW_ALPHA_TEXELS, STORAGE_BUFFER),
     COMPUTE(RTPBR_BINDING_SHADOW_TILES, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_SHADOW_WORK, STORAGE_BUFFER),
 };
 #undef COMPUTE
 _Static_assert(sizeof bindings / sizeof bindings[0] == RTPBR_SHADOW_BINDING_COUNT, "every shadow binding");
@@ -66,8 +73,8 @@ cleanup:
 void rtpbr_shadow_pass_finish(rtpbr_context *ctx)
 {
     rtpbr_shadow_pass *pass = &ctx->shadow;
-    const VkPipeline pipelines[3] = {pass->select, pass->trace, pass->denoise};
-    rtpbr_pass_objects_destroy(ctx, pipelines, 3, pass->layout, pass->set_layout);
+    const VkPipeline pipelines[4] = {pass->select, pass->list, pass->trace, pass->denoise};
+    rtpbr_pass_objects_destroy(ctx, pipelines, 4, pass->layout, pass->set_layout);
     *pass = (rtpbr_shadow_pass){0};
 }
 
@@ -78,6 +85,8 @@ rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx)
     if (!pass->select)
         RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_select_comp), pass->layout,
                                                 &pass->select));
+    if (!pass->list)
+        RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_list_comp), pass->layout, &pass->list));
     if (!pass->trace)
         RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_comp), pass->layout, &pass->trace));
     if (!pass->denoise)
@@ -112,6 +121,13 @@ rtpbr_result rtpbr_shadow_renderer_init(rtpbr_renderer *r)
                                         VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                                         &r->shadow_ratio));
     RTPBR_TRY(rtpbr_submit_once(ctx, record_initial_layouts, r));
+    // The work list: its header and one entry per 8 x 8 group and shadowed light.
+    const VkDeviceSize groups = (VkDeviceSize)((r->shade_width + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE) *
+                                ((r->shade_height + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE);
+    RTPBR_TRY(rtpbr_buffer_create_device(
+        ctx, (RTPBR_SHADOW_WORK_HEADER + groups * RTPBR_MAX_SHADOWED_LIGHTS) * sizeof(uint32_t),
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        &r->shadow_work));
 
     RTPBR_TRY(rtpbr_descriptor_set_create(ctx, RTPBR_BINDINGS(bindings), ctx->shadow.set_layout, &r->shadow_set));
     const rtpbr_bindings table = RTPBR_BINDINGS(bindings);
@@ -127,6 +143,7 @@ rtpbr_result rtpbr_shadow_renderer_init(rtpbr_renderer *r)
     rtpbr_descriptor_write_image(ctx, table, set, RTPBR_BINDING_SHADOW_RATIO, VK_NULL_HANDLE, r->shadow_ratio.view,
                                  VK_IMAGE_LAYOUT_GENERAL);
     rtpbr_descriptor_write_buffer(ctx, table, set, RTPBR_BINDING_SHADOW_TILES, r->tile_masks.buffer, VK_WHOLE_SIZE);
+    rtpbr_descriptor_write_buffer(ctx, table, set, RTPBR_BINDING_SHADOW_WORK, r->shadow_work.buffer, VK_WHOLE_SIZE);
 cleanup:
     return result; // the caller destroys the renderer, and with it a half-built state
 }
@@ -136,6 +153,7 @@ void rtpbr_shadow_renderer_finish(rtpbr_renderer *r)
     rtpbr_descriptor_set_destroy(r->context, &r->shadow_set);
     rtpbr_image_destroy(r->context, &r->shadow_estimates);
     rtpbr_image_destroy(r->context, &r->shadow_ratio);
+    rtpbr_buffer_destroy(r->context, &r->shadow_work);
 }
 
 void rtpbr_shadow_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
@@ -183,6 +201,20 @@ void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCom
                                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_WRITE_BIT};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &before,
                          0, NULL, 0, NULL);
+    // The work list's header: no entries, dispatch arguments (0, 0, 1) (the previous frame's
+    // trace read them as its indirect arguments, its list pass wrote them).
+    const VkMemoryBarrier reuse = {VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL,
+                                   VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT |
+                                       VK_ACCESS_SHADER_WRITE_BIT,
+                                   VK_ACCESS_TRANSFER_WRITE_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &reuse, 0, NULL, 0, NULL);
+    const uint32_t header[RTPBR_SHADOW_WORK_HEADER] = {0, 0, 1, 0};
+    vkCmdUpdateBuffer(cmd, r->shadow_work.buffer, 0, sizeof header, header);
+    const VkMemoryBarrier reset = {VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &reset, 0,
+                         NULL, 0, NULL);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.select);
     vkCmdPushConstants(cmd, ctx->shadow.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
     vkCmdDispatch(cmd, (r->tiles_x + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE,
@@ -191,6 +223,15 @@ void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCom
                                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
                          &selected, 0, NULL, 0, NULL);
+    // The work list: the groups and slots whose estimates some pass reads.
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.list);
+    vkCmdDispatch(cmd, (gx + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE,
+                  (gy + RTPBR_SHADOW_GROUP_SIZE - 1) / RTPBR_SHADOW_GROUP_SIZE, lights);
+    const VkMemoryBarrier listed = {VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL, VK_ACCESS_SHADER_WRITE_BIT,
+                                    VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &listed, 0,
+                         NULL, 0, NULL);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.trace);
     // The previous frame's denoise read the sums; each dispatch adds to the previous one's.
     for (uint32_t first = 0; first < samples; first += RTPBR_SHADOW_SAMPLES_PER_DISPATCH) {
@@ -201,7 +242,7 @@ void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCom
         params.samples = samples - first < RTPBR_SHADOW_SAMPLES_PER_DISPATCH ? samples - first
                                                                             : RTPBR_SHADOW_SAMPLES_PER_DISPATCH;
         vkCmdPushConstants(cmd, ctx->shadow.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
-        vkCmdDispatch(cmd, gx, gy, lights);
+        vkCmdDispatchIndirect(cmd, r->shadow_work.buffer, 0); // one workgroup per entry of the list
     }
     compute_barrier(cmd, r->shadow_estimates.image, estimate_layers, VK_ACCESS_SHADER_WRITE_BIT,
                     VK_ACCESS_SHADER_READ_BIT);
