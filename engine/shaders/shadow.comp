@@ -17,8 +17,7 @@
 // the light, shadow_cull.glsl), V = 1 without a ray.
 // One workgroup: an entry of the work list (shadow_list.comp: an 8 x 8 pixel group and shadow
 // slot k of its tile, light shadow_tiles[slot k], chosen by shadow_select.comp; an empty
-// slot's sums stay 0); one invocation: one pixel of it (none for a pixel whose estimates no
-// pass reads: see main), samples
+// slot's sums stay 0); one invocation: one pixel of it (none for a background pixel), samples
 // first_sample .. first_sample + samples - 1 of the n, added to the sums n S and n U (layers
 // 2k and 2k + 1; the first dispatch writes them): passes/shadow.c splits n over several dispatches, because lavapipe
 // stops every loop of a shader once its invocations together have taken 65535 loop
@@ -159,8 +158,7 @@ void main()
     uvec2 group = uvec2((entry >> 3u) & 0x3fffu, entry >> 17u);
     ivec2 pixel = ivec2(group * uint(RTPBR_SHADOW_GROUP_SIZE) + gl_LocalInvocationID.xy);
     if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
-    // As shadow_list.comp, per pixel: nothing reads the estimates of a pixel whose tiles within
-    // twice the denoiser's radius are clear of blockers for the light, nor a background pixel's.
-    if (texelFetch(gbuffer_depth, pixel, 0).r >= 1.0f || shadow_clear_around(pixel, 2 * int(params.radius), k)) return;
+    // Nothing reads a background pixel's estimates (the denoiser passes over them).
+    if (texelFetch(gbuffer_depth, pixel, 0).r >= 1.0f) return;
     trace(pixel, group, k);
 }
