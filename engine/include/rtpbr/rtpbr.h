@@ -601,7 +601,8 @@ typedef struct rtpbr_renderer_desc {
 } rtpbr_renderer_desc;
 // A renderer holds, besides its G-buffer and radiance images, the shadow passes' estimates
 // and ratios: 3 x 4 bytes per shading pixel and shadowed light (RTPBR_MAX_SHADOWED_LIGHTS),
-// 96 bytes per shading pixel, allocated at creation whether or not shadows are used.
+// 96 bytes per shading pixel, and the trace's work list (4 bytes per 8 x 8 pixels and shadowed
+// light: half a byte per pixel), allocated at creation whether or not shadows are used.
 
 #define RTPBR_MAX_SUPERSAMPLE 4u
 
