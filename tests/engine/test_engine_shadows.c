@@ -497,8 +497,8 @@ static void khr_materials_lights_add_up(void **state)
 // one does; the denoiser's shortcut writes the ratio its sums would give, 1). On the bundled
 // scenes of every light shape: the room's light lies in its ceiling's plane (the side test's
 // margin), the spheres and tubes cast on floors beside them, the punctual lights take one ray,
-// khr_materials has 13k triangles under two lights. Then the penumbra scene, whose blocker
-// shadows tiles next to tiles it cannot reach.
+// khr_materials has 13k triangles under two lights; three real assets. Then the penumbra
+// scene (its floor tessellated), whose blocker shadows tiles next to tiles it cannot reach.
 static void cull_compare(rtpbr_renderer *r, rtpbr_gpu_scene *scene, const rtpbr_camera_desc *camera, int w, int h,
                          const char *name)
 {
@@ -525,8 +525,13 @@ static void cull_changes_nothing(void **state)
 {
     penumbra_scene *ps = *state;
     enum { CW = 160, CH = 120 };
-    static const char *const scenes[] = {"room",         "light_shapes",  "sphere_lights", "tube_lights",
-                                         "punctual_lights", "khr_materials", "polygon_lights"};
+    static const char *const scenes[] = {"room",          "light_shapes",   "sphere_lights",  "tube_lights",
+                                         "punctual_lights", "khr_materials", "polygon_lights",
+                                         // real assets: alpha MASK and BLEND occluders, a curved mesh
+                                         // shadowing itself
+                                         "../assets/AlphaBlendModeTest/AlphaBlendModeTest.lit",
+                                         "../assets/WaterBottle/WaterBottle.lit",
+                                         "../assets/TextureTransformTest/TextureTransformTest.lit"};
     test_log log = {0};
     rtpbr_context *ctx = test_context(&log);
     rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = CW, .height = CH});
