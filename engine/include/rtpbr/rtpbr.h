@@ -720,14 +720,14 @@ typedef struct rtpbr_render_desc {
     rtpbr_shadow_denoiser shadow_denoiser;
     // Random seed of the shadow samples (each seed gives an independent pattern). Default 0.
     uint32_t shadow_seed;
-    // Shadow-ray culling (default on): a pixel traces no ray toward a light when no triangle
-    // of the scene can cross any segment from it to the light (per 8 x 8 pixels, the BVH
-    // nodes and triangles near the hull of their points and the light's bounding sphere;
-    // per pixel, a triangle is passed over when its bounding sphere misses the cone from the
-    // pixel to that sphere or the pixel and the whole light lie on one side of its plane).
-    // Conservative: such a pixel's rays would all have been unoccluded, so its estimates,
-    // and the image, are the same as with culling off. Off: every ray is traced (for tests
-    // and benchmarks).
+    // Shadow-ray culling (default on): the pixels of a 16 x 16 tile trace no ray toward a
+    // shadowed light when no triangle of the scene can cross a segment from any of them to
+    // the light (a walk of the BVH per tile and light: a triangle is passed over when its
+    // bounding sphere misses the hull of the tile's points and the light's bounding sphere,
+    // or the points and the whole light lie on one side of its plane), and the shadow pass
+    // does no work at all for the pixels whose estimates no denoiser window then reads.
+    // Conservative: those rays would all have been unoccluded, so the image is the same as
+    // with culling off. Off: every ray is traced (for tests and benchmarks).
     rtpbr_shadow_cull shadow_cull;
 } rtpbr_render_desc;
 
