@@ -117,13 +117,14 @@ bool bvh_box_hit(vec3 boxMin, vec3 boxMax, vec3 o, vec3 invD, float tMax)
     return tNear <= tFar;
 }
 
-// Moeller & Trumbore 1997, "Fast, Minimum Storage Ray/Triangle Intersection"; both sides of a
-// double-sided triangle, the front of a single-sided one (v0.w, rtpbr_shared.h); then the alpha.
-bool bvh_triangle_hit(uint i, vec3 o, vec3 d, float tMax, uint rayKey)
+// Moeller & Trumbore 1997, "Fast, Minimum Storage Ray/Triangle Intersection": does the
+// segment o + t d, 0 < t < tMax, cross triangle i (both sides of a double-sided one, the front of
+// a single-sided one: v0.w, rtpbr_shared.h)? bary: the crossing's barycentrics (u, v).
+bool bvh_triangle_crossed(BvhTriangle tri, vec3 o, vec3 d, float tMax, out vec2 bary)
 {
-    BvhTriangle tri = bvh_triangles[i];
     vec3 p = cross(d, tri.e2.xyz);
     float det = dot(tri.e1.xyz, p); // = -dot(d, e1 x e2): > 0 where the ray meets the counter-clockwise side
+    bary = vec2(0.0f);
     if (abs(det) < 1e-20f || det * tri.v0.w < 0.0f) return false;
     float invDet = 1.0f / det;
     vec3 s = o - tri.v0.xyz;
@@ -131,39 +132,75 @@ bool bvh_triangle_hit(uint i, vec3 o, vec3 d, float tMax, uint rayKey)
     vec3 q = cross(s, tri.e1.xyz);
     float v = dot(d, q) * invDet;
     float t = dot(tri.e2.xyz, q) * invDet;
-    return u >= 0.0f && v >= 0.0f && u + v <= 1.0f && t > 0.0f && t < tMax && bvh_alpha_blocks(i, u, v, rayKey);
+    bary = vec2(u, v);
+    return u >= 0.0f && v >= 0.0f && u + v <= 1.0f && t > 0.0f && t < tMax;
 }
 
-// True if any triangle crosses the segment o + t d, 0 < t < tMax. rayKey: a random number of
-// this ray, for the stochastic opacity of BLEND materials.
+#define RTPBR_BVH_NONE 0xffffffffu
+
+// Off (passes/shadow.c, for scenes without MASK or BLEND materials): every crossed triangle
+// blocks, and the alpha's code is compiled out.
+layout(constant_id = RTPBR_SPEC_BVH_ALPHA) const bool bvh_alpha_tested = true;
+
+// True if any triangle crosses the segment o + t d, 0 < t < tMax, and blocks it (an opaque one,
+// or one whose alpha blocks: bvh_alpha_blocks). rayKey: a random number of this ray, for the
+// stochastic opacity of BLEND materials.
+// The alpha is looked at outside the walk: the walk stops at the first crossed triangle whose
+// alpha is tested (e1.w, rtpbr_shared.h), its alpha is read, and the walk resumes where it
+// stopped if the ray passes. On lavapipe a branch's code runs whether taken or not, so the
+// alpha's reads (material, three vertices, four texels) inside the walk cost every step of
+// every ray, also in scenes without a MASK or BLEND material (showcase: 3.1x the trace time);
+// and for those scenes bvh_alpha_tested compiles it out.
+// The result is the same as testing each triangle's alpha in the walk: whether a triangle
+// blocks depends on the triangle and the ray only, not on the order of the tests.
 bool bvh_occluded(vec3 o, vec3 d, float tMax, uint rayKey)
 {
     // Zero direction components become huge reciprocals of the right sign (no NaN in the slabs).
     vec3 invD = 1.0f / mix(d, vec3(1e-30f), lessThan(abs(d), vec3(1e-30f)));
     uint stack[RTPBR_BVH_MAX_DEPTH];
     int sp = 0;
-    uint node = 0u;
     BvhNode root = bvh_nodes[0];
     if (!bvh_box_hit(root.box_min, root.box_max, o, invD, tMax)) return false;
-    for (;;) {
-        BvhNode n = bvh_nodes[node];
-        if (n.count > 0u) {
-            for (uint i = n.left_or_first; i < n.left_or_first + n.count; ++i)
-                if (bvh_triangle_hit(i, o, d, tMax, rayKey)) return true;
-        } else {
-            BvhNode left = bvh_nodes[n.left_or_first];
-            BvhNode right = bvh_nodes[n.left_or_first + 1u];
-            bool hitLeft = bvh_box_hit(left.box_min, left.box_max, o, invD, tMax);
-            bool hitRight = bvh_box_hit(right.box_min, right.box_max, o, invD, tMax);
-            if (hitLeft || hitRight) {
-                // Descend into one, keep the other for later; the depth bound keeps sp in range.
-                node = hitLeft ? n.left_or_first : n.left_or_first + 1u;
-                if (hitLeft && hitRight) stack[sp++] = n.left_or_first + 1u;
-                continue;
+    uint node = 0u;             // the next node to visit; RTPBR_BVH_NONE: the next one kept on the stack
+    uint first = 0u, end = 0u;  // the current leaf's triangles not tested yet
+    for (;;) { // one trip per crossed triangle whose alpha is tested, and a last one
+        uint candidate = RTPBR_BVH_NONE;
+        vec2 bary = vec2(0.0f);
+        for (;;) {
+            if (first == end) {
+                if (node == RTPBR_BVH_NONE) {
+                    if (sp == 0) return false;
+                    node = stack[--sp];
+                }
+                BvhNode n = bvh_nodes[node];
+                node = RTPBR_BVH_NONE;
+                if (n.count > 0u) {
+                    first = n.left_or_first;
+                    end = first + n.count;
+                } else {
+                    BvhNode left = bvh_nodes[n.left_or_first];
+                    BvhNode right = bvh_nodes[n.left_or_first + 1u];
+                    bool hitLeft = bvh_box_hit(left.box_min, left.box_max, o, invD, tMax);
+                    bool hitRight = bvh_box_hit(right.box_min, right.box_max, o, invD, tMax);
+                    // Descend into one, keep the other for later; the depth bound keeps sp in range.
+                    if (hitLeft || hitRight) node = hitLeft ? n.left_or_first : n.left_or_first + 1u;
+                    if (hitLeft && hitRight) stack[sp++] = n.left_or_first + 1u;
+                    continue;
+                }
             }
+            for (; first < end; ++first) {
+                BvhTriangle tri = bvh_triangles[first];
+                vec2 b;
+                if (bvh_triangle_crossed(tri, o, d, tMax, b)) {
+                    if (!bvh_alpha_tested || tri.e1.w == 0.0f) return true; // opaque
+                    candidate = first++;
+                    bary = b;
+                    break;
+                }
+            }
+            if (candidate != RTPBR_BVH_NONE) break;
         }
-        if (sp == 0) return false;
-        node = stack[--sp];
+        if (bvh_alpha_blocks(candidate, bary.x, bary.y, rayKey)) return true;
     }
     return false;
 }

@@ -369,6 +369,9 @@
 #define RTPBR_SHADER_MAX_SHADOWED_LIGHTS 8
 // Deepest BVH node (root: depth 0) = the traversal stack's size.
 #define RTPBR_BVH_MAX_DEPTH 32
+// The specialization constant (a bool, default true) of shadow.comp that keeps bvh.glsl's alpha
+// test: passes/shadow.c compiles the trace with it off for scenes without MASK or BLEND materials.
+#define RTPBR_SPEC_BVH_ALPHA 0
 // Lighting pass: the shadow ratios, a sampler2DArray (layer = light index), read with texelFetch.
 #define RTPBR_BINDING_LIGHT_SHADOW_RATIO 24
 // The extension textures' values per pixel (multipliers of the material record's factors, 1
@@ -435,7 +438,8 @@
 // A triangle, the std430 element of RTPBR_BINDING_SHADOW_BVH_TRIANGLES: vertex 0 and the two
 // edges from it, ready for the Moeller-Trumbore test. v0.w: which side lets rays through
 // (glTF doubleSided false): 0 none (double-sided), +1 rays along e1 x e2, -1 rays against it
-// (a mirroring transform turned the winding); e1.w, e2.w unused.
+// (a mirroring transform turned the winding); e1.w: 1 where the material's alpha is tested
+// (MASK or BLEND: bvh.glsl looks at its alpha only where a ray crosses it), else 0; e2.w unused.
 // source: the triangle's three vertices in the scene's vertex buffer (RTPBR_BINDING_SHADOW_VERTICES)
 // and its material, for the alpha of MASK and BLEND materials.
 #define RTPBR_BVH_TRIANGLE_FIELDS(F, S)                                                           \

@@ -236,7 +236,7 @@ rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
     scene->bvh_triangle_count = tri_count;
     RTPBR_ALLOC(&ctx->host, scene->bvh_triangle_draws, (tri_count ? tri_count : 1) * sizeof *scene->bvh_triangle_draws);
     for (uint32_t i = 0; i < tri_count; ++i) scene->bvh_triangle_draws[i] = draw_of[s.order[i]];
-    rtpbr_bvh_update_sidedness(scene);
+    rtpbr_bvh_update_material_flags(scene);
 cleanup:
     rtpbr_free(&ctx->host, tri);
     rtpbr_free(&ctx->host, draw_of);
@@ -247,14 +247,16 @@ cleanup:
     return result;
 }
 
-void rtpbr_bvh_update_sidedness(rtpbr_gpu_scene *scene)
+void rtpbr_bvh_update_material_flags(rtpbr_gpu_scene *scene)
 {
     rtpbr_shader_bvh_triangle *out = scene->bvh_triangles.mapped;
     const rtpbr_shader_material *materials = scene->materials.mapped;
     for (uint32_t i = 0; i < scene->bvh_triangle_count; ++i) {
         const rtpbr_draw *d = &scene->draws[scene->bvh_triangle_draws[i]];
-        bool single_sided = !(materials[d->push.material].flags & RTPBR_MATERIAL_FLAG_DOUBLE_SIDED);
+        uint32_t flags = materials[d->push.material].flags;
+        bool single_sided = !(flags & RTPBR_MATERIAL_FLAG_DOUBLE_SIDED);
         out[i].v0[3] = !single_sided ? 0.0f : rtpbr_mat4_mirrors(d->push.world_from_object) ? -1.0f : 1.0f;
+        out[i].e1[3] = (flags & (RTPBR_MATERIAL_FLAG_ALPHA_MASK | RTPBR_MATERIAL_FLAG_ALPHA_BLEND)) ? 1.0f : 0.0f;
     }
 }
 

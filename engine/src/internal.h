@@ -138,6 +138,7 @@ typedef struct rtpbr_shadow_pass {               // passes/shadow.c
     VkDescriptorSetLayout set_layout;            // shared by the selection, the trace and the denoiser
     VkPipelineLayout layout;                     // + push constants rtpbr_shader_shadow
     VkPipeline select, list, trace, denoise;     // compiled on first use
+    VkPipeline trace_opaque;                     // the trace without the alpha test (RTPBR_SPEC_BVH_ALPHA off)
 } rtpbr_shadow_pass;
 
 struct rtpbr_context {
@@ -223,7 +224,7 @@ struct rtpbr_gpu_scene {
     uint32_t camera_count;
     rtpbr_buffer bvh_nodes;     // rtpbr_shader_bvh_node[bvh_node_count] (bvh.c)
     rtpbr_buffer bvh_triangles; // rtpbr_shader_bvh_triangle[max(bvh_triangle_count, 1)]
-    uint32_t *bvh_triangle_draws; // the draw of each BVH triangle (its sidedness follows the material)
+    uint32_t *bvh_triangle_draws; // the draw of each BVH triangle (its sidedness and alpha flag follow the material)
     uint32_t bvh_node_count, bvh_triangle_count;
     rtpbr_buffer alpha_textures; // rtpbr_shader_alpha_texture[texture_count] (scene.c), for the shadow rays
     rtpbr_buffer alpha_texels;   // uint[]: the alpha bytes of the textures that have any below 255
@@ -417,7 +418,8 @@ void rtpbr_image_range_barrier(VkCommandBuffer cmd, VkImage image, VkImageSubres
 // Builds the BVH of the scene's uploaded triangles (world space) into scene->bvh_*.
 rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene);
 void rtpbr_bvh_destroy(rtpbr_gpu_scene *scene); // accepts a half-built scene
-// Rewrites each triangle's sidedness (v0.w) from its material and its draw's transform.
-void rtpbr_bvh_update_sidedness(rtpbr_gpu_scene *scene);
+// Rewrites each triangle's sidedness (v0.w) from its material and its draw's transform, and
+// whether its material's alpha is tested (e1.w: MASK or BLEND).
+void rtpbr_bvh_update_material_flags(rtpbr_gpu_scene *scene);
 
 #endif // RTPBR_INTERNAL_H

@@ -162,7 +162,9 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
     }
     bool shadows = desc->shadows == RTPBR_SHADOWS_ON;
     if (shadows) {
-        rtpbr_result result = rtpbr_shadow_pipelines_get(ctx); // before any recording: may compile
+        // before any recording: may compile (the trace with the alpha test where the scene has
+        // a MASK or BLEND material)
+        rtpbr_result result = rtpbr_shadow_pipelines_get(ctx, rtpbr_scene_has_alpha_test(scene));
         if (result != RTPBR_SUCCESS) return result;
     }
 
@@ -206,7 +208,7 @@ typedef struct lighting_pipelines {
 static void record_lighting(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc,
                             const lighting_pipelines *pipelines, VkCommandBuffer cmd)
 {
-    if (desc->shadows == RTPBR_SHADOWS_ON) rtpbr_shadow_record(r, desc, cmd); // the ratios lighting multiplies by
+    if (desc->shadows == RTPBR_SHADOWS_ON) rtpbr_shadow_record(r, scene, desc, cmd); // the ratios lighting multiplies by
     if (desc->mc_samples == 0) rtpbr_lighting_ltc_record(r, pipelines->lighting, cmd);
     else rtpbr_lighting_mc_record(r, scene, pipelines->lighting[0], desc, cmd);
     if (pipelines->forward) rtpbr_forward_record(r, scene, pipelines->forward, cmd);

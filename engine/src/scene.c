@@ -1123,7 +1123,7 @@ rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const r
     for (uint32_t i = 0; i < desc->material_count; ++i)
         scene->material_extension_textures[i] = material_extension_textures(&desc->materials[i]);
 
-    RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (passes/shadow.c); reads the materials' sidedness
+    RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (passes/shadow.c); reads the materials' sidedness and alpha modes
     RTPBR_TRY(create_textures(scene, desc, material_slots));
     RTPBR_TRY(create_alpha_textures(scene, desc));
 
@@ -1205,13 +1205,16 @@ rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index
             return RTPBR_ERROR_INVALID_ARGUMENT;
         }
     rtpbr_shader_material *record = &((rtpbr_shader_material *)scene->materials.mapped)[index];
-    bool sidedness_changed = (record->flags ^ (material->double_sided ? RTPBR_MATERIAL_FLAG_DOUBLE_SIDED : 0u)) &
-                             RTPBR_MATERIAL_FLAG_DOUBLE_SIDED;
+    // The BVH's triangles keep their material's sidedness and whether its alpha is tested.
+    const uint32_t triangle_flags =
+        RTPBR_MATERIAL_FLAG_DOUBLE_SIDED | RTPBR_MATERIAL_FLAG_ALPHA_MASK | RTPBR_MATERIAL_FLAG_ALPHA_BLEND;
+    uint32_t old_flags = record->flags;
     *record = rtpbr_material_record(material);
+    bool triangle_flags_changed = ((old_flags ^ record->flags) & triangle_flags) != 0;
     ((rtpbr_shader_texture_transforms *)scene->texture_transforms.mapped)[index] = convert_texture_transforms(material);
     scene->material_extension_textures[index] = material_extension_textures(material);
     rtpbr_gbuffer_write_material_textures(scene, index, index_of);
-    if (sidedness_changed) rtpbr_bvh_update_sidedness(scene);
+    if (triangle_flags_changed) rtpbr_bvh_update_material_flags(scene);
     return RTPBR_SUCCESS;
 }
 
@@ -1248,6 +1251,14 @@ bool rtpbr_lights_have_spheres(const rtpbr_shader_light *lights, uint32_t count)
         if (lights[i].shape == RTPBR_LIGHT_SHAPE_SPHERE || lights[i].shape == RTPBR_LIGHT_SHAPE_DISK ||
             lights[i].shape == RTPBR_LIGHT_SHAPE_TUBE || lights[i].texture != 0)
             return true;
+    return false;
+}
+
+bool rtpbr_scene_has_alpha_test(const rtpbr_gpu_scene *scene)
+{
+    const rtpbr_shader_material *materials = scene->materials.mapped;
+    for (uint32_t i = 0; i < scene->material_count; ++i)
+        if (materials[i].flags & (RTPBR_MATERIAL_FLAG_ALPHA_MASK | RTPBR_MATERIAL_FLAG_ALPHA_BLEND)) return true;
     return false;
 }
 

@@ -10,6 +10,8 @@
 
 #include <stdlib.h>
 
+#include <rtpbr/rtpbr_gltf.h>
+
 enum { N = 48 }; // image side
 
 typedef struct rendered {
@@ -147,6 +149,55 @@ static void test_mask_shadow(void **state)
     free(img);
 }
 
+// The shadow rays test an alpha only where the scene has a MASK or BLEND material (the trace's
+// pipeline is chosen per frame, passes/shadow.c) and only on the triangles flagged as such
+// (e1.w, kept by rtpbr_gpu_scene_set_material, bvh.c). Editing the OPAQUE occluder to MASK, back
+// and to MASK again in one scene must switch both: the holes shadowed, lit, shadowed, lit.
+static void test_mask_shadow_edit(void **state)
+{
+    (void)state;
+    char path[] = "/tmp/rtpbr-engine-scene-XXXXXX.gltf";
+    test_gltf_file(path, write_shadow_scene, &(shadow_scene){1});
+    rtpbr_gltf_scene *loaded = NULL;
+    rtpbr_gltf_result loaded_result = rtpbr_gltf_load(path, NULL, &loaded);
+    unlink(path);
+    assert_int_equal(loaded_result, RTPBR_GLTF_SUCCESS);
+    test_log log = {0};
+    rtpbr_context *ctx = test_context(&log);
+    rtpbr_gpu_scene *scene = NULL;
+    assert_int_equal(rtpbr_gpu_scene_from_loaded(ctx, loaded, &scene), RTPBR_SUCCESS);
+    rtpbr_material_desc opaque;
+    rtpbr_material_desc_from_loaded(loaded, 1, &opaque); // the occluder's
+    rtpbr_gltf_destroy(loaded);
+    assert_int_equal(opaque.alpha_mode, RTPBR_ALPHA_OPAQUE);
+    rtpbr_material_desc mask = opaque;
+    mask.alpha_mode = RTPBR_ALPHA_MASK; // alpha_cutoff: glTF's default, 0.5
+    rtpbr_renderer *renderer = test_renderer(ctx, &(rtpbr_renderer_desc){.width = N, .height = N});
+    const rtpbr_render_desc shadows = {.shadows = RTPBR_SHADOWS_ON, .shadow_samples = 16};
+    rendered *img = malloc(sizeof *img);
+    double holes[4], solid[4];
+    const rtpbr_material_desc *edits[4] = {NULL, &mask, &opaque, &mask};
+    for (int i = 0; i < 4; ++i) {
+        if (edits[i]) assert_int_equal(rtpbr_gpu_scene_set_material(scene, 1, edits[i]), RTPBR_SUCCESS);
+        assert_int_equal(rtpbr_render(renderer, scene, &shadows), RTPBR_SUCCESS);
+        assert_int_equal(test_read_radiance(renderer, img->px, sizeof img->px), RTPBR_SUCCESS);
+        holes[i] = floor_mean(img, -0.9, -0.25);
+        solid[i] = floor_mean(img, 0.25, 0.9);
+    }
+    fprintf(stderr, "below the holes: OPAQUE %g, edited to MASK %g, to OPAQUE %g, to MASK %g (solid half %g %g %g %g)\n",
+            holes[0], holes[1], holes[2], holes[3], solid[0], solid[1], solid[2], solid[3]);
+    assert_true(holes[1] > 0.01);
+    assert_true(holes[0] < 0.05 * holes[1]);
+    assert_true(holes[2] == holes[0]); // the same frames as before the edits
+    assert_true(holes[3] == holes[1]);
+    for (int i = 0; i < 4; ++i) assert_true(solid[i] < 0.05 * holes[1]);
+    free(img);
+    rtpbr_renderer_destroy(renderer);
+    rtpbr_gpu_scene_destroy(scene);
+    test_context_done(ctx, &log);
+}
+
 RTPBR_TEST_MAIN(cmocka_unit_test(test_mask_cutout),
                 cmocka_unit_test(test_blend_half),
-                cmocka_unit_test(test_mask_shadow))
+                cmocka_unit_test(test_mask_shadow),
+                cmocka_unit_test(test_mask_shadow_edit))

@@ -40,13 +40,15 @@ void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCom
 // ---- Shadows (passes/shadow.c): ray-traced shadow ratios per shadowed light. -------------
 rtpbr_result rtpbr_shadow_pass_init(rtpbr_context *ctx);
 void rtpbr_shadow_pass_finish(rtpbr_context *ctx);
-rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx);
+rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx, bool alpha_tested);
 // The renderer's shadow images (in GENERAL layout from here on) and descriptor set.
 rtpbr_result rtpbr_shadow_renderer_init(rtpbr_renderer *r);
 void rtpbr_shadow_renderer_finish(rtpbr_renderer *r);
 void rtpbr_shadow_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
 // The trace and denoise dispatches; the ratios are ready for the lighting pass after them.
-void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCommandBuffer cmd);
+// The trace pipeline rtpbr_shadow_pipelines_get made for the scene's alpha modes.
+void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc,
+                         VkCommandBuffer cmd);
 
 // ---- Lighting (passes/lighting.c): the tile cull, then the LTC pass per tile class. -------
 // The Monte Carlo reference (passes/lighting_mc.c) shares its set layout and descriptor set.
@@ -127,6 +129,8 @@ void rtpbr_forward_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
 void rtpbr_forward_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkPipeline pipeline, VkCommandBuffer cmd);
 // Whether any material of the scene is BLEND (the forward pipeline is needed).
 bool rtpbr_scene_has_blend(const rtpbr_gpu_scene *scene);
+// Has the scene a MASK or BLEND material (whose alpha the shadow rays test)?
+bool rtpbr_scene_has_alpha_test(const rtpbr_gpu_scene *scene);
 
 // ---- Supersampling resolve (passes/resolve.c): box filter from the shading size. ----------
 rtpbr_result rtpbr_resolve_pass_init(rtpbr_context *ctx);

@@ -51,13 +51,19 @@ cleanup:
 rtpbr_result rtpbr_compute_pipeline_create(rtpbr_context *ctx, rtpbr_spirv spirv, VkPipelineLayout layout,
                                            VkPipeline *out)
 {
+    return rtpbr_compute_pipeline_create_specialized(ctx, spirv, layout, NULL, out);
+}
+
+rtpbr_result rtpbr_compute_pipeline_create_specialized(rtpbr_context *ctx, rtpbr_spirv spirv, VkPipelineLayout layout,
+                                                       const VkSpecializationInfo *specialization, VkPipeline *out)
+{
     rtpbr_result result = RTPBR_SUCCESS;
     VkShaderModule module = VK_NULL_HANDLE;
     RTPBR_TRY(rtpbr_shader_module(ctx, spirv, &module));
     VkComputePipelineCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
         .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_COMPUTE_BIT,
-                  .module = module, .pName = "main"},
+                  .module = module, .pName = "main", .pSpecializationInfo = specialization},
         .layout = layout,
     };
     RTPBR_VK(&ctx->host, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL, out));

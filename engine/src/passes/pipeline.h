@@ -32,6 +32,9 @@ rtpbr_result rtpbr_pipeline_layout_create(rtpbr_context *ctx, const VkDescriptor
                                           VkShaderStageFlags push_stages, uint32_t push_size, VkPipelineLayout *out);
 rtpbr_result rtpbr_compute_pipeline_create(rtpbr_context *ctx, rtpbr_spirv spirv, VkPipelineLayout layout,
                                            VkPipeline *out);
+// The same with the shader's specialization constants set (NULL: their defaults).
+rtpbr_result rtpbr_compute_pipeline_create_specialized(rtpbr_context *ctx, rtpbr_spirv spirv, VkPipelineLayout layout,
+                                                       const VkSpecializationInfo *specialization, VkPipeline *out);
 // A graphics pipeline with dynamic rendering, dynamic viewport and scissor, no blending (or
 // premultiplied alpha blending),
 // triangle lists; no culling, or with dynamic_cull the cull mode and front face set per draw

@@ -73,12 +73,12 @@ cleanup:
 void rtpbr_shadow_pass_finish(rtpbr_context *ctx)
 {
     rtpbr_shadow_pass *pass = &ctx->shadow;
-    const VkPipeline pipelines[4] = {pass->select, pass->list, pass->trace, pass->denoise};
-    rtpbr_pass_objects_destroy(ctx, pipelines, 4, pass->layout, pass->set_layout);
+    const VkPipeline pipelines[5] = {pass->select, pass->list, pass->trace, pass->trace_opaque, pass->denoise};
+    rtpbr_pass_objects_destroy(ctx, pipelines, 5, pass->layout, pass->set_layout);
     *pass = (rtpbr_shadow_pass){0};
 }
 
-rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx)
+rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx, bool alpha_tested)
 {
     rtpbr_shadow_pass *pass = &ctx->shadow;
     rtpbr_result result = RTPBR_SUCCESS;
@@ -87,8 +87,17 @@ rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx)
                                                 &pass->select));
     if (!pass->list)
         RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_list_comp), pass->layout, &pass->list));
-    if (!pass->trace)
+    if (alpha_tested && !pass->trace)
         RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_comp), pass->layout, &pass->trace));
+    if (!alpha_tested && !pass->trace_opaque) {
+        // Without MASK or BLEND materials every triangle a ray crosses blocks it: bvh.glsl's alpha
+        // test compiled out (on lavapipe its code costs every step of the walk, taken or not).
+        const VkBool32 off = VK_FALSE;
+        const VkSpecializationMapEntry entry = {RTPBR_SPEC_BVH_ALPHA, 0, sizeof off};
+        const VkSpecializationInfo specialization = {1, &entry, sizeof off, &off};
+        RTPBR_TRY(rtpbr_compute_pipeline_create_specialized(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_comp), pass->layout,
+                                                            &specialization, &pass->trace_opaque));
+    }
     if (!pass->denoise)
         RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_denoise_comp), pass->layout,
                                                 &pass->denoise));
@@ -181,7 +190,8 @@ static void compute_barrier(VkCommandBuffer cmd, VkImage image, uint32_t layers,
                               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, dst);
 }
 
-void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCommandBuffer cmd)
+void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc,
+                         VkCommandBuffer cmd)
 {
     const rtpbr_context *ctx = r->context;
     const uint32_t samples = desc->shadow_samples ? desc->shadow_samples : RTPBR_DEFAULT_SHADOW_SAMPLES;
@@ -232,7 +242,8 @@ void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_render_desc *desc, VkCom
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                          VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &listed, 0,
                          NULL, 0, NULL);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->shadow.trace);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                      rtpbr_scene_has_alpha_test(scene) ? ctx->shadow.trace : ctx->shadow.trace_opaque);
     // The previous frame's denoise read the sums; each dispatch adds to the previous one's.
     for (uint32_t first = 0; first < samples; first += RTPBR_SHADOW_SAMPLES_PER_DISPATCH) {
         compute_barrier(cmd, r->shadow_estimates.image, estimate_layers,
