@@ -166,8 +166,11 @@ bool bvh_occluded(vec3 o, vec3 d, float tMax, uint rayKey)
     for (;;) { // one trip per crossed triangle whose alpha is tested, and a last one
         uint candidate = RTPBR_BVH_NONE;
         vec2 bary = vec2(0.0f);
-        for (;;) {
-            if (first == end) {
+        for (;;) { // one trip per leaf
+            // The nodes, until this ray holds a leaf (Aila & Laine 2009, "while-while"): the
+            // boxes' and the triangles' code in loops of their own, each run only as often as
+            // some ray needs it (on lavapipe the code of a branch runs whether taken or not).
+            while (first == end) {
                 if (node == RTPBR_BVH_NONE) {
                     if (sp == 0) return false;
                     node = stack[--sp];
@@ -185,9 +188,9 @@ bool bvh_occluded(vec3 o, vec3 d, float tMax, uint rayKey)
                     // Descend into one, keep the other for later; the depth bound keeps sp in range.
                     if (hitLeft || hitRight) node = hitLeft ? n.left_or_first : n.left_or_first + 1u;
                     if (hitLeft && hitRight) stack[sp++] = n.left_or_first + 1u;
-                    continue;
                 }
             }
+            // The leaf's triangles.
             for (; first < end; ++first) {
                 BvhTriangle tri = bvh_triangles[first];
                 vec2 b;

@@ -369,6 +369,9 @@
 #define RTPBR_SHADER_MAX_SHADOWED_LIGHTS 8
 // Deepest BVH node (root: depth 0) = the traversal stack's size.
 #define RTPBR_BVH_MAX_DEPTH 32
+// The shadow denoiser's largest window, (2 r + 1)^2 pixels (RTPBR_SHADOW_DENOISE_RADIUS in rtpbr.h).
+#define RTPBR_SHADER_SHADOW_DENOISE_RADIUS 3
+#define RTPBR_SHADER_SHADOW_WINDOW ((2 * RTPBR_SHADER_SHADOW_DENOISE_RADIUS + 1) * (2 * RTPBR_SHADER_SHADOW_DENOISE_RADIUS + 1))
 // The specialization constant (a bool, default true) of shadow.comp that keeps bvh.glsl's alpha
 // test: passes/shadow.c compiles the trace with it off for scenes without MASK or BLEND materials.
 #define RTPBR_SPEC_BVH_ALPHA 0

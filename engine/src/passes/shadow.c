@@ -36,6 +36,7 @@ enum { RTPBR_SHADOW_SAMPLES_PER_DISPATCH = 16 };
 // shadow_denoise.comp's window reaches at most the tiles beside, above or below and diagonal
 // to the pixel's (their shadow slots are read once per pixel).
 _Static_assert(RTPBR_SHADOW_DENOISE_RADIUS < RTPBR_TILE_SIZE, "the denoiser's window spans at most 2 x 2 tiles");
+_Static_assert(RTPBR_SHADOW_DENOISE_RADIUS == RTPBR_SHADER_SHADOW_DENOISE_RADIUS, "the denoiser's window array");
 // shadow.comp skips a pixel whose tiles within twice that radius are clear (shadow_clear_around).
 _Static_assert(2 * RTPBR_SHADOW_DENOISE_RADIUS < RTPBR_TILE_SIZE, "twice the window spans at most 2 x 2 tiles");
 
