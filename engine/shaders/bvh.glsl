@@ -140,7 +140,12 @@ bool bvh_triangle_crossed(BvhTriangle tri, vec3 o, vec3 d, float tMax, out vec2 
 
 // Off (passes/shadow.c, for scenes without MASK or BLEND materials): every crossed triangle
 // blocks, and the alpha's code is compiled out.
-layout(constant_id = RTPBR_SPEC_BVH_ALPHA) const bool bvh_alpha_tested = true;
+// (RTPBR_BVH_ALPHA_DEFAULT: the default a build may change, bench/shader-stats's
+// shadow_comp_opaque, which compiles the pipeline as the engine specializes it)
+#ifndef RTPBR_BVH_ALPHA_DEFAULT
+#define RTPBR_BVH_ALPHA_DEFAULT true
+#endif
+layout(constant_id = RTPBR_SPEC_BVH_ALPHA) const bool bvh_alpha_tested = RTPBR_BVH_ALPHA_DEFAULT;
 
 // True if any triangle crosses the segment o + t d, 0 < t < tMax, and blocks it (an opaque one,
 // or one whose alpha blocks: bvh_alpha_blocks). rayKey: a random number of this ray, for the
@@ -206,4 +211,95 @@ bool bvh_occluded(vec3 o, vec3 d, float tMax, uint rayKey)
         if (bvh_alpha_blocks(candidate, bary.x, bary.y, rayKey)) return true;
     }
     return false;
+}
+
+// Rays per bvh_occluded_packet: the shadow rays of one pixel toward one light (shadow.comp).
+#define RTPBR_BVH_PACKET 4
+// A stack entry of bvh_occluded_packet: the node (below 2^RTPBR_BVH_PACKET_SHIFT, bvh.c) and
+// the packet's rays that reach it (the bits above).
+#define RTPBR_BVH_PACKET_SHIFT 28u
+
+// Which rays of a packet from one origin are blocked: bit i set where some triangle crosses
+// o + t d[i], 0 < t < tMax, for the rays of `traced`. Every triangle blocks (for scenes
+// without MASK or BLEND materials: bvh_alpha_tested off; bvh_occluded otherwise).
+// One walk for the packet: a node is visited once for all the rays that reach it (those that
+// enter its box and its parents'), a leaf's triangles tested against those rays only; so each
+// ray meets the nodes and triangles it meets in its own walk (bvh_occluded), and its answer is
+// the same. The rays of a pixel toward a light are close: the walk and its reads (a node's two
+// children, a triangle) are shared by up to RTPBR_BVH_PACKET rays instead of repeated.
+// The rays of a packet (bits) that enter a box: bvh_box_hit for each, written out (a loop
+// would count against lavapipe's loop budget at every step of the walk: shadow.c).
+uint bvh_box_rays(vec3 boxMin, vec3 boxMax, vec3 o, vec3 invD[RTPBR_BVH_PACKET], float tMax)
+{
+    return (bvh_box_hit(boxMin, boxMax, o, invD[0], tMax) ? 1u : 0u) |
+           (bvh_box_hit(boxMin, boxMax, o, invD[1], tMax) ? 2u : 0u) |
+           (bvh_box_hit(boxMin, boxMax, o, invD[2], tMax) ? 4u : 0u) |
+           (bvh_box_hit(boxMin, boxMax, o, invD[3], tMax) ? 8u : 0u);
+}
+
+// The rays of a packet (bits) that cross a triangle, written out likewise.
+uint bvh_triangle_rays(BvhTriangle tri, vec3 o, vec3 d[RTPBR_BVH_PACKET], float tMax)
+{
+    vec2 b;
+    return (bvh_triangle_crossed(tri, o, d[0], tMax, b) ? 1u : 0u) |
+           (bvh_triangle_crossed(tri, o, d[1], tMax, b) ? 2u : 0u) |
+           (bvh_triangle_crossed(tri, o, d[2], tMax, b) ? 4u : 0u) |
+           (bvh_triangle_crossed(tri, o, d[3], tMax, b) ? 8u : 0u);
+}
+
+#if RTPBR_BVH_PACKET != 4
+#error "bvh_box_rays and bvh_triangle_rays are written for packets of 4 rays"
+#endif
+
+uint bvh_occluded_packet(vec3 o, vec3 d[RTPBR_BVH_PACKET], float tMax, uint traced)
+{
+    // Zero direction components become huge reciprocals of the right sign (no NaN in the slabs).
+    vec3 invD[RTPBR_BVH_PACKET] = vec3[](1.0f / mix(d[0], vec3(1e-30f), lessThan(abs(d[0]), vec3(1e-30f))),
+                                         1.0f / mix(d[1], vec3(1e-30f), lessThan(abs(d[1]), vec3(1e-30f))),
+                                         1.0f / mix(d[2], vec3(1e-30f), lessThan(abs(d[2]), vec3(1e-30f))),
+                                         1.0f / mix(d[3], vec3(1e-30f), lessThan(abs(d[3]), vec3(1e-30f))));
+    BvhNode root = bvh_nodes[0];
+    uint rays = traced & bvh_box_rays(root.box_min, root.box_max, o, invD, tMax); // the rays that reach the current node
+    uint blocked = 0u;
+    uint stack[RTPBR_BVH_MAX_DEPTH];
+    int sp = 0;
+    uint node = rays != 0u ? 0u : RTPBR_BVH_NONE;
+    uint first = 0u, end = 0u;
+    for (;;) { // one trip per leaf
+        while (first == end) {
+            if (node == RTPBR_BVH_NONE) {
+                if (sp == 0) return blocked;
+                uint entry = stack[--sp];
+                node = entry & ((1u << RTPBR_BVH_PACKET_SHIFT) - 1u);
+                rays = (entry >> RTPBR_BVH_PACKET_SHIFT) & ~blocked;
+                if (rays == 0u) { node = RTPBR_BVH_NONE; continue; } // its rays are blocked already
+            }
+            BvhNode n = bvh_nodes[node];
+            node = RTPBR_BVH_NONE;
+            if (n.count > 0u) {
+                first = n.left_or_first;
+                end = first + n.count;
+            } else {
+                BvhNode left = bvh_nodes[n.left_or_first];
+                BvhNode right = bvh_nodes[n.left_or_first + 1u];
+                uint raysLeft = rays & bvh_box_rays(left.box_min, left.box_max, o, invD, tMax);
+                uint raysRight = rays & bvh_box_rays(right.box_min, right.box_max, o, invD, tMax);
+                // Descend into one, keep the other for later; the depth bound keeps sp in range.
+                if (raysLeft != 0u || raysRight != 0u) {
+                    node = raysLeft != 0u ? n.left_or_first : n.left_or_first + 1u;
+                    rays = raysLeft != 0u ? raysLeft : raysRight;
+                }
+                if (raysLeft != 0u && raysRight != 0u)
+                    stack[sp++] = (n.left_or_first + 1u) | (raysRight << RTPBR_BVH_PACKET_SHIFT);
+            }
+        }
+        // The leaf's triangles, against the rays that reach it and are not blocked yet.
+        for (; first < end; ++first) {
+            blocked |= rays & bvh_triangle_rays(bvh_triangles[first], o, d, tMax);
+            rays &= ~blocked;
+            if (rays == 0u) first = end - 1u; // the loop's increment ends the leaf
+        }
+        if ((traced & ~blocked) == 0u) return blocked;
+    }
+    return blocked;
 }

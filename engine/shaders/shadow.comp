@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // Shadow pass, step 1 of 2 (issue 17): the two Monte Carlo estimates of the ratio estimator
 // (Heitz, Hill & McGuire 2018, "Combining Analytic Direct Illumination and Stochastic
 // Shadows"), per pixel and shadowed light k < frame.shadow_light_count, from the same samples:
@@ -91,7 +92,16 @@ void trace(ivec2 pixel, uvec2 group, uint k)
     vec3 sphereA1 = normalize(cross(abs(sphereAxis.z) < 0.9f ? vec3(0.0f, 0.0f, 1.0f) : vec3(1.0f, 0.0f, 0.0f), sphereAxis));
     vec3 sphereA2 = cross(sphereAxis, sphereA1);
     uint sampleEnd = punctual ? min(params.samples, 1u) * uint(params.first_sample == 0u) : params.samples;
-    for (uint j = params.first_sample; facing && j < params.first_sample + sampleEnd; ++j) {
+    uint last = params.first_sample + sampleEnd;
+    // The samples in packets of RTPBR_BVH_PACKET rays, traced by one walk (bvh_occluded_packet);
+    // each sample's weight added to both sums in the samples' order, as one by one.
+    for (uint j0 = params.first_sample; facing && j0 < last; j0 += uint(RTPBR_BVH_PACKET)) {
+      vec3 rays[RTPBR_BVH_PACKET];
+      float rayWeights[RTPBR_BVH_PACKET];
+      uint traced = 0u; // the packet's rays to trace
+      // (unrolled: lavapipe counts every loop trip against its budget, shadow.c)
+      [[unroll]] for (uint ray = 0u; ray < uint(RTPBR_BVH_PACKET); ++ray) {
+        uint j = j0 + ray;
         // R2: the lattice of the plastic number (Roberts 2018).
         vec2 u = fract(shift + float(j) * vec2(0.7548776662f, 0.5698402910f));
         // The fan triangle (v0, v_i, v_i+1) holding u.x of the area, and u.x rescaled in it;
@@ -141,8 +151,22 @@ void trace(ivec2 pixel, uvec2 group, uint k)
         cosY = twoSided ? abs(cosY) : cosY;
         float w = cosX > 0.0f && cosY > 0.0f ? light.area / density * cosX * cosY / dist2 : 0.0f;
         if (punctual || sphereLight) w = max(cosX, 0.0f);
+        w = j < last ? w : 0.0f;
         unshadowed += w;
-        if (w > 0.0f && (clear || !bvh_occluded(origin, d, 1.0f - 1e-3f, bvh_hash(h + j)))) shadowed += w;
+        rays[ray] = d;
+        rayWeights[ray] = w;
+        if (w > 0.0f && !clear) traced |= 1u << ray;
+      }
+      uint blocked = 0u;
+      if (bvh_alpha_tested) { // a scene with MASK or BLEND materials: ray by ray
+          [[unroll]] for (uint i = 0u; i < uint(RTPBR_BVH_PACKET); ++i)
+              if ((traced & (1u << i)) != 0u && bvh_occluded(origin, rays[i], 1.0f - 1e-3f, bvh_hash(h + j0 + i)))
+                  blocked |= 1u << i;
+      } else if (traced != 0u) {
+          blocked = bvh_occluded_packet(origin, rays, 1.0f - 1e-3f, traced);
+      }
+      [[unroll]] for (uint i = 0u; i < uint(RTPBR_BVH_PACKET); ++i)
+          if (rayWeights[i] > 0.0f && (blocked & (1u << i)) == 0u) shadowed += rayWeights[i];
     }
     imageStore(shadow_estimates, shadowedTexel, vec4(shadowed));
     imageStore(shadow_estimates, unshadowedTexel, vec4(unshadowed));

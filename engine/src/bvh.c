@@ -171,17 +171,26 @@ static void transform_point(const float m[16], const float p[3], float out[3])
     for (int k = 0; k < 3; ++k) out[k] = m[k] * p[0] + m[4 + k] * p[1] + m[8 + k] * p[2] + m[12 + k];
 }
 
+// bvh.glsl's packet walk keeps a node index below 2^28 with the packet's 4 ray bits above it in
+// a stack entry (RTPBR_BVH_PACKET_SHIFT): at most 2^27 triangles (8 GiB of them at 64 bytes).
+#define RTPBR_BVH_MAX_TRIANGLES (1u << 27)
+
 rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
 {
     rtpbr_context *ctx = scene->context;
     rtpbr_result result = RTPBR_SUCCESS;
-    uint32_t tri_count = 0;
-    for (uint32_t d = 0; d < scene->draw_count; ++d) tri_count += scene->draws[d].index_count / 3;
+    uint64_t triangles = 0;
+    for (uint32_t d = 0; d < scene->draw_count; ++d) triangles += scene->draws[d].index_count / 3;
+    uint32_t tri_count = triangles > RTPBR_BVH_MAX_TRIANGLES ? 0 : (uint32_t)triangles;
 
     build_state s = {0};
     float (*tri)[9] = NULL;
     uint32_t *draw_of = NULL; // the draw of each triangle, in the order of s.tri
     uint32_t *first_index_of = NULL; // its first index in the scene's index buffer
+    if (triangles > RTPBR_BVH_MAX_TRIANGLES)
+        RTPBR_FAIL(&ctx->host, RTPBR_ERROR_LIMIT_EXCEEDED,
+                   "the scene has %llu triangles; the shadow rays' BVH holds at most %u",
+                   (unsigned long long)triangles, (unsigned)RTPBR_BVH_MAX_TRIANGLES);
     uint32_t node_slots = tri_count ? 2 * tri_count - 1 : 1;
     if (tri_count) {
         RTPBR_ALLOC(&ctx->host, tri, tri_count * sizeof *tri);
