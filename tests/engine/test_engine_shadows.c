@@ -80,6 +80,7 @@ typedef struct penumbra_scene {
     rtpbr_gpu_scene *scene;
     rtpbr_renderer *renderer;
     rtpbr_camera_desc camera;
+    rtpbr_material_desc material; // the floor's and the blocker's
     float floor_pos[3 * (GRID + 1) * (GRID + 1)], blocker_pos[3 * (GRID + 1) * (GRID + 1)];
     uint32_t floor_idx[6 * GRID * GRID], blocker_idx[6 * GRID * GRID];
 } penumbra_scene;
@@ -92,8 +93,8 @@ static int setup(void **state)
     grid_mesh(BLOCKER_HALF, Z_BLOCKER, ps->blocker_pos, ps->blocker_idx);
     // Double-sided: the blocker faces the light (+Z) and must stop the floor's shadow rays,
     // which meet its back (a single-sided surface lets them through, glTF doubleSided false).
-    rtpbr_material_desc material = {.base_color = {ALBEDO, ALBEDO, ALBEDO}, .roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR,
-                                    .double_sided = 1};
+    ps->material = (rtpbr_material_desc){.base_color = {ALBEDO, ALBEDO, ALBEDO}, .roughness = 1.0f,
+                                         .flags = RTPBR_MATERIAL_NO_SPECULAR, .double_sided = 1};
     rtpbr_mesh_desc meshes[2] = {
         {.positions = ps->floor_pos, .indices = ps->floor_idx, .vertex_count = (GRID + 1) * (GRID + 1),
          .index_count = 6 * GRID * GRID},
@@ -107,7 +108,7 @@ static int setup(void **state)
                                      .znear = 0.1f, .zfar = 100.0f};
     assert_int_equal(rtpbr_gpu_scene_create(ps->ctx,
                                             &(rtpbr_gpu_scene_desc){.meshes = meshes, .mesh_count = 2,
-                                                                    .materials = &material, .material_count = 1,
+                                                                    .materials = &ps->material, .material_count = 1,
                                                                     .lights = &light, .light_count = 1,
                                                                     .cameras = &ps->camera, .camera_count = 1},
                                             &ps->scene),
@@ -549,6 +550,43 @@ static void cull_changes_nothing(void **state)
     cull_compare(ps->renderer, ps->scene, &ps->camera, W, H, "penumbra");
 }
 
+// The trace's two walks (bvh.glsl) give the same image to the bit. The penumbra scene has no
+// MASK or BLEND material: its rays walk in packets (bvh_occluded_packet). With its material
+// made MASK at full coverage (alpha 1 >= the cutoff: nothing is cut in the G-buffer, and every
+// triangle a ray crosses blocks it), every ray walks alone (bvh_occluded) and stops at each
+// crossed triangle to read its alpha outside the walk. Packets of 4 rays: 3, 4 and 6 samples
+// (one packet not full, one full, a full one and one not).
+static void walks_agree(void **state)
+{
+    penumbra_scene *ps = *state;
+    size_t size = (size_t)W * H * 16;
+    float *packets = malloc(size), *alone = malloc(size);
+    rtpbr_material_desc mask = ps->material;
+    mask.alpha_mode = RTPBR_ALPHA_MASK;
+    mask.alpha_cutoff = 0.5f;
+    mask.alpha = 1.0f; // (the opaque material's alpha is ignored)
+    static const uint32_t samples[3] = {3, 4, 6};
+    for (int i = 0; i < 3; ++i) {
+        rtpbr_render_desc desc = {.camera = &ps->camera, .shadows = RTPBR_SHADOWS_ON, .shadow_samples = samples[i]};
+        assert_int_equal(rtpbr_gpu_scene_set_material(ps->scene, 0, &ps->material), RTPBR_SUCCESS);
+        assert_int_equal(rtpbr_render(ps->renderer, ps->scene, &desc), RTPBR_SUCCESS);
+        assert_int_equal(test_read_radiance(ps->renderer, packets, size), RTPBR_SUCCESS);
+        assert_int_equal(rtpbr_gpu_scene_set_material(ps->scene, 0, &mask), RTPBR_SUCCESS);
+        assert_int_equal(rtpbr_render(ps->renderer, ps->scene, &desc), RTPBR_SUCCESS);
+        assert_int_equal(test_read_radiance(ps->renderer, alone, size), RTPBR_SUCCESS);
+        int differ = 0, shadowed = 0;
+        for (int p = 0; p < W * H * 4; ++p) differ += memcmp(&packets[p], &alone[p], sizeof(float)) != 0;
+        for (int p = 0; p < W * H; ++p) shadowed += packets[4 * p] > 0.0f && packets[4 * p] < 0.05f * ALBEDO * EMISSION;
+        printf("%u samples: %d of %d values differ between the packets' walk and the rays' own; %d dark floor pixels\n",
+               samples[i], differ, W * H * 4, shadowed);
+        assert_int_equal(differ, 0);
+        assert_true(shadowed > 100); // the blocker's umbra is in the image
+    }
+    assert_int_equal(rtpbr_gpu_scene_set_material(ps->scene, 0, &ps->material), RTPBR_SUCCESS);
+    free(packets);
+    free(alone);
+}
+
 int main(void)
 {
     RTPBR_RUN_TESTS(setup, teardown,
@@ -559,5 +597,6 @@ int main(void)
                     cmocka_unit_test(casters_across_tiles),
                     cmocka_unit_test(khr_materials_shadows_only_darken),
                     cmocka_unit_test(khr_materials_lights_add_up),
-                    cmocka_unit_test(cull_changes_nothing));
+                    cmocka_unit_test(cull_changes_nothing),
+                    cmocka_unit_test(walks_agree));
 }
