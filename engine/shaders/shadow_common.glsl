@@ -62,11 +62,12 @@ layout(set = 0, binding = RTPBR_BINDING_SHADOW_WORK, std430) buffer ShadowWork {
 #endif
 
 // The shadow slots of tile t (tile coordinates) and its clear slots (RTPBR_TILE_SHADOW_CLEAR);
-// none outside the image's tiles.
+// outside the image's tiles, no light and every slot clear (an empty slot of the pixel's own
+// tile, RTPBR_TILE_NO_LIGHT, finds itself in such a tile's slots: clear, as it is in its own).
 uint shadow_tile_slots(ivec2 t, ivec2 tiles, out uvec4 slots[2])
 {
     slots[0] = slots[1] = uvec4(RTPBR_TILE_NO_LIGHT);
-    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, tiles))) return 0u;
+    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, tiles))) return ~0u;
     uint tileBase = (uint(t.y) * frame.tiles_x + uint(t.x)) * uint(RTPBR_TILE_MASK_STRIDE);
     uint base = tileBase + uint(RTPBR_TILE_SHADOW_SLOTS);
     slots[0] = uvec4(shadow_tiles[base], shadow_tiles[base + 1u], shadow_tiles[base + 2u], shadow_tiles[base + 3u]);
