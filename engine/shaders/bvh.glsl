@@ -219,14 +219,6 @@ bool bvh_occluded(vec3 o, vec3 d, float tMax, uint rayKey)
 // the packet's rays that reach it (the bits above).
 #define RTPBR_BVH_PACKET_SHIFT 28u
 
-// Which rays of a packet from one origin are blocked: bit i set where some triangle crosses
-// o + t d[i], 0 < t < tMax, for the rays of `traced`. Every triangle blocks (for scenes
-// without MASK or BLEND materials: bvh_alpha_tested off; bvh_occluded otherwise).
-// One walk for the packet: a node is visited once for all the rays that reach it (those that
-// enter its box and its parents'), a leaf's triangles tested against those rays only; so each
-// ray meets the nodes and triangles it meets in its own walk (bvh_occluded), and its answer is
-// the same. The rays of a pixel toward a light are close: the walk and its reads (a node's two
-// children, a triangle) are shared by up to RTPBR_BVH_PACKET rays instead of repeated.
 // The rays of a packet (bits) that enter a box: bvh_box_hit for each, written out (a loop
 // would count against lavapipe's loop budget at every step of the walk: shadow.c).
 uint bvh_box_rays(vec3 boxMin, vec3 boxMax, vec3 o, vec3 invD[RTPBR_BVH_PACKET], float tMax)
@@ -251,6 +243,14 @@ uint bvh_triangle_rays(BvhTriangle tri, vec3 o, vec3 d[RTPBR_BVH_PACKET], float 
 #error "bvh_box_rays and bvh_triangle_rays are written for packets of 4 rays"
 #endif
 
+// Which rays of a packet from one origin are blocked: bit i set where some triangle crosses
+// o + t d[i], 0 < t < tMax, for the rays of `traced`. Every triangle blocks (for scenes
+// without MASK or BLEND materials: bvh_alpha_tested off; bvh_occluded otherwise).
+// One walk for the packet: a node is visited once for all the rays that reach it (those that
+// enter its box and its parents'), a leaf's triangles tested against those rays only; so each
+// ray meets the nodes and triangles it meets in its own walk (bvh_occluded), and its answer is
+// the same. The rays of a pixel toward a light are close: the walk and its reads (a node's two
+// children, a triangle) are shared by up to RTPBR_BVH_PACKET rays instead of repeated.
 uint bvh_occluded_packet(vec3 o, vec3 d[RTPBR_BVH_PACKET], float tMax, uint traced)
 {
     // Zero direction components become huge reciprocals of the right sign (no NaN in the slabs).
