@@ -55,8 +55,8 @@ void main()
             filtered |= 1u << k;
     }
     // The guide's weights of the window's pixels, computed once for all the lights (they do
-    // not depend on the light; on lavapipe, recomputed per light they took 2/3 of the pass):
-    // -1 for a background pixel, which adds nothing. None where no light is filtered.
+    // not depend on the light; on lavapipe, recomputed per light they took half the pass with 5
+    // lights): -1 for a background pixel, which adds nothing. None where no light is filtered.
     float weights[RTPBR_SHADER_SHADOW_WINDOW];
     int t = 0;
     for (int y = lo.y; filtered != 0u && y <= hi.y; ++y)
