@@ -106,6 +106,10 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 #define RTPBR_AREA_LIGHT_DISKS 1    // AreaLight_AddDisk for the disks' mask
 #define RTPBR_AREA_LIGHT_ROUND_DISKS 1 // (round disks' closed form; ellipses, disk_radius2, the cone's)
 #define RTPBR_AREA_LIGHT_TEXTURED RTPBR_LIGHTING_TEXTURED // AreaLight_AddTexturedQuad for the textured quads' mask
+// A polygon's first four edges walked without a loop (lavapipe), but every edge in one loop in
+// the full variants over textured quads or tubes (registers: those spilled 2 to 4 SGPRs on
+// navi21 and gfx1100 without it; tests/shader-stats)
+#define RTPBR_AREA_LIGHT_WALK_LOOP (RTPBR_LIGHTING_FULL && (RTPBR_LIGHTING_TEXTURED || RTPBR_LIGHTING_TUBES))
 #if RTPBR_LIGHTING_TUBES || (defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_STATS_SHAPE_TUBE)
 #define RTPBR_AREA_LIGHT_TUBES 1 // AreaLight_AddTube for the tubes' mask (RTPBR_LIGHTING_TUBES)
 // A tube's ends' centres and radius (RTPBR_LIGHT_FIELDS, TUBE: vertices[0], vertices[1]).

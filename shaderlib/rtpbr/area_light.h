@@ -92,6 +92,14 @@
 //   RTPBR_AREA_LIGHT_FULL  1 (default): every lobe surface.h resolves (Disney, coat, sheen,
 //                          anisotropy); 0: metallic-roughness without them (the engine's
 //                          basic variant: fewer registers, the streak estimate on GGX).
+//   RTPBR_AREA_LIGHT_WALK_LOOP  0 (default): a polygon's walk over its edges has its first four
+//                          unrolled and a loop over the rest only for 5 or more vertices,
+//                          whose vertices 5 to 7 it reads before that loop (AreaLight_EdgeStep:
+//                          on a CPU device a buffer read inside a loop over the edges cost a
+//                          third of a quad light's time); 1: one loop over every edge, each
+//                          vertex read in it (fewer registers: the engine's full variants over
+//                          textured quads and tubes spilled 2 to 4 SGPRs on navi21 and gfx1100
+//                          without it).
 //   RTPBR_UNROLL, RTPBR_DONT_UNROLL  loop attributes (GLSL: [[unroll]], [[dont_unroll]] with
 //                          GL_EXT_control_flow_attributes; HLSL: [unroll], [loop]); empty by
 //                          default.
@@ -218,6 +226,9 @@
 #endif
 #ifndef RTPBR_AREA_LIGHT_FULL
 #define RTPBR_AREA_LIGHT_FULL 1
+#endif
+#ifndef RTPBR_AREA_LIGHT_WALK_LOOP
+#define RTPBR_AREA_LIGHT_WALK_LOOP 0
 #endif
 #ifndef RTPBR_UNROLL
 #define RTPBR_UNROLL
@@ -351,24 +362,47 @@ RTPBR_FN rtpbr_float3 AreaLight_Vertex(uint i, uint k, rtpbr_float3 P, rtpbr_flo
     return quad.o + (k == 1u || k == 2u ? quad.u : RTPBR_F3(0.0f)) + (k >= 2u ? quad.v : RTPBR_F3(0.0f));
 }
 
-// Step k (1 .. count + 1) of a streamed walk over light i's count edges (vectors from P in the
-// LTC frame ltcFrame; first = vertex 0's, a = the previous vertex's, advanced here): edge
-// k - 1 -> k (vertex count is vertex 0) clipped to the horizon, then (k = count + 1) the
-// segment that closes the clipped polygon along it (LTC_ClipClose). The vertices: light i's, or
-// quad's where quad.on (AreaLight_Vertex).
+// Edge k - 1 -> k (k in 1 .. count; vertex count is vertex 0, first) of a streamed walk over
+// light i's count edges (vectors from P in the LTC frame ltcFrame; a = the previous vertex's,
+// advanced here) clipped to the horizon; the walk ends with the segment that closes the clipped
+// polygon along it (LTC_ClipClose). The vertices: light i's, or quad's where quad.on
+// (AreaLight_Vertex). AreaLight_WalkLobe runs edges 1 to 4 unrolled (k a constant, the fourth
+// where count >= 4) and a loop over the others only for polygons of 5 or more vertices, whose
+// vertices 5 to 7 it reads before that loop (AreaLight_EdgeStepTail; with
+// RTPBR_AREA_LIGHT_WALK_LOOP, one loop over every edge): on lavapipe (Mesa 22.3's llvmpipe) a
+// storage-buffer read is a loop over the SIMD lanes, and the walk's read of vertex k inside its
+// loop over the edges took a third of a quad light's time, even where it was masked off
+// (docs/performance.md, 19). (AreaLight_StreakEstimate, once per point, keeps its loop.)
 RTPBR_FN LtcSegment AreaLight_EdgeStep(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, uint k, uint count,
                                        rtpbr_float3 first, RTPBR_INOUT(LtcClipper) horizon,
                                        RTPBR_INOUT(rtpbr_float3) a, AreaLightQuad quad) {
-    LtcSegment seg;
-    rtpbr_float3 b = a;
-    if (k <= count) {
-        b = k < count ? AreaLight_Vertex(i, k, P, ltcFrame, quad) : first;
-        seg = LTC_ClipEdge(horizon, a, b);
-    } else {
-        seg = LTC_ClipClose(horizon);
-    }
+    rtpbr_float3 b = k < count ? AreaLight_Vertex(i, k, P, ltcFrame, quad) : first;
+    LtcSegment seg = LTC_ClipEdge(horizon, a, b);
     a = b;
     return seg;
+}
+
+#if RTPBR_LTC_MAX_VERTICES != 8
+#error "AreaLight_EdgeStepTail holds vertices 5 to 7 of at most 8"
+#endif
+// AreaLight_EdgeStep for k >= 5 of a light's own polygon (not a quad's) whose vertices 5, 6 and
+// 7 were read before the loop over those edges (v5, v6, v7: Host_LightVertex).
+RTPBR_FN LtcSegment AreaLight_EdgeStepTail(rtpbr_float3 P, rtpbr_float3x3 ltcFrame, uint k, uint count, rtpbr_float3 first,
+                                           rtpbr_float3 v5, rtpbr_float3 v6, rtpbr_float3 v7,
+                                           RTPBR_INOUT(LtcClipper) horizon, RTPBR_INOUT(rtpbr_float3) a) {
+    rtpbr_float3 b = k < count ? rtpbr_mul(ltcFrame, (k == 5u ? v5 : k == 6u ? v6 : v7) - P) : first;
+    LtcSegment seg = LTC_ClipEdge(horizon, a, b);
+    a = b;
+    return seg;
+}
+
+// A segment of the horizon-clipped polygon (AreaLight_EdgeStep's, or its closing one) added to
+// its vector form factor F and to the lobe's integral.
+RTPBR_FN void AreaLight_LobeSegment(LtcSegment seg, RTPBR_INOUT(rtpbr_float3) F, RTPBR_INOUT(LtcLobe) lobe) {
+    if (seg.valid) {
+        F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+        LTC_LobeEdge(lobe, seg.a, seg.b);
+    }
 }
 
 // The end of a lobe's pass (AreaLight_Lobe): its form factor, and its vector form factor in Fl.
@@ -396,13 +430,24 @@ RTPBR_FN float AreaLight_WalkLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFram
     uint count = quad.on ? 4u : Host_LightVertexCount(i);
     rtpbr_float3 first = AreaLight_Vertex(i, 0u, P, ltcFrame, quad);
     rtpbr_float3 a = first;
-    RTPBR_UNROLL for (uint k = 1u; k <= count + 1u; ++k) {
-        LtcSegment seg = AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a, quad);
-        if (seg.valid) {
-            F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
-            LTC_LobeEdge(lobe, seg.a, seg.b);
-        }
+#if RTPBR_AREA_LIGHT_WALK_LOOP
+    RTPBR_UNROLL for (uint k = 1u; k <= count; ++k)
+        AreaLight_LobeSegment(AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a, quad), F, lobe);
+#else
+    // (lavapipe: AreaLight_EdgeStep)
+    RTPBR_UNROLL for (uint k = 1u; k <= 4u; ++k)
+        if (k < 4u || count >= 4u)
+            AreaLight_LobeSegment(AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a, quad), F, lobe);
+    if (count > 4u) {
+        rtpbr_float3 v5 = RTPBR_F3(0.0f), v6 = v5, v7 = v5; // (read only below count: the host's contract)
+        if (count > 5u) v5 = Host_LightVertex(i, 5u);
+        if (count > 6u) v6 = Host_LightVertex(i, 6u);
+        if (count > 7u) v7 = Host_LightVertex(i, 7u);
+        for (uint k = 5u; k <= count; ++k)
+            AreaLight_LobeSegment(AreaLight_EdgeStepTail(P, ltcFrame, k, count, first, v5, v6, v7, horizon, a), F, lobe);
     }
+#endif
+    AreaLight_LobeSegment(LTC_ClipClose(horizon), F, lobe);
     return AreaLight_LobeClose(lobe, Fl);
 }
 RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
@@ -1242,7 +1287,11 @@ RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_flo
         rtpbr_float3 first = rtpbr_mul(ltcFrame, Host_LightVertex(i, 0u) - P);
         rtpbr_float3 a = first;
         for (uint k = 1u; k <= count + 1u; ++k) {
-            LtcSegment seg = AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a, AreaLight_NoQuad());
+            LtcSegment seg;
+            if (k <= count)
+                seg = AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a, AreaLight_NoQuad());
+            else
+                seg = LTC_ClipClose(horizon);
             if (seg.valid) {
                 if (pass == 0) {
                     F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
