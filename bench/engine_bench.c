@@ -269,7 +269,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "rtpbr-bench-engine: %s\n", rtpbr_result_string(r));
         return 1;
     }
-    printf("# device: %s; median of %d frames (%s time); ns per pixel-light = frame time / (pixels x lights)\n",
+    printf("# device: %s; median of %d frames (%s time); ns per pixel-light = (frame time - the 0-light frame's) / "
+           "(pixels x lights)\n",
            rtpbr_context_device_name(ctx), repeat, bench_clock == CLOCK_MONOTONIC ? "wall" : "process CPU");
     printf("%10s %6s %12s %12s %16s %16s\n", "size", "lights", "culled_ms", "all_ms", "culled_ns/px/l",
            "all_ns/px/l");

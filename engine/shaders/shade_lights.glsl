@@ -100,6 +100,16 @@ vec4 Host_TableLtc2(int table, vec2 uv)
     return textureLod(LUT_LTC_2, uv, 0.0f);
 }
 
+// What the frame's lights need, set per frame by the lighting pass's pipelines
+// (passes/lighting.c, rtpbr_lighting_needs; the defaults: anything, as the forward
+// pass): the most vertices of a polygon (3 .. RTPBR_SHADER_MAX_POLYGON_VERTICES; the walk's
+// code for more is compiled out: area_light.h, RTPBR_AREA_LIGHT_MAX_VERTICES), and whether a
+// punctual light is among them (false: the punctual lights' loop compiled out). On lavapipe
+// that code costs wherever it is, run or not: a loop runs its first trip, and both sides of a
+// branch run, for every pixel (docs/performance.md, 20).
+layout(constant_id = RTPBR_SPEC_LIGHTING_MAX_VERTICES) const uint shade_max_vertices = RTPBR_SHADER_MAX_POLYGON_VERTICES;
+layout(constant_id = RTPBR_SPEC_LIGHTING_PUNCTUAL) const bool shade_punctual = true;
+#define RTPBR_AREA_LIGHT_MAX_VERTICES shade_max_vertices
 #define RTPBR_AREA_LIGHT_FULL RTPBR_LIGHTING_FULL
 #define RTPBR_AREA_LIGHT_PUNCTUAL 2 // punctual lights summed first, apart (area_light.h)
 #define RTPBR_AREA_LIGHT_SPHERES 1  // AreaLight_AddSphere for the spheres' mask (RTPBR_LIGHTING_SPHERES)
@@ -208,11 +218,13 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     uint maskBase = tile * uint(RTPBR_TILE_MASK_STRIDE);
     uint summaryBase = maskBase + uint(RTPBR_TILE_MASK_SUMMARY);
     mat3 frame3 = LTC_Frame(N, V);
-    for (uint words = tile_masks[summaryBase + 1u]; words != 0u; words &= words - 1u) {
-        uint word = uint(findLSB(words));
-        for (uint bits = tile_masks[maskBase + uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u) {
-            uint i = word * 32u + uint(findLSB(bits));
-            AreaLight_AddPunctual(result, s, frame3, P, i, lights[i].shape);
+    if (shade_punctual) { // (a frame without punctual lights: compiled out)
+        for (uint words = tile_masks[summaryBase + 1u]; words != 0u; words &= words - 1u) {
+            uint word = uint(findLSB(words));
+            for (uint bits = tile_masks[maskBase + uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u) {
+                uint i = word * 32u + uint(findLSB(bits));
+                AreaLight_AddPunctual(result, s, frame3, P, i, lights[i].shape);
+            }
         }
     }
     AreaLightPixel px = AreaLight_Begin(s, N, V);

@@ -62,6 +62,11 @@ float Host_TableSheenE(float mu, float r) { return sheen_E(mu, r); }
 // forward pass's own) as the inputs of the shader library's material resolve (material.h), the
 // KHR factors times the point's extension texels. The basic variant's inputs have no coat,
 // sheen, anisotropy or Disney model.
+// The full variant's material features as its pipeline was specialized for
+// (RTPBR_SPEC_LIGHTING_MATERIALS: the RTPBR_MATERIAL_FLAGS_FULL bits that some material of the
+// frame has, all of them by default): a feature no material has is a compile-time zero, and its
+// lobe's walk drops out (on lavapipe it costs every pixel whether any has the feature or not).
+layout(constant_id = RTPBR_SPEC_LIGHTING_MATERIALS) const uint shade_material_features = RTPBR_MATERIAL_FLAGS_FULL;
 MaterialInputs material_inputs(GBufferSurface g, Material m)
 {
     MaterialInputs in_;
@@ -94,6 +99,11 @@ MaterialInputs material_inputs(GBufferSurface g, Material m)
     in_.clearcoatFactor = 0.0f;
     in_.sheenColorFactor = vec3(0.0f);
     in_.anisotropyStrength = 0.0f;
+#else
+    if ((shade_material_features & RTPBR_MATERIAL_FLAG_DISNEY) == 0u) in_.model = RTPBR_MATERIAL_MODEL_METALLIC_ROUGHNESS;
+    if ((shade_material_features & RTPBR_MATERIAL_FLAG_CLEARCOAT) == 0u) in_.clearcoatFactor = 0.0f;
+    if ((shade_material_features & RTPBR_MATERIAL_FLAG_SHEEN) == 0u) in_.sheenColorFactor = vec3(0.0f);
+    if ((shade_material_features & RTPBR_MATERIAL_FLAG_ANISOTROPY) == 0u) in_.anisotropyStrength = 0.0f;
 #endif
     return in_;
 }

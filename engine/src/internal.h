@@ -88,6 +88,10 @@ typedef struct rtpbr_lut {
 // LTC lighting pipelines: per variant, one per lit tile class (BASIC, FULL); the EMPTY class
 // has one pipeline of its own (it shades no light).
 #define RTPBR_LIT_CLASS_COUNT (RTPBR_TILE_CLASS_COUNT - 1)
+// The LTC pipelines' specializations (RTPBR_SPEC_LIGHTING_*): a frame's polygons of at most 3,
+// 4 or RTPBR_SHADER_MAX_POLYGON_VERTICES vertices, without or with punctual lights, its
+// materials with any of the 16 combinations of the full variant's features.
+#define RTPBR_LIGHTING_SPEC_COUNT (3 * 2 * 16)
 #define RTPBR_TONEMAP_PIPELINE_CACHE 8 // tone-mapping pipelines, one per target format
 
 // Each pass's layouts and pipelines, made and destroyed by its file in passes/ (init at
@@ -104,7 +108,8 @@ typedef struct rtpbr_lighting_pass {             // passes/lighting.c, passes/li
     VkPipelineLayout layout;                     // cull and LTC: no push constants
     VkPipeline cull;                             // cull.comp: tile light masks and class queues
     VkPipeline empty;                            // tiles without light: emission and background
-    VkPipeline ltc[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT]; // compiled on first use
+    // compiled on first use, per specialization (rtpbr_lighting_spec_index)
+    VkPipeline ltc[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT][RTPBR_LIGHTING_SPEC_COUNT];
     VkPipelineLayout mc_layout;                  // + push constants rtpbr_shader_mc
     VkPipeline mc[RTPBR_LIGHTING_VARIANT_COUNT]; // compiled on first use
 } rtpbr_lighting_pass;
@@ -265,6 +270,18 @@ bool rtpbr_lights_have_spheres(const rtpbr_shader_light *lights, uint32_t count)
 // The lighting variants count lights need (rtpbr_lighting_pipelines_get): 3 with a tube, 2 with a textured quad,
 // else 1 with a sphere or a disk, else 0.
 uint32_t rtpbr_lights_shapes(const rtpbr_shader_light *lights, uint32_t count);
+// What a frame needs of the LTC pipelines (rtpbr_lighting_pipelines_get): its lights' classes
+// (rtpbr_lights_shapes) and the specialization (RTPBR_SPEC_LIGHTING_*) to its lights and materials.
+typedef struct rtpbr_lighting_needs {
+    uint32_t shapes;
+    uint32_t max_vertices;      // the most vertices of a polygon: 3, 4 or RTPBR_SHADER_MAX_POLYGON_VERTICES
+    bool punctual;              // a point, spot or directional light is among them
+    uint32_t material_features; // the RTPBR_MATERIAL_FLAGS_FULL bits of any of its materials
+} rtpbr_lighting_needs;
+// A frame of count lights and material_count materials (every RTPBR_MATERIAL_FLAGS_FULL bit
+// where one is Disney's: its coat and sheen are not the KHR ones).
+rtpbr_lighting_needs rtpbr_lighting_needs_of(const rtpbr_shader_light *lights, uint32_t count,
+                                             const rtpbr_shader_material *materials, uint32_t material_count);
 
 // The RTPBR_EXTENSION_TEXTURES_* bits of the scene's materials together (scene.c): which of
 // G-buffers 4 to 6 its frames render and read.

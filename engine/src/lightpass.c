@@ -32,7 +32,8 @@ struct rtpbr_lighting_targets {
     VkImageLayout depth_layout, gbuffer_layout;
     VkDeviceSize frame_stride;    // bytes between the frame-constant regions
     rtpbr_buffer frame;           // frames x frame_stride, host visible
-    rtpbr_buffer materials;       // rtpbr_shader_material[max(material_count, 1)]
+    rtpbr_buffer materials;       // rtpbr_shader_material[material_slots]
+    uint32_t material_slots;      // max(material_count, 1)
     rtpbr_buffer tile_masks, tile_lists;
     rtpbr_image shadow_stand_in;  // 1x1, one layer, GENERAL: the shadow-ratio binding (never read)
     VkDescriptorPool pool;
@@ -278,6 +279,7 @@ rtpbr_result rtpbr_lighting_targets_create(rtpbr_context *ctx, const rtpbr_light
     t->frame_stride = align_up(sizeof(rtpbr_shader_frame), props.limits.minUniformBufferOffsetAlignment);
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, t->frame_stride * t->frames, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &t->frame));
     uint32_t slots = desc->material_count ? desc->material_count : 1;
+    t->material_slots = slots;
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, slots * sizeof(rtpbr_shader_material), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                        &t->materials));
     rtpbr_shader_material *records = t->materials.mapped;
@@ -408,9 +410,9 @@ rtpbr_result rtpbr_lighting_record(rtpbr_lighting_targets *t, const rtpbr_lighti
     // Before anything is recorded: a variant's first use compiles it, which may fail.
     VkPipeline pipelines[RTPBR_TILE_CLASS_COUNT];
     const rtpbr_shader_light *records = (const rtpbr_shader_light *)((const char *)lights->buffer.mapped + d->frame * lights->stride);
-    rtpbr_result result =
-        rtpbr_lighting_pipelines_get(ctx, d->ndf, d->multiscatter, rtpbr_lights_shapes(records, lights->count[d->frame]),
-                                     pipelines);
+    rtpbr_lighting_needs needs = rtpbr_lighting_needs_of(records, lights->count[d->frame], t->materials.mapped,
+                                                         t->material_slots);
+    rtpbr_result result = rtpbr_lighting_pipelines_get(ctx, d->ndf, d->multiscatter, &needs, pipelines);
     if (result != RTPBR_SUCCESS) return result;
 #undef FAIL
 

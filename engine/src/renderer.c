@@ -220,9 +220,11 @@ static rtpbr_result get_lighting(rtpbr_context *ctx, const rtpbr_gpu_scene *scen
                                  lighting_pipelines *out)
 {
     out->forward = VK_NULL_HANDLE;
-    uint32_t shapes = rtpbr_lights_shapes(scene->lights.mapped, scene->light_count);
+    rtpbr_lighting_needs needs = rtpbr_lighting_needs_of(scene->lights.mapped, scene->light_count, scene->materials.mapped,
+                                                         scene->material_count);
+    uint32_t shapes = needs.shapes;
     rtpbr_result result = desc->mc_samples == 0
-                              ? rtpbr_lighting_pipelines_get(ctx, desc->ndf, desc->multiscatter, shapes, out->lighting)
+                              ? rtpbr_lighting_pipelines_get(ctx, desc->ndf, desc->multiscatter, &needs, out->lighting)
                               : rtpbr_lighting_mc_pipeline_get(ctx, desc->ndf, desc->multiscatter, &out->lighting[0]);
     if (result == RTPBR_SUCCESS && rtpbr_scene_has_blend(scene))
         result = rtpbr_forward_pipeline_get(ctx, desc->ndf, desc->multiscatter, shapes > 0, &out->forward);

@@ -1245,6 +1245,24 @@ uint32_t rtpbr_lights_shapes(const rtpbr_shader_light *lights, uint32_t count)
     return shapes;
 }
 
+rtpbr_lighting_needs rtpbr_lighting_needs_of(const rtpbr_shader_light *lights, uint32_t count,
+                                             const rtpbr_shader_material *materials, uint32_t material_count)
+{
+    rtpbr_lighting_needs needs = {.shapes = rtpbr_lights_shapes(lights, count), .max_vertices = 3, .punctual = false};
+    for (uint32_t i = 0; i < material_count; ++i)
+        needs.material_features |= (materials[i].flags & RTPBR_MATERIAL_FLAG_DISNEY) != 0u
+                                       ? RTPBR_MATERIAL_FLAGS_FULL
+                                       : materials[i].flags & RTPBR_MATERIAL_FLAGS_FULL;
+    for (uint32_t i = 0; i < count; ++i) {
+        uint32_t shape = lights[i].shape;
+        if (shape == RTPBR_LIGHT_SHAPE_POINT || shape == RTPBR_LIGHT_SHAPE_SPOT || shape == RTPBR_LIGHT_SHAPE_DIRECTIONAL)
+            needs.punctual = true;
+        else if (shape == RTPBR_LIGHT_SHAPE_POLYGON && lights[i].vertex_count > needs.max_vertices)
+            needs.max_vertices = lights[i].vertex_count > 4 ? RTPBR_SHADER_MAX_POLYGON_VERTICES : 4;
+    }
+    return needs;
+}
+
 bool rtpbr_lights_have_spheres(const rtpbr_shader_light *lights, uint32_t count)
 {
     for (uint32_t i = 0; i < count; ++i)

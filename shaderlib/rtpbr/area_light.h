@@ -100,6 +100,15 @@
 //                          vertex read in it (fewer registers: the engine's full variants over
 //                          textured quads and tubes spilled 2 to 4 SGPRs on navi21 and gfx1100
 //                          without it).
+//   RTPBR_AREA_LIGHT_MAX_VERTICES  RTPBR_LTC_MAX_VERTICES (default): the most vertices of the
+//                          host's polygons (Host_LightVertexCount); 3: triangles only, 4: no
+//                          polygon beyond a quad. The walk's fourth edge (below 4) and its loop over
+//                          edges 5 and on (below 5) are then compiled out (without the loop form,
+//                          RTPBR_AREA_LIGHT_WALK_LOOP 0): on lavapipe, which runs the code of every
+//                          branch and a loop's first trip whether any lane takes them or not, a
+//                          quad light costs 9 % less. Used in expressions only (never in #if), so
+//                          that a GLSL host may make it a specialization constant (the engine: per
+//                          frame, from its lights; engine/shaders/shade_lights.glsl).
 //   RTPBR_UNROLL, RTPBR_DONT_UNROLL  loop attributes (GLSL: [[unroll]], [[dont_unroll]] with
 //                          GL_EXT_control_flow_attributes; HLSL: [unroll], [loop]); empty by
 //                          default.
@@ -107,7 +116,7 @@
 // The host bridge. The library never reads a buffer or samples a texture: the host defines,
 // before including this header, how a light and the tables are read (as RTXDI's bridge). Lights
 // are named by an index the host chooses (uint):
-//   uint         Host_LightVertexCount(uint light)  3 .. RTPBR_LTC_MAX_VERTICES
+//   uint         Host_LightVertexCount(uint light)  3 .. RTPBR_AREA_LIGHT_MAX_VERTICES
 //   rtpbr_float3 Host_LightVertex(uint light, uint k)  world space, counter-clockwise seen
 //                                     from the emitting side (ltc.h's conventions)
 //   rtpbr_float4 Host_LightPlane(uint light)   unit normal xyz (the emitting side), w = -n.v0
@@ -192,6 +201,9 @@
 
 #ifndef RTPBR_AREA_LIGHT_PUNCTUAL
 #define RTPBR_AREA_LIGHT_PUNCTUAL 0
+#endif
+#ifndef RTPBR_AREA_LIGHT_MAX_VERTICES
+#define RTPBR_AREA_LIGHT_MAX_VERTICES RTPBR_LTC_MAX_VERTICES
 #endif
 #ifndef RTPBR_AREA_LIGHT_SPHERES
 #define RTPBR_AREA_LIGHT_SPHERES 0
@@ -434,11 +446,12 @@ RTPBR_FN float AreaLight_WalkLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFram
     RTPBR_UNROLL for (uint k = 1u; k <= count; ++k)
         AreaLight_LobeSegment(AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a, quad), F, lobe);
 #else
-    // (lavapipe: AreaLight_EdgeStep)
+    // (lavapipe: AreaLight_EdgeStep; the fourth edge and the loop only where the host's
+    // polygons may have them, RTPBR_AREA_LIGHT_MAX_VERTICES: a tube's quad has four)
     RTPBR_UNROLL for (uint k = 1u; k <= 4u; ++k)
-        if (k < 4u || count >= 4u)
+        if (k < 4u || ((RTPBR_AREA_LIGHT_MAX_VERTICES >= 4u || quad.on) && count >= 4u))
             AreaLight_LobeSegment(AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a, quad), F, lobe);
-    if (count > 4u) {
+    if (RTPBR_AREA_LIGHT_MAX_VERTICES > 4u && count > 4u) {
         rtpbr_float3 v5 = RTPBR_F3(0.0f), v6 = v5, v7 = v5; // (read only below count: the host's contract)
         if (count > 5u) v5 = Host_LightVertex(i, 5u);
         if (count > 6u) v6 = Host_LightVertex(i, 6u);

@@ -262,6 +262,89 @@ static void culled_sparse_words(void **state)
     rtpbr_gpu_scene_destroy(only);
 }
 
+// A regular n-gon of radius r at height z around (x, y), facing down (clockwise seen from above).
+static rtpbr_light_desc down_polygon(uint32_t n, float x, float y, float z, float r, float emission)
+{
+    rtpbr_light_desc l = {.vertex_count = n, .emission = {emission, emission, emission}};
+    for (uint32_t k = 0; k < n; ++k) {
+        double a = -2.0 * M_PI * k / n + 0.3;
+        l.vertices[k][0] = x + r * (float)cos(a);
+        l.vertices[k][1] = y + r * (float)sin(a);
+        l.vertices[k][2] = z;
+    }
+    return l;
+}
+
+// A frame's lights choose how its LTC pipelines are specialized (rtpbr_lights_needs: polygons
+// of at most 3, 4 or 8 vertices; punctual lights or none; shade_lights.glsl): frames of
+// triangles only, of a triangle and a quad, of those and a pentagon and an octagon, and of the
+// triangle, the quad and a point light, rendered one after the other by one renderer, each
+// against Lambert's formula (the point light's: albedo / pi x I cos / d^2) within 1% at every
+// pixel. A frame shaded by a pipeline too specialized for it loses a polygon's last edges (a
+// quad shaded as a triangle) or its point light.
+static void polygon_sizes(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    float plane[12];
+    rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
+    const rtpbr_light_desc all[6] = {
+        down_polygon(3, -1.5f, -1.0f, 1.2f, 0.6f, 3.0f), down_polygon(4, 1.5f, -1.0f, 1.0f, 0.5f, 2.0f),
+        down_polygon(5, -1.5f, 1.5f, 1.4f, 0.6f, 2.5f),  down_polygon(8, 1.5f, 1.5f, 1.1f, 0.5f, 2.0f),
+        down_polygon(3, 0.0f, 0.5f, 1.6f, 0.4f, 4.0f),
+        {.type = RTPBR_LIGHT_POINT, .position = {0.3f, -0.2f, 1.3f}, .emission = {2.0f, 2.0f, 2.0f}},
+    };
+    static const struct {
+        const char *name;
+        uint32_t lights[5], count;
+    } frames[] = {
+        {"triangles", {0, 4}, 2},
+        {"a triangle and a quad", {0, 1}, 2},
+        {"up to an octagon", {0, 1, 2, 3, 4}, 5},
+        {"triangles again", {4, 0}, 2},
+        {"a quad and a point light", {0, 1, 5}, 3},
+    };
+    rtpbr_camera_desc camera = {.position = {0.0f, -5.0f, 6.0f}, .target = {0.0f, 0.0f, 0.0f}, .yfov = 1.0f,
+                                .znear = 0.1f, .zfar = 100.0f};
+    enum { W = 96, H = 64 };
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
+    const double n[3] = {0.0, 0.0, 1.0};
+    for (size_t f = 0; f < sizeof frames / sizeof frames[0]; ++f) {
+        rtpbr_light_desc lights[5];
+        for (uint32_t l = 0; l < frames[f].count; ++l) lights[l] = all[frames[f].lights[l]];
+        rtpbr_gpu_scene *scene = test_mesh_scene(ctx, &mesh, &test_lambert_material, lights, frames[f].count, &camera);
+        float *px = test_render_radiance(r, scene, &(rtpbr_render_desc){0}, W, H);
+        int checked = 0;
+        double worst = 0.0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                double p[3];
+                if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
+                double expect = 0.0;
+                for (uint32_t l = 0; l < frames[f].count; ++l) {
+                    if (lights[l].type == RTPBR_LIGHT_POINT) {
+                        double d[3] = {lights[l].position[0] - p[0], lights[l].position[1] - p[1], lights[l].position[2] - p[2]};
+                        double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                        expect += 0.8 / M_PI * lights[l].emission[0] * (d[2] / sqrt(d2)) / d2;
+                    } else {
+                        expect += 0.8 * lights[l].emission[0] * test_form_factor(p, n, lights[l].vertices, lights[l].vertex_count);
+                    }
+                }
+                double rel = fabs(px[4 * (y * W + x)] - expect) / expect;
+                worst = fmax(worst, rel);
+                if (rel > 0.01)
+                    fail_msg("%s: pixel (%d, %d): %.6f, Lambert's formula %.6f", frames[f].name, x, y, px[4 * (y * W + x)],
+                             expect);
+                ++checked;
+            }
+        printf("polygon sizes, %s: %d pixels, largest error against Lambert %.4f%%\n", frames[f].name, checked,
+               100.0 * worst);
+        assert_true(checked > W * H / 2);
+        free(px);
+        rtpbr_gpu_scene_destroy(scene);
+    }
+    rtpbr_renderer_destroy(r);
+}
+
 // Supersampling resolves coverage: a square seen straight on, its edges off the pixel grid.
 // Without supersampling every pixel is in or out (alpha 0 or 1); with s = 2 the edge pixels
 // get the covered fraction of their 2 x 2 samples (alpha in quarters), and the alpha sum over
@@ -317,6 +400,7 @@ static void supersampled_coverage(void **state)
 
 RTPBR_TEST_MAIN(test_env_case(supersampled_coverage),
                 test_env_case(lambertian_plane),
+                test_env_case(polygon_sizes),
                 test_env_case(normal_mapped_plane),
                 test_env_case(culling_bound),
                 test_env_case(culled_sparse_words))

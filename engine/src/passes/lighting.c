@@ -2,6 +2,8 @@
 // for its class; then one indirect dispatch per class runs that class's LTC variant
 // (lighting.comp) over its queue, turning the G-buffer into linear radiance; with
 // supersampling, the resolve (resolve.c) box-filters it down to the output.
+#include <stddef.h>
+
 #include "passes.h"
 
 #include "../internal.h"
@@ -102,10 +104,12 @@ rtpbr_result rtpbr_lighting_pass_init(rtpbr_context *ctx)
     RTPBR_TRY(rtpbr_pass_layouts_create(ctx, RTPBR_BINDINGS(bindings), 0, 0, &pass->set_layout, &pass->layout));
     RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_cull_comp), pass->layout, &pass->cull));
     RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_lighting_empty), pass->layout, &pass->empty));
-    // The default variant (GGX, multiple scattering on) now, so that a bad driver fails early;
-    // the others on first use (rtpbr_lighting_pipelines_get): each costs shader compilations.
+    // The default variant (GGX, multiple scattering on) for polygons of up to 4 vertices now, so
+    // that a bad driver fails early; the others on first use (rtpbr_lighting_pipelines_get):
+    // each costs shader compilations.
     VkPipeline unused[RTPBR_TILE_CLASS_COUNT];
-    RTPBR_TRY(rtpbr_lighting_pipelines_get(ctx, RTPBR_NDF_GGX_MODEL, RTPBR_MULTISCATTER_ON, 0, unused));
+    const rtpbr_lighting_needs quads = {.shapes = 0, .max_vertices = 4, .punctual = false, .material_features = 0};
+    RTPBR_TRY(rtpbr_lighting_pipelines_get(ctx, RTPBR_NDF_GGX_MODEL, RTPBR_MULTISCATTER_ON, &quads, unused));
 cleanup:
     return result; // the caller finishes a half-built pass
 }
@@ -114,19 +118,29 @@ void rtpbr_lighting_pass_finish(rtpbr_context *ctx)
 {
     rtpbr_lighting_pass *pass = &ctx->lighting;
     for (uint32_t v = 0; v < RTPBR_LIGHTING_VARIANT_COUNT; ++v)
-        for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) vkDestroyPipeline(ctx->device, pass->ltc[v][c], NULL);
+        for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c)
+            for (uint32_t s = 0; s < RTPBR_LIGHTING_SPEC_COUNT; ++s) vkDestroyPipeline(ctx->device, pass->ltc[v][c][s], NULL);
     const VkPipeline fixed[2] = {pass->empty, pass->cull};
     rtpbr_pass_objects_destroy(ctx, fixed, 2, pass->layout, pass->set_layout);
     // (the Monte Carlo pipelines and layout are lighting_mc.c's)
     for (uint32_t v = 0; v < RTPBR_LIGHTING_VARIANT_COUNT; ++v)
-        for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) pass->ltc[v][c] = VK_NULL_HANDLE;
+        for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c)
+            for (uint32_t s = 0; s < RTPBR_LIGHTING_SPEC_COUNT; ++s) pass->ltc[v][c][s] = VK_NULL_HANDLE;
     pass->empty = pass->cull = VK_NULL_HANDLE;
     pass->layout = VK_NULL_HANDLE;
     pass->set_layout = VK_NULL_HANDLE;
 }
 
-rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, uint32_t shapes,
-                                          VkPipeline out[RTPBR_TILE_CLASS_COUNT])
+// The LTC pipelines' specialization constants (shade_lights.glsl, shading.glsl:
+// RTPBR_SPEC_LIGHTING_*).
+typedef struct lighting_constants {
+    uint32_t max_vertices;
+    VkBool32 punctual;
+    uint32_t material_features;
+} lighting_constants;
+
+rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms,
+                                          const rtpbr_lighting_needs *needs, VkPipeline out[RTPBR_TILE_CLASS_COUNT])
 {
 #define LTC_CLASSES(ndf, ms)                                                                      \
     {RTPBR_SPIRV(rtpbr_spirv_lighting_##ndf##_##ms##_basic), RTPBR_SPIRV(rtpbr_spirv_lighting_##ndf##_##ms##_full), \
@@ -147,14 +161,34 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
     rtpbr_lighting_pass *pass = &ctx->lighting;
     uint32_t v = rtpbr_lighting_variant(ndf, ms);
     rtpbr_result result = RTPBR_SUCCESS;
+    // The specialization: polygons of up to 3, 4 or 8 vertices, punctual lights or none, and in
+    // the full classes the materials' features (the basic ones compile them out anyway: one
+    // pipeline for all, with the default); a pipeline per combination, compiled on first use.
+    _Static_assert(RTPBR_MATERIAL_FLAGS_FULL == 0x3cu, "the full variant's features: bits 2 to 5");
+    lighting_constants constants = {
+        .max_vertices = needs->max_vertices <= 3 ? 3u : needs->max_vertices <= 4 ? 4u : RTPBR_SHADER_MAX_POLYGON_VERTICES,
+        .punctual = needs->punctual ? VK_TRUE : VK_FALSE,
+    };
+    const VkSpecializationMapEntry entries[3] = {
+        {RTPBR_SPEC_LIGHTING_MAX_VERTICES, offsetof(lighting_constants, max_vertices), sizeof(uint32_t)},
+        {RTPBR_SPEC_LIGHTING_PUNCTUAL, offsetof(lighting_constants, punctual), sizeof(VkBool32)},
+        {RTPBR_SPEC_LIGHTING_MATERIALS, offsetof(lighting_constants, material_features), sizeof(uint32_t)},
+    };
+    const VkSpecializationInfo specialization = {3, entries, sizeof constants, &constants};
     out[RTPBR_TILE_CLASS_EMPTY] = pass->empty;
     for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) {
         // the spheres' classes only for a frame with a sphere or a disk, the textured ones only
         // for a frame with a textured quad, the tubes' for one with a tube (shapes: rtpbr_lights_shapes; no tile is queued for
         // the others: their slots get a class's pipeline that is compiled, never dispatched)
-        uint32_t k = c < 2u * (shapes + 1u) ? c : c % 2u + 2u * shapes;
-        if (!pass->ltc[v][k]) RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, ltc[v][k], pass->layout, &pass->ltc[v][k]));
-        out[RTPBR_TILE_CLASS_BASIC + c] = pass->ltc[v][k];
+        uint32_t k = c < 2u * (needs->shapes + 1u) ? c : c % 2u + 2u * needs->shapes;
+        bool full = k % 2u == 1u; // (RTPBR_TILE_CLASS_FULL, _FULL_SPHERES, ...: lit class 1, 3, 5, 7)
+        constants.material_features = full ? needs->material_features & RTPBR_MATERIAL_FLAGS_FULL : RTPBR_MATERIAL_FLAGS_FULL;
+        uint32_t s = (constants.max_vertices == 3 ? 0u : constants.max_vertices == 4 ? 1u : 2u) +
+                     3u * constants.punctual + 6u * (constants.material_features >> 2);
+        if (!pass->ltc[v][k][s])
+            RTPBR_TRY(rtpbr_compute_pipeline_create_specialized(ctx, ltc[v][k], pass->layout, &specialization,
+                                                                &pass->ltc[v][k][s]));
+        out[RTPBR_TILE_CLASS_BASIC + c] = pass->ltc[v][k][s];
     }
 cleanup:
     return result;

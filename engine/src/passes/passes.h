@@ -55,10 +55,14 @@ void rtpbr_shadow_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const 
 rtpbr_result rtpbr_lighting_pass_init(rtpbr_context *ctx);
 void rtpbr_lighting_pass_finish(rtpbr_context *ctx);
 // The LTC pipelines of a model variant, one per tile class (out[RTPBR_TILE_CLASS_*]),
-// compiled on first use.
-// spheres: the frame has a sphere light (the spheres' classes are compiled too; without, their
-// slots hold the others').
-rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms, uint32_t shapes,
+// compiled on first use, for a frame that needs what needs says (rtpbr_lighting_needs_of): its
+// lights' classes (the spheres', textured quads' and tubes' classes are compiled only for a
+// frame with such lights; without, their slots hold the others'), specialized to its polygons'
+// most vertices, to whether it has punctual lights and (the full classes) to its materials'
+// features.
+struct rtpbr_lighting_needs; // internal.h
+rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms,
+                                          const struct rtpbr_lighting_needs *needs,
                                           VkPipeline out[RTPBR_TILE_CLASS_COUNT]);
 // Index of a model variant in rtpbr_lighting_pass's arrays.
 uint32_t rtpbr_lighting_variant(rtpbr_ndf ndf, rtpbr_multiscatter ms);
