@@ -379,10 +379,12 @@
 // shading.glsl): the most vertices of the frame's polygons (a uint,
 // RTPBR_SHADER_MAX_POLYGON_VERTICES by default), whether it has punctual lights (a bool, true by
 // default) and the RTPBR_MATERIAL_FLAGS_FULL bits its materials have (a uint, all by default);
-// passes/lighting.c sets them per frame from its light and material records (rtpbr_lighting_needs).
+// passes/lighting.c sets them per frame from its light and material records
+// (rtpbr_lighting_needs_of); and whether the device is a CPU (a bool, false by default).
 #define RTPBR_SPEC_LIGHTING_MAX_VERTICES 1
 #define RTPBR_SPEC_LIGHTING_PUNCTUAL 2
 #define RTPBR_SPEC_LIGHTING_MATERIALS 3
+#define RTPBR_SPEC_LIGHTING_CPU 4
 // Lighting pass: the shadow ratios, a sampler2DArray (layer = light index), read with texelFetch.
 #define RTPBR_BINDING_LIGHT_SHADOW_RATIO 24
 // The extension textures' values per pixel (multipliers of the material record's factors, 1

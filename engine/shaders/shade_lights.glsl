@@ -50,7 +50,34 @@ uint Host_LightVertexCount(uint i)
     return lights[i].vertex_count;
 #endif
 }
+// On a CPU device (RTPBR_SPEC_LIGHTING_CPU, set by passes/lighting.c: lavapipe) the full
+// variant reads a polygon's first four vertices once per light (shade_light_vertices, before
+// AreaLight_Add) and its lobes' walks take them from there: on lavapipe each storage-buffer read
+// is a loop over the SIMD lanes, and the full evaluation walks the polygon once per lobe (up to
+// five times; docs/performance.md, 21). On a GPU a uniform light's read is a scalar load, and
+// vertices held through the lobes would cost registers: there (false, the default) each walk
+// reads its own.
+layout(constant_id = RTPBR_SPEC_LIGHTING_CPU) const bool shade_cpu = false;
+#if RTPBR_LIGHTING_FULL && !defined(RTPBR_SHADE_ALL_LIGHTS) && !defined(RTPBR_STATS_FIXED_LIGHTS)
+vec3 shade_v0, shade_v1, shade_v2, shade_v3; // light shade_light_vertices(i)'s vertices 0 to 3
+void shade_light_vertices(uint i)
+{
+    if (shade_cpu) { // (a triangle's vertex 3 is read but never used: the record has 8 slots)
+        shade_v0 = lights[i].vertices[0].xyz;
+        shade_v1 = lights[i].vertices[1].xyz;
+        shade_v2 = lights[i].vertices[2].xyz;
+        shade_v3 = lights[i].vertices[3].xyz;
+    }
+}
+vec3 Host_LightVertex(uint i, uint k)
+{
+    if (shade_cpu && k < 4u) return k == 0u ? shade_v0 : k == 1u ? shade_v1 : k == 2u ? shade_v2 : shade_v3;
+    return lights[i].vertices[k].xyz;
+}
+#else
+void shade_light_vertices(uint i) {}
 vec3 Host_LightVertex(uint i, uint k) { return lights[i].vertices[k].xyz; }
+#endif
 vec4 Host_LightPlane(uint i) { return lights[i].plane; }
 vec4 Host_LightSphere(uint i) { return lights[i].sphere; }
 bool Host_LightTwoSided(uint i) { return lights[i].two_sided != 0.0f; }
@@ -237,14 +264,18 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
         uint textured = tile_masks[maskBase + 4u * uint(RTPBR_TILE_MASK_WORDS) + word];
         for (uint bits = tile_masks[maskBase + word] | textured; bits != 0u; bits &= bits - 1u) {
             uint b = uint(findLSB(bits));
+            shade_light_vertices(word * 32u + b);
             AreaLight_AddShape(px, acc, s, P, N, word * 32u + b, false, false, ((textured >> b) & 1u) != 0u RTPBR_AREA_LIGHT_TUBE_ARG(false));
         }
     }
 #else
     for (uint words = tile_masks[summaryBase]; words != 0u; words &= words - 1u) {
         uint word = uint(findLSB(words));
-        for (uint bits = tile_masks[maskBase + word]; bits != 0u; bits &= bits - 1u)
-            AreaLight_Add(px, acc, s, P, N, word * 32u + uint(findLSB(bits)));
+        for (uint bits = tile_masks[maskBase + word]; bits != 0u; bits &= bits - 1u) {
+            uint i = word * 32u + uint(findLSB(bits));
+            shade_light_vertices(i);
+            AreaLight_Add(px, acc, s, P, N, i);
+        }
     }
 #endif
 #if RTPBR_LIGHTING_SPHERES

@@ -110,6 +110,7 @@ typedef struct rtpbr_lighting_pass {             // passes/lighting.c, passes/li
     VkPipeline empty;                            // tiles without light: emission and background
     // compiled on first use, per specialization (rtpbr_lighting_spec_index)
     VkPipeline ltc[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT][RTPBR_LIGHTING_SPEC_COUNT];
+    bool cpu_device;                             // RTPBR_SPEC_LIGHTING_CPU of every LTC pipeline
     VkPipelineLayout mc_layout;                  // + push constants rtpbr_shader_mc
     VkPipeline mc[RTPBR_LIGHTING_VARIANT_COUNT]; // compiled on first use
 } rtpbr_lighting_pass;

@@ -272,24 +272,36 @@ static void sheen_albedo_check(void **state)
 // angles, both frames in one renderer; every pixel within 1e-5 (relative, with a floor of 1e-6).
 // A frame specialized without a feature one of its materials has (its coat ignored: 0.59 off)
 // fails it; the lobes themselves are held to references by the tests above.
-static void material_specialization(void **state)
+// The lights of material_specialization and full_lights_add: a quad, a hexagon (facing down,
+// 1 m up) and a two-sided triangle standing near the far edge.
+static void three_lights(rtpbr_light_desc lights[3])
 {
-    test_env *env = *state;
-    float plane[12];
-    rtpbr_mesh_desc mesh = test_square_mesh(6.0f, 0.0f, plane);
-    rtpbr_light_desc lights[3] = {
+    const rtpbr_light_desc l[3] = {
         {.vertices = {{-1.5f, 0.5f, 1.2f}, {-1.5f, 1.5f, 1.2f}, {-0.5f, 1.5f, 1.2f}, {-0.5f, 0.5f, 1.2f}}, .vertex_count = 4,
          .emission = {3.0f, 2.5f, 2.0f}},
         {.vertex_count = 6, .emission = {1.0f, 2.0f, 3.0f}},
         {.vertices = {{-0.5f, 3.0f, 0.4f}, {0.5f, 3.0f, 0.4f}, {0.0f, 3.0f, 1.2f}}, .vertex_count = 3,
          .emission = {4.0f, 4.0f, 4.0f}, .two_sided = 1},
     };
-    for (int k = 0; k < 6; ++k) { // a hexagon facing down, 1 m up, around (1.2, 1, 1)
+    memcpy(lights, l, sizeof l);
+    for (int k = 0; k < 6; ++k) { // the hexagon around (1.2, 1, 1)
         double a = -2.0 * M_PI * k / 6.0;
         lights[1].vertices[k][0] = 1.2f + 0.6f * (float)cos(a);
         lights[1].vertices[k][1] = 1.0f + 0.6f * (float)sin(a);
         lights[1].vertices[k][2] = 1.0f;
     }
+}
+
+static const rtpbr_camera_desc three_lights_camera = {.position = {0.0f, -4.0f, 3.0f}, .target = {0.0f, 1.0f, 0.0f},
+                                                      .yfov = 1.0f, .znear = 0.1f, .zfar = 50.0f};
+
+static void material_specialization(void **state)
+{
+    test_env *env = *state;
+    float plane[12];
+    rtpbr_mesh_desc mesh = test_square_mesh(6.0f, 0.0f, plane);
+    rtpbr_light_desc lights[3];
+    three_lights(lights);
     rtpbr_material_desc base = {.base_color = {0.6f, 0.5f, 0.4f}, .roughness = 0.35f};
     rtpbr_material_desc materials[6];
     for (int i = 0; i < 6; ++i) materials[i] = base;
@@ -303,8 +315,7 @@ static void material_specialization(void **state)
     // (materials[5]: none of them, the basic variant)
     const char *names[6] = {"coat", "sheen", "anisotropy", "coat, sheen, anisotropy", "coat on metal", "basic"};
     rtpbr_material_desc every = {.model = RTPBR_MATERIAL_DISNEY, .base_color = {0.5f, 0.5f, 0.5f}, .roughness = 0.5f};
-    rtpbr_camera_desc camera = {.position = {0.0f, -4.0f, 3.0f}, .target = {0.0f, 1.0f, 0.0f}, .yfov = 1.0f,
-                                .znear = 0.1f, .zfar = 50.0f};
+    const rtpbr_camera_desc camera = three_lights_camera;
     enum { W = 64, H = 48 };
     rtpbr_renderer *r = test_renderer(env->ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
     for (int m = 0; m < 6; ++m) {
@@ -335,9 +346,57 @@ static void material_specialization(void **state)
     rtpbr_renderer_destroy(r);
 }
 
+// The full variant sums its lights without a bound across them (area_light.h, AreaLight_End: the
+// energy bound is the basic variant's), so its image of three lights is the sum of its images of
+// each alone, within float rounding: every pixel within 1e-5 (relative, floor 1e-6), for a
+// KHR material with coat, sheen and anisotropy and for a Disney one. State carried from one
+// light to the next (a light's vertices taken for another's: the CPU device's vertex reads,
+// shade_lights.glsl) fails it.
+static void full_lights_add(void **state)
+{
+    test_env *env = *state;
+    float plane[12];
+    rtpbr_mesh_desc mesh = test_square_mesh(6.0f, 0.0f, plane);
+    rtpbr_light_desc lights[3];
+    three_lights(lights);
+    rtpbr_material_desc materials[2] = {
+        {.base_color = {0.6f, 0.5f, 0.4f}, .roughness = 0.35f, .clearcoat_factor = 1.0f, .clearcoat_roughness_factor = 0.1f,
+         .sheen_color_factor = {0.8f, 0.5f, 0.6f}, .sheen_roughness_factor = 0.4f, .anisotropy_strength = 0.4f},
+        {.model = RTPBR_MATERIAL_DISNEY, .base_color = {0.5f, 0.6f, 0.7f}, .roughness = 0.4f, .metallic = 0.3f,
+         .disney = {.clearcoat = 0.8f, .sheen = 0.5f, .subsurface = 0.3f}},
+    };
+    const char *names[2] = {"coat, sheen, anisotropy", "Disney"};
+    const rtpbr_camera_desc camera = three_lights_camera;
+    enum { W = 64, H = 48 };
+    rtpbr_renderer *r = test_renderer(env->ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
+    for (int m = 0; m < 2; ++m) {
+        float *px[4];
+        for (int l = 0; l < 4; ++l) { // the three lights, then each alone
+            rtpbr_gpu_scene *s = test_mesh_scene(env->ctx, &mesh, &materials[m], l == 0 ? lights : &lights[l - 1],
+                                                 l == 0 ? 3u : 1u, &camera);
+            px[l] = test_render_radiance(r, s, &(rtpbr_render_desc){0}, W, H);
+            rtpbr_gpu_scene_destroy(s);
+        }
+        double worst = 0.0, mean = 0.0;
+        for (int i = 0; i < W * H; ++i)
+            for (int c = 0; c < 3; ++c) {
+                double all = px[0][4 * i + c], sum = (double)px[1][4 * i + c] + px[2][4 * i + c] + px[3][4 * i + c];
+                worst = fmax(worst, fabs(all - sum) / fmax(fmax(fabs(all), fabs(sum)), 1e-6));
+                mean += all / (3.0 * W * H);
+            }
+        printf("full variant, %s: three lights against the sum of each alone, largest difference %.3g (mean "
+               "radiance %.4f)\n", names[m], worst, mean);
+        assert_true(mean > 0.01);
+        assert_true(worst <= 1e-5);
+        for (int l = 0; l < 4; ++l) free(px[l]);
+    }
+    rtpbr_renderer_destroy(r);
+}
+
 RTPBR_TEST_MAIN(test_env_case(disney_diffuse_albedo),
                 test_env_case(layered_dielectric_energy),
                 test_env_case(clearcoat_layer),
                 test_env_case(sheen_albedo_check),
                 test_env_case(ior_fresnel_one),
-                test_env_case(material_specialization))
+                test_env_case(material_specialization),
+                test_env_case(full_lights_add))

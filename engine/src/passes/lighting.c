@@ -102,6 +102,9 @@ rtpbr_result rtpbr_lighting_pass_init(rtpbr_context *ctx)
     rtpbr_lighting_pass *pass = &ctx->lighting;
     rtpbr_result result = RTPBR_SUCCESS;
     RTPBR_TRY(rtpbr_pass_layouts_create(ctx, RTPBR_BINDINGS(bindings), 0, 0, &pass->set_layout, &pass->layout));
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(ctx->physical_device, &props);
+    pass->cpu_device = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_cull_comp), pass->layout, &pass->cull));
     RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_lighting_empty), pass->layout, &pass->empty));
     // The default variant (GGX, multiple scattering on) for polygons of up to 4 vertices now, so
@@ -137,6 +140,7 @@ typedef struct lighting_constants {
     uint32_t max_vertices;
     VkBool32 punctual;
     uint32_t material_features;
+    VkBool32 cpu; // (the context's device: the same for all its pipelines)
 } lighting_constants;
 
 rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms,
@@ -168,13 +172,15 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
     lighting_constants constants = {
         .max_vertices = needs->max_vertices <= 3 ? 3u : needs->max_vertices <= 4 ? 4u : RTPBR_SHADER_MAX_POLYGON_VERTICES,
         .punctual = needs->punctual ? VK_TRUE : VK_FALSE,
+        .cpu = pass->cpu_device ? VK_TRUE : VK_FALSE,
     };
-    const VkSpecializationMapEntry entries[3] = {
+    const VkSpecializationMapEntry entries[4] = {
         {RTPBR_SPEC_LIGHTING_MAX_VERTICES, offsetof(lighting_constants, max_vertices), sizeof(uint32_t)},
         {RTPBR_SPEC_LIGHTING_PUNCTUAL, offsetof(lighting_constants, punctual), sizeof(VkBool32)},
         {RTPBR_SPEC_LIGHTING_MATERIALS, offsetof(lighting_constants, material_features), sizeof(uint32_t)},
+        {RTPBR_SPEC_LIGHTING_CPU, offsetof(lighting_constants, cpu), sizeof(VkBool32)},
     };
-    const VkSpecializationInfo specialization = {3, entries, sizeof constants, &constants};
+    const VkSpecializationInfo specialization = {4, entries, sizeof constants, &constants};
     out[RTPBR_TILE_CLASS_EMPTY] = pass->empty;
     for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) {
         // the spheres' classes only for a frame with a sphere or a disk, the textured ones only
