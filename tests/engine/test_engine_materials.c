@@ -272,10 +272,18 @@ static void sheen_albedo_check(void **state)
 // angles, both frames in one renderer; every pixel within 1e-5 (relative, with a floor of 1e-6).
 // A frame specialized without a feature one of its materials has (its coat ignored: 0.59 off)
 // fails it; the lobes themselves are held to references by the tests above.
-// The lights of material_specialization and full_lights_add: a quad, a hexagon (facing down,
-// 1 m up) and a two-sided triangle standing near the far edge.
-static void three_lights(rtpbr_light_desc lights[3])
+// The scene of material_specialization and full_lights_add: a 12 m plane (its positions in
+// plane), under a quad, a hexagon (facing down, 1 m up) and a two-sided triangle standing near
+// the far edge.
+typedef struct three_lights_scene {
+    float plane[12];
+    rtpbr_mesh_desc mesh;
+    rtpbr_light_desc lights[3];
+} three_lights_scene;
+static void three_lights(three_lights_scene *s)
 {
+    s->mesh = test_square_mesh(6.0f, 0.0f, s->plane);
+    rtpbr_light_desc *lights = s->lights;
     const rtpbr_light_desc l[3] = {
         {.vertices = {{-1.5f, 0.5f, 1.2f}, {-1.5f, 1.5f, 1.2f}, {-0.5f, 1.5f, 1.2f}, {-0.5f, 0.5f, 1.2f}}, .vertex_count = 4,
          .emission = {3.0f, 2.5f, 2.0f}},
@@ -283,7 +291,7 @@ static void three_lights(rtpbr_light_desc lights[3])
         {.vertices = {{-0.5f, 3.0f, 0.4f}, {0.5f, 3.0f, 0.4f}, {0.0f, 3.0f, 1.2f}}, .vertex_count = 3,
          .emission = {4.0f, 4.0f, 4.0f}, .two_sided = 1},
     };
-    memcpy(lights, l, sizeof l);
+    memcpy(s->lights, l, sizeof l);
     for (int k = 0; k < 6; ++k) { // the hexagon around (1.2, 1, 1)
         double a = -2.0 * M_PI * k / 6.0;
         lights[1].vertices[k][0] = 1.2f + 0.6f * (float)cos(a);
@@ -298,10 +306,8 @@ static const rtpbr_camera_desc three_lights_camera = {.position = {0.0f, -4.0f, 
 static void material_specialization(void **state)
 {
     test_env *env = *state;
-    float plane[12];
-    rtpbr_mesh_desc mesh = test_square_mesh(6.0f, 0.0f, plane);
-    rtpbr_light_desc lights[3];
-    three_lights(lights);
+    three_lights_scene ts;
+    three_lights(&ts);
     rtpbr_material_desc base = {.base_color = {0.6f, 0.5f, 0.4f}, .roughness = 0.35f};
     rtpbr_material_desc materials[6];
     for (int i = 0; i < 6; ++i) materials[i] = base;
@@ -322,9 +328,9 @@ static void material_specialization(void **state)
         const rtpbr_material_desc pair[2] = {materials[m], every};
         float *px[2];
         for (uint32_t n = 1; n <= 2; ++n) {
-            rtpbr_gpu_scene *s = test_scene(env->ctx, &(rtpbr_gpu_scene_desc){.meshes = &mesh, .mesh_count = 1,
+            rtpbr_gpu_scene *s = test_scene(env->ctx, &(rtpbr_gpu_scene_desc){.meshes = &ts.mesh, .mesh_count = 1,
                                                                               .materials = pair, .material_count = n,
-                                                                              .lights = lights, .light_count = 3,
+                                                                              .lights = ts.lights, .light_count = 3,
                                                                               .cameras = &camera, .camera_count = 1});
             px[n - 1] = test_render_radiance(r, s, &(rtpbr_render_desc){0}, W, H);
             rtpbr_gpu_scene_destroy(s);
@@ -355,10 +361,8 @@ static void material_specialization(void **state)
 static void full_lights_add(void **state)
 {
     test_env *env = *state;
-    float plane[12];
-    rtpbr_mesh_desc mesh = test_square_mesh(6.0f, 0.0f, plane);
-    rtpbr_light_desc lights[3];
-    three_lights(lights);
+    three_lights_scene ts;
+    three_lights(&ts);
     rtpbr_material_desc materials[2] = {
         {.base_color = {0.6f, 0.5f, 0.4f}, .roughness = 0.35f, .clearcoat_factor = 1.0f, .clearcoat_roughness_factor = 0.1f,
          .sheen_color_factor = {0.8f, 0.5f, 0.6f}, .sheen_roughness_factor = 0.4f, .anisotropy_strength = 0.4f},
@@ -372,7 +376,7 @@ static void full_lights_add(void **state)
     for (int m = 0; m < 2; ++m) {
         float *px[4];
         for (int l = 0; l < 4; ++l) { // the three lights, then each alone
-            rtpbr_gpu_scene *s = test_mesh_scene(env->ctx, &mesh, &materials[m], l == 0 ? lights : &lights[l - 1],
+            rtpbr_gpu_scene *s = test_mesh_scene(env->ctx, &ts.mesh, &materials[m], l == 0 ? ts.lights : &ts.lights[l - 1],
                                                  l == 0 ? 3u : 1u, &camera);
             px[l] = test_render_radiance(r, s, &(rtpbr_render_desc){0}, W, H);
             rtpbr_gpu_scene_destroy(s);
