@@ -108,7 +108,7 @@ typedef struct rtpbr_lighting_pass {             // passes/lighting.c, passes/li
     VkPipelineLayout layout;                     // cull and LTC: no push constants
     VkPipeline cull;                             // cull.comp: tile light masks and class queues
     VkPipeline empty;                            // tiles without light: emission and background
-    // compiled on first use, per specialization (rtpbr_lighting_spec_index)
+    // compiled on first use, per specialization (rtpbr_lighting_pipelines_get: RTPBR_SPEC_LIGHTING_*)
     VkPipeline ltc[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT][RTPBR_LIGHTING_SPEC_COUNT];
     bool cpu_device;                             // RTPBR_SPEC_LIGHTING_CPU of every LTC pipeline
     VkPipelineLayout mc_layout;                  // + push constants rtpbr_shader_mc

@@ -106,7 +106,7 @@
 //                          edges 5 and on (below 5) are then compiled out (without the loop form,
 //                          RTPBR_AREA_LIGHT_WALK_LOOP 0): on lavapipe, which runs the code of every
 //                          branch and a loop's first trip whether any lane takes them or not, a
-//                          quad light costs 9 % less. Used in expressions only (never in #if), so
+//                          quad light costs about 9 % less. Used in expressions only (never in #if), so
 //                          that a GLSL host may make it a specialization constant (the engine: per
 //                          frame, from its lights; engine/shaders/shade_lights.glsl).
 //   RTPBR_UNROLL, RTPBR_DONT_UNROLL  loop attributes (GLSL: [[unroll]], [[dont_unroll]] with
