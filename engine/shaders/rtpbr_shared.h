@@ -214,7 +214,7 @@
 #define RTPBR_BINDING_LIGHT_MATERIALS 21   // storage: rtpbr_shader_material[]
 #define RTPBR_BINDING_LIGHT_TILE_MASKS 22  // storage: per-tile light masks (cull.comp)
 #define RTPBR_BINDING_LIGHT_TILE_LISTS 23  // storage: per-class tile queues (cull.comp)
-#define RTPBR_LIGHTING_BINDING_COUNT 29 // with RTPBR_BINDING_LIGHT_SHADOW_RATIO (24), GBUFFER4..6 and LIGHT_TEXTURES (below)
+#define RTPBR_LIGHTING_BINDING_COUNT 30 // with RTPBR_BINDING_LIGHT_SHADOW_RATIO (24), GBUFFER4..6, LIGHT_TEXTURES and LIGHTS_UNIFORM (below)
 
 // One light, the std430 element of the lights buffer (RTPBR_BINDING_LIGHT_LIGHTS,
 // RTPBR_BINDING_SHADOW_LIGHTS; rtpbr_shader_light, light.glsl): written by engine/src/scene.c.
@@ -385,6 +385,10 @@
 #define RTPBR_SPEC_LIGHTING_PUNCTUAL 2
 #define RTPBR_SPEC_LIGHTING_MATERIALS 3
 #define RTPBR_SPEC_LIGHTING_CPU 4
+// Whether the lighting variant reads the lights from RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM (a bool,
+// false by default): set by passes/lighting.c on a CPU device for frames of at most
+// RTPBR_UNIFORM_LIGHTS_MAX lights (docs/performance.md, 22).
+#define RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS 5
 // Lighting pass: the shadow ratios, a sampler2DArray (layer = light index), read with texelFetch.
 #define RTPBR_BINDING_LIGHT_SHADOW_RATIO 24
 // The extension textures' values per pixel (multipliers of the material record's factors, 1
@@ -398,6 +402,14 @@
 // square with RTPBR_SHADER_LIGHT_TEXTURE_LEVELS levels, level k blurred over 2^k texels of level
 // 0 (engine/src/light_texture.c); sampled linearly, clamped to the edge.
 #define RTPBR_BINDING_LIGHT_TEXTURES 28
+// The lights again, the first RTPBR_UNIFORM_LIGHTS_MAX records of the same buffer as a uniform
+// buffer (std140: the same layout as std430 for rtpbr_shader_light), read instead of
+// RTPBR_BINDING_LIGHT_LIGHTS where RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS is set: on lavapipe a
+// uniform buffer's read at a varying index is one gather, a storage buffer's a loop over the
+// SIMD lanes. 315 records of 208 bytes fill 65,520 of 65,536 bytes, lavapipe's (and a common
+// GPU's) maxUniformBufferRange.
+#define RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM 29
+#define RTPBR_UNIFORM_LIGHTS_MAX 315
 #define RTPBR_SHADER_LIGHT_TEXTURE_SIZE 128
 #define RTPBR_SHADER_LIGHT_TEXTURE_LEVELS 8
 // Shadow passes, descriptor set 0 (shadow.comp traces, shadow_denoise.comp filters).

@@ -33,6 +33,23 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_TEXTURES) uniform sampler2DArray l
 #define LUT_LTC_2 lut_ltc_ggx_2
 #endif
 
+// A field of light i's record (RTPBR_LIGHT_FIELDS): from the storage buffer, or in the lighting
+// pass on a CPU device, for a frame of at most RTPBR_UNIFORM_LIGHTS_MAX lights, from the same
+// records bound as a uniform buffer (RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS, set by
+// passes/lighting.c; rtpbr_shared.h, RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM): on lavapipe a uniform
+// buffer's read at an index that varies is one gather, a storage buffer's a loop over the SIMD
+// lanes (docs/performance.md, 22). The GPU's code (false, the default) reads the storage
+// buffer as before.
+#ifdef RTPBR_SHADE_ALL_LIGHTS
+#define LIGHT(i, field) lights[i].field
+#else
+layout(constant_id = RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS) const bool shade_uniform_lights = false;
+layout(set = 0, binding = RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM, std140) uniform LightsUniform {
+    Light lights_uniform[RTPBR_UNIFORM_LIGHTS_MAX];
+};
+#define LIGHT(i, field) (shade_uniform_lights ? lights_uniform[i].field : lights[i].field)
+#endif
+
 // bench/shader-stats' per-light builds over textured quads (not a record's shape: a polygon
 // with a texture).
 #define RTPBR_STATS_SHAPE_TEXTURED_QUAD 16
@@ -47,7 +64,7 @@ uint Host_LightVertexCount(uint i)
 #ifdef RTPBR_STATS_FIXED_LIGHTS
     return 4u;
 #else
-    return lights[i].vertex_count;
+    return LIGHT(i, vertex_count);
 #endif
 }
 // On a CPU device (RTPBR_SPEC_LIGHTING_CPU, set by passes/lighting.c: lavapipe) the full
@@ -63,39 +80,39 @@ vec3 shade_v0, shade_v1, shade_v2, shade_v3; // light shade_light_vertices(i)'s 
 void shade_light_vertices(uint i)
 {
     if (shade_cpu) { // (a triangle's vertex 3 is read but never used: the record has 8 slots)
-        shade_v0 = lights[i].vertices[0].xyz;
-        shade_v1 = lights[i].vertices[1].xyz;
-        shade_v2 = lights[i].vertices[2].xyz;
-        shade_v3 = lights[i].vertices[3].xyz;
+        shade_v0 = LIGHT(i, vertices[0]).xyz;
+        shade_v1 = LIGHT(i, vertices[1]).xyz;
+        shade_v2 = LIGHT(i, vertices[2]).xyz;
+        shade_v3 = LIGHT(i, vertices[3]).xyz;
     }
 }
 vec3 Host_LightVertex(uint i, uint k)
 {
     if (shade_cpu && k < 4u) return k == 0u ? shade_v0 : k == 1u ? shade_v1 : k == 2u ? shade_v2 : shade_v3;
-    return lights[i].vertices[k].xyz;
+    return LIGHT(i, vertices[k]).xyz;
 }
 #else
 void shade_light_vertices(uint i) {}
-vec3 Host_LightVertex(uint i, uint k) { return lights[i].vertices[k].xyz; }
+vec3 Host_LightVertex(uint i, uint k) { return LIGHT(i, vertices[k]).xyz; }
 #endif
-vec4 Host_LightPlane(uint i) { return lights[i].plane; }
-vec4 Host_LightSphere(uint i) { return lights[i].sphere; }
-bool Host_LightTwoSided(uint i) { return lights[i].two_sided != 0.0f; }
-vec3 Host_LightRadiance(uint i) { return lights[i].radiance; }
+vec4 Host_LightPlane(uint i) { return LIGHT(i, plane); }
+vec4 Host_LightSphere(uint i) { return LIGHT(i, sphere); }
+bool Host_LightTwoSided(uint i) { return LIGHT(i, two_sided) != 0.0f; }
+vec3 Host_LightRadiance(uint i) { return LIGHT(i, radiance); }
 // Punctual lights (shaderlib punctual.h; the record's layout: rtpbr_shared.h, RTPBR_LIGHT_FIELDS).
 uint Host_LightShape(uint i)
 {
 #ifdef RTPBR_STATS_FIXED_LIGHTS
     return 0u; // the per-quad-light figures
 #else
-    return lights[i].shape;
+    return LIGHT(i, shape);
 #endif
 }
-vec4 Host_LightPosition(uint i) { return lights[i].vertices[0]; }
-vec3 Host_LightDirection(uint i) { return lights[i].vertices[1].xyz; }
-vec2 Host_LightSpotCone(uint i) { return lights[i].vertices[2].xy; }
+vec4 Host_LightPosition(uint i) { return LIGHT(i, vertices[0]); }
+vec3 Host_LightDirection(uint i) { return LIGHT(i, vertices[1]).xyz; }
+vec2 Host_LightSpotCone(uint i) { return LIGHT(i, vertices[2]).xy; }
 // A disk's half-axes (RTPBR_LIGHT_FIELDS, DISK: vertices[1], vertices[2]).
-vec3 Host_LightDiskAxis(uint i, uint k) { return lights[i].vertices[1u + k].xyz; }
+vec3 Host_LightDiskAxis(uint i, uint k) { return LIGHT(i, vertices[1u + k]).xyz; }
 #if RTPBR_LIGHTING_TEXTURED
 // A textured quad's emission factor at lookup = (s, t, footprint) (area_light.h): its chain's
 // level k is blurred over 2^k texels (rtpbr_shared.h, RTPBR_BINDING_LIGHT_TEXTURES), so the
@@ -104,7 +121,7 @@ vec3 Host_LightTexture(uint i, vec3 lookup)
 {
     float lod = clamp(log2(max(lookup.z * float(RTPBR_SHADER_LIGHT_TEXTURE_SIZE), 1e-6f)), 0.0f,
                       float(RTPBR_SHADER_LIGHT_TEXTURE_LEVELS - 1));
-    return textureLod(light_textures, vec3(lookup.xy, float(lights[i].texture - 1u)), lod).rgb;
+    return textureLod(light_textures, vec3(lookup.xy, float(LIGHT(i, texture) - 1u)), lod).rgb;
 }
 #endif
 ivec2 shade_pixel; // the pixel shade_lights shades (for its shadow ratios)
@@ -150,9 +167,9 @@ layout(constant_id = RTPBR_SPEC_LIGHTING_PUNCTUAL) const bool shade_punctual = t
 #if RTPBR_LIGHTING_TUBES || (defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_STATS_SHAPE_TUBE)
 #define RTPBR_AREA_LIGHT_TUBES 1 // AreaLight_AddTube for the tubes' mask (RTPBR_LIGHTING_TUBES)
 // A tube's ends' centres and radius (RTPBR_LIGHT_FIELDS, TUBE: vertices[0], vertices[1]).
-vec4 Host_LightTube(uint i, uint k) { return lights[i].vertices[k]; }
+vec4 Host_LightTube(uint i, uint k) { return LIGHT(i, vertices[k]); }
 #define RTPBR_AREA_LIGHT_TUBE_RANGE 1 // a tube's range window (RTPBR_LIGHT_FIELDS, TUBE: vertices[3].w)
-float Host_LightTubeInvRange2(uint i) { return lights[i].vertices[3].w; }
+float Host_LightTubeInvRange2(uint i) { return LIGHT(i, vertices[3]).w; }
 #endif
 // A sphere the horizon cuts: clipped exactly in the basic variant; the full variant's registers
 // take the sphere proxy (area_light.h; no spills: tests/shader-stats)
@@ -216,26 +233,26 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     // state live): registers, docs/performance.md, 11.
     mat3 frame3 = LTC_Frame(N, V);
     for (uint i = 0u; i < frame.light_count; ++i) {
-        uint shape = lights[i].shape;
+        uint shape = LIGHT(i, shape);
         if (shape != uint(RTPBR_LIGHT_SHAPE_POLYGON) && shape != uint(RTPBR_LIGHT_SHAPE_SPHERE) &&
             shape != uint(RTPBR_LIGHT_SHAPE_DISK) && shape != uint(RTPBR_LIGHT_SHAPE_TUBE))
             AreaLight_AddPunctual(result, s, frame3, P, i, shape);
     }
     AreaLightPixel px = AreaLight_Begin(s, N, V);
     for (uint i = 0u; i < frame.light_count; ++i)
-        if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_POLYGON) && lights[i].texture == 0u) AreaLight_Add(px, acc, s, P, N, i);
+        if (LIGHT(i, shape) == uint(RTPBR_LIGHT_SHAPE_POLYGON) && LIGHT(i, texture) == 0u) AreaLight_Add(px, acc, s, P, N, i);
 #if RTPBR_LIGHTING_SPHERES
     for (uint i = 0u; i < frame.light_count; ++i)
-        if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_SPHERE)) AreaLight_AddSphere(px, acc, s, P, N, i);
+        if (LIGHT(i, shape) == uint(RTPBR_LIGHT_SHAPE_SPHERE)) AreaLight_AddSphere(px, acc, s, P, N, i);
     for (uint i = 0u; i < frame.light_count; ++i)
-        if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_DISK)) AreaLight_AddDisk(px, acc, s, P, N, i);
+        if (LIGHT(i, shape) == uint(RTPBR_LIGHT_SHAPE_DISK)) AreaLight_AddDisk(px, acc, s, P, N, i);
 #if RTPBR_LIGHTING_TUBES
     for (uint i = 0u; i < frame.light_count; ++i)
-        if (lights[i].shape == uint(RTPBR_LIGHT_SHAPE_TUBE)) AreaLight_AddTube(px, acc, s, P, N, i);
+        if (LIGHT(i, shape) == uint(RTPBR_LIGHT_SHAPE_TUBE)) AreaLight_AddTube(px, acc, s, P, N, i);
 #endif
 #if RTPBR_LIGHTING_TEXTURED
     for (uint i = 0u; i < frame.light_count; ++i)
-        if (lights[i].texture != 0u) AreaLight_AddTexturedQuad(px, acc, s, P, N, i);
+        if (LIGHT(i, texture) != 0u) AreaLight_AddTexturedQuad(px, acc, s, P, N, i);
 #endif
 #endif
 #else
@@ -250,7 +267,7 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
             uint word = uint(findLSB(words));
             for (uint bits = tile_masks[maskBase + uint(RTPBR_TILE_MASK_WORDS) + word]; bits != 0u; bits &= bits - 1u) {
                 uint i = word * 32u + uint(findLSB(bits));
-                AreaLight_AddPunctual(result, s, frame3, P, i, lights[i].shape);
+                AreaLight_AddPunctual(result, s, frame3, P, i, LIGHT(i, shape));
             }
         }
     }

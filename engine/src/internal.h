@@ -90,8 +90,11 @@ typedef struct rtpbr_lut {
 #define RTPBR_LIT_CLASS_COUNT (RTPBR_TILE_CLASS_COUNT - 1)
 // The LTC pipelines' specializations (RTPBR_SPEC_LIGHTING_*): a frame's polygons of at most 3,
 // 4 or RTPBR_SHADER_MAX_POLYGON_VERTICES vertices, without or with punctual lights, its
-// materials with any of the 16 combinations of the full variant's features.
-#define RTPBR_LIGHTING_SPEC_COUNT (3 * 2 * 16)
+// materials with any of the 16 combinations of the full variant's features, the lights read
+// from the storage or the uniform buffer.
+#define RTPBR_LIGHTING_SPEC_COUNT (3 * 2 * 16 * 2)
+// The bytes of the lights' uniform binding (RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM).
+#define RTPBR_UNIFORM_LIGHTS_BYTES (RTPBR_UNIFORM_LIGHTS_MAX * sizeof(rtpbr_shader_light))
 #define RTPBR_TONEMAP_PIPELINE_CACHE 8 // tone-mapping pipelines, one per target format
 
 // Each pass's layouts and pipelines, made and destroyed by its file in passes/ (init at
@@ -111,6 +114,8 @@ typedef struct rtpbr_lighting_pass {             // passes/lighting.c, passes/li
     // compiled on first use, per specialization (rtpbr_lighting_pipelines_get: RTPBR_SPEC_LIGHTING_*)
     VkPipeline ltc[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT][RTPBR_LIGHTING_SPEC_COUNT];
     bool cpu_device;                             // RTPBR_SPEC_LIGHTING_CPU of every LTC pipeline
+    bool uniform_lights;                         // a CPU device that binds RTPBR_UNIFORM_LIGHTS_BYTES:
+                                                 // RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS where a frame's lights fit
     VkPipelineLayout mc_layout;                  // + push constants rtpbr_shader_mc
     VkPipeline mc[RTPBR_LIGHTING_VARIANT_COUNT]; // compiled on first use
 } rtpbr_lighting_pass;
@@ -278,6 +283,7 @@ typedef struct rtpbr_lighting_needs {
     uint32_t max_vertices;      // the most vertices of a polygon: 3, 4 or RTPBR_SHADER_MAX_POLYGON_VERTICES
     bool punctual;              // a point, spot or directional light is among them
     uint32_t material_features; // the RTPBR_MATERIAL_FLAGS_FULL bits of any of its materials
+    uint32_t light_count;       // its lights (records 0 .. light_count - 1)
 } rtpbr_lighting_needs;
 // A frame of count lights and material_count materials (every RTPBR_MATERIAL_FLAGS_FULL bit
 // where one is Disney's: its coat and sheen are not the KHR ones).

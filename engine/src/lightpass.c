@@ -85,9 +85,13 @@ rtpbr_result rtpbr_light_set_create(rtpbr_context *ctx, const rtpbr_light_set_de
     set->serial = ++ctx->serial;
     set->capacity = capacity;
     set->frames = frames;
-    set->stride = align_up((VkDeviceSize)capacity * sizeof(rtpbr_shader_light),
-                           props.limits.minStorageBufferOffsetAlignment);
-    RTPBR_TRY(rtpbr_buffer_create_host(ctx, set->stride * frames, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &set->buffer));
+    // (each frame's records bound as a storage and as a uniform buffer: both offsets aligned)
+    VkDeviceSize alignment = props.limits.minStorageBufferOffsetAlignment > props.limits.minUniformBufferOffsetAlignment
+                                 ? props.limits.minStorageBufferOffsetAlignment
+                                 : props.limits.minUniformBufferOffsetAlignment;
+    set->stride = align_up((VkDeviceSize)capacity * sizeof(rtpbr_shader_light), alignment);
+    RTPBR_TRY(rtpbr_buffer_create_host(ctx, set->stride * frames,
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &set->buffer));
     RTPBR_ALLOC(&ctx->host, set->facts, capacity * sizeof *set->facts);
     *out = set;
     return RTPBR_SUCCESS;
@@ -418,8 +422,12 @@ rtpbr_result rtpbr_lighting_record(rtpbr_lighting_targets *t, const rtpbr_lighti
 
     VkDescriptorSet set = t->sets[d->frame];
     if (t->set_lights[d->frame] != lights->serial) { // this frame's set points at another light set
+        VkDeviceSize bytes = lights->capacity * sizeof(rtpbr_shader_light);
         rtpbr_lighting_write_buffer(ctx, set, RTPBR_BINDING_LIGHT_LIGHTS, lights->buffer.buffer,
-                                    d->frame * lights->stride, lights->capacity * sizeof(rtpbr_shader_light));
+                                    d->frame * lights->stride, bytes);
+        rtpbr_lighting_write_buffer(ctx, set, RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM, lights->buffer.buffer,
+                                    d->frame * lights->stride,
+                                    bytes < RTPBR_UNIFORM_LIGHTS_BYTES ? bytes : RTPBR_UNIFORM_LIGHTS_BYTES);
         t->set_lights[d->frame] = lights->serial;
     }
     memcpy((char *)t->frame.mapped + d->frame * t->frame_stride, &frame, sizeof frame);

@@ -1129,7 +1129,8 @@ rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const r
 
     RTPBR_TRY(create_light_textures(scene, desc));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, RTPBR_MAX_LIGHTS * sizeof(rtpbr_shader_light),
-                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->lights));
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                       &scene->lights));
     write_lights(scene, desc->lights, facts, desc->light_count);
 
     scene->camera_count = desc->camera_count ? desc->camera_count : 1;
@@ -1248,7 +1249,8 @@ uint32_t rtpbr_lights_shapes(const rtpbr_shader_light *lights, uint32_t count)
 rtpbr_lighting_needs rtpbr_lighting_needs_of(const rtpbr_shader_light *lights, uint32_t count,
                                              const rtpbr_shader_material *materials, uint32_t material_count)
 {
-    rtpbr_lighting_needs needs = {.shapes = rtpbr_lights_shapes(lights, count), .max_vertices = 3, .punctual = false};
+    rtpbr_lighting_needs needs = {
+        .shapes = rtpbr_lights_shapes(lights, count), .max_vertices = 3, .punctual = false, .light_count = count};
     for (uint32_t i = 0; i < material_count; ++i)
         needs.material_features |= (materials[i].flags & RTPBR_MATERIAL_FLAG_DISNEY) != 0u
                                        ? RTPBR_MATERIAL_FLAGS_FULL

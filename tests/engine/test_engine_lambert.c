@@ -275,6 +275,39 @@ static rtpbr_light_desc down_polygon(uint32_t n, float x, float y, float z, floa
     return l;
 }
 
+// Every pixel of px (W x H, RGBA) that sees the 4 m square at z = 0 away from its edges against
+// Lambert's formula for albedo 0.8 under lights (polygons: albedo Le F, F their form factor;
+// point lights: albedo / pi x I cos / d^2), within 1 %.
+static void check_lambert(const char *name, const rtpbr_camera_desc *camera, const float *px, int W, int H,
+                          const rtpbr_light_desc *lights, uint32_t count)
+{
+    const double n[3] = {0.0, 0.0, 1.0};
+    int checked = 0;
+    double worst = 0.0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            double p[3];
+            if (!test_plane_point(camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
+            double expect = 0.0;
+            for (uint32_t l = 0; l < count; ++l) {
+                if (lights[l].type == RTPBR_LIGHT_POINT) {
+                    double d[3] = {lights[l].position[0] - p[0], lights[l].position[1] - p[1], lights[l].position[2] - p[2]};
+                    double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                    expect += 0.8 / M_PI * lights[l].emission[0] * (d[2] / sqrt(d2)) / d2;
+                } else {
+                    expect += 0.8 * lights[l].emission[0] * test_form_factor(p, n, lights[l].vertices, lights[l].vertex_count);
+                }
+            }
+            double rel = fabs(px[4 * (y * W + x)] - expect) / expect;
+            worst = fmax(worst, rel);
+            if (rel > 0.01)
+                fail_msg("%s: pixel (%d, %d): %.6f, Lambert's formula %.6f", name, x, y, px[4 * (y * W + x)], expect);
+            ++checked;
+        }
+    printf("%s: %d pixels, largest error against Lambert %.4f%%\n", name, checked, 100.0 * worst);
+    assert_true(checked > W * H / 2);
+}
+
 // A frame's lights choose how its LTC pipelines are specialized (rtpbr_lights_needs: polygons
 // of at most 3, 4 or 8 vertices; punctual lights or none; shade_lights.glsl): frames of
 // triangles only, of a triangle and a quad, of those and a pentagon and an octagon, and of the
@@ -307,42 +340,61 @@ static void polygon_sizes(void **state)
                                 .znear = 0.1f, .zfar = 100.0f};
     enum { W = 96, H = 64 };
     rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
-    const double n[3] = {0.0, 0.0, 1.0};
     for (size_t f = 0; f < sizeof frames / sizeof frames[0]; ++f) {
         rtpbr_light_desc lights[5];
         for (uint32_t l = 0; l < frames[f].count; ++l) lights[l] = all[frames[f].lights[l]];
         rtpbr_gpu_scene *scene = test_mesh_scene(ctx, &mesh, &test_lambert_material, lights, frames[f].count, &camera);
         float *px = test_render_radiance(r, scene, &(rtpbr_render_desc){0}, W, H);
-        int checked = 0;
-        double worst = 0.0;
-        for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x) {
-                double p[3];
-                if (!test_plane_point(&camera, x, y, W, H, p) || fabs(p[0]) > 3.9 || fabs(p[1]) > 3.9) continue;
-                double expect = 0.0;
-                for (uint32_t l = 0; l < frames[f].count; ++l) {
-                    if (lights[l].type == RTPBR_LIGHT_POINT) {
-                        double d[3] = {lights[l].position[0] - p[0], lights[l].position[1] - p[1], lights[l].position[2] - p[2]};
-                        double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                        expect += 0.8 / M_PI * lights[l].emission[0] * (d[2] / sqrt(d2)) / d2;
-                    } else {
-                        expect += 0.8 * lights[l].emission[0] * test_form_factor(p, n, lights[l].vertices, lights[l].vertex_count);
-                    }
-                }
-                double rel = fabs(px[4 * (y * W + x)] - expect) / expect;
-                worst = fmax(worst, rel);
-                if (rel > 0.01)
-                    fail_msg("%s: pixel (%d, %d): %.6f, Lambert's formula %.6f", frames[f].name, x, y, px[4 * (y * W + x)],
-                             expect);
-                ++checked;
-            }
-        printf("polygon sizes, %s: %d pixels, largest error against Lambert %.4f%%\n", frames[f].name, checked,
-               100.0 * worst);
-        assert_true(checked > W * H / 2);
+        check_lambert(frames[f].name, &camera, px, W, H, lights, frames[f].count);
         free(px);
         rtpbr_gpu_scene_destroy(scene);
     }
     rtpbr_renderer_destroy(r);
+}
+
+// On a CPU device (lavapipe) the lighting pass reads a frame's lights from a uniform buffer where
+// they fit, RTPBR_UNIFORM_LIGHTS_MAX (315) records, and from the storage buffer beyond
+// (RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS, passes/lighting.c). Frames of the six lights of
+// polygon_sizes alone, after 309 others (the last records of the uniform range: 315 lights),
+// after 310 (316: the storage buffer) and after 600, one after the other in one renderer, each
+// against Lambert's formula within 1 % at every pixel. The others are 1 cm squares 40 m up (each
+// adds about 1e-8 of the light's radiance, summed in the reference too). A frame read from
+// the uniform buffer past its range would lose its six lights (out-of-range reads are zero),
+// and one whose records were read at the wrong stride or offset would light the floor wrong.
+static void uniform_lights_limit(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    float plane[12];
+    rtpbr_mesh_desc mesh = test_square_mesh(4.0f, 0.0f, plane);
+    enum { SIX = 6, MOST = 606 };
+    rtpbr_light_desc *lights = calloc(MOST, sizeof *lights);
+    assert_non_null(lights);
+    const rtpbr_light_desc six[SIX] = {
+        down_polygon(3, -1.5f, -1.0f, 1.2f, 0.6f, 3.0f), down_polygon(4, 1.5f, -1.0f, 1.0f, 0.5f, 2.0f),
+        down_polygon(5, -1.5f, 1.5f, 1.4f, 0.6f, 2.5f),  down_polygon(8, 1.5f, 1.5f, 1.1f, 0.5f, 2.0f),
+        down_polygon(3, 0.0f, 0.5f, 1.6f, 0.4f, 4.0f),
+        {.type = RTPBR_LIGHT_POINT, .position = {0.3f, -0.2f, 1.3f}, .emission = {2.0f, 2.0f, 2.0f}},
+    };
+    static const uint32_t others[] = {0, 309, 310, 600};
+    rtpbr_camera_desc camera = {.position = {0.0f, -5.0f, 6.0f}, .target = {0.0f, 0.0f, 0.0f}, .yfov = 1.0f,
+                                .znear = 0.1f, .zfar = 100.0f};
+    enum { W = 96, H = 64 };
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
+    for (size_t f = 0; f < sizeof others / sizeof others[0]; ++f) {
+        uint32_t n = others[f];
+        for (uint32_t l = 0; l < n; ++l)
+            lights[l] = down_polygon(4, -3.0f + 0.01f * (float)l, 0.0f, 40.0f, 0.007f, 1.0f);
+        for (uint32_t l = 0; l < SIX; ++l) lights[n + l] = six[l];
+        rtpbr_gpu_scene *scene = test_mesh_scene(ctx, &mesh, &test_lambert_material, lights, n + SIX, &camera);
+        float *px = test_render_radiance(r, scene, &(rtpbr_render_desc){0}, W, H);
+        char name[64];
+        snprintf(name, sizeof name, "six lights after %u others (%u lights)", n, n + SIX);
+        check_lambert(name, &camera, px, W, H, lights, n + SIX);
+        free(px);
+        rtpbr_gpu_scene_destroy(scene);
+    }
+    rtpbr_renderer_destroy(r);
+    free(lights);
 }
 
 // Supersampling resolves coverage: a square seen straight on, its edges off the pixel grid.
@@ -401,6 +453,7 @@ static void supersampled_coverage(void **state)
 RTPBR_TEST_MAIN(test_env_case(supersampled_coverage),
                 test_env_case(lambertian_plane),
                 test_env_case(polygon_sizes),
+                test_env_case(uniform_lights_limit),
                 test_env_case(normal_mapped_plane),
                 test_env_case(culling_bound),
                 test_env_case(culled_sparse_words))

@@ -75,6 +75,7 @@ static const VkDescriptorSetLayoutBinding bindings[] = {
     COMPUTE(RTPBR_BINDING_LIGHT_GBUFFER5, COMBINED_IMAGE_SAMPLER),
     COMPUTE(RTPBR_BINDING_LIGHT_GBUFFER6, COMBINED_IMAGE_SAMPLER),
     COMPUTE(RTPBR_BINDING_LIGHT_TEXTURES, COMBINED_IMAGE_SAMPLER),
+    COMPUTE(RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM, UNIFORM_BUFFER),
 };
 // The binding of each G-buffer image (renderer.gbuffer[i]).
 static const uint32_t gbuffer_bindings[RTPBR_GBUFFER_COUNT] = {
@@ -105,6 +106,7 @@ rtpbr_result rtpbr_lighting_pass_init(rtpbr_context *ctx)
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(ctx->physical_device, &props);
     pass->cpu_device = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    pass->uniform_lights = pass->cpu_device && props.limits.maxUniformBufferRange >= RTPBR_UNIFORM_LIGHTS_BYTES;
     RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_cull_comp), pass->layout, &pass->cull));
     RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_lighting_empty), pass->layout, &pass->empty));
     // The default variant (GGX, multiple scattering on) for polygons of up to 4 vertices now, so
@@ -141,6 +143,7 @@ typedef struct lighting_constants {
     VkBool32 punctual;
     uint32_t material_features;
     VkBool32 cpu; // (the context's device: the same for all its pipelines)
+    VkBool32 uniform_lights;
 } lighting_constants;
 
 rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms,
@@ -165,22 +168,26 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
     rtpbr_lighting_pass *pass = &ctx->lighting;
     uint32_t v = rtpbr_lighting_variant(ndf, ms);
     rtpbr_result result = RTPBR_SUCCESS;
-    // The specialization: polygons of up to 3, 4 or 8 vertices, punctual lights or none, and in
+    // The specialization: polygons of up to 3, 4 or 8 vertices, punctual lights or none, in
     // the full classes the materials' features (the basic ones compile them out anyway: one
-    // pipeline for all, with the default); a pipeline per combination, compiled on first use.
+    // pipeline for all, with the default), and on a CPU device the lights read from the uniform
+    // buffer where they fit (RTPBR_UNIFORM_LIGHTS_MAX); a pipeline per combination, compiled on
+    // first use.
     _Static_assert(RTPBR_MATERIAL_FLAGS_FULL == 0x3cu, "the full variant's features: bits 2 to 5");
     lighting_constants constants = {
         .max_vertices = needs->max_vertices <= 3 ? 3u : needs->max_vertices <= 4 ? 4u : RTPBR_SHADER_MAX_POLYGON_VERTICES,
         .punctual = needs->punctual ? VK_TRUE : VK_FALSE,
         .cpu = pass->cpu_device ? VK_TRUE : VK_FALSE,
+        .uniform_lights = pass->uniform_lights && needs->light_count <= RTPBR_UNIFORM_LIGHTS_MAX ? VK_TRUE : VK_FALSE,
     };
-    const VkSpecializationMapEntry entries[4] = {
+    const VkSpecializationMapEntry entries[5] = {
         {RTPBR_SPEC_LIGHTING_MAX_VERTICES, offsetof(lighting_constants, max_vertices), sizeof(uint32_t)},
         {RTPBR_SPEC_LIGHTING_PUNCTUAL, offsetof(lighting_constants, punctual), sizeof(VkBool32)},
         {RTPBR_SPEC_LIGHTING_MATERIALS, offsetof(lighting_constants, material_features), sizeof(uint32_t)},
         {RTPBR_SPEC_LIGHTING_CPU, offsetof(lighting_constants, cpu), sizeof(VkBool32)},
+        {RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS, offsetof(lighting_constants, uniform_lights), sizeof(VkBool32)},
     };
-    const VkSpecializationInfo specialization = {4, entries, sizeof constants, &constants};
+    const VkSpecializationInfo specialization = {5, entries, sizeof constants, &constants};
     out[RTPBR_TILE_CLASS_EMPTY] = pass->empty;
     for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) {
         // the spheres' classes only for a frame with a sphere or a disk, the textured ones only
@@ -190,7 +197,7 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
         bool full = k % 2u == 1u; // (RTPBR_TILE_CLASS_FULL, _FULL_SPHERES, ...: lit class 1, 3, 5, 7)
         constants.material_features = full ? needs->material_features & RTPBR_MATERIAL_FLAGS_FULL : RTPBR_MATERIAL_FLAGS_FULL;
         uint32_t s = (constants.max_vertices == 3 ? 0u : constants.max_vertices == 4 ? 1u : 2u) +
-                     3u * constants.punctual + 6u * (constants.material_features >> 2);
+                     3u * constants.punctual + 6u * (constants.material_features >> 2) + 96u * constants.uniform_lights;
         if (!pass->ltc[v][k][s])
             RTPBR_TRY(rtpbr_compute_pipeline_create_specialized(ctx, ltc[v][k], pass->layout, &specialization,
                                                                 &pass->ltc[v][k][s]));
@@ -298,6 +305,11 @@ void rtpbr_lighting_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
         {RTPBR_BINDING_LIGHT_LIGHTS, scene->lights.buffer},
     };
     rtpbr_descriptor_write_buffers(r->context, RTPBR_BINDINGS(bindings), r->lighting_set.set, writes, 2);
+    // (the scene's buffer holds RTPBR_MAX_LIGHTS records: the uniform binding its first ones)
+    _Static_assert(RTPBR_MAX_LIGHTS * sizeof(rtpbr_shader_light) >= RTPBR_UNIFORM_LIGHTS_BYTES, "uniform range");
+    rtpbr_descriptor_write_buffer_range(r->context, RTPBR_BINDINGS(bindings), r->lighting_set.set,
+                                        RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM, scene->lights.buffer, 0,
+                                        RTPBR_UNIFORM_LIGHTS_BYTES);
     rtpbr_descriptor_write_image(r->context, RTPBR_BINDINGS(bindings), r->lighting_set.set, RTPBR_BINDING_LIGHT_TEXTURES,
                                  r->context->light_texture_sampler, rtpbr_gpu_scene_light_texture_view(scene),
                                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
