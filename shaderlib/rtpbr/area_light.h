@@ -85,7 +85,10 @@
 //                          evaluation: a quad's or a sphere's registers); 1: unrolled, three
 //                          copies (faster where registers do not bind, e.g. on a CPU: lavapipe
 //                          111 against 264 ns per pixel-light, but 112 VGPRs on navi21 in the
-//                          engine's basic variant, where the loop takes 96)
+//                          engine's basic variant, where the loop takes 96). Used in an
+//                          expression only (RTPBR_AREA_LIGHT_TUBE_UNROLL != 0), never in #if, so
+//                          that a GLSL host may make it a specialization constant (the engine
+//                          does on a CPU device)
 //   RTPBR_AREA_LIGHT_TUBE_RANGE  0 (default): tubes have no range; 1: a tube's radiance is
 //                          windowed by Punctual_RangeWindow at the distance from its centre (the
 //                          ends' midpoint) and Host_LightTubeInvRange2 (below)
@@ -1193,12 +1196,16 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
                                      RTPBR_AREA_LIGHT_TEXTURE_PARAM RTPBR_AREA_LIGHT_TUBE_PARAM) {
 #if RTPBR_AREA_LIGHT_TUBES
     if (tubeLight) {
-#if RTPBR_AREA_LIGHT_TUBE_UNROLL
-        RTPBR_UNROLL
-#else
-        RTPBR_DONT_UNROLL
-#endif
-        for (uint part = RTPBR_AREA_LIGHT_TUBE_QUAD; part <= RTPBR_AREA_LIGHT_TUBE_END2; ++part)
+        if (RTPBR_AREA_LIGHT_TUBE_UNROLL != 0) { // (three copies, each with its part known)
+            AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
+                                                          RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_QUAD));
+            AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
+                                                          RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_END1));
+            AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
+                                                          RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_END2));
+            return;
+        }
+        RTPBR_DONT_UNROLL for (uint part = RTPBR_AREA_LIGHT_TUBE_QUAD; part <= RTPBR_AREA_LIGHT_TUBE_END2; ++part)
             AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
                                                           RTPBR_AREA_LIGHT_TUBE_PART_ARG(part));
         return;
