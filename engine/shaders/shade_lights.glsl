@@ -178,6 +178,10 @@ vec4 Host_LightTube(uint i, uint k) { return LIGHT(i, vertices[k]); }
 #define RTPBR_AREA_LIGHT_TUBE_RANGE 1 // a tube's range window (RTPBR_LIGHT_FIELDS, TUBE: vertices[3].w)
 float Host_LightTubeInvRange2(uint i) { return LIGHT(i, vertices[3]).w; }
 #endif
+// A sphere's or a disk's polygons where the horizon cuts it walked in loops on a CPU device,
+// unrolled under a branch on a GPU (on lavapipe both sides of a branch run, a loop's trips only
+// as many as some lane needs, one at least; docs/performance.md, 24)
+#define RTPBR_AREA_LIGHT_CLIP_LOOPS (shade_cpu ? 1 : 0)
 // A sphere the horizon cuts: clipped exactly in the basic variant; the full variant's registers
 // take the sphere proxy (area_light.h; no spills: tests/shader-stats)
 #define RTPBR_AREA_LIGHT_SPHERE_CLIP (!RTPBR_LIGHTING_FULL)

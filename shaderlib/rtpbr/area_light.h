@@ -92,6 +92,15 @@
 //   RTPBR_AREA_LIGHT_TUBE_RANGE  0 (default): tubes have no range; 1: a tube's radiance is
 //                          windowed by Punctual_RangeWindow at the distance from its centre (the
 //                          ends' midpoint) and Host_LightTubeInvRange2 (below)
+//   RTPBR_AREA_LIGHT_CLIP_LOOPS  0 (default): where the horizon cuts a sphere's or a disk's
+//                          disk, its equal-area polygons (RTPBR_AREA_LIGHT_SPHERE_SIDES,
+//                          _DISK_CLIP_SIDES) are walked unrolled under a branch; 1: in loops of
+//                          as many edges where it is cut and none where not (for a target whose
+//                          branches run both of their sides, such as Mesa's llvmpipe: there
+//                          such a loop costs one masked trip where no lane is cut, the unrolled
+//                          walk every edge). The same results. Used in expressions only, never
+//                          in #if (a GLSL host may make it a specialization constant: the
+//                          engine does on a CPU device)
 //   RTPBR_AREA_LIGHT_FULL  1 (default): every lobe surface.h resolves (Disney, coat, sheen,
 //                          anisotropy); 0: metallic-roughness without them (the engine's
 //                          basic variant: fewer registers, the streak estimate on GGX).
@@ -234,6 +243,9 @@
 #endif
 #ifndef RTPBR_AREA_LIGHT_TUBE_RANGE
 #define RTPBR_AREA_LIGHT_TUBE_RANGE 0
+#endif
+#ifndef RTPBR_AREA_LIGHT_CLIP_LOOPS
+#define RTPBR_AREA_LIGHT_CLIP_LOOPS 0
 #endif
 // The sides of the equal-area polygon a sphere's disk is clipped as (RTPBR_AREA_LIGHT_SPHERE_CLIP).
 #ifndef RTPBR_AREA_LIGHT_SPHERE_SIDES
@@ -532,19 +544,31 @@ RTPBR_FN LtcSegment AreaLight_EllipseGonEdge(RTPBR_INOUT(LtcClipper) horizon, rt
 // there, the engine's basic variant took 104 VGPRs on navi21, 96 here), and so with sides of its
 // own: 24 (the lobes' 12-gon was 9e-3 of the peak off at a cut disk's rim on a Lambertian
 // floor, 16 sides 2.1e-3, 24 and 32 5.3e-4: tests/engine/test_engine_punctual.c, disk_lambert).
-RTPBR_FN rtpbr_float3 AreaLight_EllipseClippedVector(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float3 w) {
+// With RTPBR_AREA_LIGHT_CLIP_LOOPS, a loop of steps edges (sides + 1: all; 0: none, F = 0).
+RTPBR_FN rtpbr_float3 AreaLight_EllipseClippedVectorSteps(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float3 w, uint steps) {
     const uint sides = uint(RTPBR_AREA_LIGHT_DISK_CLIP_SIDES);
     float scale = AreaLight_EllipseGonScale(sides);
     u *= scale;
     w *= scale;
     LtcClipper horizon = LTC_ClipperBegin();
     rtpbr_float3 F = RTPBR_F3(0.0f), a = c + u;
+    if (RTPBR_AREA_LIGHT_CLIP_LOOPS != 0) {
+        RTPBR_DONT_UNROLL for (uint k = 1u; k <= steps; ++k) {
+            LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, sides, a);
+            if (seg.valid)
+                F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+        }
+        return F;
+    }
     RTPBR_UNROLL for (uint k = 1u; k <= sides + 1u; ++k) {
         LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, sides, a);
         if (seg.valid)
             F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
     }
     return F;
+}
+RTPBR_FN rtpbr_float3 AreaLight_EllipseClippedVector(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float3 w) {
+    return AreaLight_EllipseClippedVectorSteps(c, u, w, uint(RTPBR_AREA_LIGHT_DISK_CLIP_SIDES) + 1u);
 }
 #endif
 
@@ -579,7 +603,10 @@ RTPBR_FN bool AreaLight_DiskEllipse(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
     bool cut = !(c.z >= sqrt(u.z * u.z + w.z * w.z)); // the ellipse spans c.z +- that in z
     F = RTPBR_F3(0.0f);
 #if RTPBR_AREA_LIGHT_SPHERE_CLIP
-    if (!cut)
+    if (RTPBR_AREA_LIGHT_CLIP_LOOPS != 0) { // (both; the clipped walk's loop empty where not cut)
+        rtpbr_float3 Fc = AreaLight_EllipseClippedVectorSteps(c, u, w, cut ? uint(RTPBR_AREA_LIGHT_DISK_CLIP_SIDES) + 1u : 0u);
+        F = cut ? Fc : AreaLight_DiskLambertVector(c, u, w);
+    } else if (!cut)
         F = AreaLight_DiskLambertVector(c, u, w);
     else
         F = AreaLight_EllipseClippedVector(c, u, w);
@@ -600,22 +627,33 @@ RTPBR_FN float AreaLight_EllipseLobe(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float
                                      RTPBR_OUT(rtpbr_float3) Fl) {
 #if RTPBR_AREA_LIGHT_SPHERE_CLIP
     rtpbr_float3 cl = rtpbr_mul(minv, c), ul = rtpbr_mul(minv, u), wl = rtpbr_mul(minv, w);
-    if (!(c.z >= sqrt(u.z * u.z + w.z * w.z) && cl.z >= sqrt(ul.z * ul.z + wl.z * wl.z))) {
+    bool cut = !(c.z >= sqrt(u.z * u.z + w.z * w.z) && cl.z >= sqrt(ul.z * ul.z + wl.z * wl.z));
+    if (RTPBR_AREA_LIGHT_CLIP_LOOPS != 0 || cut) {
         LtcClipper horizon = LTC_ClipperBegin();
         LtcLobe lobe = LTC_LobeBegin(minv);
         float scale = AreaLight_EllipseGonScale(uint(RTPBR_AREA_LIGHT_SPHERE_SIDES));
-        u *= scale;
-        w *= scale;
-        rtpbr_float3 a = c + u;
-        RTPBR_UNROLL for (uint k = 1u; k <= uint(RTPBR_AREA_LIGHT_SPHERE_SIDES) + 1u; ++k) {
-            LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, uint(RTPBR_AREA_LIGHT_SPHERE_SIDES), a);
-            if (seg.valid)
-                LTC_LobeEdge(lobe, seg.a, seg.b);
-        }
+        rtpbr_float3 us = u * scale, ws = w * scale; // (u, w as they are below, where not cut)
+        rtpbr_float3 a = c + us;
         // (a sphere's F keeps the whole cap's direction, its z the clipped cap's form factor:
         // the clipped polygon's own F, summed here, took the basic variant from 96 to 112 VGPRs;
         // a disk has no such closed form)
-        return AreaLight_LobeClose(lobe, Fl);
+        if (RTPBR_AREA_LIGHT_CLIP_LOOPS != 0) { // (no edge where nothing is cut)
+            uint steps = cut ? uint(RTPBR_AREA_LIGHT_SPHERE_SIDES) + 1u : 0u;
+            RTPBR_DONT_UNROLL for (uint k = 1u; k <= steps; ++k) {
+                LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, us, ws, k, uint(RTPBR_AREA_LIGHT_SPHERE_SIDES), a);
+                if (seg.valid)
+                    LTC_LobeEdge(lobe, seg.a, seg.b);
+            }
+            if (cut)
+                return AreaLight_LobeClose(lobe, Fl);
+        } else {
+            RTPBR_UNROLL for (uint k = 1u; k <= uint(RTPBR_AREA_LIGHT_SPHERE_SIDES) + 1u; ++k) {
+                LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, us, ws, k, uint(RTPBR_AREA_LIGHT_SPHERE_SIDES), a);
+                if (seg.valid)
+                    LTC_LobeEdge(lobe, seg.a, seg.b);
+            }
+            return AreaLight_LobeClose(lobe, Fl);
+        }
     }
 #endif
     rtpbr_float3 v = LTC_EllipseVector(minv, c, u, w, true);
