@@ -628,32 +628,33 @@ RTPBR_FN float AreaLight_EllipseLobe(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float
 #if RTPBR_AREA_LIGHT_SPHERE_CLIP
     rtpbr_float3 cl = rtpbr_mul(minv, c), ul = rtpbr_mul(minv, u), wl = rtpbr_mul(minv, w);
     bool cut = !(c.z >= sqrt(u.z * u.z + w.z * w.z) && cl.z >= sqrt(ul.z * ul.z + wl.z * wl.z));
-    if (RTPBR_AREA_LIGHT_CLIP_LOOPS != 0 || cut) {
+    // (RTPBR_AREA_LIGHT_CLIP_LOOPS: the loop's edges, none where nothing is cut; chosen out here,
+    // where the compiler cannot take cut for true)
+    uint steps = cut ? uint(RTPBR_AREA_LIGHT_SPHERE_SIDES) + 1u : 0u;
+    if (cut) {
         LtcClipper horizon = LTC_ClipperBegin();
         LtcLobe lobe = LTC_LobeBegin(minv);
         float scale = AreaLight_EllipseGonScale(uint(RTPBR_AREA_LIGHT_SPHERE_SIDES));
-        rtpbr_float3 us = u * scale, ws = w * scale; // (u, w as they are below, where not cut)
-        rtpbr_float3 a = c + us;
+        u *= scale;
+        w *= scale;
+        rtpbr_float3 a = c + u;
+        if (RTPBR_AREA_LIGHT_CLIP_LOOPS != 0) {
+            RTPBR_DONT_UNROLL for (uint k = 1u; k <= steps; ++k) {
+                LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, uint(RTPBR_AREA_LIGHT_SPHERE_SIDES), a);
+                if (seg.valid)
+                    LTC_LobeEdge(lobe, seg.a, seg.b);
+            }
+        } else {
+            RTPBR_UNROLL for (uint k = 1u; k <= uint(RTPBR_AREA_LIGHT_SPHERE_SIDES) + 1u; ++k) {
+                LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, uint(RTPBR_AREA_LIGHT_SPHERE_SIDES), a);
+                if (seg.valid)
+                    LTC_LobeEdge(lobe, seg.a, seg.b);
+            }
+        }
         // (a sphere's F keeps the whole cap's direction, its z the clipped cap's form factor:
         // the clipped polygon's own F, summed here, took the basic variant from 96 to 112 VGPRs;
         // a disk has no such closed form)
-        if (RTPBR_AREA_LIGHT_CLIP_LOOPS != 0) { // (no edge where nothing is cut)
-            uint steps = cut ? uint(RTPBR_AREA_LIGHT_SPHERE_SIDES) + 1u : 0u;
-            RTPBR_DONT_UNROLL for (uint k = 1u; k <= steps; ++k) {
-                LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, us, ws, k, uint(RTPBR_AREA_LIGHT_SPHERE_SIDES), a);
-                if (seg.valid)
-                    LTC_LobeEdge(lobe, seg.a, seg.b);
-            }
-            if (cut)
-                return AreaLight_LobeClose(lobe, Fl);
-        } else {
-            RTPBR_UNROLL for (uint k = 1u; k <= uint(RTPBR_AREA_LIGHT_SPHERE_SIDES) + 1u; ++k) {
-                LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, us, ws, k, uint(RTPBR_AREA_LIGHT_SPHERE_SIDES), a);
-                if (seg.valid)
-                    LTC_LobeEdge(lobe, seg.a, seg.b);
-            }
-            return AreaLight_LobeClose(lobe, Fl);
-        }
+        return AreaLight_LobeClose(lobe, Fl);
     }
 #endif
     rtpbr_float3 v = LTC_EllipseVector(minv, c, u, w, true);
