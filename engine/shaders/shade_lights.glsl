@@ -166,13 +166,8 @@ layout(constant_id = RTPBR_SPEC_LIGHTING_PUNCTUAL) const bool shade_punctual = t
 #define RTPBR_AREA_LIGHT_WALK_LOOP (RTPBR_LIGHTING_FULL && (RTPBR_LIGHTING_TEXTURED || RTPBR_LIGHTING_TUBES))
 #if RTPBR_LIGHTING_TUBES || (defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_STATS_SHAPE_TUBE)
 #define RTPBR_AREA_LIGHT_TUBES 1 // AreaLight_AddTube for the tubes' mask (RTPBR_LIGHTING_TUBES)
-#ifndef RTPBR_AREA_LIGHT_TUBE_UNROLL
-// A tube's three parts (its facing quad, its ends) in a loop on a GPU (one copy of the
-// evaluation: registers), three copies on a CPU device (each with its part known, so that each
-// compiles to a quad's or a sphere's code alone: on lavapipe a loop's body runs every part's
-// code for every part; docs/performance.md, 23)
-#define RTPBR_AREA_LIGHT_TUBE_UNROLL (shade_cpu ? 1 : 0)
-#endif
+// (RTPBR_AREA_LIGHT_TUBE_UNROLL: a tube's three parts in a loop, one copy of the evaluation
+// for a GPU's registers; unrolled in the _cpu variants a CPU device runs, engine/shaders/meson.build)
 // A tube's ends' centres and radius (RTPBR_LIGHT_FIELDS, TUBE: vertices[0], vertices[1]).
 vec4 Host_LightTube(uint i, uint k) { return LIGHT(i, vertices[k]); }
 #define RTPBR_AREA_LIGHT_TUBE_RANGE 1 // a tube's range window (RTPBR_LIGHT_FIELDS, TUBE: vertices[3].w)

@@ -85,10 +85,8 @@
 //                          evaluation: a quad's or a sphere's registers); 1: unrolled, three
 //                          copies (faster where registers do not bind, e.g. on a CPU: lavapipe
 //                          111 against 264 ns per pixel-light, but 112 VGPRs on navi21 in the
-//                          engine's basic variant, where the loop takes 96). Used in an
-//                          expression only (RTPBR_AREA_LIGHT_TUBE_UNROLL != 0), never in #if, so
-//                          that a GLSL host may make it a specialization constant (the engine
-//                          does on a CPU device)
+//                          engine's basic variant, where the loop takes 96; the engine builds
+//                          its tube variants for a CPU device with it)
 //   RTPBR_AREA_LIGHT_TUBE_RANGE  0 (default): tubes have no range; 1: a tube's radiance is
 //                          windowed by Punctual_RangeWindow at the distance from its centre (the
 //                          ends' midpoint) and Host_LightTubeInvRange2 (below)
@@ -1235,18 +1233,20 @@ RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) ac
                                      RTPBR_AREA_LIGHT_TEXTURE_PARAM RTPBR_AREA_LIGHT_TUBE_PARAM) {
 #if RTPBR_AREA_LIGHT_TUBES
     if (tubeLight) {
-        if (RTPBR_AREA_LIGHT_TUBE_UNROLL != 0) { // (three copies, each with its part known)
-            AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
-                                                          RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_QUAD));
-            AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
-                                                          RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_END1));
-            AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
-                                                          RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_END2));
-            return;
-        }
+#if RTPBR_AREA_LIGHT_TUBE_UNROLL
+        // (three calls, each with its part known: an unroll hint is only a hint, and Mesa's
+        // llvmpipe left the loop as it was, every part running every part's code)
+        AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
+                                                      RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_QUAD));
+        AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
+                                                      RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_END1));
+        AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
+                                                      RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_END2));
+#else
         RTPBR_DONT_UNROLL for (uint part = RTPBR_AREA_LIGHT_TUBE_QUAD; part <= RTPBR_AREA_LIGHT_TUBE_END2; ++part)
             AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
                                                           RTPBR_AREA_LIGHT_TUBE_PART_ARG(part));
+#endif
         return;
     }
     AreaLight_AddShapePart(px, acc, s, P, N, i, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight)

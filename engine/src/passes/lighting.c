@@ -42,6 +42,14 @@
 #include "rtpbr_spirv_lighting_beckmann_ms0_full_tubes.h"
 #include "rtpbr_spirv_lighting_beckmann_ms1_basic_tubes.h"
 #include "rtpbr_spirv_lighting_beckmann_ms1_full_tubes.h"
+#include "rtpbr_spirv_lighting_ggx_ms0_basic_tubes_cpu.h"
+#include "rtpbr_spirv_lighting_ggx_ms0_full_tubes_cpu.h"
+#include "rtpbr_spirv_lighting_ggx_ms1_basic_tubes_cpu.h"
+#include "rtpbr_spirv_lighting_ggx_ms1_full_tubes_cpu.h"
+#include "rtpbr_spirv_lighting_beckmann_ms0_basic_tubes_cpu.h"
+#include "rtpbr_spirv_lighting_beckmann_ms0_full_tubes_cpu.h"
+#include "rtpbr_spirv_lighting_beckmann_ms1_basic_tubes_cpu.h"
+#include "rtpbr_spirv_lighting_beckmann_ms1_full_tubes_cpu.h"
 
 // The set of the cull, LTC and Monte Carlo passes (rtpbr_shared.h: RTPBR_BINDING_LIGHT_*).
 #define COMPUTE(binding, type) {binding, VK_DESCRIPTOR_TYPE_##type, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL}
@@ -160,6 +168,13 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
     static const rtpbr_spirv ltc[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT] = {
         LTC_CLASSES(ggx, ms0), LTC_CLASSES(ggx, ms1), LTC_CLASSES(beckmann, ms0), LTC_CLASSES(beckmann, ms1)};
 #undef LTC_CLASSES
+    // The tube classes on a CPU device: a tube's parts unrolled (engine/shaders/meson.build)
+#define TUBES_CPU(ndf, ms)                                                                        \
+    {RTPBR_SPIRV(rtpbr_spirv_lighting_##ndf##_##ms##_basic_tubes_cpu),                            \
+     RTPBR_SPIRV(rtpbr_spirv_lighting_##ndf##_##ms##_full_tubes_cpu)}
+    static const rtpbr_spirv tubes_cpu[RTPBR_LIGHTING_VARIANT_COUNT][2] = {
+        TUBES_CPU(ggx, ms0), TUBES_CPU(ggx, ms1), TUBES_CPU(beckmann, ms0), TUBES_CPU(beckmann, ms1)};
+#undef TUBES_CPU
     _Static_assert(RTPBR_TILE_CLASS_EMPTY == 0 && RTPBR_TILE_CLASS_BASIC == 1 && RTPBR_TILE_CLASS_FULL == 2 &&
                        RTPBR_TILE_CLASS_BASIC_SPHERES == 3 && RTPBR_TILE_CLASS_FULL_SPHERES == 4 &&
                        RTPBR_TILE_CLASS_BASIC_TEXTURED == 5 && RTPBR_TILE_CLASS_FULL_TEXTURED == 6 &&
@@ -198,8 +213,11 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
         constants.material_features = full ? needs->material_features & RTPBR_MATERIAL_FLAGS_FULL : RTPBR_MATERIAL_FLAGS_FULL;
         uint32_t s = (constants.max_vertices == 3 ? 0u : constants.max_vertices == 4 ? 1u : 2u) +
                      3u * constants.punctual + 6u * (constants.material_features >> 2) + 96u * constants.uniform_lights;
+        const rtpbr_spirv *code = pass->cpu_device && k >= RTPBR_TILE_CLASS_BASIC_TUBES - 1u
+                                      ? &tubes_cpu[v][k - (RTPBR_TILE_CLASS_BASIC_TUBES - 1u)]
+                                      : &ltc[v][k];
         if (!pass->ltc[v][k][s])
-            RTPBR_TRY(rtpbr_compute_pipeline_create_specialized(ctx, ltc[v][k], pass->layout, &specialization,
+            RTPBR_TRY(rtpbr_compute_pipeline_create_specialized(ctx, *code, pass->layout, &specialization,
                                                                 &pass->ltc[v][k][s]));
         out[RTPBR_TILE_CLASS_BASIC + c] = pass->ltc[v][k][s];
     }
