@@ -116,6 +116,7 @@ typedef struct rtpbr_lighting_pass {             // passes/lighting.c, passes/li
     bool cpu_device;                             // RTPBR_SPEC_LIGHTING_CPU of every LTC pipeline
     bool uniform_lights;                         // a CPU device that binds RTPBR_UNIFORM_LIGHTS_BYTES:
                                                  // RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS where a frame's lights fit
+    VkDeviceSize uniform_lights_range;           // its binding's bytes: at most the device's maxUniformBufferRange
     VkPipelineLayout mc_layout;                  // + push constants rtpbr_shader_mc
     VkPipeline mc[RTPBR_LIGHTING_VARIANT_COUNT]; // compiled on first use
 } rtpbr_lighting_pass;

@@ -427,7 +427,7 @@ rtpbr_result rtpbr_lighting_record(rtpbr_lighting_targets *t, const rtpbr_lighti
                                     d->frame * lights->stride, bytes);
         rtpbr_lighting_write_buffer(ctx, set, RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM, lights->buffer.buffer,
                                     d->frame * lights->stride,
-                                    bytes < RTPBR_UNIFORM_LIGHTS_BYTES ? bytes : RTPBR_UNIFORM_LIGHTS_BYTES);
+                                    bytes < ctx->lighting.uniform_lights_range ? bytes : ctx->lighting.uniform_lights_range);
         t->set_lights[d->frame] = lights->serial;
     }
     memcpy((char *)t->frame.mapped + d->frame * t->frame_stride, &frame, sizeof frame);

@@ -115,6 +115,10 @@ rtpbr_result rtpbr_lighting_pass_init(rtpbr_context *ctx)
     vkGetPhysicalDeviceProperties(ctx->physical_device, &props);
     pass->cpu_device = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     pass->uniform_lights = pass->cpu_device && props.limits.maxUniformBufferRange >= RTPBR_UNIFORM_LIGHTS_BYTES;
+    // (the binding is written on every device, read only where uniform_lights: within the range)
+    pass->uniform_lights_range = props.limits.maxUniformBufferRange < RTPBR_UNIFORM_LIGHTS_BYTES
+                                     ? props.limits.maxUniformBufferRange
+                                     : RTPBR_UNIFORM_LIGHTS_BYTES;
     RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_cull_comp), pass->layout, &pass->cull));
     RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_lighting_empty), pass->layout, &pass->empty));
     // The default variant (GGX, multiple scattering on) for polygons of up to 4 vertices now, so
@@ -327,7 +331,7 @@ void rtpbr_lighting_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
     _Static_assert(RTPBR_MAX_LIGHTS * sizeof(rtpbr_shader_light) >= RTPBR_UNIFORM_LIGHTS_BYTES, "uniform range");
     rtpbr_descriptor_write_buffer_range(r->context, RTPBR_BINDINGS(bindings), r->lighting_set.set,
                                         RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM, scene->lights.buffer, 0,
-                                        RTPBR_UNIFORM_LIGHTS_BYTES);
+                                        r->context->lighting.uniform_lights_range);
     rtpbr_descriptor_write_image(r->context, RTPBR_BINDINGS(bindings), r->lighting_set.set, RTPBR_BINDING_LIGHT_TEXTURES,
                                  r->context->light_texture_sampler, rtpbr_gpu_scene_light_texture_view(scene),
                                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
