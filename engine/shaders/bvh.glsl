@@ -35,6 +35,39 @@ struct BvhTextureTransforms {
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_TEXTURE_TRANSFORMS, std430) readonly buffer BvhTransforms {
     BvhTextureTransforms bvh_texture_transforms[];
 };
+// The same records as texel buffers (R32G32B32A32_UINT), for a CPU device: on lavapipe
+// (gallivm, Mesa 22.3) a storage buffer's load at an index that differs between invocations is
+// one scalar load per lane, each under its own branch, for every component; a texel fetch is a
+// gather. The walk reads a node (8 components) or three at each step and a triangle (12) per
+// test, at indices that differ between pixels: the shadowed showcase 483 -> 363 ms at 480 x 360.
+// passes/shadow.c sets bvh_texel_reads on a CPU device; a GPU reads the storage buffers (a
+// texel fetch goes through the texture unit's format conversion there, and bench/shader-stats
+// holds the code as it was).
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS) uniform usamplerBuffer bvh_node_texels;
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_BVH_TRIANGLE_TEXELS) uniform usamplerBuffer bvh_triangle_texels;
+layout(constant_id = RTPBR_SPEC_BVH_TEXELS) const bool bvh_texel_reads = false;
+
+BvhNode bvh_node(uint i)
+{
+    if (bvh_texel_reads) {
+        uvec4 a = texelFetch(bvh_node_texels, int(2u * i)), b = texelFetch(bvh_node_texels, int(2u * i + 1u));
+        return BvhNode(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w);
+    }
+    return bvh_nodes[i];
+}
+
+// A triangle's vertex and edges (its `source`, which only the alpha test reads, left 0 when
+// read as texels: bvh_alpha_blocks reads it from the storage buffer).
+BvhTriangle bvh_triangle(uint i)
+{
+    if (bvh_texel_reads) {
+        uvec4 v0 = texelFetch(bvh_triangle_texels, int(4u * i)), e1 = texelFetch(bvh_triangle_texels, int(4u * i + 1u));
+        uvec4 e2 = texelFetch(bvh_triangle_texels, int(4u * i + 2u));
+        return BvhTriangle(uintBitsToFloat(v0), uintBitsToFloat(e1), uintBitsToFloat(e2), uvec4(0u));
+    }
+    return bvh_triangles[i];
+}
+
 struct AlphaTexture {
     RTPBR_ALPHA_TEXTURE_FIELDS(RTPBR_SHARED_FIELD, AlphaTexture)
 };
@@ -164,7 +197,7 @@ bool bvh_occluded(vec3 o, vec3 d, float tMax, uint rayKey)
     vec3 invD = 1.0f / mix(d, vec3(1e-30f), lessThan(abs(d), vec3(1e-30f)));
     uint stack[RTPBR_BVH_MAX_DEPTH];
     int sp = 0;
-    BvhNode root = bvh_nodes[0];
+    BvhNode root = bvh_node(0);
     if (!bvh_box_hit(root.box_min, root.box_max, o, invD, tMax)) return false;
     uint node = 0u;             // the next node to visit; RTPBR_BVH_NONE: the next one kept on the stack
     uint first = 0u, end = 0u;  // the current leaf's triangles not tested yet
@@ -180,14 +213,14 @@ bool bvh_occluded(vec3 o, vec3 d, float tMax, uint rayKey)
                     if (sp == 0) return false;
                     node = stack[--sp];
                 }
-                BvhNode n = bvh_nodes[node];
+                BvhNode n = bvh_node(node);
                 node = RTPBR_BVH_NONE;
                 if (n.count > 0u) {
                     first = n.left_or_first;
                     end = first + n.count;
                 } else {
-                    BvhNode left = bvh_nodes[n.left_or_first];
-                    BvhNode right = bvh_nodes[n.left_or_first + 1u];
+                    BvhNode left = bvh_node(n.left_or_first);
+                    BvhNode right = bvh_node(n.left_or_first + 1u);
                     bool hitLeft = bvh_box_hit(left.box_min, left.box_max, o, invD, tMax);
                     bool hitRight = bvh_box_hit(right.box_min, right.box_max, o, invD, tMax);
                     // Descend into one, keep the other for later; the depth bound keeps sp in range.
@@ -197,7 +230,7 @@ bool bvh_occluded(vec3 o, vec3 d, float tMax, uint rayKey)
             }
             // The leaf's triangles.
             for (; first < end; ++first) {
-                BvhTriangle tri = bvh_triangles[first];
+                BvhTriangle tri = bvh_triangle(first);
                 vec2 b;
                 if (bvh_triangle_crossed(tri, o, d, tMax, b)) {
                     if (!bvh_alpha_tested || tri.e1.w == 0.0f) return true; // opaque
@@ -258,7 +291,7 @@ uint bvh_occluded_packet(vec3 o, vec3 d[RTPBR_BVH_PACKET], float tMax, uint trac
                                          1.0f / mix(d[1], vec3(1e-30f), lessThan(abs(d[1]), vec3(1e-30f))),
                                          1.0f / mix(d[2], vec3(1e-30f), lessThan(abs(d[2]), vec3(1e-30f))),
                                          1.0f / mix(d[3], vec3(1e-30f), lessThan(abs(d[3]), vec3(1e-30f))));
-    BvhNode root = bvh_nodes[0];
+    BvhNode root = bvh_node(0);
     uint rays = traced & bvh_box_rays(root.box_min, root.box_max, o, invD, tMax); // the rays that reach the current node
     uint blocked = 0u;
     uint stack[RTPBR_BVH_MAX_DEPTH];
@@ -274,14 +307,14 @@ uint bvh_occluded_packet(vec3 o, vec3 d[RTPBR_BVH_PACKET], float tMax, uint trac
                 rays = (entry >> RTPBR_BVH_PACKET_SHIFT) & ~blocked;
                 if (rays == 0u) { node = RTPBR_BVH_NONE; continue; } // its rays are blocked already
             }
-            BvhNode n = bvh_nodes[node];
+            BvhNode n = bvh_node(node);
             node = RTPBR_BVH_NONE;
             if (n.count > 0u) {
                 first = n.left_or_first;
                 end = first + n.count;
             } else {
-                BvhNode left = bvh_nodes[n.left_or_first];
-                BvhNode right = bvh_nodes[n.left_or_first + 1u];
+                BvhNode left = bvh_node(n.left_or_first);
+                BvhNode right = bvh_node(n.left_or_first + 1u);
                 uint raysLeft = rays & bvh_box_rays(left.box_min, left.box_max, o, invD, tMax);
                 uint raysRight = rays & bvh_box_rays(right.box_min, right.box_max, o, invD, tMax);
                 // Descend into one, keep the other for later; the depth bound keeps sp in range.
@@ -295,7 +328,7 @@ uint bvh_occluded_packet(vec3 o, vec3 d[RTPBR_BVH_PACKET], float tMax, uint trac
         }
         // The leaf's triangles, against the rays that reach it and are not blocked yet.
         for (; first < end; ++first) {
-            blocked |= rays & bvh_triangle_rays(bvh_triangles[first], o, d, tMax);
+            blocked |= rays & bvh_triangle_rays(bvh_triangle(first), o, d, tMax);
             rays &= ~blocked;
             if (rays == 0u) first = end - 1u; // the loop's increment ends the leaf
         }

@@ -375,6 +375,10 @@
 // The specialization constant (a bool, default true) of shadow.comp that keeps bvh.glsl's alpha
 // test: passes/shadow.c compiles the trace with it off for scenes without MASK or BLEND materials.
 #define RTPBR_SPEC_BVH_ALPHA 0
+// The specialization constant (a bool, default false) of the shadow passes that makes bvh.glsl read
+// the BVH through its texel-buffer bindings (RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS): set by
+// passes/shadow.c on a CPU device (docs/performance.md, "Shadows on a CPU device").
+#define RTPBR_SPEC_BVH_TEXELS 6
 // The lighting pass's specialization constants (lighting.comp's shade_lights.glsl and
 // shading.glsl): the most vertices of the frame's polygons (a uint,
 // RTPBR_SHADER_MAX_POLYGON_VERTICES by default), whether it has punctual lights (a bool, true by
@@ -430,7 +434,11 @@
 #define RTPBR_BINDING_SHADOW_TILES 13       // storage: the lighting pass's tile masks (RTPBR_TILE_MASK_STRIDE
                                               // uints a tile), whose shadow slots shadow_select.comp writes
 #define RTPBR_BINDING_SHADOW_WORK 14        // storage: the trace's work list (shadow_list.comp)
-#define RTPBR_SHADOW_BINDING_COUNT 15
+// The same nodes and triangles as uniform texel buffers (R32G32B32A32_UINT: a node 2 texels, a
+// triangle 4), read where RTPBR_SPEC_BVH_TEXELS is set (bvh.glsl).
+#define RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS 15
+#define RTPBR_BINDING_SHADOW_BVH_TRIANGLE_TEXELS 16
+#define RTPBR_SHADOW_BINDING_COUNT 17
 // The trace's work list (RTPBR_BINDING_SHADOW_WORK), uints: the trace's indirect dispatch
 // arguments x, y, z (workgroup g = y * RTPBR_SHADOW_WORK_ROW + x), the entry count, then from
 // RTPBR_SHADOW_WORK_HEADER one entry per workgroup to run: shadow slot k (bits 0-2), the

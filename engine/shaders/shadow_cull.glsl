@@ -114,17 +114,17 @@ bool shadow_cull_may_block(vec3 lo, vec3 hi, Light light)
     vec3 lightMin = vec3(ex.x, ey.x, ez.x), lightMax = vec3(ex.y, ey.y, ez.y);
     vec3 centre = 0.5f * (lo + hi), halfSize = 0.5f * (hi - lo);
     float radius = max(distance(centre, lo), distance(centre, hi));
-    if (!shadow_cull_node_meets(bvh_nodes[0], lo, hi, lightMin, lightMax, centre, radius, ls)) return false;
+    if (!shadow_cull_node_meets(bvh_node(0), lo, hi, lightMin, lightMax, centre, radius, ls)) return false;
     uint stack[RTPBR_BVH_MAX_DEPTH];
     int sp = 0;
     uint node = 0u, steps = 0u;
     for (;;) {
-        BvhNode n = bvh_nodes[node];
+        BvhNode n = bvh_node(node);
         steps += max(n.count, 1u);
         if (steps > RTPBR_SHADOW_CULL_STEPS) return true;
         if (n.count > 0u) {
             for (uint i = n.left_or_first; i < n.left_or_first + n.count; ++i) {
-                BvhTriangle tri = bvh_triangles[i];
+                BvhTriangle tri = bvh_triangle(i);
                 vec3 v0 = tri.v0.xyz, v1 = v0 + tri.e1.xyz, v2 = v0 + tri.e2.xyz;
                 vec3 tc = (v0 + v1 + v2) * (1.0f / 3.0f);
                 float tr = sqrt(max(max(dot(v0 - tc, v0 - tc), dot(v1 - tc, v1 - tc)), dot(v2 - tc, v2 - tc)));
@@ -147,9 +147,9 @@ bool shadow_cull_may_block(vec3 lo, vec3 hi, Light light)
             }
         } else {
             bool hitLeft =
-                shadow_cull_node_meets(bvh_nodes[n.left_or_first], lo, hi, lightMin, lightMax, centre, radius, ls);
+                shadow_cull_node_meets(bvh_node(n.left_or_first), lo, hi, lightMin, lightMax, centre, radius, ls);
             bool hitRight =
-                shadow_cull_node_meets(bvh_nodes[n.left_or_first + 1u], lo, hi, lightMin, lightMax, centre, radius, ls);
+                shadow_cull_node_meets(bvh_node(n.left_or_first + 1u), lo, hi, lightMin, lightMax, centre, radius, ls);
             if (hitLeft || hitRight) {
                 node = hitLeft ? n.left_or_first : n.left_or_first + 1u;
                 if (hitLeft && hitRight) stack[sp++] = n.left_or_first + 1u;

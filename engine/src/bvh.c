@@ -226,10 +226,12 @@ rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
     }
 
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, s.node_count * sizeof(rtpbr_shader_bvh_node),
-                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->bvh_nodes));
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                                       &scene->bvh_nodes));
     memcpy(scene->bvh_nodes.mapped, s.nodes, s.node_count * sizeof(rtpbr_shader_bvh_node));
     RTPBR_TRY(rtpbr_buffer_create_host(ctx, (tri_count ? tri_count : 1) * sizeof(rtpbr_shader_bvh_triangle),
-                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &scene->bvh_triangles));
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                                       &scene->bvh_triangles));
     rtpbr_shader_bvh_triangle *out = scene->bvh_triangles.mapped;
     if (!tri_count) memset(out, 0, sizeof *out);
     for (uint32_t i = 0; i < tri_count; ++i) {
@@ -241,6 +243,19 @@ rtpbr_result rtpbr_bvh_create(rtpbr_gpu_scene *scene)
                                        {ix[0], ix[1], ix[2], scene->draws[draw_of[s.order[i]]].push.material}};
         out[i] = g;
     }
+    // Texel views of both (read on a CPU device: passes/shadow.c, bvh.glsl), within the device's
+    // maxTexelBufferElements; where that cuts a view short the device reads the storage buffers.
+    const VkDeviceSize node_bytes = s.node_count * sizeof(rtpbr_shader_bvh_node);
+    const VkDeviceSize triangle_bytes = (tri_count ? tri_count : 1) * sizeof(rtpbr_shader_bvh_triangle);
+    const VkDeviceSize limit = ctx->shadow.texel_view_range;
+    VkBufferViewCreateInfo view = {.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO,
+                                   .buffer = scene->bvh_nodes.buffer,
+                                   .format = VK_FORMAT_R32G32B32A32_UINT,
+                                   .range = node_bytes < limit ? node_bytes : limit};
+    RTPBR_VK(&ctx->host, vkCreateBufferView(ctx->device, &view, NULL, &scene->bvh_node_texels));
+    view.buffer = scene->bvh_triangles.buffer;
+    view.range = triangle_bytes < limit ? triangle_bytes : limit;
+    RTPBR_VK(&ctx->host, vkCreateBufferView(ctx->device, &view, NULL, &scene->bvh_triangle_texels));
     scene->bvh_node_count = s.node_count;
     scene->bvh_triangle_count = tri_count;
     RTPBR_ALLOC(&ctx->host, scene->bvh_triangle_draws, (tri_count ? tri_count : 1) * sizeof *scene->bvh_triangle_draws);
@@ -273,6 +288,9 @@ void rtpbr_bvh_destroy(rtpbr_gpu_scene *scene)
 {
     rtpbr_free(&scene->context->host, scene->bvh_triangle_draws);
     scene->bvh_triangle_draws = NULL;
+    vkDestroyBufferView(scene->context->device, scene->bvh_node_texels, NULL);
+    vkDestroyBufferView(scene->context->device, scene->bvh_triangle_texels, NULL);
+    scene->bvh_node_texels = scene->bvh_triangle_texels = VK_NULL_HANDLE;
     rtpbr_buffer_destroy(scene->context, &scene->bvh_nodes);
     rtpbr_buffer_destroy(scene->context, &scene->bvh_triangles);
 }

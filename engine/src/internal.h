@@ -151,6 +151,8 @@ typedef struct rtpbr_shadow_pass {               // passes/shadow.c
     VkPipelineLayout layout;                     // + push constants rtpbr_shader_shadow
     VkPipeline select, list, trace, denoise;     // compiled on first use
     VkPipeline trace_opaque;                     // the trace without the alpha test (RTPBR_SPEC_BVH_ALPHA off)
+    bool texel_reads;                            // RTPBR_SPEC_BVH_TEXELS of the selection and the trace
+    VkDeviceSize texel_view_range;               // the most bytes a BVH texel view may span (the device's limit)
 } rtpbr_shadow_pass;
 
 struct rtpbr_context {
@@ -236,6 +238,8 @@ struct rtpbr_gpu_scene {
     uint32_t camera_count;
     rtpbr_buffer bvh_nodes;     // rtpbr_shader_bvh_node[bvh_node_count] (bvh.c)
     rtpbr_buffer bvh_triangles; // rtpbr_shader_bvh_triangle[max(bvh_triangle_count, 1)]
+    VkBufferView bvh_node_texels;     // the same as texel buffers (R32G32B32A32_UINT; at most
+    VkBufferView bvh_triangle_texels; // ctx->shadow.texel_view_range bytes of each)
     uint32_t *bvh_triangle_draws; // the draw of each BVH triangle (its sidedness and alpha flag follow the material)
     uint32_t bvh_node_count, bvh_triangle_count;
     rtpbr_buffer alpha_textures; // rtpbr_shader_alpha_texture[texture_count] (scene.c), for the shadow rays

@@ -227,7 +227,8 @@ static VkDescriptorType binding_type(rtpbr_bindings bindings, uint32_t binding)
 
 // One descriptor of `binding` (its type from the table): a buffer or an image.
 static void write_descriptor(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
-                             const VkDescriptorBufferInfo *buffer, const VkDescriptorImageInfo *image)
+                             const VkDescriptorBufferInfo *buffer, const VkDescriptorImageInfo *image,
+                             const VkBufferView *texels)
 {
     VkWriteDescriptorSet write = {
         .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
@@ -237,6 +238,7 @@ static void write_descriptor(rtpbr_context *ctx, rtpbr_bindings bindings, VkDesc
         .descriptorType = binding_type(bindings, binding),
         .pImageInfo = image,
         .pBufferInfo = buffer,
+        .pTexelBufferView = texels,
     };
     vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
 }
@@ -244,13 +246,13 @@ static void write_descriptor(rtpbr_context *ctx, rtpbr_bindings bindings, VkDesc
 void rtpbr_descriptor_write_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                    VkBuffer buffer, VkDeviceSize range)
 {
-    write_descriptor(ctx, bindings, set, binding, &(VkDescriptorBufferInfo){buffer, 0, range}, NULL);
+    write_descriptor(ctx, bindings, set, binding, &(VkDescriptorBufferInfo){buffer, 0, range}, NULL, NULL);
 }
 
 void rtpbr_descriptor_write_buffer_range(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
                                          uint32_t binding, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range)
 {
-    write_descriptor(ctx, bindings, set, binding, &(VkDescriptorBufferInfo){buffer, offset, range}, NULL);
+    write_descriptor(ctx, bindings, set, binding, &(VkDescriptorBufferInfo){buffer, offset, range}, NULL, NULL);
 }
 
 void rtpbr_descriptor_write_buffers(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
@@ -263,7 +265,13 @@ void rtpbr_descriptor_write_buffers(rtpbr_context *ctx, rtpbr_bindings bindings,
 void rtpbr_descriptor_write_image(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                   VkSampler sampler, VkImageView view, VkImageLayout layout)
 {
-    write_descriptor(ctx, bindings, set, binding, NULL, &(VkDescriptorImageInfo){sampler, view, layout});
+    write_descriptor(ctx, bindings, set, binding, NULL, &(VkDescriptorImageInfo){sampler, view, layout}, NULL);
+}
+
+void rtpbr_descriptor_write_texel_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
+                                         uint32_t binding, VkBufferView view)
+{
+    write_descriptor(ctx, bindings, set, binding, NULL, NULL, &view);
 }
 
 rtpbr_result rtpbr_pass_layouts_create(rtpbr_context *ctx, rtpbr_bindings bindings, VkShaderStageFlags push_stages,

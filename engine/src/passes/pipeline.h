@@ -76,6 +76,8 @@ void rtpbr_descriptor_write_buffer_range(rtpbr_context *ctx, rtpbr_bindings bind
                                          uint32_t binding, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range);
 void rtpbr_descriptor_write_image(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set, uint32_t binding,
                                   VkSampler sampler, VkImageView view, VkImageLayout layout);
+void rtpbr_descriptor_write_texel_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
+                                         uint32_t binding, VkBufferView view);
 
 
 // A pass with one set layout (from its binding table) and a pipeline layout of that set and,

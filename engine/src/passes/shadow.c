@@ -57,6 +57,8 @@ static const VkDescriptorSetLayoutBinding bindings[] = {
     COMPUTE(RTPBR_BINDING_SHADOW_ALPHA_TEXELS, STORAGE_BUFFER),
     COMPUTE(RTPBR_BINDING_SHADOW_TILES, STORAGE_BUFFER),
     COMPUTE(RTPBR_BINDING_SHADOW_WORK, STORAGE_BUFFER),
+    COMPUTE(RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS, UNIFORM_TEXEL_BUFFER),
+    COMPUTE(RTPBR_BINDING_SHADOW_BVH_TRIANGLE_TEXELS, UNIFORM_TEXEL_BUFFER),
 };
 #undef COMPUTE
 _Static_assert(sizeof bindings / sizeof bindings[0] == RTPBR_SHADOW_BINDING_COUNT, "every shadow binding");
@@ -67,6 +69,14 @@ rtpbr_result rtpbr_shadow_pass_init(rtpbr_context *ctx)
     rtpbr_result result = RTPBR_SUCCESS;
     RTPBR_TRY(rtpbr_pass_layouts_create(ctx, RTPBR_BINDINGS(bindings), VK_SHADER_STAGE_COMPUTE_BIT,
                                         sizeof(rtpbr_shader_shadow), &pass->set_layout, &pass->layout));
+    // On a CPU device the walks read the BVH as texel buffers (bvh.glsl: on lavapipe a storage
+    // buffer's load at a varying index is a load per lane, a texel fetch a gather), where a view
+    // can span any buffer the device can bind as storage (lavapipe: 2 GiB against 128 MiB).
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(ctx->physical_device, &props);
+    pass->texel_view_range = (VkDeviceSize)props.limits.maxTexelBufferElements * 16u; // R32G32B32A32
+    pass->texel_reads = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
+                        pass->texel_view_range >= props.limits.maxStorageBufferRange;
 cleanup:
     return result; // the caller finishes a half-built pass; the pipelines are made on first use
 }
@@ -79,26 +89,31 @@ void rtpbr_shadow_pass_finish(rtpbr_context *ctx)
     *pass = (rtpbr_shadow_pass){0};
 }
 
+// A shadow pipeline that walks the BVH, specialized: the alpha test (RTPBR_SPEC_BVH_ALPHA) and
+// the texel reads (RTPBR_SPEC_BVH_TEXELS).
+static rtpbr_result bvh_pipeline_create(rtpbr_context *ctx, rtpbr_spirv spirv, bool alpha_tested, VkPipeline *out)
+{
+    const VkBool32 values[2] = {alpha_tested ? VK_TRUE : VK_FALSE, ctx->shadow.texel_reads ? VK_TRUE : VK_FALSE};
+    const VkSpecializationMapEntry entries[2] = {{RTPBR_SPEC_BVH_ALPHA, 0, sizeof values[0]},
+                                                 {RTPBR_SPEC_BVH_TEXELS, sizeof values[0], sizeof values[1]}};
+    const VkSpecializationInfo specialization = {2, entries, sizeof values, values};
+    return rtpbr_compute_pipeline_create_specialized(ctx, spirv, ctx->shadow.layout, &specialization, out);
+}
+
 rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx, bool alpha_tested)
 {
     rtpbr_shadow_pass *pass = &ctx->shadow;
     rtpbr_result result = RTPBR_SUCCESS;
     if (!pass->select)
-        RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_select_comp), pass->layout,
-                                                &pass->select));
+        RTPBR_TRY(bvh_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_select_comp), true, &pass->select));
     if (!pass->list)
         RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_list_comp), pass->layout, &pass->list));
     if (alpha_tested && !pass->trace)
-        RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_comp), pass->layout, &pass->trace));
-    if (!alpha_tested && !pass->trace_opaque) {
-        // Without MASK or BLEND materials every triangle a ray crosses blocks it: bvh.glsl's alpha
-        // test compiled out (on lavapipe its code costs every step of the walk, taken or not).
-        const VkBool32 off = VK_FALSE;
-        const VkSpecializationMapEntry entry = {RTPBR_SPEC_BVH_ALPHA, 0, sizeof off};
-        const VkSpecializationInfo specialization = {1, &entry, sizeof off, &off};
-        RTPBR_TRY(rtpbr_compute_pipeline_create_specialized(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_comp), pass->layout,
-                                                            &specialization, &pass->trace_opaque));
-    }
+        RTPBR_TRY(bvh_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_comp), true, &pass->trace));
+    // Without MASK or BLEND materials every triangle a ray crosses blocks it: bvh.glsl's alpha
+    // test compiled out (on lavapipe its code costs every step of the walk, taken or not).
+    if (!alpha_tested && !pass->trace_opaque)
+        RTPBR_TRY(bvh_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_comp), false, &pass->trace_opaque));
     if (!pass->denoise)
         RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_denoise_comp), pass->layout,
                                                 &pass->denoise));
@@ -181,6 +196,10 @@ void rtpbr_shadow_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
     };
     rtpbr_descriptor_write_buffers(r->context, RTPBR_BINDINGS(bindings), r->shadow_set.set, writes,
                                    sizeof writes / sizeof writes[0]);
+    rtpbr_descriptor_write_texel_buffer(r->context, RTPBR_BINDINGS(bindings), r->shadow_set.set,
+                                        RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS, scene->bvh_node_texels);
+    rtpbr_descriptor_write_texel_buffer(r->context, RTPBR_BINDINGS(bindings), r->shadow_set.set,
+                                        RTPBR_BINDING_SHADOW_BVH_TRIANGLE_TEXELS, scene->bvh_triangle_texels);
 }
 
 // A memory barrier between compute dispatches on one of the shadow images (all its layers).
