@@ -439,12 +439,17 @@
 #define RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS 15
 #define RTPBR_BINDING_SHADOW_BVH_TRIANGLE_TEXELS 16
 #define RTPBR_SHADOW_BINDING_COUNT 17
-// The trace's work list (RTPBR_BINDING_SHADOW_WORK), uints: the trace's indirect dispatch
-// arguments x, y, z (workgroup g = y * RTPBR_SHADOW_WORK_ROW + x), the entry count, then from
-// RTPBR_SHADOW_WORK_HEADER one entry per workgroup to run: shadow slot k (bits 0-2), the
-// 8 x 8 group's x (bits 3-16) and y (bits 17-30) in groups. shadow_list.comp writes it after
-// the selection, leaving out the groups and slots whose estimates no pass reads.
-#define RTPBR_SHADOW_WORK_HEADER 4
+// The work lists of the trace and the denoiser (RTPBR_BINDING_SHADOW_WORK), uints: the trace's
+// indirect dispatch arguments x, y, z (workgroup g = y * RTPBR_SHADOW_WORK_ROW + x) and entry
+// count, the denoiser's four likewise (from uint 4), then from RTPBR_SHADOW_WORK_HEADER the
+// trace's entries, one per workgroup to run: shadow slot k (bits 0-2), the 8 x 8 group's x (bits
+// 3-16) and y (bits 17-30) in groups; after room for RTPBR_SHADER_MAX_SHADOWED_LIGHTS entries per
+// group of the image, the denoiser's: a group's x (bits 0-15) and y (bits 16-31).
+// shadow_list.comp writes both after the selection, leaving out the groups and slots whose
+// estimates no pass reads, and the groups where no slot's estimates are read (there every
+// ratio is 1: passes/shadow.c clears the ratios to 1 first).
+#define RTPBR_SHADOW_WORK_HEADER 8
+#define RTPBR_SHADOW_WORK_DENOISE 4
 #define RTPBR_SHADOW_WORK_ROW 65535u
 // The scene's vertex layout, floats per vertex: position 3, normal 3, uv 2, tangent 4, uv1 2.
 #define RTPBR_VERTEX_FLOATS 14

@@ -52,10 +52,21 @@ uint shadow_group_slot_base(uvec2 group)
     return (tileXY.y * frame.tiles_x + tileXY.x) * uint(RTPBR_TILE_MASK_STRIDE) + uint(RTPBR_TILE_SHADOW_SLOTS);
 }
 
-// The trace's work list (rtpbr_shared.h, RTPBR_SHADOW_WORK_HEADER).
+// The work lists of the trace and the denoiser (rtpbr_shared.h, RTPBR_SHADOW_WORK_HEADER).
 layout(set = 0, binding = RTPBR_BINDING_SHADOW_WORK, std430) buffer ShadowWork {
     uint shadow_work[];
 };
+
+// The image's 8 x 8 groups (x, y), and the first word of the denoiser's entries.
+uvec2 shadow_groups()
+{
+    return (frame.size + uint(RTPBR_SHADOW_GROUP_SIZE) - 1u) / uint(RTPBR_SHADOW_GROUP_SIZE);
+}
+uint shadow_denoise_entries()
+{
+    uvec2 groups = shadow_groups();
+    return uint(RTPBR_SHADOW_WORK_HEADER) + groups.x * groups.y * uint(RTPBR_SHADER_MAX_SHADOWED_LIGHTS);
+}
 
 #if RTPBR_SHADER_MAX_SHADOWED_LIGHTS != 8
 #error "a tile's slots are two uvec4"

@@ -10,6 +10,8 @@
 // (its distance to p's tangent plane relative to the viewing distance, and the agreement of
 // the normals: a cross-bilateral filter guided by the G-buffer); background pixels weigh 0.
 // radius 0: the pixel's own estimates.
+// One workgroup per entry of the denoiser's work list (shadow_list.comp: the 8 x 8 groups where
+// some slot's estimates are read); passes/shadow.c has set every ratio of the other groups to 1.
 // Slot k of the pixel's tile holds light L (shadow_select.comp); a neighbour in another tile
 // contributes its estimates of L from the slot where its tile holds L, and nothing where its
 // tile does not shadow L (no estimates of L there).
@@ -18,7 +20,11 @@
 
 void main()
 {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    uint g = gl_WorkGroupID.y * RTPBR_SHADOW_WORK_ROW + gl_WorkGroupID.x;
+    if (g >= shadow_work[RTPBR_SHADOW_WORK_DENOISE + 3]) return; // the last row's rest (uniform)
+    uint entry = shadow_work[shadow_denoise_entries() + g];
+    uvec2 group = uvec2(entry & 0xffffu, entry >> 16u);
+    ivec2 pixel = ivec2(group * uint(RTPBR_SHADOW_GROUP_SIZE) + gl_LocalInvocationID.xy);
     if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
     uint lightCount = min(frame.shadow_light_count, frame.light_count);
     float depth = texelFetch(gbuffer_depth, pixel, 0).r;
