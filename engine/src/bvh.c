@@ -13,6 +13,8 @@
 //              Moeller-Trumbore test, and the source vertices and material (for the alpha of MASK
 //              and BLEND materials); ordered by leaf.
 // A scene without triangles gets one empty leaf whose box (min > max) no ray enters.
+// Both buffers are also viewed as R32G32B32A32_UINT texel buffers (a node 2 texels, a triangle
+// 4), which the walks read on a CPU device (passes/shadow.c, RTPBR_SPEC_BVH_TEXELS).
 #include <float.h>
 #include <string.h>
 
