@@ -1120,15 +1120,14 @@ RTPBR_FN void AreaLight_AddShapePart(AreaLightPixel px, RTPBR_INOUT(AreaLightSum
 #if RTPBR_LTC_POINT_CORRECTION
     rtpbr_float4 pointLtc1 = AreaLight_IsotropicLtc1(px.specularMinv);
 #if RTPBR_AREA_LIGHT_FULL
-    // (registers: docs/performance.md, 2) The lobe's vector from a second pass over the edges
-    // (the same lobe, so the same value), only where the fade leaves anything to correct (at a
-    // form factor of 0.5 or more the factor is within (16 - 1) x 0.5^16 = 2.3e-4 of 1, and a
-    // light holding half of the LTC's mass lies mostly outside its tail: the tail estimate is
-    // skipped with it); the norm fetched again (the same texel). Not for a sphere light: its
-    // second pass did not fit the registers (docs/performance.md, 12).
+    // (registers: docs/performance.md, 2 and 25) The lobe's vector Fl from the walk above (a
+    // second walk for it, which the full variant took until issue 32, gave the same value), only
+    // where the fade leaves anything to correct (at a form factor of 0.5 or more the factor is
+    // within (16 - 1) x 0.5^16 = 2.3e-4 of 1, and a light holding half of the LTC's mass lies
+    // mostly outside its tail: the tail estimate is skipped with it); the norm fetched again
+    // (the same texel). Not for a sphere light (nor a disk or a tube's part): with it the spheres'
+    // full variant spills (docs/performance.md, 12 and 25).
     if (px.pointOn && specularFF < 0.5f && !sphereLight) {
-        rtpbr_float3 unusedF2;
-        AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, unusedF2, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart));
         float norm = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.tableRoughness)).x;
         specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, norm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
     }
