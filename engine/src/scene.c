@@ -1077,11 +1077,18 @@ rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const r
         } else {
             smooth_normals(m->positions, m->indices, count, m->vertex_count, dst + 3);
         }
+        // An attribute the mesh does not have is written as zeros, which the shaders read as
+        // "none" (fragment_material.glsl: a zero tangent, no anisotropy direction and no normal
+        // map frame). Host-visible memory is not zeroed by Vulkan: left unwritten, on lavapipe a
+        // scene created after another one's destruction read that scene's bytes there
+        // (test_engine_materials' material_specialization, anisotropy: up to 0.98 apart, run to run).
+        static const float zeros[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         for (uint32_t v = 0; v < m->vertex_count; ++v) {
-            memcpy(dst + RTPBR_VERTEX_FLOATS * v, m->positions + 3 * v, 3 * sizeof(float));
-            if (m->texcoords) memcpy(dst + RTPBR_VERTEX_FLOATS * v + RTPBR_VERTEX_UV_OFFSET, m->texcoords + 2 * v, 2 * sizeof(float));
-            if (m->tangents) memcpy(dst + RTPBR_VERTEX_FLOATS * v + 8, m->tangents + 4 * v, 4 * sizeof(float));
-            if (m->texcoords1) memcpy(dst + RTPBR_VERTEX_FLOATS * v + RTPBR_VERTEX_UV1_OFFSET, m->texcoords1 + 2 * v, 2 * sizeof(float));
+            float *out = dst + RTPBR_VERTEX_FLOATS * v;
+            memcpy(out, m->positions + 3 * v, 3 * sizeof(float));
+            memcpy(out + RTPBR_VERTEX_UV_OFFSET, m->texcoords ? m->texcoords + 2 * v : zeros, 2 * sizeof(float));
+            memcpy(out + 8, m->tangents ? m->tangents + 4 * v : zeros, 4 * sizeof(float));
+            memcpy(out + RTPBR_VERTEX_UV1_OFFSET, m->texcoords1 ? m->texcoords1 + 2 * v : zeros, 2 * sizeof(float));
         }
         for (uint32_t k = 0; k < count; ++k) indices[index_base + k] = vertex_base + (m->indices ? m->indices[k] : k);
 
