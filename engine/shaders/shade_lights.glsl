@@ -180,6 +180,12 @@ float Host_LightTubeInvRange2(uint i) { return LIGHT(i, vertices[3]).w; }
 // A sphere the horizon cuts: clipped exactly in the basic variant; the full variant's registers
 // take the sphere proxy (area_light.h; no spills: tests/shader-stats)
 #define RTPBR_AREA_LIGHT_SPHERE_CLIP (!RTPBR_LIGHTING_FULL)
+// The forward pass (every light in one shader): the sheen lobe's LTC row read per light, not
+// kept through the loops (registers: its sphere variants spilled 2 VGPRs on gfx1100 with it kept;
+// the lighting pass keeps it: read per light there, a sphere variant spilled 2 SGPRs)
+#ifdef RTPBR_SHADE_ALL_LIGHTS
+#define RTPBR_AREA_LIGHT_SHEEN_REFETCH 1
+#endif
 #define RTPBR_UNROLL [[unroll]]
 #define RTPBR_DONT_UNROLL [[dont_unroll]]
 #include "rtpbr/area_light.h"

@@ -99,6 +99,13 @@
 //                          walk every edge). The same results. Used in expressions only, never
 //                          in #if (a GLSL host may make it a specialization constant: the
 //                          engine does on a CPU device)
+//   RTPBR_AREA_LIGHT_SHEEN_REFETCH  0 (default): the sheen lobe's LTC matrix (its table row
+//                          at the point) kept in AreaLightPixel through the light loop; 1: read
+//                          again from its table at each light (Host_TableLtc1 at the same
+//                          coordinates: the same texel, the same results), four registers fewer
+//                          through the loop for a table read per light (the engine's forward
+//                          pass: its sphere variants spilled 2 VGPRs on gfx1100 without it; in
+//                          its lighting pass it spilled 2 SGPRs in a sphere variant, so not there)
 //   RTPBR_AREA_LIGHT_FULL  1 (default): every lobe surface.h resolves (Disney, coat, sheen,
 //                          anisotropy); 0: metallic-roughness without them (the engine's
 //                          basic variant: fewer registers, the streak estimate on GGX).
@@ -248,6 +255,9 @@
 // The sides of the equal-area polygon a sphere's disk is clipped as (RTPBR_AREA_LIGHT_SPHERE_CLIP).
 #ifndef RTPBR_AREA_LIGHT_SPHERE_SIDES
 #define RTPBR_AREA_LIGHT_SPHERE_SIDES 12
+#endif
+#ifndef RTPBR_AREA_LIGHT_SHEEN_REFETCH
+#define RTPBR_AREA_LIGHT_SHEEN_REFETCH 0
 #endif
 #ifndef RTPBR_AREA_LIGHT_FULL
 #define RTPBR_AREA_LIGHT_FULL 1
@@ -1184,9 +1194,16 @@ RTPBR_FN void AreaLight_AddShapePart(AreaLightPixel px, RTPBR_INOUT(AreaLightSum
     }
     lo += texD * base;
 #if RTPBR_AREA_LIGHT_FULL
-    if (s.sheen)
+    if (s.sheen) {
+#if RTPBR_AREA_LIGHT_SHEEN_REFETCH
+        // (registers) AreaLight_Begin's row, read again: the same coordinates, the same texel
+        rtpbr_float4 ltc1s = Host_TableLtc1(RTPBR_TABLE_LTC_SHEEN, LTC_LutCoord(s.NoV, s.sheenRoughness));
+#else
+        rtpbr_float4 ltc1s = px.ltc1s;
+#endif
         lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, Host_TableSheenE(muRep, s.sheenRoughness)) +
-             texD * px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1s), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart));
+             texD * px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(ltc1s), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart));
+    }
     lo *= s.baseAttenuation;
 #if RTPBR_AREA_LIGHT_TEXTURED
     if (texturedLight)

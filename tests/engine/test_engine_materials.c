@@ -222,7 +222,11 @@ static void ior_fresnel_one(void **state)
 // KHR sheen over a black base under the near-hemisphere light reads the lobe's directional
 // albedo E_sheen(NoV): the engine integrates its LTC fit (norm x mass = albedo within 0.36%,
 // shaderlib/luts/sheen.md); the reference is the albedo table (tests/shaderlib/sheen checks it against
-// an independent quadrature within 1.4%), interpolated here with the documented coordinates.
+// an independent quadrature within 1.4%), interpolated here with the documented coordinates;
+// the forward pass of BLEND surfaces (a plane of alpha 1) too. Under a small light, where the
+// lobe's LTC matrix decides, the forward pass against the lighting pass: within 1e-3 (measured
+// 7.1e-5; the forward pass reads the matrix per light, RTPBR_AREA_LIGHT_SHEEN_REFETCH, and a
+// planted bug there, the material's roughness for the sheen's, put them 0.69 apart).
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-braces"
 #include "luts/rtpbr_sheen_tables.h"
@@ -246,22 +250,45 @@ static void sheen_albedo_check(void **state)
     const float roughness[2] = {0.5f, 1.0f};
     const float angles[2] = {0.3f, 1.1f};
     double worst = 0.0;
+    // the lighting pass, and the forward pass (a BLEND plane of alpha 1: it reads the sheen
+    // lobe's LTC row per light, RTPBR_AREA_LIGHT_SHEEN_REFETCH in shade_lights.glsl)
+    for (int blend = 0; blend < 2; ++blend)
+        for (int i = 0; i < 2; ++i)
+            for (int j = 0; j < 2; ++j) {
+                rtpbr_material_desc m = {.roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR,
+                                         .sheen_color_factor = {1.0f, 0.5f, 0.25f}, .sheen_roughness_factor = roughness[i]};
+                if (blend) m.alpha_mode = RTPBR_ALPHA_BLEND, m.alpha = 1.0f;
+                float got[3];
+                render_centre(env, &m, &sky, 1, (view){angles[j], 0.3f}, got);
+                double albedo = sheen_albedo(cos(angles[j]), roughness[i]);
+                for (int c = 0; c < 3; ++c) {
+                    double expect = m.sheen_color_factor[c] * albedo * ff;
+                    double rel = fabs(got[c] - expect) / expect;
+                    if (rel > worst) worst = rel;
+                }
+                printf("sheen r %.1f view %.2f rad%s: engine %.5f, albedo table %.5f\n", (double)roughness[i],
+                       (double)angles[j], blend ? " (forward pass)" : "", got[0], albedo * ff);
+            }
+    assert_true(worst < 0.02);
+    // Under a light the lobe's shape decides (a 0.4 m quad 0.5 m up, off to the side): the
+    // forward pass against the lighting pass, the same material
+    const rtpbr_light_desc small = {.vertices = {{0.3f, -0.2f, 0.5f}, {0.3f, 0.2f, 0.5f}, {0.7f, 0.2f, 0.5f}, {0.7f, -0.2f, 0.5f}},
+                                    .vertex_count = 4, .emission = {1.0f, 1.0f, 1.0f}};
+    double apart = 0.0;
     for (int i = 0; i < 2; ++i)
         for (int j = 0; j < 2; ++j) {
-            rtpbr_material_desc m = {.roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR, .sheen_color_factor = {1.0f, 0.5f, 0.25f},
-                                     .sheen_roughness_factor = roughness[i]};
-            float got[3];
-            render_centre(env, &m, &sky, 1, (view){angles[j], 0.3f}, got);
-            double albedo = sheen_albedo(cos(angles[j]), roughness[i]);
-            for (int c = 0; c < 3; ++c) {
-                double expect = m.sheen_color_factor[c] * albedo * ff;
-                double rel = fabs(got[c] - expect) / expect;
-                if (rel > worst) worst = rel;
+            float got[2][3];
+            for (int blend = 0; blend < 2; ++blend) {
+                rtpbr_material_desc m = {.roughness = 1.0f, .flags = RTPBR_MATERIAL_NO_SPECULAR,
+                                         .sheen_color_factor = {1.0f, 0.5f, 0.25f}, .sheen_roughness_factor = roughness[i]};
+                if (blend) m.alpha_mode = RTPBR_ALPHA_BLEND, m.alpha = 1.0f;
+                render_centre(env, &m, &small, 1, (view){angles[j], 0.3f}, got[blend]);
             }
-            printf("sheen r %.1f view %.2f rad: engine %.5f, albedo table %.5f\n", (double)roughness[i],
-                   (double)angles[j], got[0], albedo * ff);
+            for (int c = 0; c < 3; ++c) apart = fmax(apart, fabs(got[1][c] - got[0][c]) / got[0][c]);
+            printf("sheen r %.1f view %.2f rad under a small quad: lighting pass %.6f, forward pass %.6f\n",
+                   (double)roughness[i], (double)angles[j], got[0][0], got[1][0]);
         }
-    assert_true(worst < 0.02);
+    assert_true(apart < 1e-3);
 }
 
 // The full variant is specialized to the features the frame's materials have (passes/lighting.c,

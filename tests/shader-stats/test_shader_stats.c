@@ -2,8 +2,9 @@
 // this machine does not have (the null device, bench/shader-stats/null_device.h), stay within
 // the register budget of issue 14. Compile statistics are deterministic for a given driver,
 // so these are exact checks, not timings:
-//   - no shipped lighting variant (every engine pipeline named LIGHTING_PREFIX*) spills VGPRs
-//     or SGPRs or uses scratch memory, on any chip of FAMILIES;
+//   - no shipped lighting variant (every engine pipeline named LIGHTING_PREFIX*, and the
+//     forward pass's of BLEND surfaces, FORWARD_PREFIX*) spills VGPRs or SGPRs or uses scratch
+//     memory, on any chip of FAMILIES;
 //   - the default lighting variant uses at most MAX_DEFAULT_VGPRS VGPRs on BUDGET_FAMILY:
 //     every pipeline named DEFAULT or DEFAULT_* (is_default), DEFAULT given on the command line
 //     from shader_stats_default_lighting in bench/shader-stats/meson.build.
@@ -27,6 +28,7 @@
 #include "null_device.h"
 
 #define LIGHTING_PREFIX "lighting"
+#define FORWARD_PREFIX "forward"
 #define MAX_DEFAULT_VGPRS 96
 #define BUDGET_FAMILY "navi21"
 static const char *const FAMILIES[] = {"navi21", "gfx1100"};
@@ -58,7 +60,8 @@ static bool is_default(const char *name, const char *pattern)
 static bool is_lighting(const char *name, void *user)
 {
     (void)user;
-    return strncmp(name, LIGHTING_PREFIX, strlen(LIGHTING_PREFIX)) == 0;
+    return strncmp(name, LIGHTING_PREFIX, strlen(LIGHTING_PREFIX)) == 0 ||
+           strncmp(name, FORWARD_PREFIX, strlen(FORWARD_PREFIX)) == 0;
 }
 
 // Compiles the manifest's lighting pipelines on every chip and records what the checks find.
