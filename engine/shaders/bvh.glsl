@@ -42,9 +42,12 @@ layout(set = 0, binding = RTPBR_BINDING_SHADOW_TEXTURE_TRANSFORMS, std430) reado
 // test, at indices that differ between pixels: the shadowed showcase 483 -> 363 ms at 480 x 360.
 // passes/shadow.c sets bvh_texel_reads on a CPU device; a GPU reads the storage buffers (a
 // texel fetch goes through the texture unit's format conversion there, and bench/shader-stats
-// holds the code as it was).
-layout(set = 0, binding = RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS) uniform usamplerBuffer bvh_node_texels;
-layout(set = 0, binding = RTPBR_BINDING_SHADOW_BVH_TRIANGLE_TEXELS) uniform usamplerBuffer bvh_triangle_texels;
+// holds the code as it was). Declared as textures without a sampler (texelFetch of
+// GL_EXT_samplerless_texture_functions, which the includer enables): a sampled image of buffer
+// dimension is deprecated in SPIR-V 1.6, and the validation layer warns of it on a Vulkan 1.3+
+// device (Mesa 25's lavapipe).
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS) uniform utextureBuffer bvh_node_texels;
+layout(set = 0, binding = RTPBR_BINDING_SHADOW_BVH_TRIANGLE_TEXELS) uniform utextureBuffer bvh_triangle_texels;
 layout(constant_id = RTPBR_SPEC_BVH_TEXELS) const bool bvh_texel_reads = false;
 
 BvhNode bvh_node(uint i)

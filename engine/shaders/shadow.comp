@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
 #extension GL_EXT_control_flow_attributes : require
 // Shadow pass, step 1 of 2 (issue 17): the two Monte Carlo estimates of the ratio estimator
 // (Heitz, Hill & McGuire 2018, "Combining Analytic Direct Illumination and Stochastic

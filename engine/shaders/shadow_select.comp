@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
 // Shadow pass, step 0 (issue 32): which lights cast shadows in each tile. One invocation per
 // RTPBR_TILE_SIZE^2 tile of the shading image (the lighting pass's tiles): it bounds the
 // world positions of the tile's surface pixels by a box (as cull.comp does), bounds each
