@@ -2,7 +2,7 @@
 // (at several samples per pixel and light) against the same frame without, renders
 // interleaved so that machine load hits both alike. Not a test: compare the ratios of one run.
 //   rtpbr-bench-shadows SCENE.gltf [--width W] [--height H] [--repeat N] [--samples 1,4,16]
-//                       [--cull-ab]
+//                       [--cull-ab] [--ray-query auto|on|off]
 #define _POSIX_C_SOURCE 200809L
 #include <stdbool.h>
 #include <stdio.h>
@@ -18,6 +18,7 @@ enum { MAX_CONFIGS = 8, MAX_REPEAT = 64 };
 
 static const char *const usage =
     "usage: rtpbr-bench-shadows SCENE.gltf [--width W] [--height H] [--repeat N] [--samples 1,4,16] [--cull-ab]\n"
+    "                           [--ray-query auto|on|off]\n"
     "Frame time of SCENE with area-light shadows at several samples per pixel and light against\n"
     "the same frame without, interleaved; compare the ratios of one run.\n"
     "  --width W       image width (default 960)\n"
@@ -25,6 +26,8 @@ static const char *const usage =
     "  --repeat N      rounds (1..64; default 5)\n"
     "  --samples LIST  shadow samples per pixel and light (default 4)\n"
     "  --cull-ab       each shadowed configuration also with shadow-ray culling off\n"
+    "  --ray-query M   shadow rays by VK_KHR_ray_query (on), the compute BVH walk (off), or as the\n"
+    "                  library chooses (auto, the default: rtpbr_context_desc.shadow_ray_query)\n"
     "  -h, --help      this text\n";
 
 int main(int argc, char **argv)
@@ -34,6 +37,7 @@ int main(int argc, char **argv)
     int repeat = 5;
     int samples[MAX_CONFIGS] = {0, 4}, configs = 2; // 0: shadows off
     bool no_cull[MAX_CONFIGS] = {false}, cull_ab = false;
+    int ray_query = RTPBR_SHADOW_RAY_QUERY_AUTO;
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--width") && i + 1 < argc) width = (uint32_t)atoi(argv[++i]);
         else if (!strcmp(argv[i], "--height") && i + 1 < argc) height = (uint32_t)atoi(argv[++i]);
@@ -45,6 +49,13 @@ int main(int argc, char **argv)
                 samples[configs++] = atoi(t);
             free(copy);
         } else if (!strcmp(argv[i], "--cull-ab")) cull_ab = true;
+        else if (!strcmp(argv[i], "--ray-query") && i + 1 < argc) {
+            const char *m = argv[++i];
+            if (!strcmp(m, "auto")) ray_query = RTPBR_SHADOW_RAY_QUERY_AUTO;
+            else if (!strcmp(m, "on")) ray_query = RTPBR_SHADOW_RAY_QUERY_ON;
+            else if (!strcmp(m, "off")) ray_query = RTPBR_SHADOW_RAY_QUERY_OFF;
+            else return fputs(usage, stderr), 2;
+        }
         else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) return fputs(usage, stdout), 0;
         else if (argv[i][0] != '-' && !path) path = argv[i];
         else return fputs(usage, stderr), 2;
@@ -58,7 +69,7 @@ int main(int argc, char **argv)
     rtpbr_gpu_scene *scene = NULL;
     rtpbr_renderer *r = NULL;
     int status = 1;
-    if (rtpbr_context_create(&(rtpbr_context_desc){0}, &ctx) != RTPBR_SUCCESS ||
+    if (rtpbr_context_create(&(rtpbr_context_desc){.shadow_ray_query = ray_query}, &ctx) != RTPBR_SUCCESS ||
         rtpbr_gpu_scene_load_gltf(ctx, path, &scene) != RTPBR_SUCCESS ||
         rtpbr_renderer_create(ctx, &(rtpbr_renderer_desc){.width = width, .height = height}, &r) != RTPBR_SUCCESS) {
         fprintf(stderr, "shadow bench: setup failed\n");
@@ -80,7 +91,8 @@ int main(int argc, char **argv)
                 cpu[c][rep] = bench_seconds(CLOCK_PROCESS_CPUTIME_ID) - c0;
             }
         }
-    printf("%s, %ux%u, %u lights, median of %d frames\n\n", path, width, height, rtpbr_gpu_scene_light_count(scene),
+    printf("%s, %ux%u, %u lights, shadow rays by %s, median of %d frames\n\n", path, width, height,
+           rtpbr_gpu_scene_light_count(scene), rtpbr_context_shadow_ray_query(ctx) ? "ray queries" : "the BVH walk",
            repeat);
     printf("| shadows | wall ms | CPU ms | wall / unshadowed | CPU / unshadowed |\n|---|---|---|---|---|\n");
     double base_wall = 0.0, base_cpu = 0.0;

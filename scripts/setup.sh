@@ -46,6 +46,30 @@ if [[ ! -f "$repo/.deps/node_modules/gltf-validator/package.json" ]]; then
   npm install --silent --no-audit --no-fund --prefix "$repo/.deps" gltf-validator@2.0.0-dev.3.10 >/dev/null
 fi
 
+# A second Vulkan driver for the ray-query shadow tests (suite engine-ray-query,
+# tests/engine/meson.build): Mesa 25's lavapipe, which has VK_KHR_ray_query (the system's Mesa
+# 22.3 does not), from bookworm-backports' mesa-vulkan-drivers, unpacked into .deps/mesa-25 with
+# an ICD file that names it by its path. Not installed: every other test keeps the system's
+# driver. apt's lists for that one suite go to a temporary directory, so the system's sources
+# are untouched; no root is needed.
+mesa_dir="$repo/.deps/mesa-25"
+if [[ ! -f "$mesa_dir/lvp_icd.json" || ! -f "$mesa_dir/libvulkan_lvp.so" ]]; then
+  echo "setup: unpacking Mesa 25's lavapipe (bookworm-backports) into .deps/mesa-25" >&2
+  tmp=$(mktemp -d)
+  mkdir -p "$tmp/lists/partial" "$tmp/cache/archives/partial"
+  echo "deb http://deb.debian.org/debian bookworm-backports main" > "$tmp/sources.list"
+  apt_opts=(-o "Dir::Etc::sourcelist=$tmp/sources.list" -o Dir::Etc::sourceparts=- -o "Dir::State::Lists=$tmp/lists"
+            -o "Dir::Cache=$tmp/cache" -o Debug::NoLocking=1 -o APT::Sandbox::User=root)
+  apt-get "${apt_opts[@]}" update -qq
+  (cd "$tmp" && apt-get "${apt_opts[@]}" download -qq mesa-vulkan-drivers/bookworm-backports)
+  dpkg-deb -x "$tmp"/mesa-vulkan-drivers_*.deb "$tmp/root"
+  mkdir -p "$mesa_dir"
+  cp "$tmp/root/usr/lib/x86_64-linux-gnu/libvulkan_lvp.so" "$mesa_dir/"
+  printf '{"file_format_version": "1.0.0", "ICD": {"library_path": "%s", "api_version": "1.4.305"}}\n' \
+    "$mesa_dir/libvulkan_lvp.so" > "$mesa_dir/lvp_icd.json"
+  rm -rf "$tmp"
+fi
+
 # Dask distributed (oracle references on a cluster: tools/validate/rtpbr_oracle_cluster.py, suite
 # 'cluster') into a venv in .deps/venv, from the pinned tools/validate/requirements-cluster.txt;
 # redone only when that file changes (a copy of it in the venv says what is installed).

@@ -158,6 +158,26 @@ static ss_open_result create_device(ss_device *d, char *error, size_t error_size
         set_error(error, error_size, "%s lacks pipelineExecutableInfo or dynamicRendering", d->name);
         return SS_OPEN_UNAVAILABLE;
     }
+    // The ray-query shadow trace (shadow_ray_query_comp: engine/src/device.c enables these where
+    // it traces with ray queries). Enabling them leaves the other pipelines' statistics as they
+    // were (measured, Mesa 22.3.6, navi21 and gfx1100: lighting basic, full and tubes, cull,
+    // resolve, the shadow list and denoiser, every figure the same).
+    VkPhysicalDeviceRayQueryFeaturesKHR rq_supported = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR as_supported = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, .pNext = &rq_supported};
+    VkPhysicalDeviceVulkan12Features f12_supported = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                                                      .pNext = &as_supported};
+    VkPhysicalDeviceFeatures2 supported2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f12_supported};
+    vkGetPhysicalDeviceFeatures2(d->physical_device, &supported2);
+    const bool ray_query =
+        rq_supported.rayQuery && as_supported.accelerationStructure && f12_supported.bufferDeviceAddress;
+    VkPhysicalDeviceRayQueryFeaturesKHR enable_rq = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR,
+                                                     .rayQuery = VK_TRUE};
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR enable_as = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, .pNext = &enable_rq,
+        .accelerationStructure = VK_TRUE};
+    VkPhysicalDeviceVulkan12Features enable12 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                                                 .pNext = &enable_as, .bufferDeviceAddress = VK_TRUE};
     // The features the engine enables (engine/src/device.c: dynamic rendering) and the
     // statistics; nothing else, since features such as robustBufferAccess change the code.
     VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR enable_info = {
@@ -167,6 +187,7 @@ static ss_open_result create_device(ss_device *d, char *error, size_t error_size
     VkPhysicalDeviceVulkan13Features enable13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
                                                  .pNext = &enable_info,
                                                  .dynamicRendering = VK_TRUE};
+    enable_info.pNext = ray_query ? &enable12 : NULL;
     VkPhysicalDeviceFeatures2 enable = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &enable13};
     float priority = 1.0f;
     VkDeviceQueueCreateInfo queue = {
@@ -175,13 +196,15 @@ static ss_open_result create_device(ss_device *d, char *error, size_t error_size
         .queueCount = 1,
         .pQueuePriorities = &priority,
     };
-    const char *extensions[] = {VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME};
+    const char *extensions[] = {VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME, VK_KHR_RAY_QUERY_EXTENSION_NAME,
+                                VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+                                VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
     VkDeviceCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .pNext = &enable,
         .queueCreateInfoCount = 1,
         .pQueueCreateInfos = &queue,
-        .enabledExtensionCount = 1,
+        .enabledExtensionCount = ray_query ? 4 : 1,
         .ppEnabledExtensionNames = extensions,
     };
     VkResult vr = vkCreateDevice(d->physical_device, &info, NULL, &d->device);

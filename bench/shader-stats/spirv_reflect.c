@@ -206,7 +206,7 @@ static bool descriptor_type(module *m, uint32_t type, uint32_t storage, VkDescri
         else if (storage == SC_UNIFORM) *out = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
         else break;
         return true;
-    case OP_TYPE_ACCELERATION_STRUCTURE: return fail(m, "acceleration structures are not supported");
+    case OP_TYPE_ACCELERATION_STRUCTURE: *out = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR; return true;
     default: break;
     }
     return fail(m, "unsupported descriptor type (type id %u, storage class %u)", type, storage);

@@ -439,6 +439,10 @@
 #define RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS 15
 #define RTPBR_BINDING_SHADOW_BVH_TRIANGLE_TEXELS 16
 #define RTPBR_SHADOW_BINDING_COUNT 17
+// With ray-query shadows (rtpbr_context_desc.shadow_ray_query; engine/src/accel.c), two more:
+#define RTPBR_BINDING_SHADOW_ACCEL 17           // the scene's top-level acceleration structure
+#define RTPBR_BINDING_SHADOW_ACCEL_TRIANGLES 18 // storage: uint per structure triangle, its BVH triangle
+#define RTPBR_SHADOW_RAY_QUERY_BINDING_COUNT 19
 // The work lists of the trace and the denoiser (RTPBR_BINDING_SHADOW_WORK), uints: the trace's
 // indirect dispatch arguments x, y, z (workgroup g = y * RTPBR_SHADOW_WORK_ROW + x) and entry
 // count, the denoiser's four likewise (from uint 4), then from RTPBR_SHADOW_WORK_HEADER the

@@ -23,6 +23,10 @@ rtpbr_result rtpbr_context_create(const rtpbr_context_desc *desc, rtpbr_context 
     ctx->host = host;
 
     rtpbr_result result;
+    if (desc->shadow_ray_query < RTPBR_SHADOW_RAY_QUERY_AUTO || desc->shadow_ray_query > RTPBR_SHADOW_RAY_QUERY_ON)
+        RTPBR_FAIL(&ctx->host, RTPBR_ERROR_INVALID_ARGUMENT,
+                   "rtpbr_context_create: shadow_ray_query %d is not an rtpbr_shadow_ray_query", desc->shadow_ray_query);
+    ctx->ray_query_mode = desc->shadow_ray_query;
     if (desc->embedded.device != VK_NULL_HANDLE || desc->embedded.instance != VK_NULL_HANDLE)
         RTPBR_TRY(rtpbr_device_init_embedded(ctx, &desc->embedded));
     else
@@ -139,6 +143,11 @@ rtpbr_vulkan_device rtpbr_context_vulkan_device(const rtpbr_context *ctx)
     d.queue = ctx->queue;
     d.queue_family_index = ctx->queue_family;
     return d;
+}
+
+int rtpbr_context_shadow_ray_query(const rtpbr_context *ctx)
+{
+    return ctx && ctx->ray_query;
 }
 
 const char *rtpbr_context_device_name(const rtpbr_context *ctx)

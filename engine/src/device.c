@@ -207,6 +207,105 @@ cleanup:
     return result;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Shadow rays by VK_KHR_ray_query (rtpbr_context_desc.shadow_ray_query; accel.c builds the
+// acceleration structures, passes/shadow.c traces).
+
+static const char *const ray_query_extensions[] = {VK_KHR_RAY_QUERY_EXTENSION_NAME,
+                                                   VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+                                                   VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+enum { RAY_QUERY_EXTENSION_COUNT = sizeof ray_query_extensions / sizeof ray_query_extensions[0] };
+
+// Whether the physical device has the extensions and features the ray-query shadows need.
+// Fails only when out of host memory.
+static rtpbr_result device_supports_ray_query(rtpbr_context *ctx, VkPhysicalDevice pd, bool *supported)
+{
+    *supported = false;
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkExtensionProperties *extensions = NULL;
+    uint32_t count = 0;
+    if (vkEnumerateDeviceExtensionProperties(pd, NULL, &count, NULL) != VK_SUCCESS || count == 0) return RTPBR_SUCCESS;
+    RTPBR_ALLOC(&ctx->host, extensions, count * sizeof *extensions);
+    if (vkEnumerateDeviceExtensionProperties(pd, NULL, &count, extensions) != VK_SUCCESS) goto cleanup;
+    uint32_t found = 0;
+    for (uint32_t e = 0; e < RAY_QUERY_EXTENSION_COUNT; ++e)
+        for (uint32_t i = 0; i < count; ++i)
+            if (strcmp(extensions[i].extensionName, ray_query_extensions[e]) == 0) {
+                ++found;
+                break;
+            }
+    if (found != RAY_QUERY_EXTENSION_COUNT) goto cleanup;
+    VkPhysicalDeviceRayQueryFeaturesKHR rq = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR as = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, .pNext = &rq};
+    VkPhysicalDeviceVulkan12Features f12 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, .pNext = &as};
+    VkPhysicalDeviceFeatures2 f = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f12};
+    vkGetPhysicalDeviceFeatures2(pd, &f);
+    *supported = rq.rayQuery && as.accelerationStructure && f12.bufferDeviceAddress;
+cleanup:
+    rtpbr_free(&ctx->host, extensions);
+    return result;
+}
+
+// Whether the host's VkDeviceCreateInfo feature chain enabled what the ray-query shadows need.
+static bool host_enabled_ray_query(const VkPhysicalDeviceFeatures2 *features)
+{
+    bool rq = false, as = false, address = false;
+    for (const VkBaseInStructure *s = features ? (const VkBaseInStructure *)features->pNext : NULL; s; s = s->pNext) {
+        if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR)
+            rq = rq || ((const VkPhysicalDeviceRayQueryFeaturesKHR *)s)->rayQuery;
+        else if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR)
+            as = as || ((const VkPhysicalDeviceAccelerationStructureFeaturesKHR *)s)->accelerationStructure;
+        else if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES)
+            address = address || ((const VkPhysicalDeviceVulkan12Features *)s)->bufferDeviceAddress;
+        else if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BUFFER_DEVICE_ADDRESS_FEATURES)
+            address = address || ((const VkPhysicalDeviceBufferDeviceAddressFeatures *)s)->bufferDeviceAddress;
+    }
+    return rq && as && address;
+}
+
+// Whether to trace with ray queries, by the mode and what the device can (`available`); an
+// error where the mode is ON and it cannot.
+static rtpbr_result choose_ray_query(rtpbr_context *ctx, bool available, const char *missing, bool *use)
+{
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(ctx->physical_device, &props);
+    *use = false;
+    if (ctx->ray_query_mode == RTPBR_SHADOW_RAY_QUERY_OFF) return RTPBR_SUCCESS;
+    if (ctx->ray_query_mode == RTPBR_SHADOW_RAY_QUERY_ON && !available) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "shadow_ray_query ON: %s %s", ctx->device_name, missing);
+        return RTPBR_ERROR_MISSING_FEATURE;
+    }
+    *use = available && (ctx->ray_query_mode == RTPBR_SHADOW_RAY_QUERY_ON || props.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU);
+    return RTPBR_SUCCESS;
+}
+
+// The extension's entry points and limits, once the device exists with it.
+static rtpbr_result load_ray_query(rtpbr_context *ctx)
+{
+#define LOAD(field, name)                                                                           \
+    if (!(ctx->accel.field = (PFN_##name)vkGetDeviceProcAddr(ctx->device, #name))) {               \
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "ray-query shadows: %s not available", #name);       \
+        return RTPBR_ERROR_MISSING_FEATURE;                                                         \
+    }
+    LOAD(create, vkCreateAccelerationStructureKHR)
+    LOAD(destroy, vkDestroyAccelerationStructureKHR)
+    LOAD(build_sizes, vkGetAccelerationStructureBuildSizesKHR)
+    LOAD(cmd_build, vkCmdBuildAccelerationStructuresKHR)
+    LOAD(address, vkGetAccelerationStructureDeviceAddressKHR)
+#undef LOAD
+    VkPhysicalDeviceAccelerationStructurePropertiesKHR as = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+    VkPhysicalDeviceProperties2 props = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &as};
+    vkGetPhysicalDeviceProperties2(ctx->physical_device, &props);
+    ctx->accel.scratch_alignment = as.minAccelerationStructureScratchOffsetAlignment
+                                       ? as.minAccelerationStructureScratchOffsetAlignment
+                                       : 1;
+    ctx->ray_query = true;
+    rtpbr_log(&ctx->host, RTPBR_LOG_INFO, "shadow rays: VK_KHR_ray_query");
+    return RTPBR_SUCCESS;
+}
+
 rtpbr_result rtpbr_device_init_standalone(rtpbr_context *ctx, const rtpbr_context_desc *desc)
 {
     rtpbr_result result = RTPBR_SUCCESS;
@@ -221,8 +320,29 @@ rtpbr_result rtpbr_device_init_standalone(rtpbr_context *ctx, const rtpbr_contex
         .queueCount = 1,
         .pQueuePriorities = &priority,
     };
+    bool available = false, ray_query = false;
+    RTPBR_TRY(device_supports_ray_query(ctx, ctx->physical_device, &available));
+    RTPBR_TRY(choose_ray_query(ctx, available,
+                               "lacks VK_KHR_ray_query, VK_KHR_acceleration_structure, "
+                               "VK_KHR_deferred_host_operations or bufferDeviceAddress",
+                               &ray_query));
+    VkPhysicalDeviceRayQueryFeaturesKHR rq = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR,
+        .rayQuery = VK_TRUE,
+    };
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR as = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR,
+        .pNext = &rq,
+        .accelerationStructure = VK_TRUE,
+    };
+    VkPhysicalDeviceVulkan12Features f12 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+        .pNext = &as,
+        .bufferDeviceAddress = VK_TRUE,
+    };
     VkPhysicalDeviceVulkan13Features f13 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+        .pNext = ray_query ? &f12 : NULL,
         .dynamicRendering = VK_TRUE,
     };
     VkPhysicalDeviceFeatures supported;
@@ -237,9 +357,12 @@ rtpbr_result rtpbr_device_init_standalone(rtpbr_context *ctx, const rtpbr_contex
         .pNext = &features,
         .queueCreateInfoCount = 1,
         .pQueueCreateInfos = &queue_info,
+        .enabledExtensionCount = ray_query ? RAY_QUERY_EXTENSION_COUNT : 0,
+        .ppEnabledExtensionNames = ray_query_extensions,
     };
     RTPBR_VK(&ctx->host, vkCreateDevice(ctx->physical_device, &info, NULL, &ctx->device));
     vkGetDeviceQueue(ctx->device, ctx->queue_family, 0, &ctx->queue);
+    if (ray_query) RTPBR_TRY(load_ray_query(ctx));
     set_max_anisotropy(ctx, supported.samplerAnisotropy);
     rtpbr_log(&ctx->host, RTPBR_LOG_INFO, "standalone device: %s", ctx->device_name);
 cleanup:
@@ -305,6 +428,13 @@ rtpbr_result rtpbr_device_init_embedded(rtpbr_context *ctx, const rtpbr_vulkan_d
     adopt_physical_device(ctx, host->physical_device);
     // Only what the host enabled may be used (enabled_features: what it passed to vkCreateDevice).
     set_max_anisotropy(ctx, host->enabled_features->features.samplerAnisotropy);
+    bool ray_query = false;
+    rtpbr_result result = choose_ray_query(ctx, host_enabled_ray_query(host->enabled_features),
+                                           "(the host's device) was not created with rayQuery, accelerationStructure "
+                                           "and bufferDeviceAddress in enabled_features",
+                                           &ray_query);
+    if (result == RTPBR_SUCCESS && ray_query) result = load_ray_query(ctx);
+    if (result != RTPBR_SUCCESS) return result;
     rtpbr_log(&ctx->host, RTPBR_LOG_INFO, "embedded in the host's device: %s", ctx->device_name);
     return RTPBR_SUCCESS;
 }

@@ -168,6 +168,18 @@ struct rtpbr_context {
     VkQueue queue;
     uint32_t queue_family;
     VkPhysicalDeviceMemoryProperties memory_properties;
+    // Shadow rays by VK_KHR_ray_query (device.c; rtpbr_context_desc.shadow_ray_query): the
+    // extension's entry points, and the scratch alignment of acceleration-structure builds.
+    int ray_query_mode;           // rtpbr_shadow_ray_query
+    bool ray_query;               // the shadow pass traces with ray queries (accel.c)
+    struct {
+        PFN_vkCreateAccelerationStructureKHR create;
+        PFN_vkDestroyAccelerationStructureKHR destroy;
+        PFN_vkGetAccelerationStructureBuildSizesKHR build_sizes;
+        PFN_vkCmdBuildAccelerationStructuresKHR cmd_build;
+        PFN_vkGetAccelerationStructureDeviceAddressKHR address;
+        uint32_t scratch_alignment;
+    } accel;
 
     VkCommandPool command_pool;   // the context's and every renderer's command buffers
     VkCommandBuffer upload_cmd;   // one-shot uploads (rtpbr_submit_once)
@@ -242,6 +254,13 @@ struct rtpbr_gpu_scene {
     VkBufferView bvh_triangle_texels; // ctx->shadow.texel_view_range bytes of each)
     uint32_t *bvh_triangle_draws; // the draw of each BVH triangle (its sidedness and alpha flag follow the material)
     uint32_t bvh_node_count, bvh_triangle_count;
+    // With ctx->ray_query, the same triangles as acceleration structures (accel.c):
+    rtpbr_buffer accel_vertices;   // host: 3 world-space vertices per triangle, by class
+    rtpbr_buffer accel_triangles;  // storage: uint per triangle, its BVH triangle
+    rtpbr_buffer accel_instances;  // host: VkAccelerationStructureInstanceKHR per bottom level
+    rtpbr_buffer accel_storage;    // device: every level's storage
+    VkAccelerationStructureKHR accel_blas[6], accel_tlas; // a bottom level per class of triangle
+    uint32_t accel_blas_count;
     rtpbr_buffer alpha_textures; // rtpbr_shader_alpha_texture[texture_count] (scene.c), for the shadow rays
     rtpbr_buffer alpha_texels;   // uint[]: the alpha bytes of the textures that have any below 255
     // The textured quads' prefiltered emission (light_texture.h): one layer per distinct
@@ -450,5 +469,9 @@ void rtpbr_bvh_destroy(rtpbr_gpu_scene *scene); // accepts a half-built scene
 // Rewrites each triangle's sidedness (v0.w) from its material and its draw's transform, and
 // whether its material's alpha is tested (e1.w: MASK or BLEND).
 void rtpbr_bvh_update_material_flags(rtpbr_gpu_scene *scene);
+// The acceleration structures of the BVH's triangles, with ctx->ray_query (accel.c; nothing
+// without); rebuilt where the triangles' flags change.
+rtpbr_result rtpbr_accel_create(rtpbr_gpu_scene *scene);
+void rtpbr_accel_destroy(rtpbr_gpu_scene *scene); // accepts a half-built scene
 
 #endif // RTPBR_INTERNAL_H

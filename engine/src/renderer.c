@@ -161,6 +161,12 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
         return RTPBR_ERROR_LIMIT_EXCEEDED;
     }
     bool shadows = desc->shadows == RTPBR_SHADOWS_ON;
+    if (shadows && ctx->ray_query && !scene->accel_tlas) {
+        rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
+                  "render: the scene has no acceleration structures for its shadow rays (their rebuild in "
+                  "rtpbr_gpu_scene_set_material failed)");
+        return RTPBR_ERROR_INVALID_ARGUMENT;
+    }
     if (shadows) {
         // before any recording: may compile (the trace with the alpha test where the scene has
         // a MASK or BLEND material)

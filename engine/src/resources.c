@@ -12,8 +12,8 @@ static uint32_t find_memory_type(const rtpbr_context *ctx, uint32_t type_bits, V
     return UINT32_MAX;
 }
 
-static rtpbr_result allocate(rtpbr_context *ctx, VkMemoryRequirements req, VkMemoryPropertyFlags want,
-                             VkMemoryPropertyFlags fallback, VkDeviceMemory *out)
+static rtpbr_result allocate_flags(rtpbr_context *ctx, VkMemoryRequirements req, VkMemoryPropertyFlags want,
+                                   VkMemoryPropertyFlags fallback, bool device_address, VkDeviceMemory *out)
 {
     uint32_t type = find_memory_type(ctx, req.memoryTypeBits, want);
     if (type == UINT32_MAX) type = find_memory_type(ctx, req.memoryTypeBits, fallback);
@@ -21,8 +21,14 @@ static rtpbr_result allocate(rtpbr_context *ctx, VkMemoryRequirements req, VkMem
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR, "no Vulkan memory type with properties 0x%x", (unsigned)fallback);
         return RTPBR_ERROR_OUT_OF_DEVICE_MEMORY;
     }
+    // Memory a buffer's device address (vkGetBufferDeviceAddress) may point into.
+    VkMemoryAllocateFlagsInfo flags = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO,
+        .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT,
+    };
     VkMemoryAllocateInfo info = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+        .pNext = device_address ? &flags : NULL,
         .allocationSize = req.size,
         .memoryTypeIndex = type,
     };
@@ -32,7 +38,14 @@ cleanup:
     return result;
 }
 
-// A buffer in memory with the properties `want` (else `fallback`), mapped when host-visible.
+static rtpbr_result allocate(rtpbr_context *ctx, VkMemoryRequirements req, VkMemoryPropertyFlags want,
+                             VkMemoryPropertyFlags fallback, VkDeviceMemory *out)
+{
+    return allocate_flags(ctx, req, want, fallback, false, out);
+}
+
+// A buffer in memory with the properties `want` (else `fallback`), mapped when host-visible;
+// with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT in usage, its memory may be addressed.
 static rtpbr_result buffer_create(rtpbr_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
                                   VkMemoryPropertyFlags want, VkMemoryPropertyFlags fallback, bool map,
                                   rtpbr_buffer *out)
@@ -48,7 +61,8 @@ static rtpbr_result buffer_create(rtpbr_context *ctx, VkDeviceSize size, VkBuffe
     RTPBR_VK(&ctx->host, vkCreateBuffer(ctx->device, &info, NULL, &out->buffer));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(ctx->device, out->buffer, &req);
-    RTPBR_TRY(allocate(ctx, req, want, fallback, &out->memory));
+    RTPBR_TRY(allocate_flags(ctx, req, want, fallback, (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0,
+                             &out->memory));
     RTPBR_VK(&ctx->host, vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0));
     if (map) RTPBR_VK(&ctx->host, vkMapMemory(ctx->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped));
     out->size = size;

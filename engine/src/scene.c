@@ -1131,6 +1131,7 @@ rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const r
         scene->material_extension_textures[i] = material_extension_textures(&desc->materials[i]);
 
     RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (passes/shadow.c); reads the materials' sidedness and alpha modes
+    RTPBR_TRY(rtpbr_accel_create(scene)); // the same triangles for ray queries (with ctx->ray_query)
     RTPBR_TRY(create_textures(scene, desc, material_slots));
     RTPBR_TRY(create_alpha_textures(scene, desc));
 
@@ -1162,6 +1163,7 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_buffer_destroy(ctx, &scene->materials);
     rtpbr_buffer_destroy(ctx, &scene->texture_transforms);
     rtpbr_buffer_destroy(ctx, &scene->lights);
+    rtpbr_accel_destroy(scene);
     rtpbr_bvh_destroy(scene);
     rtpbr_buffer_destroy(ctx, &scene->alpha_textures);
     rtpbr_buffer_destroy(ctx, &scene->alpha_texels);
@@ -1223,6 +1225,16 @@ rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index
     scene->material_extension_textures[index] = material_extension_textures(material);
     rtpbr_gbuffer_write_material_textures(scene, index, index_of);
     if (triangle_flags_changed) rtpbr_bvh_update_material_flags(scene);
+    // The acceleration structures' classes follow the flags (accel.c): built again, and also
+    // where an earlier rebuild failed (rtpbr_render refuses shadows without them).
+    if (ctx->ray_query && (triangle_flags_changed || !scene->accel_tlas)) {
+        rtpbr_accel_destroy(scene);
+        rtpbr_result built = rtpbr_accel_create(scene);
+        if (built != RTPBR_SUCCESS) {
+            rtpbr_accel_destroy(scene);
+            return built;
+        }
+    }
     return RTPBR_SUCCESS;
 }
 

@@ -261,6 +261,8 @@ vk_host_result vk_host_init_device(vk_host *h, const vk_host_desc *desc, char *e
         .pNext = desc->device_next,
         .queueCreateInfoCount = 1,
         .pQueueCreateInfos = &queue_info,
+        .enabledExtensionCount = desc->device_extension_count,
+        .ppEnabledExtensionNames = desc->device_extensions,
     };
     vr = vkCreateDevice(h->physical_device, &device_info, NULL, &h->device);
     if (vr != VK_SUCCESS) {

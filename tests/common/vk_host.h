@@ -43,6 +43,8 @@ typedef struct vk_host_desc {
     bool without_validation;  /* true: no layer, no messenger (a tool's --no-validation) */
     VkQueueFlags queue_flags; /* the queue family has all of these; 0: VK_QUEUE_COMPUTE_BIT */
     const void *device_next;  /* chained into VkDeviceCreateInfo (features), or NULL */
+    const char *const *device_extensions; /* enabled on the device (device_extension_count of them) */
+    uint32_t device_extension_count;
 } vk_host_desc;
 
 typedef struct vk_host {

@@ -82,18 +82,25 @@ static void test_log_func(rtpbr_log_level level, const char *message, void *user
     }
 }
 
-// A standalone context with validation (and synchronization validation) on.
+// A standalone context with validation (and synchronization validation) on. With
+// RTPBR_TEST_SHADOW_RAY_QUERY=on in the environment (the engine-ray-query suite, on a driver
+// that has VK_KHR_ray_query: tests/engine/meson.build) its shadow rays are ray queries, and
+// the context must say so.
 static inline rtpbr_context *test_context(test_log *log)
 {
+    const char *ray_query = getenv("RTPBR_TEST_SHADOW_RAY_QUERY");
+    bool on = ray_query && strcmp(ray_query, "on") == 0;
     rtpbr_context_desc desc = {
         .logger = {test_log_func, log},
         .validation = 1,
+        .shadow_ray_query = on ? RTPBR_SHADOW_RAY_QUERY_ON : RTPBR_SHADOW_RAY_QUERY_AUTO,
     };
     rtpbr_context *ctx = NULL;
     rtpbr_result r = rtpbr_context_create(&desc, &ctx);
     if (r != RTPBR_SUCCESS) fprintf(stderr, "context: %s: %s\n", rtpbr_result_string(r), log->last_error);
     assert_int_equal(r, RTPBR_SUCCESS);
     assert_non_null(ctx);
+    if (on) assert_true(rtpbr_context_shadow_ray_query(ctx));
     return ctx;
 }
 

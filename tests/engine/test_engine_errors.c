@@ -280,6 +280,39 @@ static void bad_render_arguments(void **state)
     rtpbr_gpu_scene_destroy(scene);
 }
 
+// rtpbr_context_desc.shadow_ray_query: a value that is not a mode, and ON on a device without
+// VK_KHR_ray_query (this suite's lavapipe, Mesa 22.3), fail with a message; no context is made.
+static void bad_ray_query_modes(void **state)
+{
+    (void)state;
+    const struct {
+        int mode;
+        rtpbr_result expected;
+        const char *says;
+    } cases[] = {{7, RTPBR_ERROR_INVALID_ARGUMENT, "shadow_ray_query 7"},
+                 {-1, RTPBR_ERROR_INVALID_ARGUMENT, "shadow_ray_query -1"},
+                 {RTPBR_SHADOW_RAY_QUERY_ON, RTPBR_ERROR_MISSING_FEATURE, "VK_KHR_ray_query"}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        test_log log = {0};
+        rtpbr_context *ctx = (rtpbr_context *)(uintptr_t)1; // must be reset to NULL
+        rtpbr_context_desc desc = {.logger = {test_log_func, &log}, .validation = 1, .shadow_ray_query = cases[i].mode};
+        assert_int_equal(rtpbr_context_create(&desc, &ctx), cases[i].expected);
+        assert_null(ctx);
+        fprintf(stderr, "shadow_ray_query %d: %s\n", cases[i].mode, log.last_error);
+        assert_non_null(strstr(log.last_error, cases[i].says));
+        assert_int_equal(log.validation, 0);
+    }
+    // OFF and AUTO make a context that walks the BVH here.
+    for (int mode = RTPBR_SHADOW_RAY_QUERY_AUTO; mode <= RTPBR_SHADOW_RAY_QUERY_OFF; ++mode) {
+        test_log log = {0};
+        rtpbr_context *ctx = NULL;
+        rtpbr_context_desc desc = {.logger = {test_log_func, &log}, .validation = 1, .shadow_ray_query = mode};
+        assert_int_equal(rtpbr_context_create(&desc, &ctx), RTPBR_SUCCESS);
+        assert_false(rtpbr_context_shadow_ray_query(ctx));
+        test_context_done(ctx, &log);
+    }
+}
+
 static void missing_and_malformed_gltf(void **state)
 {
     rtpbr_context *ctx = CTX;
@@ -311,5 +344,6 @@ int main(void)
                     cmocka_unit_test(bad_lights),
                     cmocka_unit_test(bad_materials),
                     cmocka_unit_test(bad_render_arguments),
-                    cmocka_unit_test(missing_and_malformed_gltf));
+                    cmocka_unit_test(missing_and_malformed_gltf),
+                    cmocka_unit_test(bad_ray_query_modes));
 }

@@ -3,6 +3,7 @@
 //                [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]
 //                [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]
 //                [--shadows] [--shadow-samples N] [--no-shadow-denoiser] [--no-shadow-cull]
+//                [--ray-query auto|on|off]
 //                [--max-ratio R] [--stats-json FILE] [--memory-limit MIB]
 // OUT.exr holds linear scene radiance (RGB float; no exposure, no tone mapping: the quantity
 // the oracle writes); OUT.png the tone-mapped 8-bit sRGB image.
@@ -32,11 +33,14 @@ void usage(FILE *out = stderr)
                  "                    [--exposure EV] [--tonemap aces|reinhard|linear] [--ndf ggx|beckmann]\n"
                  "                    [--no-multiscatter] [--supersample S] [--mc-samples N] [--validation]\n"
                  "                    [--shadows] [--shadow-samples N] [--no-shadow-denoiser] [--no-shadow-cull]\n"
-                 "                    [--max-ratio R] [--stats-json FILE] [--memory-limit MIB]\n"
+                 "                    [--ray-query auto|on|off] [--max-ratio R] [--stats-json FILE] [--memory-limit MIB]\n"
                  "  --shadows        area-light shadows (ratio estimator; in each 16x16 tile the 8 lights that may light it most cast)\n"
                  "  --shadow-samples N  shadow rays per pixel and shadowed light (default 4; implies --shadows)\n"
                  "  --no-shadow-denoiser  each pixel's own shadow ratio, unfiltered\n"
                  "  --no-shadow-cull  trace every shadow ray, also where no triangle can block one (the same image)\n"
+                 "  --ray-query M    how shadow rays are traced: auto (VK_KHR_ray_query on a GPU that has it, the\n"
+                 "                   compute BVH walk otherwise; default), on (ray queries, also on a CPU device;\n"
+                 "                   an error without them), off (the compute walk)\n"
                  "  --supersample S  anti-aliasing: shade S x S samples per pixel, box-filtered (1..4; default 1)\n"
                  "  --mc-samples N   brute-force Monte Carlo lighting pass, N samples per pixel and light\n"
                  "                   (the reference the LTC pass is benchmarked against; default 0: LTC)\n"
@@ -149,6 +153,7 @@ int run(int argc, char **argv)
     size.timings = 1; // the frame's GPU times, printed
     rtpbr_render_desc render{};
     int validation = 0;
+    int ray_query = RTPBR_SHADOW_RAY_QUERY_AUTO;
     double max_ratio = 0.0; // 0: report only
     std::string stats_path;
     uint64_t memory_limit = 0; // 0: what the system has available
@@ -187,6 +192,13 @@ int run(int argc, char **argv)
         else if (a == "--no-shadow-cull") render.shadow_cull = RTPBR_SHADOW_CULL_OFF;
         else if (a == "--no-multiscatter") render.multiscatter = RTPBR_MULTISCATTER_OFF;
         else if (a == "--validation") validation = 1;
+        else if (a == "--ray-query" && has_value) {
+            std::string t = argv[++i];
+            if (t == "auto") ray_query = RTPBR_SHADOW_RAY_QUERY_AUTO;
+            else if (t == "on") ray_query = RTPBR_SHADOW_RAY_QUERY_ON;
+            else if (t == "off") ray_query = RTPBR_SHADOW_RAY_QUERY_OFF;
+            else return usage(), 2;
+        }
         else if (a == "--max-ratio" && has_value) {
             char *end = nullptr;
             max_ratio = std::strtod(argv[++i], &end);
@@ -215,6 +227,7 @@ int run(int argc, char **argv)
     rtpbr_context_desc cd{};
     cd.logger.func = on_log;
     cd.validation = validation;
+    cd.shadow_ray_query = ray_query;
     rtpbr_context *ctx = nullptr;
     rtpbr_gpu_scene *scene = nullptr;
     rtpbr_renderer *renderer = nullptr;

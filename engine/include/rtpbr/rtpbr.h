@@ -187,7 +187,30 @@ typedef struct rtpbr_context_desc {
     int validation;
     // Embedded mode: all of instance, physical_device, device, queue set. Default: standalone.
     rtpbr_vulkan_device embedded;
+    // How the shadow rays are traced (rtpbr_shadow_ray_query). Default (0): hardware ray queries
+    // on a GPU that has them, the compute BVH walk otherwise.
+    int shadow_ray_query;
 } rtpbr_context_desc;
+
+// rtpbr_context_desc.shadow_ray_query. The shadow rays (rtpbr_render_desc.shadows) are traced
+// either by the library's own BVH walk in a compute shader (every device) or by VK_KHR_ray_query
+// against an acceleration structure of the scene's triangles (VK_KHR_acceleration_structure),
+// which the driver builds and traverses (on a GPU with ray tracing hardware, in that hardware).
+// Both give the same visibility (the same rays, the same alpha test), up to how each intersects
+// a ray with a triangle's edges.
+//   AUTO: ray queries where the device supports them (standalone: the context enables
+//         VK_KHR_ray_query, VK_KHR_acceleration_structure, VK_KHR_deferred_host_operations and
+//         bufferDeviceAddress; embedded: where the host enabled rayQuery, accelerationStructure
+//         and bufferDeviceAddress in enabled_features), except on a CPU device, whose compute
+//         walk is tuned for it (lavapipe);
+//   OFF:  always the compute walk;
+//   ON:   ray queries, also on a CPU device; rtpbr_context_create fails with
+//         RTPBR_ERROR_MISSING_FEATURE where the device (or, embedded, the host) lacks them.
+typedef enum rtpbr_shadow_ray_query {
+    RTPBR_SHADOW_RAY_QUERY_AUTO = 0,
+    RTPBR_SHADOW_RAY_QUERY_OFF = 1,
+    RTPBR_SHADOW_RAY_QUERY_ON = 2,
+} rtpbr_shadow_ray_query;
 
 typedef struct rtpbr_context rtpbr_context;
 
@@ -203,6 +226,8 @@ RTPBR_API uint32_t rtpbr_context_validation_message_count(const rtpbr_context *c
 RTPBR_API rtpbr_vulkan_device rtpbr_context_vulkan_device(const rtpbr_context *context);
 // Name of the physical device in use ("llvmpipe (LLVM 15.0.6, 256 bits)"); never NULL.
 RTPBR_API const char *rtpbr_context_device_name(const rtpbr_context *context);
+// Non-zero when the context traces shadow rays with VK_KHR_ray_query (rtpbr_shadow_ray_query).
+RTPBR_API int rtpbr_context_shadow_ray_query(const rtpbr_context *context);
 
 // ---------------------------------------------------------------------------------------------
 // Scenes
@@ -572,14 +597,19 @@ RTPBR_API rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const 
 // recorded with rtpbr_record for this scene is pending (rtpbr_render has always finished).
 // Replaces material `index` (< the desc's material_count) with *material, validated as by
 // rtpbr_gpu_scene_create (finite values, known model, ior, texture indices within the
-// scene's textures; textures may change). The desc is copied.
+// scene's textures; textures may change). The desc is copied. Where the context traces shadow
+// rays with ray queries (rtpbr_context_shadow_ray_query), a change of the material's sidedness
+// or alpha mode rebuilds the scene's acceleration structures (one submission, waited for); if
+// that fails (out of memory), the result says so and shadowed renders of the scene are refused
+// until a later call rebuilds them.
 RTPBR_API rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index,
                                                     const rtpbr_material_desc *material);
 // Replaces the world-from-object transform (column-major, finite; all zero: identity) of
 // mesh `mesh` (< the desc's mesh_count, in the desc's order; for a glTF scene, the loader's
 // primitives in order, whose positions are already in world space, so their transform starts
 // as the identity). The matrix is copied. Lights do not follow: move them with
-// rtpbr_gpu_scene_set_lights.
+// rtpbr_gpu_scene_set_lights. Nor do shadows: the shadow rays' occluders (the BVH, and the
+// acceleration structures of ray-query shadows) keep the transforms of the scene's creation.
 RTPBR_API rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh,
                                                      const float transform[16]);
 

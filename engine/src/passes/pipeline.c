@@ -274,6 +274,25 @@ void rtpbr_descriptor_write_texel_buffer(rtpbr_context *ctx, rtpbr_bindings bind
     write_descriptor(ctx, bindings, set, binding, NULL, NULL, &view);
 }
 
+void rtpbr_descriptor_write_accel(rtpbr_context *ctx, VkDescriptorSet set, uint32_t binding,
+                                  VkAccelerationStructureKHR accel)
+{
+    const VkWriteDescriptorSetAccelerationStructureKHR structures = {
+        .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR,
+        .accelerationStructureCount = 1,
+        .pAccelerationStructures = &accel,
+    };
+    const VkWriteDescriptorSet write = {
+        .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+        .pNext = &structures,
+        .dstSet = set,
+        .dstBinding = binding,
+        .descriptorCount = 1,
+        .descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR,
+    };
+    vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
+}
+
 rtpbr_result rtpbr_pass_layouts_create(rtpbr_context *ctx, rtpbr_bindings bindings, VkShaderStageFlags push_stages,
                                        uint32_t push_size, VkDescriptorSetLayout *set_layout, VkPipelineLayout *layout)
 {

@@ -78,6 +78,9 @@ void rtpbr_descriptor_write_image(rtpbr_context *ctx, rtpbr_bindings bindings, V
                                   VkSampler sampler, VkImageView view, VkImageLayout layout);
 void rtpbr_descriptor_write_texel_buffer(rtpbr_context *ctx, rtpbr_bindings bindings, VkDescriptorSet set,
                                          uint32_t binding, VkBufferView view);
+// An acceleration structure (VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR) at `binding`.
+void rtpbr_descriptor_write_accel(rtpbr_context *ctx, VkDescriptorSet set, uint32_t binding,
+                                  VkAccelerationStructureKHR accel);
 
 
 // A pass with one set layout (from its binding table) and a pipeline layout of that set and,

@@ -33,6 +33,7 @@
 #include "rtpbr_spirv_shadow_comp.h"
 #include "rtpbr_spirv_shadow_denoise_comp.h"
 #include "rtpbr_spirv_shadow_list_comp.h"
+#include "rtpbr_spirv_shadow_ray_query_comp.h"
 #include "rtpbr_spirv_shadow_select_comp.h"
 
 enum { RTPBR_SHADOW_SAMPLES_PER_DISPATCH = 16 };
@@ -62,15 +63,25 @@ static const VkDescriptorSetLayoutBinding bindings[] = {
     COMPUTE(RTPBR_BINDING_SHADOW_WORK, STORAGE_BUFFER),
     COMPUTE(RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS, UNIFORM_TEXEL_BUFFER),
     COMPUTE(RTPBR_BINDING_SHADOW_BVH_TRIANGLE_TEXELS, UNIFORM_TEXEL_BUFFER),
+    // with ray-query shadows only (shadow_bindings)
+    COMPUTE(RTPBR_BINDING_SHADOW_ACCEL, ACCELERATION_STRUCTURE_KHR),
+    COMPUTE(RTPBR_BINDING_SHADOW_ACCEL_TRIANGLES, STORAGE_BUFFER),
 };
 #undef COMPUTE
-_Static_assert(sizeof bindings / sizeof bindings[0] == RTPBR_SHADOW_BINDING_COUNT, "every shadow binding");
+_Static_assert(sizeof bindings / sizeof bindings[0] == RTPBR_SHADOW_RAY_QUERY_BINDING_COUNT, "every shadow binding");
+
+// The set's bindings: the acceleration structure's only where the device traces with ray
+// queries (its descriptor type needs VK_KHR_acceleration_structure).
+static rtpbr_bindings shadow_bindings(const rtpbr_context *ctx)
+{
+    return (rtpbr_bindings){bindings, ctx->ray_query ? RTPBR_SHADOW_RAY_QUERY_BINDING_COUNT : RTPBR_SHADOW_BINDING_COUNT};
+}
 
 rtpbr_result rtpbr_shadow_pass_init(rtpbr_context *ctx)
 {
     rtpbr_shadow_pass *pass = &ctx->shadow;
     rtpbr_result result = RTPBR_SUCCESS;
-    RTPBR_TRY(rtpbr_pass_layouts_create(ctx, RTPBR_BINDINGS(bindings), VK_SHADER_STAGE_COMPUTE_BIT,
+    RTPBR_TRY(rtpbr_pass_layouts_create(ctx, shadow_bindings(ctx), VK_SHADER_STAGE_COMPUTE_BIT,
                                         sizeof(rtpbr_shader_shadow), &pass->set_layout, &pass->layout));
     // On a CPU device the walks read the BVH as texel buffers (bvh.glsl: on lavapipe a storage
     // buffer's load at a varying index is a load per lane, a texel fetch a gather), where a view
@@ -111,12 +122,13 @@ rtpbr_result rtpbr_shadow_pipelines_get(rtpbr_context *ctx, bool alpha_tested)
         RTPBR_TRY(bvh_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_select_comp), true, &pass->select));
     if (!pass->list)
         RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_list_comp), pass->layout, &pass->list));
-    if (alpha_tested && !pass->trace)
-        RTPBR_TRY(bvh_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_comp), true, &pass->trace));
+    // The trace by the BVH walk, or by ray queries (rtpbr_context_desc.shadow_ray_query).
+    const rtpbr_spirv trace = ctx->ray_query ? RTPBR_SPIRV(rtpbr_spirv_shadow_ray_query_comp)
+                                             : RTPBR_SPIRV(rtpbr_spirv_shadow_comp);
+    if (alpha_tested && !pass->trace) RTPBR_TRY(bvh_pipeline_create(ctx, trace, true, &pass->trace));
     // Without MASK or BLEND materials every triangle a ray crosses blocks it: bvh.glsl's alpha
     // test compiled out (on lavapipe its code costs every step of the walk, taken or not).
-    if (!alpha_tested && !pass->trace_opaque)
-        RTPBR_TRY(bvh_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_comp), false, &pass->trace_opaque));
+    if (!alpha_tested && !pass->trace_opaque) RTPBR_TRY(bvh_pipeline_create(ctx, trace, false, &pass->trace_opaque));
     if (!pass->denoise)
         RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_shadow_denoise_comp), pass->layout,
                                                 &pass->denoise));
@@ -160,8 +172,8 @@ rtpbr_result rtpbr_shadow_renderer_init(rtpbr_renderer *r)
         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
         &r->shadow_work));
 
-    RTPBR_TRY(rtpbr_descriptor_set_create(ctx, RTPBR_BINDINGS(bindings), ctx->shadow.set_layout, &r->shadow_set));
-    const rtpbr_bindings table = RTPBR_BINDINGS(bindings);
+    const rtpbr_bindings table = shadow_bindings(ctx);
+    RTPBR_TRY(rtpbr_descriptor_set_create(ctx, table, ctx->shadow.set_layout, &r->shadow_set));
     VkDescriptorSet set = r->shadow_set.set;
     const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     rtpbr_descriptor_write_buffer(ctx, table, set, RTPBR_BINDING_SHADOW_FRAME, r->frame.buffer,
@@ -200,12 +212,17 @@ void rtpbr_shadow_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene)
         {RTPBR_BINDING_SHADOW_ALPHA_TEXTURES, scene->alpha_textures.buffer},
         {RTPBR_BINDING_SHADOW_ALPHA_TEXELS, scene->alpha_texels.buffer},
     };
-    rtpbr_descriptor_write_buffers(r->context, RTPBR_BINDINGS(bindings), r->shadow_set.set, writes,
-                                   sizeof writes / sizeof writes[0]);
-    rtpbr_descriptor_write_texel_buffer(r->context, RTPBR_BINDINGS(bindings), r->shadow_set.set,
-                                        RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS, scene->bvh_node_texels);
-    rtpbr_descriptor_write_texel_buffer(r->context, RTPBR_BINDINGS(bindings), r->shadow_set.set,
-                                        RTPBR_BINDING_SHADOW_BVH_TRIANGLE_TEXELS, scene->bvh_triangle_texels);
+    const rtpbr_bindings table = shadow_bindings(r->context);
+    rtpbr_descriptor_write_buffers(r->context, table, r->shadow_set.set, writes, sizeof writes / sizeof writes[0]);
+    rtpbr_descriptor_write_texel_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS,
+                                        scene->bvh_node_texels);
+    rtpbr_descriptor_write_texel_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_BVH_TRIANGLE_TEXELS,
+                                        scene->bvh_triangle_texels);
+    if (r->context->ray_query) { // the scene's acceleration structures (accel.c)
+        rtpbr_descriptor_write_accel(r->context, r->shadow_set.set, RTPBR_BINDING_SHADOW_ACCEL, scene->accel_tlas);
+        rtpbr_descriptor_write_buffer(r->context, table, r->shadow_set.set, RTPBR_BINDING_SHADOW_ACCEL_TRIANGLES,
+                                      scene->accel_triangles.buffer, VK_WHOLE_SIZE);
+    }
 }
 
 // A memory barrier between compute dispatches on one of the shadow images (all its layers).
