@@ -14,8 +14,9 @@
 //     the first of its triangles in `accel_triangles`, a storage buffer of uints (binding
 //     RTPBR_BINDING_SHADOW_ACCEL_TRIANGLES): the BVH triangle of each (the alpha test reads that
 //     triangle's vertices and material, the stochastic opacity hashes its index).
-// Built once at scene creation by one submission (and again where a material's sidedness or
-// alpha mode changes: rtpbr_gpu_scene_set_material), static afterwards, like the BVH.
+// Built at scene creation by one submission, and again where a material's sidedness or alpha
+// mode changes (rtpbr_gpu_scene_set_material) or a mesh moves (rtpbr_gpu_scene_set_transform,
+// after the BVH's refit).
 #include <string.h>
 
 #include "internal.h"

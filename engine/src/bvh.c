@@ -273,6 +273,51 @@ cleanup:
     return result;
 }
 
+// Nodes are made parent first (build: a node's children are allocated after it), so a pass
+// from the last node to the root meets every child before its parent.
+void rtpbr_bvh_refit(rtpbr_gpu_scene *scene)
+{
+    const float *vertices = scene->vertices.mapped;
+    rtpbr_shader_bvh_triangle *tris = scene->bvh_triangles.mapped;
+    rtpbr_shader_bvh_node *nodes = scene->bvh_nodes.mapped;
+    for (uint32_t i = 0; i < scene->bvh_triangle_count; ++i) {
+        const float *m = scene->draws[scene->bvh_triangle_draws[i]].push.world_from_object;
+        float p[3][3];
+        for (int v = 0; v < 3; ++v)
+            transform_point(m, vertices + RTPBR_VERTEX_FLOATS * (size_t)tris[i].source[v], p[v]);
+        for (int k = 0; k < 3; ++k) {
+            tris[i].v0[k] = p[0][k];
+            tris[i].e1[k] = p[1][k] - p[0][k];
+            tris[i].e2[k] = p[2][k] - p[0][k];
+        }
+    }
+    for (uint32_t n = scene->bvh_node_count; n-- > 0;) {
+        aabb box = aabb_empty();
+        if (nodes[n].count > 0) {
+            for (uint32_t i = nodes[n].left_or_first; i < nodes[n].left_or_first + nodes[n].count; ++i) {
+                // the same vertices build() boxed: transform_point's, not v0 + e1
+                const float *m = scene->draws[scene->bvh_triangle_draws[i]].push.world_from_object;
+                for (int v = 0; v < 3; ++v) {
+                    float p[3];
+                    transform_point(m, vertices + RTPBR_VERTEX_FLOATS * (size_t)tris[i].source[v], p);
+                    aabb_grow(&box, p);
+                }
+            }
+        } else if (scene->bvh_triangle_count > 0) {
+            for (uint32_t c = 0; c < 2; ++c) {
+                const rtpbr_shader_bvh_node *child = &nodes[nodes[n].left_or_first + c];
+                aabb b;
+                memcpy(b.min, child->box_min, sizeof b.min);
+                memcpy(b.max, child->box_max, sizeof b.max);
+                aabb_merge(&box, &b);
+            }
+        }
+        memcpy(nodes[n].box_min, box.min, sizeof box.min);
+        memcpy(nodes[n].box_max, box.max, sizeof box.max);
+    }
+    rtpbr_bvh_update_material_flags(scene); // a transform may now mirror, or no longer
+}
+
 void rtpbr_bvh_update_material_flags(rtpbr_gpu_scene *scene)
 {
     rtpbr_shader_bvh_triangle *out = scene->bvh_triangles.mapped;

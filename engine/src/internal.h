@@ -469,6 +469,9 @@ void rtpbr_bvh_destroy(rtpbr_gpu_scene *scene); // accepts a half-built scene
 // Rewrites each triangle's sidedness (v0.w) from its material and its draw's transform, and
 // whether its material's alpha is tested (e1.w: MASK or BLEND).
 void rtpbr_bvh_update_material_flags(rtpbr_gpu_scene *scene);
+// The BVH's triangles again from the meshes' current transforms, and its boxes refitted to them
+// (the tree kept: rtpbr_gpu_scene_set_transform); also their sidedness (a transform may mirror).
+void rtpbr_bvh_refit(rtpbr_gpu_scene *scene);
 // The acceleration structures of the BVH's triangles, with ctx->ray_query (accel.c; nothing
 // without); rebuilt where the triangles' flags change.
 rtpbr_result rtpbr_accel_create(rtpbr_gpu_scene *scene);

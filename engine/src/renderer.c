@@ -164,7 +164,7 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
     if (shadows && ctx->ray_query && !scene->accel_tlas) {
         rtpbr_log(&ctx->host, RTPBR_LOG_ERROR,
                   "render: the scene has no acceleration structures for its shadow rays (their rebuild in "
-                  "rtpbr_gpu_scene_set_material failed)");
+                  "rtpbr_gpu_scene_set_material or _set_transform failed)");
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
     if (shadows) {

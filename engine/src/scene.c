@@ -1251,6 +1251,17 @@ rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh
     if (is_zero(transform, 16)) rtpbr_mat4_identity(draw->push.world_from_object);
     else memcpy(draw->push.world_from_object, transform, sizeof draw->push.world_from_object);
     normal_matrix(draw->push.world_from_object, draw->push.normal_matrix);
+    // The shadow rays' occluders move with it: the BVH refitted, the acceleration structures
+    // built again (accel.c).
+    rtpbr_bvh_refit(scene);
+    if (scene->context->ray_query) {
+        rtpbr_accel_destroy(scene);
+        rtpbr_result built = rtpbr_accel_create(scene);
+        if (built != RTPBR_SUCCESS) {
+            rtpbr_accel_destroy(scene);
+            return built;
+        }
+    }
     return RTPBR_SUCCESS;
 }
 

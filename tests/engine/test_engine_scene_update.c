@@ -135,6 +135,65 @@ static void set_transform_matches_create(void **state)
     fixture_finish(&f);
 }
 
+// The shadow rays' occluders follow a transform too: the emissive square hangs between the light
+// and the floor and shadows it; moved (as above), the shadowed frame renders as the square
+// created at the moved position, and moved back as before. (Until 2026-12-06 the shadow rays
+// kept meeting the square where the scene was created: its shadow stayed behind.)
+static float *render_shadowed(fixture *f, rtpbr_gpu_scene *scene)
+{
+    float *out = malloc(W * H * 16);
+    assert_non_null(out);
+    assert_int_equal(rtpbr_render(f->renderer, scene, &(rtpbr_render_desc){.shadows = RTPBR_SHADOWS_ON}), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(f->renderer, out, W * H * 16), RTPBR_SUCCESS);
+    return out;
+}
+
+// Pixels whose red differs by more than 1e-3 relative (of 1e-2 at least).
+static int pixels_differing(const float *a, const float *b)
+{
+    int n = 0;
+    for (int i = 0; i < W * H; ++i)
+        if (fabsf(a[4 * i] - b[4 * i]) > 1e-3f * fmaxf(fmaxf(fabsf(a[4 * i]), fabsf(b[4 * i])), 1e-2f)) ++n;
+    return n;
+}
+
+static void set_transform_moves_shadows(void **state)
+{
+    (void)state;
+    fixture f;
+    fixture_init(&f);
+    f.materials[1].double_sided = 1; // (single-sided, its front up, it would let the rays up through)
+    rtpbr_gpu_scene *edited = create_scene(&f);
+    float *before = render_shadowed(&f, edited);
+    float *unshadowed = render(&f, edited);
+    const float m[16] = {0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 0.4f, 0, 0, 1};
+    assert_int_equal(rtpbr_gpu_scene_set_transform(edited, 1, m), RTPBR_SUCCESS);
+    float *after = render_shadowed(&f, edited);
+    float moved[12];
+    memcpy(moved, f.positions[1], sizeof moved);
+    for (int v = 0; v < 4; ++v) {
+        f.positions[1][3 * v] = -moved[3 * v + 1] + 0.4f;
+        f.positions[1][3 * v + 1] = moved[3 * v];
+    }
+    rtpbr_gpu_scene *fresh = create_scene(&f);
+    float *expected = render_shadowed(&f, fresh);
+    int shadow = pixels_differing(before, unshadowed), moved_shadow = pixels_differing(before, expected);
+    int differing = pixels_differing(after, expected);
+    fprintf(stderr, "pixels the square's shadow changes: %d; its move: %d; the moved square against one made there: %d\n",
+            shadow, moved_shadow, differing);
+    assert_true(shadow > W * H / 20);
+    assert_true(moved_shadow > W * H / 20);
+    assert_true(differing <= W * H / 200); // rounding of the vertices (above), a ray across an edge
+    const float zero[16] = {0};
+    assert_int_equal(rtpbr_gpu_scene_set_transform(edited, 1, zero), RTPBR_SUCCESS);
+    float *back = render_shadowed(&f, edited);
+    assert_float_equal(max_difference(back, before), 0.0, 0.0);
+    free(before), free(unshadowed), free(after), free(expected), free(back);
+    rtpbr_gpu_scene_destroy(edited);
+    rtpbr_gpu_scene_destroy(fresh);
+    fixture_finish(&f);
+}
+
 // Bad edits: a message, an error, and the scene renders as before.
 static void bad_edits_are_refused(void **state)
 {
@@ -207,5 +266,6 @@ static void renderer_timings(void **state)
 
 RTPBR_TEST_MAIN(cmocka_unit_test(set_material_matches_create),
                 cmocka_unit_test(set_transform_matches_create),
+                cmocka_unit_test(set_transform_moves_shadows),
                 cmocka_unit_test(bad_edits_are_refused),
                 cmocka_unit_test(renderer_timings))

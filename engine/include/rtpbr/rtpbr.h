@@ -601,15 +601,18 @@ RTPBR_API rtpbr_result rtpbr_gpu_scene_set_lights(rtpbr_gpu_scene *scene, const 
 // rays with ray queries (rtpbr_context_shadow_ray_query), a change of the material's sidedness
 // or alpha mode rebuilds the scene's acceleration structures (one submission, waited for); if
 // that fails (out of memory), the result says so and shadowed renders of the scene are refused
-// until a later call rebuilds them.
+// until a later call (of this or rtpbr_gpu_scene_set_transform) rebuilds them.
 RTPBR_API rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index,
                                                     const rtpbr_material_desc *material);
 // Replaces the world-from-object transform (column-major, finite; all zero: identity) of
 // mesh `mesh` (< the desc's mesh_count, in the desc's order; for a glTF scene, the loader's
 // primitives in order, whose positions are already in world space, so their transform starts
 // as the identity). The matrix is copied. Lights do not follow: move them with
-// rtpbr_gpu_scene_set_lights. Nor do shadows: the shadow rays' occluders (the BVH, and the
-// acceleration structures of ray-query shadows) keep the transforms of the scene's creation.
+// rtpbr_gpu_scene_set_lights. The shadow rays' occluders follow: the BVH's triangles are
+// transformed again and its boxes refitted (the tree kept, time linear in the scene's
+// triangles; a mesh moved far from where it was leaves boxes larger than a new tree's), and
+// with ray-query shadows the acceleration structures are built again (one submission, waited
+// for; if that fails, as rtpbr_gpu_scene_set_material's).
 RTPBR_API rtpbr_result rtpbr_gpu_scene_set_transform(rtpbr_gpu_scene *scene, uint32_t mesh,
                                                      const float transform[16]);
 
