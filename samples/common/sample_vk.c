@@ -2,6 +2,8 @@
 #include "sample_vk.h"
 
 #include <stdarg.h>
+#include <stdbool.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -114,11 +116,44 @@ int sample_device_create(sample_device *d, const char *app_name, int validation,
     float priority = 1.0f;
     VkDeviceQueueCreateInfo queue_info = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
         .queueFamilyIndex = d->vk.queue_family_index, .queueCount = 1, .pQueuePriorities = &priority};
+    // Ray queries where the device has every extension and feature rtpbr's need.
+    static const char *const ray_query_extensions[] = {VK_KHR_RAY_QUERY_EXTENSION_NAME,
+        VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME, VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+    uint32_t found = 0, count = 0;
+    vkEnumerateDeviceExtensionProperties(d->vk.physical_device, NULL, &count, NULL);
+    VkExtensionProperties *extensions = calloc(count ? count : 1, sizeof *extensions);
+    if (extensions && vkEnumerateDeviceExtensionProperties(d->vk.physical_device, NULL, &count, extensions) == VK_SUCCESS)
+        for (uint32_t e = 0; e < 3; ++e)
+            for (uint32_t i = 0; i < count; ++i)
+                if (!strcmp(extensions[i].extensionName, ray_query_extensions[e])) {
+                    ++found;
+                    break;
+                }
+    free(extensions);
+    d->ray_query = (VkPhysicalDeviceRayQueryFeaturesKHR){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+    d->acceleration_structure = (VkPhysicalDeviceAccelerationStructureFeaturesKHR){
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, .pNext = &d->ray_query};
+    d->features12 = (VkPhysicalDeviceVulkan12Features){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                                                      .pNext = &d->acceleration_structure};
+    VkPhysicalDeviceFeatures2 supported = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &d->features12};
+    if (found == 3) vkGetPhysicalDeviceFeatures2(d->vk.physical_device, &supported);
+    bool ray_query = found == 3 && d->ray_query.rayQuery && d->acceleration_structure.accelerationStructure &&
+                     d->features12.bufferDeviceAddress;
+    // What is enabled: those three (the queried structs hold every supported feature).
+    d->ray_query = (VkPhysicalDeviceRayQueryFeaturesKHR){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR,
+                                                         .rayQuery = VK_TRUE};
+    d->acceleration_structure = (VkPhysicalDeviceAccelerationStructureFeaturesKHR){
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, .pNext = &d->ray_query,
+        .accelerationStructure = VK_TRUE};
+    d->features12 = (VkPhysicalDeviceVulkan12Features){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                                                      .pNext = &d->acceleration_structure, .bufferDeviceAddress = VK_TRUE};
     d->features13 = (VkPhysicalDeviceVulkan13Features){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+                                                      .pNext = ray_query ? &d->features12 : NULL,
                                                       .dynamicRendering = VK_TRUE};
     d->features = (VkPhysicalDeviceFeatures2){.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &d->features13};
     SAMPLE_VK(vkCreateDevice(d->vk.physical_device, &(VkDeviceCreateInfo){.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
-        .pNext = &d->features, .queueCreateInfoCount = 1, .pQueueCreateInfos = &queue_info}, NULL, &d->vk.device));
+        .pNext = &d->features, .queueCreateInfoCount = 1, .pQueueCreateInfos = &queue_info,
+        .enabledExtensionCount = ray_query ? 3 : 0, .ppEnabledExtensionNames = ray_query_extensions}, NULL, &d->vk.device));
     vkGetDeviceQueue(d->vk.device, d->vk.queue_family_index, 0, &d->vk.queue);
     d->vk.enabled_features = &d->features;
     return 0;

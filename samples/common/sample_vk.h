@@ -42,11 +42,18 @@ typedef struct sample_device {
     VkDebugUtilsMessengerEXT messenger;
     VkPhysicalDeviceVulkan13Features features13; // what the host enabled (rtpbr reads it)
     VkPhysicalDeviceFeatures2 features;
+    // Where the device has them, ray queries (rtpbr traces its shadow rays with them on a GPU:
+    // rtpbr_context_desc.shadow_ray_query): their extensions enabled and these chained too.
+    VkPhysicalDeviceVulkan12Features features12;
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR acceleration_structure;
+    VkPhysicalDeviceRayQueryFeaturesKHR ray_query;
     uint32_t validation_messages;                // warnings and errors of the validation layer
 } sample_device;
 
 // Instance, the first device with Vulkan 1.3 and a graphics + compute queue, and a device with
-// dynamicRendering enabled (rtpbr's one requirement). validation: VK_LAYER_KHRONOS_validation
+// dynamicRendering enabled (rtpbr's one requirement), and ray queries where the device has
+// them (VK_KHR_ray_query, VK_KHR_acceleration_structure, VK_KHR_deferred_host_operations,
+// bufferDeviceAddress: what rtpbr's ray-query shadows need). validation: VK_LAYER_KHRONOS_validation
 // (and, with sync_validation, its synchronization validation), messages through
 // sample_vk_on_validation into validation_messages. Non-zero on failure, the reason in error;
 // sample_device_destroy is safe after a failure.
