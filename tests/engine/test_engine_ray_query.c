@@ -157,6 +157,8 @@ static void test_single_sided_occluders(void **state)
 }
 
 // AUTO keeps the compute walk on a CPU device (lavapipe); ON traces with ray queries there.
+// With them, a scene without triangles (no bottom level, an empty top level) renders its
+// shadows: a floor-less light lights nothing, and nothing blocks.
 static void test_modes(void **state)
 {
     (void)state;
@@ -166,6 +168,18 @@ static void test_modes(void **state)
         test_log log = {0};
         rtpbr_context *ctx = mode_context(&log, modes[m]);
         assert_int_equal(rtpbr_context_shadow_ray_query(ctx), modes[m] == RTPBR_SHADOW_RAY_QUERY_ON);
+        if (modes[m] == RTPBR_SHADOW_RAY_QUERY_ON) {
+            rtpbr_light_desc light = {.vertices = {{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},
+                                      .vertex_count = 4, .emission = {1, 1, 1}};
+            rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.lights = &light, .light_count = 1});
+            rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 16, .height = 16});
+            float *px = test_render_radiance(r, scene, &(rtpbr_render_desc){.shadows = RTPBR_SHADOWS_ON,
+                                                                           .background = {0.25f, 0.5f, 1.0f}}, 16, 16);
+            assert_float_equal(px[4 * 100 + 1], 0.5f, 0.0f); // the background everywhere
+            free(px);
+            rtpbr_renderer_destroy(r);
+            rtpbr_gpu_scene_destroy(scene);
+        }
         test_context_done(ctx, &log);
     }
 }
