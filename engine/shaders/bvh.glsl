@@ -182,6 +182,8 @@ bool bvh_triangle_crossed(BvhTriangle tri, vec3 o, vec3 d, float tMax, out vec2 
 #define RTPBR_BVH_ALPHA_DEFAULT true
 #endif
 layout(constant_id = RTPBR_SPEC_BVH_ALPHA) const bool bvh_alpha_tested = RTPBR_BVH_ALPHA_DEFAULT;
+// The trace's packets also where the alpha is tested (rtpbr_shared.h; passes/shadow.c: a CPU device).
+layout(constant_id = RTPBR_SPEC_BVH_PACKET_ALPHA) const bool bvh_packet_alpha = false;
 
 // True if any triangle crosses the segment o + t d, 0 < t < tMax, and blocks it (an opaque one,
 // or one whose alpha blocks: bvh_alpha_blocks). rayKey: a random number of this ray, for the
@@ -279,15 +281,29 @@ uint bvh_triangle_rays(BvhTriangle tri, vec3 o, vec3 d[RTPBR_BVH_PACKET], float 
 #error "bvh_box_rays and bvh_triangle_rays are written for packets of 4 rays"
 #endif
 
+// Does triangle i (read: tri), which the ray o + t d crosses, block it? Its alpha at the
+// crossing (bvh_alpha_blocks), the ray's key bvh_hash(key).
+bool bvh_alpha_ray(BvhTriangle tri, uint i, vec3 o, vec3 d, float tMax, uint key)
+{
+    vec2 bary;
+    bvh_triangle_crossed(tri, o, d, tMax, bary);
+    return bvh_alpha_blocks(i, bary.x, bary.y, bvh_hash(key));
+}
+
 // Which rays of a packet from one origin are blocked: bit i set where some triangle crosses
-// o + t d[i], 0 < t < tMax, for the rays of `traced`. Every triangle blocks (for scenes
-// without MASK or BLEND materials: bvh_alpha_tested off; bvh_occluded otherwise).
+// o + t d[i], 0 < t < tMax, and blocks it, for the rays of `traced`. Every crossed triangle
+// blocks but one whose alpha is tested (with bvh_alpha_tested: bvh_alpha_blocks, ray i's key
+// bvh_hash(keyBase + i), as bvh_occluded's).
 // One walk for the packet: a node is visited once for all the rays that reach it (those that
 // enter its box and its parents'), a leaf's triangles tested against those rays only; so each
 // ray meets the nodes and triangles it meets in its own walk (bvh_occluded), and its answer is
 // the same. The rays of a pixel toward a light are close: the walk and its reads (a node's two
 // children, a triangle) are shared by up to RTPBR_BVH_PACKET rays instead of repeated.
-uint bvh_occluded_packet(vec3 o, vec3 d[RTPBR_BVH_PACKET], float tMax, uint traced)
+// The alpha is looked at outside the walk, as in bvh_occluded: the walk stops at the first
+// crossed triangle whose alpha is tested, reads its alpha for the rays that cross it, and
+// resumes where it stopped with those it did not block (in the walk, on lavapipe, the alpha's
+// reads would cost every step of every packet).
+uint bvh_occluded_packet(vec3 o, vec3 d[RTPBR_BVH_PACKET], float tMax, uint traced, uint keyBase)
 {
     // Zero direction components become huge reciprocals of the right sign (no NaN in the slabs).
     vec3 invD[RTPBR_BVH_PACKET] = vec3[](1.0f / mix(d[0], vec3(1e-30f), lessThan(abs(d[0]), vec3(1e-30f))),
@@ -301,40 +317,63 @@ uint bvh_occluded_packet(vec3 o, vec3 d[RTPBR_BVH_PACKET], float tMax, uint trac
     int sp = 0;
     uint node = rays != 0u ? 0u : RTPBR_BVH_NONE;
     uint first = 0u, end = 0u;
-    for (;;) { // one trip per leaf
-        while (first == end) {
-            if (node == RTPBR_BVH_NONE) {
-                if (sp == 0) return blocked;
-                uint entry = stack[--sp];
-                node = entry & ((1u << RTPBR_BVH_PACKET_SHIFT) - 1u);
-                rays = (entry >> RTPBR_BVH_PACKET_SHIFT) & ~blocked;
-                if (rays == 0u) { node = RTPBR_BVH_NONE; continue; } // its rays are blocked already
-            }
-            BvhNode n = bvh_node(node);
-            node = RTPBR_BVH_NONE;
-            if (n.count > 0u) {
-                first = n.left_or_first;
-                end = first + n.count;
-            } else {
-                BvhNode left = bvh_node(n.left_or_first);
-                BvhNode right = bvh_node(n.left_or_first + 1u);
-                uint raysLeft = rays & bvh_box_rays(left.box_min, left.box_max, o, invD, tMax);
-                uint raysRight = rays & bvh_box_rays(right.box_min, right.box_max, o, invD, tMax);
-                // Descend into one, keep the other for later; the depth bound keeps sp in range.
-                if (raysLeft != 0u || raysRight != 0u) {
-                    node = raysLeft != 0u ? n.left_or_first : n.left_or_first + 1u;
-                    rays = raysLeft != 0u ? raysLeft : raysRight;
+    for (;;) { // one trip per crossed triangle whose alpha is tested (bvh_alpha_tested), and a last one
+        uint candidate = RTPBR_BVH_NONE, crossing = 0u;
+        for (;;) { // one trip per leaf
+            while (first == end) {
+                if (node == RTPBR_BVH_NONE) {
+                    if (sp == 0) return blocked;
+                    uint entry = stack[--sp];
+                    node = entry & ((1u << RTPBR_BVH_PACKET_SHIFT) - 1u);
+                    rays = (entry >> RTPBR_BVH_PACKET_SHIFT) & ~blocked;
+                    if (rays == 0u) { node = RTPBR_BVH_NONE; continue; } // its rays are blocked already
                 }
-                if (raysLeft != 0u && raysRight != 0u)
-                    stack[sp++] = (n.left_or_first + 1u) | (raysRight << RTPBR_BVH_PACKET_SHIFT);
+                BvhNode n = bvh_node(node);
+                node = RTPBR_BVH_NONE;
+                if (n.count > 0u) {
+                    first = n.left_or_first;
+                    end = first + n.count;
+                } else {
+                    BvhNode left = bvh_node(n.left_or_first);
+                    BvhNode right = bvh_node(n.left_or_first + 1u);
+                    uint raysLeft = rays & bvh_box_rays(left.box_min, left.box_max, o, invD, tMax);
+                    uint raysRight = rays & bvh_box_rays(right.box_min, right.box_max, o, invD, tMax);
+                    // Descend into one, keep the other for later; the depth bound keeps sp in range.
+                    if (raysLeft != 0u || raysRight != 0u) {
+                        node = raysLeft != 0u ? n.left_or_first : n.left_or_first + 1u;
+                        rays = raysLeft != 0u ? raysLeft : raysRight;
+                    }
+                    if (raysLeft != 0u && raysRight != 0u)
+                        stack[sp++] = (n.left_or_first + 1u) | (raysRight << RTPBR_BVH_PACKET_SHIFT);
+                }
             }
+            // The leaf's triangles, against the rays that reach it and are not blocked yet.
+            for (; first < end; ++first) {
+                BvhTriangle tri = bvh_triangle(first);
+                uint hit = rays & bvh_triangle_rays(tri, o, d, tMax);
+                if (bvh_alpha_tested && hit != 0u && tri.e1.w != 0.0f) { // its alpha decides
+                    candidate = first++;
+                    crossing = hit;
+                    break;
+                }
+                blocked |= hit;
+                rays &= ~blocked;
+                if (rays == 0u) first = end - 1u; // the loop's increment ends the leaf
+            }
+            if (candidate != RTPBR_BVH_NONE) break;
+            if ((traced & ~blocked) == 0u) return blocked;
         }
-        // The leaf's triangles, against the rays that reach it and are not blocked yet.
-        for (; first < end; ++first) {
-            blocked |= rays & bvh_triangle_rays(bvh_triangle(first), o, d, tMax);
-            rays &= ~blocked;
-            if (rays == 0u) first = end - 1u; // the loop's increment ends the leaf
+        // The candidate's alpha for each ray that crosses it, where it crosses it: a loop over
+        // those rays (the four written out took the alpha-tested scenes' frames 4 % longer on
+        // lavapipe, which ran all four every time; at most 4 trips a stop, well inside lavapipe's
+        // loop budget, shadow.c).
+        BvhTriangle tri = bvh_triangle(candidate);
+        for (uint left = crossing; left != 0u; left &= left - 1u) {
+            uint i = uint(findLSB(left));
+            if (bvh_alpha_ray(tri, candidate, o, d[i], tMax, keyBase + i)) blocked |= 1u << i;
         }
+        rays &= ~blocked;
+        if (rays == 0u) first = end; // the leaf's rest: none of its rays left
         if ((traced & ~blocked) == 0u) return blocked;
     }
     return blocked;

@@ -379,6 +379,12 @@
 // the BVH through its texel-buffer bindings (RTPBR_BINDING_SHADOW_BVH_NODE_TEXELS): set by
 // passes/shadow.c on a CPU device (docs/performance.md, "Shadows on a CPU device").
 #define RTPBR_SPEC_BVH_TEXELS 6
+// The specialization constant (a bool, default false) of the trace that walks a pixel's rays
+// toward a light as one packet also where the alpha is tested (bvh_occluded_packet's alpha; off:
+// ray by ray, bvh_occluded): set by passes/shadow.c on a CPU device, where the shared walk is
+// faster; on a GPU the packet's alpha took navi21's alpha-tested trace from 120 to 144 VGPRs
+// and spilled 4 on gfx1100 (Mesa 22.3, bench/shader-stats).
+#define RTPBR_SPEC_BVH_PACKET_ALPHA 7
 // The lighting pass's specialization constants (lighting.comp's shade_lights.glsl and
 // shading.glsl): the most vertices of the frame's polygons (a uint,
 // RTPBR_SHADER_MAX_POLYGON_VERTICES by default), whether it has punctual lights (a bool, true by

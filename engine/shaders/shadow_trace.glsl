@@ -164,12 +164,14 @@ void trace(ivec2 pixel, uvec2 group, uint k)
           if ((traced & (1u << i)) != 0u && rq_occluded(origin, rays[i], 1.0f - 1e-3f, bvh_hash(h + j0 + i)))
               blocked |= 1u << i;
 #else
-      if (bvh_alpha_tested) { // a scene with MASK or BLEND materials: ray by ray
+      if (bvh_alpha_tested && !bvh_packet_alpha) { // a scene with MASK or BLEND materials on a GPU: ray by ray
           [[unroll]] for (uint i = 0u; i < uint(RTPBR_BVH_PACKET); ++i)
               if ((traced & (1u << i)) != 0u && bvh_occluded(origin, rays[i], 1.0f - 1e-3f, bvh_hash(h + j0 + i)))
                   blocked |= 1u << i;
       } else if (traced != 0u) {
-          blocked = bvh_occluded_packet(origin, rays, 1.0f - 1e-3f, traced);
+          // One walk for the packet (with bvh_alpha_tested, on a CPU device: ray i's stochastic
+          // opacity keyed by bvh_hash(h + j0 + i), as ray by ray).
+          blocked = bvh_occluded_packet(origin, rays, 1.0f - 1e-3f, traced, h + j0);
       }
 #endif
       [[unroll]] for (uint i = 0u; i < uint(RTPBR_BVH_PACKET); ++i)

@@ -152,6 +152,7 @@ typedef struct rtpbr_shadow_pass {               // passes/shadow.c
     VkPipeline select, list, trace, denoise;     // compiled on first use
     VkPipeline trace_opaque;                     // the trace without the alpha test (RTPBR_SPEC_BVH_ALPHA off)
     bool texel_reads;                            // RTPBR_SPEC_BVH_TEXELS of the selection and the trace
+    bool cpu;                                    // a CPU device: RTPBR_SPEC_BVH_PACKET_ALPHA of the trace
     VkDeviceSize texel_view_range;               // the most bytes a BVH texel view may span (the device's limit)
 } rtpbr_shadow_pass;
 

@@ -89,8 +89,8 @@ rtpbr_result rtpbr_shadow_pass_init(rtpbr_context *ctx)
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(ctx->physical_device, &props);
     pass->texel_view_range = (VkDeviceSize)props.limits.maxTexelBufferElements * 16u; // R32G32B32A32
-    pass->texel_reads = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
-                        pass->texel_view_range >= props.limits.maxStorageBufferRange;
+    pass->cpu = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    pass->texel_reads = pass->cpu && pass->texel_view_range >= props.limits.maxStorageBufferRange;
 cleanup:
     return result; // the caller finishes a half-built pass; the pipelines are made on first use
 }
@@ -103,14 +103,17 @@ void rtpbr_shadow_pass_finish(rtpbr_context *ctx)
     *pass = (rtpbr_shadow_pass){0};
 }
 
-// A shadow pipeline that walks the BVH, specialized: the alpha test (RTPBR_SPEC_BVH_ALPHA) and
-// the texel reads (RTPBR_SPEC_BVH_TEXELS).
+// A shadow pipeline that walks the BVH, specialized: the alpha test (RTPBR_SPEC_BVH_ALPHA), the
+// texel reads (RTPBR_SPEC_BVH_TEXELS) and, on a CPU device, the packets' alpha
+// (RTPBR_SPEC_BVH_PACKET_ALPHA).
 static rtpbr_result bvh_pipeline_create(rtpbr_context *ctx, rtpbr_spirv spirv, bool alpha_tested, VkPipeline *out)
 {
-    const VkBool32 values[2] = {alpha_tested ? VK_TRUE : VK_FALSE, ctx->shadow.texel_reads ? VK_TRUE : VK_FALSE};
-    const VkSpecializationMapEntry entries[2] = {{RTPBR_SPEC_BVH_ALPHA, 0, sizeof values[0]},
-                                                 {RTPBR_SPEC_BVH_TEXELS, sizeof values[0], sizeof values[1]}};
-    const VkSpecializationInfo specialization = {2, entries, sizeof values, values};
+    const VkBool32 values[3] = {alpha_tested ? VK_TRUE : VK_FALSE, ctx->shadow.texel_reads ? VK_TRUE : VK_FALSE,
+                                ctx->shadow.cpu ? VK_TRUE : VK_FALSE};
+    const VkSpecializationMapEntry entries[3] = {{RTPBR_SPEC_BVH_ALPHA, 0, sizeof values[0]},
+                                                 {RTPBR_SPEC_BVH_TEXELS, sizeof values[0], sizeof values[1]},
+                                                 {RTPBR_SPEC_BVH_PACKET_ALPHA, 2 * sizeof values[0], sizeof values[2]}};
+    const VkSpecializationInfo specialization = {3, entries, sizeof values, values};
     return rtpbr_compute_pipeline_create_specialized(ctx, spirv, ctx->shadow.layout, &specialization, out);
 }
 
