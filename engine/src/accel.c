@@ -57,13 +57,17 @@ static void record_build(VkCommandBuffer cmd, void *user)
     const VkAccelerationStructureBuildRangeInfoKHR *ranges[ACCEL_CLASSES];
     for (uint32_t i = 0; i < b->blas_count; ++i) ranges[i] = &b->blas_range[i];
     if (b->blas_count) b->ctx->accel.cmd_build(cmd, b->blas_count, b->blas, ranges);
-    // The bottom levels before the top level reads them; the top level before the trace.
-    const VkMemoryBarrier built = {VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL, VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
-                                   VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR};
+    // The bottom levels before the top level reads them and writes the scratch they wrote (its
+    // region starts at theirs); the top level before the trace.
+    const VkMemoryBarrier bottom = {VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL, VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
+                                    VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR |
+                                        VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
-                         VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1, &built, 0, NULL, 0, NULL);
+                         VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1, &bottom, 0, NULL, 0, NULL);
     const VkAccelerationStructureBuildRangeInfoKHR *top = &b->tlas_range;
     b->ctx->accel.cmd_build(cmd, 1, &b->tlas, &top);
+    const VkMemoryBarrier built = {VK_STRUCTURE_TYPE_MEMORY_BARRIER, NULL, VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
+                                   VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &built, 0, NULL, 0, NULL);
 }
