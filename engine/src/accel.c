@@ -225,7 +225,6 @@ rtpbr_result rtpbr_accel_create(rtpbr_gpu_scene *scene)
             .accelerationStructureReference = ctx->accel.address(ctx->device, &address),
         };
     }
-    scene->accel_blas_count = b.blas_count;
     RTPBR_TRY(rtpbr_submit_once(ctx, record_build, &b));
 cleanup:
     rtpbr_buffer_destroy(ctx, &scratch);
@@ -241,7 +240,6 @@ void rtpbr_accel_destroy(rtpbr_gpu_scene *scene)
     }
     memset(scene->accel_blas, 0, sizeof scene->accel_blas);
     scene->accel_tlas = VK_NULL_HANDLE;
-    scene->accel_blas_count = 0;
     rtpbr_buffer_destroy(ctx, &scene->accel_storage);
     rtpbr_buffer_destroy(ctx, &scene->accel_instances);
     rtpbr_buffer_destroy(ctx, &scene->accel_vertices);

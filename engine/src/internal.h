@@ -261,7 +261,6 @@ struct rtpbr_gpu_scene {
     rtpbr_buffer accel_instances;  // host: VkAccelerationStructureInstanceKHR per bottom level
     rtpbr_buffer accel_storage;    // device: every level's storage
     VkAccelerationStructureKHR accel_blas[6], accel_tlas; // a bottom level per class of triangle
-    uint32_t accel_blas_count;
     rtpbr_buffer alpha_textures; // rtpbr_shader_alpha_texture[texture_count] (scene.c), for the shadow rays
     rtpbr_buffer alpha_texels;   // uint[]: the alpha bytes of the textures that have any below 255
     // The textured quads' prefiltered emission (light_texture.h): one layer per distinct
