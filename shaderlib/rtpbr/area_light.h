@@ -334,17 +334,25 @@ struct AreaLightPixel {
     float msScale;               // its (1 - Eo) / (1 - Eavg) (KC_PolygonLobe's per-point
                                  // factors, docs/performance.md, 18)
     rtpbr_float3 baseScale;      // the layered base's colour x (1 - Eso) / (1 - EsAvg)
-                                 // (KC_PolygonLobe's per-point factors, docs/performance.md, 15)
+                                 // (KC_PolygonLobe's per-point factors, docs/performance.md, 15);
+                                 // for a Disney material (no layered base) Burley's diffuse
+                                 // lobe's scale
     float pointNorm;             // the specular table's norm (ltc2.x)
     bool pointOn;                // the point correction applies (isotropic lobes)
     // RTPBR_AREA_LIGHT_FULL: the coat, Burley diffuse and sheen lobes (unused otherwise)
     bool coated;
     rtpbr_float4 ltc1c;
     rtpbr_float3 coatScale;
-    rtpbr_float4 ltc1d;
-    rtpbr_float3 burleyScale;
-    DisneyMaterial dss;          // the subsurface shape alone
-    rtpbr_float4 ltc1s;
+    rtpbr_float4 ltc1b;          // Burley's diffuse lobe's table row (Disney) or the KHR
+                                 // sheen lobe's: never both (Disney materials have no KHR
+                                 // sheen; registers: docs/performance.md, 27)
+    // The per-light parameters of the base's lobes (RTPBR_AREA_LIGHT_FULL), one set of registers
+    // for the two models a material may have (registers: docs/performance.md, 27): a Disney
+    // material's (roughness, metallic, subsurface, sheen) and (baseColor, sheenTint), or a
+    // KHR material's layered base and sheen, (specularWeight, EFavg, FmsDielectric,
+    // sheenRoughness) and (sheenColor, EsheenO) (AreaLight_Begin; ShadingSurface's values).
+    rtpbr_float4 baseParams;
+    rtpbr_float4 baseColors;
     rtpbr_float3 sheenScale;
 };
 
@@ -899,12 +907,11 @@ RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_
     px.coated = false;
     px.ltc1c = LTC_Identity();
     px.coatScale = RTPBR_F3(0.0f);
-    px.ltc1d = LTC_Identity();
-    px.burleyScale = RTPBR_F3(0.0f);
-    px.dss = s.dm;
-    px.dss.subsurface = 1.0f;
-    px.ltc1s = LTC_Identity();
+    px.ltc1b = LTC_Identity();
+    px.baseParams = rtpbr_float4(s.specularWeight, s.EFavg, s.FmsDielectric, s.sheenRoughness);
+    px.baseColors = rtpbr_float4(s.sheenColor.x, s.sheenColor.y, s.sheenColor.z, s.EsheenO);
     px.sheenScale = RTPBR_F3(0.0f);
+    px.baseScale = s.diffuseColor * KC_PolygonLobe(s.Eso, 0.0f, s.EsAvg, 1.0f);
 #if RTPBR_AREA_LIGHT_FULL
     px.coated = s.coat > 0.0f;
     if (px.coated) {
@@ -916,15 +923,19 @@ RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_
     // Burley's diffuse (Disney): its LTC fit, column = the material's roughness.
     if (s.disney) {
         rtpbr_float2 uvd = LTC_LutCoord(s.NoV, s.roughness);
-        px.ltc1d = Host_TableLtc1(RTPBR_TABLE_LTC_DISNEY_DIFFUSE, uvd);
-        px.burleyScale = ((1.0f - s.dm.subsurface) * Host_TableLtc2(RTPBR_TABLE_LTC_DISNEY_DIFFUSE, uvd).x) *
+        px.ltc1b = Host_TableLtc1(RTPBR_TABLE_LTC_DISNEY_DIFFUSE, uvd);
+        px.baseScale = ((1.0f - s.dm.subsurface) * Host_TableLtc2(RTPBR_TABLE_LTC_DISNEY_DIFFUSE, uvd).x) *
                          s.diffuseColor;
+        px.baseParams = rtpbr_float4(s.dm.roughness, s.dm.metallic, s.dm.subsurface, s.dm.sheen);
+        px.baseColors = rtpbr_float4(s.dm.baseColor.x, s.dm.baseColor.y, s.dm.baseColor.z, s.dm.sheenTint);
     }
     // KHR sheen: its LTC fit (sheen.h); the layer below is scaled by the KHR albedo scaling
-    // with E_sheen at NoV and at the polygon's representative direction.
-    if (s.sheen) {
+    // with E_sheen at NoV and at the polygon's representative direction. Not on a Disney
+    // material (Surface_Resolve never makes one with it: Disney's sheen is its own lobe), whose
+    // registers it would share.
+    if (s.sheen && !s.disney) {
         rtpbr_float2 uvs = LTC_LutCoord(s.NoV, s.sheenRoughness);
-        px.ltc1s = Host_TableLtc1(RTPBR_TABLE_LTC_SHEEN, uvs);
+        px.ltc1b = Host_TableLtc1(RTPBR_TABLE_LTC_SHEEN, uvs);
         px.sheenScale = Sheen_LtcScale(Host_TableLtc2(RTPBR_TABLE_LTC_SHEEN, uvs), s.sheenColor);
     }
     // The anisotropic stretch about the mirror direction (LTC_AnisotropicInverseMatrix): the
@@ -950,7 +961,6 @@ RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_
     px.msColor = s.msColor;
 #endif
     px.msScale = KC_PolygonLobe(s.Eo, 0.0f, s.Eavg, 1.0f);
-    px.baseScale = s.diffuseColor * KC_PolygonLobe(s.Eso, 0.0f, s.EsAvg, 1.0f);
     return px;
 }
 
@@ -1182,26 +1192,41 @@ RTPBR_FN void AreaLight_AddShapePart(AreaLightPixel px, RTPBR_INOUT(AreaLightSum
 #if RTPBR_AREA_LIGHT_FULL
     if (s.disney) {
         float LoH = rtpbr_saturate(dot(lRep, normalize(lRep + px.vLocal)));
-        base = px.burleyScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1d), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart)) +
-               (s.dm.subsurface * Disney_DiffuseLobe(px.dss, s.NoV, muRep, LoH) + Disney_SheenLobe(s.dm, LoH)) *
+        // the material's parameters from AreaLight_Begin's shared registers (the rest unread)
+        DisneyMaterial dm = s.dm;
+        dm.roughness = px.baseParams.x;
+        dm.metallic = px.baseParams.y;
+        dm.sheen = px.baseParams.w;
+        dm.baseColor = rtpbr_float3(px.baseColors.x, px.baseColors.y, px.baseColors.z);
+        dm.sheenTint = px.baseColors.w;
+        dm.subsurface = 1.0f; // the subsurface shape alone
+        base = px.baseScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1b), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart)) +
+               (px.baseParams.z * Disney_DiffuseLobe(dm, s.NoV, muRep, LoH) + Disney_SheenLobe(dm, LoH)) *
                    (RTPBR_PI * ff);
     } else
 #endif
     {
-        float EFrep = s.specularWeight > 0.0f ? KC_PolygonMeanE(eRep.y, s.EFavg, lenF) : 0.0f;
-        float Esrep = s.specularWeight * KC_SpecularAlbedoDielectric(EFrep, Erep, s.FmsDielectric);
+#if RTPBR_AREA_LIGHT_FULL
+        float specularWeight = px.baseParams.x, EFavg = px.baseParams.y, FmsDielectric = px.baseParams.z;
+#else
+        float specularWeight = s.specularWeight, EFavg = s.EFavg, FmsDielectric = s.FmsDielectric;
+#endif
+        float EFrep = specularWeight > 0.0f ? KC_PolygonMeanE(eRep.y, EFavg, lenF) : 0.0f;
+        float Esrep = specularWeight * KC_SpecularAlbedoDielectric(EFrep, Erep, FmsDielectric);
         base = px.baseScale * (rtpbr_pos(1.0f - Esrep) * rtpbr_pos(ff)); // KC_PolygonLobe(s.Eso, Esrep, s.EsAvg, ff)
     }
     lo += texD * base;
 #if RTPBR_AREA_LIGHT_FULL
-    if (s.sheen) {
+    if (s.sheen && !s.disney) { // (as AreaLight_Begin)
 #if RTPBR_AREA_LIGHT_SHEEN_REFETCH
         // (registers) AreaLight_Begin's row, read again: the same coordinates, the same texel
-        rtpbr_float4 ltc1s = Host_TableLtc1(RTPBR_TABLE_LTC_SHEEN, LTC_LutCoord(s.NoV, s.sheenRoughness));
+        rtpbr_float4 ltc1s = Host_TableLtc1(RTPBR_TABLE_LTC_SHEEN, LTC_LutCoord(s.NoV, px.baseParams.w));
 #else
-        rtpbr_float4 ltc1s = px.ltc1s;
+        rtpbr_float4 ltc1s = px.ltc1b;
 #endif
-        lo = lo * Sheen_AlbedoScaling(s.sheenColor, s.EsheenO, Host_TableSheenE(muRep, s.sheenRoughness)) +
+        // (the sheen's parameters from AreaLight_Begin's shared registers)
+        lo = lo * Sheen_AlbedoScaling(rtpbr_float3(px.baseColors.x, px.baseColors.y, px.baseColors.z), px.baseColors.w,
+                                      Host_TableSheenE(muRep, px.baseParams.w)) +
              texD * px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(ltc1s), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart));
     }
     lo *= s.baseAttenuation;
