@@ -32,26 +32,29 @@ static inline void test_gltf_file(char *path, test_gltf_writer write, const void
     assert_int_equal(write(user, path), 0);
 }
 
-// The scene `write` writes, loaded from a temporary file in a context of its own (test_context)
-// and rendered by a renderer of `rd` with `desc`: its radiance read back into `out` (size bytes).
+// The scene `write` writes, loaded from a temporary file and rendered by a renderer of `rd` with
+// `desc`: its radiance read back into `out` (size bytes). In the group's context where the test
+// runs as a test_env_shared_case (engine_test.h; its teardown checks the messages), else in a
+// context of its own (test_context, destroyed by test_context_done).
 static inline void test_render_gltf(test_gltf_writer write, const void *user, const rtpbr_renderer_desc *rd,
                                     const rtpbr_render_desc *desc, float *out, size_t size)
 {
     char path[] = "/tmp/rtpbr-engine-scene-XXXXXX.gltf";
     test_gltf_file(path, write, user);
-    test_log log = {0};
-    rtpbr_context *ctx = test_context(&log);
+    test_log own_log = {0};
+    test_log *log = test_env_shared ? &test_env_shared->log : &own_log;
+    rtpbr_context *ctx = test_env_shared ? test_env_shared->ctx : test_context(&own_log);
     rtpbr_gpu_scene *scene = NULL;
     rtpbr_result r = rtpbr_gpu_scene_load_gltf(ctx, path, &scene);
     unlink(path);
-    if (r != RTPBR_SUCCESS) fprintf(stderr, "load: %s\n", log.last_error);
+    if (r != RTPBR_SUCCESS) fprintf(stderr, "load: %s\n", log->last_error);
     assert_int_equal(r, RTPBR_SUCCESS);
     rtpbr_renderer *renderer = test_renderer(ctx, rd);
     assert_int_equal(rtpbr_render(renderer, scene, desc), RTPBR_SUCCESS);
     assert_int_equal(test_read_radiance(renderer, out, size), RTPBR_SUCCESS);
     rtpbr_renderer_destroy(renderer);
     rtpbr_gpu_scene_destroy(scene);
-    test_context_done(ctx, &log);
+    if (!test_env_shared) test_context_done(ctx, &own_log);
 }
 
 #endif

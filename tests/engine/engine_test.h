@@ -144,6 +144,56 @@ static inline rtpbr_context *test_env_context(void **state)
 }
 #define test_env_case(test) cmocka_unit_test_setup_teardown(test, test_env_setup, test_env_teardown)
 
+// The same fixture with one context for the whole group: test_env_group(tests) runs the list of
+// test_env_shared_case(name) entries with a context made before the first and destroyed after
+// the last (test_context_done: not one validation message in its life). Each test still starts
+// with its log's counts at zero and ends with the checks of test_env_teardown (no validation
+// message in the test; none at error level where it sets no_errors), so a message is still
+// charged to the test that caused it. For the accuracy tests that render through many pipeline
+// variants: lavapipe compiles each pipeline again on every new device (its VkPipelineCache is a
+// stub in Mesa 22.3; the disk cache keeps only LLVM's code, not the NIR passes before it), which
+// was about 3/4 of engine-tube's and engine-punctual's time with a context per test.
+static test_env *test_env_shared;
+static inline int test_env_group_setup(void **state)
+{
+    (void)state;
+    test_env_shared = calloc(1, sizeof *test_env_shared);
+    assert_non_null(test_env_shared);
+    test_env_shared->ctx = test_context(&test_env_shared->log);
+    return 0;
+}
+static inline int test_env_group_teardown(void **state)
+{
+    (void)state;
+    test_context_done(test_env_shared->ctx, &test_env_shared->log);
+    free(test_env_shared);
+    test_env_shared = NULL;
+    return 0;
+}
+static inline int test_env_shared_setup(void **state)
+{
+    assert_non_null(test_env_shared);
+    test_env_shared->log = (test_log){0};
+    test_env_shared->no_errors = false;
+    *state = test_env_shared;
+    return 0;
+}
+static inline int test_env_shared_teardown(void **state)
+{
+    test_env *env = *state;
+    assert_int_equal(env->log.validation, 0); // (the context's own end: test_env_group_teardown)
+    if (env->no_errors) assert_int_equal(env->log.errors, 0);
+    return 0;
+}
+#define test_env_shared_case(test) cmocka_unit_test_setup_teardown(test, test_env_shared_setup, test_env_shared_teardown)
+#define test_env_group(tests) cmocka_run_group_tests(tests, test_env_group_setup, test_env_group_teardown)
+// RTPBR_TEST_MAIN (test_main.h) with the group's context: main(void) running the listed tests.
+#define RTPBR_TEST_MAIN_SHARED_ENV(...)                                                            \
+    int main(void)                                                                                 \
+    {                                                                                              \
+        RTPBR_RUN_TESTS(test_env_group_setup, test_env_group_teardown, __VA_ARGS__);               \
+    }
+
 // rtpbr_gpu_scene_create and rtpbr_renderer_create, which must succeed.
 static inline rtpbr_gpu_scene *test_scene(rtpbr_context *ctx, const rtpbr_gpu_scene_desc *desc)
 {

@@ -197,7 +197,7 @@ static void test_mask_shadow_edit(void **state)
     test_context_done(ctx, &log);
 }
 
-RTPBR_TEST_MAIN(cmocka_unit_test(test_mask_cutout),
-                cmocka_unit_test(test_blend_half),
-                cmocka_unit_test(test_mask_shadow),
-                cmocka_unit_test(test_mask_shadow_edit))
+RTPBR_TEST_MAIN_SHARED_ENV(test_env_shared_case(test_mask_cutout),
+                test_env_shared_case(test_blend_half),
+                test_env_shared_case(test_mask_shadow),
+                test_env_shared_case(test_mask_shadow_edit))

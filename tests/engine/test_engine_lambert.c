@@ -450,10 +450,10 @@ static void supersampled_coverage(void **state)
     rtpbr_gpu_scene_destroy(scene);
 }
 
-RTPBR_TEST_MAIN(test_env_case(supersampled_coverage),
-                test_env_case(lambertian_plane),
-                test_env_case(polygon_sizes),
-                test_env_case(uniform_lights_limit),
-                test_env_case(normal_mapped_plane),
-                test_env_case(culling_bound),
-                test_env_case(culled_sparse_words))
+RTPBR_TEST_MAIN_SHARED_ENV(test_env_shared_case(supersampled_coverage),
+                test_env_shared_case(lambertian_plane),
+                test_env_shared_case(polygon_sizes),
+                test_env_shared_case(uniform_lights_limit),
+                test_env_shared_case(normal_mapped_plane),
+                test_env_shared_case(culling_bound),
+                test_env_shared_case(culled_sparse_words))

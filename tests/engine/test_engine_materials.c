@@ -474,11 +474,11 @@ static void absent_attributes_read_as_zero(void **state)
     rtpbr_renderer_destroy(r);
 }
 
-RTPBR_TEST_MAIN(test_env_case(disney_diffuse_albedo),
-                test_env_case(layered_dielectric_energy),
-                test_env_case(clearcoat_layer),
-                test_env_case(sheen_albedo_check),
-                test_env_case(ior_fresnel_one),
-                test_env_case(material_specialization),
-                test_env_case(full_lights_add),
-                test_env_case(absent_attributes_read_as_zero))
+RTPBR_TEST_MAIN_SHARED_ENV(test_env_shared_case(disney_diffuse_albedo),
+                test_env_shared_case(layered_dielectric_energy),
+                test_env_shared_case(clearcoat_layer),
+                test_env_shared_case(sheen_albedo_check),
+                test_env_shared_case(ior_fresnel_one),
+                test_env_shared_case(material_specialization),
+                test_env_shared_case(full_lights_add),
+                test_env_shared_case(absent_attributes_read_as_zero))

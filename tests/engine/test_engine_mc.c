@@ -478,11 +478,11 @@ static void ltc_max_lights(void **state)
     rtpbr_renderer_destroy(r);
 }
 
-RTPBR_TEST_MAIN(test_env_case(mc_lambertian_plane),
-                test_env_case(mc_glossy_mean),
-                test_env_case(mc_limits),
-                test_env_case(mc_max_samples),
-                test_env_case(mc_many_lights),
-                test_env_case(ltc_max_lights),
+RTPBR_TEST_MAIN_SHARED_ENV(test_env_shared_case(mc_lambertian_plane),
+                test_env_shared_case(mc_glossy_mean),
+                test_env_shared_case(mc_limits),
+                test_env_shared_case(mc_max_samples),
+                test_env_shared_case(mc_many_lights),
+                test_env_shared_case(ltc_max_lights),
                 cmocka_unit_test(ltc_far_floor),
                 cmocka_unit_test(ltc_streak_floor))

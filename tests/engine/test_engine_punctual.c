@@ -1180,20 +1180,20 @@ static void bad_disks(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        test_env_case(lambert_plane),
-        test_env_case(each_light_counts),
-        test_env_case(ggx_plane),
-        test_env_case(anisotropic_plane),
-        test_env_case(shadows),
-        test_env_case(bad_lights),
-        test_env_case(sun_disk),
-        test_env_case(sphere_light),
-        test_env_case(sphere_ggx),
-        test_env_case(sphere_shadow),
-        test_env_case(disk_lambert),
-        test_env_case(disk_ggx),
-        test_env_case(disk_shadow),
-        test_env_case(bad_disks),
+        test_env_shared_case(lambert_plane),
+        test_env_shared_case(each_light_counts),
+        test_env_shared_case(ggx_plane),
+        test_env_shared_case(anisotropic_plane),
+        test_env_shared_case(shadows),
+        test_env_shared_case(bad_lights),
+        test_env_shared_case(sun_disk),
+        test_env_shared_case(sphere_light),
+        test_env_shared_case(sphere_ggx),
+        test_env_shared_case(sphere_shadow),
+        test_env_shared_case(disk_lambert),
+        test_env_shared_case(disk_ggx),
+        test_env_shared_case(disk_shadow),
+        test_env_shared_case(bad_disks),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return test_env_group(tests);
 }

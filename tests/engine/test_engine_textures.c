@@ -291,12 +291,12 @@ static void test_extension_textures_mc(void **state)
         check_extension_case(&extension_cases[i], &(rtpbr_render_desc){.mc_samples = 16, .mc_seed = 7}, "Monte Carlo");
 }
 
-RTPBR_TEST_MAIN(cmocka_unit_test(test_wrap_repeat),
-                cmocka_unit_test(test_wrap_clamp),
-                cmocka_unit_test(test_wrap_mirror),
-                cmocka_unit_test(test_wrap_per_axis),
-                cmocka_unit_test(test_texture_transform),
-                cmocka_unit_test(test_single_sided_back_face),
-                cmocka_unit_test(test_mipmaps_average),
-                cmocka_unit_test(test_extension_textures),
-                cmocka_unit_test(test_extension_textures_mc))
+RTPBR_TEST_MAIN_SHARED_ENV(test_env_shared_case(test_wrap_repeat),
+                test_env_shared_case(test_wrap_clamp),
+                test_env_shared_case(test_wrap_mirror),
+                test_env_shared_case(test_wrap_per_axis),
+                test_env_shared_case(test_texture_transform),
+                test_env_shared_case(test_single_sided_back_face),
+                test_env_shared_case(test_mipmaps_average),
+                test_env_shared_case(test_extension_textures),
+                test_env_shared_case(test_extension_textures_mc))

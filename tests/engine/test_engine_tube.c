@@ -511,12 +511,12 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(quadrature_check),
-        test_env_case(zero_length),
-        test_env_case(bad_tubes),
-        test_env_case(tube_lambert),
-        test_env_case(tube_ggx),
-        test_env_case(tube_shadow),
-        test_env_case(tube_range),
+        test_env_shared_case(zero_length),
+        test_env_shared_case(bad_tubes),
+        test_env_shared_case(tube_lambert),
+        test_env_shared_case(tube_ggx),
+        test_env_shared_case(tube_shadow),
+        test_env_shared_case(tube_range),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return test_env_group(tests);
 }
