@@ -225,7 +225,7 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
 #elif defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_STATS_SHAPE_TEXTURED_QUAD // every light a textured quad
     AreaLightPixel px = AreaLight_Begin(s, N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
-        AreaLight_AddShape(px, acc, s, P, N, i, false, false, true RTPBR_AREA_LIGHT_TUBE_ARG(false));
+        AreaLight_AddPolygonShape(px, acc, s, P, N, i, true);
 #elif defined(RTPBR_STATS_FIXED_SHAPE) && RTPBR_STATS_FIXED_SHAPE == RTPBR_STATS_SHAPE_TUBE // every light a tube
     AreaLightPixel px = AreaLight_Begin(s, N, V);
     [[unroll]] for (uint i = 0u; i < uint(RTPBR_STATS_FIXED_LIGHTS); ++i)
@@ -294,7 +294,7 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
         for (uint bits = tile_masks[maskBase + word] | textured; bits != 0u; bits &= bits - 1u) {
             uint b = uint(findLSB(bits));
             shade_light_vertices(word * 32u + b);
-            AreaLight_AddShape(px, acc, s, P, N, word * 32u + b, false, false, ((textured >> b) & 1u) != 0u RTPBR_AREA_LIGHT_TUBE_ARG(false));
+            AreaLight_AddPolygonShape(px, acc, s, P, N, word * 32u + b, ((textured >> b) & 1u) != 0u);
         }
     }
 #else

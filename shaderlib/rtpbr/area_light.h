@@ -33,9 +33,17 @@
 //   AreaLight_AddShape   AreaLight_Add or AreaLight_AddSphere by a run-time flag: one loop
 //                        over polygons and spheres (RTPBR_AREA_LIGHT_SPHERES); with
 //                        RTPBR_AREA_LIGHT_DISKS a last flag, diskLight: AreaLight_AddDisk
-//   AreaLight_AddShapePart  AreaLight_AddShape over one part of a tube (its facing quad or an
-//                        end's sphere: AreaLight_AddTube lights the three as three lights)
+//   AreaLight_AddSimpleShape  AreaLight_AddShape without the tube flag (a loop over the other
+//                        kinds carries no tube's code)
+//   AreaLight_AddTubePart  one part of a tube (its facing quad or an end's sphere:
+//                        AreaLight_AddTube lights the three as three lights)
+//   AreaLight_AddPolygonShape, AreaLight_AddRoundShape  a polygon (textured by a run-time
+//                        flag), a sphere or a disk (by a run-time flag): what AreaLight_Add and
+//                        the per-kind functions call, each with only its own shape's code
+//                        (compile time: docs/library.md, "Which entry point")
+//   AreaLight_AddShapePart  AreaLight_AddSimpleShape or AreaLight_AddTubePart by a run-time part
 //   AreaLight_ShapeLobe  AreaLight_Lobe over a polygon, a sphere, a disk or a tube's part
+//   AreaLight_SimpleShapeLobe  the same without a tube's part
 //   AreaLight_TubeLobe   AreaLight_Lobe over a whole tube (its three parts summed in one lobe)
 //   AreaLight_WalkLobe   AreaLight_Lobe over a light's polygon or an explicit parallelogram
 //                        (AreaLightQuad: a tube's facing quad)
@@ -826,17 +834,9 @@ RTPBR_FN float AreaLight_TubePartLobe(uint i, uint part, rtpbr_float3 P, rtpbr_f
 #endif
 
 // AreaLight_Lobe, or AreaLight_SphereLobe where sphereLight (RTPBR_AREA_LIGHT_SPHERES; a disk
-// where diskLight too, RTPBR_AREA_LIGHT_DISKS), or with RTPBR_AREA_LIGHT_TUBES a tube's part
-// where tubePart is not RTPBR_AREA_LIGHT_TUBE_NONE (AreaLight_TubePartLobe; the others then do
-// not matter). (The whole tube in one lobe, AreaLight_TubeLobe, is not a case here: in a loop
-// over a tube's parts its state joined every part's and took the registers it saves.)
-RTPBR_FN float AreaLight_ShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
-                                   RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM
-                                       RTPBR_AREA_LIGHT_TUBE_PART_PARAM) {
-#if RTPBR_AREA_LIGHT_TUBES
-    if (tubePart != RTPBR_AREA_LIGHT_TUBE_NONE)
-        return AreaLight_TubePartLobe(i, tubePart, P, ltcFrame, minv, F, Fl);
-#endif
+// where diskLight too, RTPBR_AREA_LIGHT_DISKS): AreaLight_ShapeLobe without a tube's part.
+RTPBR_FN float AreaLight_SimpleShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+                                         RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM) {
 #if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS
     if (sphereLight)
         return AreaLight_SphereLobe(i, P, ltcFrame, minv, F, Fl RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
@@ -844,6 +844,20 @@ RTPBR_FN float AreaLight_ShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFra
     RTPBR_UNUSED(sphereLight);
 #endif
     return AreaLight_Lobe(i, P, ltcFrame, minv, F, Fl);
+}
+
+// AreaLight_SimpleShapeLobe, or with RTPBR_AREA_LIGHT_TUBES a tube's part where tubePart is not
+// RTPBR_AREA_LIGHT_TUBE_NONE (AreaLight_TubePartLobe; the others then do not matter). (The whole
+// tube in one lobe, AreaLight_TubeLobe, is not a case here: in a loop over a tube's parts its
+// state joined every part's and took the registers it saves.)
+RTPBR_FN float AreaLight_ShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+                                   RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM
+                                       RTPBR_AREA_LIGHT_TUBE_PART_PARAM) {
+#if RTPBR_AREA_LIGHT_TUBES
+    if (tubePart != RTPBR_AREA_LIGHT_TUBE_NONE)
+        return AreaLight_TubePartLobe(i, tubePart, P, ltcFrame, minv, F, Fl);
+#endif
+    return AreaLight_SimpleShapeLobe(i, P, ltcFrame, minv, F, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
 }
 
 // The specular lobe's LTC result ltcFF corrected (ltc_corrections.h): the point correction
@@ -1014,7 +1028,7 @@ RTPBR_FN rtpbr_float3 AreaLight_TexturedQuadLambert(uint i, rtpbr_float3 P, rtpb
 }
 #endif
 
-// Light i's reflected radiance at P per unit of its radiance, in lo; false (lo unset) when
+// Light i's reflected radiance at P (x its radiance and visibility) added to acc; nothing when
 // the light cannot contribute: P on its plane, behind a one-sided light, its bounding sphere
 // below the horizon, or nothing of it above the horizon. Every lobe's polygon integral: LTC
 // (ltc.h) for the specular lobes and Burley's diffuse, the clipped polygon's vector form
@@ -1031,270 +1045,97 @@ RTPBR_FN rtpbr_float3 AreaLight_TexturedQuadLambert(uint i, rtpbr_float3 P, rtpb
 // polygon's: in the engine's full variant that spilled, so the engine calls the two in loops
 // of their own, docs/performance.md, 12). With RTPBR_AREA_LIGHT_DISKS, AreaLight_AddDisk where
 // the last flag, diskLight (sphereLight then does not matter).
-// AreaLight_AddShapePart: the same, with RTPBR_AREA_LIGHT_TUBES over one part of a tube light
-// (tubePart: AreaLight_AddShape calls it for each).
+// AreaLight_AddSimpleShape: AreaLight_AddShape without its last flag, tubeLight (a polygon, a
+// sphere, a disk or a textured quad: a host that lights its tubes in a loop of their own calls
+// it in its loops over the other kinds, and none of them carries a tube's code).
+// AreaLight_AddTubePart: one part of a tube light (tubePart, RTPBR_AREA_LIGHT_TUBE_QUAD, _END1,
+// _END2; AreaLight_AddTube calls it for each).
+// AreaLight_AddPolygonShape: a polygon, textured where texturedLight (RTPBR_AREA_LIGHT_TEXTURED;
+// AreaLight_Add, AreaLight_AddTexturedQuad). AreaLight_AddRoundShape: a sphere, a disk where
+// diskLight (RTPBR_AREA_LIGHT_SPHERES or _DISKS; AreaLight_AddSphere, AreaLight_AddDisk).
+// AreaLight_AddShapePart: AreaLight_AddSimpleShape or AreaLight_AddTubePart, by tubePart at run
+// time (RTPBR_AREA_LIGHT_TUBE_NONE: the first).
+// The four are one body (area_light_part.inl) compiled once for each, each with only its own
+// shapes' lobes: the same results, a fraction of the compile time (a driver inlines every call
+// before it folds the flags: docs/performance.md, "Pipeline compile time").
+#define RTPBR_AREA_LIGHT_KIND_ANY 0
+#define RTPBR_AREA_LIGHT_KIND_POLYGON 1
+#define RTPBR_AREA_LIGHT_KIND_ROUND 2
+#define RTPBR_AREA_LIGHT_KIND_TUBE 3
+#define RTPBR_AREA_LIGHT_PART_FN AreaLight_AddSimpleShape
+#define RTPBR_AREA_LIGHT_PART_KIND RTPBR_AREA_LIGHT_KIND_ANY
+#include "area_light_part.inl"
+#define RTPBR_AREA_LIGHT_PART_FN AreaLight_AddPolygonShape
+#define RTPBR_AREA_LIGHT_PART_KIND RTPBR_AREA_LIGHT_KIND_POLYGON
+#include "area_light_part.inl"
+#if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS
+#define RTPBR_AREA_LIGHT_PART_FN AreaLight_AddRoundShape
+#define RTPBR_AREA_LIGHT_PART_KIND RTPBR_AREA_LIGHT_KIND_ROUND
+#include "area_light_part.inl"
+#endif
+#if RTPBR_AREA_LIGHT_TUBES
+#define RTPBR_AREA_LIGHT_PART_FN AreaLight_AddTubePart
+#define RTPBR_AREA_LIGHT_PART_KIND RTPBR_AREA_LIGHT_KIND_TUBE
+#include "area_light_part.inl"
+#endif
+
 RTPBR_FN void AreaLight_AddShapePart(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                                      rtpbr_float3 N, uint i, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM
                                          RTPBR_AREA_LIGHT_TEXTURE_PARAM RTPBR_AREA_LIGHT_TUBE_PART_PARAM) {
-    // P on the light's plane sees it edge-on; behind a one-sided light, nothing; a light
-    // whose bounding sphere is below the horizon, nothing. A sphere light: below the horizon
-    // or beyond its range, nothing.
-    rtpbr_float4 sphere = Host_LightSphere(i);
-    float window = 1.0f; // a sphere light's range window (a tube's part: its weight)
 #if RTPBR_AREA_LIGHT_TUBES
-    // A tube light's part: the tube wholly below the horizon (both ends' centres more than the
-    // radius below it), nothing; a part of weight 0 (AreaLight_TubePartWeight), nothing; the
-    // window is the part's weight (the radiance's scale), times the range window with
-    // RTPBR_AREA_LIGHT_TUBE_RANGE (beyond the range, nothing). From here on
-    // it is lit as a sphere is (sphereLight: every choice below alike), its lobes by
-    // AreaLight_TubePartLobe.
     if (tubePart != RTPBR_AREA_LIGHT_TUBE_NONE) {
-        sphereLight = true;
-        rtpbr_float4 end1 = Host_LightTube(i, 0u), end2 = Host_LightTube(i, 1u);
-        if (!(max(dot(N, rtpbr_float3(end1.x, end1.y, end1.z) - P), dot(N, rtpbr_float3(end2.x, end2.y, end2.z) - P)) > -end1.w))
-            return;
-        window = AreaLight_TubePartWeight(i, tubePart, P);
-#if RTPBR_AREA_LIGHT_TUBE_RANGE
-        rtpbr_float3 toCentre = 0.5f * (rtpbr_float3(end1.x, end1.y, end1.z) + rtpbr_float3(end2.x, end2.y, end2.z)) - P;
-        window *= Punctual_RangeWindow(dot(toCentre, toCentre), Host_LightTubeInvRange2(i));
-#endif
-        if (!(window > 0.0f))
-            return;
-    } else
-#endif
-#if RTPBR_AREA_LIGHT_DISKS
-    // A disk light: P on its plane sees it edge-on; behind a one-sided disk, nothing; wholly
-    // below the horizon (its centre's height less sqrt((N.u)^2 + (N.v)^2), the ellipse's
-    // half-extent along N), nothing; a zero or NaN axis, nothing. From here on it is lit as a
-    // sphere's disk is (sphereLight: AreaLight_SphereLobe, every choice below alike).
-    if (diskLight) {
-        sphereLight = true;
-        rtpbr_float3 toCentre = rtpbr_float3(sphere.x, sphere.y, sphere.z) - P;
-        rtpbr_float3 du = Host_LightDiskAxis(i, 0u), dv = Host_LightDiskAxis(i, 1u);
-        rtpbr_float3 dn = cross(du, dv); // toward the emitting side
-        float side = -dot(dn, toCentre); // > 0: the front
-        float Nu = dot(N, du), Nv = dot(N, dv);
-        if (!(abs(side) > 1e-7f * length(dn) * sqrt(max(dot(du, du), dot(dv, dv)))) ||
-            (!Host_LightTwoSided(i) && side < 0.0f) || !(dot(N, toCentre) + sqrt(Nu * Nu + Nv * Nv) > 0.0f))
-            return;
-    } else
-#endif
-    if (sphereLight) {
-#if RTPBR_AREA_LIGHT_SPHERES
-        rtpbr_float3 toCentre = rtpbr_float3(sphere.x, sphere.y, sphere.z) - P;
-        window = Punctual_RangeWindow(dot(toCentre, toCentre), Host_LightPosition(i).w);
-        if (dot(N, toCentre) < -sphere.w || !(window > 0.0f))
-            return;
-#endif
-    } else {
-        rtpbr_float4 plane = Host_LightPlane(i);
-        float side = dot(rtpbr_float3(plane.x, plane.y, plane.z), P) + plane.w; // > 0: the front (emitting) side
-        bool twoSided = Host_LightTwoSided(i);
-        if (abs(side) <= 1e-7f * sphere.w || (!twoSided && side < 0.0f) || dot(N, rtpbr_float3(sphere.x, sphere.y, sphere.z) - P) < -sphere.w)
-            return;
-    }
-#if !RTPBR_AREA_LIGHT_FULL
-    // (latency: docs/performance.md, 8) fetched before the walk, which hides its latency
-    rtpbr_float3 visibility = Host_LightVisibility(i);
-#endif
-#if RTPBR_AREA_LIGHT_STREAK
-    // (registers: docs/performance.md, 3)
-    // (a sphere light is no candidate: the estimate walks a polygon's edges)
-    bool streakSized = !sphereLight && !RTPBR_AREA_LIGHT_TEXTURED_FLAG && LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
-#endif
-    rtpbr_float3 F, Fl;
-    float specularFF = AreaLight_ShapeLobe(i, P, px.frame, px.specularMinv, F, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart));
-    // A textured quad's emission where each lobe looks (ltc_textured.h: the point where the
-    // lobe's vector form factor meets the quad, read from the chain prefiltered to the lobe's
-    // footprint): texS for the specular lobe and its multiple scattering, read here (Fl is the
-    // specular lobe's), texD, at the Lambert vector's point, for the diffuse lobe, read after
-    // the point correction. The full evaluation reads one texel for every lobe of the base
-    // after their walks, at the point of the unclipped quad's Lambert vector
-    // (AreaLight_TexturedQuadLambert: registers, a colour live through its lobes' walks spilled
-    // on gfx1100; a glossy base lobe's reflection of the texture is then as blurred as the
-    // diffuse lobe's, and the point of a quad the horizon cuts is its whole quad's), and one for
-    // the coat at the coat lobe's own point, after its walk.
-#if !RTPBR_AREA_LIGHT_FULL
-    rtpbr_float3 texS = RTPBR_F3(1.0f);
-#if RTPBR_AREA_LIGHT_TEXTURED
-    if (texturedLight) {
-        rtpbr_float3 v0 = Host_LightVertex(i, 0u);
-        texS = Host_LightTexture(i, LTC_TextureLookup(px.frame, P, v0, Host_LightVertex(i, 1u) - v0,
-                                                      Host_LightVertex(i, 3u) - v0, px.specularMinv, Fl));
+        AreaLight_AddTubePart(px, acc, s, P, N, i, tubePart);
+        return;
     }
 #endif
-#endif
-    F = F.z < 0.0f ? -F : F;
-    float ff = min(F.z, 1.0f);
-    if (!(ff > 0.0f)) return;
-    float lenF = length(F);
-#if !RTPBR_AREA_LIGHT_FULL
-    // The representative direction of the polygon: its vector form factor's. The cosine-weighted
-    // mean of each albedo over the polygon (KC_PolygonMeanE): the table read here, before the
-    // point correction, which hides its latency (docs/performance.md, 8; the full evaluation
-    // reads it after, where it is at its register limit).
-    rtpbr_float3 lRep = F / lenF;
-    float muRep = rtpbr_saturate(lRep.z);
-    rtpbr_float2 eRep = Host_TableE_EF(muRep, s.tableRoughness, s.eta);
-#endif
-#if RTPBR_LTC_POINT_CORRECTION
-    rtpbr_float4 pointLtc1 = AreaLight_IsotropicLtc1(px.specularMinv);
-#if RTPBR_AREA_LIGHT_FULL
-    // (registers: docs/performance.md, 2 and 25) The lobe's vector Fl from the walk above (a
-    // second walk for it, which the full variant took until issue 32, gave the same value), only
-    // where the fade leaves anything to correct (at a form factor of 0.5 or more the factor is
-    // within (16 - 1) x 0.5^16 = 2.3e-4 of 1, and a light holding half of the LTC's mass lies
-    // mostly outside its tail: the tail estimate is skipped with it); the norm fetched again
-    // (the same texel). Not for a sphere light (nor a disk or a tube's part): with it the spheres'
-    // full variant spills (docs/performance.md, 12 and 25).
-    if (px.pointOn && specularFF < 0.5f && !sphereLight) {
-        float norm = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.tableRoughness)).x;
-        specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, norm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
-    }
-#else
-    specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, px.pointNorm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
-#if RTPBR_AREA_LIGHT_STREAK
-    // the streak estimate's candidate (after the loop): the first light it applies to and
-    // whose size can give it any trust (LTC_StreakCandidate)
-    if (px.pointOn && streakSized && acc.streakLight == RTPBR_AREA_LIGHT_NONE && LTC_StreakWeight(px.vLocal, F) > 0.0f) {
-        acc.streakLight = i;
-        acc.streakFF = specularFF;
-    }
-#endif
-#endif
-#endif
-#if RTPBR_AREA_LIGHT_FULL
-    // The representative direction of the polygon: its vector form factor's.
-    rtpbr_float3 lRep = F / lenF;
-    float muRep = rtpbr_saturate(lRep.z);
-    // The cosine-weighted mean of each albedo over the polygon (KC_PolygonMeanE).
-    rtpbr_float2 eRep = Host_TableE_EF(muRep, s.tableRoughness, s.eta);
-#endif
-    float Erep = KC_PolygonMeanE(eRep.x, s.Eavg, lenF);
-    rtpbr_float3 texD = RTPBR_F3(1.0f);
-#if RTPBR_AREA_LIGHT_TEXTURED && !RTPBR_AREA_LIGHT_FULL
-    if (texturedLight) {
-        rtpbr_float3 v0 = Host_LightVertex(i, 0u);
-        texD = Host_LightTexture(i, LTC_TextureLookup(px.frame, P, v0, Host_LightVertex(i, 1u) - v0,
-                                                      Host_LightVertex(i, 3u) - v0, LTC_InverseMatrix(LTC_Identity()), lRep));
-    }
-#endif
-#if RTPBR_AREA_LIGHT_FULL
-    rtpbr_float3 texS = texD; // (ones: the base's texel multiplies lo after its lobes' walks)
-#endif
-
-    // (with RTPBR_KC_SHAPE: KC_PolygonLobeShaped, its two parts folded into specularScale and
-    // msColor by AreaLight_Begin)
-    rtpbr_float3 lo = texS * (px.specularScale * specularFF +
-                              px.msColor * (px.msScale * (rtpbr_pos(1.0f - Erep) * rtpbr_pos(ff)))); // KC_PolygonLobe(s.Eo, Erep, s.Eavg, ff)
-    rtpbr_float3 unusedF, unusedFl;
-    rtpbr_float3 base;
-#if RTPBR_AREA_LIGHT_FULL
-    if (s.disney) {
-        float LoH = rtpbr_saturate(dot(lRep, normalize(lRep + px.vLocal)));
-        // the material's parameters from AreaLight_Begin's shared registers (the rest unread)
-        DisneyMaterial dm = s.dm;
-        dm.roughness = px.baseParams.x;
-        dm.metallic = px.baseParams.y;
-        dm.sheen = px.baseParams.w;
-        dm.baseColor = rtpbr_float3(px.baseColors.x, px.baseColors.y, px.baseColors.z);
-        dm.sheenTint = px.baseColors.w;
-        dm.subsurface = 1.0f; // the subsurface shape alone
-        base = px.baseScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1b), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart)) +
-               (px.baseParams.z * Disney_DiffuseLobe(dm, s.NoV, muRep, LoH) + Disney_SheenLobe(dm, LoH)) *
-                   (RTPBR_PI * ff);
-    } else
-#endif
-    {
-#if RTPBR_AREA_LIGHT_FULL
-        float specularWeight = px.baseParams.x, EFavg = px.baseParams.y, FmsDielectric = px.baseParams.z;
-#else
-        float specularWeight = s.specularWeight, EFavg = s.EFavg, FmsDielectric = s.FmsDielectric;
-#endif
-        float EFrep = specularWeight > 0.0f ? KC_PolygonMeanE(eRep.y, EFavg, lenF) : 0.0f;
-        float Esrep = specularWeight * KC_SpecularAlbedoDielectric(EFrep, Erep, FmsDielectric);
-        base = px.baseScale * (rtpbr_pos(1.0f - Esrep) * rtpbr_pos(ff)); // KC_PolygonLobe(s.Eso, Esrep, s.EsAvg, ff)
-    }
-    lo += texD * base;
-#if RTPBR_AREA_LIGHT_FULL
-    if (s.sheen && !s.disney) { // (as AreaLight_Begin)
-#if RTPBR_AREA_LIGHT_SHEEN_REFETCH
-        // (registers) AreaLight_Begin's row, read again: the same coordinates, the same texel
-        rtpbr_float4 ltc1s = Host_TableLtc1(RTPBR_TABLE_LTC_SHEEN, LTC_LutCoord(s.NoV, px.baseParams.w));
-#else
-        rtpbr_float4 ltc1s = px.ltc1b;
-#endif
-        // (the sheen's parameters from AreaLight_Begin's shared registers)
-        lo = lo * Sheen_AlbedoScaling(rtpbr_float3(px.baseColors.x, px.baseColors.y, px.baseColors.z), px.baseColors.w,
-                                      Host_TableSheenE(muRep, px.baseParams.w)) +
-             texD * px.sheenScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(ltc1s), unusedF, unusedFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart));
-    }
-    lo *= s.baseAttenuation;
-#if RTPBR_AREA_LIGHT_TEXTURED
-    if (texturedLight)
-        lo *= AreaLight_TexturedQuadLambert(i, P, px.frame);
-#endif
-    if (px.coated) {
-        rtpbr_float3 coatFl;
-        rtpbr_float3 coat = texS * (px.coatScale * AreaLight_ShapeLobe(i, P, px.frame, LTC_InverseMatrix(px.ltc1c), unusedF, coatFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(tubePart)) +
-              s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(Host_TableE(muRep, s.coatRoughness), s.Eavgc, lenF), s.Eavgc, ff));
-#if RTPBR_AREA_LIGHT_TEXTURED
-        // the coat, often the sharpest lobe: its own point and footprint
-        if (texturedLight) {
-            rtpbr_float3 v0 = Host_LightVertex(i, 0u);
-            coat *= Host_LightTexture(i, LTC_TextureLookup(px.frame, P, v0, Host_LightVertex(i, 1u) - v0,
-                                                           Host_LightVertex(i, 3u) - v0, LTC_InverseMatrix(px.ltc1c), coatFl));
-        }
-#endif
-        lo += coat;
-    }
-#endif
-#if RTPBR_LTC_POINT_CORRECTION && !RTPBR_AREA_LIGHT_FULL
-    acc.specularMass += specularFF;
-#endif
-#if RTPBR_AREA_LIGHT_FULL
-    rtpbr_float3 visibility = Host_LightVisibility(i);
-#endif
-    if (sphereLight)
-        visibility *= window;
-    acc.sum += Host_LightRadiance(i) * lo * visibility;
+    AreaLight_AddSimpleShape(px, acc, s, P, N, i, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TEXTURE_ARG(texturedLight));
 }
 
-// AreaLight_AddShapePart over a light; with RTPBR_AREA_LIGHT_TUBES and tubeLight, over each part
-// of the tube in turn (RTPBR_AREA_LIGHT_TUBE_QUAD, _END1, _END2: three lights, each of its
-// part's radiance times its weight, each corrected on its own: Kulla-Conty's mean albedo, the
-// point correction), in a loop: one copy of the evaluation for the three. A tube then costs up
-// to three lights' time but a quad's or a sphere's registers (its parts summed in one lobe,
-// AreaLight_TubeLobe, took the engine's basic variant to 112 VGPRs on navi21 and spilled the
-// full one on gfx1100). tubeLight known at compile time leaves one of the two paths; a run-time
-// flag keeps both (two copies of the evaluation: a loop over the parts for every light kept
-// every tube branch in every other light's code, 3x the instructions of the engine's variants).
+#if RTPBR_AREA_LIGHT_TUBES
+// Tube (capsule) light i's reflected radiance at P (x its radiance and visibility) added to acc,
+// as AreaLight_Add's for a polygon: LTC_EvaluateTube's decomposition, the facing quad and the
+// end spheres weighted by LTC_TubeWeights, each part lit as a light of its own (its radiance x
+// its weight: AreaLight_AddTubePart), every lobe with Kulla-Conty and the energy bound, the point
+// correction in the metallic-roughness evaluation (RTPBR_AREA_LIGHT_FULL 0; not in the full one:
+// as a sphere's); no streak estimate, no range window without RTPBR_AREA_LIGHT_TUBE_RANGE. Every
+// lobe's form factor is the sum of the parts' (AreaLight_TubeLobe's); the corrections are each
+// part's. Nothing when the tube is wholly below the horizon. A point inside the capsule sees only
+// the light.
+// The parts (three lights, each of its part's radiance times its weight, each corrected on its
+// own: Kulla-Conty's mean albedo, the point correction) in a loop: one copy of the evaluation for
+// the three. A tube then costs up to three lights' time but a quad's or a sphere's registers (its
+// parts summed in one lobe, AreaLight_TubeLobe, took the engine's basic variant to 112 VGPRs on
+// navi21 and spilled the full one on gfx1100). RTPBR_AREA_LIGHT_TUBE_UNROLL: three calls.
+// Error: LTC_EvaluateTube's (ltc_lines.h: its ends), plus the LTC fit's.
+RTPBR_FN void AreaLight_AddTube(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
+                                rtpbr_float3 N, uint i) {
+#if RTPBR_AREA_LIGHT_TUBE_UNROLL
+    // (three calls, each with its part known: an unroll hint is only a hint, and Mesa's
+    // llvmpipe left the loop as it was, every part running every part's code)
+    AreaLight_AddTubePart(px, acc, s, P, N, i, RTPBR_AREA_LIGHT_TUBE_QUAD);
+    AreaLight_AddTubePart(px, acc, s, P, N, i, RTPBR_AREA_LIGHT_TUBE_END1);
+    AreaLight_AddTubePart(px, acc, s, P, N, i, RTPBR_AREA_LIGHT_TUBE_END2);
+#else
+    RTPBR_DONT_UNROLL for (uint part = RTPBR_AREA_LIGHT_TUBE_QUAD; part <= RTPBR_AREA_LIGHT_TUBE_END2; ++part)
+        AreaLight_AddTubePart(px, acc, s, P, N, i, part);
+#endif
+}
+#endif
+
+// AreaLight_AddSimpleShape, or with RTPBR_AREA_LIGHT_TUBES and tubeLight AreaLight_AddTube.
+// tubeLight known at compile time leaves one of the two paths; a run-time flag keeps both (two
+// copies of the evaluation: a loop over the parts for every light kept every tube branch in
+// every other light's code, 3x the instructions of the engine's variants).
 RTPBR_FN void AreaLight_AddShape(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                                  rtpbr_float3 N, uint i, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM
                                      RTPBR_AREA_LIGHT_TEXTURE_PARAM RTPBR_AREA_LIGHT_TUBE_PARAM) {
 #if RTPBR_AREA_LIGHT_TUBES
     if (tubeLight) {
-#if RTPBR_AREA_LIGHT_TUBE_UNROLL
-        // (three calls, each with its part known: an unroll hint is only a hint, and Mesa's
-        // llvmpipe left the loop as it was, every part running every part's code)
-        AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
-                                                      RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_QUAD));
-        AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
-                                                      RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_END1));
-        AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
-                                                      RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_END2));
-#else
-        RTPBR_DONT_UNROLL for (uint part = RTPBR_AREA_LIGHT_TUBE_QUAD; part <= RTPBR_AREA_LIGHT_TUBE_END2; ++part)
-            AreaLight_AddShapePart(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false)
-                                                          RTPBR_AREA_LIGHT_TUBE_PART_ARG(part));
-#endif
+        AreaLight_AddTube(px, acc, s, P, N, i);
         return;
     }
-    AreaLight_AddShapePart(px, acc, s, P, N, i, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight)
-                                              RTPBR_AREA_LIGHT_TEXTURE_ARG(texturedLight) RTPBR_AREA_LIGHT_TUBE_PART_ARG(RTPBR_AREA_LIGHT_TUBE_NONE));
-#else
-    AreaLight_AddShapePart(px, acc, s, P, N, i, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TEXTURE_ARG(texturedLight));
 #endif
+    AreaLight_AddSimpleShape(px, acc, s, P, N, i, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight) RTPBR_AREA_LIGHT_TEXTURE_ARG(texturedLight));
 }
 
 // Polygon light i's reflected radiance at P (x its radiance and visibility) added to acc
@@ -1308,7 +1149,7 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
         return;
     }
 #endif
-    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false) RTPBR_AREA_LIGHT_TUBE_ARG(false));
+    AreaLight_AddPolygonShape(px, acc, s, P, N, i RTPBR_AREA_LIGHT_TEXTURE_ARG(false));
 }
 
 #if RTPBR_AREA_LIGHT_SPHERES
@@ -1319,7 +1160,7 @@ RTPBR_FN void AreaLight_Add(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, Sh
 // the sphere is wholly below the horizon. A point inside the sphere sees only the light.
 RTPBR_FN void AreaLight_AddSphere(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                                   rtpbr_float3 N, uint i) {
-    AreaLight_AddShape(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false) RTPBR_AREA_LIGHT_TUBE_ARG(false));
+    AreaLight_AddRoundShape(px, acc, s, P, N, i RTPBR_AREA_LIGHT_DISK_ARG(false));
 }
 #endif
 
@@ -1334,7 +1175,7 @@ RTPBR_FN void AreaLight_AddSphere(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) a
 // is wholly below the horizon.
 RTPBR_FN void AreaLight_AddDisk(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
                                 rtpbr_float3 N, uint i) {
-    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(true) RTPBR_AREA_LIGHT_TEXTURE_ARG(false) RTPBR_AREA_LIGHT_TUBE_ARG(false));
+    AreaLight_AddRoundShape(px, acc, s, P, N, i RTPBR_AREA_LIGHT_DISK_ARG(true));
 }
 #endif
 
@@ -1351,25 +1192,10 @@ RTPBR_FN void AreaLight_AddDisk(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc
 // emission over the quad).
 RTPBR_FN void AreaLight_AddTexturedQuad(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s,
                                         rtpbr_float3 P, rtpbr_float3 N, uint i) {
-    AreaLight_AddShape(px, acc, s, P, N, i, false RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(true) RTPBR_AREA_LIGHT_TUBE_ARG(false));
+    AreaLight_AddPolygonShape(px, acc, s, P, N, i RTPBR_AREA_LIGHT_TEXTURE_ARG(true));
 }
 #endif
 
-#if RTPBR_AREA_LIGHT_TUBES
-// Tube (capsule) light i's reflected radiance at P (x its radiance and visibility) added to acc,
-// as AreaLight_Add's for a polygon: LTC_EvaluateTube's decomposition, the facing quad and the
-// end spheres weighted by LTC_TubeWeights, each part lit as a light of its own (its radiance x
-// its weight: AreaLight_AddShape), every lobe with Kulla-Conty and the energy bound, the point
-// correction in the metallic-roughness evaluation (RTPBR_AREA_LIGHT_FULL 0; not in the full one:
-// as a sphere's); no streak estimate, no range window. Every lobe's form factor is the sum of
-// the parts' (AreaLight_TubeLobe's); the corrections are each part's. Nothing when the tube is
-// wholly below the horizon. A point inside the capsule sees only the light.
-// Error: LTC_EvaluateTube's (ltc_lines.h: its ends), plus the LTC fit's.
-RTPBR_FN void AreaLight_AddTube(AreaLightPixel px, RTPBR_INOUT(AreaLightSum) acc, ShadingSurface s, rtpbr_float3 P,
-                                rtpbr_float3 N, uint i) {
-    AreaLight_AddShape(px, acc, s, P, N, i, true RTPBR_AREA_LIGHT_DISK_ARG(false) RTPBR_AREA_LIGHT_TEXTURE_ARG(false) RTPBR_AREA_LIGHT_TUBE_ARG(true));
-}
-#endif
 
 #if RTPBR_AREA_LIGHT_STREAK
 // The streak estimate (ltc_corrections.h, LTC_StreakEnd) of light i's specular lobe: two more
