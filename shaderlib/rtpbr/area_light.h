@@ -1049,7 +1049,7 @@ RTPBR_FN rtpbr_float3 AreaLight_TexturedQuadLambert(uint i, rtpbr_float3 P, rtpb
 // sphere, a disk or a textured quad: a host that lights its tubes in a loop of their own calls
 // it in its loops over the other kinds, and none of them carries a tube's code).
 // AreaLight_AddTubePart: one part of a tube light (tubePart, RTPBR_AREA_LIGHT_TUBE_QUAD, _END1,
-// _END2; AreaLight_AddTube calls it for each).
+// _END2; any other value is lit as _END2; AreaLight_AddTube calls it for each).
 // AreaLight_AddPolygonShape: a polygon, textured where texturedLight (RTPBR_AREA_LIGHT_TEXTURED;
 // AreaLight_Add, AreaLight_AddTexturedQuad). AreaLight_AddRoundShape: a sphere, a disk where
 // diskLight (RTPBR_AREA_LIGHT_SPHERES or _DISKS; AreaLight_AddSphere, AreaLight_AddDisk).

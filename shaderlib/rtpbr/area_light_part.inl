@@ -13,7 +13,7 @@
 //     RTPBR_AREA_LIGHT_KIND_TUBE     one part of a tube light, tubePart
 //                                    (RTPBR_AREA_LIGHT_TUBE_QUAD, _END1, _END2):
 //                                    AreaLight_TubePartLobe (AreaLight_AddTubePart)
-// Both are #undef'd at the end.
+// Both, and this file's own macros, are #undef'd at its end.
 // Why (docs/performance.md, "Pipeline compile time"): the drivers inline every call before
 // they fold its constant arguments, and their first passes over the inlined function cost
 // more than linearly in its size. With one function for every kind, each of its four lobes'
