@@ -76,17 +76,16 @@ def self_test():
 
 
 def main(argv):
-    limit = LIMIT
-    if len(argv) > 2 and argv[1] == "--limit":
-        limit = int(argv[2])
-        argv = argv[2:]
-    if len(argv) < 2:
-        print(__doc__.strip().splitlines()[-8], file=sys.stderr)
+    limit, paths = LIMIT, argv[1:]
+    if len(paths) > 1 and paths[0] == "--limit":
+        limit, paths = int(paths[1]), paths[2:]
+    if not paths:
+        print("usage: spirv_inline_size.py [--limit N] RTPBR_SPIRV_HEADER.h...", file=sys.stderr)
         return 2
     self_test()
     failed = []
     rows = []
-    for path in argv[1:]:
+    for path in paths:
         text = open(path).read()
         words = [int(x, 16) for x in re.findall(r"0x[0-9a-fA-F]{8}", text)]
         name = re.search(r"rtpbr_spirv_(\w+)\.h$", path)
