@@ -4,13 +4,13 @@
 # compiled (its shaders: callgrind's object "???", the only code without a file) differ between
 # them by the per-pixel work of every pass (G-buffer, lighting, tone mapping), which this prints
 # divided by the difference in pixels. The compile, the scene's load and the fixed per-frame
-# work cancel. On a shared 2-core machine a frame's time moves by 10-20 % between runs (fixed
-# costs 49-76 ns per pixel for one library); this count repeats to 1e-4 for the same library,
-# Mesa and scene, so that a change of 1 % can be seen. What it does not see: an instruction's
-# cost (a gather, a division or a texel read counts 1) and memory. Under valgrind the CPU has
-# no AVX-512, so llvmpipe's code is its AVX2 code whatever the machine. The driver's own
-# functions (libvulkan_lvp: its threads wait by spinning, which varies from run to run) are not
-# counted.
+# work cancel. On a shared 2-core machine a frame's time moves by 10-20 % between runs (one
+# library's lighting pass: 126 to 175 ms in four runs of one scene); this count repeats to
+# 1e-4 for the same library, Mesa and scene, so that a change of 1 % can be seen. What it does
+# not see: an instruction's cost (a gather, a division or a texel read counts 1) and memory.
+# Under valgrind the CPU has no AVX-512, so llvmpipe's code is its AVX2 code whatever the
+# machine. The driver's own functions (libvulkan_lvp: its threads wait by spinning, which varies
+# from run to run) are not counted.
 #   bench/lavapipe_instructions.sh BUILD_DIR SCENE.gltf [--lib DIR]... [--sizes WxH,WxH] [-- RENDER_FLAGS]
 # --lib DIR: the engine library's directory (LD_LIBRARY_PATH; default BUILD_DIR/engine), repeatable:
 # each is counted and compared with the first (an A/B with one rtpbr-render). Each size runs in
