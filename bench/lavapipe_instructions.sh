@@ -53,6 +53,9 @@ while [[ $# -gt 0 ]]; do
   esac
 done
 [[ ${#libs[@]} -gt 0 ]] || libs=("$build/engine")
+for lib in "${libs[@]}"; do
+  [[ -d $lib ]] || { echo "$0: no library directory $lib" >&2; exit 2; }
+done
 small=${sizes%,*} large=${sizes#*,}
 [[ $small =~ ^[0-9]+x[0-9]+$ && $large =~ ^[0-9]+x[0-9]+$ ]] || { echo "$0: --sizes takes WxH,WxH" >&2; exit 2; }
 render=$build/tools/render/rtpbr-render
@@ -81,7 +84,6 @@ echo "|---|---:|---:|"
 first=
 for n in "${!libs[@]}"; do
   lib=${libs[$n]}
-  [[ -d $lib ]] || { echo "$0: no library directory $lib" >&2; exit 2; }
   pids=()
   for s in "$small" "$large"; do
     LD_LIBRARY_PATH=$lib valgrind --tool=callgrind --callgrind-out-file="$work/$n-$s.cg" \
