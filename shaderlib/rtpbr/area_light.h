@@ -134,6 +134,16 @@
 //                          quad light costs about 9 % less. Used in expressions only (never in #if), so
 //                          that a GLSL host may make it a specialization constant (the engine: per
 //                          frame, from its lights; engine/shaders/shade_lights.glsl).
+//   RTPBR_AREA_LIGHT_STREAK_ON  1 (default): the streak estimate runs where it applies (GGX,
+//                          RTPBR_AREA_LIGHT_FULL 0, RTPBR_LTC_STREAK 1); 0: it is skipped, its
+//                          candidate neither chosen nor evaluated. The same result for a point
+//                          none of whose lights can give the estimate any weight
+//                          (LTC_StreakOutside: a host's culling proves it per tile), where its
+//                          code would only cost: on lavapipe, which runs every branch, the
+//                          estimate's two walks cost a tenth of the showcase's shader work. Used
+//                          in expressions only (never in #if), so that a GLSL host may make it a
+//                          specialization constant (the engine: a tile class of its own,
+//                          engine/shaders/cull.comp).
 //   RTPBR_UNROLL, RTPBR_DONT_UNROLL  loop attributes (GLSL: [[unroll]], [[dont_unroll]] with
 //                          GL_EXT_control_flow_attributes; HLSL: [unroll], [loop]); empty by
 //                          default.
@@ -259,6 +269,9 @@
 #endif
 #ifndef RTPBR_AREA_LIGHT_CLIP_LOOPS
 #define RTPBR_AREA_LIGHT_CLIP_LOOPS 0
+#endif
+#ifndef RTPBR_AREA_LIGHT_STREAK_ON
+#define RTPBR_AREA_LIGHT_STREAK_ON 1
 #endif
 // The sides of the equal-area polygon a sphere's disk is clipped as (RTPBR_AREA_LIGHT_SPHERE_CLIP).
 #ifndef RTPBR_AREA_LIGHT_SPHERE_SIDES
@@ -1261,7 +1274,7 @@ RTPBR_FN rtpbr_float3 AreaLight_End(AreaLightPixel px, AreaLightSum acc, Shading
     sum += acc.punctual;
 #endif
 #if RTPBR_AREA_LIGHT_STREAK
-    if (acc.streakLight != RTPBR_AREA_LIGHT_NONE) {
+    if (RTPBR_AREA_LIGHT_STREAK_ON != 0 && acc.streakLight != RTPBR_AREA_LIGHT_NONE) {
         rtpbr_float3 e = AreaLight_StreakEstimate(acc.streakLight, P, px.frame, s.NoV, s.tableRoughness);
         if (e.x >= 0.0f && e.y > 0.0f && px.pointNorm > 0.0f) {
             // specularScale = the Fresnel scale f0 (ltc2.x - ltc2.y) + f90 ltc2.y

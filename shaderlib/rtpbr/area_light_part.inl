@@ -128,7 +128,7 @@ RTPBR_FN void RTPBR_AREA_LIGHT_PART_FN(AreaLightPixel px, RTPBR_INOUT(AreaLightS
 #if RTPBR_AREA_LIGHT_STREAK
     // (registers: docs/performance.md, 3)
     // (a sphere light is no candidate: the estimate walks a polygon's edges)
-    bool streakSized = !sphereLight && !RTPBR_AREA_LIGHT_TEXTURED_FLAG && LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
+    bool streakSized = RTPBR_AREA_LIGHT_STREAK_ON != 0 && !sphereLight && !RTPBR_AREA_LIGHT_TEXTURED_FLAG && LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
 #endif
     rtpbr_float3 F, Fl;
     float specularFF = RTPBR_AREA_LIGHT_PART_LOBE(px.specularMinv, F, Fl);

@@ -23,6 +23,7 @@
 //   tail estimate      LTC_PointTail, LTC_PointTailWeight, LTC_PointCombine
 //   streak, streamed   LTC_StreakBegin, LTC_StreakEdge, LTC_StreakNodes, LTC_StreakChordEdge,
 //                      LTC_StreakEnd, LTC_StreakWeight, LTC_StreakVoH, LTC_StreakCandidate
+//   streak, culling    LTC_StreakOutside, LTC_StreakSteep, LTC_StreakSteepNoV
 //   streak, stored     LTC_StreakLocal (a polygon from LTC_PolygonToLocal; tools and tests)
 //   helpers            LTC_StreakCross, LTC_StreakNodePoint, LTC_StreakNode, LTC_Atan,
 //                      LTC_StreakLateral, LTC_StreakSlope, LTC_StreakRamp
@@ -460,6 +461,39 @@ RTPBR_FN bool LTC_StreakCandidate(float radius, float distance, float alpha, flo
     float d2 = distance * distance - radius * radius;
     return !(d2 > 0.0f) || 2.0f * radius >= RTPBR_LTC_STREAK_W0 * max(alpha, 1e-3f) * NoV * sqrt(d2);
 }
+
+// Whether the streak estimate's weight (LTC_StreakWeight) is 0 for every view direction within
+// the angle viewSpread of viewAxis and every light direction within lightSpread of lightAxis
+// (axes of any non-zero length; spreads in radians, >= 0; false for a lightSpread above pi / 2,
+// whose cone is not convex: the mean of its directions may lie outside it). The weight needs
+// |V + c| < RTPBR_LTC_STREAK_V1 (V, c unit: V.c < V1^2 / 2 - 1), an angle between V and c above
+// acos(V1^2 / 2 - 1) = 136 degrees for 0.75; two directions of the cones are at most the axes'
+// angle plus both spreads apart. c, the direction of a horizon-clipped polygon's vector form
+// factor, is the normalised mean of the directions to its points (F = (1 / pi) int w dw,
+// either orientation), so it lies in any cone (of half-angle <= pi / 2) that holds the light.
+// 1e-2 radians are kept as a margin for rounding (a small light's vector form factor, a sum of
+// nearly opposite edge terms, is turned by about 1e-7 over its angular size). A cheap test for a host's culling (the
+// engine's, per screen tile and light, with the cones from the tile's box to the camera and to
+// the light's bounding sphere): where it holds for all of a point's lights, AreaLight_End's
+// streak estimate changes nothing (RTPBR_AREA_LIGHT_STREAK_ON 0 gives the same result). NaN:
+// false.
+RTPBR_FN bool LTC_StreakOutside(rtpbr_float3 viewAxis, float viewSpread, rtpbr_float3 lightAxis, float lightSpread) {
+    float c = dot(viewAxis, lightAxis) * rtpbr_rsqrt(max(dot(viewAxis, viewAxis) * dot(lightAxis, lightAxis), 1e-30f));
+    float axes = acos(clamp(c, -1.0f, 1.0f));
+    float limit = acos(0.5f * RTPBR_LTC_STREAK_V1 * RTPBR_LTC_STREAK_V1 - 1.0f) - 1e-2f;
+    return lightSpread <= 1.57079633f && axes + viewSpread + lightSpread < limit; // NaN: false
+}
+
+// The NoV from which the streak estimate's weight (LTC_StreakWeight) is 0 whatever the light:
+// with c above the horizon V.c >= -sqrt(1 - NoV^2), and the weight needs V.c < V1^2 / 2 - 1
+// (LTC_StreakOutside), so NoV >= sqrt(1 - (1 - V1^2 / 2)^2) (0.695 for 0.75) gives none; 1e-2
+// added as a margin for rounding. LTC_StreakSteep: NoV at least that (NaN: false).
+RTPBR_FN float LTC_StreakSteepNoV() {
+    float k = 1.0f - 0.5f * RTPBR_LTC_STREAK_V1 * RTPBR_LTC_STREAK_V1;
+    return sqrt(max(1.0f - k * k, 0.0f)) + 1e-2f;
+}
+
+RTPBR_FN bool LTC_StreakSteep(float NoV) { return NoV >= LTC_StreakSteepNoV(); }
 
 // The streak estimate over a stored local polygon (from LTC_PolygonToLocal: already clipped
 // to the horizon); F its vector form factor (LTC_FormFactorVector). Tools and tests.

@@ -628,6 +628,102 @@ static void test_grazing_partition(void **state) {
     assert_true(cases == 4 * 11 * 9 * 3);
 }
 
+// The streak estimate's culling tests (ltc_corrections.h, LTC_StreakSteep, LTC_StreakOutside):
+// where either says so, LTC_StreakWeight must be 0 for every view and light direction it covers
+// (sampled: each cone's boundary and inside, the view's worst light at the horizon), and
+// neither may be vacuous: just past its limit a pair with weight > 0 exists. Planted: the
+// limit of |V + c| taken at RTPBR_LTC_STREAK_V0 instead of V1, or the spreads subtracted,
+// fails the first part.
+static void test_streak_culling(void **state) {
+    (void)state;
+    // the weight of view V and light direction c (world; unit): in a frame whose normal has
+    // both above the horizon (between them), V in its xz-plane, as LTC_StreakWeight takes them
+    auto weight = [](float3 V, float3 c) {
+        float3 n = V + c;
+        n = glm::dot(n, n) > 1e-12f ? glm::normalize(n) : glm::normalize(glm::cross(V, float3(0.3f, 0.5f, 0.8f)));
+        float3 x = V - n * glm::dot(V, n);
+        x = glm::dot(x, x) > 1e-14f ? glm::normalize(x) : glm::normalize(glm::cross(n, float3(0.3f, 0.5f, 0.8f)));
+        const float3 y = glm::cross(n, x);
+        return rtpbr::LTC_StreakWeight(float3(glm::dot(V, x), 0.0f, glm::dot(V, n)),
+                                       float3(glm::dot(c, x), glm::dot(c, y), glm::dot(c, n)));
+    };
+    // LTC_StreakSteep: at NoV on a grid, the light at the horizon opposite the view (the
+    // smallest |V + c|) and random lights above the horizon
+    Rng rng(41);
+    auto u01 = [&]() { return float(rng.uniform()); };
+    int steep = 0;
+    for (int k = 0; k <= 1000; k++) {
+        const float nov = float(k) / 1000.0f;
+        const float3 V(std::sqrt(std::max(1.0f - nov * nov, 0.0f)), 0.0f, nov);
+        if (!rtpbr::LTC_StreakSteep(nov)) continue;
+        steep++;
+        assert_true(rtpbr::LTC_StreakWeight(V, float3(-1.0f, 0.0f, 1e-7f)) == 0.0f);
+        for (int j = 0; j < 64; j++) {
+            const float z = u01(), phi = 6.2831853f * u01(), rxy = std::sqrt(std::max(1.0f - z * z, 0.0f));
+            assert_true(rtpbr::LTC_StreakWeight(V, float3(rxy * std::cos(phi), rxy * std::sin(phi), z)) == 0.0f);
+        }
+    }
+    // the limit sqrt(1 - 0.71875^2) = 0.6953 plus the margin 0.01
+    assert_true(steep > 280 && steep < 300);
+    assert_true(!rtpbr::LTC_StreakSteep(0.69f) && rtpbr::LTC_StreakSteep(0.71f) && !rtpbr::LTC_StreakSteep(std::nanf("")));
+    assert_true(rtpbr::LTC_StreakWeight(float3(std::sqrt(1.0f - 0.69f * 0.69f), 0.0f, 0.69f), float3(-1.0f, 0.0f, 1e-7f)) > 0.0f);
+    // LTC_StreakOutside: random cones; a direction within spread s of axis a, at angle t <= s
+    // from it toward the azimuth phi
+    auto unit = [&]() {
+        const float z = 2.0f * u01() - 1.0f, phi = 6.2831853f * u01(), r = std::sqrt(std::max(1.0f - z * z, 0.0f));
+        return float3(r * std::cos(phi), r * std::sin(phi), z);
+    };
+    auto within = [](float3 a, float t, float phi) {
+        const float3 e1 = glm::normalize(glm::cross(a, std::fabs(a.x) < 0.9f ? float3(1.0f, 0.0f, 0.0f) : float3(0.0f, 1.0f, 0.0f)));
+        const float3 e2 = glm::cross(a, e1);
+        return glm::normalize(a * std::cos(t) + (e1 * std::cos(phi) + e2 * std::sin(phi)) * std::sin(t));
+    };
+    const double limit = std::acos(0.5 * 0.75 * 0.75 - 1.0); // RTPBR_LTC_STREAK_V1 0.75: 136 degrees
+    int outside = 0, tight = 0;
+    for (int k = 0; k < 4000; k++) {
+        const float3 a = unit(), b = unit();
+        const float sa = 0.6f * u01() * u01(), sb = 0.6f * u01() * u01();
+        const double axes = std::acos(std::min(std::max(double(glm::dot(a, b)), -1.0), 1.0));
+        // the axes given unnormalised (any length)
+        const bool out = rtpbr::LTC_StreakOutside(a * (0.5f + 3.0f * u01()), sa, b * (0.5f + 3.0f * u01()), sb);
+        if (out) {
+            outside++;
+            assert_true(axes + sa + sb < limit);
+            for (int j = 0; j < 200; j++) {
+                const float ta = j < 100 ? sa : sa * u01(), tb = j < 100 ? sb : sb * u01();
+                assert_true(weight(within(a, ta, 6.2831853f * u01()), within(b, tb, 6.2831853f * u01())) == 0.0f);
+            }
+            // the farthest pair: each axis turned away from the other by its spread
+            const float3 away = glm::cross(a, b);
+            if (glm::dot(away, away) > 1e-6f) {
+                const float3 n = glm::normalize(away);
+                const float3 fa = glm::normalize(a * std::cos(sa) + glm::cross(a, n) * std::sin(sa));
+                const float3 fb = glm::normalize(b * std::cos(sb) - glm::cross(b, n) * std::sin(sb));
+                assert_true(weight(fa, fb) == 0.0f);
+            }
+        } else if (axes + sa + sb > limit + 0.02 && axes + sa + sb < 3.1) {
+            // not vacuous: the farthest pair has a weight
+            const float3 away = glm::cross(a, b);
+            if (glm::dot(away, away) > 1e-6f) {
+                const float3 n = glm::normalize(away);
+                const float3 fa = glm::normalize(a * std::cos(sa) + glm::cross(a, n) * std::sin(sa));
+                const float3 fb = glm::normalize(b * std::cos(sb) - glm::cross(b, n) * std::sin(sb));
+                assert_true(weight(fa, fb) > 0.0f);
+                tight++;
+            }
+        }
+    }
+    fprintf(stderr, "streak culling: %d steep NoV of 1001, %d of 4000 cone pairs outside, %d past the limit with a weight\n",
+            steep, outside, tight);
+    assert_true(outside > 1000 && tight > 200);
+    assert_true(!rtpbr::LTC_StreakOutside(float3(1.0f, 0.0f, 0.0f), std::nanf(""), float3(0.0f, 1.0f, 0.0f), 0.1f));
+    assert_true(rtpbr::LTC_StreakOutside(float3(1.0f, 0.0f, 0.0f), 0.1f, float3(0.0f, 1.0f, 0.0f), 0.1f));
+    // a light cone wider than a hemisphere is not convex: never outside (two directions 91
+    // degrees off its axis on either side average to the opposite of the axis)
+    assert_true(!rtpbr::LTC_StreakOutside(float3(1.0f, 0.0f, 0.0f), 0.0f, float3(1.0f, 0.0f, 0.0f), 1.6f));
+    assert_true(rtpbr::LTC_StreakOutside(float3(1.0f, 0.0f, 0.0f), 0.0f, float3(1.0f, 0.0f, 0.0f), 1.5f));
+}
+
 RTPBR_TEST_MAIN(cmocka_unit_test(test_ggx_vs_mc),
                 cmocka_unit_test(test_beckmann_vs_mc),
                 cmocka_unit_test(test_fresnel_scales),
@@ -637,4 +733,5 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_ggx_vs_mc),
                 cmocka_unit_test(test_anisotropic_stretch_vs_mc),
                 cmocka_unit_test(test_ggx_floor),
                 cmocka_unit_test(test_point_correction),
-                cmocka_unit_test(test_grazing_partition))
+                cmocka_unit_test(test_grazing_partition),
+                cmocka_unit_test(test_streak_culling))
