@@ -13,7 +13,10 @@
 //   BASIC  every material of the tile is basic (material_tile_class);
 //   FULL   otherwise;
 //   BASIC_SPHERES, FULL_SPHERES  the same with a sphere or a disk among the tile's lights (the
-//          variants with the spheres' and disks' loops).
+//          variants with the spheres' and disks' loops); the textured and tubes' classes the
+//          same for a textured quad or a tube;
+//   BASIC_NO_STREAK  BASIC where no pixel can give the streak estimate any weight
+//          (streak_possible): the basic variant with the estimate specialized out.
 // Light i is kept unless
 //   (1) the light is one-sided and every corner of the box is behind its plane: it cannot
 //       light any point of the tile (exact), or
@@ -42,6 +45,7 @@
 #include "rtpbr/disney.h"
 #include "rtpbr/sheen.h"
 #include "rtpbr/material.h"
+#include "rtpbr/ltc_corrections.h"
 #include "material.glsl"
 #define RTPBR_FRAME_BINDING RTPBR_BINDING_LIGHT_FRAME
 #include "frame.glsl"
@@ -96,6 +100,60 @@ bool light_may_contribute(uint i, vec3 boxMin, vec3 boxMax)
     return true;
 }
 
+// How far lifted_point (lighting_common.glsl) moves the point of depth at ndc: by this along N.
+float lift_of(vec2 ndc, float depth)
+{
+    vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
+    vec4 further = frame.inv_view_proj * vec4(ndc, min(depth * (1.0f + 4.0f / 16777216.0f), 1.0f), 1.0f);
+    vec3 P = world.xyz / world.w;
+    return length(further.xyz / further.w - P) + 1e-6f * length(frame.camera_position.xyz - P);
+}
+
+// Whether the streak estimate (shaderlib ltc_corrections.h; the basic variant's AreaLight_End)
+// can weigh anything at a pixel of the tile (origin .. end; its points in the box, within
+// maxLift of the lifted points the lighting pass shades): false (RTPBR_TILE_CLASS_BASIC_NO_STREAK)
+// where every polygon light of the tile's mask lies outside the view's cone by the estimate's
+// angle (LTC_StreakOutside: the cones of the directions from a ball around the box to the camera
+// and from a ball around the lifted points to the light's bounding sphere), or else where every
+// pixel is seen too steeply for it (LTC_StreakSteep at a lower bound of its NoV: the angle
+// between its normal and the view cone's axis plus the cone's spread). Then the estimate's
+// weight is 0 at every pixel and light, and the variant without it gives the same image. The
+// cheap test first: the second reads the tile's normals.
+bool streak_possible(uint tile, uvec2 origin, uvec2 end, vec3 boxMin, vec3 boxMax, float maxLift)
+{
+    const float pi = 3.14159265f; // (a cone of every direction: the camera or the light within the ball)
+    vec3 centre = 0.5f * (boxMin + boxMax);
+    vec3 toCamera = frame.camera_position.xyz - centre;
+    float rho = 0.5f * length(boxMax - boxMin), dCamera = length(toCamera);
+    float viewSpread = dCamera > rho ? asin(rho / dCamera) : pi;
+    float liftRho = rho + maxLift;
+    bool outside = true;
+    uint maskBase = tile * uint(RTPBR_TILE_MASK_STRIDE);
+    for (uint words = tile_masks[maskBase + uint(RTPBR_TILE_MASK_SUMMARY)]; words != 0u && outside; words &= words - 1u) {
+        uint word = uint(findLSB(words));
+        for (uint bits = tile_masks[maskBase + word]; bits != 0u && outside; bits &= bits - 1u) {
+            vec4 sphere = lights[word * 32u + uint(findLSB(bits))].sphere;
+            vec3 toLight = sphere.xyz - centre;
+            float reach = liftRho + sphere.w, d = length(toLight);
+            outside = LTC_StreakOutside(toCamera, viewSpread, toLight, d > reach ? asin(reach / d) : pi);
+        }
+    }
+    if (outside) return false;
+    // NoV >= cos(angle(N, axis) + viewSpread) (V within viewSpread of the axis), which is steep
+    // (LTC_StreakSteep) where N . axis >= cos(acos(LTC_StreakSteepNoV()) - viewSpread); the
+    // first pixel below that ends the loop (on lavapipe a tile of a grazing floor reads one)
+    float room = acos(LTC_StreakSteepNoV()) - viewSpread;
+    if (!(room > 0.0f)) return true;
+    float steepest = cos(room);
+    vec3 axis = toCamera / max(dCamera, 1e-30f);
+    for (uint y = origin.y; y < end.y; ++y)
+        for (uint x = origin.x; x < end.x; ++x)
+            if (texelFetch(gbuffer_depth, ivec2(x, y), 0).r != frame.camera_position.w && // (as the lighting pass)
+                !(dot(GBuffer_DecodeNormal(texelFetch(gbuffer1, ivec2(x, y), 0)), axis) >= steepest))
+                return true;
+    return false;
+}
+
 void main()
 {
     uvec2 tileXY = gl_GlobalInvocationID.xy;
@@ -109,6 +167,10 @@ void main()
     bool anySurface = false;
     uvec2 origin = tileXY * uint(RTPBR_TILE_SIZE);
     uvec2 end = min(origin + uvec2(RTPBR_TILE_SIZE), frame.size);
+    // and the pixels of the least and the greatest depth (ndc, depth), between which lies the
+    // tile's largest lift (lifted_point: it grows with the distance, which grows with the
+    // depth, or falls with it for reversed-Z)
+    vec3 nearest = vec3(0.0f, 0.0f, 3.402823466e+38f), farthest = vec3(0.0f, 0.0f, -3.402823466e+38f);
     for (uint y = origin.y; y < end.y; ++y)
         for (uint x = origin.x; x < end.x; ++x) {
             float depth = texelFetch(gbuffer_depth, ivec2(x, y), 0).r;
@@ -119,6 +181,8 @@ void main()
                 boxMin = min(boxMin, P);
                 boxMax = max(boxMax, P);
                 anySurface = true;
+                if (depth < nearest.z) nearest = vec3(ndc, depth);
+                if (depth > farthest.z) farthest = vec3(ndc, depth);
             }
         }
 
@@ -175,7 +239,14 @@ void main()
                 if (texelFetch(gbuffer_depth, ivec2(x, y), 0).r != frame.camera_position.w)
                     tileClass = max(tileClass, material_tile_class(materials[uint(texelFetch(gbuffer2, ivec2(x, y), 0).a)]));
     }
-    if (anyTube && tileClass != RTPBR_TILE_CLASS_EMPTY)
+    // (a basic tile of polygons and punctual lights: the streak estimate's, polygons only)
+    if (tileClass == RTPBR_TILE_CLASS_BASIC && !anySphere && !anyTextured && !anyTube &&
+        // (the lift at either end of the depths, doubled: the pixels' rays differ in length
+        // across a tile by a few per cent at most)
+        !streak_possible(tile, origin, end, boxMin, boxMax,
+                         2.0f * max(lift_of(nearest.xy, nearest.z), lift_of(farthest.xy, farthest.z))))
+        tileClass = RTPBR_TILE_CLASS_BASIC_NO_STREAK;
+    else if (anyTube && tileClass != RTPBR_TILE_CLASS_EMPTY)
         tileClass += uint(RTPBR_TILE_CLASS_BASIC_TUBES - RTPBR_TILE_CLASS_BASIC);
     else if (anyTextured && tileClass != RTPBR_TILE_CLASS_EMPTY)
         tileClass += uint(RTPBR_TILE_CLASS_BASIC_TEXTURED - RTPBR_TILE_CLASS_BASIC);

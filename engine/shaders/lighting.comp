@@ -49,7 +49,13 @@ layout(local_size_x = RTPBR_TILE_SIZE, local_size_y = RTPBR_TILE_SIZE) in;
 
 void main()
 {
-    uint tile = tile_list[uint(RTPBR_LIGHTING_CLASS) * frame.tile_capacity + gl_WorkGroupID.x];
+#if RTPBR_LIGHTING_CLASS == RTPBR_TILE_CLASS_BASIC
+    // (the basic variant without the streak estimate is the basic class's code: its own queue)
+    uint queue = shade_streak ? uint(RTPBR_TILE_CLASS_BASIC) : uint(RTPBR_TILE_CLASS_BASIC_NO_STREAK);
+#else
+    uint queue = uint(RTPBR_LIGHTING_CLASS);
+#endif
+    uint tile = tile_list[queue * frame.tile_capacity + gl_WorkGroupID.x];
     ivec2 pixel = ivec2(uvec2(tile % frame.tiles_x, tile / frame.tiles_x) * uint(RTPBR_TILE_SIZE) + gl_LocalInvocationID.xy);
     if (any(greaterThanEqual(uvec2(pixel), frame.size))) return;
     float depth = texelFetch(gbuffer_depth, pixel, 0).r;

@@ -15,10 +15,11 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_TILE_MASKS, std430) buffer TileMas
     uint tile_masks[];
 };
 // The culling pass's tile queues, one per tile class (RTPBR_TILE_CLASS_*): each class's
-// indirect dispatch arguments (x = the number of tiles queued), then the classes' tile lists,
-// frame.tile_capacity entries each (tile index = tile y * frame.tiles_x + tile x).
+// indirect dispatch arguments (x = the number of tiles queued; RTPBR_TILE_QUEUE_SLOTS of them,
+// the last unused), then the classes' tile lists, frame.tile_capacity entries each (tile index
+// = tile y * frame.tiles_x + tile x).
 layout(set = 0, binding = RTPBR_BINDING_LIGHT_TILE_LISTS, std430) buffer TileLists {
-    uvec4 tile_dispatch[RTPBR_TILE_CLASS_COUNT]; // xyz: VkDispatchIndirectCommand, w unused
+    uvec4 tile_dispatch[RTPBR_TILE_QUEUE_SLOTS]; // xyz: VkDispatchIndirectCommand, w unused
     uint tile_list[];
 };
 

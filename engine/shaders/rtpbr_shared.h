@@ -317,7 +317,21 @@
 // The same with a tube among the tile's lights: the textured variants plus the tubes' loop.
 #define RTPBR_TILE_CLASS_BASIC_TUBES 7
 #define RTPBR_TILE_CLASS_FULL_TUBES 8
-#define RTPBR_TILE_CLASS_COUNT 9
+// BASIC where no light of the tile can give the streak estimate any weight at any of its
+// pixels (cull.comp; shaderlib ltc_corrections.h, LTC_StreakOutside): the basic variant with the
+// estimate compiled out (RTPBR_SPEC_LIGHTING_STREAK false), the same result. On lavapipe, which
+// runs every branch, the estimate's two walks per pixel cost whether any pixel takes them or not.
+#define RTPBR_TILE_CLASS_BASIC_NO_STREAK 9
+#define RTPBR_TILE_CLASS_COUNT 10
+// The tile queues' dispatch commands (lighting_common.glsl's TileLists: one per class, then the
+// lists): RTPBR_TILE_CLASS_COUNT used, the array padded to 12. With 10 (the lists at byte 160)
+// ACO allocated lighting_beckmann_ms1_full_spheres's registers differently and spilled 2 SGPRs
+// on navi21 and gfx1100 (issue 32's no-spill bar; tests/shader-stats); with 11, 12 or 16 it
+// compiles as with 9 did, instruction for instruction (Mesa 22.3.6).
+#define RTPBR_TILE_QUEUE_SLOTS 12
+#if RTPBR_TILE_QUEUE_SLOTS < RTPBR_TILE_CLASS_COUNT
+#error "a tile queue per class"
+#endif
 
 // Monte Carlo lighting pass push constants (std430; rtpbr_shader_mc, lighting_mc.comp). The
 // pass runs in dispatches over ranges of lights and of samples (lavapipe's loop budget, see
@@ -399,6 +413,10 @@
 // false by default): set by passes/lighting.c on a CPU device for frames of at most
 // RTPBR_UNIFORM_LIGHTS_MAX lights (docs/performance.md, 22).
 #define RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS 5
+// Whether the lighting variant runs the streak estimate (a bool, true by default; the
+// shader library's RTPBR_AREA_LIGHT_STREAK_ON): false in the pipeline of
+// RTPBR_TILE_CLASS_BASIC_NO_STREAK, which is the basic variant's code (passes/lighting.c).
+#define RTPBR_SPEC_LIGHTING_STREAK 8
 // Lighting pass: the shadow ratios, a sampler2DArray (layer = light index), read with texelFetch.
 #define RTPBR_BINDING_LIGHT_SHADOW_RATIO 24
 // The extension textures' values per pixel (multipliers of the material record's factors, 1

@@ -153,7 +153,11 @@ vec4 Host_TableLtc2(int table, vec2 uv)
 // branch run, for every pixel (docs/performance.md, 20).
 layout(constant_id = RTPBR_SPEC_LIGHTING_MAX_VERTICES) const uint shade_max_vertices = RTPBR_SHADER_MAX_POLYGON_VERTICES;
 layout(constant_id = RTPBR_SPEC_LIGHTING_PUNCTUAL) const bool shade_punctual = true;
+// Whether the streak estimate runs (false: the pipeline of RTPBR_TILE_CLASS_BASIC_NO_STREAK,
+// tiles where the cull proved it changes nothing; rtpbr_shared.h, RTPBR_SPEC_LIGHTING_STREAK).
+layout(constant_id = RTPBR_SPEC_LIGHTING_STREAK) const bool shade_streak = true;
 #define RTPBR_AREA_LIGHT_MAX_VERTICES shade_max_vertices
+#define RTPBR_AREA_LIGHT_STREAK_ON (shade_streak ? 1 : 0)
 #define RTPBR_AREA_LIGHT_FULL RTPBR_LIGHTING_FULL
 #define RTPBR_AREA_LIGHT_PUNCTUAL 2 // punctual lights summed first, apart (area_light.h)
 #define RTPBR_AREA_LIGHT_SPHERES 1  // AreaLight_AddSphere for the spheres' mask (RTPBR_LIGHTING_SPHERES)

@@ -156,6 +156,7 @@ typedef struct lighting_constants {
     uint32_t material_features;
     VkBool32 cpu; // (the context's device: the same for all its pipelines)
     VkBool32 uniform_lights;
+    VkBool32 streak; // (false only in RTPBR_TILE_CLASS_BASIC_NO_STREAK's pipeline)
 } lighting_constants;
 
 rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms,
@@ -182,8 +183,10 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
     _Static_assert(RTPBR_TILE_CLASS_EMPTY == 0 && RTPBR_TILE_CLASS_BASIC == 1 && RTPBR_TILE_CLASS_FULL == 2 &&
                        RTPBR_TILE_CLASS_BASIC_SPHERES == 3 && RTPBR_TILE_CLASS_FULL_SPHERES == 4 &&
                        RTPBR_TILE_CLASS_BASIC_TEXTURED == 5 && RTPBR_TILE_CLASS_FULL_TEXTURED == 6 &&
-                       RTPBR_TILE_CLASS_BASIC_TUBES == 7 && RTPBR_TILE_CLASS_FULL_TUBES == 8,
-                   "lit classes follow the empty one, the spheres' after the others, the textured, the tubes last");
+                       RTPBR_TILE_CLASS_BASIC_TUBES == 7 && RTPBR_TILE_CLASS_FULL_TUBES == 8 &&
+                       RTPBR_TILE_CLASS_BASIC_NO_STREAK == 9 && RTPBR_TILE_CLASS_COUNT == 10,
+                   "lit classes follow the empty one, the spheres' after the others, the textured, the tubes, "
+                   "then the basic class without the streak estimate");
     rtpbr_lighting_pass *pass = &ctx->lighting;
     uint32_t v = rtpbr_lighting_variant(ndf, ms);
     rtpbr_result result = RTPBR_SUCCESS;
@@ -198,26 +201,34 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
         .punctual = needs->punctual ? VK_TRUE : VK_FALSE,
         .cpu = pass->cpu_device ? VK_TRUE : VK_FALSE,
         .uniform_lights = pass->uniform_lights && needs->light_count <= RTPBR_UNIFORM_LIGHTS_MAX ? VK_TRUE : VK_FALSE,
+        .streak = VK_TRUE,
     };
-    const VkSpecializationMapEntry entries[5] = {
+    const VkSpecializationMapEntry entries[6] = {
         {RTPBR_SPEC_LIGHTING_MAX_VERTICES, offsetof(lighting_constants, max_vertices), sizeof(uint32_t)},
         {RTPBR_SPEC_LIGHTING_PUNCTUAL, offsetof(lighting_constants, punctual), sizeof(VkBool32)},
         {RTPBR_SPEC_LIGHTING_MATERIALS, offsetof(lighting_constants, material_features), sizeof(uint32_t)},
         {RTPBR_SPEC_LIGHTING_CPU, offsetof(lighting_constants, cpu), sizeof(VkBool32)},
         {RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS, offsetof(lighting_constants, uniform_lights), sizeof(VkBool32)},
+        {RTPBR_SPEC_LIGHTING_STREAK, offsetof(lighting_constants, streak), sizeof(VkBool32)},
     };
-    const VkSpecializationInfo specialization = {5, entries, sizeof constants, &constants};
+    const VkSpecializationInfo specialization = {6, entries, sizeof constants, &constants};
     out[RTPBR_TILE_CLASS_EMPTY] = pass->empty;
     for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) {
         // the spheres' classes only for a frame with a sphere or a disk, the textured ones only
         // for a frame with a textured quad, the tubes' for one with a tube (shapes: rtpbr_lights_shapes; no tile is queued for
-        // the others: their slots get a class's pipeline that is compiled, never dispatched)
-        uint32_t k = c < 2u * (needs->shapes + 1u) ? c : c % 2u + 2u * needs->shapes;
-        bool full = k % 2u == 1u; // (RTPBR_TILE_CLASS_FULL, _FULL_SPHERES, ...: lit class 1, 3, 5, 7)
+        // the others: their slots get a class's pipeline that is compiled, never dispatched);
+        // the basic class without the streak estimate (lit class 8, its own cache slot k) is
+        // the basic class's code (k = 0) with the estimate specialized out (on Beckmann, which
+        // has no estimate, the same code again: it reads its class's own queue, lighting.comp)
+        bool noStreak = c == RTPBR_TILE_CLASS_BASIC_NO_STREAK - RTPBR_TILE_CLASS_BASIC;
+        uint32_t k = noStreak || c < 2u * (needs->shapes + 1u) ? c : c % 2u + 2u * needs->shapes;
+        bool full = !noStreak && k % 2u == 1u; // (RTPBR_TILE_CLASS_FULL, _FULL_SPHERES, ...: lit class 1, 3, 5, 7)
+        constants.streak = noStreak ? VK_FALSE : VK_TRUE;
         constants.material_features = full ? needs->material_features & RTPBR_MATERIAL_FLAGS_FULL : RTPBR_MATERIAL_FLAGS_FULL;
         uint32_t s = (constants.max_vertices == 3 ? 0u : constants.max_vertices == 4 ? 1u : 2u) +
                      3u * constants.punctual + 6u * (constants.material_features >> 2) + 96u * constants.uniform_lights;
-        const rtpbr_spirv *code = pass->cpu_device && k >= RTPBR_TILE_CLASS_BASIC_TUBES - 1u
+        const rtpbr_spirv *code = noStreak ? &ltc[v][0]
+                                  : pass->cpu_device && k >= RTPBR_TILE_CLASS_BASIC_TUBES - 1u
                                       ? &tubes_cpu[v][k - (RTPBR_TILE_CLASS_BASIC_TUBES - 1u)]
                                       : &ltc[v][k];
         if (!pass->ltc[v][k][s])
@@ -236,7 +247,7 @@ rtpbr_result rtpbr_lighting_tile_buffers_create(rtpbr_context *ctx, uint32_t til
     VkDeviceSize tiles = (VkDeviceSize)tiles_x * tiles_y;
     RTPBR_TRY(rtpbr_buffer_create_device(ctx, tiles * RTPBR_TILE_MASK_STRIDE * sizeof(uint32_t),
                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, masks));
-    RTPBR_TRY(rtpbr_buffer_create_device(ctx, RTPBR_TILE_CLASS_COUNT * (4 + tiles) * sizeof(uint32_t),
+    RTPBR_TRY(rtpbr_buffer_create_device(ctx, (RTPBR_TILE_QUEUE_SLOTS * 4 + RTPBR_TILE_CLASS_COUNT * tiles) * sizeof(uint32_t),
                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                          lists));
@@ -394,8 +405,8 @@ void rtpbr_lighting_record_target(const rtpbr_context *ctx, const rtpbr_lighting
 {
     // Empty queues: VkDispatchIndirectCommand (0, 1, 1) per class (the previous frame's lighting
     // read them as indirect arguments and as storage).
-    uint32_t empty[RTPBR_TILE_CLASS_COUNT][4];
-    for (uint32_t c = 0; c < RTPBR_TILE_CLASS_COUNT; ++c) {
+    uint32_t empty[RTPBR_TILE_QUEUE_SLOTS][4]; // (the slots past the classes' unused)
+    for (uint32_t c = 0; c < RTPBR_TILE_QUEUE_SLOTS; ++c) {
         empty[c][0] = 0;
         empty[c][1] = empty[c][2] = 1;
         empty[c][3] = 0;
