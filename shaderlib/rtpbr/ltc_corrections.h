@@ -471,12 +471,12 @@ RTPBR_FN bool LTC_StreakCandidate(float radius, float distance, float alpha, flo
 // angle plus both spreads apart. c, the direction of a horizon-clipped polygon's vector form
 // factor, is the normalised mean of the directions to its points (F = (1 / pi) int w dw,
 // either orientation), so it lies in any cone (of half-angle <= pi / 2) that holds the light.
-// 1e-2 radians are kept as a margin for rounding (a small light's vector form factor, a sum of
-// nearly opposite edge terms, is turned by about 1e-7 over its angular size). A cheap test for a host's culling (the
-// engine's, per screen tile and light, with the cones from the tile's box to the camera and to
-// the light's bounding sphere): where it holds for all of a point's lights, AreaLight_End's
-// streak estimate changes nothing (RTPBR_AREA_LIGHT_STREAK_ON 0 gives the same result). NaN:
-// false.
+// 1e-2 radians are kept as a margin for rounding (a small light's vector form factor is a sum
+// of nearly opposite edge terms: float rounding turns its direction by about 1e-7 radians over
+// the light's angular size). A cheap test for a host's culling (the engine's, per screen tile
+// and light, with the cones from the tile's box to the camera and to the light's bounding
+// sphere): where it holds for all of a point's lights, AreaLight_End's streak estimate changes
+// nothing (RTPBR_AREA_LIGHT_STREAK_ON 0 gives the same result). NaN: false.
 RTPBR_FN bool LTC_StreakOutside(rtpbr_float3 viewAxis, float viewSpread, rtpbr_float3 lightAxis, float lightSpread) {
     float c = dot(viewAxis, lightAxis) * rtpbr_rsqrt(max(dot(viewAxis, viewAxis) * dot(lightAxis, lightAxis), 1e-30f));
     float axes = acos(clamp(c, -1.0f, 1.0f));

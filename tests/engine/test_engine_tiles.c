@@ -102,8 +102,7 @@ static void full_tiles_shade_basic_materials_alike(void **state)
 // pixel too steep for it), and views between, across the cone test's limit. Measured: 0 in
 // every view (the same to the bit). Planted: every basic tile put in the class: up to 8.2;
 // the cones' spreads taken as 0 (cull.comp): up to 0.61; every pixel steep from NoV 0.3: up
-// to 0.52; the class's tiles left black: 1 in
-// 18 of the 20 views (so the class is used).
+// to 0.52; the class's tiles left black: 1 in 18 of the 20 views (so the class is used).
 static void basic_tiles_without_streak_alike(void **state)
 {
     rtpbr_context *ctx = test_env_context(state);
