@@ -100,13 +100,11 @@ bool light_may_contribute(uint i, vec3 boxMin, vec3 boxMax)
     return true;
 }
 
-// How far lifted_point (lighting_common.glsl) moves the point of depth at ndc: by this along N.
+// How far lifted_point (lighting_common.glsl) moves the point of depth at ndc along N.
 float lift_of(vec2 ndc, float depth)
 {
     vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
-    vec4 further = frame.inv_view_proj * vec4(ndc, min(depth * (1.0f + 4.0f / 16777216.0f), 1.0f), 1.0f);
-    vec3 P = world.xyz / world.w;
-    return length(further.xyz / further.w - P) + 1e-6f * length(frame.camera_position.xyz - P);
+    return point_lift(ndc, depth, world.xyz / world.w);
 }
 
 // Whether the streak estimate (shaderlib ltc_corrections.h; the basic variant's AreaLight_End)

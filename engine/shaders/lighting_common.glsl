@@ -68,9 +68,13 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_RADIANCE, rgba32f) RTPBR_RADIANCE_
 // The shading point of a pixel: the position from the depth buffer is off by up to about one
 // depth quantum along the view ray; an emitter's own surface could then land on its emitting
 // side and light itself. The point is lifted along N by a few quanta (measured at this depth).
-vec3 lifted_point(vec2 ndc, float depth, vec3 P, vec3 N)
+// point_lift: how far (P the point of depth at ndc); the cull bounds it per tile (cull.comp).
+float point_lift(vec2 ndc, float depth, vec3 P)
 {
     vec4 further = frame.inv_view_proj * vec4(ndc, min(depth * (1.0f + 4.0f / 16777216.0f), 1.0f), 1.0f);
-    float lift = length(further.xyz / further.w - P) + 1e-6f * length(frame.camera_position.xyz - P);
-    return P + N * lift;
+    return length(further.xyz / further.w - P) + 1e-6f * length(frame.camera_position.xyz - P);
+}
+vec3 lifted_point(vec2 ndc, float depth, vec3 P, vec3 N)
+{
+    return P + N * point_lift(ndc, depth, P);
 }
