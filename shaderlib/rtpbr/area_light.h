@@ -1240,8 +1240,13 @@ RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_flo
                 }
             }
         }
-        if (pass == 0)
+        if (pass == 0) {
             LTC_StreakNodes(st, F);
+            // no trust whatever the chords (LTC_StreakSpan): neither the second pass nor the end
+            // (docs/performance.md, 29)
+            if (!LTC_StreakSpanTrusted(LTC_StreakSpan(st, vLocal, tableRoughness * tableRoughness)))
+                return rtpbr_float3(-1.0f, 0.0f, 0.0f);
+        }
     }
     rtpbr_float2 e = LTC_StreakEnd(st, vLocal, tableRoughness * tableRoughness);
     return rtpbr_float3(e.x, e.y * LTC_StreakWeight(vLocal, F), LTC_StreakVoH(st, vLocal));

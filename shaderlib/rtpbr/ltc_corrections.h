@@ -22,7 +22,8 @@
 //   point correction   LTC_LobePoint, LTC_PointWidthRatio, LTC_PointFactor
 //   tail estimate      LTC_PointTail, LTC_PointTailWeight, LTC_PointCombine
 //   streak, streamed   LTC_StreakBegin, LTC_StreakEdge, LTC_StreakNodes, LTC_StreakChordEdge,
-//                      LTC_StreakEnd, LTC_StreakWeight, LTC_StreakVoH, LTC_StreakCandidate
+//                      LTC_StreakEnd, LTC_StreakWeight, LTC_StreakVoH, LTC_StreakCandidate,
+//                      LTC_StreakSpan, LTC_StreakSpanTrusted (no trust: the chords pass skipped)
 //   streak, culling    LTC_StreakOutside, LTC_StreakSteep, LTC_StreakSteepNoV
 //   streak, stored     LTC_StreakLocal (a polygon from LTC_PolygonToLocal; tools and tests)
 //   helpers            LTC_StreakCross, LTC_StreakNodePoint, LTC_StreakNode, LTC_Atan,
@@ -382,6 +383,20 @@ RTPBR_FN float LTC_StreakRamp(float x, float lo, float hi) {
     return t * t * (3.0f - 2.0f * t);
 }
 
+// The lobe's span over the light's elevations, q = |sx1 - sx0| / a (LTC_StreakEnd's first
+// trust factor), from the ends alone (after LTC_StreakNodes): the estimate's trust is 0 unless
+// q < RTPBR_LTC_STREAK_Q1 (LTC_StreakSpanTrusted; NaN: not), which a caller can test before the
+// chords pass and skip it and LTC_StreakEnd (AreaLight_StreakEstimate: a narrow lobe seen across
+// a tall light, as on a glossy floor under a tall panel).
+RTPBR_FN float LTC_StreakSpan(LtcStreak s, rtpbr_float3 vLocal, float alpha) {
+    float al = max(alpha, 1e-3f);
+    float sx0 = LTC_StreakSlope(s.ends.x, s.ends.y, vLocal), sx1 = LTC_StreakSlope(s.ends.z, s.ends.w, vLocal);
+    float near2 = sx0 * sx1 <= 0.0f ? 0.0f : min(sx0 * sx0, sx1 * sx1);
+    return abs(sx1 - sx0) * rtpbr_rsqrt(al * al + near2);
+}
+
+RTPBR_FN bool LTC_StreakSpanTrusted(float q) { return q < RTPBR_LTC_STREAK_Q1; }
+
 // The estimate: the integral of D V NoL (F = 1: the lobe the tables were fitted to, with
 // the configured Smith term) over the light, from both passes (.x), and how far to trust it
 // (.y, in [0, 1]), the product of three factors, each 0 below its first constant, 1 above its
@@ -423,9 +438,7 @@ RTPBR_FN rtpbr_float2 LTC_StreakEnd(LtcStreak s, rtpbr_float3 vLocal, float alph
         }
     }
     float sum = (term[0] + term[1]) * (0.5f * span * (al2 * RTPBR_INV_PI));
-    float sx0 = LTC_StreakSlope(s.ends.x, s.ends.y, vLocal), sx1 = LTC_StreakSlope(s.ends.z, s.ends.w, vLocal);
-    float near2 = sx0 * sx1 <= 0.0f ? 0.0f : min(sx0 * sx0, sx1 * sx1);
-    float q = abs(sx1 - sx0) * rtpbr_rsqrt(al2 + near2);
+    float q = LTC_StreakSpan(s, vLocal, alpha);
     float rho = max(term[0], term[1]) > 0.0f ? min(term[0], term[1]) / max(term[0], term[1]) : 0.0f;
     float trust = (1.0f - LTC_StreakRamp(q, RTPBR_LTC_STREAK_Q0, RTPBR_LTC_STREAK_Q1)) *
                   LTC_StreakRamp(rho, RTPBR_LTC_STREAK_R0, RTPBR_LTC_STREAK_R1) *

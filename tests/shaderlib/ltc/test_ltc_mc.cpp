@@ -724,6 +724,75 @@ static void test_streak_culling(void **state) {
     assert_true(rtpbr::LTC_StreakOutside(float3(1.0f, 0.0f, 0.0f), 0.0f, float3(1.0f, 0.0f, 0.0f), 1.5f));
 }
 
+// LTC_StreakSpan, LTC_StreakSpanTrusted: AreaLight_StreakEstimate skips the chords pass and
+// LTC_StreakEnd where the span says untrusted, so that must be only where LTC_StreakEnd's trust
+// is 0. Random rectangles of every aspect (tall lights across the plane of incidence included)
+// over views down to grazing and GGX alphas from 0.01: wherever the end trusts the estimate at
+// all, the span must say trusted; and the skip is not vacuous (many skipped) nor loose (cases
+// with the span between Q0 and Q1 keep a trust: a test at Q0 would fail).
+static void test_streak_span(void **state) {
+    (void)state;
+    Rng rng(77);
+    auto u01 = [&]() { return float(rng.uniform()); };
+    int skipped = 0, trusted = 0, between = 0, seen = 0;
+    for (int k = 0; k < 20000; k++) {
+        const float nov = 0.02f + 0.98f * u01() * u01();
+        const float3 vLocal(std::sqrt(1.0f - nov * nov), 0.0f, nov);
+        const float alpha = 0.01f + 0.5f * u01() * u01();
+        // the light's centre: above the horizon, on the mirror side more often than not
+        const float el = 1.5f * u01() * u01(), az = (u01() < 0.7f ? 3.14159265f : 0.0f) + 1.2f * (u01() - 0.5f);
+        const float3 c = (0.5f + 3.0f * u01()) * float3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el) + 0.02f);
+        float3 e1 = glm::normalize(glm::cross(c, float3(u01() - 0.5f, u01() - 0.5f, u01() - 0.5f)));
+        float3 e2 = glm::normalize(glm::cross(c, e1));
+        e1 *= 0.05f + 1.5f * u01() * u01();
+        e2 *= 0.05f + 1.5f * u01() * u01();
+        rtpbr::LtcPolygon poly{};
+        poly.count = 4;
+        poly.v[0] = c - e1 - e2, poly.v[1] = c + e1 - e2, poly.v[2] = c + e1 + e2, poly.v[3] = c - e1 + e2;
+        const rtpbr::LtcLocalPolygon local =
+            rtpbr::LTC_PolygonToLocal(rtpbr::LTC_Frame(float3(0.0f, 0.0f, 1.0f), vLocal), float3(0.0f), poly, true);
+        if (local.count < 3)
+            continue;
+        const float3 F = rtpbr::LTC_FormFactorVector(local, rtpbr::LTC_Identity());
+        // AreaLight_StreakEstimate's steps over a stored polygon (LTC_StreakLocal's)
+        rtpbr::LtcStreak st = rtpbr::LTC_StreakBegin();
+        for (int i = 0; i < local.count; i++)
+            rtpbr::LTC_StreakEdge(st, local.v[i], local.v[(i + 1) % local.count]);
+        rtpbr::LTC_StreakNodes(st, F);
+        const float q = rtpbr::LTC_StreakSpan(st, vLocal, alpha);
+        // q by its definition, in double: the half vector's slopes h.x / h.z toward the range's
+        // two ends (x, z), their difference over the lobe's width sqrt(alpha^2 + s^2) at the
+        // slope nearer 0 (alpha alone where the range crosses the normal's slope 0)
+        const double s0 = (double(vLocal.x) + st.ends.x) / (double(vLocal.z) + st.ends.y),
+                     s1 = (double(vLocal.x) + st.ends.z) / (double(vLocal.z) + st.ends.w);
+        const double nearest = s0 * s1 <= 0.0 ? 0.0 : std::min(std::fabs(s0), std::fabs(s1));
+        const double qRef = std::fabs(s1 - s0) / std::sqrt(double(alpha) * alpha + nearest * nearest);
+        if (st.ends.y + vLocal.z > 1e-3f && st.ends.w + vLocal.z > 1e-3f)
+            assert_true(std::fabs(q - qRef) <= 1e-4 * std::max(qRef, 1.0));
+        for (int i = 0; i < local.count; i++)
+            rtpbr::LTC_StreakChordEdge(st, local.v[i], local.v[(i + 1) % local.count]);
+        const float2 e = rtpbr::LTC_StreakEnd(st, vLocal, alpha);
+        const float2 whole = rtpbr::LTC_StreakLocal(local, F, vLocal, alpha);
+        assert_true(whole.x == e.x && whole.y == e.y); // the steps above are LTC_StreakLocal's
+        if (e.x < 0.0f)
+            continue;
+        seen++;
+        if (!rtpbr::LTC_StreakSpanTrusted(q)) {
+            skipped++;
+            assert_true(e.y == 0.0f);
+        } else if (e.y > 0.0f) {
+            trusted++;
+            if (q > RTPBR_LTC_STREAK_Q0)
+                between++;
+        }
+    }
+    fprintf(stderr, "streak span: %d estimates, %d skipped by the span, %d trusted (%d with the span between Q0 and Q1)\n",
+            seen, skipped, trusted, between);
+    assert_true(seen > 10000 && skipped > 1000 && trusted > 100 && between > 20);
+    assert_true(!rtpbr::LTC_StreakSpanTrusted(std::nanf("")) && !rtpbr::LTC_StreakSpanTrusted(RTPBR_LTC_STREAK_Q1) &&
+                rtpbr::LTC_StreakSpanTrusted(0.99f * RTPBR_LTC_STREAK_Q1));
+}
+
 RTPBR_TEST_MAIN(cmocka_unit_test(test_ggx_vs_mc),
                 cmocka_unit_test(test_beckmann_vs_mc),
                 cmocka_unit_test(test_fresnel_scales),
@@ -734,4 +803,5 @@ RTPBR_TEST_MAIN(cmocka_unit_test(test_ggx_vs_mc),
                 cmocka_unit_test(test_ggx_floor),
                 cmocka_unit_test(test_point_correction),
                 cmocka_unit_test(test_grazing_partition),
-                cmocka_unit_test(test_streak_culling))
+                cmocka_unit_test(test_streak_culling),
+                cmocka_unit_test(test_streak_span))
