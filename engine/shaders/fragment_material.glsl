@@ -30,12 +30,24 @@ struct FragmentMaterial {
     vec3 emission;           // emitted radiance toward the camera
 };
 
+// The texture slots this pipeline samples (RTPBR_SPEC_GBUFFER_TEXTURES, rtpbr_shared.h): all by
+// default (the forward pass); the G-buffer pass compiles out those its material leaves white.
+layout(constant_id = RTPBR_SPEC_GBUFFER_TEXTURES) const uint gbuffer_texture_slots = RTPBR_GBUFFER_TEXTURES_ALL;
+#define GBUFFER_SLOT(binding) ((gbuffer_texture_slots & (1u << (binding))) != 0u)
+
 FragmentMaterial fragment_material(Material m)
 {
-    vec4 base_color_texel = texture(base_color_texture, in_uv_base_color_metallic_roughness.xy);
-    vec4 metallic_roughness_texel = texture(metallic_roughness_texture, in_uv_base_color_metallic_roughness.zw);
-    vec4 emission_texel = texture(emission_texture, in_uv_emission_normal.xy);
-    vec4 normal_texel = texture(normal_texture, in_uv_emission_normal.zw);
+    // A slot left out reads as the white stand-in would (1x1, 255 in every channel: exactly 1).
+    vec4 base_color_texel = vec4(1.0), metallic_roughness_texel = vec4(1.0), emission_texel = vec4(1.0),
+         normal_texel = vec4(1.0);
+    if (GBUFFER_SLOT(RTPBR_BINDING_TEXTURE_BASE_COLOR))
+        base_color_texel = texture(base_color_texture, in_uv_base_color_metallic_roughness.xy);
+    if (GBUFFER_SLOT(RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS))
+        metallic_roughness_texel = texture(metallic_roughness_texture, in_uv_base_color_metallic_roughness.zw);
+    if (GBUFFER_SLOT(RTPBR_BINDING_TEXTURE_EMISSION))
+        emission_texel = texture(emission_texture, in_uv_emission_normal.xy);
+    if (GBUFFER_SLOT(RTPBR_BINDING_TEXTURE_NORMAL))
+        normal_texel = texture(normal_texture, in_uv_emission_normal.zw);
     FragmentMaterial f;
     vec3 n = normalize(in_normal);
     // Every surface reflects on the side the camera sees; it emits there only if that is its
@@ -43,7 +55,9 @@ FragmentMaterial fragment_material(Material m)
     bool back = dot(n, frame.camera_position.xyz - in_world) < 0.0;
     // glTF normal textures: tangent-space normal (x, y scaled by normalTexture.scale) in the
     // frame (T, B = w N x T, N) of the interpolated vertex tangent.
-    if ((m.flags & RTPBR_MATERIAL_FLAG_NORMAL_MAPPED) != 0u && dot(in_tangent.xyz, in_tangent.xyz) > 0.0) {
+    // (a material with the flag has the normal slot: rtpbr_gbuffer_material_slots)
+    if (GBUFFER_SLOT(RTPBR_BINDING_TEXTURE_NORMAL) && (m.flags & RTPBR_MATERIAL_FLAG_NORMAL_MAPPED) != 0u &&
+        dot(in_tangent.xyz, in_tangent.xyz) > 0.0) {
         vec3 t = normalize(in_tangent.xyz - n * dot(n, in_tangent.xyz));
         vec3 b = (in_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);
         vec3 ts = normal_texel.xyz * 2.0 - 1.0;

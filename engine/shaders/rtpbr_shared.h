@@ -417,6 +417,16 @@
 // shader library's RTPBR_AREA_LIGHT_STREAK_ON): false in the pipeline of
 // RTPBR_TILE_CLASS_BASIC_NO_STREAK, which is the basic variant's code (passes/lighting.c).
 #define RTPBR_SPEC_LIGHTING_STREAK 8
+// The G-buffer pass's specialization constant (a uint, default RTPBR_GBUFFER_TEXTURES_ALL): which
+// of the material's first RTPBR_GBUFFER_SPEC_SLOTS texture slots (bit 1 << binding: base colour,
+// metallic-roughness, emission, normal) the pipeline samples; a slot left out reads as the white
+// stand-in does, vec4(1), and without the normal slot the normal-mapping code is left out too.
+// passes/gbuffer.c compiles a pipeline per set of slots the frame's materials use and binds each
+// material's (rtpbr_gbuffer_material_slots): on lavapipe a texture read, or code under a
+// branch not taken, costs its time (docs/performance.md, "The G-buffer's texture reads").
+#define RTPBR_SPEC_GBUFFER_TEXTURES 9
+#define RTPBR_GBUFFER_SPEC_SLOTS 4
+#define RTPBR_GBUFFER_TEXTURES_ALL ((1u << RTPBR_GBUFFER_SPEC_SLOTS) - 1u)
 // Lighting pass: the shadow ratios, a sampler2DArray (layer = light index), read with texelFetch.
 #define RTPBR_BINDING_LIGHT_SHADOW_RATIO 24
 // The extension textures' values per pixel (multipliers of the material record's factors, 1

@@ -103,7 +103,8 @@ typedef struct rtpbr_gbuffer_pass {              // passes/gbuffer.c
     VkDescriptorSetLayout set_layout;            // set 0: frame, materials (one set per renderer)
     VkDescriptorSetLayout material_set_layout;   // set 1: a material's textures (per scene material)
     VkPipelineLayout layout;                     // + push constants rtpbr_shader_draw
-    VkPipeline pipeline;
+    // per set of texture slots (RTPBR_SPEC_GBUFFER_TEXTURES), compiled on first use
+    VkPipeline pipelines[RTPBR_GBUFFER_TEXTURES_ALL + 1];
 } rtpbr_gbuffer_pass;
 
 typedef struct rtpbr_lighting_pass {             // passes/lighting.c, passes/lighting_mc.c
@@ -242,6 +243,7 @@ struct rtpbr_gpu_scene {
     VkDescriptorPool material_pool;  // passes/gbuffer.c
     VkDescriptorSet *material_sets; // one per material slot: its RTPBR_MATERIAL_TEXTURE_COUNT textures
     uint8_t *material_extension_textures; // per material slot: its RTPBR_EXTENSION_TEXTURES_* bits
+    uint8_t *material_gbuffer_slots; // per material slot: the G-buffer pipeline's texture slots (rtpbr_gbuffer_material_slots)
     rtpbr_draw *draws;
     uint32_t draw_count;
     rtpbr_draw_depth *blend_order; // draw_count entries: the forward pass's scratch

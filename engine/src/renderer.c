@@ -173,6 +173,9 @@ static rtpbr_result prepare_frame(rtpbr_renderer *r, const rtpbr_gpu_scene *scen
         rtpbr_result result = rtpbr_shadow_pipelines_get(ctx, rtpbr_scene_has_alpha_test(scene));
         if (result != RTPBR_SUCCESS) return result;
     }
+    // the G-buffer pipelines of the scene's materials' texture slots (may compile)
+    rtpbr_result gbuffer = rtpbr_gbuffer_pipelines_get(ctx, scene);
+    if (gbuffer != RTPBR_SUCCESS) return gbuffer;
 
     rtpbr_shader_frame frame = {0};
     rtpbr_camera_matrices(camera, (float)r->width / (float)r->height, frame.view_proj);

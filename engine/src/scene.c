@@ -1127,8 +1127,11 @@ rtpbr_result rtpbr_gpu_scene_create_with_light_facts(rtpbr_context *ctx, const r
     if (desc->material_count == 0) transforms[0] = convert_texture_transforms(&(rtpbr_material_desc){0});
     for (uint32_t i = 0; i < desc->material_count; ++i) transforms[i] = convert_texture_transforms(&desc->materials[i]);
     RTPBR_ALLOC(&ctx->host, scene->material_extension_textures, material_slots);
-    for (uint32_t i = 0; i < desc->material_count; ++i)
+    RTPBR_ALLOC(&ctx->host, scene->material_gbuffer_slots, material_slots); // (no desc material: none)
+    for (uint32_t i = 0; i < desc->material_count; ++i) {
         scene->material_extension_textures[i] = material_extension_textures(&desc->materials[i]);
+        scene->material_gbuffer_slots[i] = rtpbr_gbuffer_material_slots(&desc->materials[i]);
+    }
 
     RTPBR_TRY(rtpbr_bvh_create(scene)); // the shadow rays' (passes/shadow.c); reads the materials' sidedness and alpha modes
     RTPBR_TRY(rtpbr_accel_create(scene)); // the same triangles for ray queries (with ctx->ray_query)
@@ -1176,6 +1179,7 @@ void rtpbr_gpu_scene_destroy(rtpbr_gpu_scene *scene)
     rtpbr_free(&ctx->host, scene->textures);
     rtpbr_free(&ctx->host, scene->texture_samplers);
     rtpbr_free(&ctx->host, scene->material_extension_textures);
+    rtpbr_free(&ctx->host, scene->material_gbuffer_slots);
     rtpbr_free(&ctx->host, scene->draws);
     rtpbr_free(&ctx->host, scene->blend_order);
     rtpbr_free(&ctx->host, scene->cameras);
@@ -1223,6 +1227,7 @@ rtpbr_result rtpbr_gpu_scene_set_material(rtpbr_gpu_scene *scene, uint32_t index
     bool triangle_flags_changed = ((old_flags ^ record->flags) & triangle_flags) != 0;
     ((rtpbr_shader_texture_transforms *)scene->texture_transforms.mapped)[index] = convert_texture_transforms(material);
     scene->material_extension_textures[index] = material_extension_textures(material);
+    scene->material_gbuffer_slots[index] = rtpbr_gbuffer_material_slots(material);
     rtpbr_gbuffer_write_material_textures(scene, index, index_of);
     if (triangle_flags_changed) rtpbr_bvh_update_material_flags(scene);
     // The acceleration structures' classes follow the flags (accel.c): built again, and also

@@ -113,6 +113,81 @@ static void normal_mapped_plane(void **state)
     rtpbr_gpu_scene_destroy(scene);
 }
 
+// The G-buffer pass compiles each set of texture slots its materials use into a pipeline of its
+// own (RTPBR_SPEC_GBUFFER_TEXTURES) and binds it per draw: a draw whose material has a texture
+// must read it, one without must read as the white stand-in, in the same frame, and a material
+// edited to gain or lose a texture (rtpbr_gpu_scene_set_material) must follow. A plane in two
+// halves, each a mesh of its own material (Lambertian, no specular lobe), under a quad light:
+// radiance is linear in the albedo, so the half whose material gains a base-colour texture
+// (linear, one texel of 255, 0, 255: values every device reads exactly, 1 and 0; lavapipe reads
+// 128 as 0.5, not 128 / 255) must read the untextured render times (1, 0, 1), and the other
+// half and a material edited back must read the untextured render to the bit.
+static void texture_slots_per_material(void **state)
+{
+    rtpbr_context *ctx = test_env_context(state);
+    const float halves[2][12] = {{-4, -4, 0, 0, -4, 0, 0, 4, 0, -4, 4, 0}, {0, -4, 0, 4, -4, 0, 4, 4, 0, 0, 4, 0}};
+    const float uv[8] = {0, 1, 1, 1, 1, 0, 0, 0};
+    rtpbr_mesh_desc meshes[2];
+    for (uint32_t i = 0; i < 2; ++i)
+        meshes[i] = (rtpbr_mesh_desc){.positions = halves[i], .texcoords = uv, .indices = square_indices,
+                                      .vertex_count = 4, .index_count = 6, .material = i};
+    const uint8_t texel[4] = {255, 0, 255, 255};
+    rtpbr_texture_desc texture = {.width = 1, .height = 1, .rgba = texel};
+    const rtpbr_material_desc plain = {.base_color = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f,
+                                       .flags = RTPBR_MATERIAL_NO_SPECULAR};
+    rtpbr_material_desc textured = plain;
+    textured.base_color_texture = 1;
+    rtpbr_material_desc materials[2] = {plain, plain};
+    rtpbr_light_desc light = {.vertices = {{-1.0f, -0.5f, 1.2f}, {-1.0f, 0.7f, 1.5f}, {0.6f, 0.7f, 1.5f}, {0.6f, -0.5f, 1.2f}},
+                              .vertex_count = 4, .emission = {3.0f, 2.0f, 1.0f}};
+    rtpbr_camera_desc camera = {.position = {0.0f, 0.0f, 3.0f}, .target = {0.0f, 0.0f, 0.0f}, .yfov = 1.2f,
+                                .znear = 0.1f, .zfar = 100.0f};
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){.meshes = meshes, .mesh_count = 2,
+                                                                     .materials = materials, .material_count = 2,
+                                                                     .lights = &light, .light_count = 1,
+                                                                     .cameras = &camera, .camera_count = 1,
+                                                                     .textures = &texture, .texture_count = 1});
+    enum { W = 80, H = 60 };
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = W, .height = H});
+    float *base = test_render_radiance(r, scene, &(rtpbr_render_desc){0}, W, H);
+    // (which half a pixel shows: the camera looks down -Z with +X to the right)
+    // textured: bit 0 for material 0 (left half), bit 1 for material 1 (right half)
+    const unsigned steps[] = {2u, 3u, 1u, 0u};
+    for (size_t k = 0; k < sizeof steps / sizeof steps[0]; ++k) {
+        for (uint32_t m = 0; m < 2; ++m)
+            assert_int_equal(rtpbr_gpu_scene_set_material(scene, m, (steps[k] >> m) & 1u ? &textured : &plain),
+                             RTPBR_SUCCESS);
+        float *px = test_render_radiance(r, scene, &(rtpbr_render_desc){0}, W, H);
+        int lit[2] = {0, 0};
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                if (x == W / 2 - 1 || x == W / 2) continue; // (the seam)
+                uint32_t m = x < W / 2 ? 0u : 1u;
+                bool on = (steps[k] >> m) & 1u;
+                const float *got = px + 4 * (y * W + x), *ref = base + 4 * (y * W + x);
+                for (int c = 0; c < 3; ++c) {
+                    if (!on) {
+                        if (got[c] != ref[c])
+                            fail_msg("step %zu: untextured pixel (%d, %d) channel %d: %.9g, %.9g before", k, x, y, c,
+                                     got[c], ref[c]);
+                        continue;
+                    }
+                    double expect = ref[c] * (texel[c] / 255.0);
+                    if (fabs(got[c] - expect) > 1e-5 * ref[c])
+                        fail_msg("step %zu: textured pixel (%d, %d) channel %d: %.9g, the untextured %.9g x %d / 255 = %.9g",
+                                 k, x, y, c, got[c], ref[c], texel[c], expect);
+                }
+                if (ref[0] > 0.01f) ++lit[m];
+            }
+        assert_true(lit[0] > W * H / 8 && lit[1] > W * H / 8); // both halves lit: the checks see light
+        free(px);
+    }
+    printf("texture slots per material: 4 edits, every pixel of both halves as expected\n");
+    free(base);
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+}
+
 // Per-tile culling keeps its documented bound: on a Lambertian plane (albedo 0.8) the image
 // with culling differs from the image without by at most 0.8 * cull_form_factor * the sum of
 // the emissions of all lights (each culled light's form factor is below the threshold). It
@@ -455,5 +530,6 @@ RTPBR_TEST_MAIN_SHARED_ENV(test_env_shared_case(supersampled_coverage),
                 test_env_shared_case(polygon_sizes),
                 test_env_shared_case(uniform_lights_limit),
                 test_env_shared_case(normal_mapped_plane),
+                test_env_shared_case(texture_slots_per_material),
                 test_env_shared_case(culling_bound),
                 test_env_shared_case(culled_sparse_words))

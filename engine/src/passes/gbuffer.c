@@ -70,37 +70,71 @@ rtpbr_result rtpbr_gbuffer_pass_init(rtpbr_context *ctx)
 {
     rtpbr_gbuffer_pass *pass = &ctx->gbuffer;
     rtpbr_result result = RTPBR_SUCCESS;
-    VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
     RTPBR_TRY(rtpbr_set_layout_create(ctx, RTPBR_BINDINGS(frame_bindings), &pass->set_layout));
     RTPBR_TRY(rtpbr_set_layout_create(ctx, RTPBR_BINDINGS(material_bindings), &pass->material_set_layout));
     VkDescriptorSetLayout sets[2] = {pass->set_layout, pass->material_set_layout};
     RTPBR_TRY(rtpbr_pipeline_layout_create(ctx, sets, 2, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                                            sizeof(rtpbr_shader_draw), &pass->layout));
-    RTPBR_TRY(rtpbr_gbuffer_vertex_module(ctx, &vert));
-    RTPBR_TRY(rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_gbuffer_frag), &frag));
-    rtpbr_graphics_desc d = {
-        .vert = vert,
-        .frag = frag,
-        .layout = pass->layout,
-        .color_formats = rtpbr_gbuffer_formats,
-        .color_count = RTPBR_GBUFFER_COUNT,
-        .depth_format = RTPBR_DEPTH_FORMAT,
-        .vertex_input = &rtpbr_scene_vertex_input,
-        .dynamic_cull = true, // back faces of single-sided materials (rtpbr_gbuffer_record)
-    };
-    RTPBR_TRY(rtpbr_graphics_pipeline_create(ctx, &d, &pass->pipeline));
 cleanup:
-    vkDestroyShaderModule(ctx->device, vert, NULL);
-    vkDestroyShaderModule(ctx->device, frag, NULL);
-    return result; // the caller finishes a half-built pass
+    return result; // the caller finishes a half-built pass; the pipelines are made on first use
 }
 
 void rtpbr_gbuffer_pass_finish(rtpbr_context *ctx)
 {
     rtpbr_gbuffer_pass *pass = &ctx->gbuffer;
-    rtpbr_pass_objects_destroy(ctx, &pass->pipeline, 1, pass->layout, pass->set_layout);
+    rtpbr_pass_objects_destroy(ctx, pass->pipelines, RTPBR_GBUFFER_TEXTURES_ALL + 1, pass->layout, pass->set_layout);
     vkDestroyDescriptorSetLayout(ctx->device, pass->material_set_layout, NULL);
     *pass = (rtpbr_gbuffer_pass){0};
+}
+
+uint8_t rtpbr_gbuffer_material_slots(const rtpbr_material_desc *m)
+{
+    // (the slot list's first RTPBR_GBUFFER_SPEC_SLOTS entries, by binding: rtpbr_shared.h)
+    _Static_assert(RTPBR_BINDING_TEXTURE_BASE_COLOR < RTPBR_GBUFFER_SPEC_SLOTS &&
+                       RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS < RTPBR_GBUFFER_SPEC_SLOTS &&
+                       RTPBR_BINDING_TEXTURE_EMISSION < RTPBR_GBUFFER_SPEC_SLOTS &&
+                       RTPBR_BINDING_TEXTURE_NORMAL < RTPBR_GBUFFER_SPEC_SLOTS && RTPBR_GBUFFER_SPEC_SLOTS <= 8,
+                   "the G-buffer's specialized texture slots");
+    uint32_t slots = (m->base_color_texture ? 1u << RTPBR_BINDING_TEXTURE_BASE_COLOR : 0u) |
+                     (m->metallic_roughness_texture ? 1u << RTPBR_BINDING_TEXTURE_METALLIC_ROUGHNESS : 0u) |
+                     (m->emission_texture ? 1u << RTPBR_BINDING_TEXTURE_EMISSION : 0u) |
+                     // (normal-mapped: rtpbr_material_record's RTPBR_MATERIAL_FLAG_NORMAL_MAPPED)
+                     (m->normal_texture ? 1u << RTPBR_BINDING_TEXTURE_NORMAL : 0u);
+    return (uint8_t)slots;
+}
+
+rtpbr_result rtpbr_gbuffer_pipelines_get(rtpbr_context *ctx, const rtpbr_gpu_scene *scene)
+{
+    rtpbr_gbuffer_pass *pass = &ctx->gbuffer;
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
+    const rtpbr_shader_material *materials = scene->materials.mapped;
+    for (uint32_t i = 0; i < scene->draw_count; ++i) {
+        uint32_t m = scene->draws[i].push.material;
+        if (materials[m].flags & RTPBR_MATERIAL_FLAG_ALPHA_BLEND) continue; // the forward pass's
+        uint32_t slots = scene->material_gbuffer_slots[m];
+        if (pass->pipelines[slots]) continue;
+        if (!vert) RTPBR_TRY(rtpbr_gbuffer_vertex_module(ctx, &vert));
+        if (!frag) RTPBR_TRY(rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_gbuffer_frag), &frag));
+        const VkSpecializationMapEntry entry = {RTPBR_SPEC_GBUFFER_TEXTURES, 0, sizeof slots};
+        const VkSpecializationInfo specialization = {1, &entry, sizeof slots, &slots};
+        rtpbr_graphics_desc d = {
+            .vert = vert,
+            .frag = frag,
+            .layout = pass->layout,
+            .color_formats = rtpbr_gbuffer_formats,
+            .color_count = RTPBR_GBUFFER_COUNT,
+            .depth_format = RTPBR_DEPTH_FORMAT,
+            .vertex_input = &rtpbr_scene_vertex_input,
+            .dynamic_cull = true, // back faces of single-sided materials (rtpbr_gbuffer_record)
+            .frag_specialization = &specialization,
+        };
+        RTPBR_TRY(rtpbr_graphics_pipeline_create(ctx, &d, &pass->pipelines[slots]));
+    }
+cleanup:
+    vkDestroyShaderModule(ctx->device, vert, NULL);
+    vkDestroyShaderModule(ctx->device, frag, NULL);
+    return result;
 }
 
 rtpbr_result rtpbr_gbuffer_renderer_init(rtpbr_renderer *r)
@@ -199,16 +233,20 @@ void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCom
     depth.clearValue.depthStencil = (VkClearDepthStencilValue){1.0f, 0};
     rtpbr_begin_rendering(cmd, r->shade_width, r->shade_height, colors, RTPBR_GBUFFER_COUNT, &depth);
     if (scene->draw_count) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->gbuffer.pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ctx->gbuffer.layout, 0, 1, &r->gbuffer_set.set,
                                 0, NULL);
         VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &scene->vertices.buffer, &offset);
         vkCmdBindIndexBuffer(cmd, scene->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
         const rtpbr_shader_material *materials = scene->materials.mapped;
+        VkPipeline bound = VK_NULL_HANDLE;
         for (uint32_t i = 0; i < scene->draw_count; ++i) {
             const rtpbr_draw *d = &scene->draws[i];
             if (materials[d->push.material].flags & RTPBR_MATERIAL_FLAG_ALPHA_BLEND) continue; // the forward pass's
+            // the pipeline of the material's texture slots (rtpbr_gbuffer_pipelines_get made it)
+            VkPipeline pipeline = ctx->gbuffer.pipelines[scene->material_gbuffer_slots[d->push.material]];
+            if (pipeline != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+            bound = pipeline;
             rtpbr_draw_mesh(cmd, ctx->gbuffer.layout, scene, d);
         }
     }

@@ -35,6 +35,14 @@ void rtpbr_gbuffer_material_sets_destroy(rtpbr_gpu_scene *scene);
 void rtpbr_gbuffer_write_material_textures(rtpbr_gpu_scene *scene, uint32_t m,
                                            const uint32_t texture[RTPBR_MATERIAL_TEXTURE_COUNT]);
 void rtpbr_gbuffer_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
+// The G-buffer pipeline's texture slots for a material (RTPBR_SPEC_GBUFFER_TEXTURES): bit
+// 1 << binding for each of the first RTPBR_GBUFFER_SPEC_SLOTS slots that has a texture, and the
+// normal slot also where the material is normal-mapped.
+uint8_t rtpbr_gbuffer_material_slots(const rtpbr_material_desc *material);
+// Compiles, on first use, the G-buffer pipeline of each set of texture slots the scene's
+// G-buffer draws use (scene->material_gbuffer_slots); before any recording (it may fail).
+rtpbr_result rtpbr_gbuffer_pipelines_get(rtpbr_context *ctx, const rtpbr_gpu_scene *scene);
+// After rtpbr_gbuffer_pipelines_get for the scene.
 void rtpbr_gbuffer_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, VkCommandBuffer cmd);
 
 // ---- Shadows (passes/shadow.c): ray-traced shadow ratios per shadowed light. -------------

@@ -78,7 +78,7 @@ rtpbr_result rtpbr_graphics_pipeline_create(rtpbr_context *ctx, const rtpbr_grap
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_VERTEX_BIT,
          .module = d->vert, .pName = "main"},
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
-         .module = d->frag, .pName = "main"},
+         .module = d->frag, .pName = "main", .pSpecializationInfo = d->frag_specialization},
     };
     VkPipelineVertexInputStateCreateInfo no_vertex_input = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,

@@ -49,6 +49,7 @@ typedef struct rtpbr_graphics_desc {
     bool dynamic_cull;
     bool blend_premultiplied; // colour = src + dst (1 - src alpha), alpha alike
     bool depth_read_only;     // depth test (less or equal) without writes
+    const VkSpecializationInfo *frag_specialization; // NULL: the fragment shader's defaults
 } rtpbr_graphics_desc;
 rtpbr_result rtpbr_graphics_pipeline_create(rtpbr_context *ctx, const rtpbr_graphics_desc *desc, VkPipeline *out);
 
