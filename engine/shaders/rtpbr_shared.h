@@ -363,9 +363,15 @@
 // Its push constants (std430; rtpbr_shader_tonemap, tonemap.frag).
 #define RTPBR_TONEMAP_FIELDS(F, S)                                                                \
     F(S, FLOAT, scale, ) /* 2^exposure */                                                          \
-    F(S, UINT, op, )     /* RTPBR_TONEMAP_OP_* */                                                  \
-    F(S, UINT, encode, ) /* RTPBR_ENCODE_* */                                                      \
-    F(S, UINT, pad0, )
+    F(S, UINT, pad0, )                                                                             \
+    F(S, UINT, pad1, )                                                                             \
+    F(S, UINT, pad2, )
+// The tone-mapping pass's specialization constants (uints): the operator (RTPBR_TONEMAP_OP_*,
+// default ACES) and the encoding (RTPBR_ENCODE_*, default NONE). passes/tonemap.c compiles a
+// pipeline per target format, operator and encoding: on lavapipe the operators' branches all
+// ran at every pixel, and the sRGB curve's powers too (docs/performance.md, "The fixed cost").
+#define RTPBR_SPEC_TONEMAP_OP 10
+#define RTPBR_SPEC_TONEMAP_ENCODE 11
 
 // Tone-mapping operators (values of rtpbr_tonemap in rtpbr.h minus the default).
 #define RTPBR_TONEMAP_OP_ACES 1

@@ -1,12 +1,16 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Tone mapping: exposure, a display operator, optional sRGB encoding (constants: rtpbr_shader_tonemap).
+// Tone mapping: exposure (push constants: rtpbr_shader_tonemap), a display operator and optional
+// sRGB encoding (specialization constants: RTPBR_SPEC_TONEMAP_*).
 #include "rtpbr_shared.h"
 
 // Fields declared once, in rtpbr_shared.h (RTPBR_TONEMAP_FIELDS; C: rtpbr_shader_tonemap).
 layout(push_constant, std430) uniform Params {
     RTPBR_TONEMAP_FIELDS(RTPBR_SHARED_FIELD, Params)
 } params;
+
+layout(constant_id = RTPBR_SPEC_TONEMAP_OP) const uint tonemap_op = RTPBR_TONEMAP_OP_ACES;
+layout(constant_id = RTPBR_SPEC_TONEMAP_ENCODE) const uint tonemap_encode = RTPBR_ENCODE_NONE;
 
 layout(set = 0, binding = RTPBR_BINDING_TONEMAP_RADIANCE, rgba32f) readonly uniform image2D radiance;
 
@@ -29,9 +33,9 @@ vec3 srgb_encode(vec3 c)
 void main()
 {
     vec3 c = max(imageLoad(radiance, ivec2(gl_FragCoord.xy)).rgb * params.scale, vec3(0.0));
-    if (params.op == RTPBR_TONEMAP_OP_REINHARD) c = c / (1.0 + c);
-    else if (params.op == RTPBR_TONEMAP_OP_LINEAR) c = clamp(c, 0.0, 1.0);
+    if (tonemap_op == RTPBR_TONEMAP_OP_REINHARD) c = c / (1.0 + c);
+    else if (tonemap_op == RTPBR_TONEMAP_OP_LINEAR) c = clamp(c, 0.0, 1.0);
     else c = aces_fit(c);
-    if (params.encode == RTPBR_ENCODE_SRGB) c = srgb_encode(c);
+    if (tonemap_encode == RTPBR_ENCODE_SRGB) c = srgb_encode(c);
     out_color = vec4(c, 1.0);
 }

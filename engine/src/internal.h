@@ -95,7 +95,7 @@ typedef struct rtpbr_lut {
 #define RTPBR_LIGHTING_SPEC_COUNT (3 * 2 * 16 * 2)
 // The bytes of the lights' uniform binding (RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM).
 #define RTPBR_UNIFORM_LIGHTS_BYTES (RTPBR_UNIFORM_LIGHTS_MAX * sizeof(rtpbr_shader_light))
-#define RTPBR_TONEMAP_PIPELINE_CACHE 8 // tone-mapping pipelines, one per target format
+#define RTPBR_TONEMAP_PIPELINE_CACHE 24 // tone-mapping pipelines, per target format (8) and operator (3)
 
 // Each pass's layouts and pipelines, made and destroyed by its file in passes/ (init at
 // context creation, finish at its destruction; a half-built one is finished like a whole one).
@@ -137,6 +137,7 @@ typedef struct rtpbr_resolve_pass {              // passes/resolve.c
 
 typedef struct rtpbr_tonemap_pipeline {
     VkFormat format;
+    uint32_t op, encode; // RTPBR_TONEMAP_OP_*, RTPBR_ENCODE_* (its specialization)
     VkPipeline pipeline;
 } rtpbr_tonemap_pipeline;
 
@@ -144,7 +145,7 @@ typedef struct rtpbr_tonemap_pass {              // passes/tonemap.c
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout layout;                     // + push constants rtpbr_shader_tonemap
     VkShaderModule vert, frag;
-    rtpbr_tonemap_pipeline pipelines[RTPBR_TONEMAP_PIPELINE_CACHE]; // one per target format, on first use
+    rtpbr_tonemap_pipeline pipelines[RTPBR_TONEMAP_PIPELINE_CACHE]; // per target format and operator, on first use
 } rtpbr_tonemap_pass;
 
 typedef struct rtpbr_shadow_pass {               // passes/shadow.c

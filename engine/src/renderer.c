@@ -274,7 +274,7 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     VkPipeline tonemap;
     if (r->has_frame) RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
     RTPBR_TRY(prepare_frame(r, scene, desc));
-    RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, RTPBR_DISPLAY_FORMAT, &tonemap));
+    RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, RTPBR_DISPLAY_FORMAT, desc, RTPBR_ENCODE_NONE, &tonemap));
     // Before any recording: a variant's first use compiles it, which may fail.
     lighting_pipelines lighting;
     RTPBR_TRY(get_lighting(ctx, scene, desc, &lighting));
@@ -294,7 +294,7 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    rtpbr_tonemap_record(r, tonemap, desc, RTPBR_ENCODE_NONE, r->display.view, cmd);
+    rtpbr_tonemap_record(r, tonemap, desc, r->display.view, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_TONEMAP);
     rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -332,15 +332,16 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     VkPipeline tonemap;
     if (r->has_frame) RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
     RTPBR_TRY(prepare_frame(r, scene, desc));
-    RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, target->format, &tonemap));
-    // Before recording into the host's command buffer: a variant's first use compiles it.
-    lighting_pipelines lighting;
-    RTPBR_TRY(get_lighting(ctx, scene, desc, &lighting));
-
     // UNORM targets need the sRGB curve in the shader; sRGB targets encode in hardware.
     bool unorm = target->format == VK_FORMAT_R8G8B8A8_UNORM || target->format == VK_FORMAT_B8G8R8A8_UNORM ||
                  target->format == VK_FORMAT_A8B8G8R8_UNORM_PACK32 || target->format == VK_FORMAT_A2B10G10R10_UNORM_PACK32 ||
                  target->format == VK_FORMAT_A2R10G10B10_UNORM_PACK32;
+    RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, target->format, desc, unorm ? RTPBR_ENCODE_SRGB : RTPBR_ENCODE_NONE,
+                                         &tonemap));
+    // Before recording into the host's command buffer: a variant's first use compiles it.
+    lighting_pipelines lighting;
+    RTPBR_TRY(get_lighting(ctx, scene, desc, &lighting));
+
     VkImageLayout new_layout = target->new_layout ? target->new_layout : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     VkCommandBuffer cmd = target->command_buffer;
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_START);
@@ -351,7 +352,7 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, target->old_layout,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    rtpbr_tonemap_record(r, tonemap, desc, unorm ? RTPBR_ENCODE_SRGB : RTPBR_ENCODE_NONE, target->view, cmd);
+    rtpbr_tonemap_record(r, tonemap, desc, target->view, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_TONEMAP);
     if (new_layout != VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL)
         rtpbr_image_barrier(cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,

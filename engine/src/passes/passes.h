@@ -154,12 +154,14 @@ void rtpbr_resolve_record(rtpbr_renderer *r, VkCommandBuffer cmd);
 // ---- Tone mapping (passes/tonemap.c): radiance into a display target. ---------------------
 rtpbr_result rtpbr_tonemap_pass_init(rtpbr_context *ctx);
 void rtpbr_tonemap_pass_finish(rtpbr_context *ctx);
-// The pipeline for a colour-attachment format (created on first use).
-rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkPipeline *out);
+// The pipeline for a colour-attachment format, the desc's operator and an encoding
+// (RTPBR_ENCODE_*: the target's format decides), created on first use.
+rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, const rtpbr_render_desc *desc,
+                                        uint32_t encode, VkPipeline *out);
 rtpbr_result rtpbr_tonemap_renderer_init(rtpbr_renderer *r);
 void rtpbr_tonemap_renderer_finish(rtpbr_renderer *r);
-// encode: RTPBR_ENCODE_* (the target's format decides).
-void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_render_desc *desc, uint32_t encode,
-                          VkImageView target, VkCommandBuffer cmd);
+// With a pipeline rtpbr_tonemap_pipeline_get made for the same desc.
+void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_render_desc *desc, VkImageView target,
+                          VkCommandBuffer cmd);
 
 #endif // RTPBR_PASSES_H

@@ -22,9 +22,9 @@ rtpbr_result rtpbr_tonemap_pass_init(rtpbr_context *ctx)
                                         sizeof(rtpbr_shader_tonemap), &pass->set_layout, &pass->layout));
     RTPBR_TRY(rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_tonemap_vert), &pass->vert));
     RTPBR_TRY(rtpbr_shader_module(ctx, RTPBR_SPIRV(rtpbr_spirv_tonemap_frag), &pass->frag));
-    // The renderer's own display target now, so that a bad driver fails early.
+    // The renderer's own display target now (the default operator), so that a bad driver fails early.
     VkPipeline unused;
-    RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, RTPBR_DISPLAY_FORMAT, &unused));
+    RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, RTPBR_DISPLAY_FORMAT, &(rtpbr_render_desc){0}, RTPBR_ENCODE_NONE, &unused));
 cleanup:
     return result; // the caller finishes a half-built pass
 }
@@ -40,26 +40,41 @@ void rtpbr_tonemap_pass_finish(rtpbr_context *ctx)
     *pass = (rtpbr_tonemap_pass){0};
 }
 
-rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkPipeline *out)
+// The operator of a desc (RTPBR_TONEMAP_OP_*).
+static uint32_t tonemap_op(const rtpbr_render_desc *desc)
+{
+    return desc->tonemap == RTPBR_TONEMAP_DEFAULT ? RTPBR_TONEMAP_OP_ACES : (uint32_t)desc->tonemap;
+}
+
+rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, const rtpbr_render_desc *desc,
+                                        uint32_t encode, VkPipeline *out)
 {
     rtpbr_tonemap_pass *pass = &ctx->tonemap;
     rtpbr_result result = RTPBR_SUCCESS;
+    uint32_t op = tonemap_op(desc);
     uint32_t slot = RTPBR_TONEMAP_PIPELINE_CACHE;
     for (uint32_t i = 0; i < RTPBR_TONEMAP_PIPELINE_CACHE; ++i) {
-        if (pass->pipelines[i].pipeline && pass->pipelines[i].format == format) {
+        const rtpbr_tonemap_pipeline *p = &pass->pipelines[i];
+        if (p->pipeline && p->format == format && p->op == op && p->encode == encode) {
             *out = pass->pipelines[i].pipeline;
             return RTPBR_SUCCESS;
         }
         if (!pass->pipelines[i].pipeline && slot == RTPBR_TONEMAP_PIPELINE_CACHE) slot = i;
     }
     if (slot == RTPBR_TONEMAP_PIPELINE_CACHE)
-        RTPBR_FAIL(&ctx->host, RTPBR_ERROR_LIMIT_EXCEEDED, "more than %u different target formats used with rtpbr_record",
+        RTPBR_FAIL(&ctx->host, RTPBR_ERROR_LIMIT_EXCEEDED,
+                   "more than %u different target formats and tone-mapping operators used with rtpbr_record",
                    RTPBR_TONEMAP_PIPELINE_CACHE);
     VkFormatProperties props;
     vkGetPhysicalDeviceFormatProperties(ctx->physical_device, format, &props);
     if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT))
         RTPBR_FAIL(&ctx->host, RTPBR_ERROR_MISSING_FEATURE, "target format %d does not support colour attachments",
                    (int)format);
+    // (on lavapipe every branch runs: the operator and the encoding compiled in)
+    const uint32_t values[2] = {op, encode};
+    const VkSpecializationMapEntry entries[2] = {{RTPBR_SPEC_TONEMAP_OP, 0, sizeof values[0]},
+                                                 {RTPBR_SPEC_TONEMAP_ENCODE, sizeof values[0], sizeof values[1]}};
+    const VkSpecializationInfo specialization = {2, entries, sizeof values, values};
     rtpbr_graphics_desc d = {
         .vert = pass->vert,
         .frag = pass->frag,
@@ -67,9 +82,12 @@ rtpbr_result rtpbr_tonemap_pipeline_get(rtpbr_context *ctx, VkFormat format, VkP
         .color_formats = &format,
         .color_count = 1,
         .depth_format = VK_FORMAT_UNDEFINED,
+        .frag_specialization = &specialization,
     };
     RTPBR_TRY(rtpbr_graphics_pipeline_create(ctx, &d, &pass->pipelines[slot].pipeline));
     pass->pipelines[slot].format = format;
+    pass->pipelines[slot].op = op;
+    pass->pipelines[slot].encode = encode;
     *out = pass->pipelines[slot].pipeline;
 cleanup:
     return result;
@@ -91,12 +109,11 @@ void rtpbr_tonemap_renderer_finish(rtpbr_renderer *r)
     rtpbr_descriptor_set_destroy(r->context, &r->tonemap_set);
 }
 
-void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_render_desc *desc, uint32_t encode,
-                          VkImageView target, VkCommandBuffer cmd)
+void rtpbr_tonemap_record(rtpbr_renderer *r, VkPipeline pipeline, const rtpbr_render_desc *desc, VkImageView target,
+                          VkCommandBuffer cmd)
 {
     const rtpbr_context *ctx = r->context;
-    uint32_t op = desc->tonemap == RTPBR_TONEMAP_DEFAULT ? RTPBR_TONEMAP_OP_ACES : (uint32_t)desc->tonemap;
-    rtpbr_shader_tonemap params = {.scale = exp2f(desc->exposure), .op = op, .encode = encode};
+    rtpbr_shader_tonemap params = {.scale = exp2f(desc->exposure)};
     VkRenderingAttachmentInfo color = rtpbr_attachment(target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                                                        VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_STORE);
     rtpbr_begin_rendering(cmd, r->width, r->height, &color, 1, NULL);
