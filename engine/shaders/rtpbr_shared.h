@@ -429,7 +429,7 @@
 // stand-in does, vec4(1), and without the normal slot the normal-mapping code is left out too.
 // passes/gbuffer.c compiles a pipeline per set of slots the frame's materials use and binds each
 // material's (rtpbr_gbuffer_material_slots): on lavapipe a texture read, or code under a
-// branch not taken, costs its time (docs/performance.md, "The G-buffer's texture reads").
+// branch not taken, costs its time (docs/performance.md, "The fixed cost", 1).
 #define RTPBR_SPEC_GBUFFER_TEXTURES 9
 #define RTPBR_GBUFFER_SPEC_SLOTS 4
 #define RTPBR_GBUFFER_TEXTURES_ALL ((1u << RTPBR_GBUFFER_SPEC_SLOTS) - 1u)
