@@ -36,8 +36,8 @@ void rtpbr_gbuffer_write_material_textures(rtpbr_gpu_scene *scene, uint32_t m,
                                            const uint32_t texture[RTPBR_MATERIAL_TEXTURE_COUNT]);
 void rtpbr_gbuffer_bind_scene(rtpbr_renderer *r, const rtpbr_gpu_scene *scene);
 // The G-buffer pipeline's texture slots for a material (RTPBR_SPEC_GBUFFER_TEXTURES): bit
-// 1 << binding for each of the first RTPBR_GBUFFER_SPEC_SLOTS slots that has a texture, and the
-// normal slot also where the material is normal-mapped.
+// 1 << binding for each of the first RTPBR_GBUFFER_SPEC_SLOTS slots that has a texture (the
+// normal slot's: RTPBR_MATERIAL_FLAG_NORMAL_MAPPED, the normal mapping compiled in with it).
 uint8_t rtpbr_gbuffer_material_slots(const rtpbr_material_desc *material);
 // Compiles, on first use, the G-buffer pipeline of each set of texture slots the scene's
 // G-buffer draws use (scene->material_gbuffer_slots); before any recording (it may fail).
