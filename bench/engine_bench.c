@@ -21,8 +21,12 @@
 // 0: the engine's default).
 static float cull_form_factor = 0.0f;
 // --passes: each culled row also gives the GPU time of each pass (rtpbr_renderer_timings,
-// medians over the frames) and what the frame's time has beyond them (submit, wait, copies).
+// medians over the frames) and what the frame's time has beyond them (submit, wait).
 static int show_passes = 0;
+// --readback: after each culled frame, rtpbr_read_radiance and rtpbr_read_display, timed apart
+// from the frame (the copies a frame that is read back costs besides rtpbr_render: they are
+// made by the first read of a frame).
+static int show_readback = 0;
 
 // Wall-clock time, or with --cpu the CPU time of the whole process (lavapipe's worker threads
 // included): steadier than wall time on a shared machine, and what a software device spends.
@@ -178,7 +182,10 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
         for (int li = 0; li < light_count && r == RTPBR_SUCCESS; ++li) {
             rtpbr_gpu_scene *scene = NULL;
             r = make_scene(ctx, scene_kind, lights[li], &scene);
-            double ms[2] = {0.0, 0.0}, pass[3][1000], pass_ms[3] = {0.0, 0.0, 0.0};
+            double ms[2] = {0.0, 0.0}, pass[3][1000], pass_ms[3] = {0.0, 0.0, 0.0}, read[1000], read_ms = 0.0;
+            float *radiance = show_readback ? malloc((size_t)w * h * 16) : NULL;
+            uint8_t *display = show_readback ? malloc((size_t)w * h * 4) : NULL;
+            if (show_readback && (!radiance || !display)) r = RTPBR_ERROR_OUT_OF_HOST_MEMORY;
             for (int mode = 0; mode < 2 && r == RTPBR_SUCCESS; ++mode) {
                 rtpbr_render_desc rd = {.light_cull_form_factor = mode == 0 ? cull_form_factor : -1.0f};
                 r = rtpbr_render(renderer, scene, &rd); // warm-up
@@ -189,6 +196,16 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
                     rtpbr_timings tm = {0};
                     if (r == RTPBR_SUCCESS && show_passes && mode == 0) r = rtpbr_renderer_timings(renderer, &tm);
                     pass[0][k] = tm.gbuffer_ms, pass[1][k] = tm.lighting_ms, pass[2][k] = tm.tonemap_ms;
+                    if (r == RTPBR_SUCCESS && show_readback && mode == 0) {
+                        double t1 = now();
+                        r = rtpbr_read_radiance(renderer, radiance, (size_t)w * h * 16);
+                        if (r == RTPBR_SUCCESS) r = rtpbr_read_display(renderer, display, (size_t)w * h * 4);
+                        read[k] = now() - t1;
+                    }
+                }
+                if (show_readback && mode == 0 && r == RTPBR_SUCCESS) {
+                    qsort(read, (size_t)repeat, sizeof read[0], bench_compare_double);
+                    read_ms = 1e3 * read[repeat / 2];
                 }
                 for (int q = 0; q < 3 && show_passes && mode == 0; ++q) {
                     qsort(pass[q], (size_t)repeat, sizeof pass[q][0], bench_compare_double);
@@ -212,6 +229,11 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
                 printf("%10s %6d   culled, GPU ms: G-buffer %.2f, lighting %.2f, tone mapping %.2f; the rest of the "
                        "frame %.2f\n", label, lights[li], pass_ms[0], pass_ms[1], pass_ms[2],
                        ms[0] - pass_ms[0] - pass_ms[1] - pass_ms[2]);
+            if (r == RTPBR_SUCCESS && show_readback)
+                printf("%10s %6d   read back after the culled frame (rtpbr_read_radiance and rtpbr_read_display): "
+                       "%.2f ms, %.1f ns/px\n", label, lights[li], read_ms, 1e6 * read_ms / ((double)w * h));
+            free(radiance);
+            free(display);
             fflush(stdout);
             rtpbr_gpu_scene_destroy(scene);
         }
@@ -222,6 +244,7 @@ static rtpbr_result run_scene(rtpbr_context *ctx, bench_scene scene_kind, const 
 
 static const char *const usage =
     "usage: rtpbr-bench-engine [--repeat N] [--sizes 1280x720,512] [--lights 0,16,64] [--cpu] [--cull X]\n"
+    "                          [--passes] [--readback]\n"
     "                          [--scene benchmark|floor|full|points|spheres|disks|textured|tubes|many|all]\n"
     "Median frame time of rtpbr_render against light count and resolution; compare the ratios\n"
     "printed in one run.\n"
@@ -230,7 +253,9 @@ static const char *const usage =
     "  --lights LIST  light counts (default 0,1,4,16,64,256)\n"
     "  --cpu          the process CPU time (lavapipe's threads included) instead of wall time\n"
     "  --passes       also the culled frames' GPU time per pass (G-buffer, lighting, tone mapping)\n"
-    "                 and the rest of the frame (submit, wait, copies)\n"
+    "                 and the rest of the frame (submit, wait)\n"
+    "  --readback     also the time of rtpbr_read_radiance and rtpbr_read_display after each culled\n"
+    "                 frame (their copies, made by a frame's first read; not in the frame time)\n"
     "  --cull X       the culled frames' light_cull_form_factor (default 0: the engine's default,\n"
     "                 RTPBR_DEFAULT_CULL_FORM_FACTOR)\n"
     "  --scene NAME   benchmark, floor (metal floor at 45 degrees, every light seen by\n"
@@ -250,6 +275,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--lights") && i + 1 < argc) light_count = parse_list(argv[++i], lights, 16);
         else if (!strcmp(argv[i], "--cpu")) bench_clock = CLOCK_PROCESS_CPUTIME_ID;
         else if (!strcmp(argv[i], "--passes")) show_passes = 1;
+        else if (!strcmp(argv[i], "--readback")) show_readback = 1;
         else if (!strcmp(argv[i], "--cull") && i + 1 < argc) cull_form_factor = strtof(argv[++i], NULL);
         else if (!strcmp(argv[i], "--scene") && i + 1 < argc) {
             const char *name = argv[++i];

@@ -366,14 +366,19 @@ struct rtpbr_renderer {
     uint32_t tiles_x, tiles_y; // lighting tiles of the shaded image (RTPBR_TILE_SIZE pixels a side)
     rtpbr_buffer tile_masks;   // RTPBR_TILE_MASK_STRIDE uints per tile (cull.comp)
     rtpbr_buffer tile_lists;   // per class: indirect dispatch arguments, then the tile queues
+    // Made by the first rtpbr_read_radiance / rtpbr_read_display (a renderer never read
+    // back, e.g. one drawing into the host's frame, holds none).
     rtpbr_buffer radiance_readback, display_readback;
     // Each pass's descriptor set (made and written by its file in passes/).
     rtpbr_descriptor_set gbuffer_set, lighting_set, resolve_set, tonemap_set, shadow_set, forward_set;
-    VkCommandBuffer cmd;
+    VkCommandBuffer cmd;       // rtpbr_render's frame, or a readback's copy (copy_back)
     VkFence fence;
-    bool has_frame;            // rtpbr_render completed at least once
+    bool fence_pending;        // fence is signalled by a submission of cmd (wait before reusing it)
+    bool has_frame;            // the display image holds the last rtpbr_render's frame
     rtpbr_timing timing;       // GPU timestamps (rtpbr_renderer_desc.timings), else all zero
-    bool has_radiance;         // rtpbr_render or rtpbr_record has filled radiance_readback
+    bool has_radiance;         // the radiance image holds the last rtpbr_render's or rtpbr_record's frame
+    bool radiance_copied;      // radiance_readback holds that frame (copied by its first read)
+    bool display_copied;       // display_readback holds the display image's frame
     // Shadows (passes/shadow.c), at the shading size, RTPBR_MAX_SHADOWED_LIGHTS layers, GENERAL layout:
     rtpbr_image shadow_estimates; // R32_SFLOAT, 2 layers per light: shadowed, unshadowed sum
     rtpbr_image shadow_ratio;     // R32_SFLOAT: denoised shadowed / unshadowed (lighting binding)

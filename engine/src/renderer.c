@@ -59,10 +59,6 @@ rtpbr_result rtpbr_renderer_create(rtpbr_context *ctx, const rtpbr_renderer_desc
     r->tiles_x = (sw + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE;
     r->tiles_y = (sh + RTPBR_TILE_SIZE - 1) / RTPBR_TILE_SIZE;
     RTPBR_TRY(rtpbr_lighting_tile_buffers_create(ctx, r->tiles_x, r->tiles_y, &r->tile_masks, &r->tile_lists));
-    RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                       &r->radiance_readback));
-    RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)w * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                       &r->display_readback));
     // Each pass's descriptor set (the lighting set binds the shadow ratios: after the shadows).
     RTPBR_TRY(rtpbr_gbuffer_renderer_init(r));
     RTPBR_TRY(rtpbr_shadow_renderer_init(r));
@@ -85,7 +81,7 @@ void rtpbr_renderer_destroy(rtpbr_renderer *r)
     if (!r) return;
     rtpbr_context *ctx = r->context;
     if (r->fence) {
-        VkResult vr = r->has_frame ? vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX) : VK_SUCCESS;
+        VkResult vr = r->fence_pending ? vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX) : VK_SUCCESS;
         if (vr != VK_SUCCESS) rtpbr_vk_fail(&ctx->host, vr, "vkWaitForFences (rtpbr_renderer_destroy)");
         vkDestroyFence(ctx->device, r->fence, NULL);
     }
@@ -240,30 +236,39 @@ static rtpbr_result get_lighting(rtpbr_context *ctx, const rtpbr_gpu_scene *scen
     return result;
 }
 
-// Copies the radiance image into its readback buffer (and the display image, if given).
-static void record_readback(rtpbr_renderer *r, VkCommandBuffer cmd, bool display)
+// Resets r->cmd and begins its recording, once its last submission has completed.
+static rtpbr_result begin_commands(rtpbr_renderer *r)
 {
-    VkBufferImageCopy region = {
-        .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-        .imageExtent = {r->width, r->height, 1},
+    rtpbr_context *ctx = r->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    if (r->fence_pending) RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+    VkCommandBufferBeginInfo begin = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
     };
-    // After the lighting pass's writes and the tone-mapping pass's reads.
-    rtpbr_image_barrier(cmd, r->radiance.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
-                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-                        VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    vkCmdCopyImageToBuffer(cmd, r->radiance.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->radiance_readback.buffer,
-                           1, &region);
-    if (display)
-        vkCmdCopyImageToBuffer(cmd, r->display.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->display_readback.buffer,
-                               1, &region);
-    VkMemoryBarrier to_host = {
-        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
-        .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
-        .dstAccessMask = VK_ACCESS_HOST_READ_BIT,
+    RTPBR_VK(&ctx->host, vkResetCommandBuffer(r->cmd, 0));
+    RTPBR_VK(&ctx->host, vkBeginCommandBuffer(r->cmd, &begin));
+cleanup:
+    return result;
+}
+
+// Submits r->cmd (recorded) on the context's queue with r->fence, and waits for it.
+static rtpbr_result submit_and_wait(rtpbr_renderer *r)
+{
+    rtpbr_context *ctx = r->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    VkSubmitInfo submit = {
+        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
+        .commandBufferCount = 1,
+        .pCommandBuffers = &r->cmd,
     };
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, NULL,
-                         0, NULL);
+    RTPBR_VK(&ctx->host, vkResetFences(ctx->device, 1, &r->fence));
+    r->fence_pending = false; // the fence is unsignalled until the submission below succeeds
+    RTPBR_VK(&ctx->host, vkQueueSubmit(ctx->queue, 1, &submit, r->fence));
+    r->fence_pending = true;
+    RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+cleanup:
+    return result;
 }
 
 rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const rtpbr_render_desc *desc)
@@ -272,7 +277,7 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     rtpbr_context *ctx = r->context;
     rtpbr_result result = RTPBR_SUCCESS;
     VkPipeline tonemap;
-    if (r->has_frame) RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+    if (r->fence_pending) RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
     RTPBR_TRY(prepare_frame(r, scene, desc));
     RTPBR_TRY(rtpbr_tonemap_pipeline_get(ctx, RTPBR_DISPLAY_FORMAT, desc, RTPBR_ENCODE_NONE, &tonemap));
     // Before any recording: a variant's first use compiles it, which may fail.
@@ -280,12 +285,7 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     RTPBR_TRY(get_lighting(ctx, scene, desc, &lighting));
 
     VkCommandBuffer cmd = r->cmd;
-    VkCommandBufferBeginInfo begin = {
-        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
-        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
-    };
-    RTPBR_VK(&ctx->host, vkResetCommandBuffer(cmd, 0));
-    RTPBR_VK(&ctx->host, vkBeginCommandBuffer(cmd, &begin));
+    RTPBR_TRY(begin_commands(r));
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_START);
     rtpbr_gbuffer_record(r, scene, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_GBUFFER);
@@ -296,24 +296,12 @@ rtpbr_result rtpbr_render(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
     rtpbr_tonemap_record(r, tonemap, desc, r->display.view, cmd);
     rtpbr_timing_mark(r, cmd, RTPBR_TIMESTAMP_TONEMAP);
-    rtpbr_image_barrier(cmd, r->display.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                        VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                        VK_ACCESS_TRANSFER_READ_BIT);
-    record_readback(r, cmd, true);
+    // (no readback: rtpbr_read_* copy the images they are asked for, copy_back)
     RTPBR_VK(&ctx->host, vkEndCommandBuffer(cmd));
-
-    VkSubmitInfo submit = {
-        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
-        .commandBufferCount = 1,
-        .pCommandBuffers = &cmd,
-    };
-    RTPBR_VK(&ctx->host, vkResetFences(ctx->device, 1, &r->fence));
-    r->has_frame = false; // the fence is unsignalled until the submission below succeeds
-    RTPBR_VK(&ctx->host, vkQueueSubmit(ctx->queue, 1, &submit, r->fence));
-    r->has_frame = true;
-    RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
-    r->has_radiance = true;
+    r->has_frame = r->has_radiance = false; // until the frame below has completed
+    RTPBR_TRY(submit_and_wait(r));
+    r->has_frame = r->has_radiance = true;
+    r->radiance_copied = r->display_copied = false;
 cleanup:
     return result;
 }
@@ -330,7 +318,7 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
     }
     rtpbr_result result = RTPBR_SUCCESS;
     VkPipeline tonemap;
-    if (r->has_frame) RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+    if (r->fence_pending) RTPBR_VK(&ctx->host, vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
     RTPBR_TRY(prepare_frame(r, scene, desc));
     // UNORM targets need the sRGB curve in the shader; sRGB targets encode in hardware.
     bool unorm = target->format == VK_FORMAT_R8G8B8A8_UNORM || target->format == VK_FORMAT_B8G8R8A8_UNORM ||
@@ -359,18 +347,71 @@ rtpbr_result rtpbr_record(rtpbr_renderer *r, const rtpbr_gpu_scene *scene, const
                             new_layout, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                             VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                             VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
-    record_readback(r, cmd, false);
+    // (no readback: rtpbr_read_radiance copies the radiance once the host's submission has
+    // completed, copy_back)
     r->has_radiance = true; // once the host's submission completes (rtpbr.h)
+    r->radiance_copied = false;
     r->has_frame = false; // rtpbr_read_display has nothing of this frame: the host owns its target
 cleanup:
     return result;
 }
 
-// rtpbr_read_radiance and rtpbr_read_display (named by `who`): copies a readback buffer of
-// bytes_per_pixel per output pixel into dst once `ready`, else says what has not been rendered.
-static rtpbr_result read_back(rtpbr_renderer *r, const char *who, const rtpbr_buffer *readback, size_t bytes_per_pixel,
-                              bool ready, const char *not_ready, void *dst, size_t size_bytes)
+// Copies the last frame's radiance image (display: its display image) into its readback buffer,
+// made on first use: a submission of r->cmd of its own, made by the first rtpbr_read_* of a
+// frame, so that a frame no one reads back (a real-time loop, a host's frame) pays for no copy
+// (at 640 x 480 the radiance alone is 4.9 MB). The frame's writes completed before (rtpbr_render
+// waited for them; the host waits for rtpbr_record's), on this queue: the barrier's first scope
+// holds them. Each image is left in TRANSFER_SRC_OPTIMAL (the radiance from the lighting pass's
+// GENERAL, the display from the tone mapping's COLOR_ATTACHMENT_OPTIMAL), at most once per
+// frame; the next frame starts both from UNDEFINED.
+static rtpbr_result copy_back(rtpbr_renderer *r, bool display)
 {
+    rtpbr_context *ctx = r->context;
+    rtpbr_result result = RTPBR_SUCCESS;
+    rtpbr_buffer *dst = display ? &r->display_readback : &r->radiance_readback;
+    if (!dst->buffer)
+        RTPBR_TRY(rtpbr_buffer_create_host(ctx, (VkDeviceSize)r->width * r->height * (display ? 4u : 16u),
+                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, dst));
+    VkCommandBuffer cmd = r->cmd;
+    RTPBR_TRY(begin_commands(r));
+    VkImage image = display ? r->display.image : r->radiance.image;
+    if (display) // after the tone mapping's writes
+        rtpbr_image_barrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                            VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                            VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                            VK_ACCESS_TRANSFER_READ_BIT);
+    else // after the lighting pass's, the resolve's and the forward pass's writes
+        rtpbr_image_barrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                            VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                            VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    VkBufferImageCopy region = {
+        .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+        .imageExtent = {r->width, r->height, 1},
+    };
+    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst->buffer, 1, &region);
+    VkMemoryBarrier to_host = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+        .dstAccessMask = VK_ACCESS_HOST_READ_BIT,
+    };
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, NULL,
+                         0, NULL);
+    RTPBR_VK(&ctx->host, vkEndCommandBuffer(cmd));
+    RTPBR_TRY(submit_and_wait(r));
+    if (display) r->display_copied = true;
+    else r->radiance_copied = true;
+cleanup:
+    return result;
+}
+
+// rtpbr_read_radiance and rtpbr_read_display (named by `who`): copies the image into dst, as
+// bytes_per_pixel per output pixel, once `ready`, else says what has not been rendered.
+static rtpbr_result read_back(rtpbr_renderer *r, const char *who, bool display, size_t bytes_per_pixel, bool ready,
+                              const char *not_ready, void *dst, size_t size_bytes)
+{
+    rtpbr_result result = RTPBR_SUCCESS;
     size_t need = (size_t)r->width * r->height * bytes_per_pixel;
     if (!dst || size_bytes < need) {
         rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "%s: need a buffer of %zu bytes, got %zu%s", who, need,
@@ -381,19 +422,20 @@ static rtpbr_result read_back(rtpbr_renderer *r, const char *who, const rtpbr_bu
         rtpbr_log(&r->context->host, RTPBR_LOG_ERROR, "%s: nothing rendered with %s yet", who, not_ready);
         return RTPBR_ERROR_INVALID_ARGUMENT;
     }
-    memcpy(dst, readback->mapped, need);
-    return RTPBR_SUCCESS;
+    if (!(display ? r->display_copied : r->radiance_copied)) RTPBR_TRY(copy_back(r, display));
+    memcpy(dst, (display ? &r->display_readback : &r->radiance_readback)->mapped, need);
+cleanup:
+    return result;
 }
 
 rtpbr_result rtpbr_read_radiance(rtpbr_renderer *r, float *rgba, size_t size_bytes)
 {
     if (!r) return rtpbr_null_object(__func__, "renderer");
-    return read_back(r, __func__, &r->radiance_readback, 16, r->has_radiance, "rtpbr_render or rtpbr_record", rgba,
-                     size_bytes);
+    return read_back(r, __func__, false, 16, r->has_radiance, "rtpbr_render or rtpbr_record", rgba, size_bytes);
 }
 
 rtpbr_result rtpbr_read_display(rtpbr_renderer *r, uint8_t *rgba, size_t size_bytes)
 {
     if (!r) return rtpbr_null_object(__func__, "renderer");
-    return read_back(r, __func__, &r->display_readback, 4, r->has_frame, "rtpbr_render", rgba, size_bytes);
+    return read_back(r, __func__, true, 4, r->has_frame, "rtpbr_render", rgba, size_bytes);
 }

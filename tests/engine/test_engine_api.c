@@ -5,7 +5,8 @@
 //   layer's object tracker would report it, and any validation message fails the test);
 // - every allocation failure through the host allocator returns OUT_OF_HOST_MEMORY with an
 //   error message in the log (failure injected at each allocation index in turn);
-// - rtpbr_read_radiance before any render refuses, like rtpbr_read_display.
+// - rtpbr_read_radiance before any render refuses, like rtpbr_read_display;
+// - the reads give the last frame's images in any order and number of reads.
 #define _DEFAULT_SOURCE // mkstemps
 #include <stdio.h>
 #include <stdlib.h>
@@ -163,6 +164,49 @@ static void read_radiance_before_render(void **state)
     rtpbr_gpu_scene_destroy(scene);
 }
 
+// rtpbr_read_* copy the image on the first read of a frame (renderer.c, copy_back): each read
+// gives the last frame, whichever was read first and however often, never an earlier one.
+static void reads_follow_the_last_frame(void **state)
+{
+    test_env *env = *state;
+    rtpbr_context *ctx = env->ctx;
+    enum { N = 4 * 4 };
+    rtpbr_renderer *r = test_renderer(ctx, &(rtpbr_renderer_desc){.width = 4, .height = 4});
+    rtpbr_gpu_scene *scene = test_scene(ctx, &(rtpbr_gpu_scene_desc){0});
+    const float backgrounds[4][3] = {{1, 2, 3}, {0.25f, 0.5f, 0.125f}, {0.25f, 0.5f, 0.125f}, {4, 0, 0.5f}};
+    uint8_t display[4][4 * N];
+    for (int f = 0; f < 4; ++f) {
+        const float *bg = backgrounds[f];
+        assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.background = {bg[0], bg[1], bg[2]}}),
+                         RTPBR_SUCCESS);
+        float radiance[4 * N];
+        uint8_t again[4 * N];
+        // Frames 0 and 2 read the radiance first, 1 and 3 the display; each reads both twice.
+        for (int k = 0; k < 4; ++k) {
+            if ((k + f) % 2 == 0) {
+                memset(radiance, 0, sizeof radiance);
+                assert_int_equal(test_read_radiance(r, radiance, sizeof radiance), RTPBR_SUCCESS);
+                for (int i = 0; i < N; ++i)
+                    for (int c = 0; c < 3; ++c) assert_float_equal(radiance[4 * i + c], bg[c], 0.0f);
+            } else {
+                uint8_t *dst = k < 2 ? display[f] : again;
+                memset(dst, 0, 4 * N);
+                assert_int_equal(test_read_display(r, dst, 4 * N), RTPBR_SUCCESS);
+                if (k >= 2) assert_memory_equal(again, display[f], sizeof again);
+            }
+        }
+    }
+    // Every pixel the same in a frame; frames 1 and 2 the same background, the others not
+    // (a stale read of the previous frame's display fails here).
+    for (int f = 0; f < 4; ++f)
+        for (int i = 1; i < N; ++i) assert_memory_equal(display[f] + 4 * i, display[f], 4);
+    assert_memory_equal(display[1], display[2], 4 * N);
+    assert_memory_not_equal(display[0], display[1], 4);
+    assert_memory_not_equal(display[2], display[3], 4);
+    rtpbr_renderer_destroy(r);
+    rtpbr_gpu_scene_destroy(scene);
+}
+
 // A node scaled by 0 and a visible instance of the same triangle.
 static const char kHiddenNodeGltf[] =
     "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1]}],"
@@ -292,5 +336,6 @@ RTPBR_TEST_MAIN(test_env_case(from_loaded_null_arrays),
                 cmocka_unit_test(material_desc_from_loaded_flags),
                 cmocka_unit_test(context_destroys_children),
                 test_env_case(read_radiance_before_render),
+                test_env_case(reads_follow_the_last_frame),
                 cmocka_unit_test(hidden_node_does_not_hide_the_scene),
                 cmocka_unit_test(allocation_failures_are_logged))

@@ -303,7 +303,8 @@ static void lifecycle(void **state)
     assert_int_equal(log.errors, 0);
 }
 
-// rtpbr_record into the host's own UNORM image gives the display image of rtpbr_render.
+// rtpbr_record into the host's own UNORM image gives the display image of rtpbr_render, and
+// rtpbr_read_radiance after the host's submission its radiance.
 static void record_into_host_image(void **state)
 {
     rtpbr_context *ctx = test_env_context(state);
@@ -318,6 +319,14 @@ static void record_into_host_image(void **state)
     assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){0}), RTPBR_SUCCESS);
     uint8_t expect[S * S * 4];
     assert_int_equal(test_read_display(r, expect, sizeof expect), RTPBR_SUCCESS);
+    static float expect_radiance[S * S * 4], radiance[S * S * 4];
+    assert_int_equal(test_read_radiance(r, expect_radiance, sizeof expect_radiance), RTPBR_SUCCESS);
+    // Another frame read back, so that a read of the recorded frame's radiance that copied
+    // nothing would give this one's (background 5 in the corner).
+    assert_int_equal(rtpbr_render(r, scene, &(rtpbr_render_desc){.background = {5, 5, 5}}), RTPBR_SUCCESS);
+    assert_int_equal(test_read_radiance(r, radiance, sizeof radiance), RTPBR_SUCCESS);
+    assert_float_equal(radiance[0], 5.0f, 0.0f);
+    assert_float_equal(expect_radiance[0], 0.0f, 0.0f);
 
     // The host's objects: an image, a host-visible buffer, a command pool and buffer, a fence.
     VkDevice dev = vk.device;
@@ -380,6 +389,10 @@ static void record_into_host_image(void **state)
     const uint8_t *got = mapped;
     for (int i = 0; i < S * S * 4; ++i) assert_true(abs(got[i] - expect[i]) <= 1);
     vkUnmapMemory(dev, buffer_memory);
+    // The recorded frame's radiance, copied by this read now that the host's submission has
+    // completed: rtpbr_render's.
+    assert_int_equal(test_read_radiance(r, radiance, sizeof radiance), RTPBR_SUCCESS);
+    assert_memory_equal(radiance, expect_radiance, sizeof radiance);
 
     vkDestroyFence(dev, fence, NULL);
     vkDestroyCommandPool(dev, pool, NULL);

@@ -775,14 +775,19 @@ typedef struct rtpbr_render_desc {
 #define RTPBR_TILE_SIZE_PIXELS 16
 
 // Records and submits one frame and waits for it: G-buffer, lighting, tone mapping into the
-// renderer's own targets, which rtpbr_read_* then read back.
+// renderer's own targets, which rtpbr_read_* then read back. The frame copies nothing to the
+// host: the first rtpbr_read_radiance (rtpbr_read_display) after a frame copies that image in
+// a submission of its own and waits for it, later reads of the same frame only copy memory, so
+// a frame that is not read back (a real-time loop) pays for no copy.
 RTPBR_API rtpbr_result rtpbr_render(rtpbr_renderer *renderer, const rtpbr_gpu_scene *scene,
                           const rtpbr_render_desc *desc);
 
-// Linear scene radiance of the last rtpbr_render (no exposure, no tone mapping): RGBA32F,
-// rows top to bottom, width * height * 4 floats (alpha 1 on surfaces, 0 on background).
-// size_bytes must be at least width * height * 16. INVALID_ARGUMENT (with a message) before
-// the first rtpbr_render or rtpbr_record, like rtpbr_read_display.
+// Linear scene radiance of the last rtpbr_render or rtpbr_record (no exposure, no tone
+// mapping): RGBA32F, rows top to bottom, width * height * 4 floats (alpha 1 on surfaces, 0 on
+// background). size_bytes must be at least width * height * 16. INVALID_ARGUMENT (with a
+// message) before the first rtpbr_render or rtpbr_record, like rtpbr_read_display. The
+// renderer's first read allocates its host-visible readback buffer (16 bytes a pixel; the
+// display's: 4), which a renderer never read back does not hold.
 RTPBR_API rtpbr_result rtpbr_read_radiance(rtpbr_renderer *renderer, float *rgba, size_t size_bytes);
 // The tone-mapped display image of the last rtpbr_render: 8-bit sRGB-encoded RGBA, rows top to
 // bottom. size_bytes must be at least width * height * 4.
@@ -804,8 +809,9 @@ typedef struct rtpbr_record_desc {
 
 // The recorded commands use the renderer's targets and the scene's buffers: the host must
 // not destroy them, nor record or render again with this renderer, before the submitted
-// command buffer has completed. The linear radiance target is filled too (rtpbr_read_radiance
-// needs that execution to complete first).
+// command buffer has completed. The linear radiance target is filled too: rtpbr_read_radiance,
+// called once that execution has completed, copies it in a submission of its own on the
+// context's queue (nothing is copied in the host's command buffer).
 RTPBR_API rtpbr_result rtpbr_record(rtpbr_renderer *renderer, const rtpbr_gpu_scene *scene,
                           const rtpbr_render_desc *desc, const rtpbr_record_desc *target);
 
