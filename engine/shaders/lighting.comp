@@ -41,6 +41,11 @@
 #define RTPBR_LIGHTING_TUBES (RTPBR_LIGHTING_CLASS >= RTPBR_TILE_CLASS_BASIC_TUBES)
 
 layout(local_size_x = RTPBR_TILE_SIZE, local_size_y = RTPBR_TILE_SIZE) in;
+#if RTPBR_LIGHTING_CLASS == RTPBR_TILE_CLASS_EMPTY
+// Whether a material of the frame emits (RTPBR_SPEC_LIGHTING_EMISSION): if none does, every
+// surface pixel's emission is 0 and the empty tiles do not read it.
+layout(constant_id = RTPBR_SPEC_LIGHTING_EMISSION) const bool shade_emission = true;
+#endif
 
 #include "lighting_common.glsl"
 #include "shadow_ratio.glsl"
@@ -63,9 +68,12 @@ void main()
         imageStore(radiance, pixel, vec4(frame.background.rgb, 0.0));
         return;
     }
+#if RTPBR_LIGHTING_CLASS == RTPBR_TILE_CLASS_EMPTY
+    vec3 result = vec3(0.0f); // emitted radiance
+    if (shade_emission) result = GBuffer_DecodeEmission(texelFetch(gbuffer2, pixel, 0));
+#else
     vec4 g2 = texelFetch(gbuffer2, pixel, 0);
     vec3 result = GBuffer_DecodeEmission(g2); // emitted radiance
-#if RTPBR_LIGHTING_CLASS != RTPBR_TILE_CLASS_EMPTY
     vec2 ndc = (vec2(pixel) + 0.5f) / vec2(frame.size) * 2.0f - 1.0f;
     vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
     vec3 P = world.xyz / world.w;

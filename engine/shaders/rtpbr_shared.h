@@ -423,6 +423,11 @@
 // shader library's RTPBR_AREA_LIGHT_STREAK_ON): false in the pipeline of
 // RTPBR_TILE_CLASS_BASIC_NO_STREAK, which is the basic variant's code (passes/lighting.c).
 #define RTPBR_SPEC_LIGHTING_STREAK 8
+// Whether the empty tiles' variant (RTPBR_TILE_CLASS_EMPTY) reads the G-buffer's emission (a
+// bool, true by default): false for frames none of whose materials emits
+// (rtpbr_lighting_needs.emission), whose empty tiles then write 0 without the read (on lavapipe
+// a third of their time; docs/performance.md, "Empty tiles without emission").
+#define RTPBR_SPEC_LIGHTING_EMISSION 12
 // The G-buffer pass's specialization constant (a uint, default RTPBR_GBUFFER_TEXTURES_ALL): which
 // of the material's first RTPBR_GBUFFER_SPEC_SLOTS texture slots (bit 1 << binding: base colour,
 // metallic-roughness, emission, normal) the pipeline samples; a slot left out reads as the white

@@ -111,7 +111,7 @@ typedef struct rtpbr_lighting_pass {             // passes/lighting.c, passes/li
     VkDescriptorSetLayout set_layout;            // shared by cull, LTC and Monte Carlo
     VkPipelineLayout layout;                     // cull and LTC: no push constants
     VkPipeline cull;                             // cull.comp: tile light masks and class queues
-    VkPipeline empty;                            // tiles without light: emission and background
+    VkPipeline empty[2];                         // tiles without light: background, emission ([1]) or 0 ([0])
     // compiled on first use, per specialization (rtpbr_lighting_pipelines_get: RTPBR_SPEC_LIGHTING_*)
     VkPipeline ltc[RTPBR_LIGHTING_VARIANT_COUNT][RTPBR_LIT_CLASS_COUNT][RTPBR_LIGHTING_SPEC_COUNT];
     bool cpu_device;                             // RTPBR_SPEC_LIGHTING_CPU of every LTC pipeline
@@ -311,6 +311,7 @@ typedef struct rtpbr_lighting_needs {
     bool punctual;              // a point, spot or directional light is among them
     uint32_t material_features; // the RTPBR_MATERIAL_FLAGS_FULL bits of any of its materials
     uint32_t light_count;       // its lights (records 0 .. light_count - 1)
+    bool emission;              // a material emits (any emission not 0): the G-buffer's emission is read
 } rtpbr_lighting_needs;
 // A frame of count lights and material_count materials (every RTPBR_MATERIAL_FLAGS_FULL bit
 // where one is Disney's: its coat and sheen are not the KHR ones).

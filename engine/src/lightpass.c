@@ -416,6 +416,7 @@ rtpbr_result rtpbr_lighting_record(rtpbr_lighting_targets *t, const rtpbr_lighti
     const rtpbr_shader_light *records = (const rtpbr_shader_light *)((const char *)lights->buffer.mapped + d->frame * lights->stride);
     rtpbr_lighting_needs needs = rtpbr_lighting_needs_of(records, lights->count[d->frame], t->materials.mapped,
                                                          t->material_slots);
+    needs.emission = true; // (the host's G-buffer holds the emission its own shader wrote)
     rtpbr_result result = rtpbr_lighting_pipelines_get(ctx, d->ndf, d->multiscatter, &needs, pipelines);
     if (result != RTPBR_SUCCESS) return result;
 #undef FAIL

@@ -1286,10 +1286,13 @@ rtpbr_lighting_needs rtpbr_lighting_needs_of(const rtpbr_shader_light *lights, u
 {
     rtpbr_lighting_needs needs = {
         .shapes = rtpbr_lights_shapes(lights, count), .max_vertices = 3, .punctual = false, .light_count = count};
-    for (uint32_t i = 0; i < material_count; ++i)
+    for (uint32_t i = 0; i < material_count; ++i) {
         needs.material_features |= (materials[i].flags & RTPBR_MATERIAL_FLAG_DISNEY) != 0u
                                        ? RTPBR_MATERIAL_FLAGS_FULL
                                        : materials[i].flags & RTPBR_MATERIAL_FLAGS_FULL;
+        // (the G-buffer's emission is the material's times its texture: 0 where the material's is)
+        for (int c = 0; c < 3; ++c) needs.emission = needs.emission || materials[i].emission[c] != 0.0f;
+    }
     for (uint32_t i = 0; i < count; ++i) {
         uint32_t shape = lights[i].shape;
         if (shape == RTPBR_LIGHT_SHAPE_POINT || shape == RTPBR_LIGHT_SHAPE_SPOT || shape == RTPBR_LIGHT_SHAPE_DIRECTIONAL)

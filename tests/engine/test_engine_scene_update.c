@@ -97,6 +97,51 @@ static void set_material_matches_create(void **state)
     fixture_finish(&f);
 }
 
+// Without lights every tile is empty, and its pipeline reads the G-buffer's emission only in
+// frames with an emissive material (RTPBR_SPEC_LIGHTING_EMISSION): giving the square an emission
+// by an edit shows it (exactly the material's: no light), as a scene created with it does, and
+// taking it away again gives the first image.
+static void emission_follows_set_material(void **state)
+{
+    (void)state;
+    fixture f;
+    fixture_init(&f);
+    f.materials[1].emission[0] = f.materials[1].emission[1] = f.materials[1].emission[2] = 0.0f;
+    rtpbr_gpu_scene_desc sd = {.meshes = f.meshes, .mesh_count = 2, .materials = f.materials, .material_count = 2,
+                               .cameras = &f.camera, .camera_count = 1};
+    rtpbr_gpu_scene *edited = NULL, *fresh = NULL;
+    assert_int_equal(rtpbr_gpu_scene_create(f.ctx, &sd, &edited), RTPBR_SUCCESS);
+    float *dark = render(&f, edited);
+    const rtpbr_material_desc glowing = {.emission = {0.5f, 2.0f, 4.0f}, .roughness = 1.0f};
+    assert_int_equal(rtpbr_gpu_scene_set_material(edited, 1, &glowing), RTPBR_SUCCESS);
+    float *lit = render(&f, edited);
+    f.materials[1] = glowing;
+    assert_int_equal(rtpbr_gpu_scene_create(f.ctx, &sd, &fresh), RTPBR_SUCCESS);
+    float *expected = render(&f, fresh);
+    assert_float_equal(max_difference(lit, expected), 0.0, 0.0);
+    // Each pixel of the square shows the material's emission, every other pixel 0; before the
+    // edit every pixel was 0.
+    int surface = 0, square = 0;
+    for (int i = 0; i < W * H; ++i) {
+        surface += dark[4 * i + 3] == 1.0f;
+        for (int c = 0; c < 3; ++c) assert_float_equal(dark[4 * i + c], 0.0f, 0.0f);
+        const float *p = lit + 4 * i;
+        bool emits = p[0] == 0.5f && p[1] == 2.0f && p[2] == 4.0f && p[3] == 1.0f;
+        assert_true(emits || (p[0] == 0.0f && p[1] == 0.0f && p[2] == 0.0f));
+        square += emits;
+    }
+    assert_true(surface > W * H / 2); // (the floor fills most of the image)
+    assert_true(square >= 40); // (48 pixels at 64 x 48)
+    const rtpbr_material_desc off = {.roughness = 1.0f};
+    assert_int_equal(rtpbr_gpu_scene_set_material(edited, 1, &off), RTPBR_SUCCESS);
+    float *back = render(&f, edited);
+    assert_float_equal(max_difference(back, dark), 0.0, 0.0);
+    free(dark), free(lit), free(expected), free(back);
+    rtpbr_gpu_scene_destroy(edited);
+    rtpbr_gpu_scene_destroy(fresh);
+    fixture_finish(&f);
+}
+
 // Moving the emissive square by a transform renders as the square created at the moved
 // position (translation 0.4 along X and a 90-degree turn about Z, about its centre).
 static void set_transform_matches_create(void **state)
@@ -265,6 +310,7 @@ static void renderer_timings(void **state)
 }
 
 RTPBR_TEST_MAIN(cmocka_unit_test(set_material_matches_create),
+                cmocka_unit_test(emission_follows_set_material),
                 cmocka_unit_test(set_transform_matches_create),
                 cmocka_unit_test(set_transform_moves_shadows),
                 cmocka_unit_test(bad_edits_are_refused),

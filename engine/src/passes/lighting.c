@@ -120,7 +120,14 @@ rtpbr_result rtpbr_lighting_pass_init(rtpbr_context *ctx)
                                      ? props.limits.maxUniformBufferRange
                                      : RTPBR_UNIFORM_LIGHTS_BYTES;
     RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_cull_comp), pass->layout, &pass->cull));
-    RTPBR_TRY(rtpbr_compute_pipeline_create(ctx, RTPBR_SPIRV(rtpbr_spirv_lighting_empty), pass->layout, &pass->empty));
+    // The empty tiles' variant with and without the G-buffer's emission (RTPBR_SPEC_LIGHTING_EMISSION).
+    for (uint32_t e = 0; e < 2; ++e) {
+        const VkBool32 emission = e;
+        const VkSpecializationMapEntry entry = {RTPBR_SPEC_LIGHTING_EMISSION, 0, sizeof emission};
+        const VkSpecializationInfo specialization = {1, &entry, sizeof emission, &emission};
+        RTPBR_TRY(rtpbr_compute_pipeline_create_specialized(ctx, RTPBR_SPIRV(rtpbr_spirv_lighting_empty), pass->layout,
+                                                            &specialization, &pass->empty[e]));
+    }
     // The default variant (GGX, multiple scattering on) for polygons of up to 4 vertices now, so
     // that a bad driver fails early; the others on first use (rtpbr_lighting_pipelines_get):
     // each costs shader compilations.
@@ -137,13 +144,13 @@ void rtpbr_lighting_pass_finish(rtpbr_context *ctx)
     for (uint32_t v = 0; v < RTPBR_LIGHTING_VARIANT_COUNT; ++v)
         for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c)
             for (uint32_t s = 0; s < RTPBR_LIGHTING_SPEC_COUNT; ++s) vkDestroyPipeline(ctx->device, pass->ltc[v][c][s], NULL);
-    const VkPipeline fixed[2] = {pass->empty, pass->cull};
-    rtpbr_pass_objects_destroy(ctx, fixed, 2, pass->layout, pass->set_layout);
+    const VkPipeline fixed[3] = {pass->empty[0], pass->empty[1], pass->cull};
+    rtpbr_pass_objects_destroy(ctx, fixed, 3, pass->layout, pass->set_layout);
     // (the Monte Carlo pipelines and layout are lighting_mc.c's)
     for (uint32_t v = 0; v < RTPBR_LIGHTING_VARIANT_COUNT; ++v)
         for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c)
             for (uint32_t s = 0; s < RTPBR_LIGHTING_SPEC_COUNT; ++s) pass->ltc[v][c][s] = VK_NULL_HANDLE;
-    pass->empty = pass->cull = VK_NULL_HANDLE;
+    pass->empty[0] = pass->empty[1] = pass->cull = VK_NULL_HANDLE;
     pass->layout = VK_NULL_HANDLE;
     pass->set_layout = VK_NULL_HANDLE;
 }
@@ -212,7 +219,7 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
         {RTPBR_SPEC_LIGHTING_STREAK, offsetof(lighting_constants, streak), sizeof(VkBool32)},
     };
     const VkSpecializationInfo specialization = {6, entries, sizeof constants, &constants};
-    out[RTPBR_TILE_CLASS_EMPTY] = pass->empty;
+    out[RTPBR_TILE_CLASS_EMPTY] = pass->empty[needs->emission ? 1 : 0];
     for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) {
         // the spheres' classes only for a frame with a sphere or a disk, the textured ones only
         // for a frame with a textured quad, the tubes' for one with a tube (shapes: rtpbr_lights_shapes; no tile is queued for
