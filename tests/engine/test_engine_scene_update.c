@@ -66,6 +66,14 @@ static float *render(fixture *f, rtpbr_gpu_scene *scene)
     return out;
 }
 
+// The end of a test of an edited scene against a fresh one.
+static void finish_pair(fixture *f, rtpbr_gpu_scene *edited, rtpbr_gpu_scene *fresh)
+{
+    rtpbr_gpu_scene_destroy(edited);
+    rtpbr_gpu_scene_destroy(fresh);
+    fixture_finish(f);
+}
+
 static double max_difference(const float *a, const float *b)
 {
     double d = 0.0;
@@ -92,9 +100,7 @@ static void set_material_matches_create(void **state)
     assert_true(max_difference(before, expected) > 0.05);
     assert_float_equal(max_difference(after, expected), 0.0, 0.0);
     free(before), free(after), free(expected);
-    rtpbr_gpu_scene_destroy(edited);
-    rtpbr_gpu_scene_destroy(fresh);
-    fixture_finish(&f);
+    finish_pair(&f, edited, fresh);
 }
 
 // Without lights every tile is empty, and its pipeline reads the G-buffer's emission only in
@@ -137,9 +143,7 @@ static void emission_follows_set_material(void **state)
     float *back = render(&f, edited);
     assert_float_equal(max_difference(back, dark), 0.0, 0.0);
     free(dark), free(lit), free(expected), free(back);
-    rtpbr_gpu_scene_destroy(edited);
-    rtpbr_gpu_scene_destroy(fresh);
-    fixture_finish(&f);
+    finish_pair(&f, edited, fresh);
 }
 
 // Moving the emissive square by a transform renders as the square created at the moved
@@ -175,9 +179,7 @@ static void set_transform_matches_create(void **state)
     float *back = render(&f, edited);
     assert_float_equal(max_difference(back, before), 0.0, 0.0);
     free(before), free(after), free(expected), free(back);
-    rtpbr_gpu_scene_destroy(edited);
-    rtpbr_gpu_scene_destroy(fresh);
-    fixture_finish(&f);
+    finish_pair(&f, edited, fresh);
 }
 
 // The shadow rays' occluders follow a transform too: the emissive square hangs between the light
@@ -234,9 +236,7 @@ static void set_transform_moves_shadows(void **state)
     float *back = render_shadowed(&f, edited);
     assert_float_equal(max_difference(back, before), 0.0, 0.0);
     free(before), free(unshadowed), free(after), free(expected), free(back);
-    rtpbr_gpu_scene_destroy(edited);
-    rtpbr_gpu_scene_destroy(fresh);
-    fixture_finish(&f);
+    finish_pair(&f, edited, fresh);
 }
 
 // Bad edits: a message, an error, and the scene renders as before.
