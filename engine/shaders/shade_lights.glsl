@@ -164,6 +164,10 @@ layout(constant_id = RTPBR_SPEC_LIGHTING_STREAK) const bool shade_streak = true;
 #define RTPBR_AREA_LIGHT_DISKS 1    // AreaLight_AddDisk for the disks' mask
 #define RTPBR_AREA_LIGHT_ROUND_DISKS 1 // (round disks' closed form; ellipses, disk_radius2, the cone's)
 #define RTPBR_AREA_LIGHT_TEXTURED RTPBR_LIGHTING_TEXTURED // AreaLight_AddTexturedQuad for the textured quads' mask
+// The specular lobe's inverse horizon mass once per point in the basic variant over polygons
+// alone; per light where the other shapes' code holds the loop's registers (the basic spheres',
+// textured and tubes' variants went from 96 to 104 VGPRs on navi21 with it: tests/shader-stats)
+#define RTPBR_AREA_LIGHT_INV_MASS_PER_POINT (!RTPBR_LIGHTING_FULL && !RTPBR_LIGHTING_SPHERES)
 // A polygon's first four edges walked without a loop (lavapipe), but every edge in one loop in
 // the full variants over textured quads or tubes (registers: those spilled 2 to 4 SGPRs on
 // navi21 and gfx1100 without it; tests/shader-stats)

@@ -286,6 +286,14 @@
 #ifndef RTPBR_AREA_LIGHT_WALK_LOOP
 #define RTPBR_AREA_LIGHT_WALK_LOOP 0
 #endif
+// RTPBR_AREA_LIGHT_INV_MASS_PER_POINT 1 (default: the basic evaluation) | 0: the specular lobe's
+// 1 / horizon mass taken once per point (AreaLightPixel.specularInvMass; docs/performance.md, 30)
+// or per light. A register through the light loop: the full evaluation has none to spare, and a
+// host may turn it off where its loop has none (the engine: its basic variants with other
+// shapes than polygons).
+#ifndef RTPBR_AREA_LIGHT_INV_MASS_PER_POINT
+#define RTPBR_AREA_LIGHT_INV_MASS_PER_POINT (!RTPBR_AREA_LIGHT_FULL)
+#endif
 #ifndef RTPBR_UNROLL
 #define RTPBR_UNROLL
 #endif
@@ -350,6 +358,7 @@ struct AreaLightPixel {
     rtpbr_float3x3 frame;        // LTC_Frame(N, V)
     rtpbr_float3 vLocal;         // V in that frame
     rtpbr_float3x3 specularMinv; // the specular lobe's M^-1 (stretched when anisotropic)
+    float specularInvMass;       // 1 / its LTC_HorizonMass, once per point (docs/performance.md, 30)
     rtpbr_float3 specularScale;  // its Fresnel scale, plus the shaped f_ms lobe's share
     rtpbr_float3 msColor;        // the separable f_ms lobe's colour
     float msScale;               // its (1 - Eo) / (1 - Eavg) (KC_PolygonLobe's per-point
@@ -446,6 +455,16 @@ RTPBR_FN LtcSegment AreaLight_EdgeStep(uint i, rtpbr_float3 P, rtpbr_float3x3 lt
     return seg;
 }
 
+// AreaLight_EdgeStep with its horizon clip's 1 / (a.z - b.z) given (rden: LTC_ClipEdgeRecip).
+RTPBR_FN LtcSegment AreaLight_EdgeStepRecip(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, uint k, uint count,
+                                            rtpbr_float3 first, float rden, RTPBR_INOUT(LtcClipper) horizon,
+                                            RTPBR_INOUT(rtpbr_float3) a, AreaLightQuad quad) {
+    rtpbr_float3 b = k < count ? AreaLight_Vertex(i, k, P, ltcFrame, quad) : first;
+    LtcSegment seg = LTC_ClipEdgeRecip(horizon, a, b, rden);
+    a = b;
+    return seg;
+}
+
 #if RTPBR_LTC_MAX_VERTICES != 8
 #error "AreaLight_EdgeStepTail holds vertices 5 to 7 of at most 8"
 #endif
@@ -464,20 +483,45 @@ RTPBR_FN LtcSegment AreaLight_EdgeStepTail(rtpbr_float3 P, rtpbr_float3x3 ltcFra
 // its vector form factor F and to the lobe's integral.
 RTPBR_FN void AreaLight_LobeSegment(LtcSegment seg, RTPBR_INOUT(rtpbr_float3) F, RTPBR_INOUT(LtcLobe) lobe) {
     if (seg.valid) {
-        F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+#if RTPBR_AREA_LIGHT_WALK_LOOP || RTPBR_AREA_LIGHT_TUBES // (registers: docs/performance.md, 30)
+        F += LTC_EdgeIntegralOf(seg.a, seg.b);
         LTC_LobeEdge(lobe, seg.a, seg.b);
+#else
+        // (LTC_LobeEdge, its clip's division issued before F's integral: its latency under it)
+        rtpbr_float3 la = rtpbr_mul(lobe.minv, seg.a), lb = rtpbr_mul(lobe.minv, seg.b);
+        float rden = 1.0f / (la.z - lb.z);
+        F += LTC_EdgeIntegralOf(seg.a, seg.b);
+        LtcSegment s = LTC_ClipEdgeRecip(lobe.clip, la, lb, rden);
+        if (s.valid)
+            lobe.vec += LTC_EdgeIntegralOf(s.a, s.b);
+#endif
     }
+}
+
+// LTC_HorizonFraction of lobe minv from invMass = LTC_InverseHorizonMass(minv), which a caller
+// evaluating many lights takes once per point (AreaLightPixel.specularInvMass: a product per
+// light, not a division; docs/performance.md, 30). Unless RTPBR_AREA_LIGHT_INV_MASS_PER_POINT,
+// a negative invMass (a literal -1, so that the choice folds at compile time) has it taken here
+// instead: the full evaluation's lobes and the other shapes' classes, whose per-point values
+// would cost registers they have not got.
+RTPBR_FN float AreaLight_HorizonFraction(float ff, float invMass, rtpbr_float3x3 minv) {
+#if RTPBR_AREA_LIGHT_INV_MASS_PER_POINT
+    RTPBR_UNUSED(minv);
+    return LTC_HorizonFractionInv(ff, invMass);
+#else
+    return invMass >= 0.0f ? LTC_HorizonFractionInv(ff, invMass) : LTC_HorizonFraction(ff, LTC_HorizonMass(minv));
+#endif
 }
 
 // The end of a lobe's pass (AreaLight_Lobe): its form factor, and its vector form factor in Fl.
 // LTC_LobeEndVector and LTC_LobeEnd in one: the closing segment's integral once, its z the
 // form factor's sum (the same value; the two calls left two copies: docs/performance.md, 9).
-RTPBR_FN float AreaLight_LobeClose(LtcLobe lobe, RTPBR_OUT(rtpbr_float3) Fl) {
+RTPBR_FN float AreaLight_LobeClose(LtcLobe lobe, float invMass, RTPBR_OUT(rtpbr_float3) Fl) {
     rtpbr_float3 v = lobe.vec;
     if (lobe.clip.crossed)
-        v += LTC_EdgeIntegral(LTC_SafeNormalize(lobe.clip.exitPoint), LTC_SafeNormalize(lobe.clip.entryPoint));
+        v += LTC_EdgeIntegralOf(lobe.clip.exitPoint, lobe.clip.entryPoint);
     Fl = v.z < 0.0f ? -v : v;
-    return LTC_HorizonFraction(abs(v.z), LTC_HorizonMass(lobe.minv));
+    return AreaLight_HorizonFraction(abs(v.z), invMass, lobe.minv);
 }
 
 // One pass over light i's edges (vectors from P in the LTC frame): the horizon clip, then the
@@ -486,7 +530,7 @@ RTPBR_FN float AreaLight_LobeClose(LtcLobe lobe, RTPBR_OUT(rtpbr_float3) Fl) {
 // read it leave its x, y to dead-code elimination). The full evaluation runs a pass per lobe
 // the material has, so that one lobe's clip state is live at a time. AreaLight_WalkLobe: the
 // same over the parallelogram quad instead where quad.on (a tube's facing quad).
-RTPBR_FN float AreaLight_WalkLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+RTPBR_FN float AreaLight_WalkLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv, float invMass,
                                   RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, AreaLightQuad quad) {
     LtcClipper horizon = LTC_ClipperBegin();
     LtcLobe lobe = LTC_LobeBegin(minv);
@@ -500,9 +544,30 @@ RTPBR_FN float AreaLight_WalkLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFram
 #else
     // (lavapipe: AreaLight_EdgeStep; the fourth edge and the loop only where the host's
     // polygons may have them, RTPBR_AREA_LIGHT_MAX_VERTICES: a tube's quad has four)
+    bool four = (RTPBR_AREA_LIGHT_MAX_VERTICES >= 4u || quad.on) && count >= 4u;
+#if !RTPBR_AREA_LIGHT_FULL
+    // (latency: docs/performance.md, 30) The horizon clips' divisions of edges 1 to 4 before
+    // the walk (from the heights of their ends, vertex k or the first where k = count): their
+    // latencies overlap instead of opening each edge. Not in the full evaluation, which is at
+    // its registers' limit (the values live across the walk spilled it on gfx1100).
+    float z1 = AreaLight_Vertex(i, 1u, P, ltcFrame, quad).z;
+    float z2 = AreaLight_Vertex(i, 2u, P, ltcFrame, quad).z;
+    float z3 = first.z, z4 = first.z;
+    if (four)
+        z3 = AreaLight_Vertex(i, 3u, P, ltcFrame, quad).z;
+    if (RTPBR_AREA_LIGHT_MAX_VERTICES > 4u && !quad.on && count > 4u)
+        z4 = AreaLight_Vertex(i, 4u, P, ltcFrame, quad).z;
+    float r1 = 1.0f / (first.z - z1), r2 = 1.0f / (z1 - z2);
+    float r3 = 1.0f / (z2 - z3), r4 = 1.0f / (z3 - z4);
+#endif
     RTPBR_UNROLL for (uint k = 1u; k <= 4u; ++k)
-        if (k < 4u || ((RTPBR_AREA_LIGHT_MAX_VERTICES >= 4u || quad.on) && count >= 4u))
+        if (k < 4u || four)
+#if RTPBR_AREA_LIGHT_FULL
             AreaLight_LobeSegment(AreaLight_EdgeStep(i, P, ltcFrame, k, count, first, horizon, a, quad), F, lobe);
+#else
+            AreaLight_LobeSegment(AreaLight_EdgeStepRecip(i, P, ltcFrame, k, count, first, k == 1u ? r1 : k == 2u ? r2 : k == 3u ? r3 : r4,
+                                                          horizon, a, quad), F, lobe);
+#endif
     if (RTPBR_AREA_LIGHT_MAX_VERTICES > 4u && count > 4u) {
         rtpbr_float3 v5 = RTPBR_F3(0.0f), v6 = v5, v7 = v5; // (read only below count: the host's contract)
         if (count > 5u) v5 = Host_LightVertex(i, 5u);
@@ -513,11 +578,11 @@ RTPBR_FN float AreaLight_WalkLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFram
     }
 #endif
     AreaLight_LobeSegment(LTC_ClipClose(horizon), F, lobe);
-    return AreaLight_LobeClose(lobe, Fl);
+    return AreaLight_LobeClose(lobe, invMass, Fl);
 }
-RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+RTPBR_FN float AreaLight_Lobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv, float invMass,
                               RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl) {
-    return AreaLight_WalkLobe(i, P, ltcFrame, minv, F, Fl, AreaLight_NoQuad());
+    return AreaLight_WalkLobe(i, P, ltcFrame, minv, invMass, F, Fl, AreaLight_NoQuad());
 }
 
 #if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS || RTPBR_AREA_LIGHT_TUBES
@@ -593,14 +658,14 @@ RTPBR_FN rtpbr_float3 AreaLight_EllipseClippedVectorSteps(rtpbr_float3 c, rtpbr_
         RTPBR_DONT_UNROLL for (uint k = 1u; k <= steps; ++k) {
             LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, sides, a);
             if (seg.valid)
-                F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+                F += LTC_EdgeIntegralOf(seg.a, seg.b);
         }
         return F;
     }
     RTPBR_UNROLL for (uint k = 1u; k <= sides + 1u; ++k) {
         LtcSegment seg = AreaLight_EllipseGonEdge(horizon, c, u, w, k, sides, a);
         if (seg.valid)
-            F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+            F += LTC_EdgeIntegralOf(seg.a, seg.b);
     }
     return F;
 }
@@ -660,7 +725,7 @@ RTPBR_FN bool AreaLight_DiskEllipse(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
 // AreaLight_SphereLobe's lobe over the ellipse (c, u, w) in the LTC frame (a sphere's disk,
 // AreaLight_SphereDisk, or a disk light's, AreaLight_DiskEllipse): its form factor, Fl its
 // vector form factor (see there).
-RTPBR_FN float AreaLight_EllipseLobe(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float3 w, rtpbr_float3x3 minv,
+RTPBR_FN float AreaLight_EllipseLobe(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float3 w, rtpbr_float3x3 minv, float invMass,
                                      RTPBR_OUT(rtpbr_float3) Fl) {
 #if RTPBR_AREA_LIGHT_SPHERE_CLIP
     rtpbr_float3 cl = rtpbr_mul(minv, c), ul = rtpbr_mul(minv, u), wl = rtpbr_mul(minv, w);
@@ -691,28 +756,28 @@ RTPBR_FN float AreaLight_EllipseLobe(rtpbr_float3 c, rtpbr_float3 u, rtpbr_float
         // (a sphere's F keeps the whole cap's direction, its z the clipped cap's form factor:
         // the clipped polygon's own F, summed here, took the basic variant from 96 to 112 VGPRs;
         // a disk has no such closed form)
-        return AreaLight_LobeClose(lobe, Fl);
+        return AreaLight_LobeClose(lobe, invMass, Fl);
     }
 #endif
     rtpbr_float3 v = LTC_EllipseVector(minv, c, u, w, true);
     Fl = v.z < 0.0f ? -v : v;
 #if RTPBR_AREA_LIGHT_SPHERE_CLIP
-    return LTC_HorizonFraction(abs(v.z), LTC_HorizonMass(minv));
+    return AreaLight_HorizonFraction(abs(v.z), invMass, minv);
 #else
-    return LTC_HorizonFraction(LTC_SphereCapFormFactor(v), LTC_HorizonMass(minv));
+    return AreaLight_HorizonFraction(LTC_SphereCapFormFactor(v), invMass, minv);
 #endif
 }
 
 // AreaLight_SphereLobe over the sphere (centre xyz, radius w) rather than a light's: a sphere
 // light's (Host_LightSphere) or a tube's end.
-RTPBR_FN float AreaLight_SphereLobeAt(rtpbr_float4 sphere, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+RTPBR_FN float AreaLight_SphereLobeAt(rtpbr_float4 sphere, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv, float invMass,
                                       RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl) {
     rtpbr_float3 c, u, w;
     if (!AreaLight_SphereDisk(sphere, P, ltcFrame, minv, c, u, w, F)) {
         Fl = F;
         return 1.0f;
     }
-    return AreaLight_EllipseLobe(c, u, w, minv, Fl);
+    return AreaLight_EllipseLobe(c, u, w, minv, invMass, Fl);
 }
 #endif
 
@@ -727,16 +792,16 @@ RTPBR_FN float AreaLight_SphereLobeAt(rtpbr_float4 sphere, rtpbr_float3 P, rtpbr
 // below the surface (measured: tests/engine/test_engine_punctual.c, sphere_ggx) but has no
 // walk (fewer registers). F: the sphere's exact vector form factor (a disk's: AreaLight_DiskEllipse's, or
 // its clipped polygon's where the horizon cuts it). Inside the sphere: 1.
-RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv, float invMass,
                                     RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl RTPBR_AREA_LIGHT_DISK_PARAM) {
 #if RTPBR_AREA_LIGHT_DISKS
     if (diskLight) {
         rtpbr_float3 c, u, w;
         AreaLight_DiskEllipse(i, P, ltcFrame, c, u, w, F);
-        return AreaLight_EllipseLobe(c, u, w, minv, Fl);
+        return AreaLight_EllipseLobe(c, u, w, minv, invMass, Fl);
     }
 #endif
-    return AreaLight_SphereLobeAt(Host_LightSphere(i), P, ltcFrame, minv, F, Fl);
+    return AreaLight_SphereLobeAt(Host_LightSphere(i), P, ltcFrame, minv, invMass, F, Fl);
 }
 #endif
 
@@ -751,7 +816,7 @@ RTPBR_FN float AreaLight_SphereLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFr
 // LTC_EvaluateTube, a quad thinner than RTPBR_LTC_TUBE_THIN is walked too (no line branch:
 // registers): measured against its line branch, 3.6e-5 relative at a radius of 6e-4 of the
 // distance, 3.2e-4 at 6e-5 and 6e-6 (test_area_light.cpp, test_tube_limits).
-RTPBR_FN float AreaLight_TubeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+RTPBR_FN float AreaLight_TubeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv, float invMass,
                                   RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl) {
     rtpbr_float4 end1 = Host_LightTube(i, 0u), end2 = Host_LightTube(i, 1u);
     rtpbr_float3 p1 = rtpbr_float3(end1.x, end1.y, end1.z), p2 = rtpbr_float3(end2.x, end2.y, end2.z);
@@ -777,7 +842,7 @@ RTPBR_FN float AreaLight_TubeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFram
             quad.u = rtpbr_mul(ltcFrame, q.v[1] - q.v[0]);
             quad.v = rtpbr_mul(ltcFrame, q.v[3] - q.v[0]);
             quad.on = true;
-            ff += wt.x * AreaLight_WalkLobe(i, P, ltcFrame, minv, Fp, Flp, quad);
+            ff += wt.x * AreaLight_WalkLobe(i, P, ltcFrame, minv, invMass, Fp, Flp, quad);
             F += (Fp.z < 0.0f ? -Fp : Fp) * wt.x;
             Fl += Flp * wt.x;
         }
@@ -787,7 +852,7 @@ RTPBR_FN float AreaLight_TubeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFram
     RTPBR_DONT_UNROLL for (uint e = 0u; e < 2u; ++e) {
         float we = e == 0u ? wt.y : wt.z;
         if (we > 0.0f) {
-            ff += we * AreaLight_SphereLobeAt(e == 0u ? rtpbr_float4(p1, radius) : rtpbr_float4(p2, radius), P, ltcFrame, minv, Fp, Flp);
+            ff += we * AreaLight_SphereLobeAt(e == 0u ? rtpbr_float4(p1, radius) : rtpbr_float4(p2, radius), P, ltcFrame, minv, invMass, Fp, Flp);
             F += Fp * we;
             Fl += Flp * we;
         }
@@ -816,12 +881,12 @@ RTPBR_FN float AreaLight_TubePartWeight(uint i, uint part, rtpbr_float3 P) {
 // AreaLight_SphereLobeAt), unweighted (AreaLight_TubePartWeight). Inside the capsule the quad
 // gives 1, F = Fl = (0, 0, 1). The three parts weighted and summed are AreaLight_TubeLobe; one
 // at a time each holds a quad's or a sphere's state alone (registers: AreaLight_AddShapePart).
-RTPBR_FN float AreaLight_TubePartLobe(uint i, uint part, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+RTPBR_FN float AreaLight_TubePartLobe(uint i, uint part, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv, float invMass,
                                       RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl) {
     rtpbr_float4 end1 = Host_LightTube(i, 0u), end2 = Host_LightTube(i, 1u);
     rtpbr_float3 p1 = rtpbr_float3(end1.x, end1.y, end1.z), p2 = rtpbr_float3(end2.x, end2.y, end2.z);
     if (part != RTPBR_AREA_LIGHT_TUBE_QUAD)
-        return AreaLight_SphereLobeAt(rtpbr_float4(part == RTPBR_AREA_LIGHT_TUBE_END1 ? p1 : p2, end1.w), P, ltcFrame, minv, F, Fl);
+        return AreaLight_SphereLobeAt(rtpbr_float4(part == RTPBR_AREA_LIGHT_TUBE_END1 ? p1 : p2, end1.w), P, ltcFrame, minv, invMass, F, Fl);
     rtpbr_float3 axis = p2 - p1;
     float len2 = dot(axis, axis);
     float h = len2 > 0.0f ? rtpbr_saturate(dot(P - p1, axis) / len2) : 0.0f;
@@ -840,7 +905,7 @@ RTPBR_FN float AreaLight_TubePartLobe(uint i, uint part, rtpbr_float3 P, rtpbr_f
     quad.u = rtpbr_mul(ltcFrame, q.v[1] - q.v[0]);
     quad.v = rtpbr_mul(ltcFrame, q.v[3] - q.v[0]);
     quad.on = true;
-    float ff = AreaLight_WalkLobe(i, P, ltcFrame, minv, F, Fl, quad);
+    float ff = AreaLight_WalkLobe(i, P, ltcFrame, minv, invMass, F, Fl, quad);
     F = F.z < 0.0f ? -F : F;
     return ff;
 }
@@ -848,29 +913,67 @@ RTPBR_FN float AreaLight_TubePartLobe(uint i, uint part, rtpbr_float3 P, rtpbr_f
 
 // AreaLight_Lobe, or AreaLight_SphereLobe where sphereLight (RTPBR_AREA_LIGHT_SPHERES; a disk
 // where diskLight too, RTPBR_AREA_LIGHT_DISKS): AreaLight_ShapeLobe without a tube's part.
-RTPBR_FN float AreaLight_SimpleShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+RTPBR_FN float AreaLight_SimpleShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv, float invMass,
                                          RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM) {
 #if RTPBR_AREA_LIGHT_SPHERES || RTPBR_AREA_LIGHT_DISKS
     if (sphereLight)
-        return AreaLight_SphereLobe(i, P, ltcFrame, minv, F, Fl RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
+        return AreaLight_SphereLobe(i, P, ltcFrame, minv, invMass, F, Fl RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
 #else
     RTPBR_UNUSED(sphereLight);
 #endif
-    return AreaLight_Lobe(i, P, ltcFrame, minv, F, Fl);
+    return AreaLight_Lobe(i, P, ltcFrame, minv, invMass, F, Fl);
 }
 
 // AreaLight_SimpleShapeLobe, or with RTPBR_AREA_LIGHT_TUBES a tube's part where tubePart is not
 // RTPBR_AREA_LIGHT_TUBE_NONE (AreaLight_TubePartLobe; the others then do not matter). (The whole
 // tube in one lobe, AreaLight_TubeLobe, is not a case here: in a loop over a tube's parts its
 // state joined every part's and took the registers it saves.)
-RTPBR_FN float AreaLight_ShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv,
+RTPBR_FN float AreaLight_ShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFrame, rtpbr_float3x3 minv, float invMass,
                                    RTPBR_OUT(rtpbr_float3) F, RTPBR_OUT(rtpbr_float3) Fl, bool sphereLight RTPBR_AREA_LIGHT_DISK_PARAM
                                        RTPBR_AREA_LIGHT_TUBE_PART_PARAM) {
 #if RTPBR_AREA_LIGHT_TUBES
     if (tubePart != RTPBR_AREA_LIGHT_TUBE_NONE)
-        return AreaLight_TubePartLobe(i, tubePart, P, ltcFrame, minv, F, Fl);
+        return AreaLight_TubePartLobe(i, tubePart, P, ltcFrame, minv, invMass, F, Fl);
 #endif
-    return AreaLight_SimpleShapeLobe(i, P, ltcFrame, minv, F, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
+    return AreaLight_SimpleShapeLobe(i, P, ltcFrame, minv, invMass, F, Fl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight));
+}
+
+// D V (ndf.h, smith.h: the BRDF with F = 1, without the cosine) for the point correction's two
+// directions L, from h = V + L unnormalised (hz = h.z, hh = |h|^2 > 0) and NoL, the view's terms
+// given (AreaLightPointDV: alpha clamped and squared, and GGX's height-correlated Smith term of
+// the view, taken once per light). With GGX and that Smith term, one division, no root of hh and
+// no branch (latency: docs/performance.md, 30); other models: D_Microfacet V_Microfacet. 0
+// where hz, NoL or NoV is not above 0 (test_point_dv: against D_Microfacet V_Microfacet).
+struct AreaLightPointDV {
+    float alpha;
+    float NoV;
+    float a2;
+    float sV; // sqrt(NoV^2 (1 - a2) + a2)
+};
+
+RTPBR_FN AreaLightPointDV AreaLight_PointDVBegin(float alpha, float NoV) {
+    AreaLightPointDV t;
+    t.alpha = alpha;
+    t.NoV = NoV;
+    t.a2 = rtpbr_sq(Alpha_Clamp(alpha));
+    float v = min(NoV, 1.0f);
+    t.sV = sqrt(v * v * (1.0f - t.a2) + t.a2);
+    return t;
+}
+
+RTPBR_FN float AreaLight_PointDV(AreaLightPointDV t, float hz, float hh, float NoL) {
+#if RTPBR_NDF == RTPBR_NDF_GGX && RTPBR_SMITH == RTPBR_SMITH_HEIGHT_CORRELATED && !RTPBR_SMITH_FAST
+    // D_GGX x V_SmithGGXCorrelated, from h unnormalised (NoH^2 = hz^2 / hh, no root): with
+    // q = hh + (a2 - 1) hz^2 = hh ((a2 - 1) NoH^2 + 1), D = a2 hh^2 / (pi q^2); V = 0.5 / (l sV + v sL)
+    float l = min(NoL, 1.0f), v = min(t.NoV, 1.0f);
+    float q = (t.a2 - 1.0f) * (hz * hz) + hh;
+    float sL = sqrt(l * l * (1.0f - t.a2) + t.a2);
+    float den = (RTPBR_PI * q) * (q * (l * t.sV + v * sL));
+    float dv = (0.5f * t.a2) * (hh * hh) / den;
+    return hz > 0.0f && NoL > 0.0f && t.NoV > 0.0f ? dv : 0.0f;
+#else
+    return D_Microfacet(hz * rtpbr_rsqrt(hh), t.alpha) * V_Microfacet(t.NoV, NoL, t.alpha);
+#endif
 }
 
 // The specular lobe's LTC result ltcFF corrected (ltc_corrections.h): the point correction
@@ -880,28 +983,29 @@ RTPBR_FN float AreaLight_ShapeLobe(uint i, rtpbr_float3 P, rtpbr_float3x3 ltcFra
 // direction of the light's vector form factor F x pi x its form factor ff), whichever is larger
 // (LTC_PointCombine); lenF = |F| (LTC_PointWidthRatio).
 // tableRoughness: ShadingSurface's, resolved (in [RTPBR_MATERIAL_MIN_ROUGHNESS, 1]: squared as is).
-RTPBR_FN float AreaLight_SpecularCorrected(rtpbr_float3 Fl, rtpbr_float4 ltc1, float norm, float NoV, float tableRoughness,
+RTPBR_FN float AreaLight_SpecularCorrected(rtpbr_float3 Fl, rtpbr_float4 ltc1, float invMass, float norm, float NoV, float tableRoughness,
                                            float ltcFF, rtpbr_float3 F, float ff, float lenF) {
     // recomputed here rather than kept live through the light loop
     float alpha = tableRoughness * tableRoughness;
     rtpbr_float3 vLocal = rtpbr_float3(sqrt(max(1.0f - NoV * NoV, 0.0f)), 0.0f, NoV);
-    LtcPoint pt = LTC_LobePoint(Fl, ltc1);
+    AreaLightPointDV dvView = AreaLight_PointDVBegin(alpha, NoV);
+    LtcPoint pt = LTC_LobePointInvMass(Fl, ltc1, invMass);
+    float weight = LTC_PointTailWeight(Fl, ltcFF, ff);
     float NoL = pt.dir.z;
     rtpbr_float3 h = vLocal + pt.dir;
     float hh = dot(h, h);
-    float fCos = NoL > 0.0f && hh > 1e-12f
-                     ? D_Microfacet(h.z * rtpbr_rsqrt(hh), alpha) * V_Microfacet(NoV, NoL, alpha) * NoL
+    float fCos = hh > 1e-12f
+                     ? AreaLight_PointDV(dvView, h.z, hh, NoL) * NoL
                      : 0.0f;
     float corrected =
         ltcFF * LTC_PointFactor(fCos, norm * pt.density, ltcFF, LTC_PointWidthRatio(alpha, sqrt(hh), lenF));
-    float weight = LTC_PointTailWeight(Fl, ltcFF, ff);
     float tail = 0.0f;
     if (weight > 0.0f) {
         rtpbr_float3 c = F / lenF;
         rtpbr_float3 hc = vLocal + c;
         float hc2 = dot(hc, hc);
-        float f = c.z > 0.0f && hc2 > 1e-12f
-                      ? D_Microfacet(hc.z * rtpbr_rsqrt(hc2), alpha) * V_Microfacet(NoV, c.z, alpha)
+        float f = hc2 > 1e-12f
+                      ? AreaLight_PointDV(dvView, hc.z, hc2, c.z)
                       : 0.0f;
         tail = LTC_PointTail(f, ff, norm);
     }
@@ -986,6 +1090,11 @@ RTPBR_FN AreaLightPixel AreaLight_Begin(ShadingSurface s, rtpbr_float3 N, rtpbr_
     px.msColor = s.msColor * (1.0f - kcBeta);
 #else
     px.msColor = s.msColor;
+#endif
+#if RTPBR_AREA_LIGHT_INV_MASS_PER_POINT
+    px.specularInvMass = LTC_InverseHorizonMass(px.specularMinv);
+#else
+    px.specularInvMass = -1.0f; // (registers: each walk takes its own, docs/performance.md, 30)
 #endif
     px.msScale = KC_PolygonLobe(s.Eo, 0.0f, s.Eavg, 1.0f);
     return px;
@@ -1233,7 +1342,7 @@ RTPBR_FN rtpbr_float3 AreaLight_StreakEstimate(uint i, rtpbr_float3 P, rtpbr_flo
                 seg = LTC_ClipClose(horizon);
             if (seg.valid) {
                 if (pass == 0) {
-                    F += LTC_EdgeIntegral(LTC_SafeNormalize(seg.a), LTC_SafeNormalize(seg.b));
+                    F += LTC_EdgeIntegralOf(seg.a, seg.b);
                     LTC_StreakEdge(st, seg.a, seg.b);
                 } else {
                     LTC_StreakChordEdge(st, seg.a, seg.b);

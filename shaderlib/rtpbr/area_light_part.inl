@@ -24,15 +24,15 @@
 #endif
 #define RTPBR_AREA_LIGHT_PART_IS(kind) (RTPBR_AREA_LIGHT_PART_KIND == RTPBR_AREA_LIGHT_KIND_##kind)
 #if RTPBR_AREA_LIGHT_PART_IS(TUBE)
-#define RTPBR_AREA_LIGHT_PART_LOBE(lobeMinv, lobeF, lobeFl) AreaLight_TubePartLobe(i, tubePart, P, px.frame, lobeMinv, lobeF, lobeFl)
+#define RTPBR_AREA_LIGHT_PART_LOBE(lobeMinv, lobeInvMass, lobeF, lobeFl) AreaLight_TubePartLobe(i, tubePart, P, px.frame, lobeMinv, lobeInvMass, lobeF, lobeFl)
 #elif RTPBR_AREA_LIGHT_PART_IS(POLYGON)
-#define RTPBR_AREA_LIGHT_PART_LOBE(lobeMinv, lobeF, lobeFl) AreaLight_Lobe(i, P, px.frame, lobeMinv, lobeF, lobeFl)
+#define RTPBR_AREA_LIGHT_PART_LOBE(lobeMinv, lobeInvMass, lobeF, lobeFl) AreaLight_Lobe(i, P, px.frame, lobeMinv, lobeInvMass, lobeF, lobeFl)
 #elif RTPBR_AREA_LIGHT_PART_IS(ROUND)
-#define RTPBR_AREA_LIGHT_PART_LOBE(lobeMinv, lobeF, lobeFl) \
-    AreaLight_SphereLobe(i, P, px.frame, lobeMinv, lobeF, lobeFl RTPBR_AREA_LIGHT_DISK_ARG(diskLight))
+#define RTPBR_AREA_LIGHT_PART_LOBE(lobeMinv, lobeInvMass, lobeF, lobeFl) \
+    AreaLight_SphereLobe(i, P, px.frame, lobeMinv, lobeInvMass, lobeF, lobeFl RTPBR_AREA_LIGHT_DISK_ARG(diskLight))
 #else
-#define RTPBR_AREA_LIGHT_PART_LOBE(lobeMinv, lobeF, lobeFl) \
-    AreaLight_SimpleShapeLobe(i, P, px.frame, lobeMinv, lobeF, lobeFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight))
+#define RTPBR_AREA_LIGHT_PART_LOBE(lobeMinv, lobeInvMass, lobeF, lobeFl) \
+    AreaLight_SimpleShapeLobe(i, P, px.frame, lobeMinv, lobeInvMass, lobeF, lobeFl, sphereLight RTPBR_AREA_LIGHT_DISK_ARG(diskLight))
 #endif
 
 // (sphereLight: lit through a sphere's paths below, a sphere, a disk or a tube's part. Where
@@ -128,10 +128,11 @@ RTPBR_FN void RTPBR_AREA_LIGHT_PART_FN(AreaLightPixel px, RTPBR_INOUT(AreaLightS
 #if RTPBR_AREA_LIGHT_STREAK
     // (registers: docs/performance.md, 3)
     // (a sphere light is no candidate: the estimate walks a polygon's edges)
-    bool streakSized = RTPBR_AREA_LIGHT_STREAK_ON != 0 && !sphereLight && !RTPBR_AREA_LIGHT_TEXTURED_FLAG && LTC_StreakCandidate(sphere.w, length(rtpbr_float3(sphere.x, sphere.y, sphere.z) - P), s.tableRoughness * s.tableRoughness, s.NoV);
+    rtpbr_float3 toBound = rtpbr_float3(sphere.x, sphere.y, sphere.z) - P;
+    bool streakSized = RTPBR_AREA_LIGHT_STREAK_ON != 0 && !sphereLight && !RTPBR_AREA_LIGHT_TEXTURED_FLAG && LTC_StreakCandidateSquared(sphere.w, dot(toBound, toBound), s.tableRoughness * s.tableRoughness, s.NoV);
 #endif
     rtpbr_float3 F, Fl;
-    float specularFF = RTPBR_AREA_LIGHT_PART_LOBE(px.specularMinv, F, Fl);
+    float specularFF = RTPBR_AREA_LIGHT_PART_LOBE(px.specularMinv, px.specularInvMass, F, Fl);
     // A textured quad's emission where each lobe looks (ltc_textured.h: the point where the
     // lobe's vector form factor meets the quad, read from the chain prefiltered to the lobe's
     // footprint): texS for the specular lobe and its multiple scattering, read here (Fl is the
@@ -177,10 +178,15 @@ RTPBR_FN void RTPBR_AREA_LIGHT_PART_FN(AreaLightPixel px, RTPBR_INOUT(AreaLightS
     // full variant spills (docs/performance.md, 12 and 25).
     if (px.pointOn && specularFF < 0.5f && !sphereLight) {
         float norm = Host_TableLtc2(RTPBR_TABLE_LTC_SPECULAR, LTC_LutCoord(s.NoV, s.tableRoughness)).x;
-        specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, norm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
+        specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, LTC_InverseHorizonMass(px.specularMinv), norm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
     }
 #else
-    specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, px.pointNorm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
+#if RTPBR_AREA_LIGHT_INV_MASS_PER_POINT
+    float pointInvMass = px.specularInvMass;
+#else
+    float pointInvMass = LTC_InverseHorizonMass(px.specularMinv);
+#endif
+    specularFF = AreaLight_SpecularCorrected(Fl, pointLtc1, pointInvMass, px.pointNorm, s.NoV, s.tableRoughness, specularFF, F, ff, lenF);
 #if RTPBR_AREA_LIGHT_STREAK
     // the streak estimate's candidate (after the loop): the first light it applies to and
     // whose size can give it any trust (LTC_StreakCandidate)
@@ -228,7 +234,7 @@ RTPBR_FN void RTPBR_AREA_LIGHT_PART_FN(AreaLightPixel px, RTPBR_INOUT(AreaLightS
         dm.baseColor = rtpbr_float3(px.baseColors.x, px.baseColors.y, px.baseColors.z);
         dm.sheenTint = px.baseColors.w;
         dm.subsurface = 1.0f; // the subsurface shape alone
-        base = px.baseScale * RTPBR_AREA_LIGHT_PART_LOBE(LTC_InverseMatrix(px.ltc1b), unusedF, unusedFl) +
+        base = px.baseScale * RTPBR_AREA_LIGHT_PART_LOBE(LTC_InverseMatrix(px.ltc1b), -1.0f, unusedF, unusedFl) +
                (px.baseParams.z * Disney_DiffuseLobe(dm, s.NoV, muRep, LoH) + Disney_SheenLobe(dm, LoH)) *
                    (RTPBR_PI * ff);
     } else
@@ -255,7 +261,7 @@ RTPBR_FN void RTPBR_AREA_LIGHT_PART_FN(AreaLightPixel px, RTPBR_INOUT(AreaLightS
         // (the sheen's parameters from AreaLight_Begin's shared registers)
         lo = lo * Sheen_AlbedoScaling(rtpbr_float3(px.baseColors.x, px.baseColors.y, px.baseColors.z), px.baseColors.w,
                                       Host_TableSheenE(muRep, px.baseParams.w)) +
-             texD * px.sheenScale * RTPBR_AREA_LIGHT_PART_LOBE(LTC_InverseMatrix(ltc1s), unusedF, unusedFl);
+             texD * px.sheenScale * RTPBR_AREA_LIGHT_PART_LOBE(LTC_InverseMatrix(ltc1s), -1.0f, unusedF, unusedFl);
     }
     lo *= s.baseAttenuation;
 #if RTPBR_AREA_LIGHT_TEXTURED
@@ -264,7 +270,7 @@ RTPBR_FN void RTPBR_AREA_LIGHT_PART_FN(AreaLightPixel px, RTPBR_INOUT(AreaLightS
 #endif
     if (px.coated) {
         rtpbr_float3 coatFl;
-        rtpbr_float3 coat = texS * (px.coatScale * RTPBR_AREA_LIGHT_PART_LOBE(LTC_InverseMatrix(px.ltc1c), unusedF, coatFl) +
+        rtpbr_float3 coat = texS * (px.coatScale * RTPBR_AREA_LIGHT_PART_LOBE(LTC_InverseMatrix(px.ltc1c), -1.0f, unusedF, coatFl) +
               s.msCoat * KC_PolygonLobe(s.Eoc, KC_PolygonMeanE(Host_TableE(muRep, s.coatRoughness), s.Eavgc, lenF), s.Eavgc, ff));
 #if RTPBR_AREA_LIGHT_TEXTURED
         // the coat, often the sharpest lobe: its own point and footprint

@@ -36,12 +36,15 @@
 //     LTC_PolygonRelative             the same unclipped: relative, local, oriented, or empty
 //     LTC_ClipToHalfSpace             a stored polygon clipped to dot(p, n) >= 0
 //   edge integral and horizon
-//     LTC_EdgeFactor                  theta / (2 pi sin theta), fitted (Heitz et al. 2017)
+//     LTC_EdgeFactor, LTC_EdgeFactorHalf  theta / (2 pi sin theta), fitted (Heitz et al. 2017)
 //     LTC_EdgeIntegral, LTC_EdgeIntegralZ  one edge's vector form factor (Arvo 1995), its z
+//     LTC_EdgeIntegralOf              the same for the directions of any two vectors
 //     LTC_SafeNormalize               v / |v|, 0 for 0
 //     LTC_HorizonMass, LTC_HorizonFraction  an LTC's mass above the horizon; a part of it
+//     LTC_InverseHorizonMass, LTC_HorizonFractionInv  the same through 1 / the mass
 //   streamed evaluation (edge by edge, nothing stored)
 //     LTC_ClipperBegin, LTC_ClipEdge, LTC_ClipClose  the horizon clip of one light
+//     LTC_ClipEdgeRecip               LTC_ClipEdge with its division given
 //     LTC_LobeBegin, LTC_LobeEdge     one lobe: its M^-1, then each clipped segment
 //     LTC_LobeEnd, LTC_LobeEndVector  the lobe's form factor; its vector form factor
 //   stored and one-call evaluation
@@ -230,18 +233,35 @@ RTPBR_FN float LTC_HorizonMass(rtpbr_float3x3 minv) {
     rtpbr_float3 cy = rtpbr_mul(minv, rtpbr_float3(0.0f, 1.0f, 0.0f));
     rtpbr_float3 cz = rtpbr_mul(minv, rtpbr_float3(0.0f, 0.0f, 1.0f));
     rtpbr_float3 n = cross(cx, cy);
-    n = dot(n, cz) < 0.0f ? -n : n;
-    float len = length(n);
-    float above = 0.5f + 0.5f * (n.z / len);
-    float below = 0.5f * (n.x * n.x + n.y * n.y) / (len * (len - n.z));
-    float mass = n.z >= 0.0f ? above : below;
-    return len > 0.0f ? rtpbr_saturate(mass) : 0.0f;
+    // (latency: docs/performance.md, 30) |n| and the side of cz from n at once; one root
+    float side = dot(n, cz);
+    float nxy2 = n.x * n.x + n.y * n.y;
+    float len2 = n.z * n.z + nxy2;
+    float rl = rtpbr_rsqrt(len2);
+    float nz = side < 0.0f ? -n.z : n.z;
+    float len = len2 * rl;
+    float above = 0.5f + 0.5f * (nz * rl);
+    float below = 0.5f * nxy2 / (len * (len - nz));
+    float mass = nz >= 0.0f ? above : below;
+    return len2 > 0.0f ? rtpbr_saturate(mass) : 0.0f;
 }
 
 // ff <= mass mathematically; kept in [0, 1] against rounding (a lobe of mass 1e-15 sums edge
 // terms of order 1). 0 where nothing is above the horizon.
 RTPBR_FN float LTC_HorizonFraction(float ff, float mass) {
     return mass > 0.0f && ff > 0.0f ? min(ff / mass, 1.0f) : 0.0f;
+}
+
+// 1 / LTC_HorizonMass(minv), 0 where that is 0: for a caller evaluating many lights with one
+// lobe, taken once per point (LTC_HorizonFractionInv's: a product per light, not a division).
+RTPBR_FN float LTC_InverseHorizonMass(rtpbr_float3x3 minv) {
+    float mass = LTC_HorizonMass(minv);
+    return mass > 0.0f ? 1.0f / mass : 0.0f;
+}
+
+// LTC_HorizonFraction from invMass = LTC_InverseHorizonMass (never negative or NaN).
+RTPBR_FN float LTC_HorizonFractionInv(float ff, float invMass) {
+    return rtpbr_saturate(ff * invMass);
 }
 
 // ---- streamed integration (the real-time path) ----------------------------------------------
@@ -254,12 +274,17 @@ RTPBR_FN float LTC_HorizonFraction(float ff, float mass) {
 // Heitz et al. 2017, ltc_code's "IntegrateEdgeVec": theta / (2 pi sin theta) for unit vectors,
 // x = cos theta, fitted in |x| (relative error < 2e-6); x < 0 folds onto |x| by theta / sin =
 // pi / sin - (pi - theta) / sin, sinT = |a x b| (consistent with the cross product near pi).
-RTPBR_FN float LTC_EdgeFactor(float x, float sinT) {
+// LTC_EdgeFactorHalf: the same with 0.5 / sin theta given (halfInvSinT, read only for x < 0).
+RTPBR_FN float LTC_EdgeFactorHalf(float x, float halfInvSinT) {
     float y = abs(x);
+    float b = 3.4175940f + (4.1616724f + y) * y; // (the divisor first: its reciprocal's latency)
     float a = 0.8543985f + (0.4965155f + 0.0145206f * y) * y;
-    float b = 3.4175940f + (4.1616724f + y) * y;
     float v = a / b;
-    return x >= 0.0f ? v : 0.5f / max(sinT, 1e-7f) - v;
+    return x >= 0.0f ? v : halfInvSinT - v;
+}
+
+RTPBR_FN float LTC_EdgeFactor(float x, float sinT) {
+    return LTC_EdgeFactorHalf(x, 0.5f / max(sinT, 1e-7f));
 }
 
 // theta / (2 pi sin theta) * cross(a, b) for unit a, b: summed over a polygon's edges, its
@@ -277,6 +302,28 @@ RTPBR_FN float LTC_EdgeIntegralZ(rtpbr_float3 a, rtpbr_float3 b) {
 // (A vertex at the shading point contributes nothing.)
 RTPBR_FN rtpbr_float3 LTC_SafeNormalize(rtpbr_float3 v) {
     return v * rtpbr_rsqrt(max(dot(v, v), 1e-30f));
+}
+
+// LTC_EdgeIntegral(LTC_SafeNormalize(a), LTC_SafeNormalize(b)) (up to the rounding of
+// 0.5 / sin theta for obtuse edges), written for latency (docs/performance.md, 30): the two
+// lengths' sums side by side (their floor LTC_SafeNormalize's, as the first term rather than a
+// step of its own), and 0.5 / sin theta as one root (LTC_EdgeFactorHalf) where LTC_EdgeFactor
+// takes a root and a division.
+// (Scaling dot(a, b) and cross(a, b) by 1 / (|a| |b|) instead was faster still but lost
+// precision where two long edges nearly cancel: a thin quad's, 4.8e-6 against ltc_lines.h.)
+RTPBR_FN rtpbr_float3 LTC_EdgeIntegralOf(rtpbr_float3 a, rtpbr_float3 b) {
+    float aa = a.x * a.x + 1e-30f;
+    float bb = b.x * b.x + 1e-30f;
+    aa = a.y * a.y + aa;
+    bb = b.y * b.y + bb;
+    aa = a.z * a.z + aa;
+    bb = b.z * b.z + bb;
+    float ra = rtpbr_rsqrt(aa);
+    float rb = rtpbr_rsqrt(bb);
+    a = a * ra;
+    b = b * rb;
+    rtpbr_float3 c = cross(a, b);
+    return c * LTC_EdgeFactorHalf(dot(a, b), 0.5f * rtpbr_rsqrt(max(dot(c, c), 1e-14f)));
 }
 
 // A streamed clip to z >= 0: where the boundary leaves the half-space and where it comes back.
@@ -302,12 +349,13 @@ RTPBR_FN LtcClipper LTC_ClipperBegin() {
 }
 
 // The part of a -> b in z >= 0 (points on the plane inside); records exit and entry points.
-RTPBR_FN LtcSegment LTC_ClipEdge(RTPBR_INOUT(LtcClipper) clip, rtpbr_float3 a, rtpbr_float3 b) {
+// LTC_ClipEdge with 1 / (a.z - b.z) given (rden: a caller can issue its division early).
+RTPBR_FN LtcSegment LTC_ClipEdgeRecip(RTPBR_INOUT(LtcClipper) clip, rtpbr_float3 a, rtpbr_float3 b, float rden) {
     bool inA = a.z >= 0.0f;
     bool inB = b.z >= 0.0f;
     // a.z and b.z have opposite signs when the edge crosses: a.z - b.z != 0, t in [0, 1]. Not
     // selected to 0 elsewhere: x is read only where the edge crosses (docs/performance.md, 10).
-    float t = a.z / (a.z - b.z);
+    float t = a.z * rden;
     rtpbr_float3 x = a + (b - a) * t;
     x.z = 0.0f;
     if (inA && !inB) {
@@ -321,6 +369,10 @@ RTPBR_FN LtcSegment LTC_ClipEdge(RTPBR_INOUT(LtcClipper) clip, rtpbr_float3 a, r
     s.b = inB ? b : x;
     s.valid = inA || inB;
     return s;
+}
+
+RTPBR_FN LtcSegment LTC_ClipEdge(RTPBR_INOUT(LtcClipper) clip, rtpbr_float3 a, rtpbr_float3 b) {
+    return LTC_ClipEdgeRecip(clip, a, b, 1.0f / (a.z - b.z));
 }
 
 // The segment along the plane that closes the clipped polygon (valid when it was crossed).
@@ -353,14 +405,14 @@ RTPBR_FN LtcLobe LTC_LobeBegin(rtpbr_float3x3 minv) {
 RTPBR_FN void LTC_LobeEdge(RTPBR_INOUT(LtcLobe) lobe, rtpbr_float3 a, rtpbr_float3 b) {
     LtcSegment s = LTC_ClipEdge(lobe.clip, rtpbr_mul(lobe.minv, a), rtpbr_mul(lobe.minv, b));
     if (s.valid) // the whole edge vector; callers that never read x, y let the compiler drop them
-        lobe.vec += LTC_EdgeIntegral(LTC_SafeNormalize(s.a), LTC_SafeNormalize(s.b));
+        lobe.vec += LTC_EdgeIntegralOf(s.a, s.b);
 }
 
 // In [0, 1] (LTC_HorizonFraction); closes the lobe's clip. Convex: the sum has one sign.
 RTPBR_FN float LTC_LobeEnd(LtcLobe lobe) {
     float sum = lobe.vec.z;
     if (lobe.clip.crossed)
-        sum += LTC_EdgeIntegralZ(LTC_SafeNormalize(lobe.clip.exitPoint), LTC_SafeNormalize(lobe.clip.entryPoint));
+        sum += LTC_EdgeIntegralOf(lobe.clip.exitPoint, lobe.clip.entryPoint).z;
     return LTC_HorizonFraction(abs(sum), LTC_HorizonMass(lobe.minv));
 }
 
@@ -368,7 +420,7 @@ RTPBR_FN float LTC_LobeEnd(LtcLobe lobe) {
 RTPBR_FN rtpbr_float3 LTC_LobeEndVector(LtcLobe lobe) {
     rtpbr_float3 v = lobe.vec;
     if (lobe.clip.crossed)
-        v += LTC_EdgeIntegral(LTC_SafeNormalize(lobe.clip.exitPoint), LTC_SafeNormalize(lobe.clip.entryPoint));
+        v += LTC_EdgeIntegralOf(lobe.clip.exitPoint, lobe.clip.entryPoint);
     return v.z < 0.0f ? -v : v;
 }
 

@@ -19,10 +19,11 @@
 // RTPBR_LTC_POINT_CORRECTION and RTPBR_LTC_STREAK (config.h).
 //
 // Public functions
-//   point correction   LTC_LobePoint, LTC_PointWidthRatio, LTC_PointFactor
+//   point correction   LTC_LobePoint, LTC_LobePointInvMass, LTC_PointWidthRatio, LTC_PointFactor
 //   tail estimate      LTC_PointTail, LTC_PointTailWeight, LTC_PointCombine
 //   streak, streamed   LTC_StreakBegin, LTC_StreakEdge, LTC_StreakNodes, LTC_StreakChordEdge,
 //                      LTC_StreakEnd, LTC_StreakWeight, LTC_StreakVoH, LTC_StreakCandidate,
+//                      LTC_StreakCandidateSquared,
 //                      LTC_StreakSpan, LTC_StreakSpanTrusted (no trust: the chords pass skipped)
 //   streak, culling    LTC_StreakOutside, LTC_StreakSteep, LTC_StreakSteepNoV
 //   streak, stored     LTC_StreakLocal (a polygon from LTC_PolygonToLocal; tools and tests)
@@ -119,16 +120,25 @@ struct LtcPoint {
     float density;
 };
 
-RTPBR_FN LtcPoint LTC_LobePoint(rtpbr_float3 F, rtpbr_float4 ltc1) {
+// LTC_LobePoint with 1 / the lobe's LTC_HorizonMass given (invMass: LTC_InverseHorizonMass, taken
+// once per point by a caller evaluating many lights, AreaLightPixel.specularInvMass).
+RTPBR_FN LtcPoint LTC_LobePointInvMass(rtpbr_float3 F, rtpbr_float4 ltc1, float invMass) {
     // M^-1 = [[a, 0, b], [0, 1, 0], [c, 0, d]] (rows): det M F = (d Fx - b Fz, det Fy, a Fz - c Fx)
     float det = ltc1.x * ltc1.w - ltc1.y * ltc1.z;
+    float f2 = dot(F, F);
     rtpbr_float3 u = rtpbr_float3(ltc1.w * F.x - ltc1.y * F.z, det * F.y, ltc1.x * F.z - ltc1.z * F.x);
-    float uu = dot(u, u), f2 = dot(F, F);
+    float fd = f2 * det;
+    float den = RTPBR_PI * (fd * fd); // (the mass's factor a product: density x invMass / den)
+    float uu = dot(u, u);
     LtcPoint p;
-    p.dir = u * ((det < 0.0f ? -1.0f : 1.0f) * rtpbr_rsqrt(max(uu, 1e-30f)));
-    float den = RTPBR_PI * f2 * f2 * det * det * LTC_HorizonMass(LTC_InverseMatrix(ltc1));
-    p.density = f2 > 1e-16f && den > 0.0f ? max(F.z, 0.0f) * uu * sqrt(uu) / den : 0.0f;
+    float ru = rtpbr_rsqrt(max(uu, 1e-30f)); // (|u|^3 = uu uu ru: one root for both)
+    p.dir = u * ((det < 0.0f ? -1.0f : 1.0f) * ru);
+    p.density = f2 > 1e-16f && den > 0.0f && invMass > 0.0f ? max(F.z, 0.0f) * (uu * uu * ru) * invMass / den : 0.0f;
     return p;
+}
+
+RTPBR_FN LtcPoint LTC_LobePoint(rtpbr_float3 F, rtpbr_float4 ltc1) {
+    return LTC_LobePointInvMass(F, ltc1, LTC_InverseHorizonMass(LTC_InverseMatrix(ltc1)));
 }
 
 // The lobe's width across the plane of incidence over the light's angular radius: alpha |V + w|
@@ -163,12 +173,16 @@ RTPBR_FN float LTC_PointFactor(float fCos, float ltcValue, float ff, float width
     }
     // k t + (1 - t), t = u^16, u = 1 - ff; 1 - t = ff (1 + u)(1 + u^2)(1 + u^4)(1 + u^8) without
     // the cancellation of 1 - t (a factor near 0 keeps its relative precision)
+    // (latency: the products as a tree, not a chain)
     float f = rtpbr_saturate(ff);
     float u = 1.0f - f;
     float u2 = u * u;
+    float p1 = f * (1.0f + u);
     float u4 = u2 * u2;
+    float p2 = p1 * (1.0f + u2);
     float u8 = u4 * u4;
-    return k * (u8 * u8) + f * (1.0f + u) * (1.0f + u2) * (1.0f + u4) * (1.0f + u8);
+    float p3 = (1.0f + u4) * (1.0f + u8);
+    return k * (u8 * u8) + p2 * p3;
 }
 
 // ---- the tail estimate --------------------------------------------------------------------
@@ -469,10 +483,15 @@ RTPBR_FN float LTC_StreakWeight(rtpbr_float3 vLocal, rtpbr_float3 F) {
 // plane of incidence, at most its angular diameter (bounding sphere of radius r at distance d:
 // 2 r / sqrt(d^2 - r^2) = 2 tan(asin(r / d)), above the angle), must reach RTPBR_LTC_STREAK_W0
 // lobe widths h.z alpha, and h.z >= NoV. A cheap test before the passes (the engine's); false
-// only where the estimate's trust would be 0.
+// only where the estimate's trust would be 0. LTC_StreakCandidateSquared: from distance^2, the
+// comparison squared (radius >= 0; no root: the engine's, issue 32).
+RTPBR_FN bool LTC_StreakCandidateSquared(float radius, float distance2, float alpha, float NoV) {
+    float d2 = distance2 - radius * radius;
+    float w = RTPBR_LTC_STREAK_W0 * max(alpha, 1e-3f) * NoV;
+    return !(d2 > 0.0f) || 4.0f * (radius * radius) >= (w * w) * d2;
+}
 RTPBR_FN bool LTC_StreakCandidate(float radius, float distance, float alpha, float NoV) {
-    float d2 = distance * distance - radius * radius;
-    return !(d2 > 0.0f) || 2.0f * radius >= RTPBR_LTC_STREAK_W0 * max(alpha, 1e-3f) * NoV * sqrt(d2);
+    return LTC_StreakCandidateSquared(radius, distance * distance, alpha, NoV);
 }
 
 // Whether the streak estimate's weight (LTC_StreakWeight) is 0 for every view direction within
