@@ -294,6 +294,9 @@
 #ifndef RTPBR_AREA_LIGHT_INV_MASS_PER_POINT
 #define RTPBR_AREA_LIGHT_INV_MASS_PER_POINT (!RTPBR_AREA_LIGHT_FULL)
 #endif
+#if RTPBR_AREA_LIGHT_INV_MASS_PER_POINT && RTPBR_AREA_LIGHT_FULL
+#error "RTPBR_AREA_LIGHT_INV_MASS_PER_POINT is the basic evaluation's: the full one's other lobes take theirs per light"
+#endif
 #ifndef RTPBR_UNROLL
 #define RTPBR_UNROLL
 #endif
