@@ -37,9 +37,9 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_TEXTURES) uniform sampler2DArray l
 // pass on a CPU device, for a frame of at most RTPBR_UNIFORM_LIGHTS_MAX lights, from the same
 // records bound as a uniform buffer (RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS, set by
 // passes/lighting.c; rtpbr_shared.h, RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM): on lavapipe a uniform
-// buffer's read at an index that varies is one gather, a storage buffer's a loop over the SIMD
-// lanes (docs/performance.md, 22). The GPU's code (false, the default) reads the storage
-// buffer as before.
+// buffer's read at an index that varies is a load per SIMD lane, a storage buffer's a loop over
+// the lanes with a branch in each trip (docs/performance.md, 22 and 31). The GPU's code (false,
+// the default) reads the storage buffer as before.
 #ifdef RTPBR_SHADE_ALL_LIGHTS
 #define LIGHT(i, field) lights[i].field
 #else
