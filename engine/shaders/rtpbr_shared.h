@@ -455,8 +455,8 @@
 // buffer (std140: the same layout as std430 for rtpbr_shader_light), read instead of
 // RTPBR_BINDING_LIGHT_LIGHTS where RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS is set: on lavapipe a
 // uniform buffer's read at a varying index is a load per SIMD lane, a storage buffer's a loop
-// over the lanes with a branch in each trip (docs/performance.md, 22 and 31). 315 records of 208 bytes fill 65,520 of 65,536 bytes, lavapipe's (and a common
-// GPU's) maxUniformBufferRange.
+// over the lanes with a branch in each trip (docs/performance.md, 22 and 31). 315 records of
+// 208 bytes fill 65,520 of 65,536 bytes, lavapipe's (and a common GPU's) maxUniformBufferRange.
 #define RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM 29
 #define RTPBR_UNIFORM_LIGHTS_MAX 315
 #define RTPBR_SHADER_LIGHT_TEXTURE_SIZE 128
