@@ -38,7 +38,8 @@ build=$1
 shift
 scene=floor lights=16 size=640x480 lib=$build/engine seconds=6
 while [[ $# -gt 0 ]]; do
-  [[ $# -ge 2 ]] || { [[ $1 == -h || $1 == --help ]] && { help; exit 0; }; usage; }
+  [[ $1 == -h || $1 == --help ]] && { help; exit 0; }
+  [[ $# -ge 2 ]] || usage
   case $1 in
   --scene) scene=$2 ;;
   --lights) lights=$2 ;;
