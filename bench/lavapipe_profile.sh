@@ -2,11 +2,12 @@
 # What the lighting pass's code does on lavapipe, by instruction class (issue 32): samples
 # rtpbr-bench-engine's frames with perf, copies the compiled shader most samples fall in out of
 # the running process (gdb: llvmpipe's JIT code has no file or symbols), disassembles it
-# (objdump) and prints, over the code that holds 95 % of that shader's samples (its hot loop),
-# how many instructions of each class it has (static: one pass through the hot code, so a light's
-# evaluation on a light-heavy scene) and each class's share of the samples. Counts, not times:
-# they repeat from run to run where a frame's time moves by 10-20 % on the shared 2-core machine
-# (bench/README.md, "Where a light's instructions go on lavapipe"). A sample is counted against
+# (objdump) and prints, over that code's hot part (the 1 KiB blocks that each hold at least
+# 0.5 % of its samples: on a light-heavy scene, mostly the light loop), how many instructions of
+# each class it has (static counts, not executions: callgrind's are lavapipe_instructions.sh's)
+# and each class's share of the samples. Steadier than times: a frame's time moves by 10-20 %
+# between runs on the shared 2-core machine, these counts by a few per cent (bench/README.md,
+# "Where a light's instructions go on lavapipe"). A sample is counted against
 # the instruction before its address (an instruction is sampled when the next one is waiting
 # for it); the static counts do not depend on that.
 #   bench/lavapipe_profile.sh BUILD_DIR [--scene NAME] [--lights N] [--size WxH] [--lib DIR] [--seconds S]
@@ -19,10 +20,11 @@ renders --scene (default floor) with --lights lights (default 16) at --size (def
 frame after frame; perf samples it for --seconds (default 6) after 8 s of warm-up; the code of
 the shader with the most samples is copied out with gdb and disassembled with objdump.
   --lib DIR      the engine library's directory (LD_LIBRARY_PATH; default BUILD_DIR/engine)
-Prints, for the code holding 95 % of that shader's samples: its instructions by class
-(floating-point arithmetic; division and square root; lane extracts and inserts, llvmpipe's
-loads at an index that differs between SIMD lanes; moves to and from the stack, spills; integer
-vector; compares and masks; blends; gathers; other) and each class's share of the samples.
+Prints, for its hot part (1 KiB blocks with at least 0.5 % of its samples each), the
+instructions by class (floating-point arithmetic; division and square root; lane extracts and
+inserts, llvmpipe's loads at an index that differs between SIMD lanes; moves to and from the
+stack, spills; integer vector; compares and masks; blends; gathers; other) and each class's
+share of the samples.
 Needs perf (Debian linux-perf), gdb and objdump (binutils), and permission to trace the process.
 EOT
 }
@@ -137,16 +139,14 @@ def klass(s):
         return 'integer vector and conversions'
     return 'scalar and other'
 
-# 1 KiB blocks of the region by samples; the hottest ones holding 95 % of them
+# 1 KiB blocks of the region by samples; the hot ones hold at least 0.5 % of them each (a
+# density, not a cumulative share: the loop's blocks hold 2 to 12 % each, the cold ones well
+# under 0.5 %, so the set does not move with the sampling's noise at its edge)
 blocks = collections.Counter()
 for c, a in inside:
     blocks[(a - lo) // 1024] += c
-hot, acc = set(), 0
-for b, c in blocks.most_common():
-    if acc >= 0.95 * n_in:
-        break
-    hot.add(b)
-    acc += c
+hot = {b for b, c in blocks.items() if c >= 0.005 * n_in}
+acc = sum(blocks[b] for b in hot)
 static = collections.Counter(klass(s) for a, s in asm if (a - lo) // 1024 in hot)
 sampled = collections.Counter()
 for c, a in inside:
