@@ -423,6 +423,12 @@
 // shader library's RTPBR_AREA_LIGHT_STREAK_ON): false in the pipeline of
 // RTPBR_TILE_CLASS_BASIC_NO_STREAK, which is the basic variant's code (passes/lighting.c).
 #define RTPBR_SPEC_LIGHTING_STREAK 8
+// Whether the lighting variant reads the lights' shadow ratios (a bool, true by default): false
+// for frames without shadows (frame.shadow_light_count 0; rtpbr_lighting_needs.shadows), whose
+// variant then has no visibility code. On a GPU the run-time test of shadow_light_count skips
+// it; on lavapipe both sides of a branch run, and the per-light slot search and texel read took
+// 6 % of a quad light's instructions (docs/performance.md, 32).
+#define RTPBR_SPEC_LIGHTING_SHADOWS 13
 // Whether the empty tiles' variant (RTPBR_TILE_CLASS_EMPTY) reads the G-buffer's emission (a
 // bool, true by default): false for frames none of whose materials emits
 // (rtpbr_lighting_needs.emission), whose empty tiles then write 0 without the read (on lavapipe

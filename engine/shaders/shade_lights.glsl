@@ -58,15 +58,8 @@ layout(set = 0, binding = RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM, std140) uniform Li
 #define RTPBR_STATS_SHAPE_TUBE 17
 
 // The library's host bridge (area_light.h): lights from the lights buffer, tables from the
-// bindings above. RTPBR_STATS_FIXED_LIGHTS (bench/shader-stats) makes every light a quad.
-uint Host_LightVertexCount(uint i)
-{
-#ifdef RTPBR_STATS_FIXED_LIGHTS
-    return 4u;
-#else
-    return LIGHT(i, vertex_count);
-#endif
-}
+// bindings above (a polygon's vertex count below, after the specialization constants).
+// RTPBR_STATS_FIXED_LIGHTS (bench/shader-stats) makes every light a quad.
 // On a CPU device (RTPBR_SPEC_LIGHTING_CPU, set by passes/lighting.c: lavapipe) the full
 // variant reads a polygon's first four vertices once per light (shade_light_vertices, before
 // AreaLight_Add) and its lobes' walks take them from there: on lavapipe each storage-buffer read
@@ -128,8 +121,14 @@ ivec2 shade_pixel; // the pixel shade_lights shades (for its shadow ratios)
 #ifdef RTPBR_SHADE_ALL_LIGHTS
 vec3 Host_LightVisibility(uint i) { return vec3(shadow_factor(i, shade_pixel)); }
 #else
+// Whether the frame has shadows (false: no visibility code; rtpbr_shared.h,
+// RTPBR_SPEC_LIGHTING_SHADOWS, set by passes/lighting.c).
+layout(constant_id = RTPBR_SPEC_LIGHTING_SHADOWS) const bool shade_shadows = true;
 uvec4 shade_slots_lo, shade_slots_hi; // its tile's shadow slots (shadow_ratio.glsl), loaded once
-vec3 Host_LightVisibility(uint i) { return vec3(shadow_factor_slots(i, shade_pixel, shade_slots_lo, shade_slots_hi)); }
+vec3 Host_LightVisibility(uint i)
+{
+    return shade_shadows ? vec3(shadow_factor_slots(i, shade_pixel, shade_slots_lo, shade_slots_hi)) : vec3(1.0f);
+}
 #endif
 vec4 Host_TableLtc1(int table, vec2 uv)
 {
@@ -156,6 +155,17 @@ layout(constant_id = RTPBR_SPEC_LIGHTING_PUNCTUAL) const bool shade_punctual = t
 // Whether the streak estimate runs (false: the pipeline of RTPBR_TILE_CLASS_BASIC_NO_STREAK,
 // tiles where the cull proved it changes nothing; rtpbr_shared.h, RTPBR_SPEC_LIGHTING_STREAK).
 layout(constant_id = RTPBR_SPEC_LIGHTING_STREAK) const bool shade_streak = true;
+uint Host_LightVertexCount(uint i)
+{
+#ifdef RTPBR_STATS_FIXED_LIGHTS
+    return 4u;
+#else
+    // A frame whose polygons have at most 3 vertices has triangles only (a polygon has 3 at
+    // least): its count a constant, the record's read and the walk's tests on it folded away
+    // (lavapipe: every read of a light's record is a load per SIMD lane; docs/performance.md, 32).
+    return shade_max_vertices <= 3u ? 3u : LIGHT(i, vertex_count);
+#endif
+}
 #define RTPBR_AREA_LIGHT_MAX_VERTICES shade_max_vertices
 #define RTPBR_AREA_LIGHT_STREAK_ON (shade_streak ? 1 : 0)
 #define RTPBR_AREA_LIGHT_FULL RTPBR_LIGHTING_FULL
@@ -218,7 +228,7 @@ void shade_lights(vec3 P, vec3 N, vec3 V, ShadingSurface s, uint tile, ivec2 pix
     shade_pixel = pixel;
 #ifndef RTPBR_SHADE_ALL_LIGHTS
     shade_slots_lo = shade_slots_hi = uvec4(RTPBR_TILE_NO_LIGHT);
-    if (frame.shadow_light_count != 0u) shadow_slots(tile, shade_slots_lo, shade_slots_hi);
+    if (shade_shadows && frame.shadow_light_count != 0u) shadow_slots(tile, shade_slots_lo, shade_slots_hi);
 #endif
     AreaLightSum acc = AreaLight_SumBegin();
 #ifdef RTPBR_STATS_FIXED_LIGHTS

@@ -91,8 +91,8 @@ typedef struct rtpbr_lut {
 // The LTC pipelines' specializations (RTPBR_SPEC_LIGHTING_*): a frame's polygons of at most 3,
 // 4 or RTPBR_SHADER_MAX_POLYGON_VERTICES vertices, without or with punctual lights, its
 // materials with any of the 16 combinations of the full variant's features, the lights read
-// from the storage or the uniform buffer.
-#define RTPBR_LIGHTING_SPEC_COUNT (3 * 2 * 16 * 2)
+// from the storage or the uniform buffer, with or without shadows.
+#define RTPBR_LIGHTING_SPEC_COUNT (3 * 2 * 16 * 2 * 2)
 // The bytes of the lights' uniform binding (RTPBR_BINDING_LIGHT_LIGHTS_UNIFORM).
 #define RTPBR_UNIFORM_LIGHTS_BYTES (RTPBR_UNIFORM_LIGHTS_MAX * sizeof(rtpbr_shader_light))
 #define RTPBR_TONEMAP_PIPELINE_CACHE 24 // tone-mapping pipelines, per target format (8) and operator (3)
@@ -312,6 +312,8 @@ typedef struct rtpbr_lighting_needs {
     uint32_t material_features; // the RTPBR_MATERIAL_FLAGS_FULL bits of any of its materials
     uint32_t light_count;       // its lights (records 0 .. light_count - 1)
     bool emission;              // a material emits (any emission not 0): the G-buffer's emission is read
+    bool shadows;               // the frame's desc asks for shadows (its shadow_light_count may be
+                                // > 0); false from rtpbr_lighting_needs_of: the caller sets it
 } rtpbr_lighting_needs;
 // A frame of count lights and material_count materials (every RTPBR_MATERIAL_FLAGS_FULL bit
 // where one is Disney's: its coat and sheen are not the KHR ones).

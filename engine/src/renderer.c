@@ -227,6 +227,7 @@ static rtpbr_result get_lighting(rtpbr_context *ctx, const rtpbr_gpu_scene *scen
     out->forward = VK_NULL_HANDLE;
     rtpbr_lighting_needs needs = rtpbr_lighting_needs_of(scene->lights.mapped, scene->light_count, scene->materials.mapped,
                                                          scene->material_count);
+    needs.shadows = desc->shadows == RTPBR_SHADOWS_ON; // (as frame_constants' shadow_light_count)
     uint32_t shapes = needs.shapes;
     rtpbr_result result = desc->mc_samples == 0
                               ? rtpbr_lighting_pipelines_get(ctx, desc->ndf, desc->multiscatter, &needs, out->lighting)

@@ -164,6 +164,7 @@ typedef struct lighting_constants {
     VkBool32 cpu; // (the context's device: the same for all its pipelines)
     VkBool32 uniform_lights;
     VkBool32 streak; // (false only in RTPBR_TILE_CLASS_BASIC_NO_STREAK's pipeline)
+    VkBool32 shadows;
 } lighting_constants;
 
 rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtpbr_multiscatter ms,
@@ -200,8 +201,8 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
     // The specialization: polygons of up to 3, 4 or 8 vertices, punctual lights or none, in
     // the full classes the materials' features (the basic ones compile them out anyway: one
     // pipeline for all, with the default), and on a CPU device the lights read from the uniform
-    // buffer where they fit (RTPBR_UNIFORM_LIGHTS_MAX); a pipeline per combination, compiled on
-    // first use.
+    // buffer where they fit (RTPBR_UNIFORM_LIGHTS_MAX), and the shadow ratios read or not
+    // (RTPBR_SPEC_LIGHTING_SHADOWS); a pipeline per combination, compiled on first use.
     _Static_assert(RTPBR_MATERIAL_FLAGS_FULL == 0x3cu, "the full variant's features: bits 2 to 5");
     lighting_constants constants = {
         .max_vertices = needs->max_vertices <= 3 ? 3u : needs->max_vertices <= 4 ? 4u : RTPBR_SHADER_MAX_POLYGON_VERTICES,
@@ -209,16 +210,18 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
         .cpu = pass->cpu_device ? VK_TRUE : VK_FALSE,
         .uniform_lights = pass->uniform_lights && needs->light_count <= RTPBR_UNIFORM_LIGHTS_MAX ? VK_TRUE : VK_FALSE,
         .streak = VK_TRUE,
+        .shadows = needs->shadows ? VK_TRUE : VK_FALSE,
     };
-    const VkSpecializationMapEntry entries[6] = {
+    const VkSpecializationMapEntry entries[7] = {
         {RTPBR_SPEC_LIGHTING_MAX_VERTICES, offsetof(lighting_constants, max_vertices), sizeof(uint32_t)},
         {RTPBR_SPEC_LIGHTING_PUNCTUAL, offsetof(lighting_constants, punctual), sizeof(VkBool32)},
         {RTPBR_SPEC_LIGHTING_MATERIALS, offsetof(lighting_constants, material_features), sizeof(uint32_t)},
         {RTPBR_SPEC_LIGHTING_CPU, offsetof(lighting_constants, cpu), sizeof(VkBool32)},
         {RTPBR_SPEC_LIGHTING_UNIFORM_LIGHTS, offsetof(lighting_constants, uniform_lights), sizeof(VkBool32)},
         {RTPBR_SPEC_LIGHTING_STREAK, offsetof(lighting_constants, streak), sizeof(VkBool32)},
+        {RTPBR_SPEC_LIGHTING_SHADOWS, offsetof(lighting_constants, shadows), sizeof(VkBool32)},
     };
-    const VkSpecializationInfo specialization = {6, entries, sizeof constants, &constants};
+    const VkSpecializationInfo specialization = {7, entries, sizeof constants, &constants};
     out[RTPBR_TILE_CLASS_EMPTY] = pass->empty[needs->emission ? 1 : 0];
     for (uint32_t c = 0; c < RTPBR_LIT_CLASS_COUNT; ++c) {
         // the spheres' classes only for a frame with a sphere or a disk, the textured ones only
@@ -233,7 +236,8 @@ rtpbr_result rtpbr_lighting_pipelines_get(rtpbr_context *ctx, rtpbr_ndf ndf, rtp
         constants.streak = noStreak ? VK_FALSE : VK_TRUE;
         constants.material_features = full ? needs->material_features & RTPBR_MATERIAL_FLAGS_FULL : RTPBR_MATERIAL_FLAGS_FULL;
         uint32_t s = (constants.max_vertices == 3 ? 0u : constants.max_vertices == 4 ? 1u : 2u) +
-                     3u * constants.punctual + 6u * (constants.material_features >> 2) + 96u * constants.uniform_lights;
+                     3u * constants.punctual + 6u * (constants.material_features >> 2) + 96u * constants.uniform_lights +
+                     192u * constants.shadows;
         const rtpbr_spirv *code = noStreak ? &ltc[v][0]
                                   : pass->cpu_device && k >= RTPBR_TILE_CLASS_BASIC_TUBES - 1u
                                       ? &tubes_cpu[v][k - (RTPBR_TILE_CLASS_BASIC_TUBES - 1u)]
